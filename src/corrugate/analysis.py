@@ -1,0 +1,228 @@
+"""Analyse a design: moduli, springs, K(eta), D(eta), EI(eta), mass and warnings.
+
+Two entry points share one implementation:
+
+* :func:`evaluate`, vectorised over NumPy arrays of layer parameters (a sweep over a million designs
+  is one call; the optimiser uses it);
+* :func:`analyze`, for one :class:`~corrugate.geometry.Assembly`, returning an :class:`Analysis`
+  with everything ``corrugate analyze`` prints.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .checks import ModelWarning, design_warnings
+from .geometry import Assembly, Layer
+from .layouts import Layout, inverse_length_sum, length_sum
+from .mass import MassBreakdown, assembly_mass, layer_mass
+from .moduli import DEFAULT_MODEL, Moduli, get_model, moduli
+from .springs import LayerSprings, assembly_D, assembly_K, layer_springs
+
+__all__ = [
+    "Analysis",
+    "DirectionalStiffness",
+    "Evaluation",
+    "LayerArrays",
+    "analyze",
+    "evaluate",
+]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True, slots=True)
+class LayerArrays:
+    """Parameters of one layer as arrays that broadcast together (internal units).
+
+    E (MPa), nu, t (mm), W (mm), n (creases), alpha_deg (deg), density (g/mm^3).
+    """
+
+    E: ArrayLike
+    nu: ArrayLike
+    t: ArrayLike
+    W: ArrayLike
+    n: ArrayLike
+    alpha_deg: ArrayLike
+    density: ArrayLike
+
+    @classmethod
+    def of(cls, layer: Layer) -> LayerArrays:
+        m = layer.material
+        return cls(m.E, m.nu, layer.t, layer.W, layer.n, layer.alpha_deg, m.density)
+
+    def pitch(self) -> FloatArray:
+        return np.asarray(
+            np.asarray(self.W) * np.sin(np.radians(np.asarray(self.alpha_deg, dtype=float)) / 2)
+        )
+
+    def height(self) -> FloatArray:
+        return np.asarray(
+            np.asarray(self.W) * np.cos(np.radians(np.asarray(self.alpha_deg, dtype=float)) / 2)
+        )
+
+    def chord_extent(self) -> FloatArray:
+        return np.asarray((np.asarray(self.n) + 1) * self.pitch())
+
+
+@dataclass(frozen=True, slots=True)
+class Evaluation:
+    """Vectorised results (arrays broadcast over the inputs): lengths in mm, K in N/mm,
+    D in N mm, EI in N mm^2, mass in g."""
+
+    Lx: FloatArray
+    Ly: FloatArray
+    thickness: FloatArray
+    mass: FloatArray
+    K: FloatArray
+    D: FloatArray
+    EI: FloatArray
+    moduli: tuple[Moduli, Moduli]
+    springs: tuple[LayerSprings, LayerSprings]
+
+
+def evaluate(
+    layer1: LayerArrays,
+    layer2: LayerArrays,
+    layout: Layout,
+    model: str = DEFAULT_MODEL,
+    eta_deg: ArrayLike = 0.0,
+) -> Evaluation:
+    """Stiffness, size and mass of assemblies given as arrays of layer parameters.
+
+    No validation is done (see :class:`~corrugate.geometry.Layer` for the allowed ranges), and the
+    equal-sides requirement of square and circle layouts is left to the caller.
+    """
+    get_model(model)
+    Lx, Ly = layer1.chord_extent(), layer2.chord_extent()
+    m1 = moduli(layer1.E, layer1.nu, layer1.t, layer1.W, layer1.alpha_deg, model)
+    m2 = moduli(layer2.E, layer2.nu, layer2.t, layer2.W, layer2.alpha_deg, model)
+    s1 = layer_springs(m1, layer1.t, layer1.pitch(), inverse_length_sum(layout, layer1.n, Ly, "x"))
+    s2 = layer_springs(m2, layer2.t, layer2.pitch(), inverse_length_sum(layout, layer2.n, Lx, "y"))
+    D = assembly_D(s1, s2, eta_deg)
+    mass = layer_mass(layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly))
+    mass = mass + layer_mass(layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx))
+    return Evaluation(
+        Lx=Lx,
+        Ly=Ly,
+        thickness=layer1.height() + layer2.height(),
+        mass=mass,
+        K=assembly_K(s1, s2, eta_deg),
+        D=D,
+        EI=np.asarray(D * layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float))),
+        moduli=(m1, m2),
+        springs=(s1, s2),
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class DirectionalStiffness:
+    """Stiffness of the assembly in the direction eta (deg, from layer 1's creases)."""
+
+    eta_deg: float
+    K: float  # N/mm
+    D: float  # N mm
+    EI: float  # N mm^2
+    span: float  # mm, the length EI = D x span is taken over
+
+    def as_dict(self) -> dict[str, float]:
+        return {
+            "eta_deg": self.eta_deg,
+            "K_N_per_mm": self.K,
+            "D_Nmm": self.D,
+            "EI_Nmm2": self.EI,
+            "span_mm": self.span,
+        }
+
+
+@dataclass(frozen=True, slots=True)
+class Analysis:
+    """Everything known about one design under one model."""
+
+    assembly: Assembly
+    model: str
+    moduli: tuple[Moduli, Moduli]
+    springs: tuple[LayerSprings, LayerSprings]
+    stiffness: tuple[DirectionalStiffness, ...]
+    mass: MassBreakdown
+    warnings: tuple[ModelWarning, ...]
+
+    @property
+    def L(self) -> float | None:
+        """Side of a square (or diameter of a circle) layout (mm); None for other layouts."""
+        a = self.assembly
+        return a.Lx if a.layout.equal_sides else None
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON object of ``corrugate analyze --json`` (keys carry units)."""
+        a = self.assembly
+        layers = []
+        for i, (layer, m, sp) in enumerate(zip(a.layers, self.moduli, self.springs, strict=True)):
+            layers.append({
+                "index": i + 1,
+                "W_mm": layer.W,
+                "n": layer.n,
+                "alpha_deg": layer.alpha_deg,
+                "material": layer.material.id,
+                "t_mm": layer.t,
+                "pitch_mm": layer.pitch,
+                "height_mm": layer.height,
+                "flat_size_mm": [layer.flat_width, float(np.max(a.facet_lengths(i + 1)))],
+                "moduli_MPa": m.as_dict(),
+                "springs": {
+                    "K_C_N_per_mm": float(sp.K_C), "K_S_N_per_mm": float(sp.K_S),
+                    "D_C_Nmm": float(sp.D_C), "D_S_Nmm": float(sp.D_S),
+                },
+            })
+        return {
+            "model": self.model,
+            "model_source": get_model(self.model).source,
+            "layout": a.layout.describe(),
+            "layers": layers,
+            "L_mm": self.L,
+            "extent_x_mm": a.Lx,
+            "extent_y_mm": a.Ly,
+            "thickness_mm": a.thickness,
+            "mass_g": self.mass.total,
+            "mass_breakdown_g": self.mass.as_dict(),
+            "stiffness": [s.as_dict() for s in self.stiffness],
+            "warnings": [w.as_dict() for w in self.warnings],
+        }
+
+
+def analyze(
+    assembly: Assembly, model: str = DEFAULT_MODEL, eta_deg: Sequence[float] = (0.0, 90.0)
+) -> Analysis:
+    """Analyse ``assembly`` with moduli variant ``model`` at the directions ``eta_deg`` (deg).
+
+    Returns moduli (MPa) and springs of each layer, K (N/mm), D (N mm) and EI (N mm^2) at each eta,
+    the mass (g) and the model's warnings. Example::
+
+        >>> from corrugate import Assembly, Layer, analyze, get_material
+        >>> layer = Layer(W=8, n=8, alpha_deg=84, material=get_material("dura-lar"))
+        >>> r = analyze(Assembly.identical(layer), model="paper", eta_deg=[0])
+        >>> round(r.stiffness[0].EI / 1000, 2)  # mN m^2, the paper's Table 1, case 1
+        87.84
+    """
+    model = get_model(model).name
+    etas = np.asarray(list(eta_deg), dtype=np.float64)
+    a = assembly
+    ev = evaluate(LayerArrays.of(a.layer1), LayerArrays.of(a.layer2), a.layout, model, etas)
+    span = a.layout.span(np.asarray(a.Lx), np.asarray(a.Ly), etas)
+    stiffness = tuple(
+        DirectionalStiffness(float(e), float(k), float(d), float(ei), float(sp))
+        for e, k, d, ei, sp in zip(etas, ev.K, ev.D, ev.EI, span, strict=True)
+    )
+    return Analysis(
+        assembly=a,
+        model=model,
+        moduli=ev.moduli,
+        springs=ev.springs,
+        stiffness=stiffness,
+        mass=assembly_mass(a),
+        warnings=tuple(design_warnings(a, model)),
+    )

@@ -1,0 +1,91 @@
+"""Warnings attached to every result: where the model is being used outside its evidence.
+
+* outside the range the paper validated on the bench (n 7-13, W 8-14 mm, alpha 40-115 deg;
+  Liu, Yan and Mehta, section 'Model Validation');
+* thick sheets: the closed forms assume zero-thickness creases; periodic unit-cell FE
+  (``reference/unitcell_fe.csv``) puts the resulting error in Ecx and Ebx at about t/W at
+  alpha = 90 deg, growing as (90 deg / alpha)^2 for sharper folds (9 % at t/W = 0.02, 45 deg);
+* very few facets: the spring model homogenises the corrugation, which needs several periods;
+* the ``paper`` model, which has known errors (DESIGN.md 3.1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .geometry import Assembly, Layer
+
+__all__ = [
+    "CREASE_ERROR_LIMIT",
+    "MIN_FACETS",
+    "VALIDATED",
+    "ModelWarning",
+    "crease_error_estimate",
+    "design_warnings",
+]
+
+#: Ranges validated experimentally in the paper.
+VALIDATED = {"n": (7, 13), "W": (8.0, 14.0), "alpha": (40.0, 115.0)}
+#: Estimated crease-thickness error above which a sheet counts as thick.
+CREASE_ERROR_LIMIT = 0.05
+#: Fewest facets (n + 1) for which the homogenised spring model is trusted.
+MIN_FACETS = 6
+
+
+@dataclass(frozen=True, slots=True)
+class ModelWarning:
+    """A warning: a stable ``code`` for programs and a ``message`` for people."""
+
+    code: str
+    message: str
+
+    def as_dict(self) -> dict[str, str]:
+        return {"code": self.code, "message": self.message}
+
+
+def crease_error_estimate(t: float, W: float, alpha_deg: float) -> float:
+    """Estimated relative error of Ecx and Ebx from finite crease thickness: (t/W)(90/alpha)^2."""
+    return (t / W) * (90.0 / alpha_deg) ** 2
+
+
+def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
+    out: list[ModelWarning] = []
+    checks = (("n", layer.n, ""), ("W", layer.W, " mm"), ("alpha", layer.alpha_deg, " deg"))
+    for name, value, unit in checks:
+        lo, hi = VALIDATED[name]
+        if not lo <= value <= hi:
+            out.append(ModelWarning(
+                "outside-validated-range",
+                f"{label}: {name} = {value:g}{unit} is outside the range the paper validated "
+                f"experimentally ({lo:g}-{hi:g}{unit})",
+            ))
+    err = crease_error_estimate(layer.t, layer.W, layer.alpha_deg)
+    if err > CREASE_ERROR_LIMIT:
+        out.append(ModelWarning(
+            "thick-sheet",
+            f"{label}: t/W = {layer.t / layer.W:.3g} at alpha = {layer.alpha_deg:g} deg is a thick "
+            f"sheet; the thin-sheet formulas may be off by about {100 * err:.0f} % in Ecx and Ebx",
+        ))
+    if layer.n + 1 < MIN_FACETS:
+        out.append(ModelWarning(
+            "few-facets",
+            f"{label}: only {layer.n + 1} facets; the homogenised spring model needs at least "
+            f"{MIN_FACETS} to be trusted",
+        ))
+    return out
+
+
+def design_warnings(a: Assembly, model: str) -> list[ModelWarning]:
+    """Every warning for assembly ``a`` analysed with moduli variant ``model``."""
+    out = _layer_warnings("layer 1", a.layer1)
+    if a.layer2 != a.layer1:
+        out += _layer_warnings("layer 2", a.layer2)
+    else:
+        out = [ModelWarning(w.code, w.message.replace("layer 1", "both layers", 1)) for w in out]
+    if model == "paper":
+        out.append(ModelWarning(
+            "paper-model",
+            "model 'paper' uses the formulas as printed, with known errors (Ecx 55-89 % too low, "
+            "Ecy and Ebx slightly off); use 'refined' for design",
+        ))
+    return out

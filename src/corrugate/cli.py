@@ -1,0 +1,253 @@
+"""The ``corrugate`` command line (typer + rich).
+
+Every failure the user can cause prints one line ``corrugate: error: ...`` naming the parameter, its
+value and the allowed range, and exits with code 2; nothing is written on failure.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from . import __version__
+from .analysis import Analysis, analyze
+from .errors import CorrugateError, InputError
+from .geometry import Assembly, Layer
+from .layouts import make_layout
+from .materials import Material, get_material, inline_material, library
+from .moduli import DEFAULT_MODEL, MODELS, get_model
+from .units import parse_quantity
+
+__all__ = ["app", "main"]
+
+app = typer.Typer(
+    name="corrugate",
+    help="Design orthogonally assembled double-layered corrugated (OADLC) stiffening panels.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+Opt = typer.Option
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"corrugate {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[
+        bool, Opt("--version", callback=_version, is_eager=True, help="Print the version.")
+    ] = False,
+) -> None:
+    """corrugate: the lightest OADLC panel that provably meets a spec."""
+
+
+def _int(value: str, field: str, allowed: str = "an integer n >= 1 (number of creases)") -> int:
+    try:
+        f = float(value)
+    except ValueError:
+        raise InputError(field, repr(value), allowed, reason="is not an integer") from None
+    if not f.is_integer():
+        raise InputError(field, value, allowed, reason="is not an integer")
+    return int(f)
+
+
+def _material(
+    name: str | None, E: str | None, nu: str | None, density: str | None, thickness: str | None,
+    suffix: str = "",
+) -> Material:
+    inline = [x is not None for x in (E, nu, density)]
+    if any(inline):
+        if not all(inline):
+            missing = [k for k, v in (("E", E), ("nu", nu), ("density", density)) if v is None]
+            raise InputError(
+                f"{missing[0]}{suffix}", None, "--E, --nu and --density together for an inline "
+                "material", reason="is missing",
+            )
+        if name is not None:
+            raise InputError(f"material{suffix}", name, "either --material or --E/--nu/--density",
+                             reason="conflicts with the inline material")
+        return inline_material(E, nu, density, name="custom", thickness=thickness)
+    return get_material(name or "dura-lar")
+
+
+def _layer(W: str, n: str, alpha: str, material: Material, thickness: str | None,
+           suffix: str = "") -> Layer:
+    t = None if thickness is None else parse_quantity(thickness, "mm", f"thickness{suffix}")
+    w = parse_quantity(W, "mm", f"W{suffix}")
+    a = parse_quantity(alpha, "deg", f"alpha{suffix}")
+    nn = _int(n, f"n{suffix}")
+    try:
+        if t is None:
+            return Layer(w, nn, a, material)
+        return Layer(w, nn, a, material, t)
+    except InputError as exc:
+        if suffix:
+            raise InputError(exc.field + suffix, exc.value, exc.allowed, reason=exc.reason) from None
+        raise
+
+
+def _vertices(text: str | None) -> list[tuple[float, float]] | None:
+    if text is None:
+        return None
+    pts: list[tuple[float, float]] = []
+    try:
+        for pair in text.replace(";", " ").split():
+            x, y = pair.split(",")
+            pts.append((float(x), float(y)))
+    except ValueError:
+        raise InputError("vertices", repr(text), "pairs 'x,y' separated by spaces, e.g. "
+                         "'0,0 1,0 0.5,1'", reason="cannot be read") from None
+    return pts
+
+
+def _fmt(x: float | None, digits: int = 4) -> str:
+    return "-" if x is None else f"{x:.{digits}g}"
+
+
+def _print_analysis(r: Analysis, console: Console) -> None:
+    a = r.assembly
+    console.print(f"[bold]model[/bold] {r.model}: {get_model(r.model).source}")
+    t = Table(title="layers (t, W in mm; alpha in deg; moduli in MPa)", title_justify="left")
+    for col in ("layer", "material", "t", "W", "n", "alpha", "Ecx", "Ecy", "Ebx", "Eby"):
+        t.add_column(col, justify="right")
+    for i, (layer, m) in enumerate(zip(a.layers, r.moduli, strict=True)):
+        md = m.as_dict()
+        t.add_row(str(i + 1), layer.material.id, _fmt(layer.t), _fmt(layer.W), str(layer.n),
+                  _fmt(layer.alpha_deg), *(_fmt(md[k]) for k in ("Ecx", "Ecy", "Ebx", "Eby")))
+    console.print(t)
+    size = (f"L = {a.Lx:.2f} mm" if a.layout.equal_sides else
+            f"Lx = {a.Lx:.2f} mm, Ly = {a.Ly:.2f} mm")
+    console.print(f"layout {a.layout.name}: {size}, folded thickness t_d = {a.thickness:.2f} mm, "
+                  f"mass = {r.mass.total:.3f} g (layers {r.mass.layer1:.3f} + "
+                  f"{r.mass.layer2:.3f} g)")
+    s = Table(title="stiffness", title_justify="left")
+    for col in ("eta deg", "K N/mm", "D N mm", "EI N mm^2", "EI mN m^2"):
+        s.add_column(col, justify="right")
+    for d in r.stiffness:
+        s.add_row(_fmt(d.eta_deg), _fmt(d.K, 5), _fmt(d.D, 5), _fmt(d.EI, 5), f"{d.EI / 1000:.2f}")
+    console.print(s)
+    for w in r.warnings:
+        console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
+
+
+def _print_comparison(results: list[Analysis], console: Console) -> None:
+    t = Table(title="model variants side by side (layer 1 moduli, assembly stiffness)",
+              title_justify="left")
+    t.add_column("quantity")
+    for r in results:
+        t.add_column(r.model, justify="right")
+    for k in ("Ecx", "Ecy", "Ebx", "Eby"):
+        t.add_row(f"{k} MPa", *(_fmt(r.moduli[0].as_dict()[k]) for r in results))
+    for i, d in enumerate(results[0].stiffness):
+        e = _fmt(d.eta_deg)
+        t.add_row(f"K({e}) N/mm", *(_fmt(r.stiffness[i].K, 5) for r in results))
+        t.add_row(f"D({e}) N mm", *(_fmt(r.stiffness[i].D, 5) for r in results))
+        t.add_row(f"EI({e}) N mm^2", *(_fmt(r.stiffness[i].EI, 5) for r in results))
+    console.print(t)
+
+
+@app.command("analyze")
+def analyze_cmd(
+    W: Annotated[str, Opt("--W", help="Facet width (mm, or with units: '0.3 in').")],
+    n: Annotated[str, Opt("--n", help="Number of creases (n + 1 facets).")],
+    alpha: Annotated[str, Opt("--alpha", help="Interior fold angle (deg, 180 = flat).")],
+    material: Annotated[str | None, Opt(help="Library material id (see `corrugate materials`).")]
+    = None,
+    thickness: Annotated[str | None, Opt(help="Sheet thickness (mm); default: the material's.")]
+    = None,
+    E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus (MPa or '2.7GPa').")]
+    = None,
+    nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
+    density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
+    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")]
+    = None,
+    n2: Annotated[str | None, Opt("--n2", help="Layer 2 creases (default: layer 1's).")] = None,
+    alpha2: Annotated[str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")]
+    = None,
+    material2: Annotated[str | None, Opt(help="Layer 2 library material (default: layer 1's).")]
+    = None,
+    thickness2: Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1's).")] = None,
+    layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
+    vertices: Annotated[str | None, Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; "
+                                              "scaled to the layers).")] = None,
+    model: Annotated[str, Opt(help="Moduli variant: paper | xia | refined.")] = DEFAULT_MODEL,
+    eta: Annotated[list[str] | None, Opt(help="Direction (deg from layer 1's creases); repeat "
+                                              "for several. Default 0 and 90.")] = None,
+    as_json: Annotated[bool, Opt("--json", help="Print one JSON object.")] = False,
+    compare_models: Annotated[bool, Opt(help="Show the three model variants side by side.")]
+    = False,
+) -> None:
+    """Stiffness, size, mass and warnings of one OADLC design.
+
+    Example: corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper --eta 0
+    """
+    mat1 = _material(material, E, nu, density, thickness)
+    layer1 = _layer(W, n, alpha, mat1, thickness)
+    mat2 = mat1 if material2 is None else get_material(material2)
+    t2 = thickness2 if thickness2 is not None else (
+        str(layer1.t) if material2 is None or thickness is not None else None)
+    layer2 = _layer(W2 or W, n2 or n, alpha2 or alpha, mat2, t2, suffix="2")
+    lay = make_layout(layout, _vertices(vertices))
+    assembly = Assembly(layer1, layer2, lay)
+    etas = [parse_quantity(e, "deg", "eta") for e in (eta or ["0", "90"])]
+    get_model(model)
+    models = list(MODELS) if compare_models else [model]
+    results = [analyze(assembly, m, etas) for m in models]
+    if as_json:
+        if compare_models:
+            payload: object = {"models": {r.model: r.to_dict() for r in results}}
+        else:
+            payload = results[0].to_dict()
+        typer.echo(json.dumps(payload, indent=2))
+        return
+    console = Console()
+    if compare_models:
+        _print_comparison(results, console)
+        for w in results[0].warnings:
+            if w.code != "paper-model":
+                console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
+    else:
+        _print_analysis(results[0], console)
+
+
+@app.command("materials")
+def materials_cmd(
+    as_json: Annotated[bool, Opt("--json", help="Print the library as JSON.")] = False,
+) -> None:
+    """List the bundled material library."""
+    lib = library()
+    if as_json:
+        typer.echo(json.dumps([m.as_dict() for m in lib.values()], indent=2))
+        return
+    t = Table(title="material library (src/corrugate/data/materials.toml)", title_justify="left")
+    for col in ("id", "E GPa", "nu", "rho g/cm^3", "t mm (default)", "sold in mm"):
+        t.add_column(col)
+    for m in lib.values():
+        sold = f"{min(m.thicknesses):g}-{max(m.thicknesses):g}" if m.thicknesses else "-"
+        t.add_row(m.id, f"{m.E / 1000:g}", f"{m.nu:g}", f"{m.density_g_cm3:g}",
+                  _fmt(m.default_thickness), sold)
+    console = Console()
+    console.print(t)
+    console.print("Names, every thickness and the sources: `corrugate materials --json`.")
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Console entry point: runs the app, turning every user error into one line and exit code 2.
+
+    Usage errors found by the option parser (unknown option, missing value) also exit with 2.
+    """
+    try:
+        app(args=argv)
+    except CorrugateError as exc:
+        print(f"corrugate: error: {exc}", file=sys.stderr)
+        sys.exit(2)

@@ -1,0 +1,42 @@
+"""The one exception hierarchy of corrugate.
+
+Every error the package raises on purpose derives from :class:`CorrugateError`; each specific error
+is also the matching built-in (``InputError`` is a ``ValueError``), so callers may catch either.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["CorrugateError", "InputError", "UnknownNameError"]
+
+
+class CorrugateError(Exception):
+    """Base class of every error raised by corrugate."""
+
+
+class InputError(CorrugateError, ValueError):
+    """A user-supplied value is invalid.
+
+    The message names the parameter, the value given and what is allowed, in one line, e.g.
+    ``alpha = 190 deg is out of range: allowed 0 < alpha < 180 deg``.
+    """
+
+    def __init__(self, field: str, value: Any, allowed: str, *, reason: str = "is out of range"):
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        self.reason = reason
+        super().__init__(f"{field} = {value!s} {reason}: allowed {allowed}")
+
+
+class UnknownNameError(InputError, KeyError):
+    """A name (material, model, layout, ...) that is not in its registry."""
+
+    def __init__(self, field: str, value: str, known: list[str] | tuple[str, ...]):
+        super().__init__(
+            field, repr(value), "one of " + ", ".join(sorted(known)), reason="is unknown"
+        )
+
+    def __str__(self) -> str:  # KeyError would otherwise quote the message
+        return str(self.args[0])

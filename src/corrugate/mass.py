@@ -1,0 +1,56 @@
+"""Mass of a design: rho t times the area of every cut part (DESIGN.md section 4).
+
+For now the cut parts are the two layers' flat blanks: facet j of a layer is a flat strip of width W
+and area W L_j (see :mod:`corrugate.layouts`), so a layer weighs rho t W sum_j L_j. The fabrication
+step will add tabs and connectors here, so that every mass the package reports, the optimiser's
+included, comes from this one module.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .geometry import Assembly
+from .layouts import length_sum
+
+__all__ = ["MassBreakdown", "assembly_mass", "layer_mass"]
+
+
+def layer_mass(density: ArrayLike, t: ArrayLike, W: ArrayLike, sum_L: ArrayLike) -> NDArray[np.float64]:
+    """Mass (g) of a layer's flat blank: density (g/mm^3) x t (mm) x W (mm) x sum_j L_j (mm)."""
+    return np.asarray(
+        np.asarray(density) * np.asarray(t) * np.asarray(W) * np.asarray(sum_L), dtype=np.float64
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class MassBreakdown:
+    """Mass of a design by part (g)."""
+
+    layer1: float
+    layer2: float
+    connectors: float = 0.0
+
+    @property
+    def total(self) -> float:
+        return self.layer1 + self.layer2 + self.connectors
+
+    def as_dict(self) -> dict[str, float]:
+        return {
+            "layer1_g": self.layer1,
+            "layer2_g": self.layer2,
+            "connectors_g": self.connectors,
+            "total_g": self.total,
+        }
+
+
+def assembly_mass(a: Assembly) -> MassBreakdown:
+    """Mass (g) of the assembly's cut parts; connectors are not modelled yet (0 g)."""
+    m1 = layer_mass(a.layer1.material.density, a.layer1.t, a.layer1.W,
+                    length_sum(a.layout, a.layer1.n, a.Ly))
+    m2 = layer_mass(a.layer2.material.density, a.layer2.t, a.layer2.W,
+                    length_sum(a.layout, a.layer2.n, a.Lx))
+    return MassBreakdown(float(m1), float(m2))

@@ -1,0 +1,66 @@
+"""From facets to layers to the assembly: the spring model of the paper, vectorised.
+
+Per layer, with p = W sin(alpha/2) and the sums over its n + 1 facets (DESIGN.md section 3.2; the
+paper writes j = 1..n, but a layer with n creases has n + 1 facets and only that reproduces Table 1):
+
+    K_C = 1 / sum_j p / (Ecx L_j t)          K_S = sum_j Ecy p t / L_j          [N/mm]
+    D_C = 1 / sum_j 12 p / (Ebx L_j t^3)     D_S = sum_j Eby t^3 p / (12 L_j)   [N mm]
+
+Every sum needs only q = sum_j 1/L_j, so a layer is fully described by (moduli, p, t, q). For the
+assembly (section 3.3), with eta measured from layer 1's creases:
+
+    K(eta) = (K_S1 + K_C2) cos^2 eta + (K_S2 + K_C1) sin^2 eta
+    D(eta) = (D_S1 + D_C2) cos^2 eta + (D_S2 + D_C1) sin^2 eta
+    EI(eta) = D(eta) x span(eta)     [N mm^2]
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .moduli import Moduli
+
+__all__ = ["LayerSprings", "assembly_D", "assembly_K", "layer_springs"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True, slots=True)
+class LayerSprings:
+    """Spring constants of one layer: K in N/mm, D in N mm (arrays)."""
+
+    K_C: FloatArray
+    K_S: FloatArray
+    D_C: FloatArray
+    D_S: FloatArray
+
+
+def layer_springs(m: Moduli, t: ArrayLike, pitch: ArrayLike, inv_length_sum: ArrayLike) -> LayerSprings:
+    """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm) and q = sum_j 1/L_j (1/mm)."""
+    t_ = np.asarray(t, dtype=np.float64)
+    p = np.asarray(pitch, dtype=np.float64)
+    q = np.asarray(inv_length_sum, dtype=np.float64)
+    return LayerSprings(
+        K_C=m.Ecx * t_ / (p * q),
+        K_S=m.Ecy * p * t_ * q,
+        D_C=m.Ebx * t_**3 / (12 * p * q),
+        D_S=m.Eby * t_**3 * p * q / 12,
+    )
+
+
+def _directional(a0: FloatArray, a90: FloatArray, eta_deg: ArrayLike) -> FloatArray:
+    e = np.radians(np.asarray(eta_deg, dtype=np.float64))
+    return np.asarray(a0 * np.cos(e) ** 2 + a90 * np.sin(e) ** 2)
+
+
+def assembly_K(s1: LayerSprings, s2: LayerSprings, eta_deg: ArrayLike) -> FloatArray:
+    """In-plane stiffness K(eta) of the assembly (N/mm), paper eq. equivalent_K_eta."""
+    return _directional(s1.K_S + s2.K_C, s2.K_S + s1.K_C, eta_deg)
+
+
+def assembly_D(s1: LayerSprings, s2: LayerSprings, eta_deg: ArrayLike) -> FloatArray:
+    """Bending stiffness D(eta) of the assembly (N mm), paper eq. equivalent_D_eta."""
+    return _directional(s1.D_S + s2.D_C, s2.D_S + s1.D_C, eta_deg)
