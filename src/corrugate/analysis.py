@@ -162,22 +162,26 @@ class Analysis:
         a = self.assembly
         layers = []
         for i, (layer, m, sp) in enumerate(zip(a.layers, self.moduli, self.springs, strict=True)):
-            layers.append({
-                "index": i + 1,
-                "W_mm": layer.W,
-                "n": layer.n,
-                "alpha_deg": layer.alpha_deg,
-                "material": layer.material.id,
-                "t_mm": layer.t,
-                "pitch_mm": layer.pitch,
-                "height_mm": layer.height,
-                "flat_size_mm": [layer.flat_width, float(np.max(a.facet_lengths(i + 1)))],
-                "moduli_MPa": m.as_dict(),
-                "springs": {
-                    "K_C_N_per_mm": float(sp.K_C), "K_S_N_per_mm": float(sp.K_S),
-                    "D_C_Nmm": float(sp.D_C), "D_S_Nmm": float(sp.D_S),
-                },
-            })
+            layers.append(
+                {
+                    "index": i + 1,
+                    "W_mm": layer.W,
+                    "n": layer.n,
+                    "alpha_deg": layer.alpha_deg,
+                    "material": layer.material.id,
+                    "t_mm": layer.t,
+                    "pitch_mm": layer.pitch,
+                    "height_mm": layer.height,
+                    "flat_size_mm": [layer.flat_width, float(np.max(a.facet_lengths(i + 1)))],
+                    "moduli_MPa": m.as_dict(),
+                    "springs": {
+                        "K_C_N_per_mm": float(sp.K_C),
+                        "K_S_N_per_mm": float(sp.K_S),
+                        "D_C_Nmm": float(sp.D_C),
+                        "D_S_Nmm": float(sp.D_S),
+                    },
+                }
+            )
         return {
             "model": self.model,
             "model_source": get_model(self.model).source,

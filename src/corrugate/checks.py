@@ -54,24 +54,30 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
     for name, value, unit in checks:
         lo, hi = VALIDATED[name]
         if not lo <= value <= hi:
-            out.append(ModelWarning(
-                "outside-validated-range",
-                f"{label}: {name} = {value:g}{unit} is outside the range the paper validated "
-                f"experimentally ({lo:g}-{hi:g}{unit})",
-            ))
+            out.append(
+                ModelWarning(
+                    "outside-validated-range",
+                    f"{label}: {name} = {value:g}{unit} is outside the range the paper validated "
+                    f"experimentally ({lo:g}-{hi:g}{unit})",
+                )
+            )
     err = crease_error_estimate(layer.t, layer.W, layer.alpha_deg)
     if err > CREASE_ERROR_LIMIT:
-        out.append(ModelWarning(
-            "thick-sheet",
-            f"{label}: t/W = {layer.t / layer.W:.3g} at alpha = {layer.alpha_deg:g} deg is a thick "
-            f"sheet; the thin-sheet formulas may be off by about {100 * err:.0f} % in Ecx and Ebx",
-        ))
+        out.append(
+            ModelWarning(
+                "thick-sheet",
+                f"{label}: t/W = {layer.t / layer.W:.3g} at alpha = {layer.alpha_deg:g} deg is a thick "
+                f"sheet; the thin-sheet formulas may be off by about {100 * err:.0f} % in Ecx and Ebx",
+            )
+        )
     if layer.n + 1 < MIN_FACETS:
-        out.append(ModelWarning(
-            "few-facets",
-            f"{label}: only {layer.n + 1} facets; the homogenised spring model needs at least "
-            f"{MIN_FACETS} to be trusted",
-        ))
+        out.append(
+            ModelWarning(
+                "few-facets",
+                f"{label}: only {layer.n + 1} facets; the homogenised spring model needs at least "
+                f"{MIN_FACETS} to be trusted",
+            )
+        )
     return out
 
 
@@ -83,9 +89,11 @@ def design_warnings(a: Assembly, model: str) -> list[ModelWarning]:
     else:
         out = [ModelWarning(w.code, w.message.replace("layer 1", "both layers", 1)) for w in out]
     if model == "paper":
-        out.append(ModelWarning(
-            "paper-model",
-            "model 'paper' uses the formulas as printed, with known errors (Ecx 55-89 % too low, "
-            "Ecy and Ebx slightly off); use 'refined' for design",
-        ))
+        out.append(
+            ModelWarning(
+                "paper-model",
+                "model 'paper' uses the formulas as printed, with known errors (Ecx 55-89 % too low, "
+                "Ecy and Ebx slightly off); use 'refined' for design",
+            )
+        )
     return out

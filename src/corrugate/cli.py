@@ -62,7 +62,11 @@ def _int(value: str, field: str, allowed: str = "an integer n >= 1 (number of cr
 
 
 def _material(
-    name: str | None, E: str | None, nu: str | None, density: str | None, thickness: str | None,
+    name: str | None,
+    E: str | None,
+    nu: str | None,
+    density: str | None,
+    thickness: str | None,
     suffix: str = "",
 ) -> Material:
     inline = [x is not None for x in (E, nu, density)]
@@ -70,18 +74,25 @@ def _material(
         if not all(inline):
             missing = [k for k, v in (("E", E), ("nu", nu), ("density", density)) if v is None]
             raise InputError(
-                f"{missing[0]}{suffix}", None, "--E, --nu and --density together for an inline "
-                "material", reason="is missing",
+                f"{missing[0]}{suffix}",
+                None,
+                "--E, --nu and --density together for an inline material",
+                reason="is missing",
             )
         if name is not None:
-            raise InputError(f"material{suffix}", name, "either --material or --E/--nu/--density",
-                             reason="conflicts with the inline material")
+            raise InputError(
+                f"material{suffix}",
+                name,
+                "either --material or --E/--nu/--density",
+                reason="conflicts with the inline material",
+            )
         return inline_material(E, nu, density, name="custom", thickness=thickness)
     return get_material(name or "dura-lar")
 
 
-def _layer(W: str, n: str, alpha: str, material: Material, thickness: str | None,
-           suffix: str = "") -> Layer:
+def _layer(
+    W: str, n: str, alpha: str, material: Material, thickness: str | None, suffix: str = ""
+) -> Layer:
     t = None if thickness is None else parse_quantity(thickness, "mm", f"thickness{suffix}")
     w = parse_quantity(W, "mm", f"W{suffix}")
     a = parse_quantity(alpha, "deg", f"alpha{suffix}")
@@ -92,7 +103,9 @@ def _layer(W: str, n: str, alpha: str, material: Material, thickness: str | None
         return Layer(w, nn, a, material, t)
     except InputError as exc:
         if suffix:
-            raise InputError(exc.field + suffix, exc.value, exc.allowed, reason=exc.reason) from None
+            raise InputError(
+                exc.field + suffix, exc.value, exc.allowed, reason=exc.reason
+            ) from None
         raise
 
 
@@ -105,8 +118,12 @@ def _vertices(text: str | None) -> list[tuple[float, float]] | None:
             x, y = pair.split(",")
             pts.append((float(x), float(y)))
     except ValueError:
-        raise InputError("vertices", repr(text), "pairs 'x,y' separated by spaces, e.g. "
-                         "'0,0 1,0 0.5,1'", reason="cannot be read") from None
+        raise InputError(
+            "vertices",
+            repr(text),
+            "pairs 'x,y' separated by spaces, e.g. '0,0 1,0 0.5,1'",
+            reason="cannot be read",
+        ) from None
     return pts
 
 
@@ -122,14 +139,24 @@ def _print_analysis(r: Analysis, console: Console) -> None:
         t.add_column(col, justify="right")
     for i, (layer, m) in enumerate(zip(a.layers, r.moduli, strict=True)):
         md = m.as_dict()
-        t.add_row(str(i + 1), layer.material.id, _fmt(layer.t), _fmt(layer.W), str(layer.n),
-                  _fmt(layer.alpha_deg), *(_fmt(md[k]) for k in ("Ecx", "Ecy", "Ebx", "Eby")))
+        t.add_row(
+            str(i + 1),
+            layer.material.id,
+            _fmt(layer.t),
+            _fmt(layer.W),
+            str(layer.n),
+            _fmt(layer.alpha_deg),
+            *(_fmt(md[k]) for k in ("Ecx", "Ecy", "Ebx", "Eby")),
+        )
     console.print(t)
-    size = (f"L = {a.Lx:.2f} mm" if a.layout.equal_sides else
-            f"Lx = {a.Lx:.2f} mm, Ly = {a.Ly:.2f} mm")
-    console.print(f"layout {a.layout.name}: {size}, folded thickness t_d = {a.thickness:.2f} mm, "
-                  f"mass = {r.mass.total:.3f} g (layers {r.mass.layer1:.3f} + "
-                  f"{r.mass.layer2:.3f} g)")
+    size = (
+        f"L = {a.Lx:.2f} mm" if a.layout.equal_sides else f"Lx = {a.Lx:.2f} mm, Ly = {a.Ly:.2f} mm"
+    )
+    console.print(
+        f"layout {a.layout.name}: {size}, folded thickness t_d = {a.thickness:.2f} mm, "
+        f"mass = {r.mass.total:.3f} g (layers {r.mass.layer1:.3f} + "
+        f"{r.mass.layer2:.3f} g)"
+    )
     s = Table(title="stiffness", title_justify="left")
     for col in ("eta deg", "K N/mm", "D N mm", "EI N mm^2", "EI mN m^2"):
         s.add_column(col, justify="right")
@@ -141,8 +168,10 @@ def _print_analysis(r: Analysis, console: Console) -> None:
 
 
 def _print_comparison(results: list[Analysis], console: Console) -> None:
-    t = Table(title="model variants side by side (layer 1 moduli, assembly stiffness)",
-              title_justify="left")
+    t = Table(
+        title="model variants side by side (layer 1 moduli, assembly stiffness)",
+        title_justify="left",
+    )
     t.add_column("quantity")
     for r in results:
         t.add_column(r.model, justify="right")
@@ -161,31 +190,40 @@ def analyze_cmd(
     W: Annotated[str, Opt("--W", help="Facet width (mm, or with units: '0.3 in').")],
     n: Annotated[str, Opt("--n", help="Number of creases (n + 1 facets).")],
     alpha: Annotated[str, Opt("--alpha", help="Interior fold angle (deg, 180 = flat).")],
-    material: Annotated[str | None, Opt(help="Library material id (see `corrugate materials`).")]
-    = None,
-    thickness: Annotated[str | None, Opt(help="Sheet thickness (mm); default: the material's.")]
-    = None,
-    E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus (MPa or '2.7GPa').")]
-    = None,
+    material: Annotated[
+        str | None, Opt(help="Library material id (see `corrugate materials`).")
+    ] = None,
+    thickness: Annotated[
+        str | None, Opt(help="Sheet thickness (mm); default: the material's.")
+    ] = None,
+    E: Annotated[
+        str | None, Opt("--E", help="Inline material: Young's modulus (MPa or '2.7GPa').")
+    ] = None,
     nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
     density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
-    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")]
-    = None,
+    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")] = None,
     n2: Annotated[str | None, Opt("--n2", help="Layer 2 creases (default: layer 1's).")] = None,
-    alpha2: Annotated[str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")]
-    = None,
-    material2: Annotated[str | None, Opt(help="Layer 2 library material (default: layer 1's).")]
-    = None,
+    alpha2: Annotated[
+        str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")
+    ] = None,
+    material2: Annotated[
+        str | None, Opt(help="Layer 2 library material (default: layer 1's).")
+    ] = None,
     thickness2: Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1's).")] = None,
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
-    vertices: Annotated[str | None, Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; "
-                                              "scaled to the layers).")] = None,
+    vertices: Annotated[
+        str | None,
+        Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+    ] = None,
     model: Annotated[str, Opt(help="Moduli variant: paper | xia | refined.")] = DEFAULT_MODEL,
-    eta: Annotated[list[str] | None, Opt(help="Direction (deg from layer 1's creases); repeat "
-                                              "for several. Default 0 and 90.")] = None,
+    eta: Annotated[
+        list[str] | None,
+        Opt(help="Direction (deg from layer 1's creases); repeat for several. Default 0 and 90."),
+    ] = None,
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object.")] = False,
-    compare_models: Annotated[bool, Opt(help="Show the three model variants side by side.")]
-    = False,
+    compare_models: Annotated[
+        bool, Opt(help="Show the three model variants side by side.")
+    ] = False,
 ) -> None:
     """Stiffness, size, mass and warnings of one OADLC design.
 
@@ -194,8 +232,11 @@ def analyze_cmd(
     mat1 = _material(material, E, nu, density, thickness)
     layer1 = _layer(W, n, alpha, mat1, thickness)
     mat2 = mat1 if material2 is None else get_material(material2)
-    t2 = thickness2 if thickness2 is not None else (
-        str(layer1.t) if material2 is None or thickness is not None else None)
+    t2 = (
+        thickness2
+        if thickness2 is not None
+        else (str(layer1.t) if material2 is None or thickness is not None else None)
+    )
     layer2 = _layer(W2 or W, n2 or n, alpha2 or alpha, mat2, t2, suffix="2")
     lay = make_layout(layout, _vertices(vertices))
     assembly = Assembly(layer1, layer2, lay)
@@ -234,8 +275,14 @@ def materials_cmd(
         t.add_column(col)
     for m in lib.values():
         sold = f"{min(m.thicknesses):g}-{max(m.thicknesses):g}" if m.thicknesses else "-"
-        t.add_row(m.id, f"{m.E / 1000:g}", f"{m.nu:g}", f"{m.density_g_cm3:g}",
-                  _fmt(m.default_thickness), sold)
+        t.add_row(
+            m.id,
+            f"{m.E / 1000:g}",
+            f"{m.nu:g}",
+            f"{m.density_g_cm3:g}",
+            _fmt(m.default_thickness),
+            sold,
+        )
     console = Console()
     console.print(t)
     console.print("Names, every thickness and the sources: `corrugate materials --json`.")

@@ -110,7 +110,8 @@ class Assembly:
         Lx, Ly = self.Lx, self.Ly
         if self.layout.equal_sides and abs(Lx - Ly) > EQUAL_SIDES_RTOL * max(Lx, Ly):
             raise InputError(
-                "layout", self.layout.name,
+                "layout",
+                self.layout.name,
                 "layers of equal folded extent (n + 1) W sin(alpha/2), or layout 'rectangle'",
                 reason=f"needs Lx = Ly but layer 1 spans {Lx:.4g} mm and layer 2 {Ly:.4g} mm",
             )

@@ -59,9 +59,17 @@ FloatArray = NDArray[np.float64]
 class Layout(Protocol):
     """A plan outline in the unit box [0, 1] x [0, 1], scaled to the layers' box Lx x Ly."""
 
-    name: str
-    #: Whether Lx must equal Ly (square, circle).
-    equal_sides: bool
+    @property
+    def name(self) -> str:
+        """Layout name (square, rectangle, circle, polygon)."""
+        ...
+
+    @property
+    def equal_sides(self) -> bool:
+        """Whether Lx must equal Ly (square, circle)."""
+        ...
+
+    def __hash__(self) -> int: ...
 
     def area_fraction(self) -> float:
         """Outline area divided by the area of its bounding box."""
@@ -85,7 +93,9 @@ def _strip_fractions(layout: Layout, n: int, axis: Axis) -> FloatArray:
     dA = np.diff(layout.cumulative_area(u, axis))
     if np.any(dA <= 1e-12):
         raise InputError(
-            "layout", layout.name, "an outline that covers every facet strip",
+            "layout",
+            layout.name,
+            "an outline that covers every facet strip",
             reason=f"leaves a facet strip empty with n = {n} creases",
         )
     return np.asarray(dA, dtype=np.float64)
@@ -214,11 +224,16 @@ class Polygon:
         v = np.asarray(self.vertices, dtype=np.float64)
         if v.ndim != 2 or v.shape[1] != 2 or len(v) < 3 or not np.all(np.isfinite(v)):
             raise InputError(
-                "vertices", self.vertices, "at least 3 finite (x, y) pairs", reason="is not a polygon"
+                "vertices",
+                self.vertices,
+                "at least 3 finite (x, y) pairs",
+                reason="is not a polygon",
             )
         lo, hi = v.min(axis=0), v.max(axis=0)
         if np.any(hi - lo <= 0):
-            raise InputError("vertices", self.vertices, "a polygon with area", reason="is degenerate")
+            raise InputError(
+                "vertices", self.vertices, "a polygon with area", reason="is degenerate"
+            )
         unit = (v - lo) / (hi - lo)
         if _signed_area(unit) < 0:
             unit = unit[::-1].copy()
@@ -229,7 +244,9 @@ class Polygon:
                     continue
                 if _segments_cross(unit[i], unit[(i + 1) % m], unit[j], unit[(j + 1) % m]):
                     raise InputError(
-                        "vertices", self.vertices, "a simple polygon (edges must not cross)",
+                        "vertices",
+                        self.vertices,
+                        "a simple polygon (edges must not cross)",
                         reason="crosses itself",
                     )
         object.__setattr__(self, "_unit", unit)
@@ -283,7 +300,7 @@ def make_layout(shape: str, vertices: object = None) -> Layout:
         if vertices is None:
             raise InputError("vertices", None, "at least 3 (x, y) pairs", reason="is missing")
         try:
-            pts = tuple((float(p[0]), float(p[1])) for p in vertices)  # type: ignore[attr-defined, index]
+            pts = tuple((float(p[0]), float(p[1])) for p in vertices)  # type: ignore[attr-defined]
         except (TypeError, ValueError, IndexError) as exc:
             raise InputError(
                 "vertices", vertices, "a list of (x, y) pairs", reason="is not a polygon"

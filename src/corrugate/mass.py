@@ -19,7 +19,9 @@ from .layouts import length_sum
 __all__ = ["MassBreakdown", "assembly_mass", "layer_mass"]
 
 
-def layer_mass(density: ArrayLike, t: ArrayLike, W: ArrayLike, sum_L: ArrayLike) -> NDArray[np.float64]:
+def layer_mass(
+    density: ArrayLike, t: ArrayLike, W: ArrayLike, sum_L: ArrayLike
+) -> NDArray[np.float64]:
     """Mass (g) of a layer's flat blank: density (g/mm^3) x t (mm) x W (mm) x sum_j L_j (mm)."""
     return np.asarray(
         np.asarray(density) * np.asarray(t) * np.asarray(W) * np.asarray(sum_L), dtype=np.float64
@@ -49,8 +51,10 @@ class MassBreakdown:
 
 def assembly_mass(a: Assembly) -> MassBreakdown:
     """Mass (g) of the assembly's cut parts; connectors are not modelled yet (0 g)."""
-    m1 = layer_mass(a.layer1.material.density, a.layer1.t, a.layer1.W,
-                    length_sum(a.layout, a.layer1.n, a.Ly))
-    m2 = layer_mass(a.layer2.material.density, a.layer2.t, a.layer2.W,
-                    length_sum(a.layout, a.layer2.n, a.Lx))
+    m1 = layer_mass(
+        a.layer1.material.density, a.layer1.t, a.layer1.W, length_sum(a.layout, a.layer1.n, a.Ly)
+    )
+    m2 = layer_mass(
+        a.layer2.material.density, a.layer2.t, a.layer2.W, length_sum(a.layout, a.layer2.n, a.Lx)
+    )
     return MassBreakdown(float(m1), float(m2))

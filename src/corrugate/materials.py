@@ -66,7 +66,9 @@ def validate_elastic(E: float, nu: float, density: float, *, prefix: str = "") -
     if not (math.isfinite(nu) and -1.0 < nu < 0.5):
         raise InputError(f"{prefix}nu", f"{nu:g}", "-1 < nu < 0.5")
     if not (math.isfinite(density) and density > 0):
-        raise InputError(f"{prefix}density", f"{density / G_PER_CM3:g} g/cm^3", "density > 0 g/cm^3")
+        raise InputError(
+            f"{prefix}density", f"{density / G_PER_CM3:g} g/cm^3", "density > 0 g/cm^3"
+        )
 
 
 def _from_entry(key: str, entry: dict[str, Any]) -> Material:

@@ -175,5 +175,6 @@ def moduli(
     )
     E_, nu_, t_, W_, a_ = arrays
     result = get_model(model).function(E_, nu_, t_, W_, np.radians(a_))
-    return Moduli(*(np.broadcast_to(x, E_.shape) for x in
-                    (result.Ecx, result.Ecy, result.Ebx, result.Eby)))
+    return Moduli(
+        *(np.broadcast_to(x, E_.shape) for x in (result.Ecx, result.Ecy, result.Ebx, result.Eby))
+    )

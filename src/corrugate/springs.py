@@ -38,7 +38,9 @@ class LayerSprings:
     D_S: FloatArray
 
 
-def layer_springs(m: Moduli, t: ArrayLike, pitch: ArrayLike, inv_length_sum: ArrayLike) -> LayerSprings:
+def layer_springs(
+    m: Moduli, t: ArrayLike, pitch: ArrayLike, inv_length_sum: ArrayLike
+) -> LayerSprings:
     """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm) and q = sum_j 1/L_j (1/mm)."""
     t_ = np.asarray(t, dtype=np.float64)
     p = np.asarray(pitch, dtype=np.float64)

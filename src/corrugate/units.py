@@ -7,12 +7,16 @@ with units such as ``"0.3 in"`` or ``"2.7 GPa"``; pint does the conversion.
 
 from __future__ import annotations
 
+import re
 from functools import lru_cache
 from typing import Any
 
 from .errors import InputError
 
 __all__ = ["parse_quantity", "ureg"]
+
+_MIL = re.compile(r"\bmils?\b")
+_QUANTITY = re.compile(r"^([-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?)\s*([^\d.].*)$")
 
 
 @lru_cache(maxsize=1)
@@ -35,11 +39,15 @@ def parse_quantity(value: object, unit: str, field: str) -> float:
     dimension (a length given for a modulus) raises :class:`InputError` naming ``field``.
     """
     if isinstance(value, bool):
-        raise InputError(field, value, f"a number or a quantity in {unit}", reason="is not a number")
+        raise InputError(
+            field, value, f"a number or a quantity in {unit}", reason="is not a number"
+        )
     if isinstance(value, int | float):
         return float(value)
     if not isinstance(value, str):
-        raise InputError(field, value, f"a number or a quantity in {unit}", reason="is not a number")
+        raise InputError(
+            field, value, f"a number or a quantity in {unit}", reason="is not a number"
+        )
     text = value.strip()
     try:
         return float(text)
@@ -47,24 +55,42 @@ def parse_quantity(value: object, unit: str, field: str) -> float:
         pass
     import pint
 
+    match = _QUANTITY.match(text)
+    if match is None:
+        raise InputError(
+            field,
+            repr(value),
+            f"a number or a quantity in {unit} such as '1 {unit}'",
+            reason="cannot be read as a quantity",
+        )
+    magnitude, unit_text = float(match.group(1)), match.group(2).strip()
+    # Sheet thickness is sold in "mil" (a thousandth of an inch); pint reads "mil" as 1/1000.
+    unit_text = _MIL.sub("thou", unit_text)
     reg = ureg()
     try:
-        q = reg.Quantity(text)
-    except (pint.errors.UndefinedUnitError, pint.errors.DefinitionSyntaxError, ValueError,
-            AttributeError, TypeError, SyntaxError, AssertionError) as exc:
+        q = reg.Quantity(magnitude, reg.Unit(unit_text))
+    except (
+        pint.errors.UndefinedUnitError,
+        pint.errors.DefinitionSyntaxError,
+        ValueError,
+        AttributeError,
+        TypeError,
+        SyntaxError,
+        AssertionError,
+    ) as exc:
         raise InputError(
-            field, repr(value), f"a number or a quantity in {unit} such as '1 {unit}'",
-            reason="cannot be read as a quantity",
+            field,
+            repr(value),
+            f"a number or a quantity in {unit} such as '1 {unit}'",
+            reason=f"has an unknown unit {unit_text!r}",
         ) from exc
     target = reg.Unit(unit)
-    if isinstance(q, int | float):  # e.g. "2*3": dimensionless arithmetic
-        return float(q)
-    if q.dimensionless and not target.dimensionless:
-        return float(q.magnitude)
     try:
         return float(q.to(target).magnitude)
     except pint.errors.DimensionalityError as exc:
         raise InputError(
-            field, repr(value), f"a quantity convertible to {unit}",
+            field,
+            repr(value),
+            f"a quantity convertible to {unit}",
             reason=f"has the wrong dimension ({q.dimensionality})",
         ) from exc

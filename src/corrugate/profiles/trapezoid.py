@@ -32,7 +32,9 @@ class Trapezoid:
             raise InputError("theta", f"{self.theta_deg} deg", "0 < theta <= 90 deg")
         if self.flat < -1e-9 * self.c:
             raise InputError(
-                "f", self.f, f"f <= c tan(theta) / 2 = {self.c * self.tan / 2:g} mm",
+                "f",
+                self.f,
+                f"f <= c tan(theta) / 2 = {self.c * self.tan / 2:g} mm",
                 reason="leaves a negative flat part",
             )
 

@@ -25,4 +25,6 @@ class ZigZag:
         """Xia's integrals of the zig-zag (see class docstring)."""
         half = math.radians(self.alpha_deg) / 2
         s, c = math.sin(half), math.cos(half)
-        return ProfileIntegrals(c=self.W * s, l=self.W, I1=2 * self.W * s**2, I2=self.W**3 * c**2 / 6)
+        return ProfileIntegrals(
+            c=self.W * s, l=self.W, I1=2 * self.W * s**2, I2=self.W**3 * c**2 / 6
+        )

@@ -1,0 +1,5 @@
+"""``python -m corrugate``: the command line."""
+
+from .cli import main
+
+main()

@@ -1,0 +1,60 @@
+"""The bundled material library (a data file) and inline materials."""
+
+from __future__ import annotations
+
+import pytest
+
+from corrugate import get_material, inline_material, library
+from corrugate.errors import InputError
+
+REQUIRED = {
+    "dura-lar",
+    "mylar",
+    "polypropylene",
+    "polycarbonate",
+    "kapton",
+    "petg",
+    "fr4",
+    "cardstock",
+    "aluminium-shim",
+    "stainless-shim",
+}
+
+
+def test_library_contents() -> None:
+    lib = library()
+    assert set(lib) >= REQUIRED
+    assert len(lib) >= 9
+    for m in lib.values():
+        assert m.E > 0 and -1 < m.nu < 0.5 and m.density > 0
+        assert m.thicknesses == tuple(sorted(m.thicknesses)) and m.thicknesses
+        assert m.default_thickness in m.thicknesses
+        assert len(m.source) > 20, m.id  # says where the values come from
+
+
+def test_duralar_is_the_papers_sheet() -> None:
+    """Liu, Yan and Mehta: E = 2.7 GPa, nu = 0.43, t = 0.125 mm; density of PET ~1.38-1.40 g/cm^3."""
+    m = get_material("Dura-Lar")
+    assert pytest.approx(2700.0) == m.E
+    assert m.nu == pytest.approx(0.43)
+    assert m.default_thickness == pytest.approx(0.125)
+    assert 1.38 <= m.density_g_cm3 <= 1.40
+
+
+def test_metals_are_metals() -> None:
+    """Handbook sanity: aluminium ~69-72 GPa, 2.7 g/cm^3; stainless ~190-200 GPa, ~8 g/cm^3."""
+    al, ss = get_material("aluminium-shim"), get_material("stainless-shim")
+    assert 68e3 <= al.E <= 73e3 and al.density_g_cm3 == pytest.approx(2.7, abs=0.05)
+    assert 185e3 <= ss.E <= 200e3 and ss.density_g_cm3 == pytest.approx(7.95, abs=0.1)
+
+
+def test_inline_units() -> None:
+    m = inline_material("2.7 GPa", "0.43", "1390 kg/m^3", thickness="5 mil")
+    assert pytest.approx(2700.0) == m.E
+    assert m.density_g_cm3 == pytest.approx(1.39)
+    assert m.default_thickness == pytest.approx(0.127)
+
+
+def test_a_length_for_a_modulus_is_rejected() -> None:
+    with pytest.raises(InputError, match=r"^E = '2 mm' has the wrong dimension"):
+        inline_material("2 mm", 0.3, 1.0)
