@@ -111,7 +111,14 @@ def test_mass_of_square_by_hand() -> None:
     a = Assembly.identical(layer)
     L = 9 * 8 * math.sin(math.radians(42))
     expected = 2 * DURALAR.density * 0.125 * 9 * 8 * L
-    assert analyze(a).mass.total == pytest.approx(expected, rel=1e-12)
+    m = analyze(a).mass
+    assert m.layer1 + m.layer2 == pytest.approx(expected, rel=1e-12)
+    # the band: four segments of length L, height t_d, each with an 8 mm overlap and two rows of
+    # ceil(L / 12) = 5 tabs of length L/5, depth 4 mm, 45 deg chamfers (area 4 (L/5 - 4) each)
+    td = 2 * 8 * math.cos(math.radians(42))
+    band = 4 * ((L + 8) * td + 2 * 5 * 4 * (L / 5 - 4))
+    assert m.connectors == pytest.approx(DURALAR.density * 0.125 * band, rel=1e-12)
+    assert m.total == pytest.approx(expected + DURALAR.density * 0.125 * band, rel=1e-12)
 
 
 def test_mass_is_area_of_cut_facets_for_a_triangle() -> None:
@@ -121,7 +128,8 @@ def test_mass_is_area_of_cut_facets_for_a_triangle() -> None:
     a = Assembly(layer, layer, tri)
     plan_area = 0.5 * a.Lx * a.Ly
     expected = 2 * DURALAR.density * layer.t * plan_area / layer.s
-    assert analyze(a).mass.total == pytest.approx(expected, rel=1e-12)
+    m = analyze(a).mass
+    assert m.layer1 + m.layer2 == pytest.approx(expected, rel=1e-12)
 
 
 def test_square_needs_equal_sides() -> None:

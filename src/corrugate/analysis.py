@@ -19,8 +19,9 @@ from numpy.typing import ArrayLike, NDArray
 from .checks import ModelWarning, design_warnings
 from .geometry import Assembly, Layer
 from .layouts import Layout, inverse_length_sum, length_sum
-from .mass import MassBreakdown, assembly_mass, layer_mass
+from .mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from .moduli import DEFAULT_MODEL, Moduli, get_model, moduli
+from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
 from .springs import LayerSprings, assembly_D, assembly_K, layer_springs
 
 __all__ = [
@@ -78,6 +79,7 @@ class Evaluation:
     Ly: FloatArray
     thickness: FloatArray
     mass: FloatArray
+    mass_connectors: FloatArray
     K: FloatArray
     D: FloatArray
     EI: FloatArray
@@ -91,8 +93,12 @@ def evaluate(
     layout: Layout,
     model: str = DEFAULT_MODEL,
     eta_deg: ArrayLike = 0.0,
+    fabrication: FabricationOptions = DEFAULT_FABRICATION,
 ) -> Evaluation:
     """Stiffness, size and mass of assemblies given as arrays of layer parameters.
+
+    ``mass`` (g) counts both layers and the connector band (cut from layer 1's sheet), as the cut
+    files do; ``mass_connectors`` is the band's share.
 
     No validation is done (see :class:`~corrugate.geometry.Layer` for the allowed ranges), and the
     equal-sides requirement of square and circle layouts is left to the caller.
@@ -106,11 +112,14 @@ def evaluate(
     D = assembly_D(s1, s2, eta_deg)
     mass = layer_mass(layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly))
     mass = mass + layer_mass(layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx))
+    thickness = layer1.height() + layer2.height()
+    m_conn = connector_mass(layer1.density, layer1.t, layout, Lx, Ly, thickness, fabrication)
     return Evaluation(
         Lx=Lx,
         Ly=Ly,
-        thickness=layer1.height() + layer2.height(),
-        mass=mass,
+        thickness=thickness,
+        mass=mass + m_conn,
+        mass_connectors=m_conn,
         K=assembly_K(s1, s2, eta_deg),
         D=D,
         EI=np.asarray(D * layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float))),
@@ -199,12 +208,15 @@ class Analysis:
 
 
 def analyze(
-    assembly: Assembly, model: str = DEFAULT_MODEL, eta_deg: Sequence[float] = (0.0, 90.0)
+    assembly: Assembly,
+    model: str = DEFAULT_MODEL,
+    eta_deg: Sequence[float] = (0.0, 90.0),
+    fabrication: FabricationOptions = DEFAULT_FABRICATION,
 ) -> Analysis:
     """Analyse ``assembly`` with moduli variant ``model`` at the directions ``eta_deg`` (deg).
 
     Returns moduli (MPa) and springs of each layer, K (N/mm), D (N mm) and EI (N mm^2) at each eta,
-    the mass (g) and the model's warnings. Example::
+    the mass (g; layers and connector band) and the model's warnings. Example::
 
         >>> from corrugate import Assembly, Layer, analyze, get_material
         >>> layer = Layer(W=8, n=8, alpha_deg=84, material=get_material("dura-lar"))
@@ -215,7 +227,9 @@ def analyze(
     model = get_model(model).name
     etas = np.asarray(list(eta_deg), dtype=np.float64)
     a = assembly
-    ev = evaluate(LayerArrays.of(a.layer1), LayerArrays.of(a.layer2), a.layout, model, etas)
+    ev = evaluate(
+        LayerArrays.of(a.layer1), LayerArrays.of(a.layer2), a.layout, model, etas, fabrication
+    )
     span = a.layout.span(np.asarray(a.Lx), np.asarray(a.Ly), etas)
     stiffness = tuple(
         DirectionalStiffness(float(e), float(k), float(d), float(ei), float(sp))
@@ -227,6 +241,6 @@ def analyze(
         moduli=ev.moduli,
         springs=ev.springs,
         stiffness=stiffness,
-        mass=assembly_mass(a),
+        mass=assembly_mass(a, fabrication),
         warnings=tuple(design_warnings(a, model)),
     )

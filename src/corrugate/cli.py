@@ -155,7 +155,7 @@ def _print_analysis(r: Analysis, console: Console) -> None:
     console.print(
         f"layout {a.layout.name}: {size}, folded thickness t_d = {a.thickness:.2f} mm, "
         f"mass = {r.mass.total:.3f} g (layers {r.mass.layer1:.3f} + "
-        f"{r.mass.layer2:.3f} g)"
+        f"{r.mass.layer2:.3f} g, connectors {r.mass.connectors:.3f} g)"
     )
     s = Table(title="stiffness", title_justify="left")
     for col in ("eta deg", "K N/mm", "D N mm", "EI N mm^2", "EI mN m^2"):

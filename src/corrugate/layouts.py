@@ -53,6 +53,8 @@ __all__ = [
 ]
 
 Axis = Literal["x", "y"]
+#: Sides of the regular polygon that stands for a circle in cut files (area error 1.3e-5).
+CIRCLE_SEGMENTS = 720
 FloatArray = NDArray[np.float64]
 
 
@@ -85,6 +87,21 @@ class Layout(Protocol):
 
     def describe(self) -> dict[str, object]:
         """JSON-ready description."""
+        ...
+
+    def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
+        """The outline scaled to Lx x Ly (mm) as a counter-clockwise polygon, shape (k, 2).
+
+        Exact for polygonal layouts; a circle is a regular polygon of ``CIRCLE_SEGMENTS`` sides.
+        """
+        ...
+
+    def perimeter_runs(self, Lx: ArrayLike, Ly: ArrayLike) -> list[tuple[FloatArray, bool]]:
+        """The perimeter as straight or smooth runs: (length in mm, ends at a corner) per run.
+
+        Vectorised over Lx, Ly. A polygon has one run per edge, each ending at a corner; a circle
+        has one smooth run, its circumference.
+        """
         ...
 
 
@@ -156,6 +173,13 @@ class Rectangle:
     def describe(self) -> dict[str, object]:
         return {"shape": self.name}
 
+    def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
+        return np.array([[0.0, 0.0], [Lx, 0.0], [Lx, Ly], [0.0, Ly]])
+
+    def perimeter_runs(self, Lx: ArrayLike, Ly: ArrayLike) -> list[tuple[FloatArray, bool]]:
+        x, y = np.asarray(Lx, dtype=np.float64), np.asarray(Ly, dtype=np.float64)
+        return [(x, True), (y, True), (x, True), (y, True)]
+
 
 @dataclass(frozen=True)
 class Square(Rectangle):
@@ -192,6 +216,17 @@ class Circle:
 
     def describe(self) -> dict[str, object]:
         return {"shape": self.name}
+
+    def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
+        k = np.arange(CIRCLE_SEGMENTS) * (2 * np.pi / CIRCLE_SEGMENTS)
+        return np.column_stack([Lx / 2 * (1 + np.cos(k)), Ly / 2 * (1 + np.sin(k))])
+
+    def perimeter_runs(self, Lx: ArrayLike, Ly: ArrayLike) -> list[tuple[FloatArray, bool]]:
+        a = np.asarray(Lx, dtype=np.float64) / 2
+        b = np.asarray(Ly, dtype=np.float64) / 2
+        # Ramanujan's ellipse perimeter; exact (pi D) for the circle, where a = b
+        h = ((a - b) / (a + b)) ** 2
+        return [(np.asarray(np.pi * (a + b) * (1 + 3 * h / (10 + np.sqrt(4 - 3 * h)))), False)]
 
 
 def _signed_area(v: FloatArray) -> float:
@@ -282,6 +317,14 @@ class Polygon:
 
     def describe(self) -> dict[str, object]:
         return {"shape": self.name, "vertices": [list(p) for p in self.vertices]}
+
+    def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
+        return np.asarray(self._unit * np.array([Lx, Ly]), dtype=np.float64)
+
+    def perimeter_runs(self, Lx: ArrayLike, Ly: ArrayLike) -> list[tuple[FloatArray, bool]]:
+        x, y = np.asarray(Lx, dtype=np.float64), np.asarray(Ly, dtype=np.float64)
+        d = np.roll(self._unit, -1, axis=0) - self._unit
+        return [(np.asarray(np.hypot(dx * x, dy * y)), True) for dx, dy in d]
 
 
 LAYOUTS = ("square", "rectangle", "circle", "polygon")

@@ -1,9 +1,10 @@
 """Mass of a design: rho t times the area of every cut part (DESIGN.md section 4).
 
-For now the cut parts are the two layers' flat blanks: facet j of a layer is a flat strip of width W
-and area W L_j (see :mod:`corrugate.layouts`), so a layer weighs rho t W sum_j L_j. The fabrication
-step will add tabs and connectors here, so that every mass the package reports, the optimiser's
-included, comes from this one module.
+The cut parts are the two layers' flat blanks and the connector band (cut from layer 1's sheet).
+Facet j of a layer is a flat strip of width W and area W L_j (see :mod:`corrugate.layouts`), so a
+layer weighs rho t W sum_j L_j; the band's area is :func:`corrugate.pattern.connectors.connector_area`.
+Every mass the package reports, the optimiser's included, comes from this module, and equals
+rho t times the area of the polygons in the cut files.
 """
 
 from __future__ import annotations
@@ -14,9 +15,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .geometry import Assembly
-from .layouts import length_sum
+from .layouts import Layout, length_sum
+from .pattern.connectors import connector_area
+from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
 
-__all__ = ["MassBreakdown", "assembly_mass", "layer_mass"]
+__all__ = ["MassBreakdown", "assembly_mass", "connector_mass", "layer_mass"]
 
 
 def layer_mass(
@@ -28,13 +31,27 @@ def layer_mass(
     )
 
 
+def connector_mass(
+    density: ArrayLike,
+    t: ArrayLike,
+    layout: Layout,
+    Lx: ArrayLike,
+    Ly: ArrayLike,
+    thickness: ArrayLike,
+    opts: FabricationOptions = DEFAULT_FABRICATION,
+) -> NDArray[np.float64]:
+    """Mass (g) of the connector band: density (g/mm^3) x t (mm) x its flat area (mm^2)."""
+    area = connector_area(layout, Lx, Ly, thickness, opts)
+    return np.asarray(np.asarray(density) * np.asarray(t) * area, dtype=np.float64)
+
+
 @dataclass(frozen=True, slots=True)
 class MassBreakdown:
     """Mass of a design by part (g)."""
 
     layer1: float
     layer2: float
-    connectors: float = 0.0
+    connectors: float
 
     @property
     def total(self) -> float:
@@ -49,12 +66,14 @@ class MassBreakdown:
         }
 
 
-def assembly_mass(a: Assembly) -> MassBreakdown:
-    """Mass (g) of the assembly's cut parts; connectors are not modelled yet (0 g)."""
+def assembly_mass(a: Assembly, opts: FabricationOptions = DEFAULT_FABRICATION) -> MassBreakdown:
+    """Mass (g) of the assembly's cut parts: both layers and the connector band."""
     m1 = layer_mass(
         a.layer1.material.density, a.layer1.t, a.layer1.W, length_sum(a.layout, a.layer1.n, a.Ly)
     )
     m2 = layer_mass(
         a.layer2.material.density, a.layer2.t, a.layer2.W, length_sum(a.layout, a.layer2.n, a.Lx)
     )
-    return MassBreakdown(float(m1), float(m2))
+    l1 = a.layer1
+    mc = connector_mass(l1.material.density, l1.t, a.layout, a.Lx, a.Ly, a.thickness, opts)
+    return MassBreakdown(float(m1), float(m2), float(mc))

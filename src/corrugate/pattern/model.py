@@ -69,6 +69,11 @@ class Part:
     kind: str = "layer"
     #: Free-form data the 3D and FOLD exporters need (e.g. the layer index).
     meta: dict[str, float] = field(default_factory=dict, compare=False, hash=False)
+    #: The sheet this part is cut from, when it differs from the pattern's (t in mm, density in
+    #: g/mm^3; 0 means "the pattern's").
+    material_id: str = ""
+    t: float = 0.0
+    density: float = 0.0
 
     @property
     def area(self) -> float:
@@ -97,7 +102,12 @@ class Pattern:
     t: float
     density: float
 
+    def part_mass(self, part: Part) -> float:
+        """rho t times the cut area (g) of one part, with the part's own sheet if it has one."""
+        t = part.t if part.t > 0 else self.t
+        rho = part.density if part.density > 0 else self.density
+        return rho * t * part.area
+
     def mass(self, kind: str | None = None) -> float:
         """rho t times the cut area (g) of every part, or of the parts of one ``kind``."""
-        area = sum(p.area for p in self.parts if kind is None or p.kind == kind)
-        return self.density * self.t * area
+        return sum(self.part_mass(p) for p in self.parts if kind is None or p.kind == kind)

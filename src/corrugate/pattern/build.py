@@ -1,0 +1,31 @@
+"""Design -> Pattern: every part to cut for an assembly (both layers and the connector band)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..geometry import Assembly
+from .band import band_parts
+from .layers import layer_part
+from .model import Pattern
+from .options import DEFAULT_FABRICATION, FabricationOptions
+
+__all__ = ["build_pattern"]
+
+
+def build_pattern(a: Assembly, opts: FabricationOptions = DEFAULT_FABRICATION) -> Pattern:
+    """The cut parts of assembly ``a``: L1, L2 (layer blanks) and B1..Bk (band segments), in mm.
+
+    Layer 1's plan outline is used in (x, y); layer 2's in (y, x), reversed to stay
+    counter-clockwise, since its chordwise direction is y.
+    """
+    plan = a.layout.plan_outline(a.Lx, a.Ly)
+    l1 = layer_part(a.layer1, plan, 1)
+    l2 = layer_part(a.layer2, np.ascontiguousarray(plan[::-1, ::-1]), 2)
+    m = a.layer1.material
+    return Pattern(
+        parts=(l1, l2, *band_parts(a, opts)),
+        material_id=m.id,
+        t=a.layer1.t,
+        density=m.density,
+    )
