@@ -12,11 +12,11 @@ $(BIN)/python:
 	$(PIP) install --quiet --upgrade pip
 
 $(VENV)/.installed: $(BIN)/python pyproject.toml
-	$(PIP) install --quiet -e .
+	$(PIP) install --quiet -e '.[opt,fab]'
 	touch $@
 
 $(VENV)/.installed-dev: $(VENV)/.installed pyproject.toml
-	$(PIP) install --quiet -e '.[dev,opt]'
+	$(PIP) install --quiet -e '.[dev,opt,fab]'
 	touch $@
 
 # The paper's case study (Liu, Yan and Mehta, Table 1, case 1), end to end, files under out/.

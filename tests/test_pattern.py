@@ -1,0 +1,173 @@
+"""Flat patterns and folded geometry: parsed back and checked by geometry, not by snapshots."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from corrugate import Assembly, Layer, analyze, get_material, make_layout
+from corrugate.layouts import Layout
+from corrugate.pattern.build import build_pattern
+from corrugate.pattern.files3d import write_fold, write_mesh
+from corrugate.pattern.model import Role, polygon_area
+
+DURALAR = get_material("dura-lar")
+
+LAYOUTS: list[tuple[str, Layout, Layer, Layer]] = [
+    ("square", make_layout("square"), Layer(8, 8, 84, DURALAR), Layer(8, 8, 84, DURALAR)),
+    ("rectangle", make_layout("rectangle"), Layer(8, 8, 84, DURALAR), Layer(6, 13, 100, DURALAR)),
+    ("circle", make_layout("circle"), Layer(10, 11, 90, DURALAR), Layer(10, 11, 90, DURALAR)),
+    (
+        "trapezoid",
+        make_layout("polygon", [(0, 0), (1, 0), (0.75, 1), (0.25, 1)]),
+        Layer(6, 12, 100, DURALAR),
+        Layer(7, 9, 80, get_material("kapton"), 0.05),
+    ),
+    (
+        "concave",
+        make_layout("polygon", [(0, 0), (3, 0), (3, 1), (1, 1), (1, 3), (0, 3)]),
+        Layer(6, 12, 100, DURALAR),
+        Layer(6, 12, 100, DURALAR),
+    ),
+]
+
+
+@pytest.mark.parametrize(("name", "layout", "l1", "l2"), LAYOUTS, ids=[x[0] for x in LAYOUTS])
+def test_mass_equals_rho_t_area_of_cut_polygons(
+    name: str, layout: Layout, l1: Layer, l2: Layer
+) -> None:
+    a = Assembly(l1, l2, layout)
+    pattern = build_pattern(a)
+    mass = analyze(a).mass
+    by_kind: dict[str, float] = {"layer": 0.0, "connector": 0.0}
+    for part in pattern.parts:
+        t = part.t or pattern.t
+        rho = part.density or pattern.density
+        by_kind[part.kind] += rho * t * polygon_area(part.outline)  # independent shoelace
+    assert by_kind["layer"] == pytest.approx(mass.layer1 + mass.layer2, rel=5e-3)
+    assert by_kind["connector"] == pytest.approx(mass.connectors, rel=5e-3)
+    assert sum(by_kind.values()) == pytest.approx(mass.total, rel=5e-3)
+
+
+@pytest.mark.parametrize(("name", "layout", "l1", "l2"), LAYOUTS, ids=[x[0] for x in LAYOUTS])
+def test_every_crease_once_alternating(name: str, layout: Layout, l1: Layer, l2: Layer) -> None:
+    a = Assembly(l1, l2, layout)
+    parts = {p.name: p for p in build_pattern(a).parts}
+    for index, layer in ((1, l1), (2, l2)):
+        creases = parts[f"L{index}"].creases()
+        us = sorted({round(c.a[0], 9) for c in creases})
+        assert us == pytest.approx([k * layer.W for k in range(1, layer.n + 1)])
+        for c in creases:
+            k = round(c.a[0] / layer.W)
+            assert c.role is (Role.MOUNTAIN if k % 2 else Role.VALLEY)
+            assert c.fold_angle_deg == pytest.approx(180 - layer.alpha_deg)
+            assert c.a[0] == c.b[0]  # straight across the blank
+
+
+def test_square_blank_is_the_papers() -> None:
+    """Flat blank of one layer: (n + 1) W by L (DESIGN.md section 2)."""
+    a = Assembly.identical(Layer(8, 8, 84, DURALAR))
+    blank = build_pattern(a).parts[0]
+    assert blank.size == pytest.approx((72.0, a.Lx))
+    assert len(blank.creases()) == 8
+    assert all(c.length == pytest.approx(a.Lx) for c in blank.creases())
+
+
+def test_band_marks_match_crease_ends() -> None:
+    """Each crease of each layer meets the perimeter twice on a square: 2 n1 + 2 n2 marks, and each
+    mark sits at k p from its segment's start."""
+    l1, l2 = Layer(8, 8, 84, DURALAR), Layer(6, 13, 100, DURALAR)
+    a = Assembly(l1, l2, make_layout("rectangle"))
+    bands = [p for p in build_pattern(a).parts if p.kind == "connector"]
+    assert len(bands) == 4
+    marks = [ln for b in bands for ln in b.lines if ln.role is Role.MARK]
+    assert len(marks) == 2 * l1.n + 2 * l2.n
+    first = sorted(ln.a[0] for ln in bands[0].lines if ln.role is Role.MARK)
+    assert first == pytest.approx([k * l1.pitch for k in range(1, l1.n + 1)])
+    for b in bands:  # band height is t_d and corners fold by 90 deg
+        assert max(y for _, y in b.outline) - 4.0 == pytest.approx(a.thickness)
+        corner = [ln for ln in b.lines if ln.role is Role.VALLEY and ln.fold_angle_deg == 90.0]
+        assert corner
+
+
+def _fold(tmp_path: Path, a: Assembly, index: int) -> dict:  # type: ignore[type-arg]
+    write_fold(a, build_pattern(a), tmp_path)
+    return json.loads((tmp_path / f"layer{index}.fold").read_text())
+
+
+@pytest.mark.parametrize("alpha", [40.0, 84.0, 115.0])
+def test_fold_is_isometric_planar_and_spans_the_square(tmp_path: Path, alpha: float) -> None:
+    layer = Layer(8, 9, alpha, DURALAR)
+    a = Assembly.identical(layer)
+    doc = _fold(tmp_path, a, 1)
+    assert doc["file_spec"] == 1.2
+    assert doc["frame_unit"] == "mm"
+    flat = np.array(doc["vertices_coords"], dtype=float)
+    folded = np.array(doc["file_frames"][0]["vertices_coords"], dtype=float)
+    assert folded.shape == (len(flat), 3)
+    for i, j in doc["edges_vertices"]:
+        assert np.linalg.norm(folded[i] - folded[j]) == pytest.approx(
+            np.linalg.norm(flat[i] - flat[j]), abs=1e-6
+        )
+    for face in doc["faces_vertices"]:
+        p = folded[face]
+        # planar: every vertex lies on the plane of the first three (to 1e-9 mm)
+        n = np.cross(p[1] - p[0], p[2] - p[0])
+        n /= np.linalg.norm(n)
+        assert np.abs((p - p[0]) @ n).max() < 1e-9
+        # and the folded face keeps its flat area (isometry, second check)
+        flat_area = polygon_area([tuple(q) for q in flat[face]])
+        tri = sum(
+            np.linalg.norm(np.cross(p[k] - p[0], p[k + 1] - p[0])) / 2 for k in range(1, len(p) - 1)
+        )
+        assert tri == pytest.approx(flat_area, rel=1e-9)
+    span = folded.max(axis=0) - folded.min(axis=0)
+    assert span[0] == pytest.approx(a.Lx, abs=1e-9)
+    assert span[1] == pytest.approx(a.Lx, abs=1e-9)
+    assert span[2] == pytest.approx(8 * math.cos(math.radians(alpha) / 2), abs=1e-9)
+
+
+def test_fold_angle_signs_agree_with_geometry(tmp_path: Path) -> None:
+    """Mountain (negative angle): the crease is higher than the neighbouring facets seen from the
+    face that was up when flat; valley (positive): lower. Checked on the folded coordinates."""
+    layer = Layer(8, 8, 84, DURALAR)
+    doc = _fold(tmp_path, Assembly.identical(layer), 1)
+    folded = np.array(doc["file_frames"][0]["vertices_coords"], dtype=float)
+    centroid_z = {}
+    for f, face in enumerate(doc["faces_vertices"]):
+        centroid_z[f] = folded[face][:, 2].mean()
+    creases = 0
+    for e, (i, j) in enumerate(doc["edges_vertices"]):
+        assignment, angle = doc["edges_assignment"][e], doc["edges_foldAngle"][e]
+        if assignment == "B":
+            assert angle == 0
+            continue
+        creases += 1
+        faces = [f for f, face in enumerate(doc["faces_vertices"]) if i in face and j in face]
+        assert len(faces) == 2
+        crease_z = (folded[i, 2] + folded[j, 2]) / 2
+        around = np.mean([centroid_z[f] for f in faces])
+        if assignment == "M":
+            assert angle == pytest.approx(-(180 - 84))
+            assert crease_z > around
+        else:
+            assert assignment == "V"
+            assert angle == pytest.approx(180 - 84)
+            assert crease_z < around
+    assert creases == 8
+
+
+def test_mesh_files_load_and_span_the_assembly(tmp_path: Path) -> None:
+    import trimesh
+
+    a = Assembly.identical(Layer(8, 8, 84, DURALAR))
+    write_mesh(a, build_pattern(a), tmp_path)
+    for name in ("assembly.glb", "assembly.stl"):
+        mesh = trimesh.load(tmp_path / name, force="mesh")
+        lo, hi = mesh.bounds
+        assert hi - lo == pytest.approx([a.Lx, a.Ly, a.thickness], abs=1e-4)
+        assert len(mesh.faces) > 0
