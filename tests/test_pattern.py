@@ -171,3 +171,23 @@ def test_mesh_files_load_and_span_the_assembly(tmp_path: Path) -> None:
         lo, hi = mesh.bounds
         assert hi - lo == pytest.approx([a.Lx, a.Ly, a.thickness], abs=1e-4)
         assert len(mesh.faces) > 0
+
+
+def test_assembly_instructions(tmp_path: Path) -> None:
+    from corrugate.pattern.instructions import write_instructions
+
+    a = Assembly.identical(Layer(8, 8, 84, DURALAR), make_layout("circle"))
+    pattern = build_pattern(a)
+    write_instructions(a, pattern, tmp_path)
+    text = (tmp_path / "ASSEMBLY.md").read_text()
+    numbered = [line for line in text.splitlines() if line[:1].isdigit()]
+    assert [int(line.split(".")[0]) for line in numbered] == list(range(1, len(numbered) + 1))
+    assert len(numbered) >= 6
+    for part in pattern.parts:
+        assert part.name in text
+    assert "96 deg" in text  # the fold angle 180 - 84
+    png = (tmp_path / "assembly.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
+    assert width > 600
+    assert height > 400

@@ -1,0 +1,138 @@
+"""Assembly instructions: numbered steps (Markdown) and a figure, made from the design itself."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..fileio import atomic_path, atomic_write
+from ..geometry import Assembly
+from .folded import facet_polygons, fold_points
+from .model import Pattern, Role
+
+__all__ = ["assembly_steps", "write_instructions"]
+
+_COLOURS = {
+    Role.MOUNTAIN: "#ff0000",
+    Role.VALLEY: "#0000ff",
+    Role.MARK: "#ff00ff",
+    Role.CUT: "#00ff00",
+}
+
+
+def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
+    """The numbered assembly steps for this design (plain sentences, mm and degrees)."""
+    bands = [p.name for p in pattern.parts if p.kind == "connector"]
+    l1, l2 = a.layer1, a.layer2
+    ring = " -> ".join([*bands, bands[0]])
+    folds = (
+        f"{l1.fold_angle_deg:g} deg (facets meet at {l1.alpha_deg:g} deg)"
+        if l1.alpha_deg == l2.alpha_deg
+        else f"{l1.fold_angle_deg:g} deg on L1 and {l2.fold_angle_deg:g} deg on L2"
+    )
+    return [
+        f"Cut L1, L2 and {', '.join(bands)} (the sheet files; L1 {l1.material.id} {l1.t:g} mm, "
+        f"L2 {l2.material.id} {l2.t:g} mm, band from L1's sheet).",
+        f"Pre-fold L1 and L2 along every crease: mountains (red) towards you, valleys (blue) away, "
+        f"each by {folds}.",
+        "On each band segment fold the glue tabs on both long edges 90 deg towards the printed face "
+        "(the inner face, with the marks); fold the line before the overlap tab by its corner angle.",
+        f"Join the band into a ring, {ring}: glue each overlap tab behind the start of the next "
+        "segment, marks facing in.",
+        f"Lower L1 into the ring, valleys down on the bottom tabs. Set each crease end on its lower "
+        f"mark (the marks from the base to {l1.height:.1f} mm); this sets the fold angle. Glue.",
+        f"Lay L2 on top, its creases at 90 deg to L1's, its valleys on L1's ridges, each crease end on "
+        f"its upper mark ({l1.height:.1f} to {a.thickness:.1f} mm). Fold the top tabs over its ridges "
+        "and glue.",
+        f"Check: the panel measures {a.Lx:.1f} x {a.Ly:.1f} mm and {a.thickness:.1f} mm thick.",
+    ]
+
+
+def _layer_faces(a: Assembly, pattern: Pattern, index: int) -> list[np.ndarray]:
+    part = next(p for p in pattern.parts if p.name == f"L{index}")
+    layer = a.layer1 if index == 1 else a.layer2
+    faces = []
+    for face in facet_polygons(part, layer):
+        if len(face) < 3:
+            continue
+        p = fold_points(layer, np.asarray(face, dtype=np.float64))
+        if index == 2:
+            p = np.column_stack([p[:, 1], p[:, 0], a.layer1.height + p[:, 2]])
+        faces.append(p)
+    return faces
+
+
+def write_instructions(a: Assembly, pattern: Pattern, out_dir: Path) -> list[Path]:
+    """Write ``ASSEMBLY.md`` (numbered steps) and ``assembly.png`` (the figure) into ``out_dir``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    fig = plt.figure(figsize=(11, 8.5), dpi=110)
+    ax0 = fig.add_subplot(2, 2, 1)
+    x0 = 0.0
+    for part in pattern.parts:
+        o = np.asarray(part.outline)
+        w = o[:, 0].max() - o[:, 0].min()
+        closed = np.vstack([o, o[:1]])
+        ax0.plot(closed[:, 0] + x0, closed[:, 1], color="black", lw=0.6)
+        for ln in part.lines:
+            ax0.plot(
+                [ln.a[0] + x0, ln.b[0] + x0], [ln.a[1], ln.b[1]], color=_COLOURS[ln.role], lw=0.5
+            )
+        ax0.text(x0 + w / 2, o[:, 1].max() + 3, part.name, ha="center", fontsize=7)
+        x0 += w + 6
+    ax0.set_aspect("equal")
+    ax0.set_title("1. cut (black), mountain red, valley blue, marks magenta", fontsize=9)
+    ax0.axis("off")
+
+    outline = a.layout.plan_outline(a.Lx, a.Ly)
+    nxt = np.roll(outline, -1, axis=0)
+    walls = [
+        np.array(
+            [[p[0], p[1], 0], [q[0], q[1], 0], [q[0], q[1], a.thickness], [p[0], p[1], a.thickness]]
+        )
+        for p, q in zip(outline, nxt, strict=True)
+    ]
+    views = [
+        ("2. fold L1 and L2", _layer_faces(a, pattern, 1), []),
+        ("3-5. band ring, L1 inside on the lower marks", _layer_faces(a, pattern, 1), walls),
+        (
+            "6. L2 on top: the finished panel",
+            _layer_faces(a, pattern, 1) + _layer_faces(a, pattern, 2),
+            walls,
+        ),
+    ]
+    for k, (title, faces, band) in enumerate(views):
+        ax = fig.add_subplot(2, 2, k + 2, projection="3d")
+        ax.add_collection3d(
+            Poly3DCollection(faces, facecolor="#9ecae1", edgecolor="#08519c", lw=0.3)
+        )
+        if band:
+            ax.add_collection3d(
+                Poly3DCollection(band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35)
+            )
+        ax.set_xlim(0, a.Lx)
+        ax.set_ylim(0, a.Ly)
+        ax.set_zlim(0, max(a.Lx, a.Ly) / 2)
+        ax.set_box_aspect((a.Lx, a.Ly, max(a.Lx, a.Ly) / 2))
+        ax.set_xlabel("x (mm)", fontsize=7)
+        ax.set_ylabel("y (mm)", fontsize=7)
+        ax.set_zlabel("z (mm)", fontsize=7)
+        ax.tick_params(labelsize=6)
+        ax.set_title(title, fontsize=9)
+    fig.tight_layout()
+    png = out_dir / "assembly.png"
+    with atomic_path(png) as tmp:
+        fig.savefig(tmp, format="png")
+    plt.close(fig)
+    steps = assembly_steps(a, pattern)
+    text = (
+        "# Assembly\n\n![assembly steps](assembly.png)\n\n"
+        + "\n".join(f"{i}. {s}" for i, s in enumerate(steps, 1))
+        + "\n"
+    )
+    return [atomic_write(out_dir / "ASSEMBLY.md", text), png]
