@@ -58,3 +58,12 @@ def test_inline_units() -> None:
 def test_a_length_for_a_modulus_is_rejected() -> None:
     with pytest.raises(InputError, match=r"^E = '2 mm' has the wrong dimension"):
         inline_material("2 mm", 0.3, 1.0)
+
+
+def test_unusual_thickness_warns() -> None:
+    from corrugate import Assembly, Layer, analyze
+
+    sold = analyze(Assembly.identical(Layer(10, 9, 90, get_material("dura-lar"), 0.125)))
+    odd = analyze(Assembly.identical(Layer(10, 9, 90, get_material("dura-lar"), 0.3)))
+    assert "unusual-thickness" not in {w.code for w in sold.warnings}
+    assert "unusual-thickness" in {w.code for w in odd.warnings}

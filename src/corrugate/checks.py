@@ -6,6 +6,7 @@
   (``reference/unitcell_fe.csv``) puts the resulting error in Ecx and Ebx at about t/W at
   alpha = 90 deg, growing as (90 deg / alpha)^2 for sharper folds (9 % at t/W = 0.02, 45 deg);
 * very few facets: the spring model homogenises the corrugation, which needs several periods;
+* a thickness the material is not sold in (the library lists what is sold);
 * the ``paper`` model, which has known errors (DESIGN.md 3.1).
 """
 
@@ -68,6 +69,15 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
                 "thick-sheet",
                 f"{label}: t/W = {layer.t / layer.W:.3g} at alpha = {layer.alpha_deg:g} deg is a thick "
                 f"sheet; the thin-sheet formulas may be off by about {100 * err:.0f} % in Ecx and Ebx",
+            )
+        )
+    sold = layer.material.thicknesses
+    if sold and min(abs(layer.t - x) for x in sold) > 1e-6 * layer.t:
+        out.append(
+            ModelWarning(
+                "unusual-thickness",
+                f"{label}: t = {layer.t:g} mm is not a thickness {layer.material.id} is sold in "
+                f"({', '.join(f'{x:g}' for x in sold)} mm)",
             )
         )
     if layer.n + 1 < MIN_FACETS:
