@@ -227,6 +227,6 @@ def test_placement_is_a_rigid_motion_without_mirror(rotated: bool) -> None:
     # the hole stays inside the outline's box and keeps its size
     assert polygon_area(placed.holes[0]) == pytest.approx(100.0)
     if rotated:  # 90 deg counter-clockwise: local +x becomes sheet +y
-        a = p.transform((0.0, 0.0))
-        b = p.transform((1.0, 0.0))
-        assert (b[0] - a[0], b[1] - a[1]) == pytest.approx((0.0, 1.0))
+        o = p.transform((0.0, 0.0))
+        e = p.transform((1.0, 0.0))
+        assert (e[0] - o[0], e[1] - o[1]) == pytest.approx((0.0, 1.0))
