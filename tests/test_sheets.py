@@ -78,22 +78,24 @@ def assert_valid_plan(plan: SheetPlan, parts: list[Part]) -> None:
             assert x1 <= sheet.width - plan.margin + tol
             assert y1 <= sheet.height - plan.margin + tol
             assert (x0, y0, x1, y1) == pytest.approx(p.bounds)
-        if sheet.reserved is not None:
+        if sheet.reserved is not None:  # the check-square box: inside the margins, free
             rx, ry, rw, rh = sheet.reserved
-            assert ry + rh <= sheet.height - plan.margin + tol
-            for b in boxes:  # the box is in the top-right corner: parts are left of it or below
-                assert b[2] + plan.spacing <= rx + tol or b[3] + plan.spacing <= ry + tol
+            assert rx >= plan.margin - tol and ry >= plan.margin - tol
             assert rx + rw <= sheet.width - plan.margin + tol
-        for i in range(len(boxes)):
-            for j in range(i + 1, len(boxes)):
-                a, b = boxes[i], boxes[j]
+            assert ry + rh <= sheet.height - plan.margin + tol
+            boxes_and_reserved = [*boxes, (rx, ry, rx + rw, ry + rh)]
+        else:
+            boxes_and_reserved = boxes
+        for i in range(len(boxes_and_reserved)):
+            for j in range(i + 1, len(boxes_and_reserved)):
+                a, b = boxes_and_reserved[i], boxes_and_reserved[j]
                 separated = (
                     a[2] + plan.spacing <= b[0] + tol
                     or b[2] + plan.spacing <= a[0] + tol
                     or a[3] + plan.spacing <= b[1] + tol
                     or b[3] + plan.spacing <= a[1] + tol
                 )
-                assert separated, (sheet.placements[i].part.name, sheet.placements[j].part.name)
+                assert separated, (i, j)
 
 
 # -- cutters ---------------------------------------------------------------------------------------
@@ -142,6 +144,25 @@ def test_mixed_parts_fit_one_mat_without_overlap() -> None:
     # the 10 x 250 strips lie along x: turned 90 deg
     strips = [p for p in plan.placements if p.part.name.startswith("strip")]
     assert all(p.rotated for p in strips)
+
+
+def test_check_box_costs_no_extra_sheet_when_space_is_free_elsewhere() -> None:
+    # a 250 mm strip on the top shelf reaches the top-right corner; the box goes beside the blanks
+    parts = [ell(), rect("layer-1", 72, 48.18, 8), rect("layer-2", 72, 48.18, 8)]
+    parts.append(rect("strip", 10, 250))
+    plan = plan_sheets(parts, "laser:270x80")
+    assert len(plan.sheets) == 1
+    assert plan.sheets[0].reserved is not None
+    assert_valid_plan(plan, parts)
+
+
+def test_check_box_is_kept_in_the_corner_when_no_spot_is_left() -> None:
+    # 4 x 4 squares of 66 mm fill a 292 mm mat, corner included
+    parts = [rect(f"sq{i}", 66, 66) for i in range(16)]
+    plan = plan_sheets(parts, "cameo4-12x12", spacing=4, margin=5)
+    assert all(s.reserved is not None for s in plan.sheets)
+    assert_valid_plan(plan, parts)
+    assert len(plan.sheets) == 2  # the box pushes one square to a second sheet
 
 
 def test_layout_is_deterministic() -> None:

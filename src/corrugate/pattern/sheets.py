@@ -25,9 +25,10 @@ Cutters (``get_cutter``):
 
 The packer is a deterministic shelf packer (first fit, decreasing height): parts sorted by height,
 each one put on the first shelf of the first sheet where it fits, in the orientation that keeps
-shelves low; new shelves and sheets are opened as needed. It reserves a small box in the top-right
-corner of each sheet for the PDF's 10 mm check square (see :data:`CHECK_BOX`), unless a part only
-fits on a sheet without it.
+shelves low; new shelves and sheets are opened as needed. Each sheet also gets a small free box for
+the PDF's 10 mm check square (see :data:`CHECK_BOX`): the parts are packed first without it and a
+free spot is looked for on every sheet; if some sheet has none, the parts are packed again with the
+top-right corner of every sheet kept free (a sheet holding a part too large for that gets no box).
 """
 
 from __future__ import annotations
@@ -349,23 +350,55 @@ def plan_sheets(
         items.append((part, options))
     order = sorted(range(len(items)), key=lambda i: (-items[i][1][0][1], -items[i][1][0][0], i))
 
-    reserved: tuple[float, float, float, float] | None = None
-    if reserve is not None:
-        rw, rh = reserve
-        reserved = (cut.width - margin - rw, cut.height - margin - rh, rw, rh)
+    def pack(reserved: tuple[float, float, float, float] | None) -> list[_SheetState]:
+        states: list[_SheetState] = []
+        for i in order:
+            part, options = items[i]
+            if any(_try_place(s, k, part, options) for k, s in enumerate(states)):
+                continue
+            for res in (reserved, None) if reserved is not None else (None,):
+                state = _SheetState(cut.width, cut.height, margin, spacing, res)
+                if _try_place(state, len(states), part, options):
+                    states.append(state)
+                    break
+            else:  # pragma: no cover - options fit an empty sheet without reservation
+                raise AssertionError(f"part {part.name!r} fits no empty sheet")
+        return states
 
-    states: list[_SheetState] = []
-    for i in order:
-        part, options = items[i]
-        if any(_try_place(s, k, part, options) for k, s in enumerate(states)):
-            continue
-        for res in (reserved, None) if reserved is not None else (None,):
-            state = _SheetState(cut.width, cut.height, margin, spacing, res)
-            if _try_place(state, len(states), part, options):
-                states.append(state)
-                break
-        else:  # pragma: no cover - options fit an empty sheet without reservation by construction
-            raise AssertionError(f"part {part.name!r} fits no empty sheet")
+    def sheet(state: _SheetState, box: tuple[float, float, float, float] | None) -> Sheet:
+        return Sheet(state.width, state.height, tuple(state.placements), box)
 
-    sheets = tuple(Sheet(s.width, s.height, tuple(s.placements), s.reserved) for s in states)
-    return SheetPlan(cut, sheets, spacing, margin)
+    # First without a reserved box; keep that if every sheet has a free spot for the box anyway.
+    states = pack(None)
+    if reserve is None:
+        return SheetPlan(cut, tuple(sheet(s, None) for s in states), spacing, margin)
+    rw, rh = reserve
+    spots = [_free_box(s, rw, rh) for s in states]
+    if any(spot is None for spot in spots):  # else keep the top-right corner free from the start
+        states = pack((cut.width - margin - rw, cut.height - margin - rh, rw, rh))
+        spots = [s.reserved or _free_box(s, rw, rh) for s in states]
+    return SheetPlan(cut, tuple(map(sheet, states, spots)), spacing, margin)
+
+
+def _free_box(state: _SheetState, w: float, h: float) -> tuple[float, float, float, float] | None:
+    """A w x h box (x, y, w, h) inside the margins of a packed sheet, ``spacing`` away from every
+    part, as near the top-right corner as candidate positions allow; ``None`` if there is none."""
+    m, sp = state.margin, state.spacing
+    boxes = [p.bounds for p in state.placements]
+    xs = {m, state.width - m - w} | {b[2] + sp for b in boxes} | {b[0] - sp - w for b in boxes}
+    ys = {m, state.height - m - h} | {b[3] + sp for b in boxes} | {b[1] - sp - h for b in boxes}
+    for y in sorted(ys, reverse=True):
+        for x in sorted(xs, reverse=True):
+            if x < m - _EPS or y < m - _EPS:
+                continue
+            if x + w > state.width - m + _EPS or y + h > state.height - m + _EPS:
+                continue
+            if all(
+                x + w + sp <= b[0] + _EPS
+                or b[2] + sp <= x + _EPS
+                or y + h + sp <= b[1] + _EPS
+                or b[3] + sp <= y + _EPS
+                for b in boxes
+            ):
+                return x, y, w, h
+    return None
