@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
 from ..errors import InputError, UnknownNameError
@@ -166,14 +166,18 @@ class Placement:
 
     def transform(self, point: Point) -> Point:
         """A point of the part (its own coordinates, mm) in sheet coordinates (mm)."""
+        return self.mapping()(point)
+
+    def mapping(self) -> Callable[[Point], Point]:
+        """The rigid motion part -> sheet as a function (computes the part's origin once)."""
         pts = self.part.outline
         x0 = min(p[0] for p in pts)
         y0 = min(p[1] for p in pts)
-        px, py = point[0] - x0, point[1] - y0
-        if self.rotated:
-            h = self.part.size[1]
-            return self.x + h - py, self.y + px
-        return self.x + px, self.y + py
+        h = max(p[1] for p in pts) - y0
+        X, Y = self.x, self.y
+        if self.rotated:  # 90 deg counter-clockwise, then back into the box
+            return lambda p: (X + h - (p[1] - y0), Y + (p[0] - x0))
+        return lambda p: (X + (p[0] - x0), Y + (p[1] - y0))
 
 
 @dataclass(frozen=True, slots=True)
@@ -224,7 +228,7 @@ def place(placement: Placement) -> PlacedPart:
 
     Lines keep their role and fold angle; a crease's index in ``lines`` is its index in the part.
     """
-    t = placement.transform
+    t = placement.mapping()
     return PlacedPart(
         placement=placement,
         outline=tuple(t(p) for p in placement.part.outline),
