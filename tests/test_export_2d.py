@@ -197,6 +197,14 @@ def test_svg_perforated_dash_pattern_matches_the_dash_rule(plan: SheetPlan, tmp_
         assert e.attrib["data-style"] == "perforated"
 
 
+def test_svg_scored_creases_are_solid_and_tagged(plan: SheetPlan, tmp_path: Path) -> None:
+    root = ET.parse(write_svg(plan.sheets[0], tmp_path / "s.svg", line_style("scored"))).getroot()
+    creases = [e for e in root.iter(f"{SVG}line") if "data-crease" in e.attrib]
+    assert len(creases) == 21
+    assert all(e.attrib["data-style"] == "scored" for e in creases)
+    assert not any("stroke-dasharray" in e.attrib for e in creases)
+
+
 # -- DXF -------------------------------------------------------------------------------------------
 
 

@@ -205,6 +205,11 @@ def test_oversize_part_error_names_part_size_and_sheet() -> None:
     assert isinstance(err.value, InputError)
 
 
+def test_part_names_must_be_unique() -> None:
+    with pytest.raises(InputError, match="'a' is used twice"):
+        plan_sheets([rect("a", 10, 10), rect("b", 10, 10), rect("a", 5, 5)], "laser:300x300")
+
+
 @pytest.mark.parametrize(("spacing", "margin"), [(-1.0, 5.0), (5.0, -1.0), (5.0, 200.0)])
 def test_bad_spacing_or_margin(spacing: float, margin: float) -> None:
     with pytest.raises(InputError):

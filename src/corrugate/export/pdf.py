@@ -8,7 +8,8 @@ A 10 mm check square labelled "10 mm" sits in the box the sheet layout keeps fre
 corner (:data:`corrugate.pattern.sheets.CHECK_BOX`); on a sheet without that box it goes to the
 first free spot found, and is left out only if no 10 mm spot is free. Lines use the SVG colours
 (:data:`corrugate.export.svg.COLOURS`), solid; with the ``perforated`` style the creases are drawn
-as their dashes. Part labels are written as in the SVG.
+as their dashes. Part labels, the check square and a one-line note in the bottom margin are grey
+(:data:`corrugate.export.svg.ANNOTATION`), so a cutter that imports the PDF can skip them by colour.
 """
 
 from __future__ import annotations
@@ -22,7 +23,7 @@ from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, SheetPlan, place
 from .labels import label_spot
 from .staging import staged
-from .svg import BOUNDARY, COLOURS
+from .svg import ANNOTATION, BOUNDARY, COLOURS
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -131,7 +132,7 @@ def sheet_figure(
                 rotation=spot.rotation,
                 ha="center",
                 va="center",
-                color="black",
+                color=ANNOTATION,
             )
     for colour, lines in segs.items():
         ax.add_collection(LineCollection(lines, colors=colour, linewidths=lw, capstyle="butt"))
@@ -139,7 +140,7 @@ def sheet_figure(
     if corner is not None:
         x, y = corner
         side = CHECK_SQUARE_MM
-        ax.add_patch(Rectangle((x, y), side, side, fill=False, edgecolor="black", linewidth=lw))
+        ax.add_patch(Rectangle((x, y), side, side, fill=False, edgecolor=ANNOTATION, linewidth=lw))
         ax.text(
             x + side / 2,
             y - 0.5,
@@ -147,7 +148,7 @@ def sheet_figure(
             fontsize=_LABEL_MM * _PT * 0.8,
             ha="center",
             va="top",
-            color="black",
+            color=ANNOTATION,
         )
     if plan.margin >= 3.0:  # a one-line note in the bottom margin
         ax.text(
@@ -157,7 +158,7 @@ def sheet_figure(
             fontsize=1.8 * _PT,
             ha="left",
             va="bottom",
-            color="0.4",
+            color=ANNOTATION,
         )
     return fig
 

@@ -22,7 +22,7 @@ the part) and ``data-fold-angle`` in degrees. With the ``perforated`` fold-line 
 keeps its colour and carries ``stroke-dasharray``/``stroke-dashoffset`` that draw exactly the dashes
 of :func:`corrugate.pattern.linestyle.dashes` (for a cutter that needs the dashes as separate
 cut paths use the DXF's PERFORATE layer); ``scored`` is drawn solid and marked ``data-style``.
-Part labels are ``<text>`` elements in a ``<g id="labels">`` group (black fill, no stroke);
+Part labels are ``<text>`` elements in a ``<g id="labels">`` group (grey fill, no stroke);
 ``labels=False`` leaves them out, ``marks=False`` leaves the marks out (Origami Simulator would
 otherwise treat them as free hinges).
 """
@@ -40,7 +40,15 @@ from ..pattern.sheets import Sheet, place
 from .labels import label_spot
 from .staging import staged
 
-__all__ = ["BOUNDARY", "COLOURS", "STROKE_MM", "fold_opacity", "svg_document", "write_svg"]
+__all__ = [
+    "ANNOTATION",
+    "BOUNDARY",
+    "COLOURS",
+    "STROKE_MM",
+    "fold_opacity",
+    "svg_document",
+    "write_svg",
+]
 
 SVG_NS = "http://www.w3.org/2000/svg"
 #: Stroke colour of outlines and holes (Origami Simulator "boundary").
@@ -52,6 +60,8 @@ COLOURS: dict[Role, str] = {
     Role.VALLEY: "#0000ff",
     Role.MARK: "#ff00ff",
 }
+#: Colour of part labels (text fill) and other annotations that are neither cut nor folded.
+ANNOTATION = "#808080"
 #: Stroke width (mm).
 STROKE_MM = 0.25
 
@@ -164,7 +174,7 @@ def svg_document(
                 "font-family": "sans-serif",
                 "text-anchor": "middle",
                 "dominant-baseline": "central",
-                "fill": "#000000",
+                "fill": ANNOTATION,
                 "stroke": "none",
                 "data-part": part.name,
             }

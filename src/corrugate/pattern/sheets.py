@@ -321,7 +321,8 @@ def plan_sheets(
     kept free in the top-right corner of each sheet for the PDF check square (``None``: none).
 
     Raises :class:`PartTooLargeError` (an :class:`~corrugate.errors.InputError`) naming the part and
-    its size when it fits the sheet in neither orientation, and
+    its size when it fits the sheet in neither orientation, an ``InputError`` when two parts have
+    the same name, and
     :class:`~corrugate.errors.UnknownNameError` for an unknown cutter.
     """
     cut = get_cutter(cutter)
@@ -338,6 +339,16 @@ def plan_sheets(
             f"less than half the sheet ({cut.width:.1f} x {cut.height:.1f} mm of {cut.name})",
         )
 
+    seen: set[str] = set()
+    for part in seq:  # writers name parts and creases by part name
+        if part.name in seen:
+            raise InputError(
+                "part name",
+                repr(part.name),
+                "a different name for every part",
+                reason="is used twice",
+            )
+        seen.add(part.name)
     items: list[tuple[Part, list[tuple[float, float, bool]]]] = []
     for part in seq:
         options = _orientations(part, uw, uh)
