@@ -3,7 +3,8 @@
 Every file of one output step is written to a hidden temporary file in its target's directory
 (``.NAME.XXXX.tmp``); only when all of them are complete are they renamed onto their final names
 with :func:`os.replace` (atomic on one file system). If anything fails, every temporary file is
-removed and no target is touched, so an error never leaves a partial file behind.
+removed and no target is touched, so an error never leaves a partial file behind. (Should a
+rename itself fail half-way through a commit, the files already renamed are complete files.)
 """
 
 from __future__ import annotations
