@@ -1,0 +1,69 @@
+"""Every 2D file of a sheet plan in one step: ``sheet-N.svg``, ``sheet-N.dxf`` and ``pattern.pdf``.
+
+Sheets are numbered from 1 in file names (``sheet-1.svg`` is ``plan.sheets[0]``). Options are
+checked and every document is built before anything is written; the files are then written to
+temporary names in ``out_dir`` and moved into place together (:mod:`.staging`), so a bad option or
+a failure while writing leaves no file behind, new or partial. Files of an earlier run with more
+sheets are not removed.
+"""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Iterable
+from pathlib import Path
+
+from ..errors import UnknownNameError
+from ..pattern.linestyle import SOLID, LineStyle, check_style
+from ..pattern.sheets import SheetPlan
+from .dxf import dxf_document
+from .pdf import render_pdf
+from .staging import staged
+from .svg import svg_document
+
+__all__ = ["FORMATS", "write_files"]
+
+#: The 2D formats :func:`write_files` knows.
+FORMATS = ("svg", "dxf", "pdf")
+
+
+def write_files(
+    plan: SheetPlan,
+    out_dir: str | os.PathLike[str],
+    style: LineStyle = SOLID,
+    *,
+    formats: Iterable[str] = FORMATS,
+    labels: bool = True,
+    marks: bool = True,
+    pdf_name: str = "pattern.pdf",
+) -> tuple[Path, ...]:
+    """Write ``plan`` to ``out_dir`` (created if missing) in ``formats``; returns the paths written.
+
+    ``style`` is the fold-line style; ``labels`` writes part labels; ``marks=False`` leaves assembly
+    marks out of the SVG (Origami Simulator reads them as undriven creases). Raises
+    :class:`~corrugate.errors.InputError` subclasses for bad options before writing anything.
+    """
+    wanted = [f.strip().lower() for f in formats]
+    for f in wanted:
+        if f not in FORMATS:
+            raise UnknownNameError("format", f, list(FORMATS))
+    check_style((p.part for p in plan.placements), style)
+    svgs = (
+        [svg_document(s, style, labels=labels, marks=marks) for s in plan.sheets]
+        if "svg" in wanted
+        else []
+    )
+    dxfs = [dxf_document(s, style, labels=labels) for s in plan.sheets] if "dxf" in wanted else []
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    with staged() as st:
+        for n, text in enumerate(svgs, start=1):
+            st.path(out / f"sheet-{n}.svg").write_text(text, encoding="utf-8")
+        for n, doc in enumerate(dxfs, start=1):
+            doc.saveas(st.path(out / f"sheet-{n}.dxf"))
+        if "pdf" in wanted:
+            render_pdf(
+                plan, st.path(out / pdf_name), style, labels=labels, title="corrugate pattern"
+            )
+        written = st.targets
+    return written

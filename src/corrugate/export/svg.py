@@ -1,0 +1,203 @@
+"""SVG writer, in millimetres, with the Origami Simulator colour convention (DESIGN.md section 7).
+
+The root has ``width="<W>mm" height="<H>mm" viewBox="0 0 W H"``, so one user unit is 1 mm. The
+sheet's y axis (up) is flipped to SVG's (down) by ``y_svg = H - y``: a rotation-free, mirror-free
+view of the sheet, so mountain and valley keep their meaning. Colours (stroke, ``fill="none"``):
+
+==========================  ===========  ===============================================
+what                        colour       ``opacity`` attribute
+==========================  ===========  ===============================================
+outline and hole edges      ``#000000``  1 (Origami Simulator "boundary": free edges)
+cut lines inside a part     ``#00ff00``  1 (Origami Simulator "cut": slits, e.g. slots)
+mountain crease             ``#ff0000``  fold angle / 180 (dihedral, 0 flat .. 1 folded flat)
+valley crease               ``#0000ff``  fold angle / 180
+mark (assembly guide)       ``#ff00ff``  1 (Origami Simulator reads it as "undriven")
+==========================  ===========  ===============================================
+
+Holes are drawn as boundary, not cut: their edges are free edges of the sheet, exactly FOLD's
+"B"; #00ff00 is kept for slits, which have material on both sides. The opacity is an attribute,
+never an RGBA colour, as Origami Simulator reads it. Every crease is one ``<line>`` element with
+``class="crease mountain|valley"``, ``data-crease="<part>:<k>"`` (k = 1-based crease number in
+the part) and ``data-fold-angle`` in degrees. With the ``perforated`` fold-line style the crease line
+keeps its colour and carries ``stroke-dasharray``/``stroke-dashoffset`` that draw exactly the dashes
+of :func:`corrugate.pattern.linestyle.dashes` (for a cutter that needs the dashes as separate
+cut paths use the DXF's PERFORATE layer); ``scored`` is drawn solid and marked ``data-style``.
+Part labels are ``<text>`` elements in a ``<g id="labels">`` group (grey fill, no stroke);
+``labels=False`` leaves them out, ``marks=False`` leaves the marks out (Origami Simulator would
+otherwise treat them as free hinges).
+"""
+
+from __future__ import annotations
+
+import os
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, dash_layout
+from ..pattern.linestyle import crease_name as _crease_name
+from ..pattern.model import Point, Role
+from ..pattern.sheets import Sheet, place
+from .labels import label_spot
+from .staging import staged
+
+__all__ = [
+    "ANNOTATION",
+    "BOUNDARY",
+    "COLOURS",
+    "STROKE_MM",
+    "fold_opacity",
+    "svg_document",
+    "write_svg",
+]
+
+SVG_NS = "http://www.w3.org/2000/svg"
+#: Stroke colour of outlines and holes (Origami Simulator "boundary").
+BOUNDARY = "#000000"
+#: Stroke colour of each line role (Origami Simulator: cut, mountain, valley, undriven).
+COLOURS: dict[Role, str] = {
+    Role.CUT: "#00ff00",
+    Role.MOUNTAIN: "#ff0000",
+    Role.VALLEY: "#0000ff",
+    Role.MARK: "#ff00ff",
+}
+#: Colour of part labels (text fill) and other annotations that are neither cut nor folded.
+ANNOTATION = "#808080"
+#: Stroke width (mm).
+STROKE_MM = 0.25
+
+
+def _num(x: float) -> str:
+    s = f"{x:.4f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def fold_opacity(fold_angle_deg: float) -> float:
+    """Origami Simulator's opacity for a crease: |fold angle| / 180, clipped to [0, 1]."""
+    return min(max(abs(fold_angle_deg) / 180.0, 0.0), 1.0)
+
+
+def _points(ring: tuple[Point, ...], height: float) -> str:
+    return " ".join(f"{_num(x)},{_num(height - y)}" for x, y in ring)
+
+
+def svg_document(
+    sheet: Sheet,
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    marks: bool = True,
+    title: str | None = None,
+) -> str:
+    """The SVG text of one sheet (see the module docstring for the conventions)."""
+    check_style((p.part for p in sheet.placements), style)
+    W, H = sheet.width, sheet.height
+    root = ET.Element(
+        "svg",
+        {
+            "xmlns": SVG_NS,
+            "version": "1.1",
+            "width": f"{_num(W)}mm",
+            "height": f"{_num(H)}mm",
+            "viewBox": f"0 0 {_num(W)} {_num(H)}",
+        },
+    )
+    if title:
+        ET.SubElement(root, "title").text = title
+    common = {"fill": "none", "stroke-width": _num(STROKE_MM), "stroke-linecap": "butt"}
+    text_group = ET.Element("g", {"id": "labels"})
+    for j, placement in enumerate(sheet.placements):
+        placed = place(placement)
+        part = placement.part
+        g = ET.SubElement(
+            root, "g", {"id": f"part-{j + 1}", "data-part": part.name, "data-label": part.label}
+        )
+        ET.SubElement(
+            g,
+            "polygon",
+            {
+                "class": "boundary outline",
+                "points": _points(placed.outline, H),
+                "stroke": BOUNDARY,
+                "opacity": "1",
+                **common,
+            },
+        )
+        for hole in placed.holes:
+            ET.SubElement(
+                g,
+                "polygon",
+                {
+                    "class": "boundary hole",
+                    "points": _points(hole, H),
+                    "stroke": BOUNDARY,
+                    "opacity": "1",
+                    **common,
+                },
+            )
+        number = 0
+        for i, ln in enumerate(placed.lines):
+            if ln.role is Role.MARK and not marks:
+                continue
+            attrs = {
+                "x1": _num(ln.a[0]),
+                "y1": _num(H - ln.a[1]),
+                "x2": _num(ln.b[0]),
+                "y2": _num(H - ln.b[1]),
+                "stroke": COLOURS[ln.role],
+                **common,
+            }
+            if ln.role in (Role.MOUNTAIN, Role.VALLEY):
+                number += 1
+                attrs["class"] = f"crease {ln.role.value}"
+                attrs["data-crease"] = f"{part.name}:{number}"
+                attrs["data-fold-angle"] = _num(ln.fold_angle_deg)
+                attrs["opacity"] = f"{fold_opacity(ln.fold_angle_deg):.6g}"
+                attrs["data-style"] = style.kind.value
+                if style.kind is StyleKind.PERFORATED:
+                    starts = dash_layout(
+                        ln.length, style.cut, style.gap, where=_crease_name(part, i)
+                    )
+                    gap = 2 * starts[0]
+                    attrs["stroke-dasharray"] = f"{_num(style.cut)} {_num(gap)}"
+                    attrs["stroke-dashoffset"] = _num(style.cut + starts[0])
+            else:
+                attrs["class"] = ln.role.value
+                attrs["opacity"] = "1"
+            ET.SubElement(g, "line", attrs)
+        if labels and part.label:
+            spot = label_spot(placed)
+            x, y = _num(spot.x), _num(H - spot.y)
+            t_attrs = {
+                "x": x,
+                "y": y,
+                "font-size": _num(spot.size),
+                "font-family": "sans-serif",
+                "text-anchor": "middle",
+                "dominant-baseline": "central",
+                "fill": ANNOTATION,
+                "stroke": "none",
+                "data-part": part.name,
+            }
+            if spot.rotation:
+                t_attrs["transform"] = f"rotate({_num(-spot.rotation)} {x} {y})"
+            ET.SubElement(text_group, "text", t_attrs).text = part.label
+    if labels:
+        root.append(text_group)
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+
+
+def write_svg(
+    sheet: Sheet,
+    path: str | os.PathLike[str],
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    marks: bool = True,
+) -> Path:
+    """Write one sheet as SVG to ``path`` (all or nothing, see :mod:`.staging`); returns the path."""
+    text = svg_document(sheet, style, labels=labels, marks=marks)
+    target = Path(path)
+    with staged() as st:
+        st.path(target).write_text(text, encoding="utf-8")
+    return target
