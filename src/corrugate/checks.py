@@ -99,6 +99,20 @@ def design_warnings(a: Assembly, model: str) -> list[ModelWarning]:
     else:
         out = [ModelWarning(w.code, w.message.replace("layer 1", "both layers", 1)) for w in out]
     if model == "paper":
+        from .moduli import moduli
+
+        for label, layer in (("layer 1", a.layer1), ("layer 2", a.layer2)):
+            m = layer.material
+            values = moduli(m.E, m.nu, layer.t, layer.W, layer.alpha_deg, "paper").as_dict()
+            bad = [k for k, v in values.items() if not v > 0]
+            if bad:
+                out.append(
+                    ModelWarning(
+                        "paper-model-negative",
+                        f"{label}: the printed formulas give non-positive {', '.join(bad)} here "
+                        f"(nu = {m.nu:g}); the results are meaningless, use 'xia' or 'refined'",
+                    )
+                )
         out.append(
             ModelWarning(
                 "paper-model",

@@ -5,10 +5,10 @@ importing this package costs nothing and the core of corrugate never imports the
 with the ``fab`` extra.
 """
 
+from ..fileio import staged
 from .dxf import dxf_document, write_dxf
 from .files import FORMATS, write_files
 from .pdf import write_pdf
-from .staging import staged
 from .svg import svg_document, write_svg
 
 __all__ = [

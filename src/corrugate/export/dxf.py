@@ -26,11 +26,11 @@ import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..fileio import staged
 from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease_name, dashes
 from ..pattern.model import Role
 from ..pattern.sheets import Sheet, place
 from .labels import label_spot
-from .staging import staged
 
 if TYPE_CHECKING:
     from ezdxf.document import Drawing

@@ -9,16 +9,17 @@ sheets are not removed.
 
 from __future__ import annotations
 
+import contextlib
 import os
 from collections.abc import Iterable
 from pathlib import Path
 
 from ..errors import UnknownNameError
+from ..fileio import Staging, staged
 from ..pattern.linestyle import SOLID, LineStyle, check_style
 from ..pattern.sheets import SheetPlan
 from .dxf import dxf_document
 from .pdf import render_pdf
-from .staging import staged
 from .svg import svg_document
 
 __all__ = ["FORMATS", "write_files"]
@@ -36,11 +37,13 @@ def write_files(
     labels: bool = True,
     marks: bool = True,
     pdf_name: str = "pattern.pdf",
+    staging: Staging | None = None,
 ) -> tuple[Path, ...]:
     """Write ``plan`` to ``out_dir`` (created if missing) in ``formats``; returns the paths written.
 
     ``style`` is the fold-line style; ``labels`` writes part labels; ``marks=False`` leaves assembly
-    marks out of the SVG (Origami Simulator reads them as undriven creases). Raises
+    marks out of the SVG (Origami Simulator reads them as undriven creases). With ``staging``, the
+    files join that output step (committed with it) instead of being committed here. Raises
     :class:`~corrugate.errors.InputError` subclasses for bad options before writing anything.
     """
     wanted = [f.strip().lower() for f in formats]
@@ -56,7 +59,8 @@ def write_files(
     dxfs = [dxf_document(s, style, labels=labels) for s in plan.sheets] if "dxf" in wanted else []
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    with staged() as st:
+    with contextlib.nullcontext(staging) if staging is not None else staged() as st:
+        start = len(st.targets)
         for n, text in enumerate(svgs, start=1):
             st.path(out / f"sheet-{n}.svg").write_text(text, encoding="utf-8")
         for n, doc in enumerate(dxfs, start=1):
@@ -65,5 +69,5 @@ def write_files(
             render_pdf(
                 plan, st.path(out / pdf_name), style, labels=labels, title="corrugate pattern"
             )
-        written = st.targets
+        written = st.targets[start:]
     return written

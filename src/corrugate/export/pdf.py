@@ -18,11 +18,11 @@ import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..fileio import staged
 from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease_name, dashes
 from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, SheetPlan, place
 from .labels import label_spot
-from .staging import staged
 from .svg import ANNOTATION, BOUNDARY, COLOURS
 
 if TYPE_CHECKING:

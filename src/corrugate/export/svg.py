@@ -33,12 +33,12 @@ import os
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
+from ..fileio import staged
 from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, dash_layout
 from ..pattern.linestyle import crease_name as _crease_name
 from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, place
 from .labels import label_spot
-from .staging import staged
 
 __all__ = [
     "ANNOTATION",

@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
 from pathlib import Path
 
 import numpy as np
 
-from ..fileio import atomic_path, atomic_write
+from ..fileio import Staging, staged
 from ..geometry import Assembly
 from .folded import facet_polygons, fold_points
 from .model import Pattern, Role
@@ -63,7 +64,9 @@ def _layer_faces(a: Assembly, pattern: Pattern, index: int) -> list[np.ndarray]:
     return faces
 
 
-def write_instructions(a: Assembly, pattern: Pattern, out_dir: Path) -> list[Path]:
+def write_instructions(
+    a: Assembly, pattern: Pattern, out_dir: Path, staging: Staging | None = None
+) -> list[Path]:
     """Write ``ASSEMBLY.md`` (numbered steps) and ``assembly.png`` (the figure) into ``out_dir``."""
     import matplotlib
 
@@ -125,14 +128,18 @@ def write_instructions(a: Assembly, pattern: Pattern, out_dir: Path) -> list[Pat
         ax.tick_params(labelsize=6)
         ax.set_title(title, fontsize=9)
     fig.tight_layout()
-    png = out_dir / "assembly.png"
-    with atomic_path(png) as tmp:
-        fig.savefig(tmp, format="png")
-    plt.close(fig)
     steps = assembly_steps(a, pattern)
     text = (
         "# Assembly\n\n![assembly steps](assembly.png)\n\n"
         + "\n".join(f"{i}. {s}" for i, s in enumerate(steps, 1))
         + "\n"
     )
-    return [atomic_write(out_dir / "ASSEMBLY.md", text), png]
+    out_dir.mkdir(parents=True, exist_ok=True)
+    png, md = out_dir / "assembly.png", out_dir / "ASSEMBLY.md"
+    try:
+        with contextlib.nullcontext(staging) if staging is not None else staged() as st:
+            fig.savefig(st.path(png), format="png")
+            st.path(md).write_text(text, encoding="utf-8")
+    finally:
+        plt.close(fig)
+    return [md, png]
