@@ -298,3 +298,6 @@ def main(argv: list[str] | None = None) -> None:
     except CorrugateError as exc:
         print(f"corrugate: error: {exc}", file=sys.stderr)
         sys.exit(2)
+
+
+from . import pattern_cli as _pattern_cli  # noqa: E402, F401

@@ -1,0 +1,95 @@
+"""Design -> every file a maker needs, written all or nothing into one folder.
+
+``sheet-N.svg`` / ``sheet-N.dxf`` and ``pattern.pdf`` (the parts laid out on the cutter's sheets),
+``layer1.fold`` / ``layer2.fold`` (FOLD 1.2 with the folded frame), ``assembly.glb`` /
+``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure)
+and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
+checked and every document built before anything is written; the files are then committed
+together (:mod:`corrugate.fileio`), so a bad option or a failure leaves no file behind.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from .analysis import Analysis
+from .export.files import write_files
+from .fileio import staged
+from .pattern.build import build_pattern
+from .pattern.files3d import write_fold, write_mesh
+from .pattern.instructions import write_instructions
+from .pattern.linestyle import SOLID, LineStyle, check_style
+from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
+from .pattern.sheets import plan_sheets
+
+__all__ = ["OutputOptions", "write_design_files"]
+
+
+@dataclass(frozen=True, slots=True)
+class OutputOptions:
+    """Where and how to cut: cutter name (see :data:`corrugate.pattern.sheets.CUTTERS`, or
+    ``laser:WxH`` in mm), fold-line style, spacing and margin on the sheet (mm), connector sizes."""
+
+    cutter: str = "cameo4-12x12"
+    style: LineStyle = SOLID
+    spacing: float = 5.0
+    margin: float = 5.0
+    fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
+
+
+def write_design_files(
+    analysis: Analysis,
+    out_dir: str | Path,
+    options: OutputOptions | None = None,
+    extra: dict[str, Any] | None = None,
+) -> list[Path]:
+    """Write every file of the analysed design into ``out_dir``; returns the paths written.
+
+    ``extra`` is merged into ``design.json`` (the design command puts its spec and constraints
+    there).
+    """
+    opts = options or OutputOptions()
+    a = analysis.assembly
+    out = Path(out_dir)
+    pattern = build_pattern(a, opts.fabrication)
+    plan = plan_sheets(pattern, opts.cutter, spacing=opts.spacing, margin=opts.margin)
+    check_style(pattern.parts, opts.style)
+    record: dict[str, Any] = dict(analysis.to_dict())
+    record["cut_parts"] = [
+        {
+            "name": p.name,
+            "kind": p.kind,
+            "label": p.label,
+            "size_mm": list(p.size),
+            "area_mm2": p.area,
+            "mass_g": pattern.part_mass(p),
+        }
+        for p in pattern.parts
+    ]
+    record["sheets"] = {
+        "cutter": plan.cutter.name,
+        "size_mm": [plan.cutter.width, plan.cutter.height],
+        "count": len(plan.sheets),
+        "parts": [[pl.part.name for pl in sheet.placements] for sheet in plan.sheets],
+    }
+    record["fold_style"] = {
+        "kind": str(opts.style.kind),
+        "cut_mm": opts.style.cut,
+        "gap_mm": opts.style.gap,
+    }
+    if extra:
+        record.update(extra)
+    out.mkdir(parents=True, exist_ok=True)
+    with staged() as st:
+        written = list(write_files(plan, out, opts.style, staging=st))
+        written += write_fold(a, pattern, out, st)
+        written += write_mesh(a, pattern, out, st)
+        written += write_instructions(a, pattern, out, st)
+        record["files"] = [p.name for p in written] + ["design.json"]
+        target = out / "design.json"
+        st.path(target).write_text(json.dumps(record, indent=2), encoding="utf-8")
+        written.append(target)
+    return written

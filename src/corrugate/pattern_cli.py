@@ -1,0 +1,112 @@
+"""``corrugate pattern``: the cut files, FOLD, 3D model and assembly steps of a given design."""
+
+from __future__ import annotations
+
+import json
+from typing import Annotated
+
+import typer
+from rich.console import Console
+
+from .analysis import analyze
+from .cli import _layer, _material, _vertices, app
+from .geometry import Assembly
+from .layouts import make_layout
+from .materials import get_material
+from .moduli import DEFAULT_MODEL, get_model
+from .outputs import OutputOptions, write_design_files
+from .pattern.linestyle import line_style
+from .pattern.options import FabricationOptions
+from .units import parse_quantity
+
+__all__ = ["fab_options", "pattern_cmd"]
+
+Opt = typer.Option
+
+
+def fab_options(
+    cutter: str,
+    fold_style: str,
+    cut: str | None,
+    gap: str | None,
+    spacing: str,
+    margin: str,
+    tab_depth: str,
+) -> OutputOptions:
+    """Output options from command-line strings (plain numbers in mm)."""
+    cut_mm = None if cut is None else parse_quantity(cut, "mm", "cut")
+    gap_mm = None if gap is None else parse_quantity(gap, "mm", "gap")
+    return OutputOptions(
+        cutter=cutter,
+        style=line_style(fold_style, cut_mm, gap_mm),
+        spacing=parse_quantity(spacing, "mm", "spacing"),
+        margin=parse_quantity(margin, "mm", "margin"),
+        fabrication=FabricationOptions(tab_depth=parse_quantity(tab_depth, "mm", "tab-depth")),
+    )
+
+
+@app.command("pattern")
+def pattern_cmd(
+    W: Annotated[str, Opt("--W", help="Facet width (mm, or with units).")],
+    n: Annotated[str, Opt("--n", help="Number of creases (n + 1 facets).")],
+    alpha: Annotated[str, Opt("--alpha", help="Interior fold angle (deg, 180 = flat).")],
+    out: Annotated[str, Opt("--out", help="Folder for the files (created if missing).")],
+    material: Annotated[str | None, Opt(help="Library material id.")] = None,
+    thickness: Annotated[str | None, Opt(help="Sheet thickness (mm).")] = None,
+    E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus (MPa).")] = None,
+    nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
+    density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
+    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width.")] = None,
+    n2: Annotated[str | None, Opt("--n2", help="Layer 2 creases.")] = None,
+    alpha2: Annotated[str | None, Opt("--alpha2", help="Layer 2 fold angle.")] = None,
+    material2: Annotated[str | None, Opt(help="Layer 2 library material.")] = None,
+    thickness2: Annotated[str | None, Opt(help="Layer 2 thickness.")] = None,
+    layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
+    vertices: Annotated[str | None, Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1'.")] = None,
+    model: Annotated[str, Opt(help="Moduli variant for design.json.")] = DEFAULT_MODEL,
+    cutter: Annotated[
+        str, Opt(help="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).")
+    ] = "cameo4-12x12",
+    fold_style: Annotated[str, Opt(help="Fold lines: solid | scored | perforated.")] = "solid",
+    cut: Annotated[str | None, Opt(help="Perforation: cut length (mm).")] = None,
+    gap: Annotated[str | None, Opt(help="Perforation: gap length (mm).")] = None,
+    spacing: Annotated[str, Opt(help="Space between parts on the sheet (mm).")] = "5",
+    margin: Annotated[str, Opt(help="Margin to the sheet's edge (mm).")] = "5",
+    tab_depth: Annotated[str, Opt(help="Depth of the connector's glue tabs (mm).")] = "4",
+    as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
+) -> None:
+    """Write the cut files (SVG, DXF, PDF), FOLD, GLB/STL and assembly steps of one design."""
+    mat1 = _material(material, E, nu, density, thickness)
+    layer1 = _layer(W, n, alpha, mat1, thickness)
+    mat2 = mat1 if material2 is None else get_material(material2)
+    t2 = (
+        thickness2
+        if thickness2 is not None
+        else (str(layer1.t) if material2 is None or thickness is not None else None)
+    )
+    layer2 = _layer(W2 or W, n2 or n, alpha2 or alpha, mat2, t2, suffix="2")
+    assembly = Assembly(layer1, layer2, make_layout(layout, _vertices(vertices)))
+    get_model(model)
+    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth)
+    result = analyze(assembly, model, (0.0, 90.0), opts.fabrication)
+    paths = write_design_files(result, out, opts)
+    if as_json:
+        typer.echo(
+            json.dumps(
+                {
+                    "out": str(out),
+                    "files": [p.name for p in paths],
+                    "mass_g": result.mass.as_dict(),
+                },
+                indent=2,
+            )
+        )
+        return
+    console = Console()
+    m = result.mass
+    console.print(
+        f"mass {m.total:.3f} g: layers {m.layer1:.3f} + {m.layer2:.3f} g, connectors "
+        f"{m.connectors:.3f} g (rho t x cut area)"
+    )
+    for p in paths:
+        console.print(f"wrote {p}")
