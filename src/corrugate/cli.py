@@ -263,3 +263,6 @@ def main(argv: list[str] | None = None) -> None:
     except CorrugateError as exc:
         print(f"corrugate: error: {exc}", file=sys.stderr)
         sys.exit(2)
+
+
+from . import web_cli as _web_cli  # noqa: E402, F401
