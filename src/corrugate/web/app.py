@@ -373,7 +373,10 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         "/api/results/{result_id}/{name}",
         summary="Download a file the app made",
         response_class=FileResponse,
-        responses={404: {"model": ErrorBody, "description": "No such result or file"}},
+        responses={
+            404: {"model": ErrorBody, "description": "No such result or file"},
+            422: {"model": ErrorBody, "description": "Invalid request"},
+        },
     )
     async def result_file(result_id: str, name: str) -> Response:
         """A file of a stored result, by the id and name the app returned (nothing else)."""

@@ -140,8 +140,8 @@ function showAnalysis(r) {
   }
 
   const m = r.mass_breakdown_g;
-  const parts = Object.entries(m).filter(([k]) => k !== 'total')
-    .map(([k, v]) => `${k} ${fmt(v)} g`).join(', ');
+  const parts = Object.entries(m).filter(([k]) => k !== 'total_g')
+    .map(([k, v]) => `${k.replace(/_g$/, '')} ${fmt(v)} g`).join(', ');
   $('mass').textContent = `${fmt(r.mass_g)} g (${parts})`;
 
   const warnings = $('warnings');
@@ -186,7 +186,7 @@ class Viewer {
   resize() {
     const w = this.container.clientWidth || 400;
     const h = this.container.clientHeight || 300;
-    this.renderer.setSize(w, h);
+    this.renderer.setSize(w, h, false);  // the canvas fills the box by CSS: no resize loop
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
     this.render();
@@ -281,6 +281,8 @@ async function submit(event) {
     if (mine !== generation) return;
     if (!answer.ok) {
       showErrors(answer.payload, answer.status);
+      $('results').hidden = true;  // never show the answer to other inputs as if it were this one's
+      $('view').hidden = true;
       form.dataset.state = 'error';
       $('status').textContent = '';
       return;
