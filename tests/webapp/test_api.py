@@ -176,6 +176,8 @@ def test_page_and_its_files_are_served_locally(client: TestClient) -> None:
         ({"surprise": 1}, "surprise", "not a field"),
         ({"W": None}, "W", "wrong type"),
         ({"W": 1e300}, "body", "not finite"),
+        ({"n": "9" * 100}, "n", "at most 64 characters"),
+        ({"eta": list(range(500))}, "eta", "at most 181 items"),
     ],
 )
 def test_bad_values_get_422_naming_the_field(

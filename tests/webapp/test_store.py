@@ -77,6 +77,23 @@ def test_eviction_by_count_and_age(store: ResultStore) -> None:
     assert len(store) == 0 and list(store.root.iterdir()) == []
 
 
+def test_make_publishes_what_the_writer_wrote_or_nothing(store: ResultStore) -> None:
+    def good(folder: Path) -> list[Path]:
+        (folder / "report.html").write_text("<p>hi</p>")
+        return [folder / "report.html"]
+
+    (f,) = store.make(good)
+    assert store.get(f.result_id, "report.html") == f and f.media_type.startswith("text/html")
+
+    def bad(folder: Path) -> list[Path]:
+        (folder / "half.dxf").write_text("0\nSECTION")
+        raise RuntimeError("writer failed")
+
+    with pytest.raises(RuntimeError, match="writer failed"):
+        store.make(bad)
+    assert [p.name for p in store.root.iterdir()] == [f.result_id]
+
+
 def test_discard_and_close(store: ResultStore) -> None:
     rid, folder = store.create()
     (folder / "a.glb").write_text("x")

@@ -156,14 +156,8 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
     from ..pattern.files3d import write_mesh
 
     req = _parse(body, settings)
-    result_id, folder = store.create()
-    try:
-        pattern = build_pattern(req.assembly)
-        paths = write_mesh(req.assembly, pattern, folder)
-        return store.publish(result_id, paths)
-    except BaseException:
-        store.discard(result_id)
-        raise
+    a = req.assembly
+    return store.make(lambda folder: write_mesh(a, build_pattern(a), folder))
 
 
 def _error(status: int, detail: str, errors: list[FieldError]) -> JSONResponse:
@@ -177,29 +171,40 @@ def _input_error(exc: InputError) -> JSONResponse:
     return _error(422, str(exc), [err])
 
 
+def _shown(value: object, limit: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
 def _validation_error(exc: RequestValidationError) -> JSONResponse:
-    errors: list[FieldError] = []
+    """pydantic's errors as one :class:`FieldError` per field, the most specific one kept.
+
+    A value that fails a union (number or string) gets one error per member; a member's own limit
+    (a string too long, a list too long) says more than "not an integer", so it wins.
+    """
+    chosen: dict[str, tuple[bool, str]] = {}
     status = 422
     for e in exc.errors():
         loc = [str(p) for p in e.get("loc", ()) if p != "body"]
         kind = str(e.get("type", ""))
         if kind == "json_invalid":
             status = 400
-            errors.append(FieldError(field="body", message=f"malformed JSON: {e.get('msg', '')}"))
+            chosen.setdefault("body", (True, f"malformed JSON: {e.get('msg', '')}"))
             continue
-        # A union's members add their type to the location ("W", "int"); name the field only.
-        field = loc[0] if loc else "body"
+        field = loc[0] if loc else "body"  # union members add their type to the location
         msg = str(e.get("msg", "is invalid"))
+        generic = kind.endswith("_type")
         if kind == "missing":
             msg = f"{field} is required"
         elif kind == "extra_forbidden":
             msg = f"{field} is not a field of this request"
-        elif field != "body" and kind.endswith("_type"):
-            msg = f"{field} = {e.get('input')!r} has the wrong type: {_EXPECTED.get(field, msg)}"
+        elif field != "body" and generic:
+            msg = f"{field} = {_shown(e.get('input'))} has the wrong type: {_EXPECTED.get(field, msg)}"
         else:
-            msg = f"{field}: {msg}"
-        if not any(x.field == field for x in errors):
-            errors.append(FieldError(field=field, message=msg))
+            msg = f"{field} = {_shown(e.get('input'))}: {msg}" if field != "body" else msg
+        if field not in chosen or (chosen[field][0] and not generic):
+            chosen[field] = (generic, msg)
+    errors = [FieldError(field=f, message=m) for f, (_, m) in chosen.items()]
     detail = "; ".join(x.message for x in errors) or "invalid request"
     return _error(status, detail, errors)
 

@@ -110,6 +110,16 @@ class ResultStore:
             shutil.rmtree(old, ignore_errors=True)
         return list(files.values())
 
+    def make(self, write: Callable[[Path], Iterable[Path]]) -> list[StoredFile]:
+        """Run ``write(folder)`` on a new result's private folder and publish the files it returns;
+        if it fails, the folder and everything in it go."""
+        result_id, folder = self.create()
+        try:
+            return self.publish(result_id, list(write(folder)))
+        except BaseException:
+            self.discard(result_id)
+            raise
+
     def discard(self, result_id: str) -> None:
         """Forget a result that failed before it was published and remove its folder."""
         with self._lock:
