@@ -37,16 +37,20 @@ def serve_cmd(
         import uvicorn
 
         from .web import WebSettings, create_app
+        from .web.app import LOOPBACK_NAMES
     except ImportError as exc:
         raise CorrugateError(
             f"the web app needs the 'web' extra ({exc.name} is missing): "
             "pip install 'corrugate[web]'"
         ) from None
-    if host not in LOOPBACK_HOSTS:
+    loopback = host in LOOPBACK_HOSTS
+    if not loopback:
         typer.echo(
             f"corrugate: warning: serving on {host}: other machines can reach this app",
             err=True,
         )
+    # On a loopback address only this machine's names are answered (no DNS rebinding).
+    settings = WebSettings(timeout_s=timeout, allowed_hosts=LOOPBACK_NAMES if loopback else None)
     shown = f"[{host}]" if ":" in host else host
     typer.echo(f"corrugate: serving on http://{shown}:{port}/ (API docs at /docs); Ctrl-C stops")
-    uvicorn.run(create_app(WebSettings(timeout_s=timeout)), host=host, port=port, log_level="info")
+    uvicorn.run(create_app(settings), host=host, port=port, log_level="info")

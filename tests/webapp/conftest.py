@@ -15,6 +15,7 @@ from fastapi.testclient import TestClient
 
 from corrugate import Assembly, Layer, analyze, get_material, make_layout
 from corrugate.web import WebSettings, create_app
+from corrugate.web.app import LOOPBACK_NAMES
 
 #: The paper's Table 1, case 1 (EI(0) = 87.84 mN m^2 with the paper's formulas).
 CASE1: dict[str, Any] = {
@@ -67,7 +68,7 @@ def live_server() -> Iterator[str]:
     sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
     sock.bind(("127.0.0.1", 0))
     port = sock.getsockname()[1]
-    app = create_app(WebSettings(workers=4, max_pending=64))
+    app = create_app(WebSettings(workers=4, max_pending=64, allowed_hosts=LOOPBACK_NAMES))
     config = uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning", lifespan="on")
     server = uvicorn.Server(config)
     thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)

@@ -308,6 +308,17 @@ def test_slow_computations_get_504_and_the_slot_comes_back(blocked: threading.Ev
         assert r.status_code == 200 and r.json() == direct(CASE1)
 
 
+def test_only_local_host_names_are_answered_on_loopback() -> None:
+    """DNS rebinding: a page on another name that resolves to 127.0.0.1 gets nothing."""
+    settings = WebSettings(allowed_hosts=("127.0.0.1", "localhost", "[::1]"))
+    with TestClient(create_app(settings), base_url="http://127.0.0.1:8000") as c:
+        for host in ("127.0.0.1:8000", "localhost", "LOCALHOST:1", "[::1]:8000"):
+            assert c.get("/api/models", headers={"host": host}).status_code == 200, host
+        for host in ("evil.example", "evil.example:8000", "127.0.0.1.evil.example", "", "[::2]"):
+            r = c.post("/api/analyze", json=CASE1, headers={"host": host})
+            assert r.status_code == 400, host
+
+
 def test_core_package_does_not_import_the_web_app() -> None:
     code = (
         "import sys, corrugate, corrugate.cli, corrugate.inputs\n"
@@ -337,6 +348,8 @@ def test_serve_command_runs_uvicorn_on_loopback(monkeypatch: pytest.MonkeyPatch)
         assert exc.value.code in (0, None)
     assert calls[0]["host"] == "127.0.0.1" and calls[0]["port"] == 8123
     assert isinstance(calls[0]["app"], FastAPI)
+    assert calls[0]["app"].state.settings.allowed_hosts == ("127.0.0.1", "localhost", "[::1]")
     assert calls[1]["host"] == "0.0.0.0" and calls[1]["app"].state.settings.timeout_s == 5
+    assert calls[1]["app"].state.settings.allowed_hosts is None
     for call in calls:
         call["app"].state.store.close()

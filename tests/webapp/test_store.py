@@ -100,8 +100,19 @@ def test_discard_and_close(store: ResultStore) -> None:
     store.discard(rid)
     assert not folder.exists()
     make(store)
+    root = store.root
     store.close()
-    assert not store.root.exists()
+    assert not root.exists()
+
+
+def test_the_root_is_made_on_first_use(tmp_path: Path) -> None:
+    store = ResultStore(tmp_path / "results")
+    assert not (tmp_path / "results").exists()
+    store.close()  # nothing to remove
+    make(store)
+    assert [p.name.startswith("corrugate-web-") for p in (tmp_path / "results").iterdir()] == [True]
+    store.close()
+    assert list((tmp_path / "results").iterdir()) == []
 
 
 def run_limited(max_bytes: int, chunks: list[bytes], headers: list[tuple[bytes, bytes]]) -> Any:

@@ -44,7 +44,7 @@ from ..inputs import AnalysisRequest, analysis_request
 from ..materials import library
 from ..moduli import DEFAULT_MODEL, MODELS
 from ..units import ureg
-from .limits import BodySizeLimit, ComputeTimeoutError, Runner, ServerBusyError
+from .limits import BodySizeLimit, ComputeTimeoutError, HostCheck, Runner, ServerBusyError
 from .schemas import (
     AnalyzeBody,
     ErrorBody,
@@ -56,7 +56,17 @@ from .schemas import (
 )
 from .store import ResultStore, StoredFile
 
-__all__ = ["STATIC_DIR", "WebSettings", "analysis_payload", "create_app", "mesh_files"]
+__all__ = [
+    "LOOPBACK_NAMES",
+    "STATIC_DIR",
+    "WebSettings",
+    "analysis_payload",
+    "create_app",
+    "mesh_files",
+]
+
+#: Host names of this machine: what a browser sends to a server bound to a loopback address.
+LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
 
 #: The page, its script and the vendored front-end libraries.
 STATIC_DIR = Path(__file__).resolve().parent / "static"
@@ -96,6 +106,7 @@ class WebSettings:
     max_results: int = 200
     result_ttl_s: float = 3600.0
     results_dir: Path | None = None
+    allowed_hosts: tuple[str, ...] | None = None
 
 
 def _check_size(req: AnalysisRequest, max_creases: int) -> None:
@@ -398,4 +409,6 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(_SecurityHeaders)
     app.add_middleware(BodySizeLimit, max_bytes=cfg.max_body_bytes)
+    if cfg.allowed_hosts is not None:
+        app.add_middleware(HostCheck, allowed=cfg.allowed_hosts)
     return app

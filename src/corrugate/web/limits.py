@@ -18,7 +18,14 @@ from collections.abc import Awaitable, Callable, MutableMapping
 from concurrent.futures import Future, ThreadPoolExecutor
 from typing import Any, TypeVar
 
-__all__ = ["BodySizeLimit", "ComputeTimeoutError", "Runner", "ServerBusyError"]
+__all__ = [
+    "BodySizeLimit",
+    "ComputeTimeoutError",
+    "HostCheck",
+    "Runner",
+    "ServerBusyError",
+    "host_name",
+]
 
 T = TypeVar("T")
 
@@ -98,8 +105,8 @@ class BodySizeLimit:
         )
 
     @staticmethod
-    async def _reject(send: Send, status: int, detail: str) -> None:
-        body = json.dumps({"detail": detail, "field": "body", "errors": []}).encode()
+    async def _reject(send: Send, status: int, detail: str, field: str | None = "body") -> None:
+        body = json.dumps({"detail": detail, "field": field, "errors": []}).encode()
         await send(
             {
                 "type": "http.response.start",
@@ -112,6 +119,42 @@ class BodySizeLimit:
             }
         )
         await send({"type": "http.response.body", "body": body})
+
+
+def host_name(header: str) -> str:
+    """The host of a Host header, lower-case, without the port (``[::1]:8000`` -> ``[::1]``)."""
+    header = header.strip().lower()
+    if header.startswith("["):
+        end = header.find("]")
+        return header[: end + 1] if end > 0 else header
+    return header.split(":", 1)[0]
+
+
+class HostCheck:
+    """ASGI middleware: answer 400 unless the Host header names one of ``allowed`` hosts.
+
+    A local server bound to 127.0.0.1 is still reachable from a web page through DNS rebinding
+    (a name that first resolves elsewhere, then to 127.0.0.1); the browser then sends that name
+    as Host, which this refuses.
+    """
+
+    def __init__(self, app: ASGIApp, allowed: tuple[str, ...]) -> None:
+        self.app = app
+        self.allowed = frozenset(host_name(h) for h in allowed)
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] in ("http", "websocket"):
+            host = ""
+            for key, value in scope.get("headers", []):
+                if key == b"host":
+                    host = host_name(value.decode("latin-1"))
+                    break
+            if host not in self.allowed:
+                await BodySizeLimit._reject(
+                    send, 400, "this server does not answer to that Host", field=None
+                )
+                return
+        await self.app(scope, receive, send)
 
 
 class Runner:

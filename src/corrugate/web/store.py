@@ -5,7 +5,8 @@ folder under a private temporary root, named by a fresh random UUID. Writers put
 store then *publishes* them under their plain names. A download looks the pair (id, name) up in an
 in-memory table: an id or a name that was not published, whatever it contains (``..``, ``/``,
 an absolute path, percent escapes), is simply not found. Old results are evicted (oldest first past
-``max_results``, and after ``ttl_s`` seconds); the root goes when the store is closed.
+``max_results``, and after ``ttl_s`` seconds); the root is made on first use and goes when the
+store is closed.
 """
 
 from __future__ import annotations
@@ -72,16 +73,25 @@ class ResultStore:
         ttl_s: float = 3600.0,
         clock: Callable[[], float] = time.monotonic,
     ) -> None:
-        parent = None if root is None else str(root)
-        if root is not None:
-            root.mkdir(parents=True, exist_ok=True)
-        self.root = Path(tempfile.mkdtemp(prefix="corrugate-web-", dir=parent))
+        self._parent = root
+        self._root: Path | None = None
         self.max_results = max_results
         self.ttl_s = ttl_s
         self._clock = clock
         self._lock = threading.Lock()
         self._pending: dict[str, Path] = {}
         self._entries: dict[str, _Entry] = {}
+
+    @property
+    def root(self) -> Path:
+        """The private root folder (mode 0700), made on first use."""
+        with self._lock:
+            if self._root is None:
+                if self._parent is not None:
+                    self._parent.mkdir(parents=True, exist_ok=True)
+                parent = None if self._parent is None else str(self._parent)
+                self._root = Path(tempfile.mkdtemp(prefix="corrugate-web-", dir=parent))
+            return self._root
 
     def create(self) -> tuple[str, Path]:
         """A new result id and its empty private folder, for a writer to fill."""
@@ -154,7 +164,9 @@ class ResultStore:
         with self._lock:
             self._entries.clear()
             self._pending.clear()
-        shutil.rmtree(self.root, ignore_errors=True)
+            root, self._root = self._root, None
+        if root is not None:
+            shutil.rmtree(root, ignore_errors=True)
 
     def _evict_locked(self) -> list[Path]:
         now = self._clock()
