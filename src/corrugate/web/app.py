@@ -14,7 +14,7 @@ Endpoints (all JSON unless said otherwise):
 
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
 names it; malformed JSON -> 400; body over the limit -> 413; server busy -> 503; computation over
-the time limit -> 504; unknown result or file -> 404.
+the time limit -> 504; unknown result or file -> 404; a Host header not allowed -> 400.
 """
 
 from __future__ import annotations
@@ -93,9 +93,12 @@ class WebSettings:
 
     ``max_body_bytes``: longest request body (413 past it); ``timeout_s``: longest computation
     (504 past it); ``workers``: computation threads; ``max_pending``: computations queued or running
-    at once (503 past it); ``max_creases``: largest n of a layer (422 past it; bounds memory and
-    time); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private
-    result root is made (default: the system temporary folder).
+    at once (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
+    folded extent of a layer (422 past them; the pattern's glue tabs grow with the size, so these
+    bound the memory and time of one request); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private
+    result root is made (default: the system temporary folder); ``allowed_hosts``: the Host
+    headers answered, others get 400 (None: any; ``corrugate serve`` on a loopback address sets
+    :data:`LOOPBACK_NAMES` against DNS rebinding).
     """
 
     max_body_bytes: int = 64 * 1024
@@ -103,17 +106,29 @@ class WebSettings:
     workers: int = 4
     max_pending: int = 32
     max_creases: int = 1000
+    max_extent_mm: float = 5000.0
     max_results: int = 200
     result_ttl_s: float = 3600.0
     results_dir: Path | None = None
     allowed_hosts: tuple[str, ...] | None = None
 
 
-def _check_size(req: AnalysisRequest, max_creases: int) -> None:
+def _check_size(req: AnalysisRequest, settings: WebSettings) -> None:
+    """The web app's own bounds on the work one request may cause (the CLI has none)."""
     for suffix, layer in (("", req.assembly.layer1), ("2", req.assembly.layer2)):
-        if layer.n > max_creases:
+        if layer.n > settings.max_creases:
             raise InputError(
-                f"n{suffix}", layer.n, f"1 <= n <= {max_creases} in the web app (use the CLI)"
+                f"n{suffix}",
+                layer.n,
+                f"1 <= n <= {settings.max_creases} in the web app (use the CLI)",
+            )
+        if layer.chord_extent > settings.max_extent_mm:
+            raise InputError(
+                f"W{suffix}",
+                f"{layer.W:g} mm",
+                f"a folded extent (n + 1) W sin(alpha/2) <= {settings.max_extent_mm:g} mm in "
+                "the web app (use the CLI)",
+                reason=f"makes a part {layer.chord_extent:.4g} mm long",
             )
 
 
@@ -121,7 +136,7 @@ def _parse(body: AnalyzeBody, settings: WebSettings) -> AnalysisRequest:
     options = body.model_dump(exclude={"model", "eta"}, exclude_none=True)
     with _PARSE_LOCK:
         req = analysis_request(model=body.model, eta=body.eta, **options)
-    _check_size(req, settings.max_creases)
+    _check_size(req, settings)
     return req
 
 
