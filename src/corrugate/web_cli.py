@@ -53,4 +53,12 @@ def serve_cmd(
     settings = WebSettings(timeout_s=timeout, allowed_hosts=LOOPBACK_NAMES if loopback else None)
     shown = f"[{host}]" if ":" in host else host
     typer.echo(f"corrugate: serving on http://{shown}:{port}/ (API docs at /docs); Ctrl-C stops")
-    uvicorn.run(create_app(settings), host=host, port=port, log_level="info")
+    # At most 100 open connections (uvicorn answers 503 past that), idle ones closed after 5 s.
+    uvicorn.run(
+        create_app(settings),
+        host=host,
+        port=port,
+        log_level="info",
+        limit_concurrency=100,
+        timeout_keep_alive=5,
+    )

@@ -363,6 +363,7 @@ def test_serve_command_runs_uvicorn_on_loopback(monkeypatch: pytest.MonkeyPatch)
             main(["serve", *args])
         assert exc.value.code in (0, None)
     assert calls[0]["host"] == "127.0.0.1" and calls[0]["port"] == 8123
+    assert calls[0]["limit_concurrency"] == 100
     assert isinstance(calls[0]["app"], FastAPI)
     assert calls[0]["app"].state.settings.allowed_hosts == ("127.0.0.1", "localhost", "[::1]")
     assert calls[1]["host"] == "0.0.0.0" and calls[1]["app"].state.settings.timeout_s == 5
