@@ -16,7 +16,7 @@ $(VENV)/.installed: $(BIN)/python pyproject.toml
 	touch $@
 
 $(VENV)/.installed-dev: $(VENV)/.installed pyproject.toml
-	$(PIP) install --quiet -e '.[dev,opt,fab]'
+	$(PIP) install --quiet -e '.[dev,opt,fab,web]'
 	touch $@
 
 # The paper's case study (Liu, Yan and Mehta, Table 1, case 1), end to end, files under out/.
@@ -31,9 +31,10 @@ demo: $(VENV)/.installed
 		--cutter cameo4-12x12 --out out/case1
 	@echo "wrote out/case1_analysis.json and the cut files of case 1 under out/case1/"
 
-# System packages the tests need (installed when root and missing; none are needed yet).
+# System packages the tests need (installed when root and missing).
+# chromium: the browser tests of the web app drive Debian's /usr/bin/chromium with Playwright.
 system-deps:
-	@true
+	@command -v chromium >/dev/null || { [ "$$(id -u)" = 0 ] && apt-get update && apt-get install -y chromium; } || echo "system-deps: chromium missing (install it as root: apt-get install chromium)"
 
 lint: $(VENV)/.installed-dev
 	$(BIN)/ruff check src tests benchmarks

@@ -16,12 +16,18 @@ from rich.table import Table
 
 from . import __version__
 from .analysis import Analysis, analyze
-from .errors import CorrugateError, InputError
-from .geometry import Assembly, Layer
-from .layouts import make_layout
-from .materials import Material, get_material, inline_material, library
+from .errors import CorrugateError
+from .geometry import Layer
+from .inputs import (
+    assembly_from_options,
+    layer_from_options,
+    material_from_options,
+    parse_etas,
+    parse_int,
+    parse_vertices,
+)
+from .materials import Material, library
 from .moduli import DEFAULT_MODEL, MODELS, get_model
-from .units import parse_quantity
 
 __all__ = ["app", "main"]
 
@@ -52,13 +58,8 @@ def _root(
 
 
 def _int(value: str, field: str, allowed: str = "an integer n >= 1 (number of creases)") -> int:
-    try:
-        f = float(value)
-    except ValueError:
-        raise InputError(field, repr(value), allowed, reason="is not an integer") from None
-    if not f.is_integer():
-        raise InputError(field, value, allowed, reason="is not an integer")
-    return int(f)
+    """See :func:`corrugate.inputs.parse_int` (kept here for the other command modules)."""
+    return parse_int(value, field, allowed)
 
 
 def _material(
@@ -69,62 +70,20 @@ def _material(
     thickness: str | None,
     suffix: str = "",
 ) -> Material:
-    inline = [x is not None for x in (E, nu, density)]
-    if any(inline):
-        if not all(inline):
-            missing = [k for k, v in (("E", E), ("nu", nu), ("density", density)) if v is None]
-            raise InputError(
-                f"{missing[0]}{suffix}",
-                None,
-                "--E, --nu and --density together for an inline material",
-                reason="is missing",
-            )
-        if name is not None:
-            raise InputError(
-                f"material{suffix}",
-                name,
-                "either --material or --E/--nu/--density",
-                reason="conflicts with the inline material",
-            )
-        return inline_material(E, nu, density, name="custom", thickness=thickness)
-    return get_material(name or "dura-lar")
+    """See :func:`corrugate.inputs.material_from_options`."""
+    return material_from_options(name, E, nu, density, thickness, suffix)
 
 
 def _layer(
     W: str, n: str, alpha: str, material: Material, thickness: str | None, suffix: str = ""
 ) -> Layer:
-    t = None if thickness is None else parse_quantity(thickness, "mm", f"thickness{suffix}")
-    w = parse_quantity(W, "mm", f"W{suffix}")
-    a = parse_quantity(alpha, "deg", f"alpha{suffix}")
-    nn = _int(n, f"n{suffix}")
-    try:
-        if t is None:
-            return Layer(w, nn, a, material)
-        return Layer(w, nn, a, material, t)
-    except InputError as exc:
-        if suffix:
-            raise InputError(
-                exc.field + suffix, exc.value, exc.allowed, reason=exc.reason
-            ) from None
-        raise
+    """See :func:`corrugate.inputs.layer_from_options`."""
+    return layer_from_options(W, n, alpha, material, thickness, suffix)
 
 
 def _vertices(text: str | None) -> list[tuple[float, float]] | None:
-    if text is None:
-        return None
-    pts: list[tuple[float, float]] = []
-    try:
-        for pair in text.replace(";", " ").split():
-            x, y = pair.split(",")
-            pts.append((float(x), float(y)))
-    except ValueError:
-        raise InputError(
-            "vertices",
-            repr(text),
-            "pairs 'x,y' separated by spaces, e.g. '0,0 1,0 0.5,1'",
-            reason="cannot be read",
-        ) from None
-    return pts
+    """See :func:`corrugate.inputs.parse_vertices`."""
+    return parse_vertices(text)
 
 
 def _fmt(x: float | None, digits: int = 4) -> str:
@@ -229,18 +188,24 @@ def analyze_cmd(
 
     Example: corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper --eta 0
     """
-    mat1 = _material(material, E, nu, density, thickness)
-    layer1 = _layer(W, n, alpha, mat1, thickness)
-    mat2 = mat1 if material2 is None else get_material(material2)
-    t2 = (
-        thickness2
-        if thickness2 is not None
-        else (str(layer1.t) if material2 is None or thickness is not None else None)
+    assembly = assembly_from_options(
+        W=W,
+        n=n,
+        alpha=alpha,
+        material=material,
+        thickness=thickness,
+        E=E,
+        nu=nu,
+        density=density,
+        W2=W2,
+        n2=n2,
+        alpha2=alpha2,
+        material2=material2,
+        thickness2=thickness2,
+        layout=layout,
+        vertices=vertices,
     )
-    layer2 = _layer(W2 or W, n2 or n, alpha2 or alpha, mat2, t2, suffix="2")
-    lay = make_layout(layout, _vertices(vertices))
-    assembly = Assembly(layer1, layer2, lay)
-    etas = [parse_quantity(e, "deg", "eta") for e in (eta or ["0", "90"])]
+    etas = parse_etas(eta)
     get_model(model)
     models = list(MODELS) if compare_models else [model]
     results = [analyze(assembly, m, etas) for m in models]
@@ -300,4 +265,6 @@ def main(argv: list[str] | None = None) -> None:
         sys.exit(2)
 
 
+# Further commands register themselves on ``app``.
 from . import pattern_cli as _pattern_cli  # noqa: E402, F401
+from . import web_cli as _web_cli  # noqa: E402, F401

@@ -9,10 +9,8 @@ import typer
 from rich.console import Console
 
 from .analysis import analyze
-from .cli import _layer, _material, _vertices, app
-from .geometry import Assembly
-from .layouts import make_layout
-from .materials import get_material
+from .cli import app
+from .inputs import assembly_from_options
 from .moduli import DEFAULT_MODEL, get_model
 from .outputs import OutputOptions, write_design_files
 from .pattern.linestyle import line_style
@@ -76,16 +74,23 @@ def pattern_cmd(
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
 ) -> None:
     """Write the cut files (SVG, DXF, PDF), FOLD, GLB/STL and assembly steps of one design."""
-    mat1 = _material(material, E, nu, density, thickness)
-    layer1 = _layer(W, n, alpha, mat1, thickness)
-    mat2 = mat1 if material2 is None else get_material(material2)
-    t2 = (
-        thickness2
-        if thickness2 is not None
-        else (str(layer1.t) if material2 is None or thickness is not None else None)
+    assembly = assembly_from_options(
+        W=W,
+        n=n,
+        alpha=alpha,
+        material=material,
+        thickness=thickness,
+        E=E,
+        nu=nu,
+        density=density,
+        W2=W2,
+        n2=n2,
+        alpha2=alpha2,
+        material2=material2,
+        thickness2=thickness2,
+        layout=layout,
+        vertices=vertices,
     )
-    layer2 = _layer(W2 or W, n2 or n, alpha2 or alpha, mat2, t2, suffix="2")
-    assembly = Assembly(layer1, layer2, make_layout(layout, _vertices(vertices)))
     get_model(model)
     opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth)
     result = analyze(assembly, model, (0.0, 90.0), opts.fabrication)

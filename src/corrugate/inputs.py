@@ -1,0 +1,226 @@
+"""From user options to a design: the one conversion behind ``corrugate analyze`` and the web API.
+
+The command line and the JSON API take the same fields (``W``, ``n``, ``alpha``, ``material`` or an
+inline ``E``/``nu``/``density``, ``thickness``, the layer 2 variants ``W2`` ... ``thickness2``,
+``layout``, ``vertices``, ``model``, ``eta``). Each value is a plain number, read in the field's
+default unit (mm, deg, MPa, g/cm^3), or a string that may carry units (``"0.3 in"``, ``"2.7 GPa"``).
+Every bad value raises :class:`~corrugate.errors.InputError` naming the field, so the CLI and the
+web app report the same errors with the same words.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from .analysis import Analysis, analyze
+from .errors import InputError, UnknownNameError
+from .geometry import Assembly, Layer
+from .layouts import make_layout
+from .materials import Material, get_material, inline_material
+from .moduli import DEFAULT_MODEL, get_model
+from .units import parse_quantity
+
+__all__ = [
+    "DEFAULT_ETAS",
+    "AnalysisRequest",
+    "analysis_request",
+    "assembly_from_options",
+    "layer_from_options",
+    "material_from_options",
+    "parse_etas",
+    "parse_int",
+    "parse_vertices",
+]
+
+#: Directions (deg) analysed when none are given.
+DEFAULT_ETAS: tuple[float, ...] = (0.0, 90.0)
+
+_N_ALLOWED = "an integer n >= 1 (number of creases)"
+
+
+def parse_int(value: object, field: str, allowed: str = _N_ALLOWED) -> int:
+    """``value`` (an int, an integral float or a string such as ``"8"``) as an int."""
+    if isinstance(value, bool):
+        raise InputError(field, value, allowed, reason="is not an integer")
+    if isinstance(value, int):
+        return value
+    try:
+        f = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise InputError(field, repr(value), allowed, reason="is not an integer") from None
+    if not f.is_integer():
+        raise InputError(field, value, allowed, reason="is not an integer")
+    return int(f)
+
+
+def material_from_options(
+    name: str | None,
+    E: object,
+    nu: object,
+    density: object,
+    thickness: object,
+    suffix: str = "",
+) -> Material:
+    """A library material by ``name`` (default ``dura-lar``) or an inline one from E, nu, density.
+
+    The inline values must come together and exclude ``name``.
+    """
+    inline = [x is not None for x in (E, nu, density)]
+    if any(inline):
+        if not all(inline):
+            missing = [k for k, v in (("E", E), ("nu", nu), ("density", density)) if v is None]
+            raise InputError(
+                f"{missing[0]}{suffix}",
+                None,
+                "--E, --nu and --density together for an inline material",
+                reason="is missing",
+            )
+        if name is not None:
+            raise InputError(
+                f"material{suffix}",
+                name,
+                "either --material or --E/--nu/--density",
+                reason="conflicts with the inline material",
+            )
+        return inline_material(E, nu, density, name="custom", thickness=thickness)
+    try:
+        return get_material(name or "dura-lar")
+    except UnknownNameError as exc:
+        if suffix:
+            raise InputError(
+                exc.field + suffix, exc.value, exc.allowed, reason=exc.reason
+            ) from None
+        raise
+
+
+def layer_from_options(
+    W: object, n: object, alpha: object, material: Material, thickness: object, suffix: str = ""
+) -> Layer:
+    """One layer from user values (W in mm, alpha in deg, thickness in mm unless units are given).
+
+    ``suffix`` ("2" for layer 2) is appended to the field named by any error.
+    """
+    t = None if thickness is None else parse_quantity(thickness, "mm", f"thickness{suffix}")
+    w = parse_quantity(W, "mm", f"W{suffix}")
+    a = parse_quantity(alpha, "deg", f"alpha{suffix}")
+    nn = parse_int(n, f"n{suffix}")
+    try:
+        if t is None:
+            return Layer(w, nn, a, material)
+        return Layer(w, nn, a, material, t)
+    except InputError as exc:
+        if suffix:
+            raise InputError(
+                exc.field + suffix, exc.value, exc.allowed, reason=exc.reason
+            ) from None
+        raise
+
+
+def parse_vertices(value: object) -> list[tuple[float, float]] | None:
+    """A polygon outline: the text ``"0,0 1,0 0.5,1"`` or a sequence of (x, y) pairs; None stays None."""
+    if value is None:
+        return None
+    pts: list[tuple[float, float]] = []
+    try:
+        if isinstance(value, str):
+            for pair in value.replace(";", " ").split():
+                x, y = pair.split(",")
+                pts.append((float(x), float(y)))
+        elif isinstance(value, Sequence):
+            for pair in value:
+                if isinstance(pair, str | bytes) or not isinstance(pair, Sequence):
+                    raise ValueError(pair)
+                coords = list(pair)
+                if len(coords) != 2 or any(isinstance(c, bool) for c in coords):
+                    raise ValueError(pair)
+                pts.append((float(coords[0]), float(coords[1])))
+        else:
+            raise ValueError(value)
+    except (TypeError, ValueError):
+        raise InputError(
+            "vertices",
+            repr(value),
+            "pairs 'x,y' separated by spaces, e.g. '0,0 1,0 0.5,1'",
+            reason="cannot be read",
+        ) from None
+    return pts
+
+
+def parse_etas(eta: Sequence[object] | None) -> tuple[float, ...]:
+    """Directions in deg (plain numbers or strings with units); none given: 0 and 90 deg."""
+    if not eta:
+        return DEFAULT_ETAS
+    etas = tuple(parse_quantity(e, "deg", "eta") for e in eta)
+    for e in etas:
+        if not math.isfinite(e):
+            raise InputError("eta", f"{e} deg", "a finite angle in deg")
+    return etas
+
+
+def assembly_from_options(
+    *,
+    W: object,
+    n: object,
+    alpha: object,
+    material: str | None = None,
+    thickness: object = None,
+    E: object = None,
+    nu: object = None,
+    density: object = None,
+    W2: object = None,
+    n2: object = None,
+    alpha2: object = None,
+    material2: str | None = None,
+    thickness2: object = None,
+    layout: str = "square",
+    vertices: object = None,
+) -> Assembly:
+    """The assembly that ``corrugate analyze``'s options describe.
+
+    Layer 2 takes layer 1's value for every option it does not set; its thickness is layer 1's
+    unless it has a material of its own (then that material's default) or ``thickness2``.
+    """
+    mat1 = material_from_options(material, E, nu, density, thickness)
+    layer1 = layer_from_options(W, n, alpha, mat1, thickness)
+    mat2 = (
+        mat1 if material2 is None else material_from_options(material2, None, None, None, None, "2")
+    )
+    t2 = (
+        thickness2
+        if thickness2 is not None
+        else (layer1.t if material2 is None or thickness is not None else None)
+    )
+    layer2 = layer_from_options(
+        W if W2 is None else W2,
+        n if n2 is None else n2,
+        alpha if alpha2 is None else alpha2,
+        mat2,
+        t2,
+        suffix="2",
+    )
+    return Assembly(layer1, layer2, make_layout(layout, parse_vertices(vertices)))
+
+
+@dataclass(frozen=True, slots=True)
+class AnalysisRequest:
+    """A validated ``analyze`` request: the assembly, the model name and the directions (deg)."""
+
+    assembly: Assembly
+    model: str
+    eta_deg: tuple[float, ...]
+
+    def run(self) -> Analysis:
+        """Analyse it (:func:`corrugate.analysis.analyze`)."""
+        return analyze(self.assembly, self.model, self.eta_deg)
+
+
+def analysis_request(
+    *, model: str = DEFAULT_MODEL, eta: Sequence[object] | None = None, **options: object
+) -> AnalysisRequest:
+    """Validate the options of ``corrugate analyze`` (as keywords, see
+    :func:`assembly_from_options`) into an :class:`AnalysisRequest`."""
+    assembly = assembly_from_options(**options)  # type: ignore[arg-type]
+    etas = parse_etas(eta)
+    return AnalysisRequest(assembly, get_model(model).name, etas)

@@ -1,0 +1,429 @@
+"""The FastAPI application: JSON API, the single page, the offline OpenAPI page and downloads.
+
+Endpoints (all JSON unless said otherwise):
+
+* ``GET /``: the page (``static/index.html`` with ``static/app.js``);
+* ``GET /docs``: Swagger UI served from the package (no CDN); ``GET /openapi.json``;
+* ``GET /api/materials``: the library, as ``corrugate materials --json``;
+* ``GET /api/models``: the moduli variants and the default;
+* ``POST /api/analyze``: the options of ``corrugate analyze`` -> ``Analysis.to_dict()`` (the CLI's
+  ``--json`` object);
+* ``POST /api/mesh``: the same options -> the folded assembly as ``assembly.glb`` and
+  ``assembly.stl`` in a new result (opaque id), with their download URLs;
+* ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path).
+
+Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
+names it; malformed JSON -> 400; body over the limit -> 413; server busy -> 503; computation over
+the time limit -> 504; unknown result or file -> 404; a Host header not allowed -> 400.
+"""
+
+from __future__ import annotations
+
+import base64
+import hashlib
+import math
+import re
+import threading
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from fastapi import FastAPI, Request
+from fastapi.exceptions import RequestValidationError
+from fastapi.openapi.docs import get_swagger_ui_html
+from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
+from fastapi.staticfiles import StaticFiles
+from starlette.exceptions import HTTPException as StarletteHTTPException
+
+from .. import __version__
+from ..errors import InputError
+from ..inputs import AnalysisRequest, analysis_request
+from ..materials import library
+from ..moduli import DEFAULT_MODEL, MODELS
+from ..units import ureg
+from .limits import BodySizeLimit, ComputeTimeoutError, HostCheck, Runner, ServerBusyError
+from .schemas import (
+    AnalyzeBody,
+    ErrorBody,
+    FieldError,
+    ModelInfo,
+    ModelsBody,
+    ResultBody,
+    ResultFile,
+)
+from .store import ResultStore, StoredFile
+
+__all__ = [
+    "LOOPBACK_NAMES",
+    "STATIC_DIR",
+    "WebSettings",
+    "analysis_payload",
+    "create_app",
+    "mesh_files",
+]
+
+#: Host names of this machine: what a browser sends to a server bound to a loopback address.
+LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
+
+#: The page, its script and the vendored front-end libraries.
+STATIC_DIR = Path(__file__).resolve().parent / "static"
+
+#: pint's registry keeps caches that are not documented as thread-safe: parse one request at a time
+#: (parsing takes microseconds; the computations themselves run in parallel).
+_PARSE_LOCK = threading.Lock()
+
+_SWAGGER = "/static/vendor/swagger-ui"
+
+_VALUE = "allowed a number or a string with units, e.g. '8' or '0.3 in'"
+#: What each field takes, for type errors (pydantic's own words name the union's members).
+_EXPECTED: dict[str, str] = {
+    **{k: _VALUE for k in AnalyzeBody.model_fields},
+    **{k: "allowed a string" for k in ("material", "material2", "layout", "model")},
+    "eta": "allowed a list of angles, e.g. [0, 45, '1.2 rad']",
+    "vertices": "allowed '0,0 1,0 0.5,1' or [[0, 0], [1, 0], [0.5, 1]]",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class WebSettings:
+    """Limits of the web app.
+
+    ``max_body_bytes``: longest request body (413 past it); ``timeout_s``: longest computation
+    (504 past it); ``workers``: computation threads; ``max_pending``: computations queued or running
+    at once (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
+    folded extent of a layer (422 past them; the pattern's glue tabs grow with the size, so these
+    bound the memory and time of one request); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private
+    result root is made (default: the system temporary folder); ``allowed_hosts``: the Host
+    headers answered, others get 400 (None: any; ``corrugate serve`` on a loopback address sets
+    :data:`LOOPBACK_NAMES` against DNS rebinding).
+    """
+
+    max_body_bytes: int = 64 * 1024
+    timeout_s: float = 30.0
+    workers: int = 4
+    max_pending: int = 32
+    max_creases: int = 1000
+    max_extent_mm: float = 5000.0
+    max_results: int = 200
+    result_ttl_s: float = 3600.0
+    results_dir: Path | None = None
+    allowed_hosts: tuple[str, ...] | None = None
+
+
+def _check_size(req: AnalysisRequest, settings: WebSettings) -> None:
+    """The web app's own bounds on the work one request may cause (the CLI has none)."""
+    for suffix, layer in (("", req.assembly.layer1), ("2", req.assembly.layer2)):
+        if layer.n > settings.max_creases:
+            raise InputError(
+                f"n{suffix}",
+                layer.n,
+                f"1 <= n <= {settings.max_creases} in the web app (use the CLI)",
+            )
+        if layer.chord_extent > settings.max_extent_mm:
+            raise InputError(
+                f"W{suffix}",
+                f"{layer.W:g} mm",
+                f"a folded extent (n + 1) W sin(alpha/2) <= {settings.max_extent_mm:g} mm in "
+                "the web app (use the CLI)",
+                reason=f"makes a part {layer.chord_extent:.4g} mm long",
+            )
+
+
+def _parse(body: AnalyzeBody, settings: WebSettings) -> AnalysisRequest:
+    options = body.model_dump(exclude={"model", "eta"}, exclude_none=True)
+    with _PARSE_LOCK:
+        req = analysis_request(model=body.model, eta=body.eta, **options)
+    _check_size(req, settings)
+    return req
+
+
+def _first_non_finite(obj: object, where: str = "") -> str | None:
+    """The key path of the first NaN or infinity in a JSON-like object, or None."""
+    if isinstance(obj, float):
+        return None if math.isfinite(obj) else where or "value"
+    items: list[tuple[str, object]] = []
+    if isinstance(obj, dict):
+        items = [(f"{where}.{k}" if where else str(k), v) for k, v in obj.items()]
+    elif isinstance(obj, list | tuple):
+        items = [(f"{where}[{i}]", v) for i, v in enumerate(obj)]
+    for key, value in items:
+        found = _first_non_finite(value, key)
+        if found is not None:
+            return found
+    return None
+
+
+def _require_finite(payload: dict[str, object]) -> None:
+    bad = _first_non_finite(payload)
+    if bad is not None:
+        raise InputError(
+            "body",
+            "the request",
+            "inputs of physically sensible magnitude",
+            reason=f"gives a result that is not finite ({bad}): the inputs overflow the formulas",
+        )
+
+
+def analysis_payload(body: AnalyzeBody, settings: WebSettings) -> dict[str, object]:
+    """``Analysis.to_dict()`` of the request (runs on a worker thread)."""
+    req = _parse(body, settings)
+    with np.errstate(all="ignore"):  # overflow is reported as a 422 below, not as warnings
+        payload = req.run().to_dict()
+    _require_finite(payload)
+    return payload
+
+
+def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> list[StoredFile]:
+    """Build the folded assembly of the request and store it as GLB and STL (worker thread)."""
+    from ..pattern.build import build_pattern
+    from ..pattern.files3d import write_mesh
+
+    req = _parse(body, settings)
+    a = req.assembly
+    return store.make(lambda folder: write_mesh(a, build_pattern(a), folder))
+
+
+def _error(status: int, detail: str, errors: list[FieldError]) -> JSONResponse:
+    body = ErrorBody(detail=detail, field=errors[0].field if errors else None, errors=errors)
+    return JSONResponse(body.model_dump(), status_code=status)
+
+
+def _input_error(exc: InputError) -> JSONResponse:
+    value = None if exc.value is None else str(exc.value)
+    err = FieldError(field=exc.field, message=str(exc), value=value, allowed=exc.allowed)
+    return _error(422, str(exc), [err])
+
+
+def _shown(value: object, limit: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _validation_error(exc: RequestValidationError) -> JSONResponse:
+    """pydantic's errors as one :class:`FieldError` per field, the most specific one kept.
+
+    A value that fails a union (number or string) gets one error per member; a member's own limit
+    (a string too long, a list too long) says more than "not an integer", so it wins.
+    """
+    chosen: dict[str, tuple[bool, str]] = {}
+    status = 422
+    for e in exc.errors():
+        loc = [str(p) for p in e.get("loc", ()) if p != "body"]
+        kind = str(e.get("type", ""))
+        if kind == "json_invalid":
+            status = 400
+            chosen.setdefault("body", (True, f"malformed JSON: {e.get('msg', '')}"))
+            continue
+        field = loc[0] if loc else "body"  # union members add their type to the location
+        msg = str(e.get("msg", "is invalid"))
+        generic = kind.endswith("_type")
+        if kind == "missing":
+            msg = f"{field} is required"
+        elif kind == "extra_forbidden":
+            msg = f"{field} is not a field of this request"
+        elif field != "body" and generic:
+            msg = f"{field} = {_shown(e.get('input'))} has the wrong type: {_EXPECTED.get(field, msg)}"
+        else:
+            msg = f"{field} = {_shown(e.get('input'))}: {msg}" if field != "body" else msg
+        if field not in chosen or (chosen[field][0] and not generic):
+            chosen[field] = (generic, msg)
+    errors = [FieldError(field=f, message=m) for f, (_, m) in chosen.items()]
+    detail = "; ".join(x.message for x in errors) or "invalid request"
+    return _error(status, detail, errors)
+
+
+def _importmap_hash(html: str) -> str:
+    match = re.search(r'<script type="importmap">(.*?)</script>', html, re.S)
+    if match is None:
+        return ""
+    digest = hashlib.sha256(match.group(1).encode("utf-8")).digest()
+    return f"'sha256-{base64.b64encode(digest).decode()}'"
+
+
+class _SecurityHeaders:
+    """Pure ASGI middleware adding conservative headers to every answer; no caching of the API."""
+
+    def __init__(self, app: Callable[..., Any]) -> None:
+        self.app = app
+
+    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        is_api = str(scope.get("path", "")).startswith("/api/")
+
+        async def send_with_headers(message: Any) -> None:
+            if message["type"] == "http.response.start":
+                headers = list(message.get("headers", []))
+                headers += [
+                    (b"x-content-type-options", b"nosniff"),
+                    (b"referrer-policy", b"no-referrer"),
+                    (b"x-frame-options", b"DENY"),
+                ]
+                if is_api:
+                    headers.append((b"cache-control", b"no-store"))
+                message["headers"] = headers
+            await send(message)
+
+        await self.app(scope, receive, send_with_headers)
+
+
+def create_app(settings: WebSettings | None = None) -> FastAPI:
+    """A new, independent application (its own worker pool and result store)."""
+    cfg = settings or WebSettings()
+    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s)
+    store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
+    # Load the unit registry and the material library before the first requests race for them.
+    ureg()
+    library()
+    index_html = (STATIC_DIR / "index.html").read_text(encoding="utf-8")
+    page_csp = (
+        "default-src 'self'; "
+        f"script-src 'self' {_importmap_hash(index_html)}; "
+        "style-src 'self'; img-src 'self' data: blob:; connect-src 'self' blob:; "
+        "object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
+    )
+
+    @asynccontextmanager
+    async def lifespan(_: FastAPI) -> AsyncIterator[None]:
+        try:
+            yield
+        finally:
+            runner.shutdown()
+            store.close()
+
+    app = FastAPI(
+        title="corrugate",
+        version=__version__,
+        description=(
+            "Analyse origami-inspired OADLC stiffening panels. The fields are those of "
+            "`corrugate analyze`; values are numbers in the field's default unit (mm, deg, MPa, "
+            "g/cm^3) or strings with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with "
+            "the field named."
+        ),
+        docs_url=None,
+        redoc_url=None,
+        lifespan=lifespan,
+    )
+    app.state.settings = cfg
+    app.state.store = store
+    app.state.runner = runner
+
+    error_responses: dict[int | str, dict[str, Any]] = {
+        400: {"model": ErrorBody, "description": "Malformed JSON"},
+        413: {"model": ErrorBody, "description": "Request body too large"},
+        422: {"model": ErrorBody, "description": "A value is invalid; `field` names it"},
+        503: {"model": ErrorBody, "description": "Too many computations in flight"},
+        504: {"model": ErrorBody, "description": "The computation took too long"},
+    }
+
+    @app.exception_handler(InputError)
+    async def on_input_error(_: Request, exc: InputError) -> JSONResponse:
+        return _input_error(exc)
+
+    @app.exception_handler(RequestValidationError)
+    async def on_validation_error(_: Request, exc: RequestValidationError) -> JSONResponse:
+        return _validation_error(exc)
+
+    @app.exception_handler(StarletteHTTPException)
+    async def on_http_error(_: Request, exc: StarletteHTTPException) -> JSONResponse:
+        errors = (
+            [FieldError(field="body", message=str(exc.detail))] if exc.status_code == 400 else []
+        )
+        response = _error(exc.status_code, str(exc.detail), errors)
+        response.headers.update(exc.headers or {})
+        return response
+
+    @app.exception_handler(ServerBusyError)
+    async def on_busy(_: Request, exc: ServerBusyError) -> JSONResponse:
+        response = _error(503, str(exc), [])
+        response.headers["retry-after"] = "5"
+        return response
+
+    @app.exception_handler(ComputeTimeoutError)
+    async def on_timeout(_: Request, exc: ComputeTimeoutError) -> JSONResponse:
+        return _error(504, str(exc), [])
+
+    @app.get("/", include_in_schema=False)
+    async def index() -> HTMLResponse:
+        return HTMLResponse(index_html, headers={"content-security-policy": page_csp})
+
+    @app.get("/docs", include_in_schema=False)
+    async def docs() -> HTMLResponse:
+        return get_swagger_ui_html(
+            openapi_url=app.openapi_url or "/openapi.json",
+            title="corrugate API",
+            swagger_js_url=f"{_SWAGGER}/swagger-ui-bundle.js",
+            swagger_css_url=f"{_SWAGGER}/swagger-ui.css",
+            swagger_favicon_url=f"{_SWAGGER}/favicon-32x32.png",
+        )
+
+    @app.get("/api/materials", summary="The material library")
+    async def materials() -> list[dict[str, Any]]:
+        """Every library sheet, as ``corrugate materials --json`` prints it."""
+        return [m.as_dict() for m in library().values()]
+
+    @app.get("/api/models", summary="The moduli variants")
+    async def models() -> ModelsBody:
+        """The names accepted by ``model`` and where each comes from."""
+        return ModelsBody(
+            default=DEFAULT_MODEL,
+            models=[ModelInfo(name=m.name, source=m.source) for m in MODELS.values()],
+        )
+
+    @app.post(
+        "/api/analyze",
+        summary="Analyse one design",
+        responses={200: {"description": "`corrugate analyze --json`"}, **error_responses},
+    )
+    async def analyze_endpoint(body: AnalyzeBody) -> JSONResponse:
+        """Stiffness, size, mass and warnings of one design: the object ``corrugate analyze
+        --json`` prints (keys carry their units)."""
+        payload = await runner.run(lambda: analysis_payload(body, cfg))
+        return JSONResponse(payload)
+
+    @app.post("/api/mesh", summary="The folded assembly as GLB and STL", responses=error_responses)
+    async def mesh_endpoint(body: AnalyzeBody) -> ResultBody:
+        """Build the folded assembly (mm, z up) and keep it as a result; download its files from
+        the URLs returned."""
+        files = await runner.run(lambda: mesh_files(body, cfg, store))
+        return ResultBody(
+            id=files[0].result_id,
+            files=[
+                ResultFile(
+                    name=f.name, url=f.url, media_type=f.media_type, bytes=f.path.stat().st_size
+                )
+                for f in files
+            ],
+        )
+
+    @app.get(
+        "/api/results/{result_id}/{name}",
+        summary="Download a file the app made",
+        response_class=FileResponse,
+        responses={
+            404: {"model": ErrorBody, "description": "No such result or file"},
+            422: {"model": ErrorBody, "description": "Invalid request"},
+        },
+    )
+    async def result_file(result_id: str, name: str) -> Response:
+        """A file of a stored result, by the id and name the app returned (nothing else)."""
+        found = store.get(result_id, name)
+        if found is None:
+            return _error(404, "no such result or file (results are kept for a while only)", [])
+        return FileResponse(
+            found.path,
+            media_type=found.media_type,
+            filename=found.name,
+            headers={"content-security-policy": "sandbox"},
+        )
+
+    app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
+    app.add_middleware(_SecurityHeaders)
+    app.add_middleware(BodySizeLimit, max_bytes=cfg.max_body_bytes)
+    if cfg.allowed_hosts is not None:
+        app.add_middleware(HostCheck, allowed=cfg.allowed_hosts)
+    return app

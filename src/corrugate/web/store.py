@@ -1,0 +1,178 @@
+"""Files the web app made, addressed by opaque ids: nothing from a request reaches the file system.
+
+Each result (one mesh, later one design with its SVG, DXF, PDF, FOLD, GLB and report) gets its own
+folder under a private temporary root, named by a fresh random UUID. Writers put files there; the
+store then *publishes* them under their plain names. A download looks the pair (id, name) up in an
+in-memory table: an id or a name that was not published, whatever it contains (``..``, ``/``,
+an absolute path, percent escapes), is simply not found. Old results are evicted (oldest first past
+``max_results``, and after ``ttl_s`` seconds); the root is made on first use and goes when the
+store is closed.
+"""
+
+from __future__ import annotations
+
+import shutil
+import tempfile
+import threading
+import time
+import uuid
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+__all__ = ["MEDIA_TYPES", "ResultStore", "StoredFile"]
+
+#: Media type of each kind of file the app makes, by suffix.
+MEDIA_TYPES: dict[str, str] = {
+    ".glb": "model/gltf-binary",
+    ".stl": "model/stl",
+    ".fold": "application/json",
+    ".json": "application/json",
+    ".svg": "image/svg+xml",
+    ".dxf": "image/vnd.dxf",
+    ".pdf": "application/pdf",
+    ".html": "text/html; charset=utf-8",
+    ".png": "image/png",
+    ".txt": "text/plain; charset=utf-8",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class StoredFile:
+    """One published file: its result id, plain name, path on disk and media type."""
+
+    result_id: str
+    name: str
+    path: Path
+    media_type: str
+
+    @property
+    def url(self) -> str:
+        """Where the app serves it."""
+        return f"/api/results/{self.result_id}/{self.name}"
+
+
+@dataclass(frozen=True, slots=True)
+class _Entry:
+    folder: Path
+    created: float
+    files: dict[str, StoredFile]
+
+
+class ResultStore:
+    """Per-result folders under one private temporary root, with an id -> files table.
+
+    Thread-safe: several requests may create, publish and read results at once.
+    """
+
+    def __init__(
+        self,
+        root: Path | None = None,
+        *,
+        max_results: int = 200,
+        ttl_s: float = 3600.0,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self._parent = root
+        self._root: Path | None = None
+        self.max_results = max_results
+        self.ttl_s = ttl_s
+        self._clock = clock
+        self._lock = threading.Lock()
+        self._pending: dict[str, Path] = {}
+        self._entries: dict[str, _Entry] = {}
+
+    @property
+    def root(self) -> Path:
+        """The private root folder (mode 0700), made on first use."""
+        with self._lock:
+            if self._root is None:
+                if self._parent is not None:
+                    self._parent.mkdir(parents=True, exist_ok=True)
+                parent = None if self._parent is None else str(self._parent)
+                self._root = Path(tempfile.mkdtemp(prefix="corrugate-web-", dir=parent))
+            return self._root
+
+    def create(self) -> tuple[str, Path]:
+        """A new result id and its empty private folder, for a writer to fill."""
+        result_id = uuid.uuid4().hex
+        folder = self.root / result_id
+        folder.mkdir(mode=0o700)
+        with self._lock:
+            self._pending[result_id] = folder
+        return result_id, folder
+
+    def publish(self, result_id: str, paths: Iterable[Path]) -> list[StoredFile]:
+        """Make the files ``paths`` (written into the result's folder) downloadable by name."""
+        with self._lock:
+            folder = self._pending.pop(result_id)
+        files: dict[str, StoredFile] = {}
+        for path in paths:
+            if path.parent != folder or not path.is_file():
+                raise ValueError(f"{path} is not a file of result {result_id}")
+            media = MEDIA_TYPES.get(path.suffix.lower(), "application/octet-stream")
+            files[path.name] = StoredFile(result_id, path.name, path, media)
+        expired: list[Path] = []
+        with self._lock:
+            self._entries[result_id] = _Entry(folder, self._clock(), files)
+            expired = self._evict_locked()
+        for old in expired:
+            shutil.rmtree(old, ignore_errors=True)
+        return list(files.values())
+
+    def make(self, write: Callable[[Path], Iterable[Path]]) -> list[StoredFile]:
+        """Run ``write(folder)`` on a new result's private folder and publish the files it returns;
+        if it fails, the folder and everything in it go."""
+        result_id, folder = self.create()
+        try:
+            return self.publish(result_id, list(write(folder)))
+        except BaseException:
+            self.discard(result_id)
+            raise
+
+    def discard(self, result_id: str) -> None:
+        """Forget a result that failed before it was published and remove its folder."""
+        with self._lock:
+            folder = self._pending.pop(result_id, None)
+            entry = self._entries.pop(result_id, None)
+        for path in (folder, entry.folder if entry else None):
+            if path is not None:
+                shutil.rmtree(path, ignore_errors=True)
+
+    def get(self, result_id: str, name: str) -> StoredFile | None:
+        """The published file ``name`` of result ``result_id``, or None (never a path lookup)."""
+        with self._lock:
+            expired = self._evict_locked()
+            entry = self._entries.get(result_id)
+            found = None if entry is None else entry.files.get(name)
+        for old in expired:
+            shutil.rmtree(old, ignore_errors=True)
+        return found
+
+    def files(self, result_id: str) -> list[StoredFile]:
+        """Every published file of a result (empty if unknown or expired)."""
+        with self._lock:
+            entry = self._entries.get(result_id)
+            return [] if entry is None else list(entry.files.values())
+
+    def __len__(self) -> int:
+        with self._lock:
+            return len(self._entries)
+
+    def close(self) -> None:
+        """Remove every result and the root folder."""
+        with self._lock:
+            self._entries.clear()
+            self._pending.clear()
+            root, self._root = self._root, None
+        if root is not None:
+            shutil.rmtree(root, ignore_errors=True)
+
+    def _evict_locked(self) -> list[Path]:
+        now = self._clock()
+        gone = [k for k, e in self._entries.items() if now - e.created > self.ttl_s]
+        excess = len(self._entries) - len(gone) - self.max_results
+        if excess > 0:
+            alive = [k for k in self._entries if k not in gone]  # insertion order: oldest first
+            gone.extend(alive[:excess])
+        return [self._entries.pop(k).folder for k in gone]

@@ -1,0 +1,64 @@
+"""``corrugate serve``: run the local web app (needs the ``web`` extra).
+
+Registered on :data:`corrugate.cli.app`. FastAPI and uvicorn are imported only when the command
+runs, so the rest of the command line works without them.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from .cli import app
+from .errors import CorrugateError
+
+__all__ = ["LOOPBACK_HOSTS", "serve_cmd"]
+
+#: Hosts that only this machine can reach.
+LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
+
+
+@app.command("serve")
+def serve_cmd(
+    host: Annotated[
+        str, typer.Option(help="Address to listen on; 127.0.0.1 keeps it on this machine.")
+    ] = "127.0.0.1",
+    port: Annotated[int, typer.Option(min=1, max=65535, help="TCP port.")] = 8000,
+    timeout: Annotated[
+        float, typer.Option(min=0.1, help="Longest computation of one request (s).")
+    ] = 30.0,
+) -> None:
+    """Serve the web app and its JSON API (open http://HOST:PORT/, API docs at /docs).
+
+    Example: corrugate serve --port 8000
+    """
+    try:
+        import uvicorn
+
+        from .web import WebSettings, create_app
+        from .web.app import LOOPBACK_NAMES
+    except ImportError as exc:
+        raise CorrugateError(
+            f"the web app needs the 'web' extra ({exc.name} is missing): "
+            "pip install 'corrugate[web]'"
+        ) from None
+    loopback = host in LOOPBACK_HOSTS
+    if not loopback:
+        typer.echo(
+            f"corrugate: warning: serving on {host}: other machines can reach this app",
+            err=True,
+        )
+    # On a loopback address only this machine's names are answered (no DNS rebinding).
+    settings = WebSettings(timeout_s=timeout, allowed_hosts=LOOPBACK_NAMES if loopback else None)
+    shown = f"[{host}]" if ":" in host else host
+    typer.echo(f"corrugate: serving on http://{shown}:{port}/ (API docs at /docs); Ctrl-C stops")
+    # At most 100 open connections (uvicorn answers 503 past that), idle ones closed after 5 s.
+    uvicorn.run(
+        create_app(settings),
+        host=host,
+        port=port,
+        log_level="info",
+        limit_concurrency=100,
+        timeout_keep_alive=5,
+    )

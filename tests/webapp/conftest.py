@@ -1,0 +1,83 @@
+"""Fixtures of the web tests: an in-process client and a real uvicorn server on a free port."""
+
+from __future__ import annotations
+
+import json
+import socket
+import threading
+import time
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+import uvicorn
+from fastapi.testclient import TestClient
+
+from corrugate import Assembly, Layer, analyze, get_material, make_layout
+from corrugate.web import WebSettings, create_app
+from corrugate.web.app import LOOPBACK_NAMES
+
+#: The paper's Table 1, case 1 (EI(0) = 87.84 mN m^2 with the paper's formulas).
+CASE1: dict[str, Any] = {
+    "W": 8,
+    "n": 8,
+    "alpha": 84,
+    "material": "dura-lar",
+    "model": "paper",
+    "eta": [0, 90],
+}
+
+
+def direct(body: dict[str, Any]) -> dict[str, Any]:
+    """What the API must answer for a numeric ``body`` (W, n, alpha, material and optionally W2,
+    n2, layout, model, eta): :func:`corrugate.analyze` called directly on the objects, through
+    JSON."""
+    m = get_material(body.get("material", "dura-lar"))
+    layer1 = Layer(float(body["W"]), int(body["n"]), float(body["alpha"]), m)
+    layer2 = Layer(
+        float(body.get("W2", body["W"])), int(body.get("n2", body["n"])), float(body["alpha"]), m
+    )
+    assembly = Assembly(layer1, layer2, make_layout(body.get("layout", "square")))
+    etas = [float(e) for e in body.get("eta", [0, 90])]
+    result = analyze(assembly, body.get("model", "refined"), etas).to_dict()
+    decoded: dict[str, Any] = json.loads(json.dumps(result))
+    return decoded
+
+
+@pytest.fixture
+def client() -> Iterator[TestClient]:
+    """A client of a fresh app (its own workers and result store), lifespan included."""
+    with TestClient(create_app()) as c:
+        yield c
+
+
+def _wait(condition: Any, what: str, thread: threading.Thread) -> None:
+    for _ in range(1000):  # at most about 10 s
+        if condition():
+            return
+        if not thread.is_alive():
+            break
+        time.sleep(0.01)
+    pytest.fail(f"the test server did not {what}")
+
+
+@pytest.fixture(scope="module")
+def live_server() -> Iterator[str]:
+    """A real uvicorn server on 127.0.0.1 (a free port, bound before it starts) in a thread;
+    yields its base URL and shuts itself down after the module's tests."""
+    sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    sock.bind(("127.0.0.1", 0))
+    port = sock.getsockname()[1]
+    app = create_app(WebSettings(workers=4, max_pending=64, allowed_hosts=LOOPBACK_NAMES))
+    config = uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning", lifespan="on")
+    server = uvicorn.Server(config)
+    thread = threading.Thread(target=server.run, kwargs={"sockets": [sock]}, daemon=True)
+    thread.start()
+    try:
+        _wait(lambda: server.started, "start", thread)
+        yield f"http://127.0.0.1:{port}"
+    finally:
+        server.should_exit = True
+        thread.join(timeout=10)
+        sock.close()
+        assert not thread.is_alive(), "the test server did not stop"

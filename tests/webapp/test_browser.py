@@ -1,0 +1,191 @@
+"""The page in a real browser: Playwright driving Debian's Chromium against a live uvicorn server.
+
+Never downloads a browser: ``/usr/bin/chromium`` (``make system-deps`` installs it). Where it is
+missing the tests are skipped, except in CI (``CI=true``), where they fail. Every request the page
+makes is checked to stay on the local server (the app works offline). Screenshots of each page go
+to ``test-artifacts/`` (gitignored).
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+from urllib.parse import urlsplit
+
+import numpy as np
+import pytest
+
+from corrugate import Assembly, Layer, get_material
+from corrugate.pattern.build import build_pattern
+from corrugate.pattern.folded import folded_mesh
+
+CHROMIUM = Path("/usr/bin/chromium")
+CHROMIUM_ARGS = [
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--no-first-run",
+]
+ARTIFACTS = Path(__file__).resolve().parents[2] / "test-artifacts"
+
+
+def _unavailable(reason: str) -> None:
+    if os.environ.get("CI", "").strip().lower() in ("true", "1", "yes"):
+        pytest.fail(f"{reason} (required in CI)")
+    pytest.skip(reason)
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    if not CHROMIUM.exists():
+        _unavailable(f"{CHROMIUM} not found: run `make system-deps` as root")
+    try:
+        from playwright.sync_api import sync_playwright
+    except ImportError:
+        _unavailable("the playwright package is not installed (pip install -e '.[dev]')")
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=str(CHROMIUM), headless=True, args=CHROMIUM_ARGS)
+        try:
+            yield b
+        finally:
+            b.close()
+
+
+class Watched:
+    """A page with its console errors, uncaught exceptions and any non-local request recorded."""
+
+    def __init__(self, browser: Any, base: str) -> None:
+        self.page = browser.new_page(viewport={"width": 1280, "height": 1000})
+        self.console_errors: list[str] = []
+        self.page_errors: list[str] = []
+        self.external: list[str] = []
+        host = urlsplit(base).netloc
+        self.page.on(
+            "console",
+            lambda m: self.console_errors.append(m.text) if m.type == "error" else None,
+        )
+        self.page.on("pageerror", lambda e: self.page_errors.append(str(e)))
+
+        def guard(route: Any) -> None:
+            url = route.request.url
+            if urlsplit(url).netloc == host or url.startswith(("data:", "blob:")):
+                route.continue_()
+            else:
+                self.external.append(url)
+                route.abort()
+
+        self.page.route("**/*", guard)
+
+    def screenshot(self, name: str) -> Path:
+        ARTIFACTS.mkdir(exist_ok=True)
+        path = ARTIFACTS / name
+        self.page.screenshot(path=str(path), full_page=True)
+        assert path.stat().st_size > 0
+        return path
+
+
+@pytest.mark.parametrize(("ci", "outcome"), [("true", "fail"), ("", "skip"), ("false", "skip")])
+def test_a_missing_browser_fails_in_ci_and_skips_elsewhere(
+    monkeypatch: pytest.MonkeyPatch, ci: str, outcome: str
+) -> None:
+    monkeypatch.setenv("CI", ci)
+    expected = pytest.fail.Exception if outcome == "fail" else pytest.skip.Exception
+    with pytest.raises(expected):
+        _unavailable("no browser")
+
+
+def case1_faces() -> int:
+    a = Assembly.identical(Layer(8, 8, 84, get_material("dura-lar")))
+    _, faces = folded_mesh(a, build_pattern(a).parts)
+    return len(faces)
+
+
+def test_form_analysis_3d_view_and_field_errors(browser: Any, live_server: str) -> None:
+    w = Watched(browser, live_server)
+    page = w.page
+    page.goto(live_server + "/")
+    page.wait_for_selector("form[data-ready='true']")
+    assert page.locator("#material option[value='kapton']").count() == 1  # from /api/materials
+
+    # The paper's Table 1, case 1.
+    page.fill("#W", "8")
+    page.fill("#n", "8")
+    page.fill("#alpha", "84")
+    page.select_option("#material", "dura-lar")
+    page.select_option("#model", "paper")
+    page.fill("#eta", "0 90")
+    page.click("#submit")
+    page.wait_for_selector("#view3d[data-state='ready']", timeout=30_000)
+
+    ei0 = page.text_content("#stiffness tr[data-eta='0'] td[data-quantity='EI_mNm2']")
+    assert ei0 == "87.84"
+    assert "mass" in (page.text_content("#summary") or "")
+    assert "paper-model" in (page.text_content("#warnings") or "")
+    assert page.locator("#layers tbody tr").count() == 2
+
+    canvas = page.locator("#view3d canvas")
+    assert canvas.count() == 1
+    box = canvas.bounding_box()
+    assert box is not None and box["width"] > 100 and box["height"] > 100
+    assert page.get_attribute("#view3d", "data-triangles") == str(case1_faces())
+    # Something was drawn: the canvas is not one flat colour.
+    import matplotlib.image
+
+    pixels = matplotlib.image.imread(io.BytesIO(canvas.screenshot()), format="png")[..., :3]
+    assert np.ptp(pixels.reshape(-1, 3), axis=0).max() > 0.2
+    assert page.locator("#downloads a[download='assembly.glb']").count() == 1
+
+    w.screenshot("web-analysis.png")
+    assert w.console_errors == []
+    assert w.page_errors == []
+    assert w.external == []
+
+    # A bad value: the message appears beside its field.
+    page.fill("#alpha", "190")
+    page.click("#submit")
+    page.wait_for_selector("form[data-state='error']")
+    message = page.text_content("#error-alpha") or ""
+    assert "alpha = 190" in message and "0 < alpha < 180" in message
+    assert page.get_attribute("#alpha", "aria-invalid") == "true"
+    beside = page.evaluate(
+        "() => document.getElementById('error-alpha').parentElement"
+        " === document.getElementById('alpha').parentElement"
+    )
+    assert beside is True
+    assert page.is_visible("#error-alpha")
+    assert (page.text_content("#error-body") or "") == ""
+    assert page.is_hidden("#results") and page.is_hidden("#view")  # no stale answer on show
+    w.screenshot("web-error.png")
+    assert w.page_errors == []
+    # The only console message is the browser's own note of the 422 answer.
+    assert all("422" in m for m in w.console_errors), w.console_errors
+    assert w.external == []
+
+    # Units in the form and a layer-2 error that lands beside its (folded-away) field.
+    page.fill("#alpha", "1.4661 rad")
+    page.click("#layer2 summary")  # open the layer 2 block, fill, and fold it away again
+    page.fill("#alpha2", "200 deg")
+    page.click("#layer2 summary")
+    assert page.evaluate("() => document.getElementById('layer2').open") is False
+    page.click("#submit")
+    page.wait_for_selector("form[data-state='error']")
+    assert "alpha2 = 200" in (page.text_content("#error-alpha2") or "")
+    assert page.evaluate("() => document.getElementById('layer2').open") is True
+    assert (page.text_content("#error-alpha") or "") == ""
+    page.close()
+
+
+def test_openapi_page_renders_offline(browser: Any, live_server: str) -> None:
+    w = Watched(browser, live_server)
+    w.page.goto(live_server + "/docs")
+    w.page.wait_for_selector(".opblock-summary-path[data-path='/api/analyze']", timeout=30_000)
+    assert "corrugate" in (w.page.text_content(".swagger-ui .info") or "")
+    w.screenshot("web-docs.png")
+    assert w.external == []
+    assert w.page_errors == []
+    assert w.console_errors == []
+    w.page.close()
