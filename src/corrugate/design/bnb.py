@@ -1,0 +1,213 @@
+"""Vectorised branch and bound that certifies the global optimum of a :class:`Problem`.
+
+The search space of one candidate sheet pair is a box in (n1, W1, alpha1, n2, W2, alpha2); n is
+integer and W, alpha are continuous or gridded (identical layers share layer 1's coordinates).
+Every iteration treats all open boxes at once:
+
+1. bound every constrained quantity and the objective over each box
+   (:func:`~.quantities.box_bounds`, rigorous);
+2. drop a box when some constraint cannot be met anywhere in it, or when its objective bound is
+   no better than the incumbent (for mass, the bound is the mass at the box's lower corner);
+3. evaluate candidate points of each remaining box exactly with ``evaluate`` (its lower corner,
+   its upper corner and its centre, snapped to the grid) and keep the best feasible one;
+4. close boxes that are single grid points; split the others in two along their relatively
+   widest coordinate (grid coordinates between grid values).
+
+Certificate. Every design of the original box lies in exactly one box that was either (a) dropped
+because a rigorous bound shows it infeasible or no better than the incumbent, (b) a single grid
+point evaluated exactly, or (c) still open when the loop stops. The loop stops when no box is
+open (gridded problems: the optimum is exact, gap 0) or when every open box's bound is within the
+relative tolerance ``gap_rtol`` of the incumbent (continuous problems: no design is better than
+the incumbent by more than ``gap_rtol``, proved). If the iteration limit is hit first, the result
+is not certified and reports the remaining gap. Interval bounds are rounded outward. On a grid,
+points and boxes are judged with the relative slack :data:`~.problem.FEAS_RTOL` (a grid value may
+sit exactly on a bound, up to floating-point noise); with continuous variables, with no slack, so
+the design meets every bound exactly (margin >= 0). Points and boxes always use the same rule.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from .problem import FEAS_RTOL, Candidate, DesignVariable, Problem
+from .quantities import Tables, box_bounds, point_values
+
+__all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound"]
+
+FloatArray = NDArray[np.float64]
+
+#: Relative optimality gap proved for continuous variables.
+GAP_RTOL = 1e-9
+MAX_ITERATIONS = 400
+MAX_BOXES = 200_000
+
+
+@dataclass(frozen=True)
+class BnBResult:
+    """Outcome for one candidate pair: the best point found (or None), its objective value, the
+    proven bound on the optimum (``bound``), whether it is certified, and search statistics."""
+
+    point: dict[str, float] | None
+    value: float
+    bound: float
+    certified: bool
+    boxes: int
+    iterations: int
+
+    @property
+    def gap(self) -> float:
+        """Relative gap |value - bound| / |value| (0 when exact; inf without a point)."""
+        if self.point is None:
+            return 0.0 if self.certified else math.inf
+        return abs(self.value - self.bound) / max(abs(self.value), 1e-300)
+
+
+@dataclass(frozen=True)
+class _Dim:
+    name: str
+    var: DesignVariable  # n is a gridded variable with step 1
+
+
+def _dims(problem: Problem, n_fixed: tuple[int, int] | None) -> list[_Dim]:
+    n_lo, n_hi = (problem.n_lo, problem.n_hi) if n_fixed is None else n_fixed
+    n_var = DesignVariable(float(n_lo), float(n_hi), 1.0)
+    layer = [("n", n_var), ("W", problem.W), ("a", problem.alpha)]
+    layers = (1,) if problem.identical else (1, 2)
+    return [_Dim(f"{k}{i}", v) for i in layers for k, v in layer]
+
+
+def _snap(v: FloatArray, var: DesignVariable, up: bool) -> FloatArray:
+    """Grid value at or below (above if ``up``) v; v itself for a continuous variable."""
+    if var.step is None:
+        return v
+    k = (v - var.lo) / var.step
+    k = np.ceil(k - 1e-9) if up else np.floor(k + 1e-9)
+    return np.asarray(var.lo + var.step * k)
+
+
+def _threshold(best: float, tol: float) -> float:
+    """Boxes whose bound is below this may still hold a better design."""
+    return best if not math.isfinite(best) else best - tol * abs(best)
+
+
+def _full(x: dict[str, FloatArray], identical: bool) -> dict[str, FloatArray]:
+    if identical:
+        return {**x, "n2": x["n1"], "W2": x["W1"], "a2": x["a1"]}
+    return x
+
+
+def branch_and_bound(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    *,
+    incumbent: float | None = None,
+    n_fixed: tuple[int, int] | None = None,
+    tables: Tables | None = None,
+    gap_rtol: float = GAP_RTOL,
+) -> BnBResult:
+    """Optimise ``problem.objective`` over sheets (c1, c2), certifying the result (see module).
+
+    ``incumbent``: an objective value already reached elsewhere (another sheet pair), used only
+    for pruning; the result then holds a point only if it beats it. ``n_fixed``: restrict n
+    (n1 for independent layers) to a range.
+    """
+    tables = tables or Tables(problem)
+    maximize = problem.objective.sense == "max"
+    sign = -1.0 if maximize else 1.0  # minimise sign * objective
+    obj_key = problem.objective.quantity
+    dims = _dims(problem, n_fixed)
+    cons = problem.constraints
+    needed = {c.quantity for c in cons} | {obj_key}
+    exact = all(d.var.gridded for d in dims)
+    tol = 0.0 if exact else gap_rtol
+    feas_rtol = FEAS_RTOL if exact else 0.0
+
+    lo = np.array([[d.var.lo for d in dims]])
+    hi = np.array([[d.var.top for d in dims]])
+    span0 = np.maximum(hi[0] - lo[0], 1e-300)
+    best_val = math.inf if incumbent is None else sign * incumbent
+    best_pt: dict[str, float] | None = None
+    boxes = 0
+    it = 0
+    global_bound = math.inf
+    while len(lo) and it < MAX_ITERATIONS:
+        it += 1
+        boxes += len(lo)
+        xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
+        xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
+        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, needed)
+        keep = np.ones(len(lo), dtype=bool)
+        for c in cons:
+            q_lo, q_hi = bnd[c.quantity]
+            keep &= c.satisfied(q_hi if c.sense == "min" else q_lo, rtol=feas_rtol)
+        o_lo, o_hi = bnd[obj_key]
+        obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
+        keep &= obj_bound < _threshold(best_val, tol)
+        lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
+        if not len(lo):
+            break
+        # candidate points: lower corner, upper corner, centre (snapped to the grid)
+        mid = np.stack(
+            [_snap(0.5 * (lo[:, i] + hi[:, i]), d.var, up=False) for i, d in enumerate(dims)],
+            axis=1,
+        )
+        mid = np.clip(mid, lo, hi)
+        pts = np.concatenate([lo, hi, mid])
+        x = _full({d.name: pts[:, i] for i, d in enumerate(dims)}, problem.identical)
+        vals = point_values(problem, c1, c2, x, tables)
+        ok = np.ones(len(pts), dtype=bool)
+        for c in cons:  # continuous: exact feasibility (margins >= 0); grids: FEAS_RTOL
+            ok &= c.satisfied(vals[c.quantity], rtol=feas_rtol)
+        f = np.where(ok, sign * vals[obj_key], np.inf)
+        k = int(np.argmin(f))
+        if f[k] < best_val:
+            best_val = float(f[k])
+            best_pt = {name: float(v[k]) for name, v in x.items()}
+        keep = obj_bound < _threshold(best_val, tol)
+        lo, hi = lo[keep], hi[keep]
+        # close single grid points; split the rest
+        width = (hi - lo) / span0
+        point = np.all(width <= 0, axis=1)
+        lo, hi = lo[~point], hi[~point]
+        if not len(lo):
+            break
+        if len(lo) > MAX_BOXES:
+            break
+        j = np.argmax(width[~point], axis=1)
+        rows = np.arange(len(lo))
+        a, b = lo[rows, j], hi[rows, j]
+        cut_lo = 0.5 * (a + b)
+        cut_hi = cut_lo.copy()
+        for i, d in enumerate(dims):
+            sel = j == i
+            if d.var.step is not None and np.any(sel):
+                k_lo = np.round((a[sel] - d.var.lo) / d.var.step)
+                k_hi = np.round((b[sel] - d.var.lo) / d.var.step)
+                k_mid = np.floor(0.5 * (k_lo + k_hi))
+                cut_lo[sel] = d.var.lo + d.var.step * k_mid
+                cut_hi[sel] = d.var.lo + d.var.step * (k_mid + 1)
+        left_hi = hi.copy()
+        left_hi[rows, j] = cut_lo
+        right_lo = lo.copy()
+        right_lo[rows, j] = cut_hi
+        lo = np.concatenate([lo, right_lo])
+        hi = np.concatenate([left_hi, hi])
+    if len(lo):  # stopped early: the bound is the best open box's
+        xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
+        xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
+        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, {obj_key})
+        o_lo, o_hi = bnd[obj_key]
+        global_bound = float(np.min(sign * (o_hi if maximize else o_lo)))
+        certified = False
+    else:
+        certified = True
+        global_bound = best_val if best_pt is not None else math.inf
+        if best_pt is not None and not exact:
+            global_bound = best_val - gap_rtol * abs(best_val)
+    value = sign * best_val if best_pt is not None else math.nan
+    return BnBResult(best_pt, value, sign * min(global_bound, best_val), certified, boxes, it)

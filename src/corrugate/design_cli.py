@@ -1,0 +1,153 @@
+"""``corrugate design SPEC.toml``: the certified lightest design for a spec, explained.
+
+Registered on :data:`corrugate.cli.app`. Exit codes: 0 a design was found, 1 the spec is
+infeasible (the diagnosis says why) or could not be certified, 2 a user error (one line naming
+the spec field, e.g. ``constraints.side.min``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from .cli import app
+from .design import Problem, Solution, solve
+from .errors import InputError
+from .spec import load_spec
+
+__all__ = ["design_cmd", "write_atomic"]
+
+
+def write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in the same directory, then rename:
+    readers never see a half-written file, and nothing is left behind on failure."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual permissions
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _fmt(x: float | None, digits: int = 5) -> str:
+    return "-" if x is None else f"{x:.{digits}g}"
+
+
+def _print_solution(sol: Solution, console: Console) -> None:
+    p = sol.problem
+    cert = "certified" if sol.certified else "NOT certified"
+    if sol.status != "optimal":
+        console.print(
+            f"[bold red]{p.name}: {sol.status}[/bold red] ({cert}): no design meets "
+            "every constraint."
+        )
+        for diag in sol.diagnosis:
+            console.print(f"  - {diag.message}")
+        return
+    assert sol.assembly is not None
+    assert sol.analysis is not None
+    gap = "exact (every variable on its grid)" if p.gridded else f"gap <= {sol.gap:.1e}"
+    console.print(
+        f"[bold]{p.name}[/bold]: optimal, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
+    )
+    t = Table(title="design", title_justify="left")
+    for col in ("layer", "material", "t mm", "W mm", "n", "alpha deg"):
+        t.add_column(col, justify="right")
+    for i, layer in enumerate(sol.assembly.layers):
+        t.add_row(
+            str(i + 1),
+            layer.material.id,
+            _fmt(layer.t),
+            _fmt(layer.W, 6),
+            str(layer.n),
+            _fmt(layer.alpha_deg, 6),
+        )
+    console.print(t)
+    a = sol.assembly
+    console.print(
+        f"extent {a.Lx:.2f} x {a.Ly:.2f} mm, folded thickness {a.thickness:.2f} mm, "
+        f"mass {sol.analysis.mass.total:.4f} g"
+    )
+    s = Table(title="stiffness", title_justify="left")
+    for col in ("eta deg", "K N/mm", "D N mm", "EI N mm^2", "EI mN m^2"):
+        s.add_column(col, justify="right")
+    for st in sol.analysis.stiffness:
+        s.add_row(_fmt(st.eta_deg), _fmt(st.K), _fmt(st.D), _fmt(st.EI), f"{st.EI / 1000:.2f}")
+    console.print(s)
+    c = Table(
+        title="constraints (binding: relaxing it alone allows a better design)",
+        title_justify="left",
+    )
+    for col in ("constraint", "value", "bound", "margin", "unit", "binding"):
+        c.add_column(col, justify="right")
+    for r in sol.constraints:
+        op = ">=" if r.sense == "min" else "<="
+        c.add_row(
+            r.name,
+            _fmt(r.value),
+            f"{op} {_fmt(r.bound)}",
+            _fmt(r.margin, 3),
+            r.unit,
+            "yes" if r.binding else ("?" if r.binding is None else "no"),
+        )
+    console.print(c)
+    if sol.runner_ups:
+        u = Table(
+            title=f"runner-ups (best for each n; {p.objective.sense}imise {p.objective.quantity})",
+            title_justify="left",
+        )
+        for col in ("n", "W mm", "alpha deg", "objective"):
+            u.add_column(col, justify="right")
+        for ru in sol.runner_ups:
+            lay = ru.layers[0]
+            mark = " *" if ru.objective == sol.objective else ""
+            u.add_row(
+                str(ru.n),
+                _fmt(float(lay["W_mm"]), 6),  # type: ignore[arg-type]
+                _fmt(float(lay["alpha_deg"]), 6),  # type: ignore[arg-type]
+                _fmt(ru.objective, 6) + mark,
+            )
+        console.print(u)
+    for w in sol.warnings:
+        console.print(f"[yellow]warning[/yellow] ({w['code']}): {w['message']}")
+
+
+@app.command("design")
+def design_cmd(
+    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    out: Annotated[Path | None, typer.Option("--out", help="Directory for design.json.")] = None,
+) -> None:
+    """The certified lightest OADLC design that meets a spec, with its explanation.
+
+    Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
+    """
+    problem = Problem.from_spec(load_spec(spec))
+    sol = solve(problem)
+    payload = sol.to_dict()
+    text = json.dumps(payload, indent=2)
+    if out is not None:
+        if out.exists() and not out.is_dir():
+            raise InputError("--out", str(out), "a directory", reason="is a file")
+        write_atomic(out / "design.json", text + "\n")
+    if as_json:
+        typer.echo(text)
+    else:
+        _print_solution(sol, Console())
+        if out is not None:
+            Console().print(f"wrote {out / 'design.json'}")
+    if sol.status != "optimal" or not sol.certified:
+        raise typer.Exit(1)
