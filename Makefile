@@ -28,6 +28,7 @@ demo: $(VENV)/.installed
 	$(BIN)/corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper \
 		--eta 0 --eta 90 --json > out/case1_analysis.json.tmp && mv out/case1_analysis.json.tmp out/case1_analysis.json
 	@echo "wrote out/case1_analysis.json"
+	$(BIN)/corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
 
 # System packages the tests need (installed when root and missing; none are needed yet).
 system-deps:

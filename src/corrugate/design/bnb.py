@@ -10,8 +10,9 @@ Every iteration treats all open boxes at once:
    no better than the incumbent (for mass, the bound is the mass at the box's lower corner);
 3. evaluate candidate points of each remaining box exactly with ``evaluate`` (its lower corner,
    its upper corner and its centre, snapped to the grid) and keep the best feasible one;
-4. close boxes that are single grid points; split the others in two along their relatively
-   widest coordinate (grid coordinates between grid values).
+4. close boxes that are single grid points; halve the others along their relatively widest
+   coordinate (and, while there are few boxes, along every coordinate nearly as wide), cutting
+   grid coordinates between two grid values.
 
 Certificate. Every design of the original box lies in exactly one box that was either (a) dropped
 because a rigorous bound shows it infeasible or no better than the incumbent, (b) a single grid
@@ -44,6 +45,8 @@ FloatArray = NDArray[np.float64]
 GAP_RTOL = 1e-9
 MAX_ITERATIONS = 400
 MAX_BOXES = 200_000
+#: Below this many open boxes, split along several coordinates at once (fewer iterations).
+MULTI_SPLIT_BELOW = 2_000
 
 
 @dataclass(frozen=True)
@@ -87,6 +90,40 @@ def _snap(v: FloatArray, var: DesignVariable, up: bool) -> FloatArray:
     k = (v - var.lo) / var.step
     k = np.ceil(k - 1e-9) if up else np.floor(k + 1e-9)
     return np.asarray(var.lo + var.step * k)
+
+
+def _split(
+    lo: FloatArray, hi: FloatArray, width: FloatArray, dims: list[_Dim], multi: bool
+) -> tuple[FloatArray, FloatArray]:
+    """Halve each box along its relatively widest coordinate, and (``multi``) also along every
+    coordinate at least half as wide, so few boxes become many in few iterations. Grid
+    coordinates are cut between two grid values."""
+    widest = width.max(axis=1, keepdims=True)
+    if multi:
+        split = (width >= 0.5 * widest) & (width > 0)
+    else:
+        split = np.zeros(width.shape, dtype=bool)
+        split[np.arange(len(width)), np.argmax(width, axis=1)] = True
+    for i, d in enumerate(dims):
+        sel = split[:, i]
+        if not sel.any():
+            continue
+        a, b = lo[sel, i], hi[sel, i]
+        if d.var.step is None:
+            cut_lo = cut_hi = 0.5 * (a + b)
+        else:
+            k_lo = np.round((a - d.var.lo) / d.var.step)
+            k_hi = np.round((b - d.var.lo) / d.var.step)
+            k_mid = np.floor(0.5 * (k_lo + k_hi))
+            cut_lo = d.var.lo + d.var.step * k_mid
+            cut_hi = d.var.lo + d.var.step * (k_mid + 1)
+        left_hi, right_lo = hi[sel].copy(), lo[sel].copy()
+        left_hi[:, i] = cut_lo
+        right_lo[:, i] = cut_hi
+        lo = np.concatenate([lo[~sel], lo[sel], right_lo])
+        hi = np.concatenate([hi[~sel], left_hi, hi[sel]])
+        split = np.concatenate([split[~sel], split[sel], split[sel]])
+    return lo, hi
 
 
 def _threshold(best: float, tol: float) -> float:
@@ -178,25 +215,7 @@ def branch_and_bound(
             break
         if len(lo) > MAX_BOXES:
             break
-        j = np.argmax(width[~point], axis=1)
-        rows = np.arange(len(lo))
-        a, b = lo[rows, j], hi[rows, j]
-        cut_lo = 0.5 * (a + b)
-        cut_hi = cut_lo.copy()
-        for i, d in enumerate(dims):
-            sel = j == i
-            if d.var.step is not None and np.any(sel):
-                k_lo = np.round((a[sel] - d.var.lo) / d.var.step)
-                k_hi = np.round((b[sel] - d.var.lo) / d.var.step)
-                k_mid = np.floor(0.5 * (k_lo + k_hi))
-                cut_lo[sel] = d.var.lo + d.var.step * k_mid
-                cut_hi[sel] = d.var.lo + d.var.step * (k_mid + 1)
-        left_hi = hi.copy()
-        left_hi[rows, j] = cut_lo
-        right_lo = lo.copy()
-        right_lo[rows, j] = cut_hi
-        lo = np.concatenate([lo, right_lo])
-        hi = np.concatenate([left_hi, hi])
+        lo, hi = _split(lo, hi, width[~point], dims, multi=len(lo) < MULTI_SPLIT_BELOW)
     if len(lo):  # stopped early: the bound is the best open box's
         xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
         xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)

@@ -84,8 +84,29 @@ class Interval:
     def __rsub__(self, other: Interval | ArrayLike) -> Interval:
         return Interval.of(other) - self
 
+    @classmethod
+    def _raw(cls, lo: FloatArray, hi: FloatArray) -> Interval:
+        """An interval from arrays that already broadcast (no copy, no checks)."""
+        out = cls.__new__(cls)
+        out.lo, out.hi = lo, hi
+        return out
+
     def __mul__(self, other: Interval | ArrayLike) -> Interval:
-        o = Interval.of(other)
+        if not isinstance(other, Interval):
+            c = np.asarray(
+                other.item() if isinstance(other, np.ndarray) and other.dtype == object else other,
+                dtype=np.float64,
+            )
+            if c.ndim == 0 and math.isfinite(float(c)):  # scale by a number
+                cv = float(c)
+                lo, hi = (self.lo, self.hi) if cv >= 0 else (self.hi, self.lo)
+                return Interval._raw(_down(lo * cv), _up(hi * cv))
+            other = Interval(c)
+        o = other
+        if np.all(self.lo >= 0) and np.all(o.lo >= 0):  # both non-negative: the usual case here
+            lo, hi = self.lo * o.lo, self.hi * o.hi
+            if not np.isnan(hi).any():
+                return Interval._raw(_down(lo), _up(hi))
         with np.errstate(invalid="ignore"):
             p = np.stack(
                 np.broadcast_arrays(self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi)
