@@ -406,7 +406,15 @@ def test_geometric_conflict_is_diagnosed() -> None:
 # -- independent layers, several sheets, other objectives -------------------------------------
 
 
-def test_independent_rectangle_equals_exhaustive_pairs() -> None:
+PENTAGON = [[0, 0], [1, 0], [1, 0.6], [0.5, 1], [0, 0.6]]
+
+
+@pytest.mark.parametrize(
+    "layout",
+    [{"shape": "rectangle"}, {"shape": "polygon", "vertices": PENTAGON}],
+    ids=["rectangle", "pentagon"],
+)
+def test_independent_layers_equal_exhaustive_pairs(layout: dict[str, Any]) -> None:
     d = _spec(
         "refined",
         "square",
@@ -418,7 +426,7 @@ def test_independent_rectangle_equals_exhaustive_pairs() -> None:
         250,
         [("flexural_rigidity", 40_000, 0.0), ("flexural_rigidity", 15_000, 90.0)],
     )
-    d["layout"] = {"shape": "rectangle"}
+    d["layout"] = layout
     c = d["constraints"]
     c["side_x"] = {"min": 40.0, "max": 90.0}
     c["side_y"] = {"min": 20.0, "max": 60.0}
@@ -437,7 +445,14 @@ def test_independent_rectangle_equals_exhaustive_pairs() -> None:
     l1 = LayerArrays(mat.E, mat.nu, 0.125, W1, n1.astype(int), A1, mat.density)
     l2 = LayerArrays(mat.E, mat.nu, 0.125, W2, n2.astype(int), A2, mat.density)
     ok, mass = _feasible(
-        d, l1, l2, make_layout("rectangle"), n1.astype(int), n2.astype(int), W1, W2
+        d,
+        l1,
+        l2,
+        make_layout(layout["shape"], layout.get("vertices")),
+        n1.astype(int),
+        n2.astype(int),
+        W1,
+        W2,
     )
     assert ok.any()
     assert sol.mass == pytest.approx(float(mass[ok].min()), rel=1e-12)

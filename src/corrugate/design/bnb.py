@@ -42,7 +42,7 @@ __all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound"]
 FloatArray = NDArray[np.float64]
 
 #: Relative optimality gap proved for continuous variables.
-GAP_RTOL = 1e-9
+GAP_RTOL = 1e-12
 MAX_ITERATIONS = 400
 MAX_BOXES = 200_000
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
