@@ -1,8 +1,8 @@
-"""``corrugate design SPEC.toml``: the certified lightest design for a spec, explained.
+"""``corrugate design`` and ``corrugate pareto``: certified designs from a spec, explained.
 
-Registered on :data:`corrugate.cli.app`. Exit codes: 0 a design was found, 1 the spec is
-infeasible (the diagnosis says why) or could not be certified, 2 a user error (one line naming
-the spec field, e.g. ``constraints.side.min``).
+Registered on :data:`corrugate.cli.app`. Exit codes: 0 success, 1 the spec is infeasible (the
+diagnosis says why) or could not be certified, 2 a user error (one line naming the spec field,
+e.g. ``constraints.side.min``).
 """
 
 from __future__ import annotations
@@ -19,10 +19,12 @@ from rich.table import Table
 
 from .cli import app
 from .design import Problem, Solution, solve
+from .design.pareto import ParetoFront, pareto_front
 from .errors import InputError
 from .spec import load_spec
+from .units import parse_quantity
 
-__all__ = ["design_cmd", "write_atomic"]
+__all__ = ["design_cmd", "pareto_cmd", "write_atomic"]
 
 
 def write_atomic(path: Path, text: str) -> None:
@@ -150,4 +152,87 @@ def design_cmd(
         if out is not None:
             Console().print(f"wrote {out / 'design.json'}")
     if sol.status != "optimal" or not sol.certified:
+        raise typer.Exit(1)
+
+
+def _plot(front: ParetoFront, title: str, path: Path) -> bool:
+    """Write the front as a PNG (mass against stiffness); False if matplotlib is missing."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return False
+    fig, ax = plt.subplots(figsize=(6, 4))
+    s = [p.stiffness for p in front.points]
+    m = [p.mass for p in front.points]
+    if front.exact:
+        ax.step(s, m, where="pre", color="0.6", lw=1)
+    else:
+        ax.plot(s, m, color="0.6", lw=1)
+    ax.plot(s, m, "o", ms=3)
+    ax.set_xlabel(f"{front.quantity} [{front.unit}]")
+    ax.set_ylabel("lightest mass [g]")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".png", dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=120)
+        os.replace(tmp, path)
+    finally:
+        Path(tmp).unlink(missing_ok=True)
+        plt.close(fig)
+    return True
+
+
+@app.command("pareto")
+def pareto_cmd(
+    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
+    vs: Annotated[
+        str, typer.Option("--vs", help="flexural_rigidity | bending_stiffness | inplane_stiffness")
+    ] = "flexural_rigidity",
+    eta: Annotated[str, typer.Option(help="Direction of the stiffness (deg).")] = "0",
+    points: Annotated[int, typer.Option(help="Points on a continuous front.")] = 25,
+    max_points: Annotated[int, typer.Option(help="Cap on a gridded (exact) front.")] = 500,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Directory for pareto.csv and pareto.png.")
+    ] = None,
+) -> None:
+    """The exact mass-versus-stiffness Pareto front of a spec (each point a certified optimum).
+
+    Example: corrugate pareto examples/blimp_gripper.toml --vs flexural_rigidity --out out/p
+    """
+    kinds = ("flexural_rigidity", "bending_stiffness", "inplane_stiffness")
+    if vs not in kinds:
+        raise InputError("--vs", repr(vs), "one of " + ", ".join(kinds), reason="is unknown")
+    if points < 2:
+        raise InputError("--points", points, "an integer >= 2")
+    eta_deg = parse_quantity(eta, "deg", "--eta")
+    problem = Problem.from_spec(load_spec(spec))
+    front = pareto_front(problem, vs, eta_deg, points=points, max_points=max_points)
+    text = front.csv()
+    console = Console(stderr=True)
+    if out is None:
+        typer.echo(text, nl=False)
+    else:
+        if out.exists() and not out.is_dir():
+            raise InputError("--out", str(out), "a directory", reason="is a file")
+        write_atomic(out / "pareto.csv", text)
+        console.print(f"wrote {out / 'pareto.csv'}")
+        if _plot(front, f"{problem.name}: Pareto front", out / "pareto.png"):
+            console.print(f"wrote {out / 'pareto.png'}")
+        else:
+            console.print(
+                "[yellow]warning[/yellow]: matplotlib is not installed (extra 'fab'); "
+                "no plot written"
+            )
+    kind = "exact staircase" if front.exact else f"{len(front.points)} sampled levels"
+    note = " (truncated at --max-points)" if front.truncated else ""
+    console.print(
+        f"{len(front.points)} points, {kind}{note}, every point certified: {front.certified}"
+    )
+    if not front.points or not front.certified:
         raise typer.Exit(1)

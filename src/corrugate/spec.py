@@ -318,7 +318,8 @@ class ConstraintsSpec(_Strict):
 
 
 class ObjectiveSpec(_Strict):
-    """``minimize = "mass"`` (default) or ``maximize = <stiffness kind>`` at ``eta``."""
+    """``minimize = "mass"`` (the default when neither is given) or ``maximize = <stiffness
+    kind>`` at ``eta`` (then a ``constraints.mass`` budget is usually wanted)."""
 
     minimize: Literal["mass"] | None = None
     maximize: Literal["flexural_rigidity", "bending_stiffness", "inplane_stiffness"] | None = None
@@ -489,12 +490,12 @@ def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
         where = "material" if spec.material is not None else f"materials[{i}]"
         _check_material(where, m)
     o = spec.objective
-    if (o.minimize is None) == (o.maximize is None):
+    if o.minimize is not None and o.maximize is not None:  # neither: minimise mass
         raise SpecError(
-            "objective",
-            "{}" if o.minimize is None else "both",
-            "exactly one of minimize = 'mass' or maximize = '<stiffness>'",
-            reason="is ambiguous" if o.minimize is not None else "is missing",
+            "objective.maximize",
+            repr(o.maximize),
+            "either minimize = 'mass' or maximize = '<stiffness>', not both",
+            reason="conflicts with objective.minimize",
         )
 
 
