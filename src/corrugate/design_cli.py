@@ -1,4 +1,4 @@
-"""``corrugate design`` and ``corrugate pareto``: certified designs from a spec, explained.
+"""``corrugate design``, ``pareto`` and ``tolerance``: certified designs from a spec, explained.
 
 Registered on :data:`corrugate.cli.app`. Exit codes: 0 success, 1 the spec is infeasible (the
 diagnosis says why) or could not be certified, 2 a user error (one line naming the spec field,
@@ -20,11 +20,12 @@ from rich.table import Table
 from .cli import app
 from .design import Problem, Solution, solve
 from .design.pareto import ParetoFront, pareto_front
+from .design.tolerance import Tolerances, monte_carlo
 from .errors import InputError
 from .spec import load_spec
 from .units import parse_quantity
 
-__all__ = ["design_cmd", "pareto_cmd", "write_atomic"]
+__all__ = ["design_cmd", "pareto_cmd", "tolerance_cmd", "write_atomic"]
 
 
 def write_atomic(path: Path, text: str) -> None:
@@ -236,3 +237,82 @@ def pareto_cmd(
     )
     if not front.points or not front.certified:
         raise typer.Exit(1)
+
+
+def _relative(value: str, field: str) -> float:
+    """'5%' or '0.05' -> 0.05."""
+    text = value.strip()
+    try:
+        x = float(text[:-1]) / 100 if text.endswith("%") else float(text)
+    except ValueError:
+        raise InputError(
+            field,
+            repr(value),
+            "a fraction such as 0.05 or a percentage such as '5%'",
+            reason="cannot be read",
+        ) from None
+    if not 0 <= x < 1:
+        raise InputError(field, value, "0 <= tolerance < 100 %")
+    return x
+
+
+@app.command("tolerance")
+def tolerance_cmd(
+    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); its optimum is analysed.")],
+    samples: Annotated[int, typer.Option(help="Monte Carlo samples.")] = 10_000,
+    seed: Annotated[int, typer.Option(help="Random seed.")] = 0,
+    W_tol: Annotated[str, typer.Option("--W-tol", help="1-sigma error of W (mm).")] = "0.1 mm",
+    alpha_tol: Annotated[
+        str, typer.Option("--alpha-tol", help="1-sigma error of alpha (deg).")
+    ] = "2 deg",
+    t_tol: Annotated[str, typer.Option("--t-tol", help="1-sigma relative error of t.")] = "5%",
+    E_tol: Annotated[str, typer.Option("--E-tol", help="1-sigma relative error of E.")] = "10%",
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+) -> None:
+    """Monte Carlo of the certified design of a spec over manufacturing and material tolerances:
+    stiffness distribution and the probability that the spec is still met.
+
+    Example: corrugate tolerance examples/blimp_gripper.toml --alpha-tol "2 deg" --E-tol 10%
+    """
+    if samples < 2:
+        raise InputError("--samples", samples, "an integer >= 2")
+    tol = Tolerances(
+        W=parse_quantity(W_tol, "mm", "--W-tol"),
+        alpha=parse_quantity(alpha_tol, "deg", "--alpha-tol"),
+        t_rel=_relative(t_tol, "--t-tol"),
+        E_rel=_relative(E_tol, "--E-tol"),
+    )
+    if tol.W < 0 or tol.alpha < 0:
+        raise InputError("--W-tol" if tol.W < 0 else "--alpha-tol", "negative", ">= 0")
+    problem = Problem.from_spec(load_spec(spec))
+    sol = solve(problem, explain=False)
+    if sol.assembly is None:
+        raise InputError("spec", str(spec), "a feasible spec", reason=f"is {sol.status}")
+    report = monte_carlo(problem, sol, tol, samples, seed)
+    if as_json:
+        design = sol.to_dict()["design"]
+        typer.echo(json.dumps({"design": design, **report.as_dict()}, indent=2))
+        return
+    console = Console()
+    lay = sol.assembly.layer1
+    console.print(
+        f"[bold]{problem.name}[/bold]: certified design W = {lay.W:.6g} mm, n = "
+        f"{lay.n}, alpha = {lay.alpha_deg:.6g} deg; {samples} samples, 1-sigma "
+        f"W {tol.W:g} mm, alpha {tol.alpha:g} deg, t {100 * tol.t_rel:g} %, "
+        f"E {100 * tol.E_rel:g} %"
+    )
+    t = Table(title="quantities", title_justify="left")
+    for col in ("quantity", "unit", "nominal", "mean", "sd", "5 %", "50 %", "95 %"):
+        t.add_column(col, justify="right")
+    for s in report.stats:
+        t.add_row(
+            s.quantity, s.unit, *(_fmt(v) for v in (s.nominal, s.mean, s.sd, s.q05, s.q50, s.q95))
+        )
+    console.print(t)
+    c = Table(title="probability that each constraint holds", title_justify="left")
+    c.add_column("constraint")
+    c.add_column("P", justify="right")
+    for name, p in report.probabilities:
+        c.add_row(name, f"{100 * p:.1f} %")
+    c.add_row("[bold]all[/bold]", f"[bold]{100 * report.p_all:.1f} %[/bold]")
+    console.print(c)

@@ -132,9 +132,15 @@ class Tables:
         return table.bounds(n, n)[0]
 
 
-def _layers(cand: Candidate, n: FloatArray, W: FloatArray, a: FloatArray) -> LayerArrays:
+def _layers(
+    cand: Candidate, n: FloatArray, W: FloatArray, a: FloatArray, x: Arrays, i: int
+) -> LayerArrays:
+    """Layer ``i`` at the points; ``x`` may override E (MPa) and t (mm) per point as
+    ``E{i}`` and ``t{i}`` (used by the tolerance analysis)."""
     m = cand.material
-    return LayerArrays(m.E, m.nu, cand.t, W, n.astype(np.int64), a, m.density)
+    E = x[f"E{i}"][:, None] if f"E{i}" in x else m.E
+    t = x[f"t{i}"][:, None] if f"t{i}" in x else cand.t
+    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), a, m.density)
 
 
 def point_values(
@@ -142,8 +148,8 @@ def point_values(
 ) -> dict[str, FloatArray]:
     """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``."""
     etas = np.asarray(problem.etas or (0.0,), dtype=np.float64)
-    l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None])
-    l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None])
+    l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
+    l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
     ev = evaluate(l1, l2, problem.layout, problem.model, etas)
     Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
     out: dict[str, FloatArray] = {
