@@ -24,12 +24,14 @@ from scipy.optimize import differential_evolution
 from corrugate import Assembly, Layer, LayerArrays, analyze, evaluate, get_material, make_layout
 from corrugate.design import Problem, solve
 from corrugate.design.interval import Interval
+from corrugate.design.quantities import Tables, box_bounds, point_values
 from corrugate.layouts import facet_lengths
 from corrugate.moduli import get_model, moduli
 from corrugate.spec import load_spec, parse_spec
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 RTOL = 1e-9  # floating-point slack on constraints, as a user would accept
+PENTAGON = [[0, 0], [1, 0], [1, 0.6], [0.5, 1], [0, 0.6]]  # not symmetric under x <-> y
 
 Arr = NDArray[np.float64]
 
@@ -71,7 +73,7 @@ def _brute_identical(d: dict[str, Any], Ws: Arr, As: Arr, rtol: float = RTOL) ->
     v = d["variables"]
     mat = get_material(d["material"]["name"])
     t = float(d["material"]["thickness"])
-    lay = make_layout(d["layout"]["shape"])
+    lay = make_layout(d["layout"]["shape"], d["layout"].get("vertices"))
     ns = np.arange(v["n"]["min"], v["n"]["max"] + 1)
     n, W, A = np.meshgrid(ns, Ws, As, indexing="ij")
     layer = LayerArrays(mat.E, mat.nu, t, W, n, A, mat.density)
@@ -165,9 +167,15 @@ def _spec(
 
     c: dict[str, Any] = {
         "sheet_max": sheet,
-        "diameter" if shape == "circle" else "side": {"min": size[0], "max": size[1]},
         "thickness": {"min": thickness[0], "max": thickness[1]},
     }
+    sizes = {
+        "circle": ["diameter"],
+        "pentagon": ["side_x", "side_y"],
+        "rectangle": ["side_x", "side_y"],
+    }
+    for key in sizes.get(shape, ["side"]):
+        c[key] = {"min": size[0], "max": size[1]}
     for kind, lo, eta in stiff:
         c.setdefault(kind, []).append({"min": lo, "eta": eta})
     if mass_max is not None:
@@ -176,7 +184,9 @@ def _spec(
         "name": "random",
         "model": model,
         "material": {"name": material, "thickness": t},
-        "layout": {"shape": shape},
+        "layout": (
+            {"shape": "polygon", "vertices": PENTAGON} if shape == "pentagon" else {"shape": shape}
+        ),
         "variables": {"W": var(*W), "n": {"min": n[0], "max": n[1]}, "alpha": var(*alpha)},
         "constraints": c,
         "objective": {"minimize": "mass"},
@@ -186,7 +196,7 @@ def _spec(
 @st.composite
 def gridded_specs(draw: Any) -> dict[str, Any]:
     model = draw(st.sampled_from(["paper", "xia", "refined"]))
-    shape = draw(st.sampled_from(["square", "square", "circle"]))
+    shape = draw(st.sampled_from(["square", "square", "circle", "pentagon"]))
     W_step = draw(st.sampled_from([0.5, 1.0, 2.0]))
     W_lo = draw(st.integers(1, 10)) * 1.0
     W_hi = W_lo + W_step * draw(st.integers(2, 14))
@@ -250,6 +260,8 @@ def _assert_feasible(d: dict[str, Any], sol: Any) -> None:
     by_eta = {s.eta_deg: s for s in r.stiffness}
     size_key = next(k for k in ("side", "diameter", "side_x") if k in c)
     assert c[size_key]["min"] * (1 - RTOL) <= a.Lx <= c[size_key]["max"] * (1 + RTOL)
+    if "side_y" in c:
+        assert c["side_y"]["min"] * (1 - RTOL) <= a.Ly <= c["side_y"]["max"] * (1 + RTOL)
     assert c["thickness"]["min"] * (1 - RTOL) <= a.thickness <= c["thickness"]["max"] * (1 + RTOL)
     for layer in a.layers:
         assert layer.flat_width <= c["sheet_max"] * (1 + RTOL)
@@ -271,7 +283,7 @@ def _de_mass(d: dict[str, Any]) -> float:
     v = d["variables"]
     mat = get_material(d["material"]["name"])
     t = float(d["material"]["thickness"])
-    lay = make_layout(d["layout"]["shape"])
+    lay = make_layout(d["layout"]["shape"], d["layout"].get("vertices"))
 
     def f(x: Arr) -> Arr:
         n = np.round(x[0]).astype(int)
@@ -406,9 +418,6 @@ def test_geometric_conflict_is_diagnosed() -> None:
 # -- independent layers, several sheets, other objectives -------------------------------------
 
 
-PENTAGON = [[0, 0], [1, 0], [1, 0.6], [0.5, 1], [0, 0.6]]
-
-
 @pytest.mark.parametrize(
     "layout",
     [{"shape": "rectangle"}, {"shape": "polygon", "vertices": PENTAGON}],
@@ -490,6 +499,37 @@ def test_material_list_is_a_discrete_variable() -> None:
     assert sol.mass == pytest.approx(best, rel=1e-12)
 
 
+def test_identical_layers_on_a_pentagon_maximise_continuous() -> None:
+    """Regression: identical layers on an outline that is not symmetric under x <-> y have
+    different springs per layer; the bound once reused layer 1's and pruned the optimum."""
+    d = _spec(
+        "refined",
+        "pentagon",
+        (4, 14, 0.5),
+        (3, 30),
+        (40, 140, None),
+        (40, 90),
+        (5, 14),
+        250,
+        [],
+        mass_max=1.5,
+    )
+    d["objective"] = {"maximize": "flexural_rigidity", "eta": "90 deg"}
+    sol = _solve(d)
+    assert sol.certified
+    mat = get_material("dura-lar")
+    v = d["variables"]
+    n, W, A = np.meshgrid(
+        np.arange(3, 31), _grid(v["W"]), np.arange(40.0, 140.0 + 1e-9, 0.05), indexing="ij"
+    )
+    layer = LayerArrays(mat.E, mat.nu, 0.125, W, n, A, mat.density)
+    lay = make_layout("polygon", PENTAGON)
+    ok, _ = _feasible(d, layer, layer, lay, n, n, W, W, rtol=0.0)
+    EI = evaluate(layer, layer, lay, "refined", 90.0).EI
+    assert sol.objective >= float(EI[ok].max()) * (1 - 1e-12)
+    _assert_feasible(d, sol)
+
+
 def test_maximise_rigidity_for_a_mass_budget() -> None:
     d = _spec(
         "refined",
@@ -550,3 +590,83 @@ def test_design_is_what_analyze_reports() -> None:
     layer = Layer(8.0, 8, 84.0, get_material("dura-lar"), 0.125)
     ref = analyze(Assembly.identical(layer), "paper", [0.0, 90.0])
     assert sol.analysis.to_dict() == ref.to_dict()
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    model=st.sampled_from(["paper", "xia", "refined"]),
+    shape=st.sampled_from(["square", "circle", "rectangle", "pentagon"]),
+    independent=st.booleans(),
+    eta=st.sampled_from([0.0, 30.0, 90.0, 135.0]),
+    n0=st.integers(1, 30),
+    dn=st.integers(0, 8),
+    W0=st.floats(1, 20),
+    dW=st.floats(0, 5),
+    a0=st.floats(10, 160),
+    da=st.floats(0, 15),
+    seed=st.integers(0, 2**16),
+)
+def test_box_bounds_contain_every_sampled_design(
+    model: str,
+    shape: str,
+    independent: bool,
+    eta: float,
+    n0: int,
+    dn: int,
+    W0: float,
+    dW: float,
+    a0: float,
+    da: float,
+    seed: int,
+) -> None:
+    """The rigour the certificate rests on: every quantity of every design in a box lies within
+    the box's bounds (layers independent or identical, every layout and model)."""
+    layers = "independent" if independent and shape in ("rectangle", "pentagon") else "identical"
+    d = _spec(
+        model,
+        shape,
+        (1, 40, None),
+        (1, 60),
+        (1, 179, None),
+        (1, 1000),
+        (0.1, 100),
+        1000,
+        [
+            ("flexural_rigidity", 1.0, eta),
+            ("bending_stiffness", 1.0, eta),
+            ("inplane_stiffness", 1.0, eta),
+        ],
+    )
+    d["layers"] = layers
+    problem = Problem.from_spec(parse_spec(d))
+    cand = problem.candidates[0]
+    tables = Tables(problem)
+    rng = np.random.default_rng(seed)
+    a1 = min(a0 + da, 179.0)
+    lo = {"n1": n0, "W1": W0, "a1": a0}
+    hi = {"n1": n0 + dn, "W1": W0 + dW, "a1": a1}
+    if layers == "independent":  # a different box for layer 2
+        lo.update(n2=n0 + 1, W2=W0 * 0.8, a2=max(a0 - 5, 1.0))
+        hi.update(n2=n0 + dn + 2, W2=(W0 + dW) * 0.9 + 0.1, a2=a1)
+    else:
+        lo.update(n2=lo["n1"], W2=lo["W1"], a2=lo["a1"])
+        hi.update(n2=hi["n1"], W2=hi["W1"], a2=hi["a1"])
+    blo = {k: np.array([float(v)]) for k, v in lo.items()}
+    bhi = {k: np.array([float(v)]) for k, v in hi.items()}
+    quantities = {c.quantity for c in problem.constraints} | {"mass", "Lx", "Ly"}
+    bounds = box_bounds(problem, cand, cand, blo, bhi, tables, quantities)
+    N = 300
+    x = {}
+    for i in (1, 2):
+        x[f"n{i}"] = rng.integers(lo[f"n{i}"], hi[f"n{i}"] + 1, N).astype(float)
+        x[f"W{i}"] = rng.uniform(lo[f"W{i}"], hi[f"W{i}"], N)
+        x[f"a{i}"] = rng.uniform(lo[f"a{i}"], hi[f"a{i}"], N)
+    if layers == "identical":
+        x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+    vals = point_values(problem, cand, cand, x, tables)
+    for q in sorted(quantities):
+        b_lo, b_hi = bounds[q][0][0], bounds[q][1][0]
+        v = vals[q]
+        slack = 1e-12 * np.maximum(np.abs(v), 1.0)
+        assert np.all(v >= b_lo - slack), (q, b_lo, v.min())
+        assert np.all(v <= b_hi + slack), (q, b_hi, v.max())

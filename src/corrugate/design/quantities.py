@@ -265,9 +265,11 @@ def _stiffness_bounds(
     KC1, KS1, DC1, DS1 = _layer_springs(
         problem, c1, (lo["n1"], hi["n1"]), (lo["W1"], hi["W1"]), (lo["a1"], hi["a1"]), Ly, tables.Qx
     )
-    if problem.identical:
+    if problem.identical and isinstance(problem.layout, Rectangle | Circle):
+        # outline symmetric under x <-> y: identical layers have identical springs
         KC2, KS2, DC2, DS2 = KC1, KS1, DC1, DS1
-    else:
+    else:  # a polygon's facet lengths differ across x and across y (regression: issue found
+        # by brute force on a pentagon; layer 2 must use Q_y even when the layers are identical)
         KC2, KS2, DC2, DS2 = _layer_springs(
             problem,
             c2,
