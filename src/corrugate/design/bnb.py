@@ -24,6 +24,8 @@ is not certified and reports the remaining gap. Interval bounds are rounded outw
 points and boxes are judged with the relative slack :data:`~.problem.FEAS_RTOL` (a grid value may
 sit exactly on a bound, up to floating-point noise); with continuous variables, with no slack, so
 the design meets every bound exactly (margin >= 0). Points and boxes always use the same rule.
+The corner bounds of the monotone quantities (extents, thickness, mass) are computed in ordinary
+floating point, so they are exact to a few units in the last place, far below both tolerances.
 """
 
 from __future__ import annotations

@@ -21,9 +21,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, replace
 
+import numpy as np
+
 from .problem import Constraint, Problem, stiffness_key
 from .quantities import Tables, point_values
-from .solve import Optimum, _assembly, _layer_dict, optimize
+from .solve import Optimum, assembly_of, layer_dict, optimize
 
 __all__ = ["ParetoFront", "ParetoPoint", "pareto_front"]
 
@@ -85,8 +87,6 @@ def _at(problem: Problem, level: float, key: str, name: str) -> Problem:
 
 
 def _point(problem: Problem, opt: Optimum, key: str, level: float, tables: Tables) -> ParetoPoint:
-    import numpy as np
-
     assert opt.point is not None
     assert opt.candidates is not None
     x = {k: np.array([v]) for k, v in opt.point.items()}
@@ -96,8 +96,8 @@ def _point(problem: Problem, opt: Optimum, key: str, level: float, tables: Table
         x,
         tables,
     )
-    a = _assembly(problem, opt)
-    layers = tuple(_layer_dict(i + 1, layer) for i, layer in enumerate(a.layers))
+    a = assembly_of(problem, opt)
+    layers = tuple(layer_dict(i + 1, layer) for i, layer in enumerate(a.layers))
     return ParetoPoint(level, float(vals[key][0]), opt.value, layers, opt.certified)
 
 

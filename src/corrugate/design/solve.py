@@ -23,6 +23,8 @@ import math
 import time
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from ..analysis import Analysis, analyze
 from ..geometry import Assembly, Layer
 from .bnb import GAP_RTOL, BnBResult, branch_and_bound
@@ -32,8 +34,11 @@ from .quantities import Tables, point_values
 __all__ = [
     "ConstraintReport",
     "Diagnosis",
+    "Optimum",
     "RunnerUp",
     "Solution",
+    "assembly_of",
+    "layer_dict",
     "optimize",
     "solve",
 ]
@@ -156,7 +161,7 @@ class Solution:
             design = {
                 "layout": perf["layout"],
                 "layers": [
-                    _layer_dict(i + 1, layer) for i, layer in enumerate(self.assembly.layers)
+                    layer_dict(i + 1, layer) for i, layer in enumerate(self.assembly.layers)
                 ],
                 "L_mm": perf["L_mm"],
                 "extent_x_mm": perf["extent_x_mm"],
@@ -190,7 +195,8 @@ class Solution:
         }
 
 
-def _layer_dict(index: int, layer: Layer) -> dict[str, object]:
+def layer_dict(index: int, layer: Layer) -> dict[str, object]:
+    """A layer as the ``design.layers`` entries of the JSON output (units in the keys)."""
     return {
         "index": index,
         "W_mm": layer.W,
@@ -247,7 +253,8 @@ def optimize(
     return Optimum(best.point, best_pair, best.value, certified, gap, boxes, iterations)
 
 
-def _assembly(problem: Problem, opt: Optimum) -> Assembly:
+def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
+    """The :class:`~corrugate.geometry.Assembly` of an optimum's point and sheets."""
     assert opt.point is not None
     assert opt.candidates is not None
     x = opt.point
@@ -291,7 +298,7 @@ def solve(problem: Problem, *, explain: bool = True) -> Solution:
             warnings=tuple(warnings),
             stats=stats,
         )
-    assembly = _assembly(problem, opt)
+    assembly = assembly_of(problem, opt)
     etas = sorted(set(problem.etas) | {0.0, 90.0})
     analysis = analyze(assembly, problem.model, etas)
     warnings = [w.as_dict() for w in analysis.warnings]
@@ -337,8 +344,6 @@ def solve(problem: Problem, *, explain: bool = True) -> Solution:
 
 
 def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, float]:
-    import numpy as np
-
     assert opt.point is not None
     assert opt.candidates is not None
     x = {k: np.array([v]) for k, v in opt.point.items()}
@@ -385,12 +390,12 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
         r = optimize(problem, n_fixed=(n, n), tables=tables)
         if r.point is None:
             continue
-        a = _assembly(problem, r)
+        a = assembly_of(problem, r)
         out.append(
             RunnerUp(
                 n,
                 r.value,
-                tuple(_layer_dict(i + 1, layer) for i, layer in enumerate(a.layers)),
+                tuple(layer_dict(i + 1, layer) for i, layer in enumerate(a.layers)),
                 r.certified,
             )
         )
