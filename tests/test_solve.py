@@ -60,6 +60,16 @@ def test_blimp_gripper_is_the_papers_case_1_certified() -> None:
     assert any(r.n == 8 and r.objective == sol.objective for r in sol.runner_ups)
 
 
+def test_wider_alpha_range_lets_a_three_crease_design_win() -> None:
+    """DESIGN.md 3.5: with alpha allowed up to 179 deg a 3-crease design wins under the model."""
+    d = tomllib.loads((EXAMPLES / "blimp_gripper.toml").read_text("utf-8"))
+    d["variables"]["alpha"]["max"] = "179 deg"
+    sol = _solve(d)
+    assert sol.certified
+    assert sol.assembly.layer1.n == 3
+    assert sol.mass < 1.2053986395191014  # lighter than case 1, which is still admissible
+
+
 # -- brute force -----------------------------------------------------------------------------
 
 

@@ -45,6 +45,12 @@ def write_atomic(path: Path, text: str) -> None:
         raise
 
 
+def _console(stderr: bool = False) -> Console:
+    """A rich console; 120 columns when not writing to a terminal (logs, make demo)."""
+    probe = Console(stderr=stderr)
+    return probe if probe.is_terminal else Console(stderr=stderr, width=120)
+
+
 def _fmt(x: float | None, digits: int = 5) -> str:
     return "-" if x is None else f"{x:.{digits}g}"
 
@@ -149,9 +155,9 @@ def design_cmd(
     if as_json:
         typer.echo(text)
     else:
-        _print_solution(sol, Console())
+        _print_solution(sol, _console())
         if out is not None:
-            Console().print(f"wrote {out / 'design.json'}")
+            _console().print(f"wrote {out / 'design.json'}")
     if sol.status != "optimal" or not sol.certified:
         raise typer.Exit(1)
 
@@ -215,7 +221,7 @@ def pareto_cmd(
     problem = Problem.from_spec(load_spec(spec))
     front = pareto_front(problem, vs, eta_deg, points=points, max_points=max_points)
     text = front.csv()
-    console = Console(stderr=True)
+    console = _console(stderr=True)
     if out is None:
         typer.echo(text, nl=False)
     else:
@@ -293,7 +299,7 @@ def tolerance_cmd(
         design = sol.to_dict()["design"]
         typer.echo(json.dumps({"design": design, **report.as_dict()}, indent=2))
         return
-    console = Console()
+    console = _console()
     lay = sol.assembly.layer1
     console.print(
         f"[bold]{problem.name}[/bold]: certified design W = {lay.W:.6g} mm, n = "
