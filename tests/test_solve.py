@@ -680,3 +680,23 @@ def test_box_bounds_contain_every_sampled_design(
         slack = 1e-12 * np.maximum(np.abs(v), 1.0)
         assert np.all(v >= b_lo - slack), (q, b_lo, v.min())
         assert np.all(v <= b_hi + slack), (q, b_hi, v.max())
+
+
+def test_a_very_wide_crease_range_still_certifies() -> None:
+    """Regression: with n up to thousands, splitting by absolute width left n unsplit and the
+    search ran out of boxes uncertified; relative widths split n where it matters."""
+    base = {
+        "material": {"name": "dura-lar"},
+        "layout": {"shape": "circle"},
+        "constraints": {
+            "diameter": {"min": "100 mm", "max": "120 mm"},
+            "flexural_rigidity": [{"min": "100 mN*m^2"}],
+        },
+    }
+    results = []
+    for n_max in (200, 3000):
+        d = {**base, "variables": {"n": {"min": 1, "max": n_max}}}
+        sol = _solve(d)
+        assert sol.certified
+        results.append(sol.mass)
+    assert results[1] == pytest.approx(results[0], rel=1e-9)

@@ -2,7 +2,8 @@
 
 The search space of one candidate sheet pair is a box in (n1, W1, alpha1, n2, W2, alpha2); n is
 integer and W, alpha are continuous or gridded (identical layers share layer 1's coordinates).
-Every iteration treats all open boxes at once:
+Every iteration treats up to :data:`BATCH` open boxes at once (those with the lowest bounds
+inherited from their parent, so the search is best-first when there are many):
 
 1. bound every constrained quantity and the objective over each box
    (:func:`~.quantities.box_bounds`, rigorous);
@@ -45,8 +46,12 @@ FloatArray = NDArray[np.float64]
 
 #: Relative optimality gap proved for continuous variables.
 GAP_RTOL = 1e-12
-MAX_ITERATIONS = 400
-MAX_BOXES = 200_000
+#: Limits after which the search stops, uncertified: iterations, boxes bounded, boxes open.
+MAX_ITERATIONS = 2_000
+MAX_BOXES = 20_000_000
+MAX_OPEN = 2_000_000
+#: Boxes bounded per iteration; beyond it the lowest bounds go first (best-first).
+BATCH = 20_000
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
 
@@ -95,11 +100,17 @@ def _snap(v: FloatArray, var: DesignVariable, up: bool) -> FloatArray:
 
 
 def _split(
-    lo: FloatArray, hi: FloatArray, width: FloatArray, dims: list[_Dim], multi: bool
-) -> tuple[FloatArray, FloatArray]:
-    """Halve each box along its relatively widest coordinate, and (``multi``) also along every
-    coordinate at least half as wide, so few boxes become many in few iterations. Grid
-    coordinates are cut between two grid values."""
+    lo: FloatArray,
+    hi: FloatArray,
+    width: FloatArray,
+    dims: list[_Dim],
+    multi: bool,
+    tag: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Halve each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
+    counted as n + 1, so every coordinate is judged by how much it changes across the box), and
+    (``multi``) also along every coordinate at least half as wide, so few boxes become many in
+    few iterations. Grid coordinates are cut between two grid values."""
     widest = width.max(axis=1, keepdims=True)
     if multi:
         split = (width >= 0.5 * widest) & (width > 0)
@@ -125,7 +136,8 @@ def _split(
         lo = np.concatenate([lo[~sel], lo[sel], right_lo])
         hi = np.concatenate([hi[~sel], left_hi, hi[sel]])
         split = np.concatenate([split[~sel], split[sel], split[sel]])
-    return lo, hi
+        tag = np.concatenate([tag[~sel], tag[sel], tag[sel]])
+    return lo, hi, tag
 
 
 def _threshold(best: float, tol: float) -> float:
@@ -166,30 +178,44 @@ def branch_and_bound(
     tol = 0.0 if exact else gap_rtol
     feas_rtol = FEAS_RTOL if exact else 0.0
 
-    lo = np.array([[d.var.lo for d in dims]])
-    hi = np.array([[d.var.top for d in dims]])
-    span0 = np.maximum(hi[0] - lo[0], 1e-300)
+    # the queue of open boxes, each with a lower bound on sign * objective (its parent's)
+    q_lo = np.array([[d.var.lo for d in dims]])
+    q_hi = np.array([[d.var.top for d in dims]])
+    q_bound = np.array([-math.inf])
+    # relative widths: n counts as n + 1 (the number of facets), W and alpha as themselves
+    offset = np.array([1.0 if d.name.startswith("n") else 0.0 for d in dims])
     best_val = math.inf if incumbent is None else sign * incumbent
     best_pt: dict[str, float] | None = None
     boxes = 0
     it = 0
-    global_bound = math.inf
-    while len(lo) and it < MAX_ITERATIONS:
+    while len(q_lo) and it < MAX_ITERATIONS and boxes < MAX_BOXES and len(q_lo) < MAX_OPEN:
         it += 1
+        waiting = q_bound < _threshold(best_val, tol)
+        q_lo, q_hi, q_bound = q_lo[waiting], q_hi[waiting], q_bound[waiting]
+        if not len(q_lo):
+            break
+        if len(q_lo) > BATCH:  # best-first: the boxes with the lowest bounds go first
+            take = np.zeros(len(q_lo), dtype=bool)
+            take[np.argpartition(q_bound, BATCH)[:BATCH]] = True
+            lo, hi = q_lo[take], q_hi[take]
+            q_lo, q_hi, q_bound = q_lo[~take], q_hi[~take], q_bound[~take]
+        else:
+            lo, hi = q_lo, q_hi
+            q_lo, q_hi, q_bound = q_lo[:0], q_hi[:0], q_bound[:0]
         boxes += len(lo)
         xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
         xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
         bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, needed)
         keep = np.ones(len(lo), dtype=bool)
         for c in cons:
-            q_lo, q_hi = bnd[c.quantity]
-            keep &= c.satisfied(q_hi if c.sense == "min" else q_lo, rtol=feas_rtol)
+            b_lo, b_hi = bnd[c.quantity]
+            keep &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
         o_lo, o_hi = bnd[obj_key]
         obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
         keep &= obj_bound < _threshold(best_val, tol)
         lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
         if not len(lo):
-            break
+            continue
         # candidate points: lower corner, upper corner, centre (snapped to the grid)
         mid = np.stack(
             [_snap(0.5 * (lo[:, i] + hi[:, i]), d.var, up=False) for i, d in enumerate(dims)],
@@ -208,22 +234,21 @@ def branch_and_bound(
             best_val = float(f[k])
             best_pt = {name: float(v[k]) for name, v in x.items()}
         keep = obj_bound < _threshold(best_val, tol)
-        lo, hi = lo[keep], hi[keep]
-        # close single grid points; split the rest
-        width = (hi - lo) / span0
+        lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
+        # close single grid points; split the rest and queue the halves with their bound
+        width = (hi - lo) / np.maximum(lo + offset, 1e-300)
         point = np.all(width <= 0, axis=1)
-        lo, hi = lo[~point], hi[~point]
+        lo, hi, obj_bound = lo[~point], hi[~point], obj_bound[~point]
         if not len(lo):
-            break
-        if len(lo) > MAX_BOXES:
-            break
-        lo, hi = _split(lo, hi, width[~point], dims, multi=len(lo) < MULTI_SPLIT_BELOW)
-    if len(lo):  # stopped early: the bound is the best open box's
-        xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
-        xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
-        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, {obj_key})
-        o_lo, o_hi = bnd[obj_key]
-        global_bound = float(np.min(sign * (o_hi if maximize else o_lo)))
+            continue
+        multi = len(lo) + len(q_lo) < MULTI_SPLIT_BELOW
+        lo, hi, obj_bound = _split(lo, hi, width[~point], dims, multi, obj_bound)
+        q_lo = np.concatenate([q_lo, lo])
+        q_hi = np.concatenate([q_hi, hi])
+        q_bound = np.concatenate([q_bound, obj_bound])
+    q_open = q_bound < _threshold(best_val, tol)
+    if q_open.any():  # stopped early: the bound is the best open box's
+        global_bound = float(np.min(q_bound[q_open]))
         certified = False
     else:
         certified = True
