@@ -20,6 +20,7 @@ from rich.table import Table
 from .cli import app
 from .design import Problem, Solution, solve
 from .design.pareto import ParetoFront, pareto_front
+from .design.robust import robust_solve
 from .design.tolerance import Tolerances, monte_carlo
 from .errors import InputError
 from .spec import load_spec
@@ -55,9 +56,11 @@ def _fmt(x: float | None, digits: int = 5) -> str:
     return "-" if x is None else f"{x:.{digits}g}"
 
 
-def _print_solution(sol: Solution, console: Console) -> None:
+def _print_solution(sol: Solution, console: Console, tightened: bool = False) -> None:
     p = sol.problem
     cert = "certified" if sol.certified else "NOT certified"
+    if tightened:
+        cert += " for the tightened bounds below"
     if sol.status != "optimal":
         console.print(
             f"[bold red]{p.name}: {sol.status}[/bold red] ({cert}): no design meets "
@@ -144,9 +147,31 @@ def design_cmd(
 
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     """
-    problem = Problem.from_spec(load_spec(spec))
-    sol = solve(problem)
+    parsed = load_spec(spec)
+    problem = Problem.from_spec(parsed)
+    robust = None
+    if parsed.robust is not None:
+        r = parsed.robust
+        tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
+        robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
+        sol = robust.solution
+    else:
+        sol = solve(problem)
     payload = sol.to_dict()
+    if robust is not None:
+        payload["certified"] = False  # the robust optimum itself is not proven (see robust.py)
+        payload["robust"] = robust.as_dict(problem)
+        payload["warnings"] = [
+            *sol.warnings,
+            {
+                "code": "robust-not-certified",
+                "message": (
+                    "robust design: certified optimum of the spec with tightened bounds; its "
+                    "probability of meeting the spec is a Monte Carlo estimate and its "
+                    "optimality is not proven"
+                ),
+            },
+        ]
     text = json.dumps(payload, indent=2)
     if out is not None:
         if out.exists() and not out.is_dir():
@@ -155,10 +180,19 @@ def design_cmd(
     if as_json:
         typer.echo(text)
     else:
-        _print_solution(sol, _console())
+        console = _console()
+        _print_solution(sol, console, tightened=robust is not None)
+        if robust is not None:
+            rd = robust.as_dict(problem)
+            met = "met" if robust.met else "NOT met"
+            console.print(
+                f"[bold]robust[/bold]: P(spec holds) = {rd['probability_met']} (target "
+                f"{robust.target:g}, {met}) after {robust.rounds} round(s) of margin inflation; "
+                "bounds above are the tightened ones; not certified as the lightest robust design"
+            )
         if out is not None:
-            _console().print(f"wrote {out / 'design.json'}")
-    if sol.status != "optimal" or not sol.certified:
+            console.print(f"wrote {out / 'design.json'}")
+    if sol.status != "optimal" or not sol.certified or (robust is not None and not robust.met):
         raise typer.Exit(1)
 
 
@@ -294,7 +328,7 @@ def tolerance_cmd(
     sol = solve(problem, explain=False)
     if sol.assembly is None:
         raise InputError("spec", str(spec), "a feasible spec", reason=f"is {sol.status}")
-    report = monte_carlo(problem, sol, tol, samples, seed)
+    report = monte_carlo(problem, sol.assembly, tol, samples, seed)
     if as_json:
         design = sol.to_dict()["design"]
         typer.echo(json.dumps({"design": design, **report.as_dict()}, indent=2))

@@ -55,6 +55,7 @@ __all__ = [
     "MaterialSpec",
     "ObjectiveSpec",
     "Range",
+    "RobustSpec",
     "Spec",
     "SpecError",
     "StiffnessSpec",
@@ -326,6 +327,48 @@ class ObjectiveSpec(_Strict):
     eta: Direction = 0.0
 
 
+def _fraction(value: Any) -> float:
+    """A relative tolerance: ``"5%"`` or ``0.05``; 0 <= x < 1."""
+    try:
+        x = (
+            float(value[:-1]) / 100
+            if isinstance(value, str) and value.strip().endswith("%")
+            else (float(value))
+        )
+    except (TypeError, ValueError):
+        raise PydanticCustomError(
+            "quantity",
+            "{reason}",
+            {"reason": "cannot be read", "allowed": "a fraction such as 0.05 or '5%'"},
+        ) from None
+    if not 0 <= x < 1:
+        raise PydanticCustomError(
+            "quantity",
+            "{reason}",
+            {"reason": "is out of range", "allowed": "0 <= tolerance < 100 %"},
+        )
+    return x
+
+
+Fraction = Annotated[float, BeforeValidator(_fraction)]
+Probability = Annotated[
+    float, BeforeValidator(_quantity("dimensionless", lo=0.0, hi=1.0, shown=""))
+]
+
+
+class RobustSpec(_Strict):
+    """Ask for a design that still meets every bound with ``probability`` under manufacturing
+    and material tolerances (one-sigma: W in mm, alpha in deg, t and E relative)."""
+
+    probability: Probability = 0.9
+    W: Annotated[float, BeforeValidator(_quantity("mm", lo=0.0, lo_open=False))] = 0.1
+    alpha: Annotated[float, BeforeValidator(_quantity("deg", lo=0.0, lo_open=False))] = 2.0
+    t: Fraction = 0.05
+    E: Fraction = 0.10
+    samples: Annotated[int, BeforeValidator(_count)] = 4000
+    seed: int = 0
+
+
 class Spec(_Strict):
     """A validated design spec; every quantity in internal units (mm, deg, g, N)."""
 
@@ -338,6 +381,7 @@ class Spec(_Strict):
     variables: VariablesSpec = VariablesSpec()
     constraints: ConstraintsSpec = ConstraintsSpec()
     objective: ObjectiveSpec = ObjectiveSpec()
+    robust: RobustSpec | None = None
 
 
 # -- errors with TOML paths -------------------------------------------------------------------

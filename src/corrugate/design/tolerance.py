@@ -13,13 +13,13 @@ size constraints are checked on Lx (layer 1), as in the solver, and Ly is report
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..geometry import Assembly
 from .problem import FEAS_RTOL, QUANTITY_UNITS, Candidate, Problem, describe
 from .quantities import Tables, point_values
-from .solve import Solution
 
 __all__ = ["QuantityStats", "ToleranceReport", "Tolerances", "monte_carlo"]
 
@@ -74,6 +74,8 @@ class ToleranceReport:
     stats: tuple[QuantityStats, ...]
     probabilities: tuple[tuple[str, float], ...]
     p_all: float
+    #: Every quantity of every sample (not in :meth:`as_dict`).
+    values: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
 
     def as_dict(self) -> dict[str, object]:
         return {
@@ -87,11 +89,11 @@ class ToleranceReport:
 
 
 def monte_carlo(
-    problem: Problem, solution: Solution, tol: Tolerances, samples: int = 10_000, seed: int = 0
+    problem: Problem, design: Assembly, tol: Tolerances, samples: int = 10_000, seed: int = 0
 ) -> ToleranceReport:
-    """Sample ``samples`` perturbed copies of ``solution``'s design (see the module docstring)."""
-    assert solution.assembly is not None
-    a = solution.assembly
+    """Sample ``samples`` perturbed copies of ``design`` (see the module docstring) and check
+    them against ``problem``'s constraints."""
+    a = design
     rng = np.random.default_rng(seed)
     N = samples
     c1, c2 = (Candidate(layer.material, layer.t) for layer in a.layers)
@@ -146,4 +148,4 @@ def monte_carlo(
         ok = c.satisfied(vals[c.quantity], rtol=FEAS_RTOL)
         ok_all &= ok
         probs.append((c.name, float(ok.mean())))
-    return ToleranceReport(N, seed, tol, tuple(stats), tuple(probs), float(ok_all.mean()))
+    return ToleranceReport(N, seed, tol, tuple(stats), tuple(probs), float(ok_all.mean()), vals)
