@@ -27,9 +27,8 @@ demo: $(VENV)/.installed
 	$(BIN)/corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --compare-models
 	$(BIN)/corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper \
 		--eta 0 --eta 90 --json > out/case1_analysis.json.tmp && mv out/case1_analysis.json.tmp out/case1_analysis.json
-	$(BIN)/corrugate pattern --W 8 --n 8 --alpha 84 --material dura-lar --model paper \
-		--cutter cameo4-12x12 --out out/case1
-	@echo "wrote out/case1_analysis.json and the cut files of case 1 under out/case1/"
+	$(BIN)/corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
+	@echo "wrote out/case1_analysis.json and the blimp gripper's design and cut files under out/blimp_gripper/"
 
 # System packages the tests need (installed when root and missing).
 # chromium: the browser tests of the web app drive Debian's /usr/bin/chromium with Playwright.

@@ -1,0 +1,311 @@
+"""The quantities constraints bound: exact values at points, rigorous bounds over boxes.
+
+Points and boxes are given per layer as arrays ``n1, W1, a1, n2, W2, a2`` (creases, mm, deg); for
+identical layers layer 2's arrays are layer 1's.
+
+:func:`point_values` calls :func:`corrugate.analysis.evaluate` (the one implementation of the
+model), so a design the solver accepts is exactly the design ``analyze`` reports.
+
+:func:`box_bounds` returns, for each quantity, a lower and an upper bound valid for every design in
+a box ``lo <= x <= hi`` (elementwise over many boxes). The arguments, per quantity:
+
+* extents, thickness, blank, mass: monotone. With s = sin(alpha/2), c = cos(alpha/2) and
+  0 < alpha < 180 deg, Lx = (n1 + 1) W1 s1 increases with n1, W1 and alpha1; t_d = W1 c1 + W2 c2
+  increases with W and decreases with alpha; the blank (n + 1) W increases with n and W; the mass
+  rho t W (n + 1) S a_f of each layer (S the other layer's extent, a_f the outline's area fraction;
+  :mod:`corrugate.mass`) increases with every variable. So their bounds are their values at the
+  box corners, computed with the same building blocks as ``evaluate``.
+* facet length: max_j L_j = F(n) S with F(n) = (n + 1) max_j dA_j (:mod:`corrugate.layouts`),
+  bounded by the range of F over the box's n and the range of S.
+* stiffness: the moduli variant's own function evaluated in :class:`~.interval.Interval`
+  arithmetic over the box (W, alpha), then the spring sums of DESIGN.md 3.2 and the assembly of 3.3
+  in interval arithmetic, with q = sum_j 1/L_j = Q(n) / S (Q from
+  :func:`corrugate.layouts.inverse_length_sum`). For identical layers p q = Q(n) / (n + 1) exactly,
+  which removes the dependency on p. EI = D x span: for square, rectangle and circle the span grows
+  with Lx and Ly (its value at the upper corner bounds it); for a polygon the span moves by at most
+  2 (|dLx sin eta| + |dLy cos eta|) when the box is shrunk to a corner (each vertex moves by at most
+  its share of dLx, dLy), which bounds it from both sides.
+
+Interval bounds converge to the exact value as the box shrinks, which is what makes branch and
+bound terminate.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..analysis import LayerArrays, evaluate
+from ..layouts import Circle, Rectangle, facet_lengths, inverse_length_sum, length_sum
+from ..mass import layer_mass
+from ..moduli import get_model
+from .interval import Interval
+from .problem import Candidate, Problem
+
+__all__ = ["DIMS", "RangeTable", "box_bounds", "point_values"]
+
+FloatArray = NDArray[np.float64]
+Arrays = Mapping[str, FloatArray]
+Bounds = dict[str, tuple[FloatArray, FloatArray]]
+
+#: Names of the point/box coordinates.
+DIMS = ("n1", "W1", "a1", "n2", "W2", "a2")
+
+
+class RangeTable:
+    """Minimum and maximum of a table f(n), n = n0..n1, over index ranges (sparse table)."""
+
+    def __init__(self, n0: int, values: FloatArray) -> None:
+        self.n0 = n0
+        self._min = [np.asarray(values, dtype=np.float64)]
+        self._max = [np.asarray(values, dtype=np.float64)]
+        k = 1
+        while 2 * k <= len(values):
+            a, b = self._min[-1], self._max[-1]
+            self._min.append(np.minimum(a[:-k], a[k:]))
+            self._max.append(np.maximum(b[:-k], b[k:]))
+            k *= 2
+
+    def bounds(self, lo: FloatArray, hi: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """min and max of f over n in [lo, hi] (arrays of integers)."""
+        i = np.asarray(lo, dtype=np.int64) - self.n0
+        j = np.asarray(hi, dtype=np.int64) - self.n0
+        length = j - i + 1
+        level = np.floor(np.log2(np.maximum(length, 1))).astype(np.int64)
+        mins = np.empty(i.shape)
+        maxs = np.empty(i.shape)
+        for lv in np.unique(level):
+            sel = level == lv
+            k = 1 << int(lv)
+            a, b = i[sel], j[sel] - k + 1
+            mins[sel] = np.minimum(self._min[lv][a], self._min[lv][b])
+            maxs[sel] = np.maximum(self._max[lv][a], self._max[lv][b])
+        return mins, maxs
+
+
+@dataclass(frozen=True)
+class Tables:
+    """Per-n tables of the layout for a problem: Q(n) = (n + 1) G(n) and F(n), per axis."""
+
+    problem: Problem
+
+    def _table(self, what: str, axis: str) -> RangeTable:
+        p = self.problem
+        ns = np.arange(p.n_lo, p.n_hi + 1)
+        if what == "Q":
+            vals = inverse_length_sum(p.layout, ns, 1.0, axis)  # type: ignore[arg-type]
+        elif isinstance(p.layout, Rectangle):
+            vals = np.ones(len(ns))
+        else:
+            vals = np.array(
+                [
+                    facet_lengths(p.layout, int(k), 1.0, axis).max()  # type: ignore[arg-type]
+                    for k in ns
+                ]
+            )
+        return RangeTable(p.n_lo, np.asarray(vals, dtype=np.float64))
+
+    @cached_property
+    def Qx(self) -> RangeTable:
+        return self._table("Q", "x")
+
+    @cached_property
+    def Qy(self) -> RangeTable:
+        return self._table("Q", "y")
+
+    @cached_property
+    def Fx(self) -> RangeTable:
+        return self._table("F", "x")
+
+    @cached_property
+    def Fy(self) -> RangeTable:
+        return self._table("F", "y")
+
+    def facet_factor(self, n: FloatArray, axis: str) -> FloatArray:
+        """F(n) = max_j L_j / S at integer n (array)."""
+        table = self.Fx if axis == "x" else self.Fy
+        return table.bounds(n, n)[0]
+
+
+def _layers(
+    cand: Candidate, n: FloatArray, W: FloatArray, a: FloatArray, x: Arrays, i: int
+) -> LayerArrays:
+    """Layer ``i`` at the points; ``x`` may override E (MPa) and t (mm) per point as
+    ``E{i}`` and ``t{i}`` (used by the tolerance analysis)."""
+    m = cand.material
+    E = x[f"E{i}"][:, None] if f"E{i}" in x else m.E
+    t = x[f"t{i}"][:, None] if f"t{i}" in x else cand.t
+    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), a, m.density)
+
+
+def point_values(
+    problem: Problem, c1: Candidate, c2: Candidate, x: Arrays, tables: Tables
+) -> dict[str, FloatArray]:
+    """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``."""
+    etas = np.asarray(problem.etas or (0.0,), dtype=np.float64)
+    l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
+    l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
+    ev = evaluate(l1, l2, problem.layout, problem.model, etas)
+    Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
+    out: dict[str, FloatArray] = {
+        "Lx": Lx,
+        "Ly": Ly,
+        "thickness": ev.thickness[:, 0],
+        "mass": ev.mass[:, 0],
+        "flat": np.maximum((x["n1"] + 1) * x["W1"], (x["n2"] + 1) * x["W2"]),
+        "facet": np.maximum(
+            tables.facet_factor(x["n1"], "x") * Ly, tables.facet_factor(x["n2"], "y") * Lx
+        ),
+    }
+    for k, eta in enumerate(etas):
+        key = f"@{float(eta):.12g}"
+        out["EI" + key] = np.asarray(ev.EI[:, k])
+        out["D" + key] = np.asarray(ev.D[:, k])
+        out["K" + key] = np.asarray(ev.K[:, k])
+    return out
+
+
+def _extent(n: FloatArray, W: FloatArray, a: FloatArray) -> FloatArray:
+    return np.asarray(LayerArrays(0, 0, 0, W, n, a, 0).chord_extent())
+
+
+def _height(W: FloatArray, a: FloatArray) -> FloatArray:
+    return np.asarray(LayerArrays(0, 0, 0, W, 0, a, 0).height())
+
+
+def box_bounds(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    lo: Arrays,
+    hi: Arrays,
+    tables: Tables,
+    quantities: set[str],
+) -> Bounds:
+    """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi]."""
+    lay = problem.layout
+    Lx_lo, Lx_hi = _extent(lo["n1"], lo["W1"], lo["a1"]), _extent(hi["n1"], hi["W1"], hi["a1"])
+    Ly_lo, Ly_hi = _extent(lo["n2"], lo["W2"], lo["a2"]), _extent(hi["n2"], hi["W2"], hi["a2"])
+    out: Bounds = {"Lx": (Lx_lo, Lx_hi), "Ly": (Ly_lo, Ly_hi)}
+    if "thickness" in quantities:
+        out["thickness"] = (
+            _height(lo["W1"], hi["a1"]) + _height(lo["W2"], hi["a2"]),
+            _height(hi["W1"], lo["a1"]) + _height(hi["W2"], lo["a2"]),
+        )
+    if "flat" in quantities:
+        out["flat"] = (
+            np.maximum((lo["n1"] + 1) * lo["W1"], (lo["n2"] + 1) * lo["W2"]),
+            np.maximum((hi["n1"] + 1) * hi["W1"], (hi["n2"] + 1) * hi["W2"]),
+        )
+    if "facet" in quantities:
+        f1 = tables.Fx.bounds(lo["n1"], hi["n1"])
+        f2 = tables.Fy.bounds(lo["n2"], hi["n2"])
+        out["facet"] = (
+            np.maximum(f1[0] * Ly_lo, f2[0] * Lx_lo),
+            np.maximum(f1[1] * Ly_hi, f2[1] * Lx_hi),
+        )
+    if "mass" in quantities:
+
+        def mass(b: Arrays, Lx: FloatArray, Ly: FloatArray) -> FloatArray:
+            m1 = layer_mass(c1.material.density, c1.t, b["W1"], length_sum(lay, b["n1"], Ly))
+            m2 = layer_mass(c2.material.density, c2.t, b["W2"], length_sum(lay, b["n2"], Lx))
+            return np.asarray(m1 + m2)
+
+        out["mass"] = (mass(lo, Lx_lo, Ly_lo), mass(hi, Lx_hi, Ly_hi))
+    stiff = sorted(q for q in quantities if "@" in q)
+    if stiff:
+        out.update(_stiffness_bounds(problem, c1, c2, lo, hi, tables, out, stiff))
+    return out
+
+
+def _layer_springs(
+    problem: Problem,
+    cand: Candidate,
+    n: tuple[FloatArray, FloatArray],
+    W: tuple[FloatArray, FloatArray],
+    a: tuple[FloatArray, FloatArray],
+    S: tuple[FloatArray, FloatArray],
+    Q: RangeTable,
+) -> tuple[Interval, Interval, Interval, Interval]:
+    """K_C, K_S, D_C, D_S of a layer over a box (DESIGN.md 3.2), in interval arithmetic."""
+    m = cand.material
+    t = cand.t
+    Wi = Interval(W[0], W[1])
+    alpha = Interval(np.radians(a[0]), np.radians(a[1]))
+    # the model functions are plain arithmetic, so they accept intervals (duck typing)
+    function: Any = get_model(problem.model).function
+    mod = function(np.float64(m.E), np.float64(m.nu), np.float64(t), Wi, alpha)
+    q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
+    if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
+        pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))
+    else:
+        p = Wi * (alpha * 0.5).sin()
+        pq = p * Interval(q_lo, q_hi) / Interval(S[0], S[1])
+    Ecx, Ecy, Ebx, Eby = (Interval.of(v) for v in (mod.Ecx, mod.Ecy, mod.Ebx, mod.Eby))
+    t3 = t**3
+    return (Ecx * t / pq, Ecy * t * pq, Ebx * (t3 / 12.0) / pq, Eby * (t3 / 12.0) * pq)
+
+
+def _stiffness_bounds(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    lo: Arrays,
+    hi: Arrays,
+    tables: Tables,
+    geo: Bounds,
+    keys: list[str],
+) -> Bounds:
+    Lx, Ly = geo["Lx"], geo["Ly"]
+    KC1, KS1, DC1, DS1 = _layer_springs(
+        problem, c1, (lo["n1"], hi["n1"]), (lo["W1"], hi["W1"]), (lo["a1"], hi["a1"]), Ly, tables.Qx
+    )
+    if problem.identical and isinstance(problem.layout, Rectangle | Circle):
+        # outline symmetric under x <-> y: identical layers have identical springs
+        KC2, KS2, DC2, DS2 = KC1, KS1, DC1, DS1
+    else:  # a polygon's facet lengths differ across x and across y (regression: issue found
+        # by brute force on a pentagon; layer 2 must use Q_y even when the layers are identical)
+        KC2, KS2, DC2, DS2 = _layer_springs(
+            problem,
+            c2,
+            (lo["n2"], hi["n2"]),
+            (lo["W2"], hi["W2"]),
+            (lo["a2"], hi["a2"]),
+            Lx,
+            tables.Qy,
+        )
+    out: Bounds = {}
+    for key in keys:
+        kind, eta_s = key.split("@")
+        e = np.radians(float(eta_s))
+        c2_, s2_ = np.cos(e) ** 2, np.sin(e) ** 2  # DESIGN.md 3.3
+        if kind == "K":
+            v = (KS1 + KC2) * c2_ + (KS2 + KC1) * s2_
+        else:
+            v = (DS1 + DC2) * c2_ + (DS2 + DC1) * s2_
+            if kind == "EI":
+                v = v * _span_bounds(problem, Lx, Ly, float(eta_s))
+        out[key] = (np.maximum(v.lo, 0.0), v.hi)
+    return out
+
+
+def _span_bounds(
+    problem: Problem,
+    Lx: tuple[FloatArray, FloatArray],
+    Ly: tuple[FloatArray, FloatArray],
+    eta_deg: float,
+) -> Interval:
+    lay = problem.layout
+    eta = np.asarray(eta_deg, dtype=np.float64)
+    hi = np.asarray(lay.span(Lx[1], Ly[1], eta), dtype=np.float64)
+    if isinstance(lay, Rectangle | Circle):  # monotone in Lx and Ly
+        lo = np.asarray(lay.span(Lx[0], Ly[0], eta), dtype=np.float64)
+        return Interval(np.nextafter(lo, 0.0), np.nextafter(hi, np.inf))
+    e = np.radians(eta_deg)
+    slack = 2.0 * (np.abs(np.sin(e)) * (Lx[1] - Lx[0]) + np.abs(np.cos(e)) * (Ly[1] - Ly[0]))
+    return Interval(np.maximum(hi - slack, 0.0), hi + slack)

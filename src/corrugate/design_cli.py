@@ -1,0 +1,358 @@
+"""``corrugate design``, ``pareto`` and ``tolerance``: certified designs from a spec, explained.
+
+Registered on :data:`corrugate.cli.app`. Exit codes: 0 success, 1 the spec is infeasible (the
+diagnosis says why) or could not be certified, 2 a user error (one line naming the spec field,
+e.g. ``constraints.side.min``).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Annotated
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from .cli import app
+from .design import Problem, Solution, solve
+from .design.pareto import ParetoFront, pareto_front
+from .design.robust import robust_solve
+from .design.tolerance import Tolerances, monte_carlo
+from .errors import InputError
+from .spec import load_spec
+from .units import parse_quantity
+
+__all__ = ["design_cmd", "pareto_cmd", "tolerance_cmd", "write_atomic"]
+
+
+def write_atomic(path: Path, text: str) -> None:
+    """Write ``text`` to ``path`` through a temporary file in the same directory, then rename:
+    readers never see a half-written file, and nothing is left behind on failure."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual permissions
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def _console(stderr: bool = False) -> Console:
+    """A rich console; 120 columns when not writing to a terminal (logs, make demo)."""
+    probe = Console(stderr=stderr)
+    return probe if probe.is_terminal else Console(stderr=stderr, width=120)
+
+
+def _fmt(x: float | None, digits: int = 5) -> str:
+    return "-" if x is None else f"{x:.{digits}g}"
+
+
+def _print_solution(sol: Solution, console: Console, tightened: bool = False) -> None:
+    p = sol.problem
+    cert = "certified" if sol.certified else "NOT certified"
+    if tightened:
+        cert += " for the tightened bounds below"
+    if sol.status != "optimal":
+        console.print(
+            f"[bold red]{p.name}: {sol.status}[/bold red] ({cert}): no design meets "
+            "every constraint."
+        )
+        for diag in sol.diagnosis:
+            console.print(f"  - {diag.message}")
+        return
+    assert sol.assembly is not None
+    assert sol.analysis is not None
+    gap = "exact (every variable on its grid)" if p.gridded else f"gap <= {sol.gap:.1e}"
+    console.print(
+        f"[bold]{p.name}[/bold]: optimal, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
+    )
+    t = Table(title="design", title_justify="left")
+    for col in ("layer", "material", "t mm", "W mm", "n", "alpha deg"):
+        t.add_column(col, justify="right")
+    for i, layer in enumerate(sol.assembly.layers):
+        t.add_row(
+            str(i + 1),
+            layer.material.id,
+            _fmt(layer.t),
+            _fmt(layer.W, 6),
+            str(layer.n),
+            _fmt(layer.alpha_deg, 6),
+        )
+    console.print(t)
+    a = sol.assembly
+    console.print(
+        f"extent {a.Lx:.2f} x {a.Ly:.2f} mm, folded thickness {a.thickness:.2f} mm, "
+        f"mass {sol.analysis.mass.total:.4f} g"
+    )
+    s = Table(title="stiffness", title_justify="left")
+    for col in ("eta deg", "K N/mm", "D N mm", "EI N mm^2", "EI mN m^2"):
+        s.add_column(col, justify="right")
+    for st in sol.analysis.stiffness:
+        s.add_row(_fmt(st.eta_deg), _fmt(st.K), _fmt(st.D), _fmt(st.EI), f"{st.EI / 1000:.2f}")
+    console.print(s)
+    c = Table(
+        title="constraints (binding: relaxing it alone allows a better design)",
+        title_justify="left",
+    )
+    for col in ("constraint", "value", "bound", "margin", "unit", "binding"):
+        c.add_column(col, justify="right")
+    for r in sol.constraints:
+        op = ">=" if r.sense == "min" else "<="
+        c.add_row(
+            r.name,
+            _fmt(r.value),
+            f"{op} {_fmt(r.bound)}",
+            _fmt(r.margin, 3),
+            r.unit,
+            "yes" if r.binding else ("?" if r.binding is None else "no"),
+        )
+    console.print(c)
+    if sol.runner_ups:
+        u = Table(
+            title=f"runner-ups (best for each n; {p.objective.sense}imise {p.objective.quantity})",
+            title_justify="left",
+        )
+        for col in ("n", "W mm", "alpha deg", "objective"):
+            u.add_column(col, justify="right")
+        for ru in sol.runner_ups:
+            lay = ru.layers[0]
+            mark = " *" if ru.objective == sol.objective else ""
+            u.add_row(
+                str(ru.n),
+                _fmt(float(lay["W_mm"]), 6),  # type: ignore[arg-type]
+                _fmt(float(lay["alpha_deg"]), 6),  # type: ignore[arg-type]
+                _fmt(ru.objective, 6) + mark,
+            )
+        console.print(u)
+    for w in sol.warnings:
+        console.print(f"[yellow]warning[/yellow] ({w['code']}): {w['message']}")
+
+
+@app.command("design")
+def design_cmd(
+    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    out: Annotated[Path | None, typer.Option("--out", help="Directory for design.json.")] = None,
+) -> None:
+    """The certified lightest OADLC design that meets a spec, with its explanation.
+
+    Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
+    """
+    parsed = load_spec(spec)
+    problem = Problem.from_spec(parsed)
+    robust = None
+    if parsed.robust is not None:
+        r = parsed.robust
+        tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
+        robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
+        sol = robust.solution
+    else:
+        sol = solve(problem)
+    payload = sol.to_dict()
+    if robust is not None:
+        payload["certified"] = False  # the robust optimum itself is not proven (see robust.py)
+        payload["robust"] = robust.as_dict(problem)
+        payload["warnings"] = [
+            *sol.warnings,
+            {
+                "code": "robust-not-certified",
+                "message": (
+                    "robust design: certified optimum of the spec with tightened bounds; its "
+                    "probability of meeting the spec is a Monte Carlo estimate and its "
+                    "optimality is not proven"
+                ),
+            },
+        ]
+    text = json.dumps(payload, indent=2)
+    if out is not None:
+        if out.exists() and not out.is_dir():
+            raise InputError("--out", str(out), "a directory", reason="is a file")
+        write_atomic(out / "design.json", text + "\n")
+    if as_json:
+        typer.echo(text)
+    else:
+        console = _console()
+        _print_solution(sol, console, tightened=robust is not None)
+        if robust is not None:
+            rd = robust.as_dict(problem)
+            met = "met" if robust.met else "NOT met"
+            console.print(
+                f"[bold]robust[/bold]: P(spec holds) = {rd['probability_met']} (target "
+                f"{robust.target:g}, {met}) after {robust.rounds} round(s) of margin inflation; "
+                "bounds above are the tightened ones; not certified as the lightest robust design"
+            )
+        if out is not None:
+            console.print(f"wrote {out / 'design.json'}")
+    if sol.status != "optimal" or not sol.certified or (robust is not None and not robust.met):
+        raise typer.Exit(1)
+
+
+def _plot(front: ParetoFront, title: str, path: Path) -> bool:
+    """Write the front as a PNG (mass against stiffness); False if matplotlib is missing."""
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        return False
+    fig, ax = plt.subplots(figsize=(6, 4))
+    s = [p.stiffness for p in front.points]
+    m = [p.mass for p in front.points]
+    if front.exact:
+        ax.step(s, m, where="pre", color="0.6", lw=1)
+    else:
+        ax.plot(s, m, color="0.6", lw=1)
+    ax.plot(s, m, "o", ms=3)
+    ax.set_xlabel(f"{front.quantity} [{front.unit}]")
+    ax.set_ylabel("lightest mass [g]")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".png", dir=path.parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=120)
+        os.replace(tmp, path)
+    finally:
+        Path(tmp).unlink(missing_ok=True)
+        plt.close(fig)
+    return True
+
+
+@app.command("pareto")
+def pareto_cmd(
+    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
+    vs: Annotated[
+        str, typer.Option("--vs", help="flexural_rigidity | bending_stiffness | inplane_stiffness")
+    ] = "flexural_rigidity",
+    eta: Annotated[str, typer.Option(help="Direction of the stiffness (deg).")] = "0",
+    points: Annotated[int, typer.Option(help="Points on a continuous front.")] = 25,
+    max_points: Annotated[int, typer.Option(help="Cap on a gridded (exact) front.")] = 500,
+    out: Annotated[
+        Path | None, typer.Option("--out", help="Directory for pareto.csv and pareto.png.")
+    ] = None,
+) -> None:
+    """The exact mass-versus-stiffness Pareto front of a spec (each point a certified optimum).
+
+    Example: corrugate pareto examples/blimp_gripper.toml --vs flexural_rigidity --out out/p
+    """
+    kinds = ("flexural_rigidity", "bending_stiffness", "inplane_stiffness")
+    if vs not in kinds:
+        raise InputError("--vs", repr(vs), "one of " + ", ".join(kinds), reason="is unknown")
+    if points < 2:
+        raise InputError("--points", points, "an integer >= 2")
+    eta_deg = parse_quantity(eta, "deg", "--eta")
+    problem = Problem.from_spec(load_spec(spec))
+    front = pareto_front(problem, vs, eta_deg, points=points, max_points=max_points)
+    text = front.csv()
+    console = _console(stderr=True)
+    if out is None:
+        typer.echo(text, nl=False)
+    else:
+        if out.exists() and not out.is_dir():
+            raise InputError("--out", str(out), "a directory", reason="is a file")
+        write_atomic(out / "pareto.csv", text)
+        console.print(f"wrote {out / 'pareto.csv'}")
+        if _plot(front, f"{problem.name}: Pareto front", out / "pareto.png"):
+            console.print(f"wrote {out / 'pareto.png'}")
+        else:
+            console.print(
+                "[yellow]warning[/yellow]: matplotlib is not installed (extra 'fab'); "
+                "no plot written"
+            )
+    kind = "exact staircase" if front.exact else f"{len(front.points)} sampled levels"
+    note = " (truncated at --max-points)" if front.truncated else ""
+    console.print(
+        f"{len(front.points)} points, {kind}{note}, every point certified: {front.certified}"
+    )
+    if not front.points or not front.certified:
+        raise typer.Exit(1)
+
+
+def _relative(value: str, field: str) -> float:
+    """'5%' or '0.05' -> 0.05."""
+    text = value.strip()
+    try:
+        x = float(text[:-1]) / 100 if text.endswith("%") else float(text)
+    except ValueError:
+        raise InputError(
+            field,
+            repr(value),
+            "a fraction such as 0.05 or a percentage such as '5%'",
+            reason="cannot be read",
+        ) from None
+    if not 0 <= x < 1:
+        raise InputError(field, value, "0 <= tolerance < 100 %")
+    return x
+
+
+@app.command("tolerance")
+def tolerance_cmd(
+    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); its optimum is analysed.")],
+    samples: Annotated[int, typer.Option(help="Monte Carlo samples.")] = 10_000,
+    seed: Annotated[int, typer.Option(help="Random seed.")] = 0,
+    W_tol: Annotated[str, typer.Option("--W-tol", help="1-sigma error of W (mm).")] = "0.1 mm",
+    alpha_tol: Annotated[
+        str, typer.Option("--alpha-tol", help="1-sigma error of alpha (deg).")
+    ] = "2 deg",
+    t_tol: Annotated[str, typer.Option("--t-tol", help="1-sigma relative error of t.")] = "5%",
+    E_tol: Annotated[str, typer.Option("--E-tol", help="1-sigma relative error of E.")] = "10%",
+    as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+) -> None:
+    """Monte Carlo of the certified design of a spec over manufacturing and material tolerances:
+    stiffness distribution and the probability that the spec is still met.
+
+    Example: corrugate tolerance examples/blimp_gripper.toml --alpha-tol "2 deg" --E-tol 10%
+    """
+    if samples < 2:
+        raise InputError("--samples", samples, "an integer >= 2")
+    tol = Tolerances(
+        W=parse_quantity(W_tol, "mm", "--W-tol"),
+        alpha=parse_quantity(alpha_tol, "deg", "--alpha-tol"),
+        t_rel=_relative(t_tol, "--t-tol"),
+        E_rel=_relative(E_tol, "--E-tol"),
+    )
+    if tol.W < 0 or tol.alpha < 0:
+        raise InputError("--W-tol" if tol.W < 0 else "--alpha-tol", "negative", ">= 0")
+    problem = Problem.from_spec(load_spec(spec))
+    sol = solve(problem, explain=False)
+    if sol.assembly is None:
+        raise InputError("spec", str(spec), "a feasible spec", reason=f"is {sol.status}")
+    report = monte_carlo(problem, sol.assembly, tol, samples, seed)
+    if as_json:
+        design = sol.to_dict()["design"]
+        typer.echo(json.dumps({"design": design, **report.as_dict()}, indent=2))
+        return
+    console = _console()
+    lay = sol.assembly.layer1
+    console.print(
+        f"[bold]{problem.name}[/bold]: certified design W = {lay.W:.6g} mm, n = "
+        f"{lay.n}, alpha = {lay.alpha_deg:.6g} deg; {samples} samples, 1-sigma "
+        f"W {tol.W:g} mm, alpha {tol.alpha:g} deg, t {100 * tol.t_rel:g} %, "
+        f"E {100 * tol.E_rel:g} %"
+    )
+    t = Table(title="quantities", title_justify="left")
+    for col in ("quantity", "unit", "nominal", "mean", "sd", "5 %", "50 %", "95 %"):
+        t.add_column(col, justify="right")
+    for s in report.stats:
+        t.add_row(
+            s.quantity, s.unit, *(_fmt(v) for v in (s.nominal, s.mean, s.sd, s.q05, s.q50, s.q95))
+        )
+    console.print(t)
+    c = Table(title="probability that each constraint holds", title_justify="left")
+    c.add_column("constraint")
+    c.add_column("P", justify="right")
+    for name, p in report.probabilities:
+        c.add_row(name, f"{100 * p:.1f} %")
+    c.add_row("[bold]all[/bold]", f"[bold]{100 * report.p_all:.1f} %[/bold]")
+    console.print(c)

@@ -1,0 +1,169 @@
+"""``corrugate design``: JSON contract, --out files, exit codes, one-line errors."""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from corrugate.cli import main
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+BLIMP = EXAMPLES / "blimp_gripper.toml"
+
+
+def _run(argv: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
+    with pytest.raises(SystemExit) as info:
+        main(argv)
+    out, err = capsys.readouterr()
+    code = info.value.code
+    return (0 if code is None else int(code)), out, err
+
+
+def _dump(d: dict[str, Any]) -> str:
+    """Minimal TOML writer for the nested dicts these tests build."""
+
+    def value(v: Any) -> str:
+        if isinstance(v, str):
+            return json.dumps(v)
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, int | float):
+            return repr(v)
+        if isinstance(v, list):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        return "{ " + ", ".join(f"{k} = {value(x)}" for k, x in v.items()) + " }"
+
+    lines = [f"{k} = {value(v)}" for k, v in d.items() if not isinstance(v, dict)]
+    for k, v in d.items():
+        if isinstance(v, dict):
+            lines.append(f"[{k}]")
+            lines += [f"{kk} = {value(vv)}" for kk, vv in v.items()]
+    return "\n".join(lines) + "\n"
+
+
+def test_json_contract_for_the_case_study(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = _run(["design", str(BLIMP), "--json"], capsys)
+    assert code == 0
+    d = json.loads(out)
+    assert d["status"] == "optimal"
+    assert d["certified"] is True
+    layers = d["design"]["layers"]
+    assert len(layers) == 2
+    for layer in layers:
+        assert layer == {
+            "index": layer["index"],
+            "W_mm": 8.0,
+            "n": 8,
+            "alpha_deg": 84.0,
+            "material": "dura-lar",
+            "t_mm": 0.125,
+        }
+    assert d["mass_g"] == pytest.approx(d["performance"]["mass_g"])
+    # stiffness exactly as `corrugate analyze --json` reports it for the same design
+    code, out2, _ = _run(
+        [
+            "analyze",
+            "--W",
+            "8",
+            "--n",
+            "8",
+            "--alpha",
+            "84",
+            "--material",
+            "dura-lar",
+            "--model",
+            "paper",
+            "--eta",
+            "0",
+            "--eta",
+            "90",
+            "--json",
+        ],
+        capsys,
+    )
+    assert code == 0
+    assert d["stiffness"] == json.loads(out2)["stiffness"]
+    for c in d["constraints"]:
+        assert set(c) >= {"name", "value", "bound", "margin", "binding"}
+        assert c["margin"] >= 0
+    names = {c["name"] for c in d["constraints"]}
+    assert "constraints.side.min" in names
+    assert "constraints.flexural_rigidity[0].min" in names
+    assert isinstance(d["warnings"], list)
+    assert {w["code"] for w in d["warnings"]} >= {"paper-model"}
+
+
+def test_out_dir_gets_design_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    out_dir = tmp_path / "nested" / "blimp"
+    code, out, _ = _run(["design", str(BLIMP), "--json", "--out", str(out_dir)], capsys)
+    assert code == 0
+    written = json.loads((out_dir / "design.json").read_text("utf-8"))
+    assert written == json.loads(out)
+    assert sorted(p.name for p in out_dir.iterdir()) == ["design.json"]  # no temp files left
+
+
+def test_readable_summary(capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = _run(["design", str(BLIMP)], capsys)
+    assert code == 0
+    assert "certified" in out
+    assert "84" in out
+    assert "constraints.side.min" in out
+
+
+@pytest.mark.parametrize(
+    ("edit", "field"),
+    [
+        (lambda d: d["constraints"].update(colour="red"), "constraints.colour"),
+        (lambda d: d["constraints"]["side"].update(min="48 kg"), "constraints.side.min"),
+        (lambda d: d["constraints"]["side"].update(min="70 mm"), "constraints.side.min"),
+        (lambda d: d["variables"]["W"].update(min="-1 mm"), "variables.W.min"),
+    ],
+    ids=["unknown-key", "wrong-unit", "min-above-max", "negative-size"],
+)
+def test_malformed_spec_exits_2_with_the_toml_path(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], edit: Any, field: str
+) -> None:
+    d = tomllib.loads(BLIMP.read_text("utf-8"))
+    edit(d)
+    spec = tmp_path / "bad.toml"
+    spec.write_text(_dump(d), "utf-8")
+    out_dir = tmp_path / "out"
+    code, out, err = _run(["design", str(spec), "--json", "--out", str(out_dir)], capsys)
+    assert code == 2
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith(f"corrugate: error: {field} = ")
+    assert "Traceback" not in err
+    assert not out_dir.exists()  # nothing written on failure
+
+
+def test_infeasible_spec_exits_1_with_a_diagnosis(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    code, out, _ = _run(["design", str(EXAMPLES / "infeasible.toml"), "--json"], capsys)
+    assert code == 1
+    d = json.loads(out)
+    assert d["status"] == "infeasible"
+    assert d["certified"] is True
+    assert d["design"] is None
+    named = {n for diag in d["diagnosis"] for n in diag["constraints"]}
+    assert "constraints.flexural_rigidity[0].min" in named
+    assert all(diag["message"] for diag in d["diagnosis"])
+
+
+@pytest.mark.parametrize(
+    "name",
+    ["blimp_gripper_continuous.toml", "wheel_circle.toml", "rectangle_independent.toml"],
+)
+def test_every_example_solves_certified(name: str, capsys: pytest.CaptureFixture[str]) -> None:
+    code, out, _ = _run(["design", str(EXAMPLES / name), "--json"], capsys)
+    assert code == 0
+    d = json.loads(out)
+    assert d["status"] == "optimal"
+    assert d["certified"] is True
+    assert all(c["margin"] >= -1e-9 * abs(c["bound"]) for c in d["constraints"])
