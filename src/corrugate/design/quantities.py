@@ -13,8 +13,10 @@ a box ``lo <= x <= hi`` (elementwise over many boxes). The arguments, per quanti
   0 < alpha < 180 deg, Lx = (n1 + 1) W1 s1 increases with n1, W1 and alpha1; t_d = W1 c1 + W2 c2
   increases with W and decreases with alpha; the blank (n + 1) W increases with n and W; the mass
   rho t W (n + 1) S a_f of each layer (S the other layer's extent, a_f the outline's area fraction;
-  :mod:`corrugate.mass`) increases with every variable. So their bounds are their values at the
-  box corners, computed with the same building blocks as ``evaluate``.
+  :mod:`corrugate.mass`) increases with every variable, and the connector band's mass increases
+  with Lx, Ly and t_d (:mod:`corrugate.pattern.connectors`). So their bounds are their values at
+  the box corners (the band's at the bounds of Lx, Ly and t_d), computed with the same building
+  blocks as ``evaluate``.
 * facet length: max_j L_j = F(n) S with F(n) = (n + 1) max_j dA_j (:mod:`corrugate.layouts`),
   bounded by the range of F over the box's n and the range of S.
 * stiffness: the moduli variant's own function evaluated in :class:`~.interval.Interval`
@@ -42,7 +44,7 @@ from numpy.typing import NDArray
 
 from ..analysis import LayerArrays, evaluate
 from ..layouts import Circle, Rectangle, facet_lengths, inverse_length_sum, length_sum
-from ..mass import layer_mass
+from ..mass import connector_mass, layer_mass
 from ..moduli import get_model
 from .interval import Interval
 from .problem import Candidate, Problem
@@ -216,7 +218,13 @@ def box_bounds(
             m2 = layer_mass(c2.material.density, c2.t, b["W2"], length_sum(lay, b["n2"], Lx))
             return np.asarray(m1 + m2)
 
-        out["mass"] = (mass(lo, Lx_lo, Ly_lo), mass(hi, Lx_hi, Ly_hi))
+        # The band (cut from layer 1's sheet) grows with Lx, Ly and t_d (corrugate.pattern.
+        # connectors), so its bounds are its values at those quantities' own bounds.
+        td_lo = _height(lo["W1"], hi["a1"]) + _height(lo["W2"], hi["a2"])
+        td_hi = _height(hi["W1"], lo["a1"]) + _height(hi["W2"], lo["a2"])
+        band_lo = connector_mass(c1.material.density, c1.t, lay, Lx_lo, Ly_lo, td_lo)
+        band_hi = connector_mass(c1.material.density, c1.t, lay, Lx_hi, Ly_hi, td_hi)
+        out["mass"] = (mass(lo, Lx_lo, Ly_lo) + band_lo, mass(hi, Lx_hi, Ly_hi) + band_hi)
     stiff = sorted(q for q in quantities if "@" in q)
     if stiff:
         out.update(_stiffness_bounds(problem, c1, c2, lo, hi, tables, out, stiff))

@@ -10,13 +10,11 @@ a mark along a smooth outline. Marks show where each crease of layer 1 (0..h1) a
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numpy.typing import NDArray
 
 from ..geometry import Assembly
-from .connectors import band_segments
+from .connectors import band_segments, slit_count
 from .model import Line, Part, Role
 from .options import DEFAULT_FABRICATION, FabricationOptions
 
@@ -26,24 +24,25 @@ FloatArray = NDArray[np.float64]
 Point = tuple[float, float]
 
 
-def _tab_row(
-    e: float, y0: float, sign: float, opts: FabricationOptions
+def _flange(
+    e: float, y0: float, sign: float, cornered: bool, opts: FabricationOptions
 ) -> tuple[list[Point], list[Line]]:
-    """Outline points of one row of tabs along y = y0 from x = 0 to e (sign -1: below, +1: above),
-    in increasing x, and their fold lines."""
-    k = max(1, math.ceil(e / opts.tab_length - 1e-9))
-    ell = e / k
-    g = min(opts.tab_depth, ell / 2)
-    pts: list[Point] = []
-    folds: list[Line] = []
-    for i in range(k):
-        a, b = i * ell, (i + 1) * ell
-        row = [(a, y0), (a + g, y0 + sign * g), (b - g, y0 + sign * g), (b, y0)]
-        for p in row:
-            if not pts or math.dist(pts[-1], p) > 1e-9:
-                pts.append(p)
-        folds.append(Line((a, y0), (b, y0), Role.VALLEY, 90.0))
-    return pts, folds
+    """Outline points of one glue flange along y = y0 from x = 0 to e (sign -1: below, +1: above),
+    in increasing x, with its 90 deg fold line and the slits that divide it into tabs."""
+    g = opts.tab_depth
+    ch = min(g, e / 2) if cornered else 0.0
+    y1 = y0 + sign * g
+    if cornered and ch < g:  # a short segment: the flange is a triangle of height e/2
+        pts = [(0.0, y0), (e / 2, y0 + sign * ch), (e, y0)]
+    else:
+        pts = [(0.0, y0), (ch, y1), (e - ch, y1), (e, y0)]
+    lines = [Line((0.0, y0), (e, y0), Role.VALLEY, 90.0)]
+    k = slit_count(e, opts) + 1
+    for i in range(1, k):
+        x = i * e / k
+        depth = min(g, x, e - x) if cornered else g  # stay inside the chamfers
+        lines.append(Line((x, y0), (x, y0 + sign * depth), Role.CUT))
+    return pts, lines
 
 
 def crease_crossings(a: Assembly, outline: FloatArray) -> list[tuple[float, int]]:
@@ -91,7 +90,7 @@ def band_parts(a: Assembly, opts: FabricationOptions = DEFAULT_FABRICATION) -> l
         turn = _turning_angles(outline)
         scale = 1.0
     else:  # a smooth outline: equal arcs of the exact perimeter
-        ((arc, count),) = band_segments(a.layout, a.Lx, a.Ly, opts)
+        ((arc, count, _),) = band_segments(a.layout, a.Lx, a.Ly, opts)
         lengths = [float(arc)] * int(count)
         starts = np.arange(int(count)) * float(arc)
         turn = np.zeros(int(count))
@@ -99,8 +98,8 @@ def band_parts(a: Assembly, opts: FabricationOptions = DEFAULT_FABRICATION) -> l
     parts: list[Part] = []
     m = len(lengths)
     for i, e in enumerate(lengths):
-        bottom, folds_b = _tab_row(e, 0.0, -1.0, opts)
-        top, folds_t = _tab_row(e, td, 1.0, opts)
+        bottom, folds_b = _flange(e, 0.0, -1.0, cornered, opts)
+        top, folds_t = _flange(e, td, 1.0, cornered, opts)
         o = opts.overlap
         outline_pts = [*bottom, (e + o, 0.0), (e + o, td), *reversed(top)]
         lines = [*folds_b, *folds_t]

@@ -5,21 +5,26 @@ Design (DESIGN.md section 4 asks for connectors whose area counts in the mass):
 * A **band** of height t_d (the folded thickness) wraps the whole perimeter of the outline, cut in
   segments: one per polygon edge (it folds at no corner, the joins sit at the corners), or equal arcs
   no longer than ``segment_max`` for a circle.
-* Both long edges carry **glue tabs** of depth g (45 deg chamfers, valley folds of 90 deg) that fold
-  inwards: layer 1's valleys rest and are glued on the bottom tabs, the top tabs fold over layer 2's
-  ridges. A straight run of length e has k = ceil(e / tab_length) equal tabs of length l = e / k.
+* Both long edges carry a **glue flange** of depth g (a valley fold of 90 deg) that folds inwards:
+  layer 1's valleys rest and are glued on the bottom flange, the top flange folds over layer 2's
+  ridges. Slits (cuts of no area) divide each flange into tabs no longer than ``tab_length`` so it
+  can follow a curve; at a corner the flange ends in a 45 deg chamfer.
 * Each segment ends in an **overlap tab** (length ``overlap``) glued behind the start of the next
   segment; at a corner it folds by the outline's turning angle.
 * **Marks**: where every crease of a layer meets the perimeter, a vertical mark on the band spans
   that layer's height (layer 1: 0..h1, layer 2: h1..t_d). Lining up each crease end with its mark
   sets the pitch, hence the fold angle, without measuring.
 
-Area of one segment of length e: (e + overlap) t_d + 2 k g_e (l - g_e), with g_e = min(g, l/2)
-(a tab of length l <= 2 g is a triangle). :func:`connector_area` evaluates it vectorised; the cut
-file's polygons have exactly this area.
+Area of one segment of length e: (e + overlap) t_d + 2 F(e), the flange F(e) = g_e (e - g_e) with
+g_e = min(g, e/2) when it ends at corners (chamfered) and F(e) = g e along a smooth outline.
+:func:`connector_area` evaluates it vectorised; the cut file's polygons have exactly this area.
+It increases with Lx, Ly and t_d (a circle's band gains a segment, and an overlap, as it grows),
+which the optimiser's bounds rely on.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -27,35 +32,41 @@ from numpy.typing import ArrayLike, NDArray
 from ..layouts import Layout
 from .options import DEFAULT_FABRICATION, FabricationOptions
 
-__all__ = ["band_segments", "connector_area", "tab_area"]
+__all__ = ["band_segments", "connector_area", "flange_area", "slit_count"]
 
 FloatArray = NDArray[np.float64]
 
 
-def tab_area(run: ArrayLike, opts: FabricationOptions) -> FloatArray:
-    """Area (mm^2) of the glue tabs along one edge of a straight run of length ``run`` (mm)."""
+def flange_area(run: ArrayLike, cornered: bool, opts: FabricationOptions) -> FloatArray:
+    """Area (mm^2) of one glue flange along a segment of length ``run`` (mm): chamfered at both
+    ends when the segment ends at corners, g_e (e - g_e) with g_e = min(g, e/2); else g e."""
     e = np.asarray(run, dtype=np.float64)
-    k = np.maximum(1.0, np.ceil(e / opts.tab_length - 1e-9))
-    ell = e / k
-    g = np.minimum(opts.tab_depth, ell / 2)
-    return np.asarray(k * g * (ell - g))
+    if not cornered:
+        return np.asarray(opts.tab_depth * e)
+    g = np.minimum(opts.tab_depth, e / 2)
+    return np.asarray(g * (e - g))
+
+
+def slit_count(run: float, opts: FabricationOptions) -> int:
+    """Slits that divide a flange of length ``run`` (mm) into equal tabs <= ``tab_length``."""
+    return max(1, math.ceil(run / opts.tab_length - 1e-9)) - 1
 
 
 def band_segments(
     layout: Layout, Lx: ArrayLike, Ly: ArrayLike, opts: FabricationOptions = DEFAULT_FABRICATION
-) -> list[tuple[FloatArray, FloatArray]]:
-    """The band's segments as (length in mm, count) pairs, vectorised over Lx, Ly.
+) -> list[tuple[FloatArray, FloatArray, bool]]:
+    """The band's segments as (length in mm, count, ends at corners), vectorised over Lx, Ly.
 
     A run that ends at a corner is one segment; a smooth run (a circle) is cut into
     ceil(length / segment_max) equal arcs.
     """
-    out: list[tuple[FloatArray, FloatArray]] = []
+    out: list[tuple[FloatArray, FloatArray, bool]] = []
     for length, cornered in layout.perimeter_runs(Lx, Ly):
         if cornered:
-            out.append((length, np.ones_like(length)))
+            out.append((length, np.ones_like(length), True))
         else:
             count = np.maximum(1.0, np.ceil(length / opts.segment_max - 1e-9))
-            out.append((np.asarray(length / count), count))
+            out.append((np.asarray(length / count), count, False))
     return out
 
 
@@ -66,9 +77,10 @@ def connector_area(
     thickness: ArrayLike,
     opts: FabricationOptions = DEFAULT_FABRICATION,
 ) -> FloatArray:
-    """Flat area (mm^2) of the band: every segment with its two rows of tabs and its overlap."""
+    """Flat area (mm^2) of the band: every segment with its two flanges and its overlap tab."""
     td = np.asarray(thickness, dtype=np.float64)
     total = np.zeros(np.broadcast_shapes(np.shape(Lx), np.shape(Ly), td.shape))
-    for length, count in band_segments(layout, Lx, Ly, opts):
-        total = total + count * ((length + opts.overlap) * td + 2 * tab_area(length, opts))
+    for length, count, cornered in band_segments(layout, Lx, Ly, opts):
+        flanges = 2 * flange_area(length, cornered, opts)
+        total = total + count * ((length + opts.overlap) * td + flanges)
     return np.asarray(total)
