@@ -102,8 +102,26 @@ def test_out_dir_gets_design_json(tmp_path: Path, capsys: pytest.CaptureFixture[
     code, out, _ = _run(["design", str(BLIMP), "--json", "--out", str(out_dir)], capsys)
     assert code == 0
     written = json.loads((out_dir / "design.json").read_text("utf-8"))
-    assert written == json.loads(out)
-    assert sorted(p.name for p in out_dir.iterdir()) == ["design.json"]  # no temp files left
+    printed = json.loads(out)
+    for key, value in printed.items():  # design.json holds the printed object, plus the files'
+        assert written[key] == value, key
+    names = sorted(p.name for p in out_dir.iterdir())
+    assert not [n for n in names if n.startswith(".")]  # no temp files left
+    assert {
+        "design.json",
+        "sheet-1.svg",
+        "sheet-1.dxf",
+        "pattern.pdf",
+        "layer1.fold",
+        "layer2.fold",
+        "assembly.glb",
+        "assembly.stl",
+        "ASSEMBLY.md",
+    } <= set(names)
+    assert set(written["files"]) == set(names)
+    # the mass of the cut parts is the mass the solver minimised
+    parts = sum(p["mass_g"] for p in written["cut_parts"])
+    assert parts == pytest.approx(printed["mass_g"], rel=5e-3)
 
 
 def test_readable_summary(capsys: pytest.CaptureFixture[str]) -> None:

@@ -8,8 +8,6 @@ e.g. ``constraints.side.min``).
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 from pathlib import Path
 from typing import Annotated
 
@@ -23,27 +21,13 @@ from .design.pareto import ParetoFront, pareto_front
 from .design.robust import robust_solve
 from .design.tolerance import Tolerances, monte_carlo
 from .errors import InputError
+from .fileio import atomic_write, staged
+from .outputs import write_design_files
+from .pattern_cli import fab_options
 from .spec import load_spec
 from .units import parse_quantity
 
-__all__ = ["design_cmd", "pareto_cmd", "tolerance_cmd", "write_atomic"]
-
-
-def write_atomic(path: Path, text: str) -> None:
-    """Write ``text`` to ``path`` through a temporary file in the same directory, then rename:
-    readers never see a half-written file, and nothing is left behind on failure."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            fh.write(text)
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)  # mkstemp creates 0600; give the usual permissions
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+__all__ = ["design_cmd", "pareto_cmd", "tolerance_cmd"]
 
 
 def _console(stderr: bool = False) -> Console:
@@ -141,12 +125,25 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
 def design_cmd(
     spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
-    out: Annotated[Path | None, typer.Option("--out", help="Directory for design.json.")] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", help="Folder for design.json and, for a design, every cut file."),
+    ] = None,
+    cutter: Annotated[
+        str,
+        typer.Option(help="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH."),
+    ] = "cameo4-12x12",
+    fold_style: Annotated[str, typer.Option(help="solid | scored | perforated.")] = "solid",
+    cut: Annotated[str | None, typer.Option(help="Perforation: cut length (mm).")] = None,
+    gap: Annotated[str | None, typer.Option(help="Perforation: gap length (mm).")] = None,
 ) -> None:
     """The certified lightest OADLC design that meets a spec, with its explanation.
 
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     """
+    if out is not None and out.exists() and not out.is_dir():
+        raise InputError("--out", str(out), "a directory", reason="is a file")
+    files = fab_options(cutter, fold_style, cut, gap, "5", "5", "4") if out is not None else None
     parsed = load_spec(spec)
     problem = Problem.from_spec(parsed)
     robust = None
@@ -173,10 +170,12 @@ def design_cmd(
             },
         ]
     text = json.dumps(payload, indent=2)
-    if out is not None:
-        if out.exists() and not out.is_dir():
-            raise InputError("--out", str(out), "a directory", reason="is a file")
-        write_atomic(out / "design.json", text + "\n")
+    written: list[Path] = []
+    if out is not None and files is not None:
+        if sol.analysis is not None:
+            written = write_design_files(sol.analysis, out, files, extra=payload)
+        else:
+            written = [atomic_write(out / "design.json", text + "\n")]
     if as_json:
         typer.echo(text)
     else:
@@ -190,8 +189,8 @@ def design_cmd(
                 f"{robust.target:g}, {met}) after {robust.rounds} round(s) of margin inflation; "
                 "bounds above are the tightened ones; not certified as the lightest robust design"
             )
-        if out is not None:
-            console.print(f"wrote {out / 'design.json'}")
+        for path in written:
+            console.print(f"wrote {path}")
     if sol.status != "optimal" or not sol.certified or (robust is not None and not robust.met):
         raise typer.Exit(1)
 
@@ -218,13 +217,10 @@ def _plot(front: ParetoFront, title: str, path: Path) -> bool:
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".png", dir=path.parent)
-    os.close(fd)
     try:
-        fig.savefig(tmp, dpi=120)
-        os.replace(tmp, path)
+        with staged() as st:
+            fig.savefig(st.path(path), dpi=120, format="png")
     finally:
-        Path(tmp).unlink(missing_ok=True)
         plt.close(fig)
     return True
 
@@ -261,7 +257,7 @@ def pareto_cmd(
     else:
         if out.exists() and not out.is_dir():
             raise InputError("--out", str(out), "a directory", reason="is a file")
-        write_atomic(out / "pareto.csv", text)
+        atomic_write(out / "pareto.csv", text)
         console.print(f"wrote {out / 'pareto.csv'}")
         if _plot(front, f"{problem.name}: Pareto front", out / "pareto.png"):
             console.print(f"wrote {out / 'pareto.png'}")
