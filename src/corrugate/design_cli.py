@@ -173,7 +173,10 @@ def design_cmd(
     written: list[Path] = []
     if out is not None and files is not None:
         if sol.analysis is not None:
-            written = write_design_files(sol.analysis, out, files, extra=payload)
+            from .report import report_html
+
+            report = report_html(sol, spec.read_text(encoding="utf-8"), files.cutter)
+            written = write_design_files(sol.analysis, out, files, extra=payload, report=report)
         else:
             written = [atomic_write(out / "design.json", text + "\n")]
     if as_json:

@@ -2,8 +2,8 @@
 
 ``sheet-N.svg`` / ``sheet-N.dxf`` and ``pattern.pdf`` (the parts laid out on the cutter's sheets),
 ``layer1.fold`` / ``layer2.fold`` (FOLD 1.2 with the folded frame), ``assembly.glb`` /
-``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure)
-and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
+``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure),
+``report.html`` (from ``corrugate design``) and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
 checked and every document built before anything is written; the files are then committed
 together (:mod:`corrugate.fileio`), so a bad option or a failure leaves no file behind.
 """
@@ -45,11 +45,12 @@ def write_design_files(
     out_dir: str | Path,
     options: OutputOptions | None = None,
     extra: dict[str, Any] | None = None,
+    report: str | None = None,
 ) -> list[Path]:
     """Write every file of the analysed design into ``out_dir``; returns the paths written.
 
     ``extra`` is merged into ``design.json`` (the design command puts its spec and constraints
-    there).
+    there); ``report`` is the text of ``report.html`` (see :mod:`corrugate.report`), if any.
     """
     opts = options or OutputOptions()
     a = analysis.assembly
@@ -88,6 +89,9 @@ def write_design_files(
         written += write_fold(a, pattern, out, st)
         written += write_mesh(a, pattern, out, st)
         written += write_instructions(a, pattern, out, st)
+        if report is not None:
+            st.path(out / "report.html").write_text(report, encoding="utf-8")
+            written.append(out / "report.html")
         record["files"] = [p.name for p in written] + ["design.json"]
         target = out / "design.json"
         st.path(target).write_text(json.dumps(record, indent=2), encoding="utf-8")

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -12,7 +13,7 @@ from ..geometry import Assembly
 from .folded import facet_polygons, fold_points
 from .model import Pattern, Role
 
-__all__ = ["assembly_steps", "write_instructions"]
+__all__ = ["assembly_steps", "instructions_figure", "write_instructions"]
 
 _COLOURS = {
     Role.MOUNTAIN: "#ff0000",
@@ -64,10 +65,8 @@ def _layer_faces(a: Assembly, pattern: Pattern, index: int) -> list[np.ndarray]:
     return faces
 
 
-def write_instructions(
-    a: Assembly, pattern: Pattern, out_dir: Path, staging: Staging | None = None
-) -> list[Path]:
-    """Write ``ASSEMBLY.md`` (numbered steps) and ``assembly.png`` (the figure) into ``out_dir``."""
+def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
+    """The assembly figure: the cut parts, then the folded layers, band and finished panel."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -128,6 +127,16 @@ def write_instructions(
         ax.tick_params(labelsize=6)
         ax.set_title(title, fontsize=9)
     fig.tight_layout()
+    return fig
+
+
+def write_instructions(
+    a: Assembly, pattern: Pattern, out_dir: Path, staging: Staging | None = None
+) -> list[Path]:
+    """Write ``ASSEMBLY.md`` (numbered steps) and ``assembly.png`` (the figure) into ``out_dir``."""
+    import matplotlib.pyplot as plt
+
+    fig = instructions_figure(a, pattern)
     steps = assembly_steps(a, pattern)
     text = (
         "# Assembly\n\n![assembly steps](assembly.png)\n\n"

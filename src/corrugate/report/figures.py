@@ -1,0 +1,183 @@
+"""Matplotlib figures of the report, each with labelled axes and units.
+
+* :func:`design_space_figure`: W against alpha at the optimum's n (layer 1; layer 2 held at the
+  optimum when the layers are independent), the feasible region shaded, each constraint's boundary
+  drawn and labelled with its spec path, mass contours, the optimum marked;
+* :func:`mass_by_n_figure`: the lightest feasible mass for each n over a grid of W and alpha;
+* :func:`polar_figure`: K(eta) and D(eta) of the design, eta from layer 1's creases.
+
+All values come from :func:`corrugate.design.quantities.point_values`, i.e. from
+:func:`corrugate.analysis.evaluate`, the one implementation of the model.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..analysis import Analysis, analyze
+from ..design.problem import Candidate, Problem, describe
+from ..design.quantities import Tables, point_values
+
+__all__ = ["design_space_figure", "mass_by_n_figure", "polar_figure"]
+
+FloatArray = NDArray[np.float64]
+#: Grid used across W and alpha when a variable is continuous (or its grid is finer).
+GRID = 161
+
+
+def _axis(lo: float, hi: float, step: float | None) -> FloatArray:
+    if step is not None and (hi - lo) / step + 1 <= GRID:
+        return np.asarray(lo + step * np.arange(int(np.floor((hi - lo) / step + 1e-9)) + 1))
+    return np.linspace(lo, hi, GRID)
+
+
+def _points(
+    problem: Problem, a: Analysis, n1: FloatArray, W1: FloatArray, a1: FloatArray
+) -> dict[str, FloatArray]:
+    l2 = a.assembly.layer2
+    if problem.identical:
+        n2, W2, a2 = n1, W1, a1
+    else:
+        n2 = np.full_like(W1, float(l2.n))
+        W2 = np.full_like(W1, l2.W)
+        a2 = np.full_like(W1, l2.alpha_deg)
+    return {"n1": n1, "W1": W1, "a1": a1, "n2": n2, "W2": W2, "a2": a2}
+
+
+def _candidates(a: Analysis) -> tuple[Candidate, Candidate]:
+    l1, l2 = a.assembly.layer1, a.assembly.layer2
+    return Candidate(l1.material, l1.t), Candidate(l2.material, l2.t)
+
+
+def design_space_figure(problem: Problem, a: Analysis) -> Any:
+    """The (W, alpha) plane of layer 1 at the optimum's n (see the module docstring)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Rectangle
+
+    l1 = a.assembly.layer1
+    # the continuous relaxation on a fine grid, so boundaries and the region read clearly
+    Ws = np.linspace(problem.W.lo, problem.W.top, GRID)
+    As = np.linspace(problem.alpha.lo, problem.alpha.top, GRID)
+    WW, AA = np.meshgrid(Ws, As)
+    x = _points(problem, a, np.full(WW.size, float(l1.n)), WW.ravel(), AA.ravel())
+    values = point_values(problem, *_candidates(a), x, Tables(problem))
+    fig, ax = plt.subplots(figsize=(7.5, 5.5), dpi=100)
+    feasible = np.ones(WW.size, dtype=bool)
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    handles: list[Any] = []
+    for k, c in enumerate(problem.constraints):
+        v = values[c.quantity]
+        feasible &= c.satisfied(v)
+        margin = (v - c.bound) if c.sense == "min" else (c.bound - v)
+        scale = abs(c.bound) or 1.0
+        field = (margin / scale).reshape(WW.shape)
+        if np.nanmin(field) < 0 < np.nanmax(field):
+            colour = colours[k % len(colours)]
+            cs = ax.contour(WW, AA, field, levels=[0.0], colors=[colour], linewidths=1.4)
+            ax.clabel(cs, fmt={0.0: c.name.replace("constraints.", "")}, fontsize=7)
+            handles.append(Line2D([], [], color=colour, label=f"{c.name} ({describe(c.quantity)})"))
+    ax.contourf(
+        WW,
+        AA,
+        feasible.reshape(WW.shape).astype(float),
+        levels=[0.5, 1.5],
+        colors=["#a1d99b"],
+        alpha=0.6,
+    )
+    mass = values["mass"].reshape(WW.shape)
+    cm = ax.contour(WW, AA, mass, levels=8, colors="grey", linewidths=0.5, linestyles="dotted")
+    ax.clabel(cm, fmt="%.3g g", fontsize=6)
+    ax.plot(
+        [l1.W],
+        [l1.alpha_deg],
+        marker="*",
+        color="black",
+        markersize=14,
+        linestyle="none",
+        label=f"optimum: W {l1.W:g} mm, alpha {l1.alpha_deg:g} deg",
+    )
+    handles.append(
+        Line2D(
+            [],
+            [],
+            marker="*",
+            color="black",
+            linestyle="none",
+            label=f"optimum: W {l1.W:g} mm, alpha {l1.alpha_deg:g} deg",
+        )
+    )
+    handles.append(Rectangle((0, 0), 1, 1, color="#a1d99b", label="feasible"))
+    ax.set_xlabel("facet width W (mm)")
+    ax.set_ylabel("fold angle alpha (deg)")
+    ax.set_title(f"design space at n = {l1.n}: feasible region (continuous), grey: mass (g)")
+    ax.legend(handles=handles, fontsize=7, loc="best")
+    fig.tight_layout()
+    return fig
+
+
+def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
+    """Lightest feasible mass (g) for each n, over the W x alpha grid of :func:`design_space_figure`."""
+    import matplotlib.pyplot as plt
+
+    Ws = _axis(problem.W.lo, problem.W.top, problem.W.step)
+    As = _axis(problem.alpha.lo, problem.alpha.top, problem.alpha.step)
+    WW, AA = np.meshgrid(Ws, As)
+    W1, A1 = WW.ravel(), AA.ravel()
+    tables = Tables(problem)
+    ns = np.arange(problem.n_lo, min(problem.n_hi, problem.n_lo + n_max - 1) + 1)
+    best = np.full(len(ns), np.nan)
+    for i, n in enumerate(ns):
+        x = _points(problem, a, np.full(W1.size, float(n)), W1, A1)
+        values = point_values(problem, *_candidates(a), x, tables)
+        ok = np.ones(W1.size, dtype=bool)
+        for c in problem.constraints:
+            ok &= c.satisfied(values[c.quantity])
+        if ok.any():
+            best[i] = float(values["mass"][ok].min())
+    fig, ax = plt.subplots(figsize=(7.5, 4.0), dpi=100)
+    ax.plot(ns, best, marker="o", markersize=3, linewidth=1)
+    l1 = a.assembly.layer1
+    ax.plot(
+        [l1.n],
+        [a.mass.total],
+        marker="*",
+        color="black",
+        markersize=14,
+        linestyle="none",
+        label=f"certified optimum, {a.mass.total:.4g} g",
+    )
+    grid = "the spec's grid" if problem.gridded else f"a {GRID} x {GRID} grid of W and alpha"
+    ax.set_xlabel("number of creases n")
+    ax.set_ylabel("lightest feasible mass (g)")
+    ax.set_title(f"mass against n (best over {grid}; gaps: no feasible design)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def polar_figure(a: Analysis) -> Any:
+    """K(eta) (N/mm) and D(eta) (N mm) of the design on polar axes, eta from layer 1's creases."""
+    import matplotlib.pyplot as plt
+
+    etas = np.linspace(0.0, 360.0, 145)
+    r = analyze(a.assembly, a.model, list(etas))
+    K = np.array([s.K for s in r.stiffness])
+    D = np.array([s.D for s in r.stiffness])
+    fig, axes = plt.subplots(1, 2, subplot_kw={"projection": "polar"}, figsize=(8, 4), dpi=100)
+    for ax, values, title in (
+        (axes[0], K, "in-plane K(eta) (N/mm)"),
+        (axes[1], D, "bending D(eta) (N mm)"),
+    ):
+        ax.plot(np.radians(etas), values)
+        ax.set_theta_zero_location("N")
+        ax.set_theta_direction(-1)
+        ax.set_title(title, fontsize=9)
+        ax.tick_params(labelsize=7)
+    fig.suptitle("eta measured from layer 1's creases", fontsize=8)
+    fig.tight_layout()
+    return fig

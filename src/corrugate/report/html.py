@@ -1,0 +1,192 @@
+"""``report.html``: one self-contained file (figures embedded as PNG data URIs, no scripts)."""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+from typing import Any
+
+from ..analysis import analyze
+from ..design.solve import Solution
+from ..moduli import MODELS
+from ..pattern.build import build_pattern
+from ..pattern.instructions import assembly_steps, instructions_figure
+from ..pattern.sheets import plan_sheets
+from .figures import design_space_figure, mass_by_n_figure, polar_figure
+
+__all__ = ["report_html"]
+
+_STYLE = """
+body{font-family:system-ui,sans-serif;max-width:60rem;margin:2rem auto;padding:0 1rem;color:#222}
+h1{font-size:1.6rem}h2{font-size:1.2rem;margin-top:2rem;border-bottom:1px solid #ddd}
+table{border-collapse:collapse;margin:.5rem 0}td,th{border:1px solid #ccc;padding:.2rem .5rem;
+text-align:right}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
+img{max-width:100%;height:auto}pre{background:#f7f7f7;padding:.75rem;overflow:auto}
+.warn{color:#8a5300}.bind{font-weight:bold}
+"""
+
+
+def _png(fig: Any) -> str:
+    import matplotlib.pyplot as plt
+
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png")
+    plt.close(fig)
+    return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
+
+
+def _img(fig: Any, alt: str) -> str:
+    return f'<img src="{_png(fig)}" alt="{html.escape(alt)}">'
+
+
+def _table(head: list[str], rows: list[list[str]], classes: list[str] | None = None) -> str:
+    out = ["<table><tr>", *(f"<th>{html.escape(h)}</th>" for h in head), "</tr>"]
+    for i, row in enumerate(rows):
+        cls = f' class="{classes[i]}"' if classes and classes[i] else ""
+        out.append(f"<tr{cls}>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>")
+    out.append("</table>")
+    return "".join(out)
+
+
+def _g(x: float | None, digits: int = 5) -> str:
+    return "-" if x is None else f"{x:.{digits}g}"
+
+
+def report_html(sol: Solution, spec_text: str, cutter: str = "cameo4-12x12") -> str:
+    """The report of a solved design (see :mod:`corrugate.report`); needs matplotlib."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from ..export.pdf import sheet_figure
+
+    p = sol.problem
+    parts: list[str] = [
+        "<!doctype html><html lang='en'><head><meta charset='utf-8'>",
+        f"<title>corrugate report: {html.escape(p.name)}</title><style>{_STYLE}</style></head><body>",
+        f"<h1>corrugate report: {html.escape(p.name)}</h1>",
+    ]
+    a = sol.analysis
+    if a is None:
+        parts.append(f"<p><b>No design meets the spec</b> (status {html.escape(sol.status)}).</p>")
+        for d in sol.diagnosis:
+            parts.append(f"<p>{html.escape(d.message)}</p>")
+        parts.append(f"<h2>Spec</h2><pre>{html.escape(spec_text)}</pre></body></html>")
+        return "".join(parts)
+    asm = a.assembly
+    cert = "certified optimal" if sol.certified else "NOT certified"
+    parts.append(
+        f"<p><b>{cert}</b> (gap {sol.gap:.1e}); model <code>{html.escape(p.model)}</code>, layout "
+        f"{html.escape(asm.layout.name)}, mass <b>{a.mass.total:.4f} g</b> (layers "
+        f"{a.mass.layer1:.4f} + {a.mass.layer2:.4f} g, connectors {a.mass.connectors:.4f} g).</p>"
+    )
+    parts.append("<h2>Design</h2>")
+    parts.append(
+        _table(
+            [
+                "layer",
+                "material",
+                "t (mm)",
+                "W (mm)",
+                "n",
+                "alpha (deg)",
+                "pitch (mm)",
+                "height (mm)",
+            ],
+            [
+                [
+                    str(i + 1),
+                    ly.material.id,
+                    _g(ly.t),
+                    _g(ly.W),
+                    str(ly.n),
+                    _g(ly.alpha_deg),
+                    _g(ly.pitch),
+                    _g(ly.height),
+                ]
+                for i, ly in enumerate(asm.layers)
+            ],
+        )
+    )
+    side = f"L = {asm.Lx:.2f} mm" if asm.layout.equal_sides else f"{asm.Lx:.2f} x {asm.Ly:.2f} mm"
+    parts.append(f"<p>Folded size {side}, thickness t_d = {asm.thickness:.2f} mm.</p>")
+    parts.append("<h2>Constraints and margins</h2>")
+    parts.append(
+        _table(
+            ["constraint", "quantity", "value", "bound", "margin", "unit", "binding"],
+            [
+                [
+                    c.name,
+                    c.quantity,
+                    _g(c.value),
+                    ("&ge; " if c.sense == "min" else "&le; ")
+                    .replace("&ge; ", ">= ")
+                    .replace("&le; ", "<= ")
+                    + _g(c.bound),
+                    _g(c.margin, 3),
+                    c.unit,
+                    "yes" if c.binding else ("active" if c.active else "no"),
+                ]
+                for c in sol.constraints
+            ],
+            ["bind" if c.binding else "" for c in sol.constraints],
+        )
+    )
+    parts.append("<h2>Design space</h2>")
+    parts.append(_img(design_space_figure(p, a), "design space map: W against alpha"))
+    parts.append(_img(mass_by_n_figure(p, a), "lightest mass against n"))
+    parts.append("<h2>Stiffness in every direction</h2>")
+    parts.append(_img(polar_figure(a), "polar plots of K and D"))
+    parts.append("<h2>The three model variants</h2>")
+    rows = []
+    results = {m: analyze(asm, m, [0.0, 90.0]) for m in MODELS}
+    for key in ("Ecx", "Ecy", "Ebx", "Eby"):
+        rows.append(
+            [f"layer 1 {key} (MPa)", *(_g(r.moduli[0].as_dict()[key]) for r in results.values())]
+        )
+    for i, eta in enumerate((0, 90)):
+        rows.append([f"K({eta}) (N/mm)", *(_g(r.stiffness[i].K) for r in results.values())])
+        rows.append([f"D({eta}) (N mm)", *(_g(r.stiffness[i].D) for r in results.values())])
+        rows.append([f"EI({eta}) (N mm^2)", *(_g(r.stiffness[i].EI) for r in results.values())])
+    parts.append(_table(["quantity", *results], rows))
+    parts.append(
+        f"<p>The design was solved with <code>{html.escape(p.model)}</code>; "
+        "<code>refined</code> is the variant that agrees with finite elements.</p>"
+    )
+    pattern = build_pattern(asm)
+    plan = plan_sheets(pattern, cutter)
+    parts.append("<h2>Flat pattern and folded part</h2>")
+    for k in range(len(plan.sheets)):
+        parts.append(_img(sheet_figure(plan, k + 1), f"sheet {k + 1} of the cut pattern"))
+    parts.append(_img(instructions_figure(asm, pattern), "the folded assembly, step by step"))
+    parts.append("<h2>Assembly</h2><ol>")
+    parts.extend(f"<li>{html.escape(s)}</li>" for s in assembly_steps(asm, pattern))
+    parts.append("</ol><h2>Warnings</h2>")
+    if sol.warnings:
+        parts.append("<ul>")
+        parts.extend(f"<li class='warn'>{html.escape(w['message'])}</li>" for w in sol.warnings)
+        parts.append("</ul>")
+    else:
+        parts.append("<p>None.</p>")
+    if sol.runner_ups:
+        parts.append("<h2>Runner-ups (best design for each n)</h2>")
+        parts.append(
+            _table(
+                ["n", "objective", "layers", "certified"],
+                [
+                    [
+                        str(r.n),
+                        _g(r.objective),
+                        "; ".join(
+                            f"W {_g(float(str(ly['W_mm'])))} alpha {_g(float(str(ly['alpha_deg'])))}"
+                            for ly in r.layers
+                        ),
+                        "yes" if r.certified else "no",
+                    ]
+                    for r in sol.runner_ups
+                ],
+            )
+        )
+    parts.append(f"<h2>Spec</h2><pre>{html.escape(spec_text)}</pre>")
+    parts.append("<p><small>made by corrugate</small></p></body></html>")
+    return "".join(parts)
