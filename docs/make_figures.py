@@ -1,0 +1,50 @@
+"""Regenerate the figures under docs/img from the blimp gripper example (run by hand):
+
+    .venv/bin/python docs/make_figures.py
+
+They are the report's own figures (corrugate.report) and the fabrication figures, so the README
+shows exactly what `corrugate design examples/blimp_gripper.toml --out DIR` produces.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+from corrugate.design import Problem, solve  # noqa: E402
+from corrugate.export.pdf import sheet_figure  # noqa: E402
+from corrugate.pattern.build import build_pattern  # noqa: E402
+from corrugate.pattern.instructions import instructions_figure  # noqa: E402
+from corrugate.pattern.sheets import plan_sheets  # noqa: E402
+from corrugate.report import design_space_figure, mass_by_n_figure, polar_figure  # noqa: E402
+from corrugate.spec import load_spec  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
+IMG = ROOT / "docs" / "img"
+
+
+def main() -> None:
+    IMG.mkdir(parents=True, exist_ok=True)
+    sol = solve(Problem.from_spec(load_spec(ROOT / "examples" / "blimp_gripper.toml")))
+    assert sol.analysis is not None
+    a = sol.analysis
+    pattern = build_pattern(a.assembly)
+    figures = {
+        "design_space.png": design_space_figure(sol.problem, a),
+        "mass_by_n.png": mass_by_n_figure(sol.problem, a),
+        "polar.png": polar_figure(a),
+        "case1_sheet.png": sheet_figure(plan_sheets(pattern, "cameo4-12x12"), 1),
+        "case1_assembly.png": instructions_figure(a.assembly, pattern),
+    }
+    for name, fig in figures.items():
+        fig.savefig(IMG / name, dpi=80 if name == "case1_sheet.png" else 90)
+        plt.close(fig)
+        print(f"wrote {IMG / name}")
+
+
+if __name__ == "__main__":
+    main()
