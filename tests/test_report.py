@@ -83,7 +83,7 @@ def test_report_is_self_contained_and_complete(report: Path) -> None:
         "constraints.flexural_rigidity[0].min",
     ):
         assert name in text
-    assert 'name = &quot;blimp-gripper&quot;' in text  # the spec itself, escaped
+    assert "name = &quot;blimp-gripper&quot;" in text  # the spec itself, escaped
 
 
 def test_report_opens_in_chromium(report: Path) -> None:
