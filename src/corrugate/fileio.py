@@ -78,7 +78,10 @@ def staged() -> Iterator[Staging]:
 
 
 def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
-    """Write ``data`` (text as UTF-8) to ``path`` all or nothing; returns the path."""
+    """Write ``data`` (text as UTF-8) to ``path`` all or nothing; returns the path.
+
+    The parent folder is created if missing."""
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
     with staged() as st:
         tmp = st.path(path)
         if isinstance(data, bytes):
