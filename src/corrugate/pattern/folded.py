@@ -26,7 +26,14 @@ from ..geometry import Assembly, Layer
 from .layers import crease_role
 from .model import Part, Role
 
-__all__ = ["facet_polygons", "fold_document", "fold_points", "folded_mesh"]
+__all__ = [
+    "band_walls",
+    "facet_polygons",
+    "fold_document",
+    "fold_points",
+    "folded_mesh",
+    "layer_faces",
+]
 
 FloatArray = NDArray[np.float64]
 Point = tuple[float, float]
@@ -154,39 +161,42 @@ def _fan(n_vertices: int, offset: int) -> list[list[int]]:
     return [[offset, offset + i, offset + i + 1] for i in range(1, n_vertices - 1)]
 
 
+def layer_faces(a: Assembly, parts: tuple[Part, ...], index: int) -> list[FloatArray]:
+    """The folded facets (each a (k, 3) array in mm, assembly coordinates) of layer ``index``."""
+    part = next(p for p in parts if p.name == f"L{index}")
+    layer = a.layer1 if index == 1 else a.layer2
+    faces = []
+    for face in facet_polygons(part, layer):
+        if len(face) < 3:
+            continue
+        p3 = fold_points(layer, np.asarray(face, dtype=np.float64))
+        if index == 2:
+            p3 = np.column_stack([p3[:, 1], p3[:, 0], a.layer1.height + p3[:, 2]])
+        faces.append(p3)
+    return faces
+
+
+def band_walls(a: Assembly) -> list[FloatArray]:
+    """The band as flat walls (4 x 3 arrays, mm) standing on the outline from 0 to t_d."""
+    outline = a.layout.plan_outline(a.Lx, a.Ly)
+    nxt = np.roll(outline, -1, axis=0)
+    td = a.thickness
+    return [
+        np.array([[p[0], p[1], 0.0], [q[0], q[1], 0.0], [q[0], q[1], td], [p[0], p[1], td]])
+        for p, q in zip(outline, nxt, strict=True)
+    ]
+
+
 def folded_mesh(a: Assembly, parts: tuple[Part, ...]) -> tuple[FloatArray, NDArray[np.int64]]:
     """Vertices (mm) and triangles of the folded assembly: both layers and the band's walls.
 
     Facets are triangulated as fans (they are convex for convex outlines). Returns
     ``(vertices, faces)`` for trimesh.
     """
-    verts: list[FloatArray] = []
+    polygons = [*layer_faces(a, parts, 1), *layer_faces(a, parts, 2), *band_walls(a)]
     tris: list[list[int]] = []
     count = 0
-    by_name = {p.name: p for p in parts}
-    for index, layer in ((1, a.layer1), (2, a.layer2)):
-        part = by_name[f"L{index}"]
-        for face in facet_polygons(part, layer):
-            if len(face) < 3:
-                continue
-            p3 = fold_points(layer, np.asarray(face, dtype=np.float64))
-            if index == 2:
-                p3 = np.column_stack([p3[:, 1], p3[:, 0], a.layer1.height + p3[:, 2]])
-            verts.append(p3)
-            tris.extend(_fan(len(face), count))
-            count += len(face)
-    outline = a.layout.plan_outline(a.Lx, a.Ly)
-    nxt = np.roll(outline, -1, axis=0)
-    for p, q in zip(outline, nxt, strict=True):
-        wall = np.array(
-            [
-                [p[0], p[1], 0.0],
-                [q[0], q[1], 0.0],
-                [q[0], q[1], a.thickness],
-                [p[0], p[1], a.thickness],
-            ]
-        )
-        verts.append(wall)
-        tris.extend(_fan(4, count))
-        count += 4
-    return np.vstack(verts), np.asarray(tris, dtype=np.int64)
+    for poly in polygons:
+        tris.extend(_fan(len(poly), count))
+        count += len(poly)
+    return np.vstack(polygons), np.asarray(tris, dtype=np.int64)

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..fileio import Staging, staged
 from ..geometry import Assembly
-from .folded import facet_polygons, fold_points
+from .folded import band_walls, layer_faces
 from .model import Pattern, Role
 
 __all__ = ["assembly_steps", "instructions_figure", "write_instructions"]
@@ -51,20 +51,6 @@ def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
     ]
 
 
-def _layer_faces(a: Assembly, pattern: Pattern, index: int) -> list[np.ndarray]:
-    part = next(p for p in pattern.parts if p.name == f"L{index}")
-    layer = a.layer1 if index == 1 else a.layer2
-    faces = []
-    for face in facet_polygons(part, layer):
-        if len(face) < 3:
-            continue
-        p = fold_points(layer, np.asarray(face, dtype=np.float64))
-        if index == 2:
-            p = np.column_stack([p[:, 1], p[:, 0], a.layer1.height + p[:, 2]])
-        faces.append(p)
-    return faces
-
-
 def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
     """The assembly figure: the cut parts, then the folded layers, band and finished panel."""
     import matplotlib
@@ -91,28 +77,20 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
     ax0.set_title("1. cut (black), mountain red, valley blue, marks magenta", fontsize=9)
     ax0.axis("off")
 
-    outline = a.layout.plan_outline(a.Lx, a.Ly)
-    nxt = np.roll(outline, -1, axis=0)
-    walls = [
-        np.array(
-            [[p[0], p[1], 0], [q[0], q[1], 0], [q[0], q[1], a.thickness], [p[0], p[1], a.thickness]]
-        )
-        for p, q in zip(outline, nxt, strict=True)
+    walls = band_walls(a)
+    f1, f2 = layer_faces(a, pattern.parts, 1), layer_faces(a, pattern.parts, 2)
+    blue, green = "#9ecae1", "#a1d99b"
+    views: list[tuple[str, list[tuple[list[Any], str]], list[Any]]] = [
+        ("2. fold L1 (blue) and L2 (green)", [(f1, blue)], []),
+        ("3-5. band ring, L1 inside on the lower marks", [(f1, blue)], walls),
+        ("6. L2 on top: the finished panel", [(f1, blue), (f2, green)], walls),
     ]
-    views = [
-        ("2. fold L1 and L2", _layer_faces(a, pattern, 1), []),
-        ("3-5. band ring, L1 inside on the lower marks", _layer_faces(a, pattern, 1), walls),
-        (
-            "6. L2 on top: the finished panel",
-            _layer_faces(a, pattern, 1) + _layer_faces(a, pattern, 2),
-            walls,
-        ),
-    ]
-    for k, (title, faces, band) in enumerate(views):
+    for k, (title, layers, band) in enumerate(views):
         ax = fig.add_subplot(2, 2, k + 2, projection="3d")
-        ax.add_collection3d(
-            Poly3DCollection(faces, facecolor="#9ecae1", edgecolor="#08519c", lw=0.3)
-        )
+        for faces, colour in layers:
+            ax.add_collection3d(
+                Poly3DCollection(faces, facecolor=colour, edgecolor="#08306b", lw=0.3)
+            )
         if band:
             ax.add_collection3d(
                 Poly3DCollection(band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35)
