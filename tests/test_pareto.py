@@ -79,7 +79,11 @@ def test_gridded_front_is_exact() -> None:
 
 def test_continuous_front_is_monotone_and_below_the_grid_front() -> None:
     problem = Problem.from_spec(parse_spec(_spec(None, None)))
-    front = pareto_front(problem, "flexural_rigidity", 0.0, points=8)
+    calls: list[tuple[int, int | None]] = []
+    front = pareto_front(
+        problem, "flexural_rigidity", 0.0, points=8, progress=lambda d, t: calls.append((d, t))
+    )
+    assert calls == [(k, 8) for k in range(1, 9)]  # one progress report per certified solve
     assert not front.exact
     assert front.certified
     pts = front.points

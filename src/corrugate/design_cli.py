@@ -13,6 +13,7 @@ from typing import Annotated
 
 import typer
 from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
 from .cli import app
@@ -252,9 +253,24 @@ def pareto_cmd(
         raise InputError("--points", points, "an integer >= 2")
     eta_deg = parse_quantity(eta, "deg", "--eta")
     problem = Problem.from_spec(load_spec(spec))
-    front = pareto_front(problem, vs, eta_deg, points=points, max_points=max_points)
-    text = front.csv()
     console = _console(stderr=True)
+    with Progress(
+        TextColumn("Pareto front"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+    ) as bar:
+        task = bar.add_task("solve", total=None)
+
+        def tick(done: int, total: int | None) -> None:
+            bar.update(task, completed=done, total=total)
+
+        front = pareto_front(
+            problem, vs, eta_deg, points=points, max_points=max_points, progress=tick
+        )
+    text = front.csv()
     if out is None:
         typer.echo(text, nl=False)
     else:

@@ -19,6 +19,7 @@ certified lightest design with stiffness >= s (every other constraint of the spe
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -108,9 +109,13 @@ def pareto_front(
     *,
     points: int = 25,
     max_points: int = 500,
+    progress: Callable[[int, int | None], None] | None = None,
 ) -> ParetoFront:
     """Trace the mass-versus-``kind`` front (see the module docstring); ``kind`` is
-    ``flexural_rigidity``, ``bending_stiffness`` or ``inplane_stiffness`` (or EI, D, K)."""
+    ``flexural_rigidity``, ``bending_stiffness`` or ``inplane_stiffness`` (or EI, D, K).
+
+    ``progress(done, total)`` is called after each certified solve (``total`` is None on a gridded
+    front, whose length is not known in advance)."""
     key = stiffness_key(kind, eta_deg)
     name = f"pareto.{kind}"
     tables = Tables(problem)
@@ -126,6 +131,8 @@ def pareto_front(
                 break
             pt = _point(p, opt, key, level, tables)
             out.append(pt)
+            if progress is not None:
+                progress(len(out), None)
             if len(out) >= max_points:
                 truncated = True
                 break
@@ -158,4 +165,6 @@ def pareto_front(
         opt = optimize(p, tables=tables)
         if opt.point is not None and math.isfinite(opt.value):
             out.append(_point(p, opt, key, level, tables))
+        if progress is not None:
+            progress(k + 1, n)
     return ParetoFront(key, unit, tuple(out), exact=False, truncated=False)
