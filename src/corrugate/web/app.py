@@ -474,10 +474,12 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         title="corrugate",
         version=__version__,
         description=(
-            "Analyse origami-inspired OADLC stiffening panels. The fields are those of "
-            "`corrugate analyze`; values are numbers in the field's default unit (mm, deg, MPa, "
-            "g/cm^3) or strings with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with "
-            "the field named."
+            "Analyse and design origami-inspired OADLC stiffening panels. `/api/analyze` and "
+            "`/api/mesh` take the options of `corrugate analyze`; `/api/design` takes a spec with "
+            "the keys of the TOML file and answers as `corrugate design --json`, with its files. "
+            "Values are numbers in the field's default unit (mm, deg, MPa, g/cm^3) or strings "
+            "with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with the field named "
+            "(a spec value by its TOML path, e.g. `constraints.side.min`)."
         ),
         docs_url=None,
         redoc_url=None,
