@@ -263,8 +263,22 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
     for name in ("sheet-1.svg", "sheet-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
         assert name in names
     assert {"assembly.glb", "assembly.stl"} <= set(names)
-    if "report.html" in names:  # once write_design_files writes the report
+    if "report.html" in names:  # once write_design_files writes the report: it opens, whole
         assert page.is_visible("#d-report-link")
+        with page.context.expect_page() as opened:
+            page.click("#d-report-link")
+        report = opened.value
+        report_errors: list[str] = []
+        report.on("console", lambda m: report_errors.append(m.text) if m.type == "error" else None)
+        report.wait_for_load_state("load")
+        broken = report.evaluate(
+            "() => [...document.images].filter(i => !(i.complete && i.naturalWidth > 0)).length"
+        )
+        assert broken == 0 and report.evaluate("() => document.images.length") > 0
+        assert report_errors == []
+        report.close()
+    else:
+        assert page.is_hidden("#d-report")
 
     # The DXF through its download button.
     with page.expect_download() as info:

@@ -114,7 +114,9 @@ def test_every_file_is_listed_downloads_and_parses(
         assert r.status_code == 200, name
         assert r.headers["content-type"].split(";")[0] == f["media_type"].split(";")[0], name
         assert len(r.content) == f["bytes"] > 0, name
-        assert "attachment" in r.headers["content-disposition"] or name.endswith(".html")
+        disposition = "inline" if name.endswith(".html") else "attachment"
+        assert r.headers["content-disposition"].startswith(disposition), name
+        assert r.headers["content-security-policy"] == "sandbox"
         content = r.content
         if name.endswith(".dxf"):
             doc = ezdxf.read(io.StringIO(content.decode("utf-8")))

@@ -126,14 +126,8 @@ def blimp_spec(rigidity_mNm2: float, name: str) -> dict[str, Any]:
 
 
 def test_twenty_concurrent_designs_get_their_own_answers_and_files(live_server: str) -> None:
-    # Ten rigidities (40 ... 265 mN m^2: different optima), each asked twice under two names, so
-    # every one of the twenty answers is different.
-    specs = [blimp_spec(40.0 + 25.0 * (i // 2), f"gripper-{i}") for i in range(20)]
-    expected: dict[str, dict[str, Any]] = {}
-    for spec in specs:
-        rigidity = spec["constraints"]["flexural_rigidity"][0]["min"]
-        if rigidity not in expected:
-            expected[rigidity] = direct_design(spec)
+    # Twenty rigidities, 40 ... 277.5 mN m^2: twenty questions, several different optima.
+    specs = [blimp_spec(40.0 + 12.5 * i, f"gripper-{i}") for i in range(20)]
     start = threading.Barrier(len(specs), timeout=30)
 
     def one(spec: dict[str, Any]) -> tuple[int, Any]:
@@ -145,8 +139,7 @@ def test_twenty_concurrent_designs_get_their_own_answers_and_files(live_server: 
     ids = set()
     for spec, (status, answer) in zip(specs, answers, strict=True):
         assert status == 200
-        rigidity = spec["constraints"]["flexural_rigidity"][0]["min"]
-        assert without_timings(answer["design"]) == {**expected[rigidity], "name": spec["name"]}
+        assert without_timings(answer["design"]) == direct_design(spec), spec["name"]
         result = answer["result"]
         ids.add(result["id"])
         # The files are this request's: its design.json has its name and its optimum.
@@ -157,7 +150,7 @@ def test_twenty_concurrent_designs_get_their_own_answers_and_files(live_server: 
         assert record["design"] == answer["design"]["design"]
     assert len(ids) == len(specs)
     optima = {json.dumps(a["design"]["design"]["layers"]) for _, a in answers}
-    assert len(optima) >= 5  # the rigidities really ask for different designs
+    assert len(optima) >= 8  # the rigidities really ask for different designs
 
 
 def test_path_tricks_on_design_results_get_4xx(live_server: str) -> None:

@@ -596,10 +596,14 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         found = store.get(result_id, name)
         if found is None:
             return _error(404, "no such result or file (results are kept for a while only)", [])
+        # The report opens in the browser (sandboxed: no script runs, no same-origin access);
+        # every other file is an attachment (the page's buttons download them either way).
+        inline = found.name.endswith(".html")
         return FileResponse(
             found.path,
             media_type=found.media_type,
             filename=found.name,
+            content_disposition_type="inline" if inline else "attachment",
             headers={"content-security-policy": "sandbox"},
         )
 
