@@ -5,6 +5,7 @@ from __future__ import annotations
 import copy
 import io
 import json
+import threading
 import tomllib
 import xml.etree.ElementTree as ET
 from collections.abc import Iterator
@@ -17,11 +18,12 @@ import trimesh
 from fastapi.testclient import TestClient
 
 import corrugate.cli  # first: pattern_cli imports the cli, which imports pattern_cli
+import corrugate.web.app as web_app
 from corrugate.design import Problem, solve
 from corrugate.outputs import write_design_files
 from corrugate.pattern_cli import fab_options
 from corrugate.spec import parse_spec
-from corrugate.web import create_app
+from corrugate.web import WebSettings, create_app
 from corrugate.web.app import _output_options
 from corrugate.web.schemas import BLIMP_GRIPPER, DesignBody
 
@@ -282,3 +284,35 @@ def test_path_tricks_on_design_results_are_4xx(client: TestClient, blimp: dict[s
         assert b"root:" not in r.content and b"def create_app" not in r.content, url
     assert client.get(f"/api/results/{rid}/design.json").status_code == 200
     alive(client)
+
+
+def test_a_robust_spec_is_answered_as_the_cli_does(
+    client: TestClient, capsys: pytest.CaptureFixture[str]
+) -> None:
+    path = EXAMPLES / "blimp_gripper_robust.toml"
+    with pytest.raises(SystemExit):
+        corrugate.cli.main(["design", str(path), "--json"])
+    cli = json.loads(capsys.readouterr().out)
+    r = client.post("/api/design", json=spec_of(path.name))
+    assert r.status_code == 200, r.text
+    d = r.json()["design"]
+    assert "robust" in d and d["certified"] is False
+    assert without_timings(d) == without_timings(cli)
+
+
+def test_a_slow_design_gets_504(monkeypatch: pytest.MonkeyPatch) -> None:
+    release = threading.Event()
+    real = web_app.design_answer
+
+    def slow(*args: Any) -> Any:
+        release.wait(timeout=10)
+        return real(*args)
+
+    monkeypatch.setattr(web_app, "design_answer", slow)
+    try:
+        with TestClient(create_app(WebSettings(timeout_s=0.05, workers=1))) as c:
+            r = c.post("/api/design", json=spec_of("blimp_gripper.toml"))
+            assert r.status_code == 504 and "did not finish" in r.json()["detail"]
+            alive(c)
+    finally:
+        release.set()
