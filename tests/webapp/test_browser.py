@@ -189,3 +189,138 @@ def test_openapi_page_renders_offline(browser: Any, live_server: str) -> None:
     assert w.page_errors == []
     assert w.console_errors == []
     w.page.close()
+
+
+#: The blimp gripper spec (examples/blimp_gripper.toml) as the design form takes it.
+BLIMP_FORM = {
+    "#d-name": "blimp-gripper",
+    "#d-thickness": "0.125 mm",
+    "#d-side-min": "48 mm",
+    "#d-side-max": "60 mm",
+    "#d-thick-min": "10 mm",
+    "#d-thick-max": "12.5 mm",
+    "#d-sheet-max": "250 mm",
+    "#d-ei-min": "80 mN*m^2",
+    "#d-ei-eta": "0 deg",
+    "#d-k-min": "",
+    "#d-W-min": "1 mm",
+    "#d-W-max": "30 mm",
+    "#d-W-step": "1 mm",
+    "#d-n-min": "1",
+    "#d-n-max": "200",
+    "#d-alpha-min": "1 deg",
+    "#d-alpha-max": "120 deg",
+    "#d-alpha-step": "1 deg",
+}
+
+
+def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: str) -> None:
+    import ezdxf
+
+    w = Watched(browser, live_server)
+    page = w.page
+    page.goto(live_server + "/")
+    page.wait_for_selector("#design-form[data-ready='true']", state="attached")
+    page.click("#tab-design")
+    assert page.is_visible("#design-form") and page.is_hidden("#analyze-form")
+    assert page.locator("#d-material option[value='kapton']").count() == 1  # /api/materials
+
+    # The paper's case study, from requirements.
+    page.select_option("#d-material", "dura-lar")
+    page.select_option("#d-model", "paper")
+    page.select_option("#d-layout", "square")
+    page.click("#d-variables summary")  # the bounds of W, n and alpha are folded away
+    for selector, value in BLIMP_FORM.items():
+        page.fill(selector, value)
+    page.select_option("#d-cutter", "cameo4-12x12")
+    page.click("#d-submit")
+    page.wait_for_selector("#d-view3d[data-state='ready']", timeout=60_000)
+
+    summary = page.text_content("#d-summary") or ""
+    assert "W = 8 mm" in summary and "n = 8" in summary and "\u03b1 = 84 deg" in summary, summary
+    rows = page.locator("#d-layers tbody tr")
+    assert rows.count() == 2
+    for i in range(2):
+        row = rows.nth(i)
+        assert row.locator("td[data-quantity='W_mm']").text_content() == "8"
+        assert row.locator("td[data-quantity='n']").text_content() == "8"
+        assert row.locator("td[data-quantity='alpha_deg']").text_content() == "84"
+    assert "optimal (certified)" in (page.text_content("#d-verdict") or "")
+    assert "connectors" in (page.text_content("#d-mass") or "")
+    rigidity = page.locator("#d-constraints tr[data-name='constraints.flexural_rigidity[0].min']")
+    assert rigidity.count() == 1
+    assert rigidity.get_attribute("data-binding") in ("yes", "no")
+    assert page.locator("#d-constraints tbody tr").count() >= 5
+    assert "paper-model" in (page.text_content("#d-warnings") or "")
+    # The pattern preview is the first sheet's SVG, loaded and drawn.
+    page.wait_for_function(
+        "() => { const i = document.getElementById('d-pattern');"
+        " return i.complete && i.naturalWidth > 0; }"
+    )
+    assert (page.get_attribute("#d-pattern", "src") or "").endswith("/sheet-1.svg")
+    assert int(page.get_attribute("#d-view3d", "data-triangles") or 0) > 0
+    names = page.eval_on_selector_all("#d-downloads a", "els => els.map(e => e.dataset.name)")
+    for name in ("sheet-1.svg", "sheet-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
+        assert name in names
+    assert {"assembly.glb", "assembly.stl"} <= set(names)
+    if "report.html" in names:  # once write_design_files writes the report: it opens, whole
+        assert page.is_visible("#d-report-link")
+        with page.context.expect_page() as opened:
+            page.click("#d-report-link")
+        report = opened.value
+        report_errors: list[str] = []
+        report.on("console", lambda m: report_errors.append(m.text) if m.type == "error" else None)
+        report.wait_for_load_state("load")
+        broken = report.evaluate(
+            "() => [...document.images].filter(i => !(i.complete && i.naturalWidth > 0)).length"
+        )
+        assert broken == 0 and report.evaluate("() => document.images.length") > 0
+        assert report_errors == []
+        report.close()
+    else:
+        assert page.is_hidden("#d-report")
+
+    # The DXF through its download button.
+    with page.expect_download() as info:
+        page.click("#d-downloads a[data-name='sheet-1.dxf']")
+    download = info.value
+    assert download.suggested_filename == "sheet-1.dxf"
+    doc = ezdxf.readfile(download.path())
+    assert not doc.audit().has_errors
+    assert len(doc.modelspace()) > 0
+
+    w.screenshot("web-design.png")
+    assert w.console_errors == []
+    assert w.page_errors == []
+    assert w.external == []
+
+    # A bad value: side min above max; the message appears beside that field.
+    page.fill("#d-side-min", "70 mm")
+    page.click("#d-submit")
+    page.wait_for_selector("#design-form[data-state='error']")
+    message = page.text_content("#d-side-min ~ .error, .field:has(#d-side-min) .error") or ""
+    assert "constraints.side.min = 70 mm" in message and "greater than max" in message, message
+    assert page.get_attribute("#d-side-min", "aria-invalid") == "true"
+    beside = page.evaluate(
+        "() => document.getElementById('d-side-min').closest('.field')"
+        ".querySelector('.error').textContent"
+    )
+    assert beside == message
+    assert page.is_visible(".field:has(#d-side-min) .error")
+    assert (page.text_content("#d-error-body") or "") == ""
+    assert page.is_hidden("#design-results")  # no stale answer on show
+    w.screenshot("web-design-error.png")
+    assert w.page_errors == []
+    assert all("422" in m for m in w.console_errors), w.console_errors
+
+    # An error in the folded-away bounds opens them and lands beside its field.
+    page.fill("#d-side-min", "48 mm")
+    page.fill("#d-n-max", "2.5")
+    page.click("#d-variables summary")
+    assert page.evaluate("() => document.getElementById('d-variables').open") is False
+    page.click("#d-submit")
+    page.wait_for_selector("#design-form[data-state='error']")
+    assert page.evaluate("() => document.getElementById('d-variables').open") is True
+    assert "variables.n.max" in (page.text_content(".field:has(#d-n-max) .error") or "")
+    assert w.external == []
+    page.close()

@@ -1,26 +1,29 @@
-"""A real uvicorn server: 20 concurrent requests get their own answers; raw path tricks fail."""
+"""A real uvicorn server: 20 concurrent analyses and 20 concurrent designs get their own answers;
+raw path tricks fail."""
 
 from __future__ import annotations
 
 import http.client
 import json
 import threading
+import tomllib
 import urllib.request
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 from urllib.parse import urlsplit
 
 from .conftest import direct
+from .test_design_api import EXAMPLES, direct_design, without_timings
 
 
-def post(base: str, path: str, body: dict[str, Any]) -> tuple[int, Any]:
+def post(base: str, path: str, body: dict[str, Any], timeout: float = 30) -> tuple[int, Any]:
     request = urllib.request.Request(
         base + path,
         data=json.dumps(body).encode(),
         headers={"content-type": "application/json"},
         method="POST",
     )
-    with urllib.request.urlopen(request, timeout=30) as response:
+    with urllib.request.urlopen(request, timeout=timeout) as response:
         return response.status, json.loads(response.read())
 
 
@@ -111,3 +114,60 @@ def test_raw_path_tricks_get_4xx_and_the_server_keeps_serving(live_server: str) 
     assert status == 200 and content[:4] == b"glTF"
     status, content = raw_get(live_server, "/api/materials")
     assert status == 200 and b"dura-lar" in content
+
+
+def blimp_spec(rigidity_mNm2: float, name: str) -> dict[str, Any]:
+    """The blimp gripper spec named ``name``, asking for another flexural rigidity (mN m^2)."""
+    with (EXAMPLES / "blimp_gripper.toml").open("rb") as f:
+        spec = tomllib.load(f)
+    spec["constraints"]["flexural_rigidity"][0]["min"] = f"{rigidity_mNm2:g} mN*m^2"
+    spec["name"] = name
+    return spec
+
+
+def test_twenty_concurrent_designs_get_their_own_answers_and_files(live_server: str) -> None:
+    # Twenty rigidities, 40 ... 277.5 mN m^2: twenty questions, several different optima.
+    specs = [blimp_spec(40.0 + 12.5 * i, f"gripper-{i}") for i in range(20)]
+    start = threading.Barrier(len(specs), timeout=30)
+
+    def one(spec: dict[str, Any]) -> tuple[int, Any]:
+        start.wait()  # all twenty are sent at once
+        return post(live_server, "/api/design", spec, timeout=120)
+
+    with ThreadPoolExecutor(max_workers=len(specs)) as pool:
+        answers = list(pool.map(one, specs))
+    ids = set()
+    for spec, (status, answer) in zip(specs, answers, strict=True):
+        assert status == 200
+        assert without_timings(answer["design"]) == direct_design(spec), spec["name"]
+        result = answer["result"]
+        ids.add(result["id"])
+        # The files are this request's: its design.json has its name and its optimum.
+        url = next(f["url"] for f in result["files"] if f["name"] == "design.json")
+        code, content = raw_get(live_server, url)
+        record = json.loads(content)
+        assert code == 200 and record["name"] == spec["name"]
+        assert record["design"] == answer["design"]["design"]
+    assert len(ids) == len(specs)
+    optima = {json.dumps(a["design"]["design"]["layers"]) for _, a in answers}
+    assert len(optima) >= 8  # the rigidities really ask for different designs
+
+
+def test_path_tricks_on_design_results_get_4xx(live_server: str) -> None:
+    _, answer = post(live_server, "/api/design", blimp_spec(80, "tricks"), timeout=120)
+    rid = answer["result"]["id"]
+    for target in (
+        f"/api/results/{rid}/../../../../../../etc/passwd",
+        f"/api/results/{rid}/..%2f..%2f..%2fetc%2fpasswd",
+        f"/api/results/{rid}/%2e%2e/{rid}/design.json",
+        f"/api/results/{rid}/sheet-1.dxf/../../../etc/passwd",
+        f"/api/results/{rid}/.%2fdesign.json",
+        f"/api/results/{rid}//design.json",
+        f"/api/results/{rid}/design.json%2500",
+        f"/api/results/%2e%2e/{rid}/design.json",
+    ):
+        status, content = raw_get(live_server, target)
+        assert 400 <= status < 500, (target, status)
+        assert b"root:" not in content, target
+    status, content = raw_get(live_server, f"/api/results/{rid}/sheet-1.dxf")
+    assert status == 200 and b"SECTION" in content

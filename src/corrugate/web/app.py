@@ -10,10 +10,14 @@ Endpoints (all JSON unless said otherwise):
   ``--json`` object);
 * ``POST /api/mesh``: the same options -> the folded assembly as ``assembly.glb`` and
   ``assembly.stl`` in a new result (opaque id), with their download URLs;
+* ``POST /api/design``: a spec (the keys of the TOML file) and the output options of
+  ``corrugate design`` -> ``{"design": <corrugate design --json>, "result": {"id", "files"}}``:
+  the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
+  STL, steps, design.json, the report), or ``"result": null`` when the spec is infeasible;
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path).
 
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
-names it; malformed JSON -> 400; body over the limit -> 413; server busy -> 503; computation over
+names it (a spec value by its TOML path, ``constraints.side.min``); malformed JSON -> 400; body over the limit -> 413; server busy -> 503; computation over
 the time limit -> 504; unknown result or file -> 404; a Host header not allowed -> 400.
 """
 
@@ -39,14 +43,21 @@ from fastapi.staticfiles import StaticFiles
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from .. import __version__
+from ..analysis import Analysis
+from ..design import Problem, Solution, solve
 from ..errors import InputError
 from ..inputs import AnalysisRequest, analysis_request
 from ..materials import library
 from ..moduli import DEFAULT_MODEL, MODELS
-from ..units import ureg
+from ..outputs import OutputOptions, write_design_files
+from ..spec import Spec, SpecError, parse_spec
+from ..units import parse_quantity, ureg
 from .limits import BodySizeLimit, ComputeTimeoutError, HostCheck, Runner, ServerBusyError
 from .schemas import (
+    OUTPUT_OPTIONS,
     AnalyzeBody,
+    DesignAnswer,
+    DesignBody,
     ErrorBody,
     FieldError,
     ModelInfo,
@@ -62,6 +73,8 @@ __all__ = [
     "WebSettings",
     "analysis_payload",
     "create_app",
+    "design_answer",
+    "design_payload",
     "mesh_files",
 ]
 
@@ -74,6 +87,10 @@ STATIC_DIR = Path(__file__).resolve().parent / "static"
 #: pint's registry keeps caches that are not documented as thread-safe: parse one request at a time
 #: (parsing takes microseconds; the computations themselves run in parallel).
 _PARSE_LOCK = threading.Lock()
+
+#: matplotlib's pyplot (the assembly figure, the report's plots) keeps global state and is not
+#: thread-safe: one design's files are written at a time (the solves run in parallel).
+_FILES_LOCK = threading.Lock()
 
 _SWAGGER = "/static/vendor/swagger-ui"
 
@@ -184,6 +201,164 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
     req = _parse(body, settings)
     a = req.assembly
     return store.make(lambda folder: write_mesh(a, build_pattern(a), folder))
+
+
+def _renamed(
+    exc: InputError, field: str, value: object = None, reason: str | None = None
+) -> InputError:
+    """The error ``exc`` naming the request's ``field`` (the library names it its own way)."""
+    shown = exc.value if value is None else value
+    return InputError(field, shown, exc.allowed, reason=exc.reason if reason is None else reason)
+
+
+def _output_options(body: DesignBody) -> OutputOptions:
+    """The output options of a design request, as ``corrugate design --cutter ... --fold-style
+    ... --cut ... --gap ...`` reads them (default spacing, margin and tabs); errors name the
+    request's field."""
+    from ..pattern.linestyle import line_style
+    from ..pattern.sheets import get_cutter
+
+    get_cutter(body.cutter)  # its errors name "cutter" already
+    cut = None if body.cut is None else parse_quantity(body.cut, "mm", "cut")
+    gap = None if body.gap is None else parse_quantity(body.gap, "mm", "gap")
+    if body.fold_style.strip().lower() == "perforated":
+        for name, value in (("cut", cut), ("gap", gap)):
+            if value is None:
+                raise InputError(
+                    name,
+                    None,
+                    f"a {name} length (mm) for perforated fold lines",
+                    reason="is missing",
+                )
+    try:
+        return OutputOptions(cutter=body.cutter, style=line_style(body.fold_style, cut, gap))
+    except InputError as exc:
+        fields = {
+            "fold-line style": "fold_style",
+            "perforation cut": "cut",
+            "perforation gap": "gap",
+            "perforation": "cut" if body.cut is None else "gap",
+        }
+        if exc.field in fields:
+            raise _renamed(exc, fields[exc.field]) from None
+        raise
+
+
+def _check_spec_size(spec: Spec, settings: WebSettings) -> None:
+    """The web app's own bound on the crease count a spec may ask for (the CLI has none)."""
+    if spec.variables.n.max > settings.max_creases:
+        raise InputError(
+            "variables.n.max",
+            spec.variables.n.max,
+            f"n <= {settings.max_creases} in the web app (use the CLI)",
+        )
+
+
+def _check_design_size(analysis: Analysis, settings: WebSettings) -> None:
+    """Files are written only for a part the web app bounds (as for ``/api/mesh``)."""
+    for layer in analysis.assembly.layers:
+        if layer.chord_extent > settings.max_extent_mm:
+            raise InputError(
+                "variables.W.max",
+                f"{layer.W:g} mm at the optimum",
+                f"an optimum folding to at most {settings.max_extent_mm:g} mm in the web app "
+                "(bound W, n or the size; or use the CLI)",
+                reason=f"makes a part {layer.chord_extent:.4g} mm long",
+            )
+
+
+def _json_safe(obj: Any) -> Any:
+    """``obj`` with every non-finite float replaced by None (JSON has no NaN or infinity)."""
+    if isinstance(obj, float):
+        return obj if math.isfinite(obj) else None
+    if isinstance(obj, dict):
+        return {k: _json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_json_safe(v) for v in obj]
+    return obj
+
+
+def _spec_data(body: DesignBody) -> dict[str, Any]:
+    """The spec part of a design request: the keys the client sent, minus the output options."""
+    return body.model_dump(exclude_unset=True, exclude=set(OUTPUT_OPTIONS))
+
+
+def design_payload(spec: Spec, problem: Problem) -> tuple[Solution, dict[str, Any]]:
+    """The solution of ``problem`` and the object ``corrugate design --json`` prints for it
+    (the same steps as :func:`corrugate.design_cli.design_cmd`, robust specs included)."""
+    from ..design.robust import robust_solve
+    from ..design.tolerance import Tolerances
+
+    if spec.robust is None:
+        sol = solve(problem)
+        return sol, sol.to_dict()
+    r = spec.robust
+    tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
+    robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
+    sol = robust.solution
+    payload = sol.to_dict()
+    payload["certified"] = False  # as the CLI: the robust optimum itself is not proven
+    payload["robust"] = robust.as_dict(problem)
+    payload["warnings"] = [
+        *sol.warnings,
+        {
+            "code": "robust-not-certified",
+            "message": (
+                "robust design: certified optimum of the spec with tightened bounds; its "
+                "probability of meeting the spec is a Monte Carlo estimate and its "
+                "optimality is not proven"
+            ),
+        },
+    ]
+    return sol, payload
+
+
+def _result_body(files: list[StoredFile]) -> ResultBody:
+    return ResultBody(
+        id=files[0].result_id,
+        files=[
+            ResultFile(name=f.name, url=f.url, media_type=f.media_type, bytes=f.path.stat().st_size)
+            for f in files
+        ],
+    )
+
+
+def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -> DesignAnswer:
+    """Solve the spec of a design request and store its files (runs on a worker thread)."""
+    from ..pattern.linestyle import PerforationError
+    from ..pattern.sheets import PartTooLargeError
+
+    with _PARSE_LOCK:  # pint parses the spec's quantities, inline materials and the options
+        try:
+            spec = parse_spec(_spec_data(body))
+        except SpecError as exc:
+            if exc.reason == "is not a known key" and "." not in exc.field:
+                allowed = f"{exc.allowed}, or an output option: {', '.join(OUTPUT_OPTIONS)}"
+                raise SpecError(exc.field, exc.value, allowed, reason=exc.reason) from None
+            raise
+        problem = Problem.from_spec(spec)
+        options = _output_options(body)
+    _check_spec_size(spec, settings)
+    sol, payload = design_payload(spec, problem)
+    payload = _json_safe(payload)
+    analysis = sol.analysis
+    if analysis is None:
+        return DesignAnswer(design=payload, result=None)
+    _check_design_size(analysis, settings)
+
+    def write(folder: Path) -> list[Path]:
+        with _FILES_LOCK:
+            return write_design_files(analysis, folder, options, extra=payload)
+
+    try:
+        files = store.make(write)
+    except PartTooLargeError as exc:
+        raise _renamed(
+            exc, "cutter", repr(body.cutter), f"is too small for {exc.field} ({exc.value})"
+        ) from None
+    except PerforationError as exc:
+        raise _renamed(exc, "cut" if exc.field.endswith("cut") else "gap") from None
+    return DesignAnswer(design=payload, result=_result_body(files))
 
 
 def _error(status: int, detail: str, errors: list[FieldError]) -> JSONResponse:
@@ -299,10 +474,12 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         title="corrugate",
         version=__version__,
         description=(
-            "Analyse origami-inspired OADLC stiffening panels. The fields are those of "
-            "`corrugate analyze`; values are numbers in the field's default unit (mm, deg, MPa, "
-            "g/cm^3) or strings with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with "
-            "the field named."
+            "Analyse and design origami-inspired OADLC stiffening panels. `/api/analyze` and "
+            "`/api/mesh` take the options of `corrugate analyze`; `/api/design` takes a spec with "
+            "the keys of the TOML file and answers as `corrugate design --json`, with its files. "
+            "Values are numbers in the field's default unit (mm, deg, MPa, g/cm^3) or strings "
+            "with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with the field named "
+            "(a spec value by its TOML path, e.g. `constraints.side.min`)."
         ),
         docs_url=None,
         redoc_url=None,
@@ -390,15 +567,20 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         """Build the folded assembly (mm, z up) and keep it as a result; download its files from
         the URLs returned."""
         files = await runner.run(lambda: mesh_files(body, cfg, store))
-        return ResultBody(
-            id=files[0].result_id,
-            files=[
-                ResultFile(
-                    name=f.name, url=f.url, media_type=f.media_type, bytes=f.path.stat().st_size
-                )
-                for f in files
-            ],
-        )
+        return _result_body(files)
+
+    @app.post(
+        "/api/design",
+        summary="The certified lightest design of a spec, with its files",
+        responses=error_responses,
+    )
+    async def design_endpoint(body: DesignBody) -> DesignAnswer:
+        """Solve a design spec (the keys of the TOML file, values with units; see
+        ``examples/blimp_gripper.toml``) as ``corrugate design --json`` does, and keep every file
+        ``corrugate design --out`` writes as a result (``result`` is null when the spec is
+        infeasible: ``design.diagnosis`` says why). A bad spec value gets 422 naming its TOML path,
+        e.g. ``constraints.side.min``."""
+        return await runner.run(lambda: design_answer(body, cfg, store))
 
     @app.get(
         "/api/results/{result_id}/{name}",
@@ -414,10 +596,14 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         found = store.get(result_id, name)
         if found is None:
             return _error(404, "no such result or file (results are kept for a while only)", [])
+        # The report opens in the browser (sandboxed: no script runs, no same-origin access);
+        # every other file is an attachment (the page's buttons download them either way).
+        inline = found.name.endswith(".html")
         return FileResponse(
             found.path,
             media_type=found.media_type,
             filename=found.name,
+            content_disposition_type="inline" if inline else "attachment",
             headers={"content-security-policy": "sandbox"},
         )
 

@@ -7,14 +7,17 @@ the same message on both. Only the sizes of things (string lengths, list lengths
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field, StrictFloat, StrictInt, StringConstraints
 
 from ..moduli import DEFAULT_MODEL
 
 __all__ = [
+    "OUTPUT_OPTIONS",
     "AnalyzeBody",
+    "DesignAnswer",
+    "DesignBody",
     "ErrorBody",
     "FieldError",
     "ModelInfo",
@@ -79,6 +82,63 @@ class AnalyzeBody(BaseModel):
     )
 
 
+#: The keys of a design request that are output options, not spec keys.
+OUTPUT_OPTIONS = ("cutter", "fold_style", "cut", "gap")
+
+_SPEC_KEY = "A key of the spec, as in the TOML file (see corrugate.spec and examples/)."
+
+#: The paper's case study (``examples/blimp_gripper.toml``) as a design request.
+BLIMP_GRIPPER: dict[str, Any] = {
+    "name": "blimp-gripper",
+    "model": "paper",
+    "material": {"name": "dura-lar", "thickness": "0.125 mm"},
+    "layout": {"shape": "square"},
+    "variables": {
+        "W": {"min": "1 mm", "max": "30 mm", "step": "1 mm"},
+        "n": {"min": 1, "max": 200},
+        "alpha": {"min": "1 deg", "max": "120 deg", "step": "1 deg"},
+    },
+    "constraints": {
+        "sheet_max": "250 mm",
+        "side": {"min": "48 mm", "max": "60 mm"},
+        "thickness": {"min": "10 mm", "max": "12.5 mm"},
+        "flexural_rigidity": [{"min": "80 mN*m^2", "eta": "0 deg"}],
+    },
+    "objective": {"minimize": "mass"},
+    "cutter": "cameo4-12x12",
+}
+
+
+class DesignBody(BaseModel):
+    """A design spec as JSON, with the keys of the TOML file, plus the output options of
+    ``corrugate design`` (``cutter``, ``fold_style``, ``cut``, ``gap``).
+
+    The spec keys are validated by :func:`corrugate.spec.parse_spec` (the CLI's own rules), so a
+    bad value gets 422 naming its TOML path (``constraints.side.min``); only the output options
+    are typed here.
+    """
+
+    model_config = ConfigDict(extra="allow", json_schema_extra={"examples": [BLIMP_GRIPPER]})
+
+    name: Any = Field(None, description="Name of the design. " + _SPEC_KEY)
+    model: Any = Field(None, description="Moduli variant: paper | xia | refined. " + _SPEC_KEY)
+    layers: Any = Field(None, description="identical | independent. " + _SPEC_KEY)
+    material: Any = Field(None, description="{name, thickness} or inline {E, nu, density, ...}.")
+    materials: Any = Field(None, description="Candidate materials (a list). " + _SPEC_KEY)
+    layout: Any = Field(None, description="{shape, vertices}. " + _SPEC_KEY)
+    variables: Any = Field(None, description="Bounds and steps of W, n and alpha. " + _SPEC_KEY)
+    constraints: Any = Field(None, description="Size, stiffness and mass bounds. " + _SPEC_KEY)
+    objective: Any = Field(None, description="{minimize = 'mass'} or {maximize, eta}.")
+    robust: Any = Field(None, description="Tolerances for a robust design. " + _SPEC_KEY)
+    cutter: Text = Field(
+        "cameo4-12x12",
+        description="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).",
+    )
+    fold_style: Text = Field("solid", description="Fold lines: solid | scored | perforated.")
+    cut: Value | None = Field(None, description="Perforation: cut length (mm).")
+    gap: Value | None = Field(None, description="Perforation: gap length (mm).")
+
+
 class FieldError(BaseModel):
     """One problem with one field."""
 
@@ -124,3 +184,12 @@ class ModelsBody(BaseModel):
 
     default: str
     models: list[ModelInfo]
+
+
+class DesignAnswer(BaseModel):
+    """The design (``corrugate design --json``) and, when one exists, its files."""
+
+    design: dict[str, Any] = Field(description="The object `corrugate design --json` prints.")
+    result: ResultBody | None = Field(
+        description="The files of the design (null when the spec is infeasible)."
+    )

@@ -34,6 +34,7 @@ MEDIA_TYPES: dict[str, str] = {
     ".html": "text/html; charset=utf-8",
     ".png": "image/png",
     ".txt": "text/plain; charset=utf-8",
+    ".md": "text/markdown; charset=utf-8",
 }
 
 

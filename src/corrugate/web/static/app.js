@@ -1,4 +1,6 @@
-// corrugate web app: the form, the analysis tables and the 3D view of the folded assembly.
+// corrugate web app: two tabs. "Analyse a design": the form, the analysis tables and the 3D view
+// of the folded assembly. "Design from requirements": a spec form posted to /api/design, the
+// certified design, its margins, the pattern, the 3D view and the files.
 // Plain ES module, no build step; three.js comes from /static/vendor (see the import map).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -10,6 +12,7 @@ const CUSTOM = '__custom__';
 
 const $ = (id) => document.getElementById(id);
 const form = $('analyze-form');
+const designForm = $('design-form');
 let generation = 0;  // answers to an older submission are dropped
 
 function fmt(x, digits = 4) {
@@ -37,13 +40,18 @@ async function loadMaterials() {
     if (!response.ok) throw new Error(`HTTP ${response.status}`);
     const materials = await response.json();
     select.replaceChildren();
+    const designSelect = $('d-material');
+    designSelect.replaceChildren();
     for (const m of materials) {
       const label = `${m.id} (E ${fmt(m.E_MPa / 1000, 3)} GPa, t ${fmt(m.default_thickness_mm, 3)} mm)`;
       select.appendChild(new Option(label, m.id, false, m.id === 'dura-lar'));
       select2.appendChild(new Option(m.id, m.id));
+      designSelect.appendChild(new Option(label, m.id, false, m.id === 'dura-lar'));
     }
+    designForm.dataset.ready = 'true';
   } catch (err) {
     $('error-material').textContent = `could not load the material library: ${err.message}`;
+    $('d-error-body').textContent = `could not load the material library: ${err.message}`;
   }
   select.appendChild(new Option('custom (E, nu, density below)', CUSTOM));
   form.dataset.ready = 'true';
@@ -302,8 +310,273 @@ async function submit(event) {
   }
 }
 
+// ---- design from requirements -----------------------------------------------------------
+
+let designGeneration = 0;
+let designViewer = null;
+// The order of the download buttons (other files follow in the server's order).
+const DOWNLOAD_ORDER = [/\.svg$/, /\.dxf$/, /\.pdf$/, /\.fold$/, /\.glb$/, /\.stl$/, /^report\.html$/];
+
+function pathTokens(path) {
+  const tokens = [];
+  for (const part of path.split('.')) {
+    const m = part.match(/^([^[\]]+)(?:\[(\d+)\])?$/);
+    tokens.push(m[1]);
+    if (m[2] !== undefined) tokens.push(Number(m[2]));
+  }
+  return tokens;
+}
+
+function setPath(obj, path, value) {
+  const tokens = pathTokens(path);
+  let o = obj;
+  for (let i = 0; i < tokens.length - 1; i++) {
+    const key = tokens[i];
+    if (o[key] === undefined) o[key] = typeof tokens[i + 1] === 'number' ? [] : {};
+    o = o[key];
+  }
+  o[tokens[tokens.length - 1]] = value;
+}
+
+function vertices(text) {
+  return text.split(/\s+/).filter((s) => s !== '').map((p) => p.split(',').map((x) => {
+    const v = Number(x);
+    return Number.isFinite(v) ? v : x;  // the server names what cannot be read
+  }));
+}
+
+function syncDesignVisibility() {
+  const layout = $('d-layout').value;
+  for (const el of designForm.querySelectorAll('[data-layouts]')) {
+    el.hidden = !el.dataset.layouts.split(' ').includes(layout);
+  }
+  for (const el of designForm.querySelectorAll('[data-fold]')) {
+    el.hidden = $('d-fold-style').value !== el.dataset.fold;
+  }
+}
+
+// The spec (the keys of the TOML file) and the output options, from the visible fields.
+function designBody() {
+  const body = { objective: { minimize: 'mass' } };
+  for (const el of designForm.querySelectorAll('[data-path]')) {
+    if (el.closest('[hidden]')) continue;
+    const value = el.value.trim();
+    if (value === '') continue;
+    if (el.dataset.requires && $(el.dataset.requires).value.trim() === '') continue;
+    setPath(body, el.dataset.path, el.dataset.kind === 'vertices' ? vertices(value) : value);
+  }
+  return body;
+}
+
+// The field of a spec path (`constraints.side.min`), or of its closest parent with a field.
+function designField(path) {
+  const fields = [...designForm.querySelectorAll('[data-path]')].filter((el) => !el.closest('[hidden]'));
+  let p = path;
+  while (p) {
+    const exact = fields.find((el) => el.dataset.path === p);
+    if (exact) return exact;
+    const below = fields.find((el) => el.dataset.path.startsWith(`${p}.`) || el.dataset.path.startsWith(`${p}[`));
+    if (below) return below;
+    const cut = Math.max(p.lastIndexOf('.'), p.lastIndexOf('['));
+    p = cut > 0 ? p.slice(0, cut) : '';
+  }
+  return null;
+}
+
+function showDesignErrors(payload, status) {
+  const errors = (payload && payload.errors && payload.errors.length)
+    ? payload.errors
+    : [{ field: (payload && payload.field) || 'body', message: (payload && payload.detail) || `HTTP ${status}` }];
+  for (const e of errors) {
+    const input = e.field ? designField(e.field) : null;
+    const target = input ? input.closest('.field').querySelector('.error') : null;
+    if (input) {
+      input.setAttribute('aria-invalid', 'true');
+      const details = input.closest('details');
+      if (details) details.open = true;
+    }
+    (target || $('d-error-body')).textContent = e.message;
+  }
+}
+
+function clearDesignErrors() {
+  for (const el of designForm.querySelectorAll('.error')) el.textContent = '';
+  for (const el of designForm.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
+}
+
+function bulletList(list, items, empty) {
+  list.replaceChildren();
+  for (const text of items) {
+    const li = document.createElement('li');
+    li.textContent = text;
+    list.appendChild(li);
+  }
+  if (!items.length && empty) {
+    const li = document.createElement('li');
+    li.textContent = empty;
+    li.className = 'muted';
+    list.appendChild(li);
+  }
+}
+
+function showDesign(d) {
+  const found = d.design !== null;
+  const cert = d.certified ? 'certified' : 'not certified';
+  $('d-verdict').textContent = `${d.name}: ${d.status} (${cert}), model ${d.model}`;
+  $('d-verdict').dataset.status = d.status;
+  $('d-found').hidden = !found;
+  bulletList($('d-diagnosis'), d.diagnosis.map((x) => x.message));
+  if (found) {
+    const g = d.design;
+    const l1 = g.layers[0];
+    const size = g.L_mm !== null
+      ? `L = ${fmt(g.L_mm)} mm`
+      : `Lx = ${fmt(g.extent_x_mm)} mm, Ly = ${fmt(g.extent_y_mm)} mm`;
+    $('d-summary').textContent = `W = ${fmt(l1.W_mm, 6)} mm, n = ${l1.n}, \u03b1 = ${fmt(l1.alpha_deg, 6)} deg`
+      + (g.layers.length > 1 && (g.layers[1].W_mm !== l1.W_mm || g.layers[1].n !== l1.n
+        || g.layers[1].alpha_deg !== l1.alpha_deg)
+        ? ` (layer 2: W = ${fmt(g.layers[1].W_mm, 6)} mm, n = ${g.layers[1].n}, \u03b1 = ${fmt(g.layers[1].alpha_deg, 6)} deg)`
+        : ' (both layers)')
+      + `; ${size}, folded thickness t_d = ${fmt(g.thickness_mm)} mm`;
+    const layers = $('d-layers').tBodies[0];
+    layers.replaceChildren();
+    for (const l of g.layers) {
+      const row = layers.insertRow();
+      cell(row, String(l.index));
+      cell(row, l.material);
+      cell(row, fmt(l.t_mm));
+      cell(row, fmt(l.W_mm, 6), 'W_mm');
+      cell(row, String(l.n), 'n');
+      cell(row, fmt(l.alpha_deg, 6), 'alpha_deg');
+    }
+    const m = d.performance.mass_breakdown_g;
+    $('d-mass').textContent = `mass ${fmt(d.mass_g)} g: layer 1 ${fmt(m.layer1_g)} g, layer 2 `
+      + `${fmt(m.layer2_g)} g, connectors ${fmt(m.connectors_g)} g`;
+    const table = $('d-constraints').tBodies[0];
+    table.replaceChildren();
+    for (const c of d.constraints) {
+      const row = table.insertRow();
+      row.dataset.name = c.name;
+      row.dataset.binding = c.binding === null ? '?' : (c.binding ? 'yes' : 'no');
+      cell(row, c.name).className = 'text';
+      cell(row, fmt(c.value, 5), 'value');
+      cell(row, `${c.sense === 'min' ? '\u2265' : '\u2264'} ${fmt(c.bound, 5)}`, 'bound');
+      cell(row, fmt(c.margin, 3), 'margin');
+      cell(row, c.unit).className = 'text';
+      cell(row, row.dataset.binding, 'binding');
+    }
+  } else {
+    $('d-summary').textContent = 'No design meets every requirement:';
+  }
+  bulletList($('d-warnings'), d.warnings.map((w) => `${w.code}: ${w.message}`), 'none');
+  $('design-results').hidden = false;
+}
+
+function rank(name) {
+  const i = DOWNLOAD_ORDER.findIndex((re) => re.test(name));
+  return i < 0 ? DOWNLOAD_ORDER.length : i;
+}
+
+async function showDesignFiles(result, mine) {
+  const box = $('d-files');
+  if (!result) {
+    box.hidden = true;
+    return;
+  }
+  box.hidden = false;
+  const files = [...result.files].sort((a, b) => rank(a.name) - rank(b.name));
+  const downloads = $('d-downloads');
+  downloads.replaceChildren();
+  for (const f of files) {
+    const a = document.createElement('a');
+    a.href = f.url;
+    a.download = f.name;
+    a.dataset.name = f.name;
+    a.textContent = `${f.name} (${Math.ceil(f.bytes / 1024)} KiB)`;
+    downloads.appendChild(a);
+  }
+  const byName = Object.fromEntries(files.map((f) => [f.name, f]));
+  const sheet = byName['sheet-1.svg'];
+  const img = $('d-pattern');
+  img.hidden = !sheet;
+  if (sheet) img.src = sheet.url;
+  const report = byName['report.html'];
+  $('d-report').hidden = !report;
+  if (report) $('d-report-link').href = report.url;
+  const view = $('d-view3d');
+  const glb = byName['assembly.glb'];
+  if (!glb) {
+    view.dataset.state = 'empty';
+    return;
+  }
+  view.dataset.state = 'loading';
+  try {
+    if (!designViewer) designViewer = new Viewer(view);
+  } catch (err) {
+    view.dataset.state = 'unavailable';
+    view.textContent = `3D view unavailable here (WebGL): ${err.message}`;
+    return;
+  }
+  const triangles = await designViewer.show(glb.url);
+  if (mine !== designGeneration) return;
+  view.dataset.triangles = String(triangles);
+  view.dataset.state = 'ready';
+}
+
+async function submitDesign(event) {
+  event.preventDefault();
+  const mine = ++designGeneration;
+  clearDesignErrors();
+  const button = $('d-submit');
+  button.disabled = true;
+  $('d-status').textContent = 'designing...';
+  designForm.dataset.state = 'busy';
+  try {
+    const answer = await postJSON('/api/design', designBody());
+    if (mine !== designGeneration) return;
+    if (!answer.ok) {
+      showDesignErrors(answer.payload, answer.status);
+      $('design-results').hidden = true;  // never show another spec's answer as this one's
+      designForm.dataset.state = 'error';
+      $('d-status').textContent = '';
+      return;
+    }
+    showDesign(answer.payload.design);
+    $('d-status').textContent = '';
+    await showDesignFiles(answer.payload.result, mine);
+    if (mine === designGeneration) designForm.dataset.state = 'done';
+  } catch (err) {
+    $('d-error-body').textContent = `request failed: ${err.message}`;
+    designForm.dataset.state = 'error';
+  } finally {
+    if (mine === designGeneration) {
+      button.disabled = false;
+      if (designForm.dataset.state === 'busy') designForm.dataset.state = 'done';
+    }
+  }
+}
+
+// ---- tabs --------------------------------------------------------------------------------
+
+function selectTab(name) {
+  for (const tab of document.querySelectorAll('[role="tab"]')) {
+    const on = tab.id === `tab-${name}`;
+    tab.setAttribute('aria-selected', String(on));
+    $(tab.getAttribute('aria-controls')).hidden = !on;
+  }
+  if (location.hash !== `#${name}`) history.replaceState(null, '', `#${name}`);
+}
+
+$('tab-analyze').addEventListener('click', () => selectTab('analyze'));
+$('tab-design').addEventListener('click', () => selectTab('design'));
+if (location.hash === '#design') selectTab('design');
+
 form.addEventListener('submit', submit);
 $('material').addEventListener('change', syncVisibility);
 $('layout').addEventListener('change', syncVisibility);
+designForm.addEventListener('submit', submitDesign);
+$('d-layout').addEventListener('change', syncDesignVisibility);
+$('d-fold-style').addEventListener('change', syncDesignVisibility);
 syncVisibility();
+syncDesignVisibility();
 loadMaterials().then(syncVisibility);
