@@ -7,18 +7,24 @@ failure: ``make test`` installs it (``make system-deps``).
 from __future__ import annotations
 
 import csv
+import json
 import math
 import os
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
+from typer.testing import CliRunner
 
 from corrugate import Assembly, Layer, analyze, get_material, moduli
+from corrugate.cli import app
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 from corrugate.fea.ccx import CCX_ENV, SolverNotFoundError, find_ccx, parse_dat
+from corrugate.fea.sweep import run_sweep, write_table
 from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
+from corrugate.fea.validation import Case, Refinement
 
 REFERENCE = Path(__file__).resolve().parents[1] / "docs" / "data" / "unitcell_fe.csv"
 
@@ -158,3 +164,68 @@ def test_assembly_bending_matches_closed_forms(ccx: str, small_assembly: Assembl
     err = {m: abs(fe.D / v.D - 1) for m, v in cf.items()}
     assert err["refined"] < err["xia"]
     assert err["refined"] < err["paper"]
+
+
+def _tiny_case(label: str, timeout: float = 120.0) -> Case:
+    layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
+    ref = Refinement(AssemblyMesh(2), UnitCellMesh(10, 1))
+    return Case(label, Assembly.identical(layer), refinement=ref, timeout=timeout)
+
+
+def test_sweep_reports_a_failed_case_and_goes_on(ccx: str, tmp_path: Path) -> None:
+    """A case that times out is reported with its message; the other case still finishes; the
+    work folders are removed (nothing left under tmp_path) since keep is False."""
+    cases = [_tiny_case("ok"), _tiny_case("too slow", timeout=1e-4)]
+    with ThreadPoolExecutor(max_workers=2) as ex:
+        results = {r.case.label: r for r in run_sweep(cases, ex, folder=tmp_path)}
+    assert results["ok"].error is None
+    assert results["ok"].fe["K_N_per_mm@0"] > 0
+    err = results["too slow"].error
+    assert err is not None
+    assert "timed out" in err
+    assert list(tmp_path.iterdir()) == []
+    write_table(list(results.values()), tmp_path / "t.md")
+    text = (tmp_path / "t.md").read_text()
+    assert "failed: ccx timed out" in text
+    assert text.count("\n") == 4  # header, rule, two cases
+
+
+def test_validate_cli_json_agrees_with_analyze(ccx: str) -> None:
+    args = [
+        "validate",
+        "--W",
+        "5",
+        "--n",
+        "3",
+        "--alpha",
+        "120",
+        "--thickness",
+        "0.1",
+        "--mesh",
+        "2",
+        "--cell-mesh",
+        "10x1",
+        "--json",
+    ]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.output)
+    layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
+    cf = analyze(Assembly.identical(layer), "refined", [0.0]).stiffness[0]
+    assert data["models"]["refined"]["K_N_per_mm@0"] == pytest.approx(cf.K)
+    assert data["fe"]["K_N_per_mm@0"] == pytest.approx(cf.K, rel=0.01)
+    assert set(data["models"]) == {"paper", "xia", "refined"}
+
+
+def test_validate_cli_without_solver_is_one_line(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv(CCX_ENV, "/nonexistent/ccx")
+    code = (
+        "import sys; from corrugate.cli import main; "
+        "main(['validate', '--W', '5', '--n', '3', '--alpha', '120'])"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=False)
+    assert out.returncode == 2
+    lines = out.stderr.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith("corrugate: error: ")
+    assert "calculix-ccx" in lines[0]

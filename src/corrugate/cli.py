@@ -251,3 +251,4 @@ def main(argv: list[str] | None = None) -> None:
     except CorrugateError as exc:
         print(f"corrugate: error: {exc}", file=sys.stderr)
         sys.exit(2)
+from . import fea_cli as _fea_cli  # noqa: E402, F401
