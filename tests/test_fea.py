@@ -13,6 +13,7 @@ import os
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -22,7 +23,7 @@ from corrugate import Assembly, Layer, analyze, get_material, moduli
 from corrugate.cli import app
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 from corrugate.fea.ccx import CCX_ENV, SolverNotFoundError, find_ccx, parse_dat
-from corrugate.fea.sweep import run_sweep, write_table
+from corrugate.fea.sweep import dask_executor, run_sweep, write_table
 from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
 from corrugate.fea.validation import Case, Refinement
 
@@ -229,3 +230,20 @@ def test_validate_cli_without_solver_is_one_line(monkeypatch: pytest.MonkeyPatch
     assert len(lines) == 1
     assert lines[0].startswith("corrugate: error: ")
     assert "calculix-ccx" in lines[0]
+
+
+def test_dask_cluster_gives_the_process_pool_numbers(ccx: str) -> None:
+    """The same cases through a local dask.distributed cluster (the `dist` extra) and through the
+    default process pool give identical numbers (ccx is deterministic)."""
+    distributed = pytest.importorskip("distributed")
+    cases = [_tiny_case("a"), replace(_tiny_case("b"), eta_deg=(90.0,))]
+    pool = {r.case.label: r.fe for r in run_sweep(cases, jobs=2)}
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
+    ) as cluster:
+        ex = dask_executor(cluster.scheduler_address)
+        dask = {r.case.label: r.fe for r in run_sweep(cases, ex)}
+        ex.shutdown()
+    assert pool == dask
+    assert pool["a"]["K_N_per_mm@0"] > 0
+    assert pool["b"]["K_N_per_mm@90"] > 0

@@ -225,13 +225,17 @@ def _run_sweep(
         MofNCompleteColumn(),
         TimeElapsedColumn(),
     )
-    with Progress(*columns, console=console) as progress:
-        task = progress.add_task(f"sweep {name}", total=len(cases))
-        for r in run_sweep(cases, executor, jobs=jobs, folder=workdir, keep=keep):
-            results.append(r)
-            status = f"[red]failed: {r.error}[/red]" if r.error else "done"
-            progress.console.print(f"{r.case.label}: {status}")
-            progress.advance(task)
+    try:
+        with Progress(*columns, console=console) as progress:
+            task = progress.add_task(f"sweep {name}", total=len(cases))
+            for r in run_sweep(cases, executor, jobs=jobs, folder=workdir, keep=keep):
+                results.append(r)
+                status = f"[red]failed: {r.error}[/red]" if r.error else "done"
+                progress.console.print(f"{r.case.label}: {status}")
+                progress.advance(task)
+    finally:
+        if executor is not None:
+            executor.shutdown()
     out.mkdir(parents=True, exist_ok=True)
     write_table(results, out / f"sweep_{name}.md")
     write_csv(results, out / f"sweep_{name}.csv")

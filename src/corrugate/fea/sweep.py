@@ -16,12 +16,16 @@ from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
 from dataclasses import replace
 from pathlib import Path
+from typing import Any, ParamSpec, TypeVar
 
 from ..errors import InputError
 from ..geometry import Assembly, Layer
 from ..materials import get_material
 from ..moduli import MODELS
 from .validation import Case, CaseResult, Refinement, run_case
+
+P = ParamSpec("P")
+T = TypeVar("T")
 
 __all__ = [
     "SWEEPS",
@@ -68,11 +72,30 @@ def paper_cases(refinement: Refinement | None = None, unit_cell: bool = True) ->
 SWEEPS: dict[str, Callable[..., list[Case]]] = {"paper": paper_cases}
 
 
+class _DaskExecutor(Executor):
+    """A dask.distributed client as a ``concurrent.futures`` executor; shutdown closes it."""
+
+    def __init__(self, address: str) -> None:
+        import distributed
+
+        client_cls: Any = distributed.Client  # untyped package
+        self._client: Any = client_cls(address)
+        self._executor: Any = self._client.get_executor()
+
+    def submit(self, fn: Callable[P, T], /, *args: P.args, **kwargs: P.kwargs) -> Future[T]:
+        future: Future[T] = self._executor.submit(fn, *args, **kwargs)
+        return future
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        self._executor.shutdown(wait=wait)
+        self._client.close()
+
+
 def dask_executor(address: str) -> Executor:
     """A ``concurrent.futures`` executor on the dask.distributed scheduler at ``address``
-    (the optional ``dist`` extra)."""
+    (the optional ``dist`` extra); shut it down to close the connection."""
     try:
-        from distributed import Client
+        import distributed  # noqa: F401
     except ImportError:
         raise InputError(
             "scheduler",
@@ -81,8 +104,7 @@ def dask_executor(address: str) -> Executor:
             "(pip install 'corrugate[dist]')",
             reason="cannot be used",
         ) from None
-    executor: Executor = Client(address).get_executor()
-    return executor
+    return _DaskExecutor(address)
 
 
 def _safe_run(case: Case) -> CaseResult:
