@@ -50,7 +50,7 @@ def _print_result(r: CaseResult, console: Console) -> None:
     for m in MODELS:
         t.add_column(m, justify="right")
         t.add_column(f"{m}/FE", justify="right")
-    units = {"K_N_per_mm": "N/mm", "D_Nmm": "N mm", "EI_Nmm2": "N mm^2"}
+    units = {"K_N_per_mm": "N/mm", "D_Nmm": "N mm", "EI_Nmm2": "N mm^2", "D4_Nmm": "N mm"}
     for key in _display_keys(r):
         t.add_row(_name(key, units), f"{r.fe[key]:.5g}", *_model_cells(r, key))
     console.print(t)
@@ -116,6 +116,9 @@ def validate_cmd(
         ),
     ] = None,
     no_unit_cell: Annotated[bool, Opt("--no-unit-cell", help="Skip the unit-cell runs.")] = False,
+    no_pure_bending: Annotated[
+        bool, Opt("--no-pure-bending", help="Skip the 4-point (pure) bending diagnostic.")
+    ] = False,
     sweep: Annotated[
         str | None, Opt(help="Run a named sweep instead of one design: paper.")
     ] = None,
@@ -169,12 +172,13 @@ def validate_cmd(
     case = Case(
         f"W={layer.W:g} n={layer.n} alpha={layer.alpha_deg:g} t={layer.t:g}",
         Assembly.identical(layer),
-        etas,
-        not no_unit_cell,
-        refinement,
-        workdir,
-        keep,
-        timeout,
+        eta_deg=etas,
+        unit_cell=not no_unit_cell,
+        pure_bending=not no_pure_bending,
+        refinement=refinement,
+        folder=workdir,
+        keep=keep,
+        timeout=timeout,
     )
     with console.status("running CalculiX ..."):
         result = run_case(case)

@@ -32,6 +32,13 @@ Model (every choice stated; DESIGN.md section 6):
   N mm^2 and N mm. This is the apparent stiffness a bench test would measure: it includes the
   shear deformation of stubby panels, which the closed forms neglect, but not local crushing
   under the rollers (the fixtures act on whole node lines).
+* **4-point bending about eta** (``bending4``, a diagnostic the paper did not run): the same
+  supports, rigid line loads u_z = -delta at a quarter and three quarters of the span, symmetry at
+  mid-span. Between the load lines the moment is constant and the shear zero, so the deflection of
+  mid-span relative to the load lines, Delta (mean over each layer's mid-span nodes), gives the
+  pure bending stiffness of each layer, EI_i = P_i span^3 / (256 Delta_i), free of shear
+  deformation: the quantity the closed forms model. Needs node lines at the quarter points
+  (``along`` x (n + 1) divisible by 4).
 
 Only eta = 0 and eta = 90 deg are supported (the two principal directions of the panel).
 """
@@ -60,8 +67,8 @@ __all__ = [
     "solve_assembly",
 ]
 
-LoadTest = Literal["compression", "bending"]
-TESTS: tuple[LoadTest, ...] = ("compression", "bending")
+LoadTest = Literal["compression", "bending", "bending4"]
+TESTS: tuple[LoadTest, ...] = ("compression", "bending", "bending4")
 FloatArray = NDArray[np.float64]
 
 
@@ -88,8 +95,8 @@ class AssemblyMesh:
 @dataclass(frozen=True, slots=True)
 class AssemblyResult:
     """One FE load case of the assembly: K (N/mm) for compression, D (N mm) and EI (N mm^2) for
-    bending (the other entries None); ``force`` (N) at the prescribed ``displacement`` (mm), and the
-    share of the force carried by each layer."""
+    bending (the other entries None); ``force`` (N) at the prescribed ``displacement`` (mm), the
+    share of the force carried by each layer, and each layer's part of K or D (``layer_values``)."""
 
     test: LoadTest
     eta_deg: float
@@ -103,6 +110,7 @@ class AssemblyResult:
     EI: float | None
     nodes: int
     elements: int
+    layer_values: tuple[float, float] = (math.nan, math.nan)
 
     def value(self) -> float:
         """K (N/mm) for compression, D (N mm) for bending: what ``analyze`` reports."""
@@ -124,13 +132,20 @@ class _Shell:
 
 
 def _layer_shell(
-    layer: Layer, span: float, along: int, first_id: int, chord_axis: int, z0: float
+    layer: Layer,
+    span: float,
+    along: int,
+    first_id: int,
+    chord_axis: int,
+    z0: float,
+    multiple: int = 2,
 ) -> _Shell:
-    """S8R mesh of a layer whose chord runs along ``chord_axis`` (0 = x, 1 = y)."""
+    """S8R mesh of a layer whose chord runs along ``chord_axis`` (0 = x, 1 = y); the number of
+    elements along the creases is a multiple of ``multiple``."""
     nf = layer.n + 1
     p, h = layer.pitch, layer.height
     nel_c = along * nf
-    nel_s = 2 * max(1, math.ceil(span / (layer.W / along) / 2))
+    nel_s = multiple * max(1, math.ceil(span / (layer.W / along) / multiple))
     ni, nj = 2 * nel_c + 1, 2 * nel_s + 1
     chord = np.linspace(0.0, nf * p, ni)
     crease_c = np.arange(nf + 1) * p
@@ -193,6 +208,7 @@ class DeckInfo:
     span along the load axis (mm), prescribed displacement (mm), load axis (0 = x, 1 = y)."""
 
     sets: tuple[str, str]
+    mid_sets: tuple[str, str] | None
     span: float
     delta: float
     axis: int
@@ -217,9 +233,12 @@ def assembly_deck(
     other = 1 - axis
     a = assembly
     Lx, Ly = a.Lx, a.Ly
-    shells = [_layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0)]
+    mult = 4 if test == "bending4" else 2
+    shells = [_layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult)]
     shells.append(
-        _layer_shell(a.layer2, Lx, mesh.along, int(shells[0].ids.max()) + 1, 1, a.layer1.height)
+        _layer_shell(
+            a.layer2, Lx, mesh.along, int(shells[0].ids.max()) + 1, 1, a.layer1.height, mult
+        )
     )
     L_load = (Lx, Ly)[axis]
     tol = 1e-7 * max(Lx, Ly)
@@ -249,6 +268,7 @@ def assembly_deck(
         ]
     bc: list[str] = []
     load_sets: list[str] = []
+    mid_sets: list[str] = []
     ua, ub = axis + 1, other + 1
     for k, sh in enumerate(shells, start=1):
         c_load = sh.xyz[:, axis]
@@ -275,6 +295,29 @@ def assembly_deck(
                 f"{b_node},3,3,0",
             ]
             load_sets.append(f"HI{k}")
+        elif test == "bending4":
+            quarter = np.abs(c_load - L_load / 4) < tol
+            quarter |= np.abs(c_load - 3 * L_load / 4) < tol
+            loads = [int(n) for n in sh.ids[quarter]]
+            if not loads:
+                raise InputError(
+                    "mesh.along",
+                    mesh.along,
+                    "a value with along x (n + 1) divisible by 4 for four-point bending",
+                    reason="gives no node line at the quarter points",
+                )
+            mid_other = c_other[np.isin(sh.ids, mid)]
+            m_node = mid[int(np.argmin(mid_other))]
+            lines += _fmt_set(f"SUP{k}", lo + hi) + _fmt_set(f"LOAD{k}", loads)
+            lines += _fmt_set(f"MID{k}", mid)
+            bc += [
+                f"SUP{k},3,3,0",
+                f"LOAD{k},3,3,{-delta:.12g}",
+                f"MID{k},{ua},{ua},0",
+                f"{m_node},{ub},{ub},0",
+            ]
+            load_sets.append(f"LOAD{k}")
+            mid_sets.append(f"MID{k}")
         else:
             mid_other = c_other[np.isin(sh.ids, mid)]
             m_node = mid[int(np.argmin(mid_other))]
@@ -289,9 +332,12 @@ def assembly_deck(
     lines += ["*STEP", "*STATIC", "*BOUNDARY", *bc]
     for name in load_sets:
         lines += [f"*NODE PRINT,NSET={name}", "RF"]
+    for name in mid_sets:
+        lines += [f"*NODE PRINT,NSET={name}", "U"]
     lines.append("*END STEP")
     n_nodes = sum(len(sh.ids) for sh in shells)
-    info = DeckInfo((load_sets[0], load_sets[1]), L_load, delta, axis, n_nodes, e_no - 1)
+    mids = (mid_sets[0], mid_sets[1]) if mid_sets else None
+    info = DeckInfo((load_sets[0], load_sets[1]), mids, L_load, delta, axis, n_nodes, e_no - 1)
     return "\n".join(lines) + "\n", info
 
 
@@ -310,7 +356,7 @@ def solve_assembly(
     deck, info = assembly_deck(assembly, test, mesh, eta_deg)
     with work_dir(folder, keep) as wd:
         run = run_ccx(deck, wd, job=test, timeout=timeout)
-    comp = 2 if test == "bending" else info.axis
+    comp = info.axis if test == "compression" else 2
     forces: list[float] = []
     for name in info.sets:
         blocks = run.find("forces", str(name))
@@ -334,6 +380,33 @@ def solve_assembly(
             EI=None,
             nodes=nodes,
             elements=elements,
+            layer_values=(forces[0] / delta, forces[1] / delta),
+        )
+    if test == "bending4":
+        assert info.mid_sets is not None
+        layer_EI: list[float] = []
+        for name, f in zip(info.mid_sets, forces, strict=True):
+            blocks = run.find("displacements", name)
+            if not blocks:
+                raise SolverError(f"ccx printed no displacements for {name}")
+            uz = [v[2] for v in blocks[-1].rows.values()]
+            rel = -sum(uz) / len(uz) - delta  # mid-span below the load lines
+            layer_EI.append(f * span**3 / (256 * rel))
+        EI4 = sum(layer_EI)
+        return AssemblyResult(
+            test,
+            eta_deg,
+            mesh,
+            span,
+            P,
+            delta,
+            (forces[0], forces[1]),
+            K=None,
+            D=EI4 / span,
+            EI=EI4,
+            nodes=nodes,
+            elements=elements,
+            layer_values=(layer_EI[0] / span, layer_EI[1] / span),
         )
     EI = P * span**3 / (48 * delta)
     return AssemblyResult(
@@ -349,4 +422,5 @@ def solve_assembly(
         EI=EI,
         nodes=nodes,
         elements=elements,
+        layer_values=(forces[0] * span**2 / (48 * delta), forces[1] * span**2 / (48 * delta)),
     )

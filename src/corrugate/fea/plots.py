@@ -2,8 +2,9 @@
 
 One column per swept parameter (W, n, alpha), one row per quantity (K and D at eta = 0). The
 default model (``refined``) is the solid line with its +-20 % band (the paper's acceptance band);
-``paper`` and ``xia`` are dashed lines; the FE results are points. Needs matplotlib (the ``fea``
-extra).
+``paper`` and ``xia`` are dashed lines; the FE results are points (for D: 3-point bending as the
+paper tested, and the pure bending stiffness of the 4-point diagnostic). Needs matplotlib (the
+``fea`` extra).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from .validation import CaseResult
 __all__ = ["plot_sweep"]
 
 _QUANTITIES = (("K_N_per_mm", "K (N/mm)"), ("D_Nmm", "D (N mm)"))
+_PURE = "D4_Nmm"
 
 
 def _model_line(
@@ -84,13 +86,23 @@ def plot_sweep(results: Sequence[CaseResult], path: Path, eta: float = 0.0) -> P
                 [r.fe[f"{key}@{e}"] for r in ok],
                 "o",
                 color="tab:red",
-                label="FE (CalculiX)",
+                label="FE 3-point bending" if key == "D_Nmm" else "FE (CalculiX)",
             )
+            pure = [r for r in ok if f"{_PURE}@{e}" in r.fe]
+            if key == "D_Nmm" and pure:
+                ax.plot(
+                    [r.case.value for r in pure],
+                    [r.fe[f"{_PURE}@{e}"] for r in pure],
+                    "^",
+                    mfc="none",
+                    color="tab:green",
+                    label="FE pure bending (4-point)",
+                )
             ax.set_xlabel(rs[0].case.parameter)
             ax.set_ylabel(f"{label}, eta = {e} deg")
             ax.grid(alpha=0.3)
-            if row == 0 and col == 0:
-                ax.legend(fontsize=8)
+            if col == 0:
+                ax.legend(fontsize=7)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=130)

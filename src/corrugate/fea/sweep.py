@@ -145,8 +145,10 @@ def _rows(results: Sequence[CaseResult], eta: str) -> Iterator[dict[str, str]]:
             row["error"] = r.error
             yield row
             continue
-        for q, unit in (("K", "N_per_mm"), ("D", "Nmm")):
+        for q, unit in (("K", "N_per_mm"), ("D", "Nmm"), ("D4", "Nmm")):
             key = f"{q}_{unit}@{eta}"
+            if key not in r.fe:
+                continue
             row[f"{q} FE"] = f"{r.fe[key]:.4g}"
             for m in MODELS:
                 row[f"{q} {m}"] = f"{r.models[m][key]:.4g}"
@@ -157,10 +159,14 @@ def _rows(results: Sequence[CaseResult], eta: str) -> Iterator[dict[str, str]]:
 
 
 def write_table(results: Sequence[CaseResult], path: Path, eta: str = "0") -> None:
-    """A Markdown table: per case, FE and each model's K (N/mm) and D (N mm) at ``eta``."""
+    """A Markdown table: per case, FE and each model's K (N/mm), D (N mm, 3-point bending) and
+    D4 (N mm, pure bending from the 4-point test) at ``eta``."""
     cols = ["set", "case", "K FE"]
     cols += [f"K {m}/FE" for m in MODELS]
-    cols += ["D FE"] + [f"D {m}/FE" for m in MODELS] + ["mesh", "converged"]
+    cols += ["D FE"] + [f"D {m}/FE" for m in MODELS]
+    if any(f"D4_Nmm@{eta}" in r.fe for r in results):
+        cols += ["D4 FE"] + [f"D4 {m}/FE" for m in MODELS]
+    cols += ["mesh", "converged"]
     lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     for row in _rows(results, eta):
         if "error" in row:

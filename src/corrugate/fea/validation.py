@@ -50,12 +50,14 @@ class Refinement:
 @dataclass(frozen=True, slots=True)
 class Case:
     """One design to validate: ``label``, the ``assembly``, the directions ``eta_deg`` (0 and/or
-    90), whether to run the unit cells, and where ccx works (``folder``, kept if ``keep``)."""
+    90), whether to run the unit cells and the 4-point (pure) bending diagnostic, and where ccx
+    works (``folder``, kept if ``keep``)."""
 
     label: str
     assembly: Assembly
     eta_deg: tuple[float, ...] = (0.0,)
     unit_cell: bool = True
+    pure_bending: bool = True
     refinement: Refinement = field(default_factory=Refinement)
     folder: Path | None = None
     keep: bool = False
@@ -69,11 +71,13 @@ class Case:
 class CaseResult:
     """FE and closed-form values of a case.
 
-    ``fe`` and ``models[name]`` map ``"K_N_per_mm@eta"``, ``"D_Nmm@eta"``, ``"EI_Nmm2@eta"`` and the
-    layer moduli ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced
-    ``fe``; ``history`` lists (mesh label, values) of every refinement step; ``converged`` is False
-    when refinement stopped at the finest mesh allowed before reaching the tolerance. ``error``
-    holds the one-line message of a failed case (then ``fe`` is empty).
+    ``fe`` and ``models[name]`` map ``"K_N_per_mm@eta"``, ``"D_Nmm@eta"``, ``"EI_Nmm2@eta"`` (from
+    3-point bending, as the paper tested), ``"D4_Nmm@eta"`` (pure bending between the load lines
+    of a 4-point test; the closed forms' D for the models) and the layer moduli
+    ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
+    ``history`` lists (mesh label, values) of every refinement step; ``converged`` is False when
+    refinement stopped at the finest mesh allowed before reaching the tolerance. ``error`` holds
+    the one-line message of a failed case (then ``fe`` is empty).
     """
 
     case: Case
@@ -100,6 +104,7 @@ def closed_forms(assembly: Assembly, eta_deg: Sequence[float]) -> dict[str, dict
             values[f"K_N_per_mm@{e}"] = d.K
             values[f"D_Nmm@{e}"] = d.D
             values[f"EI_Nmm2@{e}"] = d.EI
+            values[f"D4_Nmm@{e}"] = d.D  # the closed forms' D is a pure bending stiffness
         for i, m in enumerate(r.moduli, start=1):
             for k, v in m.as_dict().items():
                 values[f"layer{i}.{k}"] = v
@@ -151,6 +156,17 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
         out[f"K_N_per_mm@{e}"] = c.value()
         out[f"D_Nmm@{e}"] = b.value()
         out[f"EI_Nmm2@{e}"] = b.value() * b.span
+        if case.pure_bending:
+            p = solve_assembly(
+                case.assembly,
+                "bending4",
+                mesh,
+                eta,
+                folder=case.folder,
+                keep=case.keep,
+                timeout=case.timeout,
+            )
+            out[f"D4_Nmm@{e}"] = p.value()
     return out
 
 
