@@ -72,25 +72,26 @@ def assembly() -> None:
         f"\nW = 10 mm, n = 7, alpha = 90 deg, Dura-Lar t = 0.125 mm, L = {a.Lx:.3f} mm, eta = 0\n"
     )
     print(
-        "| shell elements per facet | nodes | K N/mm | K layer 1 | K layer 2 | D N mm | "
-        "D layer 1 | D layer 2 | s |"
+        "| shell elements per facet | nodes | K N/mm | K layer 1 | K layer 2 | D N mm (3-point) | "
+        "D layer 1 | D layer 2 | D4 N mm (pure) | D4 layer 1 | D4 layer 2 | s |"
     )
-    print("|---" * 9 + "|")
+    print("|---" * 12 + "|")
     for along in (2, 4, 8, 16):
         t0 = time.perf_counter()
         c = solve_assembly(a, "compression", AssemblyMesh(along), 0.0)
         b = solve_assembly(a, "bending", AssemblyMesh(along), 0.0)
+        p = solve_assembly(a, "bending4", AssemblyMesh(along), 0.0)
         dt = time.perf_counter() - t0
-        kl = [f / c.displacement for f in c.layer_forces]
-        dl = [f * b.span**2 / (48 * b.displacement) for f in b.layer_forces]
+        kl, dl, pl = c.layer_values, b.layer_values, p.layer_values
         print(
             f"| {along} | {c.nodes} | {c.value():.5g} | {kl[0]:.5g} | {kl[1]:.4g} | "
-            f"{b.value():.5g} | {dl[0]:.5g} | {dl[1]:.4g} | {dt:.0f} |"
+            f"{b.value():.5g} | {dl[0]:.5g} | {dl[1]:.4g} | {p.value():.5g} | {pl[0]:.5g} | "
+            f"{pl[1]:.4g} | {dt:.0f} |"
         )
+    D, DS, DC = r.stiffness[0].D, float(s1.D_S), float(s2.D_C)
     print(
         f"| closed form `refined` | | {r.stiffness[0].K:.5g} | {float(s1.K_S):.5g} | "
-        f"{float(s2.K_C):.4g} | {r.stiffness[0].D:.5g} | {float(s1.D_S):.5g} | "
-        f"{float(s2.D_C):.4g} | |"
+        f"{float(s2.K_C):.4g} | {D:.5g} | {DS:.5g} | {DC:.4g} | {D:.5g} | {DS:.5g} | {DC:.4g} | |"
     )
 
 
