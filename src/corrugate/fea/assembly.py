@@ -34,11 +34,12 @@ Model (every choice stated; DESIGN.md section 6):
   under the rollers (the fixtures act on whole node lines).
 * **4-point bending about eta** (``bending4``, a diagnostic the paper did not run): the same
   supports, rigid line loads u_z = -delta at a quarter and three quarters of the span, symmetry at
-  mid-span. Between the load lines the moment is constant and the shear zero, so the deflection of
-  mid-span relative to the load lines, Delta (mean over each layer's mid-span nodes), gives the
-  pure bending stiffness of each layer, EI_i = P_i span^3 / (256 Delta_i), free of shear
-  deformation: the quantity the closed forms model. Needs node lines at the quarter points
-  (``along`` x (n + 1) divisible by 4).
+  mid-span. Between the load lines the moment M = P L / 8 is constant and the shear zero, so the
+  deflection of mid-span relative to gauge lines at 3/8 and 5/8 of the span, Delta (means over
+  each layer's nodes on those lines; away from the local deformation at the load lines), gives
+  the pure bending stiffness of each layer, EI_i = P_i span^3 / (1024 Delta_i), free of shear
+  deformation: the quantity the closed forms model. Needs node lines at 1/4 and 3/8 of the span
+  (``along`` x (n + 1) divisible by 8).
 
 Only eta = 0 and eta = 90 deg are supported (the two principal directions of the panel).
 """
@@ -208,7 +209,7 @@ class DeckInfo:
     span along the load axis (mm), prescribed displacement (mm), load axis (0 = x, 1 = y)."""
 
     sets: tuple[str, str]
-    mid_sets: tuple[str, str] | None
+    mid_sets: tuple[str, str, str, str] | None  # MID1, MID2, GAUGE1, GAUGE2 (4-point only)
     span: float
     delta: float
     axis: int
@@ -233,7 +234,7 @@ def assembly_deck(
     other = 1 - axis
     a = assembly
     Lx, Ly = a.Lx, a.Ly
-    mult = 4 if test == "bending4" else 2
+    mult = 8 if test == "bending4" else 2
     shells = [_layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult)]
     shells.append(
         _layer_shell(
@@ -299,17 +300,20 @@ def assembly_deck(
             quarter = np.abs(c_load - L_load / 4) < tol
             quarter |= np.abs(c_load - 3 * L_load / 4) < tol
             loads = [int(n) for n in sh.ids[quarter]]
-            if not loads:
+            eighth = np.abs(c_load - 3 * L_load / 8) < tol
+            eighth |= np.abs(c_load - 5 * L_load / 8) < tol
+            gauges = [int(n) for n in sh.ids[eighth]]
+            if not (loads and gauges):
                 raise InputError(
                     "mesh.along",
                     mesh.along,
-                    "a value with along x (n + 1) divisible by 4 for four-point bending",
-                    reason="gives no node line at the quarter points",
+                    "a value with along x (n + 1) divisible by 8 for four-point bending",
+                    reason="gives no node lines at 1/4 and 3/8 of the span",
                 )
             mid_other = c_other[np.isin(sh.ids, mid)]
             m_node = mid[int(np.argmin(mid_other))]
             lines += _fmt_set(f"SUP{k}", lo + hi) + _fmt_set(f"LOAD{k}", loads)
-            lines += _fmt_set(f"MID{k}", mid)
+            lines += _fmt_set(f"MID{k}", mid) + _fmt_set(f"GAUGE{k}", gauges)
             bc += [
                 f"SUP{k},3,3,0",
                 f"LOAD{k},3,3,{-delta:.12g}",
@@ -317,7 +321,7 @@ def assembly_deck(
                 f"{m_node},{ub},{ub},0",
             ]
             load_sets.append(f"LOAD{k}")
-            mid_sets.append(f"MID{k}")
+            mid_sets += [f"MID{k}", f"GAUGE{k}"]
         else:
             mid_other = c_other[np.isin(sh.ids, mid)]
             m_node = mid[int(np.argmin(mid_other))]
@@ -336,7 +340,7 @@ def assembly_deck(
         lines += [f"*NODE PRINT,NSET={name}", "U"]
     lines.append("*END STEP")
     n_nodes = sum(len(sh.ids) for sh in shells)
-    mids = (mid_sets[0], mid_sets[1]) if mid_sets else None
+    mids = (mid_sets[0], mid_sets[2], mid_sets[1], mid_sets[3]) if mid_sets else None
     info = DeckInfo((load_sets[0], load_sets[1]), mids, L_load, delta, axis, n_nodes, e_no - 1)
     return "\n".join(lines) + "\n", info
 
@@ -385,13 +389,16 @@ def solve_assembly(
     if test == "bending4":
         assert info.mid_sets is not None
         layer_EI: list[float] = []
-        for name, f in zip(info.mid_sets, forces, strict=True):
-            blocks = run.find("displacements", name)
-            if not blocks:
-                raise SolverError(f"ccx printed no displacements for {name}")
-            uz = [v[2] for v in blocks[-1].rows.values()]
-            rel = -sum(uz) / len(uz) - delta  # mid-span below the load lines
-            layer_EI.append(f * span**3 / (256 * rel))
+        for k, f in enumerate(forces):
+            mean_uz = []
+            for name in (info.mid_sets[k], info.mid_sets[k + 2]):
+                blocks = run.find("displacements", name)
+                if not blocks:
+                    raise SolverError(f"ccx printed no displacements for {name}")
+                uz = [v[2] for v in blocks[-1].rows.values()]
+                mean_uz.append(sum(uz) / len(uz))
+            rel = mean_uz[1] - mean_uz[0]  # mid-span below the gauge lines at 3/8 and 5/8
+            layer_EI.append(f * span**3 / (1024 * rel))
         EI4 = sum(layer_EI)
         return AssemblyResult(
             test,
