@@ -1,6 +1,6 @@
 """Mesh-convergence study of the FE models (docs/fea.md quotes its output).
 
-    python benchmarks/fea_convergence.py unitcell   # reference/unitcell_fe.csv rows, 5 meshes + the reference mesh
+    python benchmarks/fea_convergence.py unitcell   # reference/unitcell_fe.csv rows, 5-6 meshes
     python benchmarks/fea_convergence.py assembly   # W = 10, n = 7, alpha = 90, Dura-Lar 0.125
 
 Prints Markdown tables. Needs ccx. Takes a few minutes (the finest meshes dominate).
