@@ -29,7 +29,7 @@ from .moduli import MODELS
 from .units import parse_quantity
 
 if TYPE_CHECKING:
-    from .fea.validation import CaseResult
+    from .fea.validation import CaseResult, Refinement
 
 __all__ = ["validate_cmd"]
 
@@ -204,7 +204,7 @@ def validate_cmd(
 
 def _run_sweep(
     name: str,
-    refinement: object,
+    refinement: Refinement,
     unit_cell: bool,
     out: Path,
     jobs: int | None,
@@ -215,11 +215,9 @@ def _run_sweep(
 ) -> None:
     from .fea.plots import plot_sweep
     from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_csv, write_table
-    from .fea.validation import Refinement
 
     if name not in SWEEPS:
         raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")
-    assert isinstance(refinement, Refinement)
     cases = SWEEPS[name](refinement, unit_cell)
     executor = dask_executor(scheduler) if scheduler else None
     results: list[CaseResult] = []
