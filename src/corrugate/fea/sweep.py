@@ -138,8 +138,13 @@ def run_sweep(
             ex.shutdown(cancel_futures=True)
 
 
+def _order(r: CaseResult) -> tuple[int, float]:
+    """Sweep sets in the paper's order (W, n, alpha), then by the swept value."""
+    return ("Wnalpha".find(r.case.group), r.case.value)
+
+
 def _rows(results: Sequence[CaseResult], eta: str) -> Iterator[dict[str, str]]:
-    for r in sorted(results, key=lambda r: ("Wnalpha".find(r.case.group), r.case.value)):
+    for r in sorted(results, key=_order):
         row = {"set": r.case.group, "case": r.case.label}
         if r.error:
             row["error"] = r.error
@@ -177,7 +182,8 @@ def write_table(results: Sequence[CaseResult], path: Path, eta: str = "0") -> No
 
 
 def write_csv(results: Sequence[CaseResult], path: Path) -> None:
-    """Every number of every case (FE and each model), one row per case and quantity."""
+    """Every number of every case (FE and each model), one row per case and quantity, cases in
+    the order of the table (not of completion)."""
     with path.open("w", newline="") as fh:
         w = csv.writer(fh)
         w.writerow(
@@ -194,7 +200,7 @@ def write_csv(results: Sequence[CaseResult], path: Path) -> None:
                 "error",
             ]
         )
-        for r in results:
+        for r in sorted(results, key=_order):
             c = r.case
             mesh = "; ".join(f"{k} {v}" for k, v in r.meshes.items())
             if r.error:
