@@ -21,7 +21,8 @@ from typer.testing import CliRunner
 
 from corrugate import Assembly, Layer, analyze, get_material, moduli
 from corrugate.cli import app
-from corrugate.fea.assembly import AssemblyMesh, solve_assembly
+from corrugate.errors import InputError
+from corrugate.fea.assembly import AssemblyMesh, assembly_deck, solve_assembly
 from corrugate.fea.ccx import CCX_ENV, SolverNotFoundError, find_ccx, parse_dat
 from corrugate.fea.sweep import dask_executor, run_sweep, write_table
 from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
@@ -262,3 +263,27 @@ def test_dask_cluster_gives_the_process_pool_numbers(ccx: str) -> None:
     assert pool == dask
     assert pool["a"]["K_N_per_mm@0"] > 0
     assert pool["b"]["K_N_per_mm@90"] > 0
+
+
+def test_assembly_eta_90_mirrors_eta_0_for_identical_layers(
+    ccx: str, small_assembly: Assembly
+) -> None:
+    """Identical layers on a square: loading along x is the mirror image of loading along y, so
+    the two directions (different node sets, boundary conditions on the other axis) must agree."""
+    for test in ("compression", "bending"):
+        r0 = solve_assembly(small_assembly, test, AssemblyMesh(2), eta_deg=0.0)
+        r90 = solve_assembly(small_assembly, test, AssemblyMesh(2), eta_deg=90.0)
+        assert r90.value() == pytest.approx(r0.value(), rel=1e-6)
+        assert r90.layer_values[0] == pytest.approx(r0.layer_values[1], rel=1e-6)
+
+
+def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None:
+    with pytest.raises(InputError, match="even integer"):
+        AssemblyMesh(3)
+    with pytest.raises(InputError, match="integer >= 1"):
+        UnitCellMesh(0, 2)
+    with pytest.raises(InputError, match="0 or 90"):
+        assembly_deck(small_assembly, "compression", AssemblyMesh(2), eta_deg=45.0)
+    odd = Assembly.identical(Layer(W=5.0, n=4, alpha_deg=120.0, material=get_material("dura-lar")))
+    with pytest.raises(InputError, match="divisible by 8"):
+        assembly_deck(odd, "bending4", AssemblyMesh(2))
