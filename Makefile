@@ -16,7 +16,7 @@ $(VENV)/.installed: $(BIN)/python pyproject.toml
 	touch $@
 
 $(VENV)/.installed-dev: $(VENV)/.installed pyproject.toml
-	$(PIP) install --quiet -e '.[dev,opt,fab,web]'
+	$(PIP) install --quiet -e '.[dev,opt,fab,web,fea,dist]'
 	touch $@
 
 # The paper's case study (Liu, Yan and Mehta, Table 1, case 1), end to end, files under out/.
@@ -30,10 +30,17 @@ demo: $(VENV)/.installed
 	$(BIN)/corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
 	@echo "wrote out/case1_analysis.json and the blimp gripper's design and cut files under out/blimp_gripper/"
 
-# System packages the tests need (installed when root and missing).
-# chromium: the browser tests of the web app drive Debian's /usr/bin/chromium with Playwright.
+# System packages the tests need, installed when missing and running as root (CI runs as root):
+# calculix-ccx (command ccx) for the finite-element tests, chromium for the browser tests.
+# Otherwise it says what is missing; those tests then skip, or fail when CI=true.
 system-deps:
-	@command -v chromium >/dev/null || { [ "$$(id -u)" = 0 ] && apt-get update && apt-get install -y chromium; } || echo "system-deps: chromium missing (install it as root: apt-get install chromium)"
+	@missing=""; \
+	command -v ccx >/dev/null || missing="$$missing calculix-ccx"; \
+	command -v chromium >/dev/null || missing="$$missing chromium"; \
+	if [ -n "$$missing" ]; then \
+		if [ "$$(id -u)" = 0 ]; then apt-get update && apt-get install -y $$missing; \
+		else echo "system-deps: missing$$missing (as root: apt-get install -y$$missing)"; fi; \
+	fi
 
 lint: $(VENV)/.installed-dev
 	$(BIN)/ruff check src tests benchmarks

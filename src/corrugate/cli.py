@@ -267,5 +267,6 @@ def main(argv: list[str] | None = None) -> None:
 
 # Further commands register themselves on ``app``.
 from . import design_cli as _design_cli  # noqa: E402, F401
+from . import fea_cli as _fea_cli  # noqa: E402, F401
 from . import pattern_cli as _pattern_cli  # noqa: E402, F401
 from . import web_cli as _web_cli  # noqa: E402, F401

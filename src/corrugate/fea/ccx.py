@@ -1,0 +1,187 @@
+"""Run CalculiX (``ccx``) on an input deck and read its printed output.
+
+CalculiX is the finite-element solver of the ``fea`` subpackage (Debian package ``calculix-ccx``,
+command ``ccx``; version 2.20 was used to write and test this code). This module only finds the
+executable, runs it on a deck in a work folder with a time-out and parses the ``.dat`` file that
+``*NODE PRINT`` writes; the models are built in :mod:`corrugate.fea.unitcell` and
+:mod:`corrugate.fea.assembly`.
+
+The executable is looked up in the environment variable ``CORRUGATE_CCX`` first, then as ``ccx``
+on ``PATH``. Errors are :class:`SolverNotFoundError` (no executable) and :class:`SolverError`
+(non-zero exit, ``*ERROR`` in the log, time-out, or missing output).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+from ..errors import CorrugateError
+
+__all__ = [
+    "CCX_ENV",
+    "CcxRun",
+    "DatBlock",
+    "SolverError",
+    "SolverNotFoundError",
+    "find_ccx",
+    "parse_dat",
+    "run_ccx",
+    "work_dir",
+]
+
+#: Environment variable naming the ccx executable (overrides PATH look-up).
+CCX_ENV = "CORRUGATE_CCX"
+
+_INSTALL_HINT = (
+    "install CalculiX (Debian/Ubuntu: `apt-get install calculix-ccx`, or `make system-deps` as "
+    f"root) or set {CCX_ENV} to the ccx executable"
+)
+
+
+class SolverNotFoundError(CorrugateError, RuntimeError):
+    """The CalculiX executable ``ccx`` cannot be found."""
+
+
+class SolverError(CorrugateError, RuntimeError):
+    """CalculiX ran but failed: non-zero exit, an ``*ERROR`` message, a time-out or no output."""
+
+
+def find_ccx() -> str:
+    """Absolute path of the ccx executable; :class:`SolverNotFoundError` if there is none."""
+    env = os.environ.get(CCX_ENV)
+    if env:
+        path = shutil.which(env)
+        if path is None:
+            raise SolverNotFoundError(f"{CCX_ENV} = {env!r} is not an executable; {_INSTALL_HINT}")
+        return path
+    path = shutil.which("ccx")
+    if path is None:
+        raise SolverNotFoundError(f"CalculiX (ccx) is not on PATH; {_INSTALL_HINT}")
+    return path
+
+
+@dataclass(frozen=True, slots=True)
+class DatBlock:
+    """One table of a ccx ``.dat`` file: a quantity for a node set at one (cumulative) time.
+
+    ``quantity`` is the header word (``displacements``, ``forces``, ...); ``rows`` maps a node
+    number to its values (for displacements and forces: x, y, z components in mm and N).
+    """
+
+    quantity: str
+    nset: str
+    time: float
+    rows: dict[int, tuple[float, ...]]
+
+    def total(self) -> tuple[float, ...]:
+        """Component-wise sum over the nodes (for forces: the resultant, N)."""
+        sums = [0.0, 0.0, 0.0]
+        for values in self.rows.values():
+            for i, v in enumerate(values[:3]):
+                sums[i] += v
+        return tuple(sums)
+
+
+_HEADER = re.compile(r"^\s*(\w[\w ]*?)\s+\(([^)]*)\)\s+for set\s+(\S+)\s+and time\s+(\S+)")
+
+
+def parse_dat(text: str) -> list[DatBlock]:
+    """The node tables of a ccx ``.dat`` file, in file order (one per ``*NODE PRINT`` and step)."""
+    blocks: list[DatBlock] = []
+    current: DatBlock | None = None
+    for line in text.splitlines():
+        m = _HEADER.match(line)
+        if m:
+            current = DatBlock(m.group(1).strip(), m.group(3).upper(), float(m.group(4)), {})
+            blocks.append(current)
+            continue
+        if current is None:
+            continue
+        parts = line.split()
+        if not parts:
+            continue
+        try:
+            node = int(parts[0])
+            values = tuple(float(p) for p in parts[1:])
+        except ValueError:
+            current = None
+            continue
+        current.rows[node] = values
+    return blocks
+
+
+@dataclass(frozen=True, slots=True)
+class CcxRun:
+    """The outcome of one ccx run: the parsed ``.dat`` tables and the work folder used."""
+
+    blocks: tuple[DatBlock, ...]
+    work_dir: Path
+    log: str
+
+    def find(self, quantity: str, nset: str) -> list[DatBlock]:
+        """All tables of ``quantity`` (e.g. ``"forces"``) for node set ``nset``, in step order."""
+        q, s = quantity.lower(), nset.upper()
+        return [b for b in self.blocks if b.quantity.lower() == q and b.nset == s]
+
+
+@contextmanager
+def work_dir(parent: Path | None = None, keep: bool = False) -> Iterator[Path]:
+    """A fresh folder for one solver run, removed afterwards unless ``keep``."""
+    if parent is not None:
+        parent.mkdir(parents=True, exist_ok=True)
+    path = Path(tempfile.mkdtemp(prefix="corrugate-ccx-", dir=parent))
+    try:
+        yield path
+    finally:
+        if not keep:
+            shutil.rmtree(path, ignore_errors=True)
+
+
+def run_ccx(
+    deck: str,
+    folder: Path,
+    *,
+    job: str = "job",
+    timeout: float = 600.0,
+    threads: int = 1,
+) -> CcxRun:
+    """Write ``deck`` to ``folder/job.inp``, run ccx there and parse ``job.dat``.
+
+    ``timeout`` in seconds; ``threads`` sets ``OMP_NUM_THREADS`` (1 by default, so that parallel
+    sweeps do not oversubscribe the cores). Raises :class:`SolverNotFoundError` or
+    :class:`SolverError`.
+    """
+    exe = find_ccx()
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / f"{job}.inp").write_text(deck)
+    env = dict(os.environ, OMP_NUM_THREADS=str(threads), CCX_NPROC_EQUATION_SOLVER=str(threads))
+    try:
+        proc = subprocess.run(
+            [exe, "-i", job],
+            cwd=folder,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+            check=False,
+        )
+    except subprocess.TimeoutExpired:
+        raise SolverError(f"ccx timed out after {timeout:g} s in {folder}") from None
+    log = proc.stdout + proc.stderr
+    (folder / f"{job}.log").write_text(log)
+    errors = [ln.strip() for ln in log.splitlines() if "*ERROR" in ln]
+    if proc.returncode != 0 or errors:
+        first = errors[0] if errors else f"exit code {proc.returncode}"
+        raise SolverError(f"ccx failed in {folder}: {first}")
+    dat = folder / f"{job}.dat"
+    if not dat.exists():
+        raise SolverError(f"ccx wrote no {dat.name} in {folder}")
+    return CcxRun(tuple(parse_dat(dat.read_text())), folder, log)

@@ -1,0 +1,236 @@
+"""Sweeps of FE validation cases through a ``concurrent.futures`` executor, and their reports.
+
+* :func:`paper_cases`: the paper's validation sets (Liu, Yan and Mehta, Fig. 7; DESIGN.md 3.5):
+  n = 11, alpha = 90 deg, W = 8/10/12/14 mm; W = 10 mm, alpha = 90 deg, n = 7/9/11/13; n = 11,
+  W = 10 mm, alpha = 40/65/90/115 deg; Dura-Lar 0.125 mm, two identical layers on a square.
+* :func:`run_sweep`: submits every case to an executor (a local process pool by default, or a
+  dask.distributed cluster from :func:`dask_executor`) and yields results as they finish; a case
+  that fails is reported in its result and the others go on.
+* :func:`write_table`, :func:`write_csv`: the table (Markdown) and the numbers (CSV) of a sweep.
+"""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
+from dataclasses import replace
+from pathlib import Path
+from typing import Any, ParamSpec, TypeVar
+
+from ..errors import InputError
+from ..geometry import Assembly, Layer
+from ..materials import get_material
+from ..moduli import MODELS
+from .validation import Case, CaseResult, Refinement, run_case
+
+P = ParamSpec("P")
+T = TypeVar("T")
+
+__all__ = [
+    "SWEEPS",
+    "dask_executor",
+    "paper_cases",
+    "run_sweep",
+    "write_csv",
+    "write_table",
+]
+
+
+def paper_cases(refinement: Refinement | None = None, unit_cell: bool = True) -> list[Case]:
+    """The paper's validation sets (one case per set and value; the common design appears in
+    each set)."""
+    mat = get_material("dura-lar")
+    sets: list[tuple[str, str, list[tuple[float, int, float]], list[float]]] = [
+        ("W", "W mm", [(w, 11, 90.0) for w in (8.0, 10.0, 12.0, 14.0)], [8, 10, 12, 14]),
+        ("n", "n", [(10.0, n, 90.0) for n in (7, 9, 11, 13)], [7, 9, 11, 13]),
+        (
+            "alpha",
+            "alpha deg",
+            [(10.0, 11, a) for a in (40.0, 65.0, 90.0, 115.0)],
+            [40, 65, 90, 115],
+        ),
+    ]
+    cases: list[Case] = []
+    for group, param, designs, values in sets:
+        for (W, n, alpha), v in zip(designs, values, strict=True):
+            layer = Layer(W, n, alpha, mat, 0.125)
+            cases.append(
+                Case(
+                    label=f"W={W:g} n={n} alpha={alpha:g}",
+                    assembly=Assembly.identical(layer),
+                    unit_cell=unit_cell,
+                    refinement=refinement or Refinement(),
+                    group=group,
+                    parameter=param,
+                    value=float(v),
+                )
+            )
+    return cases
+
+
+SWEEPS: dict[str, Callable[..., list[Case]]] = {"paper": paper_cases}
+
+
+class _DaskExecutor(Executor):
+    """A dask.distributed client as a ``concurrent.futures`` executor; shutdown closes it."""
+
+    def __init__(self, address: str) -> None:
+        import distributed
+
+        client_cls: Any = distributed.Client  # untyped package
+        self._client: Any = client_cls(address)
+        self._executor: Any = self._client.get_executor()
+
+    def submit(self, fn: Callable[P, T], /, *args: P.args, **kwargs: P.kwargs) -> Future[T]:
+        future: Future[T] = self._executor.submit(fn, *args, **kwargs)
+        return future
+
+    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
+        self._executor.shutdown(wait=wait)
+        self._client.close()
+
+
+def dask_executor(address: str) -> Executor:
+    """A ``concurrent.futures`` executor on the dask.distributed scheduler at ``address``
+    (the optional ``dist`` extra); shut it down to close the connection."""
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        raise InputError(
+            "scheduler",
+            address,
+            "a dask.distributed address, with the `dist` extra installed "
+            "(pip install 'corrugate[dist]')",
+            reason="cannot be used",
+        ) from None
+    return _DaskExecutor(address)
+
+
+def _safe_run(case: Case) -> CaseResult:
+    return run_case(case)
+
+
+def run_sweep(
+    cases: Sequence[Case],
+    executor: Executor | None = None,
+    *,
+    jobs: int | None = None,
+    folder: Path | None = None,
+    keep: bool = False,
+) -> Iterator[CaseResult]:
+    """Run ``cases`` through ``executor`` (default: a process pool of ``jobs`` workers) and yield
+    each result as it finishes. A case whose worker dies still yields a result with ``error``."""
+    cases = [replace(c, folder=folder or c.folder, keep=keep or c.keep) for c in cases]
+    own = executor is None
+    ex = executor if executor is not None else ProcessPoolExecutor(max_workers=jobs)
+    try:
+        futures: dict[Future[CaseResult], Case] = {ex.submit(_safe_run, c): c for c in cases}
+        for fut in as_completed(futures):
+            case = futures[fut]
+            try:
+                yield fut.result()
+            except Exception as exc:  # a crashed worker: report it and go on
+                msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+                yield CaseResult(case, {}, {}, {}, (), False, f"worker failed: {msg}")
+    finally:
+        if own:
+            ex.shutdown(cancel_futures=True)
+
+
+def _order(r: CaseResult) -> tuple[int, float]:
+    """Sweep sets in the paper's order (W, n, alpha), then by the swept value."""
+    return ("Wnalpha".find(r.case.group), r.case.value)
+
+
+def _rows(results: Sequence[CaseResult], eta: str) -> Iterator[dict[str, str]]:
+    for r in sorted(results, key=_order):
+        row = {"set": r.case.group, "case": r.case.label}
+        if r.error:
+            row["error"] = r.error
+            yield row
+            continue
+        for q, unit in (("K", "N_per_mm"), ("D", "Nmm"), ("D4", "Nmm")):
+            key = f"{q}_{unit}@{eta}"
+            if key not in r.fe:
+                continue
+            row[f"{q} FE"] = f"{r.fe[key]:.4g}"
+            for m in MODELS:
+                row[f"{q} {m}"] = f"{r.models[m][key]:.4g}"
+                row[f"{q} {m}/FE"] = f"{r.ratio(key, m):.3f}"
+        row["mesh"] = ", ".join(f"{k} {v}" for k, v in r.meshes.items())
+        row["converged"] = "yes" if r.converged else "no"
+        yield row
+
+
+def write_table(results: Sequence[CaseResult], path: Path, eta: str = "0") -> None:
+    """A Markdown table: per case, FE and each model's K (N/mm), D (N mm, 3-point bending) and
+    D4 (N mm, pure bending from the 4-point test) at ``eta``."""
+    cols = ["set", "case", "K FE"]
+    cols += [f"K {m}/FE" for m in MODELS]
+    cols += ["D FE"] + [f"D {m}/FE" for m in MODELS]
+    if any(f"D4_Nmm@{eta}" in r.fe for r in results):
+        cols += ["D4 FE"] + [f"D4 {m}/FE" for m in MODELS]
+    cols += ["mesh", "converged"]
+    lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    for row in _rows(results, eta):
+        if "error" in row:
+            lines.append(f"| {row['set']} | {row['case']} | failed: {row['error']} |")
+            continue
+        lines.append("| " + " | ".join(row.get(c, "") for c in cols) + " |")
+    path.write_text("\n".join(lines) + "\n")
+
+
+def write_csv(results: Sequence[CaseResult], path: Path) -> None:
+    """Every number of every case (FE and each model), one row per case and quantity, cases in
+    the order of the table (not of completion)."""
+    with path.open("w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(
+            [
+                "set",
+                "parameter",
+                "value",
+                "case",
+                "quantity",
+                "FE",
+                *MODELS,
+                "mesh",
+                "converged",
+                "error",
+            ]
+        )
+        for r in sorted(results, key=_order):
+            c = r.case
+            mesh = "; ".join(f"{k} {v}" for k, v in r.meshes.items())
+            if r.error:
+                w.writerow(
+                    [
+                        c.group,
+                        c.parameter,
+                        c.value,
+                        c.label,
+                        "",
+                        "",
+                        *[""] * len(MODELS),
+                        mesh,
+                        "",
+                        r.error,
+                    ]
+                )
+                continue
+            for key, v in r.fe.items():
+                w.writerow(
+                    [
+                        c.group,
+                        c.parameter,
+                        c.value,
+                        c.label,
+                        key,
+                        f"{v:.6g}",
+                        *(f"{r.models[m][key]:.6g}" for m in MODELS),
+                        mesh,
+                        r.converged,
+                        "",
+                    ]
+                )

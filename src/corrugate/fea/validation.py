@@ -1,0 +1,224 @@
+"""FE versus closed forms for one design: the cases ``corrugate validate`` runs.
+
+A :class:`Case` is one design (two identical layers on a square, or any rectangular assembly) with
+the FE settings; :func:`run_case` runs the periodic unit cell of each distinct layer
+(:mod:`~corrugate.fea.unitcell`) and the assembly under in-plane compression and 3-point bending
+(:mod:`~corrugate.fea.assembly`) at each eta, optionally refining the meshes until the results
+change by less than a tolerance, and puts the closed forms of every model variant beside them
+(:func:`corrugate.analysis.analyze`, never reimplemented here).
+
+Failures (solver errors, time-outs) are caught and reported in :attr:`CaseResult.error`, so a
+sweep goes on with the other cases.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ..analysis import analyze
+from ..errors import CorrugateError
+from ..geometry import Assembly
+from ..moduli import MODELS
+from .assembly import AssemblyMesh, solve_assembly
+from .unitcell import UnitCell, UnitCellMesh, solve_unit_cell
+
+__all__ = ["Case", "CaseResult", "Refinement", "closed_forms", "run_case"]
+
+#: Quantities of a case, with their units: assembly stiffness and layer-1 moduli.
+STIFFNESS_KEYS = ("K_N_per_mm", "D_Nmm", "EI_Nmm2")
+MODULI_KEYS = ("Ecx", "Ecy", "Ebx", "Eby")
+
+
+@dataclass(frozen=True, slots=True)
+class Refinement:
+    """Mesh refinement: start meshes, the relative-change tolerance and the finest meshes allowed.
+
+    ``tol`` None means one run at the start meshes. Each step doubles the elements along a facet
+    (and through the thickness of the unit cell, up to ``cell_max_through``).
+    """
+
+    assembly_mesh: AssemblyMesh = field(default_factory=AssemblyMesh)
+    cell_mesh: UnitCellMesh = field(default_factory=UnitCellMesh)
+    tol: float | None = None
+    assembly_max_along: int = 16
+    cell_max_along: int = 320
+    cell_max_through: int = 4
+
+
+@dataclass(frozen=True, slots=True)
+class Case:
+    """One design to validate: ``label``, the ``assembly``, the directions ``eta_deg`` (0 and/or
+    90), whether to run the unit cells and the 4-point (pure) bending diagnostic, and where ccx
+    works (``folder``, kept if ``keep``)."""
+
+    label: str
+    assembly: Assembly
+    eta_deg: tuple[float, ...] = (0.0,)
+    unit_cell: bool = True
+    pure_bending: bool = True
+    refinement: Refinement = field(default_factory=Refinement)
+    folder: Path | None = None
+    keep: bool = False
+    timeout: float = 900.0
+    group: str = ""
+    parameter: str = ""
+    value: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class CaseResult:
+    """FE and closed-form values of a case.
+
+    ``fe`` and ``models[name]`` map ``"K_N_per_mm@eta"``, ``"D_Nmm@eta"``, ``"EI_Nmm2@eta"`` (from
+    3-point bending, as the paper tested), ``"D4_Nmm@eta"`` (pure bending between the load lines
+    of a 4-point test; the closed forms' D for the models) and the layer moduli
+    ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
+    ``history`` lists (mesh label, values) of every refinement step; ``converged`` is False when
+    refinement stopped at the finest mesh allowed before reaching the tolerance. ``error`` holds
+    the one-line message of a failed case (then ``fe`` is empty).
+    """
+
+    case: Case
+    fe: dict[str, float]
+    models: dict[str, dict[str, float]]
+    meshes: dict[str, str]
+    history: tuple[tuple[str, dict[str, float]], ...] = ()
+    converged: bool = True
+    error: str | None = None
+
+    def ratio(self, key: str, model: str) -> float:
+        """Closed form of ``model`` divided by FE for ``key``."""
+        return self.models[model][key] / self.fe[key]
+
+
+def closed_forms(assembly: Assembly, eta_deg: Sequence[float]) -> dict[str, dict[str, float]]:
+    """The closed forms of every model variant in the keys of :class:`CaseResult`."""
+    out: dict[str, dict[str, float]] = {}
+    for name in MODELS:
+        r = analyze(assembly, name, list(eta_deg))
+        values: dict[str, float] = {}
+        for d in r.stiffness:
+            e = f"{d.eta_deg:g}"
+            values[f"K_N_per_mm@{e}"] = d.K
+            values[f"D_Nmm@{e}"] = d.D
+            values[f"EI_Nmm2@{e}"] = d.EI
+            values[f"D4_Nmm@{e}"] = d.D  # the closed forms' D is a pure bending stiffness
+        for i, m in enumerate(r.moduli, start=1):
+            for k, v in m.as_dict().items():
+                values[f"layer{i}.{k}"] = v
+        out[name] = values
+    return out
+
+
+def _layers_to_run(a: Assembly) -> list[int]:
+    return [1] if a.layer1 == a.layer2 else [1, 2]
+
+
+def _cell_values(case: Case, mesh: UnitCellMesh) -> dict[str, float]:
+    out: dict[str, float] = {}
+    a = case.assembly
+    for i in _layers_to_run(a):
+        layer = a.layers[i - 1]
+        m = layer.material
+        cell = UnitCell(m.E, m.nu, layer.t, layer.W, layer.alpha_deg)
+        r = solve_unit_cell(cell, mesh, folder=case.folder, keep=case.keep, timeout=case.timeout)
+        for k, v in r.as_dict().items():
+            out[f"layer{i}.{k}"] = v
+            if a.layer1 == a.layer2:
+                out[f"layer2.{k}"] = v
+    return out
+
+
+def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
+    out: dict[str, float] = {}
+    for eta in case.eta_deg:
+        e = f"{eta:g}"
+        c = solve_assembly(
+            case.assembly,
+            "compression",
+            mesh,
+            eta,
+            folder=case.folder,
+            keep=case.keep,
+            timeout=case.timeout,
+        )
+        b = solve_assembly(
+            case.assembly,
+            "bending",
+            mesh,
+            eta,
+            folder=case.folder,
+            keep=case.keep,
+            timeout=case.timeout,
+        )
+        out[f"K_N_per_mm@{e}"] = c.value()
+        out[f"D_Nmm@{e}"] = b.value()
+        out[f"EI_Nmm2@{e}"] = b.value() * b.span
+        if case.pure_bending:
+            p = solve_assembly(
+                case.assembly,
+                "bending4",
+                mesh,
+                eta,
+                folder=case.folder,
+                keep=case.keep,
+                timeout=case.timeout,
+            )
+            out[f"D4_Nmm@{e}"] = p.value()
+    return out
+
+
+def _change(new: dict[str, float], old: dict[str, float]) -> float:
+    return max(abs(new[k] / old[k] - 1) for k in new if old.get(k))
+
+
+def run_case(case: Case) -> CaseResult:
+    """Run the FE of ``case`` (refining if asked) beside the closed forms; never raises on a
+    solver failure of the case: the message goes to :attr:`CaseResult.error`."""
+    ref = case.refinement
+    models = closed_forms(case.assembly, case.eta_deg)
+    history: list[tuple[str, dict[str, float]]] = []
+    meshes: dict[str, str] = {}
+    fe: dict[str, float] = {}
+    converged = True
+    try:
+        am = ref.assembly_mesh
+        prev = _assembly_values(case, am)
+        history.append((f"assembly {am.label()}", prev))
+        while ref.tol is not None:
+            nxt_mesh = am.refined()
+            if nxt_mesh.along > ref.assembly_max_along:
+                converged = False
+                break
+            nxt = _assembly_values(case, nxt_mesh)
+            history.append((f"assembly {nxt_mesh.label()}", nxt))
+            done = _change(nxt, prev) < ref.tol
+            am, prev = nxt_mesh, nxt
+            if done:
+                break
+        fe.update(prev)
+        meshes["assembly"] = am.label()
+        if case.unit_cell:
+            cm = ref.cell_mesh
+            prev = _cell_values(case, cm)
+            history.append((f"unit cell {cm.label()}", prev))
+            while ref.tol is not None:
+                nxt_cm = UnitCellMesh(
+                    cm.along * 2, min(cm.through * 2, max(cm.through, ref.cell_max_through))
+                )
+                if nxt_cm.along > ref.cell_max_along:
+                    converged = False
+                    break
+                nxt = _cell_values(case, nxt_cm)
+                history.append((f"unit cell {nxt_cm.label()}", nxt))
+                done = _change(nxt, prev) < ref.tol
+                cm, prev = nxt_cm, nxt
+                if done:
+                    break
+            fe.update(prev)
+            meshes["unit cell"] = cm.label()
+    except CorrugateError as exc:
+        return CaseResult(case, {}, models, meshes, tuple(history), False, str(exc))
+    return CaseResult(case, fe, models, meshes, tuple(history), converged)

@@ -1,0 +1,252 @@
+"""``corrugate validate``: finite-element (CalculiX) check of a design against every model variant.
+
+Registered on :data:`corrugate.cli.app` by the last line of :mod:`corrugate.cli`. The FE
+subpackage (:mod:`corrugate.fea`) is imported only when the command runs, so the core CLI works
+without it.
+
+Examples::
+
+    corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar
+    corrugate validate --W 10 --n 7 --alpha 90 --refine 0.01
+    corrugate validate --sweep paper --out docs/validation --jobs 2
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+from rich.console import Console
+from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+from rich.table import Table
+
+from .cli import _layer, _material, app
+from .errors import InputError
+from .geometry import Assembly
+from .moduli import MODELS
+from .units import parse_quantity
+
+if TYPE_CHECKING:
+    from .fea.validation import CaseResult, Refinement
+
+__all__ = ["validate_cmd"]
+
+Opt = typer.Option
+
+
+def _print_result(r: CaseResult, console: Console) -> None:
+    if r.error:
+        console.print(f"[red]failed[/red] {r.case.label}: {r.error}")
+        return
+    t = Table(
+        title=f"{r.case.label}: FE (CalculiX) versus the closed forms "
+        f"({', '.join(f'{k} mesh {v}' for k, v in r.meshes.items())})",
+        title_justify="left",
+    )
+    t.add_column("quantity")
+    t.add_column("FE", justify="right")
+    for m in MODELS:
+        t.add_column(m, justify="right")
+        t.add_column(f"{m}/FE", justify="right")
+    units = {"K_N_per_mm": "N/mm", "D_Nmm": "N mm", "EI_Nmm2": "N mm^2", "D4_Nmm": "N mm"}
+    for key in _display_keys(r):
+        t.add_row(_name(key, units), f"{r.fe[key]:.5g}", *_model_cells(r, key))
+    console.print(t)
+    if not r.converged:
+        console.print(
+            "[yellow]warning[/yellow]: mesh refinement stopped at the finest mesh allowed "
+            "before reaching the tolerance"
+        )
+    if len(r.history) > 2:
+        console.print("[bold]mesh refinement[/bold]")
+        for label, vals in r.history:
+            shown = [k for k in _display_keys(r) if k in vals]
+            text = ", ".join(f"{_name(k, units)} = {vals[k]:.6g}" for k in shown)
+            console.print(f"  {label}: {text}")
+
+
+def _display_keys(r: CaseResult) -> list[str]:
+    """Stiffness keys first, then the moduli of layer 1 (and of layer 2 when it differs)."""
+    keys = [k for k in r.fe if "@" in k]
+    a = r.case.assembly
+    for i in (1,) if a.layer1 == a.layer2 else (1, 2):
+        keys += [f"layer{i}.{m}" for m in ("Ecx", "Ecy", "Ebx", "Eby") if f"layer{i}.{m}" in r.fe]
+    return keys
+
+
+def _name(key: str, units: dict[str, str]) -> str:
+    if "@" in key:
+        q, eta = key.split("@")
+        return f"{q.split('_')[0]}({eta}) {units[q]}"
+    return f"{key} MPa"
+
+
+def _model_cells(r: CaseResult, key: str) -> list[str]:
+    cells: list[str] = []
+    for m in MODELS:
+        mv = r.models[m][key]
+        cells += [f"{mv:.5g}", f"{mv / r.fe[key]:.3f}"]
+    return cells
+
+
+@app.command("validate")
+def validate_cmd(
+    W: Annotated[str | None, Opt("--W", help="Facet width (mm).")] = None,
+    n: Annotated[str | None, Opt("--n", help="Number of creases (n + 1 facets).")] = None,
+    alpha: Annotated[str | None, Opt("--alpha", help="Interior fold angle (deg).")] = None,
+    material: Annotated[str | None, Opt(help="Library material id.")] = None,
+    thickness: Annotated[
+        str | None, Opt(help="Sheet thickness (mm); default: the material's.")
+    ] = None,
+    E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus.")] = None,
+    nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
+    density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
+    eta: Annotated[list[str] | None, Opt(help="0 and/or 90 deg; repeat. Default 0.")] = None,
+    mesh: Annotated[int, Opt(help="Shell elements across each facet (even).")] = 4,
+    cell_mesh: Annotated[
+        str, Opt(help="Unit-cell mesh: elements along a facet x through t.")
+    ] = "40x2",
+    refine: Annotated[
+        float | None,
+        Opt(
+            help="Refine the meshes until every result changes by "
+            "less than this fraction (e.g. 0.01)."
+        ),
+    ] = None,
+    no_unit_cell: Annotated[bool, Opt("--no-unit-cell", help="Skip the unit-cell runs.")] = False,
+    no_pure_bending: Annotated[
+        bool, Opt("--no-pure-bending", help="Skip the 4-point (pure) bending diagnostic.")
+    ] = False,
+    sweep: Annotated[
+        str | None, Opt(help="Run a named sweep instead of one design: paper.")
+    ] = None,
+    out: Annotated[Path, Opt(help="Folder for the sweep's table, CSV and plot.")] = Path(
+        "out/validation"
+    ),
+    jobs: Annotated[
+        int | None, Opt(help="Worker processes for a sweep (default: all cores).")
+    ] = None,
+    scheduler: Annotated[
+        str | None,
+        Opt(help="dask.distributed scheduler address for a sweep (needs the `dist` extra)."),
+    ] = None,
+    workdir: Annotated[Path | None, Opt(help="Parent folder of the ccx work folders.")] = None,
+    keep: Annotated[bool, Opt(help="Keep the ccx work folders.")] = False,
+    timeout: Annotated[float, Opt(help="Time-out of one ccx run (s).")] = 900.0,
+    as_json: Annotated[bool, Opt("--json", help="Print one JSON object (single design).")] = False,
+) -> None:
+    """Check a design (or a sweep) by finite elements: FE versus each model variant.
+
+    Example: corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar --refine 0.02
+    """
+    from .fea.assembly import AssemblyMesh
+    from .fea.ccx import find_ccx
+    from .fea.unitcell import UnitCellMesh
+    from .fea.validation import Case, Refinement, run_case
+
+    if refine is not None and not 0 < refine < 1:
+        raise InputError("refine", refine, "0 < TOL < 1 (a relative change, e.g. 0.01)")
+    try:
+        along, through = (int(v) for v in cell_mesh.lower().split("x"))
+    except ValueError:
+        raise InputError(
+            "cell-mesh", repr(cell_mesh), "ALONGxTHROUGH, e.g. 40x2", reason="cannot be read"
+        ) from None
+    refinement = Refinement(AssemblyMesh(mesh), UnitCellMesh(along, through), refine)
+    find_ccx()  # fail early, with one clear line, when CalculiX is missing
+    console = Console()
+    if sweep is not None:
+        _run_sweep(
+            sweep, refinement, not no_unit_cell, out, jobs, scheduler, workdir, keep, console
+        )
+        return
+    if W is None or n is None or alpha is None:
+        raise InputError(
+            "design", None, "--W, --n and --alpha, or --sweep NAME", reason="is missing"
+        )
+    mat = _material(material, E, nu, density, thickness)
+    layer = _layer(W, n, alpha, mat, thickness)
+    etas = tuple(parse_quantity(e, "deg", "eta") for e in (eta or ["0"]))
+    case = Case(
+        f"W={layer.W:g} n={layer.n} alpha={layer.alpha_deg:g} t={layer.t:g}",
+        Assembly.identical(layer),
+        eta_deg=etas,
+        unit_cell=not no_unit_cell,
+        pure_bending=not no_pure_bending,
+        refinement=refinement,
+        folder=workdir,
+        keep=keep,
+        timeout=timeout,
+    )
+    with console.status("running CalculiX ..."):
+        result = run_case(case)
+    if as_json:
+        typer.echo(
+            json.dumps(
+                {
+                    "case": case.label,
+                    "fe": result.fe,
+                    "models": result.models,
+                    "meshes": result.meshes,
+                    "converged": result.converged,
+                    "error": result.error,
+                },
+                indent=2,
+            )
+        )
+    else:
+        _print_result(result, console)
+    if result.error:
+        raise typer.Exit(1)
+
+
+def _run_sweep(
+    name: str,
+    refinement: Refinement,
+    unit_cell: bool,
+    out: Path,
+    jobs: int | None,
+    scheduler: str | None,
+    workdir: Path | None,
+    keep: bool,
+    console: Console,
+) -> None:
+    from .fea.plots import plot_sweep
+    from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_csv, write_table
+
+    if name not in SWEEPS:
+        raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")
+    cases = SWEEPS[name](refinement, unit_cell)
+    executor = dask_executor(scheduler) if scheduler else None
+    results: list[CaseResult] = []
+    columns = (
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+    )
+    try:
+        with Progress(*columns, console=console) as progress:
+            task = progress.add_task(f"sweep {name}", total=len(cases))
+            for r in run_sweep(cases, executor, jobs=jobs, folder=workdir, keep=keep):
+                results.append(r)
+                status = f"[red]failed: {r.error}[/red]" if r.error else "done"
+                progress.console.print(f"{r.case.label}: {status}")
+                progress.advance(task)
+    finally:
+        if executor is not None:
+            executor.shutdown()
+    out.mkdir(parents=True, exist_ok=True)
+    write_table(results, out / f"sweep_{name}.md")
+    write_csv(results, out / f"sweep_{name}.csv")
+    plot_sweep(results, out / f"sweep_{name}.png")
+    failed = [r for r in results if r.error]
+    console.print(
+        f"wrote {out}/sweep_{name}.md, .csv and .png ({len(results) - len(failed)} "
+        f"cases, {len(failed)} failed)"
+    )
+    console.print((out / f"sweep_{name}.md").read_text())
+    if failed:
+        raise typer.Exit(1)
