@@ -7,11 +7,15 @@
   alpha = 90 deg, growing as (90 deg / alpha)^2 for sharper folds (9 % at t/W = 0.02, 45 deg);
 * very few facets: the spring model homogenises the corrugation, which needs several periods;
 * a thickness the material is not sold in (the library lists what is sold);
+* short panels: D is a pure-bending stiffness; a panel loaded as a short beam also shears. The
+  shell FE of docs/fea.md (section 3) measured the 3-point D below the pure-bending D by
+  1.1-2.0 times the Timoshenko estimate 2 (1 + nu) (W / L)^2, L = (n + 1) W sin(alpha/2);
 * the ``paper`` model, which has known errors (DESIGN.md 3.1).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from .geometry import Assembly, Layer
@@ -19,10 +23,12 @@ from .geometry import Assembly, Layer
 __all__ = [
     "CREASE_ERROR_LIMIT",
     "MIN_FACETS",
+    "SHEAR_LIMIT",
     "VALIDATED",
     "ModelWarning",
     "crease_error_estimate",
     "design_warnings",
+    "shear_estimate",
 ]
 
 #: Ranges validated experimentally in the paper.
@@ -31,6 +37,15 @@ VALIDATED = {"n": (7, 13), "W": (8.0, 14.0), "alpha": (40.0, 115.0)}
 CREASE_ERROR_LIMIT = 0.05
 #: Fewest facets (n + 1) for which the homogenised spring model is trusted.
 MIN_FACETS = 6
+#: Timoshenko shear estimate above which a short-panel warning is given.
+SHEAR_LIMIT = 0.05
+
+
+def shear_estimate(nu: float, n: int, alpha_deg: float) -> float:
+    """Timoshenko estimate of the shear share of a 3-point deflection, 2 (1 + nu) (W/L)^2 with
+    W / L = 1 / ((n + 1) sin(alpha/2)) (docs/fea.md, section 3)."""
+    ratio = 1.0 / ((n + 1) * math.sin(math.radians(alpha_deg) / 2))
+    return 2 * (1 + nu) * ratio**2
 
 
 @dataclass(frozen=True, slots=True)
@@ -78,6 +93,16 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
                 "unusual-thickness",
                 f"{label}: t = {layer.t:g} mm is not a thickness {layer.material.id} is sold in "
                 f"({', '.join(f'{x:g}' for x in sold)} mm)",
+            )
+        )
+    shear = shear_estimate(layer.material.nu, layer.n, layer.alpha_deg)
+    if shear > SHEAR_LIMIT:
+        out.append(
+            ModelWarning(
+                "short-panel-shear",
+                f"{label}: a short panel (L/W = {(layer.n + 1) * layer.s:.3g}); D is a pure-bending "
+                f"stiffness, and a 3-point bending test may measure about {100 * 1.1 * shear:.0f}-"
+                f"{100 * 2.0 * shear:.0f} % less, from shear (finite elements, docs/fea.md)",
             )
         )
     if layer.n + 1 < MIN_FACETS:
