@@ -19,7 +19,7 @@ from rich.table import Table
 from .cli import app
 from .design import Problem, Solution, solve
 from .design.pareto import ParetoFront, pareto_front
-from .design.robust import robust_solve
+from .design.run import run_spec
 from .design.tolerance import Tolerances, monte_carlo
 from .errors import InputError
 from .fileio import atomic_write, staged
@@ -147,29 +147,8 @@ def design_cmd(
     files = fab_options(cutter, fold_style, cut, gap, "5", "5", "4") if out is not None else None
     parsed = load_spec(spec)
     problem = Problem.from_spec(parsed)
-    robust = None
-    if parsed.robust is not None:
-        r = parsed.robust
-        tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
-        robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
-        sol = robust.solution
-    else:
-        sol = solve(problem)
-    payload = sol.to_dict()
-    if robust is not None:
-        payload["certified"] = False  # the robust optimum itself is not proven (see robust.py)
-        payload["robust"] = robust.as_dict(problem)
-        payload["warnings"] = [
-            *sol.warnings,
-            {
-                "code": "robust-not-certified",
-                "message": (
-                    "robust design: certified optimum of the spec with tightened bounds; its "
-                    "probability of meeting the spec is a Monte Carlo estimate and its "
-                    "optimality is not proven"
-                ),
-            },
-        ]
+    run = run_spec(parsed, problem)
+    sol, payload, robust = run.solution, run.payload, run.robust
     text = json.dumps(payload, indent=2)
     written: list[Path] = []
     if out is not None and files is not None:

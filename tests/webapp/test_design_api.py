@@ -97,16 +97,20 @@ def test_every_file_is_listed_downloads_and_parses(
 ) -> None:
     result = blimp["result"]
     files = {f["name"]: f for f in result["files"]}
-    # Exactly the files `corrugate design --out` writes (the report too, once it is written).
+    # Exactly the files `corrugate design --out` writes, the report included.
     sol = solve(Problem.from_spec(parse_spec(spec_of("blimp_gripper.toml"))))
     assert sol.analysis is not None
     expected = [
         p.name
         for p in write_design_files(
-            sol.analysis, tmp_path, fab_options("cameo4-12x12", "solid", None, None, "5", "5", "4")
+            sol.analysis,
+            tmp_path,
+            fab_options("cameo4-12x12", "solid", None, None, "5", "5", "4"),
+            report="<!doctype html>",
         )
     ]
     assert [f["name"] for f in result["files"]] == expected
+    assert "report.html" in files
     for kind in ("sheet-1.svg", "sheet-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
         assert kind in files
     assert {"assembly.glb", "assembly.stl", "design.json"} <= set(files)

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import base64
 import hashlib
+import json
 import math
 import re
 import threading
@@ -44,7 +45,8 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from .. import __version__
 from ..analysis import Analysis
-from ..design import Problem, Solution, solve
+from ..design import Problem, Solution
+from ..design.run import run_spec
 from ..errors import InputError
 from ..inputs import AnalysisRequest, analysis_request
 from ..materials import library
@@ -285,32 +287,9 @@ def _spec_data(body: DesignBody) -> dict[str, Any]:
 
 def design_payload(spec: Spec, problem: Problem) -> tuple[Solution, dict[str, Any]]:
     """The solution of ``problem`` and the object ``corrugate design --json`` prints for it
-    (the same steps as :func:`corrugate.design_cli.design_cmd`, robust specs included)."""
-    from ..design.robust import robust_solve
-    from ..design.tolerance import Tolerances
-
-    if spec.robust is None:
-        sol = solve(problem)
-        return sol, sol.to_dict()
-    r = spec.robust
-    tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
-    robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
-    sol = robust.solution
-    payload = sol.to_dict()
-    payload["certified"] = False  # as the CLI: the robust optimum itself is not proven
-    payload["robust"] = robust.as_dict(problem)
-    payload["warnings"] = [
-        *sol.warnings,
-        {
-            "code": "robust-not-certified",
-            "message": (
-                "robust design: certified optimum of the spec with tightened bounds; its "
-                "probability of meeting the spec is a Monte Carlo estimate and its "
-                "optimality is not proven"
-            ),
-        },
-    ]
-    return sol, payload
+    (:func:`corrugate.design.run.run_spec`, the CLI's own steps, robust specs included)."""
+    run = run_spec(spec, problem)
+    return run.solution, run.payload
 
 
 def _result_body(files: list[StoredFile]) -> ResultBody:
@@ -346,9 +325,14 @@ def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -
         return DesignAnswer(design=payload, result=None)
     _check_design_size(analysis, settings)
 
+    spec_text = json.dumps(_spec_data(body), indent=2)
+
     def write(folder: Path) -> list[Path]:
+        from ..report import report_html
+
         with _FILES_LOCK:
-            return write_design_files(analysis, folder, options, extra=payload)
+            report = report_html(sol, spec_text, options.cutter)
+            return write_design_files(analysis, folder, options, extra=payload, report=report)
 
     try:
         files = store.make(write)
