@@ -287,3 +287,47 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
     odd = Assembly.identical(Layer(W=5.0, n=4, alpha_deg=120.0, material=get_material("dura-lar")))
     with pytest.raises(InputError, match="divisible by 8"):
         assembly_deck(odd, "bending4", AssemblyMesh(2))
+
+
+def test_validate_reads_a_pattern_design_json(ccx: str, tmp_path: Path) -> None:
+    """`corrugate pattern --out` writes design.json; `validate --design` must run the same FE cases
+    on the same layers as the layer options (ccx is deterministic: identical numbers)."""
+    runner = CliRunner()
+    opts = ["--W", "5", "--n", "3", "--alpha", "120", "--material", "dura-lar"]
+    res = runner.invoke(app, ["pattern", *opts, "--out", str(tmp_path / "d")])
+    assert res.exit_code == 0, res.output
+    fe_opts = ["--mesh", "2", "--cell-mesh", "10x1", "--no-pure-bending", "--json"]
+    by_file = runner.invoke(app, ["validate", "--design", str(tmp_path / "d"), *fe_opts])
+    assert by_file.exit_code == 0, by_file.output
+    by_opts = runner.invoke(app, ["validate", *opts, *fe_opts])
+    assert by_opts.exit_code == 0, by_opts.output
+    a, b = json.loads(by_file.output), json.loads(by_opts.output)
+    assert a["fe"] == b["fe"]
+    assert a["models"] == b["models"]
+    assert a["case"] == "W=5 n=3 alpha=120 t=0.125"
+
+
+def test_design_json_that_validate_cannot_model_is_one_clear_error(tmp_path: Path) -> None:
+    from corrugate.fea_cli import design_from_json
+
+    layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
+    record = analyze(Assembly.identical(layer), "refined", [0.0]).to_dict()
+    path = tmp_path / "design.json"
+    path.write_text(json.dumps(record))
+    assert design_from_json(tmp_path) == Assembly.identical(layer)
+    layers = record["layers"]
+    assert isinstance(layers, list)
+    layers[1]["alpha_deg"] = 100.0
+    path.write_text(json.dumps(record))
+    with pytest.raises(InputError, match=r"layers\[1\]\.alpha_deg .*identical layers only"):
+        design_from_json(path)
+    layers[1]["alpha_deg"] = 120.0
+    record["layout"] = {"shape": "circle"}
+    path.write_text(json.dumps(record))
+    with pytest.raises(InputError, match=r"layout\.shape = 'circle'"):
+        design_from_json(path)
+    record["layout"] = {"shape": "square"}
+    layers[0]["material"] = layers[1]["material"] = "custom"
+    path.write_text(json.dumps(record))
+    with pytest.raises(InputError, match=r"layers\[0\]\.material .*not in the library"):
+        design_from_json(path)
