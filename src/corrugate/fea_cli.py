@@ -15,6 +15,7 @@ Examples::
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
@@ -199,6 +200,10 @@ def validate_cmd(
         ),
     ] = None,
     no_unit_cell: Annotated[bool, Opt("--no-unit-cell", help="Skip the unit-cell runs.")] = False,
+    connectors: Annotated[
+        bool,
+        Opt("--connectors", help="Add the connector band to the assembly model (docs/fea.md)."),
+    ] = False,
     no_pure_bending: Annotated[
         bool, Opt("--no-pure-bending", help="Skip the 4-point (pure) bending diagnostic.")
     ] = False,
@@ -242,7 +247,16 @@ def validate_cmd(
     console = Console()
     if sweep is not None:
         _run_sweep(
-            sweep, refinement, not no_unit_cell, out, jobs, scheduler, workdir, keep, console
+            sweep,
+            refinement,
+            not no_unit_cell,
+            out,
+            jobs,
+            scheduler,
+            workdir,
+            keep,
+            console,
+            connectors,
         )
         return
     if design is not None:
@@ -267,8 +281,9 @@ def validate_cmd(
         assembly = Assembly.identical(_layer(W, n, alpha, mat, thickness))
     layer = assembly.layer1
     etas = tuple(parse_quantity(e, "deg", "eta") for e in (eta or ["0"]))
+    band = " +connectors" if connectors else ""
     case = Case(
-        f"W={layer.W:g} n={layer.n} alpha={layer.alpha_deg:g} t={layer.t:g}",
+        f"W={layer.W:g} n={layer.n} alpha={layer.alpha_deg:g} t={layer.t:g}{band}",
         assembly,
         eta_deg=etas,
         unit_cell=not no_unit_cell,
@@ -277,6 +292,7 @@ def validate_cmd(
         folder=workdir,
         keep=keep,
         timeout=timeout,
+        connectors=connectors,
     )
     with console.status("running CalculiX ..."):
         result = run_case(case)
@@ -310,6 +326,7 @@ def _run_sweep(
     workdir: Path | None,
     keep: bool,
     console: Console,
+    connectors: bool = False,
 ) -> None:
     from .fea.plots import plot_sweep
     from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_csv, write_table
@@ -317,6 +334,8 @@ def _run_sweep(
     if name not in SWEEPS:
         raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")
     cases = SWEEPS[name](refinement, unit_cell)
+    if connectors:
+        cases = [replace(c, connectors=True) for c in cases]
     executor = dask_executor(scheduler) if scheduler else None
     results: list[CaseResult] = []
     columns = (
