@@ -16,6 +16,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -367,3 +368,42 @@ def test_connector_band_stiffens_as_its_walls_predict(ccx: str) -> None:
         if test == "compression":
             gain = band.value() - bare.value()
             assert 0.99 * hand <= gain <= hand / (1 - nu**2)
+
+
+def test_connector_band_shares_every_layer_edge_node(small_assembly: Assembly) -> None:
+    """Read back the deck: every layer node on the outline is a node of a band element (the tie),
+    every band node lies on the outline between z = 0 and t_d, and no band element is degenerate
+    (each S8R's corner quadrilateral has a positive area)."""
+    deck, info = assembly_deck(small_assembly, "compression", AssemblyMesh(2), connectors=True)
+    assert len(info.sets) == 3
+    xyz: dict[int, tuple[float, ...]] = {}
+    sets: dict[str, list[list[int]]] = {}
+    block = ""
+    for line in deck.splitlines():
+        if line.startswith("*"):
+            head = line.upper()
+            block = "node" if head == "*NODE" else ""
+            if head.startswith("*ELEMENT"):
+                block = head.split("ELSET=")[1]
+                sets[block] = []
+            continue
+        values = line.split(",")
+        if block == "node":
+            xyz[int(values[0])] = tuple(float(v) for v in values[1:])
+        elif block:
+            sets[block].append([int(v) for v in values[1:]])
+    a = small_assembly
+    tol = 1e-6
+
+    def on_outline(p: tuple[float, ...]) -> bool:
+        return min(abs(p[0]), abs(p[0] - a.Lx), abs(p[1]), abs(p[1] - a.Ly)) < tol
+
+    band_nodes = {n for e in sets["L3"] for n in e}
+    layer_nodes = {n for k in ("L1", "L2") for e in sets[k] for n in e}
+    edge = {n for n in layer_nodes if on_outline(xyz[n])}
+    assert edge and edge <= band_nodes
+    assert all(on_outline(xyz[n]) and -tol < xyz[n][2] < a.thickness + tol for n in band_nodes)
+    for e in sets["L3"]:
+        c = np.array([xyz[n] for n in e[:4]])
+        area = 0.5 * np.linalg.norm(np.cross(c[2] - c[0], c[3] - c[1]))
+        assert area > 1e-3 * (a.layer1.W / 2) ** 2
