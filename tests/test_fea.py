@@ -16,6 +16,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 from pathlib import Path
 
+import numpy as np
 import pytest
 from typer.testing import CliRunner
 
@@ -287,3 +288,122 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
     odd = Assembly.identical(Layer(W=5.0, n=4, alpha_deg=120.0, material=get_material("dura-lar")))
     with pytest.raises(InputError, match="divisible by 8"):
         assembly_deck(odd, "bending4", AssemblyMesh(2))
+
+
+def test_validate_reads_a_pattern_design_json(ccx: str, tmp_path: Path) -> None:
+    """`corrugate pattern --out` writes design.json; `validate --design` must model the layers
+    written there: its closed forms are those of the same layers given as options, and its FE K is
+    within 1 % of them (see test_assembly_compression_matches_closed_forms)."""
+    runner = CliRunner()
+    opts = ["--W", "5", "--n", "3", "--alpha", "120", "--material", "dura-lar"]
+    res = runner.invoke(app, ["pattern", *opts, "--out", str(tmp_path / "d")])
+    assert res.exit_code == 0, res.output
+    fe_opts = ["--mesh", "2", "--no-unit-cell", "--no-pure-bending", "--json"]
+    by_file = runner.invoke(app, ["validate", "--design", str(tmp_path / "d"), *fe_opts])
+    assert by_file.exit_code == 0, by_file.output
+    data = json.loads(by_file.output)
+    assert data["case"] == "W=5 n=3 alpha=120 t=0.125"
+    layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.125)
+    cf = analyze(Assembly.identical(layer), "refined", [0.0]).stiffness[0]
+    assert data["models"]["refined"]["K_N_per_mm@0"] == pytest.approx(cf.K)
+    assert data["models"]["refined"]["D_Nmm@0"] == pytest.approx(cf.D)
+    assert data["fe"]["K_N_per_mm@0"] == pytest.approx(cf.K, rel=0.01)
+    both = runner.invoke(app, ["validate", "--design", str(tmp_path / "d"), "--W", "5"])
+    assert both.exit_code != 0
+
+
+def test_design_json_that_validate_cannot_model_is_one_clear_error(tmp_path: Path) -> None:
+    from corrugate.fea_cli import design_from_json
+
+    layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
+    record = analyze(Assembly.identical(layer), "refined", [0.0]).to_dict()
+    path = tmp_path / "design.json"
+    path.write_text(json.dumps(record))
+    assert design_from_json(tmp_path) == Assembly.identical(layer)
+    layers = record["layers"]
+    assert isinstance(layers, list)
+    layers[1]["alpha_deg"] = 100.0
+    path.write_text(json.dumps(record))
+    with pytest.raises(InputError, match=r"layers\[1\]\.alpha_deg .*identical layers only"):
+        design_from_json(path)
+    layers[1]["alpha_deg"] = 120.0
+    record["layout"] = {"shape": "circle"}
+    path.write_text(json.dumps(record))
+    with pytest.raises(InputError, match=r"layout\.shape = 'circle'"):
+        design_from_json(path)
+    record["layout"] = {"shape": "square"}
+    layers[0]["material"] = layers[1]["material"] = "custom"
+    path.write_text(json.dumps(record))
+    with pytest.raises(InputError, match=r"layers\[0\]\.material .*not in the library"):
+        design_from_json(path)
+
+
+def test_connector_band_stiffens_as_its_walls_predict(ccx: str) -> None:
+    """The band (four S8R walls on the outline, 0..t_d, sharing the layers' edge nodes) on the same
+    layer mesh as the run without it (match_layers=True).
+
+    * Monotone: K and the 3-point D are reaction / prescribed displacement of a linear model;
+      adding elements and tying them by shared nodes only restricts the displacement fields, so
+      neither can drop (minimum potential energy).
+    * Compression: K_with >= K_without + K_band_alone, and K_band_alone >= 2 E t t_d / L, the two
+      walls parallel to the load in uniaxial stress (a statically admissible field: by minimum
+      complementary energy a lower bound; the walls lying on the platens carry no load). Bound:
+      the FE gain >= 0.99 x that (1 % for the shells' discretisation). Above it, the walls' Poisson
+      contraction along z is partly held by the end walls and the layers; fully held it would
+      be plane strain, 1 / (1 - nu^2) = 1.23 for nu = 0.43: the gain must stay below that.
+    * Both directions: at eta = 90 the other two walls carry the load. (eta = 90 is not the exact
+      mirror of eta = 0 with the band: layer 1 lies below layer 2, and the walls meet their
+      zig-zags at different heights; the two K differ by 0.6 % here.)"""
+    layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
+    a = Assembly.identical(layer)
+    mesh = AssemblyMesh(2)
+    E, nu = layer.material.E, layer.material.nu
+    hand = 2 * E * layer.t * a.thickness / a.Ly
+    for test, eta in (("compression", 0.0), ("compression", 90.0), ("bending", 0.0)):
+        bare = solve_assembly(a, test, mesh, eta, match_layers=True)
+        band = solve_assembly(a, test, mesh, eta, connectors=True)
+        assert band.nodes > bare.nodes
+        assert band.value() >= bare.value()
+        assert band.band_value is not None and band.band_value > 0
+        if test == "compression":
+            gain = band.value() - bare.value()
+            assert 0.99 * hand <= gain <= hand / (1 - nu**2)
+
+
+def test_connector_band_shares_every_layer_edge_node(small_assembly: Assembly) -> None:
+    """Read back the deck: every layer node on the outline is a node of a band element (the tie),
+    every band node lies on the outline between z = 0 and t_d, and no band element is degenerate
+    (each S8R's corner quadrilateral has a positive area)."""
+    deck, info = assembly_deck(small_assembly, "compression", AssemblyMesh(2), connectors=True)
+    assert len(info.sets) == 3
+    xyz: dict[int, tuple[float, ...]] = {}
+    sets: dict[str, list[list[int]]] = {}
+    block = ""
+    for line in deck.splitlines():
+        if line.startswith("*"):
+            head = line.upper()
+            block = "node" if head == "*NODE" else ""
+            if head.startswith("*ELEMENT"):
+                block = head.split("ELSET=")[1]
+                sets[block] = []
+            continue
+        values = line.split(",")
+        if block == "node":
+            xyz[int(values[0])] = tuple(float(v) for v in values[1:])
+        elif block:
+            sets[block].append([int(v) for v in values[1:]])
+    a = small_assembly
+    tol = 1e-6
+
+    def on_outline(p: tuple[float, ...]) -> bool:
+        return min(abs(p[0]), abs(p[0] - a.Lx), abs(p[1]), abs(p[1] - a.Ly)) < tol
+
+    band_nodes = {n for e in sets["L3"] for n in e}
+    layer_nodes = {n for k in ("L1", "L2") for e in sets[k] for n in e}
+    edge = {n for n in layer_nodes if on_outline(xyz[n])}
+    assert edge and edge <= band_nodes
+    assert all(on_outline(xyz[n]) and -tol < xyz[n][2] < a.thickness + tol for n in band_nodes)
+    for e in sets["L3"]:
+        c = np.array([xyz[n] for n in e[:4]])
+        area = 0.5 * np.linalg.norm(np.cross(c[2] - c[0], c[3] - c[1]))
+        assert area > 1e-3 * (a.layer1.W / 2) ** 2

@@ -9,11 +9,13 @@ Examples::
     corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar
     corrugate validate --W 10 --n 7 --alpha 90 --refine 0.01
     corrugate validate --sweep paper --out docs/validation --jobs 2
+    corrugate validate --design out/mydesign/design.json
 """
 
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
@@ -24,7 +26,9 @@ from rich.table import Table
 
 from .cli import _layer, _material, app
 from .errors import InputError
-from .geometry import Assembly
+from .geometry import Assembly, Layer
+from .layouts import Rectangle, Square
+from .materials import get_material, library
 from .moduli import MODELS
 from .units import parse_quantity
 
@@ -34,6 +38,82 @@ if TYPE_CHECKING:
 __all__ = ["validate_cmd"]
 
 Opt = typer.Option
+
+
+_DESIGN_FIELDS = ("W_mm", "n", "alpha_deg", "material", "t_mm")
+
+
+def design_from_json(path: Path) -> Assembly:
+    """The assembly of a ``design.json`` (written by ``corrugate design --out`` or ``corrugate
+    pattern --out``; ``path`` is the file or its folder): two identical layers of a library
+    material on a square or rectangle. Anything else is an :class:`InputError` naming the field."""
+    file = path / "design.json" if path.is_dir() else path
+    try:
+        data = json.loads(file.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise InputError(
+            "design", str(file), "a readable design.json", reason="cannot be read"
+        ) from exc
+    except json.JSONDecodeError as exc:
+        raise InputError(
+            "design", str(file), "a JSON file", reason=f"is not JSON ({exc.msg})"
+        ) from None
+    if not isinstance(data, dict):
+        raise InputError("design", str(file), "a JSON object", reason="is not an object")
+    shape = data.get("layout", {}).get("shape") if isinstance(data.get("layout"), dict) else None
+    if shape not in ("square", "rectangle"):
+        raise InputError(
+            "layout.shape",
+            repr(shape),
+            "square or rectangle for the FE assembly",
+            reason="is not supported",
+        )
+    layers = data.get("layers")
+    if (
+        not isinstance(layers, list)
+        or len(layers) != 2
+        or not all(isinstance(x, dict) for x in layers)
+    ):
+        raise InputError(
+            "layers", "?", "a list of two layer objects", reason="is missing or malformed"
+        )
+    for i, entry in enumerate(layers):
+        for key in _DESIGN_FIELDS:
+            if key not in entry:
+                raise InputError(f"layers[{i}].{key}", None, "a value", reason="is missing")
+    for key in _DESIGN_FIELDS:
+        if layers[0][key] != layers[1][key]:
+            raise InputError(
+                f"layers[1].{key}",
+                layers[1][key],
+                f"{layers[0][key]} (layer 1's): corrugate validate takes identical layers only",
+                reason="differs from layer 1",
+            )
+    e = layers[0]
+    mat_id = str(e["material"])
+    if mat_id.strip().lower() not in library():
+        raise InputError(
+            "layers[0].material",
+            repr(mat_id),
+            "a library material id (design.json does not store E and nu of an inline material; "
+            "use --W, --n, --alpha, --E, --nu instead)",
+            reason="is not in the library",
+        )
+    try:
+        layer = Layer(
+            W=float(e["W_mm"]),
+            n=int(e["n"]),
+            alpha_deg=float(e["alpha_deg"]),
+            material=get_material(mat_id),
+            t=float(e["t_mm"]),
+        )
+    except (TypeError, ValueError) as exc:
+        if isinstance(exc, InputError):
+            raise
+        raise InputError(
+            "layers[0]", "?", "numbers for W_mm, n, alpha_deg, t_mm", reason="is malformed"
+        ) from None
+    return Assembly.identical(layer, Square() if shape == "square" else Rectangle())
 
 
 def _print_result(r: CaseResult, console: Console) -> None:
@@ -103,6 +183,10 @@ def validate_cmd(
     E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus.")] = None,
     nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
     density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
+    design: Annotated[
+        Path | None,
+        Opt(help="A design.json (or its folder) from `corrugate design/pattern --out`."),
+    ] = None,
     eta: Annotated[list[str] | None, Opt(help="0 and/or 90 deg; repeat. Default 0.")] = None,
     mesh: Annotated[int, Opt(help="Shell elements across each facet (even).")] = 4,
     cell_mesh: Annotated[
@@ -116,6 +200,10 @@ def validate_cmd(
         ),
     ] = None,
     no_unit_cell: Annotated[bool, Opt("--no-unit-cell", help="Skip the unit-cell runs.")] = False,
+    connectors: Annotated[
+        bool,
+        Opt("--connectors", help="Add the connector band to the assembly model (docs/fea.md)."),
+    ] = False,
     no_pure_bending: Annotated[
         bool, Opt("--no-pure-bending", help="Skip the 4-point (pure) bending diagnostic.")
     ] = False,
@@ -159,19 +247,44 @@ def validate_cmd(
     console = Console()
     if sweep is not None:
         _run_sweep(
-            sweep, refinement, not no_unit_cell, out, jobs, scheduler, workdir, keep, console
+            sweep,
+            refinement,
+            not no_unit_cell,
+            out,
+            jobs,
+            scheduler,
+            workdir,
+            keep,
+            console,
+            connectors,
         )
         return
-    if W is None or n is None or alpha is None:
+    if design is not None:
+        given = [o for o, v in (("--W", W), ("--n", n), ("--alpha", alpha)) if v is not None]
+        if given:
+            raise InputError(
+                given[0],
+                "given",
+                "either --design or the layer options",
+                reason="conflicts with --design",
+            )
+        assembly = design_from_json(design)
+    elif W is None or n is None or alpha is None:
         raise InputError(
-            "design", None, "--W, --n and --alpha, or --sweep NAME", reason="is missing"
+            "design",
+            None,
+            "--W, --n and --alpha, --design FILE, or --sweep NAME",
+            reason="is missing",
         )
-    mat = _material(material, E, nu, density, thickness)
-    layer = _layer(W, n, alpha, mat, thickness)
+    else:
+        mat = _material(material, E, nu, density, thickness)
+        assembly = Assembly.identical(_layer(W, n, alpha, mat, thickness))
+    layer = assembly.layer1
     etas = tuple(parse_quantity(e, "deg", "eta") for e in (eta or ["0"]))
+    band = " +connectors" if connectors else ""
     case = Case(
-        f"W={layer.W:g} n={layer.n} alpha={layer.alpha_deg:g} t={layer.t:g}",
-        Assembly.identical(layer),
+        f"W={layer.W:g} n={layer.n} alpha={layer.alpha_deg:g} t={layer.t:g}{band}",
+        assembly,
         eta_deg=etas,
         unit_cell=not no_unit_cell,
         pure_bending=not no_pure_bending,
@@ -179,6 +292,7 @@ def validate_cmd(
         folder=workdir,
         keep=keep,
         timeout=timeout,
+        connectors=connectors,
     )
     with console.status("running CalculiX ..."):
         result = run_case(case)
@@ -212,6 +326,7 @@ def _run_sweep(
     workdir: Path | None,
     keep: bool,
     console: Console,
+    connectors: bool = False,
 ) -> None:
     from .fea.plots import plot_sweep
     from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_csv, write_table
@@ -219,6 +334,8 @@ def _run_sweep(
     if name not in SWEEPS:
         raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")
     cases = SWEEPS[name](refinement, unit_cell)
+    if connectors:
+        cases = [replace(c, connectors=True) for c in cases]
     executor = dask_executor(scheduler) if scheduler else None
     results: list[CaseResult] = []
     columns = (

@@ -6,8 +6,31 @@ Model (every choice stated; DESIGN.md section 6):
   zig-zag mid-surface of its n + 1 facets, L_j equal to the other layer's extent. Layer 1's creases
   run along y, its zig-zag spans x in [0, Lx] between z = 0 and z = h1 (it starts and ends on a
   bottom crease line); layer 2's creases run along x, it spans y in [0, Ly] between z = h1 and
-  z = h1 + h2, resting on layer 1. Connectors are not modelled (the fabrication issue has none
-  yet).
+  z = h1 + h2, resting on layer 1.
+* **Connectors** (``connectors=True``, off by default). The band of :mod:`corrugate.pattern.
+  connectors` as four flat walls standing on the rectangle's outline from z = 0 to t_d = h1 + h2
+  (as :func:`corrugate.pattern.folded.band_walls`), S8R shells of layer 1's material and
+  thickness. Each wall is meshed to conform to the layer edges it meets: the wall at y = 0 (and
+  Ly) is cut by layer 1's zig-zag edge into two triangles per facet (each meshed as three
+  quadrilateral patches meeting at its centroid, ``along`` elements on every side), with a plain
+  strip from h1 to t_d above; the walls at x = 0 and Lx likewise carry layer 2's zig-zag above a
+  strip from 0 to h1. The layers are meshed with along x (n_other + 1) elements along their
+  creases so that their edge nodes fall on the band's nodes. **Tie: shared nodes.** Every layer
+  node on the outline *is* a band node (checked: a SolverError otherwise), so the crease ends and
+  the end creases are glued to the band along their whole length; CalculiX makes these nodes knots
+  (rigid through-thickness links), i.e. a rigid, fully bonded joint that also transmits moments.
+  Where layer 1's ridges meet layer 2's end valleys on the band, the two layers' nodes are merged
+  into one; inside the panel the layers stay unconnected, as without the band. Walls meet at the
+  corners on shared nodes (the overlap tabs are taken as fully bonded). **The glue flanges are
+  omitted** (their 4 mm strips lie flat under layer 1's valleys and over layer 2's ridges, i.e.
+  along the edges already tied). The fixtures act on the band as on the layers: in compression
+  every band node on a platen plane is on the platen (the walls at the loaded edges lie entirely
+  on it); in bending every band node on an end line is supported and every band node on a load
+  line moves with the rigid load line. The rigid-body constraints are applied to layer 1 only
+  (the parts form one body). In 4-point bending the band joins the parts into one body, so D4
+  comes from one deflection: the mean over the nodes of the band and of the layer bent along its
+  creases on the mid-span and gauge lines (the other layer, bent across its creases, sags between
+  the walls and would measure the distortion of the section rather than its bending).
 * **Elements.** 8-node shells with reduced integration (S8R, ``*SHELL SECTION`` of thickness t),
   ``mesh.along`` elements across each facet (even) and elements of about the same size along the
   creases (an even number). Facets share their nodes on the creases; CalculiX turns these nodes
@@ -97,7 +120,9 @@ class AssemblyMesh:
 class AssemblyResult:
     """One FE load case of the assembly: K (N/mm) for compression, D (N mm) and EI (N mm^2) for
     bending (the other entries None); ``force`` (N) at the prescribed ``displacement`` (mm), the
-    share of the force carried by each layer, and each layer's part of K or D (``layer_values``)."""
+    share of the force carried by each layer, and each layer's part of K or D (``layer_values``).
+    With ``connectors`` the band's own nodes carry ``band_value``; nodes shared by a layer and the
+    band count for the layer, so the split between the parts is bookkeeping, the total is not."""
 
     test: LoadTest
     eta_deg: float
@@ -112,6 +137,8 @@ class AssemblyResult:
     nodes: int
     elements: int
     layer_values: tuple[float, float] = (math.nan, math.nan)
+    band_value: float | None = None
+    connectors: bool = False
 
     def value(self) -> float:
         """K (N/mm) for compression, D (N mm) for bending: what ``analyze`` reports."""
@@ -140,13 +167,16 @@ def _layer_shell(
     chord_axis: int,
     z0: float,
     multiple: int = 2,
+    nel_s: int | None = None,
 ) -> _Shell:
     """S8R mesh of a layer whose chord runs along ``chord_axis`` (0 = x, 1 = y); the number of
-    elements along the creases is a multiple of ``multiple``."""
+    elements along the creases is ``nel_s`` if given, else a multiple of ``multiple`` giving
+    elements about as long as they are wide."""
     nf = layer.n + 1
     p, h = layer.pitch, layer.height
     nel_c = along * nf
-    nel_s = multiple * max(1, math.ceil(span / (layer.W / along) / multiple))
+    if nel_s is None:
+        nel_s = multiple * max(1, math.ceil(span / (layer.W / along) / multiple))
     ni, nj = 2 * nel_c + 1, 2 * nel_s + 1
     chord = np.linspace(0.0, nf * p, ni)
     crease_c = np.arange(nf + 1) * p
@@ -188,6 +218,145 @@ def _layer_shell(
     )
 
 
+Point2 = tuple[float, float]
+
+
+def _patch(corners: tuple[FloatArray, ...], nu: int, nv: int) -> list[list[Point2]]:
+    """S8R elements (8 points each, in the wall's (s, z) plane) of the bilinear patch ``corners``
+    (P0, P1, P2, P3), ``nu`` x ``nv`` elements, counter-clockwise in (s, z)."""
+    P0, P1, P2, P3 = corners
+
+    def at(u: float, v: float) -> Point2:
+        q = (1 - u) * (1 - v) * P0 + u * (1 - v) * P1 + u * v * P2 + (1 - u) * v * P3
+        return (float(q[0]), float(q[1]))
+
+    out: list[list[Point2]] = []
+    for i in range(nu):
+        u0, u1 = i / nu, (i + 1) / nu
+        um = (u0 + u1) / 2
+        for j in range(nv):
+            v0, v1 = j / nv, (j + 1) / nv
+            vm = (v0 + v1) / 2
+            corner = [at(u0, v0), at(u1, v0), at(u1, v1), at(u0, v1)]
+            mids = [at(um, v0), at(u1, vm), at(um, v1), at(u0, vm)]
+            area2 = sum(
+                corner[k][0] * corner[(k + 1) % 4][1] - corner[(k + 1) % 4][0] * corner[k][1]
+                for k in range(4)
+            )
+            if area2 < 0:  # keep every normal along e_s x e_z
+                corner = [corner[0], corner[3], corner[2], corner[1]]
+                mids = [mids[3], mids[2], mids[1], mids[0]]
+            out.append(corner + mids)
+    return out
+
+
+def _triangle(A: Point2, B: Point2, C: Point2, along: int) -> list[list[Point2]]:
+    """A triangle as three quadrilateral patches meeting at its centroid, ``along`` / 2 x
+    ``along`` / 2 elements each: every side gets ``along`` elements, evenly spaced."""
+    a, b, c = (np.asarray(v, dtype=np.float64) for v in (A, B, C))
+    g = (a + b + c) / 3
+    ab, bc, ca = (a + b) / 2, (b + c) / 2, (c + a) / 2
+    k = along // 2
+    out: list[list[Point2]] = []
+    for quad in ((a, ab, g, ca), (b, bc, g, ab), (c, ca, g, bc)):
+        out += _patch(quad, k, k)
+    return out
+
+
+def _wall(layer: Layer, along: int, z_zig: float, strip: tuple[float, float]) -> list[list[Point2]]:
+    """S8R elements of one band wall in its (s, z) plane: the strip of height ``layer.height``
+    from ``z_zig`` up, cut by the layer's zig-zag edge (valleys at z_zig, at s = 0 and every
+    second crease) into two triangles per facet, and the plain strip ``strip`` = (z0, z1) above or
+    below it, ``along`` elements per facet along s and ``along`` elements through each strip."""
+    nf, p, h = layer.n + 1, layer.pitch, layer.height
+    out: list[list[Point2]] = []
+    lo, hi = z_zig, z_zig + h
+    for k in range(nf):
+        x0, x1 = k * p, (k + 1) * p
+        if k % 2 == 0:  # rising facet: valley at x0, ridge at x1
+            out += _triangle((x0, lo), (x1, lo), (x1, hi), along)
+            out += _triangle((x0, lo), (x1, hi), (x0, hi), along)
+        else:
+            out += _triangle((x0, lo), (x1, lo), (x0, hi), along)
+            out += _triangle((x0, hi), (x1, lo), (x1, hi), along)
+    z0, z1 = strip
+    corners = tuple(
+        np.asarray(v, dtype=np.float64) for v in ((0.0, z0), (nf * p, z0), (nf * p, z1), (0.0, z1))
+    )
+    out += _patch(corners, along * nf, along)
+    return out
+
+
+def _band_shell(a: Assembly, along: int, shells: list[_Shell], tol: float) -> _Shell:
+    """The connector band: four walls standing on the rectangle's outline from z = 0 to t_d, as
+    S8R shells of layer 1's material and thickness. Band nodes at the position of a layer node
+    are that node (shared nodes: the layer edges are tied to the band where they meet it); the
+    layer meshes must run ``along`` x (n_other + 1) elements along their creases for this. Where
+    layer 1's ridges meet layer 2's end valleys on the band, layer 2's node is merged into layer
+    1's (``shells`` is updated in place)."""
+    l1, l2 = a.layer1, a.layer2
+    h1, td = l1.height, a.thickness
+    Lx, Ly = a.Lx, a.Ly
+    walls: list[tuple[list[list[Point2]], int, float]] = [
+        (_wall(l1, along, 0.0, (h1, td)), 1, 0.0),  # y = 0: layer 1's zig-zag below h1
+        (_wall(l1, along, 0.0, (h1, td)), 1, Ly),
+        (_wall(l2, along, h1, (0.0, h1)), 0, 0.0),  # x = 0: layer 2's zig-zag above h1
+        (_wall(l2, along, h1, (0.0, h1)), 0, Lx),
+    ]
+
+    def key(x: float, y: float, z: float) -> tuple[int, int, int]:
+        return (round(x / tol), round(y / tol), round(z / tol))
+
+    known: dict[tuple[int, int, int], int] = {}
+    alias: dict[int, int] = {}  # a layer node at the place of another layer's node
+    for sh in shells:
+        for nid, (x, y, z) in zip(sh.ids, sh.xyz, strict=True):
+            k = key(float(x), float(y), float(z))
+            if k in known:
+                alias[int(nid)] = known[k]
+            else:
+                known[k] = int(nid)
+    next_id = max(int(sh.ids.max()) for sh in shells) + 1
+    ids: list[int] = []
+    coords: list[tuple[float, float, float]] = []
+    elements: list[list[int]] = []
+    for elems, normal_axis, c in walls:
+        for pts in elems:
+            conn: list[int] = []
+            for s_, z in pts:
+                xyz = (c, s_, z) if normal_axis == 0 else (s_, c, z)
+                k = key(*xyz)
+                if k not in known:
+                    known[k] = next_id
+                    ids.append(next_id)
+                    coords.append(xyz)
+                    next_id += 1
+                conn.append(known[k])
+            elements.append(conn)
+    used = {n for e in elements for n in e}
+    # merge coincident layer nodes on the band only: inside, where layer 1's ridges cross layer
+    # 2's valleys, the layers stay unconnected as without the band
+    alias = {d: n for d, n in alias.items() if n in used}
+    for i, sh in enumerate(shells):
+        off = [int(n) for n in sh.ids if int(n) in alias]
+        if off:
+            keep = ~np.isin(sh.ids, off)
+            merged = [[alias.get(n, n) for n in e] for e in sh.elements]
+            shells[i] = _Shell(sh.ids[keep], sh.xyz[keep], merged, sh.t, sh.E, sh.nu)
+    for sh in shells:  # every layer node on the outline must be a band node
+        on = (
+            (np.abs(sh.xyz[:, 0]) < tol)
+            | (np.abs(sh.xyz[:, 0] - Lx) < tol)
+            | (np.abs(sh.xyz[:, 1]) < tol)
+            | (np.abs(sh.xyz[:, 1] - Ly) < tol)
+        )
+        missing = [int(n) for n in sh.ids[on] if int(n) not in used]
+        if missing:
+            raise SolverError(f"{len(missing)} layer edge nodes do not meet the band's mesh")
+    m = l1.material
+    return _Shell(np.asarray(ids, dtype=np.int64), np.asarray(coords), elements, l1.t, m.E, m.nu)
+
+
 def _eta_axis(eta_deg: float) -> int:
     if math.isclose(eta_deg % 180, 0.0, abs_tol=1e-9):
         return 1  # eta = 0: along layer 1's creases, the y axis
@@ -208,8 +377,8 @@ class DeckInfo:
     """Bookkeeping of an assembly deck: node sets whose reactions make the load (one per layer),
     span along the load axis (mm), prescribed displacement (mm), load axis (0 = x, 1 = y)."""
 
-    sets: tuple[str, str]
-    mid_sets: tuple[str, str, str, str] | None  # MID1, MID2, GAUGE1, GAUGE2 (4-point only)
+    sets: tuple[str, ...]  # one per part: layer 1, layer 2 (and the band)
+    mid_sets: tuple[tuple[str, str], ...] | None  # (MIDk, GAUGEk) per part (4-point only)
     span: float
     delta: float
     axis: int
@@ -223,8 +392,15 @@ def assembly_deck(
     mesh: AssemblyMesh | None = None,
     eta_deg: float = 0.0,
     delta: float | None = None,
+    *,
+    connectors: bool = False,
+    match_layers: bool | None = None,
 ) -> tuple[str, DeckInfo]:
-    """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta)."""
+    """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
+
+    ``connectors`` adds the band (see the module docstring); ``match_layers`` (default: as
+    ``connectors``) meshes each layer with along x (n_other + 1) elements along its creases, the
+    mesh the band needs, so that a run without the band can be compared on the same layer mesh."""
     if test not in TESTS:
         raise InputError("test", test, " or ".join(TESTS))
     if assembly.layout.name not in ("square", "rectangle"):
@@ -235,14 +411,19 @@ def assembly_deck(
     a = assembly
     Lx, Ly = a.Lx, a.Ly
     mult = 8 if test == "bending4" else 2
-    shells = [_layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult)]
+    match = connectors if match_layers is None else match_layers
+    ns1 = mesh.along * (a.layer2.n + 1) if match else None
+    ns2 = mesh.along * (a.layer1.n + 1) if match else None
+    shells = [_layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult, ns1)]
     shells.append(
         _layer_shell(
-            a.layer2, Lx, mesh.along, int(shells[0].ids.max()) + 1, 1, a.layer1.height, mult
+            a.layer2, Lx, mesh.along, int(shells[0].ids.max()) + 1, 1, a.layer1.height, mult, ns2
         )
     )
     L_load = (Lx, Ly)[axis]
     tol = 1e-7 * max(Lx, Ly)
+    if connectors:
+        shells.append(_band_shell(a, mesh.along, shells, tol))
     if delta is None:
         delta = 1e-3 * L_load
     lines = [
@@ -255,6 +436,8 @@ def assembly_deck(
             lines.append(f"{n},{x:.10g},{y:.10g},{z:.10g}")
     e_no = 1
     for k, sh in enumerate(shells, start=1):
+        if not len(sh.elements):
+            continue
         lines.append(f"*ELEMENT,TYPE=S8R,ELSET=L{k}")
         for e in sh.elements:
             lines.append(f"{e_no}," + ",".join(map(str, e)))
@@ -281,6 +464,8 @@ def assembly_deck(
             raise SolverError("assembly mesh has no node line at an end or at mid-span")
         lo_other = c_other[np.isin(sh.ids, lo)]
         a_node, b_node = lo[int(np.argmin(lo_other))], lo[int(np.argmax(lo_other))]
+        # with the band, the parts form one body: rigid-body constraints on layer 1 only
+        rigid = k == 1 or not connectors
         if test == "compression":
             lines += _fmt_set(f"LO{k}", lo) + _fmt_set(f"HI{k}", hi)
             rot_b = 4 + other  # rotation about the platen's in-plane axis
@@ -291,10 +476,9 @@ def assembly_deck(
                 f"HI{k},{rot_b},{rot_b},0",
                 f"LO{k},6,6,0",
                 f"HI{k},6,6,0",
-                f"{a_node},{ub},{ub},0",
-                f"{a_node},3,3,0",
-                f"{b_node},3,3,0",
             ]
+            if rigid:
+                bc += [f"{a_node},{ub},{ub},0", f"{a_node},3,3,0", f"{b_node},3,3,0"]
             load_sets.append(f"HI{k}")
         elif test == "bending4":
             quarter = np.abs(c_load - L_load / 4) < tol
@@ -318,8 +502,9 @@ def assembly_deck(
                 f"SUP{k},3,3,0",
                 f"LOAD{k},3,3,{-delta:.12g}",
                 f"MID{k},{ua},{ua},0",
-                f"{m_node},{ub},{ub},0",
             ]
+            if rigid:
+                bc.append(f"{m_node},{ub},{ub},0")
             load_sets.append(f"LOAD{k}")
             mid_sets += [f"MID{k}", f"GAUGE{k}"]
         else:
@@ -330,8 +515,9 @@ def assembly_deck(
                 f"SUP{k},3,3,0",
                 f"MID{k},3,3,{-delta:.12g}",
                 f"MID{k},{ua},{ua},0",
-                f"{m_node},{ub},{ub},0",
             ]
+            if rigid:
+                bc.append(f"{m_node},{ub},{ub},0")
             load_sets.append(f"MID{k}")
     lines += ["*STEP", "*STATIC", "*BOUNDARY", *bc]
     for name in load_sets:
@@ -340,8 +526,8 @@ def assembly_deck(
         lines += [f"*NODE PRINT,NSET={name}", "U"]
     lines.append("*END STEP")
     n_nodes = sum(len(sh.ids) for sh in shells)
-    mids = (mid_sets[0], mid_sets[2], mid_sets[1], mid_sets[3]) if mid_sets else None
-    info = DeckInfo((load_sets[0], load_sets[1]), mids, L_load, delta, axis, n_nodes, e_no - 1)
+    mids = tuple(zip(mid_sets[0::2], mid_sets[1::2], strict=True)) if mid_sets else None
+    info = DeckInfo(tuple(load_sets), mids, L_load, delta, axis, n_nodes, e_no - 1)
     return "\n".join(lines) + "\n", info
 
 
@@ -351,13 +537,17 @@ def solve_assembly(
     mesh: AssemblyMesh | None = None,
     eta_deg: float = 0.0,
     *,
+    connectors: bool = False,
+    match_layers: bool | None = None,
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
 ) -> AssemblyResult:
     """Run one load case of the assembly in CalculiX (see the module docstring for the model)."""
     mesh = mesh or AssemblyMesh()
-    deck, info = assembly_deck(assembly, test, mesh, eta_deg)
+    deck, info = assembly_deck(
+        assembly, test, mesh, eta_deg, connectors=connectors, match_layers=match_layers
+    )
     with work_dir(folder, keep) as wd:
         run = run_ccx(deck, wd, job=test, timeout=timeout)
     comp = info.axis if test == "compression" else 2
@@ -369,53 +559,38 @@ def solve_assembly(
         forces.append(-blocks[-1].total()[comp])
     delta, span = info.delta, info.span
     P = sum(forces)
-    nodes, elements = info.nodes, info.elements
     if test == "compression":
-        return AssemblyResult(
-            test,
-            eta_deg,
-            mesh,
-            span,
-            P,
-            delta,
-            (forces[0], forces[1]),
-            K=P / delta,
-            D=None,
-            EI=None,
-            nodes=nodes,
-            elements=elements,
-            layer_values=(forces[0] / delta, forces[1] / delta),
-        )
-    if test == "bending4":
+        parts = [f / delta for f in forces]
+        K, D, EI = P / delta, None, None
+    elif test == "bending4":
         assert info.mid_sets is not None
-        layer_EI: list[float] = []
-        for k, f in enumerate(forces):
+        part_EI: list[float] = []
+        # nodes on the mid-span / gauge lines of the band and of the layer bent along its creases
+        # (see the docstring); the layer bent across them (layer 2 at eta = 0) is left out
+        across = 1 if info.axis == 1 else 0
+        all_uz: list[list[float]] = [[], []]
+        for i, (f, names) in enumerate(zip(forces, info.mid_sets, strict=True)):
             mean_uz = []
-            for name in (info.mid_sets[k], info.mid_sets[k + 2]):
+            for j, name in enumerate(names):
                 blocks = run.find("displacements", name)
                 if not blocks:
                     raise SolverError(f"ccx printed no displacements for {name}")
                 uz = [v[2] for v in blocks[-1].rows.values()]
+                if i != across:
+                    all_uz[j] += uz
                 mean_uz.append(sum(uz) / len(uz))
             rel = mean_uz[1] - mean_uz[0]  # mid-span below the gauge lines at 3/8 and 5/8
-            layer_EI.append(f * span**3 / (1024 * rel))
-        EI4 = sum(layer_EI)
-        return AssemblyResult(
-            test,
-            eta_deg,
-            mesh,
-            span,
-            P,
-            delta,
-            (forces[0], forces[1]),
-            K=None,
-            D=EI4 / span,
-            EI=EI4,
-            nodes=nodes,
-            elements=elements,
-            layer_values=(layer_EI[0] / span, layer_EI[1] / span),
-        )
-    EI = P * span**3 / (48 * delta)
+            part_EI.append(f * span**3 / (1024 * rel))
+        if connectors:  # one connected body: one deflection, each part's force share
+            rel = sum(all_uz[1]) / len(all_uz[1]) - sum(all_uz[0]) / len(all_uz[0])
+            part_EI = [f * span**3 / (1024 * rel) for f in forces]
+        EI = sum(part_EI)
+        K, D = None, EI / span
+        parts = [v / span for v in part_EI]
+    else:
+        EI = P * span**3 / (48 * delta)
+        K, D = None, EI / span
+        parts = [f * span**2 / (48 * delta) for f in forces]
     return AssemblyResult(
         test,
         eta_deg,
@@ -424,10 +599,12 @@ def solve_assembly(
         P,
         delta,
         (forces[0], forces[1]),
-        K=None,
-        D=EI / span,
+        K=K,
+        D=D,
         EI=EI,
-        nodes=nodes,
-        elements=elements,
-        layer_values=(forces[0] * span**2 / (48 * delta), forces[1] * span**2 / (48 * delta)),
+        nodes=info.nodes,
+        elements=info.elements,
+        layer_values=(parts[0], parts[1]),
+        band_value=parts[2] if connectors else None,
+        connectors=connectors,
     )

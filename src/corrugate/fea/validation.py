@@ -50,8 +50,9 @@ class Refinement:
 @dataclass(frozen=True, slots=True)
 class Case:
     """One design to validate: ``label``, the ``assembly``, the directions ``eta_deg`` (0 and/or
-    90), whether to run the unit cells and the 4-point (pure) bending diagnostic, and where ccx
-    works (``folder``, kept if ``keep``)."""
+    90), whether to run the unit cells and the 4-point (pure) bending diagnostic, whether the
+    assembly model includes the connector band (``connectors``), and where ccx works
+    (``folder``, kept if ``keep``)."""
 
     label: str
     assembly: Assembly
@@ -65,6 +66,7 @@ class Case:
     group: str = ""
     parameter: str = ""
     value: float = 0.0
+    connectors: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -140,6 +142,7 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
             "compression",
             mesh,
             eta,
+            connectors=case.connectors,
             folder=case.folder,
             keep=case.keep,
             timeout=case.timeout,
@@ -149,6 +152,7 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
             "bending",
             mesh,
             eta,
+            connectors=case.connectors,
             folder=case.folder,
             keep=case.keep,
             timeout=case.timeout,
@@ -162,6 +166,7 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
                 "bending4",
                 mesh,
                 eta,
+                connectors=case.connectors,
                 folder=case.folder,
                 keep=case.keep,
                 timeout=case.timeout,
