@@ -86,6 +86,12 @@ def _vertices(text: str | None) -> list[tuple[float, float]] | None:
     return parse_vertices(text)
 
 
+def make_console(stderr: bool = False) -> Console:
+    """A rich console; 120 columns when not writing to a terminal (logs, pipes, make demo)."""
+    probe = Console(stderr=stderr)
+    return probe if probe.is_terminal else Console(stderr=stderr, width=120)
+
+
 def _fmt(x: float | None, digits: int = 4) -> str:
     return "-" if x is None else f"{x:.{digits}g}"
 
@@ -216,7 +222,7 @@ def analyze_cmd(
             payload = results[0].to_dict()
         typer.echo(json.dumps(payload, indent=2))
         return
-    console = Console()
+    console = make_console()
     if compare_models:
         _print_comparison(results, console)
         for w in results[0].warnings:
@@ -248,7 +254,7 @@ def materials_cmd(
             _fmt(m.default_thickness),
             sold,
         )
-    console = Console()
+    console = make_console()
     console.print(t)
     console.print("Names, every thickness and the sources: `corrugate materials --json`.")
 

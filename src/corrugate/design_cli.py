@@ -16,7 +16,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from .cli import app
+from .cli import app, make_console
 from .design import Problem, Solution, solve
 from .design.pareto import ParetoFront, pareto_front
 from .design.run import run_spec
@@ -29,12 +29,6 @@ from .spec import load_spec
 from .units import parse_quantity
 
 __all__ = ["design_cmd", "pareto_cmd", "tolerance_cmd"]
-
-
-def _console(stderr: bool = False) -> Console:
-    """A rich console; 120 columns when not writing to a terminal (logs, make demo)."""
-    probe = Console(stderr=stderr)
-    return probe if probe.is_terminal else Console(stderr=stderr, width=120)
 
 
 def _fmt(x: float | None, digits: int = 5) -> str:
@@ -162,7 +156,7 @@ def design_cmd(
     if as_json:
         typer.echo(text)
     else:
-        console = _console()
+        console = make_console()
         _print_solution(sol, console, tightened=robust is not None)
         if robust is not None:
             rd = robust.as_dict(problem)
@@ -232,7 +226,7 @@ def pareto_cmd(
         raise InputError("--points", points, "an integer >= 2")
     eta_deg = parse_quantity(eta, "deg", "--eta")
     problem = Problem.from_spec(load_spec(spec))
-    console = _console(stderr=True)
+    console = make_console(stderr=True)
     with Progress(
         TextColumn("Pareto front"),
         BarColumn(),
@@ -327,7 +321,7 @@ def tolerance_cmd(
         design = sol.to_dict()["design"]
         typer.echo(json.dumps({"design": design, **report.as_dict()}, indent=2))
         return
-    console = _console()
+    console = make_console()
     lay = sol.assembly.layer1
     console.print(
         f"[bold]{problem.name}[/bold]: certified design W = {lay.W:.6g} mm, n = "

@@ -24,7 +24,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from .cli import _layer, _material, app
+from .cli import _layer, _material, app, make_console
 from .errors import InputError
 from .geometry import Assembly, Layer
 from .layouts import Rectangle, Square
@@ -244,7 +244,7 @@ def validate_cmd(
         ) from None
     refinement = Refinement(AssemblyMesh(mesh), UnitCellMesh(along, through), refine)
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
-    console = Console()
+    console = make_console()
     if sweep is not None:
         _run_sweep(
             sweep,

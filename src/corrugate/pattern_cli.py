@@ -6,10 +6,9 @@ import json
 from typing import Annotated
 
 import typer
-from rich.console import Console
 
 from .analysis import analyze
-from .cli import app
+from .cli import app, make_console
 from .inputs import assembly_from_options
 from .moduli import DEFAULT_MODEL, get_model
 from .outputs import OutputOptions, write_design_files
@@ -107,7 +106,7 @@ def pattern_cmd(
             )
         )
         return
-    console = Console()
+    console = make_console()
     m = result.mass
     console.print(
         f"mass {m.total:.3f} g: layers {m.layer1:.3f} + {m.layer2:.3f} g, connectors "
