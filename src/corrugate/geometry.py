@@ -18,14 +18,44 @@ from .errors import InputError
 from .layouts import Layout, Square, facet_lengths
 from .materials import Material
 
-__all__ = ["Assembly", "Layer"]
+__all__ = ["Assembly", "FacetGeometry", "Layer"]
 
 #: Relative tolerance to which Lx and Ly must agree for a square or circular layout.
 EQUAL_SIDES_RTOL = 1e-6
 
 
+class FacetGeometry:
+    """Plan geometry of a zig-zag with facet width ``W`` (mm) and interior angle ``alpha_deg``:
+    s, c, the pitch p = W s and the height h = W c (DESIGN.md section 2). A mixin for the
+    dataclasses that carry W and alpha_deg (a layer, a finite-element unit cell)."""
+
+    __slots__ = ()
+    W: float
+    alpha_deg: float
+
+    @property
+    def s(self) -> float:
+        """sin(alpha/2)."""
+        return math.sin(math.radians(self.alpha_deg) / 2)
+
+    @property
+    def c(self) -> float:
+        """cos(alpha/2)."""
+        return math.cos(math.radians(self.alpha_deg) / 2)
+
+    @property
+    def pitch(self) -> float:
+        """Plan width of one facet, p = W sin(alpha/2) (mm)."""
+        return self.W * self.s
+
+    @property
+    def height(self) -> float:
+        """Corrugation height, h = W cos(alpha/2) (mm), crease line to crease line."""
+        return self.W * self.c
+
+
 @dataclass(frozen=True, slots=True)
-class Layer:
+class Layer(FacetGeometry):
     """One corrugated layer.
 
     ``W``: flat facet width (mm, > 0); ``n``: number of creases (integer >= 1); ``alpha_deg``:
@@ -57,26 +87,6 @@ class Layer:
             object.__setattr__(self, "t", t)
         if not (isinstance(t, numbers.Real) and math.isfinite(t) and t > 0):
             raise InputError("thickness", f"{t} mm", "t > 0 mm")
-
-    @property
-    def s(self) -> float:
-        """sin(alpha/2)."""
-        return math.sin(math.radians(self.alpha_deg) / 2)
-
-    @property
-    def c(self) -> float:
-        """cos(alpha/2)."""
-        return math.cos(math.radians(self.alpha_deg) / 2)
-
-    @property
-    def pitch(self) -> float:
-        """Plan width of one facet, p = W sin(alpha/2) (mm)."""
-        return self.W * self.s
-
-    @property
-    def height(self) -> float:
-        """Corrugation height, h = W cos(alpha/2) (mm), crease line to crease line."""
-        return self.W * self.c
 
     @property
     def chord_extent(self) -> float:

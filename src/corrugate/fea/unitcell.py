@@ -35,7 +35,6 @@ Struct. 49:1453, whose A and D this cell computes numerically).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -43,6 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..geometry import FacetGeometry
 from ..moduli import Moduli
 from .ccx import SolverError, run_ccx, work_dir
 
@@ -77,7 +77,7 @@ class UnitCellMesh:
 
 
 @dataclass(frozen=True, slots=True)
-class UnitCell:
+class UnitCell(FacetGeometry):
     """One period of a zig-zag layer: E (MPa), nu, t (mm), W (mm), alpha (deg)."""
 
     E: float
@@ -95,24 +95,6 @@ class UnitCell:
             raise InputError("t", f"{self.t} mm", f"0 < t < W = {self.W} mm")
         if not 0 < self.alpha_deg < 180:
             raise InputError("alpha", f"{self.alpha_deg} deg", "0 < alpha < 180 deg")
-
-    @property
-    def s(self) -> float:
-        return math.sin(math.radians(self.alpha_deg) / 2)
-
-    @property
-    def c(self) -> float:
-        return math.cos(math.radians(self.alpha_deg) / 2)
-
-    @property
-    def pitch(self) -> float:
-        """p = W sin(alpha/2) (mm)."""
-        return self.W * self.s
-
-    @property
-    def height(self) -> float:
-        """h = W cos(alpha/2) (mm), crease to crease on the mid-surface."""
-        return self.W * self.c
 
 
 @dataclass(frozen=True, slots=True)
