@@ -13,9 +13,10 @@ sweep goes on with the other cases.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Protocol, TypeVar
 
 from ..analysis import analyze
 from ..errors import CorrugateError
@@ -23,6 +24,13 @@ from ..geometry import Assembly
 from ..moduli import MODELS
 from .assembly import AssemblyMesh, solve_assembly
 from .unitcell import UnitCell, UnitCellMesh, solve_unit_cell
+
+
+class _Mesh(Protocol):
+    def label(self) -> str: ...
+
+
+M = TypeVar("M", bound=_Mesh)
 
 __all__ = ["Case", "CaseResult", "Refinement", "closed_forms", "run_case"]
 
@@ -179,6 +187,36 @@ def _change(new: dict[str, float], old: dict[str, float]) -> float:
     return max(abs(new[k] / old[k] - 1) for k in new if old.get(k))
 
 
+def _refine(
+    name: str,
+    mesh: M,
+    finer: Callable[[M], M],
+    too_fine: Callable[[M], bool],
+    values: Callable[[M], dict[str, float]],
+    tol: float | None,
+    history: list[tuple[str, dict[str, float]]],
+) -> tuple[dict[str, float], M, bool]:
+    """Solve on ``mesh`` and, when ``tol`` is set, on ever finer meshes until no value changes by
+    ``tol`` or more (relative) between two meshes; every mesh's values go to ``history``.
+
+    Returns the last values, their mesh, and whether the change fell below ``tol`` (False when the
+    next mesh would have been too fine).
+    """
+    prev = values(mesh)
+    history.append((f"{name} {mesh.label()}", prev))
+    while tol is not None:
+        nxt_mesh = finer(mesh)
+        if too_fine(nxt_mesh):
+            return prev, mesh, False
+        nxt = values(nxt_mesh)
+        history.append((f"{name} {nxt_mesh.label()}", nxt))
+        done = _change(nxt, prev) < tol
+        mesh, prev = nxt_mesh, nxt
+        if done:
+            break
+    return prev, mesh, True
+
+
 def run_case(case: Case) -> CaseResult:
     """Run the FE of ``case`` (refining if asked) beside the closed forms; never raises on a
     solver failure of the case: the message goes to :attr:`CaseResult.error`."""
@@ -189,41 +227,33 @@ def run_case(case: Case) -> CaseResult:
     fe: dict[str, float] = {}
     converged = True
     try:
-        am = ref.assembly_mesh
-        prev = _assembly_values(case, am)
-        history.append((f"assembly {am.label()}", prev))
-        while ref.tol is not None:
-            nxt_mesh = am.refined()
-            if nxt_mesh.along > ref.assembly_max_along:
-                converged = False
-                break
-            nxt = _assembly_values(case, nxt_mesh)
-            history.append((f"assembly {nxt_mesh.label()}", nxt))
-            done = _change(nxt, prev) < ref.tol
-            am, prev = nxt_mesh, nxt
-            if done:
-                break
-        fe.update(prev)
+        values, am, ok = _refine(
+            "assembly",
+            ref.assembly_mesh,
+            lambda m: m.refined(),
+            lambda m: m.along > ref.assembly_max_along,
+            lambda m: _assembly_values(case, m),
+            ref.tol,
+            history,
+        )
+        fe.update(values)
         meshes["assembly"] = am.label()
+        converged = converged and ok
         if case.unit_cell:
-            cm = ref.cell_mesh
-            prev = _cell_values(case, cm)
-            history.append((f"unit cell {cm.label()}", prev))
-            while ref.tol is not None:
-                nxt_cm = UnitCellMesh(
-                    cm.along * 2, min(cm.through * 2, max(cm.through, ref.cell_max_through))
-                )
-                if nxt_cm.along > ref.cell_max_along:
-                    converged = False
-                    break
-                nxt = _cell_values(case, nxt_cm)
-                history.append((f"unit cell {nxt_cm.label()}", nxt))
-                done = _change(nxt, prev) < ref.tol
-                cm, prev = nxt_cm, nxt
-                if done:
-                    break
-            fe.update(prev)
+            values, cm, ok = _refine(
+                "unit cell",
+                ref.cell_mesh,
+                lambda m: UnitCellMesh(
+                    m.along * 2, min(m.through * 2, max(m.through, ref.cell_max_through))
+                ),
+                lambda m: m.along > ref.cell_max_along,
+                lambda m: _cell_values(case, m),
+                ref.tol,
+                history,
+            )
+            fe.update(values)
             meshes["unit cell"] = cm.label()
+            converged = converged and ok
     except CorrugateError as exc:
         return CaseResult(case, {}, models, meshes, tuple(history), False, str(exc))
     return CaseResult(case, fe, models, meshes, tuple(history), converged)
