@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
+
+from corrugate.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -22,3 +25,20 @@ def reference() -> Path:
     if not path.is_dir():
         pytest.fail(f"reference data not found at {path} (set CORRUGATE_REFERENCE)")
     return path
+
+
+CliRun = Callable[[list[str]], tuple[int, str, str]]
+
+
+@pytest.fixture
+def cli(capsys: pytest.CaptureFixture[str]) -> CliRun:
+    """Run ``corrugate ARGS`` in-process: returns (exit code, stdout, stderr)."""
+
+    def run(args: list[str]) -> tuple[int, str, str]:
+        with pytest.raises(SystemExit) as info:  # the command line always ends in sys.exit
+            main(args)
+        out, err = capsys.readouterr()
+        code = info.value.code
+        return (0 if code is None else int(code)), out, err
+
+    return run

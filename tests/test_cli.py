@@ -6,26 +6,19 @@ import json
 import math
 import subprocess
 import sys
+from typing import TYPE_CHECKING
 
 import pytest
 
-from corrugate.cli import main
+if TYPE_CHECKING:
+    from conftest import CliRun
+
 
 BASE = ["analyze", "--W", "8", "--n", "8", "--alpha", "84", "--material", "dura-lar"]
 
 
-def run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    code = 0
-    try:
-        main(args)
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
-
-
-def test_analyze_json_has_the_documented_fields(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run([*BASE, "--model", "paper", "--eta", "0", "--eta", "90", "--json"], capsys)
+def test_analyze_json_has_the_documented_fields(cli: CliRun) -> None:
+    code, out, _ = cli([*BASE, "--model", "paper", "--eta", "0", "--eta", "90", "--json"])
     assert code == 0
     d = json.loads(out)
     assert d["model"] == "paper"
@@ -44,9 +37,9 @@ def test_analyze_json_has_the_documented_fields(capsys: pytest.CaptureFixture[st
     assert any(w["code"] == "paper-model" for w in d["warnings"])
 
 
-def test_units_at_the_boundary(capsys: pytest.CaptureFixture[str]) -> None:
+def test_units_at_the_boundary(cli: CliRun) -> None:
     """'0.3 in' is 7.62 mm; '2.7GPa' is 2700 MPa; '1.466 rad' is 84 deg (to 4 digits)."""
-    code, out, _ = run(
+    code, out, _ = cli(
         [
             "analyze",
             "--W",
@@ -65,14 +58,13 @@ def test_units_at_the_boundary(capsys: pytest.CaptureFixture[str]) -> None:
             "0.125",
             "--json",
         ],
-        capsys,
     )
     assert code == 0
     d = json.loads(out)
     assert d["layers"][0]["W_mm"] == pytest.approx(7.62)
     assert d["layers"][0]["alpha_deg"] == pytest.approx(math.degrees(1.4661))
     # same design in plain internal units must give the same stiffness
-    code, out2, _ = run(
+    code, out2, _ = cli(
         [
             "analyze",
             "--W",
@@ -91,15 +83,14 @@ def test_units_at_the_boundary(capsys: pytest.CaptureFixture[str]) -> None:
             "0.125",
             "--json",
         ],
-        capsys,
     )
     d2 = json.loads(out2)
     assert d["stiffness"][0]["K_N_per_mm"] == pytest.approx(d2["stiffness"][0]["K_N_per_mm"])
     assert d["mass_g"] == pytest.approx(d2["mass_g"])
 
 
-def test_compare_models(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run([*BASE, "--compare-models", "--json"], capsys)
+def test_compare_models(cli: CliRun) -> None:
+    code, out, _ = cli([*BASE, "--compare-models", "--json"])
     assert code == 0
     d = json.loads(out)["models"]
     assert set(d) == {"paper", "xia", "refined"}
@@ -110,12 +101,12 @@ def test_compare_models(capsys: pytest.CaptureFixture[str]) -> None:
     assert (
         d["refined"]["layers"][0]["moduli_MPa"]["Ecx"] == d["xia"]["layers"][0]["moduli_MPa"]["Ecx"]
     )
-    code, out, _ = run([*BASE, "--compare-models"], capsys)
+    code, out, _ = cli([*BASE, "--compare-models"])
     assert code == 0 and "refined" in out and "xia" in out and "paper" in out
 
 
-def test_table_output_and_independent_layers(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run([*BASE, "--layout", "rectangle", "--n2", "12", "--W2", "6"], capsys)
+def test_table_output_and_independent_layers(cli: CliRun) -> None:
+    code, out, _ = cli([*BASE, "--layout", "rectangle", "--n2", "12", "--W2", "6"])
     assert code == 0
     assert "Lx = 48.18 mm" in out and "stiffness" in out
 
@@ -138,11 +129,9 @@ def test_table_output_and_independent_layers(capsys: pytest.CaptureFixture[str])
         (["--W2", "9", "--layout", "square"], "layout", "rectangle"),
     ],
 )
-def test_bad_input_one_line_exit_2(
-    extra: list[str], field: str, allowed: str, capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_bad_input_one_line_exit_2(extra: list[str], field: str, allowed: str, cli: CliRun) -> None:
     args = [*BASE, *extra]
-    code, out, err = run(args, capsys)
+    code, out, err = cli(args)
     assert code == 2
     assert out == ""
     lines = err.strip().splitlines()
@@ -163,11 +152,9 @@ def test_bad_input_one_line_exit_2(
         (["--E", "2700", "--nu", "0.3"], "density", "--density"),
     ],
 )
-def test_bad_inline_material(
-    inline: list[str], field: str, allowed: str, capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_bad_inline_material(inline: list[str], field: str, allowed: str, cli: CliRun) -> None:
     args = ["analyze", "--W", "8", "--n", "8", "--alpha", "84", "--thickness", "0.1", *inline]
-    code, _, err = run(args, capsys)
+    code, _, err = cli(args)
     assert code == 2
     assert err.startswith(f"corrugate: error: {field}")
     assert allowed in err and len(err.strip().splitlines()) == 1
@@ -187,10 +174,10 @@ def test_real_process_exit_code_and_no_traceback() -> None:
     assert proc.stdout == ""
 
 
-def test_materials_command(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = run(["materials", "--json"], capsys)
+def test_materials_command(cli: CliRun) -> None:
+    code, out, _ = cli(["materials", "--json"])
     assert code == 0
     ids = {m["id"] for m in json.loads(out)}
     assert {"dura-lar", "kapton", "fr4"} <= ids
-    code, out, _ = run(["materials"], capsys)
+    code, out, _ = cli(["materials"])
     assert code == 0 and "dura-lar" in out

@@ -5,22 +5,16 @@ from __future__ import annotations
 import json
 import tomllib
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pytest
 
-from corrugate.cli import main
+if TYPE_CHECKING:
+    from conftest import CliRun
+
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 BLIMP = EXAMPLES / "blimp_gripper.toml"
-
-
-def _run(argv: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    with pytest.raises(SystemExit) as info:
-        main(argv)
-    out, err = capsys.readouterr()
-    code = info.value.code
-    return (0 if code is None else int(code)), out, err
 
 
 def _dump(d: dict[str, Any]) -> str:
@@ -45,8 +39,8 @@ def _dump(d: dict[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def test_json_contract_for_the_case_study(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = _run(["design", str(BLIMP), "--json"], capsys)
+def test_json_contract_for_the_case_study(cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(BLIMP), "--json"])
     assert code == 0
     d = json.loads(out)
     assert d["status"] == "optimal"
@@ -64,7 +58,7 @@ def test_json_contract_for_the_case_study(capsys: pytest.CaptureFixture[str]) ->
         }
     assert d["mass_g"] == pytest.approx(d["performance"]["mass_g"])
     # stiffness exactly as `corrugate analyze --json` reports it for the same design
-    code, out2, _ = _run(
+    code, out2, _ = cli(
         [
             "analyze",
             "--W",
@@ -83,7 +77,6 @@ def test_json_contract_for_the_case_study(capsys: pytest.CaptureFixture[str]) ->
             "90",
             "--json",
         ],
-        capsys,
     )
     assert code == 0
     assert d["stiffness"] == json.loads(out2)["stiffness"]
@@ -97,9 +90,9 @@ def test_json_contract_for_the_case_study(capsys: pytest.CaptureFixture[str]) ->
     assert {w["code"] for w in d["warnings"]} >= {"paper-model"}
 
 
-def test_out_dir_gets_design_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
     out_dir = tmp_path / "nested" / "blimp"
-    code, out, _ = _run(["design", str(BLIMP), "--json", "--out", str(out_dir)], capsys)
+    code, out, _ = cli(["design", str(BLIMP), "--json", "--out", str(out_dir)])
     assert code == 0
     written = json.loads((out_dir / "design.json").read_text("utf-8"))
     printed = json.loads(out)
@@ -124,8 +117,8 @@ def test_out_dir_gets_design_json(tmp_path: Path, capsys: pytest.CaptureFixture[
     assert parts == pytest.approx(printed["mass_g"], rel=5e-3)
 
 
-def test_readable_summary(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = _run(["design", str(BLIMP)], capsys)
+def test_readable_summary(cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(BLIMP)])
     assert code == 0
     assert "certified" in out
     assert "84" in out
@@ -143,14 +136,14 @@ def test_readable_summary(capsys: pytest.CaptureFixture[str]) -> None:
     ids=["unknown-key", "wrong-unit", "min-above-max", "negative-size"],
 )
 def test_malformed_spec_exits_2_with_the_toml_path(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str], edit: Any, field: str
+    tmp_path: Path, cli: CliRun, edit: Any, field: str
 ) -> None:
     d = tomllib.loads(BLIMP.read_text("utf-8"))
     edit(d)
     spec = tmp_path / "bad.toml"
     spec.write_text(_dump(d), "utf-8")
     out_dir = tmp_path / "out"
-    code, out, err = _run(["design", str(spec), "--json", "--out", str(out_dir)], capsys)
+    code, out, err = cli(["design", str(spec), "--json", "--out", str(out_dir)])
     assert code == 2
     assert out == ""
     lines = err.strip().splitlines()
@@ -160,10 +153,8 @@ def test_malformed_spec_exits_2_with_the_toml_path(
     assert not out_dir.exists()  # nothing written on failure
 
 
-def test_infeasible_spec_exits_1_with_a_diagnosis(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str]
-) -> None:
-    code, out, _ = _run(["design", str(EXAMPLES / "infeasible.toml"), "--json"], capsys)
+def test_infeasible_spec_exits_1_with_a_diagnosis(tmp_path: Path, cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(EXAMPLES / "infeasible.toml"), "--json"])
     assert code == 1
     d = json.loads(out)
     assert d["status"] == "infeasible"
@@ -178,8 +169,8 @@ def test_infeasible_spec_exits_1_with_a_diagnosis(
     "name",
     ["blimp_gripper_continuous.toml", "wheel_circle.toml", "rectangle_independent.toml"],
 )
-def test_every_example_solves_certified(name: str, capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, _ = _run(["design", str(EXAMPLES / name), "--json"], capsys)
+def test_every_example_solves_certified(name: str, cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(EXAMPLES / name), "--json"])
     assert code == 0
     d = json.loads(out)
     assert d["status"] == "optimal"

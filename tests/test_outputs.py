@@ -5,32 +5,25 @@ from __future__ import annotations
 import json
 import xml.etree.ElementTree as ET
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import ezdxf
 import pytest
 
 from corrugate import Assembly, Layer, analyze, get_material
-from corrugate.cli import main
 from corrugate.pattern.build import build_pattern
 
+if TYPE_CHECKING:
+    from conftest import CliRun
+
 SVG = "{http://www.w3.org/2000/svg}"
-
-
-def run(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str, str]:
-    code = 0
-    try:
-        main(args)
-    except SystemExit as exc:
-        code = int(exc.code or 0)
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 CASE1 = ["pattern", "--W", "8", "--n", "8", "--alpha", "84", "--material", "dura-lar"]
 
 
-def test_case1_files(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    code, _, err = run([*CASE1, "--out", str(tmp_path)], capsys)
+def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
+    code, _, err = cli([*CASE1, "--out", str(tmp_path)])
     assert code == 0, err
     names = {p.name for p in tmp_path.iterdir()}
     assert {
@@ -77,13 +70,13 @@ def test_case1_files(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None
     ) == len(keys)
 
 
-def test_circle_and_polygon_patterns(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_circle_and_polygon_patterns(tmp_path: Path, cli: CliRun) -> None:
     for name, extra in (
         ("circle", ["--layout", "circle"]),
         ("triangle", ["--layout", "polygon", "--vertices", "0,0 1,0 0.5,1"]),
     ):
         out = tmp_path / name
-        code, _, err = run(
+        code, _, err = cli(
             [
                 *CASE1,
                 "--out",
@@ -96,7 +89,6 @@ def test_circle_and_polygon_patterns(tmp_path: Path, capsys: pytest.CaptureFixtu
                 "0.5",
                 *extra,
             ],
-            capsys,
         )
         assert code == 0, err
         record = json.loads((out / "design.json").read_text())
@@ -120,12 +112,12 @@ def test_circle_and_polygon_patterns(tmp_path: Path, capsys: pytest.CaptureFixtu
     ],
 )
 def test_bad_options_leave_no_file(
-    tmp_path: Path, capsys: pytest.CaptureFixture[str], extra: list[str], message: str
+    tmp_path: Path, cli: CliRun, extra: list[str], message: str
 ) -> None:
     out = tmp_path / "out"
     out.mkdir()
     (out / "keep.txt").write_text("an earlier file")
-    code, stdout, err = run([*CASE1, "--out", str(out), *extra], capsys)
+    code, stdout, err = cli([*CASE1, "--out", str(out), *extra])
     assert stdout == ""
     assert code == 2
     assert message in err
