@@ -24,13 +24,13 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from .cli import _layer, _material, app, make_console
+from .cli import app, make_console
 from .errors import InputError
 from .geometry import Assembly, Layer
+from .inputs import assembly_from_options, parse_etas
 from .layouts import Rectangle, Square
 from .materials import get_material, library
 from .moduli import MODELS
-from .units import parse_quantity
 
 if TYPE_CHECKING:
     from .fea.validation import CaseResult, Refinement
@@ -45,8 +45,8 @@ _DESIGN_FIELDS = ("W_mm", "n", "alpha_deg", "material", "t_mm")
 
 def design_from_json(path: Path) -> Assembly:
     """The assembly of a ``design.json`` (written by ``corrugate design --out`` or ``corrugate
-    pattern --out``; ``path`` is the file or its folder): two identical layers of a library
-    material on a square or rectangle. Anything else is an :class:`InputError` naming the field."""
+    pattern --out``; ``path`` is the file or its folder): two layers of library materials on a
+    square or rectangle. Anything else is an :class:`InputError` naming the field."""
     file = path / "design.json" if path.is_dir() else path
     try:
         data = json.loads(file.read_text(encoding="utf-8"))
@@ -77,43 +77,50 @@ def design_from_json(path: Path) -> Assembly:
         raise InputError(
             "layers", "?", "a list of two layer objects", reason="is missing or malformed"
         )
+    built: list[Layer] = []
     for i, entry in enumerate(layers):
         for key in _DESIGN_FIELDS:
             if key not in entry:
                 raise InputError(f"layers[{i}].{key}", None, "a value", reason="is missing")
-    for key in _DESIGN_FIELDS:
-        if layers[0][key] != layers[1][key]:
+        mat_id = str(entry["material"])
+        if mat_id.strip().lower() not in library():
             raise InputError(
-                f"layers[1].{key}",
-                layers[1][key],
-                f"{layers[0][key]} (layer 1's): corrugate validate takes identical layers only",
-                reason="differs from layer 1",
+                f"layers[{i}].material",
+                repr(mat_id),
+                "a library material id (design.json does not store E and nu of an inline "
+                "material; use --W, --n, --alpha, --E, --nu instead)",
+                reason="is not in the library",
             )
-    e = layers[0]
-    mat_id = str(e["material"])
-    if mat_id.strip().lower() not in library():
-        raise InputError(
-            "layers[0].material",
-            repr(mat_id),
-            "a library material id (design.json does not store E and nu of an inline material; "
-            "use --W, --n, --alpha, --E, --nu instead)",
-            reason="is not in the library",
-        )
-    try:
-        layer = Layer(
-            W=float(e["W_mm"]),
-            n=int(e["n"]),
-            alpha_deg=float(e["alpha_deg"]),
-            material=get_material(mat_id),
-            t=float(e["t_mm"]),
-        )
-    except (TypeError, ValueError) as exc:
-        if isinstance(exc, InputError):
-            raise
-        raise InputError(
-            "layers[0]", "?", "numbers for W_mm, n, alpha_deg, t_mm", reason="is malformed"
-        ) from None
-    return Assembly.identical(layer, Square() if shape == "square" else Rectangle())
+        try:
+            built.append(
+                Layer(
+                    W=float(entry["W_mm"]),
+                    n=int(entry["n"]),
+                    alpha_deg=float(entry["alpha_deg"]),
+                    material=get_material(mat_id),
+                    t=float(entry["t_mm"]),
+                )
+            )
+        except (TypeError, ValueError) as exc:
+            if isinstance(exc, InputError):
+                raise InputError(
+                    f"layers[{i}].{exc.field}", exc.value, exc.allowed, reason=exc.reason
+                ) from None
+            raise InputError(
+                f"layers[{i}]", "?", "numbers for W_mm, n, alpha_deg, t_mm", reason="is malformed"
+            ) from None
+    layout = Square() if shape == "square" else Rectangle()
+    return Assembly(built[0], built[1], layout)
+
+
+def _label(a: Assembly) -> str:
+    """A short name of the design: each layer's W, n, alpha and t (one set when identical)."""
+
+    def one(x: Layer) -> str:
+        return f"W={x.W:g} n={x.n} alpha={x.alpha_deg:g} t={x.t:g}"
+
+    text = one(a.layer1) if a.layer1 == a.layer2 else f"{one(a.layer1)} / {one(a.layer2)}"
+    return text if a.layout.name == "square" else f"{text} {a.layout.name}"
 
 
 def _print_result(r: CaseResult, console: Console) -> None:
@@ -183,11 +190,29 @@ def validate_cmd(
     E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus.")] = None,
     nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
     density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
+    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")] = None,
+    n2: Annotated[str | None, Opt("--n2", help="Layer 2 creases (default: layer 1's).")] = None,
+    alpha2: Annotated[
+        str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")
+    ] = None,
+    material2: Annotated[
+        str | None, Opt(help="Layer 2 library material (default: layer 1's).")
+    ] = None,
+    thickness2: Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1's).")] = None,
+    layout: Annotated[
+        str, Opt(help="square | rectangle (the FE tests need straight loaded edges).")
+    ] = "square",
     design: Annotated[
         Path | None,
         Opt(help="A design.json (or its folder) from `corrugate design/pattern --out`."),
     ] = None,
-    eta: Annotated[list[str] | None, Opt(help="0 and/or 90 deg; repeat. Default 0.")] = None,
+    eta: Annotated[
+        list[str] | None,
+        Opt(
+            help="Direction (deg from layer 1's creases); repeat. Default 0. Other than 0/90: "
+            "a square coupon cut along eta (square layout only)."
+        ),
+    ] = None,
     mesh: Annotated[int, Opt(help="Shell elements across each facet (even).")] = 4,
     cell_mesh: Annotated[
         str, Opt(help="Unit-cell mesh: elements along a facet x through t.")
@@ -229,7 +254,7 @@ def validate_cmd(
 
     Example: corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar --refine 0.02
     """
-    from .fea.assembly import AssemblyMesh
+    from .fea.assembly import AssemblyMesh, principal_axis, specimen
     from .fea.ccx import find_ccx
     from .fea.unitcell import UnitCellMesh
     from .fea.validation import Case, Refinement, run_case
@@ -277,13 +302,32 @@ def validate_cmd(
             reason="is missing",
         )
     else:
-        mat = _material(material, E, nu, density, thickness)
-        assembly = Assembly.identical(_layer(W, n, alpha, mat, thickness))
-    layer = assembly.layer1
-    etas = tuple(parse_quantity(e, "deg", "eta") for e in (eta or ["0"]))
+        assembly = assembly_from_options(
+            W=W,
+            n=n,
+            alpha=alpha,
+            material=material,
+            thickness=thickness,
+            E=E,
+            nu=nu,
+            density=density,
+            W2=W2,
+            n2=n2,
+            alpha2=alpha2,
+            material2=material2,
+            thickness2=thickness2,
+            layout=layout,
+        )
+    etas = parse_etas(eta or ["0"])
+    for e in etas:  # fail before any run: layout, eta and connectors must fit the FE model
+        specimen(assembly, e)
+        if connectors and principal_axis(e) is None:
+            raise InputError(
+                "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
+            )
     band = " +connectors" if connectors else ""
     case = Case(
-        f"W={layer.W:g} n={layer.n} alpha={layer.alpha_deg:g} t={layer.t:g}{band}",
+        _label(assembly) + band,
         assembly,
         eta_deg=etas,
         unit_cell=not no_unit_cell,

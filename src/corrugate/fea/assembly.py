@@ -70,7 +70,7 @@ Only eta = 0 and eta = 90 deg are supported (the two principal directions of the
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Literal
 
@@ -88,10 +88,13 @@ __all__ = [
     "DeckInfo",
     "LoadTest",
     "assembly_deck",
+    "principal_axis",
     "solve_assembly",
+    "specimen",
 ]
 
 LoadTest = Literal["compression", "bending", "bending4"]
+Mesher = Literal["auto", "structured", "gmsh"]
 TESTS: tuple[LoadTest, ...] = ("compression", "bending", "bending4")
 FloatArray = NDArray[np.float64]
 
@@ -149,7 +152,8 @@ class AssemblyResult:
 
 @dataclass(frozen=True, slots=True)
 class _Shell:
-    """Nodes (global ids, coordinates) and S8R connectivity of one layer."""
+    """Nodes (global ids, coordinates) and connectivity of one part: S8R ``elements`` and, from
+    the gmsh mesher, S6 triangles ``triangles``."""
 
     ids: NDArray[np.int64]
     xyz: FloatArray
@@ -157,6 +161,7 @@ class _Shell:
     t: float
     E: float
     nu: float
+    triangles: list[list[int]] = field(default_factory=list)
 
 
 def _layer_shell(
@@ -357,12 +362,77 @@ def _band_shell(a: Assembly, along: int, shells: list[_Shell], tol: float) -> _S
     return _Shell(np.asarray(ids, dtype=np.int64), np.asarray(coords), elements, l1.t, m.E, m.nu)
 
 
-def _eta_axis(eta_deg: float) -> int:
-    if math.isclose(eta_deg % 180, 0.0, abs_tol=1e-9):
+def principal_axis(eta_deg: float) -> int | None:
+    """The load axis (0 = x, 1 = y) of a principal direction eta, None for any other eta."""
+    if math.isclose(eta_deg % 180, 0.0, abs_tol=1e-9) or math.isclose(
+        eta_deg % 180, 180.0, abs_tol=1e-9
+    ):
         return 1  # eta = 0: along layer 1's creases, the y axis
     if math.isclose(eta_deg % 180, 90.0, abs_tol=1e-9):
         return 0
-    raise InputError("eta", f"{eta_deg} deg", "0 or 90 deg for the FE assembly")
+    return None
+
+
+def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
+    """Width A (across eta) and length B (along eta) of the FE specimen, mm: the rectangle
+    Lx x Ly itself at eta = 0 or 90 deg; at any other eta a square of the layout's side whose
+    edges run along and across eta (a coupon cut from the same two layers), which needs a square
+    layout (Lx = Ly)."""
+    a = assembly
+    axis = principal_axis(eta_deg)
+    if axis == 1:
+        return a.Lx, a.Ly
+    if axis == 0:
+        return a.Ly, a.Lx
+    if not math.isclose(a.Lx, a.Ly, rel_tol=1e-9):
+        raise InputError(
+            "eta",
+            f"{eta_deg:g} deg",
+            "0 or 90 deg for a rectangle (other angles need a square layout, Lx = Ly)",
+        )
+    return a.Lx, a.Ly
+
+
+def _oblique_shells(
+    assembly: Assembly, eta_deg: float, along: int, fixture_y: tuple[float, ...]
+) -> list[_Shell]:
+    """Both layers over the specimen of :func:`specimen`, in the test frame (y along eta, x
+    across), meshed by :mod:`corrugate.fea.planmesh`. The specimen's centre is the layout's
+    centre; beyond the layout's extent the zig-zags continue periodically (the specimen is cut
+    from the panel's material)."""
+    from .planmesh import Corrugation, plan_mesh
+
+    a = assembly
+    A, B = specimen(a, eta_deg)
+    e = math.radians(eta_deg)
+    ce, se = math.cos(e), math.sin(e)
+    # chordwise unit vectors of the layers in the test frame: layer 1 across its creases
+    # (crease-frame x), layer 2 across its own (crease-frame y); origin: centre on centre
+    chords = ((ce, se), (-se, ce))
+    centres = (a.Lx / 2, a.Ly / 2)
+    shells: list[_Shell] = []
+    first = 1
+    for layer, chord, centre, z0 in zip(
+        a.layers, chords, centres, (0.0, a.layer1.height), strict=True
+    ):
+        offset = centre - (chord[0] * A / 2 + chord[1] * B / 2)
+        corr = Corrugation(chord, offset, layer.pitch, layer.height, z0)
+        pm = plan_mesh(corr, A, B, along, fixture_y)
+        ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
+        m = layer.material
+        shells.append(
+            _Shell(
+                ids,
+                pm.xyz,
+                [[int(ids[i]) for i in r] for r in pm.elements["S8R"]],
+                layer.t,
+                m.E,
+                m.nu,
+                [[int(ids[i]) for i in r] for r in pm.elements["S6"]],
+            )
+        )
+        first = int(ids[-1]) + 1
+    return shells
 
 
 def _fmt_set(name: str, nodes: list[int]) -> list[str]:
@@ -395,6 +465,7 @@ def assembly_deck(
     *,
     connectors: bool = False,
     match_layers: bool | None = None,
+    mesher: Mesher = "auto",
 ) -> tuple[str, DeckInfo]:
     """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
 
@@ -404,26 +475,60 @@ def assembly_deck(
     if test not in TESTS:
         raise InputError("test", test, " or ".join(TESTS))
     if assembly.layout.name not in ("square", "rectangle"):
-        raise InputError("layout", assembly.layout.name, "square or rectangle for the FE assembly")
+        raise InputError(
+            "layout",
+            assembly.layout.name,
+            "square or rectangle for the FE assembly",
+            reason="has no straight loaded edges for the paper's tests (docs/fea.md)",
+        )
+    if mesher not in ("auto", "structured", "gmsh"):
+        raise InputError("mesher", mesher, "auto, structured or gmsh")
     mesh = mesh or AssemblyMesh()
-    axis = _eta_axis(eta_deg)
-    other = 1 - axis
     a = assembly
     Lx, Ly = a.Lx, a.Ly
-    mult = 8 if test == "bending4" else 2
-    match = connectors if match_layers is None else match_layers
-    ns1 = mesh.along * (a.layer2.n + 1) if match else None
-    ns2 = mesh.along * (a.layer1.n + 1) if match else None
-    shells = [_layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult, ns1)]
-    shells.append(
-        _layer_shell(
-            a.layer2, Lx, mesh.along, int(shells[0].ids.max()) + 1, 1, a.layer1.height, mult, ns2
-        )
-    )
-    L_load = (Lx, Ly)[axis]
     tol = 1e-7 * max(Lx, Ly)
-    if connectors:
-        shells.append(_band_shell(a, mesh.along, shells, tol))
+    principal = principal_axis(eta_deg)
+    use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
+    if use_gmsh:
+        if connectors:
+            raise InputError(
+                "eta",
+                f"{eta_deg:g} deg",
+                "0 or 90 deg with connectors (the band is modelled on the structured mesh only)",
+            )
+        B = specimen(a, eta_deg)[1]
+        fixture: tuple[float, ...] = {
+            "compression": (),
+            "bending": (B / 2,),
+            "bending4": (B / 4, 3 * B / 8, B / 2, 5 * B / 8, 3 * B / 4),
+        }[test]
+        shells = _oblique_shells(a, eta_deg, mesh.along, fixture)
+        axis, L_load = 1, B
+    else:
+        if principal is None:
+            raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg for the structured mesh")
+        axis = principal
+        mult = 8 if test == "bending4" else 2
+        match = connectors if match_layers is None else match_layers
+        ns1 = mesh.along * (a.layer2.n + 1) if match else None
+        ns2 = mesh.along * (a.layer1.n + 1) if match else None
+        shells = [_layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult, ns1)]
+        shells.append(
+            _layer_shell(
+                a.layer2,
+                Lx,
+                mesh.along,
+                int(shells[0].ids.max()) + 1,
+                1,
+                a.layer1.height,
+                mult,
+                ns2,
+            )
+        )
+        L_load = (Lx, Ly)[axis]
+        if connectors:
+            shells.append(_band_shell(a, mesh.along, shells, tol))
+    other = 1 - axis
     if delta is None:
         delta = 1e-3 * L_load
     lines = [
@@ -436,12 +541,13 @@ def assembly_deck(
             lines.append(f"{n},{x:.10g},{y:.10g},{z:.10g}")
     e_no = 1
     for k, sh in enumerate(shells, start=1):
-        if not len(sh.elements):
-            continue
-        lines.append(f"*ELEMENT,TYPE=S8R,ELSET=L{k}")
-        for e in sh.elements:
-            lines.append(f"{e_no}," + ",".join(map(str, e)))
-            e_no += 1
+        for etype, elems in (("S8R", sh.elements), ("S6", sh.triangles)):
+            if not elems:
+                continue
+            lines.append(f"*ELEMENT,TYPE={etype},ELSET=L{k}")
+            for e in elems:
+                lines.append(f"{e_no}," + ",".join(map(str, e)))
+                e_no += 1
     for k, sh in enumerate(shells, start=1):
         lines += [
             f"*MATERIAL,NAME=M{k}",
@@ -539,6 +645,7 @@ def solve_assembly(
     *,
     connectors: bool = False,
     match_layers: bool | None = None,
+    mesher: Mesher = "auto",
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
@@ -546,7 +653,13 @@ def solve_assembly(
     """Run one load case of the assembly in CalculiX (see the module docstring for the model)."""
     mesh = mesh or AssemblyMesh()
     deck, info = assembly_deck(
-        assembly, test, mesh, eta_deg, connectors=connectors, match_layers=match_layers
+        assembly,
+        test,
+        mesh,
+        eta_deg,
+        connectors=connectors,
+        match_layers=match_layers,
+        mesher=mesher,
     )
     with work_dir(folder, keep) as wd:
         run = run_ccx(deck, wd, job=test, timeout=timeout)

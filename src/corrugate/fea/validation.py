@@ -1,6 +1,6 @@
 """FE versus closed forms for one design: the cases ``corrugate validate`` runs.
 
-A :class:`Case` is one design (two identical layers on a square, or any rectangular assembly) with
+A :class:`Case` is one design (two layers, identical or not, on a square or a rectangle) with
 the FE settings; :func:`run_case` runs the periodic unit cell of each distinct layer
 (:mod:`~corrugate.fea.unitcell`) and the assembly under in-plane compression and 3-point bending
 (:mod:`~corrugate.fea.assembly`) at each eta, optionally refining the meshes until the results
@@ -22,7 +22,7 @@ from ..analysis import analyze
 from ..errors import CorrugateError
 from ..geometry import Assembly
 from ..moduli import MODELS
-from .assembly import AssemblyMesh, solve_assembly
+from .assembly import AssemblyMesh, principal_axis, solve_assembly
 from .unitcell import UnitCell, UnitCellMesh, solve_unit_cell
 
 
@@ -57,8 +57,9 @@ class Refinement:
 
 @dataclass(frozen=True, slots=True)
 class Case:
-    """One design to validate: ``label``, the ``assembly``, the directions ``eta_deg`` (0 and/or
-    90), whether to run the unit cells and the 4-point (pure) bending diagnostic, whether the
+    """One design to validate: ``label``, the ``assembly``, the directions ``eta_deg`` (0 and 90:
+    the layout itself; any other angle: a square coupon cut along eta, see
+    :func:`corrugate.fea.assembly.specimen`), whether to run the unit cells and the 4-point (pure) bending diagnostic, whether the
     assembly model includes the connector band (``connectors``), and where ccx works
     (``folder``, kept if ``keep``)."""
 
@@ -113,7 +114,8 @@ def closed_forms(assembly: Assembly, eta_deg: Sequence[float]) -> dict[str, dict
             e = f"{d.eta_deg:g}"
             values[f"K_N_per_mm@{e}"] = d.K
             values[f"D_Nmm@{e}"] = d.D
-            values[f"EI_Nmm2@{e}"] = d.EI
+            if principal_axis(d.eta_deg) is not None:  # off-axis the FE coupon has its own span
+                values[f"EI_Nmm2@{e}"] = d.EI
             values[f"D4_Nmm@{e}"] = d.D  # the closed forms' D is a pure bending stiffness
         for i, m in enumerate(r.moduli, start=1):
             for k, v in m.as_dict().items():
@@ -167,7 +169,8 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
         )
         out[f"K_N_per_mm@{e}"] = c.value()
         out[f"D_Nmm@{e}"] = b.value()
-        out[f"EI_Nmm2@{e}"] = b.value() * b.span
+        if principal_axis(eta) is not None:
+            out[f"EI_Nmm2@{e}"] = b.value() * b.span
         if case.pure_bending:
             p = solve_assembly(
                 case.assembly,
