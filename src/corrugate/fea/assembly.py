@@ -377,8 +377,16 @@ def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
     """Width A (across eta) and length B (along eta) of the FE specimen, mm: the rectangle
     Lx x Ly itself at eta = 0 or 90 deg; at any other eta a square of the layout's side whose
     edges run along and across eta (a coupon cut from the same two layers), which needs a square
-    layout (Lx = Ly)."""
+    layout (Lx = Ly). Circles and polygons are refused (:class:`InputError`): they have no
+    straight edges for platens and supports."""
     a = assembly
+    if a.layout.name not in ("square", "rectangle"):
+        raise InputError(
+            "layout",
+            a.layout.name,
+            "square or rectangle for the FE assembly",
+            reason="has no straight loaded edges for the paper's tests (docs/fea.md)",
+        )
     axis = principal_axis(eta_deg)
     if axis == 1:
         return a.Lx, a.Ly
@@ -474,13 +482,7 @@ def assembly_deck(
     mesh the band needs, so that a run without the band can be compared on the same layer mesh."""
     if test not in TESTS:
         raise InputError("test", test, " or ".join(TESTS))
-    if assembly.layout.name not in ("square", "rectangle"):
-        raise InputError(
-            "layout",
-            assembly.layout.name,
-            "square or rectangle for the FE assembly",
-            reason="has no straight loaded edges for the paper's tests (docs/fea.md)",
-        )
+    specimen(assembly, eta_deg)  # the layout and eta must fit the FE tests
     if mesher not in ("auto", "structured", "gmsh"):
         raise InputError("mesher", mesher, "auto, structured or gmsh")
     mesh = mesh or AssemblyMesh()
