@@ -98,3 +98,14 @@ def test_short_panel_shear_warning_brackets_the_fe_sweep() -> None:
         else:
             assert "short-panel-shear" not in codes
             assert share < 2 * SHEAR_LIMIT, (case, share)
+
+
+def test_off_axis_warning_only_between_the_crease_directions() -> None:
+    """The cos^2 rule is checked by FE only along the creases (docs/fea.md, section 2.5): eta = 0,
+    90, 180 and -90 deg give no warning, any other angle one warning naming the angles."""
+    from corrugate import Assembly, Layer, analyze
+
+    a = Assembly.identical(Layer(10, 9, 90, get_material("dura-lar")))
+    assert "off-axis" not in {w.code for w in analyze(a, eta_deg=[0, 90, 180, -90]).warnings}
+    warned = [w for w in analyze(a, eta_deg=[0, 30, 45.5]).warnings if w.code == "off-axis"]
+    assert len(warned) == 1 and "eta = 30, 45.5 deg" in warned[0].message

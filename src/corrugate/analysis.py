@@ -242,5 +242,5 @@ def analyze(
         springs=ev.springs,
         stiffness=stiffness,
         mass=assembly_mass(a, fabrication),
-        warnings=tuple(design_warnings(a, model)),
+        warnings=tuple(design_warnings(a, model, [float(e) for e in etas])),
     )

@@ -10,12 +10,18 @@
 * short panels: D is a pure-bending stiffness; a panel loaded as a short beam also shears. The
   shell FE of docs/fea.md (section 3) measured the 3-point D below the pure-bending D by
   1.1-2.0 times the Timoshenko estimate 2 (1 + nu) (W / L)^2, L = (n + 1) W sin(alpha/2);
+* directions other than along the creases (eta not a multiple of 90 deg): K(eta) and D(eta)
+  follow the paper's cos^2 rule, the stiffness of a panel driven along both crease directions at
+  once; a square coupon of the same layers cut along eta is far softer (shell FE, docs/fea.md
+  section 2.5: K 37-368 times, D 2.2-5.6 times below the rule at 45 deg), so off-axis values
+  are upper estimates;
 * the ``paper`` model, which has known errors (DESIGN.md 3.1).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from .geometry import Assembly, Layer
@@ -116,8 +122,24 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
     return out
 
 
-def design_warnings(a: Assembly, model: str) -> list[ModelWarning]:
-    """Every warning for assembly ``a`` analysed with moduli variant ``model``."""
+def _off_axis(eta_deg: Sequence[float]) -> list[ModelWarning]:
+    off = [e for e in eta_deg if not math.isclose(math.remainder(e, 90.0), 0.0, abs_tol=1e-9)]
+    if not off:
+        return []
+    angles = ", ".join(f"{e:g}" for e in off)
+    return [
+        ModelWarning(
+            "off-axis",
+            f"K and D at eta = {angles} deg follow the paper's cos^2 rule, which holds for a "
+            "panel driven along both crease directions at once; a coupon of these layers cut "
+            "along eta is far softer (docs/fea.md, section 2.5): treat them as upper estimates",
+        )
+    ]
+
+
+def design_warnings(a: Assembly, model: str, eta_deg: Sequence[float] = ()) -> list[ModelWarning]:
+    """Every warning for assembly ``a`` analysed with moduli variant ``model`` in the directions
+    ``eta_deg`` (deg)."""
     out = _layer_warnings("layer 1", a.layer1)
     if a.layer2 != a.layer1:
         out += _layer_warnings("layer 2", a.layer2)
@@ -145,4 +167,4 @@ def design_warnings(a: Assembly, model: str) -> list[ModelWarning]:
                 "Ecy and Ebx slightly off); use 'refined' for design",
             )
         )
-    return out
+    return out + _off_axis(eta_deg)
