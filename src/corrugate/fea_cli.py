@@ -137,7 +137,13 @@ def _print_result(r: CaseResult, console: Console) -> None:
     for m in MODELS:
         t.add_column(m, justify="right")
         t.add_column(f"{m}/FE", justify="right")
-    units = {"K_N_per_mm": "N/mm", "D_Nmm": "N mm", "EI_Nmm2": "N mm^2", "D4_Nmm": "N mm"}
+    units = {
+        "K_N_per_mm": "N/mm",
+        "Kframe_N_per_mm": "N/mm",
+        "D_Nmm": "N mm",
+        "EI_Nmm2": "N mm^2",
+        "D4_Nmm": "N mm",
+    }
     for key in _display_keys(r):
         t.add_row(_name(key, units), f"{r.fe[key]:.5g}", *_model_cells(r, key))
     console.print(t)
@@ -155,8 +161,14 @@ def _print_result(r: CaseResult, console: Console) -> None:
 
 
 def _display_keys(r: CaseResult) -> list[str]:
-    """Stiffness keys first, then the moduli of layer 1 (and of layer 2 when it differs)."""
-    keys = [k for k in r.fe if "@" in k]
+    """Stiffness keys first (by eta, then K, K in the frame, D, EI, D4), then the moduli of
+    layer 1 (and of layer 2 when it differs)."""
+    order = ("K_N_per_mm", "Kframe_N_per_mm", "D_Nmm", "EI_Nmm2", "D4_Nmm")
+    etas = list(dict.fromkeys(f"{e:g}" for e in r.case.eta_deg))
+    keys = sorted(
+        (k for k in r.fe if "@" in k),
+        key=lambda k: (etas.index(k.split("@")[1]), order.index(k.split("@")[0])),
+    )
     a = r.case.assembly
     for i in (1,) if a.layer1 == a.layer2 else (1, 2):
         keys += [f"layer{i}.{m}" for m in ("Ecx", "Ecy", "Ebx", "Eby") if f"layer{i}.{m}" in r.fe]

@@ -56,6 +56,11 @@ Model (every choice stated; DESIGN.md section 6):
   N mm^2 and N mm. This is the apparent stiffness a bench test would measure: it includes the
   shear deformation of stubby panels, which the closed forms neglect, but not local crushing
   under the rollers (the fixtures act on whole node lines).
+* **Frame** (``frame``, the kinematics of the paper's spring rule): compression along eta = 0 or
+  90 as above with the two side edges of each layer on platens too, held in place (normal
+  displacement and the rotations about their in-plane axes zero); the side platen's reaction
+  gives the coupling term. :mod:`corrugate.fea.frame` combines two such runs into the 2 x 2
+  platen stiffness of the panel in a rigid frame and K_frame(eta) from it.
 * **4-point bending about eta** (``bending4``, a diagnostic the paper did not run): the same
   supports, rigid line loads u_z = -delta at a quarter and three quarters of the span, symmetry at
   mid-span. Between the load lines the moment M = P L / 8 is constant and the shear zero, so the
@@ -101,9 +106,9 @@ __all__ = [
     "specimen",
 ]
 
-LoadTest = Literal["compression", "bending", "bending4"]
+LoadTest = Literal["compression", "bending", "bending4", "frame"]
 Mesher = Literal["auto", "structured", "gmsh"]
-TESTS: tuple[LoadTest, ...] = ("compression", "bending", "bending4")
+TESTS: tuple[LoadTest, ...] = ("compression", "bending", "bending4", "frame")
 FloatArray = NDArray[np.float64]
 
 
@@ -129,8 +134,9 @@ class AssemblyMesh:
 
 @dataclass(frozen=True, slots=True)
 class AssemblyResult:
-    """One FE load case of the assembly: K (N/mm) for compression, D (N mm) and EI (N mm^2) for
-    bending (the other entries None); ``force`` (N) at the prescribed ``displacement`` (mm), the
+    """One FE load case of the assembly: K (N/mm) for compression and the frame test, D (N mm)
+    and EI (N mm^2) for bending (the other entries None); for the frame test, ``side_force`` (N,
+    compressive) on the far side platen, held in place; ``force`` (N) at the prescribed ``displacement`` (mm), the
     share of the force carried by each layer, and each layer's part of K or D (``layer_values``).
     With ``connectors`` the band's own nodes carry ``band_value``; nodes shared by a layer and the
     band count for the layer, so the split between the parts is bookkeeping, the total is not."""
@@ -150,10 +156,11 @@ class AssemblyResult:
     layer_values: tuple[float, float] = (math.nan, math.nan)
     band_value: float | None = None
     connectors: bool = False
+    side_force: float | None = None
 
     def value(self) -> float:
         """K (N/mm) for compression, D (N mm) for bending: what ``analyze`` reports."""
-        v = self.K if self.test == "compression" else self.D
+        v = self.K if self.test in ("compression", "frame") else self.D
         assert v is not None
         return v
 
@@ -470,6 +477,7 @@ class DeckInfo:
     axis: int
     nodes: int
     elements: int
+    side_sets: tuple[str, ...] = ()  # far side platen of each part ("frame" only)
 
 
 def assembly_deck(
@@ -499,6 +507,10 @@ def assembly_deck(
     tol = 1e-7 * max(Lx, Ly)
     principal = principal_axis(eta_deg)
     use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
+    if use_gmsh and test == "frame":
+        raise InputError(
+            "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
+        )
     if use_gmsh:
         if connectors:
             raise InputError(
@@ -569,6 +581,7 @@ def assembly_deck(
     bc: list[str] = []
     load_sets: list[str] = []
     mid_sets: list[str] = []
+    side_sets: list[str] = []
     ua, ub = axis + 1, other + 1
     for k, sh in enumerate(shells, start=1):
         c_load = sh.xyz[:, axis]
@@ -582,7 +595,7 @@ def assembly_deck(
         a_node, b_node = lo[int(np.argmin(lo_other))], lo[int(np.argmax(lo_other))]
         # with the band, the parts form one body: rigid-body constraints on layer 1 only
         rigid = k == 1 or not connectors
-        if test == "compression":
+        if test in ("compression", "frame"):
             lines += _fmt_set(f"LO{k}", lo) + _fmt_set(f"HI{k}", hi)
             rot_b = 4 + other  # rotation about the platen's in-plane axis
             bc += [
@@ -593,7 +606,18 @@ def assembly_deck(
                 f"LO{k},6,6,0",
                 f"HI{k},6,6,0",
             ]
-            if rigid:
+            if test == "frame":  # the side platens, held in place
+                L_side = (Lx, Ly)[other]
+                s_lo = [int(n) for n in sh.ids[np.abs(c_other) < tol]]
+                s_hi = [int(n) for n in sh.ids[np.abs(c_other - L_side) < tol]]
+                lines += _fmt_set(f"SLO{k}", s_lo) + _fmt_set(f"SHI{k}", s_hi)
+                rot_a = 4 + axis
+                for name in (f"SLO{k}", f"SHI{k}"):
+                    bc += [f"{name},{ub},{ub},0", f"{name},{rot_a},{rot_a},0", f"{name},6,6,0"]
+                side_sets.append(f"SHI{k}")
+                if rigid:
+                    bc += [f"{a_node},3,3,0", f"{b_node},3,3,0"]
+            elif rigid:
                 bc += [f"{a_node},{ub},{ub},0", f"{a_node},3,3,0", f"{b_node},3,3,0"]
             load_sets.append(f"HI{k}")
         elif test == "bending4":
@@ -636,14 +660,16 @@ def assembly_deck(
                 bc.append(f"{m_node},{ub},{ub},0")
             load_sets.append(f"MID{k}")
     lines += ["*STEP", "*STATIC", "*BOUNDARY", *bc]
-    for name in load_sets:
+    for name in load_sets + side_sets:
         lines += [f"*NODE PRINT,NSET={name}", "RF"]
     for name in mid_sets:
         lines += [f"*NODE PRINT,NSET={name}", "U"]
     lines.append("*END STEP")
     n_nodes = sum(len(sh.ids) for sh in shells)
     mids = tuple(zip(mid_sets[0::2], mid_sets[1::2], strict=True)) if mid_sets else None
-    info = DeckInfo(tuple(load_sets), mids, L_load, delta, axis, n_nodes, e_no - 1)
+    info = DeckInfo(
+        tuple(load_sets), mids, L_load, delta, axis, n_nodes, e_no - 1, tuple(side_sets)
+    )
     return "\n".join(lines) + "\n", info
 
 
@@ -673,7 +699,7 @@ def solve_assembly(
     )
     with work_dir(folder, keep) as wd:
         run = run_ccx(deck, wd, job=test, timeout=timeout)
-    comp = info.axis if test == "compression" else 2
+    comp = info.axis if test in ("compression", "frame") else 2
     forces: list[float] = []
     for name in info.sets:
         blocks = run.find("forces", str(name))
@@ -682,9 +708,17 @@ def solve_assembly(
         forces.append(-blocks[-1].total()[comp])
     delta, span = info.delta, info.span
     P = sum(forces)
-    if test == "compression":
+    side_force: float | None = None
+    if test in ("compression", "frame"):
         parts = [f / delta for f in forces]
         K, D, EI = P / delta, None, None
+        if test == "frame":
+            side_force = 0.0
+            for name in info.side_sets:
+                blocks = run.find("forces", name)
+                if not blocks:
+                    raise SolverError(f"ccx printed no reaction forces for {name}")
+                side_force -= blocks[-1].total()[1 - info.axis]
     elif test == "bending4":
         assert info.mid_sets is not None
         part_EI: list[float] = []
@@ -730,4 +764,5 @@ def solve_assembly(
         layer_values=(parts[0], parts[1]),
         band_value=parts[2] if connectors else None,
         connectors=connectors,
+        side_force=side_force,
     )

@@ -23,6 +23,7 @@ from ..errors import CorrugateError
 from ..geometry import Assembly
 from ..moduli import MODELS
 from .assembly import AssemblyMesh, principal_axis, solve_assembly
+from .frame import solve_frame
 from .unitcell import UnitCell, UnitCellMesh, solve_unit_cell
 
 
@@ -83,7 +84,9 @@ class CaseResult:
     """FE and closed-form values of a case.
 
     ``fe`` and ``models[name]`` map ``"K_N_per_mm@eta"``, ``"D_Nmm@eta"``, ``"EI_Nmm2@eta"`` (from
-    3-point bending, as the paper tested), ``"D4_Nmm@eta"`` (pure bending between the load lines
+    3-point bending, as the paper tested; EI along the layout's axes only), ``"Kframe_N_per_mm@eta"``
+    (the panel in a rigid frame, :mod:`~corrugate.fea.frame`; in ``fe`` only when an off-axis eta
+    is asked for), ``"D4_Nmm@eta"`` (pure bending between the load lines
     of a 4-point test; the closed forms' D for the models) and the layer moduli
     ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
     ``history`` lists (mesh label, values) of every refinement step; ``converged`` is False when
@@ -113,6 +116,7 @@ def closed_forms(assembly: Assembly, eta_deg: Sequence[float]) -> dict[str, dict
         for d in r.stiffness:
             e = f"{d.eta_deg:g}"
             values[f"K_N_per_mm@{e}"] = d.K
+            values[f"Kframe_N_per_mm@{e}"] = d.K  # the rule is the frame's stiffness
             values[f"D_Nmm@{e}"] = d.D
             if principal_axis(d.eta_deg) is not None:  # off-axis the FE coupon has its own span
                 values[f"EI_Nmm2@{e}"] = d.EI
@@ -145,6 +149,12 @@ def _cell_values(case: Case, mesh: UnitCellMesh) -> dict[str, float]:
 
 def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
     out: dict[str, float] = {}
+    if any(principal_axis(e) is None for e in case.eta_deg):  # the cos^2 rule's own fixture
+        frame = solve_frame(
+            case.assembly, mesh, folder=case.folder, keep=case.keep, timeout=case.timeout
+        )
+        for eta in case.eta_deg:
+            out[f"Kframe_N_per_mm@{eta:g}"] = frame.K(eta)
     for eta in case.eta_deg:
         e = f"{eta:g}"
         c = solve_assembly(
