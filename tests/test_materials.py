@@ -109,3 +109,26 @@ def test_off_axis_warning_only_between_the_crease_directions() -> None:
     assert "off-axis" not in {w.code for w in analyze(a, eta_deg=[0, 90, 180, -90]).warnings}
     warned = [w for w in analyze(a, eta_deg=[0, 30, 45.5]).warnings if w.code == "off-axis"]
     assert len(warned) == 1 and "eta = 30, 45.5 deg" in warned[0].message
+
+
+def test_facet_buckling_bounds_by_hand() -> None:
+    """Hand calculation (corrugate.buckling): Dura-Lar (E and nu from the library), W 8,
+    n 8, t 0.125: sigma_0 = pi^2 E / (12 (1 - nu^2)) (t / W)^2, times the 9 facets' section
+    9 x 8 x 0.125 = 9 mm^2, times 1 + K_C2 / K_S1, times k = 0.425 and 1.277. Only eta along
+    a layer's creases is defined."""
+    import math
+
+    from corrugate import Assembly, Layer, analyze
+    from corrugate.buckling import facet_buckling_load
+    from corrugate.errors import InputError
+
+    m = get_material("dura-lar")
+    a = Assembly.identical(Layer(8.0, 8, 84.0, m, 0.125))
+    sp = analyze(a).springs
+    sigma0 = math.pi**2 * m.E / (12 * (1 - m.nu**2)) * (0.125 / 8) ** 2
+    unit = sigma0 * 9.0 * (1 + float(sp[1].K_C) / float(sp[0].K_S))
+    b = facet_buckling_load(a, 0.0)
+    assert b.low == pytest.approx(0.425 * unit) and b.high == pytest.approx(1.277 * unit)
+    assert facet_buckling_load(a, 90.0).low == pytest.approx(b.low)
+    with pytest.raises(InputError, match="eta = 45 deg"):
+        facet_buckling_load(a, 45.0)

@@ -24,6 +24,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from .buckling import facet_buckling_load
 from .cli import app, make_console
 from .errors import InputError
 from .geometry import Assembly, Layer
@@ -147,6 +148,15 @@ def _print_result(r: CaseResult, console: Console) -> None:
     for key in _display_keys(r):
         t.add_row(_name(key, units), f"{r.fe[key]:.5g}", *_model_cells(r, key))
     console.print(t)
+    for eta, (low, high) in _buckling_bounds(r).items():
+        P, K = r.fe[f"Pcr_N@{eta}"], r.fe.get(f"K_N_per_mm@{eta}")
+        at = f", at a platen displacement of {P / K:.3g} mm" if K else ""
+        console.print(
+            f"first buckling load in compression along eta = {eta} deg: FE {P:.4g} N{at} "
+            f"(plate theory for the end facets, one free edge: {low:.4g}-{high:.4g} N"
+            + (", without the band" if r.case.connectors else "")
+            + ")"
+        )
     if not r.converged:
         console.print(
             "[yellow]warning[/yellow]: mesh refinement stopped at the finest mesh allowed "
@@ -160,13 +170,24 @@ def _print_result(r: CaseResult, console: Console) -> None:
             console.print(f"  {label}: {text}")
 
 
+def _buckling_bounds(r: CaseResult) -> dict[str, tuple[float, float]]:
+    """Plate-theory bounds (N) beside each FE buckling load of ``r``, by eta."""
+    out: dict[str, tuple[float, float]] = {}
+    for key in r.fe:
+        if key.startswith("Pcr_N@"):
+            eta = key.split("@")[1]
+            b = facet_buckling_load(r.case.assembly, float(eta))
+            out[eta] = (b.low, b.high)
+    return out
+
+
 def _display_keys(r: CaseResult) -> list[str]:
     """Stiffness keys first (by eta, then K, K in the frame, D, EI, D4), then the moduli of
     layer 1 (and of layer 2 when it differs)."""
     order = ("K_N_per_mm", "Kframe_N_per_mm", "D_Nmm", "EI_Nmm2", "D4_Nmm")
     etas = list(dict.fromkeys(f"{e:g}" for e in r.case.eta_deg))
     keys = sorted(
-        (k for k in r.fe if "@" in k),
+        (k for k in r.fe if "@" in k and not k.startswith("Pcr")),
         key=lambda k: (etas.index(k.split("@")[1]), order.index(k.split("@")[0])),
     )
     a = r.case.assembly
@@ -240,6 +261,13 @@ def validate_cmd(
     connectors: Annotated[
         bool,
         Opt("--connectors", help="Add the connector band to the assembly model (docs/fea.md)."),
+    ] = False,
+    buckling: Annotated[
+        bool,
+        Opt(
+            "--buckling",
+            help="Also the first buckling load in compression (eta 0/90), with its plate bounds.",
+        ),
     ] = False,
     no_pure_bending: Annotated[
         bool, Opt("--no-pure-bending", help="Skip the 4-point (pure) bending diagnostic.")
@@ -349,6 +377,7 @@ def validate_cmd(
         keep=keep,
         timeout=timeout,
         connectors=connectors,
+        buckling=buckling,
     )
     with console.status("running CalculiX ..."):
         result = run_case(case)
@@ -362,6 +391,7 @@ def validate_cmd(
                     "meshes": result.meshes,
                     "converged": result.converged,
                     "error": result.error,
+                    "buckling_bounds_N": _buckling_bounds(result),
                 },
                 indent=2,
             )

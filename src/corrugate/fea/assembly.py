@@ -56,6 +56,11 @@ Model (every choice stated; DESIGN.md section 6):
   N mm^2 and N mm. This is the apparent stiffness a bench test would measure: it includes the
   shear deformation of stubby panels, which the closed forms neglect, but not local crushing
   under the rollers (the fixtures act on whole node lines).
+* **Buckling** (``buckling``): the compression fixture with the moving platens of all parts
+  tied (``*EQUATION``) to one reference node loaded by 1 N, and a ``*BUCKLE`` step (linear
+  eigenvalue buckling about the unloaded state, 3 modes, relative accuracy 1e-6; ccx's default
+  is 1e-2): the first buckling factor is the
+  platen force (N) of the first mode. Bounds from plate theory: :mod:`corrugate.buckling`.
 * **Frame** (``frame``, the kinematics of the paper's spring rule): compression along eta = 0 or
   90 as above with the two side edges of each layer on platens too, held in place (normal
   displacement and the rotations about their in-plane axes zero); the side platen's reaction
@@ -106,9 +111,9 @@ __all__ = [
     "specimen",
 ]
 
-LoadTest = Literal["compression", "bending", "bending4", "frame"]
+LoadTest = Literal["compression", "bending", "bending4", "frame", "buckling"]
 Mesher = Literal["auto", "structured", "gmsh"]
-TESTS: tuple[LoadTest, ...] = ("compression", "bending", "bending4", "frame")
+TESTS: tuple[LoadTest, ...] = ("compression", "bending", "bending4", "frame", "buckling")
 FloatArray = NDArray[np.float64]
 
 
@@ -136,7 +141,8 @@ class AssemblyMesh:
 class AssemblyResult:
     """One FE load case of the assembly: K (N/mm) for compression and the frame test, D (N mm)
     and EI (N mm^2) for bending (the other entries None); for the frame test, ``side_force`` (N,
-    compressive) on the far side platen, held in place; ``force`` (N) at the prescribed ``displacement`` (mm), the
+    compressive) on the far side platen, held in place; for ``buckling``, ``buckling_load`` (N,
+    the platen force of the first buckling mode; force and displacement are then NaN); ``force`` (N) at the prescribed ``displacement`` (mm), the
     share of the force carried by each layer, and each layer's part of K or D (``layer_values``).
     With ``connectors`` the band's own nodes carry ``band_value``; nodes shared by a layer and the
     band count for the layer, so the split between the parts is bookkeeping, the total is not."""
@@ -157,10 +163,15 @@ class AssemblyResult:
     band_value: float | None = None
     connectors: bool = False
     side_force: float | None = None
+    buckling_load: float | None = None
 
     def value(self) -> float:
-        """K (N/mm) for compression, D (N mm) for bending: what ``analyze`` reports."""
-        v = self.K if self.test in ("compression", "frame") else self.D
+        """K (N/mm) for compression and the frame, D (N mm) for bending (what ``analyze``
+        reports), the first buckling load (N) for ``buckling``."""
+        if self.test == "buckling":
+            v = self.buckling_load
+        else:
+            v = self.K if self.test in ("compression", "frame") else self.D
         assert v is not None
         return v
 
@@ -582,6 +593,7 @@ def assembly_deck(
     load_sets: list[str] = []
     mid_sets: list[str] = []
     side_sets: list[str] = []
+    platen: list[int] = []
     ua, ub = axis + 1, other + 1
     for k, sh in enumerate(shells, start=1):
         c_load = sh.xyz[:, axis]
@@ -595,12 +607,15 @@ def assembly_deck(
         a_node, b_node = lo[int(np.argmin(lo_other))], lo[int(np.argmax(lo_other))]
         # with the band, the parts form one body: rigid-body constraints on layer 1 only
         rigid = k == 1 or not connectors
-        if test in ("compression", "frame"):
+        if test in ("compression", "frame", "buckling"):
             lines += _fmt_set(f"LO{k}", lo) + _fmt_set(f"HI{k}", hi)
             rot_b = 4 + other  # rotation about the platen's in-plane axis
+            if test == "buckling":  # the moving platen: one reference node, loaded by 1 N
+                platen += hi
+            else:
+                bc.append(f"HI{k},{ua},{ua},{-delta:.12g}")
             bc += [
                 f"LO{k},{ua},{ua},0",
-                f"HI{k},{ua},{ua},{-delta:.12g}",
                 f"LO{k},{rot_b},{rot_b},0",
                 f"HI{k},{rot_b},{rot_b},0",
                 f"LO{k},6,6,0",
@@ -659,8 +674,19 @@ def assembly_deck(
             if rigid:
                 bc.append(f"{m_node},{ub},{ub},0")
             load_sets.append(f"MID{k}")
-    lines += ["*STEP", "*STATIC", "*BOUNDARY", *bc]
-    for name in load_sets + side_sets:
+    if test == "buckling":
+        ref = max(int(sh.ids.max()) for sh in shells) + 1
+        n_plane = (Lx, Ly)[axis]
+        xyz_ref = [0.0, 0.0, 0.0]
+        xyz_ref[axis] = n_plane
+        lines += ["*NODE", f"{ref},{xyz_ref[0]:.10g},{xyz_ref[1]:.10g},{xyz_ref[2]:.10g}"]
+        lines.append("*EQUATION")
+        for node in platen:  # u_load(node) = u_load(ref)
+            lines += ["2", f"{node},{ua},1.,{ref},{ua},-1."]
+        lines += ["*STEP", "*BUCKLE", "3,1.e-6", "*BOUNDARY", *bc, "*CLOAD", f"{ref},{ua},-1."]
+    else:
+        lines += ["*STEP", "*STATIC", "*BOUNDARY", *bc]
+    for name in [] if test == "buckling" else load_sets + side_sets:
         lines += [f"*NODE PRINT,NSET={name}", "RF"]
     for name in mid_sets:
         lines += [f"*NODE PRINT,NSET={name}", "U"]
@@ -699,6 +725,25 @@ def solve_assembly(
     )
     with work_dir(folder, keep) as wd:
         run = run_ccx(deck, wd, job=test, timeout=timeout)
+    if test == "buckling":
+        if not run.buckling_factors:
+            raise SolverError("ccx printed no buckling factor")
+        return AssemblyResult(
+            test,
+            eta_deg,
+            mesh,
+            info.span,
+            math.nan,
+            math.nan,
+            (math.nan, math.nan),
+            K=None,
+            D=None,
+            EI=None,
+            nodes=info.nodes,
+            elements=info.elements,
+            connectors=connectors,
+            buckling_load=run.buckling_factors[0],
+        )
     comp = info.axis if test in ("compression", "frame") else 2
     forces: list[float] = []
     for name in info.sets:

@@ -32,6 +32,7 @@ __all__ = [
     "SolverError",
     "SolverNotFoundError",
     "find_ccx",
+    "parse_buckling",
     "parse_dat",
     "run_ccx",
     "work_dir",
@@ -118,13 +119,37 @@ def parse_dat(text: str) -> list[DatBlock]:
     return blocks
 
 
+_BUCKLING = re.compile(r"B U C K L I N G\s+F A C T O R\s+O U T P U T")
+
+
+def parse_buckling(text: str) -> list[float]:
+    """The buckling factors of a ccx ``.dat`` file (``*BUCKLE`` step), mode 1 first."""
+    factors: list[float] = []
+    for part in _BUCKLING.split(text)[1:]:
+        for line in part.splitlines():
+            cells = line.split()
+            if len(cells) != 2:
+                if factors and cells:
+                    break
+                continue
+            try:
+                mode, value = int(cells[0]), float(cells[1])
+            except ValueError:
+                continue
+            if mode == len(factors) + 1:
+                factors.append(value)
+    return factors
+
+
 @dataclass(frozen=True, slots=True)
 class CcxRun:
-    """The outcome of one ccx run: the parsed ``.dat`` tables and the work folder used."""
+    """The outcome of one ccx run: the parsed ``.dat`` tables, the buckling factors of a
+    ``*BUCKLE`` step (mode 1 first; empty otherwise) and the work folder used."""
 
     blocks: tuple[DatBlock, ...]
     work_dir: Path
     log: str
+    buckling_factors: tuple[float, ...] = ()
 
     def find(self, quantity: str, nset: str) -> list[DatBlock]:
         """All tables of ``quantity`` (e.g. ``"forces"``) for node set ``nset``, in step order."""
@@ -184,4 +209,5 @@ def run_ccx(
     dat = folder / f"{job}.dat"
     if not dat.exists():
         raise SolverError(f"ccx wrote no {dat.name} in {folder}")
-    return CcxRun(tuple(parse_dat(dat.read_text())), folder, log)
+    text = dat.read_text()
+    return CcxRun(tuple(parse_dat(text)), folder, log, tuple(parse_buckling(text)))

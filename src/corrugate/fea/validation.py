@@ -61,7 +61,8 @@ class Case:
     """One design to validate: ``label``, the ``assembly``, the directions ``eta_deg`` (0 and 90:
     the layout itself; any other angle: a square coupon cut along eta, see
     :func:`corrugate.fea.assembly.specimen`), whether to run the unit cells and the 4-point (pure) bending diagnostic, whether the
-    assembly model includes the connector band (``connectors``), and where ccx works
+    assembly model includes the connector band (``connectors``), whether to compute the first
+    buckling load in compression (``buckling``), and where ccx works
     (``folder``, kept if ``keep``)."""
 
     label: str
@@ -77,6 +78,7 @@ class Case:
     parameter: str = ""
     value: float = 0.0
     connectors: bool = False
+    buckling: bool = False
 
 
 @dataclass(frozen=True, slots=True)
@@ -86,7 +88,8 @@ class CaseResult:
     ``fe`` and ``models[name]`` map ``"K_N_per_mm@eta"``, ``"D_Nmm@eta"``, ``"EI_Nmm2@eta"`` (from
     3-point bending, as the paper tested; EI along the layout's axes only), ``"Kframe_N_per_mm@eta"``
     (the panel in a rigid frame, :mod:`~corrugate.fea.frame`; in ``fe`` only when an off-axis eta
-    is asked for), ``"D4_Nmm@eta"`` (pure bending between the load lines
+    is asked for), ``"Pcr_N@eta"`` (first buckling load in compression, N; ``fe`` only, with
+    ``buckling`` and eta 0 or 90; the bounds are :func:`corrugate.buckling.facet_buckling_load`), ``"D4_Nmm@eta"`` (pure bending between the load lines
     of a 4-point test; the closed forms' D for the models) and the layer moduli
     ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
     ``history`` lists (mesh label, values) of every refinement step; ``converged`` is False when
@@ -181,6 +184,18 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
         out[f"D_Nmm@{e}"] = b.value()
         if principal_axis(eta) is not None:
             out[f"EI_Nmm2@{e}"] = b.value() * b.span
+        if case.buckling and principal_axis(eta) is not None:
+            bk = solve_assembly(
+                case.assembly,
+                "buckling",
+                mesh,
+                eta,
+                connectors=case.connectors,
+                folder=case.folder,
+                keep=case.keep,
+                timeout=case.timeout,
+            )
+            out[f"Pcr_N@{e}"] = bk.value()
         if case.pure_bending:
             p = solve_assembly(
                 case.assembly,

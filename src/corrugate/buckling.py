@@ -1,0 +1,74 @@
+"""The in-plane compressive load at which a panel's facets buckle: closed-form bounds.
+
+The stiffness K of ``analyze`` is a small-load stiffness; thin facets buckle long before the
+sheet yields. Under compression along the creases of one layer (eta = 0: layer 1, eta = 90:
+layer 2) rigid platens give every facet of that layer the same strain, hence the same stress
+sigma along its creases, and the layer carries sigma (n + 1) W t; the other layer, loaded across
+its creases, carries the share K_C / K_S of that in parallel (DESIGN.md 3.3).
+
+Each facet is a long plate of width W and thickness t. An interior facet is held along both
+creases (its inclined neighbours keep each crease line straight): k >= 4. The two end facets have
+one free edge (the layer's outer crease line) and one crease; they buckle first, with
+
+    sigma_cr = k pi^2 E / (12 (1 - nu^2)) (t / W)^2,     0.425 <= k <= 1.277
+
+where 0.425 is the long plate simply supported on the crease and free on the other edge, 1.277
+the long plate clamped on the crease and free on the other (Timoshenko and Gere, *Theory of
+Elastic Stability*, 2nd ed., 1961, section 9.2; Gerard and Becker, NACA TN 3781, 1957, fig. 4);
+a real crease restrains the facet's rotation elastically, between the two. The upper value is
+for long facets (length >= about 3 W) with simply supported loaded ends; shorter facets or held
+ends raise it slightly.
+
+The shell FE (``corrugate validate --buckling``, docs/fea.md section 2.6) checks this: its first
+buckling mode is the end facets', inside these bounds. A connector band (a wall on every edge)
+holds the free edges and raises the load (the FE measured about 2.7 times for the case study).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .errors import InputError
+from .geometry import Assembly
+
+__all__ = ["K_CLAMPED_FREE", "K_SIMPLE_FREE", "BucklingEstimate", "facet_buckling_load"]
+
+#: Buckling coefficient of a long plate, simply supported on one edge, free on the other.
+K_SIMPLE_FREE = 0.425
+#: Buckling coefficient of a long plate, clamped on one edge, free on the other.
+K_CLAMPED_FREE = 1.277
+
+
+@dataclass(frozen=True, slots=True)
+class BucklingEstimate:
+    """Bounds (N) on the platen load at which the end facets buckle, compression along
+    ``eta_deg``: ``low`` with the crease as a hinge, ``high`` with it clamped."""
+
+    eta_deg: float
+    low: float
+    high: float
+
+
+def facet_buckling_load(
+    assembly: Assembly, eta_deg: float = 0.0, model: str = "refined"
+) -> BucklingEstimate:
+    """Bounds (N) on the in-plane compressive load along ``eta_deg`` (0 or 90 deg) at which the
+    end facets of the layer loaded along its creases buckle (module docstring); the other
+    layer's share comes from the spring model ``model``."""
+    from .analysis import analyze
+
+    e = eta_deg % 180.0
+    if math.isclose(e, 0.0, abs_tol=1e-9) or math.isclose(e, 180.0, abs_tol=1e-9):
+        along, across = 0, 1
+    elif math.isclose(e, 90.0, abs_tol=1e-9):
+        along, across = 1, 0
+    else:
+        raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg (along a layer's creases)")
+    layer = assembly.layers[along]
+    springs = analyze(assembly, model, [eta_deg]).springs
+    share = 1.0 + float(springs[across].K_C) / float(springs[along].K_S)
+    m = layer.material
+    sigma0 = math.pi**2 * m.E / (12 * (1 - m.nu**2)) * (layer.t / layer.W) ** 2  # MPa
+    load = sigma0 * (layer.n + 1) * layer.W * layer.t * share  # N per unit k
+    return BucklingEstimate(float(eta_deg), K_SIMPLE_FREE * load, K_CLAMPED_FREE * load)
