@@ -132,3 +132,13 @@ def test_facet_buckling_bounds_by_hand() -> None:
     assert facet_buckling_load(a, 90.0).low == pytest.approx(b.low)
     with pytest.raises(InputError, match="eta = 45 deg"):
         facet_buckling_load(a, 45.0)
+    # analyze reports the same bounds along both crease directions, in its JSON too
+    r = analyze(a)
+    assert [x.eta_deg for x in r.buckling] == [0.0, 90.0] and r.buckling[0] == b
+    assert r.to_dict()["buckling"][0] == {"eta_deg": 0.0, "low_N": b.low, "high_N": b.high}
+    # a circle's facets differ in length and its end facets are no long plates: no bounds
+    from corrugate.layouts import Circle
+
+    assert analyze(Assembly.identical(Layer(8.0, 8, 84.0, m, 0.125), Circle())).buckling == ()
+    with pytest.raises(InputError, match="layout = circle"):
+        facet_buckling_load(Assembly.identical(Layer(8.0, 8, 84.0, m, 0.125), Circle()))

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .buckling import BucklingEstimate, buckling_bounds
 from .checks import ModelWarning, design_warnings
 from .geometry import Assembly, Layer
 from .layouts import Layout, inverse_length_sum, length_sum
@@ -161,6 +162,14 @@ class Analysis:
     warnings: tuple[ModelWarning, ...]
 
     @property
+    def buckling(self) -> tuple[BucklingEstimate, ...]:
+        """Bounds (N) on the in-plane compressive load along 0 and 90 deg at which the end
+        facets buckle (:mod:`corrugate.buckling`); empty for layouts other than a square or a
+        rectangle."""
+        found = (buckling_bounds(self.assembly, self.springs, e) for e in (0.0, 90.0))
+        return tuple(b for b in found if b is not None)
+
+    @property
     def L(self) -> float | None:
         """Side of a square (or diameter of a circle) layout (mm); None for other layouts."""
         a = self.assembly
@@ -203,6 +212,7 @@ class Analysis:
             "mass_g": self.mass.total,
             "mass_breakdown_g": self.mass.as_dict(),
             "stiffness": [s.as_dict() for s in self.stiffness],
+            "buckling": [b.as_dict() for b in self.buckling],
             "warnings": [w.as_dict() for w in self.warnings],
         }
 

@@ -31,8 +31,15 @@ from dataclasses import dataclass
 
 from .errors import InputError
 from .geometry import Assembly
+from .springs import LayerSprings
 
-__all__ = ["K_CLAMPED_FREE", "K_SIMPLE_FREE", "BucklingEstimate", "facet_buckling_load"]
+__all__ = [
+    "K_CLAMPED_FREE",
+    "K_SIMPLE_FREE",
+    "BucklingEstimate",
+    "buckling_bounds",
+    "facet_buckling_load",
+]
 
 #: Buckling coefficient of a long plate, simply supported on one edge, free on the other.
 K_SIMPLE_FREE = 0.425
@@ -49,26 +56,45 @@ class BucklingEstimate:
     low: float
     high: float
 
+    def as_dict(self) -> dict[str, float]:
+        return {"eta_deg": self.eta_deg, "low_N": self.low, "high_N": self.high}
 
-def facet_buckling_load(
-    assembly: Assembly, eta_deg: float = 0.0, model: str = "refined"
-) -> BucklingEstimate:
-    """Bounds (N) on the in-plane compressive load along ``eta_deg`` (0 or 90 deg) at which the
-    end facets of the layer loaded along its creases buckle (module docstring); the other
-    layer's share comes from the spring model ``model``."""
-    from .analysis import analyze
 
+def buckling_bounds(
+    assembly: Assembly, springs: tuple[LayerSprings, LayerSprings], eta_deg: float
+) -> BucklingEstimate | None:
+    """Bounds (N) on the in-plane compressive load along ``eta_deg`` at which the end facets of
+    the layer loaded along its creases buckle (module docstring), with the layers' ``springs``
+    for the other layer's share. None where they do not apply: eta not along a layer's creases,
+    or a layout other than a square or rectangle (its facets differ in length and its end facets
+    are not long plates)."""
     e = eta_deg % 180.0
     if math.isclose(e, 0.0, abs_tol=1e-9) or math.isclose(e, 180.0, abs_tol=1e-9):
         along, across = 0, 1
     elif math.isclose(e, 90.0, abs_tol=1e-9):
         along, across = 1, 0
     else:
-        raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg (along a layer's creases)")
+        return None
+    if assembly.layout.name not in ("square", "rectangle"):
+        return None
     layer = assembly.layers[along]
-    springs = analyze(assembly, model, [eta_deg]).springs
     share = 1.0 + float(springs[across].K_C) / float(springs[along].K_S)
     m = layer.material
     sigma0 = math.pi**2 * m.E / (12 * (1 - m.nu**2)) * (layer.t / layer.W) ** 2  # MPa
     load = sigma0 * (layer.n + 1) * layer.W * layer.t * share  # N per unit k
     return BucklingEstimate(float(eta_deg), K_SIMPLE_FREE * load, K_CLAMPED_FREE * load)
+
+
+def facet_buckling_load(
+    assembly: Assembly, eta_deg: float = 0.0, model: str = "refined"
+) -> BucklingEstimate:
+    """:func:`buckling_bounds` with the springs of ``model``; an :class:`InputError` where the
+    bounds do not apply."""
+    from .analysis import analyze
+
+    b = buckling_bounds(assembly, analyze(assembly, model, [eta_deg]).springs, eta_deg)
+    if b is None:
+        if assembly.layout.name not in ("square", "rectangle"):
+            raise InputError("layout", assembly.layout.name, "square or rectangle")
+        raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg (along a layer's creases)")
+    return b

@@ -128,6 +128,14 @@ def _print_analysis(r: Analysis, console: Console) -> None:
     for d in r.stiffness:
         s.add_row(_fmt(d.eta_deg), _fmt(d.K, 5), _fmt(d.D, 5), _fmt(d.EI, 5), f"{d.EI / 1000:.2f}")
     console.print(s)
+    K = {d.eta_deg % 180: d.K for d in r.stiffness}
+    for b in r.buckling:
+        k = K.get(b.eta_deg % 180)
+        travel = f" (platen travel {b.low / k:.2g}-{b.high / k:.2g} mm)" if k else ""
+        console.print(
+            f"in-plane compression along {b.eta_deg:g} deg: the end facets buckle at "
+            f"{b.low:.3g}-{b.high:.3g} N{travel}; K holds below that"
+        )
     for w in r.warnings:
         console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
 
