@@ -133,8 +133,8 @@ def _print_analysis(r: Analysis, console: Console) -> None:
         k = K.get(b.eta_deg % 180)
         travel = f" (platen travel {b.low / k:.2g}-{b.high / k:.2g} mm)" if k else ""
         console.print(
-            f"in-plane compression along {b.eta_deg:g} deg: the end facets buckle at "
-            f"{b.low:.3g}-{b.high:.3g} N{travel}; K holds below that"
+            f"compression along {b.eta_deg:g} deg: K holds until the end facets buckle, at "
+            f"{b.low:.3g}-{b.high:.3g} N{travel}"
         )
     for w in r.warnings:
         console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
