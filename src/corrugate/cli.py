@@ -19,7 +19,7 @@ from .analysis import Analysis, analyze
 from .errors import CorrugateError
 from .geometry import Layer
 from .inputs import (
-    assembly_from_options,
+    assembly_from_namespace,
     layer_from_options,
     material_from_options,
     parse_etas,
@@ -202,23 +202,7 @@ def analyze_cmd(
 
     Example: corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper --eta 0
     """
-    assembly = assembly_from_options(
-        W=W,
-        n=n,
-        alpha=alpha,
-        material=material,
-        thickness=thickness,
-        E=E,
-        nu=nu,
-        density=density,
-        W2=W2,
-        n2=n2,
-        alpha2=alpha2,
-        material2=material2,
-        thickness2=thickness2,
-        layout=layout,
-        vertices=vertices,
-    )
+    assembly = assembly_from_namespace(locals())
     etas = parse_etas(eta)
     get_model(model)
     models = list(MODELS) if compare_models else [model]

@@ -28,7 +28,7 @@ from .buckling import facet_buckling_load
 from .cli import app, make_console
 from .errors import InputError
 from .geometry import Assembly, Layer
-from .inputs import assembly_from_options, parse_etas
+from .inputs import assembly_from_namespace, parse_etas
 from .layouts import Rectangle, Square
 from .materials import get_material, library
 from .moduli import MODELS
@@ -342,22 +342,7 @@ def validate_cmd(
             reason="is missing",
         )
     else:
-        assembly = assembly_from_options(
-            W=W,
-            n=n,
-            alpha=alpha,
-            material=material,
-            thickness=thickness,
-            E=E,
-            nu=nu,
-            density=density,
-            W2=W2,
-            n2=n2,
-            alpha2=alpha2,
-            material2=material2,
-            thickness2=thickness2,
-            layout=layout,
-        )
+        assembly = assembly_from_namespace(locals())
     etas = parse_etas(eta or ["0"])
     for e in etas:  # fail before any run: layout, eta and connectors must fit the FE model
         specimen(assembly, e)

@@ -11,7 +11,7 @@ web app report the same errors with the same words.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from .analysis import Analysis, analyze
@@ -23,9 +23,11 @@ from .moduli import DEFAULT_MODEL, get_model
 from .units import parse_quantity
 
 __all__ = [
+    "ASSEMBLY_OPTIONS",
     "DEFAULT_ETAS",
     "AnalysisRequest",
     "analysis_request",
+    "assembly_from_namespace",
     "assembly_from_options",
     "layer_from_options",
     "material_from_options",
@@ -201,6 +203,34 @@ def assembly_from_options(
         suffix="2",
     )
     return Assembly(layer1, layer2, make_layout(layout, parse_vertices(vertices)))
+
+
+#: The keyword options of :func:`assembly_from_options`, as the commands name their parameters.
+ASSEMBLY_OPTIONS = (
+    "W",
+    "n",
+    "alpha",
+    "material",
+    "thickness",
+    "E",
+    "nu",
+    "density",
+    "W2",
+    "n2",
+    "alpha2",
+    "material2",
+    "thickness2",
+    "layout",
+    "vertices",
+)
+
+
+def assembly_from_namespace(values: Mapping[str, object]) -> Assembly:
+    """:func:`assembly_from_options` with the options found in ``values`` (a command's
+    ``locals()``: every name of :data:`ASSEMBLY_OPTIONS` it has), so that the commands that take
+    a design's options do not each pass them on one by one."""
+    options = {k: values[k] for k in ASSEMBLY_OPTIONS if k in values}
+    return assembly_from_options(**options)  # type: ignore[arg-type]
 
 
 @dataclass(frozen=True, slots=True)

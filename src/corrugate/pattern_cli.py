@@ -9,7 +9,7 @@ import typer
 
 from .analysis import analyze
 from .cli import app, make_console
-from .inputs import assembly_from_options
+from .inputs import assembly_from_namespace
 from .moduli import DEFAULT_MODEL, get_model
 from .outputs import OutputOptions, write_design_files
 from .pattern.linestyle import line_style
@@ -73,23 +73,7 @@ def pattern_cmd(
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
 ) -> None:
     """Write the cut files (SVG, DXF, PDF), FOLD, GLB/STL and assembly steps of one design."""
-    assembly = assembly_from_options(
-        W=W,
-        n=n,
-        alpha=alpha,
-        material=material,
-        thickness=thickness,
-        E=E,
-        nu=nu,
-        density=density,
-        W2=W2,
-        n2=n2,
-        alpha2=alpha2,
-        material2=material2,
-        thickness2=thickness2,
-        layout=layout,
-        vertices=vertices,
-    )
+    assembly = assembly_from_namespace(locals())
     get_model(model)
     opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth)
     result = analyze(assembly, model, (0.0, 90.0), opts.fabrication)

@@ -22,7 +22,13 @@ from ..analysis import analyze
 from ..errors import CorrugateError
 from ..geometry import Assembly
 from ..moduli import MODELS
-from .assembly import AssemblyMesh, principal_axis, solve_assembly
+from .assembly import (
+    AssemblyMesh,
+    AssemblyResult,
+    LoadTest,
+    principal_axis,
+    solve_assembly,
+)
 from .frame import solve_frame
 from .unitcell import UnitCell, UnitCellMesh, solve_unit_cell
 
@@ -158,56 +164,31 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
         )
         for eta in case.eta_deg:
             out[f"Kframe_N_per_mm@{eta:g}"] = frame.K(eta)
+
+    def run(test: LoadTest, eta: float) -> AssemblyResult:
+        return solve_assembly(
+            case.assembly,
+            test,
+            mesh,
+            eta,
+            connectors=case.connectors,
+            folder=case.folder,
+            keep=case.keep,
+            timeout=case.timeout,
+        )
+
     for eta in case.eta_deg:
         e = f"{eta:g}"
-        c = solve_assembly(
-            case.assembly,
-            "compression",
-            mesh,
-            eta,
-            connectors=case.connectors,
-            folder=case.folder,
-            keep=case.keep,
-            timeout=case.timeout,
-        )
-        b = solve_assembly(
-            case.assembly,
-            "bending",
-            mesh,
-            eta,
-            connectors=case.connectors,
-            folder=case.folder,
-            keep=case.keep,
-            timeout=case.timeout,
-        )
-        out[f"K_N_per_mm@{e}"] = c.value()
+        principal = principal_axis(eta) is not None
+        out[f"K_N_per_mm@{e}"] = run("compression", eta).value()
+        b = run("bending", eta)
         out[f"D_Nmm@{e}"] = b.value()
-        if principal_axis(eta) is not None:
+        if principal:
             out[f"EI_Nmm2@{e}"] = b.value() * b.span
-        if case.buckling and principal_axis(eta) is not None:
-            bk = solve_assembly(
-                case.assembly,
-                "buckling",
-                mesh,
-                eta,
-                connectors=case.connectors,
-                folder=case.folder,
-                keep=case.keep,
-                timeout=case.timeout,
-            )
-            out[f"Pcr_N@{e}"] = bk.value()
+        if case.buckling and principal:
+            out[f"Pcr_N@{e}"] = run("buckling", eta).value()
         if case.pure_bending:
-            p = solve_assembly(
-                case.assembly,
-                "bending4",
-                mesh,
-                eta,
-                connectors=case.connectors,
-                folder=case.folder,
-                keep=case.keep,
-                timeout=case.timeout,
-            )
-            out[f"D4_Nmm@{e}"] = p.value()
+            out[f"D4_Nmm@{e}"] = run("bending4", eta).value()
     return out
 
 
