@@ -87,6 +87,7 @@ with the structured mesh). Circles and polygons are refused: no straight edges f
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -97,6 +98,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..geometry import Assembly, Layer
+from ..pattern.options import DEFAULT_FABRICATION
 from .ccx import SolverError, run_ccx, work_dir
 
 __all__ = [
@@ -318,13 +320,74 @@ def _wall(layer: Layer, along: int, z_zig: float, strip: tuple[float, float]) ->
     return out
 
 
-def _band_shell(a: Assembly, along: int, shells: list[_Shell], tol: float) -> _Shell:
+Bond = Literal["edges", "flanges"]
+Point3 = tuple[float, float, float]
+
+
+def _flanges(
+    a: Assembly, along: int, depth: float, tab_length: float
+) -> list[tuple[int, list[list[Point3]]]]:
+    """S8R elements (8 points each, global x, y, z) of the band's glue flanges: a horizontal strip
+    of about ``depth`` inwards at the foot (z = 0) and at the top (z = t_d) of each wall, on the
+    layers' own node stations (the layers meshed with ``along`` x (n_other + 1) elements along
+    their creases), cut by slits into tabs no longer than ``tab_length`` (the cut file's tabs).
+    Returns (tab number, elements) per tab; tabs share nodes only through the wall and the layers.
+    The flanges of the walls y = 0 and Ly run the full length; those of x = 0 and Lx stop where
+    they meet them (no overlap at the corners; the cut file chamfers them instead)."""
+    l1, l2 = a.layer1, a.layer2
+    td, Lx, Ly = a.thickness, a.Lx, a.Ly
+    out: list[tuple[int, list[list[Point3]]]] = []
+    # half-element spacings: along x, layer 1's chordwise stations; along y, layer 2's
+    hx = l1.pitch / (2 * along)
+    hy = l2.pitch / (2 * along)
+    mx = max(1, round(depth / (2 * hx)))  # flange elements inwards from an x wall
+    my = max(1, round(depth / (2 * hy)))
+    tab = 0
+    # (wall-normal axis, wall coordinate, inward sign, along-wall stations, inward spacing, count)
+    nx_stations = 2 * along * (l1.n + 1)
+    ny_stations = 2 * along * (l2.n + 1)
+    walls = [
+        (1, 0.0, 1.0, (0, nx_stations), hx, hy, my),
+        (1, Ly, -1.0, (0, nx_stations), hx, hy, my),
+        (0, 0.0, 1.0, (2 * my, ny_stations - 2 * my), hy, hx, mx),
+        (0, Lx, -1.0, (2 * my, ny_stations - 2 * my), hy, hx, mx),
+    ]
+    for normal, c, sign, (i_lo, i_hi), h_along, h_in, m in walls:
+        run = (i_hi - i_lo) * h_along
+        n_tabs = max(1, math.ceil(run / tab_length - 1e-9))
+        bounds = [i_lo + 2 * round((i_hi - i_lo) / 2 * k / n_tabs) for k in range(n_tabs + 1)]
+        for z in (0.0, td):
+            for i0, i1 in itertools.pairwise(bounds):
+                tab += 1
+                elems: list[list[Point3]] = []
+                for ei in range(i0, i1, 2):
+                    for ej in range(m):
+                        j0 = 2 * ej
+                        quad = [(ei, j0), (ei + 2, j0), (ei + 2, j0 + 2), (ei, j0 + 2)]
+                        mids = [(ei + 1, j0), (ei + 2, j0 + 1), (ei + 1, j0 + 2), (ei, j0 + 1)]
+                        pts: list[Point3] = []
+                        for i, j in quad + mids:
+                            s_, w_ = i * h_along, c + sign * j * h_in
+                            pts.append((s_, w_, z) if normal == 1 else (w_, s_, z))
+                        elems.append(pts)
+                out.append((tab, elems))
+    return out
+
+
+def _band_shell(
+    a: Assembly, along: int, shells: list[_Shell], tol: float, bond: Bond = "edges"
+) -> _Shell:
     """The connector band: four walls standing on the rectangle's outline from z = 0 to t_d, as
-    S8R shells of layer 1's material and thickness. Band nodes at the position of a layer node
-    are that node (shared nodes: the layer edges are tied to the band where they meet it); the
-    layer meshes must run ``along`` x (n_other + 1) elements along their creases for this. Where
-    layer 1's ridges meet layer 2's end valleys on the band, layer 2's node is merged into layer
-    1's (``shells`` is updated in place)."""
+    S8R shells of layer 1's material and thickness; the layer meshes must run ``along`` x
+    (n_other + 1) elements along their creases.
+
+    ``bond="edges"``: band nodes at the position of a layer node are that node (shared nodes: the
+    layer edges are tied to the band along their whole length, a perfect bond); where layer 1's
+    ridges meet layer 2's end valleys on the band, layer 2's node is merged into layer 1's
+    (``shells`` is updated in place). ``bond="flanges"``: the band as cut, with its glue flanges
+    (:func:`_flanges`), and the layers tied to it only where they rest on a flange (the planes
+    z = 0 and z = t_d: layer 1's valleys on the foot flanges, layer 2's ridges under the top
+    ones); elsewhere a layer edge merely touches the wall, unconnected."""
     l1, l2 = a.layer1, a.layer2
     h1, td = l1.height, a.thickness
     Lx, Ly = a.Lx, a.Ly
@@ -338,32 +401,54 @@ def _band_shell(a: Assembly, along: int, shells: list[_Shell], tol: float) -> _S
     def key(x: float, y: float, z: float) -> tuple[int, int, int]:
         return (round(x / tol), round(y / tol), round(z / tol))
 
-    known: dict[tuple[int, int, int], int] = {}
+    def glued(z: float) -> bool:
+        return bond == "edges" or abs(z) < tol or abs(z - td) < tol
+
+    layer_nodes: dict[tuple[int, int, int], int] = {}
     alias: dict[int, int] = {}  # a layer node at the place of another layer's node
     for sh in shells:
         for nid, (x, y, z) in zip(sh.ids, sh.xyz, strict=True):
             k = key(float(x), float(y), float(z))
-            if k in known:
-                alias[int(nid)] = known[k]
+            if k in layer_nodes:
+                alias[int(nid)] = layer_nodes[k]
             else:
-                known[k] = int(nid)
+                layer_nodes[k] = int(nid)
     next_id = max(int(sh.ids.max()) for sh in shells) + 1
+    band_nodes: dict[tuple[object, ...], int] = {}
     ids: list[int] = []
-    coords: list[tuple[float, float, float]] = []
+    coords: list[Point3] = []
     elements: list[list[int]] = []
+
+    def node(xyz: Point3, tab: int = 0) -> int:
+        """The node at ``xyz``: a layer node where the band is glued to it, else a band node
+        (per flange tab off the wall line, so that the slits separate the tabs)."""
+        nonlocal next_id
+        k = key(*xyz)
+        if k in layer_nodes and glued(xyz[2]):
+            return layer_nodes[k]
+        bk: tuple[object, ...] = (*k, tab)
+        if bk not in band_nodes:
+            band_nodes[bk] = next_id
+            ids.append(next_id)
+            coords.append(xyz)
+            next_id += 1
+        return band_nodes[bk]
+
+    on_wall: set[tuple[int, int, int]] = set()
     for elems, normal_axis, c in walls:
         for pts in elems:
-            conn: list[int] = []
+            conn = []
             for s_, z in pts:
                 xyz = (c, s_, z) if normal_axis == 0 else (s_, c, z)
-                k = key(*xyz)
-                if k not in known:
-                    known[k] = next_id
-                    ids.append(next_id)
-                    coords.append(xyz)
-                    next_id += 1
-                conn.append(known[k])
+                on_wall.add(key(*xyz))
+                conn.append(node(xyz))
             elements.append(conn)
+    if bond == "flanges":
+        for tab, elems3 in _flanges(
+            a, along, DEFAULT_FABRICATION.tab_depth, DEFAULT_FABRICATION.tab_length
+        ):
+            for pts3 in elems3:
+                elements.append([node(p, 0 if key(*p) in on_wall else tab) for p in pts3])
     used = {n for e in elements for n in e}
     # merge coincident layer nodes on the band only: inside, where layer 1's ridges cross layer
     # 2's valleys, the layers stay unconnected as without the band
@@ -374,16 +459,17 @@ def _band_shell(a: Assembly, along: int, shells: list[_Shell], tol: float) -> _S
             keep = ~np.isin(sh.ids, off)
             merged = [[alias.get(n, n) for n in e] for e in sh.elements]
             shells[i] = _Shell(sh.ids[keep], sh.xyz[keep], merged, sh.t, sh.E, sh.nu)
-    for sh in shells:  # every layer node on the outline must be a band node
-        on = (
-            (np.abs(sh.xyz[:, 0]) < tol)
-            | (np.abs(sh.xyz[:, 0] - Lx) < tol)
-            | (np.abs(sh.xyz[:, 1]) < tol)
-            | (np.abs(sh.xyz[:, 1] - Ly) < tol)
-        )
-        missing = [int(n) for n in sh.ids[on] if int(n) not in used]
-        if missing:
-            raise SolverError(f"{len(missing)} layer edge nodes do not meet the band's mesh")
+    if bond == "edges":
+        for sh in shells:  # every layer node on the outline must be a band node
+            on = (
+                (np.abs(sh.xyz[:, 0]) < tol)
+                | (np.abs(sh.xyz[:, 0] - Lx) < tol)
+                | (np.abs(sh.xyz[:, 1]) < tol)
+                | (np.abs(sh.xyz[:, 1] - Ly) < tol)
+            )
+            missing = [int(n) for n in sh.ids[on] if int(n) not in used]
+            if missing:
+                raise SolverError(f"{len(missing)} layer edge nodes do not meet the band's mesh")
     m = l1.material
     return _Shell(np.asarray(ids, dtype=np.int64), np.asarray(coords), elements, l1.t, m.E, m.nu)
 
@@ -501,6 +587,7 @@ def assembly_deck(
     connectors: bool = False,
     match_layers: bool | None = None,
     mesher: Mesher = "auto",
+    bond: Bond = "edges",
 ) -> tuple[str, DeckInfo]:
     """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
 
@@ -512,6 +599,8 @@ def assembly_deck(
     specimen(assembly, eta_deg)  # the layout and eta must fit the FE tests
     if mesher not in ("auto", "structured", "gmsh"):
         raise InputError("mesher", mesher, "auto, structured or gmsh")
+    if bond not in ("edges", "flanges"):
+        raise InputError("bond", bond, "edges or flanges")
     mesh = mesh or AssemblyMesh()
     a = assembly
     Lx, Ly = a.Lx, a.Ly
@@ -560,7 +649,7 @@ def assembly_deck(
         )
         L_load = (Lx, Ly)[axis]
         if connectors:
-            shells.append(_band_shell(a, mesh.along, shells, tol))
+            shells.append(_band_shell(a, mesh.along, shells, tol, bond))
     other = 1 - axis
     if delta is None:
         delta = 1e-3 * L_load
@@ -708,6 +797,7 @@ def solve_assembly(
     connectors: bool = False,
     match_layers: bool | None = None,
     mesher: Mesher = "auto",
+    bond: Bond = "edges",
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
@@ -722,6 +812,7 @@ def solve_assembly(
         connectors=connectors,
         match_layers=match_layers,
         mesher=mesher,
+        bond=bond,
     )
     with work_dir(folder, keep) as wd:
         run = run_ccx(deck, wd, job=test, timeout=timeout)
