@@ -639,3 +639,59 @@ def test_first_buckling_mode_is_the_end_facets(
 
     share = sum(float(u @ u) for n, u in mode1.items() if in_end_facets(n)) / total
     assert share > 0.9
+
+
+def test_flange_band_is_glued_only_on_its_flanges(ccx: str) -> None:
+    """`bond="flanges"`: the band as cut (walls, glue flanges at foot and top slit into tabs),
+    tied to the layers only where they rest on a flange. Read back from the deck: every layer
+    node that is also a band node lies on a flange plane (z = 0 or t_d), and there are some
+    (layer 1's valleys on the foot flanges); no flange element is degenerate, and each flange
+    has as many tabs as the cut file along that edge (pattern.connectors.slit_count).
+    Solved: adding the band cannot soften the panel (minimum potential energy), and its K gain
+    lies between the walls along the load alone in uniaxial stress, 2 E t t_d / L (a statically
+    admissible field: lower bound; the slit flanges carry no stress in it), and the walls with
+    full-length flanges (depth g rounded up to whole elements: at most 1.5 g here) uniformly
+    strained in plane strain, 2 E t (t_d + 2 g) / (L (1 - nu^2)): what the band could add were
+    its flanges unslit; an upper estimate rather than a rigorous bound (the glue also lets the
+    band hold the layers), which the FE stays well under (gain 237 N/mm between 156 and 650)."""
+    from corrugate.fea.assembly import _flanges
+    from corrugate.pattern.connectors import slit_count
+    from corrugate.pattern.options import DEFAULT_FABRICATION
+
+    layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
+    a = Assembly.identical(layer)
+    mesh = AssemblyMesh(2)
+    deck, _ = assembly_deck(a, "compression", mesh, connectors=True, bond="flanges")
+    nodes: dict[int, tuple[float, ...]] = {}
+    sets: dict[str, list[list[int]]] = {}
+    block = None
+    for line in deck.splitlines():
+        if line.startswith("*"):
+            block = line.split("ELSET=")[1].split(",")[0] if line.startswith("*ELEMENT") else None
+            if line.startswith("*NODE") and not line.startswith("*NODE PRINT"):
+                block = "NODE"
+            continue
+        if block == "NODE":
+            i, *xyz = line.split(",")
+            nodes[int(i)] = tuple(float(v) for v in xyz)
+        elif block:
+            sets.setdefault(block, []).append([int(v) for v in line.split(",")[1:]])
+    layer_nodes = {n for k in ("L1", "L2") for e in sets[k] for n in e}
+    band_nodes = {n for e in sets["L3"] for n in e}
+    glued = layer_nodes & band_nodes
+    td = a.thickness
+    assert glued and all(min(abs(nodes[n][2]), abs(nodes[n][2] - td)) < 1e-9 for n in glued)
+    for e in sets["L3"]:
+        assert len(set(e)) == 8
+    tabs = _flanges(a, mesh.along)
+    edges = [a.Lx, a.Lx, a.Ly, a.Ly]
+    expected = sum(2 * (slit_count(e, DEFAULT_FABRICATION) + 1) for e in edges)
+    assert len(tabs) == expected
+
+    E, nu, t = layer.material.E, layer.material.nu, layer.t
+    g = DEFAULT_FABRICATION.tab_depth
+    bare = solve_assembly(a, "compression", mesh, 0.0, match_layers=True).value()
+    band = solve_assembly(a, "compression", mesh, 0.0, connectors=True, bond="flanges").value()
+    low = 2 * E * t * a.thickness / a.Ly
+    high = 2 * E * t * (a.thickness + 2 * 1.5 * g) / (a.Ly * (1 - nu**2))
+    assert bare <= band and 0.99 * low <= band - bare <= high

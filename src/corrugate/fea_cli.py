@@ -262,6 +262,13 @@ def validate_cmd(
         bool,
         Opt("--connectors", help="Add the connector band to the assembly model (docs/fea.md)."),
     ] = False,
+    bond: Annotated[
+        str,
+        Opt(
+            help="With --connectors: edges (layers bonded to the band along their whole edges) "
+            "or flanges (the band as cut, glued only where the layers rest on its flanges)."
+        ),
+    ] = "edges",
     buckling: Annotated[
         bool,
         Opt(
@@ -350,7 +357,13 @@ def validate_cmd(
             raise InputError(
                 "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
             )
-    band = " +connectors" if connectors else ""
+    if bond not in ("edges", "flanges"):
+        raise InputError("bond", repr(bond), "edges or flanges")
+    if bond != "edges" and not connectors:
+        raise InputError(
+            "bond", bond, "flanges only together with --connectors", reason="needs the band"
+        )
+    band = (" +connectors" + (" (flanges)" if bond == "flanges" else "")) if connectors else ""
     case = Case(
         _label(assembly) + band,
         assembly,
@@ -363,6 +376,7 @@ def validate_cmd(
         timeout=timeout,
         connectors=connectors,
         buckling=buckling,
+        bond="flanges" if bond == "flanges" else "edges",
     )
     with console.status("running CalculiX ..."):
         result = run_case(case)

@@ -98,13 +98,15 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..geometry import Assembly, Layer
-from ..pattern.options import DEFAULT_FABRICATION
+from ..pattern.connectors import slit_count
+from ..pattern.options import DEFAULT_FABRICATION, FabricationOptions
 from .ccx import SolverError, run_ccx, work_dir
 
 __all__ = [
     "TESTS",
     "AssemblyMesh",
     "AssemblyResult",
+    "Bond",
     "DeckInfo",
     "LoadTest",
     "assembly_deck",
@@ -325,12 +327,14 @@ Point3 = tuple[float, float, float]
 
 
 def _flanges(
-    a: Assembly, along: int, depth: float, tab_length: float
+    a: Assembly, along: int, opts: FabricationOptions = DEFAULT_FABRICATION
 ) -> list[tuple[int, list[list[Point3]]]]:
     """S8R elements (8 points each, global x, y, z) of the band's glue flanges: a horizontal strip
     of about ``depth`` inwards at the foot (z = 0) and at the top (z = t_d) of each wall, on the
     layers' own node stations (the layers meshed with ``along`` x (n_other + 1) elements along
-    their creases), cut by slits into tabs no longer than ``tab_length`` (the cut file's tabs).
+    their creases), ``opts.tab_depth`` deep (rounded to whole elements), cut by slits into as many
+    equal tabs as the cut file has along that edge (:func:`corrugate.pattern.connectors.
+    slit_count`; tab ends rounded to element boundaries).
     Returns (tab number, elements) per tab; tabs share nodes only through the wall and the layers.
     The flanges of the walls y = 0 and Ly run the full length; those of x = 0 and Lx stop where
     they meet them (no overlap at the corners; the cut file chamfers them instead)."""
@@ -340,21 +344,20 @@ def _flanges(
     # half-element spacings: along x, layer 1's chordwise stations; along y, layer 2's
     hx = l1.pitch / (2 * along)
     hy = l2.pitch / (2 * along)
-    mx = max(1, round(depth / (2 * hx)))  # flange elements inwards from an x wall
-    my = max(1, round(depth / (2 * hy)))
+    mx = max(1, round(opts.tab_depth / (2 * hx)))  # flange elements inwards from an x wall
+    my = max(1, round(opts.tab_depth / (2 * hy)))
     tab = 0
     # (wall-normal axis, wall coordinate, inward sign, along-wall stations, inward spacing, count)
     nx_stations = 2 * along * (l1.n + 1)
     ny_stations = 2 * along * (l2.n + 1)
     walls = [
-        (1, 0.0, 1.0, (0, nx_stations), hx, hy, my),
-        (1, Ly, -1.0, (0, nx_stations), hx, hy, my),
-        (0, 0.0, 1.0, (2 * my, ny_stations - 2 * my), hy, hx, mx),
-        (0, Lx, -1.0, (2 * my, ny_stations - 2 * my), hy, hx, mx),
+        (1, 0.0, 1.0, (0, nx_stations), hx, hy, my, Lx),
+        (1, Ly, -1.0, (0, nx_stations), hx, hy, my, Lx),
+        (0, 0.0, 1.0, (2 * my, ny_stations - 2 * my), hy, hx, mx, Ly),
+        (0, Lx, -1.0, (2 * my, ny_stations - 2 * my), hy, hx, mx, Ly),
     ]
-    for normal, c, sign, (i_lo, i_hi), h_along, h_in, m in walls:
-        run = (i_hi - i_lo) * h_along
-        n_tabs = max(1, math.ceil(run / tab_length - 1e-9))
+    for normal, c, sign, (i_lo, i_hi), h_along, h_in, m, edge in walls:
+        n_tabs = slit_count(edge, opts) + 1
         bounds = [i_lo + 2 * round((i_hi - i_lo) / 2 * k / n_tabs) for k in range(n_tabs + 1)]
         for z in (0.0, td):
             for i0, i1 in itertools.pairwise(bounds):
@@ -444,9 +447,7 @@ def _band_shell(
                 conn.append(node(xyz))
             elements.append(conn)
     if bond == "flanges":
-        for tab, elems3 in _flanges(
-            a, along, DEFAULT_FABRICATION.tab_depth, DEFAULT_FABRICATION.tab_length
-        ):
+        for tab, elems3 in _flanges(a, along):
             for pts3 in elems3:
                 elements.append([node(p, 0 if key(*p) in on_wall else tab) for p in pts3])
     used = {n for e in elements for n in e}

@@ -25,6 +25,7 @@ from ..moduli import MODELS
 from .assembly import (
     AssemblyMesh,
     AssemblyResult,
+    Bond,
     LoadTest,
     principal_axis,
     solve_assembly,
@@ -68,7 +69,8 @@ class Case:
     the layout itself; any other angle: a square coupon cut along eta, see
     :func:`corrugate.fea.assembly.specimen`), whether to run the unit cells and the 4-point (pure) bending diagnostic, whether the
     assembly model includes the connector band (``connectors``), whether to compute the first
-    buckling load in compression (``buckling``), and where ccx works
+    buckling load in compression (``buckling``), how the band holds the layers (``bond``: along
+    their whole edges, or only where they rest on its glue flanges), and where ccx works
     (``folder``, kept if ``keep``)."""
 
     label: str
@@ -85,6 +87,7 @@ class Case:
     value: float = 0.0
     connectors: bool = False
     buckling: bool = False
+    bond: Bond = "edges"
 
 
 @dataclass(frozen=True, slots=True)
@@ -172,6 +175,7 @@ def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
             mesh,
             eta,
             connectors=case.connectors,
+            bond=case.bond,
             folder=case.folder,
             keep=case.keep,
             timeout=case.timeout,
