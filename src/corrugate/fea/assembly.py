@@ -22,9 +22,13 @@ Model (every choice stated; DESIGN.md section 6):
   (rigid through-thickness links), i.e. a rigid, fully bonded joint that also transmits moments.
   Where layer 1's ridges meet layer 2's end valleys on the band, the two layers' nodes are merged
   into one; inside the panel the layers stay unconnected, as without the band. Walls meet at the
-  corners on shared nodes (the overlap tabs are taken as fully bonded). **The glue flanges are
-  omitted** (their 4 mm strips lie flat under layer 1's valleys and over layer 2's ridges, i.e.
-  along the edges already tied). The fixtures act on the band as on the layers: in compression
+  corners on shared nodes (the overlap tabs are taken as fully bonded). That is ``bond="edges"``
+  (the default), a perfect bond without the glue flanges. ``bond="flanges"`` models the band as
+  cut instead: the walls plus their glue flanges (horizontal strips about 4 mm deep at the foot
+  and the top of each wall, on the layers' node stations, slit into the cut file's tabs), and the
+  layers tied only where they rest on a flange (layer nodes on z = 0 or t_d: layer 1's valleys on
+  the foot flanges, layer 2's ridges under the top ones); elsewhere the layer edges only touch the
+  walls (no contact is modelled). The fixtures act on the band as on the layers: in compression
   every band node on a platen plane is on the platen (the walls at the loaded edges lie entirely
   on it); in bending every band node on an end line is supported and every band node on a load
   line moves with the rigid load line. The rigid-body constraints are applied to layer 1 only
