@@ -159,8 +159,16 @@ def _rows(results: Sequence[CaseResult], eta: str) -> Iterator[dict[str, str]]:
                 row[f"{q} {m}"] = f"{r.models[m][key]:.4g}"
                 row[f"{q} {m}/FE"] = f"{r.ratio(key, m):.3f}"
         row["mesh"] = ", ".join(f"{k} {v}" for k, v in r.meshes.items())
-        row["converged"] = "yes" if r.converged else "no"
+        row["converged"] = _converged(r)
         yield row
+
+
+def _converged(r: CaseResult) -> str:
+    """'yes' or 'no' for a refined case (did the change fall below the tolerance?), 'not
+    refined' for a case run on one mesh."""
+    if r.case.refinement.tol is None:
+        return "not refined"
+    return "yes" if r.converged else "no"
 
 
 def write_table(results: Sequence[CaseResult], path: Path, eta: str = "0") -> None:
@@ -230,7 +238,7 @@ def write_csv(results: Sequence[CaseResult], path: Path) -> None:
                         f"{v:.6g}",
                         *(f"{r.models[m][key]:.6g}" for m in MODELS),
                         mesh,
-                        r.converged,
+                        _converged(r),
                         "",
                     ]
                 )
