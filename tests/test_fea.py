@@ -654,7 +654,7 @@ def test_flange_band_is_glued_only_on_its_flanges(ccx: str) -> None:
     strained in plane strain, 2 E t (t_d + 2 g) / (L (1 - nu^2)): what the band could add were
     its flanges unslit; an upper estimate rather than a rigorous bound (the glue also lets the
     band hold the layers), which the FE stays well under (gain 237 N/mm between 156 and 650)."""
-    from corrugate.fea.assembly import _flanges
+    from corrugate.fea.band import _flanges
     from corrugate.pattern.connectors import slit_count
     from corrugate.pattern.options import DEFAULT_FABRICATION
 

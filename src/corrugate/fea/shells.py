@@ -1,0 +1,177 @@
+"""Shell meshes of the two layers for the assembly FE (:mod:`corrugate.fea.assembly`).
+
+* :func:`layer_shell`: the structured S8R mesh of one layer over the layout itself (eta = 0 or
+  90 deg), ``along`` elements across each facet;
+* :func:`oblique_shells`: both layers over a square coupon cut along any eta, meshed by gmsh
+  (:mod:`corrugate.fea.planmesh`) in a test frame with y along eta;
+* :func:`specimen` and :func:`principal_axis`: which specimen a direction eta gets.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from ..geometry import Assembly, Layer
+
+__all__ = ["Shell", "layer_shell", "oblique_shells", "principal_axis", "specimen"]
+
+FloatArray = NDArray[np.float64]
+
+
+@dataclass(frozen=True, slots=True)
+class Shell:
+    """Nodes (global ids, coordinates) and connectivity of one part: S8R ``elements`` and, from
+    the gmsh mesher, S6 triangles ``triangles``."""
+
+    ids: NDArray[np.int64]
+    xyz: FloatArray
+    elements: list[list[int]]
+    t: float
+    E: float
+    nu: float
+    triangles: list[list[int]] = field(default_factory=list)
+
+
+def layer_shell(
+    layer: Layer,
+    span: float,
+    along: int,
+    first_id: int,
+    chord_axis: int,
+    z0: float,
+    multiple: int = 2,
+    nel_s: int | None = None,
+) -> Shell:
+    """S8R mesh of a layer whose chord runs along ``chord_axis`` (0 = x, 1 = y); the number of
+    elements along the creases is ``nel_s`` if given, else a multiple of ``multiple`` giving
+    elements about as long as they are wide."""
+    nf = layer.n + 1
+    p, h = layer.pitch, layer.height
+    nel_c = along * nf
+    if nel_s is None:
+        nel_s = multiple * max(1, math.ceil(span / (layer.W / along) / multiple))
+    ni, nj = 2 * nel_c + 1, 2 * nel_s + 1
+    chord = np.linspace(0.0, nf * p, ni)
+    crease_c = np.arange(nf + 1) * p
+    crease_z = np.where(np.arange(nf + 1) % 2 == 0, 0.0, h) + z0
+    z_of = np.interp(chord, crease_c, crease_z)
+    spanw = np.linspace(0.0, span, nj)
+    ids = np.zeros((ni, nj), dtype=np.int64)
+    coords: list[tuple[float, float, float]] = []
+    order: list[int] = []
+    nid = first_id
+    for j in range(nj):
+        for i in range(ni):
+            if i % 2 and j % 2:
+                continue  # S8R has no centre node
+            ids[i, j] = nid
+            order.append(nid)
+            nid += 1
+            c, s_ = float(chord[i]), float(spanw[j])
+            xy = (c, s_) if chord_axis == 0 else (s_, c)
+            coords.append((xy[0], xy[1], float(z_of[i])))
+    elements: list[list[int]] = []
+    for ej in range(nel_s):
+        for ei in range(nel_c):
+            i0, j0 = 2 * ei, 2 * ej
+            quad = [
+                (i0, j0),
+                (i0 + 2, j0),
+                (i0 + 2, j0 + 2),
+                (i0, j0 + 2),
+                (i0 + 1, j0),
+                (i0 + 2, j0 + 1),
+                (i0 + 1, j0 + 2),
+                (i0, j0 + 1),
+            ]
+            elements.append([int(ids[a, b]) for a, b in quad])
+    m = layer.material
+    return Shell(
+        np.asarray(order, dtype=np.int64), np.asarray(coords), elements, layer.t, m.E, m.nu
+    )
+
+
+def principal_axis(eta_deg: float) -> int | None:
+    """The load axis (0 = x, 1 = y) of a principal direction eta, None for any other eta."""
+    if math.isclose(eta_deg % 180, 0.0, abs_tol=1e-9) or math.isclose(
+        eta_deg % 180, 180.0, abs_tol=1e-9
+    ):
+        return 1  # eta = 0: along layer 1's creases, the y axis
+    if math.isclose(eta_deg % 180, 90.0, abs_tol=1e-9):
+        return 0
+    return None
+
+
+def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
+    """Width A (across eta) and length B (along eta) of the FE specimen, mm: the rectangle
+    Lx x Ly itself at eta = 0 or 90 deg; at any other eta a square of the layout's side whose
+    edges run along and across eta (a coupon cut from the same two layers), which needs a square
+    layout (Lx = Ly). Circles and polygons are refused (:class:`InputError`): they have no
+    straight edges for platens and supports."""
+    a = assembly
+    if a.layout.name not in ("square", "rectangle"):
+        raise InputError(
+            "layout",
+            a.layout.name,
+            "square or rectangle for the FE assembly",
+            reason="has no straight loaded edges for the paper's tests (docs/fea.md)",
+        )
+    axis = principal_axis(eta_deg)
+    if axis == 1:
+        return a.Lx, a.Ly
+    if axis == 0:
+        return a.Ly, a.Lx
+    if not math.isclose(a.Lx, a.Ly, rel_tol=1e-9):
+        raise InputError(
+            "eta",
+            f"{eta_deg:g} deg",
+            "0 or 90 deg for a rectangle (other angles need a square layout, Lx = Ly)",
+        )
+    return a.Lx, a.Ly
+
+
+def oblique_shells(
+    assembly: Assembly, eta_deg: float, along: int, fixture_y: tuple[float, ...]
+) -> list[Shell]:
+    """Both layers over the specimen of :func:`specimen`, in the test frame (y along eta, x
+    across), meshed by :mod:`corrugate.fea.planmesh`. The specimen's centre is the layout's
+    centre; beyond the layout's extent the zig-zags continue periodically (the specimen is cut
+    from the panel's material)."""
+    from .planmesh import Corrugation, plan_mesh
+
+    a = assembly
+    A, B = specimen(a, eta_deg)
+    e = math.radians(eta_deg)
+    ce, se = math.cos(e), math.sin(e)
+    # chordwise unit vectors of the layers in the test frame: layer 1 across its creases
+    # (crease-frame x), layer 2 across its own (crease-frame y); origin: centre on centre
+    chords = ((ce, se), (-se, ce))
+    centres = (a.Lx / 2, a.Ly / 2)
+    shells: list[Shell] = []
+    first = 1
+    for layer, chord, centre, z0 in zip(
+        a.layers, chords, centres, (0.0, a.layer1.height), strict=True
+    ):
+        offset = centre - (chord[0] * A / 2 + chord[1] * B / 2)
+        corr = Corrugation(chord, offset, layer.pitch, layer.height, z0)
+        pm = plan_mesh(corr, A, B, along, fixture_y)
+        ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
+        m = layer.material
+        shells.append(
+            Shell(
+                ids,
+                pm.xyz,
+                [[int(ids[i]) for i in r] for r in pm.elements["S8R"]],
+                layer.t,
+                m.E,
+                m.nu,
+                [[int(ids[i]) for i in r] for r in pm.elements["S6"]],
+            )
+        )
+        first = int(ids[-1]) + 1
+    return shells
