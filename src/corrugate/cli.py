@@ -15,6 +15,7 @@ from rich.console import Console
 from rich.table import Table
 
 from . import __version__
+from . import cli_options as o
 from .analysis import Analysis, analyze
 from .errors import CorrugateError
 from .geometry import Layer
@@ -160,34 +161,21 @@ def _print_comparison(results: list[Analysis], console: Console) -> None:
 
 @app.command("analyze")
 def analyze_cmd(
-    W: Annotated[str, Opt("--W", help="Facet width (mm, or with units: '0.3 in').")],
-    n: Annotated[str, Opt("--n", help="Number of creases (n + 1 facets).")],
-    alpha: Annotated[str, Opt("--alpha", help="Interior fold angle (deg, 180 = flat).")],
-    material: Annotated[
-        str | None, Opt(help="Library material id (see `corrugate materials`).")
-    ] = None,
-    thickness: Annotated[
-        str | None, Opt(help="Sheet thickness (mm); default: the material's.")
-    ] = None,
-    E: Annotated[
-        str | None, Opt("--E", help="Inline material: Young's modulus (MPa or '2.7GPa').")
-    ] = None,
-    nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
-    density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
-    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")] = None,
-    n2: Annotated[str | None, Opt("--n2", help="Layer 2 creases (default: layer 1's).")] = None,
-    alpha2: Annotated[
-        str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")
-    ] = None,
-    material2: Annotated[
-        str | None, Opt(help="Layer 2 library material (default: layer 1's).")
-    ] = None,
-    thickness2: Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1's).")] = None,
+    W: o.W,
+    n: o.N,
+    alpha: o.Alpha,
+    material: o.Material = None,
+    thickness: o.Thickness = None,
+    E: o.YoungsModulus = None,
+    nu: o.Nu = None,
+    density: o.Density = None,
+    W2: o.W2 = None,
+    n2: o.N2 = None,
+    alpha2: o.Alpha2 = None,
+    material2: o.Material2 = None,
+    thickness2: o.Thickness2 = None,
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
-    vertices: Annotated[
-        str | None,
-        Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
-    ] = None,
+    vertices: o.Vertices = None,
     model: Annotated[str, Opt(help="Moduli variant: paper | xia | refined.")] = DEFAULT_MODEL,
     eta: Annotated[
         list[str] | None,

@@ -24,6 +24,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from . import cli_options as o
 from .buckling import facet_buckling_load
 from .cli import app, make_console
 from .errors import InputError
@@ -216,22 +217,16 @@ def validate_cmd(
     W: Annotated[str | None, Opt("--W", help="Facet width (mm).")] = None,
     n: Annotated[str | None, Opt("--n", help="Number of creases (n + 1 facets).")] = None,
     alpha: Annotated[str | None, Opt("--alpha", help="Interior fold angle (deg).")] = None,
-    material: Annotated[str | None, Opt(help="Library material id.")] = None,
-    thickness: Annotated[
-        str | None, Opt(help="Sheet thickness (mm); default: the material's.")
-    ] = None,
-    E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus.")] = None,
-    nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
-    density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
-    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")] = None,
-    n2: Annotated[str | None, Opt("--n2", help="Layer 2 creases (default: layer 1's).")] = None,
-    alpha2: Annotated[
-        str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")
-    ] = None,
-    material2: Annotated[
-        str | None, Opt(help="Layer 2 library material (default: layer 1's).")
-    ] = None,
-    thickness2: Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1's).")] = None,
+    material: o.Material = None,
+    thickness: o.Thickness = None,
+    E: o.YoungsModulus = None,
+    nu: o.Nu = None,
+    density: o.Density = None,
+    W2: o.W2 = None,
+    n2: o.N2 = None,
+    alpha2: o.Alpha2 = None,
+    material2: o.Material2 = None,
+    thickness2: o.Thickness2 = None,
     layout: Annotated[
         str, Opt(help="square | rectangle (the FE tests need straight loaded edges).")
     ] = "square",

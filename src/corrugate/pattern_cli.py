@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from . import cli_options as o
 from .analysis import analyze
 from .cli import app, make_console
 from .inputs import assembly_from_namespace
@@ -44,22 +45,22 @@ def fab_options(
 
 @app.command("pattern")
 def pattern_cmd(
-    W: Annotated[str, Opt("--W", help="Facet width (mm, or with units).")],
-    n: Annotated[str, Opt("--n", help="Number of creases (n + 1 facets).")],
-    alpha: Annotated[str, Opt("--alpha", help="Interior fold angle (deg, 180 = flat).")],
+    W: o.W,
+    n: o.N,
+    alpha: o.Alpha,
     out: Annotated[str, Opt("--out", help="Folder for the files (created if missing).")],
-    material: Annotated[str | None, Opt(help="Library material id.")] = None,
-    thickness: Annotated[str | None, Opt(help="Sheet thickness (mm).")] = None,
-    E: Annotated[str | None, Opt("--E", help="Inline material: Young's modulus (MPa).")] = None,
-    nu: Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")] = None,
-    density: Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")] = None,
-    W2: Annotated[str | None, Opt("--W2", help="Layer 2 facet width.")] = None,
-    n2: Annotated[str | None, Opt("--n2", help="Layer 2 creases.")] = None,
-    alpha2: Annotated[str | None, Opt("--alpha2", help="Layer 2 fold angle.")] = None,
-    material2: Annotated[str | None, Opt(help="Layer 2 library material.")] = None,
-    thickness2: Annotated[str | None, Opt(help="Layer 2 thickness.")] = None,
+    material: o.Material = None,
+    thickness: o.Thickness = None,
+    E: o.YoungsModulus = None,
+    nu: o.Nu = None,
+    density: o.Density = None,
+    W2: o.W2 = None,
+    n2: o.N2 = None,
+    alpha2: o.Alpha2 = None,
+    material2: o.Material2 = None,
+    thickness2: o.Thickness2 = None,
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
-    vertices: Annotated[str | None, Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1'.")] = None,
+    vertices: o.Vertices = None,
     model: Annotated[str, Opt(help="Moduli variant for design.json.")] = DEFAULT_MODEL,
     cutter: Annotated[
         str, Opt(help="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).")

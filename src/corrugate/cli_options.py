@@ -1,0 +1,50 @@
+"""The command-line options that describe a design, declared once for every command that takes
+them (``analyze``, ``pattern``, ``validate``): typer reads each ``Annotated`` alias below as the
+option it declares. :func:`corrugate.inputs.assembly_from_namespace` turns their values into an
+:class:`~corrugate.geometry.Assembly`.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+__all__ = [
+    "N2",
+    "W2",
+    "Alpha",
+    "Alpha2",
+    "Density",
+    "Material",
+    "Material2",
+    "N",
+    "Nu",
+    "Thickness",
+    "Thickness2",
+    "Vertices",
+    "W",
+    "YoungsModulus",
+]
+
+Opt = typer.Option
+
+W = Annotated[str, Opt("--W", help="Facet width (mm, or with units: '0.3 in').")]
+N = Annotated[str, Opt("--n", help="Number of creases (n + 1 facets).")]
+Alpha = Annotated[str, Opt("--alpha", help="Interior fold angle (deg, 180 = flat).")]
+Material = Annotated[str | None, Opt(help="Library material id (see `corrugate materials`).")]
+Thickness = Annotated[str | None, Opt(help="Sheet thickness (mm); default: the material's.")]
+YoungsModulus = Annotated[
+    str | None, Opt("--E", help="Inline material: Young's modulus (MPa or '2.7GPa').")
+]
+Nu = Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")]
+Density = Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")]
+W2 = Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")]
+N2 = Annotated[str | None, Opt("--n2", help="Layer 2 creases (default: layer 1's).")]
+Alpha2 = Annotated[str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")]
+Material2 = Annotated[str | None, Opt(help="Layer 2 library material (default: layer 1's).")]
+Thickness2 = Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1's).")]
+Vertices = Annotated[
+    str | None,
+    Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+]
