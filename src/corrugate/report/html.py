@@ -137,6 +137,24 @@ def report_html(sol: Solution, spec_text: str, cutter: str = "cameo4-12x12") -> 
     parts.append(_img(mass_by_n_figure(p, a), "lightest mass against n"))
     parts.append("<h2>Stiffness in every direction</h2>")
     parts.append(_img(polar_figure(a), "polar plots of K and D"))
+    parts.append(
+        "<p>Off the crease directions (0 and 90 deg) K and D follow the paper's cos^2 rule, the "
+        "stiffness of a panel held in a frame on all four edges; a part loaded along another "
+        "direction is softer (docs/fea.md, section 2.5).</p>"
+    )
+    if a.buckling:
+        parts.append("<h2>Buckling in compression</h2><ul>")
+        for b in a.buckling:
+            K = next((d.K for d in a.stiffness if d.eta_deg % 180 == b.eta_deg % 180), None)
+            travel = f", a platen travel of {b.low / K:.2g}-{b.high / K:.2g} mm" if K else ""
+            parts.append(
+                f"<li>along {b.eta_deg:g} deg: the end facets (one free edge) buckle at "
+                f"{b.low:.3g}-{b.high:.3g} N{travel} (plate theory); K holds below that.</li>"
+            )
+        parts.append(
+            "</ul><p>Check the actual load with <code>corrugate validate --buckling</code> "
+            "(docs/fea.md, section 2.6).</p>"
+        )
     parts.append("<h2>The three model variants</h2>")
     rows = []
     results = {m: analyze(asm, m, [0.0, 90.0]) for m in MODELS}
