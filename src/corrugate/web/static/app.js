@@ -152,6 +152,10 @@ function showAnalysis(r) {
     .map(([k, v]) => `${k.replace(/_g$/, '')} ${fmt(v)} g`).join(', ');
   $('mass').textContent = `${fmt(r.mass_g)} g (${parts})`;
 
+  bulletList($('buckling'), r.buckling.map((b) => `along ${fmt(b.eta_deg)} deg: the end facets `
+    + `buckle at ${fmt(b.low_N, 3)}-${fmt(b.high_N, 3)} N (plate theory; K holds below that; `
+    + 'check with corrugate validate --buckling)'), 'not estimated for this layout');
+
   const warnings = $('warnings');
   warnings.replaceChildren();
   for (const w of r.warnings) {
