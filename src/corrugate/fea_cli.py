@@ -35,6 +35,7 @@ from .materials import get_material, library
 from .moduli import MODELS
 
 if TYPE_CHECKING:
+    from .fea.band import Bond
     from .fea.validation import CaseResult, Refinement
 
 __all__ = ["validate_cmd"]
@@ -301,6 +302,13 @@ def validate_cmd(
     from .fea.unitcell import UnitCellMesh
     from .fea.validation import Case, Refinement, run_case
 
+    if bond not in ("edges", "flanges"):
+        raise InputError("bond", repr(bond), "edges or flanges")
+    if bond != "edges" and not connectors:
+        raise InputError(
+            "bond", bond, "flanges only together with --connectors", reason="needs the band"
+        )
+    bond_: Bond = "flanges" if bond == "flanges" else "edges"
     if refine is not None and not 0 < refine < 1:
         raise InputError("refine", refine, "0 < TOL < 1 (a relative change, e.g. 0.01)")
     try:
@@ -324,6 +332,7 @@ def validate_cmd(
             keep,
             console,
             connectors,
+            bond_,
         )
         return
     if design is not None:
@@ -352,12 +361,6 @@ def validate_cmd(
             raise InputError(
                 "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
             )
-    if bond not in ("edges", "flanges"):
-        raise InputError("bond", repr(bond), "edges or flanges")
-    if bond != "edges" and not connectors:
-        raise InputError(
-            "bond", bond, "flanges only together with --connectors", reason="needs the band"
-        )
     band = (" +connectors" + (" (flanges)" if bond == "flanges" else "")) if connectors else ""
     case = Case(
         _label(assembly) + band,
@@ -371,7 +374,7 @@ def validate_cmd(
         timeout=timeout,
         connectors=connectors,
         buckling=buckling,
-        bond="flanges" if bond == "flanges" else "edges",
+        bond=bond_,
     )
     with console.status("running CalculiX ..."):
         result = run_case(case)
@@ -407,6 +410,7 @@ def _run_sweep(
     keep: bool,
     console: Console,
     connectors: bool = False,
+    bond: Bond = "edges",
 ) -> None:
     from .fea.plots import plot_sweep
     from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_csv, write_table
@@ -415,7 +419,7 @@ def _run_sweep(
         raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")
     cases = SWEEPS[name](refinement, unit_cell)
     if connectors:
-        cases = [replace(c, connectors=True) for c in cases]
+        cases = [replace(c, connectors=True, bond=bond) for c in cases]
     executor = dask_executor(scheduler) if scheduler else None
     results: list[CaseResult] = []
     columns = (
