@@ -530,6 +530,8 @@ def test_validate_cli_rejects_what_the_fe_cannot_model(ccx: str, cli: CliRun) ->
         (["--layout", "rectangle", "--n2", "5", "--eta", "45"], "eta = 45 deg"),
         (["--eta", "30", "--connectors"], "with --connectors"),
         (["--layout", "circle"], "straight loaded edges"),
+        (["--bond", "flanges"], "needs the band"),
+        (["--connectors", "--bond", "glue"], "edges or flanges"),
     ):
         code, _, err = cli([*base, *extra])
         assert code == 2 and words in err and "Traceback" not in err, (extra, err)
