@@ -68,7 +68,8 @@ def design_from_json(path: Path) -> Assembly:
         raise InputError(
             "layout.shape",
             repr(shape),
-            "square or rectangle for the FE assembly",
+            "square or rectangle for the FE assembly (to check the layers of another outline, "
+            "validate them on a square: the same --W --n --alpha)",
             reason="is not supported",
         )
     layers = data.get("layers")

@@ -118,7 +118,8 @@ def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
         raise InputError(
             "layout",
             a.layout.name,
-            "square or rectangle for the FE assembly",
+            "square or rectangle for the FE assembly (to check the layers of another outline, "
+            "validate them on a square: the same --W --n --alpha)",
             reason="has no straight loaded edges for the paper's tests (docs/fea.md)",
         )
     axis = principal_axis(eta_deg)
