@@ -3,7 +3,10 @@
 * :mod:`~corrugate.fea.ccx`: find and run ccx, parse its output;
 * :mod:`~corrugate.fea.unitcell`: periodic solid unit cell giving the four equivalent moduli;
 * :mod:`~corrugate.fea.assembly`: the whole two-layer assembly as shells: compression, 3-point
-  bending and the 4-point (pure bending) diagnostic;
+  bending, the 4-point (pure bending) diagnostic, linear buckling and the frame test, meshed by
+  :mod:`~corrugate.fea.shells` (layers; coupons along any eta through
+  :mod:`~corrugate.fea.planmesh`, gmsh) and :mod:`~corrugate.fea.band` (the connector band);
+* :mod:`~corrugate.fea.frame`: the panel in a rigid frame, the paper's cos^2 rule's own fixture;
 * :mod:`~corrugate.fea.validation`: FE beside every model variant for one design, mesh refinement;
 * :mod:`~corrugate.fea.sweep`: sweeps through a ``concurrent.futures`` executor, tables;
 * :mod:`~corrugate.fea.plots`: Fig. 7-style plots (matplotlib).
@@ -13,6 +16,7 @@ The core package never imports this subpackage (DESIGN.md section 9). See docs/f
 
 from .assembly import AssemblyMesh, AssemblyResult, solve_assembly
 from .ccx import SolverError, SolverNotFoundError, find_ccx
+from .frame import FrameStiffness, solve_frame
 from .unitcell import UnitCell, UnitCellMesh, UnitCellResult, solve_unit_cell
 from .validation import Case, CaseResult, Refinement, run_case
 
@@ -21,6 +25,7 @@ __all__ = [
     "AssemblyResult",
     "Case",
     "CaseResult",
+    "FrameStiffness",
     "Refinement",
     "SolverError",
     "SolverNotFoundError",
@@ -30,5 +35,6 @@ __all__ = [
     "find_ccx",
     "run_case",
     "solve_assembly",
+    "solve_frame",
     "solve_unit_cell",
 ]
