@@ -30,7 +30,7 @@ import math
 from dataclasses import dataclass
 
 from .errors import InputError
-from .geometry import Assembly
+from .geometry import Assembly, crease_layer
 from .springs import LayerSprings
 
 __all__ = [
@@ -68,15 +68,10 @@ def buckling_bounds(
     for the other layer's share. None where they do not apply: eta not along a layer's creases,
     or a layout other than a square or rectangle (its facets differ in length and its end facets
     are not long plates)."""
-    e = eta_deg % 180.0
-    if math.isclose(e, 0.0, abs_tol=1e-9) or math.isclose(e, 180.0, abs_tol=1e-9):
-        along, across = 0, 1
-    elif math.isclose(e, 90.0, abs_tol=1e-9):
-        along, across = 1, 0
-    else:
+    along = crease_layer(eta_deg)
+    if along is None or assembly.layout.name not in ("square", "rectangle"):
         return None
-    if assembly.layout.name not in ("square", "rectangle"):
-        return None
+    across = 1 - along
     layer = assembly.layers[along]
     share = 1.0 + float(springs[across].K_C) / float(springs[along].K_S)
     m = layer.material

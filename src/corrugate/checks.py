@@ -24,7 +24,7 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
-from .geometry import Assembly, Layer
+from .geometry import Assembly, Layer, crease_layer
 
 __all__ = [
     "CREASE_ERROR_LIMIT",
@@ -123,7 +123,7 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
 
 
 def _off_axis(eta_deg: Sequence[float]) -> list[ModelWarning]:
-    off = [e for e in eta_deg if not math.isclose(math.remainder(e, 90.0), 0.0, abs_tol=1e-9)]
+    off = [e for e in eta_deg if crease_layer(e) is None]
     if not off:
         return []
     angles = ", ".join(f"{e:g}" for e in off)

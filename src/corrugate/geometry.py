@@ -18,10 +18,22 @@ from .errors import InputError
 from .layouts import Layout, Square, facet_lengths
 from .materials import Material
 
-__all__ = ["Assembly", "FacetGeometry", "Layer"]
+__all__ = ["Assembly", "FacetGeometry", "Layer", "crease_layer"]
 
 #: Relative tolerance to which Lx and Ly must agree for a square or circular layout.
 EQUAL_SIDES_RTOL = 1e-6
+
+
+def crease_layer(eta_deg: float) -> int | None:
+    """Index (0 or 1) of the layer whose creases run along the direction ``eta_deg`` (deg from
+    layer 1's creases): 0 for eta = 0 mod 180 deg, 1 for eta = 90 mod 180 deg (to 1e-9 deg),
+    None for every direction in between."""
+    r = math.remainder(eta_deg, 180.0)  # in [-90, 90]
+    if math.isclose(r, 0.0, abs_tol=1e-9):
+        return 0
+    if math.isclose(abs(r), 90.0, abs_tol=1e-9):
+        return 1
+    return None
 
 
 class FacetGeometry:

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..geometry import Assembly, Layer
+from ..geometry import Assembly, Layer, crease_layer
 
 __all__ = ["Shell", "layer_shell", "oblique_shells", "principal_axis", "specimen"]
 
@@ -97,14 +97,10 @@ def layer_shell(
 
 
 def principal_axis(eta_deg: float) -> int | None:
-    """The load axis (0 = x, 1 = y) of a principal direction eta, None for any other eta."""
-    if math.isclose(eta_deg % 180, 0.0, abs_tol=1e-9) or math.isclose(
-        eta_deg % 180, 180.0, abs_tol=1e-9
-    ):
-        return 1  # eta = 0: along layer 1's creases, the y axis
-    if math.isclose(eta_deg % 180, 90.0, abs_tol=1e-9):
-        return 0
-    return None
+    """The load axis (0 = x, 1 = y) of a direction eta along a layer's creases (eta = 0: layer
+    1's, the y axis; eta = 90: layer 2's, the x axis), None for any other eta."""
+    layer = crease_layer(eta_deg)
+    return None if layer is None else 1 - layer
 
 
 def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
