@@ -50,11 +50,17 @@ K_CLAMPED_FREE = 1.277
 @dataclass(frozen=True, slots=True)
 class BucklingEstimate:
     """Bounds (N) on the platen load at which the end facets buckle, compression along
-    ``eta_deg``: ``low`` with the crease as a hinge, ``high`` with it clamped."""
+    ``eta_deg``: ``low`` with the crease as a hinge, ``high`` with it clamped; ``K`` (N/mm) is
+    the platen stiffness along eta of the springs used (K_S + K_C of the two layers)."""
 
     eta_deg: float
     low: float
     high: float
+    K: float
+
+    def travel(self) -> tuple[float, float]:
+        """The platen travel (mm) at ``low`` and at ``high``: how far K holds."""
+        return self.low / self.K, self.high / self.K
 
     def as_dict(self) -> dict[str, float]:
         return {"eta_deg": self.eta_deg, "low_N": self.low, "high_N": self.high}
@@ -73,11 +79,11 @@ def buckling_bounds(
         return None
     across = 1 - along
     layer = assembly.layers[along]
-    share = 1.0 + float(springs[across].K_C) / float(springs[along].K_S)
+    K_S, K_C = float(springs[along].K_S), float(springs[across].K_C)
     m = layer.material
     sigma0 = math.pi**2 * m.E / (12 * (1 - m.nu**2)) * (layer.t / layer.W) ** 2  # MPa
-    load = sigma0 * (layer.n + 1) * layer.W * layer.t * share  # N per unit k
-    return BucklingEstimate(float(eta_deg), K_SIMPLE_FREE * load, K_CLAMPED_FREE * load)
+    load = sigma0 * (layer.n + 1) * layer.W * layer.t * (1.0 + K_C / K_S)  # N per unit k
+    return BucklingEstimate(float(eta_deg), K_SIMPLE_FREE * load, K_CLAMPED_FREE * load, K_S + K_C)
 
 
 def facet_buckling_load(

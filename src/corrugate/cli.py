@@ -129,13 +129,11 @@ def _print_analysis(r: Analysis, console: Console) -> None:
     for d in r.stiffness:
         s.add_row(_fmt(d.eta_deg), _fmt(d.K, 5), _fmt(d.D, 5), _fmt(d.EI, 5), f"{d.EI / 1000:.2f}")
     console.print(s)
-    K = {d.eta_deg % 180: d.K for d in r.stiffness}
     for b in r.buckling:
-        k = K.get(b.eta_deg % 180)
-        travel = f" (platen travel {b.low / k:.2g}-{b.high / k:.2g} mm)" if k else ""
+        lo, hi = b.travel()
         console.print(
             f"compression along {b.eta_deg:g} deg: K holds until the end facets buckle, at "
-            f"{b.low:.3g}-{b.high:.3g} N{travel}"
+            f"{b.low:.3g}-{b.high:.3g} N (platen travel {lo:.2g}-{hi:.2g} mm)"
         )
     for w in r.warnings:
         console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")

@@ -145,11 +145,11 @@ def report_html(sol: Solution, spec_text: str, cutter: str = "cameo4-12x12") -> 
     if a.buckling:
         parts.append("<h2>Buckling in compression</h2><ul>")
         for b in a.buckling:
-            K = next((d.K for d in a.stiffness if d.eta_deg % 180 == b.eta_deg % 180), None)
-            travel = f", a platen travel of {b.low / K:.2g}-{b.high / K:.2g} mm" if K else ""
+            lo, hi = b.travel()
             parts.append(
                 f"<li>along {b.eta_deg:g} deg: the end facets (one free edge) buckle at "
-                f"{b.low:.3g}-{b.high:.3g} N{travel} (plate theory); K holds below that.</li>"
+                f"{b.low:.3g}-{b.high:.3g} N, a platen travel of {lo:.2g}-{hi:.2g} mm (plate "
+                "theory); K holds below that.</li>"
             )
         parts.append(
             "</ul><p>Check the actual load with <code>corrugate validate --buckling</code> "
