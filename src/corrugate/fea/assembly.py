@@ -152,8 +152,9 @@ class AssemblyResult:
     """One FE load case of the assembly: K (N/mm) for compression and the frame test, D (N mm)
     and EI (N mm^2) for bending (the other entries None); for the frame test, ``side_force`` (N,
     compressive) on the far side platen, held in place; for ``buckling``, ``buckling_load`` (N,
-    the platen force of the first buckling mode; force and displacement are then NaN); ``force`` (N) at the prescribed ``displacement`` (mm), the
-    share of the force carried by each layer, and each layer's part of K or D (``layer_values``).
+    the platen force of the first buckling mode; force and displacement are then NaN);
+    ``force`` (N) at the prescribed ``displacement`` (mm), the share of the force carried by
+    each layer, and each layer's part of K or D (``layer_values``).
     With ``connectors`` the band's own nodes carry ``band_value``; nodes shared by a layer and the
     band count for the layer, so the split between the parts is bookkeeping, the total is not."""
 
@@ -227,7 +228,8 @@ def assembly_deck(
     mesh the band needs, so that a run without the band can be compared on the same layer mesh."""
     if test not in TESTS:
         raise InputError("test", test, " or ".join(TESTS))
-    specimen(assembly, eta_deg)  # the layout and eta must fit the FE tests
+    # the specimen's length along eta (the span); refuses what the FE cannot model
+    L_load = specimen(assembly, eta_deg)[1]
     if mesher not in ("auto", "structured", "gmsh"):
         raise InputError("mesher", mesher, "auto, structured or gmsh")
     if bond not in ("edges", "flanges"):
@@ -249,14 +251,13 @@ def assembly_deck(
                 f"{eta_deg:g} deg",
                 "0 or 90 deg with connectors (the band is modelled on the structured mesh only)",
             )
-        B = specimen(a, eta_deg)[1]
         fixture: tuple[float, ...] = {
             "compression": (),
-            "bending": (B / 2,),
-            "bending4": (B / 4, 3 * B / 8, B / 2, 5 * B / 8, 3 * B / 4),
+            "bending": (L_load / 2,),
+            "bending4": tuple(L_load * f for f in (1 / 4, 3 / 8, 1 / 2, 5 / 8, 3 / 4)),
         }[test]
         shells = oblique_shells(a, eta_deg, mesh.along, fixture)
-        axis, L_load = 1, B
+        axis = 1
     else:
         if principal is None:
             raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg for the structured mesh")
@@ -278,7 +279,6 @@ def assembly_deck(
                 ns2,
             )
         )
-        L_load = (Lx, Ly)[axis]
         if connectors:
             shells.append(band_shell(a, mesh.along, shells, tol, bond))
     other = 1 - axis
@@ -396,9 +396,8 @@ def assembly_deck(
             load_sets.append(f"MID{k}")
     if test == "buckling":
         ref = max(int(sh.ids.max()) for sh in shells) + 1
-        n_plane = (Lx, Ly)[axis]
         xyz_ref = [0.0, 0.0, 0.0]
-        xyz_ref[axis] = n_plane
+        xyz_ref[axis] = L_load  # on the moving platen
         lines += ["*NODE", f"{ref},{xyz_ref[0]:.10g},{xyz_ref[1]:.10g},{xyz_ref[2]:.10g}"]
         lines.append("*EQUATION")
         for node in platen:  # u_load(node) = u_load(ref)
