@@ -18,10 +18,11 @@ gmsh keeps global state, so calls are serialised by a lock.
 
 from __future__ import annotations
 
+import itertools
 import math
 import threading
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -74,34 +75,50 @@ class PlanMesh:
     elements: dict[str, list[list[int]]]
 
 
-def _line_in_rect(
-    normal: tuple[float, float], c: float, A: float, B: float, tol: float
-) -> tuple[tuple[float, float], tuple[float, float]] | None:
-    """The chord of the rectangle [0, A] x [0, B] on the line normal . (x, y) = c, or None when the
-    line misses the rectangle, touches it at one point or runs along one of its edges."""
-    nx, ny = normal
-    pts: list[tuple[float, float]] = []
-    if abs(ny) > 1e-12:
-        for x in (0.0, A):
-            y = (c - nx * x) / ny
-            if -tol <= y <= B + tol:
-                pts.append((x, min(max(y, 0.0), B)))
-    if abs(nx) > 1e-12:
-        for y in (0.0, B):
-            x = (c - ny * y) / nx
-            if -tol <= x <= A + tol:
-                pts.append((min(max(x, 0.0), A), y))
-    uniq: list[tuple[float, float]] = []
-    for p in pts:
-        if all(math.dist(p, q) > tol for q in uniq):
-            uniq.append(p)
-    if len(uniq) != 2:
-        return None
-    (x0, y0), (x1, y1) = uniq
-    on_same_edge = (abs(x0 - x1) < tol and (abs(x0) < tol or abs(x0 - A) < tol)) or (
-        abs(y0 - y1) < tol and (abs(y0) < tol or abs(y0 - B) < tol)
-    )
-    return None if on_same_edge else (uniq[0], uniq[1])
+Point = tuple[float, float]
+
+
+def _clip(poly: list[Point], normal: Point, c: float, sign: float) -> list[Point]:
+    """The part of the convex polygon ``poly`` where sign (normal . p - c) >= 0
+    (Sutherland-Hodgman against one line)."""
+    out: list[Point] = []
+    n = len(poly)
+    for i in range(n):
+        p, q = poly[i], poly[(i + 1) % n]
+        dp = sign * (normal[0] * p[0] + normal[1] * p[1] - c)
+        dq = sign * (normal[0] * q[0] + normal[1] * q[1] - c)
+        if dp >= 0:
+            out.append(p)
+        if (dp >= 0) != (dq >= 0):
+            t = dp / (dp - dq)
+            out.append((p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])))
+    return out
+
+
+def _cells(
+    corrugation: Corrugation, A: float, B: float, fixture_y: Sequence[float]
+) -> list[list[Point]]:
+    """The plan of [0, A] x [0, B] cut by the crease lines and the lines y = each of
+    ``fixture_y`` into convex cells (corners counter-clockwise), each inside one facet."""
+    p, (cx, cy) = corrugation.pitch, corrugation.chord
+    corners = np.array([[0.0, 0.0], [A, 0.0], [A, B], [0.0, B]])
+    u_c = corrugation.u(corners)
+    k_lo = math.floor(u_c.min() / p)
+    k_hi = math.ceil(u_c.max() / p)
+    ys = [0.0, *sorted(y for y in fixture_y), B]
+    for y in fixture_y:
+        if not 0.0 < y < B:
+            raise SolverError(f"fixture line y = {y:g} mm does not cross the specimen")
+    rect: list[Point] = [(0.0, 0.0), (A, 0.0), (A, B), (0.0, B)]
+    cells: list[list[Point]] = []
+    for k in range(k_lo, k_hi):
+        strip = _clip(rect, (cx, cy), k * p - corrugation.offset, 1.0)
+        strip = _clip(strip, (cx, cy), (k + 1) * p - corrugation.offset, -1.0)
+        for y0, y1 in itertools.pairwise(ys):
+            cell = _clip(_clip(strip, (0.0, 1.0), y0, 1.0), (0.0, 1.0), y1, -1.0)
+            if len(cell) >= 3:
+                cells.append(cell)
+    return cells
 
 
 def plan_mesh(
@@ -113,42 +130,55 @@ def plan_mesh(
 ) -> PlanMesh:
     """Mesh the folded layer ``corrugation`` over the plan rectangle [0, A] x [0, B] (mm) with
     about ``along`` elements across each facet's plan width, creases and the lines y = each of
-    ``fixture_y`` as element edges; nodes lifted onto the folded surface."""
+    ``fixture_y`` as element edges; nodes lifted onto the folded surface.
+
+    A corrugation and its mirror image in x = A / 2 get mirror-image meshes: one whose chord
+    points to -x is meshed as its mirror image (chord to +x) and mirrored back. So the two
+    layers of a coupon along eta and of one along 90 - eta, mirror images of each other for
+    identical layers, are meshed alike."""
     import gmsh
 
     tol = 1e-7 * max(A, B)
     cx, cy = corrugation.chord
-    # crease lines u = k p, i.e. chord . (x, y) = k p - offset, for every k crossing the rectangle
-    corners = np.array([[0.0, 0.0], [A, 0.0], [A, B], [0.0, B]])
-    u_c = corrugation.u(corners)
-    k_lo = math.floor(u_c.min() / corrugation.pitch) - 1
-    k_hi = math.ceil(u_c.max() / corrugation.pitch) + 1
-    segments = []
-    for k in range(k_lo, k_hi + 1):
-        seg = _line_in_rect((cx, cy), k * corrugation.pitch - corrugation.offset, A, B, tol)
-        if seg is not None:
-            segments.append(seg)
-    for y in fixture_y:
-        seg = _line_in_rect((0.0, 1.0), y, A, B, tol)
-        if seg is None:
-            raise SolverError(f"fixture line y = {y:g} mm does not cross the specimen")
-        segments.append(seg)
+    mirrored = cx < 0  # u = cx x + cy y + o = (-cx) (A - x) + cy y + (o + cx A)
+    # the cells of the (mirrored) corrugation, its chord and offset rounded to 1e-12 and 1e-9
+    # mm: gmsh's mesh changes with perturbations of the geometry as small as 1e-14 mm, so
+    # mirror images must reach it as the same numbers
+    chord = (round(abs(cx), 12), round(cy, 12))
+    offset = round(corrugation.offset + cx * A if mirrored else corrugation.offset, 9)
+    cells = _cells(replace(corrugation, chord=chord, offset=offset), A, B, fixture_y)
     size = corrugation.pitch / along
     with _LOCK:
         gmsh.initialize(interruptible=False)
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.model.add("layer")
-            occ = gmsh.model.occ
-            rect = occ.addRectangle(0.0, 0.0, 0.0, A, B)
-            lines = []
-            for (x0, y0), (x1, y1) in segments:
-                p0 = occ.addPoint(x0, y0, 0.0)
-                p1 = occ.addPoint(x1, y1, 0.0)
-                lines.append((1, occ.addLine(p0, p1)))
-            if lines:
-                occ.fragment([(2, rect)], lines)
-            occ.synchronize()
+            # the built-in kernel, fed cells that share their points and edges: deterministic
+            # (OpenCASCADE's fragment gave a different mesh for a second layer in one process)
+            geo = gmsh.model.geo
+            points: dict[tuple[int, int], int] = {}
+            lines: dict[tuple[int, int], int] = {}
+            for cell in cells:
+                tags: list[int] = []
+                for x, y in cell:
+                    key = (round(x / tol), round(y / tol))
+                    if key not in points:
+                        points[key] = geo.addPoint(x, y, 0.0)
+                    if not tags or tags[-1] != points[key]:
+                        tags.append(points[key])
+                if tags[0] == tags[-1]:
+                    tags.pop()
+                if len(tags) < 3:
+                    continue  # a sliver thinner than the tolerance
+                loop: list[int] = []
+                for a_, b_ in zip(tags, tags[1:] + tags[:1], strict=True):
+                    if (b_, a_) in lines:
+                        loop.append(-lines[(b_, a_)])
+                    else:
+                        lines[(a_, b_)] = lines.get((a_, b_)) or geo.addLine(a_, b_)
+                        loop.append(lines[(a_, b_)])
+                geo.addPlaneSurface([geo.addCurveLoop(loop)])
+            geo.synchronize()
             for name, value in (
                 ("Mesh.MeshSizeMin", size),
                 ("Mesh.MeshSizeMax", size),
@@ -170,6 +200,8 @@ def plan_mesh(
             gmsh.finalize()
     index = {int(t): i for i, t in enumerate(tags)}
     xy = np.asarray(coords, dtype=np.float64).reshape(-1, 3)[:, :2]
+    if mirrored:
+        xy[:, 0] = A - xy[:, 0]  # the element orientation is restored below
     elements: dict[str, list[list[int]]] = {"S8R": [], "S6": []}
     for etype, conn in zip(types, conns, strict=True):
         if int(etype) not in _TYPES:
