@@ -29,6 +29,16 @@ class InputError(CorrugateError, ValueError):
         self.reason = reason
         super().__init__(f"{field} = {value!s} {reason}: allowed {allowed}")
 
+    def renamed(self, field: str, value: Any = None, reason: str | None = None) -> InputError:
+        """The same error naming ``field`` instead (the caller's name for what the library
+        checked under its own), optionally with another ``value`` shown or ``reason``."""
+        return InputError(
+            field,
+            self.value if value is None else value,
+            self.allowed,
+            reason=self.reason if reason is None else reason,
+        )
+
 
 class UnknownNameError(InputError, KeyError):
     """A name (material, model, layout, ...) that is not in its registry."""

@@ -107,9 +107,7 @@ def design_from_json(path: Path) -> Assembly:
             )
         except (TypeError, ValueError) as exc:
             if isinstance(exc, InputError):
-                raise InputError(
-                    f"layers[{i}].{exc.field}", exc.value, exc.allowed, reason=exc.reason
-                ) from None
+                raise exc.renamed(f"layers[{i}].{exc.field}") from None
             raise InputError(
                 f"layers[{i}]", "?", "numbers for W_mm, n, alpha_deg, t_mm", reason="is malformed"
             ) from None

@@ -91,9 +91,7 @@ def material_from_options(
         return get_material(name or "dura-lar")
     except UnknownNameError as exc:
         if suffix:
-            raise InputError(
-                exc.field + suffix, exc.value, exc.allowed, reason=exc.reason
-            ) from None
+            raise exc.renamed(exc.field + suffix) from None
         raise
 
 
@@ -114,9 +112,7 @@ def layer_from_options(
         return Layer(w, nn, a, material, t)
     except InputError as exc:
         if suffix:
-            raise InputError(
-                exc.field + suffix, exc.value, exc.allowed, reason=exc.reason
-            ) from None
+            raise exc.renamed(exc.field + suffix) from None
         raise
 
 

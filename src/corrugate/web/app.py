@@ -205,14 +205,6 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
     return store.make(lambda folder: write_mesh(a, build_pattern(a), folder))
 
 
-def _renamed(
-    exc: InputError, field: str, value: object = None, reason: str | None = None
-) -> InputError:
-    """The error ``exc`` naming the request's ``field`` (the library names it its own way)."""
-    shown = exc.value if value is None else value
-    return InputError(field, shown, exc.allowed, reason=exc.reason if reason is None else reason)
-
-
 def _output_options(body: DesignBody) -> OutputOptions:
     """The output options of a design request, as ``corrugate design --cutter ... --fold-style
     ... --cut ... --gap ...`` reads them (default spacing, margin and tabs); errors name the
@@ -242,7 +234,7 @@ def _output_options(body: DesignBody) -> OutputOptions:
             "perforation": "cut" if body.cut is None else "gap",
         }
         if exc.field in fields:
-            raise _renamed(exc, fields[exc.field]) from None
+            raise exc.renamed(fields[exc.field]) from None
         raise
 
 
@@ -337,11 +329,11 @@ def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -
     try:
         files = store.make(write)
     except PartTooLargeError as exc:
-        raise _renamed(
-            exc, "cutter", repr(body.cutter), f"is too small for {exc.field} ({exc.value})"
+        raise exc.renamed(
+            "cutter", repr(body.cutter), f"is too small for {exc.field} ({exc.value})"
         ) from None
     except PerforationError as exc:
-        raise _renamed(exc, "cut" if exc.field.endswith("cut") else "gap") from None
+        raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
     return DesignAnswer(design=payload, result=_result_body(files))
 
 
