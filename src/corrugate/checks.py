@@ -13,7 +13,7 @@
 * directions other than along the creases (eta not a multiple of 90 deg): K(eta) and D(eta)
   follow the paper's cos^2 rule, the stiffness of a panel driven along both crease directions at
   once; a square coupon of the same layers cut along eta is far softer (shell FE, docs/fea.md
-  section 2.5: at 45 deg K 300-370 times and D 2.7-3 times (3-point) below the rule for the
+  section 2.5: at 45 deg K 300-360 times and D 2.7-3 times (3-point) below the rule for the
   case study and W 10, n 7, alpha 90), so off-axis values are upper estimates;
 * the ``paper`` model, which has known errors (DESIGN.md 3.1).
 """
