@@ -20,6 +20,7 @@ __all__ = [
     "Material2",
     "N",
     "Nu",
+    "SupportOpt",
     "Thickness",
     "Thickness2",
     "Vertices",
@@ -47,4 +48,12 @@ Thickness2 = Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1
 Vertices = Annotated[
     str | None,
     Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+]
+SupportOpt = Annotated[
+    str,
+    Opt(
+        "--support",
+        help="free (sides free: a bench test, most mounts; default) | frame (held in a rigid "
+        "frame on all four edges: the paper's cos^2 rule). Matters off the crease directions.",
+    ),
 ]
