@@ -70,7 +70,15 @@ def run(alongs: tuple[int, ...], etas: tuple[float, ...] = ETAS) -> None:
                         t0 = time.perf_counter()
                         r = solve_assembly(a, test, AssemblyMesh(along), eta)  # type: ignore[arg-type]
                         s = time.perf_counter() - t0
-                        w.writerow(dict(zip(FIELDS, (*key[:3], along, r.nodes, f"{r.value():.8g}", f"{s:.1f}"), strict=True)))
+                        w.writerow(
+                            dict(
+                                zip(
+                                    FIELDS,
+                                    (*key[:3], along, r.nodes, f"{r.value():.8g}", f"{s:.1f}"),
+                                    strict=True,
+                                )
+                            )
+                        )
                         f.flush()
                         print(*key, f"{r.value():.5g}", f"{s:.0f} s", flush=True)
 
