@@ -29,6 +29,7 @@ from numpy.typing import NDArray
 from ..geometry import crease_layer
 from ..layouts import Layout, make_layout
 from ..materials import Material, get_material, inline_material
+from ..offaxis import Support
 from ..spec import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
 __all__ = [
@@ -193,6 +194,7 @@ class Problem:
     n_hi: int
     constraints: tuple[Constraint, ...]
     objective: Objective = field(default_factory=Objective)
+    support: Support = "free"  # the spec's global support condition (reports, tables)
 
     @property
     def etas(self) -> tuple[float, ...]:
@@ -288,6 +290,7 @@ class Problem:
             n_hi=v.n.max,
             constraints=tuple(cons),
             objective=objective,
+            support=spec.support,
         )
 
 
