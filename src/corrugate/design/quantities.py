@@ -157,6 +157,8 @@ def point_values(
 ) -> dict[str, FloatArray]:
     """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``."""
     etas = np.asarray(problem.etas or (0.0,), dtype=np.float64)
+    keys = [c.quantity for c in problem.constraints] + [problem.objective.quantity]
+    wanted = {"frame" for k in keys if "frame@" in k} | {"Pb" for k in keys if k.startswith("Pb@")}
     l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
     l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
     ev = evaluate(l1, l2, problem.layout, problem.model, etas)
@@ -176,18 +178,19 @@ def point_values(
         out["EI" + key] = np.asarray(ev.EI[:, k])
         out["D" + key] = np.asarray(ev.D[:, k])
         out["K" + key] = np.asarray(ev.K[:, k])
-        span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(float(eta))))
-        D_frame = np.asarray(assembly_directional("D", ev.springs, float(eta), "frame"))[:, 0]
-        out["Dframe" + key] = D_frame
-        out["EIframe" + key] = D_frame * span
-        out["Kframe" + key] = np.asarray(
-            assembly_directional("K", ev.springs, float(eta), "frame")
-        )[:, 0]
-    s1, s2 = ev.springs
-    for eta, (l, sa, sc) in {"0": (l1, s1, s2), "90": (l2, s2, s1)}.items():
-        out["Pb@" + eta] = np.asarray(
-            K_SIMPLE_FREE * buckling_scale(l.E, l.nu, l.t, l.W, l.n, sa.K_S, sc.K_C)
-        )[:, 0]
+        if "frame" in wanted:
+            span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(float(eta))))
+            D_frame = np.asarray(assembly_directional("D", ev.springs, float(eta), "frame"))
+            out["Dframe" + key] = D_frame[:, 0]
+            out["EIframe" + key] = D_frame[:, 0] * span
+            K_frame = np.asarray(assembly_directional("K", ev.springs, float(eta), "frame"))
+            out["Kframe" + key] = K_frame[:, 0]
+    if "Pb" in wanted:
+        s1, s2 = ev.springs
+        for e, (lay, sa, sc) in {"0": (l1, s1, s2), "90": (l2, s2, s1)}.items():
+            out["Pb@" + e] = np.asarray(
+                K_SIMPLE_FREE * buckling_scale(lay.E, lay.nu, lay.t, lay.W, lay.n, sa.K_S, sc.K_C)
+            )[:, 0]
     return out
 
 
