@@ -189,7 +189,9 @@ def offaxis(repeats: int) -> None:
     same bound at eta = 0: certified solve and a vectorised exhaustive search of the spec's grid,
     timed interleaved."""
     base = load_spec(EXAMPLES / "blimp_gripper.toml").model_dump()
-    print("\n== case study + inplane_stiffness >= 0.4 N/mm (free sides; model paper; binds at 45), eta 0 against eta 45")
+    print(
+        "\n== case study + inplane_stiffness >= 0.4 N/mm (free sides; model paper; binds at 45), eta 0 against eta 45"
+    )
     cases = {}
     for eta in (0.0, 45.0):
         d = dict(base)
