@@ -20,6 +20,7 @@ __all__ = [
     "Material2",
     "N",
     "Nu",
+    "Paper",
     "Thickness",
     "Thickness2",
     "Vertices",
@@ -47,4 +48,13 @@ Thickness2 = Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1
 Vertices = Annotated[
     str | None,
     Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+]
+
+#: Output option of ``pattern`` and ``design``: the 1:1 tiles of the sheets for office paper.
+Paper = Annotated[
+    str,
+    Opt(
+        help="mat: pattern.pdf, one mat-size page per sheet; a4 | letter: also pattern-a4.pdf / "
+        "pattern-letter.pdf, the sheets at 1:1 on pages to tape together."
+    ),
 ]

@@ -322,9 +322,14 @@ def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -
     def write(folder: Path) -> list[Path]:
         from ..report import report_html
 
-        with _FILES_LOCK:
-            report = report_html(sol, spec_text, options.cutter)
-            return write_design_files(analysis, folder, options, extra=payload, report=report)
+        with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
+            return write_design_files(
+                analysis,
+                folder,
+                options,
+                extra=payload,
+                report=lambda cut: report_html(sol, spec_text, cut),
+            )
 
     try:
         files = store.make(write)
