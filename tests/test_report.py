@@ -7,7 +7,6 @@ import base64
 import io
 import os
 import struct
-import xml.etree.ElementTree as ET
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -16,77 +15,12 @@ import pytest
 from corrugate.design import Problem, Solution, solve
 from corrugate.report import report_html
 from corrugate.spec import load_spec
+from plan_readers import Tables, sheet_rows, svg_parts
 
 ROOT = Path(__file__).resolve().parents[1]
 BLIMP = ROOT / "examples" / "blimp_gripper.toml"
 CHROMIUM = Path("/usr/bin/chromium")
 ARTIFACTS = ROOT / "test-artifacts"
-
-
-class _Tables(HTMLParser):
-    """Every table of a page as rows of cell texts, and every image's (alt, src)."""
-
-    def __init__(self) -> None:
-        super().__init__()
-        self.tables: list[list[list[str]]] = []
-        self.images: list[tuple[str, str]] = []
-        self._cell: list[str] | None = None
-
-    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
-        if tag == "table":
-            self.tables.append([])
-        elif tag == "tr":
-            self.tables[-1].append([])
-        elif tag in ("td", "th"):
-            self._cell = []
-        elif tag == "img":
-            a = dict(attrs)
-            self.images.append((str(a.get("alt")), str(a.get("src"))))
-
-    def handle_endtag(self, tag: str) -> None:
-        if tag in ("td", "th") and self._cell is not None:
-            self.tables[-1][-1].append("".join(self._cell).strip())
-            self._cell = None
-
-    def handle_data(self, data: str) -> None:
-        if self._cell is not None:
-            self._cell.append(data)
-
-
-def _sheet_rows(text: str) -> list[tuple[int, str, float, float]]:
-    """(sheet, part, x, y) of the report's sheet-plan table."""
-    parsed = _Tables()
-    parsed.feed(text)
-    (table,) = [t for t in parsed.tables if t and "turned 90 deg" in t[0]]
-    return [(int(r[0]), r[1], float(r[2]), float(r[3])) for r in table[1:]]
-
-
-def _svg_parts(
-    folder: Path,
-) -> tuple[list[tuple[int, str, float, float]], list[tuple[float, float]]]:
-    """(sheet, part, xmin, ymin) of every part outline in the cut files ``sheet-N.svg`` (sheet
-    coordinates: y up from the sheet's lower edge, mm), and each sheet's size (mm)."""
-    ns = "{http://www.w3.org/2000/svg}"
-    parts: list[tuple[int, str, float, float]] = []
-    sizes: list[tuple[float, float]] = []
-    k = 1
-    while (folder / f"sheet-{k}.svg").exists():
-        root = ET.parse(folder / f"sheet-{k}.svg").getroot()
-        _, _, w, h = (float(v) for v in root.attrib["viewBox"].split())
-        sizes.append((w, h))
-        for g in root.iter(f"{ns}g"):
-            name = g.attrib.get("data-part")
-            if name is None:
-                continue
-            pts = [
-                tuple(float(c) for c in pair.split(","))
-                for el in g
-                if el.attrib.get("stroke") == "#000000" and "points" in el.attrib
-                for pair in el.attrib["points"].split()
-            ]
-            parts.append((k, name, min(p[0] for p in pts), h - max(p[1] for p in pts)))
-        k += 1
-    return sorted(parts), sizes
 
 
 def test_report_draws_the_sheet_plan_the_files_are_written_from(
@@ -116,16 +50,16 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     write_design_files(solution.analysis, out, options, report=make_report)
     (cut,) = seen
     text = (out / "report.html").read_text(encoding="utf-8")
-    in_files, sizes = _svg_parts(out)
+    in_files, sizes = svg_parts(out)
     assert len(sizes) == len(cut.plan.sheets) > 1
     assert all(size == pytest.approx((130.0, 80.0)) for size in sizes)
-    rows = _sheet_rows(text)
+    rows = sheet_rows(text)
     assert sorted((r[0], r[1]) for r in rows) == [(s, n) for s, n, _, _ in in_files]
     for (s, n, x, y), (s2, n2, x2, y2) in zip(sorted(rows), in_files, strict=True):
         assert (s, n) == (s2, n2)
         assert x == pytest.approx(x2, abs=0.01) and y == pytest.approx(y2, abs=0.01)
     # the report's sheet figures are those of the written plan, at the sheet's proportions
-    parsed = _Tables()
+    parsed = Tables()
     parsed.feed(text)
     figures = [src for alt, src in parsed.images if alt.startswith("sheet ")]
     assert len(figures) == len(cut.plan.sheets)
@@ -138,7 +72,7 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
         assert width / height == pytest.approx(130.0 / 80.0, rel=0.01)
     assert "perforated (1.5 mm cut, 1 mm gap)" in text
     # a report made with the default options would show another plan than these files
-    default_rows = _sheet_rows(report_html(solution, spec_text))
+    default_rows = sheet_rows(report_html(solution, spec_text))
     assert sorted((r[0], r[1], round(r[2], 2), round(r[3], 2)) for r in default_rows) != sorted(
         (s, n, round(x, 2), round(y, 2)) for s, n, x, y in in_files
     )
