@@ -10,6 +10,17 @@ first free spot found, and is left out only if no 10 mm spot is free. Lines use 
 (:data:`corrugate.export.svg.COLOURS`), solid; with the ``perforated`` style the creases are drawn
 as their dashes. Part labels, the check square and a one-line note in the bottom margin are grey
 (:data:`corrugate.export.svg.ANNOTATION`), so a cutter that imports the PDF can skip them by colour.
+
+Tiles (:func:`write_tiled_pdf`, ``pattern-a4.pdf`` / ``pattern-letter.pdf``): the same drawing at
+1:1 on portrait A4 (210 x 297 mm) or Letter (215.9 x 279.4 mm) pages, for printing on any printer
+and taping together as a template for cutting by hand. Each sheet is cut into a grid of windows
+from its top-left corner (:func:`sheet_tiles`); a page shows one window in its drawing area (the
+paper less :data:`PAGE_MARGIN_MM` at the left, right and top and :data:`FOOTER_MM` at the bottom),
+framed by a thin grey line. Neighbouring windows overlap by :data:`OVERLAP_MM`; registration
+crosses sit on the middle line of each overlap every :data:`MARK_PITCH_MM`
+(:func:`registration_marks`), at the same sheet point on both pages. The footer holds a black
+10 mm check square, the page's sheet, row, column and number, how to join the pages, and a map of
+the grid with the page filled. All lengths are mm.
 """
 
 from __future__ import annotations
