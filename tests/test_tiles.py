@@ -28,6 +28,7 @@ from corrugate.export.pdf import (
     registration_marks,
     write_tiled_pdf,
 )
+from corrugate.outputs import cut_plan
 from corrugate.pattern.build import build_pattern
 from corrugate.pattern.linestyle import line_style
 from corrugate.pattern.model import Line, Part, Role
@@ -312,13 +313,29 @@ def test_tiles_cover_the_drawn_sheet(
     plan = _plan(name, real_plan, multi_plan)
     reader = PdfReader(pdfs[name, paper])
     tiles = plan_tiles(plan, paper)
-    # the windows cover every sheet, edge to edge
+    grid = plan_tiles(plan, paper, empty=True)
+    # the whole grid covers every sheet, edge to edge
     for number, sheet in enumerate(plan.sheets, start=1):
-        windows = [t.window for t in tiles if t.sheet == number]
+        windows = [t.window for t in grid if t.sheet == number]
         for i in range(int(sheet.width) + 1):
             for j in range(int(sheet.height) + 1):
                 x, y = min(i, sheet.width), min(j, sheet.height)
                 assert any(a <= x <= c and b <= y <= d for a, b, c, d in windows), (x, y)
+    # the pages left out hold no part; the pages printed cover every part's bounding box
+    for t in grid:
+        if t in tiles:
+            continue
+        x0, y0, x1, y1 = t.window
+        for pl in plan.sheets[t.sheet - 1].placements:
+            a, b, c, d = pl.bounds
+            assert c <= x0 or a >= x1 or d <= y0 or b >= y1, (t, pl.part.name)
+    for pl in plan.placements:
+        windows = [t.window for t in tiles if t.sheet == pl.sheet + 1]
+        a, b, c, d = pl.bounds
+        for i in range(math.ceil(c - a) + 1):
+            for j in range(math.ceil(d - b) + 1):
+                x, y = min(a + i, c), min(b + j, d)
+                assert any(p <= x <= r and q <= y <= u for p, q, r, u in windows), (x, y)
     # every outline corner of every part is drawn at 1:1 on a page whose window holds it
     black = [
         [p for sp in page_paths(reader, page) if sp.stroke == (0.0, 0.0, 0.0) for p in sp.points]
@@ -340,6 +357,20 @@ def test_tiles_cover_the_drawn_sheet(
             assert shown, (placement.part.name, v)
             corners += 1
     assert corners >= 4 * len(plan.placements)
+
+
+def test_pages_with_nothing_to_cut_are_left_out(real_plan: SheetPlan, tmp_path: Path) -> None:
+    """Case 1's parts fill the lower part of the 12 x 24 in mat: its upper pages are left out,
+    unless asked for; the pages kept keep their row and column."""
+    kept = PdfReader(write_tiled_pdf(real_plan, tmp_path / "kept.pdf", "a4"))
+    full = PdfReader(write_tiled_pdf(real_plan, tmp_path / "full.pdf", "a4", empty=True))
+    grid = plan_tiles(real_plan, "a4", empty=True)
+    assert len(full.pages) == len(grid) == grid[0].rows * grid[0].columns
+    assert 0 < len(kept.pages) < len(full.pages)
+    rows = {t.row for t in plan_tiles(real_plan, "a4")}
+    assert 1 not in rows  # the top of the mat is empty
+    text = kept.pages[0].extract_text()
+    assert "left out" in text and f"page 1 of {len(kept.pages)}" in text
 
 
 def test_write_files_adds_the_tiles_beside_the_mat_pages(
@@ -380,7 +411,9 @@ def test_cli_paper_option(tmp_path: Path, cli: CliRun) -> None:
     code, _, err = cli([*case1, "--out", str(good), "--paper", "a4"])
     assert code == 0, err
     reader = PdfReader(good / "pattern-a4.pdf")
-    assert len(reader.pages) == 4  # a 12 x 12 in mat: 2 x 2 A4 pages
+    a = Assembly.identical(Layer(8.0, 8, 84.0, get_material("dura-lar")))
+    tiles = plan_tiles(cut_plan(a).plan, "a4")  # the CLI's defaults
+    assert len(reader.pages) == len(tiles) and tiles[0].rows * tiles[0].columns == 4
     for page in reader.pages:
         assert float(page.mediabox.width) == pytest.approx(595.28, abs=0.01)
         assert float(page.mediabox.height) == pytest.approx(841.89, abs=0.01)

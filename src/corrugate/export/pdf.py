@@ -14,7 +14,8 @@ as their dashes. Part labels, the check square and a one-line note in the bottom
 Tiles (:func:`write_tiled_pdf`, ``pattern-a4.pdf`` / ``pattern-letter.pdf``): the same drawing at
 1:1 on portrait A4 (210 x 297 mm) or Letter (215.9 x 279.4 mm) pages, for printing on any printer
 and taping together as a template for cutting by hand. Each sheet is cut into a grid of windows
-from its top-left corner (:func:`sheet_tiles`); a page shows one window in its drawing area (the
+from its top-left corner (:func:`sheet_tiles`); a window that holds no part is left out (its
+place in the grid stays). A page shows one window in its drawing area (the
 paper less :data:`PAGE_MARGIN_MM` at the left, right and top and :data:`FOOTER_MM` at the bottom),
 framed by a thin grey line. Neighbouring windows overlap by :data:`OVERLAP_MM`; registration
 crosses sit on the middle line of each overlap every :data:`MARK_PITCH_MM`
@@ -27,6 +28,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Collection
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -68,6 +70,7 @@ __all__ = [
     "sheet_figure",
     "sheet_tiles",
     "tile_figure",
+    "tile_used",
     "write_pdf",
     "write_tiled_pdf",
 ]
@@ -346,15 +349,28 @@ def sheet_tiles(
     )
 
 
+def tile_used(tile: Tile, sheet: Sheet) -> bool:
+    """Whether ``tile``'s window overlaps the bounding box of some part on ``sheet`` (a page with
+    something to cut)."""
+    x0, y0, x1, y1 = tile.window
+    return any(
+        b[0] < x1 and b[2] > x0 and b[1] < y1 and b[3] > y0
+        for b in (p.bounds for p in sheet.placements)
+    )
+
+
 def plan_tiles(
-    plan: SheetPlan, paper: str | Paper, overlap: float = OVERLAP_MM
+    plan: SheetPlan, paper: str | Paper, overlap: float = OVERLAP_MM, *, empty: bool = False
 ) -> tuple[Tile, ...]:
-    """Every tile of every sheet of ``plan``, in page order (sheet by sheet, row by row)."""
+    """The tiles of every sheet of ``plan`` in page order (sheet by sheet, row by row): those
+    whose window overlaps a part (:func:`tile_used`), or every tile of the grid with
+    ``empty=True``. Rows and columns keep their place in the grid either way."""
     pp = paper if isinstance(paper, Paper) else get_paper(paper)
     return tuple(
         t
         for k, sheet in enumerate(plan.sheets, start=1)
         for t in sheet_tiles(sheet, pp, k, overlap)
+        if empty or tile_used(t, sheet)
     )
 
 
@@ -401,10 +417,12 @@ def tile_figure(
     labels: bool = True,
     page: tuple[int, int] = (1, 1),
     overlap: float = OVERLAP_MM,
+    printed: Collection[tuple[int, int]] | None = None,
 ) -> Figure:
     """The matplotlib figure of one tile page at 1:1: ``paper`` size, the sheet window of ``tile``
     in the drawing area (framed), the registration crosses, and in the bottom strip a 10 mm check
-    square, the tile's place in the grid and ``page`` (number, count)."""
+    square, the tile's place in the grid and ``page`` (number, count). ``printed`` is the (row,
+    column) of every page of this sheet in the file (None: all); the grid map dots the others."""
     from matplotlib.figure import Figure
     from matplotlib.lines import Line2D
     from matplotlib.patches import Circle, Rectangle
@@ -462,6 +480,8 @@ def tile_figure(
         f" the square must measure 10 mm. Neighbouring pages overlap by {overlap:g} mm:",
         "trim one page along its frame, lay it over the next so the + marks coincide, tape.",
     ]
+    if printed is not None and len(printed) < tile.rows * tile.columns:
+        lines.append("Pages with nothing to cut are left out: dotted in the map at the right.")
     tx = sx + side + 4.0
     for k, text in enumerate(lines):
         page_ax.text(tx, sy + side - k * 4.0, text, fontsize=2.5 * _PT, ha="left", va="top")
@@ -471,14 +491,16 @@ def tile_figure(
     for r in range(tile.rows):
         for c in range(tile.columns):
             here = (r + 1, c + 1) == (tile.row, tile.column)
+            left_out = printed is not None and (r + 1, c + 1) not in printed
             page_ax.add_patch(
                 Rectangle(
                     (gx + c * cell, gy + (tile.rows - 1 - r) * cell),
                     cell,
                     cell,
                     facecolor=ANNOTATION if here else "none",
-                    edgecolor="black",
+                    edgecolor=ANNOTATION if left_out else "black",
                     linewidth=lw,
+                    linestyle=(0, (1, 1.5)) if left_out else "solid",
                 )
             )
     return fig
@@ -493,19 +515,30 @@ def render_tiled_pdf(
     labels: bool = True,
     title: str = "",
     overlap: float = OVERLAP_MM,
+    empty: bool = False,
 ) -> None:
     """Draw ``plan`` as 1:1 tile pages of ``paper`` into a PDF at ``path`` directly (no staging:
-    use :func:`write_tiled_pdf`)."""
+    use :func:`write_tiled_pdf`); pages with nothing to cut are left out unless ``empty``."""
     from matplotlib.backends.backend_pdf import PdfPages
 
     pp = paper if isinstance(paper, Paper) else get_paper(paper)
     check_style((p.part for p in plan.placements), style)
-    tiles = plan_tiles(plan, pp, overlap)
+    tiles = plan_tiles(plan, pp, overlap, empty=empty)
+    printed: dict[int, set[tuple[int, int]]] = {}
+    for t in tiles:
+        printed.setdefault(t.sheet, set()).add((t.row, t.column))
     metadata = {"Title": title, "Creator": "corrugate", "CreationDate": None}
     with PdfPages(path, metadata=metadata) as pdf:
         for k, tile in enumerate(tiles, start=1):
             fig = tile_figure(
-                plan, tile, pp, style, labels=labels, page=(k, len(tiles)), overlap=overlap
+                plan,
+                tile,
+                pp,
+                style,
+                labels=labels,
+                page=(k, len(tiles)),
+                overlap=overlap,
+                printed=printed[tile.sheet],
             )
             pdf.savefig(fig)
 
@@ -519,14 +552,23 @@ def write_tiled_pdf(
     labels: bool = True,
     title: str = "corrugate pattern, tiled",
     overlap: float = OVERLAP_MM,
+    empty: bool = False,
 ) -> Path:
     """Write ``plan`` as 1:1 tile pages of ``paper`` (``a4`` or ``letter``) to a PDF at ``path``
-    (all or nothing); see :func:`sheet_tiles` and :func:`tile_figure`."""
+    (all or nothing); see :func:`sheet_tiles` and :func:`tile_figure`. Pages whose window holds
+    no part are left out unless ``empty``."""
     pp = paper if isinstance(paper, Paper) else get_paper(paper)
     check_style((p.part for p in plan.placements), style)
     target = Path(path)
     with staged() as st:
         render_tiled_pdf(
-            plan, st.path(target), pp, style, labels=labels, title=title, overlap=overlap
+            plan,
+            st.path(target),
+            pp,
+            style,
+            labels=labels,
+            title=title,
+            overlap=overlap,
+            empty=empty,
         )
     return target
