@@ -407,6 +407,11 @@ def test_cli_paper_option(tmp_path: Path, cli: CliRun) -> None:
     assert code == 2
     assert len(err.strip().splitlines()) == 1 and "paper" in err
     assert not bad.exists()
+    spec = Path(__file__).resolve().parents[1] / "examples" / "blimp_gripper.toml"
+    code, _, err = cli(["design", str(spec), "--out", str(bad), "--paper", "tabloid"])
+    assert code == 2
+    assert len(err.strip().splitlines()) == 1 and "paper = 'tabloid' is unknown" in err
+    assert not bad.exists()
     good = tmp_path / "good"
     code, _, err = cli([*case1, "--out", str(good), "--paper", "a4"])
     assert code == 0, err
