@@ -21,6 +21,7 @@ __all__ = [
     "N",
     "Nu",
     "Paper",
+    "SupportOpt",
     "Thickness",
     "Thickness2",
     "Vertices",
@@ -48,6 +49,14 @@ Thickness2 = Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1
 Vertices = Annotated[
     str | None,
     Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+]
+SupportOpt = Annotated[
+    str,
+    Opt(
+        "--support",
+        help="free (sides free: a bench test, most mounts; default) | frame (held in a rigid "
+        "frame on all four edges: the paper's cos^2 rule). Matters off the crease directions.",
+    ),
 ]
 
 #: Output option of ``pattern`` and ``design``: the 1:1 tiles of the sheets for office paper.
