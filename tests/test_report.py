@@ -4,20 +4,78 @@ Chromium (no missing image, no console error)."""
 from __future__ import annotations
 
 import base64
+import io
 import os
+import struct
 from html.parser import HTMLParser
 from pathlib import Path
 
 import pytest
 
-from corrugate.design import Problem, solve
+from corrugate.design import Problem, Solution, solve
 from corrugate.report import report_html
 from corrugate.spec import load_spec
+from plan_readers import Tables, sheet_rows, svg_parts
 
 ROOT = Path(__file__).resolve().parents[1]
 BLIMP = ROOT / "examples" / "blimp_gripper.toml"
 CHROMIUM = Path("/usr/bin/chromium")
 ARTIFACTS = ROOT / "test-artifacts"
+
+
+def test_report_draws_the_sheet_plan_the_files_are_written_from(
+    solution: Solution, tmp_path: Path
+) -> None:
+    """Non-default cutter, fold style and tab depth: the report beside the files shows their sheets
+    (the same parts at the same places, the same figures), not a plan rebuilt with defaults."""
+    from corrugate.export.pdf import sheet_figure
+    from corrugate.outputs import CutPlan, OutputOptions, write_design_files
+    from corrugate.pattern.linestyle import line_style
+    from corrugate.pattern.options import FabricationOptions
+
+    assert solution.analysis is not None
+    spec_text = BLIMP.read_text()
+    options = OutputOptions(
+        cutter="laser:130x80",
+        style=line_style("perforated", cut=1.5, gap=1.0),
+        fabrication=FabricationOptions(tab_depth=7.0),
+    )
+    seen: list[CutPlan] = []
+
+    def make_report(cut: CutPlan) -> str:
+        seen.append(cut)
+        return report_html(solution, spec_text, cut)
+
+    out = tmp_path / "out"
+    write_design_files(solution.analysis, out, options, report=make_report)
+    (cut,) = seen
+    text = (out / "report.html").read_text(encoding="utf-8")
+    in_files, sizes = svg_parts(out)
+    assert len(sizes) == len(cut.plan.sheets) > 1
+    assert all(size == pytest.approx((130.0, 80.0)) for size in sizes)
+    rows = sheet_rows(text)
+    assert sorted((r[0], r[1]) for r in rows) == [(s, n) for s, n, _, _ in in_files]
+    for (s, n, x, y), (s2, n2, x2, y2) in zip(sorted(rows), in_files, strict=True):
+        assert (s, n) == (s2, n2)
+        assert x == pytest.approx(x2, abs=0.01) and y == pytest.approx(y2, abs=0.01)
+    # the report's sheet figures are those of the written plan, at the sheet's proportions
+    parsed = Tables()
+    parsed.feed(text)
+    figures = [src for alt, src in parsed.images if alt.startswith("sheet ")]
+    assert len(figures) == len(cut.plan.sheets)
+    for k, src in enumerate(figures, start=1):
+        buf = io.BytesIO()
+        sheet_figure(cut.plan, k, cut.style).savefig(buf, format="png")
+        png = base64.b64decode(src.split(",", 1)[1])
+        assert png == buf.getvalue()
+        width, height = struct.unpack(">II", png[16:24])
+        assert width / height == pytest.approx(130.0 / 80.0, rel=0.01)
+    assert "perforated (1.5 mm cut, 1 mm gap)" in text
+    # a report made with the default options would show another plan than these files
+    default_rows = sheet_rows(report_html(solution, spec_text))
+    assert sorted((r[0], r[1], round(r[2], 2), round(r[3], 2)) for r in default_rows) != sorted(
+        (s, n, round(x, 2), round(y, 2)) for s, n, x, y in in_files
+    )
 
 
 class _Collect(HTMLParser):
@@ -45,10 +103,14 @@ class _Collect(HTMLParser):
 
 
 @pytest.fixture(scope="module")
-def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    sol = solve(Problem.from_spec(load_spec(BLIMP)))
+def solution() -> Solution:
+    return solve(Problem.from_spec(load_spec(BLIMP)))
+
+
+@pytest.fixture(scope="module")
+def report(solution: Solution, tmp_path_factory: pytest.TempPathFactory) -> Path:
     path = tmp_path_factory.mktemp("report") / "report.html"
-    path.write_text(report_html(sol, BLIMP.read_text()), encoding="utf-8")
+    path.write_text(report_html(solution, BLIMP.read_text()), encoding="utf-8")
     return path
 
 

@@ -20,6 +20,7 @@ __all__ = [
     "Material2",
     "N",
     "Nu",
+    "Paper",
     "SupportOpt",
     "Thickness",
     "Thickness2",
@@ -55,5 +56,14 @@ SupportOpt = Annotated[
         "--support",
         help="free (sides free: a bench test, most mounts; default) | frame (held in a rigid "
         "frame on all four edges: the paper's cos^2 rule). Matters off the crease directions.",
+    ),
+]
+
+#: Output option of ``pattern`` and ``design``: the 1:1 tiles of the sheets for office paper.
+Paper = Annotated[
+    str,
+    Opt(
+        help="mat: pattern.pdf, one mat-size page per sheet; a4 | letter: also pattern-a4.pdf / "
+        "pattern-letter.pdf, the sheets at 1:1 on pages to tape together."
     ),
 ]

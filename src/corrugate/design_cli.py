@@ -16,12 +16,14 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from . import cli_options as o
 from .cli import app, make_console
 from .design import Problem, Solution, solve
 from .design.pareto import ParetoFront, pareto_front
 from .design.run import run_spec
 from .design.tolerance import Tolerances, monte_carlo
 from .errors import InputError
+from .export.pdf import check_paper
 from .fileio import atomic_write, staged
 from .outputs import write_design_files
 from .pattern_cli import fab_options
@@ -131,6 +133,7 @@ def design_cmd(
     fold_style: Annotated[str, typer.Option(help="solid | scored | perforated.")] = "solid",
     cut: Annotated[str | None, typer.Option(help="Perforation: cut length (mm).")] = None,
     gap: Annotated[str | None, typer.Option(help="Perforation: gap length (mm).")] = None,
+    paper: o.Paper = "mat",
 ) -> None:
     """The certified lightest OADLC design that meets a spec, with its explanation.
 
@@ -138,7 +141,10 @@ def design_cmd(
     """
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
-    files = fab_options(cutter, fold_style, cut, gap, "5", "5", "4") if out is not None else None
+    check_paper(paper)  # checked with or without --out
+    files = (
+        fab_options(cutter, fold_style, cut, gap, "5", "5", "4", paper) if out is not None else None
+    )
     parsed = load_spec(spec)
     problem = Problem.from_spec(parsed)
     run = run_spec(parsed, problem)
@@ -149,8 +155,14 @@ def design_cmd(
         if sol.analysis is not None:
             from .report import report_html
 
-            report = report_html(sol, spec.read_text(encoding="utf-8"), files.cutter)
-            written = write_design_files(sol.analysis, out, files, extra=payload, report=report)
+            text_of_spec = spec.read_text(encoding="utf-8")
+            written = write_design_files(
+                sol.analysis,
+                out,
+                files,
+                extra=payload,
+                report=lambda cut: report_html(sol, text_of_spec, cut),
+            )
         else:
             written = [atomic_write(out / "design.json", text + "\n")]
     if as_json:

@@ -1,43 +1,76 @@
 """Design -> every file a maker needs, written all or nothing into one folder.
 
-``sheet-N.svg`` / ``sheet-N.dxf`` and ``pattern.pdf`` (the parts laid out on the cutter's sheets),
+``sheet-N.svg`` / ``sheet-N.dxf`` and ``pattern.pdf`` (the parts laid out on the cutter's sheets;
+with ``paper`` a4 or letter also ``pattern-a4.pdf`` / ``pattern-letter.pdf``, the sheets on 1:1 tiles),
 ``layer1.fold`` / ``layer2.fold`` (FOLD 1.2 with the folded frame), ``assembly.glb`` /
 ``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure),
 ``report.html`` (from ``corrugate design``) and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
 checked and every document built before anything is written; the files are then committed
 together (:mod:`corrugate.fileio`), so a bad option or a failure leaves no file behind.
+
+The parts and their sheet plan are made once (:func:`cut_plan`); the report gets that very
+:class:`CutPlan` (``report`` may be a function of it), so its sheet figures are the cut files'.
 """
 
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from .analysis import Analysis
 from .export.files import write_files
+from .export.pdf import check_paper
 from .fileio import staged
+from .geometry import Assembly
 from .pattern.build import build_pattern
 from .pattern.files3d import write_fold, write_mesh
 from .pattern.instructions import write_instructions
 from .pattern.linestyle import SOLID, LineStyle, check_style
+from .pattern.model import Pattern
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
-from .pattern.sheets import plan_sheets
+from .pattern.sheets import SheetPlan, plan_sheets
 
-__all__ = ["OutputOptions", "write_design_files"]
+__all__ = ["CutPlan", "OutputOptions", "cut_plan", "write_design_files"]
 
 
 @dataclass(frozen=True, slots=True)
 class OutputOptions:
     """Where and how to cut: cutter name (see :data:`corrugate.pattern.sheets.CUTTERS`, or
-    ``laser:WxH`` in mm), fold-line style, spacing and margin on the sheet (mm), connector sizes."""
+    ``laser:WxH`` in mm), fold-line style, spacing and margin on the sheet (mm), connector sizes,
+    and ``paper``: ``mat`` (``pattern.pdf`` only) or ``a4`` / ``letter`` (also the 1:1 tiles,
+    ``pattern-a4.pdf`` / ``pattern-letter.pdf``)."""
 
     cutter: str = "cameo4-12x12"
     style: LineStyle = SOLID
     spacing: float = 5.0
     margin: float = 5.0
     fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
+    paper: str = "mat"
+
+
+@dataclass(frozen=True, slots=True)
+class CutPlan:
+    """What one design's cut files are written from: the parts (``pattern``, mm), their
+    arrangement on the cutter's sheets (``plan``) and the fold-line ``style``."""
+
+    pattern: Pattern
+    plan: SheetPlan
+    style: LineStyle
+
+
+def cut_plan(assembly: Assembly, options: OutputOptions | None = None) -> CutPlan:
+    """Build the parts of ``assembly`` with ``options``' connector sizes and lay them out on its
+    cutter's sheets; raises :class:`~corrugate.errors.InputError` subclasses for a bad option (an
+    unknown cutter or paper, a part larger than the sheet, a perforation that does not fit)."""
+    opts = options or OutputOptions()
+    check_paper(opts.paper)
+    pattern = build_pattern(assembly, opts.fabrication)
+    plan = plan_sheets(pattern, opts.cutter, spacing=opts.spacing, margin=opts.margin)
+    check_style(pattern.parts, opts.style)
+    return CutPlan(pattern, plan, opts.style)
 
 
 def write_design_files(
@@ -45,19 +78,20 @@ def write_design_files(
     out_dir: str | Path,
     options: OutputOptions | None = None,
     extra: dict[str, Any] | None = None,
-    report: str | None = None,
+    report: str | Callable[[CutPlan], str] | None = None,
 ) -> list[Path]:
     """Write every file of the analysed design into ``out_dir``; returns the paths written.
 
     ``extra`` is merged into ``design.json`` (the design command puts its spec and constraints
-    there); ``report`` is the text of ``report.html`` (see :mod:`corrugate.report`), if any.
+    there); ``report`` is the text of ``report.html`` (see :mod:`corrugate.report`), or a function
+    that makes it from the :class:`CutPlan` the cut files are written from, or None.
     """
     opts = options or OutputOptions()
     a = analysis.assembly
     out = Path(out_dir)
-    pattern = build_pattern(a, opts.fabrication)
-    plan = plan_sheets(pattern, opts.cutter, spacing=opts.spacing, margin=opts.margin)
-    check_style(pattern.parts, opts.style)
+    cut = cut_plan(a, opts)
+    pattern, plan = cut.pattern, cut.plan
+    report_text = report(cut) if callable(report) else report
     record: dict[str, Any] = dict(analysis.to_dict())
     record["cut_parts"] = [
         {
@@ -85,12 +119,12 @@ def write_design_files(
         record.update(extra)
     out.mkdir(parents=True, exist_ok=True)
     with staged() as st:
-        written = list(write_files(plan, out, opts.style, staging=st))
+        written = list(write_files(plan, out, opts.style, paper=opts.paper, staging=st))
         written += write_fold(a, pattern, out, st)
         written += write_mesh(a, pattern, out, st)
         written += write_instructions(a, pattern, out, st)
-        if report is not None:
-            st.path(out / "report.html").write_text(report, encoding="utf-8")
+        if report_text is not None:
+            st.path(out / "report.html").write_text(report_text, encoding="utf-8")
             written.append(out / "report.html")
         record["files"] = [p.name for p in written] + ["design.json"]
         target = out / "design.json"

@@ -10,6 +10,7 @@ import typer
 from . import cli_options as o
 from .analysis import analyze
 from .cli import app, make_console
+from .export.pdf import check_paper
 from .inputs import assembly_from_namespace
 from .moduli import DEFAULT_MODEL, get_model
 from .offaxis import check_support
@@ -31,8 +32,10 @@ def fab_options(
     spacing: str,
     margin: str,
     tab_depth: str,
+    paper: str = "mat",
 ) -> OutputOptions:
-    """Output options from command-line strings (plain numbers in mm)."""
+    """Output options from command-line strings (plain numbers in mm); ``paper`` is ``mat``,
+    ``a4`` or ``letter`` (see :class:`~corrugate.outputs.OutputOptions`)."""
     cut_mm = None if cut is None else parse_quantity(cut, "mm", "cut")
     gap_mm = None if gap is None else parse_quantity(gap, "mm", "gap")
     return OutputOptions(
@@ -41,6 +44,7 @@ def fab_options(
         spacing=parse_quantity(spacing, "mm", "spacing"),
         margin=parse_quantity(margin, "mm", "margin"),
         fabrication=FabricationOptions(tab_depth=parse_quantity(tab_depth, "mm", "tab-depth")),
+        paper=check_paper(paper),
     )
 
 
@@ -73,12 +77,13 @@ def pattern_cmd(
     spacing: Annotated[str, Opt(help="Space between parts on the sheet (mm).")] = "5",
     margin: Annotated[str, Opt(help="Margin to the sheet's edge (mm).")] = "5",
     tab_depth: Annotated[str, Opt(help="Depth of the connector's glue tabs (mm).")] = "4",
+    paper: o.Paper = "mat",
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
 ) -> None:
     """Write the cut files (SVG, DXF, PDF), FOLD, GLB/STL and assembly steps of one design."""
     assembly = assembly_from_namespace(locals())
     get_model(model)
-    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth)
+    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, paper)
     result = analyze(
         assembly, model, (0.0, 90.0), opts.fabrication, check_support(support, "--support")
     )

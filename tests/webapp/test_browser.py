@@ -241,6 +241,7 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
     for selector, value in BLIMP_FORM.items():
         page.fill(selector, value)
     page.select_option("#d-cutter", "cameo4-12x12")
+    page.select_option("#d-paper", "letter")
     page.click("#d-submit")
     page.wait_for_selector("#d-view3d[data-state='ready']", timeout=60_000)
 
@@ -271,6 +272,14 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
     for name in ("sheet-1.svg", "sheet-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
         assert name in names
     assert {"assembly.glb", "assembly.stl"} <= set(names)
+    assert "pattern-letter.pdf" in names  # the paper option reached the files
+    # the preview shows every sheet that was written, in order
+    sheets = sorted(n for n in names if n.startswith("sheet-") and n.endswith(".svg"))
+    shown = page.eval_on_selector_all(
+        "#d-patterns img", "els => els.map(e => e.getAttribute('src'))"
+    )
+    assert len(shown) == len(sheets) >= 1
+    assert [s.rsplit("/", 1)[-1] for s in shown] == sheets
     if "report.html" in names:  # once write_design_files writes the report: it opens, whole
         assert page.is_visible("#d-report-link")
         with page.context.expect_page() as opened:

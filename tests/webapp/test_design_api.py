@@ -237,6 +237,8 @@ def _with(path: str, value: Any) -> dict[str, Any]:
         ({**_with("fold_style", "perforated"), "cut": 1}, "gap", "is missing"),
         ({**_with("fold_style", "perforated"), "cut": "1 MPa", "gap": 1}, "cut", "wrong dimension"),
         (_with("cutter", "laser:30x30"), "cutter", "too small for part"),
+        (_with("paper", "a3"), "paper", "is unknown"),
+        (_with("paper", 4), "paper", "wrong type"),
     ],
 )
 def test_bad_specs_get_422_naming_the_path(
@@ -320,3 +322,36 @@ def test_a_slow_design_gets_504(monkeypatch: pytest.MonkeyPatch) -> None:
             alive(c)
     finally:
         release.set()
+
+
+def test_report_and_preview_show_the_plan_of_the_files(client: TestClient, tmp_path: Path) -> None:
+    """Non-default cutter and fold style: report.html and the sheet-N.svg files (the page's
+    preview) hold one plan, and the tiles for the chosen paper are among the files."""
+    from plan_readers import Tables, sheet_rows, svg_parts
+
+    body = {
+        **spec_of("blimp_gripper.toml"),
+        "cutter": "laser:130x80",
+        "fold_style": "perforated",
+        "cut": "1.5 mm",
+        "gap": 1,
+        "paper": "letter",
+    }
+    r = client.post("/api/design", json=body)
+    assert r.status_code == 200, r.text
+    files = {f["name"]: f["url"] for f in r.json()["result"]["files"]}
+    for name, url in files.items():
+        (tmp_path / name).write_bytes(client.get(url).content)
+    in_files, sizes = svg_parts(tmp_path)
+    assert len(sizes) > 1 and all(size == (130.0, 80.0) for size in sizes)
+    report = (tmp_path / "report.html").read_text(encoding="utf-8")
+    rows = sheet_rows(report)
+    assert [(s, n) for s, n, _, _ in sorted(rows)] == [(s, n) for s, n, _, _ in in_files]
+    for (_, _, x, y), (_, _, x2, y2) in zip(sorted(rows), in_files, strict=True):
+        assert abs(x - x2) < 0.01 and abs(y - y2) < 0.01
+    parsed = Tables()
+    parsed.feed(report)
+    assert len([a for a, _ in parsed.images if a.startswith("sheet ")]) == len(sizes)
+    assert "perforated (1.5 mm cut, 1 mm gap)" in report
+    assert "pattern.pdf" in files and "pattern-letter.pdf" in files
+    assert (tmp_path / "pattern-letter.pdf").read_bytes().startswith(b"%PDF-")

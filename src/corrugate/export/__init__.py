@@ -8,11 +8,12 @@ with the ``fab`` extra.
 from ..fileio import staged
 from .dxf import dxf_document, write_dxf
 from .files import FORMATS, write_files
-from .pdf import write_pdf
+from .pdf import PAPER_CHOICES, write_pdf, write_tiled_pdf
 from .svg import svg_document, write_svg
 
 __all__ = [
     "FORMATS",
+    "PAPER_CHOICES",
     "dxf_document",
     "staged",
     "svg_document",
@@ -20,4 +21,5 @@ __all__ = [
     "write_files",
     "write_pdf",
     "write_svg",
+    "write_tiled_pdf",
 ]

@@ -10,14 +10,30 @@ first free spot found, and is left out only if no 10 mm spot is free. Lines use 
 (:data:`corrugate.export.svg.COLOURS`), solid; with the ``perforated`` style the creases are drawn
 as their dashes. Part labels, the check square and a one-line note in the bottom margin are grey
 (:data:`corrugate.export.svg.ANNOTATION`), so a cutter that imports the PDF can skip them by colour.
+
+Tiles (:func:`write_tiled_pdf`, ``pattern-a4.pdf`` / ``pattern-letter.pdf``): the same drawing at
+1:1 on portrait A4 (210 x 297 mm) or Letter (215.9 x 279.4 mm) pages, for printing on any printer
+and taping together as a template for cutting by hand. Each sheet is cut into a grid of windows
+from its top-left corner (:func:`sheet_tiles`); a window that holds no part is left out (its
+place in the grid stays). A page shows one window in its drawing area (the
+paper less :data:`PAGE_MARGIN_MM` at the left, right and top and :data:`FOOTER_MM` at the bottom),
+framed by a thin grey line. Neighbouring windows overlap by :data:`OVERLAP_MM`; registration
+crosses sit on the middle line of each overlap every :data:`MARK_PITCH_MM`
+(:func:`registration_marks`), at the same sheet point on both pages. The footer holds a black
+10 mm check square, the page's sheet, row, column and number, how to join the pages, and a map of
+the grid with the page filled. All lengths are mm.
 """
 
 from __future__ import annotations
 
+import math
 import os
+from collections.abc import Collection
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..errors import InputError, UnknownNameError
 from ..fileio import staged
 from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease_name, dashes
 from ..pattern.model import Point, Role
@@ -26,21 +42,45 @@ from .labels import label_spot
 from .svg import ANNOTATION, BOUNDARY, COLOURS
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
 __all__ = [
     "CHECK_SQUARE_MM",
+    "FOOTER_MM",
     "LINE_MM",
+    "MARK_INSET_MM",
+    "MARK_PITCH_MM",
+    "MARK_SIZE_MM",
+    "OVERLAP_MM",
+    "PAGE_MARGIN_MM",
+    "PAPERS",
+    "PAPER_CHOICES",
+    "REGISTRATION",
+    "Paper",
+    "Tile",
+    "check_paper",
     "check_square_spot",
+    "drawing_area",
+    "get_paper",
+    "plan_tiles",
+    "registration_marks",
     "render_pdf",
+    "render_tiled_pdf",
     "sheet_figure",
+    "sheet_tiles",
+    "tile_figure",
+    "tile_used",
     "write_pdf",
+    "write_tiled_pdf",
 ]
 
 #: Side of the check square (mm).
 CHECK_SQUARE_MM = 10.0
 #: Line width on paper (mm).
 LINE_MM = 0.2
+#: Stroke colour of the tiles' registration crosses (black, as printers print it best).
+REGISTRATION = "#000000"
 _PT = 72.0 / 25.4  # points per mm
 _LABEL_MM = 3.0
 
@@ -93,11 +133,8 @@ def sheet_figure(
 ) -> Figure:
     """The matplotlib figure of sheet ``number`` (1-based) of ``plan``, at 1:1 (see the module
     docstring); save it as PDF for print, or as PNG for a preview."""
-    from matplotlib.collections import LineCollection
     from matplotlib.figure import Figure
-    from matplotlib.patches import Rectangle
 
-    lw = LINE_MM * _PT
     sheet = plan.sheets[number - 1]
     W, H = sheet.width, sheet.height
     fig = Figure(figsize=(W / 25.4, H / 25.4))
@@ -105,6 +142,19 @@ def sheet_figure(
     ax.set_xlim(0.0, W)
     ax.set_ylim(0.0, H)
     ax.set_axis_off()
+    _draw_sheet(ax, plan, number, style, labels=labels)
+    return fig
+
+
+def _draw_sheet(ax: Axes, plan: SheetPlan, number: int, style: LineStyle, *, labels: bool) -> None:
+    """Draw sheet ``number`` (1-based) of ``plan`` into ``ax``, whose data units are sheet mm and
+    whose scale is 1:1 on paper (the caller sets the figure size and the axes' limits); every
+    artist is clipped to ``ax``."""
+    from matplotlib.collections import LineCollection
+    from matplotlib.patches import Rectangle
+
+    lw = LINE_MM * _PT
+    sheet = plan.sheets[number - 1]
     segs: dict[str, list[tuple[Point, Point]]] = {}
     for placement in sheet.placements:
         placed = place(placement)
@@ -133,6 +183,7 @@ def sheet_figure(
                 ha="center",
                 va="center",
                 color=ANNOTATION,
+                clip_on=True,
             )
     for colour, lines in segs.items():
         ax.add_collection(LineCollection(lines, colors=colour, linewidths=lw, capstyle="butt"))
@@ -149,6 +200,7 @@ def sheet_figure(
             ha="center",
             va="top",
             color=ANNOTATION,
+            clip_on=True,
         )
     if plan.margin >= 3.0:  # a one-line note in the bottom margin
         ax.text(
@@ -159,8 +211,8 @@ def sheet_figure(
             ha="left",
             va="bottom",
             color=ANNOTATION,
+            clip_on=True,
         )
-    return fig
 
 
 def render_pdf(
@@ -174,3 +226,349 @@ def render_pdf(
     with PdfPages(path, metadata=metadata) as pdf:
         for number in range(1, len(plan.sheets) + 1):
             pdf.savefig(sheet_figure(plan, number, style, labels=labels))
+
+
+# ----------------------------------------------------------------------------------------------
+# 1:1 tiles on office paper (A4, Letter), to print on any printer and tape together
+
+
+@dataclass(frozen=True, slots=True)
+class Paper:
+    """An office paper size, portrait: ``width`` x ``height`` (mm)."""
+
+    name: str
+    width: float
+    height: float
+
+
+#: The paper sizes of the tiled PDF (ISO 216 A4, 210 x 297 mm; US Letter, 8.5 x 11 in).
+PAPERS: dict[str, Paper] = {
+    "a4": Paper("a4", 210.0, 297.0),
+    "letter": Paper("letter", 8.5 * 25.4, 11.0 * 25.4),
+}
+#: Values of the ``paper`` option: ``mat`` (the mat-size pages only) or a :data:`PAPERS` name.
+PAPER_CHOICES: tuple[str, ...] = ("mat", *PAPERS)
+#: Blank margin (mm) at the left, right and top of a tile page, outside most printers' dead zone.
+PAGE_MARGIN_MM = 10.0
+#: Height (mm) of the strip at the bottom of a tile page: its 10 mm check square and its position.
+FOOTER_MM = 24.0
+#: Width (mm) of the strip of the sheet that two neighbouring tiles both show.
+OVERLAP_MM = 10.0
+#: Distance (mm, along an overlap) between neighbouring registration marks.
+MARK_PITCH_MM = 40.0
+#: Distance (mm) from the end of a tile's drawing area to the first registration mark of an overlap.
+MARK_INSET_MM = 20.0
+#: Length (mm) of each of the two strokes of a registration cross; its circle has half this radius.
+MARK_SIZE_MM = 6.0
+
+
+def get_paper(name: str) -> Paper:
+    """The paper called ``name`` (``a4`` or ``letter``, any case); raises
+    :class:`~corrugate.errors.UnknownNameError` naming the field ``paper`` otherwise."""
+    key = name.strip().lower()
+    if key not in PAPERS:
+        raise UnknownNameError("paper", name, list(PAPERS))
+    return PAPERS[key]
+
+
+def check_paper(name: str) -> str:
+    """``name`` normalised if it is one of :data:`PAPER_CHOICES`; else
+    :class:`~corrugate.errors.UnknownNameError` naming the field ``paper``."""
+    key = name.strip().lower()
+    if key not in PAPER_CHOICES:
+        raise UnknownNameError("paper", name, list(PAPER_CHOICES))
+    return key
+
+
+@dataclass(frozen=True, slots=True)
+class Tile:
+    """One tile page: the part of sheet ``sheet`` (1-based) that the page shows at 1:1.
+
+    ``row`` and ``column`` are 1-based, row 1 at the top of the sheet, column 1 at its left;
+    ``rows`` x ``columns`` is the grid of the sheet. The page's drawing area shows the sheet
+    window ``x0 <= x <= x0 + width``, ``y0 <= y <= y0 + height`` (sheet mm, y up), with its
+    lower-left corner at (``PAGE_MARGIN_MM``, ``FOOTER_MM``) on the page.
+    """
+
+    sheet: int
+    row: int
+    column: int
+    rows: int
+    columns: int
+    x0: float
+    y0: float
+    width: float
+    height: float
+
+    @property
+    def window(self) -> tuple[float, float, float, float]:
+        """(xmin, ymin, xmax, ymax) of the sheet window the page shows (mm)."""
+        return self.x0, self.y0, self.x0 + self.width, self.y0 + self.height
+
+    def to_page(self, point: Point) -> Point:
+        """A sheet point (mm) as a page point (mm from the page's lower-left corner)."""
+        return point[0] - self.x0 + PAGE_MARGIN_MM, point[1] - self.y0 + FOOTER_MM
+
+
+def drawing_area(paper: Paper) -> tuple[float, float]:
+    """Width and height (mm) of the drawing area of a tile page of ``paper``."""
+    return paper.width - 2 * PAGE_MARGIN_MM, paper.height - PAGE_MARGIN_MM - FOOTER_MM
+
+
+def _count(extent: float, window: float, overlap: float) -> int:
+    if extent <= window + 1e-9:
+        return 1
+    return math.ceil((extent - window) / (window - overlap) - 1e-9) + 1
+
+
+def sheet_tiles(
+    sheet: Sheet, paper: Paper, number: int = 1, overlap: float = OVERLAP_MM
+) -> tuple[Tile, ...]:
+    """The tiles of ``sheet`` (number ``number``, 1-based) on ``paper``, row by row from the top
+    left: a grid of windows, each ``overlap`` mm into its right and lower neighbours, anchored at
+    the sheet's top-left corner (the mat's origin) and together covering the whole sheet."""
+    cw, ch = drawing_area(paper)
+    if not 0 <= overlap <= min(cw, ch) / 2:
+        raise InputError("overlap", f"{overlap} mm", f"0 <= overlap <= {min(cw, ch) / 2:g} mm")
+    cols = _count(sheet.width, cw, overlap)
+    rows = _count(sheet.height, ch, overlap)
+    return tuple(
+        Tile(
+            sheet=number,
+            row=r + 1,
+            column=c + 1,
+            rows=rows,
+            columns=cols,
+            x0=c * (cw - overlap),
+            y0=sheet.height - r * (ch - overlap) - ch,
+            width=cw,
+            height=ch,
+        )
+        for r in range(rows)
+        for c in range(cols)
+    )
+
+
+def tile_used(tile: Tile, sheet: Sheet) -> bool:
+    """Whether ``tile``'s window overlaps the bounding box of some part on ``sheet`` (a page with
+    something to cut)."""
+    x0, y0, x1, y1 = tile.window
+    return any(
+        b[0] < x1 and b[2] > x0 and b[1] < y1 and b[3] > y0
+        for b in (p.bounds for p in sheet.placements)
+    )
+
+
+def plan_tiles(
+    plan: SheetPlan, paper: str | Paper, overlap: float = OVERLAP_MM, *, empty: bool = False
+) -> tuple[Tile, ...]:
+    """The tiles of every sheet of ``plan`` in page order (sheet by sheet, row by row): those
+    whose window overlaps a part (:func:`tile_used`), or every tile of the grid with
+    ``empty=True``. Rows and columns keep their place in the grid either way."""
+    pp = paper if isinstance(paper, Paper) else get_paper(paper)
+    return tuple(
+        t
+        for k, sheet in enumerate(plan.sheets, start=1)
+        for t in sheet_tiles(sheet, pp, k, overlap)
+        if empty or tile_used(t, sheet)
+    )
+
+
+def registration_marks(
+    tile: Tile, sheet_width: float, sheet_height: float, overlap: float = OVERLAP_MM
+) -> tuple[Point, ...]:
+    """Centres (sheet mm) of the registration crosses on ``tile`` of a ``sheet_width`` x
+    ``sheet_height`` mm sheet: on the middle line of each overlap it shares with a neighbour, over
+    the part of it that lies on the sheet, every :data:`MARK_PITCH_MM` from :data:`MARK_INSET_MM`
+    after its start (from the top, from the left); one cross in its middle if it is shorter than
+    two insets. A neighbour has the same crosses at the same sheet points, so the two pages line
+    up when their crosses coincide."""
+    x0, y0, x1, y1 = tile.window
+    along_y = [-y for y in _ticks(-min(y1, sheet_height), -max(y0, 0.0))]
+    along_x = _ticks(max(x0, 0.0), min(x1, sheet_width))
+    marks: list[Point] = []
+    if tile.column > 1:
+        marks += [(x0 + overlap / 2, y) for y in along_y]
+    if tile.column < tile.columns:
+        marks += [(x1 - overlap / 2, y) for y in along_y]
+    if tile.row > 1:
+        marks += [(x, y1 - overlap / 2) for x in along_x]
+    if tile.row < tile.rows:
+        marks += [(x, y0 + overlap / 2) for x in along_x]
+    return tuple(marks)
+
+
+def _ticks(start: float, stop: float) -> list[float]:
+    """Mark positions on [start, stop]: every MARK_PITCH_MM from start + MARK_INSET_MM up to
+    stop - MARK_INSET_MM, or the middle alone when that range is empty."""
+    first, last = start + MARK_INSET_MM, stop - MARK_INSET_MM
+    if last < first - 1e-9:
+        return [(start + stop) / 2]
+    count = math.floor((last - first) / MARK_PITCH_MM + 1e-9) + 1
+    return [first + k * MARK_PITCH_MM for k in range(count)]
+
+
+def tile_figure(
+    plan: SheetPlan,
+    tile: Tile,
+    paper: Paper,
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    page: tuple[int, int] = (1, 1),
+    overlap: float = OVERLAP_MM,
+    printed: Collection[tuple[int, int]] | None = None,
+) -> Figure:
+    """The matplotlib figure of one tile page at 1:1: ``paper`` size, the sheet window of ``tile``
+    in the drawing area (framed), the registration crosses, and in the bottom strip a 10 mm check
+    square, the tile's place in the grid and ``page`` (number, count). ``printed`` is the (row,
+    column) of every page of this sheet in the file (None: all); the grid map dots the others."""
+    from matplotlib.figure import Figure
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Circle, Rectangle
+
+    pw, ph = paper.width, paper.height
+    cw, ch = tile.width, tile.height
+    lw = LINE_MM * _PT
+    fig = Figure(figsize=(pw / 25.4, ph / 25.4))
+    ax = fig.add_axes((PAGE_MARGIN_MM / pw, FOOTER_MM / ph, cw / pw, ch / ph))
+    x0, y0, x1, y1 = tile.window
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_axis_off()
+    sheet = plan.sheets[tile.sheet - 1]
+    ax.add_patch(  # the sheet's edge (the mat's usable area), dotted
+        Rectangle(
+            (0.0, 0.0),
+            sheet.width,
+            sheet.height,
+            fill=False,
+            edgecolor=ANNOTATION,
+            linewidth=lw,
+            linestyle=(0, (1, 4)),
+        )
+    )
+    _draw_sheet(ax, plan, tile.sheet, style, labels=labels)
+
+    page_ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))  # page mm, over the drawing
+    page_ax.set_xlim(0.0, pw)
+    page_ax.set_ylim(0.0, ph)
+    page_ax.set_axis_off()
+    page_ax.add_patch(
+        Rectangle(
+            (PAGE_MARGIN_MM, FOOTER_MM), cw, ch, fill=False, edgecolor=ANNOTATION, linewidth=lw
+        )
+    )
+    half = MARK_SIZE_MM / 2
+    for point in registration_marks(tile, sheet.width, sheet.height, overlap):
+        px, py = tile.to_page(point)
+        for xs, ys in (([px - half, px + half], [py, py]), ([px, px], [py - half, py + half])):
+            page_ax.add_line(Line2D(xs, ys, color=REGISTRATION, linewidth=lw))
+        page_ax.add_patch(
+            Circle((px, py), half / 2, fill=False, edgecolor=REGISTRATION, linewidth=lw)
+        )
+    # the bottom strip: check square, where this page goes, how to join the pages
+    side = CHECK_SQUARE_MM
+    sx, sy = PAGE_MARGIN_MM, FOOTER_MM - 4.0 - side
+    page_ax.add_patch(Rectangle((sx, sy), side, side, fill=False, edgecolor="black", linewidth=lw))
+    page_ax.text(sx + side / 2, sy - 0.8, "10 mm", fontsize=2.4 * _PT, ha="center", va="top")
+    number, count = page
+    lines = [
+        f"sheet {tile.sheet}/{len(plan.sheets)} ({plan.cutter.name}), row {tile.row} of "
+        f"{tile.rows}, column {tile.column} of {tile.columns}: page {number} of {count}",
+        f"Print at 100 % (actual size) on {paper.name.upper() if paper.name == 'a4' else 'Letter'};"
+        f" the square must measure 10 mm. Neighbouring pages overlap by {overlap:g} mm:",
+        "trim one page along its frame, lay it over the next so the + marks coincide, tape.",
+    ]
+    if printed is not None and len(printed) < tile.rows * tile.columns:
+        lines.append("Pages with nothing to cut are left out: dotted in the map at the right.")
+    tx = sx + side + 4.0
+    for k, text in enumerate(lines):
+        page_ax.text(tx, sy + side - k * 4.0, text, fontsize=2.5 * _PT, ha="left", va="top")
+    cell = 3.0  # a small map of the grid, this page filled
+    gx = pw - PAGE_MARGIN_MM - tile.columns * cell
+    gy = sy + side - tile.rows * cell
+    for r in range(tile.rows):
+        for c in range(tile.columns):
+            here = (r + 1, c + 1) == (tile.row, tile.column)
+            left_out = printed is not None and (r + 1, c + 1) not in printed
+            page_ax.add_patch(
+                Rectangle(
+                    (gx + c * cell, gy + (tile.rows - 1 - r) * cell),
+                    cell,
+                    cell,
+                    facecolor=ANNOTATION if here else "none",
+                    edgecolor=ANNOTATION if left_out else "black",
+                    linewidth=lw,
+                    linestyle=(0, (1, 1.5)) if left_out else "solid",
+                )
+            )
+    return fig
+
+
+def render_tiled_pdf(
+    plan: SheetPlan,
+    path: Path,
+    paper: str | Paper,
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    title: str = "",
+    overlap: float = OVERLAP_MM,
+    empty: bool = False,
+) -> None:
+    """Draw ``plan`` as 1:1 tile pages of ``paper`` into a PDF at ``path`` directly (no staging:
+    use :func:`write_tiled_pdf`); pages with nothing to cut are left out unless ``empty``."""
+    from matplotlib.backends.backend_pdf import PdfPages
+
+    pp = paper if isinstance(paper, Paper) else get_paper(paper)
+    check_style((p.part for p in plan.placements), style)
+    tiles = plan_tiles(plan, pp, overlap, empty=empty)
+    printed: dict[int, set[tuple[int, int]]] = {}
+    for t in tiles:
+        printed.setdefault(t.sheet, set()).add((t.row, t.column))
+    metadata = {"Title": title, "Creator": "corrugate", "CreationDate": None}
+    with PdfPages(path, metadata=metadata) as pdf:
+        for k, tile in enumerate(tiles, start=1):
+            fig = tile_figure(
+                plan,
+                tile,
+                pp,
+                style,
+                labels=labels,
+                page=(k, len(tiles)),
+                overlap=overlap,
+                printed=printed[tile.sheet],
+            )
+            pdf.savefig(fig)
+
+
+def write_tiled_pdf(
+    plan: SheetPlan,
+    path: str | os.PathLike[str],
+    paper: str | Paper,
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    title: str = "corrugate pattern, tiled",
+    overlap: float = OVERLAP_MM,
+    empty: bool = False,
+) -> Path:
+    """Write ``plan`` as 1:1 tile pages of ``paper`` (``a4`` or ``letter``) to a PDF at ``path``
+    (all or nothing); see :func:`sheet_tiles` and :func:`tile_figure`. Pages whose window holds
+    no part are left out unless ``empty``."""
+    pp = paper if isinstance(paper, Paper) else get_paper(paper)
+    check_style((p.part for p in plan.placements), style)
+    target = Path(path)
+    with staged() as st:
+        render_tiled_pdf(
+            plan,
+            st.path(target),
+            pp,
+            style,
+            labels=labels,
+            title=title,
+            overlap=overlap,
+            empty=empty,
+        )
+    return target

@@ -5,15 +5,17 @@ from __future__ import annotations
 import base64
 import html
 import io
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..analysis import analyze
 from ..design.solve import Solution
 from ..moduli import MODELS
-from ..pattern.build import build_pattern
 from ..pattern.instructions import assembly_steps, instructions_figure
-from ..pattern.sheets import plan_sheets
+from ..pattern.linestyle import StyleKind
 from .figures import design_space_figure, mass_by_n_figure, polar_figure
+
+if TYPE_CHECKING:
+    from ..outputs import CutPlan
 
 __all__ = ["report_html"]
 
@@ -53,8 +55,37 @@ def _g(x: float | None, digits: int = 5) -> str:
     return "-" if x is None else f"{x:.{digits}g}"
 
 
-def report_html(sol: Solution, spec_text: str, cutter: str = "cameo4-12x12") -> str:
-    """The report of a solved design (see :mod:`corrugate.report`); needs matplotlib."""
+def _style_text(cut: CutPlan) -> str:
+    st = cut.style
+    if st.kind is StyleKind.PERFORATED:
+        return f"{st.kind} ({st.cut:g} mm cut, {st.gap:g} mm gap)"
+    return str(st.kind)
+
+
+def _sheet_table(cut: CutPlan) -> str:
+    """Where each part lies on its sheet (mm, sheet origin at the lower left), as in the cut
+    files."""
+    rows = [
+        [
+            str(pl.sheet + 1),
+            pl.part.name,
+            f"{pl.x:.2f}",
+            f"{pl.y:.2f}",
+            f"{pl.size[0]:.2f} x {pl.size[1]:.2f}",
+            "yes" if pl.rotated else "no",
+        ]
+        for pl in cut.plan.placements
+    ]
+    return _table(["sheet", "part", "x (mm)", "y (mm)", "size (mm)", "turned 90 deg"], rows)
+
+
+def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> str:
+    """The report of a solved design (see :mod:`corrugate.report`); needs matplotlib.
+
+    ``cut`` is the parts and sheet plan the design's cut files are written from
+    (:func:`corrugate.outputs.cut_plan`), drawn as they are; ``None`` makes one with the default
+    output options (a report on its own, without cut files).
+    """
     import matplotlib
 
     matplotlib.use("Agg")
@@ -173,11 +204,22 @@ def report_html(sol: Solution, spec_text: str, cutter: str = "cameo4-12x12") -> 
         f"<p>The design was solved with <code>{html.escape(p.model)}</code>; "
         "<code>refined</code> is the variant that agrees with finite elements.</p>"
     )
-    pattern = build_pattern(asm)
-    plan = plan_sheets(pattern, cutter)
+    if cut is None:
+        from ..outputs import cut_plan
+
+        cut = cut_plan(asm)
+    pattern, plan = cut.pattern, cut.plan
     parts.append("<h2>Flat pattern and folded part</h2>")
+    parts.append(
+        f"<p>{len(plan.sheets)} sheet(s) of {html.escape(plan.cutter.description)} "
+        f"({plan.cutter.width:.1f} x {plan.cutter.height:.1f} mm usable), fold lines "
+        f"{html.escape(_style_text(cut))}: the sheets of the cut files beside this report.</p>"
+    )
     for k in range(len(plan.sheets)):
-        parts.append(_img(sheet_figure(plan, k + 1), f"sheet {k + 1} of the cut pattern"))
+        parts.append(
+            _img(sheet_figure(plan, k + 1, cut.style), f"sheet {k + 1} of the cut pattern")
+        )
+    parts.append(_sheet_table(cut))
     parts.append(_img(instructions_figure(asm, pattern), "the folded assembly, step by step"))
     parts.append("<h2>Assembly</h2><ol>")
     parts.extend(f"<li>{html.escape(s)}</li>" for s in assembly_steps(asm, pattern))

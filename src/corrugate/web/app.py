@@ -13,7 +13,8 @@ Endpoints (all JSON unless said otherwise):
 * ``POST /api/design``: a spec (the keys of the TOML file) and the output options of
   ``corrugate design`` -> ``{"design": <corrugate design --json>, "result": {"id", "files"}}``:
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
-  STL, steps, design.json, the report), or ``"result": null`` when the spec is infeasible;
+  STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
+  ``"result": null`` when the spec is infeasible;
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path).
 
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
@@ -207,8 +208,9 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
 
 def _output_options(body: DesignBody) -> OutputOptions:
     """The output options of a design request, as ``corrugate design --cutter ... --fold-style
-    ... --cut ... --gap ...`` reads them (default spacing, margin and tabs); errors name the
-    request's field."""
+    ... --cut ... --gap ... --paper ...`` reads them (default spacing, margin and tabs); errors
+    name the request's field."""
+    from ..export.pdf import check_paper
     from ..pattern.linestyle import line_style
     from ..pattern.sheets import get_cutter
 
@@ -225,7 +227,11 @@ def _output_options(body: DesignBody) -> OutputOptions:
                     reason="is missing",
                 )
     try:
-        return OutputOptions(cutter=body.cutter, style=line_style(body.fold_style, cut, gap))
+        return OutputOptions(
+            cutter=body.cutter,
+            style=line_style(body.fold_style, cut, gap),
+            paper=check_paper(body.paper),  # its errors name "paper" already
+        )
     except InputError as exc:
         fields = {
             "fold-line style": "fold_style",
@@ -322,9 +328,14 @@ def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -
     def write(folder: Path) -> list[Path]:
         from ..report import report_html
 
-        with _FILES_LOCK:
-            report = report_html(sol, spec_text, options.cutter)
-            return write_design_files(analysis, folder, options, extra=payload, report=report)
+        with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
+            return write_design_files(
+                analysis,
+                folder,
+                options,
+                extra=payload,
+                report=lambda cut: report_html(sol, spec_text, cut),
+            )
 
     try:
         files = store.make(write)

@@ -87,7 +87,7 @@ class AnalyzeBody(BaseModel):
 
 
 #: The keys of a design request that are output options, not spec keys.
-OUTPUT_OPTIONS = ("cutter", "fold_style", "cut", "gap")
+OUTPUT_OPTIONS = ("cutter", "fold_style", "cut", "gap", "paper")
 
 _SPEC_KEY = "A key of the spec, as in the TOML file (see corrugate.spec and examples/)."
 
@@ -115,7 +115,7 @@ BLIMP_GRIPPER: dict[str, Any] = {
 
 class DesignBody(BaseModel):
     """A design spec as JSON, with the keys of the TOML file, plus the output options of
-    ``corrugate design`` (``cutter``, ``fold_style``, ``cut``, ``gap``).
+    ``corrugate design`` (``cutter``, ``fold_style``, ``cut``, ``gap``, ``paper``).
 
     The spec keys are validated by :func:`corrugate.spec.parse_spec` (the CLI's own rules), so a
     bad value gets 422 naming its TOML path (``constraints.side.min``); only the output options
@@ -141,6 +141,11 @@ class DesignBody(BaseModel):
     fold_style: Text = Field("solid", description="Fold lines: solid | scored | perforated.")
     cut: Value | None = Field(None, description="Perforation: cut length (mm).")
     gap: Value | None = Field(None, description="Perforation: gap length (mm).")
+    paper: Text = Field(
+        "mat",
+        description="mat: pattern.pdf only (one mat-size page per sheet); a4 | letter: also "
+        "pattern-a4.pdf / pattern-letter.pdf, the sheets at 1:1 on pages to tape together.",
+    )
 
 
 class FieldError(BaseModel):

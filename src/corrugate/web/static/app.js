@@ -500,10 +500,22 @@ async function showDesignFiles(result, mine) {
     downloads.appendChild(a);
   }
   const byName = Object.fromEntries(files.map((f) => [f.name, f]));
-  const sheet = byName['sheet-1.svg'];
+  // Every sheet of the written plan: the sheet-N.svg files themselves, in order.
+  const sheets = files
+    .filter((f) => /^sheet-\d+\.svg$/.test(f.name))
+    .sort((a, b) => parseInt(a.name.slice(6), 10) - parseInt(b.name.slice(6), 10));
   const img = $('d-pattern');
-  img.hidden = !sheet;
-  if (sheet) img.src = sheet.url;
+  for (const extra of $('d-patterns').querySelectorAll('img:not(#d-pattern)')) extra.remove();
+  img.hidden = sheets.length === 0;
+  if (sheets.length) img.src = sheets[0].url;
+  for (const [k, f] of sheets.slice(1).entries()) {
+    const more = document.createElement('img');
+    more.src = f.url;
+    more.alt = `sheet ${k + 2} of the cut pattern`;
+    more.dataset.name = f.name;
+    $('d-patterns').appendChild(more);
+  }
+  img.dataset.name = sheets.length ? sheets[0].name : '';
   const report = byName['report.html'];
   $('d-report').hidden = !report;
   if (report) $('d-report-link').href = report.url;
