@@ -16,6 +16,7 @@ from rich.console import Console
 from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
+from . import cli_options as o
 from .cli import app, make_console
 from .design import Problem, Solution, solve
 from .design.pareto import ParetoFront, pareto_front
@@ -124,10 +125,8 @@ def design_cmd(
         Path | None,
         typer.Option("--out", help="Folder for design.json and, for a design, every cut file."),
     ] = None,
-    cutter: Annotated[
-        str,
-        typer.Option(help="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH."),
-    ] = "cameo4-12x12",
+    cutter: o.Machine = "cameo4-12x12",
+    labels: o.Labels = None,
     fold_style: Annotated[str, typer.Option(help="solid | scored | perforated.")] = "solid",
     cut: Annotated[str | None, typer.Option(help="Perforation: cut length (mm).")] = None,
     gap: Annotated[str | None, typer.Option(help="Perforation: gap length (mm).")] = None,
@@ -138,7 +137,9 @@ def design_cmd(
     """
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
-    files = fab_options(cutter, fold_style, cut, gap, "5", "5", "4") if out is not None else None
+    files = (
+        fab_options(cutter, fold_style, cut, gap, "5", "5", "4", labels) if out is not None else None
+    )
     parsed = load_spec(spec)
     problem = Problem.from_spec(parsed)
     run = run_spec(parsed, problem)

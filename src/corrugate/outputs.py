@@ -1,6 +1,8 @@
 """Design -> every file a maker needs, written all or nothing into one folder.
 
-``sheet-N.svg`` / ``sheet-N.dxf`` and ``pattern.pdf`` (the parts laid out on the cutter's sheets),
+``sheet-N.svg`` (the fold map, for people and Origami Simulator), ``cut-N.dxf`` / ``cut-N.svg``
+(the cut-ready files of the machine: DXF for a Silhouette, SVG for a Cricut, both for a laser) and
+``pattern.pdf`` (the parts laid out on the machine's sheets, :mod:`corrugate.export.files`),
 ``layer1.fold`` / ``layer2.fold`` (FOLD 1.2 with the folded frame), ``assembly.glb`` /
 ``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure),
 ``report.html`` (from ``corrugate design``) and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
@@ -17,6 +19,7 @@ from typing import Any
 
 from .analysis import Analysis
 from .export.files import write_files
+from .export.machines import DEFAULT_MACHINE, get_machine
 from .fileio import staged
 from .pattern.build import build_pattern
 from .pattern.files3d import write_fold, write_mesh
@@ -30,14 +33,18 @@ __all__ = ["OutputOptions", "write_design_files"]
 
 @dataclass(frozen=True, slots=True)
 class OutputOptions:
-    """Where and how to cut: cutter name (see :data:`corrugate.pattern.sheets.CUTTERS`, or
-    ``laser:WxH`` in mm), fold-line style, spacing and margin on the sheet (mm), connector sizes."""
+    """Where and how to cut: the machine (``cutter``: a name of
+    :data:`corrugate.pattern.sheets.CUTTERS` or ``laser:WxH`` in mm; its profile is
+    :func:`corrugate.export.machines.get_machine`), fold-line style, spacing and margin on the sheet
+    (mm), connector sizes, and ``labels`` (``None``: on the fold map and the PDF, not in the cut
+    files; ``True``: in the cut files too; ``False``: nowhere)."""
 
-    cutter: str = "cameo4-12x12"
+    cutter: str = DEFAULT_MACHINE
     style: LineStyle = SOLID
     spacing: float = 5.0
     margin: float = 5.0
     fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
+    labels: bool | None = None
 
 
 def write_design_files(
@@ -70,8 +77,12 @@ def write_design_files(
         }
         for p in pattern.parts
     ]
+    machine = get_machine(plan.cutter)
     record["sheets"] = {
         "cutter": plan.cutter.name,
+        "machine": machine.family.value,
+        "cut_file_formats": list(machine.formats),
+        "labels_in_cut_files": opts.labels is True,
         "size_mm": [plan.cutter.width, plan.cutter.height],
         "count": len(plan.sheets),
         "parts": [[pl.part.name for pl in sheet.placements] for sheet in plan.sheets],
@@ -85,7 +96,7 @@ def write_design_files(
         record.update(extra)
     out.mkdir(parents=True, exist_ok=True)
     with staged() as st:
-        written = list(write_files(plan, out, opts.style, staging=st))
+        written = list(write_files(plan, out, opts.style, labels=opts.labels, staging=st))
         written += write_fold(a, pattern, out, st)
         written += write_mesh(a, pattern, out, st)
         written += write_instructions(a, pattern, out, st)

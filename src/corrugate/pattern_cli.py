@@ -30,8 +30,13 @@ def fab_options(
     spacing: str,
     margin: str,
     tab_depth: str,
+    labels: bool | None = None,
 ) -> OutputOptions:
-    """Output options from command-line strings (plain numbers in mm)."""
+    """Output options from command-line strings (plain numbers in mm); ``cutter`` is the machine
+    and ``labels`` the ``--labels/--no-labels`` flag (``None`` when not given)."""
+    from .export.machines import get_machine
+
+    get_machine(cutter)  # an unknown machine is an error before anything else
     cut_mm = None if cut is None else parse_quantity(cut, "mm", "cut")
     gap_mm = None if gap is None else parse_quantity(gap, "mm", "gap")
     return OutputOptions(
@@ -40,6 +45,7 @@ def fab_options(
         spacing=parse_quantity(spacing, "mm", "spacing"),
         margin=parse_quantity(margin, "mm", "margin"),
         fabrication=FabricationOptions(tab_depth=parse_quantity(tab_depth, "mm", "tab-depth")),
+        labels=labels,
     )
 
 
@@ -62,9 +68,8 @@ def pattern_cmd(
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
     vertices: o.Vertices = None,
     model: Annotated[str, Opt(help="Moduli variant for design.json.")] = DEFAULT_MODEL,
-    cutter: Annotated[
-        str, Opt(help="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).")
-    ] = "cameo4-12x12",
+    cutter: o.Machine = "cameo4-12x12",
+    labels: o.Labels = None,
     fold_style: Annotated[str, Opt(help="Fold lines: solid | scored | perforated.")] = "solid",
     cut: Annotated[str | None, Opt(help="Perforation: cut length (mm).")] = None,
     gap: Annotated[str | None, Opt(help="Perforation: gap length (mm).")] = None,
@@ -73,10 +78,11 @@ def pattern_cmd(
     tab_depth: Annotated[str, Opt(help="Depth of the connector's glue tabs (mm).")] = "4",
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
 ) -> None:
-    """Write the cut files (SVG, DXF, PDF), FOLD, GLB/STL and assembly steps of one design."""
+    """Write the machine's cut files, the fold map, the PDF, FOLD, GLB/STL and assembly steps of one
+    design (docs/fabrication.md)."""
     assembly = assembly_from_namespace(locals())
     get_model(model)
-    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth)
+    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, labels)
     result = analyze(assembly, model, (0.0, 90.0), opts.fabrication)
     paths = write_design_files(result, out, opts)
     if as_json:
