@@ -103,7 +103,7 @@ def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
     assert {
         "design.json",
         "sheet-1.svg",
-        "sheet-1.dxf",
+        "cut-1.dxf",
         "pattern.pdf",
         "layer1.fold",
         "layer2.fold",

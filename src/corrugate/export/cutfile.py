@@ -12,7 +12,8 @@ SVG: ``width``/``height`` in mm with a matching ``viewBox``; one ``<g>`` per ope
 ``id`` and ``inkscape:label`` the operation's name, its stroke colour and the machine's stroke width,
 ``fill="none"``; every path a ``<path>`` of straight segments (``M``/``L``, ``Z`` when closed).
 DXF: R2010, ``$INSUNITS`` = 4 (mm); one layer per operation (ACI and true colour); closed rings as
-closed LWPOLYLINEs, open paths as LINEs.
+closed LWPOLYLINEs, open paths as LINEs; the paper-space page is the sheet (``$PLIMMAX`` = width x
+height mm) at scale 1:1 (``$PSVPSCALE`` = 1), so a CAD program prints the file at actual size.
 """
 
 from __future__ import annotations
@@ -156,6 +157,11 @@ def cut_dxf_document(
     paths = cut_paths(sheet, style, labels=labels)
     doc = new("R2010", units=units.MM)
     doc.header["$MEASUREMENT"] = 1
+    # the paper is the sheet, printed 1:1 (CAD programs such as LibreCAD print it so)
+    doc.layouts.active_layout().page_setup(
+        size=(sheet.width, sheet.height), margins=(0, 0, 0, 0), units="mm", scale=(1, 1)
+    )
+    doc.header["$PSVPSCALE"] = 1.0
     msp = doc.modelspace()
     for op in OPERATIONS.values():
         if not any(p.operation == op.name for p in paths):
