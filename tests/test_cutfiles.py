@@ -11,6 +11,7 @@ where a missing program is a failure (``make system-deps`` installs both).
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 import re
@@ -113,8 +114,11 @@ def paths_of(path: Path) -> list[Path2D]:
 
 def extent(paths: list[Path2D]) -> tuple[float, float, float, float]:
     pts = np.array([p for _, ps, _ in paths for p in ps])
-    return float(pts[:, 0].min()), float(pts[:, 1].min()), float(pts[:, 0].max()), float(
-        pts[:, 1].max()
+    return (
+        float(pts[:, 0].min()),
+        float(pts[:, 1].min()),
+        float(pts[:, 0].max()),
+        float(pts[:, 1].max()),
     )
 
 
@@ -161,7 +165,7 @@ def test_cut_files_hold_only_the_machines_operations(
                 assert float(g.attrib["stroke-width"]) == pytest.approx(m.stroke_mm)
                 if machine.startswith("laser"):
                     assert float(g.attrib["stroke-width"]) == pytest.approx(0.0254)
-                    assert HAIRLINE_MM == pytest.approx(0.001 * 25.4)
+                    assert pytest.approx(0.001 * 25.4) == HAIRLINE_MM
         else:
             doc = readfile(path)
             assert {layer.dxf.name for layer in doc.layers} >= ops
@@ -208,7 +212,7 @@ def test_each_perforated_fold_is_separate_dashes_of_the_set_cut_and_gap(
                 total += n
                 for t0, t1 in along:
                     assert t1 - t0 == pytest.approx(cut, abs=TOL_DASH)
-                for (_, e0), (s1, _) in zip(along, along[1:], strict=False):
+                for (_, e0), (s1, _) in itertools.pairwise(along):
                     assert s1 - e0 == pytest.approx(gap, abs=TOL_DASH)
                 head, tail = along[0][0], L - along[-1][1]
                 # stops short of the outline: at least half a gap free at each end, centred
@@ -252,7 +256,7 @@ def _segments(paths: list[Path2D]) -> list[tuple[Point, Point]]:
     segs = []
     for _, pts, closed in paths:
         ring = [*pts, pts[0]] if closed else pts
-        segs.extend(zip(ring, ring[1:], strict=False))
+        segs.extend(itertools.pairwise(ring))
     return segs
 
 
@@ -273,9 +277,7 @@ def test_labels_in_cut_files_only_when_asked_and_clear_of_every_line(
         for placement in sheet.placements:
             x0, y0, x1, y1 = placement.bounds
             mine = [
-                pts
-                for _, pts, _ in glyphs
-                if all(x0 <= x <= x1 and y0 <= y <= y1 for x, y in pts)
+                pts for _, pts, _ in glyphs if all(x0 <= x <= x1 and y0 <= y <= y1 for x, y in pts)
             ]
             assert mine, placement.part.name  # every part is labelled, inside its box
             pts = np.vstack(mine)
@@ -329,7 +331,7 @@ def test_part_larger_than_the_machine_is_one_line_exit_2_and_no_file(
 ) -> None:
     out = tmp_path / "out"
     args = ["pattern", "--W", "30", "--n", "12", "--alpha", "84", "--material", "dura-lar"]
-    code, stdout, err = cli([*args, "--out", str(out), "--machine", machine])
+    code, _, err = cli([*args, "--out", str(out), "--machine", machine])
     assert code == 2
     lines = [ln for ln in err.strip().splitlines() if ln.strip()]
     assert len(lines) == 1, err

@@ -138,7 +138,9 @@ def design_cmd(
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     files = (
-        fab_options(cutter, fold_style, cut, gap, "5", "5", "4", labels) if out is not None else None
+        fab_options(cutter, fold_style, cut, gap, "5", "5", "4", labels)
+        if out is not None
+        else None
     )
     parsed = load_spec(spec)
     problem = Problem.from_spec(parsed)

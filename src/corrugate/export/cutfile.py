@@ -135,7 +135,8 @@ def cut_svg_document(
         )
         for p in mine:
             d = " ".join(
-                f"{'M' if k == 0 else 'L'}{_num(x)} {_num(H - y)}" for k, (x, y) in enumerate(p.points)
+                f"{'M' if k == 0 else 'L'}{_num(x)} {_num(H - y)}"
+                for k, (x, y) in enumerate(p.points)
             )
             ET.SubElement(g, "path", {"d": d + (" Z" if p.closed else ""), "data-part": p.part})
     ET.indent(root)

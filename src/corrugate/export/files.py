@@ -82,10 +82,7 @@ def write_files(
     people = labels is not False
     order = fold_order(p.part for p in plan.placements)
     svgs = (
-        [
-            svg_document(s, style, labels=people, marks=marks, fold_order=order)
-            for s in plan.sheets
-        ]
+        [svg_document(s, style, labels=people, marks=marks, fold_order=order) for s in plan.sheets]
         if "svg" in wanted
         else []
     )

@@ -180,7 +180,8 @@ def label_outlines(spot: LabelSpot, text: str) -> list[list[Point]]:
     from matplotlib.textpath import TextPath
 
     path = TextPath((0.0, 0.0), text, size=1.0, prop=FontProperties(family="DejaVu Sans"))
-    polys = [np.asarray(q, dtype=np.float64) for q in path.to_polygons() if len(q) >= 3]
+    polys = [np.asarray(q, dtype=np.float64) for q in path.to_polygons()]
+    polys = [q for q in polys if q.shape[0] >= 3]
     if not polys:
         return []
     allp = np.vstack(polys)
@@ -193,6 +194,6 @@ def label_outlines(spot: LabelSpot, text: str) -> list[list[Point]]:
         local = (q - mid) * scale
         if spot.rotation:
             local = np.column_stack([-local[:, 1], local[:, 0]])
-        ring = local + (spot.x, spot.y)
+        ring = local + np.array([spot.x, spot.y])
         out.append([(float(a), float(b)) for a, b in ring])
     return out

@@ -33,11 +33,10 @@ from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
 from pathlib import Path
 
 from ..fileio import staged
-from collections.abc import Mapping
-
 from ..pattern.linestyle import SOLID, LineStyle, check_style
 from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, place
