@@ -64,7 +64,8 @@ Labels = Annotated[
     bool | None,
     Opt(
         "--labels/--no-labels",
-        help="Part labels in the cut files too (drawn with a pen, engraved on a laser) / nowhere. "
+        help="Part names in the cut files too (drawn with a pen, engraved on a laser) / no labels "
+        "anywhere. "
         "Default: on the fold map and the PDF only.",
         show_default=False,
     ),

@@ -6,7 +6,8 @@ geometry: a perforated fold is its dashes, each a separate two-point path of the
 (:func:`corrugate.pattern.linestyle.dashes`: evenly spread, half a gap or more at each end, so no
 dash reaches the outline); a scored fold is one line on SCORE; a ``solid`` fold is left out (it is in
 the fold map). No ``stroke-dasharray``, no ``<text>`` and no DXF TEXT: labels, when asked, are
-glyph outlines on the LABEL operation, placed clear of every line (:mod:`.labels`).
+glyph outlines of the part's name (e.g. ``L1``, ``B3``) on the LABEL operation, placed clear of
+every line (:mod:`.labels`).
 
 SVG: ``width``/``height`` in mm with a matching ``viewBox``; one ``<g>`` per operation, with
 ``id`` and ``inkscape:label`` the operation's name, its stroke colour and the machine's stroke width,
@@ -28,7 +29,7 @@ from ..fileio import staged
 from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease_name, dashes
 from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, place
-from .labels import label_outlines, label_spot, label_text
+from .labels import label_outlines, label_spot
 from .machines import OPERATIONS, Machine, get_machine
 
 if TYPE_CHECKING:
@@ -77,8 +78,8 @@ def cut_paths(sheet: Sheet, style: LineStyle = SOLID, *, labels: bool = False) -
                         CutPath("PERFORATE", (a, b), False, name)
                         for a, b in dashes(ln, style.cut, style.gap, where=where)
                     )
-        if labels:
-            text = label_text(placed)
+        if labels:  # the part's name, e.g. "L1", large enough for a pen (the fold map says more)
+            text = part.name
             spot = label_spot(placed, text)
             paths.extend(
                 CutPath("LABEL", tuple(ring), True, name) for ring in label_outlines(spot, text)

@@ -21,10 +21,13 @@ from numpy.typing import NDArray
 from ..pattern.model import Point
 from ..pattern.sheets import PlacedPart
 
-__all__ = ["MAX_TEXT_MM", "LabelSpot", "label_outlines", "label_spot", "label_text"]
+__all__ = ["MAX_TEXT_MM", "MIN_TEXT_MM", "LabelSpot", "label_outlines", "label_spot", "label_text"]
 
 #: Largest label text height (mm).
 MAX_TEXT_MM = 4.0
+#: Smallest text height (mm) worth printing: a label that would be smaller is replaced by the
+#: part's name where writers offer that (the fold map).
+MIN_TEXT_MM = 1.2
 _GRID = 25
 
 

@@ -12,7 +12,7 @@ operation      colour       ACI    what the machine does with it
 ``PERFORATE``  ``#00ff00``  3      cut through: the dashes of perforated folds (``--fold-style
                                    perforated``), each dash a separate segment
 ``SCORE``      ``#0000ff``  5      score, not cut: scored folds (``--fold-style scored``)
-``LABEL``      ``#000000``  7      draw with a pen (cutters) or engrave (laser): part labels as
+``LABEL``      ``#000000``  7      draw with a pen (cutters) or engrave (laser): part names as
                                    glyph outlines, only with ``--labels``
 =============  ===========  =====  =================================================================
 

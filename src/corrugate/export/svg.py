@@ -25,7 +25,8 @@ dashes; no file of corrugate uses ``stroke-dasharray``, which cutters ignore).
 Part labels are ``<text>`` elements in a ``<g id="labels">`` group (grey fill, no stroke), placed
 clear of every line (:mod:`.labels`) and squeezed into their box with ``textLength``; with
 ``fold_order`` each label starts with the part's step number in the folding order and the part's
-group carries ``data-fold-order``. ``labels=False`` leaves them out, ``marks=False`` leaves the marks
+group carries ``data-fold-order``; a label that would be smaller than ``MIN_TEXT_MM`` (1.2 mm) is
+the part's name only. ``labels=False`` leaves them out, ``marks=False`` leaves the marks
 out (Origami Simulator would otherwise treat them as free hinges).
 """
 
@@ -40,7 +41,7 @@ from ..fileio import staged
 from ..pattern.linestyle import SOLID, LineStyle, check_style
 from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, place
-from .labels import label_spot, label_text
+from .labels import MIN_TEXT_MM, label_spot, label_text
 
 __all__ = [
     "ANNOTATION",
@@ -164,10 +165,12 @@ def svg_document(
                 attrs["opacity"] = "1"
             ET.SubElement(g, "line", attrs)
         if labels:
-            text = label_text(placed)
-            if step is not None:
-                text = f"{step}. {text}"
+            prefix = "" if step is None else f"{step}. "
+            text = prefix + label_text(placed)
             spot = label_spot(placed, text)
+            if spot.size < MIN_TEXT_MM:  # too small to read: the part's name only
+                text = prefix + part.name
+                spot = label_spot(placed, text)
             x, y = _num(spot.x), _num(H - spot.y)
             t_attrs = {
                 "x": x,
