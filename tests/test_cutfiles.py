@@ -171,6 +171,8 @@ def test_cut_files_hold_only_the_machines_operations(
             assert {layer.dxf.name for layer in doc.layers} >= ops
             for name in ops:
                 assert doc.layers.get(name).dxf.color == OPERATIONS[name].aci
+                if machine.startswith("laser"):
+                    assert doc.layers.get(name).dxf.lineweight == 0  # hairline
             assert not doc.modelspace().query("TEXT MTEXT")
     colours = {OPERATIONS[o].colour for o in OPERATIONS}
     assert len(colours) == len(OPERATIONS)  # distinct colours

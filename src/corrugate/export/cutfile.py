@@ -14,7 +14,8 @@ SVG: ``width``/``height`` in mm with a matching ``viewBox``; one ``<g>`` per ope
 ``fill="none"``; every path a ``<path>`` of straight segments (``M``/``L``, ``Z`` when closed).
 DXF: R2010, ``$INSUNITS`` = 4 (mm); one layer per operation (ACI and true colour); closed rings as
 closed LWPOLYLINEs, open paths as LINEs; the paper-space page is the sheet (``$PLIMMAX`` = width x
-height mm) at scale 1:1 (``$PSVPSCALE`` = 1), so a CAD program prints the file at actual size.
+height mm) at scale 1:1 (``$PSVPSCALE`` = 1), so a CAD program prints the file at actual size; for a
+laser every layer's lineweight is 0 (0.00 mm, a hairline).
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease
 from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, place
 from .labels import label_outlines, label_spot
-from .machines import OPERATIONS, Machine, get_machine
+from .machines import OPERATIONS, Family, Machine, get_machine
 
 if TYPE_CHECKING:
     from ezdxf.document import Drawing
@@ -155,7 +156,7 @@ def cut_dxf_document(
     from ezdxf import units
     from ezdxf.filemanagement import new
 
-    get_machine(machine)
+    m = get_machine(machine)
     paths = cut_paths(sheet, style, labels=labels)
     doc = new("R2010", units=units.MM)
     doc.header["$MEASUREMENT"] = 1
@@ -170,6 +171,8 @@ def cut_dxf_document(
             continue
         layer = doc.layers.add(op.name, color=op.aci)
         layer.rgb = (int(op.colour[1:3], 16), int(op.colour[3:5], 16), int(op.colour[5:7], 16))
+        if m.family is Family.LASER:
+            layer.dxf.lineweight = 0  # 0.00 mm: a hairline
     for p in paths:
         attribs = {"layer": p.operation}
         if p.closed:
