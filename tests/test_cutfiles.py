@@ -223,12 +223,19 @@ def test_each_perforated_fold_is_separate_dashes_of_the_set_cut_and_gap(
         assert used.all() and total == len(dashes)  # no stray dash
 
 
-@pytest.mark.parametrize("machine", MACHINES)
+@pytest.mark.parametrize("machine", [*MACHINES, "laser:130x90"])
 def test_parts_start_at_the_mats_top_left_corner(
     patterns: dict[str, Pattern], tmp_path: Path, machine: str
 ) -> None:
-    plan = plan_sheets(patterns["circle"], machine, margin=MARGIN)
-    for path in cut_files(plan, tmp_path, STYLES["perforated"], None):
+    small = machine == "laser:130x90"
+    plan = plan_sheets(patterns["case1" if small else "circle"], machine, margin=MARGIN)
+    files = cut_files(plan, tmp_path, STYLES["perforated"], None)
+    if small:  # a small bed: several sheets, each filled from its top left
+        assert len(plan.sheets) >= 2
+        assert sorted(p.name for p in files) == sorted(
+            f"cut-{k}.{ext}" for k in range(1, len(plan.sheets) + 1) for ext in ("svg", "dxf")
+        )
+    for path in files:
         x0, _, _, y1 = extent(paths_of(path))
         assert x0 == pytest.approx(MARGIN, abs=1e-3)
         assert y1 == pytest.approx(plan.cutter.height - MARGIN, abs=1e-3)  # y up: the top edge
