@@ -497,12 +497,20 @@ def test_oblique_coupon_lies_between_plate_bounds_and_below_the_cos2_rule(
     the other, so every load path crosses creases (K is then of the order of the Reuss value, set
     by the chordwise Ecx)."""
     b = _plate_bounds(small_assembly, 45.0)
-    cf = analyze(small_assembly, "refined", [45.0]).stiffness[0]
+    cf = analyze(small_assembly, "refined", [45.0], support="frame").stiffness[0]
+    free = analyze(small_assembly, "refined", [45.0]).stiffness[0]  # support "free"
     K = solve_assembly(small_assembly, "compression", AssemblyMesh(2), 45.0).value()
     D = solve_assembly(small_assembly, "bending", AssemblyMesh(2), 45.0).value()
     assert b["K_reuss"] < K < b["K_voigt"]
     assert K < cf.K / 10
     assert D < b["D_voigt"] < cf.D
+    # the free-panel model (corrugate.offaxis) is the Reuss value written independently here,
+    # a lower bound of the coupon (complementary energy of the uniform stress field, whatever
+    # the platens hold); it stays within the coupon's order of magnitude, where the rule is
+    # more than 10 times above (docs/validation/off_axis.md has the converged series)
+    assert pytest.approx(b["K_reuss"], rel=1e-6) == free.K
+    assert free.K <= K < 5 * free.K
+    assert free.D <= D
     # along the creases the cos^2 rule and the plate agree
     cf0 = analyze(small_assembly, "refined", [0.0]).stiffness[0]
     b0 = _plate_bounds(small_assembly, 0.0)
@@ -554,7 +562,8 @@ def test_frame_is_what_the_cos2_rule_describes(ccx: str, small_assembly: Assembl
     free = solve_assembly(small_assembly, "compression", AssemblyMesh(2), 0.0).value()
     assert f.Kyy >= free * (1 - 1e-9)
     etas = [0.0, 20.0, 45.0, 70.0, 90.0]
-    for eta, d in zip(etas, analyze(small_assembly, "refined", etas).stiffness, strict=True):
+    rule = analyze(small_assembly, "refined", etas, support="frame").stiffness
+    for eta, d in zip(etas, rule, strict=True):
         assert f.K(eta) == pytest.approx(d.K, rel=0.02), eta
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,8 +23,9 @@ from .geometry import Assembly, Layer
 from .layouts import Layout, inverse_length_sum, length_sum
 from .mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from .moduli import DEFAULT_MODEL, Moduli, get_model, moduli
+from .offaxis import Support, assembly_directional, check_support
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
-from .springs import LayerSprings, assembly_D, assembly_K, layer_springs
+from .springs import LayerSprings, layer_springs
 
 __all__ = [
     "Analysis",
@@ -57,10 +59,12 @@ class LayerArrays:
         m = layer.material
         return cls(m.E, m.nu, layer.t, layer.W, layer.n, layer.alpha_deg, m.density)
 
+    def sin_half(self) -> FloatArray:
+        """sin(alpha/2)."""
+        return np.asarray(np.sin(np.radians(np.asarray(self.alpha_deg, dtype=float)) / 2))
+
     def pitch(self) -> FloatArray:
-        return np.asarray(
-            np.asarray(self.W) * np.sin(np.radians(np.asarray(self.alpha_deg, dtype=float)) / 2)
-        )
+        return np.asarray(np.asarray(self.W) * self.sin_half())
 
     def height(self) -> FloatArray:
         return np.asarray(
@@ -69,6 +73,25 @@ class LayerArrays:
 
     def chord_extent(self) -> FloatArray:
         return np.asarray((np.asarray(self.n) + 1) * self.pitch())
+
+
+def directional(
+    kind: Literal["K", "D"],
+    springs: tuple[LayerSprings, LayerSprings],
+    eta_deg: ArrayLike,
+    support: Support,
+) -> FloatArray:
+    """K or D of the assembly (:func:`corrugate.offaxis.assembly_directional`) broadcast over the
+    springs' arrays and ``eta_deg`` (deg): one evaluation per distinct eta."""
+    eta = np.asarray(eta_deg, dtype=np.float64)
+    values = {
+        float(e): assembly_directional(kind, springs, float(e), support) for e in np.unique(eta)
+    }
+    shape = np.broadcast_shapes(np.shape(springs[0].K_S), np.shape(springs[1].K_S), eta.shape)
+    out = np.zeros(shape)
+    for e, v in values.items():
+        out = np.where(eta == e, v, out)
+    return np.asarray(out, dtype=np.float64)
 
 
 @dataclass(frozen=True, slots=True)
@@ -95,8 +118,12 @@ def evaluate(
     model: str = DEFAULT_MODEL,
     eta_deg: ArrayLike = 0.0,
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
+    support: Support = "free",
 ) -> Evaluation:
     """Stiffness, size and mass of assemblies given as arrays of layer parameters.
+
+    K (N/mm), D (N mm) and EI (N mm^2) are those of ``support`` (:mod:`corrugate.offaxis`:
+    ``free`` sides, the default, or a rigid ``frame``); they agree at eta = 0 and 90 deg.
 
     ``mass`` (g) counts both layers and the connector band (cut from layer 1's sheet), as the cut
     files do; ``mass_connectors`` is the band's share.
@@ -108,9 +135,25 @@ def evaluate(
     Lx, Ly = layer1.chord_extent(), layer2.chord_extent()
     m1 = moduli(layer1.E, layer1.nu, layer1.t, layer1.W, layer1.alpha_deg, model)
     m2 = moduli(layer2.E, layer2.nu, layer2.t, layer2.W, layer2.alpha_deg, model)
-    s1 = layer_springs(m1, layer1.t, layer1.pitch(), inverse_length_sum(layout, layer1.n, Ly, "x"))
-    s2 = layer_springs(m2, layer2.t, layer2.pitch(), inverse_length_sum(layout, layer2.n, Lx, "y"))
-    D = assembly_D(s1, s2, eta_deg)
+    s1 = layer_springs(
+        m1,
+        layer1.t,
+        layer1.pitch(),
+        inverse_length_sum(layout, layer1.n, Ly, "x"),
+        layer1.E,
+        layer1.nu,
+        layer1.sin_half(),
+    )
+    s2 = layer_springs(
+        m2,
+        layer2.t,
+        layer2.pitch(),
+        inverse_length_sum(layout, layer2.n, Lx, "y"),
+        layer2.E,
+        layer2.nu,
+        layer2.sin_half(),
+    )
+    D = directional("D", (s1, s2), eta_deg, support)
     mass = layer_mass(layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly))
     mass = mass + layer_mass(layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx))
     thickness = layer1.height() + layer2.height()
@@ -121,7 +164,7 @@ def evaluate(
         thickness=thickness,
         mass=mass + m_conn,
         mass_connectors=m_conn,
-        K=assembly_K(s1, s2, eta_deg),
+        K=directional("K", (s1, s2), eta_deg, support),
         D=D,
         EI=np.asarray(D * layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float))),
         moduli=(m1, m2),
@@ -155,6 +198,7 @@ class Analysis:
 
     assembly: Assembly
     model: str
+    support: Support
     moduli: tuple[Moduli, Moduli]
     springs: tuple[LayerSprings, LayerSprings]
     stiffness: tuple[DirectionalStiffness, ...]
@@ -203,6 +247,7 @@ class Analysis:
         return {
             "model": self.model,
             "model_source": get_model(self.model).source,
+            "support": self.support,
             "layout": a.layout.describe(),
             "layers": layers,
             "L_mm": self.L,
@@ -222,8 +267,10 @@ def analyze(
     model: str = DEFAULT_MODEL,
     eta_deg: Sequence[float] = (0.0, 90.0),
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
+    support: Support = "free",
 ) -> Analysis:
-    """Analyse ``assembly`` with moduli variant ``model`` at the directions ``eta_deg`` (deg).
+    """Analyse ``assembly`` with moduli variant ``model`` at the directions ``eta_deg`` (deg),
+    its sides ``free`` (default) or held in a rigid ``frame`` (:mod:`corrugate.offaxis`).
 
     Returns moduli (MPa) and springs of each layer, K (N/mm), D (N mm) and EI (N mm^2) at each eta,
     the mass (g; layers and connector band) and the model's warnings. Example::
@@ -235,10 +282,17 @@ def analyze(
         87.84
     """
     model = get_model(model).name
+    support = check_support(support)
     etas = np.asarray(list(eta_deg), dtype=np.float64)
     a = assembly
     ev = evaluate(
-        LayerArrays.of(a.layer1), LayerArrays.of(a.layer2), a.layout, model, etas, fabrication
+        LayerArrays.of(a.layer1),
+        LayerArrays.of(a.layer2),
+        a.layout,
+        model,
+        etas,
+        fabrication,
+        support,
     )
     span = a.layout.span(np.asarray(a.Lx), np.asarray(a.Ly), etas)
     stiffness = tuple(
@@ -248,9 +302,10 @@ def analyze(
     return Analysis(
         assembly=a,
         model=model,
+        support=support,
         moduli=ev.moduli,
         springs=ev.springs,
         stiffness=stiffness,
         mass=assembly_mass(a, fabrication),
-        warnings=tuple(design_warnings(a, model, [float(e) for e in etas])),
+        warnings=tuple(design_warnings(a, model, [float(e) for e in etas], support)),
     )

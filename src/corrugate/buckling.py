@@ -28,6 +28,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from .errors import InputError
 from .geometry import Assembly, crease_layer
@@ -38,6 +39,7 @@ __all__ = [
     "K_SIMPLE_FREE",
     "BucklingEstimate",
     "buckling_bounds",
+    "buckling_scale",
     "facet_buckling_load",
 ]
 
@@ -66,6 +68,19 @@ class BucklingEstimate:
         return {"eta_deg": self.eta_deg, "low_N": self.low, "high_N": self.high}
 
 
+def buckling_scale(E: Any, nu: Any, t: Any, W: Any, n: Any, K_S: Any, K_C: Any) -> Any:
+    """The load (N) per unit buckling coefficient k of the assembly compressed along one
+    layer's creases: pi^2 E / (12 (1 - nu^2)) (t / W)^2 (n + 1) W t (1 + K_C / K_S), written as
+    pi^2 E t^3 (n + 1) / (12 (1 - nu^2) W) (1 + K_C / K_S) so that each variable appears once.
+
+    E (MPa), nu, t, W (mm) and n of the layer loaded along its creases; K_S (N/mm) its spanwise
+    spring, K_C (N/mm) the other layer's chordwise one. Plain arithmetic: takes arrays or
+    :class:`~corrugate.design.interval.Interval` (monotone in each argument, so interval bounds
+    are exact up to rounding). Times :data:`K_SIMPLE_FREE` it is the lower bound the solver's
+    ``buckling_load`` constraints use."""
+    return (math.pi**2 / 12.0) * E / (1.0 - nu * nu) * (t * t * t) * (n + 1) / W * (1.0 + K_C / K_S)
+
+
 def buckling_bounds(
     assembly: Assembly, springs: tuple[LayerSprings, LayerSprings], eta_deg: float
 ) -> BucklingEstimate | None:
@@ -81,8 +96,7 @@ def buckling_bounds(
     layer = assembly.layers[along]
     K_S, K_C = float(springs[along].K_S), float(springs[across].K_C)
     m = layer.material
-    sigma0 = math.pi**2 * m.E / (12 * (1 - m.nu**2)) * (layer.t / layer.W) ** 2  # MPa
-    load = sigma0 * (layer.n + 1) * layer.W * layer.t * (1.0 + K_C / K_S)  # N per unit k
+    load = float(buckling_scale(m.E, m.nu, layer.t, layer.W, layer.n, K_S, K_C))  # N per unit k
     return BucklingEstimate(float(eta_deg), K_SIMPLE_FREE * load, K_CLAMPED_FREE * load, K_S + K_C)
 
 

@@ -10,11 +10,10 @@
 * short panels: D is a pure-bending stiffness; a panel loaded as a short beam also shears. The
   shell FE of docs/fea.md (section 3) measured the 3-point D below the pure-bending D by
   1.1-2.0 times the Timoshenko estimate 2 (1 + nu) (W / L)^2, L = (n + 1) W sin(alpha/2);
-* directions other than along the creases (eta not a multiple of 90 deg): K(eta) and D(eta)
-  follow the paper's cos^2 rule, the stiffness of a panel driven along both crease directions at
-  once; a square coupon of the same layers cut along eta is far softer (shell FE, docs/fea.md
-  section 2.5: at 45 deg K 300-360 times and D 2.7-3 times (3-point) below the rule for the
-  case study and W 10, n 7, alpha 90), so off-axis values are upper estimates;
+* directions other than along the creases (eta not a multiple of 90 deg): with ``support =
+  "free"`` K(eta) and D(eta) are the free-panel lower bounds of :mod:`corrugate.offaxis`
+  (conservative: docs/validation/off_axis.md compares them with FE coupons); with ``"frame"``
+  the paper's cos^2 rule, which holds only for a panel held in a rigid frame (docs/fea.md 2.5);
 * the ``paper`` model, which has known errors (DESIGN.md 3.1).
 """
 
@@ -122,24 +121,32 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
     return out
 
 
-def _off_axis(eta_deg: Sequence[float]) -> list[ModelWarning]:
+def _off_axis(eta_deg: Sequence[float], support: str) -> list[ModelWarning]:
     off = [e for e in eta_deg if crease_layer(e) is None]
     if not off:
         return []
     angles = ", ".join(f"{e:g}" for e in off)
-    return [
-        ModelWarning(
-            "off-axis",
-            f"K and D at eta = {angles} deg follow the paper's cos^2 rule, which holds for a "
-            "panel driven along both crease directions at once; a coupon of these layers cut "
-            "along eta is far softer (docs/fea.md, section 2.5): treat them as upper estimates",
+    if support == "frame":
+        text = (
+            f"K and D at eta = {angles} deg follow the paper's cos^2 rule (support 'frame'): "
+            "true only for a panel held in a rigid frame on all four edges; a panel with free "
+            "sides is up to hundreds of times softer off-axis (docs/fea.md, section 2.5)"
         )
-    ]
+    else:
+        text = (
+            f"K and D at eta = {angles} deg are lower bounds for a panel with free sides "
+            "(support 'free', corrugate.offaxis); they sit below FE coupons, D by up to two "
+            "orders of magnitude near 45 deg (docs/validation/off_axis.md): check a part "
+            "loaded there with corrugate validate --eta"
+        )
+    return [ModelWarning("off-axis", text)]
 
 
-def design_warnings(a: Assembly, model: str, eta_deg: Sequence[float] = ()) -> list[ModelWarning]:
+def design_warnings(
+    a: Assembly, model: str, eta_deg: Sequence[float] = (), support: str = "free"
+) -> list[ModelWarning]:
     """Every warning for assembly ``a`` analysed with moduli variant ``model`` in the directions
-    ``eta_deg`` (deg)."""
+    ``eta_deg`` (deg) under ``support`` (free or frame)."""
     out = _layer_warnings("layer 1", a.layer1)
     if a.layer2 != a.layer1:
         out += _layer_warnings("layer 2", a.layer2)
@@ -167,4 +174,4 @@ def design_warnings(a: Assembly, model: str, eta_deg: Sequence[float] = ()) -> l
                 "Ecy and Ebx slightly off); use 'refined' for design",
             )
         )
-    return out + _off_axis(eta_deg)
+    return out + _off_axis(eta_deg, support)

@@ -29,6 +29,7 @@ from .inputs import (
 )
 from .materials import Material, library
 from .moduli import DEFAULT_MODEL, MODELS, get_model
+from .offaxis import check_support
 
 __all__ = ["app", "main"]
 
@@ -179,6 +180,7 @@ def analyze_cmd(
         list[str] | None,
         Opt(help="Direction (deg from layer 1's creases); repeat for several. Default 0 and 90."),
     ] = None,
+    support: o.SupportOpt = "free",
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object.")] = False,
     compare_models: Annotated[
         bool, Opt(help="Show the three model variants side by side.")
@@ -191,8 +193,9 @@ def analyze_cmd(
     assembly = assembly_from_namespace(locals())
     etas = parse_etas(eta)
     get_model(model)
+    support = check_support(support, "--support")
     models = list(MODELS) if compare_models else [model]
-    results = [analyze(assembly, m, etas) for m in models]
+    results = [analyze(assembly, m, etas, support=support) for m in models]
     if as_json:
         if compare_models:
             payload: object = {"models": {r.model: r.to_dict() for r in results}}

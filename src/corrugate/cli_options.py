@@ -22,6 +22,7 @@ __all__ = [
     "Material2",
     "N",
     "Nu",
+    "SupportOpt",
     "Thickness",
     "Thickness2",
     "Vertices",
@@ -68,5 +69,13 @@ Labels = Annotated[
         "anywhere. "
         "Default: on the fold map and the PDF only.",
         show_default=False,
+    ),
+]
+SupportOpt = Annotated[
+    str,
+    Opt(
+        "--support",
+        help="free (sides free: a bench test, most mounts; default) | frame (held in a rigid "
+        "frame on all four edges: the paper's cos^2 rule). Matters off the crease directions.",
     ),
 ]

@@ -33,6 +33,7 @@ from .inputs import assembly_from_namespace, parse_etas
 from .layouts import Rectangle, Square
 from .materials import get_material, library
 from .moduli import MODELS
+from .offaxis import check_support
 
 if TYPE_CHECKING:
     from .fea.band import Bond
@@ -241,6 +242,7 @@ def validate_cmd(
             "a square coupon cut along eta (square layout only)."
         ),
     ] = None,
+    support: o.SupportOpt = "free",
     mesh: Annotated[int, Opt(help="Shell elements across each facet (even).")] = 4,
     cell_mesh: Annotated[
         str, Opt(help="Unit-cell mesh: elements along a facet x through t.")
@@ -374,6 +376,7 @@ def validate_cmd(
         connectors=connectors,
         buckling=buckling,
         bond=bond_,
+        support=check_support(support, "--support"),
     )
     with console.status("running CalculiX ..."):
         result = run_case(case)

@@ -20,6 +20,7 @@ from .geometry import Assembly, Layer
 from .layouts import make_layout
 from .materials import Material, get_material, inline_material
 from .moduli import DEFAULT_MODEL, get_model
+from .offaxis import Support, check_support
 from .units import parse_quantity
 
 __all__ = [
@@ -236,17 +237,22 @@ class AnalysisRequest:
     assembly: Assembly
     model: str
     eta_deg: tuple[float, ...]
+    support: Support = "free"
 
     def run(self) -> Analysis:
         """Analyse it (:func:`corrugate.analysis.analyze`)."""
-        return analyze(self.assembly, self.model, self.eta_deg)
+        return analyze(self.assembly, self.model, self.eta_deg, support=self.support)
 
 
 def analysis_request(
-    *, model: str = DEFAULT_MODEL, eta: Sequence[object] | None = None, **options: object
+    *,
+    model: str = DEFAULT_MODEL,
+    eta: Sequence[object] | None = None,
+    support: str = "free",
+    **options: object,
 ) -> AnalysisRequest:
     """Validate the options of ``corrugate analyze`` (as keywords, see
     :func:`assembly_from_options`) into an :class:`AnalysisRequest`."""
     assembly = assembly_from_options(**options)  # type: ignore[arg-type]
     etas = parse_etas(eta)
-    return AnalysisRequest(assembly, get_model(model).name, etas)
+    return AnalysisRequest(assembly, get_model(model).name, etas, check_support(support))

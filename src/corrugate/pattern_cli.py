@@ -12,6 +12,7 @@ from .analysis import analyze
 from .cli import app, make_console
 from .inputs import assembly_from_namespace
 from .moduli import DEFAULT_MODEL, get_model
+from .offaxis import check_support
 from .outputs import OutputOptions, write_design_files
 from .pattern.linestyle import line_style
 from .pattern.options import FabricationOptions
@@ -68,6 +69,7 @@ def pattern_cmd(
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
     vertices: o.Vertices = None,
     model: Annotated[str, Opt(help="Moduli variant for design.json.")] = DEFAULT_MODEL,
+    support: o.SupportOpt = "free",
     cutter: o.Machine = "cameo4-12x12",
     labels: o.Labels = None,
     fold_style: Annotated[str, Opt(help="Fold lines: solid | scored | perforated.")] = "solid",
@@ -83,7 +85,9 @@ def pattern_cmd(
     assembly = assembly_from_namespace(locals())
     get_model(model)
     opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, labels)
-    result = analyze(assembly, model, (0.0, 90.0), opts.fabrication)
+    result = analyze(
+        assembly, model, (0.0, 90.0), opts.fabrication, check_support(support, "--support")
+    )
     paths = write_design_files(result, out, opts)
     if as_json:
         typer.echo(

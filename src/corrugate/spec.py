@@ -272,11 +272,16 @@ def _stiffness_validator(kind: str) -> Callable[[Any], float]:
     return _quantity(STIFFNESS_KINDS[kind], lo=0.0)
 
 
+Support = Literal["free", "frame"]
+
+
 class StiffnessSpec(_Strict):
-    """A lower bound ``min`` on a stiffness at direction ``eta`` (deg from layer 1's creases)."""
+    """A lower bound ``min`` on a stiffness at direction ``eta`` (deg from layer 1's creases),
+    under ``support`` (``free`` sides or a rigid ``frame``; default: the spec's ``support``)."""
 
     min: float
     eta: Direction = 0.0
+    support: Support | None = None
 
 
 class RigiditySpec(StiffnessSpec):
@@ -289,6 +294,14 @@ class BendingSpec(StiffnessSpec):
 
 class InPlaneSpec(StiffnessSpec):
     min: Annotated[float, BeforeValidator(_stiffness_validator("inplane_stiffness"))]
+
+
+class BucklingSpec(_Strict):
+    """A lower bound ``min`` (N) on the in-plane compressive load at which the panel buckles
+    along ``eta`` (0 or 90 deg, required): the plate lower bound of :mod:`corrugate.buckling`."""
+
+    min: Annotated[float, BeforeValidator(_quantity("N", lo=0.0))]
+    eta: Direction
 
 
 class MassBound(_Strict):
@@ -315,6 +328,7 @@ class ConstraintsSpec(_Strict):
     flexural_rigidity: list[RigiditySpec] = []
     bending_stiffness: list[BendingSpec] = []
     inplane_stiffness: list[InPlaneSpec] = []
+    buckling_load: list[BucklingSpec] = []
     mass: MassBound | None = None
 
 
@@ -325,6 +339,7 @@ class ObjectiveSpec(_Strict):
     minimize: Literal["mass"] | None = None
     maximize: Literal["flexural_rigidity", "bending_stiffness", "inplane_stiffness"] | None = None
     eta: Direction = 0.0
+    support: Support | None = None
 
 
 def _fraction(value: Any) -> float:
@@ -374,6 +389,7 @@ class Spec(_Strict):
 
     name: str = "design"
     model: Literal["paper", "xia", "refined"] = "refined"
+    support: Support = "free"
     layers: Literal["identical", "independent"] = "identical"
     material: MaterialSpec | None = None
     materials: list[MaterialSpec] | None = None

@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .moduli import Moduli
+from .offaxis import shear_springs
 
 __all__ = ["LayerSprings", "assembly_D", "assembly_K", "layer_springs"]
 
@@ -36,20 +37,39 @@ class LayerSprings:
     K_S: FloatArray
     D_C: FloatArray
     D_S: FloatArray
+    K_T: FloatArray  # in-plane shear (free-panel model, corrugate.offaxis)
+    D_T: FloatArray  # twisting (free-panel model, corrugate.offaxis)
 
 
 def layer_springs(
-    m: Moduli, t: ArrayLike, pitch: ArrayLike, inv_length_sum: ArrayLike
+    m: Moduli,
+    t: ArrayLike,
+    pitch: ArrayLike,
+    inv_length_sum: ArrayLike,
+    E: ArrayLike,
+    nu: ArrayLike,
+    sin_half: ArrayLike,
 ) -> LayerSprings:
-    """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm) and q = sum_j 1/L_j (1/mm)."""
+    """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm), q = sum_j 1/L_j (1/mm),
+    and, for the shear and twisting springs of the free-panel model
+    (:func:`corrugate.offaxis.shear_springs`), the sheet's E (MPa), nu and sin(alpha/2)."""
     t_ = np.asarray(t, dtype=np.float64)
     p = np.asarray(pitch, dtype=np.float64)
     q = np.asarray(inv_length_sum, dtype=np.float64)
+    K_T, D_T = shear_springs(
+        np.asarray(E, dtype=np.float64),
+        np.asarray(nu, dtype=np.float64),
+        t_,
+        np.asarray(sin_half, dtype=np.float64),
+        p * q,
+    )
     return LayerSprings(
         K_C=m.Ecx * t_ / (p * q),
         K_S=m.Ecy * p * t_ * q,
         D_C=m.Ebx * t_**3 / (12 * p * q),
         D_S=m.Eby * t_**3 * p * q / 12,
+        K_T=np.asarray(K_T),
+        D_T=np.asarray(D_T),
     )
 
 

@@ -10,7 +10,11 @@ Every constraint is a bound on one named *quantity* of a design (:data:`QUANTITI
 * ``thickness``: folded thickness t_d = W1 cos(alpha1/2) + W2 cos(alpha2/2) (mm);
 * ``flat``: longest flat blank, max over layers of (n + 1) W (mm);
 * ``facet``: longest facet, max over layers and facets of L_j (mm);
-* ``mass``: g; ``EI@eta`` (N mm^2), ``D@eta`` (N mm), ``K@eta`` (N/mm): stiffness at eta (deg).
+* ``mass``: g; ``EI@eta`` (N mm^2), ``D@eta`` (N mm), ``K@eta`` (N/mm): stiffness at eta (deg)
+  of the panel with free sides (:mod:`corrugate.offaxis`); ``EIframe@eta``, ``Dframe@eta``,
+  ``Kframe@eta`` the same held in a rigid frame (the paper's rule);
+* ``Pb@eta``: lower bound (N) of the compressive load at which the end facets buckle along eta
+  (0 or 90 deg; :mod:`corrugate.buckling`).
 """
 
 from __future__ import annotations
@@ -22,8 +26,10 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from ..geometry import crease_layer
 from ..layouts import Layout, make_layout
 from ..materials import Material, get_material, inline_material
+from ..offaxis import Support
 from ..spec import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
 __all__ = [
@@ -54,6 +60,10 @@ QUANTITY_UNITS = {
     "EI": "N*mm^2",
     "D": "N*mm",
     "K": "N/mm",
+    "EIframe": "N*mm^2",
+    "Dframe": "N*mm",
+    "Kframe": "N/mm",
+    "Pb": "N",
 }
 
 Sense = Literal["min", "max"]
@@ -69,6 +79,10 @@ _DESCRIPTIONS = {
     "EI": "flexural rigidity EI",
     "D": "bending stiffness D",
     "K": "in-plane stiffness K",
+    "EIframe": "flexural rigidity EI in a frame",
+    "Dframe": "bending stiffness D in a frame",
+    "Kframe": "in-plane stiffness K in a frame",
+    "Pb": "buckling load (lower bound)",
 }
 
 
@@ -79,9 +93,12 @@ def describe(quantity: str) -> str:
     return f"{text}({eta} deg)" if eta else text
 
 
-def stiffness_key(kind: str, eta_deg: float) -> str:
-    """Quantity key of a stiffness kind (spec name or EI/D/K) at eta (deg), e.g. ``EI@0``."""
+def stiffness_key(kind: str, eta_deg: float, support: str = "free") -> str:
+    """Quantity key of a stiffness kind (spec name or EI/D/K) at eta (deg) under ``support``,
+    e.g. ``EI@0`` (free sides) or ``Kframe@45`` (rigid frame)."""
     prefix = _PREFIX.get(kind, kind)
+    if support == "frame" and not prefix.endswith("frame"):
+        prefix += "frame"
     return f"{prefix}@{eta_deg:.12g}"
 
 
@@ -177,6 +194,7 @@ class Problem:
     n_hi: int
     constraints: tuple[Constraint, ...]
     objective: Objective = field(default_factory=Objective)
+    support: Support = "free"  # the spec's global support condition (reports, tables)
 
     @property
     def etas(self) -> tuple[float, ...]:
@@ -232,18 +250,33 @@ class Problem:
                 cons.append(Constraint(f"constraints.{key}.max", qty, "max", r.max))
         for kind in STIFFNESS_KINDS:
             for i, b in enumerate(getattr(c, kind)):
-                cons.append(
-                    Constraint(
-                        f"constraints.{kind}[{i}].min", stiffness_key(kind, b.eta), "min", b.min
-                    )
+                key = stiffness_key(kind, b.eta, b.support or spec.support)
+                cons.append(Constraint(f"constraints.{kind}[{i}].min", key, "min", b.min))
+        for i, bk in enumerate(c.buckling_load):
+            if crease_layer(bk.eta) is None:
+                raise SpecError(
+                    f"constraints.buckling_load[{i}].eta",
+                    f"{bk.eta:g} deg",
+                    "0 or 90 deg (along a layer's creases)",
                 )
+            if layout.name not in ("square", "rectangle"):
+                raise SpecError(
+                    f"constraints.buckling_load[{i}]",
+                    f"layout {layout.name}",
+                    "a square or rectangle layout",
+                    reason="has buckling bounds only for long straight end facets",
+                )
+            eta = 0.0 if crease_layer(bk.eta) == 0 else 90.0
+            cons.append(
+                Constraint(f"constraints.buckling_load[{i}].min", f"Pb@{eta:g}", "min", bk.min)
+            )
         if c.mass is not None:
             cons.append(Constraint("constraints.mass.max", "mass", "max", c.mass.max))
         o = spec.objective
         objective = (
             Objective()
             if o.maximize is None
-            else Objective(stiffness_key(o.maximize, o.eta), "max")
+            else Objective(stiffness_key(o.maximize, o.eta, o.support or spec.support), "max")
         )
         return cls(
             name=spec.name,
@@ -257,6 +290,7 @@ class Problem:
             n_hi=v.n.max,
             constraints=tuple(cons),
             objective=objective,
+            support=spec.support,
         )
 
 

@@ -20,13 +20,18 @@ a box ``lo <= x <= hi`` (elementwise over many boxes). The arguments, per quanti
 * facet length: max_j L_j = F(n) S with F(n) = (n + 1) max_j dA_j (:mod:`corrugate.layouts`),
   bounded by the range of F over the box's n and the range of S.
 * stiffness: the moduli variant's own function evaluated in :class:`~.interval.Interval`
-  arithmetic over the box (W, alpha), then the spring sums of DESIGN.md 3.2 and the assembly of 3.3
+  arithmetic over the box (W, alpha), then the spring sums of DESIGN.md 3.2 and the assembly
+  (:func:`corrugate.offaxis.assembly_directional`: the rule of 3.3 for a frame, the free-panel
+  lower bounds otherwise, each variable once per term so the intervals are tight)
   in interval arithmetic, with q = sum_j 1/L_j = Q(n) / S (Q from
   :func:`corrugate.layouts.inverse_length_sum`). For identical layers p q = Q(n) / (n + 1) exactly,
   which removes the dependency on p. EI = D x span: for square, rectangle and circle the span grows
   with Lx and Ly (its value at the upper corner bounds it); for a polygon the span moves by at most
   2 (|dLx sin eta| + |dLy cos eta|) when the box is shrunk to a corner (each vertex moves by at most
   its share of dLx, dLy), which bounds it from both sides.
+
+* buckling load: :func:`corrugate.buckling.buckling_scale` in interval arithmetic (each variable
+  appears once, and K_C / K_S from the interval springs).
 
 Interval bounds converge to the exact value as the box shrinks, which is what makes branch and
 bound terminate.
@@ -43,9 +48,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..analysis import LayerArrays, evaluate
+from ..buckling import K_SIMPLE_FREE, buckling_scale
 from ..layouts import Circle, Rectangle, facet_lengths, inverse_length_sum, length_sum
 from ..mass import connector_mass, layer_mass
 from ..moduli import get_model
+from ..offaxis import Support, assembly_directional, shear_springs
 from .interval import Interval
 from .problem import Candidate, Problem
 
@@ -150,6 +157,8 @@ def point_values(
 ) -> dict[str, FloatArray]:
     """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``."""
     etas = np.asarray(problem.etas or (0.0,), dtype=np.float64)
+    keys = [c.quantity for c in problem.constraints] + [problem.objective.quantity]
+    wanted = {"frame" for k in keys if "frame@" in k} | {"Pb" for k in keys if k.startswith("Pb@")}
     l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
     l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
     ev = evaluate(l1, l2, problem.layout, problem.model, etas)
@@ -169,6 +178,19 @@ def point_values(
         out["EI" + key] = np.asarray(ev.EI[:, k])
         out["D" + key] = np.asarray(ev.D[:, k])
         out["K" + key] = np.asarray(ev.K[:, k])
+        if "frame" in wanted:
+            span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(float(eta))))
+            D_frame = np.asarray(assembly_directional("D", ev.springs, float(eta), "frame"))
+            out["Dframe" + key] = D_frame[:, 0]
+            out["EIframe" + key] = D_frame[:, 0] * span
+            K_frame = np.asarray(assembly_directional("K", ev.springs, float(eta), "frame"))
+            out["Kframe" + key] = K_frame[:, 0]
+    if "Pb" in wanted:
+        s1, s2 = ev.springs
+        for e, (lay, sa, sc) in {"0": (l1, s1, s2), "90": (l2, s2, s1)}.items():
+            out["Pb@" + e] = np.asarray(
+                K_SIMPLE_FREE * buckling_scale(lay.E, lay.nu, lay.t, lay.W, lay.n, sa.K_S, sc.K_C)
+            )[:, 0]
     return out
 
 
@@ -231,6 +253,19 @@ def box_bounds(
     return out
 
 
+@dataclass(frozen=True)
+class _Springs:
+    """A layer's springs over boxes, as intervals (the fields of
+    :class:`~corrugate.springs.LayerSprings`)."""
+
+    K_C: Interval
+    K_S: Interval
+    D_C: Interval
+    D_S: Interval
+    K_T: Interval
+    D_T: Interval
+
+
 def _layer_springs(
     problem: Problem,
     cand: Candidate,
@@ -239,8 +274,9 @@ def _layer_springs(
     a: tuple[FloatArray, FloatArray],
     S: tuple[FloatArray, FloatArray],
     Q: RangeTable,
-) -> tuple[Interval, Interval, Interval, Interval]:
-    """K_C, K_S, D_C, D_S of a layer over a box (DESIGN.md 3.2), in interval arithmetic."""
+) -> _Springs:
+    """K_C, K_S, D_C, D_S (DESIGN.md 3.2) and the shear and twisting springs K_T, D_T
+    (:func:`corrugate.offaxis.shear_springs`) of a layer over a box, in interval arithmetic."""
     m = cand.material
     t = cand.t
     Wi = Interval(W[0], W[1])
@@ -249,14 +285,22 @@ def _layer_springs(
     function: Any = get_model(problem.model).function
     mod = function(np.float64(m.E), np.float64(m.nu), np.float64(t), Wi, alpha)
     q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
+    sh = (alpha * 0.5).sin()
     if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
         pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))
     else:
-        p = Wi * (alpha * 0.5).sin()
-        pq = p * Interval(q_lo, q_hi) / Interval(S[0], S[1])
+        pq = Wi * sh * Interval(q_lo, q_hi) / Interval(S[0], S[1])
     Ecx, Ecy, Ebx, Eby = (Interval.of(v) for v in (mod.Ecx, mod.Ecy, mod.Ebx, mod.Eby))
     t3 = t**3
-    return (Ecx * t / pq, Ecy * t * pq, Ebx * (t3 / 12.0) / pq, Eby * (t3 / 12.0) * pq)
+    K_T, D_T = shear_springs(np.float64(m.E), np.float64(m.nu), np.float64(t), sh, pq)
+    return _Springs(
+        Ecx * t / pq,
+        Ecy * t * pq,
+        Ebx * (t3 / 12.0) / pq,
+        Eby * (t3 / 12.0) * pq,
+        Interval.of(K_T),
+        Interval.of(D_T),
+    )
 
 
 def _stiffness_bounds(
@@ -270,15 +314,15 @@ def _stiffness_bounds(
     keys: list[str],
 ) -> Bounds:
     Lx, Ly = geo["Lx"], geo["Ly"]
-    KC1, KS1, DC1, DS1 = _layer_springs(
+    sp1 = _layer_springs(
         problem, c1, (lo["n1"], hi["n1"]), (lo["W1"], hi["W1"]), (lo["a1"], hi["a1"]), Ly, tables.Qx
     )
     if problem.identical and isinstance(problem.layout, Rectangle | Circle):
         # outline symmetric under x <-> y: identical layers have identical springs
-        KC2, KS2, DC2, DS2 = KC1, KS1, DC1, DS1
+        sp2 = sp1
     else:  # a polygon's facet lengths differ across x and across y (regression: issue found
         # by brute force on a pentagon; layer 2 must use Q_y even when the layers are identical)
-        KC2, KS2, DC2, DS2 = _layer_springs(
+        sp2 = _layer_springs(
             problem,
             c2,
             (lo["n2"], hi["n2"]),
@@ -290,14 +334,32 @@ def _stiffness_bounds(
     out: Bounds = {}
     for key in keys:
         kind, eta_s = key.split("@")
-        e = np.radians(float(eta_s))
-        c2_, s2_ = np.cos(e) ** 2, np.sin(e) ** 2  # DESIGN.md 3.3
-        if kind == "K":
-            v = (KS1 + KC2) * c2_ + (KS2 + KC1) * s2_
-        else:
-            v = (DS1 + DC2) * c2_ + (DS2 + DC1) * s2_
-            if kind == "EI":
-                v = v * _span_bounds(problem, Lx, Ly, float(eta_s))
+        eta = float(eta_s)
+        v: Interval
+        if kind == "Pb":  # buckling along layer 1's (0) or layer 2's (90) creases
+            along, across, b, m = (sp1, sp2, "1", c1) if eta == 0.0 else (sp2, sp1, "2", c2)
+            Wb = Interval(lo["W" + b], hi["W" + b])
+            nb = Interval(lo["n" + b], hi["n" + b])
+            mat = m.material
+            v = (
+                buckling_scale(
+                    np.float64(mat.E),
+                    np.float64(mat.nu),
+                    np.float64(m.t),
+                    Wb,
+                    nb,
+                    along.K_S,
+                    across.K_C,
+                )
+                * K_SIMPLE_FREE
+            )
+            out[key] = (np.maximum(v.lo, 0.0), v.hi)
+            continue
+        support: Support = "frame" if kind.endswith("frame") else "free"
+        base = kind.removesuffix("frame")
+        v = assembly_directional("K" if base == "K" else "D", (sp1, sp2), eta, support)
+        if base == "EI":
+            v = v * _span_bounds(problem, Lx, Ly, eta)
         out[key] = (np.maximum(v.lo, 0.0), v.hi)
     return out
 

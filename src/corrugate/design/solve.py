@@ -300,7 +300,7 @@ def solve(problem: Problem, *, explain: bool = True) -> Solution:
         )
     assembly = assembly_of(problem, opt)
     etas = sorted(set(problem.etas) | {0.0, 90.0})
-    analysis = analyze(assembly, problem.model, etas)
+    analysis = analyze(assembly, problem.model, etas, support=problem.support)
     warnings = [w.as_dict() for w in analysis.warnings]
     if not opt.certified:
         warnings.append(

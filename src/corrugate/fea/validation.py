@@ -22,6 +22,7 @@ from ..analysis import analyze
 from ..errors import CorrugateError
 from ..geometry import Assembly
 from ..moduli import MODELS
+from ..offaxis import Support
 from .assembly import (
     AssemblyMesh,
     AssemblyResult,
@@ -88,6 +89,7 @@ class Case:
     connectors: bool = False
     buckling: bool = False
     bond: Bond = "edges"
+    support: Support = "free"
 
 
 @dataclass(frozen=True, slots=True)
@@ -119,16 +121,20 @@ class CaseResult:
         return self.models[model][key] / self.fe[key]
 
 
-def closed_forms(assembly: Assembly, eta_deg: Sequence[float]) -> dict[str, dict[str, float]]:
-    """The closed forms of every model variant in the keys of :class:`CaseResult`."""
+def closed_forms(
+    assembly: Assembly, eta_deg: Sequence[float], support: Support = "free"
+) -> dict[str, dict[str, float]]:
+    """The closed forms of every model variant in the keys of :class:`CaseResult`: K and D under
+    ``support`` (the FE coupon has free sides), ``Kframe`` always the rule (the frame FE)."""
     out: dict[str, dict[str, float]] = {}
     for name in MODELS:
-        r = analyze(assembly, name, list(eta_deg))
+        r = analyze(assembly, name, list(eta_deg), support=support)
+        frame = analyze(assembly, name, list(eta_deg), support="frame").stiffness
         values: dict[str, float] = {}
-        for d in r.stiffness:
+        for d, fr in zip(r.stiffness, frame, strict=True):
             e = f"{d.eta_deg:g}"
             values[f"K_N_per_mm@{e}"] = d.K
-            values[f"Kframe_N_per_mm@{e}"] = d.K  # the rule is the frame's stiffness
+            values[f"Kframe_N_per_mm@{e}"] = fr.K  # the rule is the frame's stiffness
             values[f"D_Nmm@{e}"] = d.D
             if principal_axis(d.eta_deg) is not None:  # off-axis the FE coupon has its own span
                 values[f"EI_Nmm2@{e}"] = d.EI
@@ -234,7 +240,7 @@ def run_case(case: Case) -> CaseResult:
     """Run the FE of ``case`` (refining if asked) beside the closed forms; never raises on a
     solver failure of the case: the message goes to :attr:`CaseResult.error`."""
     ref = case.refinement
-    models = closed_forms(case.assembly, case.eta_deg)
+    models = closed_forms(case.assembly, case.eta_deg, case.support)
     history: list[tuple[str, dict[str, float]]] = []
     meshes: dict[str, str] = {}
     fe: dict[str, float] = {}

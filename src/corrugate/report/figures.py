@@ -161,23 +161,34 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
 
 
 def polar_figure(a: Analysis) -> Any:
-    """K(eta) (N/mm) and D(eta) (N mm) of the design on polar axes, eta from layer 1's creases."""
+    """K(eta) (N/mm) and D(eta) (N mm) of the design on polar axes, eta from layer 1's creases:
+    the free panel's lower bounds (:mod:`corrugate.offaxis`) and the rule of a panel held in a
+    rigid frame, on a logarithmic radius (they differ by up to three orders of magnitude); the
+    design's own support condition is the solid line."""
     import matplotlib.pyplot as plt
 
     etas = np.linspace(0.0, 360.0, 145)
-    r = analyze(a.assembly, a.model, list(etas))
-    K = np.array([s.K for s in r.stiffness])
-    D = np.array([s.D for s in r.stiffness])
+    curves = {
+        sup: analyze(a.assembly, a.model, list(etas), support=sup).stiffness
+        for sup in ("free", "frame")
+    }
     fig, axes = plt.subplots(1, 2, subplot_kw={"projection": "polar"}, figsize=(8, 4), dpi=100)
-    for ax, values, title in (
-        (axes[0], K, "in-plane K(eta) (N/mm)"),
-        (axes[1], D, "bending D(eta) (N mm)"),
+    for ax, key, title in (
+        (axes[0], "K", "in-plane K(eta) (N/mm)"),
+        (axes[1], "D", "bending D(eta) (N mm)"),
     ):
-        ax.plot(np.radians(etas), values)
+        for sup, st in curves.items():
+            values = np.array([getattr(s, key) for s in st])
+            label = "free sides (lower bound)" if sup == "free" else "rigid frame (cos^2 rule)"
+            ax.plot(
+                np.radians(etas), values, "-" if sup == a.support else "--", label=label, lw=1.2
+            )
+        ax.set_rscale("symlog", linthresh=1.0)
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
         ax.set_title(title, fontsize=9)
         ax.tick_params(labelsize=7)
+    axes[0].legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.15, -0.2))
     fig.suptitle("eta measured from layer 1's creases", fontsize=8)
     fig.tight_layout()
     return fig

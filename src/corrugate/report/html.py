@@ -138,9 +138,11 @@ def report_html(sol: Solution, spec_text: str, cutter: str = "cameo4-12x12") -> 
     parts.append("<h2>Stiffness in every direction</h2>")
     parts.append(_img(polar_figure(a), "polar plots of K and D"))
     parts.append(
-        "<p>Off the crease directions (0 and 90 deg) K and D follow the paper's cos^2 rule, the "
-        "stiffness of a panel held in a frame on all four edges; a part loaded along another "
-        "direction is softer (docs/fea.md, section 2.5).</p>"
+        f"<p>Support condition of this design's stiffness: <b>{a.support}</b>. Along the "
+        "creases (0 and 90 deg) both conditions give the paper's springs. Off them, a panel "
+        "with free sides (solid or dashed 'free' curve: a lower bound, docs/offaxis.md) is up "
+        "to hundreds of times softer than the paper's cos^2 rule, which holds only for a panel "
+        "held in a rigid frame on all four edges (docs/validation/off_axis.md).</p>"
     )
     if a.buckling:
         parts.append("<h2>Buckling in compression</h2><ul>")

@@ -152,9 +152,9 @@ def _check_size(req: AnalysisRequest, settings: WebSettings) -> None:
 
 
 def _parse(body: AnalyzeBody, settings: WebSettings) -> AnalysisRequest:
-    options = body.model_dump(exclude={"model", "eta"}, exclude_none=True)
+    options = body.model_dump(exclude={"model", "eta", "support"}, exclude_none=True)
     with _PARSE_LOCK:
-        req = analysis_request(model=body.model, eta=body.eta, **options)
+        req = analysis_request(model=body.model, eta=body.eta, support=body.support, **options)
     _check_size(req, settings)
     return req
 

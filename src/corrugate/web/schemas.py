@@ -80,6 +80,10 @@ class AnalyzeBody(BaseModel):
     eta: Annotated[list[Value], Field(max_length=MAX_ETAS)] | None = Field(
         None, description="Directions (deg from layer 1's creases). Default [0, 90]."
     )
+    support: Text = Field(
+        "free",
+        description="free (sides free, default) | frame (held in a rigid frame: the cos^2 rule).",
+    )
 
 
 #: The keys of a design request that are output options, not spec keys.
