@@ -31,12 +31,15 @@ demo: $(VENV)/.installed
 	@echo "wrote out/case1_analysis.json and the blimp gripper's design and cut files under out/blimp_gripper/"
 
 # System packages the tests need, installed when missing and running as root (CI runs as root):
-# calculix-ccx (command ccx) for the finite-element tests, chromium for the browser tests.
+# calculix-ccx (command ccx) for the finite-element tests, chromium for the browser tests,
+# inkscape and librecad to render every cut file (SVG and DXF) in the cut-file tests.
 # Otherwise it says what is missing; those tests then skip, or fail when CI=true.
 system-deps:
 	@missing=""; \
 	command -v ccx >/dev/null || missing="$$missing calculix-ccx"; \
 	command -v chromium >/dev/null || missing="$$missing chromium"; \
+	command -v inkscape >/dev/null || missing="$$missing inkscape"; \
+	command -v librecad >/dev/null || missing="$$missing librecad"; \
 	if [ -n "$$missing" ]; then \
 		if [ "$$(id -u)" = 0 ]; then apt-get update && apt-get install -y $$missing; \
 		else echo "system-deps: missing$$missing (as root: apt-get install -y$$missing)"; fi; \

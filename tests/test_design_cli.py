@@ -103,7 +103,7 @@ def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
     assert {
         "design.json",
         "sheet-1.svg",
-        "sheet-1.dxf",
+        "cut-1.dxf",
         "pattern.pdf",
         "layer1.fold",
         "layer2.fold",
@@ -115,6 +115,21 @@ def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
     # the mass of the cut parts is the mass the solver minimised
     parts = sum(p["mass_g"] for p in written["cut_parts"])
     assert parts == pytest.approx(printed["mass_g"], rel=5e-3)
+
+
+def test_out_dir_takes_the_machine_and_labels(tmp_path: Path, cli: CliRun) -> None:
+    out_dir = tmp_path / "maker"
+    args = ["design", str(BLIMP), "--out", str(out_dir), "--machine", "maker-12x12"]
+    code, _, err = cli([*args, "--labels", "--fold-style", "scored"])
+    assert code == 0, err
+    names = {p.name for p in out_dir.iterdir()}
+    assert "cut-1.svg" in names and "cut-1.dxf" not in names  # Design Space reads SVG
+    text = (out_dir / "cut-1.svg").read_text("utf-8")
+    assert 'id="SCORE"' in text and 'id="LABEL"' in text and "<text" not in text
+    written = json.loads((out_dir / "design.json").read_text("utf-8"))
+    assert written["sheets"]["cutter"] == "maker-12x12"
+    assert written["sheets"]["cut_file_formats"] == ["svg"]
+    assert written["sheets"]["labels_in_cut_files"] is True
 
 
 def test_readable_summary(cli: CliRun) -> None:

@@ -179,21 +179,17 @@ def test_svg_outlines_holes_cuts_marks_and_labels(plan: SheetPlan, tmp_path: Pat
     assert len([e for e in root2.iter(f"{SVG}line") if "data-crease" in e.attrib]) == 21
 
 
-def test_svg_perforated_dash_pattern_matches_the_dash_rule(plan: SheetPlan, tmp_path: Path) -> None:
+def test_fold_map_draws_perforated_creases_solid(plan: SheetPlan, tmp_path: Path) -> None:
+    # the fold map is for people and Origami Simulator: no dash pattern a cutter would ignore
     style = line_style("perforated", cut=2.0, gap=1.0)
-    root = ET.parse(write_svg(plan.sheets[0], tmp_path / "p.svg", style)).getroot()
+    path = write_svg(plan.sheets[0], tmp_path / "p.svg", style)
+    assert "dasharray" not in path.read_text()
+    root = ET.parse(path).getroot()
     elems = {
         e.attrib["data-crease"]: e for e in root.iter(f"{SVG}line") if "data-crease" in e.attrib
     }
-    for name, k, ln in all_creases(plan):
-        e = elems[f"{name}:{k}"]
-        starts = dash_layout(ln.length, 2.0, 1.0)
-        dash, gap = (float(v) for v in e.attrib["stroke-dasharray"].split())
-        offset = float(e.attrib["stroke-dashoffset"])
-        assert dash == pytest.approx(2.0)
-        assert gap == pytest.approx(2 * starts[0], abs=1e-4)
-        # the pattern, started at `offset`, first draws ink at starts[0] from the line start
-        assert (dash + gap) - offset == pytest.approx(starts[0], abs=1e-4)
+    assert len(elems) == len(list(all_creases(plan))) > 0
+    for e in elems.values():
         assert e.attrib["data-style"] == "perforated"
 
 
@@ -344,16 +340,18 @@ def test_write_files_writes_every_sheet_and_one_pdf(multi_plan: SheetPlan, tmp_p
     out = tmp_path / "out"
     written = write_files(multi_plan, out, line_style("perforated", cut=2, gap=1))
     n = len(multi_plan.sheets)
-    expected = sorted(
+    expected = sorted(  # laser:270x80: cut files in SVG and DXF
         [f"sheet-{k}.svg" for k in range(1, n + 1)]
-        + [f"sheet-{k}.dxf" for k in range(1, n + 1)]
+        + [f"cut-{k}.svg" for k in range(1, n + 1)]
+        + [f"cut-{k}.dxf" for k in range(1, n + 1)]
         + ["pattern.pdf"]
     )
     assert listing(out) == expected  # and no temporary file left
     assert sorted(p.name for p in written) == expected
     for k in range(1, n + 1):
         ET.parse(out / f"sheet-{k}.svg")
-        assert not readfile(out / f"sheet-{k}.dxf").audit().has_errors
+        ET.parse(out / f"cut-{k}.svg")
+        assert not readfile(out / f"cut-{k}.dxf").audit().has_errors
     assert len(pdf_pages(out / "pattern.pdf")) == n
     # SVG sheet k holds exactly the parts placed on sheet k - 1
     for k, sheet in enumerate(multi_plan.sheets, start=1):

@@ -28,7 +28,7 @@ def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
     names = {p.name for p in tmp_path.iterdir()}
     assert {
         "sheet-1.svg",
-        "sheet-1.dxf",
+        "cut-1.dxf",
         "pattern.pdf",
         "layer1.fold",
         "layer2.fold",
@@ -61,13 +61,14 @@ def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
     assert len(layer_creases) == 8
     assert {round(float(e.get("opacity", "0")), 4) for e in layer_creases} == {round(96 / 180, 4)}
 
-    doc = ezdxf.readfile(tmp_path / "sheet-1.dxf")
+    # the Cameo's cut file (the default machine): the outlines and slits only, with solid folds
+    doc = ezdxf.readfile(tmp_path / "cut-1.dxf")
     assert not doc.audit().has_errors
     assert doc.header["$INSUNITS"] == 4
     msp = doc.modelspace()
-    assert len(msp.query('LINE[layer=="MOUNTAIN"]')) + len(
-        msp.query('LINE[layer=="VALLEY"]')
-    ) == len(keys)
+    assert {e.dxf.layer for e in msp} == {"CUT"}
+    assert len(msp.query('LWPOLYLINE[layer=="CUT"]')) == len(pattern.parts)
+    assert not (tmp_path / "cut-1.svg").exists()  # Silhouette Studio basic reads DXF
 
 
 def test_circle_and_polygon_patterns(tmp_path: Path, cli: CliRun) -> None:
@@ -96,7 +97,7 @@ def test_circle_and_polygon_patterns(tmp_path: Path, cli: CliRun) -> None:
         assert sum(p["mass_g"] for p in record["cut_parts"]) == pytest.approx(
             record["mass_g"], rel=5e-3
         )
-        doc = ezdxf.readfile(out / "sheet-1.dxf")
+        doc = ezdxf.readfile(out / "cut-1.dxf")
         assert not doc.audit().has_errors
         assert len(doc.modelspace().query('LINE[layer=="PERFORATE"]')) > 0
 

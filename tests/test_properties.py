@@ -115,7 +115,7 @@ def test_identical_layers_are_isotropic_and_results_positive(
     free = analyze(a, model, etas, support="free").stiffness
     mirror = analyze(a, model, [90.0 - e for e in etas], support="free").stiffness
     for f, g, fr in zip(free, mirror, r.stiffness[1:], strict=True):
-        assert f.K == pytest.approx(g.K, rel=1e-9) and f.D == pytest.approx(g.D, rel=1e-9)
+        assert pytest.approx(g.K, rel=1e-9) == f.K and pytest.approx(g.D, rel=1e-9) == f.D
         if positive:
             assert f.K > 0 and f.D > 0 and np.isfinite([f.K, f.D, fr.K]).all()
     assert r.mass.total > 0

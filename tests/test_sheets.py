@@ -256,3 +256,23 @@ def test_placement_is_a_rigid_motion_without_mirror(rotated: bool) -> None:
         o = p.transform((0.0, 0.0))
         e = p.transform((1.0, 0.0))
         assert (e[0] - o[0], e[1] - o[1]) == pytest.approx((0.0, 1.0))
+
+
+# -- the mat's origin is its top-left corner ------------------------------------------------------
+
+
+@pytest.mark.parametrize("cutter", ["cameo4-12x12", "maker-12x24", "laser:400x300"])
+def test_parts_are_packed_from_the_top_left_corner(cutter: str) -> None:
+    parts = [rect("layer-1", 72, 48.18, 8), rect("layer-2", 72, 48.18, 8), ell()]
+    plan = plan_sheets(parts, cutter, spacing=5, margin=7)
+    sheet = plan.sheets[0]
+    boxes = [bbox(place(p).outline) for p in sheet.placements]
+    # y is up on a sheet: the top edge is y = height; the first shelf touches the top margin
+    assert max(b[3] for b in boxes) == pytest.approx(sheet.height - 7)
+    assert min(b[0] for b in boxes) == pytest.approx(7)
+    # nothing lies in the lower half of the mat: the free space is below the parts
+    assert min(b[1] for b in boxes) > sheet.height / 2
+    if sheet.reserved is not None:
+        rx, ry, rw, rh = sheet.reserved
+        assert rx >= 7 - 1e-9 and ry >= 7 - 1e-9
+        assert rx + rw <= sheet.width - 7 + 1e-9 and ry + rh <= sheet.height - 7 + 1e-9

@@ -16,6 +16,8 @@ __all__ = [
     "Alpha",
     "Alpha2",
     "Density",
+    "Labels",
+    "Machine",
     "Material",
     "Material2",
     "N",
@@ -49,6 +51,26 @@ Thickness2 = Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1
 Vertices = Annotated[
     str | None,
     Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+]
+Machine = Annotated[
+    str,
+    Opt(
+        "--machine",
+        "--cutter",
+        help="Machine and sheet: cameo4-12x12 | cameo4-12x24 (Silhouette Cameo 4: cut-N.dxf) | "
+        "maker-12x12 | maker-12x24 (Cricut Maker: cut-N.svg) | laser:WxH (bed in mm: cut-N.svg "
+        "and cut-N.dxf, hairlines).",
+    ),
+]
+Labels = Annotated[
+    bool | None,
+    Opt(
+        "--labels/--no-labels",
+        help="Part names in the cut files too (drawn with a pen, engraved on a laser) / no labels "
+        "anywhere. "
+        "Default: on the fold map and the PDF only.",
+        show_default=False,
+    ),
 ]
 SupportOpt = Annotated[
     str,

@@ -126,10 +126,8 @@ def design_cmd(
         Path | None,
         typer.Option("--out", help="Folder for design.json and, for a design, every cut file."),
     ] = None,
-    cutter: Annotated[
-        str,
-        typer.Option(help="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH."),
-    ] = "cameo4-12x12",
+    cutter: o.Machine = "cameo4-12x12",
+    labels: o.Labels = None,
     fold_style: Annotated[str, typer.Option(help="solid | scored | perforated.")] = "solid",
     cut: Annotated[str | None, typer.Option(help="Perforation: cut length (mm).")] = None,
     gap: Annotated[str | None, typer.Option(help="Perforation: gap length (mm).")] = None,
@@ -143,7 +141,9 @@ def design_cmd(
         raise InputError("--out", str(out), "a directory", reason="is a file")
     check_paper(paper)  # checked with or without --out
     files = (
-        fab_options(cutter, fold_style, cut, gap, "5", "5", "4", paper) if out is not None else None
+        fab_options(cutter, fold_style, cut, gap, "5", "5", "4", labels, paper)
+        if out is not None
+        else None
     )
     parsed = load_spec(spec)
     problem = Problem.from_spec(parsed)

@@ -1,7 +1,9 @@
 """Design -> every file a maker needs, written all or nothing into one folder.
 
-``sheet-N.svg`` / ``sheet-N.dxf`` and ``pattern.pdf`` (the parts laid out on the cutter's sheets;
-with ``paper`` a4 or letter also ``pattern-a4.pdf`` / ``pattern-letter.pdf``, the sheets on 1:1 tiles),
+``sheet-N.svg`` (the fold map, for people and Origami Simulator), ``cut-N.dxf`` / ``cut-N.svg``
+(the cut-ready files of the machine: DXF for a Silhouette, SVG for a Cricut, both for a laser),
+``pattern.pdf`` (the parts laid out on the machine's sheets, :mod:`corrugate.export.files`; with
+``paper`` a4 or letter also ``pattern-a4.pdf`` / ``pattern-letter.pdf``, the sheets on 1:1 tiles),
 ``layer1.fold`` / ``layer2.fold`` (FOLD 1.2 with the folded frame), ``assembly.glb`` /
 ``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure),
 ``report.html`` (from ``corrugate design``) and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
@@ -22,6 +24,7 @@ from typing import Any
 
 from .analysis import Analysis
 from .export.files import write_files
+from .export.machines import DEFAULT_MACHINE, get_machine
 from .export.pdf import check_paper
 from .fileio import staged
 from .geometry import Assembly
@@ -38,16 +41,20 @@ __all__ = ["CutPlan", "OutputOptions", "cut_plan", "write_design_files"]
 
 @dataclass(frozen=True, slots=True)
 class OutputOptions:
-    """Where and how to cut: cutter name (see :data:`corrugate.pattern.sheets.CUTTERS`, or
-    ``laser:WxH`` in mm), fold-line style, spacing and margin on the sheet (mm), connector sizes,
+    """Where and how to cut: the machine (``cutter``: a name of
+    :data:`corrugate.pattern.sheets.CUTTERS` or ``laser:WxH`` in mm; its profile is
+    :func:`corrugate.export.machines.get_machine`), fold-line style, spacing and margin on the sheet
+    (mm), connector sizes, and ``labels`` (``None``: on the fold map and the PDF, not in the cut
+    files; ``True``: in the cut files too; ``False``: nowhere),
     and ``paper``: ``mat`` (``pattern.pdf`` only) or ``a4`` / ``letter`` (also the 1:1 tiles,
     ``pattern-a4.pdf`` / ``pattern-letter.pdf``)."""
 
-    cutter: str = "cameo4-12x12"
+    cutter: str = DEFAULT_MACHINE
     style: LineStyle = SOLID
     spacing: float = 5.0
     margin: float = 5.0
     fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
+    labels: bool | None = None
     paper: str = "mat"
 
 
@@ -104,8 +111,12 @@ def write_design_files(
         }
         for p in pattern.parts
     ]
+    machine = get_machine(plan.cutter)
     record["sheets"] = {
         "cutter": plan.cutter.name,
+        "machine": machine.family.value,
+        "cut_file_formats": list(machine.formats),
+        "labels_in_cut_files": opts.labels is True,
         "size_mm": [plan.cutter.width, plan.cutter.height],
         "count": len(plan.sheets),
         "parts": [[pl.part.name for pl in sheet.placements] for sheet in plan.sheets],
@@ -119,7 +130,9 @@ def write_design_files(
         record.update(extra)
     out.mkdir(parents=True, exist_ok=True)
     with staged() as st:
-        written = list(write_files(plan, out, opts.style, paper=opts.paper, staging=st))
+        written = list(
+            write_files(plan, out, opts.style, labels=opts.labels, paper=opts.paper, staging=st)
+        )
         written += write_fold(a, pattern, out, st)
         written += write_mesh(a, pattern, out, st)
         written += write_instructions(a, pattern, out, st)

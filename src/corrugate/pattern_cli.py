@@ -32,10 +32,15 @@ def fab_options(
     spacing: str,
     margin: str,
     tab_depth: str,
+    labels: bool | None = None,
     paper: str = "mat",
 ) -> OutputOptions:
-    """Output options from command-line strings (plain numbers in mm); ``paper`` is ``mat``,
-    ``a4`` or ``letter`` (see :class:`~corrugate.outputs.OutputOptions`)."""
+    """Output options from command-line strings (plain numbers in mm); ``cutter`` is the machine,
+    ``labels`` the ``--labels/--no-labels`` flag (``None`` when not given) and ``paper`` is
+    ``mat``, ``a4`` or ``letter`` (see :class:`~corrugate.outputs.OutputOptions`)."""
+    from .export.machines import get_machine
+
+    get_machine(cutter)  # an unknown machine is an error before anything else
     cut_mm = None if cut is None else parse_quantity(cut, "mm", "cut")
     gap_mm = None if gap is None else parse_quantity(gap, "mm", "gap")
     return OutputOptions(
@@ -44,6 +49,7 @@ def fab_options(
         spacing=parse_quantity(spacing, "mm", "spacing"),
         margin=parse_quantity(margin, "mm", "margin"),
         fabrication=FabricationOptions(tab_depth=parse_quantity(tab_depth, "mm", "tab-depth")),
+        labels=labels,
         paper=check_paper(paper),
     )
 
@@ -68,9 +74,8 @@ def pattern_cmd(
     vertices: o.Vertices = None,
     model: Annotated[str, Opt(help="Moduli variant for design.json.")] = DEFAULT_MODEL,
     support: o.SupportOpt = "free",
-    cutter: Annotated[
-        str, Opt(help="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).")
-    ] = "cameo4-12x12",
+    cutter: o.Machine = "cameo4-12x12",
+    labels: o.Labels = None,
     fold_style: Annotated[str, Opt(help="Fold lines: solid | scored | perforated.")] = "solid",
     cut: Annotated[str | None, Opt(help="Perforation: cut length (mm).")] = None,
     gap: Annotated[str | None, Opt(help="Perforation: gap length (mm).")] = None,
@@ -80,10 +85,11 @@ def pattern_cmd(
     paper: o.Paper = "mat",
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
 ) -> None:
-    """Write the cut files (SVG, DXF, PDF), FOLD, GLB/STL and assembly steps of one design."""
+    """Write the machine's cut files, the fold map, the PDF, FOLD, GLB/STL and assembly steps of one
+    design (docs/fabrication.md)."""
     assembly = assembly_from_namespace(locals())
     get_model(model)
-    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, paper)
+    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, labels, paper)
     result = analyze(
         assembly, model, (0.0, 90.0), opts.fabrication, check_support(support, "--support")
     )

@@ -269,7 +269,7 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
     assert (page.get_attribute("#d-pattern", "src") or "").endswith("/sheet-1.svg")
     assert int(page.get_attribute("#d-view3d", "data-triangles") or 0) > 0
     names = page.eval_on_selector_all("#d-downloads a", "els => els.map(e => e.dataset.name)")
-    for name in ("sheet-1.svg", "sheet-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
+    for name in ("sheet-1.svg", "cut-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
         assert name in names
     assert {"assembly.glb", "assembly.stl"} <= set(names)
     assert "pattern-letter.pdf" in names  # the paper option reached the files
@@ -299,9 +299,9 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
 
     # The DXF through its download button.
     with page.expect_download() as info:
-        page.click("#d-downloads a[data-name='sheet-1.dxf']")
+        page.click("#d-downloads a[data-name='cut-1.dxf']")
     download = info.value
-    assert download.suggested_filename == "sheet-1.dxf"
+    assert download.suggested_filename == "cut-1.dxf"
     doc = ezdxf.readfile(download.path())
     assert not doc.audit().has_errors
     assert len(doc.modelspace()) > 0

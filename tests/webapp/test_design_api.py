@@ -111,7 +111,7 @@ def test_every_file_is_listed_downloads_and_parses(
     ]
     assert [f["name"] for f in result["files"]] == expected
     assert "report.html" in files
-    for kind in ("sheet-1.svg", "sheet-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
+    for kind in ("sheet-1.svg", "cut-1.dxf", "pattern.pdf", "layer1.fold", "layer2.fold"):
         assert kind in files
     assert {"assembly.glb", "assembly.stl", "design.json"} <= set(files)
     for name, f in files.items():
@@ -274,7 +274,7 @@ def test_path_tricks_on_design_results_are_4xx(client: TestClient, blimp: dict[s
         f"/api/results/{rid}/..%2F..%2F..%2Fetc%2Fpasswd",
         f"/api/results/{rid}/%2e%2e%2f%2e%2e%2fetc%2fpasswd",
         f"/api/results/{rid}/%2Fetc%2Fpasswd",
-        f"/api/results/{rid}/sheet-1.dxf%00.txt",
+        f"/api/results/{rid}/cut-1.dxf%00.txt",
         f"/api/results/{rid}/SHEET-1.DXF",
         f"/api/results/{rid}/.",
         f"/api/results/{rid}/",

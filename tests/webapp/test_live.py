@@ -160,7 +160,7 @@ def test_path_tricks_on_design_results_get_4xx(live_server: str) -> None:
         f"/api/results/{rid}/../../../../../../etc/passwd",
         f"/api/results/{rid}/..%2f..%2f..%2fetc%2fpasswd",
         f"/api/results/{rid}/%2e%2e/{rid}/design.json",
-        f"/api/results/{rid}/sheet-1.dxf/../../../etc/passwd",
+        f"/api/results/{rid}/cut-1.dxf/../../../etc/passwd",
         f"/api/results/{rid}/.%2fdesign.json",
         f"/api/results/{rid}//design.json",
         f"/api/results/{rid}/design.json%2500",
@@ -169,5 +169,5 @@ def test_path_tricks_on_design_results_get_4xx(live_server: str) -> None:
         status, content = raw_get(live_server, target)
         assert 400 <= status < 500, (target, status)
         assert b"root:" not in content, target
-    status, content = raw_get(live_server, f"/api/results/{rid}/sheet-1.dxf")
+    status, content = raw_get(live_server, f"/api/results/{rid}/cut-1.dxf")
     assert status == 200 and b"SECTION" in content

@@ -6,17 +6,27 @@ with the ``fab`` extra.
 """
 
 from ..fileio import staged
+from .cutfile import cut_dxf_document, cut_paths, cut_svg_document, write_cut_files
 from .dxf import dxf_document, write_dxf
 from .files import FORMATS, write_files
+from .machines import DEFAULT_MACHINE, OPERATIONS, Machine, get_machine
 from .pdf import PAPER_CHOICES, write_pdf, write_tiled_pdf
 from .svg import svg_document, write_svg
 
 __all__ = [
+    "DEFAULT_MACHINE",
     "FORMATS",
+    "OPERATIONS",
     "PAPER_CHOICES",
+    "Machine",
+    "cut_dxf_document",
+    "cut_paths",
+    "cut_svg_document",
     "dxf_document",
+    "get_machine",
     "staged",
     "svg_document",
+    "write_cut_files",
     "write_dxf",
     "write_files",
     "write_pdf",

@@ -15,9 +15,10 @@ layer          ACI    content
 ``LABEL``      8      part labels (TEXT)
 =============  =====  ==========================================================================
 
-MOUNTAIN and VALLEY always hold the fold map, whatever the style; SCORE and PERFORATE hold the
-tool paths when that style is asked. In a cutter's "cut by layer" setup: CUT and PERFORATE cut,
-SCORE scores, the other layers are off (or drawn with a pen).
+This is the whole drawing of a sheet for CAD (the fold map with its tool paths), not a cut file:
+MOUNTAIN and VALLEY always hold the fold map, whatever the style, and a cutter would cut every one
+of its lines. :func:`corrugate.export.files.write_files` does not write it; the machines get the
+operation-clean files of :mod:`.cutfile` (``cut-N.dxf``) instead.
 """
 
 from __future__ import annotations

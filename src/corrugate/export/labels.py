@@ -1,9 +1,14 @@
-"""Where a part's label goes: a point well inside the part, and a text size that fits there (mm).
+"""Where a part's label goes: a point on the part clear of every line, and a text size that fits
+there (all lengths in mm).
 
-The anchor is the sampled point of the part (outline minus holes) farthest from every cut edge (a
-coarse "pole of inaccessibility", so concave parts and parts with holes get their label on
-material). The text runs along x or along y, whichever allows the larger letters, sized so that a
-box of 0.6 em per character by 1.2 em fits the free runs from the anchor to the nearest cut edge.
+The anchor is the sampled point of the part (outline minus holes) farthest from every line drawn on
+it: the cut edges, the creases, the marks and the slits (a coarse "pole of inaccessibility", so
+concave parts, parts with holes and the strips between creases get their label on bare material).
+The text runs along x or along y, whichever allows the larger letters, sized so that its box, 0.6
+em per character long by 1.2 em tall (:attr:`LabelSpot.length`, :attr:`LabelSpot.height`), fits
+the free runs from the anchor; the box is then checked against every line and shrunk until it
+touches none. Writers fit the text into that box: the SVG fold map with ``textLength``, the cut
+files with the glyph outlines scaled into it (:func:`label_outlines`).
 """
 
 from __future__ import annotations
@@ -16,22 +21,44 @@ from numpy.typing import NDArray
 from ..pattern.model import Point
 from ..pattern.sheets import PlacedPart
 
-__all__ = ["MAX_TEXT_MM", "LabelSpot", "label_spot"]
+__all__ = ["MAX_TEXT_MM", "MIN_TEXT_MM", "LabelSpot", "label_outlines", "label_spot", "label_text"]
 
 #: Largest label text height (mm).
 MAX_TEXT_MM = 4.0
+#: Smallest text height (mm) worth printing: a label that would be smaller is replaced by the
+#: part's name where writers offer that (the fold map).
+MIN_TEXT_MM = 1.2
 _GRID = 25
 
 
 @dataclass(frozen=True, slots=True)
 class LabelSpot:
-    """A label's centre (``x``, ``y`` in sheet mm), text height ``size`` (mm) and ``rotation``
-    (degrees counter-clockwise, 0 or 90)."""
+    """A label's centre (``x``, ``y`` in sheet mm), text height ``size`` (mm), ``rotation``
+    (degrees counter-clockwise, 0 or 90) and the length of its box along the text (mm)."""
 
     x: float
     y: float
     size: float
     rotation: float
+    length: float = 0.0
+
+    @property
+    def height(self) -> float:
+        """Height of the label's box across the text (mm): 1.2 em."""
+        return 1.2 * self.size
+
+    def corners(self) -> tuple[Point, Point, Point, Point]:
+        """The box's corners in sheet mm (counter-clockwise)."""
+        hl, hh = self.length / 2, self.height / 2
+        if self.rotation:
+            hl, hh = hh, hl
+        x, y = self.x, self.y
+        return ((x - hl, y - hh), (x + hl, y - hh), (x + hl, y + hh), (x - hl, y + hh))
+
+
+def label_text(placed: PlacedPart) -> str:
+    """The text written on a part: its label, or its name if it has no label."""
+    return placed.part.label or placed.part.name
 
 
 def _segments(rings: list[tuple[Point, ...]]) -> NDArray[np.float64]:
@@ -40,6 +67,32 @@ def _segments(rings: list[tuple[Point, ...]]) -> NDArray[np.float64]:
         p = np.asarray(ring, dtype=np.float64)
         segs.append(np.hstack([p, np.roll(p, -1, axis=0)]))
     return np.vstack(segs)
+
+
+def _obstacles(placed: PlacedPart) -> NDArray[np.float64]:
+    """Every line drawn on a placed part as (x0, y0, x1, y1) rows: outline, holes and lines."""
+    segs = [_segments([placed.outline, *placed.holes])]
+    if placed.lines:
+        segs.append(np.array([(*ln.a, *ln.b) for ln in placed.lines], dtype=np.float64))
+    return np.vstack(segs)
+
+
+def _box_clear(spot: LabelSpot, segs: NDArray[np.float64]) -> bool:
+    """Whether the (axis-aligned) box of ``spot`` meets none of ``segs`` (Liang-Barsky clip)."""
+    (x0, y0), _, (x1, y1), _ = spot.corners()
+    ax, ay, bx, by = segs.T
+    dx, dy = bx - ax, by - ay
+    t0 = np.zeros(len(segs))
+    t1 = np.ones(len(segs))
+    hit = np.ones(len(segs), dtype=bool)
+    for p, q in ((-dx, ax - x0), (dx, x1 - ax), (-dy, ay - y0), (dy, y1 - ay)):
+        parallel = np.abs(p) < 1e-15
+        hit &= ~(parallel & (q < 0))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = np.where(parallel, 0.0, q / np.where(parallel, 1.0, p))
+        t0 = np.where(~parallel & (p < 0), np.maximum(t0, r), t0)
+        t1 = np.where(~parallel & (p > 0), np.minimum(t1, r), t1)
+    return not bool(np.any(hit & (t0 <= t1)))
 
 
 def _inside(points: NDArray[np.float64], ring: tuple[Point, ...]) -> NDArray[np.bool_]:
@@ -81,8 +134,10 @@ def _run(
     return float(np.min(t[ok])) if np.any(ok) else 0.0
 
 
-def label_spot(placed: PlacedPart) -> LabelSpot:
-    """Where and how large to write ``placed``'s label (see the module docstring)."""
+def label_spot(placed: PlacedPart, text: str | None = None) -> LabelSpot:
+    """Where and how large to write ``text`` (default :func:`label_text`) on ``placed``, clear of
+    every line on it (see the module docstring)."""
+    text = label_text(placed) if text is None else text
     outline = placed.outline
     p = np.asarray(outline, dtype=np.float64)
     lo, hi = p.min(axis=0), p.max(axis=0)
@@ -93,22 +148,55 @@ def label_spot(placed: PlacedPart) -> LabelSpot:
     for hole in placed.holes:
         keep &= ~_inside(pts, hole)
     pts = pts[keep]
-    segs = _segments([outline, *placed.holes])
+    segs = _obstacles(placed)
+    chars = max(len(text), 1)
     if len(pts) == 0:  # degenerate sliver: write at the bounding-box centre
         c = (lo + hi) / 2
-        return LabelSpot(float(c[0]), float(c[1]), 1.0, 0.0)
+        return LabelSpot(float(c[0]), float(c[1]), 1.0, 0.0, 0.6 * chars)
     dist = _distance(pts, segs)
     near = pts[dist >= 0.95 * dist.max()]  # of the nearly best, the one nearest the middle
     centre = (lo + hi) / 2
     best = near[int(np.argmin(np.hypot(*(near - centre).T)))]
     rx = min(_run(best, (1.0, 0.0), segs), _run(best, (-1.0, 0.0), segs))
     ry = min(_run(best, (0.0, 1.0), segs), _run(best, (0.0, -1.0), segs))
-    chars = max(len(placed.part.label), 1)
 
     def fit(along: float, across: float) -> float:
         return min(MAX_TEXT_MM, 0.9 * 2 * along / (0.6 * chars), 0.9 * 2 * across / 1.2)
 
     horizontal, vertical = fit(rx, ry), fit(ry, rx)
-    if vertical > horizontal * 1.05:
-        return LabelSpot(float(best[0]), float(best[1]), vertical, 90.0)
-    return LabelSpot(float(best[0]), float(best[1]), horizontal, 0.0)
+    rotation, size = (90.0, vertical) if vertical > horizontal * 1.05 else (0.0, horizontal)
+    x, y = float(best[0]), float(best[1])
+    spot = LabelSpot(x, y, size, rotation, 0.6 * chars * size)
+    for _ in range(40):  # a slanted edge may still cut a corner of the box: shrink until clear
+        if _box_clear(spot, segs):
+            break
+        size *= 0.85
+        spot = LabelSpot(x, y, size, rotation, 0.6 * chars * size)
+    return spot
+
+
+def label_outlines(spot: LabelSpot, text: str) -> list[list[Point]]:
+    """The glyph outlines of ``text`` as closed polylines (sheet mm), scaled to fit the box of
+    ``spot`` and centred in it, for files that take no text (cut files: a pen draws them, a laser
+    engraves them). Uses matplotlib's ``TextPath`` with the DejaVu Sans font."""
+    from matplotlib.font_manager import FontProperties
+    from matplotlib.textpath import TextPath
+
+    path = TextPath((0.0, 0.0), text, size=1.0, prop=FontProperties(family="DejaVu Sans"))
+    polys = [np.asarray(q, dtype=np.float64) for q in path.to_polygons()]
+    polys = [q for q in polys if q.shape[0] >= 3]
+    if not polys:
+        return []
+    allp = np.vstack(polys)
+    lo, hi = allp.min(axis=0), allp.max(axis=0)
+    w, h = max(hi[0] - lo[0], 1e-9), max(hi[1] - lo[1], 1e-9)
+    scale = min(spot.length / w, spot.height / h)
+    mid = (lo + hi) / 2
+    out: list[list[Point]] = []
+    for q in polys:
+        local = (q - mid) * scale
+        if spot.rotation:
+            local = np.column_stack([-local[:, 1], local[:, 0]])
+        ring = local + np.array([spot.x, spot.y])
+        out.append([(float(a), float(b)) for a, b in ring])
+    return out

@@ -18,27 +18,30 @@ Holes are drawn as boundary, not cut: their edges are free edges of the sheet, e
 "B"; #00ff00 is kept for slits, which have material on both sides. The opacity is an attribute,
 never an RGBA colour, as Origami Simulator reads it. Every crease is one ``<line>`` element with
 ``class="crease mountain|valley"``, ``data-crease="<part>:<k>"`` (k = 1-based crease number in
-the part) and ``data-fold-angle`` in degrees. With the ``perforated`` fold-line style the crease line
-keeps its colour and carries ``stroke-dasharray``/``stroke-dashoffset`` that draw exactly the dashes
-of :func:`corrugate.pattern.linestyle.dashes` (for a cutter that needs the dashes as separate
-cut paths use the DXF's PERFORATE layer); ``scored`` is drawn solid and marked ``data-style``.
-Part labels are ``<text>`` elements in a ``<g id="labels">`` group (grey fill, no stroke);
-``labels=False`` leaves them out, ``marks=False`` leaves the marks out (Origami Simulator would
-otherwise treat them as free hinges).
+the part) and ``data-fold-angle`` in degrees. This SVG is the fold map, for people and for Origami
+Simulator, not for a cutter: every crease is drawn solid whatever the fold-line style, which is
+recorded in ``data-style`` (the cut-ready files, :mod:`.cutfile`, hold the perforations as separate
+dashes; no file of corrugate uses ``stroke-dasharray``, which cutters ignore).
+Part labels are ``<text>`` elements in a ``<g id="labels">`` group (grey fill, no stroke), placed
+clear of every line (:mod:`.labels`) and squeezed into their box with ``textLength``; with
+``fold_order`` each label starts with the part's step number in the folding order and the part's
+group carries ``data-fold-order``; a label that would be smaller than ``MIN_TEXT_MM`` (1.2 mm) is
+the part's name only. ``labels=False`` leaves them out, ``marks=False`` leaves the marks
+out (Origami Simulator would otherwise treat them as free hinges).
 """
 
 from __future__ import annotations
 
 import os
 import xml.etree.ElementTree as ET
+from collections.abc import Mapping
 from pathlib import Path
 
 from ..fileio import staged
-from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, dash_layout
-from ..pattern.linestyle import crease_name as _crease_name
+from ..pattern.linestyle import SOLID, LineStyle, check_style
 from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, place
-from .labels import label_spot
+from .labels import MIN_TEXT_MM, label_spot, label_text
 
 __all__ = [
     "ANNOTATION",
@@ -87,6 +90,7 @@ def svg_document(
     labels: bool = True,
     marks: bool = True,
     title: str | None = None,
+    fold_order: Mapping[str, int] | None = None,
 ) -> str:
     """The SVG text of one sheet (see the module docstring for the conventions)."""
     check_style((p.part for p in sheet.placements), style)
@@ -111,6 +115,9 @@ def svg_document(
         g = ET.SubElement(
             root, "g", {"id": f"part-{j + 1}", "data-part": part.name, "data-label": part.label}
         )
+        step = None if fold_order is None else fold_order.get(part.name)
+        if step is not None:
+            g.set("data-fold-order", str(step))
         ET.SubElement(
             g,
             "polygon",
@@ -135,7 +142,7 @@ def svg_document(
                 },
             )
         number = 0
-        for i, ln in enumerate(placed.lines):
+        for ln in placed.lines:
             if ln.role is Role.MARK and not marks:
                 continue
             attrs = {
@@ -153,24 +160,24 @@ def svg_document(
                 attrs["data-fold-angle"] = _num(ln.fold_angle_deg)
                 attrs["opacity"] = f"{fold_opacity(ln.fold_angle_deg):.6g}"
                 attrs["data-style"] = style.kind.value
-                if style.kind is StyleKind.PERFORATED:
-                    starts = dash_layout(
-                        ln.length, style.cut, style.gap, where=_crease_name(part, i)
-                    )
-                    gap = 2 * starts[0]
-                    attrs["stroke-dasharray"] = f"{_num(style.cut)} {_num(gap)}"
-                    attrs["stroke-dashoffset"] = _num(style.cut + starts[0])
             else:
                 attrs["class"] = ln.role.value
                 attrs["opacity"] = "1"
             ET.SubElement(g, "line", attrs)
-        if labels and part.label:
-            spot = label_spot(placed)
+        if labels:
+            prefix = "" if step is None else f"{step}. "
+            text = prefix + label_text(placed)
+            spot = label_spot(placed, text)
+            if spot.size < MIN_TEXT_MM:  # too small to read: the part's name only
+                text = prefix + part.name
+                spot = label_spot(placed, text)
             x, y = _num(spot.x), _num(H - spot.y)
             t_attrs = {
                 "x": x,
                 "y": y,
                 "font-size": _num(spot.size),
+                "textLength": _num(spot.length),
+                "lengthAdjust": "spacingAndGlyphs",
                 "font-family": "sans-serif",
                 "text-anchor": "middle",
                 "dominant-baseline": "central",
@@ -180,7 +187,7 @@ def svg_document(
             }
             if spot.rotation:
                 t_attrs["transform"] = f"rotate({_num(-spot.rotation)} {x} {y})"
-            ET.SubElement(text_group, "text", t_attrs).text = part.label
+            ET.SubElement(text_group, "text", t_attrs).text = text
     if labels:
         root.append(text_group)
     ET.indent(root)

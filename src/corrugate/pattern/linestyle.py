@@ -8,12 +8,13 @@
 ``perforated``
     Each crease is cut as dashes of length ``cut`` separated by gaps, so the sheet folds along it.
 
-Dash rule (:func:`dashes`): a crease of length L gets N = floor(L / (cut + gap)) dashes, evenly
-spread: L is split into N equal periods, each a dash of length ``cut`` centred in it. The gap
-between dashes is g' = L / N - cut >= ``gap``, and the line starts and ends with half a gap, g'/2
->= gap/2 > 0, so no dash touches a line end (where the crease meets an edge or a cut, a dash would
-tear the sheet). A crease shorter than ``cut + gap`` cannot hold one dash with its end gaps and is
-an error, as are a non-positive cut or gap.
+Dash rule (:func:`dashes`): dashes of exactly ``cut`` separated by gaps of exactly ``gap``, as many
+as fit with at least half a gap, gap / 2, left free at each end of the line, and the run centred
+on the line: a crease of length L gets N = floor((L - gap / 2 - gap / 2 + gap) / (cut + gap)) =
+floor(L / (cut + gap)) dashes, and each end keeps (L - N cut - (N - 1) gap) / 2 >= gap / 2 > 0,
+so no dash touches a line end (where the crease meets an edge or a cut, a dash would tear the
+sheet). A crease shorter than ``cut + gap`` cannot hold one dash with its end gaps and is an error,
+as are a non-positive cut or gap.
 """
 
 from __future__ import annotations
@@ -110,9 +111,9 @@ def dash_layout(length: float, cut: float, gap: float, *, where: str = "crease")
             f"cut + gap <= the crease length {length:.3f} mm (one dash with half a gap at each end)",
             reason="is longer than the crease",
         )
-    period = length / n
-    g = period - cut
-    return [k * period + g / 2 for k in range(n)]
+    period = cut + gap
+    head = (length - n * cut - (n - 1) * gap) / 2
+    return [head + k * period for k in range(n)]
 
 
 def dashes(

@@ -25,10 +25,13 @@ Cutters (``get_cutter``):
 
 The packer is a deterministic shelf packer (first fit, decreasing height): parts sorted by height,
 each one put on the first shelf of the first sheet where it fits, in the orientation that keeps
-shelves low; new shelves and sheets are opened as needed. Each sheet also gets a small free box for
-the PDF's 10 mm check square (see :data:`CHECK_BOX`): the parts are packed first without it and a
-free spot is looked for on every sheet; if some sheet has none, the parts are packed again with the
-top-right corner of every sheet kept free (a sheet holding a part too large for that gets no box).
+shelves low; new shelves and sheets are opened as needed. Shelves start at the top edge and go
+down, parts start at the left edge: a cutting mat's origin is its top-left corner, so the parts sit
+there and an unused part of the mat is a strip at its bottom (or right), easy to cut off and reuse.
+Each sheet also gets a small free box for the PDF's 10 mm check square (see :data:`CHECK_BOX`):
+the parts are packed first without it and a free spot is looked for on every sheet; if some sheet
+has none, the parts are packed again with the bottom-right corner of every sheet kept free (a
+sheet holding a part too large for that gets no box).
 """
 
 from __future__ import annotations
@@ -318,7 +321,8 @@ def plan_sheets(
 
     ``spacing`` (mm) is the least distance between the bounding boxes of two parts, ``margin`` (mm)
     the least distance from a part to the edge of the usable area. ``reserve`` (w, h in mm) is a box
-    kept free in the top-right corner of each sheet for the PDF check square (``None``: none).
+    kept free for the PDF check square, in the bottom-right corner when no other spot is left
+    (``None``: none). Parts are packed from the top-left corner (see the module docstring).
 
     Raises :class:`PartTooLargeError` (an :class:`~corrugate.errors.InputError`) naming the part and
     its size when it fits the sheet in neither orientation, an ``InputError`` when two parts have
@@ -381,7 +385,16 @@ def plan_sheets(
         return states
 
     def sheet(state: _SheetState, box: tuple[float, float, float, float] | None) -> Sheet:
-        return Sheet(state.width, state.height, tuple(state.placements), box)
+        # The packer fills shelves from y = margin upwards; the mat's origin is its top-left
+        # corner, so the plan is mirrored top to bottom (the positions only: parts keep their
+        # orientation) and the first shelf lies along the top edge.
+        H = state.height
+        placements = tuple(
+            Placement(p.part, p.sheet, p.x, H - p.y - p.size[1], p.rotated)
+            for p in state.placements
+        )
+        flipped = None if box is None else (box[0], H - box[1] - box[3], box[2], box[3])
+        return Sheet(state.width, H, placements, flipped)
 
     # First without a reserved box; keep that if every sheet has a free spot for the box anyway.
     states = pack(None)
@@ -389,7 +402,8 @@ def plan_sheets(
         return SheetPlan(cut, tuple(sheet(s, None) for s in states), spacing, margin)
     rw, rh = reserve
     spots = [_free_box(s, rw, rh) for s in states]
-    if any(spot is None for spot in spots):  # else keep the top-right corner free from the start
+    # else keep a corner free from the start (the packer's top right, the sheet's bottom right)
+    if any(spot is None for spot in spots):
         states = pack((cut.width - margin - rw, cut.height - margin - rh, rw, rh))
         spots = [s.reserved or _free_box(s, rw, rh) for s in states]
     return SheetPlan(cut, tuple(map(sheet, states, spots)), spacing, margin)
