@@ -360,15 +360,16 @@ def test_tiles_cover_the_drawn_sheet(
 
 
 def test_pages_with_nothing_to_cut_are_left_out(real_plan: SheetPlan, tmp_path: Path) -> None:
-    """Case 1's parts fill the lower part of the 12 x 24 in mat: its upper pages are left out,
-    unless asked for; the pages kept keep their row and column."""
+    """Case 1's parts fill the upper part of the 12 x 24 in mat (packed from its top-left
+    corner): its lower pages are left out, unless asked for; the pages kept keep their row and
+    column."""
     kept = PdfReader(write_tiled_pdf(real_plan, tmp_path / "kept.pdf", "a4"))
     full = PdfReader(write_tiled_pdf(real_plan, tmp_path / "full.pdf", "a4", empty=True))
     grid = plan_tiles(real_plan, "a4", empty=True)
     assert len(full.pages) == len(grid) == grid[0].rows * grid[0].columns
     assert 0 < len(kept.pages) < len(full.pages)
     rows = {t.row for t in plan_tiles(real_plan, "a4")}
-    assert 1 not in rows  # the top of the mat is empty
+    assert 1 in rows and grid[0].rows not in rows  # the bottom of the mat is empty
     text = kept.pages[0].extract_text()
     assert "left out" in text and f"page 1 of {len(kept.pages)}" in text
 
