@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from .buckling import BucklingEstimate, buckling_bounds
 from .checks import ModelWarning, design_warnings
 from .geometry import Assembly, Layer
-from .layouts import Layout, inverse_length_sum, length_sum
+from .layouts import Layout, layer_inverse_sums, length_sum
 from .mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from .moduli import DEFAULT_MODEL, Moduli, get_model, moduli
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
@@ -108,11 +108,16 @@ def evaluate(
     Lx, Ly = layer1.chord_extent(), layer2.chord_extent()
     m1 = moduli(layer1.E, layer1.nu, layer1.t, layer1.W, layer1.alpha_deg, model)
     m2 = moduli(layer2.E, layer2.nu, layer2.t, layer2.W, layer2.alpha_deg, model)
-    s1 = layer_springs(m1, layer1.t, layer1.pitch(), inverse_length_sum(layout, layer1.n, Ly, "x"))
-    s2 = layer_springs(m2, layer2.t, layer2.pitch(), inverse_length_sum(layout, layer2.n, Lx, "y"))
+    p1, p2 = layer1.pitch(), layer2.pitch()
+    s1 = layer_springs(m1, layer1.t, p1, *layer_inverse_sums(layout, layer1.n, p1, Ly, "x"))
+    s2 = layer_springs(m2, layer2.t, p2, *layer_inverse_sums(layout, layer2.n, p2, Lx, "y"))
     D = assembly_D(s1, s2, eta_deg)
-    mass = layer_mass(layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly))
-    mass = mass + layer_mass(layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx))
+    mass = layer_mass(
+        layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly), layout, p1
+    )
+    mass = mass + layer_mass(
+        layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx), layout, p2
+    )
     thickness = layer1.height() + layer2.height()
     m_conn = connector_mass(layer1.density, layer1.t, layout, Lx, Ly, thickness, fabrication)
     return Evaluation(

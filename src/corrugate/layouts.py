@@ -39,6 +39,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError, UnknownNameError
+from .holes import Hole, touched_sums
 
 __all__ = [
     "LAYOUTS",
@@ -49,6 +50,7 @@ __all__ = [
     "Rectangle",
     "Square",
     "facet_lengths",
+    "layer_inverse_sums",
     "make_layout",
 ]
 
@@ -69,6 +71,11 @@ class Layout(Protocol):
     @property
     def equal_sides(self) -> bool:
         """Whether Lx must equal Ly (square, circle)."""
+        ...
+
+    @property
+    def holes(self) -> tuple[Hole, ...]:
+        """Inner cut-outs, in mm relative to the box's centre (:mod:`corrugate.holes`)."""
         ...
 
     def __hash__(self) -> int: ...
@@ -148,6 +155,27 @@ def length_sum(layout: Layout, n: ArrayLike, other_side: ArrayLike) -> FloatArra
     return np.asarray((n_arr + 1) * np.asarray(other_side) * layout.area_fraction())
 
 
+def layer_inverse_sums(
+    layout: Layout, n: ArrayLike, pitch: ArrayLike, other_side: ArrayLike, axis: Axis
+) -> tuple[FloatArray, FloatArray]:
+    """(parallel, series) sums of 1/L_j (1/mm) of layers with ``n`` creases, pitch ``pitch`` (mm)
+    and facets spanning ``other_side`` (mm), with the layout's holes (:mod:`corrugate.holes`):
+    the parallel sum leaves out the facets a hole touches, the series sum shortens them by the
+    length the hole blocks. Without holes both are :func:`inverse_length_sum`. Vectorised."""
+    q = inverse_length_sum(layout, n, other_side, axis)
+    if not layout.holes:
+        return q, q
+    touched, extra = touched_sums(
+        layout.holes,
+        axis,
+        n,
+        pitch,
+        other_side,
+        lambda u: layout.cumulative_area(np.asarray(u, dtype=np.float64), axis),
+    )
+    return np.maximum(q - touched, 0.0), np.asarray(q + extra, dtype=np.float64)
+
+
 def facet_lengths(layout: Layout, n: int, other_side: float, axis: Axis) -> FloatArray:
     """The n + 1 facet lengths L_j (mm) of one layer, in order along its chord ``axis``."""
     return (n + 1) * other_side * _strip_fractions(layout, n, axis)
@@ -159,6 +187,7 @@ class Rectangle:
 
     name: str = "rectangle"
     equal_sides: bool = False
+    holes: tuple[Hole, ...] = ()
 
     def area_fraction(self) -> float:
         return 1.0
@@ -171,7 +200,7 @@ class Rectangle:
         return np.asarray(np.abs(Lx * np.sin(e)) + np.abs(Ly * np.cos(e)))
 
     def describe(self) -> dict[str, object]:
-        return {"shape": self.name}
+        return _with_holes({"shape": self.name}, self.holes)
 
     def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
         return np.array([[0.0, 0.0], [Lx, 0.0], [Lx, Ly], [0.0, Ly]])
@@ -195,6 +224,7 @@ class Circle:
 
     name: str = "circle"
     equal_sides: bool = True
+    holes: tuple[Hole, ...] = ()
 
     def area_fraction(self) -> float:
         return math.pi / 4
@@ -215,7 +245,7 @@ class Circle:
         return np.asarray(np.hypot(Lx * np.sin(e), Ly * np.cos(e)))
 
     def describe(self) -> dict[str, object]:
-        return {"shape": self.name}
+        return _with_holes({"shape": self.name}, self.holes)
 
     def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
         k = np.arange(CIRCLE_SEGMENTS) * (2 * np.pi / CIRCLE_SEGMENTS)
@@ -253,6 +283,7 @@ class Polygon:
     vertices: tuple[tuple[float, float], ...]
     name: str = "polygon"
     equal_sides: bool = False
+    holes: tuple[Hole, ...] = ()
     _unit: FloatArray = field(init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self) -> None:
@@ -316,7 +347,8 @@ class Polygon:
         return np.asarray(proj.max(axis=-1) - proj.min(axis=-1))
 
     def describe(self) -> dict[str, object]:
-        return {"shape": self.name, "vertices": [list(p) for p in self.vertices]}
+        out = {"shape": self.name, "vertices": [list(p) for p in self.vertices]}
+        return _with_holes(out, self.holes)
 
     def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
         return np.asarray(self._unit * np.array([Lx, Ly]), dtype=np.float64)
@@ -327,18 +359,26 @@ class Polygon:
         return [(np.asarray(np.hypot(dx * x, dy * y)), True) for dx, dy in d]
 
 
+def _with_holes(out: dict[str, object], holes: tuple[Hole, ...]) -> dict[str, object]:
+    if holes:
+        out["holes"] = [h.describe() for h in holes]
+    return out
+
+
 LAYOUTS = ("square", "rectangle", "circle", "polygon")
 
 
-def make_layout(shape: str, vertices: object = None) -> Layout:
-    """Build a layout by name; ``polygon`` needs ``vertices`` (a sequence of (x, y) pairs)."""
+def make_layout(shape: str, vertices: object = None, holes: tuple[Hole, ...] = ()) -> Layout:
+    """Build a layout by name; ``polygon`` needs ``vertices`` (a sequence of (x, y) pairs);
+    ``holes`` are inner cut-outs (:mod:`corrugate.holes`), in mm from the box's centre."""
     key = shape.strip().lower()
+    holes = tuple(holes)
     if key == "square":
-        return Square()
+        return Square(holes=holes)
     if key == "rectangle":
-        return Rectangle()
+        return Rectangle(holes=holes)
     if key == "circle":
-        return Circle()
+        return Circle(holes=holes)
     if key == "polygon":
         if vertices is None:
             raise InputError("vertices", None, "at least 3 (x, y) pairs", reason="is missing")
@@ -348,5 +388,5 @@ def make_layout(shape: str, vertices: object = None) -> Layout:
             raise InputError(
                 "vertices", vertices, "a list of (x, y) pairs", reason="is not a polygon"
             ) from exc
-        return Polygon(pts)
+        return Polygon(pts, holes=holes)
     raise UnknownNameError("layout", shape, list(LAYOUTS))

@@ -39,18 +39,28 @@ class LayerSprings:
 
 
 def layer_springs(
-    m: Moduli, t: ArrayLike, pitch: ArrayLike, inv_length_sum: ArrayLike
+    m: Moduli,
+    t: ArrayLike,
+    pitch: ArrayLike,
+    inv_length_sum: ArrayLike,
+    inv_length_sum_series: ArrayLike | None = None,
 ) -> LayerSprings:
-    """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm) and q = sum_j 1/L_j (1/mm)."""
+    """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm) and q = sum_j 1/L_j (1/mm).
+
+    With holes (:mod:`corrugate.holes`) the parallel sums (K_S, D_S) take ``inv_length_sum`` over
+    the facets no hole touches and the series sums (K_C, D_C) ``inv_length_sum_series``, with the
+    blocked lengths removed; without it both use ``inv_length_sum``."""
     t_ = np.asarray(t, dtype=np.float64)
     p = np.asarray(pitch, dtype=np.float64)
     q = np.asarray(inv_length_sum, dtype=np.float64)
-    return LayerSprings(
-        K_C=m.Ecx * t_ / (p * q),
-        K_S=m.Ecy * p * t_ * q,
-        D_C=m.Ebx * t_**3 / (12 * p * q),
-        D_S=m.Eby * t_**3 * p * q / 12,
-    )
+    qs = q if inv_length_sum_series is None else np.asarray(inv_length_sum_series, np.float64)
+    with np.errstate(divide="ignore"):
+        return LayerSprings(
+            K_C=m.Ecx * t_ / (p * qs),
+            K_S=m.Ecy * p * t_ * q,
+            D_C=m.Ebx * t_**3 / (12 * p * qs),
+            D_S=m.Eby * t_**3 * p * q / 12,
+        )
 
 
 def _directional(a0: FloatArray, a90: FloatArray, eta_deg: ArrayLike) -> FloatArray:
