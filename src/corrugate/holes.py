@@ -134,7 +134,7 @@ class Hole:
     @property
     def radius(self) -> float:
         """Radius (mm) of a circular hole; 0 for a polygon."""
-        return self.diameter / 2
+        return float(self.diameter) / 2
 
     def ring(self) -> FloatArray:
         """The cut polygon (counter-clockwise, mm, relative to the layout's centre), shape (k, 2).
@@ -144,8 +144,8 @@ class Hole:
         if self.shape == "circle":
             k = np.arange(HOLE_SEGMENTS) * (2 * np.pi / HOLE_SEGMENTS)
             return np.column_stack([cx + self.radius * np.cos(k), cy + self.radius * np.sin(k)])
-        v = np.asarray(self.vertices, dtype=np.float64) + np.array([cx, cy])
-        return v if _signed_area(v) > 0 else v[::-1].copy()
+        v: FloatArray = np.asarray(self.vertices, dtype=np.float64) + np.array([cx, cy])
+        return v if _signed_area(v) > 0 else np.ascontiguousarray(v[::-1])
 
     @property
     def area(self) -> float:

@@ -347,7 +347,7 @@ class Polygon:
         return np.asarray(proj.max(axis=-1) - proj.min(axis=-1))
 
     def describe(self) -> dict[str, object]:
-        out = {"shape": self.name, "vertices": [list(p) for p in self.vertices]}
+        out: dict[str, object] = {"shape": self.name, "vertices": [list(p) for p in self.vertices]}
         return _with_holes(out, self.holes)
 
     def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
