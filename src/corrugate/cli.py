@@ -174,6 +174,7 @@ def analyze_cmd(
     thickness2: o.Thickness2 = None,
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
     vertices: o.Vertices = None,
+    holes: o.Holes = None,
     model: Annotated[str, Opt(help="Moduli variant: paper | xia | refined.")] = DEFAULT_MODEL,
     eta: Annotated[
         list[str] | None,

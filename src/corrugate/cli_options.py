@@ -16,6 +16,7 @@ __all__ = [
     "Alpha",
     "Alpha2",
     "Density",
+    "Holes",
     "Material",
     "Material2",
     "N",
@@ -47,4 +48,11 @@ Thickness2 = Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1
 Vertices = Annotated[
     str | None,
     Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+]
+Holes = Annotated[
+    str | None,
+    Opt(
+        help="Inner cut-outs as JSON, mm from the layout's centre, e.g. "
+        '\'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'.'
+    ),
 ]

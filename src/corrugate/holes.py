@@ -374,6 +374,7 @@ def holes_from_data(data: object, field: str = "holes") -> tuple[Hole, ...]:
         where = f"{field}[{i}]"
         if not isinstance(item, dict):
             raise InputError(where, repr(item), "a table {shape, diameter | vertices, center}")
+        item = {k: v for k, v in item.items() if v is not None}
         unknown = set(item) - {"shape", "diameter", "center", "vertices"}
         if unknown:
             key = sorted(unknown)[0]
