@@ -88,12 +88,18 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
     for k, (title, layers, band) in enumerate(views):
         ax = fig.add_subplot(2, 2, k + 2, projection="3d")
         for faces, colour in layers:
+            # the limits are set below; matplotlib's autoscale can overflow (NaN limits) on
+            # the many small faces of a layer with holes
             ax.add_collection3d(
-                Poly3DCollection(faces, facecolor=colour, edgecolor="#08306b", lw=0.3)
+                Poly3DCollection(faces, facecolor=colour, edgecolor="#08306b", lw=0.3),
+                autolim=False,
             )
         if band:
             ax.add_collection3d(
-                Poly3DCollection(band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35)
+                Poly3DCollection(
+                    band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35
+                ),
+                autolim=False,
             )
         ax.set_xlim(0, a.Lx)
         ax.set_ylim(0, a.Ly)
