@@ -364,7 +364,7 @@ def test_bad_hole_is_one_line_naming_the_field_exit_2_no_file(
     spec = tmp_path / "bad.toml"
     spec.write_text(SPEC.replace("HOLES", holes))
     out = tmp_path / "out"
-    code, stdout, err = cli(["design", str(spec), "--out", str(out)])
+    code, _, err = cli(["design", str(spec), "--out", str(out)])
     assert code == 2
     lines = err.strip().splitlines()
     assert len(lines) == 1 and field in lines[0] and why in lines[0], err
