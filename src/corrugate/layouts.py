@@ -23,6 +23,11 @@ strip stretched by 1/sin(alpha/2)), so mass follows the cut file exactly. A stri
 outline cuts into several pieces has as L_j their total length: the pieces act as parallel springs,
 as the spring model assumes.
 
+Holes. Every layout may carry ``holes`` (:mod:`corrugate.holes`): inner cut-outs in mm from the
+box's centre, not scaled. L_j above is the outline's without holes; :func:`layer_inverse_sums`
+applies the hole model to the spring sums (touched facets left out of the parallel sum, blocked
+lengths out of the series sum) and :mod:`corrugate.mass` removes the cut area.
+
 Because the shape is scaled, L_j = S (n + 1) dA_j with S the other side of the box and dA_j the
 fraction of the unit box's outline area in strip j; the springs need only the sum of 1/L_j, which is
 (n + 1)/S times G(n) = sum_j 1/((n + 1)^2 dA_j), computed once per n and cached.
