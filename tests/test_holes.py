@@ -431,3 +431,16 @@ def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole() ->
     fe = [solve_assembly(x, "compression", AssemblyMesh(4)).K for x in (plain, holed)]
     assert fe[0] == pytest.approx(model[0], rel=0.01)
     assert model[1] < fe[1] < fe[0]  # type: ignore[operator]
+
+
+def test_validate_reads_the_holes_of_a_design_json(tmp_path: Path) -> None:
+    """``corrugate validate --design`` must not drop the holes: design.json round trip."""
+    from corrugate.fea_cli import design_from_json
+
+    layer = Layer(8.0, 8, 84.0, DURALAR)
+    tri = Hole("polygon", (10.0, 5.0), vertices=((0.0, 0.0), (4.0, 0.0), (0.0, 3.0)))
+    a = Assembly.identical(layer, make_layout("square", holes=(AXLE, tri)))
+    write_design_files(analyze(a, "refined", (0.0,)), tmp_path)
+    back = design_from_json(tmp_path / "design.json")
+    assert back.layout.holes == (AXLE, tri)
+    assert assembly_mass(back).total == pytest.approx(assembly_mass(a).total, rel=1e-12)

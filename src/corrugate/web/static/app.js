@@ -63,6 +63,15 @@ function syncVisibility() {
   $('vertices-field').hidden = $('layout').value !== 'polygon';
 }
 
+// Circular holes, "d@x,y; d@x,y" (mm, from the layout's centre) -> the API's hole tables.
+function holes(text) {
+  return text.split(';').map((s) => s.trim()).filter((s) => s !== '').map((h) => {
+    const [d, at] = h.split('@');
+    const center = (at || '0,0').split(',').map((x) => x.trim());
+    return { shape: 'circle', diameter: d.trim(), center };
+  });
+}
+
 function requestBody() {
   const body = {};
   for (const name of TEXT_FIELDS) {
@@ -71,6 +80,8 @@ function requestBody() {
     const value = el.value.trim();
     if (value !== '') body[name] = value;
   }
+  const holeText = $('holes').value.trim();
+  if (holeText !== '') body.holes = holes(holeText);
   const material = $('material').value;
   if (material !== CUSTOM) body.material = material;
   const material2 = $('material2').value;
@@ -92,8 +103,9 @@ function showErrors(payload, status) {
     ? payload.errors
     : [{ field: (payload && payload.field) || 'body', message: (payload && payload.detail) || `HTTP ${status}` }];
   for (const e of errors) {
-    let target = $(`error-${e.field}`);
-    const input = $(e.field);
+    const base = String(e.field).split(/[[.]/)[0];  // holes[0].diameter -> holes
+    let target = $(`error-${e.field}`) || $(`error-${base}`);
+    const input = $(e.field) || $(base);
     if (target && target.closest('[hidden]')) target = null;
     if (input && target) input.setAttribute('aria-invalid', 'true');
     if (target && input && input.closest('details')) input.closest('details').open = true;
@@ -367,7 +379,8 @@ function designBody() {
     const value = el.value.trim();
     if (value === '') continue;
     if (el.dataset.requires && $(el.dataset.requires).value.trim() === '') continue;
-    setPath(body, el.dataset.path, el.dataset.kind === 'vertices' ? vertices(value) : value);
+    const kinds = { vertices, holes };
+    setPath(body, el.dataset.path, kinds[el.dataset.kind] ? kinds[el.dataset.kind](value) : value);
   }
   return body;
 }
