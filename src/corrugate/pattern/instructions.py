@@ -67,6 +67,9 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
         w = o[:, 0].max() - o[:, 0].min()
         closed = np.vstack([o, o[:1]])
         ax0.plot(closed[:, 0] + x0, closed[:, 1], color="black", lw=0.6)
+        for hole in part.holes:
+            h = np.asarray(hole)
+            ax0.plot(np.append(h[:, 0], h[0, 0]) + x0, np.append(h[:, 1], h[0, 1]), "k", lw=0.6)
         for ln in part.lines:
             ax0.plot(
                 [ln.a[0] + x0, ln.b[0] + x0], [ln.a[1], ln.b[1]], color=_COLOURS[ln.role], lw=0.5
