@@ -130,8 +130,12 @@ function showAnalysis(r) {
   const size = r.L_mm !== null
     ? `L = ${fmt(r.L_mm)} mm`
     : `Lx = ${fmt(r.extent_x_mm)} mm, Ly = ${fmt(r.extent_y_mm)} mm`;
+  const holeText = (r.layout.holes || []).map((h) => (h.shape === 'circle'
+    ? `d ${fmt(h.diameter_mm)} mm at (${h.center_mm.map((c) => fmt(c)).join(', ')})`
+    : `polygon at (${h.center_mm.map((c) => fmt(c)).join(', ')})`)).join('; ');
   $('summary').textContent = `layout ${r.layout.shape}: ${size}, folded thickness `
-    + `t_d = ${fmt(r.thickness_mm)} mm, mass ${fmt(r.mass_g)} g; model ${r.model}`;
+    + `t_d = ${fmt(r.thickness_mm)} mm, mass ${fmt(r.mass_g)} g; model ${r.model}`
+    + (holeText ? `; holes ${holeText} mm` : '');
   $('model-source').textContent = r.model_source;
 
   const stiffness = $('stiffness').tBodies[0];
