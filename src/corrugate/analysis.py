@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from .buckling import BucklingEstimate, buckling_bounds
 from .checks import ModelWarning, design_warnings
 from .geometry import Assembly, Layer
-from .layouts import Layout, inverse_length_sum, length_sum
+from .layouts import Layout, layer_inverse_sums, length_sum
 from .mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from .moduli import DEFAULT_MODEL, Moduli, get_model, moduli
 from .offaxis import Support, assembly_directional, check_support
@@ -135,27 +135,18 @@ def evaluate(
     Lx, Ly = layer1.chord_extent(), layer2.chord_extent()
     m1 = moduli(layer1.E, layer1.nu, layer1.t, layer1.W, layer1.alpha_deg, model)
     m2 = moduli(layer2.E, layer2.nu, layer2.t, layer2.W, layer2.alpha_deg, model)
-    s1 = layer_springs(
-        m1,
-        layer1.t,
-        layer1.pitch(),
-        inverse_length_sum(layout, layer1.n, Ly, "x"),
-        layer1.E,
-        layer1.nu,
-        layer1.sin_half(),
-    )
-    s2 = layer_springs(
-        m2,
-        layer2.t,
-        layer2.pitch(),
-        inverse_length_sum(layout, layer2.n, Lx, "y"),
-        layer2.E,
-        layer2.nu,
-        layer2.sin_half(),
-    )
+    p1, p2 = layer1.pitch(), layer2.pitch()
+    q1, qs1 = layer_inverse_sums(layout, layer1.n, p1, Ly, "x")
+    q2, qs2 = layer_inverse_sums(layout, layer2.n, p2, Lx, "y")
+    s1 = layer_springs(m1, layer1.t, p1, q1, layer1.E, layer1.nu, layer1.sin_half(), qs1)
+    s2 = layer_springs(m2, layer2.t, p2, q2, layer2.E, layer2.nu, layer2.sin_half(), qs2)
     D = directional("D", (s1, s2), eta_deg, support)
-    mass = layer_mass(layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly))
-    mass = mass + layer_mass(layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx))
+    mass = layer_mass(
+        layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly), layout, p1
+    )
+    mass = mass + layer_mass(
+        layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx), layout, p2
+    )
     thickness = layer1.height() + layer2.height()
     m_conn = connector_mass(layer1.density, layer1.t, layout, Lx, Ly, thickness, fabrication)
     return Evaluation(

@@ -19,6 +19,7 @@ from . import cli_options as o
 from .analysis import Analysis, analyze
 from .errors import CorrugateError
 from .geometry import Layer
+from .holes import holes_text
 from .inputs import (
     assembly_from_namespace,
     layer_from_options,
@@ -124,6 +125,8 @@ def _print_analysis(r: Analysis, console: Console) -> None:
         f"mass = {r.mass.total:.3f} g (layers {r.mass.layer1:.3f} + "
         f"{r.mass.layer2:.3f} g, connectors {r.mass.connectors:.3f} g)"
     )
+    if a.layout.holes:
+        console.print(holes_text(a.layout.holes))
     s = Table(title="stiffness", title_justify="left")
     for col in ("eta deg", "K N/mm", "D N mm", "EI N mm^2", "EI mN m^2"):
         s.add_column(col, justify="right")
@@ -175,6 +178,7 @@ def analyze_cmd(
     thickness2: o.Thickness2 = None,
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
     vertices: o.Vertices = None,
+    holes: o.Holes = None,
     model: Annotated[str, Opt(help="Moduli variant: paper | xia | refined.")] = DEFAULT_MODEL,
     eta: Annotated[
         list[str] | None,

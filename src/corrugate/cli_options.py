@@ -16,6 +16,7 @@ __all__ = [
     "Alpha",
     "Alpha2",
     "Density",
+    "Holes",
     "Labels",
     "Machine",
     "Material",
@@ -87,5 +88,12 @@ Paper = Annotated[
     Opt(
         help="mat: pattern.pdf, one mat-size page per sheet; a4 | letter: also pattern-a4.pdf / "
         "pattern-letter.pdf, the sheets at 1:1 on pages to tape together."
+    ),
+]
+Holes = Annotated[
+    str | None,
+    Opt(
+        help="Inner cut-outs as JSON, mm from the layout's centre, e.g. "
+        '\'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'.'
     ),
 ]

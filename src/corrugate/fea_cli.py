@@ -29,6 +29,7 @@ from .buckling import facet_buckling_load
 from .cli import app, make_console
 from .errors import InputError
 from .geometry import Assembly, Layer
+from .holes import Hole
 from .inputs import assembly_from_namespace, parse_etas
 from .layouts import Rectangle, Square
 from .materials import get_material, library
@@ -112,8 +113,38 @@ def design_from_json(path: Path) -> Assembly:
             raise InputError(
                 f"layers[{i}]", "?", "numbers for W_mm, n, alpha_deg, t_mm", reason="is malformed"
             ) from None
-    layout = Square() if shape == "square" else Rectangle()
+    holes = _design_holes(data["layout"].get("holes"))
+    layout = Square(holes=holes) if shape == "square" else Rectangle(holes=holes)
     return Assembly(built[0], built[1], layout)
+
+
+def _design_holes(raw: object) -> tuple[Hole, ...]:
+    """The holes of a design.json's ``layout.holes`` (as :meth:`Hole.describe` writes them)."""
+    if raw is None:
+        return ()
+    if not isinstance(raw, list):
+        raise InputError("layout.holes", repr(raw), "a list of holes", reason="is malformed")
+    out = []
+    for i, h in enumerate(raw):
+        try:
+            out.append(
+                Hole(
+                    h["shape"],
+                    (float(h["center_mm"][0]), float(h["center_mm"][1])),
+                    diameter=float(h.get("diameter_mm", 0.0)),
+                    vertices=tuple((float(x), float(y)) for x, y in h.get("vertices_mm", [])),
+                )
+            )
+        except InputError as exc:
+            raise exc.renamed(f"layout.holes[{i}].{exc.field}") from None
+        except (TypeError, ValueError, KeyError, IndexError):
+            raise InputError(
+                f"layout.holes[{i}]",
+                "?",
+                "shape, center_mm and diameter_mm or vertices_mm",
+                reason="is malformed",
+            ) from None
+    return tuple(out)
 
 
 def _label(a: Assembly) -> str:

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from .errors import InputError
+from .holes import check_holes
 from .layouts import Layout, Square, facet_lengths
 from .materials import Material
 
@@ -121,7 +122,8 @@ class Assembly:
     """Two layers assembled orthogonally on a layout.
 
     Layer 1's creases run along y and it spans Lx = (n1 + 1) p1 across them; layer 2's creases run
-    along x and it spans Ly = (n2 + 1) p2. Square and circle layouts need Lx = Ly.
+    along x and it spans Ly = (n2 + 1) p2. Square and circle layouts need Lx = Ly. The layout's
+    holes must fit inside the outline (:func:`corrugate.holes.check_holes`).
     """
 
     layer1: Layer
@@ -137,6 +139,8 @@ class Assembly:
                 "layers of equal folded extent (n + 1) W sin(alpha/2), or layout 'rectangle'",
                 reason=f"needs Lx = Ly but layer 1 spans {Lx:.4g} mm and layer 2 {Ly:.4g} mm",
             )
+        if self.layout.holes:
+            check_holes(self.layout.holes, self.layout.plan_outline(Lx, Ly), Lx, Ly)
 
     @classmethod
     def identical(cls, layer: Layer, layout: Layout | None = None) -> Assembly:

@@ -2,7 +2,7 @@
 
 The command line and the JSON API take the same fields (``W``, ``n``, ``alpha``, ``material`` or an
 inline ``E``/``nu``/``density``, ``thickness``, the layer 2 variants ``W2`` ... ``thickness2``,
-``layout``, ``vertices``, ``model``, ``eta``). Each value is a plain number, read in the field's
+``layout``, ``vertices``, ``holes``, ``model``, ``eta``). Each value is a plain number, read in the field's
 default unit (mm, deg, MPa, g/cm^3), or a string that may carry units (``"0.3 in"``, ``"2.7 GPa"``).
 Every bad value raises :class:`~corrugate.errors.InputError` naming the field, so the CLI and the
 web app report the same errors with the same words.
@@ -10,6 +10,7 @@ web app report the same errors with the same words.
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -17,6 +18,7 @@ from dataclasses import dataclass
 from .analysis import Analysis, analyze
 from .errors import InputError, UnknownNameError
 from .geometry import Assembly, Layer
+from .holes import Hole, holes_from_data
 from .layouts import make_layout
 from .materials import Material, get_material, inline_material
 from .moduli import DEFAULT_MODEL, get_model
@@ -33,6 +35,7 @@ __all__ = [
     "layer_from_options",
     "material_from_options",
     "parse_etas",
+    "parse_holes",
     "parse_int",
     "parse_vertices",
 ]
@@ -147,6 +150,25 @@ def parse_vertices(value: object) -> list[tuple[float, float]] | None:
     return pts
 
 
+def parse_holes(value: object) -> tuple[Hole, ...]:
+    """Holes (:mod:`corrugate.holes`): a list of tables ``{shape, diameter | vertices, center}``
+    (numbers in mm or strings with units) or the same as JSON text; None gives none. Errors name
+    ``holes[i].<key>``."""
+    if value is None:
+        return ()
+    if isinstance(value, str):
+        try:
+            value = json.loads(value)
+        except json.JSONDecodeError:
+            raise InputError(
+                "holes",
+                repr(value),
+                'a JSON list, e.g. \'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'',
+                reason="cannot be read",
+            ) from None
+    return holes_from_data(value, "holes")
+
+
 def parse_etas(eta: Sequence[object] | None) -> tuple[float, ...]:
     """Directions in deg (plain numbers or strings with units); none given: 0 and 90 deg."""
     if not eta:
@@ -175,6 +197,7 @@ def assembly_from_options(
     thickness2: object = None,
     layout: str = "square",
     vertices: object = None,
+    holes: object = None,
 ) -> Assembly:
     """The assembly that ``corrugate analyze``'s options describe.
 
@@ -199,7 +222,9 @@ def assembly_from_options(
         t2,
         suffix="2",
     )
-    return Assembly(layer1, layer2, make_layout(layout, parse_vertices(vertices)))
+    return Assembly(
+        layer1, layer2, make_layout(layout, parse_vertices(vertices), parse_holes(holes))
+    )
 
 
 #: The keyword options of :func:`assembly_from_options`, as the commands name their parameters.
@@ -219,6 +244,7 @@ ASSEMBLY_OPTIONS = (
     "thickness2",
     "layout",
     "vertices",
+    "holes",
 )
 
 

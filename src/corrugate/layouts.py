@@ -23,6 +23,11 @@ strip stretched by 1/sin(alpha/2)), so mass follows the cut file exactly. A stri
 outline cuts into several pieces has as L_j their total length: the pieces act as parallel springs,
 as the spring model assumes.
 
+Holes. Every layout may carry ``holes`` (:mod:`corrugate.holes`): inner cut-outs in mm from the
+box's centre, not scaled. L_j above is the outline's without holes; :func:`layer_inverse_sums`
+applies the hole model to the spring sums (touched facets left out of the parallel sum, blocked
+lengths out of the series sum) and :mod:`corrugate.mass` removes the cut area.
+
 Because the shape is scaled, L_j = S (n + 1) dA_j with S the other side of the box and dA_j the
 fraction of the unit box's outline area in strip j; the springs need only the sum of 1/L_j, which is
 (n + 1)/S times G(n) = sum_j 1/((n + 1)^2 dA_j), computed once per n and cached.
@@ -39,6 +44,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError, UnknownNameError
+from .holes import Hole, touched_sums
 
 __all__ = [
     "LAYOUTS",
@@ -49,6 +55,7 @@ __all__ = [
     "Rectangle",
     "Square",
     "facet_lengths",
+    "layer_inverse_sums",
     "make_layout",
 ]
 
@@ -69,6 +76,11 @@ class Layout(Protocol):
     @property
     def equal_sides(self) -> bool:
         """Whether Lx must equal Ly (square, circle)."""
+        ...
+
+    @property
+    def holes(self) -> tuple[Hole, ...]:
+        """Inner cut-outs, in mm relative to the box's centre (:mod:`corrugate.holes`)."""
         ...
 
     def __hash__(self) -> int: ...
@@ -148,6 +160,27 @@ def length_sum(layout: Layout, n: ArrayLike, other_side: ArrayLike) -> FloatArra
     return np.asarray((n_arr + 1) * np.asarray(other_side) * layout.area_fraction())
 
 
+def layer_inverse_sums(
+    layout: Layout, n: ArrayLike, pitch: ArrayLike, other_side: ArrayLike, axis: Axis
+) -> tuple[FloatArray, FloatArray]:
+    """(parallel, series) sums of 1/L_j (1/mm) of layers with ``n`` creases, pitch ``pitch`` (mm)
+    and facets spanning ``other_side`` (mm), with the layout's holes (:mod:`corrugate.holes`):
+    the parallel sum leaves out the facets a hole touches, the series sum shortens them by the
+    length the hole blocks. Without holes both are :func:`inverse_length_sum`. Vectorised."""
+    q = inverse_length_sum(layout, n, other_side, axis)
+    if not layout.holes:
+        return q, q
+    touched, extra = touched_sums(
+        layout.holes,
+        axis,
+        n,
+        pitch,
+        other_side,
+        lambda u: layout.cumulative_area(np.asarray(u, dtype=np.float64), axis),
+    )
+    return np.maximum(q - touched, 0.0), np.asarray(q + extra, dtype=np.float64)
+
+
 def facet_lengths(layout: Layout, n: int, other_side: float, axis: Axis) -> FloatArray:
     """The n + 1 facet lengths L_j (mm) of one layer, in order along its chord ``axis``."""
     return (n + 1) * other_side * _strip_fractions(layout, n, axis)
@@ -159,6 +192,7 @@ class Rectangle:
 
     name: str = "rectangle"
     equal_sides: bool = False
+    holes: tuple[Hole, ...] = ()
 
     def area_fraction(self) -> float:
         return 1.0
@@ -171,7 +205,7 @@ class Rectangle:
         return np.asarray(np.abs(Lx * np.sin(e)) + np.abs(Ly * np.cos(e)))
 
     def describe(self) -> dict[str, object]:
-        return {"shape": self.name}
+        return _with_holes({"shape": self.name}, self.holes)
 
     def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
         return np.array([[0.0, 0.0], [Lx, 0.0], [Lx, Ly], [0.0, Ly]])
@@ -195,6 +229,7 @@ class Circle:
 
     name: str = "circle"
     equal_sides: bool = True
+    holes: tuple[Hole, ...] = ()
 
     def area_fraction(self) -> float:
         return math.pi / 4
@@ -215,7 +250,7 @@ class Circle:
         return np.asarray(np.hypot(Lx * np.sin(e), Ly * np.cos(e)))
 
     def describe(self) -> dict[str, object]:
-        return {"shape": self.name}
+        return _with_holes({"shape": self.name}, self.holes)
 
     def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
         k = np.arange(CIRCLE_SEGMENTS) * (2 * np.pi / CIRCLE_SEGMENTS)
@@ -253,6 +288,7 @@ class Polygon:
     vertices: tuple[tuple[float, float], ...]
     name: str = "polygon"
     equal_sides: bool = False
+    holes: tuple[Hole, ...] = ()
     _unit: FloatArray = field(init=False, repr=False, compare=False, hash=False)
 
     def __post_init__(self) -> None:
@@ -316,7 +352,8 @@ class Polygon:
         return np.asarray(proj.max(axis=-1) - proj.min(axis=-1))
 
     def describe(self) -> dict[str, object]:
-        return {"shape": self.name, "vertices": [list(p) for p in self.vertices]}
+        out: dict[str, object] = {"shape": self.name, "vertices": [list(p) for p in self.vertices]}
+        return _with_holes(out, self.holes)
 
     def plan_outline(self, Lx: float, Ly: float) -> FloatArray:
         return np.asarray(self._unit * np.array([Lx, Ly]), dtype=np.float64)
@@ -327,18 +364,26 @@ class Polygon:
         return [(np.asarray(np.hypot(dx * x, dy * y)), True) for dx, dy in d]
 
 
+def _with_holes(out: dict[str, object], holes: tuple[Hole, ...]) -> dict[str, object]:
+    if holes:
+        out["holes"] = [h.describe() for h in holes]
+    return out
+
+
 LAYOUTS = ("square", "rectangle", "circle", "polygon")
 
 
-def make_layout(shape: str, vertices: object = None) -> Layout:
-    """Build a layout by name; ``polygon`` needs ``vertices`` (a sequence of (x, y) pairs)."""
+def make_layout(shape: str, vertices: object = None, holes: tuple[Hole, ...] = ()) -> Layout:
+    """Build a layout by name; ``polygon`` needs ``vertices`` (a sequence of (x, y) pairs);
+    ``holes`` are inner cut-outs (:mod:`corrugate.holes`), in mm from the box's centre."""
     key = shape.strip().lower()
+    holes = tuple(holes)
     if key == "square":
-        return Square()
+        return Square(holes=holes)
     if key == "rectangle":
-        return Rectangle()
+        return Rectangle(holes=holes)
     if key == "circle":
-        return Circle()
+        return Circle(holes=holes)
     if key == "polygon":
         if vertices is None:
             raise InputError("vertices", None, "at least 3 (x, y) pairs", reason="is missing")
@@ -348,5 +393,5 @@ def make_layout(shape: str, vertices: object = None) -> Layout:
             raise InputError(
                 "vertices", vertices, "a list of (x, y) pairs", reason="is not a polygon"
             ) from exc
-        return Polygon(pts)
+        return Polygon(pts, holes=holes)
     raise UnknownNameError("layout", shape, list(LAYOUTS))

@@ -4,7 +4,8 @@ The cut parts are the two layers' flat blanks and the connector band (cut from l
 Facet j of a layer is a flat strip of width W and area W L_j (see :mod:`corrugate.layouts`), so a
 layer weighs rho t W sum_j L_j; the band's area is :func:`corrugate.pattern.connectors.connector_area`.
 Every mass the package reports, the optimiser's included, comes from this module, and equals
-rho t times the area of the polygons in the cut files.
+rho t times the area of the polygons in the cut files. A layout's holes (:mod:`corrugate.holes`)
+are cut from both layers' blanks: each removes rho t A_h / sin(alpha/2) from a layer.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .geometry import Assembly
+from .holes import hole_area
 from .layouts import Layout, length_sum
 from .pattern.connectors import connector_area
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
@@ -23,12 +25,22 @@ __all__ = ["MassBreakdown", "assembly_mass", "connector_mass", "layer_mass"]
 
 
 def layer_mass(
-    density: ArrayLike, t: ArrayLike, W: ArrayLike, sum_L: ArrayLike
+    density: ArrayLike,
+    t: ArrayLike,
+    W: ArrayLike,
+    sum_L: ArrayLike,
+    layout: Layout | None = None,
+    pitch: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
-    """Mass (g) of a layer's flat blank: density (g/mm^3) x t (mm) x W (mm) x sum_j L_j (mm)."""
-    return np.asarray(
-        np.asarray(density) * np.asarray(t) * np.asarray(W) * np.asarray(sum_L), dtype=np.float64
-    )
+    """Mass (g) of a layer's flat blank: density (g/mm^3) x t (mm) x W (mm) x sum_j L_j (mm),
+    less the layout's holes when ``layout`` and the layer's ``pitch`` (mm) are given: each hole of
+    plan area A_h is cut from the blank stretched by W / p = 1 / sin(alpha/2) across the creases,
+    so it removes density x t x A_h W / p (:mod:`corrugate.holes`)."""
+    m = np.asarray(density) * np.asarray(t) * np.asarray(W) * np.asarray(sum_L)
+    if layout is not None and layout.holes and pitch is not None:
+        cut = hole_area(layout.holes) * np.asarray(W) / np.asarray(pitch)
+        m = m - np.asarray(density) * np.asarray(t) * cut
+    return np.asarray(m, dtype=np.float64)
 
 
 def connector_mass(
@@ -68,12 +80,12 @@ class MassBreakdown:
 
 def assembly_mass(a: Assembly, opts: FabricationOptions = DEFAULT_FABRICATION) -> MassBreakdown:
     """Mass (g) of the assembly's cut parts: both layers and the connector band."""
+    l1, l2 = a.layer1, a.layer2
     m1 = layer_mass(
-        a.layer1.material.density, a.layer1.t, a.layer1.W, length_sum(a.layout, a.layer1.n, a.Ly)
+        l1.material.density, l1.t, l1.W, length_sum(a.layout, l1.n, a.Ly), a.layout, l1.pitch
     )
     m2 = layer_mass(
-        a.layer2.material.density, a.layer2.t, a.layer2.W, length_sum(a.layout, a.layer2.n, a.Lx)
+        l2.material.density, l2.t, l2.W, length_sum(a.layout, l2.n, a.Lx), a.layout, l2.pitch
     )
-    l1 = a.layer1
     mc = connector_mass(l1.material.density, l1.t, a.layout, a.Lx, a.Ly, a.thickness, opts)
     return MassBreakdown(float(m1), float(m2), float(mc))

@@ -72,6 +72,7 @@ def pattern_cmd(
     thickness2: o.Thickness2 = None,
     layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
     vertices: o.Vertices = None,
+    holes: o.Holes = None,
     model: Annotated[str, Opt(help="Moduli variant for design.json.")] = DEFAULT_MODEL,
     support: o.SupportOpt = "free",
     cutter: o.Machine = "cameo4-12x12",

@@ -45,12 +45,14 @@ from pydantic import BaseModel, BeforeValidator, ConfigDict, ValidationError
 from pydantic_core import PydanticCustomError
 
 from .errors import InputError
+from .holes import Hole, check_holes
 from .materials import G_PER_CM3
 from .units import parse_quantity
 
 __all__ = [
     "STIFFNESS_KINDS",
     "ConstraintsSpec",
+    "HoleSpec",
     "LayoutSpec",
     "MaterialSpec",
     "ObjectiveSpec",
@@ -261,11 +263,107 @@ class MaterialSpec(_Strict):
     density: Density | None = None
 
 
+Coordinate = Annotated[float, BeforeValidator(_quantity("mm"))]
+
+
+class HoleSpec(_Strict):
+    """An inner cut-out (:mod:`corrugate.holes`): a ``circle`` of ``diameter`` or a ``polygon`` of
+    ``vertices`` (relative to ``center``), placed at ``center``; lengths in mm from the centre of
+    the layout's bounding box, x across layer 1's creases, y along them."""
+
+    shape: Literal["circle", "polygon"] = "circle"
+    diameter: Length | None = None
+    center: tuple[Coordinate, Coordinate] = (0.0, 0.0)
+    vertices: list[tuple[Coordinate, Coordinate]] | None = None
+
+
 class LayoutSpec(_Strict):
-    """The plan outline: ``square`` | ``rectangle`` | ``circle`` | ``polygon`` (with vertices)."""
+    """The plan outline: ``square`` | ``rectangle`` | ``circle`` | ``polygon`` (with vertices),
+    and its ``holes``, e.g. ``holes = [{ shape = "circle", diameter = "6 mm", center = ["0 mm",
+    "0 mm"] }]``. A layout with holes needs a minimum size (``constraints.side.min``,
+    ``diameter.min`` or ``side_x.min`` and ``side_y.min``): every hole must fit the smallest
+    panel allowed, hence every larger one (not supported for polygon outlines)."""
 
     shape: Literal["square", "rectangle", "circle", "polygon"] = "square"
     vertices: list[tuple[float, float]] | None = None
+    holes: list[HoleSpec] = []
+
+    def hole_list(self) -> tuple[Hole, ...]:
+        """The holes as :class:`~corrugate.holes.Hole` values (mm); errors name
+        ``layout.holes[i].<key>``."""
+        out = []
+        for i, h in enumerate(self.holes):
+            where = f"layout.holes[{i}]"
+            if h.shape == "circle" and h.vertices is not None:
+                raise SpecError(
+                    f"{where}.vertices",
+                    "[...]",
+                    "only for shape = 'polygon'",
+                    reason="does not apply",
+                )
+            if h.shape == "polygon" and h.diameter is not None:
+                raise SpecError(
+                    f"{where}.diameter",
+                    f"{h.diameter:g} mm",
+                    "only for shape = 'circle'",
+                    reason="does not apply",
+                )
+            key = "diameter" if h.shape == "circle" else "vertices"
+            if getattr(h, key) is None:
+                raise SpecError(f"{where}.{key}", None, "a value", reason="is missing")
+            try:
+                out.append(
+                    Hole(
+                        h.shape,
+                        h.center,
+                        diameter=h.diameter or 0.0,
+                        vertices=tuple(h.vertices or ()),
+                    )
+                )
+            except InputError as exc:
+                raise SpecError(
+                    f"{where}.{exc.field}", exc.value, exc.allowed, reason=exc.reason
+                ) from None
+        return tuple(out)
+
+
+def _check_holes(spec: Spec) -> None:
+    """Every hole of the layout fits the smallest panel the size constraints allow."""
+    lay = spec.layout
+    holes = lay.hole_list()
+    if not holes:
+        return
+    if lay.shape == "polygon":
+        raise SpecError(
+            "layout.holes",
+            f"{len(holes)} hole(s)",
+            "holes with a square, rectangle or circle layout in a design spec "
+            "(a polygon's fit is not monotone in its size; use analyze or pattern)",
+            reason="is not supported for a polygon layout",
+        )
+    c = spec.constraints
+    keys = {"square": ("side", "side"), "circle": ("diameter", "diameter")}.get(
+        lay.shape, ("side_x", "side_y")
+    )
+    sizes = []
+    for key in keys:
+        r: Range | None = getattr(c, key)
+        if r is None or r.min is None:
+            raise SpecError(
+                f"constraints.{key}.min",
+                None,
+                "a minimum size, to check that layout.holes fit every panel allowed",
+                reason="is missing",
+            )
+        sizes.append(r.min)
+    from .layouts import make_layout
+
+    Lx, Ly = sizes
+    outline = make_layout(lay.shape).plan_outline(Lx, Ly)
+    try:
+        check_holes(holes, outline, Lx, Ly, "layout.holes")
+    except InputError as exc:
+        raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
 
 
 def _stiffness_validator(kind: str) -> Callable[[Any], float]:
@@ -528,6 +626,7 @@ def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
             make_layout("polygon", spec.layout.vertices)
         except InputError as exc:
             raise SpecError("layout.vertices", exc.value, exc.allowed, reason=exc.reason) from None
+    _check_holes(spec)
     if spec.layers == "independent" and shape in _EQUAL_SIDES_SIZES:
         raise SpecError(
             "layers",

@@ -49,13 +49,20 @@ def layer_springs(
     E: ArrayLike,
     nu: ArrayLike,
     sin_half: ArrayLike,
+    inv_length_sum_series: ArrayLike | None = None,
 ) -> LayerSprings:
     """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm), q = sum_j 1/L_j (1/mm),
     and, for the shear and twisting springs of the free-panel model
-    (:func:`corrugate.offaxis.shear_springs`), the sheet's E (MPa), nu and sin(alpha/2)."""
+    (:func:`corrugate.offaxis.shear_springs`), the sheet's E (MPa), nu and sin(alpha/2).
+
+    With holes (:mod:`corrugate.holes`) the parallel sums (K_S, D_S, and the shear springs K_T,
+    D_T) take ``inv_length_sum`` over the facets no hole touches and the series sums (K_C, D_C)
+    ``inv_length_sum_series``, with the blocked lengths removed; without it both use
+    ``inv_length_sum``."""
     t_ = np.asarray(t, dtype=np.float64)
     p = np.asarray(pitch, dtype=np.float64)
     q = np.asarray(inv_length_sum, dtype=np.float64)
+    qs = q if inv_length_sum_series is None else np.asarray(inv_length_sum_series, np.float64)
     K_T, D_T = shear_springs(
         np.asarray(E, dtype=np.float64),
         np.asarray(nu, dtype=np.float64),
@@ -63,14 +70,15 @@ def layer_springs(
         np.asarray(sin_half, dtype=np.float64),
         p * q,
     )
-    return LayerSprings(
-        K_C=m.Ecx * t_ / (p * q),
-        K_S=m.Ecy * p * t_ * q,
-        D_C=m.Ebx * t_**3 / (12 * p * q),
-        D_S=m.Eby * t_**3 * p * q / 12,
-        K_T=np.asarray(K_T),
-        D_T=np.asarray(D_T),
-    )
+    with np.errstate(divide="ignore"):
+        return LayerSprings(
+            K_C=m.Ecx * t_ / (p * qs),
+            K_S=m.Ecy * p * t_ * q,
+            D_C=m.Ebx * t_**3 / (12 * p * qs),
+            D_S=m.Eby * t_**3 * p * q / 12,
+            K_T=np.asarray(K_T),
+            D_T=np.asarray(D_T),
+        )
 
 
 def _directional(a0: FloatArray, a90: FloatArray, eta_deg: ArrayLike) -> FloatArray:

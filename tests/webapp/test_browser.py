@@ -341,3 +341,34 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
     assert "variables.n.max" in (page.text_content(".field:has(#d-n-max) .error") or "")
     assert w.external == []
     page.close()
+
+
+def test_form_takes_holes(browser: Any, live_server: str) -> None:
+    """The Holes field ('d@x,y'): the analysis has the hole (its mass is the holed one) and a
+    hole that cuts the outline is reported beside the field."""
+    from corrugate.holes import Hole
+    from corrugate.layouts import make_layout
+    from corrugate.mass import assembly_mass
+
+    w = Watched(browser, live_server)
+    page = w.page
+    page.goto(live_server + "/")
+    page.wait_for_selector("form[data-ready='true']")
+    page.fill("#W", "8")
+    page.fill("#n", "12")
+    page.fill("#alpha", "90")
+    page.select_option("#material", "dura-lar")
+    page.select_option("#layout", "circle")
+    page.fill("#holes", "6@0,0")
+    page.click("#submit")
+    page.wait_for_selector("#view3d[data-state='ready']", timeout=30_000)
+    summary = page.text_content("#summary") or ""
+    layout = make_layout("circle", holes=(Hole("circle", (0.0, 0.0), 6.0),))
+    mass = assembly_mass(Assembly.identical(Layer(8.0, 12, 90.0, get_material("dura-lar")), layout))
+    assert "holes d 6 mm at (0, 0) mm" in summary
+    assert f"mass {float(f'{mass.total:.4g}'):g} g" in summary
+    page.fill("#holes", "6@36,0")
+    page.click("#submit")
+    page.wait_for_selector("form[data-state='error']")
+    assert "cuts the outline" in (page.text_content("#error-holes") or "")
+    assert w.page_errors == []

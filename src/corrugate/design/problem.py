@@ -218,7 +218,7 @@ class Problem:
     def from_spec(cls, spec: Spec) -> Problem:
         """Translate a validated spec (see :mod:`corrugate.spec`)."""
         v = spec.variables
-        layout = make_layout(spec.layout.shape, spec.layout.vertices)
+        layout = make_layout(spec.layout.shape, spec.layout.vertices, spec.layout.hole_list())
         mats = [spec.material] if spec.material is not None else list(spec.materials or [])
         cands: list[Candidate] = []
         for i, m in enumerate(mats):

@@ -19,6 +19,11 @@ a box ``lo <= x <= hi`` (elementwise over many boxes). The arguments, per quanti
   blocks as ``evaluate``.
 * facet length: max_j L_j = F(n) S with F(n) = (n + 1) max_j dA_j (:mod:`corrugate.layouts`),
   bounded by the range of F over the box's n and the range of S.
+* holes (:mod:`corrugate.holes`): each layer's mass drops by rho t A_h / s, largest at the box's
+  lowest alpha, so the corner bounds stay bounds; a hole only removes terms from the parallel
+  sums and lengthens the series ones, so the hole-free stiffness bounds remain upper bounds, and
+  the lower bounds come from :func:`_hole_pq_bounds` (touched facets and blocked lengths over
+  the box).
 * stiffness: the moduli variant's own function evaluated in :class:`~.interval.Interval`
   arithmetic over the box (W, alpha), then the spring sums of DESIGN.md 3.2 and the assembly
   (:func:`corrugate.offaxis.assembly_directional`: the rule of 3.3 for a frame, the free-panel
@@ -45,11 +50,11 @@ from functools import cached_property
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ..analysis import LayerArrays, evaluate
 from ..buckling import K_SIMPLE_FREE, buckling_scale
-from ..layouts import Circle, Rectangle, facet_lengths, inverse_length_sum, length_sum
+from ..layouts import Axis, Circle, Rectangle, facet_lengths, inverse_length_sum, length_sum
 from ..mass import connector_mass, layer_mass
 from ..moduli import get_model
 from ..offaxis import Support, assembly_directional, shear_springs
@@ -111,9 +116,10 @@ class Tables:
         elif isinstance(p.layout, Rectangle):
             vals = np.ones(len(ns))
         else:
+            pick = np.max if what == "F" else np.min
             vals = np.array(
                 [
-                    facet_lengths(p.layout, int(k), 1.0, axis).max()  # type: ignore[arg-type]
+                    pick(facet_lengths(p.layout, int(k), 1.0, axis))  # type: ignore[arg-type]
                     for k in ns
                 ]
             )
@@ -134,6 +140,15 @@ class Tables:
     @cached_property
     def Fy(self) -> RangeTable:
         return self._table("F", "y")
+
+    @cached_property
+    def Fmin_x(self) -> RangeTable:
+        """min_j L_j / S per n (layer 1), for the bounds with holes."""
+        return self._table("Fmin", "x")
+
+    @cached_property
+    def Fmin_y(self) -> RangeTable:
+        return self._table("Fmin", "y")
 
     def facet_factor(self, n: FloatArray, axis: str) -> FloatArray:
         """F(n) = max_j L_j / S at integer n (array)."""
@@ -202,6 +217,10 @@ def _height(W: FloatArray, a: FloatArray) -> FloatArray:
     return np.asarray(LayerArrays(0, 0, 0, W, 0, a, 0).height())
 
 
+def _pitch(W: FloatArray, a: FloatArray) -> FloatArray:
+    return np.asarray(LayerArrays(0, 0, 0, W, 0, a, 0).pitch())
+
+
 def box_bounds(
     problem: Problem,
     c1: Candidate,
@@ -236,8 +255,15 @@ def box_bounds(
     if "mass" in quantities:
 
         def mass(b: Arrays, Lx: FloatArray, Ly: FloatArray) -> FloatArray:
-            m1 = layer_mass(c1.material.density, c1.t, b["W1"], length_sum(lay, b["n1"], Ly))
-            m2 = layer_mass(c2.material.density, c2.t, b["W2"], length_sum(lay, b["n2"], Lx))
+            # holes remove rho t A_h / s(alpha) per layer, most at the box's lowest alpha: the
+            # corner's own pitch gives the bound on the same side as its blank
+            p1, p2 = _pitch(b["W1"], b["a1"]), _pitch(b["W2"], b["a2"])
+            m1 = layer_mass(
+                c1.material.density, c1.t, b["W1"], length_sum(lay, b["n1"], Ly), lay, p1
+            )
+            m2 = layer_mass(
+                c2.material.density, c2.t, b["W2"], length_sum(lay, b["n2"], Lx), lay, p2
+            )
             return np.asarray(m1 + m2)
 
         # The band (cut from layer 1's sheet) grows with Lx, Ly and t_d (corrugate.pattern.
@@ -274,9 +300,12 @@ def _layer_springs(
     a: tuple[FloatArray, FloatArray],
     S: tuple[FloatArray, FloatArray],
     Q: RangeTable,
+    Fmin: RangeTable,
+    axis: str,
 ) -> _Springs:
     """K_C, K_S, D_C, D_S (DESIGN.md 3.2) and the shear and twisting springs K_T, D_T
-    (:func:`corrugate.offaxis.shear_springs`) of a layer over a box, in interval arithmetic."""
+    (:func:`corrugate.offaxis.shear_springs`, on the parallel sum) of a layer over a box, in
+    interval arithmetic."""
     m = cand.material
     t = cand.t
     Wi = Interval(W[0], W[1])
@@ -292,14 +321,140 @@ def _layer_springs(
         pq = Wi * sh * Interval(q_lo, q_hi) / Interval(S[0], S[1])
     Ecx, Ecy, Ebx, Eby = (Interval.of(v) for v in (mod.Ecx, mod.Ecy, mod.Ebx, mod.Eby))
     t3 = t**3
-    K_T, D_T = shear_springs(np.float64(m.E), np.float64(m.nu), np.float64(t), sh, pq)
+    pq_par, pq_ser = pq, pq
+    if problem.layout.holes:
+        p_lo = np.asarray(W[0] * np.sin(np.radians(a[0]) / 2))
+        p_hi = np.asarray(W[1] * np.sin(np.radians(a[1]) / 2))
+        pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
+    K_T, D_T = shear_springs(np.float64(m.E), np.float64(m.nu), np.float64(t), sh, pq_par)
     return _Springs(
-        Ecx * t / pq,
-        Ecy * t * pq,
-        Ebx * (t3 / 12.0) / pq,
-        Eby * (t3 / 12.0) * pq,
+        Ecx * t / pq_ser,
+        Ecy * t * pq_par,
+        Ebx * (t3 / 12.0) / pq_ser,
+        Eby * (t3 / 12.0) * pq_par,
         Interval.of(K_T),
         Interval.of(D_T),
+    )
+
+
+#: Relative widening of the hole bounds against floating-point rounding.
+_ROUND = 1e-12
+
+
+def _hole_pq_bounds(
+    problem: Problem,
+    n: tuple[FloatArray, FloatArray],
+    p: tuple[FloatArray, FloatArray],
+    S: tuple[FloatArray, FloatArray],
+    Q: tuple[FloatArray, FloatArray],
+    Fmin: RangeTable,
+    pq: Interval,
+    axis: str,
+) -> tuple[Interval, Interval]:
+    """Bounds of p x (parallel sum) and p x (series sum) of a layer with the layout's holes
+    (:mod:`corrugate.holes`) over boxes; ``pq`` bounds p x sum_j 1/L_j without holes.
+
+    A hole only removes terms from the parallel sum and lengthens series terms, so ``pq.hi``
+    bounds the parallel sum from above and ``pq.lo`` the series sum from below for every box.
+    Loose, for any box: at most sum_h (w_h / p_lo + 2) facets are touched (w_h the hole's width
+    across the creases), each of length >= L_min = S_lo min_j(L_j / S) and blocked by at most
+    B = sum_h (the holes' extents along the creases). Tight, for boxes of one n, with
+    L_j in S (n + 1) dA_j: every facet that a hole touches for some p of the box (it meets the
+    union of strip j over p_lo..p_hi) is left out of the parallel sum's lower bound and blocked by
+    at most the holes' extent inside that union; every facet a hole touches for all p (it meets
+    the intersection of strip j over the box) is left out of the upper bound and blocked by at
+    least the extent inside the intersection. Both sides converge to the exact value as
+    p_hi - p_lo -> 0 for one n (except where a strip edge meets a hole's edge).
+    """
+    lay = problem.layout
+    holes = lay.holes
+    ax: Axis = "x" if axis == "x" else "y"
+    other: Axis = "y" if axis == "x" else "x"
+    p_lo, p_hi = p
+    shape = np.shape(pq.lo)
+    S_lo, S_hi = np.asarray(S[0], dtype=np.float64), np.asarray(S[1], dtype=np.float64)
+    n_lo, n_hi = np.asarray(n[0]), np.asarray(n[1])
+    # loose
+    count = sum((h.extent(ax)[1] - h.extent(ax)[0]) / p_lo + 2.0 for h in holes)
+    B = float(sum(h.extent(other)[1] - h.extent(other)[0] for h in holes))
+    L_min = S_lo * Fmin.bounds(n_lo, n_hi)[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.where(L_min > B, B / (L_min * (L_min - B)), np.inf)
+        par_lo = np.array(np.broadcast_to(pq.lo - p_hi * count / L_min, shape), dtype=np.float64)
+        ser_hi = np.array(np.broadcast_to(pq.hi + p_hi * count * f, shape), dtype=np.float64)
+    par_hi = np.array(pq.hi, dtype=np.float64)
+    ser_lo = np.array(pq.lo, dtype=np.float64)
+    # tight, one n per box
+    idx = np.flatnonzero(np.broadcast_to(n_lo == n_hi, shape))
+    if idx.size:
+
+        def pick(x: ArrayLike) -> FloatArray:
+            return np.asarray(np.broadcast_to(np.asarray(x, dtype=np.float64), shape)[idx])
+
+        nn = pick(n_lo).astype(np.int64)
+        pl, ph, sl, sh = pick(p_lo), pick(p_hi), pick(S_lo), pick(S_hi)
+        c = (nn + 1) / 2.0
+        j_lo = np.full(nn.shape, np.iinfo(np.int64).max)
+        j_hi = np.full(nn.shape, -1)
+        for h in holes:
+            lo, hi = h.extent(ax)
+            a = np.floor(c + np.minimum(lo / pl, lo / ph)).astype(np.int64)
+            b = np.ceil(c + np.maximum(hi / pl, hi / ph)).astype(np.int64) - 1
+            j_lo = np.minimum(j_lo, np.clip(a, 0, nn))
+            j_hi = np.maximum(j_hi, np.clip(b, 0, nn))
+        K = max(int(np.max(j_hi - j_lo + 1)), 1)
+        j = j_lo[:, None] + np.arange(K)[None, :]
+        valid = j <= j_hi[:, None]
+        j = np.minimum(j, nn[:, None])
+        m = (nn + 1)[:, None].astype(np.float64)
+        cum = lay.cumulative_area
+        dA = np.asarray(cum((j + 1) / m, ax)) - np.asarray(cum(j / m, ax))
+        dA = np.where(valid, dA, 1.0)
+        jc = j - c[:, None]
+        union = (
+            np.minimum(jc * pl[:, None], jc * ph[:, None]),
+            np.maximum((jc + 1) * pl[:, None], (jc + 1) * ph[:, None]),
+        )
+        common = (
+            np.maximum(jc * pl[:, None], jc * ph[:, None]),
+            np.minimum((jc + 1) * pl[:, None], (jc + 1) * ph[:, None]),
+        )
+        some = np.zeros(j.shape, dtype=bool)
+        always = np.zeros(j.shape, dtype=bool)
+        b_max = np.zeros(j.shape)
+        b_min = np.zeros(j.shape)
+        for h in holes:
+            lo, hi = h.extent(ax)
+            some |= (lo < union[1]) & (hi > union[0])
+            hit = (lo < common[1]) & (hi > common[0]) & (common[0] < common[1])
+            always |= hit
+            b_max += h.blocked(ax, union[0], union[1])
+            b_min += np.where(hit, h.blocked(ax, common[0], common[1]), 0.0)
+        some &= valid
+        always &= valid
+        inv = 1.0 / (m * dA)  # (n + 1) dA_j = L_j / S
+        Qlo, Qhi = pick(Q[0]), pick(Q[1])
+        if problem.identical:  # p / S = 1 / (n + 1)
+            r_lo = r_hi = 1.0 / (nn + 1.0)
+        else:
+            r_lo, r_hi = pl / sh, ph / sl
+        t_par_lo = r_lo * np.maximum(Qlo - np.where(some, inv, 0.0).sum(axis=1), 0.0)
+        t_par_hi = r_hi * np.maximum(Qhi - np.where(always, inv, 0.0).sum(axis=1), 0.0)
+        L_lo = m * sl[:, None] * dA
+        L_hi = m * sh[:, None] * dA
+        with np.errstate(divide="ignore", invalid="ignore"):
+            f_hi = np.where(L_lo > b_max, b_max / (L_lo * (L_lo - b_max)), np.inf)
+            f_lo = np.where(L_hi > b_min, b_min / (L_hi * (L_hi - b_min)), np.inf)
+        f_hi = np.where(some & (b_max > 0), f_hi, 0.0).sum(axis=1)
+        f_lo = np.where(always & (b_min > 0), f_lo, 0.0).sum(axis=1)
+        pq_lo, pq_hi = pick(pq.lo), pick(pq.hi)
+        par_lo[idx] = np.maximum(par_lo[idx], t_par_lo * (1 - _ROUND))
+        par_hi[idx] = np.minimum(par_hi[idx], t_par_hi * (1 + _ROUND))
+        ser_hi[idx] = np.minimum(ser_hi[idx], (pq_hi + ph * f_hi) * (1 + _ROUND))
+        ser_lo[idx] = np.maximum(ser_lo[idx], (pq_lo + pl * f_lo) * (1 - _ROUND))
+    par_lo = np.maximum(par_lo, 0.0)
+    return Interval(par_lo, np.maximum(par_hi, par_lo)), Interval(
+        ser_lo, np.maximum(ser_hi, ser_lo)
     )
 
 
@@ -315,9 +470,21 @@ def _stiffness_bounds(
 ) -> Bounds:
     Lx, Ly = geo["Lx"], geo["Ly"]
     sp1 = _layer_springs(
-        problem, c1, (lo["n1"], hi["n1"]), (lo["W1"], hi["W1"]), (lo["a1"], hi["a1"]), Ly, tables.Qx
+        problem,
+        c1,
+        (lo["n1"], hi["n1"]),
+        (lo["W1"], hi["W1"]),
+        (lo["a1"], hi["a1"]),
+        Ly,
+        tables.Qx,
+        tables.Fmin_x,
+        "x",
     )
-    if problem.identical and isinstance(problem.layout, Rectangle | Circle):
+    if (
+        problem.identical
+        and isinstance(problem.layout, Rectangle | Circle)
+        and not problem.layout.holes  # holes need not be symmetric under x <-> y
+    ):
         # outline symmetric under x <-> y: identical layers have identical springs
         sp2 = sp1
     else:  # a polygon's facet lengths differ across x and across y (regression: issue found
@@ -330,6 +497,8 @@ def _stiffness_bounds(
             (lo["a2"], hi["a2"]),
             Lx,
             tables.Qy,
+            tables.Fmin_y,
+            "y",
         )
     out: Bounds = {}
     for key in keys:

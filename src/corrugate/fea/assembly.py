@@ -98,7 +98,7 @@ with the structured mesh). Circles and polygons are refused: no straight edges f
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Literal
 
@@ -109,7 +109,7 @@ from ..errors import InputError
 from ..geometry import Assembly
 from .band import Bond, band_shell
 from .ccx import SolverError, run_ccx, work_dir
-from .shells import layer_shell, oblique_shells, principal_axis, specimen
+from .shells import Shell, layer_shell, oblique_shells, principal_axis, specimen
 
 __all__ = [
     "TESTS",
@@ -227,6 +227,39 @@ def _span_hold(mid_set: str, node: int, ua: int, symmetric: bool, rigid: bool) -
     return [f"{node},{ua},{ua},0"] if rigid else []
 
 
+def _cut_holes(sh: Shell, a: Assembly) -> Shell:
+    """The shell less every element whose centroid (in plan) lies inside one of the layout's
+    holes, and less the nodes no element uses: a staircase hole that converges to the true one as
+    the mesh is refined."""
+    from ..holes import hole_rings
+
+    rings = hole_rings(a.layout.holes, a.Lx, a.Ly)
+    index = {int(n): i for i, n in enumerate(sh.ids)}
+
+    def keep(elems: list[list[int]], corners: int) -> list[list[int]]:
+        if not elems:
+            return elems
+        xy = np.array([sh.xyz[[index[n] for n in e[:corners]], :2].mean(axis=0) for e in elems])
+        inside = np.zeros(len(elems), dtype=bool)
+        for ring in rings:
+            inside |= _inside_ring(xy, ring)
+        return [e for e, cut in zip(elems, inside, strict=True) if not cut]
+
+    elements = keep(sh.elements, 4)
+    triangles = keep(sh.triangles, 3)
+    used = np.isin(sh.ids, np.array([n for e in elements + triangles for n in e], dtype=np.int64))
+    return replace(sh, ids=sh.ids[used], xyz=sh.xyz[used], elements=elements, triangles=triangles)
+
+
+def _inside_ring(xy: FloatArray, ring: FloatArray) -> NDArray[np.bool_]:
+    x, y = xy[:, 0][:, None], xy[:, 1][:, None]
+    x0, y0 = ring[:, 0], ring[:, 1]
+    x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
+    cond = (y0 > y) != (y1 > y)
+    xc = x0 + (y - y0) * (x1 - x0) / np.where(y1 == y0, 1.0, y1 - y0)
+    return np.asarray(np.count_nonzero(cond & (x < xc), axis=1) % 2 == 1)
+
+
 def assembly_deck(
     assembly: Assembly,
     test: LoadTest,
@@ -299,6 +332,8 @@ def assembly_deck(
         )
         if connectors:
             shells.append(band_shell(a, mesh.along, shells, tol, bond))
+    if a.layout.holes:
+        shells = [_cut_holes(sh, a) for sh in shells]
     other = 1 - axis
     if delta is None:
         delta = 1e-3 * L_load

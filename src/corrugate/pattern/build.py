@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..geometry import Assembly
+from ..holes import hole_rings
 from .band import band_parts
 from .layers import layer_part
 from .model import Pattern
@@ -17,11 +18,14 @@ def build_pattern(a: Assembly, opts: FabricationOptions = DEFAULT_FABRICATION) -
     """The cut parts of assembly ``a``: L1, L2 (layer blanks) and B1..Bk (band segments), in mm.
 
     Layer 1's plan outline is used in (x, y); layer 2's in (y, x), reversed to stay
-    counter-clockwise, since its chordwise direction is y.
+    counter-clockwise, since its chordwise direction is y. The layout's holes are cut from both
+    layers (inner rings of L1 and L2); the band does not meet them.
     """
     plan = a.layout.plan_outline(a.Lx, a.Ly)
-    l1 = layer_part(a.layer1, plan, 1)
-    l2 = layer_part(a.layer2, np.ascontiguousarray(plan[::-1, ::-1]), 2)
+    holes = hole_rings(a.layout.holes, a.Lx, a.Ly)
+    l1 = layer_part(a.layer1, plan, 1, holes)
+    swap = [np.ascontiguousarray(h[::-1, ::-1]) for h in holes]
+    l2 = layer_part(a.layer2, np.ascontiguousarray(plan[::-1, ::-1]), 2, swap)
     m = a.layer1.material
     return Pattern(
         parts=(l1, l2, *band_parts(a, opts)),

@@ -11,12 +11,15 @@ along the perimeter from z = 0 to t_d.
 
 FOLD (https://github.com/edemaine/fold, spec 1.2): faces are the facets (the outline clipped to each
 facet's strip); edges on a crease carry its assignment (M, V) and ``edges_foldAngle`` in degrees
-(+ valley, - mountain, magnitude 180 - alpha); the others are boundary (B). A second frame holds the
+(+ valley, - mountain, magnitude 180 - alpha); the others are boundary (B). A facet that a hole
+meets is split into convex trapezoids around the hole (flat edges F between them), so the hole is
+a ring of boundary edges and no face covers it, in FOLD and in the 3D mesh alike. A second frame holds the
 folded 3D coordinates (``frame_classes`` ["foldedForm"]).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -28,6 +31,7 @@ from .model import Part, Role
 
 __all__ = [
     "band_walls",
+    "facet_pieces",
     "facet_polygons",
     "fold_document",
     "fold_points",
@@ -91,9 +95,114 @@ def facet_polygons(part: Part, layer: Layer) -> list[list[Point]]:
     return out
 
 
+def _clean(face: list[Point]) -> list[Point]:
+    cleaned: list[Point] = []
+    for p in face:
+        if not cleaned or math.dist(cleaned[-1], p) > 1e-9:
+            cleaned.append(p)
+    if len(cleaned) > 1 and math.dist(cleaned[0], cleaned[-1]) <= 1e-9:
+        cleaned.pop()
+    return cleaned
+
+
+def _trapezoids(rings: list[list[Point]]) -> list[list[Point]]:
+    """Trapezoidal decomposition of the region the ``rings`` bound (even-odd rule: an outline and
+    its holes): the region is cut at the v of every vertex; in each band the edges that cross it
+    are sorted along u and taken in pairs. Each piece is convex and counter-clockwise."""
+    edges: list[tuple[float, float, float, float]] = []
+    levels: set[float] = set()
+    for ring in rings:
+        for i, p in enumerate(ring):
+            q = ring[(i + 1) % len(ring)]
+            levels.add(p[1])
+            if abs(q[1] - p[1]) > 1e-12:
+                s0, s1 = (p, q) if p[1] < q[1] else (q, p)
+                edges.append((s0[0], s0[1], s1[0], s1[1]))
+
+    def u_at(e: tuple[float, float, float, float], v: float) -> float:
+        return e[0] + (v - e[1]) * (e[2] - e[0]) / (e[3] - e[1])
+
+    out: list[list[Point]] = []
+    vs = sorted(levels)
+    for v0, v1 in itertools.pairwise(vs):
+        if v1 - v0 < 1e-9:
+            continue
+        vm = (v0 + v1) / 2
+        active = sorted((e for e in edges if e[1] <= vm <= e[3]), key=lambda e: u_at(e, vm))
+        for a, b in zip(active[::2], active[1::2], strict=False):
+            quad = _clean(
+                [(u_at(a, v0), v0), (u_at(b, v0), v0), (u_at(b, v1), v1), (u_at(a, v1), v1)]
+            )
+            if len(quad) >= 3 and abs(u_at(b, vm) - u_at(a, vm)) > 1e-9:
+                out.append(quad)
+    return out
+
+
+def facet_pieces(part: Part, layer: Layer) -> list[tuple[int, list[Point]]]:
+    """The faces of a layer blank as (facet index j, flat polygon), in order along u.
+
+    A facet no hole meets is one polygon (:func:`facet_polygons`); a facet a hole meets is the
+    outline's strip less the hole, cut into convex trapezoids (:func:`_trapezoids`). When the
+    part has holes, every face also carries the vertices of its neighbours that lie on its
+    axis-parallel edges, so that faces meet edge to edge (no T-junctions) along creases and cuts.
+    """
+    whole = facet_polygons(part, layer)
+    if not part.holes:
+        return [(j, f) for j, f in enumerate(whole)]
+    W = layer.W
+    out: list[tuple[int, list[Point]]] = []
+    for j, face in enumerate(whole):
+        lo, hi = j * W, (j + 1) * W
+        cut = [
+            _clean(_clip(list(h), lo, hi))
+            for h in part.holes
+            if min(p[0] for p in h) < hi and max(p[0] for p in h) > lo
+        ]
+        cut = [c for c in cut if len(c) >= 3]
+        if not cut:
+            out.append((j, face))
+        else:
+            out.extend((j, piece) for piece in _trapezoids([face, *cut]))
+    return _no_t_junctions(out)
+
+
+def _no_t_junctions(faces: list[tuple[int, list[Point]]]) -> list[tuple[int, list[Point]]]:
+    """Insert into every vertical or horizontal face edge the vertices lying inside it."""
+    columns: dict[int, list[float]] = {}
+    rows: dict[int, list[float]] = {}
+    for _, face in faces:
+        for u, v in face:
+            columns.setdefault(round(u * 1e6), []).append(v)
+            rows.setdefault(round(v * 1e6), []).append(u)
+    for d in (columns, rows):
+        for key in d:
+            d[key] = sorted(set(d[key]))
+    out = []
+    for j, face in faces:
+        ring: list[Point] = []
+        for i, p in enumerate(face):
+            q = face[(i + 1) % len(face)]
+            ring.append(p)
+            if abs(p[0] - q[0]) < 1e-9:
+                vals = columns.get(round(p[0] * 1e6), [])
+                lo, hi = sorted((p[1], q[1]))
+                mid = [v for v in vals if lo + 1e-7 < v < hi - 1e-7]
+                ring.extend((p[0], v) for v in (mid if q[1] > p[1] else mid[::-1]))
+            elif abs(p[1] - q[1]) < 1e-9:
+                vals = rows.get(round(p[1] * 1e6), [])
+                lo, hi = sorted((p[0], q[0]))
+                mid = [u for u in vals if lo + 1e-7 < u < hi - 1e-7]
+                ring.extend((u, p[1]) for u in (mid if q[0] > p[0] else mid[::-1]))
+        out.append((j, ring))
+    return out
+
+
 def fold_document(part: Part, layer: Layer) -> dict[str, object]:
-    """A FOLD 1.2 document (a JSON-ready dict) of one layer blank with its folded frame."""
-    faces = facet_polygons(part, layer)
+    """A FOLD 1.2 document (a JSON-ready dict) of one layer blank with its folded frame.
+
+    With holes, the faces are the pieces of :func:`facet_pieces`: edges between two pieces of
+    one facet are flat (F), a hole's edges are boundary (B)."""
+    faces = [face for _, face in facet_pieces(part, layer)]
     index: dict[tuple[int, int], int] = {}
     coords: list[Point] = []
 
@@ -125,6 +234,9 @@ def fold_document(part: Part, layer: Layer) -> dict[str, object]:
             assignment.append("M" if role is Role.MOUNTAIN else "V")
             sign = -1.0 if role is Role.MOUNTAIN else 1.0
             angles.append(sign * layer.fold_angle_deg)
+        elif edge_faces[(a, b)] == 2:  # between two pieces of one facet (holes)
+            assignment.append("F")
+            angles.append(0.0)
         else:
             assignment.append("B")
             angles.append(0.0)
@@ -166,7 +278,7 @@ def layer_faces(a: Assembly, parts: tuple[Part, ...], index: int) -> list[FloatA
     part = next(p for p in parts if p.name == f"L{index}")
     layer = a.layer1 if index == 1 else a.layer2
     faces = []
-    for face in facet_polygons(part, layer):
+    for _, face in facet_pieces(part, layer):
         if len(face) < 3:
             continue
         p3 = fold_points(layer, np.asarray(face, dtype=np.float64))

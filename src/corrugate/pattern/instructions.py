@@ -67,6 +67,9 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
         w = o[:, 0].max() - o[:, 0].min()
         closed = np.vstack([o, o[:1]])
         ax0.plot(closed[:, 0] + x0, closed[:, 1], color="black", lw=0.6)
+        for hole in part.holes:
+            h = np.asarray(hole)
+            ax0.plot(np.append(h[:, 0], h[0, 0]) + x0, np.append(h[:, 1], h[0, 1]), "k", lw=0.6)
         for ln in part.lines:
             ax0.plot(
                 [ln.a[0] + x0, ln.b[0] + x0], [ln.a[1], ln.b[1]], color=_COLOURS[ln.role], lw=0.5
@@ -88,12 +91,18 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
     for k, (title, layers, band) in enumerate(views):
         ax = fig.add_subplot(2, 2, k + 2, projection="3d")
         for faces, colour in layers:
+            # the limits are set below; matplotlib's autoscale can overflow (NaN limits) on
+            # the many small faces of a layer with holes
             ax.add_collection3d(
-                Poly3DCollection(faces, facecolor=colour, edgecolor="#08306b", lw=0.3)
+                Poly3DCollection(faces, facecolor=colour, edgecolor="#08306b", lw=0.3),
+                autolim=False,
             )
         if band:
             ax.add_collection3d(
-                Poly3DCollection(band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35)
+                Poly3DCollection(
+                    band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35
+                ),
+                autolim=False,
             )
         ax.set_xlim(0, a.Lx)
         ax.set_ylim(0, a.Ly)

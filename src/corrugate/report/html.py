@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 
 from ..analysis import analyze
 from ..design.solve import Solution
+from ..holes import holes_text
 from ..moduli import MODELS
 from ..pattern.instructions import assembly_steps, instructions_figure
 from ..pattern.linestyle import StyleKind
@@ -141,6 +142,12 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     )
     side = f"L = {asm.Lx:.2f} mm" if asm.layout.equal_sides else f"{asm.Lx:.2f} x {asm.Ly:.2f} mm"
     parts.append(f"<p>Folded size {side}, thickness t_d = {asm.thickness:.2f} mm.</p>")
+    if asm.layout.holes:
+        parts.append(
+            f"<p>{html.escape(holes_text(asm.layout.holes))}. Model: facets a hole touches carry "
+            "nothing in the spanwise (parallel) sums and lose the blocked length in the chordwise "
+            "(series) sums; the mass is rho t times the cut area (README, section Holes).</p>"
+        )
     parts.append("<h2>Constraints and margins</h2>")
     parts.append(
         _table(

@@ -104,6 +104,8 @@ _EXPECTED: dict[str, str] = {
     **{k: "allowed a string" for k in ("material", "material2", "layout", "model")},
     "eta": "allowed a list of angles, e.g. [0, 45, '1.2 rad']",
     "vertices": "allowed '0,0 1,0 0.5,1' or [[0, 0], [1, 0], [0.5, 1]]",
+    "holes": "allowed a list of {shape, diameter | vertices, center}, e.g. "
+    "[{'shape': 'circle', 'diameter': '6 mm', 'center': [0, 0]}]",
 }
 
 

@@ -20,6 +20,7 @@ __all__ = [
     "DesignBody",
     "ErrorBody",
     "FieldError",
+    "HoleBody",
     "ModelInfo",
     "ModelsBody",
     "ResultBody",
@@ -36,6 +37,29 @@ Value = Number | Text
 Pair = tuple[
     Annotated[float, Field(allow_inf_nan=False)], Annotated[float, Field(allow_inf_nan=False)]
 ]
+
+
+MAX_HOLES = 16
+
+
+class HoleBody(BaseModel):
+    """An inner cut-out of the layout (:mod:`corrugate.holes`): lengths in mm (or with units) from
+    the centre of the layout's bounding box, x across layer 1's creases."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    shape: Text = Field("circle", description="circle | polygon.")
+    diameter: Value | None = Field(None, description="Circle: diameter (mm or '6 mm').")
+    center: Annotated[list[Value], Field(min_length=2, max_length=2)] | None = Field(
+        None, description="Centre [x, y] (mm) from the layout's centre; default [0, 0]."
+    )
+    vertices: (
+        Annotated[
+            list[Annotated[list[Value], Field(min_length=2, max_length=2)]],
+            Field(max_length=MAX_VERTICES),
+        ]
+        | None
+    ) = Field(None, description="Polygon: [[x, y], ...] (mm) relative to the centre.")
 
 
 class AnalyzeBody(BaseModel):
@@ -76,6 +100,10 @@ class AnalyzeBody(BaseModel):
         | Annotated[list[Pair], Field(max_length=MAX_VERTICES)]
         | None
     ) = Field(None, description="Polygon outline: '0,0 1,0 0.5,1' or [[0,0],[1,0],[0.5,1]].")
+    holes: Annotated[list[HoleBody], Field(max_length=MAX_HOLES)] | None = Field(
+        None,
+        description="Inner cut-outs, e.g. [{shape: 'circle', diameter: '6 mm', center: [0, 0]}].",
+    )
     model: Text = Field(DEFAULT_MODEL, description="Moduli variant: paper | xia | refined.")
     eta: Annotated[list[Value], Field(max_length=MAX_ETAS)] | None = Field(
         None, description="Directions (deg from layer 1's creases). Default [0, 90]."
@@ -129,7 +157,7 @@ class DesignBody(BaseModel):
     layers: Any = Field(None, description="identical | independent. " + _SPEC_KEY)
     material: Any = Field(None, description="{name, thickness} or inline {E, nu, density, ...}.")
     materials: Any = Field(None, description="Candidate materials (a list). " + _SPEC_KEY)
-    layout: Any = Field(None, description="{shape, vertices}. " + _SPEC_KEY)
+    layout: Any = Field(None, description="{shape, vertices, holes}. " + _SPEC_KEY)
     variables: Any = Field(None, description="Bounds and steps of W, n and alpha. " + _SPEC_KEY)
     constraints: Any = Field(None, description="Size, stiffness and mass bounds. " + _SPEC_KEY)
     objective: Any = Field(None, description="{minimize = 'mass'} or {maximize, eta}.")

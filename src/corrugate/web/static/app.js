@@ -63,6 +63,15 @@ function syncVisibility() {
   $('vertices-field').hidden = $('layout').value !== 'polygon';
 }
 
+// Circular holes, "d@x,y; d@x,y" (mm, from the layout's centre) -> the API's hole tables.
+function holes(text) {
+  return text.split(';').map((s) => s.trim()).filter((s) => s !== '').map((h) => {
+    const [d, at] = h.split('@');
+    const center = (at || '0,0').split(',').map((x) => x.trim());
+    return { shape: 'circle', diameter: d.trim(), center };
+  });
+}
+
 function requestBody() {
   const body = {};
   for (const name of TEXT_FIELDS) {
@@ -71,6 +80,8 @@ function requestBody() {
     const value = el.value.trim();
     if (value !== '') body[name] = value;
   }
+  const holeText = $('holes').value.trim();
+  if (holeText !== '') body.holes = holes(holeText);
   const material = $('material').value;
   if (material !== CUSTOM) body.material = material;
   const material2 = $('material2').value;
@@ -92,8 +103,9 @@ function showErrors(payload, status) {
     ? payload.errors
     : [{ field: (payload && payload.field) || 'body', message: (payload && payload.detail) || `HTTP ${status}` }];
   for (const e of errors) {
-    let target = $(`error-${e.field}`);
-    const input = $(e.field);
+    const base = String(e.field).split(/[[.]/)[0];  // holes[0].diameter -> holes
+    let target = $(`error-${e.field}`) || $(`error-${base}`);
+    const input = $(e.field) || $(base);
     if (target && target.closest('[hidden]')) target = null;
     if (input && target) input.setAttribute('aria-invalid', 'true');
     if (target && input && input.closest('details')) input.closest('details').open = true;
@@ -118,8 +130,12 @@ function showAnalysis(r) {
   const size = r.L_mm !== null
     ? `L = ${fmt(r.L_mm)} mm`
     : `Lx = ${fmt(r.extent_x_mm)} mm, Ly = ${fmt(r.extent_y_mm)} mm`;
+  const holeText = (r.layout.holes || []).map((h) => (h.shape === 'circle'
+    ? `d ${fmt(h.diameter_mm)} mm at (${h.center_mm.map((c) => fmt(c)).join(', ')})`
+    : `polygon at (${h.center_mm.map((c) => fmt(c)).join(', ')})`)).join('; ');
   $('summary').textContent = `layout ${r.layout.shape}: ${size}, folded thickness `
-    + `t_d = ${fmt(r.thickness_mm)} mm, mass ${fmt(r.mass_g)} g; model ${r.model}`;
+    + `t_d = ${fmt(r.thickness_mm)} mm, mass ${fmt(r.mass_g)} g; model ${r.model}`
+    + (holeText ? `; holes ${holeText} mm` : '');
   $('model-source').textContent = r.model_source;
 
   const stiffness = $('stiffness').tBodies[0];
@@ -367,7 +383,8 @@ function designBody() {
     const value = el.value.trim();
     if (value === '') continue;
     if (el.dataset.requires && $(el.dataset.requires).value.trim() === '') continue;
-    setPath(body, el.dataset.path, el.dataset.kind === 'vertices' ? vertices(value) : value);
+    const kinds = { vertices, holes };
+    setPath(body, el.dataset.path, kinds[el.dataset.kind] ? kinds[el.dataset.kind](value) : value);
   }
   return body;
 }
