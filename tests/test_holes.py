@@ -209,7 +209,7 @@ def test_axle_hole_in_every_file_and_mass_equals_the_cut_area(tmp_path: Path) ->
     res = analyze(a, "refined", (0.0, 90.0))
     paths = write_design_files(res, tmp_path)
     names = {p.name for p in paths}
-    assert {"sheet-1.svg", "sheet-1.dxf", "layer1.fold", "assembly.stl", "design.json"} <= names
+    assert {"sheet-1.svg", "cut-1.dxf", "pattern.pdf", "layer1.fold", "assembly.stl"} <= names
     t, rho = a.layer1.t, DURALAR.density
     s = a.layer1.s
     flat_hole = AXLE.area / s  # the plan hole stretched by 1/s across the creases
@@ -233,8 +233,8 @@ def test_axle_hole_in_every_file_and_mass_equals_the_cut_area(tmp_path: Path) ->
             for o in outlines
         )
 
-    # DXF: closed CUT polylines; holes are those inside another
-    doc = readfile(tmp_path / "sheet-1.dxf")
+    # cut DXF (the Silhouette's file): closed CUT polylines; holes are those inside another
+    doc = readfile(tmp_path / "cut-1.dxf")
     rings = [
         [(float(x), float(y)) for x, y, *_ in e.get_points()]
         for e in doc.modelspace().query('LWPOLYLINE[layer=="CUT"]')
@@ -287,6 +287,24 @@ def test_axle_hole_in_every_file_and_mass_equals_the_cut_area(tmp_path: Path) ->
         assert hits == []
         radial = np.hypot(tri[..., 0] - centre[0], tri[..., 1] - centre[1])
         assert radial.min() == pytest.approx(3.0 * math.cos(math.pi / HOLE_SEGMENTS), abs=1e-4)
+
+    # PDF (1:1, drawn as separate segments): around each hole of the fold map, in page mm (y up
+    # from the bottom edge), a ring of segments whose ends lie on the hole's ellipse
+    pytest.importorskip("pypdf")
+    from pypdf import PdfReader
+
+    from test_tiles import PT, page_paths
+
+    reader = PdfReader(tmp_path / "pattern.pdf")
+    page = reader.pages[0]
+    height = float(page.mediabox.height) / PT
+    ends = np.array([pt for sp in page_paths(reader, page) for pt in sp.points])
+    for h in holes:
+        cx, cy = np.asarray(h).mean(axis=0)
+        u = (ends[:, 0] - cx) * s / 3.0
+        v = (ends[:, 1] - (height - cy)) / 3.0
+        on = np.abs(u**2 + v**2 - 1) < 0.02
+        assert on.sum() >= 2 * HOLE_SEGMENTS, (h[:2], on.sum())
 
     design = json.loads((tmp_path / "design.json").read_text())
     assert design["layout"]["holes"][0]["diameter_mm"] == 6.0
