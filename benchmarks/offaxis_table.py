@@ -23,6 +23,7 @@ from corrugate import analyze
 from fea_offaxis import CSV, ETAS, OUT, designs
 
 Series = dict[int, float]
+SHORT = ("case study (W 8, n 8, alpha 84)", "W 10, n 10, alpha 40", "differing layers")
 
 
 def _load() -> dict[tuple[str, float, str], Series]:
@@ -71,7 +72,6 @@ def table() -> None:
     ]
     ratios: dict[str, list[float]] = defaultdict(list)
     fig = Figure(figsize=(12, 8))
-    names = list(designs())
     for col, (name, a) in enumerate(designs().items()):
         free = analyze(a, "refined", list(ETAS)).stiffness
         frame = analyze(a, "refined", list(ETAS), support="frame").stiffness
@@ -115,7 +115,7 @@ def table() -> None:
             ax.set_rscale("symlog", linthresh=1.0)
             ax.set_thetamin(0)
             ax.set_thetamax(90)
-            ax.set_title(f"{names[col][:28]}\n{label}", fontsize=8)
+            ax.set_title(f"{SHORT[col]}\n{label}", fontsize=8)
             if col == 0 and row == 0:
                 ax.legend(fontsize=7, loc="lower left")
     fig.tight_layout()
