@@ -46,6 +46,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError
+from .planar import segments_cross as _segments_cross
+from .planar import signed_area as _signed_area
 
 __all__ = [
     "HOLE_SEGMENTS",
@@ -67,20 +69,6 @@ Axis = Literal["x", "y"]
 HOLE_SEGMENTS = 360
 #: Smallest material ligament (mm) allowed between a hole and the outline or another hole.
 MIN_LIGAMENT = 0.5
-
-
-def _signed_area(v: FloatArray) -> float:
-    x, y = v[:, 0], v[:, 1]
-    return float(0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-
-
-def _segments_cross(p1: FloatArray, p2: FloatArray, q1: FloatArray, q2: FloatArray) -> bool:
-    def orient(a: FloatArray, b: FloatArray, c: FloatArray) -> float:
-        return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-
-    d1, d2 = orient(q1, q2, p1), orient(q1, q2, p2)
-    d3, d4 = orient(p1, p2, q1), orient(p1, p2, q2)
-    return d1 * d2 < 0 and d3 * d4 < 0
 
 
 @dataclass(frozen=True)

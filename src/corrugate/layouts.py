@@ -45,6 +45,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError, UnknownNameError
 from .holes import Hole, touched_sums
+from .planar import segments_cross as _segments_cross
+from .planar import signed_area as _signed_area
 
 __all__ = [
     "LAYOUTS",
@@ -262,20 +264,6 @@ class Circle:
         # Ramanujan's ellipse perimeter; exact (pi D) for the circle, where a = b
         h = ((a - b) / (a + b)) ** 2
         return [(np.asarray(np.pi * (a + b) * (1 + 3 * h / (10 + np.sqrt(4 - 3 * h)))), False)]
-
-
-def _signed_area(v: FloatArray) -> float:
-    x, y = v[:, 0], v[:, 1]
-    return float(0.5 * np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
-
-
-def _segments_cross(p1: FloatArray, p2: FloatArray, q1: FloatArray, q2: FloatArray) -> bool:
-    def orient(a: FloatArray, b: FloatArray, c: FloatArray) -> float:
-        return float((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
-
-    d1, d2 = orient(q1, q2, p1), orient(q1, q2, p2)
-    d3, d4 = orient(p1, p2, q1), orient(p1, p2, q2)
-    return d1 * d2 < 0 and d3 * d4 < 0
 
 
 @dataclass(frozen=True)
