@@ -57,11 +57,12 @@ class UnitCellMesh:
 
     The default, 320 x 4, gives Ecx within 0.5 % and Ebx within 0.2 % of the extrapolated
     mesh-converged values for alpha = 65-115 deg and t/W = 0.0067-0.02 (Ecy and Eby are exact on
-    any mesh); at alpha = 40 deg, where the cell converges slowly, it is 0.1-1.4 % above the
-    extrapolation of its refinement series (up to 1280 x 4), which is itself not settled there. The former default, 40 x 2, was up to 6.7 % (Ecx)
-    and 2.2 % (Ebx) stiff, at alpha = 40 deg and t/W = 0.0067 (docs/fea.md, section 1.3,
-    ``benchmarks/unitcell_range.py``). It costs about 15 times as much: 14-28 s against 1-2 s
-    per ccx run in that study, on 2 cores shared with other FE runs.
+    any mesh). At alpha = 40 deg, where the cell converges slowly, it is 0.1-1.4 % above the
+    extrapolation of its refinement series (up to 1280 x 4), which is itself not settled there.
+    The former default, 40 x 2, was up to 6.7 % (Ecx) and 2.2 % (Ebx) stiff, at alpha = 40 deg
+    and t/W = 0.0067 (docs/fea.md, section 1.3, ``benchmarks/unitcell_range.py``). It costs
+    about 15 times as much: 14-28 s against 1-2 s per ccx run in that study, on 2 cores shared
+    with other FE runs.
     """
 
     along: int = 320
