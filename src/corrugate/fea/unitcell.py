@@ -61,8 +61,8 @@ class UnitCellMesh:
     extrapolation of its refinement series (up to 1280 x 4), which is itself not settled there.
     The former default, 40 x 2, was up to 6.7 % (Ecx) and 2.2 % (Ebx) stiff, at alpha = 40 deg
     and t/W = 0.0067 (docs/fea.md, section 1.3, ``benchmarks/unitcell_range.py``). It costs
-    about 15 times as much: 14-28 s against 1-2 s per ccx run in that study, on 2 cores shared
-    with other FE runs.
+    about 20-30 times as much per ccx run: 3.7-4.2 s against 0.2 s on an idle core, a median of
+    16.7 s against 0.54 s on 2 cores shared with other FE runs (the case study's cell).
     """
 
     along: int = 320
