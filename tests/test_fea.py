@@ -261,6 +261,21 @@ def test_converged_only_after_a_refinement_study(ccx: str, tmp_path: Path) -> No
     assert (stopped.refined, stopped.converged) == (True, False)
 
 
+def test_default_unit_cell_mesh_is_the_converged_one_everywhere() -> None:
+    """The default unit-cell mesh is 320 x 4 (docs/fea.md 1.3: Ecx within 0.5 % of the
+    extrapolated value for alpha >= 65 deg; 40 x 2 was up to 6.7 % stiff), the same in the library,
+    the refinement start and the CLI; refinement may go one doubling further."""
+    import inspect
+
+    from corrugate.fea_cli import validate_cmd
+
+    assert UnitCellMesh() == UnitCellMesh(320, 4)
+    assert Refinement().cell_mesh == UnitCellMesh()
+    assert Refinement().cell_max_along >= 2 * UnitCellMesh().along
+    default = inspect.signature(validate_cmd).parameters["cell_mesh"].default
+    assert default == UnitCellMesh().label()
+
+
 def test_validate_cli_without_solver_is_one_line(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setenv(CCX_ENV, "/nonexistent/ccx")
     code = (
