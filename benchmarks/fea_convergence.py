@@ -2,6 +2,8 @@
 
     python benchmarks/fea_convergence.py unitcell   # reference/unitcell_fe.csv rows, 5-6 meshes
     python benchmarks/fea_convergence.py assembly   # W = 10, n = 7, alpha = 90, Dura-Lar 0.125
+    python benchmarks/fea_convergence.py pure 8 16  # case study, pure bending (4-point), per facet
+    python benchmarks/fea_convergence.py order M1 M2 M3 V1 V2 V3    # order p from three meshes
 
 Prints Markdown tables. Needs ccx. Takes a few minutes (the finest meshes dominate).
 """
@@ -95,5 +97,64 @@ def assembly() -> None:
     )
 
 
+def richardson(meshes: list[int], values: list[float]) -> tuple[float, float]:
+    """Extrapolation to zero element size of the last three values on meshes of ``meshes``
+    elements per facet (h = 1 / mesh): the order p and the limit, from
+    (v2 - v1) / (v3 - v2) = (h1^p - h2^p) / (h2^p - h3^p), solved by bisection on p in [0.05, 4]."""
+    (m1, m2, m3), (v1, v2, v3) = meshes[-3:], values[-3:]
+    h1, h2, h3 = 1 / m1, 1 / m2, 1 / m3
+    target = (v2 - v1) / (v3 - v2)
+
+    def f(p: float) -> float:
+        return (h1**p - h2**p) / (h2**p - h3**p) - target
+
+    lo, hi = 0.05, 4.0
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(lo) * f(mid) > 0 else (lo, mid)
+    p = 0.5 * (lo + hi)
+    return p, v3 + (v3 - v2) * h3**p / (h2**p - h3**p)
+
+
+def pure(alongs: list[int]) -> None:
+    """Pure bending (4-point) D4 of the case study (W 8, n 8, alpha 84, Dura-Lar 0.125 mm, square,
+    eta = 0) at each mesh (elements per facet: multiples of 8, so that the gauge lines are node
+    lines), with the first-order (p = 1) extrapolation of each step and, from three meshes, the
+    observed order and its extrapolation."""
+    layer = Layer(8.0, 8, 84.0, get_material("dura-lar"), 0.125)
+    a = Assembly.identical(layer)
+    D = analyze(a, "refined", [0.0]).stiffness[0].D
+    print("\ncase study W 8, n 8, alpha 84, Dura-Lar 0.125 mm, square, eta = 0, `bending4`\n")
+    print("| elements per facet | nodes | D4 FE N mm | refined / FE | extrapolated (p = 1) | s |")
+    print("|---" * 6 + "|")
+    values: list[float] = []
+    for along in alongs:
+        t0 = time.perf_counter()
+        r = solve_assembly(a, "bending4", AssemblyMesh(along), 0.0, timeout=3600.0)
+        dt = time.perf_counter() - t0
+        v = r.value()
+        ext = ""
+        if values:
+            ratio = along / alongs[len(values) - 1]
+            limit = v + (v - values[-1]) / (ratio - 1)
+            ext = f"{limit:.5g} (refined / it {D / limit:.4f})"
+        values.append(v)
+        print(f"| {along} | {r.nodes} | {v:.5g} | {D / v:.4f} | {ext} | {dt:.0f} |", flush=True)
+    print(f"| closed form `refined` | | {D:.5g} | | | |")
+    if len(values) >= 3:
+        p, limit = richardson(alongs, values)
+        print(
+            f"\nobserved order p = {p:.2f}; extrapolated D4 = {limit:.5g}, refined / it {D / limit:.4f}"
+        )
+
+
 if __name__ == "__main__":
-    {"unitcell": unitcell, "assembly": assembly}[sys.argv[1] if len(sys.argv) > 1 else "unitcell"]()
+    mode = sys.argv[1] if len(sys.argv) > 1 else "unitcell"
+    if mode == "pure":
+        pure([int(v) for v in sys.argv[2:]] or [8, 16])
+    elif mode == "order":  # three meshes, three values: observed order and extrapolation
+        m, v = sys.argv[2:5], sys.argv[5:8]
+        p, limit = richardson([int(x) for x in m], [float(x) for x in v])
+        print(f"observed order p = {p:.2f}; extrapolated {limit:.5g}")
+    else:
+        {"unitcell": unitcell, "assembly": assembly}[mode]()

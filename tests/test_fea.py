@@ -28,7 +28,7 @@ from corrugate.fea.assembly import AssemblyMesh, assembly_deck, solve_assembly
 from corrugate.fea.ccx import CCX_ENV, SolverNotFoundError, find_ccx, parse_dat
 from corrugate.fea.sweep import dask_executor, run_sweep, write_table
 from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
-from corrugate.fea.validation import Case, Refinement
+from corrugate.fea.validation import Case, Refinement, run_case
 from corrugate.layouts import Circle, Rectangle
 
 if TYPE_CHECKING:
@@ -238,6 +238,42 @@ def test_validate_cli_json_agrees_with_analyze(ccx: str) -> None:
     assert data["models"]["refined"]["K_N_per_mm@0"] == pytest.approx(cf.K)
     assert data["fe"]["K_N_per_mm@0"] == pytest.approx(cf.K, rel=0.01)
     assert set(data["models"]) == {"paper", "xia", "refined"}
+    # one mesh is not a convergence study (issue 10: it used to say converged = true)
+    assert data["refined"] is False
+    assert data["converged"] is False
+
+
+def test_converged_only_after_a_refinement_study(ccx: str, tmp_path: Path) -> None:
+    """Regression: ``converged`` is True only when a refinement study ran and its last change fell
+    below the tolerance; a single mesh, or a study stopped at the finest mesh allowed, is not
+    converged; the sweep table says "not refined" for a single mesh."""
+    one = run_case(replace(_tiny_case("one"), pure_bending=False))
+    assert (one.refined, one.converged) == (False, False)
+    write_table([one], tmp_path / "t.md")
+    assert "| not refined |" in (tmp_path / "t.md").read_text()
+    loose = Refinement(AssemblyMesh(2), UnitCellMesh(10, 1), tol=0.5)
+    study = run_case(replace(_tiny_case("study"), refinement=loose, pure_bending=False))
+    assert study.error is None
+    assert (study.refined, study.converged) == (True, True)
+    assert len(study.history) == 4  # assembly 2 and 4 per facet, unit cell 10x1 and 20x2
+    capped = replace(loose, tol=1e-9, assembly_max_along=2, cell_max_along=10)
+    stopped = run_case(replace(_tiny_case("capped"), refinement=capped, pure_bending=False))
+    assert (stopped.refined, stopped.converged) == (True, False)
+
+
+def test_default_unit_cell_mesh_is_the_converged_one_everywhere() -> None:
+    """The default unit-cell mesh is 320 x 4 (docs/fea.md 1.3: Ecx within 0.5 % of the
+    extrapolated value for alpha >= 65 deg; 40 x 2 was up to 6.7 % stiff), the same in the library,
+    the refinement start and the CLI; refinement may go one doubling further."""
+    import inspect
+
+    from corrugate.fea_cli import validate_cmd
+
+    assert UnitCellMesh() == UnitCellMesh(320, 4)
+    assert Refinement().cell_mesh == UnitCellMesh()
+    assert Refinement().cell_max_along >= 2 * UnitCellMesh().along
+    default = inspect.signature(validate_cmd).parameters["cell_mesh"].default
+    assert default == UnitCellMesh().label()
 
 
 def test_validate_cli_without_solver_is_one_line(monkeypatch: pytest.MonkeyPatch) -> None:

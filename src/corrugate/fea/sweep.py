@@ -166,7 +166,7 @@ def _rows(results: Sequence[CaseResult], eta: str) -> Iterator[dict[str, str]]:
 def _converged(r: CaseResult) -> str:
     """'yes' or 'no' for a refined case (did the change fall below the tolerance?), 'not
     refined' for a case run on one mesh."""
-    if r.case.refinement.tol is None:
+    if not r.refined:
         return "not refined"
     return "yes" if r.converged else "no"
 

@@ -53,10 +53,20 @@ FloatArray = NDArray[np.float64]
 
 @dataclass(frozen=True, slots=True)
 class UnitCellMesh:
-    """Mesh of the unit cell: C3D20R elements along one facet, through t, and along y."""
+    """Mesh of the unit cell: C3D20R elements along one facet, through t, and along y.
 
-    along: int = 40
-    through: int = 2
+    The default, 320 x 4, gives Ecx within 0.5 % and Ebx within 0.2 % of the extrapolated
+    mesh-converged values for alpha = 65-115 deg and t/W = 0.0067-0.02 (Ecy and Eby are exact on
+    any mesh). At alpha = 40 deg, where the cell converges slowly, it is 0.1-1.4 % above the
+    extrapolation of its refinement series (up to 1280 x 4), which is itself not settled there.
+    The former default, 40 x 2, was up to 6.7 % (Ecx) and 2.2 % (Ebx) stiff, at alpha = 40 deg
+    and t/W = 0.0067 (docs/fea.md, section 1.3, ``benchmarks/unitcell_range.py``). It costs
+    about 20-30 times as much per ccx run: 3.7-4.2 s against 0.2 s on an idle core, a median of
+    16.7 s against 0.54 s on 2 cores shared with other FE runs (the case study's cell).
+    """
+
+    along: int = 320
+    through: int = 4
     span: int = 1
 
     def __post_init__(self) -> None:

@@ -60,7 +60,7 @@ class Refinement:
     cell_mesh: UnitCellMesh = field(default_factory=UnitCellMesh)
     tol: float | None = None
     assembly_max_along: int = 16
-    cell_max_along: int = 320
+    cell_max_along: int = 640
     cell_max_through: int = 4
 
 
@@ -103,7 +103,9 @@ class CaseResult:
     ``buckling`` and eta 0 or 90; the bounds are :func:`corrugate.buckling.facet_buckling_load`), ``"D4_Nmm@eta"`` (pure bending between the load lines
     of a 4-point test; the closed forms' D for the models) and the layer moduli
     ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
-    ``history`` lists (mesh label, values) of every refinement step; ``converged`` is False when
+    ``history`` lists (mesh label, values) of every refinement step. ``converged`` is True only
+    after a refinement study (``refinement.tol`` set) whose last change fell below the tolerance:
+    False for a single mesh (then ``refined`` is False too: nothing was checked) and when
     refinement stopped at the finest mesh allowed before reaching the tolerance. ``error`` holds
     the one-line message of a failed case (then ``fe`` is empty).
     """
@@ -113,8 +115,14 @@ class CaseResult:
     models: dict[str, dict[str, float]]
     meshes: dict[str, str]
     history: tuple[tuple[str, dict[str, float]], ...] = ()
-    converged: bool = True
+    converged: bool = False
     error: str | None = None
+
+    @property
+    def refined(self) -> bool:
+        """Whether a mesh refinement study ran (``--refine``); without one ``converged`` is
+        False, since a single mesh says nothing about convergence."""
+        return self.case.refinement.tol is not None
 
     def ratio(self, key: str, model: str) -> float:
         """Closed form of ``model`` divided by FE for ``key``."""
@@ -218,8 +226,8 @@ def _refine(
     """Solve on ``mesh`` and, when ``tol`` is set, on ever finer meshes until no value changes by
     ``tol`` or more (relative) between two meshes; every mesh's values go to ``history``.
 
-    Returns the last values, their mesh, and whether the change fell below ``tol`` (False when the
-    next mesh would have been too fine).
+    Returns the last values, their mesh, and whether the change fell below ``tol``: False when the
+    next mesh would have been too fine, and False without ``tol`` (one mesh: nothing checked).
     """
     prev = values(mesh)
     history.append((f"{name} {mesh.label()}", prev))
@@ -233,7 +241,7 @@ def _refine(
         mesh, prev = nxt_mesh, nxt
         if done:
             break
-    return prev, mesh, True
+    return prev, mesh, tol is not None
 
 
 def run_case(case: Case) -> CaseResult:
@@ -244,7 +252,7 @@ def run_case(case: Case) -> CaseResult:
     history: list[tuple[str, dict[str, float]]] = []
     meshes: dict[str, str] = {}
     fe: dict[str, float] = {}
-    converged = True
+    converged = ref.tol is not None  # a single mesh is never "converged"
     try:
         values, am, ok = _refine(
             "assembly",
