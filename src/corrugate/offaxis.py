@@ -103,7 +103,9 @@ def _plate(along: Any, across: Any, shear: Any, theta_deg: float) -> Any:
         return along
     if c2 == 0.0:
         return across
-    return 1.0 / (c2 * c2 / along + s2 * s2 / across + s2 * c2 / shear)
+    # a spring of 0 (every facet cut by a hole) makes its term infinite and the layer's share 0
+    with np.errstate(divide="ignore", over="ignore"):
+        return 1.0 / (c2 * c2 / along + s2 * s2 / across + s2 * c2 / shear)
 
 
 def _max(a: Any, b: Any) -> Any:

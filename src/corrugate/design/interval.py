@@ -119,7 +119,7 @@ class Interval:
     def reciprocal(self) -> Interval:
         """1 / x; the whole real line when the interval contains 0."""
         contains_zero = (self.lo <= 0) & (self.hi >= 0)
-        with np.errstate(divide="ignore", invalid="ignore"):
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             lo = np.where(contains_zero, -_INF, _down(1.0 / self.hi))
             hi = np.where(contains_zero, _INF, _up(1.0 / self.lo))
         return Interval(lo, hi)
