@@ -66,7 +66,7 @@ def table() -> None:
         "directions, 3-point bending on line supports with a frictionless loading line",
         "(docs/fea.md 2.1). D is the 3-point value (it includes the panel's shear",
         "deformation, which the model, a pure-bending stiffness, does not). Mesh series: S8R",
-        "shells, 2, 4, 8 elements per facet (16 too for the case study's K at 15 and 45 deg,",
+        "shells, 2, 4, 8 elements per facet (16 too for K at 15, 45 and 75 deg of some designs,",
         "which shows the order of convergence falling from about 2 to about 1: the",
         "extrapolations from 2 / 4 / 8 alone are likely a few per cent high); the 'FE' column is the estimate of",
         "`estimate()` in `benchmarks/offaxis_table.py` (converged, extrapolated or flagged).",

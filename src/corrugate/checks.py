@@ -135,7 +135,7 @@ def _off_axis(eta_deg: Sequence[float], support: str) -> list[ModelWarning]:
     else:
         text = (
             f"K and D at eta = {angles} deg are the free-panel model (support 'free', "
-            "docs/offaxis.md): against FE coupons K is 0.83-1.15 times the FE (up to 15 % high "
+            "docs/offaxis.md): against FE coupons K is 0.83-1.18 times the FE (up to 18 % high "
             "near 15 and 75 deg) and D is far below it near 45 deg "
             "(docs/validation/off_axis.md): check a part loaded there with corrugate validate --eta"
         )
