@@ -46,7 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError
-from .planar import segments_cross as _segments_cross
+from .planar import crosses_itself
 from .planar import signed_area as _signed_area
 
 __all__ = [
@@ -107,18 +107,13 @@ class Hole:
             raise InputError(
                 "vertices", self.vertices, "a polygon with area", reason="is degenerate"
             )
-        m = len(v)
-        for i in range(m):
-            for j in range(i + 2, m):
-                if i == 0 and j == m - 1:
-                    continue
-                if _segments_cross(v[i], v[(i + 1) % m], v[j], v[(j + 1) % m]):
-                    raise InputError(
-                        "vertices",
-                        self.vertices,
-                        "a simple polygon (edges must not cross)",
-                        reason="crosses itself",
-                    )
+        if crosses_itself(v):
+            raise InputError(
+                "vertices",
+                self.vertices,
+                "a simple polygon (edges must not cross)",
+                reason="crosses itself",
+            )
 
     @property
     def radius(self) -> float:

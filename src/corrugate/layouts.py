@@ -45,7 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError, UnknownNameError
 from .holes import Hole, touched_sums
-from .planar import segments_cross as _segments_cross
+from .planar import crosses_itself
 from .planar import signed_area as _signed_area
 
 __all__ = [
@@ -296,18 +296,13 @@ class Polygon:
         unit = (v - lo) / (hi - lo)
         if _signed_area(unit) < 0:
             unit = unit[::-1].copy()
-        m = len(unit)
-        for i in range(m):
-            for j in range(i + 2, m):
-                if i == 0 and j == m - 1:
-                    continue
-                if _segments_cross(unit[i], unit[(i + 1) % m], unit[j], unit[(j + 1) % m]):
-                    raise InputError(
-                        "vertices",
-                        self.vertices,
-                        "a simple polygon (edges must not cross)",
-                        reason="crosses itself",
-                    )
+        if crosses_itself(unit):
+            raise InputError(
+                "vertices",
+                self.vertices,
+                "a simple polygon (edges must not cross)",
+                reason="crosses itself",
+            )
         object.__setattr__(self, "_unit", unit)
 
     def area_fraction(self) -> float:

@@ -108,15 +108,6 @@ def _plate(along: Any, across: Any, shear: Any, theta_deg: float) -> Any:
         return 1.0 / (c2 * c2 / along + s2 * s2 / across + s2 * c2 / shear)
 
 
-def _max(a: Any, b: Any) -> Any:
-    from .design.interval import Interval
-
-    if isinstance(a, Interval) or isinstance(b, Interval):
-        A, B = Interval.of(a), Interval.of(b)
-        return Interval(np.maximum(A.lo, B.lo), np.maximum(A.hi, B.hi))
-    return np.maximum(a, b)
-
-
 def free_inplane(K_S: Any, K_C: Any, K_T: Any, theta_deg: float) -> Any:
     """K (N/mm) of one free layer loaded at theta (deg) from its creases: plate lower bound."""
     return _plate(K_S, K_C, K_T, theta_deg)
@@ -141,7 +132,7 @@ def free_bending(D_S: Any, D_C: Any, D_T: Any, theta_deg: float) -> Any:
     if f == 0.0:
         return plate
     strip = D_S * (c2 * c2 * f)
-    return _max(plate, strip)
+    return np.maximum(plate, strip)  # intervals too (Interval.maximum)
 
 
 def assembly_directional(

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["segments_cross", "signed_area"]
+__all__ = ["crosses_itself", "segments_cross", "signed_area"]
 
 FloatArray = NDArray[np.float64]
 
@@ -25,3 +25,15 @@ def segments_cross(p1: FloatArray, p2: FloatArray, q1: FloatArray, q2: FloatArra
     d1, d2 = orient(q1, q2, p1), orient(q1, q2, p2)
     d3, d4 = orient(p1, p2, q1), orient(p1, p2, q2)
     return d1 * d2 < 0 and d3 * d4 < 0
+
+
+def crosses_itself(v: FloatArray) -> bool:
+    """Whether two non-adjacent edges of the closed polygon ``v`` (N x 2) cross."""
+    m = len(v)
+    for i in range(m):
+        for j in range(i + 2, m):
+            if i == 0 and j == m - 1:
+                continue
+            if segments_cross(v[i], v[(i + 1) % m], v[j], v[(j + 1) % m]):
+                return True
+    return False

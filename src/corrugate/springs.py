@@ -6,12 +6,9 @@ paper writes j = 1..n, but a layer with n creases has n + 1 facets and only that
     K_C = 1 / sum_j p / (Ecx L_j t)          K_S = sum_j Ecy p t / L_j          [N/mm]
     D_C = 1 / sum_j 12 p / (Ebx L_j t^3)     D_S = sum_j Eby t^3 p / (12 L_j)   [N mm]
 
-Every sum needs only q = sum_j 1/L_j, so a layer is fully described by (moduli, p, t, q). For the
-assembly (section 3.3), with eta measured from layer 1's creases:
-
-    K(eta) = (K_S1 + K_C2) cos^2 eta + (K_S2 + K_C1) sin^2 eta
-    D(eta) = (D_S1 + D_C2) cos^2 eta + (D_S2 + D_C1) sin^2 eta
-    EI(eta) = D(eta) x span(eta)     [N mm^2]
+Every sum needs only q = sum_j 1/L_j, so a layer is fully described by (moduli, p, t, q). The
+assembly along eta (the paper's rule for a panel in a rigid frame, DESIGN.md 3.3, or the free
+panel) is :func:`corrugate.offaxis.assembly_directional`; EI(eta) = D(eta) x span(eta).
 """
 
 from __future__ import annotations
@@ -24,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 from .moduli import Moduli
 from .offaxis import shear_springs
 
-__all__ = ["LayerSprings", "assembly_D", "assembly_K", "layer_springs"]
+__all__ = ["LayerSprings", "layer_springs"]
 
 FloatArray = NDArray[np.float64]
 
@@ -79,18 +76,3 @@ def layer_springs(
             K_T=np.asarray(K_T),
             D_T=np.asarray(D_T),
         )
-
-
-def _directional(a0: FloatArray, a90: FloatArray, eta_deg: ArrayLike) -> FloatArray:
-    e = np.radians(np.asarray(eta_deg, dtype=np.float64))
-    return np.asarray(a0 * np.cos(e) ** 2 + a90 * np.sin(e) ** 2)
-
-
-def assembly_K(s1: LayerSprings, s2: LayerSprings, eta_deg: ArrayLike) -> FloatArray:
-    """In-plane stiffness K(eta) of the assembly (N/mm), paper eq. equivalent_K_eta."""
-    return _directional(s1.K_S + s2.K_C, s2.K_S + s1.K_C, eta_deg)
-
-
-def assembly_D(s1: LayerSprings, s2: LayerSprings, eta_deg: ArrayLike) -> FloatArray:
-    """Bending stiffness D(eta) of the assembly (N mm), paper eq. equivalent_D_eta."""
-    return _directional(s1.D_S + s2.D_C, s2.D_S + s1.D_C, eta_deg)

@@ -7,7 +7,7 @@ unit in the last place (``numpy.nextafter``) so that floating-point rounding can
 too tight.
 
 It supports what the moduli variants of :mod:`corrugate.moduli` use (``+ - * /``, integer powers,
-``np.sin``, ``np.cos``, ``np.sqrt``, ``np.abs``), so the functions of
+``np.sin``, ``np.cos``, ``np.sqrt``, ``np.abs``, ``np.maximum``), so the functions of
 :func:`corrugate.moduli.get_model` can be called with interval arguments unchanged: the solver
 bounds the very formulas that :func:`corrugate.analysis.evaluate` computes, not a copy of them.
 """
@@ -149,6 +149,11 @@ class Interval:
         hi = np.maximum(np.abs(self.lo), np.abs(self.hi))
         return Interval(lo, hi)
 
+    def maximum(self, other: Interval | ArrayLike) -> Interval:
+        """max(x, y): monotone in both, so the bounds are the endpoints' maxima (exact)."""
+        o = Interval.of(other)
+        return Interval(np.maximum(self.lo, o.lo), np.maximum(self.hi, o.hi))
+
     def sqrt(self) -> Interval:
         return Interval(_down(np.sqrt(np.maximum(self.lo, 0.0))), _up(np.sqrt(self.hi)))
 
@@ -182,6 +187,7 @@ class Interval:
         np.cos: "cos",
         np.sqrt: "sqrt",
         np.absolute: "abs",
+        np.maximum: "max",
     }
 
     def __array_ufunc__(self, ufunc: Any, method: str, *inputs: Any, **kwargs: Any) -> Any:
@@ -206,4 +212,6 @@ class Interval:
             return x - y
         if name == "mul":
             return x * y
+        if name == "max":
+            return x.maximum(y)
         return x / y

@@ -32,13 +32,13 @@ from ..pattern.model import Point, Role
 from ..pattern.sheets import Sheet, place
 from .labels import label_outlines, label_spot
 from .machines import OPERATIONS, Family, Machine, get_machine
+from .svg import svg_number, svg_root, svg_text
 
 if TYPE_CHECKING:
     from ezdxf.document import Drawing
 
 __all__ = ["CutPath", "cut_dxf_document", "cut_paths", "cut_svg_document", "write_cut_files"]
 
-SVG_NS = "http://www.w3.org/2000/svg"
 INKSCAPE_NS = "http://www.inkscape.org/namespaces/inkscape"
 
 
@@ -89,11 +89,6 @@ def cut_paths(sheet: Sheet, style: LineStyle = SOLID, *, labels: bool = False) -
     return sorted(paths, key=lambda p: order.index(p.operation))
 
 
-def _num(x: float) -> str:
-    s = f"{x:.4f}".rstrip("0").rstrip(".")
-    return "0" if s in ("-0", "") else s
-
-
 def cut_svg_document(
     sheet: Sheet,
     machine: str | Machine,
@@ -106,16 +101,7 @@ def cut_svg_document(
     paths = cut_paths(sheet, style, labels=labels)
     W, H = sheet.width, sheet.height
     ET.register_namespace("inkscape", INKSCAPE_NS)
-    root = ET.Element(
-        "svg",
-        {
-            "xmlns": SVG_NS,
-            "version": "1.1",
-            "width": f"{_num(W)}mm",
-            "height": f"{_num(H)}mm",
-            "viewBox": f"0 0 {_num(W)} {_num(H)}",
-        },
-    )
+    root = svg_root(W, H)
     ET.SubElement(root, "title").text = f"corrugate cut file, {m.cutter.description}"
     for op in OPERATIONS.values():
         mine = [p for p in paths if p.operation == op.name]
@@ -130,19 +116,18 @@ def cut_svg_document(
                 f"{{{INKSCAPE_NS}}}groupmode": "layer",
                 "fill": "none",
                 "stroke": op.colour,
-                "stroke-width": _num(m.stroke_mm),
+                "stroke-width": svg_number(m.stroke_mm),
                 "stroke-linecap": "butt",
                 "stroke-linejoin": "miter",
             },
         )
         for p in mine:
             d = " ".join(
-                f"{'M' if k == 0 else 'L'}{_num(x)} {_num(H - y)}"
+                f"{'M' if k == 0 else 'L'}{svg_number(x)} {svg_number(H - y)}"
                 for k, (x, y) in enumerate(p.points)
             )
             ET.SubElement(g, "path", {"d": d + (" Z" if p.closed else ""), "data-part": p.part})
-    ET.indent(root)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    return svg_text(root)
 
 
 def cut_dxf_document(

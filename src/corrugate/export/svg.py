@@ -50,6 +50,9 @@ __all__ = [
     "STROKE_MM",
     "fold_opacity",
     "svg_document",
+    "svg_number",
+    "svg_root",
+    "svg_text",
     "write_svg",
 ]
 
@@ -69,9 +72,30 @@ ANNOTATION = "#808080"
 STROKE_MM = 0.25
 
 
-def _num(x: float) -> str:
+def svg_number(x: float) -> str:
+    """A length (mm) as SVG text: at most 4 decimals, no trailing zeros, never '-0'."""
     s = f"{x:.4f}".rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
+
+
+def svg_root(width: float, height: float) -> ET.Element:
+    """An ``<svg>`` element of ``width`` x ``height`` mm whose user unit is 1 mm."""
+    return ET.Element(
+        "svg",
+        {
+            "xmlns": SVG_NS,
+            "version": "1.1",
+            "width": f"{svg_number(width)}mm",
+            "height": f"{svg_number(height)}mm",
+            "viewBox": f"0 0 {svg_number(width)} {svg_number(height)}",
+        },
+    )
+
+
+def svg_text(root: ET.Element) -> str:
+    """The document text of ``root``: XML declaration, indented, ending in a newline."""
+    ET.indent(root)
+    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
 
 
 def fold_opacity(fold_angle_deg: float) -> float:
@@ -80,7 +104,7 @@ def fold_opacity(fold_angle_deg: float) -> float:
 
 
 def _points(ring: tuple[Point, ...], height: float) -> str:
-    return " ".join(f"{_num(x)},{_num(height - y)}" for x, y in ring)
+    return " ".join(f"{svg_number(x)},{svg_number(height - y)}" for x, y in ring)
 
 
 def svg_document(
@@ -95,19 +119,10 @@ def svg_document(
     """The SVG text of one sheet (see the module docstring for the conventions)."""
     check_style((p.part for p in sheet.placements), style)
     W, H = sheet.width, sheet.height
-    root = ET.Element(
-        "svg",
-        {
-            "xmlns": SVG_NS,
-            "version": "1.1",
-            "width": f"{_num(W)}mm",
-            "height": f"{_num(H)}mm",
-            "viewBox": f"0 0 {_num(W)} {_num(H)}",
-        },
-    )
+    root = svg_root(W, H)
     if title:
         ET.SubElement(root, "title").text = title
-    common = {"fill": "none", "stroke-width": _num(STROKE_MM), "stroke-linecap": "butt"}
+    common = {"fill": "none", "stroke-width": svg_number(STROKE_MM), "stroke-linecap": "butt"}
     text_group = ET.Element("g", {"id": "labels"})
     for j, placement in enumerate(sheet.placements):
         placed = place(placement)
@@ -146,10 +161,10 @@ def svg_document(
             if ln.role is Role.MARK and not marks:
                 continue
             attrs = {
-                "x1": _num(ln.a[0]),
-                "y1": _num(H - ln.a[1]),
-                "x2": _num(ln.b[0]),
-                "y2": _num(H - ln.b[1]),
+                "x1": svg_number(ln.a[0]),
+                "y1": svg_number(H - ln.a[1]),
+                "x2": svg_number(ln.b[0]),
+                "y2": svg_number(H - ln.b[1]),
                 "stroke": COLOURS[ln.role],
                 **common,
             }
@@ -157,7 +172,7 @@ def svg_document(
                 number += 1
                 attrs["class"] = f"crease {ln.role.value}"
                 attrs["data-crease"] = f"{part.name}:{number}"
-                attrs["data-fold-angle"] = _num(ln.fold_angle_deg)
+                attrs["data-fold-angle"] = svg_number(ln.fold_angle_deg)
                 attrs["opacity"] = f"{fold_opacity(ln.fold_angle_deg):.6g}"
                 attrs["data-style"] = style.kind.value
             else:
@@ -171,12 +186,12 @@ def svg_document(
             if spot.size < MIN_TEXT_MM:  # too small to read: the part's name only
                 text = prefix + part.name
                 spot = label_spot(placed, text)
-            x, y = _num(spot.x), _num(H - spot.y)
+            x, y = svg_number(spot.x), svg_number(H - spot.y)
             t_attrs = {
                 "x": x,
                 "y": y,
-                "font-size": _num(spot.size),
-                "textLength": _num(spot.length),
+                "font-size": svg_number(spot.size),
+                "textLength": svg_number(spot.length),
                 "lengthAdjust": "spacingAndGlyphs",
                 "font-family": "sans-serif",
                 "text-anchor": "middle",
@@ -186,12 +201,11 @@ def svg_document(
                 "data-part": part.name,
             }
             if spot.rotation:
-                t_attrs["transform"] = f"rotate({_num(-spot.rotation)} {x} {y})"
+                t_attrs["transform"] = f"rotate({svg_number(-spot.rotation)} {x} {y})"
             ET.SubElement(text_group, "text", t_attrs).text = text
     if labels:
         root.append(text_group)
-    ET.indent(root)
-    return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="unicode") + "\n"
+    return svg_text(root)
 
 
 def write_svg(
