@@ -1,0 +1,142 @@
+"""A homogenised Kirchhoff plate in the FE coupons' 3-point test, against those coupons.
+
+    python benchmarks/plate_offaxis.py [M ...]      # default 8 16 32 (elements per half span)
+
+An experiment towards a free-panel D(eta) model (issue: off-axis stiffness). Each layer is a
+homogenised orthotropic Kirchhoff plate with its own springs as rigidities (a square coupon:
+D_11 = D_S along the creases, D_22 = D_C across, D_66 = D_T twisting, D_12 = 0), rotated to
+theta from the span. The fixture is the FE coupon's (docs/fea.md 2.1): w = 0 on the two end edges,
+w = delta on the mid-span line (a rigid loading line), the sides free; the layers unconnected,
+their forces added. D = P span^2 / (48 delta), as the FE reports it. Discretisation: conforming
+bicubic Hermite (Bogner-Fox-Schmit) elements on a uniform 2M x 2M grid, so the supports and the
+loading line are exact linear constraints; the energy converges from above (displacement method)
+with order about 1 (a corner singularity), extrapolated with the observed order.
+
+Findings (run 2026-11-29, see the closing note of the off-axis issue): the plate reproduces the FE
+at 15 deg for the case study but is about 2x the FE at 45 deg and 1.2x at 15 deg for alpha = 40:
+the missing compliance is the corrugated layer's transverse shear (the FE's 3-point D is 0.72-0.89
+of the plate's at eta = 0 for the same reason). A Reissner-Mindlin plate with the layers'
+transverse shear stiffnesses is the next step; this Kirchhoff plate is *not* a model to ship.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spl
+
+from corrugate import analyze
+from fea_offaxis import designs
+from offaxis_table import _load, estimate
+
+
+def hermite_1d(nodes: np.ndarray) -> dict[tuple[int, int], sp.csr_matrix]:
+    """1-D cubic Hermite matrices A[a, b] = integral of d^a N_i d^b N_j (dofs: value, slope)."""
+    nd = 2 * len(nodes)
+    g, wg = np.polynomial.legendre.leggauss(4)
+    s = (g + 1) / 2
+    rows, cols = [], []
+    vals: dict[tuple[int, int], list[np.ndarray]] = {(a, b): [] for a in range(3) for b in range(3)}
+    for e in range(len(nodes) - 1):
+        h = nodes[e + 1] - nodes[e]
+        w = wg / 2 * h
+        n0 = np.array(
+            [
+                1 - 3 * s**2 + 2 * s**3,
+                h * (s - 2 * s**2 + s**3),
+                3 * s**2 - 2 * s**3,
+                h * (s**3 - s**2),
+            ]
+        )
+        n1 = (
+            np.array(
+                [
+                    6 * s**2 - 6 * s,
+                    h * (1 - 4 * s + 3 * s**2),
+                    6 * s - 6 * s**2,
+                    h * (3 * s**2 - 2 * s),
+                ]
+            )
+            / h
+        )
+        n2 = np.array([12 * s - 6, h * (6 * s - 4), 6 - 12 * s, h * (6 * s - 2)]) / h**2
+        d = (n0, n1, n2)
+        idx = np.arange(2 * e, 2 * e + 4)
+        rows.append(np.repeat(idx, 4))
+        cols.append(np.tile(idx, 4))
+        for a, b in vals:
+            vals[a, b].append(((d[a] * w) @ d[b].T).ravel())
+    r, c = np.concatenate(rows), np.concatenate(cols)
+    return {k: sp.csr_matrix((np.concatenate(v), (r, c)), shape=(nd, nd)) for k, v in vals.items()}
+
+
+def rotated(d1: float, d2: float, d66: float, phi_deg: float) -> tuple[float, ...]:
+    """D11, D22, D12, D66, D16, D26 of an orthotropic plate (D12 = 0) whose axis 1 is at phi
+    from x (the classical lamination transformation)."""
+    m, n = math.cos(math.radians(phi_deg)), math.sin(math.radians(phi_deg))
+    return (
+        d1 * m**4 + 4 * d66 * m * m * n * n + d2 * n**4,
+        d1 * n**4 + 4 * d66 * m * m * n * n + d2 * m**4,
+        (d1 + d2 - 4 * d66) * m * m * n * n,
+        (d1 + d2 - 2 * d66) * m * m * n * n + d66 * (m**4 + n**4),
+        (d1 - 2 * d66) * m**3 * n - (d2 - 2 * d66) * m * n**3,
+        (d1 - 2 * d66) * m * n**3 - (d2 - 2 * d66) * m**3 * n,
+    )
+
+
+def three_point(d1: float, d2: float, d66: float, theta_deg: float, m: int) -> float:
+    """D (N mm) of a square plate (span along y, axis 1 at theta from y) in 3-point bending."""
+    grid = np.linspace(0.0, 1.0, 2 * m + 1)
+    a = hermite_1d(grid)
+    nd = len(a[0, 0].toarray())
+    d11, d22, d12, d66_, d16, d26 = rotated(d1, d2, d66, 90.0 - theta_deg)
+    k = sp.kron
+    K = (
+        d11 * k(a[2, 2], a[0, 0])
+        + d12 * (k(a[2, 0], a[0, 2]) + k(a[0, 2], a[2, 0]))
+        + d22 * k(a[0, 0], a[2, 2])
+        + 4 * d66_ * k(a[1, 1], a[1, 1])
+        + 2 * d16 * (k(a[2, 1], a[0, 1]) + k(a[1, 2], a[1, 0]))
+        + 2 * d26 * (k(a[0, 1], a[2, 1]) + k(a[1, 0], a[1, 2]))
+    ).tocsr()
+    u = np.zeros(nd * nd)
+    fixed = np.zeros(nd * nd, dtype=bool)
+    for node, value in ((0, 0.0), (m, 1.0), (2 * m, 0.0)):  # w on the lines y = 0, 1/2, 1
+        idx = np.arange(nd) * nd + 2 * node
+        fixed[idx] = True
+        u[idx] = np.where(np.arange(nd) % 2 == 0, value, 0.0)  # w = value, dw/dx = 0 along x
+    free = ~fixed
+    u[free] = spl.spsolve(K[free][:, free].tocsc(), -(K[free][:, fixed] @ u[fixed]))
+    return float(u @ (K @ u)) / 48.0  # P = 2 U / delta, D = P L^2 / 48 (L = 1, delta = 1)
+
+
+def main(ms: tuple[int, ...]) -> None:
+    fe = _load()
+    for name, asm in designs().items():
+        s1, s2 = analyze(asm).springs
+        for eta in (15.0, 30.0, 45.0, 60.0, 75.0):
+            t0 = time.perf_counter()
+            series = {
+                m: sum(
+                    three_point(float(s.D_S), float(s.D_C), float(s.D_T), th, m)
+                    for s, th in ((s1, eta), (s2, eta - 90.0))
+                )
+                for m in ms
+            }
+            plate, how = estimate(series)
+            key = (name, eta if (name, eta, "bending") in fe else 90.0 - eta, "bending")
+            ref, _ = estimate(fe[key])
+            print(
+                f"{name[:24]:24s} eta {eta:4.0f}  plate {' / '.join(f'{v:.4g}' for v in series.values())}"
+                f" -> {plate:.4g} ({how})  FE {ref:.4g}  plate/FE {plate / ref:.3f}"
+                f"  {time.perf_counter() - t0:.1f} s",
+                flush=True,
+            )
+
+
+if __name__ == "__main__":
+    main(tuple(int(v) for v in sys.argv[1:]) or (8, 16, 32))
