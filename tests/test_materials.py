@@ -142,3 +142,11 @@ def test_facet_buckling_bounds_by_hand() -> None:
     assert analyze(Assembly.identical(Layer(8.0, 8, 84.0, m, 0.125), Circle())).buckling == ()
     with pytest.raises(InputError, match="layout = circle"):
         facet_buckling_load(Assembly.identical(Layer(8.0, 8, 84.0, m, 0.125), Circle()))
+
+
+def test_repr_is_one_short_line_with_units() -> None:
+    m = get_material("dura-lar")
+    text = repr(m)
+    assert "\n" not in text and len(text) < 100
+    assert text.startswith("Material('dura-lar'") and "2700 MPa" in text
+    assert m.source not in text  # the source text is in as_dict, not the repr

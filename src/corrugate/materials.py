@@ -39,6 +39,13 @@ class Material:
     category: str = "custom"
     source: str = "defined by the user"
 
+    def __repr__(self) -> str:
+        """One short line (the source text is in :meth:`as_dict`)."""
+        return (
+            f"Material({self.id!r}, E={self.E:g} MPa, nu={self.nu:g}, "
+            f"density={self.density_g_cm3:.4g} g/cm^3)"
+        )
+
     @property
     def density_g_cm3(self) -> float:
         """Density in g/cm^3."""
