@@ -196,6 +196,17 @@ class Analysis:
     mass: MassBreakdown
     warnings: tuple[ModelWarning, ...]
 
+    def __repr__(self) -> str:
+        """Five lines at most (:func:`corrugate.display.analysis_repr`)."""
+        from .display import analysis_repr
+
+        return analysis_repr(self)
+
+    def _repr_html_(self) -> str:
+        from .display import analysis_html
+
+        return analysis_html(self)
+
     @property
     def buckling(self) -> tuple[BucklingEstimate, ...]:
         """Bounds (N) on the in-plane compressive load along 0 and 90 deg at which the end

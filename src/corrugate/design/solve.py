@@ -148,6 +148,17 @@ class Solution:
     diagnosis: tuple[Diagnosis, ...] = ()
     stats: dict[str, float] = field(default_factory=dict)
 
+    def __repr__(self) -> str:
+        """Five lines at most (:func:`corrugate.display.solution_repr`)."""
+        from ..display import solution_repr
+
+        return solution_repr(self)
+
+    def _repr_html_(self) -> str:
+        from ..display import solution_html
+
+        return solution_html(self)
+
     @property
     def mass(self) -> float | None:
         return None if self.analysis is None else self.analysis.mass.total
