@@ -373,20 +373,151 @@ function syncDesignVisibility() {
   for (const el of designForm.querySelectorAll('[data-fold]')) {
     el.hidden = $('d-fold-style').value !== el.dataset.fold;
   }
+  for (const el of designForm.querySelectorAll('[data-cutter]')) {
+    el.hidden = $('d-cutter').value !== el.dataset.cutter;
+  }
+  $('d-objective-eta').hidden = $('d-objective').value.startsWith('minimize');
+  renumberRequirements();
 }
+
+// ---- requirement rows: any number of EI, D, K and buckling bounds -------------------------
+
+// Give each row's inputs the spec path of their place: the k-th row of a kind is
+// constraints.<kind>[k]; field errors from the server then land on the right row.
+function renumberRequirements() {
+  const counts = {};
+  const rows = [...$('d-req-rows').querySelectorAll('.req')];
+  rows.forEach((row, i) => {
+    const kind = row.querySelector('.req-kind').value;
+    const min = row.querySelector('.req-min');
+    const used = min.value.trim() !== '';
+    const k = used ? (counts[kind] = (counts[kind] ?? -1) + 1) : null;
+    const base = used ? `constraints.${kind}[${k}]` : null;
+    const support = row.querySelector('.req-support');
+    support.hidden = kind === 'buckling_load';  // a buckling bound has no support condition
+    for (const [el, key] of [[min, 'min'], [row.querySelector('.req-eta'), 'eta'], [support, 'support']]) {
+      if (base && !(key === 'support' && support.hidden)) el.dataset.path = `${base}.${key}`;
+      else delete el.dataset.path;
+    }
+    const n = i + 1;
+    row.querySelector('.req-kind').setAttribute('aria-label', `requirement ${n}: quantity`);
+    min.setAttribute('aria-label', `requirement ${n}: least value`);
+    row.querySelector('.req-eta').setAttribute('aria-label', `requirement ${n}: direction eta (deg)`);
+    support.setAttribute('aria-label', `requirement ${n}: support`);
+    row.querySelector('.req-remove').setAttribute('aria-label', `remove requirement ${n}`);
+  });
+}
+
+function addRequirement(kind = 'flexural_rigidity', min = '', eta = '0 deg', support = '') {
+  const rows = $('d-req-rows');
+  const row = rows.querySelector('.req').cloneNode(true);
+  for (const el of row.querySelectorAll('[id]')) el.removeAttribute('id');
+  for (const el of row.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
+  row.querySelector('.error').textContent = '';
+  row.querySelector('.req-kind').value = kind;
+  row.querySelector('.req-min').value = min;
+  row.querySelector('.req-eta').value = eta;
+  row.querySelector('.req-support').value = support;
+  rows.appendChild(row);
+  renumberRequirements();
+  return row;
+}
+
+$('d-req-rows').addEventListener('click', (event) => {
+  const button = event.target.closest('.req-remove');
+  if (!button) return;
+  const row = button.closest('.req');
+  if ($('d-req-rows').querySelectorAll('.req').length > 1) row.remove();
+  else for (const el of row.querySelectorAll('input')) el.value = '';
+  renumberRequirements();
+});
+$('d-req-rows').addEventListener('input', renumberRequirements);
+$('d-req-rows').addEventListener('change', renumberRequirements);
+$('d-add-req').addEventListener('click', () => addRequirement().querySelector('.req-min').focus());
 
 // The spec (the keys of the TOML file) and the output options, from the visible fields.
 function designBody() {
-  const body = { objective: { minimize: 'mass' } };
+  renumberRequirements();
+  const body = {};
   for (const el of designForm.querySelectorAll('[data-path]')) {
-    if (el.closest('[hidden]')) continue;
+    if (el.closest('[hidden]') || el.hidden) continue;
     const value = el.value.trim();
     if (value === '') continue;
     if (el.dataset.requires && $(el.dataset.requires).value.trim() === '') continue;
     const kinds = { vertices, holes };
     setPath(body, el.dataset.path, kinds[el.dataset.kind] ? kinds[el.dataset.kind](value) : value);
   }
+  const [sense, what] = $('d-objective').value.split(':');
+  body.objective = { ...(body.objective || {}), [sense]: what };
+  if (sense === 'minimize') delete body.objective.eta;
+  const more = $('d-more-materials').value.split(/[\s,;]+/).filter((x) => x !== '');
+  if (more.length && body.material) {
+    const { name, ...rest } = body.material;
+    const names = [name || $('d-material').value, ...more.filter((x) => x !== name)];
+    body.materials = names.map((n) => ({ name: n, ...rest }));
+    delete body.material;
+  }
+  if (body.cutter === 'laser') body.cutter = `laser:${$('d-laser-bed').value.trim().replace(/\s+/g, '')}`;
   return body;
+}
+
+window.designBodyForTests = designBody;  // the browser tests compare it with what was posted
+
+// The form from a spec (the inverse of designBody), e.g. one shared in the page's URL.
+function fillDesign(spec) {
+  const setField = (path, value) => {
+    const el = designForm.querySelector(`[data-path="${path}"]`);
+    if (el && value !== undefined && value !== null) el.value = Array.isArray(value) ? value.join(', ') : String(value);
+  };
+  const walk = (obj, prefix) => {
+    for (const [key, value] of Object.entries(obj)) {
+      const path = prefix ? `${prefix}.${key}` : key;
+      if (value && typeof value === 'object' && !Array.isArray(value)) walk(value, path);
+      else if (!['constraints.flexural_rigidity', 'constraints.bending_stiffness',
+        'constraints.inplane_stiffness', 'constraints.buckling_load', 'layout.holes',
+        'layout.vertices'].includes(path)) setField(path, value);
+    }
+  };
+  walk(spec, '');
+  if (spec.layout && spec.layout.holes) {
+    $('d-holes').value = spec.layout.holes.map((h) => `${h.diameter}@${(h.center || [0, 0]).join(',')}`).join('; ');
+  }
+  if (spec.layout && spec.layout.vertices) $('d-vertices').value = spec.layout.vertices.map((v) => v.join(',')).join(' ');
+  const rows = $('d-req-rows');
+  const keep = rows.querySelector('.req');
+  for (const row of [...rows.querySelectorAll('.req')].slice(1)) row.remove();
+  for (const el of keep.querySelectorAll('input')) el.value = '';
+  let first = true;
+  const c = spec.constraints || {};
+  for (const kind of ['flexural_rigidity', 'bending_stiffness', 'inplane_stiffness', 'buckling_load']) {
+    for (const b of c[kind] || []) {
+      const row = first ? keep : addRequirement();
+      first = false;
+      row.querySelector('.req-kind').value = kind;
+      row.querySelector('.req-min').value = String(b.min ?? '');
+      row.querySelector('.req-eta').value = String(b.eta ?? '0 deg');
+      row.querySelector('.req-support').value = b.support || '';
+    }
+  }
+  const o = spec.objective || {};
+  $('d-objective').value = o.maximize ? `maximize:${o.maximize}` : 'minimize:mass';
+  if (spec.materials && spec.materials.length) {
+    $('d-material').value = spec.materials[0].name;
+    $('d-more-materials').value = spec.materials.slice(1).map((m) => m.name).join(', ');
+    setField('material.thickness', spec.materials[0].thickness);
+  }
+  if (typeof spec.cutter === 'string' && spec.cutter.startsWith('laser:')) {
+    $('d-cutter').value = 'laser';
+    $('d-laser-bed').value = spec.cutter.slice(6);
+  }
+  syncDesignVisibility();
+}
+
+// The spec in the page's URL (#design?spec=...), so that a design can be shared as a link.
+function specFromURL() {
+  const m = location.hash.match(/^#design\?spec=(.*)$/);
+  if (!m) return null;
+  try { return JSON.parse(decodeURIComponent(m[1])); } catch { return null; }
 }
 
 // The field of a spec path (`constraints.side.min`), or of its closest parent with a field.
@@ -565,7 +696,9 @@ async function submitDesign(event) {
   $('d-status').textContent = 'designing...';
   designForm.dataset.state = 'busy';
   try {
-    const answer = await postJSON('/api/design', designBody());
+    const body = designBody();
+    history.replaceState(null, '', `#design?spec=${encodeURIComponent(JSON.stringify(body))}`);
+    const answer = await postJSON('/api/design', body);
     if (mine !== designGeneration) return;
     if (!answer.ok) {
       showDesignErrors(answer.payload, answer.status);
@@ -597,12 +730,12 @@ function selectTab(name) {
     tab.setAttribute('aria-selected', String(on));
     $(tab.getAttribute('aria-controls')).hidden = !on;
   }
-  if (location.hash !== `#${name}`) history.replaceState(null, '', `#${name}`);
+  if (!location.hash.startsWith(`#${name}`)) history.replaceState(null, '', `#${name}`);
 }
 
 $('tab-analyze').addEventListener('click', () => selectTab('analyze'));
 $('tab-design').addEventListener('click', () => selectTab('design'));
-if (location.hash === '#design') selectTab('design');
+if (location.hash.startsWith('#design')) selectTab('design');
 
 form.addEventListener('submit', submit);
 $('material').addEventListener('change', syncVisibility);
@@ -610,6 +743,12 @@ $('layout').addEventListener('change', syncVisibility);
 designForm.addEventListener('submit', submitDesign);
 $('d-layout').addEventListener('change', syncDesignVisibility);
 $('d-fold-style').addEventListener('change', syncDesignVisibility);
+$('d-cutter').addEventListener('change', syncDesignVisibility);
+$('d-objective').addEventListener('change', syncDesignVisibility);
 syncVisibility();
 syncDesignVisibility();
-loadMaterials().then(syncVisibility);
+loadMaterials().then(() => {
+  syncVisibility();
+  const shared = specFromURL();
+  if (shared) fillDesign(shared);
+});
