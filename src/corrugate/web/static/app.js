@@ -435,6 +435,17 @@ $('d-req-rows').addEventListener('input', renumberRequirements);
 $('d-req-rows').addEventListener('change', renumberRequirements);
 $('d-add-req').addEventListener('click', () => addRequirement().querySelector('.req-min').focus());
 
+// The unit each requirement row's label shows; a plain number typed there is in that unit.
+const REQUIREMENT_UNITS = {
+  flexural_rigidity: 'mN*m^2', bending_stiffness: 'N*mm', inplane_stiffness: 'N/mm', buckling_load: 'N',
+};
+
+function withRowUnit(el, value) {
+  const row = el.closest('.req');
+  if (!row || !el.classList.contains('req-min') || !/^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(value)) return value;
+  return `${value} ${REQUIREMENT_UNITS[row.querySelector('.req-kind').value]}`;
+}
+
 // The spec (the keys of the TOML file) and the output options, from the visible fields.
 function designBody() {
   renumberRequirements();
@@ -445,7 +456,7 @@ function designBody() {
     if (value === '') continue;
     if (el.dataset.requires && $(el.dataset.requires).value.trim() === '') continue;
     const kinds = { vertices, holes };
-    setPath(body, el.dataset.path, kinds[el.dataset.kind] ? kinds[el.dataset.kind](value) : value);
+    setPath(body, el.dataset.path, kinds[el.dataset.kind] ? kinds[el.dataset.kind](value) : withRowUnit(el, value));
   }
   const [sense, what] = $('d-objective').value.split(':');
   body.objective = { ...(body.objective || {}), [sense]: what };
