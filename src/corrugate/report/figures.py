@@ -27,6 +27,8 @@ __all__ = ["design_space_figure", "mass_by_n_figure", "polar_figure"]
 FloatArray = NDArray[np.float64]
 #: Grid used across W and alpha when a variable is continuous (or its grid is finer).
 GRID = 161
+#: Design points evaluated per call of the model when the figures scan a range of n.
+BATCH_POINTS = 100_000
 
 
 def _axis(lo: float, hi: float, step: float | None) -> FloatArray:
@@ -131,14 +133,18 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     tables = Tables(problem)
     ns = np.arange(problem.n_lo, min(problem.n_hi, problem.n_lo + n_max - 1) + 1)
     best = np.full(len(ns), np.nan)
-    for i, n in enumerate(ns):
-        x = _points(problem, a, np.full(W1.size, float(n)), W1, A1)
+    # several n per evaluation (one call per n spends most of its time outside numpy's loops)
+    per_call = max(1, BATCH_POINTS // W1.size)
+    for start in range(0, len(ns), per_call):
+        chunk = ns[start : start + per_call]
+        n1 = np.repeat(chunk.astype(float), W1.size)
+        x = _points(problem, a, n1, np.tile(W1, len(chunk)), np.tile(A1, len(chunk)))
         values = point_values(problem, *_candidates(a), x, tables)
-        ok = np.ones(W1.size, dtype=bool)
+        ok = np.ones(n1.size, dtype=bool)
         for c in problem.constraints:
             ok &= c.satisfied(values[c.quantity])
-        if ok.any():
-            best[i] = float(values["mass"][ok].min())
+        mass = np.where(ok, values["mass"], np.inf).reshape(len(chunk), W1.size).min(axis=1)
+        best[start : start + len(chunk)] = np.where(np.isfinite(mass), mass, np.nan)
     fig = new_figure((7.5, 4.0), dpi=100)
     ax = fig.subplots()
     ax.plot(ns, best, marker="o", markersize=3, linewidth=1)
