@@ -742,3 +742,28 @@ def test_flange_band_is_glued_only_on_its_flanges(ccx: str) -> None:
     low = 2 * E * t * a.thickness / a.Ly
     high = 2 * E * t * (a.thickness + 2 * 1.5 * g) / (a.Ly * (1 - nu**2))
     assert bare <= band and 0.99 * low <= band - bare <= high
+
+
+def test_sweep_plot_is_written_without_pyplot(tmp_path: Path) -> None:
+    """The sweep figure (object API, no pyplot) is a PNG of the size asked for, one column per
+    swept parameter; FE values here are the refined model's own, which needs no solver."""
+    import struct
+
+    from corrugate.fea.plots import plot_sweep
+    from corrugate.fea.sweep import paper_cases
+    from corrugate.fea.validation import CaseResult
+
+    results = []
+    for case in paper_cases(unit_cell=False):
+        s = analyze(case.assembly, "refined", [0.0]).stiffness[0]
+        fe = {"K_N_per_mm@0": s.K, "D_Nmm@0": s.D}
+        results.append(CaseResult(case, fe, {}, {}))
+    groups = {r.case.group for r in results}
+    path = plot_sweep(results, tmp_path / "sweep.png")
+    png = path.read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = struct.unpack(">II", png[16:24])
+    assert (width, height) == (round(4.2 * len(groups) * 130), round(6.4 * 130))
+    assert "matplotlib.pyplot" not in sys.modules or not any(
+        getattr(sys.modules["matplotlib.pyplot"], "get_fignums", list)()
+    )

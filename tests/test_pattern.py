@@ -191,3 +191,42 @@ def test_assembly_instructions(tmp_path: Path) -> None:
     width, height = int.from_bytes(png[16:20], "big"), int.from_bytes(png[20:24], "big")
     assert width > 600
     assert height > 400
+
+
+def test_mesh_files_are_the_folded_triangles_as_trimesh_reads_them(tmp_path: Path) -> None:
+    """GLB and STL are written without a mesh library: trimesh (an independent reader) gets back
+    every triangle of :func:`folded_mesh` in order (float32), the STL normals are trimesh's own of
+    the float64 triangles,
+    and a GLB container whose chunks are aligned and whose declared lengths are the file's."""
+    import json
+    import struct
+
+    import trimesh
+
+    from corrugate.pattern.folded import folded_mesh
+
+    a = Assembly.identical(Layer(8, 8, 84, DURALAR), make_layout("circle"))
+    pattern = build_pattern(a)
+    write_mesh(a, pattern, tmp_path)
+    vertices, faces = folded_mesh(a, pattern.parts)
+    expected = vertices.astype(np.float32)[faces]
+    for name in ("assembly.glb", "assembly.stl"):
+        mesh = trimesh.load(tmp_path / name, force="mesh", process=False)
+        assert np.asarray(mesh.triangles) == pytest.approx(expected, abs=1e-6), name
+    stored = np.frombuffer((tmp_path / "assembly.stl").read_bytes()[84:], dtype=np.uint8)
+    records = stored.reshape(len(faces), 50)
+    normals = records[:, :12].copy().view("<f4").reshape(-1, 3)
+    reference, valid = trimesh.triangles.normals(vertices[faces])
+    assert valid.all()
+    assert normals == pytest.approx(reference, abs=1e-6)
+    glb = (tmp_path / "assembly.glb").read_bytes()
+    magic, version, total = struct.unpack("<4sII", glb[:12])
+    assert (magic, version, total) == (b"glTF", 2, len(glb))
+    json_len, json_type = struct.unpack("<I4s", glb[12:20])
+    assert json_type == b"JSON" and json_len % 4 == 0
+    doc = json.loads(glb[20 : 20 + json_len])
+    bin_len, bin_type = struct.unpack("<I4s", glb[20 + json_len : 28 + json_len])
+    assert bin_type == b"BIN\x00" and 28 + json_len + bin_len == len(glb)
+    position = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]
+    assert position["min"] == pytest.approx(vertices.min(axis=0).tolist(), rel=1e-6)
+    assert position["max"] == pytest.approx(vertices.max(axis=0).tolist(), rel=1e-6)

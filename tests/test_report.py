@@ -78,6 +78,51 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     )
 
 
+def test_each_figure_is_drawn_once(
+    solution: Solution, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The report beside the files shows the figures the files step drew: each sheet figure and
+    the assembly figure is built once, ``assembly.png`` is embedded byte for byte, and pyplot is
+    never used (figures on their own canvases, so threads can draw in parallel)."""
+    import sys
+
+    from corrugate import outputs
+    from corrugate.export import pdf
+    from corrugate.pattern import instructions
+
+    assert solution.analysis is not None
+    calls = {"sheet": 0, "assembly": 0}
+    sheet_figure, instructions_figure = pdf.sheet_figure, instructions.instructions_figure
+
+    def count_sheet(*args: object, **kwargs: object) -> object:
+        calls["sheet"] += 1
+        return sheet_figure(*args, **kwargs)  # type: ignore[arg-type]
+
+    def count_assembly(*args: object, **kwargs: object) -> object:
+        calls["assembly"] += 1
+        return instructions_figure(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(pdf, "sheet_figure", count_sheet)
+    monkeypatch.setattr(outputs, "sheet_figure", count_sheet)
+    monkeypatch.setattr(instructions, "instructions_figure", count_assembly)
+    spec_text = BLIMP.read_text()
+    out = tmp_path / "out"
+    options = outputs.OutputOptions(cutter="laser:130x80")
+    outputs.write_design_files(
+        solution.analysis, out, options, report=lambda cut: report_html(solution, spec_text, cut)
+    )
+    sheets = len(list(out.glob("sheet-*.svg")))
+    assert sheets > 1
+    assert calls == {"sheet": sheets, "assembly": 1}
+    parsed = Tables()
+    parsed.feed((out / "report.html").read_text(encoding="utf-8"))
+    (folded,) = [src for alt, src in parsed.images if alt.startswith("the folded assembly")]
+    assert base64.b64decode(folded.split(",", 1)[1]) == (out / "assembly.png").read_bytes()
+    assert "matplotlib.pyplot" not in sys.modules or not any(
+        getattr(sys.modules["matplotlib.pyplot"], "get_fignums", list)()
+    )
+
+
 class _Collect(HTMLParser):
     def __init__(self) -> None:
         super().__init__()

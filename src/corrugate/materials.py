@@ -10,7 +10,7 @@ import math
 import tomllib
 from dataclasses import dataclass
 from functools import lru_cache
-from importlib import resources
+from pathlib import Path
 from typing import Any
 
 from .errors import InputError, UnknownNameError
@@ -108,7 +108,13 @@ def _from_entry(key: str, entry: dict[str, Any]) -> Material:
 @lru_cache(maxsize=1)
 def library() -> dict[str, Material]:
     """The bundled material library, keyed by id (read once from ``data/materials.toml``)."""
-    text = resources.files("corrugate").joinpath("data/materials.toml").read_text("utf-8")
+    path = Path(__file__).with_name("data") / "materials.toml"
+    if path.is_file():  # an installed or source tree (importlib.resources costs ~20 ms to import)
+        text = path.read_text("utf-8")
+    else:  # e.g. a zipped install
+        from importlib import resources
+
+        text = resources.files("corrugate").joinpath("data/materials.toml").read_text("utf-8")
     data = tomllib.loads(text)
     return {key: _from_entry(key, entry) for key, entry in data.items()}
 

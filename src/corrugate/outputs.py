@@ -12,6 +12,8 @@ together (:mod:`corrugate.fileio`), so a bad option or a failure leaves no file 
 
 The parts and their sheet plan are made once (:func:`cut_plan`); the report gets that very
 :class:`CutPlan` (``report`` may be a function of it), so its sheet figures are the cut files'.
+Each figure is drawn once: the report is made after the files, from the sheet figures of
+``pattern.pdf`` and the PNG bytes of ``assembly.png`` (:class:`Drawings`).
 """
 
 from __future__ import annotations
@@ -25,18 +27,18 @@ from typing import Any
 from .analysis import Analysis
 from .export.files import write_files
 from .export.machines import DEFAULT_MACHINE, get_machine
-from .export.pdf import check_paper
+from .export.pdf import check_paper, sheet_figure
 from .fileio import staged
 from .geometry import Assembly
 from .pattern.build import build_pattern
 from .pattern.files3d import write_fold, write_mesh
-from .pattern.instructions import write_instructions
+from .pattern.instructions import instructions_png, write_instructions
 from .pattern.linestyle import SOLID, LineStyle, check_style
 from .pattern.model import Pattern
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
 from .pattern.sheets import SheetPlan, plan_sheets
 
-__all__ = ["CutPlan", "OutputOptions", "cut_plan", "write_design_files"]
+__all__ = ["CutPlan", "Drawings", "OutputOptions", "cut_plan", "write_design_files"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -58,14 +60,26 @@ class OutputOptions:
     paper: str = "mat"
 
 
+@dataclass(slots=True)
+class Drawings:
+    """Figures the files step drew, for the report to show instead of drawing them again:
+    ``sheets``, the matplotlib figures of ``pattern.pdf`` (one per sheet, labels on, empty when
+    none were drawn so) and ``assembly_png``, the bytes of ``assembly.png`` (None before)."""
+
+    sheets: list[Any] = field(default_factory=list)
+    assembly_png: bytes | None = None
+
+
 @dataclass(frozen=True, slots=True)
 class CutPlan:
     """What one design's cut files are written from: the parts (``pattern``, mm), their
-    arrangement on the cutter's sheets (``plan``) and the fold-line ``style``."""
+    arrangement on the cutter's sheets (``plan``) and the fold-line ``style``; ``drawings``
+    collects what :func:`write_design_files` drew of them."""
 
     pattern: Pattern
     plan: SheetPlan
     style: LineStyle
+    drawings: Drawings = field(default_factory=Drawings, compare=False)
 
 
 def cut_plan(assembly: Assembly, options: OutputOptions | None = None) -> CutPlan:
@@ -98,7 +112,6 @@ def write_design_files(
     out = Path(out_dir)
     cut = cut_plan(a, opts)
     pattern, plan = cut.pattern, cut.plan
-    report_text = report(cut) if callable(report) else report
     record: dict[str, Any] = dict(analysis.to_dict())
     record["cut_parts"] = [
         {
@@ -129,13 +142,27 @@ def write_design_files(
     if extra:
         record.update(extra)
     out.mkdir(parents=True, exist_ok=True)
+    drawn = cut.drawings
+    if opts.labels is not False:  # pattern.pdf shows the labels, as the report's sheets do
+        drawn.sheets = [sheet_figure(plan, k, opts.style) for k in range(1, len(plan.sheets) + 1)]
     with staged() as st:
         written = list(
-            write_files(plan, out, opts.style, labels=opts.labels, paper=opts.paper, staging=st)
+            write_files(
+                plan,
+                out,
+                opts.style,
+                labels=opts.labels,
+                paper=opts.paper,
+                staging=st,
+                sheet_figures=drawn.sheets or None,
+            )
         )
         written += write_fold(a, pattern, out, st)
         written += write_mesh(a, pattern, out, st)
-        written += write_instructions(a, pattern, out, st)
+        drawn.assembly_png = instructions_png(a, pattern)
+        written += write_instructions(a, pattern, out, st, png=drawn.assembly_png)
+        # the report last, from the figures drawn above; nothing is committed before it is made
+        report_text = report(cut) if callable(report) else report
         if report_text is not None:
             st.path(out / "report.html").write_text(report_text, encoding="utf-8")
             written.append(out / "report.html")

@@ -20,8 +20,9 @@ from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from ..errors import UnknownNameError
 from ..fileio import Staging, staged
@@ -32,6 +33,9 @@ from .cutfile import cut_dxf_document, cut_svg_document
 from .machines import Machine, get_machine
 from .pdf import check_paper, render_pdf, render_tiled_pdf
 from .svg import svg_document
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = ["FORMATS", "fold_order", "write_files"]
 
@@ -63,6 +67,7 @@ def write_files(
     pdf_name: str = "pattern.pdf",
     paper: str = "mat",
     staging: Staging | None = None,
+    sheet_figures: Sequence[Figure] | None = None,
 ) -> tuple[Path, ...]:
     """Write ``plan`` to ``out_dir`` (created if missing) in ``formats``; returns the paths written.
 
@@ -72,7 +77,9 @@ def write_files(
     ``marks=False`` leaves assembly marks out of the fold map (Origami Simulator reads them as
     undriven creases). With ``staging``, the files join that output step (committed with it)
     instead of being committed here. ``paper`` is ``mat`` (``pdf_name`` only) or ``a4``/``letter``:
-    then ``pattern-a4.pdf``/``pattern-letter.pdf`` (the tiles) is written besides ``pdf_name``. Raises :class:`~corrugate.errors.InputError` subclasses for
+    then ``pattern-a4.pdf``/``pattern-letter.pdf`` (the tiles) is written besides ``pdf_name``.
+    ``sheet_figures``: the sheets' :func:`~corrugate.export.pdf.sheet_figure` with these
+    ``style`` and labels, built already, for ``pdf_name`` (``None``: built here). Raises :class:`~corrugate.errors.InputError` subclasses for
     bad options before writing anything.
     """
     wanted = [f.strip().lower() for f in formats]
@@ -109,7 +116,12 @@ def write_files(
             doc.saveas(st.path(out / f"cut-{n}.dxf"))
         if "pdf" in wanted:
             render_pdf(
-                plan, st.path(out / pdf_name), style, labels=people, title="corrugate pattern"
+                plan,
+                st.path(out / pdf_name),
+                style,
+                labels=people,
+                title="corrugate pattern",
+                figures=sheet_figures,
             )
             if tiles != "mat":
                 render_tiled_pdf(

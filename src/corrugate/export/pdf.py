@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Collection
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -216,16 +216,32 @@ def _draw_sheet(ax: Axes, plan: SheetPlan, number: int, style: LineStyle, *, lab
 
 
 def render_pdf(
-    plan: SheetPlan, path: Path, style: LineStyle = SOLID, *, labels: bool = True, title: str = ""
+    plan: SheetPlan,
+    path: Path,
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    title: str = "",
+    figures: Sequence[Figure] | None = None,
 ) -> None:
-    """Draw ``plan`` into a PDF at ``path`` directly (no staging: use :func:`write_pdf`)."""
+    """Draw ``plan`` into a PDF at ``path`` directly (no staging: use :func:`write_pdf`).
+
+    ``figures``: the sheets' :func:`sheet_figure` (same plan, style and labels), built already
+    (the report shows the same figures); ``None`` builds them here."""
     from matplotlib.backends.backend_pdf import PdfPages
 
     check_style((p.part for p in plan.placements), style)
+    if figures is not None and len(figures) != len(plan.sheets):
+        raise ValueError(f"{len(figures)} figures for {len(plan.sheets)} sheets")
     metadata = {"Title": title, "Creator": "corrugate", "CreationDate": None}
     with PdfPages(path, metadata=metadata) as pdf:
         for number in range(1, len(plan.sheets) + 1):
-            pdf.savefig(sheet_figure(plan, number, style, labels=labels))
+            fig = (
+                sheet_figure(plan, number, style, labels=labels)
+                if figures is None
+                else figures[number - 1]
+            )
+            pdf.savefig(fig)
 
 
 # ----------------------------------------------------------------------------------------------

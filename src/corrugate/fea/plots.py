@@ -16,6 +16,7 @@ import numpy as np
 
 from ..analysis import analyze
 from ..errors import InputError
+from ..figure import new_figure
 from ..geometry import Assembly, Layer
 from ..moduli import DEFAULT_MODEL, MODELS
 from .validation import CaseResult
@@ -53,10 +54,7 @@ def _model_line(
 def plot_sweep(results: Sequence[CaseResult], path: Path, eta: float = 0.0) -> Path:
     """Write the figure of a sweep to ``path`` (format from its suffix) and return the path."""
     try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        import matplotlib  # noqa: F401  # the extra is installed
     except ImportError:
         raise InputError(
             "plot",
@@ -65,7 +63,8 @@ def plot_sweep(results: Sequence[CaseResult], path: Path, eta: float = 0.0) -> P
             reason="cannot be written",
         ) from None
     groups = [g for g in ("W", "n", "alpha") if any(r.case.group == g for r in results)]
-    fig, axes = plt.subplots(2, len(groups), figsize=(4.2 * len(groups), 6.4), squeeze=False)
+    fig = new_figure((4.2 * len(groups), 6.4))
+    axes = fig.subplots(2, len(groups), squeeze=False)
     e = f"{eta:g}"
     for col, g in enumerate(groups):
         rs = [r for r in results if r.case.group == g]
@@ -106,5 +105,4 @@ def plot_sweep(results: Sequence[CaseResult], path: Path, eta: float = 0.0) -> P
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=130)
-    plt.close(fig)
     return path

@@ -303,7 +303,7 @@ def folded_mesh(a: Assembly, parts: tuple[Part, ...]) -> tuple[FloatArray, NDArr
     """Vertices (mm) and triangles of the folded assembly: both layers and the band's walls.
 
     Facets are triangulated as fans (they are convex for convex outlines). Returns
-    ``(vertices, faces)`` for trimesh.
+    ``(vertices, faces)`` for the GLB and STL writers (:mod:`corrugate.pattern.files3d`).
     """
     polygons = [*layer_faces(a, parts, 1), *layer_faces(a, parts, 2), *band_walls(a)]
     tris: list[list[int]] = []

@@ -3,17 +3,19 @@
 from __future__ import annotations
 
 import contextlib
+import io
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ..figure import new_figure
 from ..fileio import Staging, staged
 from ..geometry import Assembly
 from .folded import band_walls, layer_faces
 from .model import Pattern, Role
 
-__all__ = ["assembly_steps", "instructions_figure", "write_instructions"]
+__all__ = ["assembly_steps", "instructions_figure", "instructions_png", "write_instructions"]
 
 _COLOURS = {
     Role.MOUNTAIN: "#ff0000",
@@ -53,13 +55,9 @@ def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
 
 def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
     """The assembly figure: the cut parts, then the folded layers, band and finished panel."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
-    fig = plt.figure(figsize=(11, 8.5), dpi=110)
+    fig = new_figure((11, 8.5), dpi=110)
     ax0 = fig.add_subplot(2, 2, 1)
     x0 = 0.0
     for part in pattern.parts:
@@ -113,17 +111,30 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
         ax.set_zlabel("z (mm)", fontsize=7)
         ax.tick_params(labelsize=6)
         ax.set_title(title, fontsize=9)
-    fig.tight_layout()
+    # fixed margins: tight_layout on 3D axes costs about a second of tick layout and leaves
+    # these boxes where they are
+    fig.subplots_adjust(left=0.03, right=0.97, bottom=0.04, top=0.95, wspace=0.1, hspace=0.15)
     return fig
 
 
-def write_instructions(
-    a: Assembly, pattern: Pattern, out_dir: Path, staging: Staging | None = None
-) -> list[Path]:
-    """Write ``ASSEMBLY.md`` (numbered steps) and ``assembly.png`` (the figure) into ``out_dir``."""
-    import matplotlib.pyplot as plt
+def instructions_png(a: Assembly, pattern: Pattern) -> bytes:
+    """:func:`instructions_figure` as PNG bytes (the file ``assembly.png``; the report embeds the
+    same bytes)."""
+    buf = io.BytesIO()
+    instructions_figure(a, pattern).savefig(buf, format="png")
+    return buf.getvalue()
 
-    fig = instructions_figure(a, pattern)
+
+def write_instructions(
+    a: Assembly,
+    pattern: Pattern,
+    out_dir: Path,
+    staging: Staging | None = None,
+    png: bytes | None = None,
+) -> list[Path]:
+    """Write ``ASSEMBLY.md`` (numbered steps) and ``assembly.png`` (the figure, or ``png`` when
+    it was drawn already: :func:`instructions_png`) into ``out_dir``."""
+    image = instructions_png(a, pattern) if png is None else png
     steps = assembly_steps(a, pattern)
     text = (
         "# Assembly\n\n![assembly steps](assembly.png)\n\n"
@@ -131,11 +142,8 @@ def write_instructions(
         + "\n"
     )
     out_dir.mkdir(parents=True, exist_ok=True)
-    png, md = out_dir / "assembly.png", out_dir / "ASSEMBLY.md"
-    try:
-        with contextlib.nullcontext(staging) if staging is not None else staged() as st:
-            fig.savefig(st.path(png), format="png")
-            st.path(md).write_text(text, encoding="utf-8")
-    finally:
-        plt.close(fig)
-    return [md, png]
+    png_path, md = out_dir / "assembly.png", out_dir / "ASSEMBLY.md"
+    with contextlib.nullcontext(staging) if staging is not None else staged() as st:
+        st.path(png_path).write_bytes(image)
+        st.path(md).write_text(text, encoding="utf-8")
+    return [md, png_path]

@@ -20,12 +20,15 @@ from numpy.typing import NDArray
 from ..analysis import Analysis, analyze
 from ..design.problem import Candidate, Problem, describe
 from ..design.quantities import Tables, point_values
+from ..figure import new_figure
 
 __all__ = ["design_space_figure", "mass_by_n_figure", "polar_figure"]
 
 FloatArray = NDArray[np.float64]
 #: Grid used across W and alpha when a variable is continuous (or its grid is finer).
 GRID = 161
+#: Design points evaluated per call of the model when the figures scan a range of n.
+BATCH_POINTS = 100_000
 
 
 def _axis(lo: float, hi: float, step: float | None) -> FloatArray:
@@ -54,7 +57,7 @@ def _candidates(a: Analysis) -> tuple[Candidate, Candidate]:
 
 def design_space_figure(problem: Problem, a: Analysis) -> Any:
     """The (W, alpha) plane of layer 1 at the optimum's n (see the module docstring)."""
-    import matplotlib.pyplot as plt
+    import matplotlib
     from matplotlib.lines import Line2D
     from matplotlib.patches import Rectangle
 
@@ -65,9 +68,10 @@ def design_space_figure(problem: Problem, a: Analysis) -> Any:
     WW, AA = np.meshgrid(Ws, As)
     x = _points(problem, a, np.full(WW.size, float(l1.n)), WW.ravel(), AA.ravel())
     values = point_values(problem, *_candidates(a), x, Tables(problem))
-    fig, ax = plt.subplots(figsize=(7.5, 5.5), dpi=100)
+    fig = new_figure((7.5, 5.5), dpi=100)
+    ax = fig.subplots()
     feasible = np.ones(WW.size, dtype=bool)
-    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colours = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
     handles: list[Any] = []
     for k, c in enumerate(problem.constraints):
         v = values[c.quantity]
@@ -121,7 +125,6 @@ def design_space_figure(problem: Problem, a: Analysis) -> Any:
 
 def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     """Lightest feasible mass (g) for each n, over the W x alpha grid of :func:`design_space_figure`."""
-    import matplotlib.pyplot as plt
 
     Ws = _axis(problem.W.lo, problem.W.top, problem.W.step)
     As = _axis(problem.alpha.lo, problem.alpha.top, problem.alpha.step)
@@ -130,15 +133,20 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     tables = Tables(problem)
     ns = np.arange(problem.n_lo, min(problem.n_hi, problem.n_lo + n_max - 1) + 1)
     best = np.full(len(ns), np.nan)
-    for i, n in enumerate(ns):
-        x = _points(problem, a, np.full(W1.size, float(n)), W1, A1)
+    # several n per evaluation (one call per n spends most of its time outside numpy's loops)
+    per_call = max(1, BATCH_POINTS // W1.size)
+    for start in range(0, len(ns), per_call):
+        chunk = ns[start : start + per_call]
+        n1 = np.repeat(chunk.astype(float), W1.size)
+        x = _points(problem, a, n1, np.tile(W1, len(chunk)), np.tile(A1, len(chunk)))
         values = point_values(problem, *_candidates(a), x, tables)
-        ok = np.ones(W1.size, dtype=bool)
+        ok = np.ones(n1.size, dtype=bool)
         for c in problem.constraints:
             ok &= c.satisfied(values[c.quantity])
-        if ok.any():
-            best[i] = float(values["mass"][ok].min())
-    fig, ax = plt.subplots(figsize=(7.5, 4.0), dpi=100)
+        mass = np.where(ok, values["mass"], np.inf).reshape(len(chunk), W1.size).min(axis=1)
+        best[start : start + len(chunk)] = np.where(np.isfinite(mass), mass, np.nan)
+    fig = new_figure((7.5, 4.0), dpi=100)
+    ax = fig.subplots()
     ax.plot(ns, best, marker="o", markersize=3, linewidth=1)
     l1 = a.assembly.layer1
     ax.plot(
@@ -165,14 +173,14 @@ def polar_figure(a: Analysis) -> Any:
     the free panel's lower bounds (:mod:`corrugate.offaxis`) and the rule of a panel held in a
     rigid frame, on a logarithmic radius (they differ by up to three orders of magnitude); the
     design's own support condition is the solid line."""
-    import matplotlib.pyplot as plt
 
     etas = np.linspace(0.0, 360.0, 145)
     curves = {
         sup: analyze(a.assembly, a.model, list(etas), support=sup).stiffness
         for sup in ("free", "frame")
     }
-    fig, axes = plt.subplots(1, 2, subplot_kw={"projection": "polar"}, figsize=(8, 4), dpi=100)
+    fig = new_figure((8, 4), dpi=100)
+    axes = fig.subplots(1, 2, subplot_kw={"projection": "polar"})
     for ax, key, title in (
         (axes[0], "K", "in-plane K(eta) (N/mm)"),
         (axes[1], "D", "bending D(eta) (N mm)"),

@@ -11,7 +11,7 @@ from ..analysis import analyze
 from ..design.solve import Solution
 from ..holes import holes_text
 from ..moduli import MODELS
-from ..pattern.instructions import assembly_steps, instructions_figure
+from ..pattern.instructions import assembly_steps, instructions_png
 from ..pattern.linestyle import StyleKind
 from .figures import design_space_figure, mass_by_n_figure, polar_figure
 
@@ -31,16 +31,19 @@ img{max-width:100%;height:auto}pre{background:#f7f7f7;padding:.75rem;overflow:au
 
 
 def _png(fig: Any) -> str:
-    import matplotlib.pyplot as plt
-
     buf = io.BytesIO()
     fig.savefig(buf, format="png")
-    plt.close(fig)
     return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
 
 
 def _img(fig: Any, alt: str) -> str:
     return f'<img src="{_png(fig)}" alt="{html.escape(alt)}">'
+
+
+def _img_png(png: bytes, alt: str) -> str:
+    """An image of PNG bytes drawn already (a file beside the report)."""
+    src = "data:image/png;base64," + base64.b64encode(png).decode("ascii")
+    return f'<img src="{src}" alt="{html.escape(alt)}">'
 
 
 def _table(head: list[str], rows: list[list[str]], classes: list[str] | None = None) -> str:
@@ -87,9 +90,6 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     (:func:`corrugate.outputs.cut_plan`), drawn as they are; ``None`` makes one with the default
     output options (a report on its own, without cut files).
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     from ..export.pdf import sheet_figure
 
     p = sol.problem
@@ -222,12 +222,17 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
         f"({plan.cutter.width:.1f} x {plan.cutter.height:.1f} mm usable), fold lines "
         f"{html.escape(_style_text(cut))}: the sheets of the cut files beside this report.</p>"
     )
+    drawn = cut.drawings  # what the files step drew of this plan: shown, not drawn again
+    sheets = drawn.sheets if len(drawn.sheets) == len(plan.sheets) else None
     for k in range(len(plan.sheets)):
-        parts.append(
-            _img(sheet_figure(plan, k + 1, cut.style), f"sheet {k + 1} of the cut pattern")
-        )
+        fig = sheet_figure(plan, k + 1, cut.style) if sheets is None else sheets[k]
+        parts.append(_img(fig, f"sheet {k + 1} of the cut pattern"))
     parts.append(_sheet_table(cut))
-    parts.append(_img(instructions_figure(asm, pattern), "the folded assembly, step by step"))
+    alt = "the folded assembly, step by step"
+    if drawn.assembly_png is not None:
+        parts.append(_img_png(drawn.assembly_png, alt))
+    else:
+        parts.append(_img_png(instructions_png(asm, pattern), alt))
     parts.append("<h2>Assembly</h2><ol>")
     parts.extend(f"<li>{html.escape(s)}</li>" for s in assembly_steps(asm, pattern))
     parts.append("</ol><h2>Warnings</h2>")

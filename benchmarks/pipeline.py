@@ -1,0 +1,111 @@
+"""Process CPU time of corrugate's commands, start-up included (issue 13, "Start-up and files").
+
+Run by hand (about a minute with the defaults)::
+
+    .venv/bin/python benchmarks/pipeline.py [--repeats 5] [--src src] [--src /tmp/base/src]
+
+Each command runs as a fresh process (``python -m corrugate ...`` with ``PYTHONPATH`` set to a
+source tree) and is charged the user + system CPU time of that child
+(``resource.getrusage(RUSAGE_CHILDREN)`` before and after it): CPU, not wall-clock, because the
+machine is shared and noisy. The commands are interleaved (floor, --help, analyze, design, floor,
+...) ``--repeats`` times and the median of each is printed, with its ratio to the floor (a bare
+``python -c pass``) and to its target:
+
+* ``corrugate --help``: <= 0.3 s;
+* ``corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar``: <= 0.4 s;
+* ``corrugate design examples/blimp_gripper.toml --out <new tmpdir>``: <= 1.5 s.
+
+With two or more ``--src`` trees (e.g. a ``git archive`` of main unpacked under /tmp) the trees
+are interleaved too, and each command's median is printed per tree with the ratio to the first.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BLIMP = ROOT / "examples" / "blimp_gripper.toml"
+
+#: (label, arguments after ``python``, target CPU seconds or None); "{out}" is a new empty folder.
+COMMANDS: list[tuple[str, list[str], float | None]] = [
+    ("python -c pass (floor)", ["-c", "pass"], None),
+    ("corrugate --help", ["-m", "corrugate", "--help"], 0.3),
+    (
+        "corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar",
+        [
+            *("-m", "corrugate", "analyze", "--W", "8", "--n", "8", "--alpha", "84"),
+            "--material",
+            "dura-lar",
+        ],
+        0.4,
+    ),
+    (
+        "corrugate design examples/blimp_gripper.toml --out DIR",
+        ["-m", "corrugate", "design", str(BLIMP), "--out", "{out}"],
+        1.5,
+    ),
+]
+
+
+def child_cpu(argv: list[str], env: dict[str, str]) -> float:
+    """Run ``argv`` to its end; its user + system CPU time (s). Raises if it fails."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    done = subprocess.run(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if done.returncode != 0:
+        raise RuntimeError(f"{argv} exited {done.returncode}: {done.stderr.decode()[-2000:]}")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
+    parser.add_argument("--repeats", type=int, default=5, help="runs of each command (median)")
+    parser.add_argument(
+        "--src",
+        action="append",
+        type=Path,
+        help="source tree(s) put on PYTHONPATH (default: this checkout's src)",
+    )
+    args = parser.parse_args()
+    trees = [p.resolve() for p in (args.src or [ROOT / "src"])]
+    times: dict[tuple[int, int], list[float]] = {}
+    with tempfile.TemporaryDirectory(prefix="corrugate-bench-") as tmp:
+        for run in range(args.repeats):
+            for c, (_, tail, _) in enumerate(COMMANDS):
+                for t, tree in enumerate(trees):
+                    env = {**os.environ, "PYTHONPATH": str(tree)}
+                    out = Path(tmp) / f"out-{run}-{c}-{t}"
+                    argv = [sys.executable, *(a.replace("{out}", str(out)) for a in tail)]
+                    times.setdefault((c, t), []).append(child_cpu(argv, env))
+            print(f"run {run + 1}/{args.repeats} done", file=sys.stderr)
+    print(f"process CPU time (user + sys), median of {args.repeats} interleaved runs")
+    for t, tree in enumerate(trees):
+        floor = statistics.median(times[(0, t)])
+        print(f"\nsource tree {tree}")
+        for c, (label, _, target) in enumerate(COMMANDS):
+            median = statistics.median(times[(c, t)])
+            spread = f"[{min(times[(c, t)]):.3f}-{max(times[(c, t)]):.3f}]"
+            line = f"  {label:<62} {median:7.3f} s {spread:>15}  x{median / floor:6.1f} floor"
+            if target is not None:
+                verdict = "meets" if median <= target else "misses"
+                line += f"  target <= {target:g} s: {verdict} ({median / target:.2f} x target)"
+            print(line)
+    if len(trees) > 1:
+        print(f"\nratio to {trees[0]}")
+        for c, (label, _, _) in enumerate(COMMANDS):
+            first = statistics.median(times[(c, 0)])
+            ratios = ", ".join(
+                f"{statistics.median(times[(c, t)]) / first:.2f}" for t in range(1, len(trees))
+            )
+            print(f"  {label:<62} {ratios}")
+
+
+if __name__ == "__main__":
+    main()
