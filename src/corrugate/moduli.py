@@ -37,8 +37,9 @@ with the depth of the fold (the FE's solid crease is stiffer than the closed for
 
 So all four are within 1 % only at alpha = 115 deg (whole t/W range) and at alpha = 90 deg up to
 t/W = 0.009; the errors are on the safe side (the closed forms understate what the FE cell carries).
-At alpha = 40 deg the cell converges slowly (0.2-0.5 % per doubling at 1280 elements per facet),
-so the FE values there are upper estimates and the gaps at most what the table says.
+At alpha = 40 deg these FE values are extrapolations of uniform meshes; the graded cell (docs/fea.md
+1.3, converged within 0.1 %) differs from them by -1.2 to +0.2 % (t/W = 0.02 to 0.0156), so the
+alpha = 40 deg gaps carry that much uncertainty.
 
 All functions broadcast over NumPy arrays: a sweep over a million designs is one call.
 """

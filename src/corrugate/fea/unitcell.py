@@ -35,7 +35,7 @@ Struct. 49:1453, whose A and D this cell computes numerically).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -55,35 +55,64 @@ FloatArray = NDArray[np.float64]
 class UnitCellMesh:
     """Mesh of the unit cell: C3D20R elements along one facet, through t, and along y.
 
-    The default, 320 x 4, gives Ecx within 0.5 % and Ebx within 0.2 % of the extrapolated
-    mesh-converged values for alpha = 65-115 deg and t/W = 0.0067-0.02 (Ecy and Eby are exact on
-    any mesh). At alpha = 40 deg, where the cell converges slowly, it is 0.1-1.4 % above the
-    extrapolation of its refinement series (up to 1280 x 4), which is itself not settled there.
-    The former default, 40 x 2, was up to 6.7 % (Ecx) and 2.2 % (Ebx) stiff, at alpha = 40 deg
-    and t/W = 0.0067 (docs/fea.md, section 1.3, ``benchmarks/unitcell_range.py``). It costs
-    about 20-30 times as much per ccx run: 3.7-4.2 s against 0.2 s on an idle core, a median of
-    16.7 s against 0.54 s on 2 cores shared with other FE runs (the case study's cell).
+    The nodes are graded towards the creases along each facet, x = p (xi - g sin(2 pi xi) /
+    (2 pi)) for xi uniform on [0, 1] with g = ``grading`` (the elements at a crease are 1 - g of
+    the mean size), and towards both faces through t (``grading_t``); the mid-side nodes sit at
+    the midpoints. ``grading = grading_t = 0`` is a uniform mesh.
+
+    The default, 80 x 8 graded, gives Ecx within 0.7 % and Ebx within 0.2 % of the cell's
+    converged values (where 320 x 8 and 160 x 16 agree within 0.1 %) at alpha = 40, 84 and
+    115 deg, W = 8-18.75 mm, t = 0.125-0.16 mm (docs/fea.md 1.3, ``benchmarks/unitcell_graded.py``),
+    in 9-13 s per ccx run on a shared core. The uniform 320 x 4 mesh used before was 1.2 % stiff at
+    alpha = 40 deg, and a uniform mesh with 4 elements through t keeps drifting below the
+    converged value as it is refined along the facet (too few elements through t at the crease).
     """
 
-    along: int = 320
-    through: int = 4
+    along: int = 80
+    through: int = 8
     span: int = 1
+    grading: float = 0.98
+    grading_t: float = 0.9
 
     def __post_init__(self) -> None:
         for name in ("along", "through", "span"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
                 raise InputError(f"mesh.{name}", v, "an integer >= 1")
+        for name in ("grading", "grading_t"):
+            g = getattr(self, name)
+            if not (isinstance(g, int | float) and 0.0 <= g < 1.0):
+                raise InputError(f"mesh.{name}", g, "a number 0 <= g < 1")
 
     def refined(self, factor: float = 2.0) -> UnitCellMesh:
-        """The mesh with ``along`` and ``through`` scaled by ``factor`` (rounded, at least 1)."""
-        return UnitCellMesh(
-            max(1, round(self.along * factor)), max(1, round(self.through * factor)), self.span
+        """The mesh with ``along`` and ``through`` scaled by ``factor`` (rounded, at least 1),
+        graded alike."""
+        return replace(
+            self,
+            along=max(1, round(self.along * factor)),
+            through=max(1, round(self.through * factor)),
         )
 
     def label(self) -> str:
-        """``along x through``, the notation of ``reference/unitcell_fe.csv``."""
-        return f"{self.along}x{self.through}"
+        """``along x through`` for the default grading (the notation of
+        ``reference/unitcell_fe.csv`` for a uniform mesh, with its grading named)."""
+        base = f"{self.along}x{self.through}"
+        if (self.grading, self.grading_t) == (0.98, 0.9):
+            return base
+        if self.grading == 0 and self.grading_t == 0:
+            return f"{base} uniform"
+        return f"{base} graded {self.grading:g}/{self.grading_t:g}"
+
+
+def _graded(n: int, g: float) -> FloatArray:
+    """n + 1 points on [0, 1], clustered at both ends by ``g`` (0: uniform), and the mid-points
+    between them: 2 n + 1 values, the corner and mid-side node positions of n quadratic elements."""
+    xi = np.linspace(0.0, 1.0, n + 1)
+    corners = xi - g / (2 * np.pi) * np.sin(2 * np.pi * xi)
+    out = np.empty(2 * n + 1)
+    out[0::2] = corners
+    out[1::2] = 0.5 * (corners[:-1] + corners[1:])
+    return out
 
 
 @dataclass(frozen=True, slots=True)
@@ -149,15 +178,13 @@ _LOCAL = _CORNERS + _MIDS
 def _grid(cell: UnitCell, mesh: UnitCellMesh) -> tuple[FloatArray, FloatArray, FloatArray, float]:
     """Node coordinate functions on the doubled-resolution grid: x(I), z(I, K), y(J), and L_y."""
     p, h, t, s = cell.pitch, cell.height, cell.t, cell.s
-    ni = 2 * (2 * mesh.along) + 1
-    nk = 2 * mesh.through + 1
-    nj = 2 * mesh.span + 1
-    x = np.linspace(0.0, 2 * p, ni)
+    facet = _graded(mesh.along, mesh.grading)  # 0 ... 1 along one facet, crease to crease
+    x = np.concatenate([p * facet, p + p * facet[1:]])
     zmid = np.interp(x, [0.0, p, 2 * p], [-h / 2, h / 2, -h / 2])
-    d = np.linspace(-t / 2, t / 2, nk)
+    d = -t / 2 + t * _graded(mesh.through, mesh.grading_t)
     z = zmid[:, None] + d[None, :] / s
     Ly = mesh.span * cell.W / mesh.along
-    y = np.linspace(0.0, Ly, nj)
+    y = np.linspace(0.0, Ly, 2 * mesh.span + 1)
     return x, z, y, Ly
 
 

@@ -14,7 +14,7 @@ sweep goes on with the other cases.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Protocol, TypeVar
 
@@ -60,8 +60,8 @@ class Refinement:
     cell_mesh: UnitCellMesh = field(default_factory=UnitCellMesh)
     tol: float | None = None
     assembly_max_along: int = 16
-    cell_max_along: int = 640
-    cell_max_through: int = 4
+    cell_max_along: int = 320
+    cell_max_through: int = 16
 
 
 @dataclass(frozen=True, slots=True)
@@ -270,8 +270,10 @@ def run_case(case: Case) -> CaseResult:
             values, cm, ok = _refine(
                 "unit cell",
                 ref.cell_mesh,
-                lambda m: UnitCellMesh(
-                    m.along * 2, min(m.through * 2, max(m.through, ref.cell_max_through))
+                lambda m: replace(
+                    m,
+                    along=m.along * 2,
+                    through=min(m.through * 2, max(m.through, ref.cell_max_through)),
                 ),
                 lambda m: m.along > ref.cell_max_along,
                 lambda m: _cell_values(case, m),
