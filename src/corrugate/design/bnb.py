@@ -54,6 +54,8 @@ MAX_OPEN = 2_000_000
 BATCH = 20_000
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
+#: Parts per coordinate in such a split.
+MULTI_PARTS = 4
 
 
 @dataclass(frozen=True)
@@ -107,36 +109,49 @@ def _split(
     multi: bool,
     tag: FloatArray,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Halve each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
-    counted as n + 1, so every coordinate is judged by how much it changes across the box), and
-    (``multi``) also along every coordinate at least half as wide, so few boxes become many in
-    few iterations. Grid coordinates are cut between two grid values."""
+    """Cut each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
+    counted as n + 1, so every coordinate is judged by how much it changes across the box) into
+    two, and (``multi``) along every coordinate at least half as wide into :data:`MULTI_PARTS`
+    (so few boxes become many in few iterations: the per-iteration cost is mostly fixed).
+    Grid coordinates are cut between two grid values, into at most as many parts as values."""
     widest = width.max(axis=1, keepdims=True)
     if multi:
         split = (width >= 0.5 * widest) & (width > 0)
     else:
         split = np.zeros(width.shape, dtype=bool)
         split[np.arange(len(width)), np.argmax(width, axis=1)] = True
+    parts = MULTI_PARTS if multi else 2
     for i, d in enumerate(dims):
         sel = split[:, i]
         if not sel.any():
             continue
         a, b = lo[sel, i], hi[sel, i]
+        j = np.arange(parts + 1, dtype=np.float64)[:, None]  # cut j of parts + 1 (0 and end)
         if d.var.step is None:
-            cut_lo = cut_hi = 0.5 * (a + b)
+            edges = a + (b - a) * (j / parts)
+            edges[-1] = b
+            starts, ends = edges[:-1], edges[1:]
+            valid = np.ones(starts.shape, dtype=bool)
         else:
             k_lo = np.round((a - d.var.lo) / d.var.step)
             k_hi = np.round((b - d.var.lo) / d.var.step)
-            k_mid = np.floor(0.5 * (k_lo + k_hi))
-            cut_lo = d.var.lo + d.var.step * k_mid
-            cut_hi = d.var.lo + d.var.step * (k_mid + 1)
-        left_hi, right_lo = hi[sel].copy(), lo[sel].copy()
-        left_hi[:, i] = cut_lo
-        right_lo[:, i] = cut_hi
-        lo = np.concatenate([lo[~sel], lo[sel], right_lo])
-        hi = np.concatenate([hi[~sel], left_hi, hi[sel]])
-        split = np.concatenate([split[~sel], split[sel], split[sel]])
-        tag = np.concatenate([tag[~sel], tag[sel], tag[sel]])
+            count = k_hi - k_lo + 1  # grid values in the box (>= 2 here)
+            first = k_lo + np.ceil(j * count / parts)  # first grid index of each part
+            starts = d.var.lo + d.var.step * first[:-1]
+            ends = d.var.lo + d.var.step * (first[1:] - 1)
+            valid = first[1:] > first[:-1]  # a part holds at least one grid value
+        k = len(a)
+        child_lo = np.repeat(lo[sel][None], parts, axis=0)
+        child_hi = np.repeat(hi[sel][None], parts, axis=0)
+        child_lo[:, :, i] = starts
+        child_hi[:, :, i] = ends
+        keep = valid.reshape(-1)
+        lo = np.concatenate([lo[~sel], child_lo.reshape(parts * k, -1)[keep]])
+        hi = np.concatenate([hi[~sel], child_hi.reshape(parts * k, -1)[keep]])
+        rep = np.repeat(split[sel][None], parts, axis=0).reshape(parts * k, -1)[keep]
+        split = np.concatenate([split[~sel], rep])
+        rep_tag = np.repeat(tag[sel][None], parts, axis=0).reshape(parts * k)[keep]
+        tag = np.concatenate([tag[~sel], rep_tag])
     return lo, hi, tag
 
 
