@@ -105,7 +105,12 @@ def _sc(alpha: FloatArray) -> tuple[FloatArray, FloatArray]:
 def paper_moduli_sc(
     E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, s: FloatArray, c: FloatArray
 ) -> Moduli:
-    """:func:`paper_moduli` from s = sin(alpha/2) and c = cos(alpha/2); cos(alpha) + 1 = 2 c^2."""
+    """:func:`paper_moduli` from s = sin(alpha/2) and c = cos(alpha/2); cos(alpha) + 1 = 2 c^2.
+
+    The nu polynomials enter with both the numerator's and the denominator's sign flipped
+    (exact in floating point: the same numbers), so that for 0 <= nu < 0.5 every factor is
+    positive, which keeps interval evaluations (:mod:`corrugate.design.interval`) on their
+    cheap non-negative path."""
     nu2 = nu * nu
     t2 = t * t
     W2 = W * W
@@ -115,14 +120,14 @@ def paper_moduli_sc(
     Ecx = (
         E
         * t2
-        * (nu2 - 2 * nu - 1)
+        * -(nu2 - 2 * nu - 1)
         * s
         / (
-            (3 * nu2 * nu2 + 2 * nu2 * nu - nu - 3) * t2 * s2
-            + (-nu2 * nu2 + 2 * nu2 * nu + 4 * nu2 - 2 * nu - 3) * W2 * c
+            -(3 * nu2 * nu2 + 2 * nu2 * nu - nu - 3) * t2 * s2
+            + -(-nu2 * nu2 + 2 * nu2 * nu + 4 * nu2 - 2 * nu - 3) * W2 * c
         )
     )
-    Ecy = E * (nu2 - 2 * nu - 3) / (4 * (nu2 - 1) * s)
+    Ecy = E * -(nu2 - 2 * nu - 3) / (4 * -(nu2 - 1) * s)
     Ebx = E * (W2 * (2 * c2) * s + t2 * k * s2) / (2 * k * (W2 * c2 + t2 * s2))
     Eby = E * (s + W2 * c2 / (t2 * k * s))
     return Moduli(Ecx, Ecy, Ebx, Eby)
@@ -195,7 +200,9 @@ def refined_moduli(
 
 MODELS: dict[str, ModuliModel] = {
     "paper": ModuliModel(
-        "paper", paper_moduli_sc, "Liu, Yan and Mehta, eqs. Ecx-Eby, as printed (reproduces Table 1)"
+        "paper",
+        paper_moduli_sc,
+        "Liu, Yan and Mehta, eqs. Ecx-Eby, as printed (reproduces Table 1)",
     ),
     "xia": ModuliModel(
         "xia", xia_moduli_sc, "Xia, Friswell and Saavedra Flores (2012), zig-zag, corrected"

@@ -31,6 +31,7 @@ extra (``pip install corrugate[dist]``).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -101,7 +102,9 @@ class _Partial:
     def offer(self, value: float, index: int) -> None:
         """Keep (value, index) if it is a design and beats the best so far (lowest value, then
         lowest index: the same answer whatever the order of the blocks)."""
-        if index >= 0 and (self.best_flat < 0 or (value, index) < (self.best_value, self.best_flat)):
+        if index >= 0 and (
+            self.best_flat < 0 or (value, index) < (self.best_value, self.best_flat)
+        ):
             self.best_value, self.best_flat = value, index
 
     def merge(self, other: _Partial) -> _Partial:
@@ -139,7 +142,7 @@ class SweepResult:
 
 def _blocks(setup: _Setup, w_range: tuple[int, int]) -> Iterator[tuple[slice, slice, slice]]:
     """Sub-grids of about ``chunk`` designs covering W[w_range] x n x alpha."""
-    nW, nn, na = setup.shape
+    _, nn, na = setup.shape
     ka = max(1, min(na, setup.chunk))
     kn = max(1, min(nn, setup.chunk // ka))
     kW = max(1, setup.chunk // (ka * kn))
@@ -236,7 +239,7 @@ def _client(scheduler: Any) -> tuple[Any, bool]:
             "an installed dask.distributed (pip install corrugate[dist])",
             reason="needs the dist extra",
         ) from exc
-    return Client(scheduler), True
+    return Client(scheduler), True  # type: ignore[no-untyped-call]
 
 
 def sweep(
@@ -328,7 +331,7 @@ def sweep(
                 threads = sum(client.nthreads().values()) or 1
                 tasks = 4 * threads
             edges = np.linspace(0, nW, min(max(int(tasks), 1), max(nW, 1)) + 1).astype(int)
-            ranges = [(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:], strict=True) if b > a]
+            ranges = [(int(a), int(b)) for a, b in itertools.pairwise(edges) if b > a]
             remote = client.scatter(setup, broadcast=True)
             futures = [client.submit(_run, remote, r, keep, pure=False) for r in ranges]
             total = _Partial()
@@ -358,8 +361,8 @@ def _result(setup: _Setup, total: _Partial, keep: bool) -> SweepResult:
     if keep:
         values = {k: np.empty(shape) for k in setup.fields}
         for sl, block in total.blocks:
-            for k, v in block.items():
-                values[k][sl] = v
+            for name, v in block.items():
+                values[name][sl] = v
     return SweepResult(
         shape=shape,
         count=total.count,

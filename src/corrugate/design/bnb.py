@@ -9,15 +9,18 @@ inherited from their parent, so the search is best-first when there are many):
    (:func:`~.quantities.box_bounds`, rigorous);
 2. drop a box when some constraint cannot be met anywhere in it, or when its objective bound is
    no better than the incumbent (for mass, the bound is the mass at the box's lower corner);
-3. evaluate candidate points of each remaining box exactly with ``evaluate`` (its lower corner,
-   its upper corner and its centre, snapped to the grid) and keep the best feasible one;
-4. close boxes that are single grid points; halve the others along their relatively widest
-   coordinate (and, while there are few boxes, along every coordinate nearly as wide), cutting
-   grid coordinates between two grid values.
+3. evaluate points of each remaining box exactly with ``evaluate``: every grid point of a grid
+   box with at most :data:`ENUMERATE` points (the box is then closed), else its lower corner,
+   its upper corner and its centre, snapped to the grid; keep the best feasible one;
+4. cut the boxes still open in two along their relatively widest coordinate (and, while there
+   are few boxes, into :data:`MULTI_PARTS` along every coordinate nearly as wide), cutting grid
+   coordinates between two grid values. All boxes of an iteration go through numpy together:
+   the cost of an iteration is mostly fixed, so few iterations of many boxes are cheapest.
 
 Certificate. Every design of the original box lies in exactly one box that was either (a) dropped
-because a rigorous bound shows it infeasible or no better than the incumbent, (b) a single grid
-point evaluated exactly, or (c) still open when the loop stops. The loop stops when no box is
+because a rigorous bound shows it infeasible or no better than the incumbent, (b) a grid box
+of at most :data:`ENUMERATE` points, every one of them evaluated exactly, or (c) still open when
+the loop stops. The loop stops when no box is
 open (gridded problems: the optimum is exact, gap 0) or when every open box's bound is within the
 relative tolerance ``gap_rtol`` of the incumbent (continuous problems: no design is better than
 the incumbent by more than ``gap_rtol``, proved). If the iteration limit is hit first, the result
@@ -55,7 +58,10 @@ BATCH = 20_000
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
 #: Parts per coordinate in such a split.
-MULTI_PARTS = 4
+MULTI_PARTS = 8
+#: Grid boxes with at most this many points are enumerated (each point evaluated exactly) and
+#: closed, instead of being bounded and split further: a point costs far less than a box.
+ENUMERATE = 512
 
 
 @dataclass(frozen=True)
@@ -155,6 +161,23 @@ def _split(
     return lo, hi, tag
 
 
+def _grid_points(lo: FloatArray, counts: FloatArray, dims: list[_Dim]) -> FloatArray:
+    """Every grid point of each box (lower corners ``lo``, ``counts`` grid values per
+    coordinate), as rows; values lo + step k exactly as :func:`_split` and :func:`_snap` make."""
+    per_box = counts.prod(axis=1).astype(np.int64)
+    box = np.repeat(np.arange(len(lo)), per_box)
+    r = np.arange(int(per_box.sum())) - np.repeat(np.cumsum(per_box) - per_box, per_box)
+    out = np.empty((len(box), len(dims)))
+    for i in range(len(dims) - 1, -1, -1):  # mixed radix, last coordinate fastest
+        var = dims[i].var
+        assert var.step is not None
+        c = counts[box, i].astype(np.int64)
+        k0 = np.round((lo[box, i] - var.lo) / var.step)
+        out[:, i] = var.lo + var.step * (k0 + r % c)
+        r = r // c
+    return out
+
+
 def _threshold(best: float, tol: float) -> float:
     """Boxes whose bound is below this may still hold a better design."""
     return best if not math.isfinite(best) else best - tol * abs(best)
@@ -189,6 +212,8 @@ def branch_and_bound(
     dims = _dims(problem, n_fixed)
     cons = problem.constraints
     needed = {c.quantity for c in cons} | {obj_key}
+    costly = {q for q in needed if "@" in q}  # stiffness and buckling: interval arithmetic
+    cheap = needed - costly
     exact = all(d.var.gridded for d in dims)
     tol = 0.0 if exact else gap_rtol
     feas_rtol = FEAS_RTOL if exact else 0.0
@@ -199,6 +224,7 @@ def branch_and_bound(
     q_bound = np.array([-math.inf])
     # relative widths: n counts as n + 1 (the number of facets), W and alpha as themselves
     offset = np.array([1.0 if d.name.startswith("n") else 0.0 for d in dims])
+    steps = np.array([d.var.step if d.var.step is not None else math.nan for d in dims])
     best_val = math.inf if incumbent is None else sign * incumbent
     best_pt: dict[str, float] | None = None
     boxes = 0
@@ -218,26 +244,76 @@ def branch_and_bound(
             lo, hi = q_lo, q_hi
             q_lo, q_hi, q_bound = q_lo[:0], q_hi[:0], q_bound[:0]
         boxes += len(lo)
+        # on grids, a box of at most ENUMERATE grid points has every point evaluated and closes
+        if exact:
+            counts = np.round((hi - lo) / steps) + 1
+            enum = counts.prod(axis=1) <= ENUMERATE
+        else:
+            counts = lo[:, :0]
+            enum = np.zeros(len(lo), dtype=bool)
+        # cheap bounds first (extents, thickness, blank, facet, mass: corner values), for all
         xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
         xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
-        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, needed)
+        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, cheap)
         keep = np.ones(len(lo), dtype=bool)
         for c in cons:
-            b_lo, b_hi = bnd[c.quantity]
-            keep &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
-        o_lo, o_hi = bnd[obj_key]
-        obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
+            if c.quantity in cheap:
+                b_lo, b_hi = bnd[c.quantity]
+                keep &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
+        if obj_key in cheap:
+            o_lo, o_hi = bnd[obj_key]
+            obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
+        else:  # bounded below with the stiffness, for the boxes that get it
+            obj_bound = np.full(len(lo), -math.inf)
+        # interval (stiffness) bounds only for the boxes that will be split: an enumerated box
+        # has all its points evaluated exactly anyway
+        sub = keep & ~enum
+        if costly and sub.any():
+            slo = {k: v[sub] for k, v in xlo.items()}
+            shi = {k: v[sub] for k, v in xhi.items()}
+            if problem.identical:
+                slo, shi = _full(slo, True), _full(shi, True)
+            sb = box_bounds(problem, c1, c2, slo, shi, tables, costly)
+            ok = np.ones(int(sub.sum()), dtype=bool)
+            for c in cons:
+                if c.quantity in costly:
+                    b_lo, b_hi = sb[c.quantity]
+                    ok &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
+            if obj_key in costly:
+                o_lo, o_hi = sb[obj_key]
+                obj_bound[sub] = sign * (o_hi if maximize else o_lo)
+            keep[sub] &= ok
         keep &= obj_bound < _threshold(best_val, tol)
         lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
+        counts, enum = counts[keep], enum[keep]
         if not len(lo):
             continue
-        # candidate points: lower corner, upper corner, centre (snapped to the grid)
+        if enum.any():
+            every = _grid_points(lo[enum], counts[enum], dims)
+            lo, hi, obj_bound = lo[~enum], hi[~enum], obj_bound[~enum]
+            # each point is a box of its own: the same cheap bounds (values, there) drop the
+            # points that break a cheap constraint or cannot beat the incumbent, before the
+            # full evaluation
+            e = _full({d.name: every[:, i] for i, d in enumerate(dims)}, problem.identical)
+            eb = box_bounds(problem, c1, c2, e, e, tables, cheap)
+            ok = np.ones(len(every), dtype=bool)
+            for c in cons:
+                if c.quantity in cheap:
+                    b_lo, b_hi = eb[c.quantity]
+                    ok &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
+            if obj_key in cheap:
+                o_lo, o_hi = eb[obj_key]
+                ok &= sign * (o_hi if maximize else o_lo) < _threshold(best_val, tol)
+            every = every[ok]
+        else:
+            every = lo[:0]
+        # candidate points of the others: lower corner, upper corner, centre (snapped to the grid)
         mid = np.stack(
             [_snap(0.5 * (lo[:, i] + hi[:, i]), d.var, up=False) for i, d in enumerate(dims)],
             axis=1,
         )
         mid = np.clip(mid, lo, hi)
-        pts = np.concatenate([lo, hi, mid])
+        pts = np.concatenate([every, lo, hi, mid])
         x = _full({d.name: pts[:, i] for i, d in enumerate(dims)}, problem.identical)
         vals = point_values(problem, c1, c2, x, tables)
         ok = np.ones(len(pts), dtype=bool)

@@ -162,9 +162,7 @@ class Interval:
             return Interval._raw(_down(lo / other), _up(hi / other))
         o = Interval.of(other)
         if (
-            self.nonneg
-            and o.lo.min(initial=1.0) > 0
-            and np.isfinite(o.hi.max(initial=0.0))
+            self.nonneg and o.lo.min(initial=1.0) > 0 and np.isfinite(o.hi.max(initial=0.0))
         ):  # x >= 0 over finite y > 0: [x_lo / y_hi, x_hi / y_lo], one rounding each
             lo, hi = self.lo / o.hi, self.hi / o.lo
             if lo.shape == hi.shape:

@@ -83,16 +83,18 @@ def connector_area(
     # the segments of band_segments; a run that ends at corners is one segment, and runs of the
     # same length array (a rectangle's opposite sides; a square's four when Lx is Ly) are
     # computed once and counted k times
-    runs: list[list[object]] = []
+    runs: list[tuple[FloatArray, bool]] = []
+    mult: list[int] = []
     for length, cornered in layout.perimeter_runs(Lx, Ly):
-        for r in runs:
-            if cornered and r[1] and r[0] is length:
-                r[2] = int(r[2]) + 1  # type: ignore[call-overload]
+        for i, (other, c) in enumerate(runs):
+            if cornered and c and other is length:
+                mult[i] += 1
                 break
         else:
-            runs.append([length, cornered, 1])
+            runs.append((length, cornered))
+            mult.append(1)
     total: FloatArray | None = None
-    for length, cornered, k in runs:
+    for (length, cornered), k in zip(runs, mult, strict=True):
         e = np.asarray(length, dtype=np.float64)
         if cornered:
             term = (e + opts.overlap) * td + 2 * flange_area(e, True, opts)
@@ -101,7 +103,7 @@ def connector_area(
             seg = np.asarray(e / count)
             term = count * ((seg + opts.overlap) * td + 2 * flange_area(seg, False, opts))
         if k != 1:
-            term = int(k) * term  # type: ignore[call-overload]
+            term = k * term
         total = term if total is None else total + term
     assert total is not None
     return np.asarray(total if total.shape == shape else np.broadcast_to(total, shape))
