@@ -314,16 +314,17 @@ def branch_and_bound(
         )
         mid = np.clip(mid, lo, hi)
         pts = np.concatenate([every, lo, hi, mid])
-        x = _full({d.name: pts[:, i] for i, d in enumerate(dims)}, problem.identical)
-        vals = point_values(problem, c1, c2, x, tables)
-        ok = np.ones(len(pts), dtype=bool)
-        for c in cons:  # continuous: exact feasibility (margins >= 0); grids: FEAS_RTOL
-            ok &= c.satisfied(vals[c.quantity], rtol=feas_rtol)
-        f = np.where(ok, sign * vals[obj_key], np.inf)
-        k = int(np.argmin(f))
-        if f[k] < best_val:
-            best_val = float(f[k])
-            best_pt = {name: float(v[k]) for name, v in x.items()}
+        if len(pts):
+            x = _full({d.name: pts[:, i] for i, d in enumerate(dims)}, problem.identical)
+            vals = point_values(problem, c1, c2, x, tables)
+            ok = np.ones(len(pts), dtype=bool)
+            for c in cons:  # continuous: exact feasibility (margins >= 0); grids: FEAS_RTOL
+                ok &= c.satisfied(vals[c.quantity], rtol=feas_rtol)
+            f = np.where(ok, sign * vals[obj_key], np.inf)
+            k = int(np.argmin(f))
+            if f[k] < best_val:
+                best_val = float(f[k])
+                best_pt = {name: float(v[k]) for name, v in x.items()}
         keep = obj_bound < _threshold(best_val, tol)
         lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
         # close single grid points; split the rest and queue the halves with their bound
