@@ -53,8 +53,10 @@ __all__ = ["FIELDS", "SweepResult", "sweep"]
 FloatArray = NDArray[np.float64]
 #: Quantities a sweep can report and bound (see the module docstring).
 FIELDS = ("Lx", "thickness", "flat", "mass", "K", "D", "EI")
-#: Designs per block: 2^15 keeps the working arrays of a block (a few dozen of 256 KiB) in cache.
-DEFAULT_CHUNK = 1 << 15
+#: Designs per block: 16000 keeps each working array (125 KiB) in cache and below glibc's mmap
+#: threshold (128 KiB), so blocks reuse heap memory instead of faulting in fresh pages (dask
+#: workers, which trim the heap at 64 KiB, slow down 3x with larger blocks).
+DEFAULT_CHUNK = 16_000
 
 Bounds = Mapping[str, tuple[float | None, float | None]]
 
