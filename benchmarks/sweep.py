@@ -11,8 +11,9 @@ Prints, for identical square layers of Dura-Lar 0.125 mm (model ``refined``, eta
    reductions: lightest feasible design, count, min/max of the mass), of one ``evaluate()`` call
    on 10^6 random designs given as full arrays, and of the memory-bound ceiling ``W * n + alpha``
    on those same arrays (three passes over 8 MB arrays: no evaluator can beat it), with ratios;
-2. the peak resident memory (``resource.getrusage`` maxrss, in a fresh subprocess) of a 10^8
-   design sweep, next to that of the same subprocess that only imports corrugate;
+2. the peak resident memory (``resource.getrusage`` maxrss and /proc VmHWM, in a subprocess
+   started before this process allocates anything: a child's maxrss includes its parent's size
+   at the fork) of a 10^8 design sweep, next to that of a subprocess that only imports;
 3. the same sweep on a ``distributed.LocalCluster`` (2 worker processes, 1 thread each) and in
    process, with the check that both results are equal;
 4. the Python loop over ``analyze()`` it all replaces (sampled, extrapolated).
@@ -69,7 +70,12 @@ def rss_child(total: float, do_sweep: bool) -> None:
         r = run_sweep(total)
         result = {"count": r.count, "feasible": r.feasible, "best": r.best}
     rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
-    print(json.dumps({"maxrss_kib": rss, "result": result}))
+    hwm = None  # VmHWM: the peak of this process's own memory (reset by exec, unlike maxrss)
+    with open("/proc/self/status") as f:
+        for line in f:
+            if line.startswith("VmHWM:"):
+                hwm = int(line.split()[1])
+    print(json.dumps({"maxrss_kib": rss, "vmhwm_kib": hwm, "result": result}))
 
 
 def peak_rss(total: float, do_sweep: bool) -> dict[str, Any]:
@@ -129,10 +135,14 @@ def memory() -> None:
     wall = time.perf_counter() - t0
     res = big["result"]
     print("== peak resident memory (subprocess, resource.getrusage maxrss)")
-    print(f"import corrugate only: {base['maxrss_kib'] / 1024:8.1f} MiB")
     print(
-        f"sweep of {res['count']:,} designs: {big['maxrss_kib'] / 1024:8.1f} MiB "
-        f"({big['maxrss_kib'] / 2**20:.3f} GiB; limit 1 GiB), {wall:.1f} s wall incl. start-up; "
+        f"import corrugate only: maxrss {base['maxrss_kib'] / 1024:8.1f} MiB, VmHWM "
+        f"{(base['vmhwm_kib'] or 0) / 1024:8.1f} MiB"
+    )
+    print(
+        f"sweep of {res['count']:,} designs: maxrss {big['maxrss_kib'] / 1024:8.1f} MiB "
+        f"({big['maxrss_kib'] / 2**20:.3f} GiB; limit 1 GiB), VmHWM "
+        f"{(big['vmhwm_kib'] or 0) / 1024:8.1f} MiB, {wall:.1f} s wall incl. start-up; "
         f"{res['feasible']:,} feasible, best W={res['best']['W']:.4g} n={res['best']['n']:g} "
         f"alpha={res['best']['alpha']:.4g}"
     )
@@ -194,9 +204,9 @@ def main() -> None:
     ap.add_argument("--skip-dask", action="store_true")
     ap.add_argument("--skip-loop", action="store_true")
     args = ap.parse_args()
-    throughput(args.repeats)
-    if not args.skip_rss:
+    if not args.skip_rss:  # first: a child's maxrss starts at its parent's size (fork)
         memory()
+    throughput(args.repeats)
     if not args.skip_dask:
         dask()
     if not args.skip_loop:

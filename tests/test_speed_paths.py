@@ -230,22 +230,3 @@ def test_interval_fast_paths_contain_sampled_values(
     assert (xp * y).nonneg and (xp / y).nonneg and (xp + y).nonneg
     zero = Interval(np.array([0.0]), np.array([1.0]))
     assert (zero * zero).lo[0] == 0.0  # rounded towards 0, never below it
-
-
-@pytest.mark.parametrize("same", [True, False])
-def test_long_inputs_in_blocks_equal_one_pass(monkeypatch: pytest.MonkeyPatch, same: bool) -> None:
-    size = 4 * analysis.BLOCK + 1234
-    l1 = _random_layer(3, size)
-    l2 = l1 if same else _random_layer(4, size)
-    fast = evaluate(l1, l2, Square(), "refined", 30.0, support="frame")
-    monkeypatch.setattr(analysis, "_in_blocks", lambda *args: None)
-    ref = evaluate(l1, l2, Square(), "refined", 30.0, support="frame")
-    for name in ("Lx", "Ly", "thickness", "mass", "mass_connectors", "K", "D", "EI"):
-        np.testing.assert_allclose(getattr(fast, name), getattr(ref, name), rtol=1e-15)
-    for i in (0, 1):
-        for f in ("Ecx", "Ecy", "Ebx", "Eby"):
-            a, b = getattr(fast.moduli[i], f), getattr(ref.moduli[i], f)
-            np.testing.assert_allclose(np.broadcast_to(a, (size,)), b, rtol=1e-15)
-        for f in ("K_C", "K_S", "D_C", "D_S", "K_T", "D_T"):
-            a, b = getattr(fast.springs[i], f), getattr(ref.springs[i], f)
-            np.testing.assert_allclose(a, b, rtol=1e-15)

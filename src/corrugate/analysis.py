@@ -169,83 +169,6 @@ def _num(x: ArrayLike) -> Any:
     return float(a) if a.ndim == 0 else a
 
 
-#: Long 1-D inputs are evaluated in blocks of this many designs: each temporary array (125 KiB)
-#: then stays in cache and under glibc's mmap threshold (no fresh pages per operation).
-BLOCK = 16_000
-_FIELDS = ("E", "nu", "t", "W", "n", "alpha_deg", "density")
-
-
-def _in_blocks(
-    layer1: LayerArrays,
-    layer2: LayerArrays,
-    layout: Layout,
-    model: str,
-    eta_deg: ArrayLike,
-    fabrication: FabricationOptions,
-    support: Support,
-) -> Evaluation | None:
-    """:func:`evaluate` block by block when every input is a number or a 1-D array of one
-    length N > 4 :data:`BLOCK` and eta is one number (None otherwise): the same elementwise
-    arithmetic on each block, several times faster on large inputs."""
-    if np.ndim(eta_deg) != 0:
-        return None
-    lengths = {
-        np.shape(getattr(layer, f))
-        for layer in (layer1, layer2)
-        for f in _FIELDS
-        if np.ndim(getattr(layer, f)) != 0
-    }
-    if len(lengths) != 1:
-        return None
-    (shape,) = lengths
-    if len(shape) != 1 or shape[0] <= 4 * BLOCK:
-        return None
-
-    def part(layer: LayerArrays, sl: slice) -> LayerArrays:
-        return LayerArrays(
-            *(np.asarray(v)[sl] if np.ndim(v) else v for v in (getattr(layer, f) for f in _FIELDS))
-        )
-
-    same = layer1 is layer2
-    parts = []
-    for start in range(0, shape[0], BLOCK):
-        sl = slice(start, start + BLOCK)
-        p1 = part(layer1, sl)
-        p2 = p1 if same else part(layer2, sl)
-        parts.append(evaluate(p1, p2, layout, model, eta_deg, fabrication, support))
-
-    def join(values: list[Any]) -> FloatArray:
-        if np.ndim(values[0]) == 0:  # depends on no array input: the same in every block
-            return np.asarray(values[0])
-        return np.concatenate([np.broadcast_to(v, np.shape(v)) for v in values])
-
-    def field(get: Any) -> FloatArray:
-        return join([get(e) for e in parts])
-
-    moduli = tuple(
-        Moduli(*(field(lambda e, i=i, k=k: getattr(e.moduli[i], k)) for k in Moduli.__slots__))
-        for i in (0, 1)
-    )
-    springs = tuple(
-        LayerSprings(
-            *(field(lambda e, i=i, k=k: getattr(e.springs[i], k)) for k in LayerSprings.__slots__)
-        )
-        for i in (0, 1)
-    )
-    return Evaluation(
-        Lx=field(lambda e: e.Lx),
-        Ly=field(lambda e: e.Ly),
-        thickness=field(lambda e: e.thickness),
-        mass=field(lambda e: e.mass),
-        mass_connectors=field(lambda e: e.mass_connectors),
-        K=field(lambda e: e.K),
-        D=field(lambda e: e.D),
-        EI=field(lambda e: e.EI),
-        moduli=(moduli[0], moduli[1]),
-        springs=(springs[0], springs[1]),
-    )
-
-
 def evaluate(
     layer1: LayerArrays,
     layer2: LayerArrays,
@@ -273,9 +196,6 @@ def evaluate(
     equal-sides requirement of square and circle layouts is left to the caller.
     """
     from_sc = get_model(model).from_sc
-    chunked = _in_blocks(layer1, layer2, layout, model, eta_deg, fabrication, support)
-    if chunked is not None:
-        return chunked
     same = identical_layers(layer1, layer2, layout)
     g1 = _layer_part(layer1, from_sc)
     g2 = g1 if same else _layer_part(layer2, from_sc)
