@@ -229,6 +229,9 @@ def branch_and_bound(
     best_pt: dict[str, float] | None = None
     boxes = 0
     it = 0
+    width = (q_hi - q_lo) / np.maximum(q_lo + offset, 1e-300)
+    if np.any(width > 0):  # bounding the root alone prunes nothing: cut it first
+        q_lo, q_hi, q_bound = _split(q_lo, q_hi, width, dims, True, q_bound)
     while len(q_lo) and it < MAX_ITERATIONS and boxes < MAX_BOXES and len(q_lo) < MAX_OPEN:
         it += 1
         waiting = q_bound < _threshold(best_val, tol)
