@@ -12,7 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -20,9 +20,9 @@ from numpy.typing import ArrayLike, NDArray
 from .buckling import BucklingEstimate, buckling_bounds
 from .checks import ModelWarning, design_warnings
 from .geometry import Assembly, Layer
-from .layouts import Layout, layer_inverse_sums, length_sum
+from .layouts import Circle, Layout, Rectangle, layer_inverse_sums, length_sum
 from .mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
-from .moduli import DEFAULT_MODEL, Moduli, get_model, moduli
+from .moduli import DEFAULT_MODEL, Moduli, ModuliFromSC, get_model
 from .offaxis import Support, assembly_directional, check_support
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
 from .springs import LayerSprings, layer_springs
@@ -34,6 +34,7 @@ __all__ = [
     "LayerArrays",
     "analyze",
     "evaluate",
+    "identical_layers",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -84,6 +85,8 @@ def directional(
     """K or D of the assembly (:func:`corrugate.offaxis.assembly_directional`) broadcast over the
     springs' arrays and ``eta_deg`` (deg): one evaluation per distinct eta."""
     eta = np.asarray(eta_deg, dtype=np.float64)
+    if eta.ndim == 0:  # one direction: no masks, no copies
+        return np.asarray(assembly_directional(kind, springs, float(eta), support))
     values = {
         float(e): assembly_directional(kind, springs, float(e), support) for e in np.unique(eta)
     }
@@ -97,7 +100,8 @@ def directional(
 @dataclass(frozen=True, slots=True)
 class Evaluation:
     """Vectorised results (arrays broadcast over the inputs): lengths in mm, K in N/mm,
-    D in N mm, EI in N mm^2, mass in g."""
+    D in N mm, EI in N mm^2, mass in g. Each array keeps the smallest shape that carries it
+    (e.g. the moduli do not depend on n, the thickness not on n); all broadcast together."""
 
     Lx: FloatArray
     Ly: FloatArray
@@ -109,6 +113,60 @@ class Evaluation:
     EI: FloatArray
     moduli: tuple[Moduli, Moduli]
     springs: tuple[LayerSprings, LayerSprings]
+
+
+def _same_field(a: ArrayLike, b: ArrayLike) -> bool:
+    if a is b:
+        return True
+    x, y = np.asarray(a), np.asarray(b)
+    return x.shape == y.shape and bool(np.array_equal(x, y))
+
+
+def identical_layers(layer1: LayerArrays, layer2: LayerArrays, layout: Layout) -> bool:
+    """Whether layer 2's springs, extent and mass are layer 1's, so :func:`evaluate` computes one
+    layer only: the same parameters (the same objects, or equal arrays of the same shape) on an
+    outline that is symmetric under x <-> y (rectangle, square, circle) and has no holes (holes
+    need not be symmetric). Then Lx = Ly and q = sum_j 1/L_j is the same for both layers
+    (DESIGN.md 3.2), so every per-layer quantity is bit for bit the same."""
+    if layout.holes or not isinstance(layout, Rectangle | Circle):
+        return False
+    if layer1 is layer2:
+        return True
+    return all(
+        _same_field(getattr(layer1, f), getattr(layer2, f))
+        for f in ("alpha_deg", "W", "n", "t", "E", "nu", "density")
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class _LayerPart:
+    """One layer's share of :func:`evaluate`: s = sin(alpha/2), c = cos(alpha/2), pitch p and
+    height h (mm), chord extent (n + 1) p (mm) and moduli (MPa)."""
+
+    s: FloatArray
+    c: FloatArray
+    p: FloatArray
+    h: FloatArray
+    extent: FloatArray
+    moduli: Moduli
+
+
+def _layer_part(layer: LayerArrays, from_sc: ModuliFromSC) -> _LayerPart:
+    """Trigonometry once per layer (s, c of alpha/2), then the geometry and the moduli."""
+    half = np.asarray(layer.alpha_deg, dtype=np.float64) * (np.pi / 360.0)
+    s, c = np.sin(half), np.cos(half)
+    W = np.asarray(layer.W, dtype=np.float64)
+    p = W * s
+    # scalars as Python floats: the nu polynomials of the moduli cost nothing then
+    m = from_sc(_num(layer.E), _num(layer.nu), _num(layer.t), W, s, c)
+    n1 = np.asarray(layer.n, dtype=np.float64) + 1.0  # exact; float * float avoids a cast loop
+    return _LayerPart(s, c, p, W * c, n1 * p, m)
+
+
+def _num(x: ArrayLike) -> Any:
+    """A 0-d input as a Python float, an array as a float64 array."""
+    a = np.asarray(x, dtype=np.float64)
+    return float(a) if a.ndim == 0 else a
 
 
 def evaluate(
@@ -124,30 +182,43 @@ def evaluate(
 
     K (N/mm), D (N mm) and EI (N mm^2) are those of ``support`` (:mod:`corrugate.offaxis`:
     ``free`` sides, the default, or a rigid ``frame``); they agree at eta = 0 and 90 deg.
+    Springs from DESIGN.md 3.2, moduli from the variant ``model`` (3.1), the assembly from 3.3.
 
     ``mass`` (g) counts both layers and the connector band (cut from layer 1's sheet), as the cut
     files do; ``mass_connectors`` is the band's share.
 
+    sin and cos of alpha/2 are computed once per layer, and when the two layers are the same
+    (:func:`identical_layers`) layer 2 is not evaluated again: its results are layer 1's. Inputs
+    that broadcast (e.g. ``n`` of shape (k, 1, 1), ``W`` (1, m, 1), ``alpha_deg`` (1, 1, j))
+    keep each step on the smallest shape that carries it (trigonometry on alpha's axis only).
+
     No validation is done (see :class:`~corrugate.geometry.Layer` for the allowed ranges), and the
     equal-sides requirement of square and circle layouts is left to the caller.
     """
-    get_model(model)
-    Lx, Ly = layer1.chord_extent(), layer2.chord_extent()
-    m1 = moduli(layer1.E, layer1.nu, layer1.t, layer1.W, layer1.alpha_deg, model)
-    m2 = moduli(layer2.E, layer2.nu, layer2.t, layer2.W, layer2.alpha_deg, model)
-    p1, p2 = layer1.pitch(), layer2.pitch()
-    q1, qs1 = layer_inverse_sums(layout, layer1.n, p1, Ly, "x")
-    q2, qs2 = layer_inverse_sums(layout, layer2.n, p2, Lx, "y")
-    s1 = layer_springs(m1, layer1.t, p1, q1, layer1.E, layer1.nu, layer1.sin_half(), qs1)
-    s2 = layer_springs(m2, layer2.t, p2, q2, layer2.E, layer2.nu, layer2.sin_half(), qs2)
+    from_sc = get_model(model).from_sc
+    same = identical_layers(layer1, layer2, layout)
+    g1 = _layer_part(layer1, from_sc)
+    g2 = g1 if same else _layer_part(layer2, from_sc)
+    Lx, Ly = g1.extent, g2.extent
+    q1, qs1 = layer_inverse_sums(layout, layer1.n, g1.p, Ly, "x")
+    s1 = layer_springs(g1.moduli, layer1.t, g1.p, q1, layer1.E, layer1.nu, g1.s, qs1)
+    if same:
+        s2 = s1
+    else:
+        q2, qs2 = layer_inverse_sums(layout, layer2.n, g2.p, Lx, "y")
+        s2 = layer_springs(g2.moduli, layer2.t, g2.p, q2, layer2.E, layer2.nu, g2.s, qs2)
     D = directional("D", (s1, s2), eta_deg, support)
     mass = layer_mass(
-        layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly), layout, p1
+        layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly), layout, g1.p
     )
-    mass = mass + layer_mass(
-        layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx), layout, p2
-    )
-    thickness = layer1.height() + layer2.height()
+    if same:  # x + x == 2 x exactly
+        thickness = np.asarray(2.0 * g1.h)
+        mass = np.asarray(2.0 * mass)
+    else:
+        thickness = np.asarray(g1.h + g2.h)
+        mass = mass + layer_mass(
+            layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx), layout, g2.p
+        )
     m_conn = connector_mass(layer1.density, layer1.t, layout, Lx, Ly, thickness, fabrication)
     return Evaluation(
         Lx=Lx,
@@ -158,7 +229,7 @@ def evaluate(
         K=directional("K", (s1, s2), eta_deg, support),
         D=D,
         EI=np.asarray(D * layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float))),
-        moduli=(m1, m2),
+        moduli=(g1.moduli, g2.moduli),
         springs=(s1, s2),
     )
 

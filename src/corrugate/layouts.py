@@ -148,7 +148,7 @@ def inverse_length_sum(
     n_arr = np.asarray(n, dtype=np.int64)
     S = np.asarray(other_side, dtype=np.float64)
     if isinstance(layout, Square | Rectangle):  # G(n) = 1 in closed form
-        G = np.ones(n_arr.shape)
+        return np.asarray((np.asarray(n_arr, dtype=np.float64) + 1.0) / S)
     else:
         uniq, inverse = np.unique(n_arr, return_inverse=True)
         G = np.array([_inverse_strip_sum(layout, int(k), axis) for k in uniq])[inverse]
@@ -159,7 +159,9 @@ def inverse_length_sum(
 def length_sum(layout: Layout, n: ArrayLike, other_side: ArrayLike) -> FloatArray:
     """sum_j L_j (mm): (n + 1) S times the outline's area fraction."""
     n_arr = np.asarray(n, dtype=np.float64)
-    return np.asarray((n_arr + 1) * np.asarray(other_side) * layout.area_fraction())
+    total = (n_arr + 1) * np.asarray(other_side)
+    af = layout.area_fraction()
+    return np.asarray(total if af == 1.0 else total * af)
 
 
 def layer_inverse_sums(
@@ -204,7 +206,14 @@ class Rectangle:
 
     def span(self, Lx: FloatArray, Ly: FloatArray, eta_deg: FloatArray) -> FloatArray:
         e = np.radians(eta_deg)
-        return np.asarray(np.abs(Lx * np.sin(e)) + np.abs(Ly * np.cos(e)))
+        a, b = np.abs(np.sin(e)), np.abs(np.cos(e))
+        if np.ndim(e) == 0:  # one direction: |x y| = |x| |y| exactly, so skip the zero term
+            a_, b_ = float(a), float(b)
+            if a_ == 0.0:
+                return np.asarray(np.abs(Ly) if b_ == 1.0 else np.abs(Ly) * b_)
+            if b_ == 0.0:
+                return np.asarray(np.abs(Lx) * a_)
+        return np.asarray(np.abs(Lx) * a + np.abs(Ly) * b)
 
     def describe(self) -> dict[str, object]:
         return _with_holes({"shape": self.name}, self.holes)

@@ -74,15 +74,28 @@ class Moduli:
 
 
 ModuliFunction = Callable[[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray], Moduli]
+#: ``(E, nu, t, W, s, c) -> Moduli`` with s = sin(alpha/2), c = cos(alpha/2) already computed.
+ModuliFromSC = Callable[
+    [FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray], Moduli
+]
 
 
 @dataclass(frozen=True, slots=True)
 class ModuliModel:
-    """A named moduli variant: ``function(E, nu, t, W, alpha_rad) -> Moduli``."""
+    """A named moduli variant: ``function(E, nu, t, W, alpha_rad) -> Moduli``, and the same
+    formulas as ``from_sc(E, nu, t, W, s, c)`` for callers that already hold s = sin(alpha/2) and
+    c = cos(alpha/2) (the vectorised evaluator computes them once per layer)."""
 
     name: str
-    function: ModuliFunction
+    from_sc: ModuliFromSC
     source: str
+
+    def function(
+        self, E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, alpha: FloatArray
+    ) -> Moduli:
+        """The moduli (unit of ``E``) at fold angle ``alpha`` (rad)."""
+        s, c = _sc(alpha)
+        return self.from_sc(E, nu, t, W, s, c)
 
 
 def _sc(alpha: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -90,32 +103,59 @@ def _sc(alpha: FloatArray) -> tuple[FloatArray, FloatArray]:
     return np.sin(half), np.cos(half)
 
 
+def paper_moduli_sc(
+    E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, s: FloatArray, c: FloatArray
+) -> Moduli:
+    """:func:`paper_moduli` from s = sin(alpha/2) and c = cos(alpha/2); cos(alpha) + 1 = 2 c^2.
+
+    The nu polynomials enter with both the numerator's and the denominator's sign flipped
+    (exact in floating point: the same numbers), so that for 0 <= nu < 0.5 every factor is
+    positive, which keeps interval evaluations (:mod:`corrugate.design.interval`) on their
+    cheap non-negative path."""
+    nu2 = nu * nu
+    t2 = t * t
+    W2 = W * W
+    s2 = s * s
+    c2 = c * c
+    k = 1 - nu2
+    Ecx = (
+        E
+        * t2
+        * -(nu2 - 2 * nu - 1)
+        * s
+        / (
+            -(3 * nu2 * nu2 + 2 * nu2 * nu - nu - 3) * t2 * s2
+            + -(-nu2 * nu2 + 2 * nu2 * nu + 4 * nu2 - 2 * nu - 3) * W2 * c
+        )
+    )
+    Ecy = E * -(nu2 - 2 * nu - 3) / (4 * -(nu2 - 1) * s)
+    Ebx = E * (W2 * (2 * c2) * s + t2 * k * s2) / (2 * k * (W2 * c2 + t2 * s2))
+    Eby = E * (s + W2 * c2 / (t2 * k * s))
+    return Moduli(Ecx, Ecy, Ebx, Eby)
+
+
 def paper_moduli(
     E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, alpha: FloatArray
 ) -> Moduli:
     """The moduli exactly as printed in Liu, Yan and Mehta, eqs. (Ecx), (Ecy), (Ebx), (Eby).
 
-    Units follow ``E``; ``t`` and ``W`` in the same length unit; ``alpha`` in radians.
+    Units follow ``E``; ``t`` and ``W`` in the same length unit; ``alpha`` in radians. The
+    printed cos(alpha) + 1 of Ebx is evaluated as 2 cos^2(alpha/2) (the same number).
     """
-    s, c = _sc(alpha)
-    nu2 = nu * nu
-    Ecx = (
-        E
-        * t**2
-        * (nu2 - 2 * nu - 1)
-        * s
-        / (
-            (3 * nu2 * nu2 + 2 * nu2 * nu - nu - 3) * t**2 * s**2
-            + (-nu2 * nu2 + 2 * nu2 * nu + 4 * nu2 - 2 * nu - 3) * W**2 * c
-        )
-    )
-    Ecy = E * (nu2 - 2 * nu - 3) / (4 * (nu2 - 1) * s)
-    Ebx = (
-        E
-        * (W**2 * (np.cos(alpha) + 1) * s + t**2 * (1 - nu2) * s**2)
-        / (2 * (1 - nu2) * (W**2 * c**2 + t**2 * s**2))
-    )
-    Eby = E * (s + W**2 * c**2 / (t**2 * (1 - nu2) * s))
+    return paper_moduli_sc(E, nu, t, W, *_sc(alpha))
+
+
+def xia_moduli_sc(
+    E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, s: FloatArray, c: FloatArray
+) -> Moduli:
+    """:func:`xia_moduli` from s = sin(alpha/2) and c = cos(alpha/2)."""
+    k = 1 - nu * nu
+    Wc2 = (W * c) ** 2
+    ts2 = (t * s) ** 2
+    Ecx = E * t**2 * s / (ts2 + k * Wc2)
+    Ecy = E / s
+    Ebx = E * s * (Wc2 + k * ts2) / (k * (Wc2 + ts2))
+    Eby = E * (s + Wc2 / (t**2 * k * s))
     return Moduli(Ecx, Ecy, Ebx, Eby)
 
 
@@ -128,14 +168,21 @@ def xia_moduli(
     Ebx = E s [W^2 c^2 + (1 - nu^2) t^2 s^2] / [(1 - nu^2)(W^2 c^2 + t^2 s^2)],
     Eby = E [s + W^2 c^2 / (t^2 (1 - nu^2) s)].
     """
-    s, c = _sc(alpha)
+    return xia_moduli_sc(E, nu, t, W, *_sc(alpha))
+
+
+def refined_moduli_sc(
+    E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, s: FloatArray, c: FloatArray
+) -> Moduli:
+    """:func:`refined_moduli` from s = sin(alpha/2) and c = cos(alpha/2)."""
     k = 1 - nu * nu
     Wc2 = (W * c) ** 2
-    ts2 = (t * s) ** 2
-    Ecx = E * t**2 * s / (ts2 + k * Wc2)
+    t2 = t**2
+    ts2 = t2 * s * s
+    Ecx = E * t2 * s / (ts2 + k * Wc2)
     Ecy = E / s
     Ebx = E * s * (Wc2 + k * ts2) / (k * (Wc2 + ts2))
-    Eby = E * (s + Wc2 / (t**2 * k * s))
+    Eby = E * (s + Wc2 / (t2 * s))
     return Moduli(Ecx, Ecy, Ebx, Eby)
 
 
@@ -149,22 +196,21 @@ def refined_moduli(
     deg and t/W = 0.0067-0.02 (largest at alpha = 40 deg, t/W = 0.02; all within 1 % only at
     alpha = 115 deg, and at 90 deg up to t/W = 0.009).
     """
-    base = xia_moduli(E, nu, t, W, alpha)
-    s, c = _sc(alpha)
-    Eby = E * (s + (W * c) ** 2 / (t**2 * s))
-    return Moduli(base.Ecx, base.Ecy, base.Ebx, Eby)
+    return refined_moduli_sc(E, nu, t, W, *_sc(alpha))
 
 
 MODELS: dict[str, ModuliModel] = {
     "paper": ModuliModel(
-        "paper", paper_moduli, "Liu, Yan and Mehta, eqs. Ecx-Eby, as printed (reproduces Table 1)"
+        "paper",
+        paper_moduli_sc,
+        "Liu, Yan and Mehta, eqs. Ecx-Eby, as printed (reproduces Table 1)",
     ),
     "xia": ModuliModel(
-        "xia", xia_moduli, "Xia, Friswell and Saavedra Flores (2012), zig-zag, corrected"
+        "xia", xia_moduli_sc, "Xia, Friswell and Saavedra Flores (2012), zig-zag, corrected"
     ),
     "refined": ModuliModel(
         "refined",
-        refined_moduli,
+        refined_moduli_sc,
         "Xia (2012) with the spanwise bending of Ye et al. (2014); agrees with unit-cell FE",
     ),
 }

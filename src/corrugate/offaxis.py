@@ -83,7 +83,7 @@ def shear_springs(E: Any, nu: Any, t: Any, s: Any, pq: Any) -> tuple[Any, Any]:
     A66 = G t s and D66 = G t^3 / (12 s) are Xia et al. (2012) for a zig-zag of developed
     width W = p / s; G = E / (2 (1 + nu))."""
     G = E / (2.0 * (1.0 + nu))
-    return G * t * s * pq, G * (t * t * t / 12.0) / s * pq
+    return (G * t) * s * pq, (G * (t * t * t / 12.0)) / s * pq
 
 
 def _cs(theta_deg: float) -> tuple[float, float]:
@@ -126,7 +126,9 @@ def strip_fraction(theta_deg: float) -> float:
 def free_bending(D_S: Any, D_C: Any, D_T: Any, theta_deg: float) -> Any:
     """D (N mm) of one free layer bent about theta (deg) from its creases: the larger of the
     plate and the strip lower bounds (module docstring)."""
-    c2, _ = _cs(theta_deg)
+    c2, s2 = _cs(theta_deg)
+    if s2 == 0.0:  # along the creases plate and strip bounds are both D_S
+        return D_S
     plate = _plate(D_S, D_C, D_T, theta_deg)
     f = strip_fraction(theta_deg)
     if f == 0.0:

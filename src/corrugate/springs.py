@@ -14,6 +14,7 @@ panel) is :func:`corrugate.offaxis.assembly_directional`; EI(eta) = D(eta) x spa
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -38,6 +39,12 @@ class LayerSprings:
     D_T: FloatArray  # twisting (free-panel model, corrugate.offaxis)
 
 
+def _num(x: ArrayLike) -> Any:
+    """A 0-d input as a Python float (cheap scalar arithmetic), an array as float64."""
+    a = np.asarray(x, dtype=np.float64)
+    return float(a) if a.ndim == 0 else a
+
+
 def layer_springs(
     m: Moduli,
     t: ArrayLike,
@@ -56,23 +63,20 @@ def layer_springs(
     D_T) take ``inv_length_sum`` over the facets no hole touches and the series sums (K_C, D_C)
     ``inv_length_sum_series``, with the blocked lengths removed; without it both use
     ``inv_length_sum``."""
-    t_ = np.asarray(t, dtype=np.float64)
+    t_ = _num(t)
     p = np.asarray(pitch, dtype=np.float64)
-    q = np.asarray(inv_length_sum, dtype=np.float64)
-    qs = q if inv_length_sum_series is None else np.asarray(inv_length_sum_series, np.float64)
-    K_T, D_T = shear_springs(
-        np.asarray(E, dtype=np.float64),
-        np.asarray(nu, dtype=np.float64),
-        t_,
-        np.asarray(sin_half, dtype=np.float64),
-        p * q,
-    )
+    pq = p * np.asarray(inv_length_sum, dtype=np.float64)
+    series = inv_length_sum_series
+    # without holes both sums are the same object (layouts.layer_inverse_sums): p q once
+    pqs = pq if series is None or series is inv_length_sum else p * np.asarray(series, np.float64)
+    K_T, D_T = shear_springs(_num(E), _num(nu), t_, np.asarray(sin_half, dtype=np.float64), pq)
+    t3_12 = t_ * t_ * t_ / 12.0
     with np.errstate(divide="ignore"):
         return LayerSprings(
-            K_C=m.Ecx * t_ / (p * qs),
-            K_S=m.Ecy * p * t_ * q,
-            D_C=m.Ebx * t_**3 / (12 * p * qs),
-            D_S=m.Eby * t_**3 * p * q / 12,
-            K_T=np.asarray(K_T),
-            D_T=np.asarray(D_T),
+            K_C=m.Ecx * t_ / pqs,
+            K_S=m.Ecy * t_ * pq,
+            D_C=m.Ebx * t3_12 / pqs,
+            D_S=m.Eby * t3_12 * pq,
+            K_T=K_T,
+            D_T=D_T,
         )

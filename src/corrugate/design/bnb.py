@@ -9,15 +9,18 @@ inherited from their parent, so the search is best-first when there are many):
    (:func:`~.quantities.box_bounds`, rigorous);
 2. drop a box when some constraint cannot be met anywhere in it, or when its objective bound is
    no better than the incumbent (for mass, the bound is the mass at the box's lower corner);
-3. evaluate candidate points of each remaining box exactly with ``evaluate`` (its lower corner,
-   its upper corner and its centre, snapped to the grid) and keep the best feasible one;
-4. close boxes that are single grid points; halve the others along their relatively widest
-   coordinate (and, while there are few boxes, along every coordinate nearly as wide), cutting
-   grid coordinates between two grid values.
+3. evaluate points of each remaining box exactly with ``evaluate``: every grid point of a grid
+   box with at most :data:`ENUMERATE` points (the box is then closed), else its lower corner,
+   its upper corner and its centre, snapped to the grid; keep the best feasible one;
+4. cut the boxes still open in two along their relatively widest coordinate (and, while there
+   are few boxes, into :data:`MULTI_PARTS` along every coordinate nearly as wide), cutting grid
+   coordinates between two grid values. All boxes of an iteration go through numpy together:
+   the cost of an iteration is mostly fixed, so few iterations of many boxes are cheapest.
 
 Certificate. Every design of the original box lies in exactly one box that was either (a) dropped
-because a rigorous bound shows it infeasible or no better than the incumbent, (b) a single grid
-point evaluated exactly, or (c) still open when the loop stops. The loop stops when no box is
+because a rigorous bound shows it infeasible or no better than the incumbent, (b) a grid box
+of at most :data:`ENUMERATE` points, every one of them evaluated exactly, or (c) still open when
+the loop stops. The loop stops when no box is
 open (gridded problems: the optimum is exact, gap 0) or when every open box's bound is within the
 relative tolerance ``gap_rtol`` of the incumbent (continuous problems: no design is better than
 the incumbent by more than ``gap_rtol``, proved). If the iteration limit is hit first, the result
@@ -54,6 +57,11 @@ MAX_OPEN = 2_000_000
 BATCH = 20_000
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
+#: Parts per coordinate in such a split.
+MULTI_PARTS = 8
+#: Grid boxes with at most this many points are enumerated (each point evaluated exactly) and
+#: closed, instead of being bounded and split further: a point costs far less than a box.
+ENUMERATE = 512
 
 
 @dataclass(frozen=True)
@@ -107,37 +115,67 @@ def _split(
     multi: bool,
     tag: FloatArray,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Halve each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
-    counted as n + 1, so every coordinate is judged by how much it changes across the box), and
-    (``multi``) also along every coordinate at least half as wide, so few boxes become many in
-    few iterations. Grid coordinates are cut between two grid values."""
+    """Cut each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
+    counted as n + 1, so every coordinate is judged by how much it changes across the box) into
+    two, and (``multi``) along every coordinate at least half as wide into :data:`MULTI_PARTS`
+    (so few boxes become many in few iterations: the per-iteration cost is mostly fixed).
+    Grid coordinates are cut between two grid values, into at most as many parts as values."""
     widest = width.max(axis=1, keepdims=True)
     if multi:
         split = (width >= 0.5 * widest) & (width > 0)
     else:
         split = np.zeros(width.shape, dtype=bool)
         split[np.arange(len(width)), np.argmax(width, axis=1)] = True
+    parts = MULTI_PARTS if multi else 2
     for i, d in enumerate(dims):
         sel = split[:, i]
         if not sel.any():
             continue
         a, b = lo[sel, i], hi[sel, i]
+        j = np.arange(parts + 1, dtype=np.float64)[:, None]  # cut j of parts + 1 (0 and end)
         if d.var.step is None:
-            cut_lo = cut_hi = 0.5 * (a + b)
+            edges = a + (b - a) * (j / parts)
+            edges[-1] = b
+            starts, ends = edges[:-1], edges[1:]
+            valid = np.ones(starts.shape, dtype=bool)
         else:
             k_lo = np.round((a - d.var.lo) / d.var.step)
             k_hi = np.round((b - d.var.lo) / d.var.step)
-            k_mid = np.floor(0.5 * (k_lo + k_hi))
-            cut_lo = d.var.lo + d.var.step * k_mid
-            cut_hi = d.var.lo + d.var.step * (k_mid + 1)
-        left_hi, right_lo = hi[sel].copy(), lo[sel].copy()
-        left_hi[:, i] = cut_lo
-        right_lo[:, i] = cut_hi
-        lo = np.concatenate([lo[~sel], lo[sel], right_lo])
-        hi = np.concatenate([hi[~sel], left_hi, hi[sel]])
-        split = np.concatenate([split[~sel], split[sel], split[sel]])
-        tag = np.concatenate([tag[~sel], tag[sel], tag[sel]])
+            count = k_hi - k_lo + 1  # grid values in the box (>= 2 here)
+            first = k_lo + np.ceil(j * count / parts)  # first grid index of each part
+            starts = d.var.lo + d.var.step * first[:-1]
+            ends = d.var.lo + d.var.step * (first[1:] - 1)
+            valid = first[1:] > first[:-1]  # a part holds at least one grid value
+        k = len(a)
+        child_lo = np.repeat(lo[sel][None], parts, axis=0)
+        child_hi = np.repeat(hi[sel][None], parts, axis=0)
+        child_lo[:, :, i] = starts
+        child_hi[:, :, i] = ends
+        keep = valid.reshape(-1)
+        lo = np.concatenate([lo[~sel], child_lo.reshape(parts * k, -1)[keep]])
+        hi = np.concatenate([hi[~sel], child_hi.reshape(parts * k, -1)[keep]])
+        rep = np.repeat(split[sel][None], parts, axis=0).reshape(parts * k, -1)[keep]
+        split = np.concatenate([split[~sel], rep])
+        rep_tag = np.repeat(tag[sel][None], parts, axis=0).reshape(parts * k)[keep]
+        tag = np.concatenate([tag[~sel], rep_tag])
     return lo, hi, tag
+
+
+def _grid_points(lo: FloatArray, counts: FloatArray, dims: list[_Dim]) -> FloatArray:
+    """Every grid point of each box (lower corners ``lo``, ``counts`` grid values per
+    coordinate), as rows; values lo + step k exactly as :func:`_split` and :func:`_snap` make."""
+    per_box = counts.prod(axis=1).astype(np.int64)
+    box = np.repeat(np.arange(len(lo)), per_box)
+    r = np.arange(int(per_box.sum())) - np.repeat(np.cumsum(per_box) - per_box, per_box)
+    out = np.empty((len(box), len(dims)))
+    for i in range(len(dims) - 1, -1, -1):  # mixed radix, last coordinate fastest
+        var = dims[i].var
+        assert var.step is not None
+        c = counts[box, i].astype(np.int64)
+        k0 = np.round((lo[box, i] - var.lo) / var.step)
+        out[:, i] = var.lo + var.step * (k0 + r % c)
+        r = r // c
+    return out
 
 
 def _threshold(best: float, tol: float) -> float:
@@ -174,6 +212,8 @@ def branch_and_bound(
     dims = _dims(problem, n_fixed)
     cons = problem.constraints
     needed = {c.quantity for c in cons} | {obj_key}
+    costly = {q for q in needed if "@" in q}  # stiffness and buckling: interval arithmetic
+    cheap = needed - costly
     exact = all(d.var.gridded for d in dims)
     tol = 0.0 if exact else gap_rtol
     feas_rtol = FEAS_RTOL if exact else 0.0
@@ -184,10 +224,14 @@ def branch_and_bound(
     q_bound = np.array([-math.inf])
     # relative widths: n counts as n + 1 (the number of facets), W and alpha as themselves
     offset = np.array([1.0 if d.name.startswith("n") else 0.0 for d in dims])
+    steps = np.array([d.var.step if d.var.step is not None else math.nan for d in dims])
     best_val = math.inf if incumbent is None else sign * incumbent
     best_pt: dict[str, float] | None = None
     boxes = 0
     it = 0
+    width = (q_hi - q_lo) / np.maximum(q_lo + offset, 1e-300)
+    if np.any(width > 0):  # bounding the root alone prunes nothing: cut it first
+        q_lo, q_hi, q_bound = _split(q_lo, q_hi, width, dims, True, q_bound)
     while len(q_lo) and it < MAX_ITERATIONS and boxes < MAX_BOXES and len(q_lo) < MAX_OPEN:
         it += 1
         waiting = q_bound < _threshold(best_val, tol)
@@ -203,36 +247,87 @@ def branch_and_bound(
             lo, hi = q_lo, q_hi
             q_lo, q_hi, q_bound = q_lo[:0], q_hi[:0], q_bound[:0]
         boxes += len(lo)
+        # on grids, a box of at most ENUMERATE grid points has every point evaluated and closes
+        if exact:
+            counts = np.round((hi - lo) / steps) + 1
+            enum = counts.prod(axis=1) <= ENUMERATE
+        else:
+            counts = lo[:, :0]
+            enum = np.zeros(len(lo), dtype=bool)
+        # cheap bounds first (extents, thickness, blank, facet, mass: corner values), for all
         xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
         xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
-        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, needed)
+        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, cheap)
         keep = np.ones(len(lo), dtype=bool)
         for c in cons:
-            b_lo, b_hi = bnd[c.quantity]
-            keep &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
-        o_lo, o_hi = bnd[obj_key]
-        obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
+            if c.quantity in cheap:
+                b_lo, b_hi = bnd[c.quantity]
+                keep &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
+        if obj_key in cheap:
+            o_lo, o_hi = bnd[obj_key]
+            obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
+        else:  # bounded below with the stiffness, for the boxes that get it
+            obj_bound = np.full(len(lo), -math.inf)
+        # interval (stiffness) bounds only for the boxes that will be split: an enumerated box
+        # has all its points evaluated exactly anyway
+        sub = keep & ~enum
+        if costly and sub.any():
+            slo = {k: v[sub] for k, v in xlo.items()}
+            shi = {k: v[sub] for k, v in xhi.items()}
+            if problem.identical:
+                slo, shi = _full(slo, True), _full(shi, True)
+            sb = box_bounds(problem, c1, c2, slo, shi, tables, costly)
+            ok = np.ones(int(sub.sum()), dtype=bool)
+            for c in cons:
+                if c.quantity in costly:
+                    b_lo, b_hi = sb[c.quantity]
+                    ok &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
+            if obj_key in costly:
+                o_lo, o_hi = sb[obj_key]
+                obj_bound[sub] = sign * (o_hi if maximize else o_lo)
+            keep[sub] &= ok
         keep &= obj_bound < _threshold(best_val, tol)
         lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
+        counts, enum = counts[keep], enum[keep]
         if not len(lo):
             continue
-        # candidate points: lower corner, upper corner, centre (snapped to the grid)
+        if enum.any():
+            every = _grid_points(lo[enum], counts[enum], dims)
+            lo, hi, obj_bound = lo[~enum], hi[~enum], obj_bound[~enum]
+            # each point is a box of its own: the same cheap bounds (values, there) drop the
+            # points that break a cheap constraint or cannot beat the incumbent, before the
+            # full evaluation
+            e = _full({d.name: every[:, i] for i, d in enumerate(dims)}, problem.identical)
+            eb = box_bounds(problem, c1, c2, e, e, tables, cheap)
+            ok = np.ones(len(every), dtype=bool)
+            for c in cons:
+                if c.quantity in cheap:
+                    b_lo, b_hi = eb[c.quantity]
+                    ok &= c.satisfied(b_hi if c.sense == "min" else b_lo, rtol=feas_rtol)
+            if obj_key in cheap:
+                o_lo, o_hi = eb[obj_key]
+                ok &= sign * (o_hi if maximize else o_lo) < _threshold(best_val, tol)
+            every = every[ok]
+        else:
+            every = lo[:0]
+        # candidate points of the others: lower corner, upper corner, centre (snapped to the grid)
         mid = np.stack(
             [_snap(0.5 * (lo[:, i] + hi[:, i]), d.var, up=False) for i, d in enumerate(dims)],
             axis=1,
         )
         mid = np.clip(mid, lo, hi)
-        pts = np.concatenate([lo, hi, mid])
-        x = _full({d.name: pts[:, i] for i, d in enumerate(dims)}, problem.identical)
-        vals = point_values(problem, c1, c2, x, tables)
-        ok = np.ones(len(pts), dtype=bool)
-        for c in cons:  # continuous: exact feasibility (margins >= 0); grids: FEAS_RTOL
-            ok &= c.satisfied(vals[c.quantity], rtol=feas_rtol)
-        f = np.where(ok, sign * vals[obj_key], np.inf)
-        k = int(np.argmin(f))
-        if f[k] < best_val:
-            best_val = float(f[k])
-            best_pt = {name: float(v[k]) for name, v in x.items()}
+        pts = np.concatenate([every, lo, hi, mid])
+        if len(pts):
+            x = _full({d.name: pts[:, i] for i, d in enumerate(dims)}, problem.identical)
+            vals = point_values(problem, c1, c2, x, tables)
+            ok = np.ones(len(pts), dtype=bool)
+            for c in cons:  # continuous: exact feasibility (margins >= 0); grids: FEAS_RTOL
+                ok &= c.satisfied(vals[c.quantity], rtol=feas_rtol)
+            f = np.where(ok, sign * vals[obj_key], np.inf)
+            k = int(np.argmin(f))
+            if f[k] < best_val:
+                best_val = float(f[k])
+                best_pt = {name: float(v[k]) for name, v in x.items()}
         keep = obj_bound < _threshold(best_val, tol)
         lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
         # close single grid points; split the rest and queue the halves with their bound

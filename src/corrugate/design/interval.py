@@ -34,6 +34,12 @@ def _up(x: FloatArray) -> FloatArray:
     return np.nextafter(x, _INF)
 
 
+def _down0(x: FloatArray) -> FloatArray:
+    """Round a lower bound down when the exact value is known to be >= 0: the next float
+    towards 0, and 0 itself stays 0 (a bound below 0 would be valid but needlessly loose)."""
+    return np.nextafter(x, 0.0)
+
+
 def _arr(x: ArrayLike) -> FloatArray:
     return np.asarray(x, dtype=np.float64)
 
@@ -41,14 +47,26 @@ def _arr(x: ArrayLike) -> FloatArray:
 class Interval:
     """Closed intervals ``[lo, hi]`` elementwise (arrays broadcast together)."""
 
-    __slots__ = ("hi", "lo")
+    __slots__ = ("_nn", "hi", "lo")
     #: Make ``ndarray <op> Interval`` dispatch to :meth:`__array_ufunc__`.
     __array_priority__ = 1000
 
     def __init__(self, lo: ArrayLike, hi: ArrayLike | None = None) -> None:
         lo_a = _arr(lo)
         hi_a = lo_a if hi is None else _arr(hi)
-        self.lo, self.hi = np.broadcast_arrays(lo_a, hi_a)
+        if lo_a.shape == hi_a.shape:
+            self.lo, self.hi = lo_a, hi_a
+        else:
+            self.lo, self.hi = np.broadcast_arrays(lo_a, hi_a)
+        self._nn: bool | None = None
+
+    @property
+    def nonneg(self) -> bool:
+        """Whether every lower bound is >= 0 (checked once, then known; results of operations
+        on non-negative intervals know it without a check)."""
+        if self._nn is None:
+            self._nn = bool(self.lo.min(initial=0.0) >= 0)  # False with a NaN
+        return self._nn
 
     # -- helpers -----------------------------------------------------------------------------
     @staticmethod
@@ -69,7 +87,13 @@ class Interval:
 
     # -- arithmetic --------------------------------------------------------------------------
     def __add__(self, other: Interval | ArrayLike) -> Interval:
+        if isinstance(other, float | int):  # a number: no conversion
+            if other >= 0 and self._nn:
+                return Interval._raw(_down0(self.lo + other), _up(self.hi + other), True)
+            return Interval(_down(self.lo + other), _up(self.hi + other))
         o = Interval.of(other)
+        if self._nn and o._nn:
+            return Interval._raw(_down0(self.lo + o.lo), _up(self.hi + o.hi), True)
         return Interval(_down(self.lo + o.lo), _up(self.hi + o.hi))
 
     __radd__ = __add__
@@ -78,6 +102,8 @@ class Interval:
         return Interval(-self.hi, -self.lo)
 
     def __sub__(self, other: Interval | ArrayLike) -> Interval:
+        if isinstance(other, float | int):
+            return Interval(_down(self.lo - other), _up(self.hi - other))
         o = Interval.of(other)
         return Interval(_down(self.lo - o.hi), _up(self.hi - o.lo))
 
@@ -85,13 +111,19 @@ class Interval:
         return Interval.of(other) - self
 
     @classmethod
-    def _raw(cls, lo: FloatArray, hi: FloatArray) -> Interval:
-        """An interval from arrays that already broadcast (no copy, no checks)."""
+    def _raw(cls, lo: FloatArray, hi: FloatArray, nonneg: bool | None = None) -> Interval:
+        """An interval from arrays of one shape (no copy, no checks); ``nonneg`` if known."""
         out = cls.__new__(cls)
-        out.lo, out.hi = lo, hi
+        out.lo, out.hi, out._nn = lo, hi, nonneg
         return out
 
     def __mul__(self, other: Interval | ArrayLike) -> Interval:
+        if isinstance(other, float | int) and math.isfinite(other):  # a number: scale
+            if other >= 0:
+                if self._nn:
+                    return Interval._raw(_down0(self.lo * other), _up(self.hi * other), True)
+                return Interval._raw(_down(self.lo * other), _up(self.hi * other))
+            return Interval._raw(_down(self.hi * other), _up(self.lo * other))
         if not isinstance(other, Interval):
             c = np.asarray(
                 other.item() if isinstance(other, np.ndarray) and other.dtype == object else other,
@@ -103,10 +135,10 @@ class Interval:
                 return Interval._raw(_down(lo * cv), _up(hi * cv))
             other = Interval(c)
         o = other
-        if np.all(self.lo >= 0) and np.all(o.lo >= 0):  # both non-negative: the usual case here
+        if self.nonneg and o.nonneg:  # both non-negative: the usual case here
             lo, hi = self.lo * o.lo, self.hi * o.hi
-            if not np.isnan(hi).any():
-                return Interval._raw(_down(lo), _up(hi))
+            if lo.shape == hi.shape and not np.isnan(hi.max(initial=0.0)):  # no 0 * inf
+                return Interval._raw(_down0(lo), _up(hi), True)
         with np.errstate(invalid="ignore"):
             p = np.stack(
                 np.broadcast_arrays(self.lo * o.lo, self.lo * o.hi, self.hi * o.lo, self.hi * o.hi)
@@ -125,10 +157,20 @@ class Interval:
         return Interval(lo, hi)
 
     def __truediv__(self, other: Interval | ArrayLike) -> Interval:
-        return self * Interval.of(other).reciprocal()
+        if isinstance(other, float | int) and other != 0 and math.isfinite(other):
+            lo, hi = (self.lo, self.hi) if other > 0 else (self.hi, self.lo)
+            return Interval._raw(_down(lo / other), _up(hi / other))
+        o = Interval.of(other)
+        if (
+            self.nonneg and o.lo.min(initial=1.0) > 0 and np.isfinite(o.hi.max(initial=0.0))
+        ):  # x >= 0 over finite y > 0: [x_lo / y_hi, x_hi / y_lo], one rounding each
+            lo, hi = self.lo / o.hi, self.hi / o.lo
+            if lo.shape == hi.shape:
+                return Interval._raw(_down0(lo), _up(hi), True)
+        return self * o.reciprocal()
 
     def __rtruediv__(self, other: Interval | ArrayLike) -> Interval:
-        return Interval.of(other) * self.reciprocal()
+        return Interval.of(other) / self
 
     def __pow__(self, k: int) -> Interval:
         if not (isinstance(k, int | np.integer) and k >= 0):
@@ -139,6 +181,8 @@ class Interval:
         if k == 1:
             return self
         a, b = self.lo**k, self.hi**k
+        if self._nn:  # x >= 0: x^k increasing
+            return Interval._raw(_down0(a), _up(b), True)
         if k % 2 == 1:
             return Interval(_down(a), _up(b))
         lo = np.where((self.lo <= 0) & (self.hi >= 0), 0.0, np.minimum(a, b))
@@ -155,7 +199,7 @@ class Interval:
         return Interval(np.maximum(self.lo, o.lo), np.maximum(self.hi, o.hi))
 
     def sqrt(self) -> Interval:
-        return Interval(_down(np.sqrt(np.maximum(self.lo, 0.0))), _up(np.sqrt(self.hi)))
+        return Interval._raw(_down0(np.sqrt(np.maximum(self.lo, 0.0))), _up(np.sqrt(self.hi)), True)
 
     def cos(self) -> Interval:
         """cos over the interval: endpoint values, widened to +-1 where a multiple of pi lies

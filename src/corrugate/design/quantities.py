@@ -76,6 +76,11 @@ class RangeTable:
 
     def __init__(self, n0: int, values: FloatArray) -> None:
         self.n0 = n0
+        v = np.asarray(values, dtype=np.float64)
+        d = np.diff(v)
+        #: +1 if f is non-decreasing in n, -1 if non-increasing, 0 otherwise (then the table)
+        self.monotone = 1 if np.all(d >= 0) else (-1 if np.all(d <= 0) else 0)
+        self._values = v
         self._min = [np.asarray(values, dtype=np.float64)]
         self._max = [np.asarray(values, dtype=np.float64)]
         k = 1
@@ -89,6 +94,9 @@ class RangeTable:
         """min and max of f over n in [lo, hi] (arrays of integers)."""
         i = np.asarray(lo, dtype=np.int64) - self.n0
         j = np.asarray(hi, dtype=np.int64) - self.n0
+        if self.monotone:  # the extremes sit at the ends of the range
+            a, b = self._values[i], self._values[j]
+            return (a, b) if self.monotone > 0 else (b, a)
         length = j - i + 1
         level = np.floor(np.log2(np.maximum(length, 1))).astype(np.int64)
         mins = np.empty(i.shape)
@@ -175,8 +183,12 @@ def point_values(
     keys = [c.quantity for c in problem.constraints] + [problem.objective.quantity]
     wanted = {"frame" for k in keys if "frame@" in k} | {"Pb" for k in keys if k.startswith("Pb@")}
     l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
-    l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
-    ev = evaluate(l1, l2, problem.layout, problem.model, etas)
+    if _same_layers(c1, c2, x):  # evaluate computes one layer (analysis.identical_layers)
+        l2 = l1
+    else:
+        l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
+    # one direction: a scalar eta keeps evaluate on its fast path (no per-eta masks)
+    ev = evaluate(l1, l2, problem.layout, problem.model, etas[0] if len(etas) == 1 else etas)
     Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
     out: dict[str, FloatArray] = {
         "Lx": Lx,
@@ -209,6 +221,25 @@ def point_values(
     return out
 
 
+def _thickness(lo: Arrays, hi: Arrays, same: bool) -> tuple[FloatArray, FloatArray]:
+    """Bounds of t_d = W1 c1 + W2 c2 over boxes (increasing in W, decreasing in alpha)."""
+    if same:
+        return 2.0 * _height(lo["W1"], hi["a1"]), 2.0 * _height(hi["W1"], lo["a1"])
+    return (
+        _height(lo["W1"], hi["a1"]) + _height(lo["W2"], hi["a2"]),
+        _height(hi["W1"], lo["a1"]) + _height(hi["W2"], lo["a2"]),
+    )
+
+
+def _same_layers(c1: Candidate, c2: Candidate, x: Arrays) -> bool:
+    """Whether layer 2's coordinates are layer 1's (identical layers: the same arrays)."""
+    return (
+        c1 == c2
+        and all(x[f"{k}2"] is x[f"{k}1"] for k in ("n", "W", "a"))
+        and all(f"{k}{i}" not in x for k in ("E", "t") for i in (1, 2))
+    )
+
+
 def _extent(n: FloatArray, W: FloatArray, a: FloatArray) -> FloatArray:
     return np.asarray(LayerArrays(0, 0, 0, W, n, a, 0).chord_extent())
 
@@ -232,14 +263,15 @@ def box_bounds(
 ) -> Bounds:
     """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi]."""
     lay = problem.layout
+    same = _same_layers(c1, c2, lo) and _same_layers(c1, c2, hi)
     Lx_lo, Lx_hi = _extent(lo["n1"], lo["W1"], lo["a1"]), _extent(hi["n1"], hi["W1"], hi["a1"])
-    Ly_lo, Ly_hi = _extent(lo["n2"], lo["W2"], lo["a2"]), _extent(hi["n2"], hi["W2"], hi["a2"])
+    if same:
+        Ly_lo, Ly_hi = Lx_lo, Lx_hi
+    else:
+        Ly_lo, Ly_hi = _extent(lo["n2"], lo["W2"], lo["a2"]), _extent(hi["n2"], hi["W2"], hi["a2"])
     out: Bounds = {"Lx": (Lx_lo, Lx_hi), "Ly": (Ly_lo, Ly_hi)}
     if "thickness" in quantities:
-        out["thickness"] = (
-            _height(lo["W1"], hi["a1"]) + _height(lo["W2"], hi["a2"]),
-            _height(hi["W1"], lo["a1"]) + _height(hi["W2"], lo["a2"]),
-        )
+        out["thickness"] = _thickness(lo, hi, same)
     if "flat" in quantities:
         out["flat"] = (
             np.maximum((lo["n1"] + 1) * lo["W1"], (lo["n2"] + 1) * lo["W2"]),
@@ -257,10 +289,13 @@ def box_bounds(
         def mass(b: Arrays, Lx: FloatArray, Ly: FloatArray) -> FloatArray:
             # holes remove rho t A_h / s(alpha) per layer, most at the box's lowest alpha: the
             # corner's own pitch gives the bound on the same side as its blank
-            p1, p2 = _pitch(b["W1"], b["a1"]), _pitch(b["W2"], b["a2"])
+            p1 = _pitch(b["W1"], b["a1"])
             m1 = layer_mass(
                 c1.material.density, c1.t, b["W1"], length_sum(lay, b["n1"], Ly), lay, p1
             )
+            if same:  # the same layer twice (x + x = 2 x exactly, as evaluate does)
+                return np.asarray(2.0 * m1)
+            p2 = _pitch(b["W2"], b["a2"])
             m2 = layer_mass(
                 c2.material.density, c2.t, b["W2"], length_sum(lay, b["n2"], Lx), lay, p2
             )
@@ -268,8 +303,7 @@ def box_bounds(
 
         # The band (cut from layer 1's sheet) grows with Lx, Ly and t_d (corrugate.pattern.
         # connectors), so its bounds are its values at those quantities' own bounds.
-        td_lo = _height(lo["W1"], hi["a1"]) + _height(lo["W2"], hi["a2"])
-        td_hi = _height(hi["W1"], lo["a1"]) + _height(hi["W2"], lo["a2"])
+        td_lo, td_hi = out["thickness"] if "thickness" in out else _thickness(lo, hi, same)
         band_lo = connector_mass(c1.material.density, c1.t, lay, Lx_lo, Ly_lo, td_lo)
         band_hi = connector_mass(c1.material.density, c1.t, lay, Lx_hi, Ly_hi, td_hi)
         out["mass"] = (mass(lo, Lx_lo, Ly_lo) + band_lo, mass(hi, Lx_hi, Ly_hi) + band_hi)
@@ -310,11 +344,13 @@ def _layer_springs(
     t = cand.t
     Wi = Interval(W[0], W[1])
     alpha = Interval(np.radians(a[0]), np.radians(a[1]))
-    # the model functions are plain arithmetic, so they accept intervals (duck typing)
-    function: Any = get_model(problem.model).function
-    mod = function(np.float64(m.E), np.float64(m.nu), np.float64(t), Wi, alpha)
+    # the model functions are plain arithmetic, so they accept intervals (duck typing); sin and
+    # cos of alpha/2 once, as evaluate does
+    from_sc: Any = get_model(problem.model).from_sc
+    half = alpha * 0.5
+    sh, ch = half.sin(), half.cos()
+    mod = from_sc(float(m.E), float(m.nu), float(t), Wi, sh, ch)
     q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
-    sh = (alpha * 0.5).sin()
     if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
         pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))
     else:
@@ -326,7 +362,7 @@ def _layer_springs(
         p_lo = np.asarray(W[0] * np.sin(np.radians(a[0]) / 2))
         p_hi = np.asarray(W[1] * np.sin(np.radians(a[1]) / 2))
         pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
-    K_T, D_T = shear_springs(np.float64(m.E), np.float64(m.nu), np.float64(t), sh, pq_par)
+    K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), sh, pq_par)
     return _Springs(
         Ecx * t / pq_ser,
         Ecy * t * pq_par,

@@ -79,8 +79,31 @@ def connector_area(
 ) -> FloatArray:
     """Flat area (mm^2) of the band: every segment with its two flanges and its overlap tab."""
     td = np.asarray(thickness, dtype=np.float64)
-    total = np.zeros(np.broadcast_shapes(np.shape(Lx), np.shape(Ly), td.shape))
-    for length, count, cornered in band_segments(layout, Lx, Ly, opts):
-        flanges = 2 * flange_area(length, cornered, opts)
-        total = total + count * ((length + opts.overlap) * td + flanges)
-    return np.asarray(total)
+    shape = np.broadcast_shapes(np.shape(Lx), np.shape(Ly), td.shape)
+    # the segments of band_segments; a run that ends at corners is one segment, and runs of the
+    # same length array (a rectangle's opposite sides; a square's four when Lx is Ly) are
+    # computed once and counted k times
+    runs: list[tuple[FloatArray, bool]] = []
+    mult: list[int] = []
+    for length, cornered in layout.perimeter_runs(Lx, Ly):
+        for i, (other, c) in enumerate(runs):
+            if cornered and c and other is length:
+                mult[i] += 1
+                break
+        else:
+            runs.append((length, cornered))
+            mult.append(1)
+    total: FloatArray | None = None
+    for (length, cornered), k in zip(runs, mult, strict=True):
+        e = np.asarray(length, dtype=np.float64)
+        if cornered:
+            term = (e + opts.overlap) * td + 2 * flange_area(e, True, opts)
+        else:
+            count = np.maximum(1.0, np.ceil(e / opts.segment_max - 1e-9))
+            seg = np.asarray(e / count)
+            term = count * ((seg + opts.overlap) * td + 2 * flange_area(seg, False, opts))
+        if k != 1:
+            term = k * term
+        total = term if total is None else total + term
+    assert total is not None
+    return np.asarray(total if total.shape == shape else np.broadcast_to(total, shape))
