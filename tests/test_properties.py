@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -9,6 +11,7 @@ from hypothesis import strategies as st
 
 from corrugate import Assembly, Layer, analyze, inline_material, moduli
 from corrugate.analysis import LayerArrays, evaluate
+from corrugate.errors import InputError
 from corrugate.layouts import Square
 
 E_ = st.floats(1.0, 3e5)
@@ -66,6 +69,8 @@ def test_stiffness_scales_linearly_with_E(
     eta: float,
     model: str,
 ) -> None:
+    if model == "paper" and nu <= 1 - math.sqrt(2):
+        return  # refused (test_paper_model_refuses_a_poisson_ratio_where_its_Ecx_is_negative)
     a1 = Assembly.identical(_layer(E, nu, W, t_over_W, n, alpha))
     a2 = Assembly.identical(_layer(E * k, nu, W, t_over_W, n, alpha))
     r1, r2 = analyze(a1, model, [eta]).stiffness[0], analyze(a2, model, [eta]).stiffness[0]
@@ -100,6 +105,11 @@ def test_identical_layers_are_isotropic_and_results_positive(
     no theorem, the two are different loadings: tests/test_offaxis.py checks it over the
     practical range; at t/W = 0.25 and n = 1 the free bound exceeds the rule by 6e-6.)"""
     a = Assembly.identical(_layer(E, nu, W, t_over_W, n, alpha))
+    if model == "paper" and nu <= 1 - math.sqrt(2):
+        # the paper's printed Ecx changes sign at nu = 1 - sqrt(2): refused, not negative
+        with pytest.raises(InputError, match="outside the model's range"):
+            analyze(a, model, [0.0, *etas], support="frame")
+        return
     r = analyze(a, model, [0.0, *etas], support="frame")
     K0, D0 = r.stiffness[0].K, r.stiffness[0].D
     for s in r.stiffness:
@@ -138,3 +148,21 @@ def test_vectorised_sweep_equals_scalar_loop() -> None:
         assert ev.EI[i] == pytest.approx(r.stiffness[0].EI, rel=1e-12)
         assert ev.mass[i] == pytest.approx(r.mass.total, rel=1e-12)
         assert ev.thickness[i] == pytest.approx(a.thickness, rel=1e-12)
+
+
+def test_paper_model_refuses_a_poisson_ratio_where_its_Ecx_is_negative() -> None:
+    """Hand check: the printed Ecx's numerator nu^2 - 2 nu - 1 vanishes at nu = 1 - sqrt(2);
+    just above, the paper model is positive; at or below, analyze refuses in one line naming nu,
+    and the refined model takes it."""
+    from corrugate import inline_material
+    from corrugate.moduli import moduli
+
+    edge = 1 - math.sqrt(2)
+    assert (edge**2 - 2 * edge - 1) == pytest.approx(0.0, abs=1e-12)
+    assert float(moduli(2700.0, edge + 1e-3, 0.125, 8.0, 84.0, "paper").Ecx) > 0
+    assert float(moduli(2700.0, edge - 1e-3, 0.125, 8.0, 84.0, "paper").Ecx) < 0
+    m = inline_material(E=2700.0, nu=-0.5, density=1.39)
+    a = Assembly.identical(Layer(W=8, n=8, alpha_deg=84, material=m, t=0.125))
+    with pytest.raises(InputError, match=r"nu = -0\.5 is outside the model's range"):
+        analyze(a, "paper")
+    assert analyze(a, "refined").stiffness[0].K > 0

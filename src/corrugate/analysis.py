@@ -354,7 +354,10 @@ def analyze(
         >>> round(r.stiffness[0].EI / 1000, 2)  # mN m^2, the paper's Table 1, case 1
         87.84
     """
-    model = get_model(model).name
+    variant = get_model(model)
+    model = variant.name
+    for i, layer in enumerate(assembly.layers):
+        variant.check_nu(layer.material.nu, "nu" if i == 0 else "nu2")
     support = check_support(support)
     etas = np.asarray(list(eta_deg), dtype=np.float64)
     a = assembly

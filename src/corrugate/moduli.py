@@ -46,13 +46,14 @@ All functions broadcast over NumPy arrays: a sweep over a million designs is one
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .errors import UnknownNameError
+from .errors import InputError, UnknownNameError
 
 __all__ = ["DEFAULT_MODEL", "MODELS", "Moduli", "ModuliModel", "get_model", "moduli"]
 
@@ -89,6 +90,20 @@ class ModuliModel:
     name: str
     from_sc: ModuliFromSC
     source: str
+    #: Poisson's ratios at or below this give a negative modulus (None: any -1 < nu < 0.5).
+    nu_min: float | None = None
+
+    def check_nu(self, nu: float, field: str = "nu") -> None:
+        """An :class:`~corrugate.errors.InputError` naming ``field`` when the variant's formulas
+        are not positive at Poisson's ratio ``nu``."""
+        if self.nu_min is not None and not nu > self.nu_min:
+            raise InputError(
+                field,
+                f"{nu:g}",
+                f"nu > {self.nu_min:.4f} for model '{self.name}' (its printed Ecx changes sign "
+                "at nu = 1 - sqrt(2)); the 'refined' and 'xia' models take any -1 < nu < 0.5",
+                reason="is outside the model's range",
+            )
 
     def function(
         self, E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, alpha: FloatArray
@@ -204,6 +219,8 @@ MODELS: dict[str, ModuliModel] = {
         "paper",
         paper_moduli_sc,
         "Liu, Yan and Mehta, eqs. Ecx-Eby, as printed (reproduces Table 1)",
+        # the printed Ecx's numerator nu^2 - 2 nu - 1 vanishes at nu = 1 - sqrt(2)
+        nu_min=1.0 - math.sqrt(2.0),
     ),
     "xia": ModuliModel(
         "xia", xia_moduli_sc, "Xia, Friswell and Saavedra Flores (2012), zig-zag, corrected"

@@ -26,9 +26,11 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import InputError
 from ..geometry import crease_layer
 from ..layouts import Layout, make_layout
 from ..materials import Material, get_material, inline_material
+from ..moduli import get_model
 from ..offaxis import Support
 from ..spec import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
@@ -224,6 +226,10 @@ class Problem:
         for i, m in enumerate(mats):
             where = "material" if spec.material is not None else f"materials[{i}]"
             cands.extend(_candidates(where, m))
+            try:
+                get_model(spec.model).check_nu(cands[-1].material.nu)
+            except InputError as exc:
+                raise SpecError(f"{where}.nu", exc.value, exc.allowed, reason=exc.reason) from None
         c = spec.constraints
         cons: list[Constraint] = []
         if c.sheet_max is not None:
