@@ -74,6 +74,11 @@ class UnitCellMesh:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
                 raise InputError(f"mesh.{name}", v, "an integer >= 1")
+            from ..limits import check_count
+
+            check_count(
+                "cell_mesh" if name == "along" else "cell_mesh_through", v, f"cell-mesh.{name}"
+            )
 
     def refined(self, factor: float = 2.0) -> UnitCellMesh:
         """The mesh with ``along`` and ``through`` scaled by ``factor`` (rounded, at least 1)."""
