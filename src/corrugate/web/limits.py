@@ -169,10 +169,11 @@ class CatchAll:
             await BodySizeLimit._reject(send, status, describe(exc), field=field)
 
 
-def release_memory() -> None:
-    """Collect garbage and hand freed heap pages back to the system (glibc ``malloc_trim``), so
-    that the memory a large computation needed does not stay resident."""
-    gc.collect()
+def release_memory(full: bool = False) -> None:
+    """Collect young garbage (all of it if ``full``: some 0.3 s) and hand freed heap pages back
+    to the system (glibc ``malloc_trim``, microseconds), so that the memory a large computation
+    needed does not stay resident."""
+    gc.collect() if full else gc.collect(1)
     try:
         libc = ctypes.CDLL(None)
         libc.malloc_trim(0)
@@ -227,6 +228,7 @@ class Runner:
         self.timeout_s = timeout_s
         self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="corrugate-web")
         self._slots = threading.BoundedSemaphore(max_pending)
+        self._done = 0
 
     async def run(self, fn: Callable[[], T]) -> T:
         """The result of ``fn()``, computed on the pool; its exceptions propagate."""
@@ -238,7 +240,9 @@ class Runner:
             self._slots.release()
             raise
         future.add_done_callback(lambda _: self._slots.release())
-        future.add_done_callback(lambda _: release_memory())  # after the answer is on its way
+        self._done += 1
+        full = self._done % 32 == 0
+        future.add_done_callback(lambda _: release_memory(full))  # after the answer is sent
         try:
             return await asyncio.wait_for(asyncio.wrap_future(future), self.timeout_s)
         except TimeoutError:
