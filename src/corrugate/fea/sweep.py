@@ -162,6 +162,11 @@ def _terminate_as_exit() -> Iterator[None]:
         signal.signal(signal.SIGTERM, previous)
 
 
+def _worker_init() -> None:
+    """A worker ends on SIGTERM (its parent's handler, inherited by fork, would not let it)."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
 def _stop_pool(ex: ProcessPoolExecutor) -> None:
     """Shut a pool down now: cancel what has not started, terminate the workers."""
     processes = list(getattr(ex, "_processes", {}).values())
@@ -205,7 +210,7 @@ def run_sweep(
         with _terminate_as_exit():
             while todo:
                 if own:
-                    ex = ProcessPoolExecutor(max_workers=jobs)
+                    ex = ProcessPoolExecutor(max_workers=jobs, initializer=_worker_init)
                 assert ex is not None
                 futures: dict[Future[CaseResult], int] = {ex.submit(run, cases[i]): i for i in todo}
                 todo = []
