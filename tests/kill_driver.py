@@ -14,6 +14,7 @@ file. After the last trial one more run must leave no leftovers.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -31,10 +32,8 @@ CUTTERS = ("cameo4-12x12", "maker-12x12")
 def _run(spec: str, out: Path, cutter: str) -> None:
     from corrugate.cli import main
 
-    try:
+    with contextlib.suppress(SystemExit):
         main(["design", spec, "--out", str(out), "--cutter", cutter, "--json"])
-    except SystemExit:
-        pass
 
 
 def _parses(path: Path) -> bool:
