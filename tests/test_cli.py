@@ -118,7 +118,7 @@ def test_table_output_and_independent_layers(cli: CliRun) -> None:
         (["--alpha", "0"], "alpha", "0 < alpha < 180"),
         (["--W", "-1"], "W", "0.01 <= W <= 10000 mm"),
         (["--W", "0"], "W", "0.01 <= W <= 10000 mm"),
-        (["--thickness", "0"], "thickness", "0.0001 <= thickness <= 100 mm"),
+        (["--thickness", "0"], "thickness", "1e-05 <= thickness <= 100 mm"),
         (["--n", "8.5"], "n", "integer"),
         (["--n", "0"], "n", "1 <= n <= 5000"),
         (["--n", "eight"], "n", "integer"),

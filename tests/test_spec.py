@@ -124,7 +124,7 @@ def _set(d: dict[str, Any], path: tuple[Any, ...], value: Any) -> None:
             ("material", "thickness"),
             ["0.1 mm", "-2 mm"],
             "material.thickness",
-            ">= 0.0001 mm and <= 100 mm",
+            ">= 1e-05 mm and <= 100 mm",
         ),
         (("model",), "fancy", "model", "refined"),
         (("layout", "shape"), "hexagon", "layout.shape", "polygon"),

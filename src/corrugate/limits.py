@@ -73,7 +73,7 @@ LIMITS: dict[str, Limit] = {
     lim.key: lim
     for lim in (
         Limit("W", 0.01, 10_000.0, "mm", "facet width: 10 um (below any cutter) to 10 m"),
-        Limit("thickness", 1e-4, 100.0, "mm", "sheet thickness: 0.1 um foil to a 100 mm board"),
+        Limit("thickness", 1e-5, 100.0, "mm", "sheet thickness: 10 nm film to a 100 mm board"),
         Limit(
             "n", 1, 5000, "", "number of creases: one fold to 5000 (a 10 m sheet of 2 mm pleats)"
         ),
