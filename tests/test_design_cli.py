@@ -99,7 +99,7 @@ def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
     for key, value in printed.items():  # design.json holds the printed object, plus the files'
         assert written[key] == value, key
     names = sorted(p.name for p in out_dir.iterdir())
-    assert not [n for n in names if n.startswith(".")]  # no temp files left
+    assert [n for n in names if n.startswith(".")] == [".corrugate-set.json"]  # no temp file
     assert {
         "design.json",
         "sheet-1.svg",
@@ -111,7 +111,7 @@ def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
         "assembly.stl",
         "ASSEMBLY.md",
     } <= set(names)
-    assert set(written["files"]) == set(names)
+    assert set(written["files"]) == set(names) - {".corrugate-set.json"}
     # the mass of the cut parts is the mass the solver minimised
     parts = sum(p["mass_g"] for p in written["cut_parts"])
     assert parts == pytest.approx(printed["mass_g"], rel=5e-3)

@@ -120,7 +120,12 @@ def _set(d: dict[str, Any], path: tuple[Any, ...], value: Any) -> None:
             "deg",
         ),
         (("material", "name"), "unobtainium", "material.name", "dura-lar"),
-        (("material", "thickness"), ["0.1 mm", "-2 mm"], "material.thickness", "> 0 mm"),
+        (
+            ("material", "thickness"),
+            ["0.1 mm", "-2 mm"],
+            "material.thickness",
+            ">= 1e-05 mm and <= 100 mm",
+        ),
         (("model",), "fancy", "model", "refined"),
         (("layout", "shape"), "hexagon", "layout.shape", "polygon"),
         (("objective", "minimize"), "cost", "objective.minimize", "mass"),

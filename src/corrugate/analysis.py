@@ -375,7 +375,7 @@ def analyze(
         DirectionalStiffness(float(e), float(k), float(d), float(ei), float(sp))
         for e, k, d, ei, sp in zip(etas, ev.K, ev.D, ev.EI, span, strict=True)
     )
-    return Analysis(
+    result = Analysis(
         assembly=a,
         model=model,
         support=support,
@@ -385,3 +385,7 @@ def analyze(
         mass=assembly_mass(a, fabrication),
         warnings=tuple(design_warnings(a, model, [float(e) for e in etas], support)),
     )
+    from .limits import require_finite
+
+    require_finite(result.to_dict(), "result")  # NaN or infinity is never printed
+    return result

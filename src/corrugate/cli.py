@@ -17,7 +17,7 @@ from rich.table import Table
 from . import __version__
 from . import cli_options as o
 from .analysis import Analysis, analyze
-from .errors import CorrugateError
+from .errors import CorrugateError, describe
 from .geometry import Layer
 from .holes import holes_text
 from .inputs import (
@@ -251,9 +251,12 @@ def main(argv: list[str] | None = None) -> None:
     """
     try:
         app(args=argv)
-    except CorrugateError as exc:
-        print(f"corrugate: error: {exc}", file=sys.stderr)
+    except (CorrugateError, OSError, RecursionError, MemoryError) as exc:
+        print(f"corrugate: error: {describe(exc)}", file=sys.stderr)
         sys.exit(2)
+    except Exception as exc:  # a bug: still one line, never a traceback
+        print(f"corrugate: {describe(exc)}", file=sys.stderr)
+        sys.exit(3)
 
 
 # Further commands register themselves on ``app``.

@@ -24,7 +24,7 @@ from .design.run import run_spec
 from .design.tolerance import Tolerances, monte_carlo
 from .errors import InputError
 from .export.pdf import check_paper
-from .fileio import atomic_write, staged
+from .fileio import staged, write_set
 from .outputs import write_design_files
 from .pattern_cli import fab_options
 from .spec import load_spec
@@ -164,7 +164,7 @@ def design_cmd(
                 report=lambda cut: report_html(sol, text_of_spec, cut),
             )
         else:
-            written = [atomic_write(out / "design.json", text + "\n")]
+            written = write_set(out, {"design.json": text + "\n"}, kind="design")
     if as_json:
         typer.echo(text)
     else:
@@ -261,7 +261,7 @@ def pareto_cmd(
     else:
         if out.exists() and not out.is_dir():
             raise InputError("--out", str(out), "a directory", reason="is a file")
-        atomic_write(out / "pareto.csv", text)
+        write_set(out, {"pareto.csv": text}, kind="pareto")
         console.print(f"wrote {out / 'pareto.csv'}")
         if _plot(front, f"{problem.name}: Pareto front", out / "pareto.png"):
             console.print(f"wrote {out / 'pareto.png'}")

@@ -8,7 +8,14 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["CorrugateError", "InputError", "UnknownNameError"]
+__all__ = [
+    "CorrugateError",
+    "InputError",
+    "OutputError",
+    "ResultError",
+    "UnknownNameError",
+    "describe",
+]
 
 
 class CorrugateError(Exception):
@@ -50,3 +57,40 @@ class UnknownNameError(InputError, KeyError):
 
     def __str__(self) -> str:  # KeyError would otherwise quote the message
         return str(self.args[0])
+
+
+class OutputError(CorrugateError, OSError):
+    """A file or folder could not be written (the OS said why); nothing was left half-written."""
+
+    def __init__(self, field: str, path: object, reason: str):
+        self.field = field
+        self.path = path
+        super().__init__(
+            f"{field} = {path!s} cannot be written ({reason}): allowed a writable folder"
+        )
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+class ResultError(CorrugateError, ArithmeticError):
+    """A computed result is not a finite number (never printed)."""
+
+
+def describe(exc: BaseException) -> str:
+    """One line for an error the user's input caused, whatever its type (no traceback).
+
+    Errors of corrugate give their own message; an OS error names the path and the OS's words;
+    anything else (a bug) names its type, so that it can be reported.
+    """
+    if isinstance(exc, CorrugateError):
+        return str(exc)
+    if isinstance(exc, OSError):
+        where = exc.filename if exc.filename is not None else "a file"
+        return f"{where} cannot be used ({exc.strerror or type(exc).__name__})"
+    if isinstance(exc, RecursionError):
+        return "the input is nested too deeply"
+    if isinstance(exc, MemoryError):
+        return "the input needs more memory than is available"
+    text = str(exc).splitlines()[0][:200] if str(exc) else ""
+    return f"internal error ({type(exc).__name__}{': ' + text if text else ''})"

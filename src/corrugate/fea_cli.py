@@ -341,6 +341,7 @@ def validate_cmd(
     """
     from .fea.assembly import AssemblyMesh, principal_axis, specimen
     from .fea.ccx import find_ccx
+    from .fea.sweep import check_sweep_options
     from .fea.unitcell import UnitCellMesh
     from .fea.validation import Case, Refinement, run_case
 
@@ -359,6 +360,7 @@ def validate_cmd(
         raise InputError(
             "cell-mesh", repr(cell_mesh), "ALONGxTHROUGH, e.g. 40x2", reason="cannot be read"
         ) from None
+    check_sweep_options(jobs, timeout, workdir)
     refinement = Refinement(AssemblyMesh(mesh), UnitCellMesh(along, through), refine)
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
     console = make_console()
@@ -456,8 +458,7 @@ def _run_sweep(
     connectors: bool = False,
     bond: Bond = "edges",
 ) -> None:
-    from .fea.plots import plot_sweep
-    from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_csv, write_table
+    from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_sweep_files
 
     if name not in SWEEPS:
         raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")
@@ -483,10 +484,7 @@ def _run_sweep(
     finally:
         if executor is not None:
             executor.shutdown()
-    out.mkdir(parents=True, exist_ok=True)
-    write_table(results, out / f"sweep_{name}.md")
-    write_csv(results, out / f"sweep_{name}.csv")
-    plot_sweep(results, out / f"sweep_{name}.png")
+    write_sweep_files(results, out, name)
     failed = [r for r in results if r.error]
     console.print(
         f"wrote {out}/sweep_{name}.md, .csv and .png ({len(results) - len(failed)} "

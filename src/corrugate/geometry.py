@@ -25,6 +25,9 @@ __all__ = ["Assembly", "FacetGeometry", "Layer", "crease_layer"]
 EQUAL_SIDES_RTOL = 1e-6
 
 
+LIMITS_W = "0.01 <= W <= 10000 mm"
+
+
 def crease_layer(eta_deg: float) -> int | None:
     """Index (0 or 1) of the layer whose creases run along the direction ``eta_deg`` (deg from
     layer 1's creases): 0 for eta = 0 mod 180 deg, 1 for eta = 90 mod 180 deg (to 1e-9 deg),
@@ -83,13 +86,16 @@ class Layer(FacetGeometry):
     t: float = field(default=math.nan)
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.W, numbers.Real) and math.isfinite(self.W) and self.W > 0):
-            raise InputError("W", f"{self.W} mm", "W > 0 mm")
-        if isinstance(self.n, bool) or not isinstance(self.n, numbers.Integral) or self.n < 1:
-            raise InputError("n", self.n, "an integer n >= 1 (number of creases)")
+        from .limits import check, check_count
+
+        if not isinstance(self.W, numbers.Real):
+            raise InputError("W", repr(self.W)[:60], LIMITS_W, reason="is not a number")
+        check("W", self.W)
+        check_count("n", self.n)
         object.__setattr__(self, "n", int(self.n))
-        if not (isinstance(self.alpha_deg, numbers.Real) and 0 < self.alpha_deg < 180):
-            raise InputError("alpha", f"{self.alpha_deg} deg", "0 < alpha < 180 deg")
+        if not isinstance(self.alpha_deg, numbers.Real):
+            raise InputError("alpha", repr(self.alpha_deg)[:60], "0 < alpha < 180 deg")
+        check("alpha", self.alpha_deg)
         t = self.t
         if isinstance(t, float) and math.isnan(t):
             if self.material.default_thickness is None:
@@ -98,8 +104,9 @@ class Layer(FacetGeometry):
                 )
             t = self.material.default_thickness
             object.__setattr__(self, "t", t)
-        if not (isinstance(t, numbers.Real) and math.isfinite(t) and t > 0):
-            raise InputError("thickness", f"{t} mm", "t > 0 mm")
+        if not isinstance(t, numbers.Real):
+            raise InputError("thickness", repr(t)[:60], "t > 0 mm", reason="is not a number")
+        check("thickness", t)
 
     @property
     def chord_extent(self) -> float:

@@ -6,14 +6,13 @@ and where the values come from. The library is data, not code: edit the TOML fil
 
 from __future__ import annotations
 
-import math
 import tomllib
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from .errors import InputError, UnknownNameError
+from .errors import UnknownNameError
 from .units import parse_quantity
 
 __all__ = ["Material", "get_material", "inline_material", "library", "validate_elastic"]
@@ -67,15 +66,13 @@ class Material:
 
 
 def validate_elastic(E: float, nu: float, density: float, *, prefix: str = "") -> None:
-    """Raise :class:`InputError` unless E > 0 MPa, -1 < nu < 0.5 and density > 0."""
-    if not (math.isfinite(E) and E > 0):
-        raise InputError(f"{prefix}E", f"{E:g} MPa", "E > 0 MPa")
-    if not (math.isfinite(nu) and -1.0 < nu < 0.5):
-        raise InputError(f"{prefix}nu", f"{nu:g}", "-1 < nu < 0.5")
-    if not (math.isfinite(density) and density > 0):
-        raise InputError(
-            f"{prefix}density", f"{density / G_PER_CM3:g} g/cm^3", "density > 0 g/cm^3"
-        )
+    """Raise :class:`InputError` unless E, nu and density lie within :data:`corrugate.limits.LIMITS`
+    (E in MPa, density in the internal unit, shown in g/cm^3)."""
+    from .limits import check
+
+    check("E", E, f"{prefix}E")
+    check("nu", nu, f"{prefix}nu")
+    check("density", density / G_PER_CM3, f"{prefix}density")
 
 
 def _from_entry(key: str, entry: dict[str, Any]) -> Material:

@@ -8,7 +8,8 @@
 ``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure),
 ``report.html`` (from ``corrugate design``) and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
 checked and every document built before anything is written; the files are then committed
-together (:mod:`corrugate.fileio`), so a bad option or a failure leaves no file behind.
+together as one set (:mod:`corrugate.fileio`), so a bad option, a failure or a kill leaves either the
+folder's earlier set or the new one, never a mix.
 
 The parts and their sheet plan are made once (:func:`cut_plan`); the report gets that very
 :class:`CutPlan` (``report`` may be a function of it), so its sheet figures are the cut files'.
@@ -141,11 +142,10 @@ def write_design_files(
     }
     if extra:
         record.update(extra)
-    out.mkdir(parents=True, exist_ok=True)
     drawn = cut.drawings
     if opts.labels is not False:  # pattern.pdf shows the labels, as the report's sheets do
         drawn.sheets = [sheet_figure(plan, k, opts.style) for k in range(1, len(plan.sheets) + 1)]
-    with staged() as st:
+    with staged(out, kind="design") as st:  # one set: the old files or the new ones, never a mix
         written = list(
             write_files(
                 plan,

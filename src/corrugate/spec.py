@@ -46,6 +46,16 @@ from pydantic_core import PydanticCustomError
 
 from .errors import InputError
 from .holes import Hole, check_holes
+from .limits import (
+    LIMITS,
+    MAX_DEPTH,
+    MAX_NAME_CHARS,
+    MAX_SPEC_BYTES,
+    MAX_TEXT_CHARS,
+    check_depth,
+    check_grid,
+    check_text,
+)
 from .materials import G_PER_CM3
 from .units import parse_quantity
 
@@ -75,7 +85,9 @@ STIFFNESS_KINDS: dict[str, str] = {
 }
 
 #: Largest number of creases a spec may allow.
-N_MAX = 5000
+N_MAX = int(LIMITS["n"].hi)
+#: Longest list (thicknesses, vertices, holes) in a spec.
+MAX_LIST_ITEMS = 10_000
 
 
 class SpecError(InputError):
@@ -128,14 +140,26 @@ def _quantity(
     return validate
 
 
-Length = Annotated[float, BeforeValidator(_quantity("mm", lo=0.0))]
+def _limited(key: str, unit: str, **kw: Any) -> Callable[[Any], float]:
+    """:func:`_quantity` with the bounds of :data:`corrugate.limits.LIMITS` ``[key]``."""
+    lim = LIMITS[key]
+    return _quantity(unit, lo=lim.lo, lo_open=lim.open_lo, hi=lim.hi, hi_open=lim.open_hi, **kw)
+
+
+Length = Annotated[
+    float, BeforeValidator(_quantity("mm", lo=0.0, hi=LIMITS["length"].hi, hi_open=False))
+]
+FacetWidth = Annotated[float, BeforeValidator(_limited("W", "mm"))]
+SheetThickness = Annotated[float, BeforeValidator(_limited("thickness", "mm"))]
 FoldAngle = Annotated[float, BeforeValidator(_quantity("deg", lo=0.0, hi=180.0))]
 Direction = Annotated[float, BeforeValidator(_quantity("deg"))]
-MassQ = Annotated[float, BeforeValidator(_quantity("g", lo=0.0))]
-Modulus = Annotated[float, BeforeValidator(_quantity("MPa", lo=0.0))]
-Poisson = Annotated[float, BeforeValidator(_quantity("dimensionless", lo=-1.0, hi=0.5, shown=""))]
+MassQ = Annotated[
+    float, BeforeValidator(_quantity("g", lo=0.0, hi=LIMITS["mass"].hi, hi_open=False))
+]
+Modulus = Annotated[float, BeforeValidator(_limited("E", "MPa"))]
+Poisson = Annotated[float, BeforeValidator(_limited("nu", "dimensionless", shown=""))]
 Density = Annotated[
-    float, BeforeValidator(_quantity("g/cm^3", lo=0.0, scale=G_PER_CM3, shown="g/cm^3"))
+    float, BeforeValidator(_limited("density", "g/cm^3", scale=G_PER_CM3, shown="g/cm^3"))
 ]
 
 
@@ -163,7 +187,7 @@ def _count(value: Any) -> int:
 
 Count = Annotated[int, BeforeValidator(_count)]
 
-_length = _quantity("mm", lo=0.0)
+_length = _limited("thickness", "mm")
 
 
 def _thicknesses(value: Any) -> Any:
@@ -223,8 +247,8 @@ class Variable(_Strict):
 
 
 class LengthVariable(Variable):
-    min: Length
-    max: Length
+    min: FacetWidth
+    max: FacetWidth
     step: Length | None = None
 
 
@@ -263,7 +287,18 @@ class MaterialSpec(_Strict):
     density: Density | None = None
 
 
-Coordinate = Annotated[float, BeforeValidator(_quantity("mm"))]
+Coordinate = Annotated[
+    float,
+    BeforeValidator(
+        _quantity(
+            "mm",
+            lo=LIMITS["coordinate"].lo,
+            hi=LIMITS["coordinate"].hi,
+            lo_open=False,
+            hi_open=False,
+        )
+    ),
+]
 
 
 class HoleSpec(_Strict):
@@ -367,7 +402,7 @@ def _check_holes(spec: Spec) -> None:
 
 
 def _stiffness_validator(kind: str) -> Callable[[Any], float]:
-    return _quantity(STIFFNESS_KINDS[kind], lo=0.0)
+    return _quantity(STIFFNESS_KINDS[kind], lo=0.0, hi=LIMITS["stiffness"].hi, hi_open=False)
 
 
 Support = Literal["free", "frame"]
@@ -591,6 +626,9 @@ def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
         var: Variable = getattr(v, key)
         _check_range(f"variables.{key}", var.min, var.max, unit)
     _check_range("variables.n", v.n.min, v.n.max, "")
+    for key, unit in (("W", "mm"), ("alpha", "deg")):
+        var = getattr(v, key)
+        check_grid(f"variables.{key}", var.min, var.max, var.step, unit)
     c = spec.constraints
     for key in (*_SIZE_KEYS, "thickness"):
         r: Range | None = getattr(c, key)
@@ -685,27 +723,108 @@ def _check_material(where: str, m: MaterialSpec) -> None:
         raise SpecError(f"{where}.name", exc.value, exc.allowed, reason=exc.reason) from None
 
 
+def _check_raw(data: Mapping[str, Any]) -> None:
+    """Limits on the raw data before pydantic sees it: nesting depth and text lengths."""
+    check_depth(data, "spec")
+    stack: list[tuple[Any, str]] = [(data, "")]
+    while stack:
+        obj, path = stack.pop()
+        if isinstance(obj, str):
+            limit = MAX_NAME_CHARS if path.rsplit(".", 1)[-1] == "name" else MAX_TEXT_CHARS
+            check_text(path or "spec", obj, limit)
+        elif isinstance(obj, Mapping):
+            for k, val in obj.items():
+                check_text(f"{path}.<key>" if path else "<key>", str(k), MAX_NAME_CHARS)
+                stack.append((val, f"{path}.{k}" if path else str(k)))
+        elif isinstance(obj, list | tuple):
+            if len(obj) > MAX_LIST_ITEMS:
+                raise SpecError(
+                    path,
+                    f"[{len(obj)} items]",
+                    f"at most {MAX_LIST_ITEMS} items",
+                    reason="is too long",
+                )
+            stack.extend((val, f"{path}[{i}]") for i, val in enumerate(obj))
+
+
 def parse_spec(data: Mapping[str, Any]) -> Spec:
     """Validate a spec given as a dict (as read from TOML); raise :class:`SpecError`."""
+    try:
+        _check_raw(data)
+    except InputError as exc:
+        raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
     try:
         spec = Spec.model_validate(dict(data))
     except ValidationError as exc:
         raise _from_validation_error(exc) from None
+    except RecursionError:
+        raise SpecError(
+            "spec", "(nested data)", f"at most {MAX_DEPTH} levels", reason="is nested too deeply"
+        ) from None
     _check(spec, data)
     return spec
 
 
 def load_spec(path: str | Path) -> Spec:
-    """Read and validate the TOML spec file ``path``; raise :class:`SpecError`."""
+    """Read and validate the TOML spec file ``path``; raise :class:`SpecError`.
+
+    The file must be at most :data:`~corrugate.limits.MAX_SPEC_BYTES` long, UTF-8 and nested at
+    most :data:`~corrugate.limits.MAX_DEPTH` deep; each failure is one line naming the file."""
     p = Path(path)
+    shown = str(p) if len(str(p)) <= 200 else str(p)[:200] + "..."
     try:
-        text = p.read_text("utf-8")
-    except OSError as exc:
+        with p.open("rb") as fh:
+            raw = fh.read(MAX_SPEC_BYTES + 1)
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or type(exc).__name__
         raise SpecError(
-            "spec", str(p), "a readable TOML file", reason=f"cannot be read ({exc.strerror})"
+            "spec", shown, "a readable TOML file", reason=f"cannot be read ({reason})"
         ) from None
+    if len(raw) > MAX_SPEC_BYTES:
+        raise SpecError(
+            "spec", shown, f"a file of at most {MAX_SPEC_BYTES} bytes", reason="is too large"
+        )
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SpecError(
+            "spec",
+            shown,
+            "a UTF-8 text file",
+            reason=f"is not UTF-8 text (byte {exc.start})",
+        ) from None
+    depth = _bracket_depth(text)
+    if depth > MAX_DEPTH:
+        raise SpecError(
+            "spec",
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
+        )
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
-        raise SpecError("spec", str(p), "valid TOML", reason=f"is not valid TOML ({exc})") from None
+        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
+        raise SpecError("spec", shown, "valid TOML", reason=f"is not valid TOML ({msg})") from None
+    except RecursionError:
+        raise SpecError(
+            "spec",
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
+        ) from None
     return parse_spec(data)
+
+
+def _bracket_depth(text: str) -> int:
+    """An upper bound of the nesting of inline arrays and tables (brackets and braces in a row,
+    counted without parsing; quoted text may only make it larger than the truth). Deep nesting is
+    rejected before tomllib recurses into it."""
+    depth = best = 0
+    for ch in text:
+        if ch in "[{":
+            depth += 1
+            best = max(best, depth)
+        elif ch in "]}":
+            depth = max(0, depth - 1)
+    return best

@@ -141,6 +141,9 @@ class AssemblyMesh:
         v = self.along
         if isinstance(v, bool) or not isinstance(v, int) or v < 2 or v % 2:
             raise InputError("mesh.along", v, "an even integer >= 2")
+        from ..limits import check_count
+
+        check_count("mesh", v, "mesh")
 
     def refined(self, factor: float = 2.0) -> AssemblyMesh:
         """The mesh with ``along`` scaled by ``factor`` (kept even)."""

@@ -13,10 +13,13 @@ on ``PATH``. Errors are :class:`SolverNotFoundError` (no executable) and :class:
 
 from __future__ import annotations
 
+import ctypes
 import os
 import re
 import shutil
+import signal
 import subprocess
+import sys
 import tempfile
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -157,6 +160,16 @@ class CcxRun:
         return [b for b in self.blocks if b.quantity.lower() == q and b.nset == s]
 
 
+def _die_with_parent() -> None:
+    """In the ccx child (Linux): get SIGKILL when the process that started it dies, so that a
+    killed sweep worker leaves no solver running on."""
+    try:
+        libc = ctypes.CDLL(None)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+
 @contextmanager
 def work_dir(parent: Path | None = None, keep: bool = False) -> Iterator[Path]:
     """A fresh folder for one solver run, removed afterwards unless ``keep``."""
@@ -197,6 +210,7 @@ def run_ccx(
             text=True,
             timeout=timeout,
             check=False,
+            preexec_fn=_die_with_parent if sys.platform == "linux" else None,
         )
     except subprocess.TimeoutExpired:
         raise SolverError(f"ccx timed out after {timeout:g} s in {folder}") from None

@@ -6,20 +6,34 @@
 * :func:`run_sweep`: submits every case to an executor (a local process pool by default, or a
   dask.distributed cluster from :func:`dask_executor`) and yields results as they finish; a case
   that fails is reported in its result and the others go on.
-* :func:`write_table`, :func:`write_csv`: the table (Markdown) and the numbers (CSV) of a sweep.
+  A worker that dies (killed, out of memory) breaks a process pool: the pool is restarted and
+  every case it took down is retried once; the rest go on. Work folders live under one private
+  folder per sweep, removed at the end also after SIGINT or SIGTERM (unless ``keep``).
+* :func:`write_table`, :func:`write_csv`: the table (Markdown) and the numbers (CSV) of a sweep;
+  :func:`write_sweep_files`: the table, CSV and plot committed as one set.
+* :func:`check_sweep_options`: jobs, time-out and work folder against :mod:`corrugate.limits`.
 """
 
 from __future__ import annotations
 
+import contextlib
 import csv
+import shutil
+import signal
+import tempfile
+import threading
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import replace
 from pathlib import Path
+from types import FrameType
 from typing import Any, ParamSpec, TypeVar
 
 from ..errors import InputError
+from ..fileio import staged
 from ..geometry import Assembly, Layer
+from ..limits import check, check_count
 from ..materials import get_material
 from ..moduli import MODELS
 from .validation import Case, CaseResult, Refinement, run_case
@@ -29,10 +43,12 @@ T = TypeVar("T")
 
 __all__ = [
     "SWEEPS",
+    "check_sweep_options",
     "dask_executor",
     "paper_cases",
     "run_sweep",
     "write_csv",
+    "write_sweep_files",
     "write_table",
 ]
 
@@ -111,6 +127,58 @@ def _safe_run(case: Case) -> CaseResult:
     return run_case(case)
 
 
+def check_sweep_options(
+    jobs: int | None = None, timeout: float | None = None, workdir: Path | None = None
+) -> None:
+    """Raise :class:`InputError` for a number of jobs or a time-out outside
+    :data:`corrugate.limits.LIMITS`, or a work folder that is not a folder."""
+    if jobs is not None:
+        check_count("jobs", jobs, "jobs")
+    if timeout is not None:
+        check("timeout", timeout, "timeout")
+    if workdir is not None and workdir.exists() and not workdir.is_dir():
+        raise InputError("workdir", str(workdir), "a folder", reason="is a file")
+
+
+#: How often a case whose worker died (taking the pool down) is run again.
+RETRIES = 1
+
+
+@contextlib.contextmanager
+def _terminate_as_exit() -> Iterator[None]:
+    """SIGTERM raises SystemExit in the main thread while the block runs, so that its cleanup
+    runs (SIGINT already raises KeyboardInterrupt)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def on_term(signum: int, frame: FrameType | None) -> None:
+        raise SystemExit(128 + signum)
+
+    previous = signal.signal(signal.SIGTERM, on_term)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def _worker_init() -> None:
+    """A worker ends on SIGTERM (its parent's handler, inherited by fork, would not let it)."""
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+
+
+def _stop_pool(ex: ProcessPoolExecutor) -> None:
+    """Shut a pool down now: cancel what has not started, terminate the workers."""
+    processes = list(getattr(ex, "_processes", {}).values())
+    ex.shutdown(wait=False, cancel_futures=True)
+    for proc in processes:
+        with contextlib.suppress(Exception):
+            proc.terminate()
+    for proc in processes:
+        with contextlib.suppress(Exception):
+            proc.join(5)
+
+
 def run_sweep(
     cases: Sequence[Case],
     executor: Executor | None = None,
@@ -118,24 +186,79 @@ def run_sweep(
     jobs: int | None = None,
     folder: Path | None = None,
     keep: bool = False,
+    run: Callable[[Case], CaseResult] = _safe_run,
 ) -> Iterator[CaseResult]:
     """Run ``cases`` through ``executor`` (default: a process pool of ``jobs`` workers) and yield
-    each result as it finishes. A case whose worker dies still yields a result with ``error``."""
-    cases = [replace(c, folder=folder or c.folder, keep=keep or c.keep) for c in cases]
+    each result as it finishes; every case yields exactly one result.
+
+    With the own pool, a worker that dies breaks the pool: a new pool takes the cases that were
+    lost with it, each retried once (:data:`RETRIES`); a case lost again yields a result with
+    ``error``. The ccx work folders go under one private folder (in ``folder`` if given),
+    removed when the sweep ends, is interrupted (SIGINT) or terminated (SIGTERM), unless
+    ``keep``. ``run`` is the function a worker runs on a case (a test may pass another)."""
+    if jobs is not None:
+        check_count("jobs", jobs, "jobs")
+    if folder is not None:
+        folder.mkdir(parents=True, exist_ok=True)
+    root = Path(tempfile.mkdtemp(prefix="corrugate-sweep-", dir=folder))
+    cases = [replace(c, folder=root, keep=keep or c.keep) for c in cases]
     own = executor is None
-    ex = executor if executor is not None else ProcessPoolExecutor(max_workers=jobs)
+    tries = dict.fromkeys(range(len(cases)), 0)
+    todo = list(range(len(cases)))
+    ex: Executor | None = executor
     try:
-        futures: dict[Future[CaseResult], Case] = {ex.submit(_safe_run, c): c for c in cases}
-        for fut in as_completed(futures):
-            case = futures[fut]
-            try:
-                yield fut.result()
-            except Exception as exc:  # a crashed worker: report it and go on
-                msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-                yield CaseResult(case, {}, {}, {}, (), False, f"worker failed: {msg}")
+        with _terminate_as_exit():
+            while todo:
+                if own:
+                    ex = ProcessPoolExecutor(max_workers=jobs, initializer=_worker_init)
+                assert ex is not None
+                futures: dict[Future[CaseResult], int] = {ex.submit(run, cases[i]): i for i in todo}
+                todo = []
+                broken = False
+                for fut in as_completed(futures):
+                    i = futures[fut]
+                    try:
+                        yield fut.result()
+                    except BrokenProcessPool as exc:
+                        broken = True
+                        tries[i] += 1
+                        if own and tries[i] <= RETRIES:
+                            todo.append(i)
+                        else:
+                            yield _failed(cases[i], exc)
+                    except Exception as exc:  # a crashed worker elsewhere: report it, go on
+                        yield _failed(cases[i], exc)
+                if own and isinstance(ex, ProcessPoolExecutor):
+                    if broken:
+                        _stop_pool(ex)
+                    else:
+                        ex.shutdown()
+                    ex = None
     finally:
-        if own:
-            ex.shutdown(cancel_futures=True)
+        if own and isinstance(ex, ProcessPoolExecutor):
+            _stop_pool(ex)
+        if not keep:
+            shutil.rmtree(root, ignore_errors=True)
+
+
+def _failed(case: Case, exc: BaseException) -> CaseResult:
+    msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return CaseResult(case, {}, {}, {}, (), False, f"worker failed: {msg}")
+
+
+def write_sweep_files(results: Sequence[CaseResult], out: Path, name: str) -> list[Path]:
+    """The sweep's table (``sweep_NAME.md``), numbers (``.csv``) and plot (``.png``) in ``out``,
+    committed as one set (:func:`corrugate.fileio.staged`): a failure or a kill leaves the old
+    three files or the new three."""
+    from .plots import plot_sweep
+
+    stem = f"sweep_{name}"
+    paths = [out / f"{stem}.md", out / f"{stem}.csv", out / f"{stem}.png"]
+    with staged(out, "--out", kind=stem) as st:
+        write_table(results, st.path(paths[0]))
+        write_csv(results, st.path(paths[1]))
+        plot_sweep(results, st.path(paths[2]))
+    return paths
 
 
 def _order(r: CaseResult) -> tuple[int, float]:

@@ -79,6 +79,11 @@ class UnitCellMesh:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
                 raise InputError(f"mesh.{name}", v, "an integer >= 1")
+            from ..limits import check_count
+
+            check_count(
+                "cell_mesh" if name == "along" else "cell_mesh_through", v, f"cell-mesh.{name}"
+            )
         for name in ("grading", "grading_t"):
             g = getattr(self, name)
             if not (isinstance(g, int | float) and 0.0 <= g < 1.0):

@@ -55,7 +55,14 @@ from ..moduli import DEFAULT_MODEL, MODELS
 from ..outputs import OutputOptions, write_design_files
 from ..spec import Spec, SpecError, parse_spec
 from ..units import parse_quantity, ureg
-from .limits import BodySizeLimit, ComputeTimeoutError, HostCheck, Runner, ServerBusyError
+from .limits import (
+    BodySizeLimit,
+    CatchAll,
+    ComputeTimeoutError,
+    HostCheck,
+    Runner,
+    ServerBusyError,
+)
 from .schemas import (
     OUTPUT_OPTIONS,
     AnalyzeBody,
@@ -68,7 +75,7 @@ from .schemas import (
     ResultBody,
     ResultFile,
 )
-from .store import ResultStore, StoredFile
+from .store import ResultStore, StoredFile, file_response
 
 __all__ = [
     "LOOPBACK_NAMES",
@@ -582,21 +589,13 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     )
     async def result_file(result_id: str, name: str) -> Response:
         """A file of a stored result, by the id and name the app returned (nothing else)."""
-        found = store.get(result_id, name)
-        if found is None:
+        response = file_response(store, result_id, name)
+        if response is None:
             return _error(404, "no such result or file (results are kept for a while only)", [])
-        # The report opens in the browser (sandboxed: no script runs, no same-origin access);
-        # every other file is an attachment (the page's buttons download them either way).
-        inline = found.name.endswith(".html")
-        return FileResponse(
-            found.path,
-            media_type=found.media_type,
-            filename=found.name,
-            content_disposition_type="inline" if inline else "attachment",
-            headers={"content-security-policy": "sandbox"},
-        )
+        return response
 
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
+    app.add_middleware(CatchAll)
     app.add_middleware(_SecurityHeaders)
     app.add_middleware(BodySizeLimit, max_bytes=cfg.max_body_bytes)
     if cfg.allowed_hosts is not None:

@@ -6,13 +6,22 @@
   too many are in flight (including abandoned ones still running) and
   :class:`ComputeTimeoutError` past the time limit.
   A Python thread cannot be killed: a computation that times out runs on in the background, holds
-  its slot until it ends, and its result is dropped.
+  its slot until it ends, and its result is dropped. After each computation the thread returns
+  freed memory to the system (:func:`release_memory`), so that the resident size stays bounded
+  (``benchmarks/web_memory.py`` measures it).
+* :class:`CatchAll` is the innermost middleware: an exception no handler took (a bug, or an input
+  that still got past the limits of :mod:`corrugate.limits`) becomes one clean JSON error, 422
+  (or 503 for a server-side OS error or lack of memory), never a 500 or a dropped connection;
+  the traceback goes to the log.
 """
 
 from __future__ import annotations
 
 import asyncio
+import ctypes
+import gc
 import json
+import logging
 import threading
 from collections.abc import Awaitable, Callable, MutableMapping
 from concurrent.futures import Future, ThreadPoolExecutor
@@ -20,12 +29,16 @@ from typing import Any, TypeVar
 
 __all__ = [
     "BodySizeLimit",
+    "CatchAll",
     "ComputeTimeoutError",
     "HostCheck",
     "Runner",
     "ServerBusyError",
     "host_name",
+    "release_memory",
 ]
+
+_log = logging.getLogger("corrugate.web")
 
 T = TypeVar("T")
 
@@ -121,6 +134,53 @@ class BodySizeLimit:
         await send({"type": "http.response.body", "body": body})
 
 
+class CatchAll:
+    """ASGI middleware: any exception that reaches it becomes a JSON error (see the module)."""
+
+    def __init__(self, app: ASGIApp) -> None:
+        self.app = app
+
+    async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
+        if scope["type"] != "http":
+            await self.app(scope, receive, send)
+            return
+        started = False
+
+        async def watch(message: Message) -> None:
+            nonlocal started
+            if message["type"] == "http.response.start":
+                started = True
+            await send(message)
+
+        try:
+            await self.app(scope, receive, watch)
+        except Exception as exc:
+            from ..errors import CorrugateError, describe
+
+            if not isinstance(exc, CorrugateError):
+                _log.exception("unexpected error in %s %s", scope.get("method"), scope.get("path"))
+            if started:
+                return  # the answer is on its way: nothing better can be sent
+            server_side = isinstance(exc, MemoryError | OSError) and not isinstance(
+                exc, CorrugateError
+            )
+            status = 503 if server_side else 422
+            field = getattr(exc, "field", None)
+            await BodySizeLimit._reject(send, status, describe(exc), field=field)
+
+
+def release_memory(full: bool = False) -> None:
+    """Collect young garbage (all of it if ``full``: some 0.3 s) and hand freed heap pages back
+    to the system (glibc ``malloc_trim``, microseconds), so that the memory a large computation
+    needed does not stay resident."""
+    gc.collect() if full else gc.collect(1)
+    try:
+        libc = ctypes.CDLL(None)
+        libc.malloc_trim(0)
+    except (OSError, AttributeError):
+        pass
+
+
 def host_name(header: str) -> str:
     """The host of a Host header, lower-case, without the port (``[::1]:8000`` -> ``[::1]``)."""
     header = header.strip().lower()
@@ -168,6 +228,7 @@ class Runner:
         self.timeout_s = timeout_s
         self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="corrugate-web")
         self._slots = threading.BoundedSemaphore(max_pending)
+        self._done = 0
 
     async def run(self, fn: Callable[[], T]) -> T:
         """The result of ``fn()``, computed on the pool; its exceptions propagate."""
@@ -179,6 +240,9 @@ class Runner:
             self._slots.release()
             raise
         future.add_done_callback(lambda _: self._slots.release())
+        self._done += 1
+        full = self._done % 32 == 0
+        future.add_done_callback(lambda _: release_memory(full))  # after the answer is sent
         try:
             return await asyncio.wait_for(asyncio.wrap_future(future), self.timeout_s)
         except TimeoutError:

@@ -19,8 +19,11 @@ import uuid
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
+from urllib.parse import quote
 
-__all__ = ["MEDIA_TYPES", "ResultStore", "StoredFile"]
+from starlette.responses import Response
+
+__all__ = ["MEDIA_TYPES", "ResultStore", "StoredFile", "file_response"]
 
 #: Media type of each kind of file the app makes, by suffix.
 MEDIA_TYPES: dict[str, str] = {
@@ -150,6 +153,26 @@ class ResultStore:
             shutil.rmtree(old, ignore_errors=True)
         return found
 
+    def read(self, result_id: str, name: str) -> tuple[StoredFile, bytes] | None:
+        """The published file and its bytes, or None. The file is opened under the lock, so an
+        eviction cannot remove it in between (see the module's note)."""
+        with self._lock:
+            expired = self._evict_locked()
+            entry = self._entries.get(result_id)
+            found = None if entry is None else entry.files.get(name)
+            fh = None
+            if found is not None:
+                try:
+                    fh = found.path.open("rb")
+                except OSError:
+                    found = None
+        for old in expired:
+            shutil.rmtree(old, ignore_errors=True)
+        if found is None or fh is None:
+            return None
+        with fh:
+            return found, fh.read()
+
     def files(self, result_id: str) -> list[StoredFile]:
         """Every published file of a result (empty if unknown or expired)."""
         with self._lock:
@@ -177,3 +200,22 @@ class ResultStore:
             alive = [k for k in self._entries if k not in gone]  # insertion order: oldest first
             gone.extend(alive[:excess])
         return [self._entries.pop(k).folder for k in gone]
+
+
+def file_response(store: ResultStore, result_id: str, name: str) -> Response | None:
+    """The HTTP response of a download (the bytes read by :meth:`ResultStore.read`), or None when
+    there is no such file. The report (``.html``) opens in the browser (sandboxed: no script runs,
+    no same-origin access); every other file is an attachment."""
+    got = store.read(result_id, name)
+    if got is None:
+        return None
+    found, data = got
+    kind = "inline" if found.name.endswith(".html") else "attachment"
+    return Response(
+        data,
+        media_type=found.media_type,
+        headers={
+            "content-disposition": f'{kind}; filename="{quote(found.name)}"',
+            "content-security-policy": "sandbox",
+        },
+    )

@@ -1,0 +1,124 @@
+"""Benchmark: the web server's resident memory (RSS) under a stream of design requests.
+
+Run by hand: ``PYTHONPATH=src .venv/bin/python benchmarks/web_memory.py [REQUESTS] [CONCURRENCY]``
+(default 200 requests, 2 at a time). Starts a real uvicorn server on a free port, measures its
+RSS when idle, then posts ``REQUESTS`` design requests of a cheap spec (the blimp gripper on a
+small grid: about a second of solving, every file written) and downloads one file of each, and
+prints the RSS after every 10 requests, the peak and the growth. The bound the server keeps
+(issue 12): RSS <= :data:`BOUND_MIB` after any number of requests (the result store keeps files
+on disk, not in memory; each computation's freed memory is handed back to the system).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import socket
+import subprocess
+import sys
+import time
+import tomllib
+import urllib.request
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+BOUND_MIB = 400.0
+
+
+def cheap_spec() -> dict[str, object]:
+    spec = tomllib.loads((ROOT / "examples" / "blimp_gripper.toml").read_text())
+    spec["variables"] = {
+        "W": {"min": "8 mm", "max": "10 mm", "step": "1 mm"},
+        "n": {"min": 6, "max": 10},
+        "alpha": {"min": "60 deg", "max": "100 deg", "step": "1 deg"},
+    }
+    return spec
+
+
+def rss_mib(pid: int) -> float:
+    for line in Path(f"/proc/{pid}/status").read_text().splitlines():
+        if line.startswith("VmRSS:"):
+            return int(line.split()[1]) / 1024
+    return float("nan")
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def post(url: str, body: dict[str, object]) -> dict[str, object]:
+    req = urllib.request.Request(
+        url, json.dumps(body).encode(), {"content-type": "application/json"}
+    )
+    with urllib.request.urlopen(req, timeout=600) as r:
+        return json.loads(r.read())  # type: ignore[no-any-return]
+
+
+def main() -> None:
+    requests = int(sys.argv[1]) if len(sys.argv) > 1 else 200
+    concurrency = int(sys.argv[2]) if len(sys.argv) > 2 else 2
+    port = free_port()
+    code = (
+        "import uvicorn; from corrugate.web import WebSettings, create_app; "
+        f"uvicorn.run(create_app(WebSettings(timeout_s=3600)), host='127.0.0.1', port={port}, "
+        "log_level='warning')"
+    )
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    server = subprocess.Popen([sys.executable, "-c", code], env=env)
+    base = f"http://127.0.0.1:{port}"
+    try:
+        for _ in range(300):
+            try:
+                urllib.request.urlopen(base + "/api/models", timeout=2).read()
+                break
+            except OSError:
+                time.sleep(0.1)
+        idle = rss_mib(server.pid)
+        print(f"idle RSS {idle:.0f} MiB")
+        spec = cheap_spec()
+        t0 = time.monotonic()
+        peak = idle
+        done = 0
+
+        errors = 0
+
+        def one(_: int) -> int:
+            nonlocal errors
+            try:
+                answer = post(base + "/api/design", spec)
+            except OSError as exc:  # HTTPError included: counted, the run goes on
+                errors += 1
+                print(f"error: {exc}", flush=True)
+                return 0
+            result = answer.get("result")
+            if isinstance(result, dict):
+                url = result["files"][0]["url"]  # type: ignore[index]
+                urllib.request.urlopen(base + url, timeout=60).read()
+            return 1
+
+        with ThreadPoolExecutor(concurrency) as ex:
+            for _ in ex.map(one, range(requests)):
+                done += 1
+                rss = rss_mib(server.pid)
+                peak = max(peak, rss)
+                if done % 10 == 0 or done == requests:
+                    print(
+                        f"{done:4d} requests  RSS {rss:6.0f} MiB  peak {peak:6.0f} MiB  "
+                        f"{time.monotonic() - t0:6.0f} s",
+                        flush=True,
+                    )
+        final = rss_mib(server.pid)
+        print(
+            f"after {requests} design requests ({errors} errors): RSS {final:.0f} MiB (idle {idle:.0f}, peak "
+            f"{peak:.0f}); bound {BOUND_MIB:.0f} MiB: {'within' if peak <= BOUND_MIB else 'EXCEEDED'}"
+        )
+    finally:
+        server.terminate()
+        server.wait(10)
+
+
+if __name__ == "__main__":
+    main()
