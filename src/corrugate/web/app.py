@@ -32,7 +32,7 @@ import re
 import threading
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -47,14 +47,14 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from .. import __version__
 from ..analysis import Analysis
 from ..design import Problem, Solution
-from ..design.run import run_spec
 from ..errors import InputError
 from ..inputs import AnalysisRequest, analysis_request
 from ..materials import library
 from ..moduli import DEFAULT_MODEL, MODELS
-from ..outputs import OutputOptions, write_design_files
+from ..outputs import OutputOptions
+from ..pipeline import output_options, solve_spec, write_design
 from ..spec import Spec, SpecError, parse_spec
-from ..units import parse_quantity, ureg
+from ..units import ureg
 from .limits import BodySizeLimit, ComputeTimeoutError, HostCheck, Runner, ServerBusyError
 from .schemas import (
     OUTPUT_OPTIONS,
@@ -77,6 +77,7 @@ __all__ = [
     "analysis_payload",
     "create_app",
     "design_answer",
+    "design_job",
     "design_payload",
     "mesh_files",
 ]
@@ -90,10 +91,6 @@ STATIC_DIR = Path(__file__).resolve().parent / "static"
 #: pint's registry keeps caches that are not documented as thread-safe: parse one request at a time
 #: (parsing takes microseconds; the computations themselves run in parallel).
 _PARSE_LOCK = threading.Lock()
-
-#: matplotlib's pyplot (the assembly figure, the report's plots) keeps global state and is not
-#: thread-safe: one design's files are written at a time (the solves run in parallel).
-_FILES_LOCK = threading.Lock()
 
 _SWAGGER = "/static/vendor/swagger-ui"
 
@@ -114,8 +111,10 @@ class WebSettings:
     """Limits of the web app.
 
     ``max_body_bytes``: longest request body (413 past it); ``timeout_s``: longest computation
-    (504 past it); ``workers``: computation threads; ``max_pending``: computations queued or running
-    at once (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
+    (504 past it); ``workers``: computation threads (analyses, meshes); ``processes``: worker
+    processes for designs (None: one per core, 0: designs run on the threads too);
+    ``max_pending``: computations queued or running at once, threads and processes together (503
+    past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
     folded extent of a layer (422 past them; the pattern's glue tabs grow with the size, so these
     bound the memory and time of one request); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private
     result root is made (default: the system temporary folder); ``allowed_hosts``: the Host
@@ -126,6 +125,7 @@ class WebSettings:
     max_body_bytes: int = 64 * 1024
     timeout_s: float = 30.0
     workers: int = 4
+    processes: int | None = None
     max_pending: int = 32
     max_creases: int = 1000
     max_extent_mm: float = 5000.0
@@ -210,40 +210,16 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
 
 def _output_options(body: DesignBody) -> OutputOptions:
     """The output options of a design request, as ``corrugate design --cutter ... --fold-style
-    ... --cut ... --gap ... --paper ...`` reads them (default spacing, margin and tabs); errors
-    name the request's field."""
-    from ..export.pdf import check_paper
-    from ..pattern.linestyle import line_style
-    from ..pattern.sheets import get_cutter
-
-    get_cutter(body.cutter)  # its errors name "cutter" already
-    cut = None if body.cut is None else parse_quantity(body.cut, "mm", "cut")
-    gap = None if body.gap is None else parse_quantity(body.gap, "mm", "gap")
-    if body.fold_style.strip().lower() == "perforated":
-        for name, value in (("cut", cut), ("gap", gap)):
-            if value is None:
-                raise InputError(
-                    name,
-                    None,
-                    f"a {name} length (mm) for perforated fold lines",
-                    reason="is missing",
-                )
-    try:
-        return OutputOptions(
-            cutter=body.cutter,
-            style=line_style(body.fold_style, cut, gap),
-            paper=check_paper(body.paper),  # its errors name "paper" already
-        )
-    except InputError as exc:
-        fields = {
-            "fold-line style": "fold_style",
-            "perforation cut": "cut",
-            "perforation gap": "gap",
-            "perforation": "cut" if body.cut is None else "gap",
-        }
-        if exc.field in fields:
-            raise exc.renamed(fields[exc.field]) from None
-        raise
+    ... --cut ... --gap ... --paper ...`` reads them (:func:`corrugate.pipeline.output_options`,
+    default spacing, margin and tabs); errors name the request's field."""
+    return output_options(
+        body.cutter,
+        body.fold_style,
+        body.cut,
+        body.gap,
+        paper=body.paper,
+        names={"fold-line style": "fold_style"},
+    )
 
 
 def _check_spec_size(spec: Spec, settings: WebSettings) -> None:
@@ -287,8 +263,8 @@ def _spec_data(body: DesignBody) -> dict[str, Any]:
 
 def design_payload(spec: Spec, problem: Problem) -> tuple[Solution, dict[str, Any]]:
     """The solution of ``problem`` and the object ``corrugate design --json`` prints for it
-    (:func:`corrugate.design.run.run_spec`, the CLI's own steps, robust specs included)."""
-    run = run_spec(spec, problem)
+    (:func:`corrugate.pipeline.solve_spec`, the CLI's own steps, robust specs included)."""
+    run = solve_spec(spec, problem)
     return run.solution, run.payload
 
 
@@ -302,8 +278,11 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
     )
 
 
-def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -> DesignAnswer:
-    """Solve the spec of a design request and store its files (runs on a worker thread)."""
+def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
+    """Solve the spec of a design request and write its files into ``folder`` (a new result's
+    folder of the store); returns the ``corrugate design --json`` object and the paths written
+    (none for an infeasible spec). Runs in a worker process (or thread): it takes and returns
+    plain, picklable values, and the store itself stays in the server."""
     from ..pattern.linestyle import PerforationError
     from ..pattern.sheets import PartTooLargeError
 
@@ -318,36 +297,37 @@ def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -
         problem = Problem.from_spec(spec)
         options = _output_options(body)
     _check_spec_size(spec, settings)
-    sol, payload = design_payload(spec, problem)
-    payload = _json_safe(payload)
-    analysis = sol.analysis
-    if analysis is None:
-        return DesignAnswer(design=payload, result=None)
-    _check_design_size(analysis, settings)
-
+    run = solve_spec(spec, problem)
+    run = replace(run, payload=_json_safe(run.payload))
+    if run.solution.analysis is None:
+        return run.payload, []
+    _check_design_size(run.solution.analysis, settings)
     spec_text = json.dumps(_spec_data(body), indent=2)
-
-    def write(folder: Path) -> list[Path]:
-        from ..report import report_html
-
-        with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
-            return write_design_files(
-                analysis,
-                folder,
-                options,
-                extra=payload,
-                report=lambda cut: report_html(sol, spec_text, cut),
-            )
-
     try:
-        files = store.make(write)
+        return run.payload, write_design(run, folder, options, spec_text)
     except PartTooLargeError as exc:
         raise exc.renamed(
             "cutter", repr(body.cutter), f"is too small for {exc.field} ({exc.value})"
         ) from None
     except PerforationError as exc:
         raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
-    return DesignAnswer(design=payload, result=_result_body(files))
+
+
+async def design_answer(
+    body: DesignBody, settings: WebSettings, store: ResultStore, runner: Runner
+) -> DesignAnswer:
+    """Run :func:`design_job` on the runner's process pool into a new result of ``store`` and
+    publish its files (the result is discarded when the job fails, times out or has no files)."""
+    result_id, folder = store.create()
+    try:
+        payload, paths = await runner.run_process(design_job, body, settings, folder)
+    except BaseException:
+        store.discard(result_id)
+        raise
+    if not paths:
+        store.discard(result_id)
+        return DesignAnswer(design=payload, result=None)
+    return DesignAnswer(design=payload, result=_result_body(store.publish(result_id, paths)))
 
 
 def _error(status: int, detail: str, errors: list[FieldError]) -> JSONResponse:
@@ -438,7 +418,7 @@ class _SecurityHeaders:
 def create_app(settings: WebSettings | None = None) -> FastAPI:
     """A new, independent application (its own worker pool and result store)."""
     cfg = settings or WebSettings()
-    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s)
+    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s, processes=cfg.processes)
     store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
     # Load the unit registry and the material library before the first requests race for them.
     ureg()
@@ -453,6 +433,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
 
     @asynccontextmanager
     async def lifespan(_: FastAPI) -> AsyncIterator[None]:
+        runner.start_processes()  # the design workers import their modules before the first design
         try:
             yield
         finally:
@@ -569,7 +550,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         ``corrugate design --out`` writes as a result (``result`` is null when the spec is
         infeasible: ``design.diagnosis`` says why). A bad spec value gets 422 naming its TOML path,
         e.g. ``constraints.side.min``."""
-        return await runner.run(lambda: design_answer(body, cfg, store))
+        return await design_answer(body, cfg, store, runner)
 
     @app.get(
         "/api/results/{result_id}/{name}",

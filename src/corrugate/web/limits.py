@@ -2,20 +2,23 @@
 
 * :class:`BodySizeLimit` is a pure ASGI middleware: it reads a request body (up to the limit) before
   the app sees it and answers 413 past the limit, whether or not the client sent Content-Length.
-* :class:`Runner` runs computations on a small thread pool, raises :class:`ServerBusyError` when
-  too many are in flight (including abandoned ones still running) and
-  :class:`ComputeTimeoutError` past the time limit.
-  A Python thread cannot be killed: a computation that times out runs on in the background, holds
-  its slot until it ends, and its result is dropped.
+* :class:`Runner` runs computations on a small thread pool (:meth:`Runner.run`) or on a pool of
+  worker processes, one per core (:meth:`Runner.run_process`: the designs, whose solver holds the
+  GIL), raises :class:`ServerBusyError` when too many are in flight (including abandoned ones
+  still running) and :class:`ComputeTimeoutError` past the time limit.
+  A running computation is not killed: one that times out runs on in the background, holds its
+  slot until it ends, and its result is dropped.
 """
 
 from __future__ import annotations
 
 import asyncio
 import json
+import multiprocessing
+import os
 import threading
 from collections.abc import Awaitable, Callable, MutableMapping
-from concurrent.futures import Future, ThreadPoolExecutor
+from concurrent.futures import Executor, Future, ProcessPoolExecutor, ThreadPoolExecutor
 from typing import Any, TypeVar
 
 __all__ = [
@@ -24,6 +27,7 @@ __all__ = [
     "HostCheck",
     "Runner",
     "ServerBusyError",
+    "core_count",
     "host_name",
 ]
 
@@ -157,24 +161,94 @@ class HostCheck:
         await self.app(scope, receive, send)
 
 
-class Runner:
-    """Run blocking computations on ``workers`` threads with a time limit of ``timeout_s``.
+def core_count() -> int:
+    """The cores this process may run on (at least 1)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on Linux
+        return max(1, os.cpu_count() or 1)
 
-    At most ``max_pending`` computations may be queued or running at once (a timed-out one counts
-    until it really ends); past that :meth:`run` raises :class:`ServerBusyError` at once.
+
+#: What a new worker process imports before its first job (the web app, the solver, the writers),
+#: so the first design does not pay for it.
+WORKER_PRELOAD = (
+    "corrugate.web.app",
+    "corrugate.pipeline",
+    "corrugate.design",
+    "corrugate.outputs",
+)
+
+
+def _warm_up() -> None:
+    """Import :data:`WORKER_PRELOAD` in a worker process (its initializer)."""
+    import importlib
+
+    for name in WORKER_PRELOAD:
+        importlib.import_module(name)
+
+
+class Runner:
+    """Run blocking computations with a time limit of ``timeout_s``: on ``workers`` threads
+    (:meth:`run`) or on ``processes`` worker processes (:meth:`run_process`; None: one per core,
+    0: on the threads instead).
+
+    At most ``max_pending`` computations may be queued or running at once, on both pools together
+    (a timed-out one counts until it really ends); past that :meth:`run` and :meth:`run_process`
+    raise :class:`ServerBusyError` at once.
+
+    The processes start from a fresh interpreter (``forkserver``, or ``spawn`` where there is no
+    fork), never as a fork of the server with its threads; they are made on first use and each
+    imports :data:`WORKER_PRELOAD` once. :meth:`start_processes` makes them ahead of the first
+    request.
     """
 
-    def __init__(self, workers: int, max_pending: int, timeout_s: float) -> None:
+    def __init__(
+        self, workers: int, max_pending: int, timeout_s: float, processes: int | None = None
+    ) -> None:
         self.timeout_s = timeout_s
+        self.processes = core_count() if processes is None else processes
         self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="corrugate-web")
         self._slots = threading.BoundedSemaphore(max_pending)
+        self._process_pool: ProcessPoolExecutor | None = None
+        self._lock = threading.Lock()
+
+    def _processes(self) -> Executor:
+        """The process pool (made on first use), or the thread pool when ``processes`` is 0."""
+        if self.processes <= 0:
+            return self._pool
+        with self._lock:
+            if self._process_pool is None:
+                methods = multiprocessing.get_all_start_methods()
+                context = multiprocessing.get_context(
+                    "forkserver" if "forkserver" in methods else "spawn"
+                )
+                self._process_pool = ProcessPoolExecutor(
+                    max_workers=self.processes, mp_context=context, initializer=_warm_up
+                )
+            return self._process_pool
+
+    def start_processes(self) -> None:
+        """Start every worker process now (they import their modules in the background)."""
+        pool = self._processes()
+        if pool is not self._pool:
+            for _ in range(self.processes):
+                pool.submit(int)
 
     async def run(self, fn: Callable[[], T]) -> T:
-        """The result of ``fn()``, computed on the pool; its exceptions propagate."""
+        """The result of ``fn()``, computed on the thread pool; its exceptions propagate."""
+        return await self._submit(self._pool, fn)
+
+    async def run_process(self, fn: Callable[..., T], *args: Any) -> T:
+        """The result of ``fn(*args)``, computed in a worker process: ``fn`` must be a module-level
+        function and ``args`` and the result picklable. Its exceptions propagate (corrugate's own
+        errors arrive as raised, :class:`~corrugate.errors.CorrugateError`)."""
+        return await self._submit(self._processes(), fn, *args)
+
+    async def _submit(self, pool: Executor, fn: Callable[..., T], *args: Any) -> T:
         if not self._slots.acquire(blocking=False):
             raise ServerBusyError("the server is busy with other computations; try again shortly")
         try:
-            future: Future[T] = self._pool.submit(fn)
+            future: Future[T] = pool.submit(fn, *args)
         except BaseException:
             self._slots.release()
             raise
@@ -185,5 +259,13 @@ class Runner:
             raise ComputeTimeoutError(self.timeout_s) from None
 
     def shutdown(self) -> None:
-        """Drop queued computations; running ones finish in their threads."""
+        """Drop queued computations; running threads finish, worker processes are stopped."""
         self._pool.shutdown(wait=False, cancel_futures=True)
+        with self._lock:
+            pool, self._process_pool = self._process_pool, None
+        if pool is not None:
+            # A job that timed out may still be running: stop the processes rather than wait.
+            workers = list(getattr(pool, "_processes", {}).values())
+            pool.shutdown(wait=False, cancel_futures=True)
+            for process in workers:
+                process.terminate()
