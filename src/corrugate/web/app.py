@@ -415,57 +415,19 @@ class _SecurityHeaders:
         await self.app(scope, receive, send_with_headers)
 
 
-def create_app(settings: WebSettings | None = None) -> FastAPI:
-    """A new, independent application (its own worker pool and result store)."""
-    cfg = settings or WebSettings()
-    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s, processes=cfg.processes)
-    store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
-    # Load the unit registry and the material library before the first requests race for them.
-    ureg()
-    library()
-    index_html = (STATIC_DIR / "index.html").read_text(encoding="utf-8")
-    page_csp = (
-        "default-src 'self'; "
-        f"script-src 'self' {_importmap_hash(index_html)}; "
-        "style-src 'self'; img-src 'self' data: blob:; connect-src 'self' blob:; "
-        "object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
-    )
+#: The error answers of the computing endpoints, for the OpenAPI document.
+_ERROR_RESPONSES: dict[int | str, dict[str, Any]] = {
+    400: {"model": ErrorBody, "description": "Malformed JSON"},
+    413: {"model": ErrorBody, "description": "Request body too large"},
+    422: {"model": ErrorBody, "description": "A value is invalid; `field` names it"},
+    503: {"model": ErrorBody, "description": "Too many computations in flight"},
+    504: {"model": ErrorBody, "description": "The computation took too long"},
+}
 
-    @asynccontextmanager
-    async def lifespan(_: FastAPI) -> AsyncIterator[None]:
-        runner.start_processes()  # the design workers import their modules before the first design
-        try:
-            yield
-        finally:
-            runner.shutdown()
-            store.close()
 
-    app = FastAPI(
-        title="corrugate",
-        version=__version__,
-        description=(
-            "Analyse and design origami-inspired OADLC stiffening panels. `/api/analyze` and "
-            "`/api/mesh` take the options of `corrugate analyze`; `/api/design` takes a spec with "
-            "the keys of the TOML file and answers as `corrugate design --json`, with its files. "
-            "Values are numbers in the field's default unit (mm, deg, MPa, g/cm^3) or strings "
-            "with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with the field named "
-            "(a spec value by its TOML path, e.g. `constraints.side.min`)."
-        ),
-        docs_url=None,
-        redoc_url=None,
-        lifespan=lifespan,
-    )
-    app.state.settings = cfg
-    app.state.store = store
-    app.state.runner = runner
-
-    error_responses: dict[int | str, dict[str, Any]] = {
-        400: {"model": ErrorBody, "description": "Malformed JSON"},
-        413: {"model": ErrorBody, "description": "Request body too large"},
-        422: {"model": ErrorBody, "description": "A value is invalid; `field` names it"},
-        503: {"model": ErrorBody, "description": "Too many computations in flight"},
-        504: {"model": ErrorBody, "description": "The computation took too long"},
-    }
+def _add_error_handlers(app: FastAPI) -> None:
+    """Every error as JSON ``{"detail", "field", "errors"}`` with its status (see the module
+    docstring)."""
 
     @app.exception_handler(InputError)
     async def on_input_error(_: Request, exc: InputError) -> JSONResponse:
@@ -494,6 +456,21 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     async def on_timeout(_: Request, exc: ComputeTimeoutError) -> JSONResponse:
         return _error(504, str(exc), [])
 
+
+def _page_csp(index_html: str) -> str:
+    """The page's Content-Security-Policy: its own scripts and the import map only."""
+    return (
+        "default-src 'self'; "
+        f"script-src 'self' {_importmap_hash(index_html)}; "
+        "style-src 'self'; img-src 'self' data: blob:; connect-src 'self' blob:; "
+        "object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
+    )
+
+
+def _add_pages(app: FastAPI, index_html: str) -> None:
+    """The single page (``/``) and the offline Swagger UI (``/docs``)."""
+    page_csp = _page_csp(index_html)
+
     @app.get("/", include_in_schema=False)
     async def index() -> HTMLResponse:
         return HTMLResponse(index_html, headers={"content-security-policy": page_csp})
@@ -507,6 +484,11 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
             swagger_css_url=f"{_SWAGGER}/swagger-ui.css",
             swagger_favicon_url=f"{_SWAGGER}/favicon-32x32.png",
         )
+
+
+def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore) -> None:
+    """The JSON API: library, models, analyze, mesh, design and the result downloads."""
+    error_responses = _ERROR_RESPONSES
 
     @app.get("/api/materials", summary="The material library")
     async def materials() -> list[dict[str, Any]]:
@@ -577,6 +559,47 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
             headers={"content-security-policy": "sandbox"},
         )
 
+
+def create_app(settings: WebSettings | None = None) -> FastAPI:
+    """A new, independent application (its own worker pool and result store)."""
+    cfg = settings or WebSettings()
+    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s, processes=cfg.processes)
+    store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
+    # Load the unit registry and the material library before the first requests race for them.
+    ureg()
+    library()
+    index_html = (STATIC_DIR / "index.html").read_text(encoding="utf-8")
+
+    @asynccontextmanager
+    async def lifespan(_: FastAPI) -> AsyncIterator[None]:
+        runner.start_processes()  # the design workers import their modules before the first design
+        try:
+            yield
+        finally:
+            runner.shutdown()
+            store.close()
+
+    app = FastAPI(
+        title="corrugate",
+        version=__version__,
+        description=(
+            "Analyse and design origami-inspired OADLC stiffening panels. `/api/analyze` and "
+            "`/api/mesh` take the options of `corrugate analyze`; `/api/design` takes a spec with "
+            "the keys of the TOML file and answers as `corrugate design --json`, with its files. "
+            "Values are numbers in the field's default unit (mm, deg, MPa, g/cm^3) or strings "
+            "with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with the field named "
+            "(a spec value by its TOML path, e.g. `constraints.side.min`)."
+        ),
+        docs_url=None,
+        redoc_url=None,
+        lifespan=lifespan,
+    )
+    app.state.settings = cfg
+    app.state.store = store
+    app.state.runner = runner
+    _add_error_handlers(app)
+    _add_pages(app, index_html)
+    _add_api(app, cfg, runner, store)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(_SecurityHeaders)
     app.add_middleware(BodySizeLimit, max_bytes=cfg.max_body_bytes)
