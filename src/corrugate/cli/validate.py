@@ -15,6 +15,7 @@ Examples::
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
@@ -230,30 +231,12 @@ def validate_cmd(
 
     Example: corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar --refine 0.02
     """
-    from ..fea.assembly import AssemblyMesh, principal_axis, specimen
     from ..fea.ccx import find_ccx
-    from ..fea.unitcell import UnitCellMesh
-    from ..fea.validation import Case, Refinement, run_case
-    from ..inputs import assembly_from_namespace, parse_etas
+    from ..fea.validation import Case, run_case
     from ..offaxis import check_support
-    from ..record import read_record
 
-    if bond not in ("edges", "flanges"):
-        raise InputError("bond", repr(bond), "edges or flanges")
-    if bond != "edges" and not connectors:
-        raise InputError(
-            "bond", bond, "flanges only together with --connectors", reason="needs the band"
-        )
-    bond_: Bond = "flanges" if bond == "flanges" else "edges"
-    if refine is not None and not 0 < refine < 1:
-        raise InputError("refine", refine, "0 < TOL < 1 (a relative change, e.g. 0.01)")
-    try:
-        along, through = (int(v) for v in cell_mesh.lower().split("x"))
-    except ValueError:
-        raise InputError(
-            "cell-mesh", repr(cell_mesh), "ALONGxTHROUGH, e.g. 40x2", reason="cannot be read"
-        ) from None
-    refinement = Refinement(AssemblyMesh(mesh), UnitCellMesh(along, through), refine)
+    bond_ = _bond(bond, connectors)
+    refinement = _refinement(mesh, cell_mesh, refine)
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
     console = make_console()
     if sweep is not None:
@@ -271,32 +254,8 @@ def validate_cmd(
             bond_,
         )
         return
-    if design is not None:
-        given = [o for o, v in (("--W", W), ("--n", n), ("--alpha", alpha)) if v is not None]
-        if given:
-            raise InputError(
-                given[0],
-                "given",
-                "either --design or the layer options",
-                reason="conflicts with --design",
-            )
-        assembly = read_record(design).assembly()
-    elif W is None or n is None or alpha is None:
-        raise InputError(
-            "design",
-            None,
-            "--W, --n and --alpha, --design FILE, or --sweep NAME",
-            reason="is missing",
-        )
-    else:
-        assembly = assembly_from_namespace(locals())
-    etas = parse_etas(eta or ["0"])
-    for e in etas:  # fail before any run: layout, eta and connectors must fit the FE model
-        specimen(assembly, e)
-        if connectors and principal_axis(e) is None:
-            raise InputError(
-                "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
-            )
+    assembly = _assembly(design, locals())
+    etas = _etas(assembly, eta, connectors)
     band = (" +connectors" + (" (flanges)" if bond == "flanges" else "")) if connectors else ""
     case = Case(
         _label(assembly) + band,
@@ -316,25 +275,96 @@ def validate_cmd(
     with console.status("running CalculiX ..."):
         result = run_case(case)
     if as_json:
-        typer.echo(
-            json.dumps(
-                {
-                    "case": case.label,
-                    "fe": result.fe,
-                    "models": result.models,
-                    "meshes": result.meshes,
-                    "refined": result.refined,
-                    "converged": result.converged,
-                    "error": result.error,
-                    "buckling_bounds_N": _buckling_bounds(result),
-                },
-                indent=2,
-            )
-        )
+        typer.echo(json.dumps(_result_json(result), indent=2))
     else:
         _print_result(result, console)
     if result.error:
         raise typer.Exit(1)
+
+
+def _bond(bond: str, connectors: bool) -> Bond:
+    """The ``--bond`` option, checked against ``--connectors``."""
+    if bond not in ("edges", "flanges"):
+        raise InputError("bond", repr(bond), "edges or flanges")
+    if bond != "edges" and not connectors:
+        raise InputError(
+            "bond", bond, "flanges only together with --connectors", reason="needs the band"
+        )
+    return "flanges" if bond == "flanges" else "edges"
+
+
+def _refinement(mesh: int, cell_mesh: str, refine: float | None) -> Refinement:
+    """The meshes to start from (``--mesh``, ``--cell-mesh``) and the refinement tolerance."""
+    from ..fea.assembly import AssemblyMesh
+    from ..fea.unitcell import UnitCellMesh
+    from ..fea.validation import Refinement
+
+    if refine is not None and not 0 < refine < 1:
+        raise InputError("refine", refine, "0 < TOL < 1 (a relative change, e.g. 0.01)")
+    try:
+        along, through = (int(v) for v in cell_mesh.lower().split("x"))
+    except ValueError:
+        raise InputError(
+            "cell-mesh", repr(cell_mesh), "ALONGxTHROUGH, e.g. 40x2", reason="cannot be read"
+        ) from None
+    return Refinement(AssemblyMesh(mesh), UnitCellMesh(along, through), refine)
+
+
+def _assembly(design: Path | None, options: Mapping[str, object]) -> Assembly:
+    """The design to check: the record of ``--design`` or the layer ``options`` (``--W``, ...),
+    never both."""
+    from ..inputs import assembly_from_namespace
+    from ..record import read_record
+
+    layer = {"--W": options.get("W"), "--n": options.get("n"), "--alpha": options.get("alpha")}
+    if design is not None:
+        given = [name for name, value in layer.items() if value is not None]
+        if given:
+            raise InputError(
+                given[0],
+                "given",
+                "either --design or the layer options",
+                reason="conflicts with --design",
+            )
+        return read_record(design).assembly()
+    if any(value is None for value in layer.values()):
+        raise InputError(
+            "design",
+            None,
+            "--W, --n and --alpha, --design FILE, or --sweep NAME",
+            reason="is missing",
+        )
+    return assembly_from_namespace(options)
+
+
+def _etas(assembly: Assembly, eta: list[str] | None, connectors: bool) -> tuple[float, ...]:
+    """The directions of ``--eta`` (default 0), checked against the FE model before any run:
+    layout, eta and connectors must fit it."""
+    from ..fea.assembly import principal_axis, specimen
+    from ..inputs import parse_etas
+
+    etas = parse_etas(eta or ["0"])
+    for e in etas:
+        specimen(assembly, e)
+        if connectors and principal_axis(e) is None:
+            raise InputError(
+                "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
+            )
+    return etas
+
+
+def _result_json(result: CaseResult) -> dict[str, object]:
+    """The object ``validate --json`` prints for one design."""
+    return {
+        "case": result.case.label,
+        "fe": result.fe,
+        "models": result.models,
+        "meshes": result.meshes,
+        "refined": result.refined,
+        "converged": result.converged,
+        "error": result.error,
+        "buckling_bounds_N": _buckling_bounds(result),
+    }
 
 
 def _run_sweep(
