@@ -8,7 +8,8 @@ It starts ``uvicorn`` with the app (:func:`corrugate.web.create_app`) in a child
 port of 127.0.0.1, waits until it answers, sends one design to warm it up, then posts
 ``examples/blimp_gripper.toml`` as JSON to ``/api/design`` from 1 client (``--requests`` designs one
 after another) and from 4 clients at once (``--requests`` designs each), and prints the designs per
-second of each, and their ratio. ``--processes`` is the app's design pool (default: one worker
+second of each, their ratio, and how many cores the server (with its worker processes) kept busy
+meanwhile: its CPU seconds per wall second, which shows what a shared, loaded machine left it. ``--processes`` is the app's design pool (default: one worker
 process per core; 0: the designs run on the server's threads, as before the process pool);
 ``--compare-threads`` also measures the app with ``--processes 0``.
 
@@ -80,9 +81,41 @@ def wait_until_up(base: str, server: subprocess.Popen[bytes], seconds: float = 1
     raise RuntimeError("the server did not start")
 
 
-def throughput(base: str, body: bytes, clients: int, per_client: int) -> tuple[float, float]:
-    """Designs per second with ``clients`` clients sending ``per_client`` designs each, and the
-    median seconds of one request."""
+def tree_cpu_seconds(root: int) -> float | None:
+    """CPU seconds (user + system) used so far by process ``root`` and all its descendants (the
+    server, the forkserver and the design workers); None where /proc is missing."""
+    proc = Path("/proc")
+    if not proc.is_dir():
+        return None
+    parent: dict[int, int] = {}
+    ticks: dict[int, int] = {}
+    for entry in proc.iterdir():
+        if not entry.name.isdigit():
+            continue
+        try:
+            text = (entry / "stat").read_text()
+        except OSError:
+            continue
+        fields = text[text.rindex(")") + 2 :].split()
+        pid = int(entry.name)
+        parent[pid] = int(fields[1])
+        ticks[pid] = int(fields[11]) + int(fields[12])
+    total = 0
+    for pid in ticks:
+        p = pid
+        while p > 1 and p != root:
+            p = parent.get(p, 0)
+        if p == root:
+            total += ticks[pid]
+    return total / os.sysconf("SC_CLK_TCK")
+
+
+def throughput(
+    base: str, body: bytes, clients: int, per_client: int, server: int
+) -> tuple[float, float, float | None]:
+    """Designs per second with ``clients`` clients sending ``per_client`` designs each, the
+    median seconds of one request, and the server's CPU seconds per wall second meanwhile (how
+    many cores it kept busy; None without /proc)."""
     times: list[float] = []
     errors: list[BaseException] = []
     lock = threading.Lock()
@@ -97,16 +130,19 @@ def throughput(base: str, body: bytes, clients: int, per_client: int) -> tuple[f
             errors.append(exc)
 
     threads = [threading.Thread(target=client) for _ in range(clients)]
+    cpu0 = tree_cpu_seconds(server)
     start = time.perf_counter()
     for t in threads:
         t.start()
     for t in threads:
         t.join()
     elapsed = time.perf_counter() - start
+    cpu1 = tree_cpu_seconds(server)
     if errors:
         raise errors[0]
     times.sort()
-    return len(times) / elapsed, times[len(times) // 2]
+    busy = None if cpu0 is None or cpu1 is None else (cpu1 - cpu0) / elapsed
+    return len(times) / elapsed, times[len(times) // 2], busy
 
 
 def measure(processes: str, per_client: int) -> dict[int, float]:
@@ -128,11 +164,12 @@ def measure(processes: str, per_client: int) -> dict[int, float]:
             t.join()
         rates: dict[int, float] = {}
         for clients in (1, 4):
-            rate, median = throughput(base, body, clients, per_client)
+            rate, median, busy = throughput(base, body, clients, per_client, server.pid)
             rates[clients] = rate
+            cores = "" if busy is None else f", server busy on {busy:.2f} cores"
             print(
                 f"design pool {processes:>7}: {clients} client(s) x {per_client} designs: "
-                f"{rate:.3f} designs/s (median request {median:.2f} s)",
+                f"{rate:.3f} designs/s (median request {median:.2f} s{cores})",
                 flush=True,
             )
         print(f"design pool {processes:>7}: 4 clients / 1 client = {rates[4] / rates[1]:.2f}")

@@ -331,10 +331,12 @@ def test_designs_run_in_worker_processes_and_their_errors_come_back() -> None:
         runner.shutdown()
     bad = copy.deepcopy(spec_of("blimp_gripper.toml"))
     bad["constraints"]["side"]["min"] = "-5 mm"
-    with TestClient(create_app(WebSettings(processes=1))) as c:
-        r = c.post("/api/design", json=bad)
-        assert r.status_code == 422, r.text
-        assert r.json()["field"].startswith("constraints.side")
+    for processes in (1, 0):  # 0: the designs run on the server's threads
+        with TestClient(create_app(WebSettings(processes=processes))) as c:
+            r = c.post("/api/design", json=bad)
+            assert r.status_code == 422, r.text
+            assert r.json()["field"].startswith("constraints.side"), processes
+            assert not any(c.app.state.store.root.iterdir())  # its folder went too
 
 
 def test_report_and_preview_show_the_plan_of_the_files(client: TestClient, tmp_path: Path) -> None:

@@ -29,6 +29,7 @@ import hashlib
 import json
 import math
 import re
+import shutil
 import threading
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
@@ -320,7 +321,14 @@ async def design_answer(
     publish its files (the result is discarded when the job fails, times out or has no files)."""
     result_id, folder = store.create()
     try:
-        payload, paths = await runner.run_process(design_job, body, settings, folder)
+        payload, paths = await runner.run_process(
+            design_job,
+            body,
+            settings,
+            folder,
+            # A job past the time limit writes on; its folder goes when it ends.
+            abandoned=lambda: shutil.rmtree(folder, ignore_errors=True),
+        )
     except BaseException:
         store.discard(result_id)
         raise

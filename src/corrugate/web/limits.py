@@ -238,13 +238,22 @@ class Runner:
         """The result of ``fn()``, computed on the thread pool; its exceptions propagate."""
         return await self._submit(self._pool, fn)
 
-    async def run_process(self, fn: Callable[..., T], *args: Any) -> T:
+    async def run_process(
+        self, fn: Callable[..., T], *args: Any, abandoned: Callable[[], None] | None = None
+    ) -> T:
         """The result of ``fn(*args)``, computed in a worker process: ``fn`` must be a module-level
         function and ``args`` and the result picklable. Its exceptions propagate (corrugate's own
-        errors arrive as raised, :class:`~corrugate.errors.CorrugateError`)."""
-        return await self._submit(self._processes(), fn, *args)
+        errors arrive as raised, :class:`~corrugate.errors.CorrugateError`). ``abandoned`` is
+        called when a computation that timed out finally ends (to remove what it left behind)."""
+        return await self._submit(self._processes(), fn, *args, abandoned=abandoned)
 
-    async def _submit(self, pool: Executor, fn: Callable[..., T], *args: Any) -> T:
+    async def _submit(
+        self,
+        pool: Executor,
+        fn: Callable[..., T],
+        *args: Any,
+        abandoned: Callable[[], None] | None = None,
+    ) -> T:
         if not self._slots.acquire(blocking=False):
             raise ServerBusyError("the server is busy with other computations; try again shortly")
         try:
@@ -256,6 +265,8 @@ class Runner:
         try:
             return await asyncio.wait_for(asyncio.wrap_future(future), self.timeout_s)
         except TimeoutError:
+            if abandoned is not None:
+                future.add_done_callback(lambda _: abandoned())
             raise ComputeTimeoutError(self.timeout_s) from None
 
     def shutdown(self) -> None:
