@@ -14,6 +14,13 @@ process per core; 0: the designs run on the server's threads, as before the proc
 ``--compare-threads`` also measures the app with ``--processes 0``.
 
 Every answer must be 200 with a certified optimum and files; anything else stops the run.
+
+Reading the numbers: designs per second = (cores the server kept busy) / (CPU seconds of one
+design, about 6 s for this spec). The ratio of 4 clients to 1 shows the pool only when the server
+can get more than one core. On a shared Linux machine with ``kernel.sched_autogroup_enabled = 1``
+each session gets an equal share of the CPU however many processes it runs, so while other
+sessions are busy the server's share stays well under one core and the ratio stays near 1; the
+"busy on N cores" column says so.
 """
 
 from __future__ import annotations

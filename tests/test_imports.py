@@ -10,6 +10,8 @@ never run.
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -132,3 +134,18 @@ def test_package_imports_are_acyclic() -> None:
     cycle = find_cycle(import_graph())
     if cycle is not None:
         pytest.fail("import cycle: " + " -> ".join(cycle))
+
+
+def test_the_command_line_loads_no_command_work_until_a_command_runs() -> None:
+    """Importing the CLI (every command registered) loads none of the modules the commands work
+    with: the solver, the spec reader, the writers, the report, the FE and web subpackages."""
+    code = (
+        "import sys, corrugate.cli\n"
+        "print(sorted(m for m in sys.modules if m.startswith('corrugate.')))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded = set(ast.literal_eval(out.stdout.strip()))
+    assert "corrugate.cli.validate" in loaded  # the command modules themselves are there
+    heavy = ("design", "spec", "pipeline", "outputs", "record", "export", "report", "fea", "web")
+    found = sorted(m for m in loaded if m.split(".")[1] in heavy)
+    assert found == [], found
