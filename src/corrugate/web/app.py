@@ -14,7 +14,9 @@ Endpoints (all JSON unless said otherwise):
   ``corrugate design`` -> ``{"design": <corrugate design --json>, "result": {"id", "files"}}``:
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
   STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
-  ``"result": null`` when the spec is infeasible;
+  ``"result": null`` when the spec is infeasible. Designs run on a pool of worker processes,
+  one per core (:func:`design_job` writes the files into the result's folder, the server
+  publishes them); everything else runs on threads;
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path).
 
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
