@@ -188,7 +188,8 @@ def _warm_up() -> None:
 
 
 class Runner:
-    """Run blocking computations with a time limit of ``timeout_s``: on ``workers`` threads
+    """Run blocking computations with a time limit of ``timeout_s`` (from when a computation
+    starts; its wait in the queue does not count): on ``workers`` threads
     (:meth:`run`) or on ``processes`` worker processes (:meth:`run_process`; None: one per core,
     0: on the threads instead).
 
@@ -199,7 +200,7 @@ class Runner:
     The processes start from a fresh interpreter (``forkserver``, or ``spawn`` where there is no
     fork), never as a fork of the server with its threads; they are made on first use and each
     imports :data:`WORKER_PRELOAD` once. :meth:`start_processes` makes them ahead of the first
-    request.
+    request; a computation waits until they are ready before its time limit starts.
     """
 
     def __init__(
@@ -210,6 +211,7 @@ class Runner:
         self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="corrugate-web")
         self._slots = threading.BoundedSemaphore(max_pending)
         self._process_pool: ProcessPoolExecutor | None = None
+        self._warm: list[Future[None]] = []
         self._lock = threading.Lock()
 
     def _processes(self) -> Executor:
@@ -230,9 +232,16 @@ class Runner:
     def start_processes(self) -> None:
         """Start every worker process now (they import their modules in the background)."""
         pool = self._processes()
-        if pool is not self._pool:
-            for _ in range(self.processes):
-                pool.submit(int)
+        with self._lock:
+            if pool is not self._pool and not self._warm:
+                self._warm = [pool.submit(_warm_up) for _ in range(self.processes)]
+
+    async def _ready(self) -> None:
+        """Wait until the worker processes have started and imported their modules (the start of
+        a worker is not part of a computation's time limit)."""
+        self.start_processes()
+        for future in list(self._warm):
+            await asyncio.wrap_future(future)
 
     async def run(self, fn: Callable[[], T]) -> T:
         """The result of ``fn()``, computed on the thread pool; its exceptions propagate."""
@@ -245,7 +254,10 @@ class Runner:
         function and ``args`` and the result picklable. Its exceptions propagate (corrugate's own
         errors arrive as raised, :class:`~corrugate.errors.CorrugateError`). ``abandoned`` is
         called when a computation that timed out finally ends (to remove what it left behind)."""
-        return await self._submit(self._processes(), fn, *args, abandoned=abandoned)
+        pool = self._processes()
+        if pool is not self._pool:
+            await self._ready()
+        return await self._submit(pool, fn, *args, abandoned=abandoned)
 
     async def _submit(
         self,
@@ -262,6 +274,9 @@ class Runner:
             self._slots.release()
             raise
         future.add_done_callback(lambda _: self._slots.release())
+        # The time limit counts the computation, not its wait in the queue behind others.
+        while not (future.running() or future.done()):
+            await asyncio.sleep(0.02)
         try:
             return await asyncio.wait_for(asyncio.wrap_future(future), self.timeout_s)
         except TimeoutError:
@@ -274,6 +289,7 @@ class Runner:
         self._pool.shutdown(wait=False, cancel_futures=True)
         with self._lock:
             pool, self._process_pool = self._process_pool, None
+            self._warm = []
         if pool is not None:
             # A job that timed out may still be running: stop the processes rather than wait.
             workers = list(getattr(pool, "_processes", {}).values())
