@@ -285,14 +285,13 @@ class Runner:
             raise ComputeTimeoutError(self.timeout_s) from None
 
     def shutdown(self) -> None:
-        """Drop queued computations; running threads finish, worker processes are stopped."""
+        """Drop queued computations; running ones finish in their threads or processes."""
         self._pool.shutdown(wait=False, cancel_futures=True)
         with self._lock:
             pool, self._process_pool = self._process_pool, None
             self._warm = []
         if pool is not None:
-            # A job that timed out may still be running: stop the processes rather than wait.
-            workers = list(getattr(pool, "_processes", {}).values())
+            # Not terminated: a worker killed under its pipe would break it (EPIPE; fatal to a
+            # process where a library reset SIGPIPE, as gmsh does). A job that timed out ends on
+            # its own, its result dropped.
             pool.shutdown(wait=False, cancel_futures=True)
-            for process in workers:
-                process.terminate()
