@@ -16,7 +16,7 @@ from __future__ import annotations
 import sys
 import time
 
-from corrugate.buckling import facet_buckling_load
+from corrugate.analysis import facet_buckling_load
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 from corrugate.fea.sweep import paper_cases
 

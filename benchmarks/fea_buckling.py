@@ -11,7 +11,7 @@ from __future__ import annotations
 import time
 
 from corrugate import Assembly, Layer, get_material
-from corrugate.buckling import facet_buckling_load
+from corrugate.analysis import facet_buckling_load
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 
 DESIGNS = {

@@ -113,9 +113,9 @@ def _fork_run(spec: str, out: Path, cutter: str) -> int:
 def main() -> None:
     spec, out, trials, seed = sys.argv[1], Path(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
     rng = random.Random(seed)
-    import corrugate.design_cli as dc
+    import corrugate.design.run as dr  # corrugate.pipeline.solve_spec calls it at run time
 
-    real = dc.run_spec
+    real = dr.run_spec
     cache: dict[str, Any] = {}
 
     def cached(parsed: Any, problem: Any) -> Any:
@@ -123,7 +123,7 @@ def main() -> None:
             cache["run"] = real(parsed, problem)
         return cache["run"]
 
-    dc.run_spec = cached  # type: ignore[assignment]
+    dr.run_spec = cached  # type: ignore[assignment]
     sys.stdout = open(os.devnull, "w")  # noqa: SIM115
     _run(spec, out, CUTTERS[1])  # the earlier set, and the cache filled
     ok, first_run, why = check_set(out)

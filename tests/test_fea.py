@@ -268,7 +268,7 @@ def test_default_unit_cell_mesh_is_the_same_everywhere() -> None:
     further, grading kept."""
     import inspect
 
-    from corrugate.fea_cli import validate_cmd
+    from corrugate.cli.validate import validate_cmd
 
     assert UnitCellMesh() == UnitCellMesh(80, 8, grading=0.98, grading_t=0.9)
     assert UnitCellMesh().refined() == UnitCellMesh(160, 16)
@@ -380,38 +380,38 @@ def test_validate_reads_a_pattern_design_json(ccx: str, tmp_path: Path) -> None:
 
 
 def test_design_json_that_validate_cannot_model_is_one_clear_error(tmp_path: Path) -> None:
-    from corrugate.fea_cli import design_from_json
+    from corrugate.record import read_record
 
     layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
     record = analyze(Assembly.identical(layer), "refined", [0.0]).to_dict()
     path = tmp_path / "design.json"
     path.write_text(json.dumps(record))
-    assert design_from_json(tmp_path) == Assembly.identical(layer)
+    assert read_record(tmp_path).assembly() == Assembly.identical(layer)
     layers = record["layers"]
     assert isinstance(layers, list)
     layers[1]["alpha_deg"] = 100.0
     path.write_text(json.dumps(record))
     with pytest.raises(InputError, match=r"layout = square .*Lx = Ly"):
-        design_from_json(path)  # differing layers on a square: the layout's own check
+        read_record(path).assembly()  # differing layers on a square: the layout's own check
     record["layout"] = {"shape": "rectangle"}
     path.write_text(json.dumps(record))
     other = replace(layer, alpha_deg=100.0)
-    assert design_from_json(path) == Assembly(layer, other, Rectangle())
+    assert read_record(path).assembly() == Assembly(layer, other, Rectangle())
     layers[1]["n"] = "many"
     path.write_text(json.dumps(record))
     with pytest.raises(InputError, match=r"layers\[1\]"):
-        design_from_json(path)
+        read_record(path).assembly()
     layers[1]["n"] = 3
     layers[1]["alpha_deg"] = 120.0
     record["layout"] = {"shape": "circle"}
     path.write_text(json.dumps(record))
     with pytest.raises(InputError, match=r"layout\.shape = 'circle'"):
-        design_from_json(path)
+        read_record(path).assembly()
     record["layout"] = {"shape": "square"}
     layers[0]["material"] = layers[1]["material"] = "custom"
     path.write_text(json.dumps(record))
     with pytest.raises(InputError, match=r"layers\[0\]\.material .*not in the library"):
-        design_from_json(path)
+        read_record(path).assembly()
 
 
 def test_connector_band_stiffens_as_its_walls_predict(ccx: str) -> None:
@@ -650,7 +650,7 @@ def test_first_buckling_load_lies_between_the_plate_bounds(
     (corrugate.buckling; the interior facets, k >= 4, come later: 3.1 times the upper bound).
     The coarse mesh buckles high (the FE converges from above: 4.81, 4.28, 4.12 N at 2, 4, 8
     elements per facet), still below the clamped value, 5.57 N. eta = 90 is the mirror image."""
-    from corrugate.buckling import facet_buckling_load
+    from corrugate.analysis import facet_buckling_load
 
     b = facet_buckling_load(small_assembly, 0.0)
     P0 = solve_assembly(small_assembly, "buckling", AssemblyMesh(2), 0.0).value()

@@ -470,12 +470,12 @@ def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole() ->
 
 def test_validate_reads_the_holes_of_a_design_json(tmp_path: Path) -> None:
     """``corrugate validate --design`` must not drop the holes: design.json round trip."""
-    from corrugate.fea_cli import design_from_json
+    from corrugate.record import read_record
 
     layer = Layer(8.0, 8, 84.0, DURALAR)
     tri = Hole("polygon", (10.0, 5.0), vertices=((0.0, 0.0), (4.0, 0.0), (0.0, 3.0)))
     a = Assembly.identical(layer, make_layout("square", holes=(AXLE, tri)))
     write_design_files(analyze(a, "refined", (0.0,)), tmp_path)
-    back = design_from_json(tmp_path / "design.json")
+    back = read_record(tmp_path / "design.json").assembly()
     assert back.layout.holes == (AXLE, tri)
     assert assembly_mass(back).total == pytest.approx(assembly_mass(a).total, rel=1e-12)

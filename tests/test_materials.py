@@ -119,7 +119,7 @@ def test_facet_buckling_bounds_by_hand() -> None:
     import math
 
     from corrugate import Assembly, Layer, analyze
-    from corrugate.buckling import facet_buckling_load
+    from corrugate.analysis import facet_buckling_load
     from corrugate.errors import InputError
 
     m = get_material("dura-lar")

@@ -194,7 +194,7 @@ def test_report_is_self_contained_and_complete(report: Path) -> None:
     assert "name = &quot;blimp-gripper&quot;" in text  # the spec itself, escaped
     # the buckling bounds of the solved design (W 8, n 8, alpha 84; the spec's model 'paper')
     from corrugate import Assembly, Layer, get_material
-    from corrugate.buckling import facet_buckling_load
+    from corrugate.analysis import facet_buckling_load
 
     b = facet_buckling_load(
         Assembly.identical(Layer(8.0, 8, 84.0, get_material("dura-lar"))), 0.0, "paper"

@@ -19,6 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .buckling import BucklingEstimate, buckling_bounds
 from .checks import ModelWarning, design_warnings
+from .errors import InputError
 from .geometry import Assembly, Layer
 from .layouts import Circle, Layout, Rectangle, layer_inverse_sums, length_sum
 from .mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
@@ -34,6 +35,7 @@ __all__ = [
     "LayerArrays",
     "analyze",
     "evaluate",
+    "facet_buckling_load",
     "identical_layers",
 ]
 
@@ -389,3 +391,18 @@ def analyze(
 
     require_finite(result.to_dict(), "result")  # NaN or infinity is never printed
     return result
+
+
+def facet_buckling_load(
+    assembly: Assembly, eta_deg: float = 0.0, model: str = "refined"
+) -> BucklingEstimate:
+    """The plate-theory bounds (N) on the compression load at which the end facets of
+    ``assembly`` buckle along ``eta_deg`` (:func:`corrugate.buckling.buckling_bounds` with the
+    springs of ``model``); an :class:`InputError` where the bounds do not apply (a layout other
+    than a square or rectangle, eta other than 0 or 90 deg)."""
+    b = buckling_bounds(assembly, analyze(assembly, model, [eta_deg]).springs, eta_deg)
+    if b is None:
+        if assembly.layout.name not in ("square", "rectangle"):
+            raise InputError("layout", assembly.layout.name, "square or rectangle")
+        raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg (along a layer's creases)")
+    return b

@@ -30,7 +30,6 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from .errors import InputError
 from .geometry import Assembly, crease_layer
 from .springs import LayerSprings
 
@@ -40,7 +39,6 @@ __all__ = [
     "BucklingEstimate",
     "buckling_bounds",
     "buckling_scale",
-    "facet_buckling_load",
 ]
 
 #: Buckling coefficient of a long plate, simply supported on one edge, free on the other.
@@ -98,18 +96,3 @@ def buckling_bounds(
     m = layer.material
     load = float(buckling_scale(m.E, m.nu, layer.t, layer.W, layer.n, K_S, K_C))  # N per unit k
     return BucklingEstimate(float(eta_deg), K_SIMPLE_FREE * load, K_CLAMPED_FREE * load, K_S + K_C)
-
-
-def facet_buckling_load(
-    assembly: Assembly, eta_deg: float = 0.0, model: str = "refined"
-) -> BucklingEstimate:
-    """:func:`buckling_bounds` with the springs of ``model``; an :class:`InputError` where the
-    bounds do not apply."""
-    from .analysis import analyze
-
-    b = buckling_bounds(assembly, analyze(assembly, model, [eta_deg]).springs, eta_deg)
-    if b is None:
-        if assembly.layout.name not in ("square", "rectangle"):
-            raise InputError("layout", assembly.layout.name, "square or rectangle")
-        raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg (along a layer's creases)")
-    return b

@@ -19,7 +19,23 @@ __all__ = [
 
 
 class CorrugateError(Exception):
-    """Base class of every error raised by corrugate."""
+    """Base class of every error raised by corrugate.
+
+    Every subclass survives pickling as it is (message, class and attributes such as
+    :attr:`InputError.field`), whatever its constructor takes: a worker process (the web app's
+    design pool, the FE sweep) can raise it and the parent sees the same error.
+    """
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_restore, (type(self), self.args, dict(self.__dict__)))
+
+
+def _restore(cls: type[CorrugateError], args: tuple[Any, ...], state: dict[str, Any]) -> Any:
+    """The error ``cls`` with ``args`` and attributes ``state``, its constructor not called."""
+    exc = cls.__new__(cls)
+    exc.args = args
+    exc.__dict__.update(state)
+    return exc
 
 
 class InputError(CorrugateError, ValueError):

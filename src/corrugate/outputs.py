@@ -6,7 +6,8 @@
 ``paper`` a4 or letter also ``pattern-a4.pdf`` / ``pattern-letter.pdf``, the sheets on 1:1 tiles),
 ``layer1.fold`` / ``layer2.fold`` (FOLD 1.2 with the folded frame), ``assembly.glb`` /
 ``assembly.stl`` (the folded part), ``ASSEMBLY.md`` + ``assembly.png`` (numbered steps and a figure),
-``report.html`` (from ``corrugate design``) and ``design.json`` (the analysis, the sheets, and the mass of the cut parts). Every option is
+``report.html`` (from ``corrugate design``) and ``design.json`` (:mod:`corrugate.record`: the analysis, the sheets, and the mass of the cut
+parts). Every option is
 checked and every document built before anything is written; the files are then committed
 together as one set (:mod:`corrugate.fileio`), so a bad option, a failure or a kill leaves either the
 folder's earlier set or the new one, never a mix.
@@ -19,7 +20,6 @@ Each figure is drawn once: the report is made after the files, from the sheet fi
 
 from __future__ import annotations
 
-import json
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,6 +38,7 @@ from .pattern.linestyle import SOLID, LineStyle, check_style
 from .pattern.model import Pattern
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
 from .pattern.sheets import SheetPlan, plan_sheets
+from .record import RECORD_NAME, write_record
 
 __all__ = ["CutPlan", "Drawings", "OutputOptions", "cut_plan", "write_design_files"]
 
@@ -166,8 +167,6 @@ def write_design_files(
         if report_text is not None:
             st.path(out / "report.html").write_text(report_text, encoding="utf-8")
             written.append(out / "report.html")
-        record["files"] = [p.name for p in written] + ["design.json"]
-        target = out / "design.json"
-        st.path(target).write_text(json.dumps(record, indent=2), encoding="utf-8")
-        written.append(target)
+        record["files"] = [p.name for p in written] + [RECORD_NAME]
+        written.append(write_record(record, out, st))
     return written

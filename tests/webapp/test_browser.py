@@ -128,7 +128,7 @@ def test_form_analysis_3d_view_and_field_errors(browser: Any, live_server: str) 
     assert page.locator("#layers tbody tr").count() == 2
     # the plate-theory buckling bounds, as corrugate.buckling gives them for this design
     from corrugate import Assembly, Layer, get_material
-    from corrugate.buckling import facet_buckling_load
+    from corrugate.analysis import facet_buckling_load
 
     b = facet_buckling_load(
         Assembly.identical(Layer(8.0, 8, 84.0, get_material("dura-lar"))), 0.0, "paper"

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
+import asyncio
 import copy
 import io
 import json
-import threading
 import tomllib
 import xml.etree.ElementTree as ET
 from collections.abc import Iterator
@@ -17,11 +17,10 @@ import pytest
 import trimesh
 from fastapi.testclient import TestClient
 
-import corrugate.cli  # first: pattern_cli imports the cli, which imports pattern_cli
-import corrugate.web.app as web_app
+import corrugate.cli
 from corrugate.design import Problem, solve
 from corrugate.outputs import write_design_files
-from corrugate.pattern_cli import fab_options
+from corrugate.pipeline import output_options
 from corrugate.spec import parse_spec
 from corrugate.web import WebSettings, create_app
 from corrugate.web.app import _output_options
@@ -105,7 +104,7 @@ def test_every_file_is_listed_downloads_and_parses(
         for p in write_design_files(
             sol.analysis,
             tmp_path,
-            fab_options("cameo4-12x12", "solid", None, None, "5", "5", "4"),
+            output_options("cameo4-12x12", "solid"),
             report="<!doctype html>",
         )
     ]
@@ -174,7 +173,7 @@ def test_output_options_are_the_clis() -> None:
     ]
     for options, (cutter, style, cut, gap) in cases:
         body = DesignBody.model_validate({**BLIMP_GRIPPER, **options})
-        assert _output_options(body) == fab_options(cutter, style, cut, gap, "5", "5", "4")
+        assert _output_options(body) == output_options(cutter, style, cut, gap)
 
 
 def test_perforated_fold_lines_reach_the_files(client: TestClient) -> None:
@@ -306,22 +305,38 @@ def test_a_robust_spec_is_answered_as_the_cli_does(
     assert without_timings(d) == without_timings(cli)
 
 
-def test_a_slow_design_gets_504(monkeypatch: pytest.MonkeyPatch) -> None:
-    release = threading.Event()
-    real = web_app.design_answer
+def test_a_slow_design_gets_504() -> None:
+    """A design runs in a worker process; past the time limit the request gets 504, the server
+    answers on and keeps no result of it."""
+    with TestClient(create_app(WebSettings(timeout_s=0.05, processes=1))) as c:
+        r = c.post("/api/design", json=spec_of("blimp_gripper.toml"))
+        assert r.status_code == 504 and "did not finish" in r.json()["detail"]
+        alive(c)
+        assert len(c.app.state.store) == 0
 
-    def slow(*args: Any) -> Any:
-        release.wait(timeout=10)
-        return real(*args)
 
-    monkeypatch.setattr(web_app, "design_answer", slow)
+def test_designs_run_in_worker_processes_and_their_errors_come_back() -> None:
+    """The design pool is processes (not the server's), sized to the cores by default, and an
+    error raised in a worker arrives as the same error (422 naming the field)."""
+    import os
+
+    from corrugate.web.limits import Runner, core_count
+
+    runner = Runner(workers=1, max_pending=4, timeout_s=60)
     try:
-        with TestClient(create_app(WebSettings(timeout_s=0.05, workers=1))) as c:
-            r = c.post("/api/design", json=spec_of("blimp_gripper.toml"))
-            assert r.status_code == 504 and "did not finish" in r.json()["detail"]
-            alive(c)
+        assert runner.processes == core_count() >= 1
+        pid = asyncio.run(runner.run_process(os.getpid))
+        assert pid != os.getpid()
     finally:
-        release.set()
+        runner.shutdown()
+    bad = copy.deepcopy(spec_of("blimp_gripper.toml"))
+    bad["constraints"]["side"]["min"] = "-5 mm"
+    for processes in (1, 0):  # 0: the designs run on the server's threads
+        with TestClient(create_app(WebSettings(processes=processes))) as c:
+            r = c.post("/api/design", json=bad)
+            assert r.status_code == 422, r.text
+            assert r.json()["field"].startswith("constraints.side"), processes
+            assert not any(c.app.state.store.root.iterdir())  # its folder went too
 
 
 def test_report_and_preview_show_the_plan_of_the_files(client: TestClient, tmp_path: Path) -> None:

@@ -104,7 +104,7 @@ def dxf_document(sheet: Sheet, style: LineStyle = SOLID, *, labels: bool = True)
 def write_dxf(
     sheet: Sheet, path: str | os.PathLike[str], style: LineStyle = SOLID, *, labels: bool = True
 ) -> Path:
-    """Write one sheet as DXF to ``path`` (all or nothing, see :mod:`.staging`); returns the path."""
+    """Write one sheet as DXF to ``path`` (all or nothing, see :mod:`corrugate.fileio`); returns the path."""
     doc = dxf_document(sheet, style, labels=labels)
     target = Path(path)
     with staged() as st:

@@ -216,7 +216,7 @@ def write_svg(
     labels: bool = True,
     marks: bool = True,
 ) -> Path:
-    """Write one sheet as SVG to ``path`` (all or nothing, see :mod:`.staging`); returns the path."""
+    """Write one sheet as SVG to ``path`` (all or nothing, see :mod:`corrugate.fileio`); returns the path."""
     text = svg_document(sheet, style, labels=labels, marks=marks)
     target = Path(path)
     with staged() as st:

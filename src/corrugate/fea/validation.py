@@ -100,7 +100,7 @@ class CaseResult:
     3-point bending, as the paper tested; EI along the layout's axes only), ``"Kframe_N_per_mm@eta"``
     (the panel in a rigid frame, :mod:`~corrugate.fea.frame`; in ``fe`` only when an off-axis eta
     is asked for), ``"Pcr_N@eta"`` (first buckling load in compression, N; ``fe`` only, with
-    ``buckling`` and eta 0 or 90; the bounds are :func:`corrugate.buckling.facet_buckling_load`), ``"D4_Nmm@eta"`` (pure bending between the load lines
+    ``buckling`` and eta 0 or 90; the bounds are :func:`corrugate.analysis.facet_buckling_load`), ``"D4_Nmm@eta"`` (pure bending between the load lines
     of a 4-point test; the closed forms' D for the models) and the layer moduli
     ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
     ``history`` lists (mesh label, values) of every refinement step. ``converged`` is True only

@@ -14,7 +14,9 @@ Endpoints (all JSON unless said otherwise):
   ``corrugate design`` -> ``{"design": <corrugate design --json>, "result": {"id", "files"}}``:
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
   STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
-  ``"result": null`` when the spec is infeasible;
+  ``"result": null`` when the spec is infeasible. Designs run on a pool of worker processes,
+  one per core (:func:`design_job` writes the files into the result's folder, the server
+  publishes them); everything else runs on threads;
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path).
 
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
@@ -29,10 +31,11 @@ import hashlib
 import json
 import math
 import re
+import shutil
 import threading
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -47,14 +50,14 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from .. import __version__
 from ..analysis import Analysis
 from ..design import Problem, Solution
-from ..design.run import run_spec
 from ..errors import InputError
 from ..inputs import AnalysisRequest, analysis_request
 from ..materials import library
 from ..moduli import DEFAULT_MODEL, MODELS
-from ..outputs import OutputOptions, write_design_files
+from ..outputs import OutputOptions
+from ..pipeline import output_options, solve_spec, write_design
 from ..spec import Spec, SpecError, parse_spec
-from ..units import parse_quantity, ureg
+from ..units import ureg
 from .limits import (
     BodySizeLimit,
     CatchAll,
@@ -84,6 +87,7 @@ __all__ = [
     "analysis_payload",
     "create_app",
     "design_answer",
+    "design_job",
     "design_payload",
     "mesh_files",
 ]
@@ -97,10 +101,6 @@ STATIC_DIR = Path(__file__).resolve().parent / "static"
 #: pint's registry keeps caches that are not documented as thread-safe: parse one request at a time
 #: (parsing takes microseconds; the computations themselves run in parallel).
 _PARSE_LOCK = threading.Lock()
-
-#: matplotlib's pyplot (the assembly figure, the report's plots) keeps global state and is not
-#: thread-safe: one design's files are written at a time (the solves run in parallel).
-_FILES_LOCK = threading.Lock()
 
 _SWAGGER = "/static/vendor/swagger-ui"
 
@@ -121,8 +121,10 @@ class WebSettings:
     """Limits of the web app.
 
     ``max_body_bytes``: longest request body (413 past it); ``timeout_s``: longest computation
-    (504 past it); ``workers``: computation threads; ``max_pending``: computations queued or running
-    at once (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
+    (504 past it); ``workers``: computation threads (analyses, meshes); ``processes``: worker
+    processes for designs (None: one per core, 0: designs run on the threads too);
+    ``max_pending``: computations queued or running at once, threads and processes together (503
+    past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
     folded extent of a layer (422 past them; the pattern's glue tabs grow with the size, so these
     bound the memory and time of one request); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private
     result root is made (default: the system temporary folder); ``allowed_hosts``: the Host
@@ -133,6 +135,7 @@ class WebSettings:
     max_body_bytes: int = 64 * 1024
     timeout_s: float = 30.0
     workers: int = 4
+    processes: int | None = None
     max_pending: int = 32
     max_creases: int = 1000
     max_extent_mm: float = 5000.0
@@ -217,40 +220,16 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
 
 def _output_options(body: DesignBody) -> OutputOptions:
     """The output options of a design request, as ``corrugate design --cutter ... --fold-style
-    ... --cut ... --gap ... --paper ...`` reads them (default spacing, margin and tabs); errors
-    name the request's field."""
-    from ..export.pdf import check_paper
-    from ..pattern.linestyle import line_style
-    from ..pattern.sheets import get_cutter
-
-    get_cutter(body.cutter)  # its errors name "cutter" already
-    cut = None if body.cut is None else parse_quantity(body.cut, "mm", "cut")
-    gap = None if body.gap is None else parse_quantity(body.gap, "mm", "gap")
-    if body.fold_style.strip().lower() == "perforated":
-        for name, value in (("cut", cut), ("gap", gap)):
-            if value is None:
-                raise InputError(
-                    name,
-                    None,
-                    f"a {name} length (mm) for perforated fold lines",
-                    reason="is missing",
-                )
-    try:
-        return OutputOptions(
-            cutter=body.cutter,
-            style=line_style(body.fold_style, cut, gap),
-            paper=check_paper(body.paper),  # its errors name "paper" already
-        )
-    except InputError as exc:
-        fields = {
-            "fold-line style": "fold_style",
-            "perforation cut": "cut",
-            "perforation gap": "gap",
-            "perforation": "cut" if body.cut is None else "gap",
-        }
-        if exc.field in fields:
-            raise exc.renamed(fields[exc.field]) from None
-        raise
+    ... --cut ... --gap ... --paper ...`` reads them (:func:`corrugate.pipeline.output_options`,
+    default spacing, margin and tabs); errors name the request's field."""
+    return output_options(
+        body.cutter,
+        body.fold_style,
+        body.cut,
+        body.gap,
+        paper=body.paper,
+        names={"fold-line style": "fold_style"},
+    )
 
 
 def _check_spec_size(spec: Spec, settings: WebSettings) -> None:
@@ -294,8 +273,8 @@ def _spec_data(body: DesignBody) -> dict[str, Any]:
 
 def design_payload(spec: Spec, problem: Problem) -> tuple[Solution, dict[str, Any]]:
     """The solution of ``problem`` and the object ``corrugate design --json`` prints for it
-    (:func:`corrugate.design.run.run_spec`, the CLI's own steps, robust specs included)."""
-    run = run_spec(spec, problem)
+    (:func:`corrugate.pipeline.solve_spec`, the CLI's own steps, robust specs included)."""
+    run = solve_spec(spec, problem)
     return run.solution, run.payload
 
 
@@ -309,8 +288,11 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
     )
 
 
-def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -> DesignAnswer:
-    """Solve the spec of a design request and store its files (runs on a worker thread)."""
+def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
+    """Solve the spec of a design request and write its files into ``folder`` (a new result's
+    folder of the store); returns the ``corrugate design --json`` object and the paths written
+    (none for an infeasible spec). Runs in a worker process (or thread): it takes and returns
+    plain, picklable values, and the store itself stays in the server."""
     from ..pattern.linestyle import PerforationError
     from ..pattern.sheets import PartTooLargeError
 
@@ -325,36 +307,44 @@ def design_answer(body: DesignBody, settings: WebSettings, store: ResultStore) -
         problem = Problem.from_spec(spec)
         options = _output_options(body)
     _check_spec_size(spec, settings)
-    sol, payload = design_payload(spec, problem)
-    payload = _json_safe(payload)
-    analysis = sol.analysis
-    if analysis is None:
-        return DesignAnswer(design=payload, result=None)
-    _check_design_size(analysis, settings)
-
+    run = solve_spec(spec, problem)
+    run = replace(run, payload=_json_safe(run.payload))
+    if run.solution.analysis is None:
+        return run.payload, []
+    _check_design_size(run.solution.analysis, settings)
     spec_text = json.dumps(_spec_data(body), indent=2)
-
-    def write(folder: Path) -> list[Path]:
-        from ..report import report_html
-
-        with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
-            return write_design_files(
-                analysis,
-                folder,
-                options,
-                extra=payload,
-                report=lambda cut: report_html(sol, spec_text, cut),
-            )
-
     try:
-        files = store.make(write)
+        return run.payload, write_design(run, folder, options, spec_text)
     except PartTooLargeError as exc:
         raise exc.renamed(
             "cutter", repr(body.cutter), f"is too small for {exc.field} ({exc.value})"
         ) from None
     except PerforationError as exc:
         raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
-    return DesignAnswer(design=payload, result=_result_body(files))
+
+
+async def design_answer(
+    body: DesignBody, settings: WebSettings, store: ResultStore, runner: Runner
+) -> DesignAnswer:
+    """Run :func:`design_job` on the runner's process pool into a new result of ``store`` and
+    publish its files (the result is discarded when the job fails, times out or has no files)."""
+    result_id, folder = store.create()
+    try:
+        payload, paths = await runner.run_process(
+            design_job,
+            body,
+            settings,
+            folder,
+            # A job past the time limit writes on; its folder goes when it ends.
+            abandoned=lambda: shutil.rmtree(folder, ignore_errors=True),
+        )
+    except BaseException:
+        store.discard(result_id)
+        raise
+    if not paths:
+        store.discard(result_id)
+        return DesignAnswer(design=payload, result=None)
+    return DesignAnswer(design=payload, result=_result_body(store.publish(result_id, paths)))
 
 
 def _error(status: int, detail: str, errors: list[FieldError]) -> JSONResponse:
@@ -442,56 +432,19 @@ class _SecurityHeaders:
         await self.app(scope, receive, send_with_headers)
 
 
-def create_app(settings: WebSettings | None = None) -> FastAPI:
-    """A new, independent application (its own worker pool and result store)."""
-    cfg = settings or WebSettings()
-    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s)
-    store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
-    # Load the unit registry and the material library before the first requests race for them.
-    ureg()
-    library()
-    index_html = (STATIC_DIR / "index.html").read_text(encoding="utf-8")
-    page_csp = (
-        "default-src 'self'; "
-        f"script-src 'self' {_importmap_hash(index_html)}; "
-        "style-src 'self'; img-src 'self' data: blob:; connect-src 'self' blob:; "
-        "object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
-    )
+#: The error answers of the computing endpoints, for the OpenAPI document.
+_ERROR_RESPONSES: dict[int | str, dict[str, Any]] = {
+    400: {"model": ErrorBody, "description": "Malformed JSON"},
+    413: {"model": ErrorBody, "description": "Request body too large"},
+    422: {"model": ErrorBody, "description": "A value is invalid; `field` names it"},
+    503: {"model": ErrorBody, "description": "Too many computations in flight"},
+    504: {"model": ErrorBody, "description": "The computation took too long"},
+}
 
-    @asynccontextmanager
-    async def lifespan(_: FastAPI) -> AsyncIterator[None]:
-        try:
-            yield
-        finally:
-            runner.shutdown()
-            store.close()
 
-    app = FastAPI(
-        title="corrugate",
-        version=__version__,
-        description=(
-            "Analyse and design origami-inspired OADLC stiffening panels. `/api/analyze` and "
-            "`/api/mesh` take the options of `corrugate analyze`; `/api/design` takes a spec with "
-            "the keys of the TOML file and answers as `corrugate design --json`, with its files. "
-            "Values are numbers in the field's default unit (mm, deg, MPa, g/cm^3) or strings "
-            "with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with the field named "
-            "(a spec value by its TOML path, e.g. `constraints.side.min`)."
-        ),
-        docs_url=None,
-        redoc_url=None,
-        lifespan=lifespan,
-    )
-    app.state.settings = cfg
-    app.state.store = store
-    app.state.runner = runner
-
-    error_responses: dict[int | str, dict[str, Any]] = {
-        400: {"model": ErrorBody, "description": "Malformed JSON"},
-        413: {"model": ErrorBody, "description": "Request body too large"},
-        422: {"model": ErrorBody, "description": "A value is invalid; `field` names it"},
-        503: {"model": ErrorBody, "description": "Too many computations in flight"},
-        504: {"model": ErrorBody, "description": "The computation took too long"},
-    }
+def _add_error_handlers(app: FastAPI) -> None:
+    """Every error as JSON ``{"detail", "field", "errors"}`` with its status (see the module
+    docstring)."""
 
     @app.exception_handler(InputError)
     async def on_input_error(_: Request, exc: InputError) -> JSONResponse:
@@ -520,6 +473,21 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     async def on_timeout(_: Request, exc: ComputeTimeoutError) -> JSONResponse:
         return _error(504, str(exc), [])
 
+
+def _page_csp(index_html: str) -> str:
+    """The page's Content-Security-Policy: its own scripts and the import map only."""
+    return (
+        "default-src 'self'; "
+        f"script-src 'self' {_importmap_hash(index_html)}; "
+        "style-src 'self'; img-src 'self' data: blob:; connect-src 'self' blob:; "
+        "object-src 'none'; base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
+    )
+
+
+def _add_pages(app: FastAPI, index_html: str) -> None:
+    """The single page (``/``) and the offline Swagger UI (``/docs``)."""
+    page_csp = _page_csp(index_html)
+
     @app.get("/", include_in_schema=False)
     async def index() -> HTMLResponse:
         return HTMLResponse(index_html, headers={"content-security-policy": page_csp})
@@ -533,6 +501,11 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
             swagger_css_url=f"{_SWAGGER}/swagger-ui.css",
             swagger_favicon_url=f"{_SWAGGER}/favicon-32x32.png",
         )
+
+
+def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore) -> None:
+    """The JSON API: library, models, analyze, mesh, design and the result downloads."""
+    error_responses = _ERROR_RESPONSES
 
     @app.get("/api/materials", summary="The material library")
     async def materials() -> list[dict[str, Any]]:
@@ -576,7 +549,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         ``corrugate design --out`` writes as a result (``result`` is null when the spec is
         infeasible: ``design.diagnosis`` says why). A bad spec value gets 422 naming its TOML path,
         e.g. ``constraints.side.min``."""
-        return await runner.run(lambda: design_answer(body, cfg, store))
+        return await design_answer(body, cfg, store, runner)
 
     @app.get(
         "/api/results/{result_id}/{name}",
@@ -594,6 +567,47 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
             return _error(404, "no such result or file (results are kept for a while only)", [])
         return response
 
+
+def create_app(settings: WebSettings | None = None) -> FastAPI:
+    """A new, independent application (its own worker pool and result store)."""
+    cfg = settings or WebSettings()
+    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s, processes=cfg.processes)
+    store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
+    # Load the unit registry and the material library before the first requests race for them.
+    ureg()
+    library()
+    index_html = (STATIC_DIR / "index.html").read_text(encoding="utf-8")
+
+    @asynccontextmanager
+    async def lifespan(_: FastAPI) -> AsyncIterator[None]:
+        runner.start_processes()  # the design workers import their modules before the first design
+        try:
+            yield
+        finally:
+            runner.shutdown()
+            store.close()
+
+    app = FastAPI(
+        title="corrugate",
+        version=__version__,
+        description=(
+            "Analyse and design origami-inspired OADLC stiffening panels. `/api/analyze` and "
+            "`/api/mesh` take the options of `corrugate analyze`; `/api/design` takes a spec with "
+            "the keys of the TOML file and answers as `corrugate design --json`, with its files. "
+            "Values are numbers in the field's default unit (mm, deg, MPa, g/cm^3) or strings "
+            "with units ('0.3 in', '2.7 GPa'). A bad value gets HTTP 422 with the field named "
+            "(a spec value by its TOML path, e.g. `constraints.side.min`)."
+        ),
+        docs_url=None,
+        redoc_url=None,
+        lifespan=lifespan,
+    )
+    app.state.settings = cfg
+    app.state.store = store
+    app.state.runner = runner
+    _add_error_handlers(app)
+    _add_pages(app, index_html)
+    _add_api(app, cfg, runner, store)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(CatchAll)
     app.add_middleware(_SecurityHeaders)

@@ -1,105 +1,31 @@
-"""The ``corrugate`` command line (typer + rich).
-
-Every failure the user can cause prints one line ``corrugate: error: ...`` naming the parameter, its
-value and the allowed range, and exits with code 2; nothing is written on failure.
-"""
+"""``corrugate analyze`` and ``corrugate materials``: one design's stiffness, and the library."""
 
 from __future__ import annotations
 
 import json
-import sys
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
 from rich.table import Table
 
-from . import __version__
-from . import cli_options as o
-from .analysis import Analysis, analyze
-from .errors import CorrugateError, describe
-from .geometry import Layer
-from .holes import holes_text
-from .inputs import (
-    assembly_from_namespace,
-    layer_from_options,
-    material_from_options,
-    parse_etas,
-    parse_int,
-    parse_vertices,
-)
-from .materials import Material, library
-from .moduli import DEFAULT_MODEL, MODELS, get_model
-from .offaxis import check_support
+from ..moduli import DEFAULT_MODEL
+from . import options as o
+from .console import fmt as _fmt
+from .console import make_console
 
-__all__ = ["app", "main"]
+if TYPE_CHECKING:
+    from ..analysis import Analysis
 
-app = typer.Typer(
-    name="corrugate",
-    help="Design orthogonally assembled double-layered corrugated (OADLC) stiffening panels.",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
-)
+__all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
 
 Opt = typer.Option
 
 
-def _version(value: bool) -> None:
-    if value:
-        typer.echo(f"corrugate {__version__}")
-        raise typer.Exit()
-
-
-@app.callback()
-def _root(
-    version: Annotated[
-        bool, Opt("--version", callback=_version, is_eager=True, help="Print the version.")
-    ] = False,
-) -> None:
-    """corrugate: the lightest OADLC panel that provably meets a spec."""
-
-
-def _int(value: str, field: str, allowed: str = "an integer n >= 1 (number of creases)") -> int:
-    """See :func:`corrugate.inputs.parse_int` (kept here for the other command modules)."""
-    return parse_int(value, field, allowed)
-
-
-def _material(
-    name: str | None,
-    E: str | None,
-    nu: str | None,
-    density: str | None,
-    thickness: str | None,
-    suffix: str = "",
-) -> Material:
-    """See :func:`corrugate.inputs.material_from_options`."""
-    return material_from_options(name, E, nu, density, thickness, suffix)
-
-
-def _layer(
-    W: str, n: str, alpha: str, material: Material, thickness: str | None, suffix: str = ""
-) -> Layer:
-    """See :func:`corrugate.inputs.layer_from_options`."""
-    return layer_from_options(W, n, alpha, material, thickness, suffix)
-
-
-def _vertices(text: str | None) -> list[tuple[float, float]] | None:
-    """See :func:`corrugate.inputs.parse_vertices`."""
-    return parse_vertices(text)
-
-
-def make_console(stderr: bool = False) -> Console:
-    """A rich console; 120 columns when not writing to a terminal (logs, pipes, make demo)."""
-    probe = Console(stderr=stderr)
-    return probe if probe.is_terminal else Console(stderr=stderr, width=120)
-
-
-def _fmt(x: float | None, digits: int = 4) -> str:
-    return "-" if x is None else f"{x:.{digits}g}"
-
-
 def _print_analysis(r: Analysis, console: Console) -> None:
+    from ..holes import holes_text
+    from ..moduli import get_model
+
     a = r.assembly
     console.print(f"[bold]model[/bold] {r.model}: {get_model(r.model).source}")
     t = Table(title="layers (t, W in mm; alpha in deg; moduli in MPa)", title_justify="left")
@@ -161,7 +87,6 @@ def _print_comparison(results: list[Analysis], console: Console) -> None:
     console.print(t)
 
 
-@app.command("analyze")
 def analyze_cmd(
     W: o.W,
     n: o.N,
@@ -194,6 +119,11 @@ def analyze_cmd(
 
     Example: corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper --eta 0
     """
+    from ..analysis import analyze
+    from ..inputs import assembly_from_namespace, parse_etas
+    from ..moduli import MODELS, get_model
+    from ..offaxis import check_support
+
     assembly = assembly_from_namespace(locals())
     etas = parse_etas(eta)
     get_model(model)
@@ -217,11 +147,12 @@ def analyze_cmd(
         _print_analysis(results[0], console)
 
 
-@app.command("materials")
 def materials_cmd(
     as_json: Annotated[bool, Opt("--json", help="Print the library as JSON.")] = False,
 ) -> None:
     """List the bundled material library."""
+    from ..materials import library
+
     lib = library()
     if as_json:
         typer.echo(json.dumps([m.as_dict() for m in lib.values()], indent=2))
@@ -244,23 +175,5 @@ def materials_cmd(
     console.print("Names, every thickness and the sources: `corrugate materials --json`.")
 
 
-def main(argv: list[str] | None = None) -> None:
-    """Console entry point: runs the app, turning every user error into one line and exit code 2.
-
-    Usage errors found by the option parser (unknown option, missing value) also exit with 2.
-    """
-    try:
-        app(args=argv)
-    except (CorrugateError, OSError, RecursionError, MemoryError) as exc:
-        print(f"corrugate: error: {describe(exc)}", file=sys.stderr)
-        sys.exit(2)
-    except Exception as exc:  # a bug: still one line, never a traceback
-        print(f"corrugate: {describe(exc)}", file=sys.stderr)
-        sys.exit(3)
-
-
-# Further commands register themselves on ``app``.
-from . import design_cli as _design_cli  # noqa: E402, F401
-from . import fea_cli as _fea_cli  # noqa: E402, F401
-from . import pattern_cli as _pattern_cli  # noqa: E402, F401
-from . import web_cli as _web_cli  # noqa: E402, F401
+#: The commands of this module, by name (registered by :mod:`corrugate.cli`).
+COMMANDS = {"analyze": analyze_cmd, "materials": materials_cmd}

@@ -7,54 +7,15 @@ from typing import Annotated
 
 import typer
 
-from . import cli_options as o
-from .analysis import analyze
-from .cli import app, make_console
-from .export.pdf import check_paper
-from .inputs import assembly_from_namespace
-from .moduli import DEFAULT_MODEL, get_model
-from .offaxis import check_support
-from .outputs import OutputOptions, write_design_files
-from .pattern.linestyle import line_style
-from .pattern.options import FabricationOptions
-from .units import parse_quantity
+from ..moduli import DEFAULT_MODEL
+from . import options as o
+from .console import make_console
 
-__all__ = ["fab_options", "pattern_cmd"]
+__all__ = ["COMMANDS", "pattern_cmd"]
 
 Opt = typer.Option
 
 
-def fab_options(
-    cutter: str,
-    fold_style: str,
-    cut: str | None,
-    gap: str | None,
-    spacing: str,
-    margin: str,
-    tab_depth: str,
-    labels: bool | None = None,
-    paper: str = "mat",
-) -> OutputOptions:
-    """Output options from command-line strings (plain numbers in mm); ``cutter`` is the machine,
-    ``labels`` the ``--labels/--no-labels`` flag (``None`` when not given) and ``paper`` is
-    ``mat``, ``a4`` or ``letter`` (see :class:`~corrugate.outputs.OutputOptions`)."""
-    from .export.machines import get_machine
-
-    get_machine(cutter)  # an unknown machine is an error before anything else
-    cut_mm = None if cut is None else parse_quantity(cut, "mm", "cut")
-    gap_mm = None if gap is None else parse_quantity(gap, "mm", "gap")
-    return OutputOptions(
-        cutter=cutter,
-        style=line_style(fold_style, cut_mm, gap_mm),
-        spacing=parse_quantity(spacing, "mm", "spacing"),
-        margin=parse_quantity(margin, "mm", "margin"),
-        fabrication=FabricationOptions(tab_depth=parse_quantity(tab_depth, "mm", "tab-depth")),
-        labels=labels,
-        paper=check_paper(paper),
-    )
-
-
-@app.command("pattern")
 def pattern_cmd(
     W: o.W,
     n: o.N,
@@ -88,9 +49,16 @@ def pattern_cmd(
 ) -> None:
     """Write the machine's cut files, the fold map, the PDF, FOLD, GLB/STL and assembly steps of one
     design (docs/fabrication.md)."""
+    from ..analysis import analyze
+    from ..inputs import assembly_from_namespace
+    from ..moduli import get_model
+    from ..offaxis import check_support
+    from ..outputs import write_design_files
+    from ..pipeline import output_options
+
     assembly = assembly_from_namespace(locals())
     get_model(model)
-    opts = fab_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, labels, paper)
+    opts = output_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, labels, paper)
     result = analyze(
         assembly, model, (0.0, 90.0), opts.fabrication, check_support(support, "--support")
     )
@@ -115,3 +83,7 @@ def pattern_cmd(
     )
     for p in paths:
         console.print(f"wrote {p}")
+
+
+#: The commands of this module, by name (registered by :mod:`corrugate.cli`).
+COMMANDS = {"pattern": pattern_cmd}

@@ -1,6 +1,6 @@
 """``corrugate serve``: run the local web app (needs the ``web`` extra).
 
-Registered on :data:`corrugate.cli.app`. FastAPI and uvicorn are imported only when the command
+Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). FastAPI and uvicorn are imported only when the command
 runs, so the rest of the command line works without them.
 """
 
@@ -10,16 +10,14 @@ from typing import Annotated
 
 import typer
 
-from .cli import app
-from .errors import CorrugateError
+from ..errors import CorrugateError
 
-__all__ = ["LOOPBACK_HOSTS", "serve_cmd"]
+__all__ = ["COMMANDS", "LOOPBACK_HOSTS", "serve_cmd"]
 
 #: Hosts that only this machine can reach.
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 
 
-@app.command("serve")
 def serve_cmd(
     host: Annotated[
         str, typer.Option(help="Address to listen on; 127.0.0.1 keeps it on this machine.")
@@ -36,8 +34,8 @@ def serve_cmd(
     try:
         import uvicorn
 
-        from .web import WebSettings, create_app
-        from .web.app import LOOPBACK_NAMES
+        from ..web import WebSettings, create_app
+        from ..web.app import LOOPBACK_NAMES
     except ImportError as exc:
         raise CorrugateError(
             f"the web app needs the 'web' extra ({exc.name} is missing): "
@@ -62,3 +60,7 @@ def serve_cmd(
         limit_concurrency=100,
         timeout_keep_alive=5,
     )
+
+
+#: The commands of this module, by name (registered by :mod:`corrugate.cli`).
+COMMANDS = {"serve": serve_cmd}

@@ -1,6 +1,6 @@
 """``corrugate design``, ``pareto`` and ``tolerance``: certified designs from a spec, explained.
 
-Registered on :data:`corrugate.cli.app`. Exit codes: 0 success, 1 the spec is infeasible (the
+Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). Exit codes: 0 success, 1 the spec is infeasible (the
 diagnosis says why) or could not be certified, 2 a user error (one line naming the spec field,
 e.g. ``constraints.side.min``).
 """
@@ -9,28 +9,21 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
-from typing import Annotated
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from . import cli_options as o
-from .cli import app, make_console
-from .design import Problem, Solution, solve
-from .design.pareto import ParetoFront, pareto_front
-from .design.run import run_spec
-from .design.tolerance import Tolerances, monte_carlo
-from .errors import InputError
-from .export.pdf import check_paper
-from .fileio import staged, write_set
-from .outputs import write_design_files
-from .pattern_cli import fab_options
-from .spec import load_spec
-from .units import parse_quantity
+from ..errors import InputError
+from . import options as o
+from .console import make_console
 
-__all__ = ["design_cmd", "pareto_cmd", "tolerance_cmd"]
+if TYPE_CHECKING:
+    from ..design import Solution
+    from ..design.pareto import ParetoFront
+
+__all__ = ["COMMANDS", "design_cmd", "pareto_cmd", "tolerance_cmd"]
 
 
 def _fmt(x: float | None, digits: int = 5) -> str:
@@ -118,7 +111,6 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         console.print(f"[yellow]warning[/yellow] ({w['code']}): {w['message']}")
 
 
-@app.command("design")
 def design_cmd(
     spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
@@ -137,36 +129,28 @@ def design_cmd(
 
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     """
+    from ..design import Problem
+    from ..export.pdf import check_paper
+    from ..pipeline import output_options, solve_spec, write_design
+    from ..spec import load_spec
+
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     check_paper(paper)  # checked with or without --out
-    files = (
-        fab_options(cutter, fold_style, cut, gap, "5", "5", "4", labels, paper)
+    options = (
+        output_options(cutter, fold_style, cut, gap, labels=labels, paper=paper)
         if out is not None
         else None
     )
     parsed = load_spec(spec)
     problem = Problem.from_spec(parsed)
-    run = run_spec(parsed, problem)
-    sol, payload, robust = run.solution, run.payload, run.robust
-    text = json.dumps(payload, indent=2)
+    run = solve_spec(parsed, problem)
+    sol, robust = run.solution, run.robust
     written: list[Path] = []
-    if out is not None and files is not None:
-        if sol.analysis is not None:
-            from .report import report_html
-
-            text_of_spec = spec.read_text(encoding="utf-8")
-            written = write_design_files(
-                sol.analysis,
-                out,
-                files,
-                extra=payload,
-                report=lambda cut: report_html(sol, text_of_spec, cut),
-            )
-        else:
-            written = write_set(out, {"design.json": text + "\n"}, kind="design")
+    if out is not None and options is not None:
+        written = write_design(run, out, options, spec.read_text(encoding="utf-8"))
     if as_json:
-        typer.echo(text)
+        typer.echo(json.dumps(run.payload, indent=2))
     else:
         console = make_console()
         _print_solution(sol, console, tightened=robust is not None)
@@ -187,13 +171,14 @@ def design_cmd(
 def _plot(front: ParetoFront, title: str, path: Path) -> bool:
     """Write the front as a PNG (mass against stiffness); False if matplotlib is missing."""
     try:
-        import matplotlib
-
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
+        import matplotlib  # noqa: F401
     except ImportError:
         return False
-    fig, ax = plt.subplots(figsize=(6, 4))
+    from ..figure import new_figure
+    from ..fileio import staged
+
+    fig = new_figure((6, 4))
+    ax = fig.subplots()
     s = [p.stiffness for p in front.points]
     m = [p.mass for p in front.points]
     if front.exact:
@@ -206,15 +191,11 @@ def _plot(front: ParetoFront, title: str, path: Path) -> bool:
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
     fig.tight_layout()
-    try:
-        with staged() as st:
-            fig.savefig(st.path(path), dpi=120, format="png")
-    finally:
-        plt.close(fig)
+    with staged() as st:
+        fig.savefig(st.path(path), dpi=120, format="png")
     return True
 
 
-@app.command("pareto")
 def pareto_cmd(
     spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
     vs: Annotated[
@@ -231,6 +212,14 @@ def pareto_cmd(
 
     Example: corrugate pareto examples/blimp_gripper.toml --vs flexural_rigidity --out out/p
     """
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from ..design import Problem
+    from ..design.pareto import pareto_front
+    from ..fileio import write_set
+    from ..spec import load_spec
+    from ..units import parse_quantity
+
     kinds = ("flexural_rigidity", "bending_stiffness", "inplane_stiffness")
     if vs not in kinds:
         raise InputError("--vs", repr(vs), "one of " + ", ".join(kinds), reason="is unknown")
@@ -296,7 +285,6 @@ def _relative(value: str, field: str) -> float:
     return x
 
 
-@app.command("tolerance")
 def tolerance_cmd(
     spec: Annotated[Path, typer.Argument(help="Spec file (TOML); its optimum is analysed.")],
     samples: Annotated[int, typer.Option(help="Monte Carlo samples.")] = 10_000,
@@ -314,6 +302,11 @@ def tolerance_cmd(
 
     Example: corrugate tolerance examples/blimp_gripper.toml --alpha-tol "2 deg" --E-tol 10%
     """
+    from ..design import Problem, solve
+    from ..design.tolerance import Tolerances, monte_carlo
+    from ..spec import load_spec
+    from ..units import parse_quantity
+
     if samples < 2:
         raise InputError("--samples", samples, "an integer >= 2")
     tol = Tolerances(
@@ -356,3 +349,7 @@ def tolerance_cmd(
         c.add_row(name, f"{100 * p:.1f} %")
     c.add_row("[bold]all[/bold]", f"[bold]{100 * report.p_all:.1f} %[/bold]")
     console.print(c)
+
+
+#: The commands of this module, by name (registered by :mod:`corrugate.cli`).
+COMMANDS = {"design": design_cmd, "pareto": pareto_cmd, "tolerance": tolerance_cmd}

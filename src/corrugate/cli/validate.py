@@ -1,8 +1,8 @@
 """``corrugate validate``: finite-element (CalculiX) check of a design against every model variant.
 
-Registered on :data:`corrugate.cli.app` by the last line of :mod:`corrugate.cli`. The FE
-subpackage (:mod:`corrugate.fea`) is imported only when the command runs, so the core CLI works
-without it.
+Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). The FE subpackage
+(:mod:`corrugate.fea`) is imported only when the command runs, so the core CLI works without it.
+``--design`` reads a design.json through :func:`corrugate.record.read_record`.
 
 Examples::
 
@@ -15,136 +15,28 @@ Examples::
 from __future__ import annotations
 
 import json
+from collections.abc import Mapping
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 from rich.console import Console
-from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 from rich.table import Table
 
-from . import cli_options as o
-from .buckling import facet_buckling_load
-from .cli import app, make_console
-from .errors import InputError
-from .geometry import Assembly, Layer
-from .holes import Hole
-from .inputs import assembly_from_namespace, parse_etas
-from .layouts import Rectangle, Square
-from .materials import get_material, library
-from .moduli import MODELS
-from .offaxis import check_support
+from ..errors import InputError
+from ..moduli import MODELS
+from . import options as o
+from .console import make_console
 
 if TYPE_CHECKING:
-    from .fea.band import Bond
-    from .fea.validation import CaseResult, Refinement
+    from ..fea.band import Bond
+    from ..fea.validation import CaseResult, Refinement
+    from ..geometry import Assembly, Layer
 
-__all__ = ["validate_cmd"]
+__all__ = ["COMMANDS", "validate_cmd"]
 
 Opt = typer.Option
-
-
-_DESIGN_FIELDS = ("W_mm", "n", "alpha_deg", "material", "t_mm")
-
-
-def design_from_json(path: Path) -> Assembly:
-    """The assembly of a ``design.json`` (written by ``corrugate design --out`` or ``corrugate
-    pattern --out``; ``path`` is the file or its folder): two layers of library materials on a
-    square or rectangle. Anything else is an :class:`InputError` naming the field."""
-    file = path / "design.json" if path.is_dir() else path
-    try:
-        data = json.loads(file.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise InputError(
-            "design", str(file), "a readable design.json", reason="cannot be read"
-        ) from exc
-    except json.JSONDecodeError as exc:
-        raise InputError(
-            "design", str(file), "a JSON file", reason=f"is not JSON ({exc.msg})"
-        ) from None
-    if not isinstance(data, dict):
-        raise InputError("design", str(file), "a JSON object", reason="is not an object")
-    shape = data.get("layout", {}).get("shape") if isinstance(data.get("layout"), dict) else None
-    if shape not in ("square", "rectangle"):
-        raise InputError(
-            "layout.shape",
-            repr(shape),
-            "square or rectangle for the FE assembly (to check the layers of another outline, "
-            "validate them on a square: the same --W --n --alpha)",
-            reason="is not supported",
-        )
-    layers = data.get("layers")
-    if (
-        not isinstance(layers, list)
-        or len(layers) != 2
-        or not all(isinstance(x, dict) for x in layers)
-    ):
-        raise InputError(
-            "layers", "?", "a list of two layer objects", reason="is missing or malformed"
-        )
-    built: list[Layer] = []
-    for i, entry in enumerate(layers):
-        for key in _DESIGN_FIELDS:
-            if key not in entry:
-                raise InputError(f"layers[{i}].{key}", None, "a value", reason="is missing")
-        mat_id = str(entry["material"])
-        if mat_id.strip().lower() not in library():
-            raise InputError(
-                f"layers[{i}].material",
-                repr(mat_id),
-                "a library material id (design.json does not store E and nu of an inline "
-                "material; use --W, --n, --alpha, --E, --nu instead)",
-                reason="is not in the library",
-            )
-        try:
-            built.append(
-                Layer(
-                    W=float(entry["W_mm"]),
-                    n=int(entry["n"]),
-                    alpha_deg=float(entry["alpha_deg"]),
-                    material=get_material(mat_id),
-                    t=float(entry["t_mm"]),
-                )
-            )
-        except (TypeError, ValueError) as exc:
-            if isinstance(exc, InputError):
-                raise exc.renamed(f"layers[{i}].{exc.field}") from None
-            raise InputError(
-                f"layers[{i}]", "?", "numbers for W_mm, n, alpha_deg, t_mm", reason="is malformed"
-            ) from None
-    holes = _design_holes(data["layout"].get("holes"))
-    layout = Square(holes=holes) if shape == "square" else Rectangle(holes=holes)
-    return Assembly(built[0], built[1], layout)
-
-
-def _design_holes(raw: object) -> tuple[Hole, ...]:
-    """The holes of a design.json's ``layout.holes`` (as :meth:`Hole.describe` writes them)."""
-    if raw is None:
-        return ()
-    if not isinstance(raw, list):
-        raise InputError("layout.holes", repr(raw), "a list of holes", reason="is malformed")
-    out = []
-    for i, h in enumerate(raw):
-        try:
-            out.append(
-                Hole(
-                    h["shape"],
-                    (float(h["center_mm"][0]), float(h["center_mm"][1])),
-                    diameter=float(h.get("diameter_mm", 0.0)),
-                    vertices=tuple((float(x), float(y)) for x, y in h.get("vertices_mm", [])),
-                )
-            )
-        except InputError as exc:
-            raise exc.renamed(f"layout.holes[{i}].{exc.field}") from None
-        except (TypeError, ValueError, KeyError, IndexError):
-            raise InputError(
-                f"layout.holes[{i}]",
-                "?",
-                "shape, center_mm and diameter_mm or vertices_mm",
-                reason="is malformed",
-            ) from None
-    return tuple(out)
 
 
 def _label(a: Assembly) -> str:
@@ -210,6 +102,8 @@ def _print_result(r: CaseResult, console: Console) -> None:
 
 def _buckling_bounds(r: CaseResult) -> dict[str, tuple[float, float]]:
     """Plate-theory bounds (N) beside each FE buckling load of ``r``, by eta."""
+    from ..analysis import facet_buckling_load
+
     out: dict[str, tuple[float, float]] = {}
     for key in r.fe:
         if key.startswith("Pcr_N@"):
@@ -249,7 +143,6 @@ def _model_cells(r: CaseResult, key: str) -> list[str]:
     return cells
 
 
-@app.command("validate")
 def validate_cmd(
     W: Annotated[str | None, Opt("--W", help="Facet width (mm).")] = None,
     n: Annotated[str | None, Opt("--n", help="Number of creases (n + 1 facets).")] = None,
@@ -339,29 +232,14 @@ def validate_cmd(
 
     Example: corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar --refine 0.02
     """
-    from .fea.assembly import AssemblyMesh, principal_axis, specimen
-    from .fea.ccx import find_ccx
-    from .fea.sweep import check_sweep_options
-    from .fea.unitcell import UnitCellMesh
-    from .fea.validation import Case, Refinement, run_case
+    from ..fea.ccx import find_ccx
+    from ..fea.sweep import check_sweep_options
+    from ..fea.validation import Case, run_case
+    from ..offaxis import check_support
 
-    if bond not in ("edges", "flanges"):
-        raise InputError("bond", repr(bond), "edges or flanges")
-    if bond != "edges" and not connectors:
-        raise InputError(
-            "bond", bond, "flanges only together with --connectors", reason="needs the band"
-        )
-    bond_: Bond = "flanges" if bond == "flanges" else "edges"
-    if refine is not None and not 0 < refine < 1:
-        raise InputError("refine", refine, "0 < TOL < 1 (a relative change, e.g. 0.01)")
-    try:
-        along, through = (int(v) for v in cell_mesh.lower().split("x"))
-    except ValueError:
-        raise InputError(
-            "cell-mesh", repr(cell_mesh), "ALONGxTHROUGH, e.g. 40x2", reason="cannot be read"
-        ) from None
+    bond_ = _bond(bond, connectors)
+    refinement = _refinement(mesh, cell_mesh, refine)
     check_sweep_options(jobs, timeout, workdir)
-    refinement = Refinement(AssemblyMesh(mesh), UnitCellMesh(along, through), refine)
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
     console = make_console()
     if sweep is not None:
@@ -379,32 +257,8 @@ def validate_cmd(
             bond_,
         )
         return
-    if design is not None:
-        given = [o for o, v in (("--W", W), ("--n", n), ("--alpha", alpha)) if v is not None]
-        if given:
-            raise InputError(
-                given[0],
-                "given",
-                "either --design or the layer options",
-                reason="conflicts with --design",
-            )
-        assembly = design_from_json(design)
-    elif W is None or n is None or alpha is None:
-        raise InputError(
-            "design",
-            None,
-            "--W, --n and --alpha, --design FILE, or --sweep NAME",
-            reason="is missing",
-        )
-    else:
-        assembly = assembly_from_namespace(locals())
-    etas = parse_etas(eta or ["0"])
-    for e in etas:  # fail before any run: layout, eta and connectors must fit the FE model
-        specimen(assembly, e)
-        if connectors and principal_axis(e) is None:
-            raise InputError(
-                "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
-            )
+    assembly = _assembly(design, locals())
+    etas = _etas(assembly, eta, connectors)
     band = (" +connectors" + (" (flanges)" if bond == "flanges" else "")) if connectors else ""
     case = Case(
         _label(assembly) + band,
@@ -424,25 +278,96 @@ def validate_cmd(
     with console.status("running CalculiX ..."):
         result = run_case(case)
     if as_json:
-        typer.echo(
-            json.dumps(
-                {
-                    "case": case.label,
-                    "fe": result.fe,
-                    "models": result.models,
-                    "meshes": result.meshes,
-                    "refined": result.refined,
-                    "converged": result.converged,
-                    "error": result.error,
-                    "buckling_bounds_N": _buckling_bounds(result),
-                },
-                indent=2,
-            )
-        )
+        typer.echo(json.dumps(_result_json(result), indent=2))
     else:
         _print_result(result, console)
     if result.error:
         raise typer.Exit(1)
+
+
+def _bond(bond: str, connectors: bool) -> Bond:
+    """The ``--bond`` option, checked against ``--connectors``."""
+    if bond not in ("edges", "flanges"):
+        raise InputError("bond", repr(bond), "edges or flanges")
+    if bond != "edges" and not connectors:
+        raise InputError(
+            "bond", bond, "flanges only together with --connectors", reason="needs the band"
+        )
+    return "flanges" if bond == "flanges" else "edges"
+
+
+def _refinement(mesh: int, cell_mesh: str, refine: float | None) -> Refinement:
+    """The meshes to start from (``--mesh``, ``--cell-mesh``) and the refinement tolerance."""
+    from ..fea.assembly import AssemblyMesh
+    from ..fea.unitcell import UnitCellMesh
+    from ..fea.validation import Refinement
+
+    if refine is not None and not 0 < refine < 1:
+        raise InputError("refine", refine, "0 < TOL < 1 (a relative change, e.g. 0.01)")
+    try:
+        along, through = (int(v) for v in cell_mesh.lower().split("x"))
+    except ValueError:
+        raise InputError(
+            "cell-mesh", repr(cell_mesh), "ALONGxTHROUGH, e.g. 40x2", reason="cannot be read"
+        ) from None
+    return Refinement(AssemblyMesh(mesh), UnitCellMesh(along, through), refine)
+
+
+def _assembly(design: Path | None, options: Mapping[str, object]) -> Assembly:
+    """The design to check: the record of ``--design`` or the layer ``options`` (``--W``, ...),
+    never both."""
+    from ..inputs import assembly_from_namespace
+    from ..record import read_record
+
+    layer = {"--W": options.get("W"), "--n": options.get("n"), "--alpha": options.get("alpha")}
+    if design is not None:
+        given = [name for name, value in layer.items() if value is not None]
+        if given:
+            raise InputError(
+                given[0],
+                "given",
+                "either --design or the layer options",
+                reason="conflicts with --design",
+            )
+        return read_record(design).assembly()
+    if any(value is None for value in layer.values()):
+        raise InputError(
+            "design",
+            None,
+            "--W, --n and --alpha, --design FILE, or --sweep NAME",
+            reason="is missing",
+        )
+    return assembly_from_namespace(options)
+
+
+def _etas(assembly: Assembly, eta: list[str] | None, connectors: bool) -> tuple[float, ...]:
+    """The directions of ``--eta`` (default 0), checked against the FE model before any run:
+    layout, eta and connectors must fit it."""
+    from ..fea.assembly import principal_axis, specimen
+    from ..inputs import parse_etas
+
+    etas = parse_etas(eta or ["0"])
+    for e in etas:
+        specimen(assembly, e)
+        if connectors and principal_axis(e) is None:
+            raise InputError(
+                "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
+            )
+    return etas
+
+
+def _result_json(result: CaseResult) -> dict[str, object]:
+    """The object ``validate --json`` prints for one design."""
+    return {
+        "case": result.case.label,
+        "fe": result.fe,
+        "models": result.models,
+        "meshes": result.meshes,
+        "refined": result.refined,
+        "converged": result.converged,
+        "error": result.error,
+        "buckling_bounds_N": _buckling_bounds(result),
+    }
 
 
 def _run_sweep(
@@ -458,7 +383,9 @@ def _run_sweep(
     connectors: bool = False,
     bond: Bond = "edges",
 ) -> None:
-    from .fea.sweep import SWEEPS, dask_executor, run_sweep, write_sweep_files
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    from ..fea.sweep import SWEEPS, dask_executor, run_sweep, write_sweep_files
 
     if name not in SWEEPS:
         raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")
@@ -493,3 +420,7 @@ def _run_sweep(
     console.print((out / f"sweep_{name}.md").read_text())
     if failed:
         raise typer.Exit(1)
+
+
+#: The commands of this module, by name (registered by :mod:`corrugate.cli`).
+COMMANDS = {"validate": validate_cmd}

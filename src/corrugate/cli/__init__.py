@@ -1,0 +1,80 @@
+"""The ``corrugate`` command line (typer + rich): a registry of commands.
+
+Each command lives in a module of this package and is listed in its ``COMMANDS`` table (command
+name -> function); :data:`app` registers every table of :data:`COMMAND_MODULES`. A command module
+imports only typer, rich and the option declarations at module level; the modules that do the work
+(the solver, the writers, the FE and web subpackages) are imported inside the command function, so
+one command never loads another's dependencies.
+
+Every failure the user can cause prints one line ``corrugate: error: ...`` naming the parameter, its
+value and the allowed range, and exits with code 2; nothing is written on failure.
+
+Entry points: the console script ``corrugate`` and ``python -m corrugate`` both call :func:`main`.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable
+from types import ModuleType
+from typing import Annotated, Any
+
+import typer
+
+from .. import __version__
+from ..errors import CorrugateError, describe
+from . import analyze, design, pattern, serve, validate
+
+__all__ = ["COMMAND_MODULES", "app", "main"]
+
+#: The command modules, in the order ``corrugate --help`` lists their commands.
+COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, serve)
+
+app = typer.Typer(
+    name="corrugate",
+    help="Design orthogonally assembled double-layered corrugated (OADLC) stiffening panels.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"corrugate {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    version: Annotated[
+        bool,
+        typer.Option("--version", callback=_version, is_eager=True, help="Print the version."),
+    ] = False,
+) -> None:
+    """corrugate: the lightest OADLC panel that provably meets a spec."""
+
+
+def _register(target: typer.Typer, modules: tuple[ModuleType, ...]) -> None:
+    for module in modules:
+        commands: dict[str, Callable[..., Any]] = module.COMMANDS
+        for name, function in commands.items():
+            target.command(name)(function)
+
+
+_register(app, COMMAND_MODULES)
+
+
+def main(argv: list[str] | None = None) -> None:
+    """Console entry point: runs the app, turning every user error into one line and exit code 2.
+
+    Usage errors found by the option parser (unknown option, missing value) also exit with 2.
+    """
+    try:
+        app(args=argv)
+    except (CorrugateError, OSError, RecursionError, MemoryError) as exc:
+        print(f"corrugate: error: {describe(exc)}", file=sys.stderr)
+        sys.exit(2)
+    except Exception as exc:  # a bug: still one line, never a traceback
+        print(f"corrugate: {describe(exc)}", file=sys.stderr)
+        sys.exit(3)
