@@ -766,15 +766,28 @@ def parse_spec(data: Mapping[str, Any]) -> Spec:
 
 
 def load_spec(path: str | Path) -> Spec:
-    """Read and validate the TOML spec file ``path``; raise :class:`SpecError`.
+    """Read and validate the TOML spec file ``path`` (``-``: standard input); raise
+    :class:`SpecError`.
 
     The file must be at most :data:`~corrugate.limits.MAX_SPEC_BYTES` long, UTF-8 and nested at
     most :data:`~corrugate.limits.MAX_DEPTH` deep; each failure is one line naming the file."""
+    return load_spec_text(path)[0]
+
+
+def load_spec_text(path: str | Path) -> tuple[Spec, str]:
+    """:func:`load_spec` and the spec's text as read (for the report), from a file or, for
+    ``-``, from standard input (read once)."""
+    import sys
+
     p = Path(path)
-    shown = str(p) if len(str(p)) <= 200 else str(p)[:200] + "..."
+    stdin = str(path) == "-"
+    shown = "<stdin>" if stdin else str(p) if len(str(p)) <= 200 else str(p)[:200] + "..."
     try:
-        with p.open("rb") as fh:
-            raw = fh.read(MAX_SPEC_BYTES + 1)
+        if stdin:
+            raw = sys.stdin.buffer.read(MAX_SPEC_BYTES + 1)
+        else:
+            with p.open("rb") as fh:
+                raw = fh.read(MAX_SPEC_BYTES + 1)
     except (OSError, ValueError) as exc:
         reason = getattr(exc, "strerror", None) or type(exc).__name__
         raise SpecError(
@@ -813,7 +826,7 @@ def load_spec(path: str | Path) -> Spec:
             f"at most {MAX_DEPTH} levels of arrays and tables",
             reason="is nested too deeply",
         ) from None
-    return parse_spec(data)
+    return parse_spec(data), text
 
 
 def _bracket_depth(text: str) -> int:

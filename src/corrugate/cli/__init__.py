@@ -23,12 +23,12 @@ import typer
 
 from .. import __version__
 from ..errors import CorrugateError, describe
-from . import analyze, design, pattern, serve, validate
+from . import analyze, design, pattern, serve, spec, validate
 
 __all__ = ["COMMAND_MODULES", "app", "main"]
 
 #: The command modules, in the order ``corrugate --help`` lists their commands.
-COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, serve)
+COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, serve, spec)
 
 app = typer.Typer(
     name="corrugate",

@@ -112,7 +112,13 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
 
 
 def design_cmd(
-    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
+    spec: Annotated[
+        Path,
+        typer.Argument(
+            help="Spec file (TOML), or - to read it from standard input; start from "
+            "`corrugate init`, every key in `corrugate spec`."
+        ),
+    ],
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     out: Annotated[
         Path | None,
@@ -132,7 +138,7 @@ def design_cmd(
     from ..design import Problem
     from ..export.pdf import check_paper
     from ..pipeline import output_options, solve_spec, write_design
-    from ..spec import load_spec
+    from ..spec import load_spec_text
 
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
@@ -142,13 +148,13 @@ def design_cmd(
         if out is not None
         else None
     )
-    parsed = load_spec(spec)
+    parsed, spec_text = load_spec_text(spec)
     problem = Problem.from_spec(parsed)
     run = solve_spec(parsed, problem)
     sol, robust = run.solution, run.robust
     written: list[Path] = []
     if out is not None and options is not None:
-        written = write_design(run, out, options, spec.read_text(encoding="utf-8"))
+        written = write_design(run, out, options, spec_text)
     if as_json:
         typer.echo(json.dumps(run.payload, indent=2))
     else:
@@ -197,7 +203,13 @@ def _plot(front: ParetoFront, title: str, path: Path) -> bool:
 
 
 def pareto_cmd(
-    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); see examples/.")],
+    spec: Annotated[
+        Path,
+        typer.Argument(
+            help="Spec file (TOML), or - to read it from standard input; start from "
+            "`corrugate init`, every key in `corrugate spec`."
+        ),
+    ],
     vs: Annotated[
         str, typer.Option("--vs", help="flexural_rigidity | bending_stiffness | inplane_stiffness")
     ] = "flexural_rigidity",
