@@ -65,6 +65,7 @@ from .limits import (
     HostCheck,
     Runner,
     ServerBusyError,
+    release_memory,
 )
 from .schemas import (
     OUTPUT_OPTIONS,
@@ -292,7 +293,15 @@ def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[A
     """Solve the spec of a design request and write its files into ``folder`` (a new result's
     folder of the store); returns the ``corrugate design --json`` object and the paths written
     (none for an infeasible spec). Runs in a worker process (or thread): it takes and returns
-    plain, picklable values, and the store itself stays in the server."""
+    plain, picklable values, and the store itself stays in the server. The worker hands its
+    freed memory back to the system afterwards (:func:`~corrugate.web.limits.release_memory`)."""
+    try:
+        return _design_job(body, settings, folder)
+    finally:
+        release_memory()
+
+
+def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
     from ..pattern.linestyle import PerforationError
     from ..pattern.sheets import PartTooLargeError
 
