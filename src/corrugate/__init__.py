@@ -2,6 +2,10 @@
 
 Quick use::
 
+    import corrugate
+    result = corrugate.design("examples/blimp_gripper.toml")  # a path, a dict or TOML text
+    corrugate.write_files(result, "out/gripper")
+
     from corrugate import Assembly, Layer, analyze, get_material
     layer = Layer(W=8, n=8, alpha_deg=84, material=get_material("dura-lar"))
     result = analyze(Assembly.identical(layer), model="refined", eta_deg=[0, 90])
@@ -47,10 +51,16 @@ _WHERE: dict[str, str] = {
     **dict.fromkeys(("MassBreakdown", "assembly_mass"), "mass"),
     **dict.fromkeys(("Material", "get_material", "inline_material", "library"), "materials"),
     **dict.fromkeys(("DEFAULT_MODEL", "MODELS", "Moduli", "get_model", "moduli"), "moduli"),
+    **dict.fromkeys(("DesignResult", "write_files"), "api"),
 }
+
+#: Public names that are subpackages themselves (``corrugate.design(spec)`` is callable).
+_SUBPACKAGES = ("design",)
 
 
 def __getattr__(name: str) -> Any:
+    if name in _SUBPACKAGES:
+        return import_module(f".{name}", __name__)
     where = _WHERE.get(name)
     if where is None:
         raise AttributeError(f"module 'corrugate' has no attribute {name!r}")
@@ -91,6 +101,7 @@ __all__ = [
     "Assembly",
     "Circle",
     "CorrugateError",
+    "DesignResult",
     "DirectionalStiffness",
     "Evaluation",
     "InputError",
@@ -107,6 +118,7 @@ __all__ = [
     "__version__",
     "analyze",
     "assembly_mass",
+    "design",
     "design_warnings",
     "evaluate",
     "get_material",
@@ -115,4 +127,5 @@ __all__ = [
     "library",
     "make_layout",
     "moduli",
+    "write_files",
 ]

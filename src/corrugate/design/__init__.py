@@ -4,6 +4,10 @@ Pipeline (DESIGN.md section 9): :func:`corrugate.spec.load_spec` -> :meth:`Probl
 -> :func:`solve` -> :class:`Solution` (``to_dict()`` is the ``corrugate design --json`` object).
 """
 
+import sys
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
+
 from .bnb import BnBResult, branch_and_bound
 from .problem import Candidate, Constraint, DesignVariable, Objective, Problem
 from .solve import ConstraintReport, Diagnosis, RunnerUp, Solution, optimize, solve
@@ -23,3 +27,19 @@ __all__ = [
     "optimize",
     "solve",
 ]
+
+if TYPE_CHECKING:
+    from ..api import DesignResult
+
+
+class _CallableModule(ModuleType):
+    """``corrugate.design(spec)`` is :func:`corrugate.api.design`: this subpackage, the solver,
+    is also the one call a notebook needs (its submodules import as before)."""
+
+    def __call__(self, spec: Any) -> "DesignResult":
+        from ..api import design
+
+        return design(spec)
+
+
+sys.modules[__name__].__class__ = _CallableModule
