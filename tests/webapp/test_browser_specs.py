@@ -11,6 +11,7 @@ fresh page opened on it fills the form back.
 from __future__ import annotations
 
 import json
+from pathlib import Path
 from typing import Any
 from urllib.parse import unquote
 
@@ -98,6 +99,15 @@ def test_finger_pad_with_EI_at_0_and_90_and_a_mass_bound(browser: Any, live_serv
     assert body["constraints"]["mass"] == {"max": "3 g"}
     assert body["model"] == "refined" and body["objective"] == {"minimize": "mass"}
     check_answer(page, body, answer)
+    link = page.locator("#d-downloads a[data-name='all.zip']")
+    assert link.get_attribute("href") == f"/api/results/{answer['result']['id']}/all.zip"
+    with page.expect_download() as download_info:
+        link.click()
+    import io
+    import zipfile
+
+    zipped = zipfile.ZipFile(io.BytesIO(Path(download_info.value.path()).read_bytes()))
+    assert sorted(zipped.namelist()) == sorted(f["name"] for f in answer["result"]["files"])
     names = [c["name"] for c in answer["design"]["constraints"]]
     assert "constraints.flexural_rigidity[1].min" in names and "constraints.mass.max" in names
 

@@ -370,3 +370,21 @@ def test_report_and_preview_show_the_plan_of_the_files(client: TestClient, tmp_p
     assert "perforated (1.5 mm cut, 1 mm gap)" in report
     assert "pattern.pdf" in files and "pattern-letter.pdf" in files
     assert (tmp_path / "pattern-letter.pdf").read_bytes().startswith(b"%PDF-")
+
+
+def test_download_all_is_a_zip_of_exactly_the_result_files(
+    client: TestClient, blimp: dict[str, Any]
+) -> None:
+    import io
+    import zipfile
+
+    result = blimp["result"]
+    r = client.get(f"/api/results/{result['id']}/all.zip")
+    assert r.status_code == 200 and r.headers["content-type"] == "application/zip"
+    assert "attachment" in r.headers["content-disposition"]
+    archive = zipfile.ZipFile(io.BytesIO(r.content))
+    assert archive.testzip() is None
+    assert sorted(archive.namelist()) == sorted(f["name"] for f in result["files"])
+    for f in result["files"]:  # byte for byte the files served one by one
+        assert archive.read(f["name"]) == client.get(f["url"]).content, f["name"]
+    assert client.get("/api/results/" + "0" * 32 + "/all.zip").status_code == 404

@@ -17,7 +17,8 @@ Endpoints (all JSON unless said otherwise):
   ``"result": null`` when the spec is infeasible. Designs run on a pool of worker processes,
   one per core (:func:`design_job` writes the files into the result's folder, the server
   publishes them); everything else runs on threads;
-* ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path).
+* ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path);
+  ``GET /api/results/{id}/all.zip``: all of them in one zip archive.
 
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
 names it (a spec value by its TOML path, ``constraints.side.min``); malformed JSON -> 400; body over the limit -> 413; server busy -> 503; computation over
@@ -79,7 +80,7 @@ from .schemas import (
     ResultBody,
     ResultFile,
 )
-from .store import ResultStore, StoredFile, file_response
+from .store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
 
 __all__ = [
     "LOOPBACK_NAMES",
@@ -559,6 +560,20 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
         infeasible: ``design.diagnosis`` says why). A bad spec value gets 422 naming its TOML path,
         e.g. ``constraints.side.min``."""
         return await design_answer(body, cfg, store, runner)
+
+    @app.get(
+        "/api/results/{result_id}/" + ZIP_NAME,
+        summary="Download every file of a result as one zip archive",
+        response_class=Response,
+        responses={404: {"model": ErrorBody, "description": "No such result"}},
+    )
+    async def result_zip(result_id: str) -> Response:
+        """Every file of a stored result (the cut files, fold map, FOLD, 3D, report,
+        design.json) in one zip archive."""
+        response = zip_response(store, result_id)
+        if response is None:
+            return _error(404, "no such result (results are kept for a while only)", [])
+        return response
 
     @app.get(
         "/api/results/{result_id}/{name}",

@@ -23,7 +23,7 @@ from urllib.parse import quote
 
 from starlette.responses import Response
 
-__all__ = ["MEDIA_TYPES", "ResultStore", "StoredFile", "file_response"]
+__all__ = ["MEDIA_TYPES", "ZIP_NAME", "ResultStore", "StoredFile", "file_response", "zip_response"]
 
 #: Media type of each kind of file the app makes, by suffix.
 MEDIA_TYPES: dict[str, str] = {
@@ -173,6 +173,30 @@ class ResultStore:
         with fh:
             return found, fh.read()
 
+    def read_all(self, result_id: str) -> list[tuple[StoredFile, bytes]] | None:
+        """Every published file of a result with its bytes (in publishing order), or None; the
+        files are opened under the lock, as :meth:`read` does."""
+        with self._lock:
+            expired = self._evict_locked()
+            entry = self._entries.get(result_id)
+            handles = []
+            if entry is not None:
+                try:
+                    handles = [(f, f.path.open("rb")) for f in entry.files.values()]
+                except OSError:
+                    for _, fh in handles:
+                        fh.close()
+                    entry = None
+        for old in expired:
+            shutil.rmtree(old, ignore_errors=True)
+        if entry is None:
+            return None
+        out = []
+        for f, fh in handles:
+            with fh:
+                out.append((f, fh.read()))
+        return out
+
     def files(self, result_id: str) -> list[StoredFile]:
         """Every published file of a result (empty if unknown or expired)."""
         with self._lock:
@@ -200,6 +224,33 @@ class ResultStore:
             alive = [k for k in self._entries if k not in gone]  # insertion order: oldest first
             gone.extend(alive[:excess])
         return [self._entries.pop(k).folder for k in gone]
+
+
+#: The name under which a result's files download together (never the name of a file it holds).
+ZIP_NAME = "all.zip"
+
+
+def zip_response(store: ResultStore, result_id: str) -> Response | None:
+    """Every file of a result in one zip archive (deflated, the files at its top level), or None
+    when there is no such result."""
+    import io
+    import zipfile
+
+    got = store.read_all(result_id)
+    if got is None:
+        return None
+    buffer = io.BytesIO()
+    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
+        for found, data in got:
+            archive.writestr(found.name, data)
+    return Response(
+        buffer.getvalue(),
+        media_type="application/zip",
+        headers={
+            "content-disposition": f'attachment; filename="corrugate-{result_id[:8]}.zip"',
+            "content-security-policy": "sandbox",
+        },
+    )
 
 
 def file_response(store: ResultStore, result_id: str, name: str) -> Response | None:

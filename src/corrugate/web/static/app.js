@@ -650,6 +650,14 @@ async function showDesignFiles(result, mine) {
   const files = [...result.files].sort((a, b) => rank(a.name) - rank(b.name));
   const downloads = $('d-downloads');
   downloads.replaceChildren();
+  if (files.length > 1) {
+    const all = document.createElement('a');
+    all.href = `/api/results/${result.id}/all.zip`;
+    all.download = 'corrugate-design.zip';
+    all.dataset.name = 'all.zip';
+    all.textContent = `Download all (zip, ${files.length} files)`;
+    downloads.appendChild(all);
+  }
   for (const f of files) {
     const a = document.createElement('a');
     a.href = f.url;
