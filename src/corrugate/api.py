@@ -14,7 +14,6 @@ Both run the very chain of ``corrugate design`` (:mod:`corrugate.pipeline`).
 from __future__ import annotations
 
 import json
-import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
@@ -60,20 +59,13 @@ class DesignResult:
 
 
 def _read(spec: str | Path | Mapping[str, Any]) -> tuple[Spec, str]:
-    from .spec import SpecError, load_spec_text, parse_spec
+    from .spec import load_spec_text, parse_spec, parse_spec_text
 
     if isinstance(spec, Mapping):
         return parse_spec(spec), json.dumps(spec, indent=2, default=str)
     if isinstance(spec, Path) or ("\n" not in spec and spec.strip().endswith(".toml")):
         return load_spec_text(spec)
-    try:
-        data = tomllib.loads(spec)
-    except tomllib.TOMLDecodeError as exc:
-        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
-        raise SpecError(
-            "spec", "<text>", "valid TOML", reason=f"is not valid TOML ({msg})"
-        ) from None
-    return parse_spec(data), spec
+    return parse_spec_text(spec), spec
 
 
 def design(spec: str | Path | Mapping[str, Any]) -> DesignResult:

@@ -74,7 +74,9 @@ __all__ = [
     "Variable",
     "VariablesSpec",
     "load_spec",
+    "load_spec_text",
     "parse_spec",
+    "parse_spec_text",
 ]
 
 #: Stiffness quantities a spec may bound or maximise, with their internal unit.
@@ -806,8 +808,13 @@ def load_spec_text(path: str | Path) -> tuple[Spec, str]:
             "a UTF-8 text file",
             reason=f"is not UTF-8 text (byte {exc.start})",
         ) from None
-    depth = _bracket_depth(text)
-    if depth > MAX_DEPTH:
+    return parse_spec_text(text, shown), text
+
+
+def parse_spec_text(text: str, shown: str = "<text>") -> Spec:
+    """Validate a spec given as TOML ``text`` (``shown`` names it in errors); nesting deeper than
+    :data:`~corrugate.limits.MAX_DEPTH` is refused before the TOML parser recurses into it."""
+    if _bracket_depth(text) > MAX_DEPTH:
         raise SpecError(
             "spec",
             shown,
@@ -826,7 +833,7 @@ def load_spec_text(path: str | Path) -> tuple[Spec, str]:
             f"at most {MAX_DEPTH} levels of arrays and tables",
             reason="is nested too deeply",
         ) from None
-    return parse_spec(data), text
+    return parse_spec(data)
 
 
 def _bracket_depth(text: str) -> int:
