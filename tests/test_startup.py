@@ -66,3 +66,43 @@ def test_design_files_need_no_mesh_library_pyplot_or_pint(tmp_path: Path) -> Non
     count = int.from_bytes(stl[80:84], "little")
     assert count > 0 and len(stl) == 84 + 50 * count
     assert (tmp_path / "assembly.glb").read_bytes()[:4] == b"glTF"
+
+
+def test_help_loads_neither_numpy_nor_rich_nor_pydantic() -> None:
+    """``corrugate --help`` (piped, so click's plain help) needs none of the heavy libraries: they
+    cost most of its CPU before (0.64 s against 0.15 s after, benchmarks/pipeline.py)."""
+    done = _run(
+        "import sys\n"
+        "from corrugate.cli import main\n"
+        "try:\n"
+        "    main(['--help'])\n"
+        "except SystemExit as exc:\n"
+        "    assert exc.code in (0, None), exc.code\n"
+        "heavy = [m for m in ('numpy', 'rich', 'pydantic', 'pint') if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Usage: " in done.stdout and "analyze" in done.stdout
+
+
+def test_analyze_needs_no_pydantic_pint_or_scipy() -> None:
+    """``corrugate analyze`` with plain numbers builds no spec, units or solver machinery."""
+    done = _run(
+        "import sys\n"
+        "from corrugate.cli import main\n"
+        "try:\n"
+        "    main(['analyze', '--W', '8', '--n', '8', '--alpha', '84', '--material', 'dura-lar'])\n"
+        "except SystemExit as exc:\n"
+        "    assert exc.code in (0, None), exc.code\n"
+        "heavy = [m for m in ('pydantic', 'pint', 'scipy', 'matplotlib') if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+    assert done.returncode == 0, done.stderr
+    assert "504.5" in done.stdout  # K at eta 0 of the case study, docs/validation/off_axis.md
+
+
+def test_model_names_match_the_moduli_table() -> None:
+    from corrugate.model_names import DEFAULT_MODEL, MODEL_NAMES
+    from corrugate.moduli import MODELS
+
+    assert tuple(MODELS) == MODEL_NAMES and DEFAULT_MODEL in MODELS

@@ -54,6 +54,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError, UnknownNameError
+from .model_names import DEFAULT_MODEL
 
 __all__ = ["DEFAULT_MODEL", "MODELS", "Moduli", "ModuliModel", "get_model", "moduli"]
 
@@ -231,7 +232,6 @@ MODELS: dict[str, ModuliModel] = {
         "Xia (2012) with the spanwise bending of Ye et al. (2014); agrees with unit-cell FE",
     ),
 }
-DEFAULT_MODEL = "refined"
 
 
 def get_model(name: str) -> ModuliModel:

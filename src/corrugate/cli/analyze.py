@@ -6,15 +6,15 @@ import json
 from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
-from rich.table import Table
 
-from ..moduli import DEFAULT_MODEL
+from ..model_names import DEFAULT_MODEL
 from . import options as o
 from .console import fmt as _fmt
 from .console import make_console
 
 if TYPE_CHECKING:
+    from rich.console import Console
+
     from ..analysis import Analysis
 
 __all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
@@ -23,6 +23,8 @@ Opt = typer.Option
 
 
 def _print_analysis(r: Analysis, console: Console) -> None:
+    from rich.table import Table
+
     from ..holes import holes_text
     from ..moduli import get_model
 
@@ -70,6 +72,8 @@ def _print_analysis(r: Analysis, console: Console) -> None:
 
 
 def _print_comparison(results: list[Analysis], console: Console) -> None:
+    from rich.table import Table
+
     t = Table(
         title="model variants side by side (layer 1 moduli, assembly stiffness)",
         title_justify="left",
@@ -151,6 +155,8 @@ def materials_cmd(
     as_json: Annotated[bool, Opt("--json", help="Print the library as JSON.")] = False,
 ) -> None:
     """List the bundled material library."""
+    from rich.table import Table
+
     from ..materials import library
 
     lib = library()

@@ -2,13 +2,18 @@
 
 from __future__ import annotations
 
-from rich.console import Console
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from rich.console import Console
 
 __all__ = ["fmt", "make_console"]
 
 
 def make_console(stderr: bool = False) -> Console:
     """A rich console; 120 columns when not writing to a terminal (logs, pipes, make demo)."""
+    from rich.console import Console  # imported here: `corrugate --help` never needs rich
+
     probe = Console(stderr=stderr)
     return probe if probe.is_terminal else Console(stderr=stderr, width=120)
 

@@ -12,14 +12,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
-from rich.table import Table
 
 from ..errors import InputError
 from . import options as o
 from .console import make_console
 
 if TYPE_CHECKING:
+    from rich.console import Console
+
     from ..design import Solution
     from ..design.pareto import ParetoFront
 
@@ -31,6 +31,8 @@ def _fmt(x: float | None, digits: int = 5) -> str:
 
 
 def _print_solution(sol: Solution, console: Console, tightened: bool = False) -> None:
+    from rich.table import Table
+
     p = sol.problem
     cert = "certified" if sol.certified else "NOT certified"
     if tightened:
@@ -314,6 +316,8 @@ def tolerance_cmd(
 
     Example: corrugate tolerance examples/blimp_gripper.toml --alpha-tol "2 deg" --E-tol 10%
     """
+    from rich.table import Table
+
     from ..design import Problem, solve
     from ..design.tolerance import Tolerances, monte_carlo
     from ..spec import load_spec

@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from ..moduli import DEFAULT_MODEL
+from ..model_names import DEFAULT_MODEL
 from . import options as o
 from .console import make_console
 

@@ -21,15 +21,15 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
 import typer
-from rich.console import Console
-from rich.table import Table
 
 from ..errors import InputError
-from ..moduli import MODELS
+from ..model_names import MODEL_NAMES as MODELS
 from . import options as o
 from .console import make_console
 
 if TYPE_CHECKING:
+    from rich.console import Console
+
     from ..fea.band import Bond
     from ..fea.validation import CaseResult, Refinement
     from ..geometry import Assembly, Layer
@@ -50,6 +50,8 @@ def _label(a: Assembly) -> str:
 
 
 def _print_result(r: CaseResult, console: Console) -> None:
+    from rich.table import Table
+
     if r.error:
         console.print(f"[red]failed[/red] {r.case.label}: {r.error}")
         return
