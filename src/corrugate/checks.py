@@ -107,7 +107,7 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
                 "short-panel-shear",
                 f"{label}: a short panel (L/W = {(layer.n + 1) * layer.s:.3g}); D is a pure-bending "
                 f"stiffness, and a 3-point bending test may measure about {100 * 1.1 * shear:.0f}-"
-                f"{100 * 2.0 * shear:.0f} % less, from shear (finite elements, docs/fea.md)",
+                f"{100 * 2.0 * shear:.0f} % less, from shear (finite elements: `corrugate docs fea`, section 3)",
             )
         )
     if layer.n + 1 < MIN_FACETS:
@@ -130,14 +130,14 @@ def _off_axis(eta_deg: Sequence[float], support: str) -> list[ModelWarning]:
         text = (
             f"K and D at eta = {angles} deg follow the paper's cos^2 rule (support 'frame'): "
             "true only for a panel held in a rigid frame on all four edges; a panel with free "
-            "sides is up to hundreds of times softer off-axis (docs/fea.md, section 2.5)"
+            "sides is up to hundreds of times softer off-axis (`corrugate docs fea`, section 2.5)"
         )
     else:
         text = (
             f"K and D at eta = {angles} deg are the free-panel model (support 'free', "
-            "docs/offaxis.md): against FE coupons K is 0.83-1.18 times the FE (up to 18 % high "
+            "`corrugate docs offaxis`): against FE coupons K is 0.83-1.18 times the FE (up to 18 % high "
             "near 15 and 75 deg) and D is far below it near 45 deg "
-            "(docs/validation/off_axis.md): check a part loaded there with corrugate validate --eta"
+            "(`corrugate docs validation/off_axis`): check a part loaded there with corrugate validate --eta"
         )
     return [ModelWarning("off-axis", text)]
 

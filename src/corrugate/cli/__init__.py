@@ -25,7 +25,7 @@ from .. import __version__
 from ..errors import CorrugateError, describe
 from . import analyze, design, pattern, serve, spec, validate
 
-__all__ = ["COMMAND_MODULES", "app", "main"]
+__all__ = ["COMMAND_MODULES", "EXIT_CODES", "app", "main"]
 
 #: The command modules, in the order ``corrugate --help`` lists their commands.
 COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, serve, spec)
@@ -43,13 +43,21 @@ def _help_markup() -> Literal["rich"] | None:
         return None
 
 
+#: The exit codes, shown under ``corrugate --help``.
+EXIT_CODES = (
+    "Exit codes: 0 an answer; 1 no design meets the spec (infeasible, with the diagnosis) or an "
+    "FE run failed; 2 bad input (one line naming the field, the value and what is allowed); "
+    "3 a bug (one line; please report it)."
+)
+
 app = typer.Typer(
     name="corrugate",
     rich_markup_mode=_help_markup(),
     help="Design orthogonally assembled double-layered corrugated (OADLC) stiffening panels.",
     no_args_is_help=True,
-    add_completion=False,
+    add_completion=True,
     pretty_exceptions_enable=False,
+    epilog=EXIT_CODES,
 )
 
 

@@ -105,19 +105,27 @@ def analyze_cmd(
     alpha2: o.Alpha2 = None,
     material2: o.Material2 = None,
     thickness2: o.Thickness2 = None,
-    layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
+    layout: Annotated[
+        str, Opt(metavar=o.LAYOUTS, help="Outline: square | rectangle | circle | polygon.")
+    ] = "square",
     vertices: o.Vertices = None,
     holes: o.Holes = None,
-    model: Annotated[str, Opt(help="Moduli variant: paper | xia | refined.")] = DEFAULT_MODEL,
+    model: Annotated[
+        str, Opt(metavar=o.MODEL_CHOICES, help="Moduli variant: paper | xia | refined.")
+    ] = DEFAULT_MODEL,
     eta: Annotated[
         list[str] | None,
-        Opt(help="Direction (deg from layer 1's creases); repeat for several. Default 0 and 90."),
+        Opt(
+            metavar=o.ANGLE,
+            help="Direction (deg from layer 1's creases); repeat for several. Default 0 and 90.",
+        ),
     ] = None,
     support: o.SupportOpt = "free",
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object.")] = False,
     compare_models: Annotated[
         bool, Opt(help="Show the three model variants side by side.")
     ] = False,
+    quiet: o.Quiet = False,
 ) -> None:
     """Stiffness, size, mass and warnings of one OADLC design.
 
@@ -140,6 +148,8 @@ def analyze_cmd(
         else:
             payload = results[0].to_dict()
         typer.echo(json.dumps(payload, indent=2))
+        return
+    if quiet:
         return
     console = make_console()
     if compare_models:

@@ -10,12 +10,21 @@ if TYPE_CHECKING:
 __all__ = ["fmt", "make_console"]
 
 
+#: Width of a console that does not write to a terminal: wide enough that no table squeezes its
+#: columns (tables take only the width they need) and no line is broken.
+PIPE_WIDTH = 1000
+
+
 def make_console(stderr: bool = False) -> Console:
-    """A rich console; 120 columns when not writing to a terminal (logs, pipes, make demo)."""
+    """A rich console. Writing to a terminal: its width, colours. Otherwise (a pipe, a file, a log,
+    ``make demo``): plain text, no colour codes, and lines never wrapped (``soft_wrap``), so a
+    sentence stays on one line and ``grep`` finds it."""
     from rich.console import Console  # imported here: `corrugate --help` never needs rich
 
     probe = Console(stderr=stderr)
-    return probe if probe.is_terminal else Console(stderr=stderr, width=120)
+    if probe.is_terminal:
+        return probe
+    return Console(stderr=stderr, width=PIPE_WIDTH, soft_wrap=True, no_color=True, highlight=False)
 
 
 def fmt(x: float | None, digits: int = 4) -> str:

@@ -43,7 +43,10 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
             "every constraint."
         )
         for diag in sol.diagnosis:
-            console.print(f"  - {diag.message}")
+            console.print(f"  - {diag.message}", markup=False)
+        hint = relax_hint(sol)
+        if hint:
+            console.print(hint, markup=False)
         return
     assert sol.assembly is not None
     assert sol.analysis is not None
@@ -113,6 +116,33 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         console.print(f"[yellow]warning[/yellow] ({w['code']}): {w['message']}")
 
 
+def relax_hint(sol: Solution) -> str | None:
+    """For an infeasible spec: the one constraint whose relaxation alone is the smallest change
+    (relative to its bound) that makes the spec feasible, as a ``hint:`` line; None without one."""
+    single = [
+        (abs(d.reachable - d.bound) / abs(d.bound), d.names[0].split(" ")[0], d)
+        for d in sol.diagnosis
+        if len(d.names) == 1 and d.bound and d.reachable is not None
+    ]
+    if not single:
+        return None
+    rel, name, best = min(single, key=lambda item: item[0])
+    return (
+        f"hint: the smallest change is {name} = {best.reachable:.6g} {best.unit} instead of "
+        f"{best.bound:.6g} ({100 * rel:.3g} %); edit that key of the spec and run again"
+    )
+
+
+def _print_failure(sol: Solution, robust: object, console: Console) -> None:
+    """With --quiet: why the exit code is 1 (infeasible, not certified, robust target missed)."""
+    if sol.status != "optimal":
+        _print_solution(sol, console)
+    elif not sol.certified:
+        console.print(f"{sol.problem.name}: the optimum could not be certified")
+    elif robust is not None:
+        console.print(f"{sol.problem.name}: the robust target is not met")
+
+
 def design_cmd(
     spec: Annotated[
         Path,
@@ -124,14 +154,25 @@ def design_cmd(
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
     out: Annotated[
         Path | None,
-        typer.Option("--out", help="Folder for design.json and, for a design, every cut file."),
+        typer.Option(
+            "--out",
+            metavar="DIR",
+            help="Folder for design.json and, for a design, every cut file.",
+        ),
     ] = None,
     cutter: o.Machine = "cameo4-12x12",
     labels: o.Labels = None,
-    fold_style: Annotated[str, typer.Option(help="solid | scored | perforated.")] = "solid",
-    cut: Annotated[str | None, typer.Option(help="Perforation: cut length (mm).")] = None,
-    gap: Annotated[str | None, typer.Option(help="Perforation: gap length (mm).")] = None,
+    fold_style: Annotated[
+        str, typer.Option(metavar=o.FOLD_STYLES, help="solid | scored | perforated.")
+    ] = "solid",
+    cut: Annotated[
+        str | None, typer.Option(metavar=o.LENGTH, help="Perforation: cut length (mm).")
+    ] = None,
+    gap: Annotated[
+        str | None, typer.Option(metavar=o.LENGTH, help="Perforation: gap length (mm).")
+    ] = None,
     paper: o.Paper = "mat",
+    quiet: o.Quiet = False,
 ) -> None:
     """The certified lightest OADLC design that meets a spec, with its explanation.
 
@@ -157,8 +198,12 @@ def design_cmd(
     written: list[Path] = []
     if out is not None and options is not None:
         written = write_design(run, out, options, spec_text)
+    failed = sol.status != "optimal" or not sol.certified or (robust is not None and not robust.met)
     if as_json:
         typer.echo(json.dumps(run.payload, indent=2))
+    elif quiet:
+        if failed:
+            _print_failure(sol, robust, make_console(stderr=True))
     else:
         console = make_console()
         _print_solution(sol, console, tightened=robust is not None)
@@ -172,7 +217,7 @@ def design_cmd(
             )
         for path in written:
             console.print(f"wrote {path}")
-    if sol.status != "optimal" or not sol.certified or (robust is not None and not robust.met):
+    if failed:
         raise typer.Exit(1)
 
 
@@ -213,13 +258,21 @@ def pareto_cmd(
         ),
     ],
     vs: Annotated[
-        str, typer.Option("--vs", help="flexural_rigidity | bending_stiffness | inplane_stiffness")
+        str,
+        typer.Option(
+            "--vs",
+            metavar="QUANTITY",
+            help="flexural_rigidity | bending_stiffness | inplane_stiffness",
+        ),
     ] = "flexural_rigidity",
-    eta: Annotated[str, typer.Option(help="Direction of the stiffness (deg).")] = "0",
+    eta: Annotated[
+        str, typer.Option(metavar=o.ANGLE, help="Direction of the stiffness (deg).")
+    ] = "0",
     points: Annotated[int, typer.Option(help="Points on a continuous front.")] = 25,
     max_points: Annotated[int, typer.Option(help="Cap on a gridded (exact) front.")] = 500,
     out: Annotated[
-        Path | None, typer.Option("--out", help="Directory for pareto.csv and pareto.png.")
+        Path | None,
+        typer.Option("--out", metavar="DIR", help="Directory for pareto.csv and pareto.png."),
     ] = None,
 ) -> None:
     """The exact mass-versus-stiffness Pareto front of a spec (each point a certified optimum).
@@ -303,12 +356,18 @@ def tolerance_cmd(
     spec: Annotated[Path, typer.Argument(help="Spec file (TOML); its optimum is analysed.")],
     samples: Annotated[int, typer.Option(help="Monte Carlo samples.")] = 10_000,
     seed: Annotated[int, typer.Option(help="Random seed.")] = 0,
-    W_tol: Annotated[str, typer.Option("--W-tol", help="1-sigma error of W (mm).")] = "0.1 mm",
+    W_tol: Annotated[
+        str, typer.Option("--W-tol", metavar=o.LENGTH, help="1-sigma error of W (mm).")
+    ] = "0.1 mm",
     alpha_tol: Annotated[
-        str, typer.Option("--alpha-tol", help="1-sigma error of alpha (deg).")
+        str, typer.Option("--alpha-tol", metavar=o.ANGLE, help="1-sigma error of alpha (deg).")
     ] = "2 deg",
-    t_tol: Annotated[str, typer.Option("--t-tol", help="1-sigma relative error of t.")] = "5%",
-    E_tol: Annotated[str, typer.Option("--E-tol", help="1-sigma relative error of E.")] = "10%",
+    t_tol: Annotated[
+        str, typer.Option("--t-tol", metavar="FRACTION", help="1-sigma relative error of t.")
+    ] = "5%",
+    E_tol: Annotated[
+        str, typer.Option("--E-tol", metavar="FRACTION", help="1-sigma relative error of E.")
+    ] = "10%",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
     """Monte Carlo of the certified design of a spec over manufacturing and material tolerances:
@@ -365,6 +424,22 @@ def tolerance_cmd(
         c.add_row(name, f"{100 * p:.1f} %")
     c.add_row("[bold]all[/bold]", f"[bold]{100 * report.p_all:.1f} %[/bold]")
     console.print(c)
+    if report.p_all < ROBUST_HINT_BELOW:
+        console.print(robust_hint(report.p_all), markup=False)
+
+
+#: ``tolerance`` suggests a ``[robust]`` section below this probability of meeting the spec.
+ROBUST_HINT_BELOW = 0.9
+
+
+def robust_hint(p_all: float) -> str:
+    """The hint ``tolerance`` prints when the spec holds with probability ``p_all`` < 0.9."""
+    return (
+        f"hint: the spec holds in only {100 * p_all:.1f} % of the samples; add a [robust] "
+        "section to the spec (e.g. `[robust]` then `probability = 0.9`) and `corrugate design` "
+        "inflates the margins until that probability is met (`corrugate docs spec`, section "
+        "robust)"
+    )
 
 
 #: The commands of this module, by name (registered by :mod:`corrugate.cli`).

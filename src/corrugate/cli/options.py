@@ -11,6 +11,11 @@ from typing import Annotated
 import typer
 
 __all__ = [
+    "ANGLE",
+    "FOLD_STYLES",
+    "LAYOUTS",
+    "LENGTH",
+    "MODEL_CHOICES",
     "N2",
     "W2",
     "Alpha",
@@ -24,6 +29,7 @@ __all__ = [
     "N",
     "Nu",
     "Paper",
+    "Quiet",
     "SupportOpt",
     "Thickness",
     "Thickness2",
@@ -34,30 +40,51 @@ __all__ = [
 
 Opt = typer.Option
 
-W = Annotated[str, Opt("--W", help="Facet width (mm, or with units: '0.3 in').")]
-N = Annotated[str, Opt("--n", help="Number of creases (n + 1 facets).")]
-Alpha = Annotated[str, Opt("--alpha", help="Interior fold angle (deg, 180 = flat).")]
-Material = Annotated[str | None, Opt(help="Library material id (see `corrugate materials`).")]
-Thickness = Annotated[str | None, Opt(help="Sheet thickness (mm); default: the material's.")]
-YoungsModulus = Annotated[
-    str | None, Opt("--E", help="Inline material: Young's modulus (MPa or '2.7GPa').")
+W = Annotated[str, Opt("--W", metavar="LENGTH", help="Facet width (mm, or with units: '0.3 in').")]
+N = Annotated[str, Opt("--n", metavar="INTEGER", help="Number of creases (n + 1 facets).")]
+Alpha = Annotated[
+    str, Opt("--alpha", metavar="ANGLE", help="Interior fold angle (deg, 180 = flat).")
 ]
-Nu = Annotated[str | None, Opt("--nu", help="Inline material: Poisson's ratio.")]
-Density = Annotated[str | None, Opt(help="Inline material: density (g/cm^3).")]
-W2 = Annotated[str | None, Opt("--W2", help="Layer 2 facet width (default: layer 1's).")]
-N2 = Annotated[str | None, Opt("--n2", help="Layer 2 creases (default: layer 1's).")]
-Alpha2 = Annotated[str | None, Opt("--alpha2", help="Layer 2 fold angle (default: layer 1's).")]
-Material2 = Annotated[str | None, Opt(help="Layer 2 library material (default: layer 1's).")]
-Thickness2 = Annotated[str | None, Opt(help="Layer 2 thickness (default: layer 1's).")]
+Material = Annotated[
+    str | None, Opt(metavar="MATERIAL", help="Library material id (see `corrugate materials`).")
+]
+Thickness = Annotated[
+    str | None, Opt(metavar="LENGTH", help="Sheet thickness (mm); default: the material's.")
+]
+YoungsModulus = Annotated[
+    str | None,
+    Opt("--E", metavar="MODULUS", help="Inline material: Young's modulus (MPa or '2.7GPa')."),
+]
+Nu = Annotated[str | None, Opt("--nu", metavar="NUMBER", help="Inline material: Poisson's ratio.")]
+Density = Annotated[str | None, Opt(metavar="DENSITY", help="Inline material: density (g/cm^3).")]
+W2 = Annotated[
+    str | None, Opt("--W2", metavar="LENGTH", help="Layer 2 facet width (default: layer 1's).")
+]
+N2 = Annotated[
+    str | None, Opt("--n2", metavar="INTEGER", help="Layer 2 creases (default: layer 1's).")
+]
+Alpha2 = Annotated[
+    str | None, Opt("--alpha2", metavar="ANGLE", help="Layer 2 fold angle (default: layer 1's).")
+]
+Material2 = Annotated[
+    str | None, Opt(metavar="MATERIAL", help="Layer 2 library material (default: layer 1's).")
+]
+Thickness2 = Annotated[
+    str | None, Opt(metavar="LENGTH", help="Layer 2 thickness (default: layer 1's).")
+]
 Vertices = Annotated[
     str | None,
-    Opt(help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers)."),
+    Opt(
+        metavar="POINTS",
+        help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers).",
+    ),
 ]
 Machine = Annotated[
     str,
     Opt(
         "--machine",
         "--cutter",
+        metavar="MACHINE",
         help="Machine and sheet: cameo4-12x12 | cameo4-12x24 (Silhouette Cameo 4: cut-N.dxf) | "
         "maker-12x12 | maker-12x24 (Cricut Maker: cut-N.svg) | laser:WxH (bed in mm: cut-N.svg "
         "and cut-N.dxf, hairlines).",
@@ -77,6 +104,7 @@ SupportOpt = Annotated[
     str,
     Opt(
         "--support",
+        metavar="[free|frame]",
         help="free (sides free: a bench test, most mounts; default) | frame (held in a rigid "
         "frame on all four edges: the paper's cos^2 rule). Matters off the crease directions.",
     ),
@@ -86,14 +114,34 @@ SupportOpt = Annotated[
 Paper = Annotated[
     str,
     Opt(
+        metavar="[mat|a4|letter]",
         help="mat: pattern.pdf, one mat-size page per sheet; a4 | letter: also pattern-a4.pdf / "
-        "pattern-letter.pdf, the sheets at 1:1 on pages to tape together."
+        "pattern-letter.pdf, the sheets at 1:1 on pages to tape together.",
     ),
 ]
 Holes = Annotated[
     str | None,
     Opt(
+        metavar="JSON",
         help="Inner cut-outs as JSON, mm from the layout's centre, e.g. "
-        '\'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'.'
+        '\'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'.',
     ),
 ]
+
+#: ``--quiet`` of the commands that print (design, analyze, pattern, validate).
+Quiet = Annotated[
+    bool,
+    Opt(
+        "--quiet",
+        "-q",
+        help="Print nothing but errors (on stderr); files are still written, --json still "
+        "printed, exit codes unchanged.",
+    ),
+]
+
+#: Metavars shown in ``--help`` for options read as a quantity with an optional unit.
+LENGTH = "LENGTH"  # '8', '8mm', '0.3 in'
+ANGLE = "ANGLE"  # '84', '84deg', '1.47 rad'
+LAYOUTS = "[square|rectangle|circle|polygon]"
+MODEL_CHOICES = "[paper|xia|refined]"
+FOLD_STYLES = "[solid|scored|perforated]"

@@ -20,7 +20,9 @@ def pattern_cmd(
     W: o.W,
     n: o.N,
     alpha: o.Alpha,
-    out: Annotated[str, Opt("--out", help="Folder for the files (created if missing).")],
+    out: Annotated[
+        str, Opt("--out", metavar="DIR", help="Folder for the files (created if missing).")
+    ],
     material: o.Material = None,
     thickness: o.Thickness = None,
     E: o.YoungsModulus = None,
@@ -31,24 +33,35 @@ def pattern_cmd(
     alpha2: o.Alpha2 = None,
     material2: o.Material2 = None,
     thickness2: o.Thickness2 = None,
-    layout: Annotated[str, Opt(help="square | rectangle | circle | polygon.")] = "square",
+    layout: Annotated[
+        str, Opt(metavar=o.LAYOUTS, help="Outline: square | rectangle | circle | polygon.")
+    ] = "square",
     vertices: o.Vertices = None,
     holes: o.Holes = None,
-    model: Annotated[str, Opt(help="Moduli variant for design.json.")] = DEFAULT_MODEL,
+    model: Annotated[
+        str, Opt(metavar=o.MODEL_CHOICES, help="Moduli variant for design.json.")
+    ] = DEFAULT_MODEL,
     support: o.SupportOpt = "free",
     cutter: o.Machine = "cameo4-12x12",
     labels: o.Labels = None,
-    fold_style: Annotated[str, Opt(help="Fold lines: solid | scored | perforated.")] = "solid",
-    cut: Annotated[str | None, Opt(help="Perforation: cut length (mm).")] = None,
-    gap: Annotated[str | None, Opt(help="Perforation: gap length (mm).")] = None,
-    spacing: Annotated[str, Opt(help="Space between parts on the sheet (mm).")] = "5",
-    margin: Annotated[str, Opt(help="Margin to the sheet's edge (mm).")] = "5",
-    tab_depth: Annotated[str, Opt(help="Depth of the connector's glue tabs (mm).")] = "4",
+    fold_style: Annotated[
+        str, Opt(metavar=o.FOLD_STYLES, help="Fold lines: solid | scored | perforated.")
+    ] = "solid",
+    cut: Annotated[str | None, Opt(metavar=o.LENGTH, help="Perforation: cut length (mm).")] = None,
+    gap: Annotated[str | None, Opt(metavar=o.LENGTH, help="Perforation: gap length (mm).")] = None,
+    spacing: Annotated[
+        str, Opt(metavar=o.LENGTH, help="Space between parts on the sheet (mm).")
+    ] = "5",
+    margin: Annotated[str, Opt(metavar=o.LENGTH, help="Margin to the sheet's edge (mm).")] = "5",
+    tab_depth: Annotated[
+        str, Opt(metavar=o.LENGTH, help="Depth of the connector's glue tabs (mm).")
+    ] = "4",
     paper: o.Paper = "mat",
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
+    quiet: o.Quiet = False,
 ) -> None:
     """Write the machine's cut files, the fold map, the PDF, FOLD, GLB/STL and assembly steps of one
-    design (docs/fabrication.md)."""
+    design (`corrugate docs fabrication`)."""
     from ..analysis import analyze
     from ..inputs import assembly_from_namespace
     from ..moduli import get_model
@@ -74,6 +87,8 @@ def pattern_cmd(
                 indent=2,
             )
         )
+        return
+    if quiet:
         return
     console = make_console()
     m = result.mass

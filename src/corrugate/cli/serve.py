@@ -20,7 +20,10 @@ LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
 
 def serve_cmd(
     host: Annotated[
-        str, typer.Option(help="Address to listen on; 127.0.0.1 keeps it on this machine.")
+        str,
+        typer.Option(
+            metavar="HOST", help="Address to listen on; 127.0.0.1 keeps it on this machine."
+        ),
     ] = "127.0.0.1",
     port: Annotated[int, typer.Option(min=1, max=65535, help="TCP port.")] = 8000,
     timeout: Annotated[

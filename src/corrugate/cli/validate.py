@@ -31,7 +31,7 @@ if TYPE_CHECKING:
     from rich.console import Console
 
     from ..fea.band import Bond
-    from ..fea.validation import CaseResult, Refinement
+    from ..fea.validation import CaseResult, Progress, Refinement
     from ..geometry import Assembly, Layer
 
 __all__ = ["COMMANDS", "validate_cmd"]
@@ -72,9 +72,12 @@ def _print_result(r: CaseResult, console: Console) -> None:
         "EI_Nmm2": "N mm^2",
         "D4_Nmm": "N mm",
     }
-    for key in _display_keys(r):
+    keys = _display_keys(r)
+    for key in keys:
         t.add_row(_name(key, units), f"{r.fe[key]:.5g}", *_model_cells(r, key))
     console.print(t)
+    if any(k.startswith("D4_") for k in keys):
+        console.print(D4_LEGEND)
     for eta, (low, high) in _buckling_bounds(r).items():
         P, K = r.fe[f"Pcr_N@{eta}"], r.fe.get(f"K_N_per_mm@{eta}")
         at = f", at a platen displacement of {P / K:.3g} mm" if K else ""
@@ -100,6 +103,15 @@ def _print_result(r: CaseResult, console: Console) -> None:
             shown = [k for k in _display_keys(r) if k in vals]
             text = ", ".join(f"{_name(k, units)} = {vals[k]:.6g}" for k in shown)
             console.print(f"  {label}: {text}")
+
+
+#: What the D4 row of the table is, printed under it.
+D4_LEGEND = (
+    "D4: the bending stiffness from a 4-point (pure) bending test, measured between the load "
+    "lines where the moment is constant and there is no shear: the quantity the closed forms "
+    "model; D is the 3-point value a bench test measures, shear included (`corrugate docs fea`, "
+    "section 2.1)."
+)
 
 
 def _buckling_bounds(r: CaseResult) -> dict[str, tuple[float, float]]:
@@ -146,9 +158,13 @@ def _model_cells(r: CaseResult, key: str) -> list[str]:
 
 
 def validate_cmd(
-    W: Annotated[str | None, Opt("--W", help="Facet width (mm).")] = None,
-    n: Annotated[str | None, Opt("--n", help="Number of creases (n + 1 facets).")] = None,
-    alpha: Annotated[str | None, Opt("--alpha", help="Interior fold angle (deg).")] = None,
+    W: Annotated[str | None, Opt("--W", metavar=o.LENGTH, help="Facet width (mm).")] = None,
+    n: Annotated[
+        str | None, Opt("--n", metavar="INTEGER", help="Number of creases (n + 1 facets).")
+    ] = None,
+    alpha: Annotated[
+        str | None, Opt("--alpha", metavar=o.ANGLE, help="Interior fold angle (deg).")
+    ] = None,
     material: o.Material = None,
     thickness: o.Thickness = None,
     E: o.YoungsModulus = None,
@@ -160,7 +176,11 @@ def validate_cmd(
     material2: o.Material2 = None,
     thickness2: o.Thickness2 = None,
     layout: Annotated[
-        str, Opt(help="square | rectangle (the FE tests need straight loaded edges).")
+        str,
+        Opt(
+            metavar="[square|rectangle]",
+            help="square | rectangle (the FE tests need straight loaded edges).",
+        ),
     ] = "square",
     design: Annotated[
         Path | None,
@@ -169,8 +189,9 @@ def validate_cmd(
     eta: Annotated[
         list[str] | None,
         Opt(
+            metavar=o.ANGLE,
             help="Direction (deg from layer 1's creases); repeat. Default 0. Other than 0/90: "
-            "a square coupon cut along eta (square layout only)."
+            "a square coupon cut along eta (square layout only).",
         ),
     ] = None,
     support: o.SupportOpt = "free",
@@ -178,28 +199,34 @@ def validate_cmd(
     cell_mesh: Annotated[
         str,
         Opt(
+            metavar="ALONGxTHROUGH",
             help="Unit-cell mesh: elements along a facet x through t, graded towards the creases "
             "(the default: Ecx within 0.7 % of the converged value at alpha 40-115 deg, "
-            "docs/fea.md 1.3)."
+            "`corrugate docs fea`, section 1.3).",
         ),
     ] = "80x8",
     refine: Annotated[
         float | None,
         Opt(
+            metavar="FRACTION",
             help="Refine the meshes until every result changes by "
-            "less than this fraction (e.g. 0.01)."
+            "less than this fraction (e.g. 0.01).",
         ),
     ] = None,
     no_unit_cell: Annotated[bool, Opt("--no-unit-cell", help="Skip the unit-cell runs.")] = False,
     connectors: Annotated[
         bool,
-        Opt("--connectors", help="Add the connector band to the assembly model (docs/fea.md)."),
+        Opt(
+            "--connectors",
+            help="Add the connector band to the assembly model (`corrugate docs fea`, 2.3).",
+        ),
     ] = False,
     bond: Annotated[
         str,
         Opt(
+            metavar="[edges|flanges]",
             help="With --connectors: edges (layers bonded to the band along their whole edges) "
-            "or flanges (the band as cut, glued only where the layers rest on its flanges)."
+            "or flanges (the band as cut, glued only where the layers rest on its flanges).",
         ),
     ] = "edges",
     buckling: Annotated[
@@ -213,27 +240,35 @@ def validate_cmd(
         bool, Opt("--no-pure-bending", help="Skip the 4-point (pure) bending diagnostic.")
     ] = False,
     sweep: Annotated[
-        str | None, Opt(help="Run a named sweep instead of one design: paper.")
+        str | None, Opt(metavar="NAME", help="Run a named sweep instead of one design: paper.")
     ] = None,
-    out: Annotated[Path, Opt(help="Folder for the sweep's table, CSV and plot.")] = Path(
-        "out/validation"
-    ),
+    out: Annotated[
+        Path, Opt(metavar="DIR", help="Folder for the sweep's table, CSV and plot.")
+    ] = Path("out/validation"),
     jobs: Annotated[
         int | None, Opt(help="Worker processes for a sweep (default: all cores).")
     ] = None,
     scheduler: Annotated[
         str | None,
-        Opt(help="dask.distributed scheduler address for a sweep (needs the `dist` extra)."),
+        Opt(
+            metavar="ADDRESS",
+            help="dask.distributed scheduler address for a sweep (needs the `dist` extra).",
+        ),
     ] = None,
-    workdir: Annotated[Path | None, Opt(help="Parent folder of the ccx work folders.")] = None,
+    workdir: Annotated[
+        Path | None, Opt(metavar="DIR", help="Parent folder of the ccx work folders.")
+    ] = None,
     keep: Annotated[bool, Opt(help="Keep the ccx work folders.")] = False,
     timeout: Annotated[float, Opt(help="Time-out of one ccx run (s).")] = 900.0,
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object (single design).")] = False,
+    quiet: o.Quiet = False,
 ) -> None:
     """Check a design (or a sweep) by finite elements: FE versus each model variant.
 
     Example: corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar --refine 0.02
     """
+    import sys
+
     from ..fea.ccx import find_ccx
     from ..fea.sweep import check_sweep_options
     from ..fea.validation import Case, run_case
@@ -257,6 +292,7 @@ def validate_cmd(
             console,
             connectors,
             bond_,
+            quiet,
         )
         return
     assembly = _assembly(design, locals())
@@ -277,14 +313,36 @@ def validate_cmd(
         bond=bond_,
         support=check_support(support, "--support"),
     )
-    with console.status("running CalculiX ..."):
-        result = run_case(case)
+    result = run_case(case, _progress_lines(quiet or (as_json and not sys.stderr.isatty())))
     if as_json:
         typer.echo(json.dumps(_result_json(result), indent=2))
+    elif quiet:
+        if result.error:
+            make_console(stderr=True).print(f"failed {result.case.label}: {result.error}")
     else:
         _print_result(result, console)
     if result.error:
         raise typer.Exit(1)
+
+
+def _progress_lines(quiet: bool) -> Progress:
+    """One line on stderr before each CalculiX run (nothing with --quiet, nor with --json unless
+    stderr is a terminal): the run's number, the seconds since the first one and what it
+    computes."""
+    import time
+
+    if quiet:
+        return lambda line: None
+    err = make_console(stderr=True)
+    start = time.monotonic()
+    count = 0
+
+    def say(line: str) -> None:
+        nonlocal count
+        count += 1
+        err.print(f"CalculiX run {count} ({time.monotonic() - start:.0f} s): {line}")
+
+    return say
 
 
 def _bond(bond: str, connectors: bool) -> Bond:
@@ -353,7 +411,9 @@ def _etas(assembly: Assembly, eta: list[str] | None, connectors: bool) -> tuple[
         specimen(assembly, e)
         if connectors and principal_axis(e) is None:
             raise InputError(
-                "eta", f"{e:g} deg", "0 or 90 deg with --connectors (docs/fea.md, section 2.3)"
+                "eta",
+                f"{e:g} deg",
+                "0 or 90 deg with --connectors (`corrugate docs fea`, section 2.3)",
             )
     return etas
 
@@ -384,6 +444,7 @@ def _run_sweep(
     console: Console,
     connectors: bool = False,
     bond: Bond = "edges",
+    quiet: bool = False,
 ) -> None:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
@@ -403,23 +464,32 @@ def _run_sweep(
         TimeElapsedColumn(),
     )
     try:
-        with Progress(*columns, console=console) as progress:
+        with Progress(*columns, console=console, disable=quiet) as progress:
             task = progress.add_task(f"sweep {name}", total=len(cases))
             for r in run_sweep(cases, executor, jobs=jobs, folder=workdir, keep=keep):
                 results.append(r)
-                status = f"[red]failed: {r.error}[/red]" if r.error else "done"
-                progress.console.print(f"{r.case.label}: {status}")
+                if not quiet:
+                    status = f"[red]failed: {r.error}[/red]" if r.error else "done"
+                    progress.console.print(f"{r.case.label}: {status}")
+                elif r.error:
+                    make_console(stderr=True).print(f"failed {r.case.label}: {r.error}")
                 progress.advance(task)
     finally:
         if executor is not None:
             executor.shutdown()
     write_sweep_files(results, out, name)
     failed = [r for r in results if r.error]
+    if quiet:
+        if failed:
+            raise typer.Exit(1)
+        return
     console.print(
         f"wrote {out}/sweep_{name}.md, .csv and .png ({len(results) - len(failed)} "
         f"cases, {len(failed)} failed)"
     )
     console.print((out / f"sweep_{name}.md").read_text())
+    if any(k.startswith("D4_") for r in results for k in r.fe):
+        console.print(D4_LEGEND)
     if failed:
         raise typer.Exit(1)
 

@@ -116,7 +116,7 @@ def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
             a.layout.name,
             "square or rectangle for the FE assembly (to check the layers of another outline, "
             "validate them on a square: the same --W --n --alpha)",
-            reason="has no straight loaded edges for the paper's tests (docs/fea.md)",
+            reason="has no straight loaded edges for the paper's tests (`corrugate docs fea`, section 2.1)",
         )
     axis = principal_axis(eta_deg)
     if axis == 1:

@@ -158,10 +158,19 @@ def _layers_to_run(a: Assembly) -> list[int]:
     return [1] if a.layer1 == a.layer2 else [1, 2]
 
 
-def _cell_values(case: Case, mesh: UnitCellMesh) -> dict[str, float]:
+#: Called with one line before each CalculiX run of :func:`run_case` (progress of a long case).
+Progress = Callable[[str], None]
+
+
+def _quiet(_: str) -> None:
+    """The default :data:`Progress`: says nothing."""
+
+
+def _cell_values(case: Case, mesh: UnitCellMesh, progress: Progress = _quiet) -> dict[str, float]:
     out: dict[str, float] = {}
     a = case.assembly
     for i in _layers_to_run(a):
+        progress(f"unit cell of layer {i}, mesh {mesh.label()}")
         layer = a.layers[i - 1]
         m = layer.material
         cell = UnitCell(m.E, m.nu, layer.t, layer.W, layer.alpha_deg)
@@ -173,16 +182,27 @@ def _cell_values(case: Case, mesh: UnitCellMesh) -> dict[str, float]:
     return out
 
 
-def _assembly_values(case: Case, mesh: AssemblyMesh) -> dict[str, float]:
+def _assembly_values(
+    case: Case, mesh: AssemblyMesh, progress: Progress = _quiet
+) -> dict[str, float]:
     out: dict[str, float] = {}
     if any(principal_axis(e) is None for e in case.eta_deg):  # the cos^2 rule's own fixture
+        progress(f"assembly in a rigid frame, mesh {mesh.label()}")
         frame = solve_frame(
             case.assembly, mesh, folder=case.folder, keep=case.keep, timeout=case.timeout
         )
         for eta in case.eta_deg:
             out[f"Kframe_N_per_mm@{eta:g}"] = frame.K(eta)
 
+    names = {
+        "compression": "in-plane compression",
+        "bending": "3-point bending",
+        "bending4": "4-point (pure) bending",
+        "buckling": "buckling in compression",
+    }
+
     def run(test: LoadTest, eta: float) -> AssemblyResult:
+        progress(f"assembly, {names.get(test, test)} along eta = {eta:g} deg, mesh {mesh.label()}")
         return solve_assembly(
             case.assembly,
             test,
@@ -244,9 +264,10 @@ def _refine(
     return prev, mesh, tol is not None
 
 
-def run_case(case: Case) -> CaseResult:
+def run_case(case: Case, progress: Progress = _quiet) -> CaseResult:
     """Run the FE of ``case`` (refining if asked) beside the closed forms; never raises on a
-    solver failure of the case: the message goes to :attr:`CaseResult.error`."""
+    solver failure of the case: the message goes to :attr:`CaseResult.error`. ``progress`` is
+    called with one line before each CalculiX run."""
     ref = case.refinement
     models = closed_forms(case.assembly, case.eta_deg, case.support)
     history: list[tuple[str, dict[str, float]]] = []
@@ -259,7 +280,7 @@ def run_case(case: Case) -> CaseResult:
             ref.assembly_mesh,
             lambda m: m.refined(),
             lambda m: m.along > ref.assembly_max_along,
-            lambda m: _assembly_values(case, m),
+            lambda m: _assembly_values(case, m, progress),
             ref.tol,
             history,
         )
@@ -276,7 +297,7 @@ def run_case(case: Case) -> CaseResult:
                     through=min(m.through * 2, max(m.through, ref.cell_max_through)),
                 ),
                 lambda m: m.along > ref.cell_max_along,
-                lambda m: _cell_values(case, m),
+                lambda m: _cell_values(case, m, progress),
                 ref.tol,
                 history,
             )

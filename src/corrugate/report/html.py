@@ -178,9 +178,9 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     parts.append(
         f"<p>Support condition of this design's stiffness: <b>{a.support}</b>. Along the "
         "creases (0 and 90 deg) both conditions give the paper's springs. Off them, a panel "
-        "with free sides (solid or dashed 'free' curve: a lower bound, docs/offaxis.md) is up "
+        "with free sides (solid or dashed 'free' curve: a lower bound, <code>corrugate docs offaxis</code>) is up "
         "to hundreds of times softer than the paper's cos^2 rule, which holds only for a panel "
-        "held in a rigid frame on all four edges (docs/validation/off_axis.md).</p>"
+        "held in a rigid frame on all four edges (<code>corrugate docs validation/off_axis</code>).</p>"
     )
     if a.buckling:
         parts.append("<h2>Buckling in compression</h2><ul>")
@@ -193,7 +193,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
             )
         parts.append(
             "</ul><p>Check the actual load with <code>corrugate validate --buckling</code> "
-            "(docs/fea.md, section 2.6).</p>"
+            "(<code>corrugate docs fea</code>, section 2.6).</p>"
         )
     parts.append("<h2>The three model variants</h2>")
     rows = []
