@@ -10,6 +10,9 @@ Endpoints (all JSON unless said otherwise):
   ``--json`` object);
 * ``POST /api/mesh``: the same options -> the folded assembly as ``assembly.glb`` and
   ``assembly.stl`` in a new result (opaque id), with their download URLs;
+* ``POST /api/pattern``: the same options plus the output options of ``corrugate pattern``
+  (``cutter``, ``fold_style``, ``cut``, ``gap``, ``paper``) -> every file ``corrugate pattern
+  --out`` writes (cut files, fold map, PDF, FOLD, GLB/STL, steps, design.json) in a new result;
 * ``POST /api/design``: a spec (the keys of the TOML file) and the output options of
   ``corrugate design`` -> ``{"design": <corrugate design --json>, "result": {"id", "files"}}``:
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
@@ -34,8 +37,8 @@ import math
 import re
 import shutil
 import threading
-from collections.abc import AsyncIterator, Callable
-from contextlib import asynccontextmanager
+from collections.abc import AsyncIterator, Callable, Iterator
+from contextlib import asynccontextmanager, contextmanager
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
@@ -77,6 +80,8 @@ from .schemas import (
     FieldError,
     ModelInfo,
     ModelsBody,
+    OutputBody,
+    PatternBody,
     ResultBody,
     ResultFile,
 )
@@ -167,7 +172,9 @@ def _check_size(req: AnalysisRequest, settings: WebSettings) -> None:
 
 
 def _parse(body: AnalyzeBody, settings: WebSettings) -> AnalysisRequest:
-    options = body.model_dump(exclude={"model", "eta", "support"}, exclude_none=True)
+    options = body.model_dump(
+        exclude={"model", "eta", "support", *OUTPUT_OPTIONS}, exclude_none=True
+    )
     with _PARSE_LOCK:
         req = analysis_request(model=body.model, eta=body.eta, support=body.support, **options)
     _check_size(req, settings)
@@ -220,10 +227,45 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
     return store.make(lambda folder: write_mesh(a, build_pattern(a), folder))
 
 
-def _output_options(body: DesignBody) -> OutputOptions:
-    """The output options of a design request, as ``corrugate design --cutter ... --fold-style
-    ... --cut ... --gap ... --paper ...`` reads them (:func:`corrugate.pipeline.output_options`,
-    default spacing, margin and tabs); errors name the request's field."""
+def pattern_files(body: PatternBody, settings: WebSettings, store: ResultStore) -> list[StoredFile]:
+    """Every file ``corrugate pattern --out`` writes for the request's design, stored as a new
+    result (worker thread): the CLI's own writer, :func:`corrugate.outputs.write_design_files`."""
+    from ..analysis import analyze
+    from ..outputs import write_design_files
+
+    req = _parse(body, settings)
+    with _PARSE_LOCK:
+        options = _output_options(body)
+    analysis = analyze(req.assembly, req.model, (0.0, 90.0), options.fabrication, req.support)
+
+    def write(folder: Path) -> list[Path]:
+        with _output_errors(body.cutter):
+            return write_design_files(analysis, folder, options)
+
+    return store.make(write)
+
+
+@contextmanager
+def _output_errors(cutter: str) -> Iterator[None]:
+    """The writers' errors about the output options, renamed to the request's fields."""
+    from ..pattern.linestyle import PerforationError
+    from ..pattern.sheets import PartTooLargeError
+
+    try:
+        yield
+    except PartTooLargeError as exc:
+        raise exc.renamed(
+            "cutter", repr(cutter), f"is too small for {exc.field} ({exc.value})"
+        ) from None
+    except PerforationError as exc:
+        raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
+
+
+def _output_options(body: OutputBody) -> OutputOptions:
+    """The output options of a design or pattern request, as ``corrugate design --cutter ...
+    --fold-style ... --cut ... --gap ... --paper ...`` reads them
+    (:func:`corrugate.pipeline.output_options`, default spacing, margin and tabs); errors name
+    the request's field."""
     return output_options(
         body.cutter,
         body.fold_style,
@@ -303,9 +345,6 @@ def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[A
 
 
 def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
-    from ..pattern.linestyle import PerforationError
-    from ..pattern.sheets import PartTooLargeError
-
     with _PARSE_LOCK:  # pint parses the spec's quantities, inline materials and the options
         try:
             spec = parse_spec(_spec_data(body))
@@ -323,14 +362,8 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
         return run.payload, []
     _check_design_size(run.solution.analysis, settings)
     spec_text = json.dumps(_spec_data(body), indent=2)
-    try:
+    with _output_errors(body.cutter):
         return run.payload, write_design(run, folder, options, spec_text)
-    except PartTooLargeError as exc:
-        raise exc.renamed(
-            "cutter", repr(body.cutter), f"is too small for {exc.field} ({exc.value})"
-        ) from None
-    except PerforationError as exc:
-        raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
 
 
 async def design_answer(
@@ -546,6 +579,18 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
         """Build the folded assembly (mm, z up) and keep it as a result; download its files from
         the URLs returned."""
         files = await runner.run(lambda: mesh_files(body, cfg, store))
+        return _result_body(files)
+
+    @app.post(
+        "/api/pattern",
+        summary="Every file to cut and fold a given design",
+        responses=error_responses,
+    )
+    async def pattern_endpoint(body: PatternBody) -> ResultBody:
+        """The files ``corrugate pattern --out`` writes for one design (the analyse options plus
+        ``cutter``, ``fold_style``, ``cut``, ``gap``, ``paper``): cut files, fold map, PDF, FOLD,
+        GLB/STL, assembly steps and design.json, kept as a result (``all.zip`` holds them all)."""
+        files = await runner.run(lambda: pattern_files(body, cfg, store))
         return _result_body(files)
 
     @app.post(

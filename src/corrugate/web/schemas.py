@@ -23,6 +23,8 @@ __all__ = [
     "HoleBody",
     "ModelInfo",
     "ModelsBody",
+    "OutputBody",
+    "PatternBody",
     "ResultBody",
     "ResultFile",
 ]
@@ -141,7 +143,31 @@ BLIMP_GRIPPER: dict[str, Any] = {
 }
 
 
-class DesignBody(BaseModel):
+class OutputBody(BaseModel):
+    """The output options of ``corrugate design`` and ``corrugate pattern`` (the keys of
+    :data:`OUTPUT_OPTIONS`)."""
+
+    cutter: Text = Field(
+        "cameo4-12x12",
+        description="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).",
+    )
+    fold_style: Text = Field("solid", description="Fold lines: solid | scored | perforated.")
+    cut: Value | None = Field(None, description="Perforation: cut length (mm).")
+    gap: Value | None = Field(None, description="Perforation: gap length (mm).")
+    paper: Text = Field(
+        "mat",
+        description="mat: pattern.pdf only (one mat-size page per sheet); a4 | letter: also "
+        "pattern-a4.pdf / pattern-letter.pdf, the sheets at 1:1 on pages to tape together.",
+    )
+
+
+class PatternBody(AnalyzeBody, OutputBody):
+    """A design as ``corrugate analyze`` takes it plus the output options: every file
+    ``corrugate pattern --out`` writes (cut files, fold map, PDF, FOLD, GLB/STL, steps,
+    design.json)."""
+
+
+class DesignBody(OutputBody):
     """A design spec as JSON, with the keys of the TOML file, plus the output options of
     ``corrugate design`` (``cutter``, ``fold_style``, ``cut``, ``gap``, ``paper``).
 
@@ -162,18 +188,6 @@ class DesignBody(BaseModel):
     constraints: Any = Field(None, description="Size, stiffness and mass bounds. " + _SPEC_KEY)
     objective: Any = Field(None, description="{minimize = 'mass'} or {maximize, eta}.")
     robust: Any = Field(None, description="Tolerances for a robust design. " + _SPEC_KEY)
-    cutter: Text = Field(
-        "cameo4-12x12",
-        description="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).",
-    )
-    fold_style: Text = Field("solid", description="Fold lines: solid | scored | perforated.")
-    cut: Value | None = Field(None, description="Perforation: cut length (mm).")
-    gap: Value | None = Field(None, description="Perforation: gap length (mm).")
-    paper: Text = Field(
-        "mat",
-        description="mat: pattern.pdf only (one mat-size page per sheet); a4 | letter: also "
-        "pattern-a4.pdf / pattern-letter.pdf, the sheets at 1:1 on pages to tape together.",
-    )
 
 
 class FieldError(BaseModel):
