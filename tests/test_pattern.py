@@ -195,7 +195,8 @@ def test_assembly_instructions(tmp_path: Path) -> None:
 
 def test_mesh_files_are_the_folded_triangles_as_trimesh_reads_them(tmp_path: Path) -> None:
     """GLB and STL are written without a mesh library: trimesh (an independent reader) gets back
-    every triangle of :func:`folded_mesh` in order (float32), the STL normals are trimesh's own of
+    every triangle of :func:`folded_mesh` (float32; in order from the STL, the GLB's per-part
+    meshes in any order), the STL normals are trimesh's own of
     the float64 triangles,
     and a GLB container whose chunks are aligned and whose declared lengths are the file's."""
     import json
@@ -210,9 +211,17 @@ def test_mesh_files_are_the_folded_triangles_as_trimesh_reads_them(tmp_path: Pat
     write_mesh(a, pattern, tmp_path)
     vertices, faces = folded_mesh(a, pattern.parts)
     expected = vertices.astype(np.float32)[faces]
+
+    def rows(tris: np.ndarray) -> np.ndarray:  # the GLB's parts may be joined in any order
+        flat = np.round(np.asarray(tris, dtype=np.float64).reshape(len(tris), 9), 4)
+        return flat[np.lexsort(flat.T[::-1])]
+
     for name in ("assembly.glb", "assembly.stl"):
         mesh = trimesh.load(tmp_path / name, force="mesh", process=False)
-        assert np.asarray(mesh.triangles) == pytest.approx(expected, abs=1e-6), name
+        got = np.asarray(mesh.triangles)
+        if name.endswith(".stl"):  # one solid: every triangle in order
+            assert got == pytest.approx(expected, abs=1e-6), name
+        assert rows(got) == pytest.approx(rows(expected), abs=2e-4), name
     stored = np.frombuffer((tmp_path / "assembly.stl").read_bytes()[84:], dtype=np.uint8)
     records = stored.reshape(len(faces), 50)
     normals = records[:, :12].copy().view("<f4").reshape(-1, 3)
@@ -227,6 +236,54 @@ def test_mesh_files_are_the_folded_triangles_as_trimesh_reads_them(tmp_path: Pat
     doc = json.loads(glb[20 : 20 + json_len])
     bin_len, bin_type = struct.unpack("<I4s", glb[20 + json_len : 28 + json_len])
     assert bin_type == b"BIN\x00" and 28 + json_len + bin_len == len(glb)
-    position = doc["accessors"][doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"]]
-    assert position["min"] == pytest.approx(vertices.min(axis=0).tolist(), rel=1e-6)
-    assert position["max"] == pytest.approx(vertices.max(axis=0).tolist(), rel=1e-6)
+    positions = [
+        doc["accessors"][mesh["primitives"][0]["attributes"]["POSITION"]] for mesh in doc["meshes"]
+    ]
+    low = np.min([p["min"] for p in positions], axis=0)
+    high = np.max([p["max"] for p in positions], axis=0)
+    assert low == pytest.approx(vertices.min(axis=0).tolist(), rel=1e-6)
+    assert high == pytest.approx(vertices.max(axis=0).tolist(), rel=1e-6)
+
+
+def test_glb_has_one_coloured_mesh_per_layer_and_the_stl_is_one_solid(tmp_path: Path) -> None:
+    """The GLB holds layer 1, layer 2 and the band as separate nodes, meshes and materials (each
+    its own colour), which trimesh reads as three geometries whose triangles are, in order, those
+    of the folded mesh; the STL stays every triangle in one solid, byte for byte
+    :func:`stl_bytes` of :func:`folded_mesh`."""
+    import json
+    import struct
+
+    import trimesh
+
+    from corrugate.pattern.files3d import PART_COLOURS, stl_bytes
+    from corrugate.pattern.folded import folded_mesh, folded_mesh_groups
+
+    a = Assembly(Layer(8, 8, 84, DURALAR), Layer(10, 6, 90, DURALAR), make_layout("rectangle"))
+    pattern = build_pattern(a)
+    write_mesh(a, pattern, tmp_path)
+    vertices, faces = folded_mesh(a, pattern.parts)
+    assert (tmp_path / "assembly.stl").read_bytes() == stl_bytes(vertices, faces)
+
+    glb = (tmp_path / "assembly.glb").read_bytes()
+    json_len = struct.unpack("<I", glb[12:16])[0]
+    doc = json.loads(glb[20 : 20 + json_len])
+    names = ["layer 1", "layer 2", "band"]
+    assert [n["name"] for n in doc["nodes"]] == names
+    assert [m["name"] for m in doc["materials"]] == names
+    colours = [tuple(m["pbrMetallicRoughness"]["baseColorFactor"]) for m in doc["materials"]]
+    assert colours == [PART_COLOURS[n] for n in names] and len(set(colours)) == 3
+    assert [m["primitives"][0]["material"] for m in doc["meshes"]] == [0, 1, 2]
+
+    scene = trimesh.load(tmp_path / "assembly.glb", process=False)
+    assert isinstance(scene, trimesh.Scene)
+    assert len(scene.geometry) == 3
+    _, _, groups = folded_mesh_groups(a, pattern.parts)
+    first = 0
+    expected = vertices.astype(np.float32)[faces]
+    for (name, _, count), node in zip(groups, names, strict=True):
+        geometry = scene.geometry[scene.graph[node][1]]
+        assert len(geometry.faces) == count > 0
+        tris = np.asarray(geometry.triangles)
+        assert tris == pytest.approx(expected[first : first + count], abs=1e-6), name
+        first += count
+    assert first == len(faces)

@@ -9,17 +9,19 @@ from __future__ import annotations
 import contextlib
 import json
 import struct
+from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..fileio import Staging, staged
 from ..geometry import Assembly
-from .folded import fold_document, folded_mesh
+from .folded import fold_document, folded_mesh_groups
 from .model import Pattern
 
-__all__ = ["glb_bytes", "stl_bytes", "write_fold", "write_mesh"]
+__all__ = ["PART_COLOURS", "glb_bytes", "stl_bytes", "write_fold", "write_mesh"]
 
 FloatArray = NDArray[np.float64]
 #: One binary STL triangle: normal, three vertices (float32) and the attribute byte count.
@@ -72,33 +74,76 @@ def _pad(data: bytes, fill: bytes) -> bytes:
     return data + fill * (-len(data) % 4)
 
 
-def glb_bytes(vertices: FloatArray, faces: NDArray[np.int64]) -> bytes:
-    """Binary glTF 2.0 (GLB) of one triangle mesh (positions in mm as written; glTF reads metres,
-    viewers here scale to the model).
+#: Colours of the GLB's parts (linear RGBA, glTF's baseColorFactor): layer 1 blue, layer 2
+#: orange, the connector band grey.
+PART_COLOURS: dict[str, tuple[float, float, float, float]] = {
+    "layer 1": (0.33, 0.55, 0.85, 1.0),
+    "layer 2": (0.95, 0.55, 0.2, 1.0),
+    "band": (0.62, 0.62, 0.62, 1.0),
+}
+_DEFAULT_COLOUR = (0.61, 0.75, 0.91, 1.0)
+
+
+def glb_bytes(
+    vertices: FloatArray,
+    faces: NDArray[np.int64],
+    groups: Sequence[tuple[str, int, int]] | None = None,
+) -> bytes:
+    """Binary glTF 2.0 (GLB) of a triangle mesh (positions in mm as written; glTF reads metres,
+    viewers here scale to the model), one glTF mesh per part.
+
+    ``groups`` lists the parts in order as ``(name, vertex count, triangle count)``: each part's
+    vertices and triangles follow the previous part's, and its triangles use only its own
+    vertices (:func:`~corrugate.pattern.folded.folded_mesh_groups`); None is one part named
+    ``assembly``. Each part is a node and a mesh of its own with its own material (colour from
+    :data:`PART_COLOURS`, double-sided), so a viewer can colour and move the layers apart.
 
     The container (glTF 2.0 specification, section "GLB File Format Specification"): a 12-byte
     header (magic ``glTF``, version 2, total length), a JSON chunk padded with spaces and a BIN
-    chunk padded with zeros to 4 bytes. The BIN chunk holds the uint32 triangle indices, then the
-    float32 positions; POSITION carries the min/max the specification requires.
+    chunk padded with zeros to 4 bytes. The BIN chunk holds, part after part, the uint32 triangle
+    indices (relative to the part's first vertex), then the float32 positions; each POSITION
+    carries the min/max the specification requires.
     """
-    v = np.ascontiguousarray(vertices, dtype="<f4")
-    idx = np.ascontiguousarray(faces, dtype="<u4").ravel()
-    index_bytes = _pad(idx.tobytes(), b"\x00")
-    position_bytes = v.tobytes()
-    doc = {
+    v_all = np.ascontiguousarray(vertices, dtype="<f4")
+    f_all = np.asarray(faces, dtype=np.int64)
+    parts = list(groups) if groups is not None else [("assembly", len(v_all), len(f_all))]
+    if sum(p[1] for p in parts) != len(v_all) or sum(p[2] for p in parts) != len(f_all):
+        raise ValueError("glb_bytes: the groups do not add up to the vertices and faces")
+    chunks: list[bytes] = []
+    offset = 0
+    doc: dict[str, Any] = {
         "asset": {"version": "2.0", "generator": "corrugate"},
         "scene": 0,
-        "scenes": [{"nodes": [0]}],
-        "nodes": [{"name": "assembly", "mesh": 0}],
-        "meshes": [
+        "scenes": [{"nodes": list(range(len(parts)))}],
+        "nodes": [],
+        "meshes": [],
+        "materials": [],
+        "accessors": [],
+        "bufferViews": [],
+    }
+    first_vertex = first_face = 0
+    for i, (name, n_vertices, n_faces) in enumerate(parts):
+        v = v_all[first_vertex : first_vertex + n_vertices]
+        idx = np.ascontiguousarray(
+            f_all[first_face : first_face + n_faces] - first_vertex, dtype="<u4"
+        ).ravel()
+        first_vertex += n_vertices
+        first_face += n_faces
+        index_bytes, position_bytes = idx.tobytes(), v.tobytes()  # both multiples of 4 bytes
+        doc["bufferViews"] += [
+            {"buffer": 0, "byteOffset": offset, "byteLength": len(index_bytes), "target": 34963},
             {
-                "name": "assembly",
-                "primitives": [{"attributes": {"POSITION": 1}, "indices": 0, "mode": 4}],
-            }
-        ],
-        "accessors": [
+                "buffer": 0,
+                "byteOffset": offset + len(index_bytes),
+                "byteLength": len(position_bytes),
+                "target": 34962,
+            },
+        ]
+        offset += len(index_bytes) + len(position_bytes)
+        chunks += [index_bytes, position_bytes]
+        doc["accessors"] += [
             {
-                "bufferView": 0,
+                "bufferView": 2 * i,
                 "componentType": 5125,  # UNSIGNED_INT
                 "count": int(idx.size),
                 "type": "SCALAR",
@@ -106,27 +151,42 @@ def glb_bytes(vertices: FloatArray, faces: NDArray[np.int64]) -> bytes:
                 "min": [int(idx.min())] if idx.size else [0],
             },
             {
-                "bufferView": 1,
+                "bufferView": 2 * i + 1,
                 "componentType": 5126,  # FLOAT
                 "count": len(v),
                 "type": "VEC3",
                 "max": v.max(axis=0).tolist() if len(v) else [0.0, 0.0, 0.0],
                 "min": v.min(axis=0).tolist() if len(v) else [0.0, 0.0, 0.0],
             },
-        ],
-        "bufferViews": [
-            {"buffer": 0, "byteOffset": 0, "byteLength": idx.size * 4, "target": 34963},
+        ]
+        doc["materials"].append(
             {
-                "buffer": 0,
-                "byteOffset": len(index_bytes),
-                "byteLength": len(position_bytes),
-                "target": 34962,
-            },
-        ],
-        "buffers": [{"byteLength": len(index_bytes) + len(position_bytes)}],
-    }
+                "name": name,
+                "pbrMetallicRoughness": {
+                    "baseColorFactor": list(PART_COLOURS.get(name, _DEFAULT_COLOUR)),
+                    "metallicFactor": 0.0,
+                    "roughnessFactor": 0.65,
+                },
+                "doubleSided": True,
+            }
+        )
+        doc["meshes"].append(
+            {
+                "name": name,
+                "primitives": [
+                    {
+                        "attributes": {"POSITION": 2 * i + 1},
+                        "indices": 2 * i,
+                        "material": i,
+                        "mode": 4,
+                    }
+                ],
+            }
+        )
+        doc["nodes"].append({"name": name, "mesh": i})
+    doc["buffers"] = [{"byteLength": offset}]
     json_chunk = _pad(json.dumps(doc, separators=(",", ":")).encode("utf-8"), b" ")
-    bin_chunk = _pad(index_bytes + position_bytes, b"\x00")
+    bin_chunk = _pad(b"".join(chunks), b"\x00")
     total = 12 + 8 + len(json_chunk) + 8 + len(bin_chunk)
     return b"".join(
         [
@@ -142,10 +202,14 @@ def glb_bytes(vertices: FloatArray, faces: NDArray[np.int64]) -> bytes:
 def write_mesh(
     a: Assembly, pattern: Pattern, out_dir: Path, staging: Staging | None = None
 ) -> list[Path]:
-    """Write the folded assembly as ``assembly.glb`` and ``assembly.stl`` (mm): numpy and the
-    documented binary layouts (:func:`glb_bytes`, :func:`stl_bytes`), no mesh library."""
-    vertices, faces = folded_mesh(a, pattern.parts)
-    data = {"assembly.glb": glb_bytes(vertices, faces), "assembly.stl": stl_bytes(vertices, faces)}
+    """Write the folded assembly as ``assembly.glb`` (one coloured mesh per layer and one for the
+    band) and ``assembly.stl`` (every triangle, one solid) in mm: numpy and the documented binary
+    layouts (:func:`glb_bytes`, :func:`stl_bytes`), no mesh library."""
+    vertices, faces, groups = folded_mesh_groups(a, pattern.parts)
+    data = {
+        "assembly.glb": glb_bytes(vertices, faces, groups),
+        "assembly.stl": stl_bytes(vertices, faces),
+    }
     out_dir.mkdir(parents=True, exist_ok=True)
     with contextlib.nullcontext(staging) if staging is not None else staged() as st:
         paths = []

@@ -30,12 +30,14 @@ from .layers import crease_role
 from .model import Part, Role
 
 __all__ = [
+    "MESH_GROUPS",
     "band_walls",
     "facet_pieces",
     "facet_polygons",
     "fold_document",
     "fold_points",
     "folded_mesh",
+    "folded_mesh_groups",
     "layer_faces",
 ]
 
@@ -305,10 +307,29 @@ def folded_mesh(a: Assembly, parts: tuple[Part, ...]) -> tuple[FloatArray, NDArr
     Facets are triangulated as fans (they are convex for convex outlines). Returns
     ``(vertices, faces)`` for the GLB and STL writers (:mod:`corrugate.pattern.files3d`).
     """
-    polygons = [*layer_faces(a, parts, 1), *layer_faces(a, parts, 2), *band_walls(a)]
+    vertices, faces, _ = folded_mesh_groups(a, parts)
+    return vertices, faces
+
+
+#: The parts of the folded mesh, in the order :func:`folded_mesh` stacks them.
+MESH_GROUPS = ("layer 1", "layer 2", "band")
+
+
+def folded_mesh_groups(
+    a: Assembly, parts: tuple[Part, ...]
+) -> tuple[FloatArray, NDArray[np.int64], list[tuple[str, int, int]]]:
+    """:func:`folded_mesh` and its parts: ``(vertices, faces, groups)`` where ``groups`` lists
+    each part of :data:`MESH_GROUPS` with its vertex and triangle counts; the parts' vertices and
+    triangles follow one another in that order (a group's triangles use only its vertices)."""
+    pieces = [layer_faces(a, parts, 1), layer_faces(a, parts, 2), band_walls(a)]
+    polygons = [poly for piece in pieces for poly in piece]
     tris: list[list[int]] = []
+    groups: list[tuple[str, int, int]] = []
     count = 0
-    for poly in polygons:
-        tris.extend(_fan(len(poly), count))
-        count += len(poly)
-    return np.vstack(polygons), np.asarray(tris, dtype=np.int64)
+    for name, piece in zip(MESH_GROUPS, pieces, strict=True):
+        first_vertex, first_tri = count, len(tris)
+        for poly in piece:
+            tris.extend(_fan(len(poly), count))
+            count += len(poly)
+        groups.append((name, count - first_vertex, len(tris) - first_tri))
+    return np.vstack(polygons), np.asarray(tris, dtype=np.int64), groups
