@@ -157,7 +157,9 @@ def test_form_analysis_3d_view_and_field_errors(browser: Any, live_server: str) 
     page.click("#submit")
     page.wait_for_selector("form[data-state='error']")
     message = page.text_content("#error-alpha") or ""
-    assert "alpha = 190" in message and "0 < alpha < 180" in message
+    # plain words first (the field's label, the value given, what is allowed), the field second
+    assert message.startswith("Fold angle α (deg): you gave 190 deg, which is out of range;")
+    assert "allowed 0 < alpha < 180 deg" in message and message.endswith(" — alpha"), message
     assert page.get_attribute("#alpha", "aria-invalid") == "true"
     beside = page.evaluate(
         "() => document.getElementById('error-alpha').parentElement"
@@ -181,7 +183,8 @@ def test_form_analysis_3d_view_and_field_errors(browser: Any, live_server: str) 
     assert page.evaluate("() => document.getElementById('layer2').open") is False
     page.click("#submit")
     page.wait_for_selector("form[data-state='error']")
-    assert "alpha2 = 200" in (page.text_content("#error-alpha2") or "")
+    message2 = page.text_content("#error-alpha2") or ""
+    assert message2.startswith("α2 (deg): you gave 200 deg") and message2.endswith(" — alpha2")
     assert page.evaluate("() => document.getElementById('layer2').open") is True
     assert (page.text_content("#error-alpha") or "") == ""
     page.close()
@@ -316,7 +319,8 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
     page.click("#d-submit")
     page.wait_for_selector("#design-form[data-state='error']")
     message = page.text_content("#d-side-min ~ .error, .field:has(#d-side-min) .error") or ""
-    assert "constraints.side.min = 70 mm" in message and "greater than max" in message, message
+    assert message.startswith("Side L: you gave 70 mm, which is greater than max;"), message
+    assert message.endswith(" — constraints.side.min"), message
     assert page.get_attribute("#d-side-min", "aria-invalid") == "true"
     beside = page.evaluate(
         "() => document.getElementById('d-side-min').closest('.field')"

@@ -98,6 +98,37 @@ function clearErrors() {
   for (const el of document.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
 }
 
+// The name a user sees for a form control: its field's label, and its own aria-label when the
+// label is shared (a min/max pair: "Side L (side max)").
+function fieldName(input) {
+  const field = input.closest('.field');
+  const label = field ? field.querySelector('label') : null;
+  const text = label ? label.textContent.trim() : '';
+  const own = (input.getAttribute('aria-label') || '').trim();
+  if (label && label.htmlFor === input.id) return text || own || input.id;
+  if (text && own) return `${text} (${own})`;
+  return text || own || input.id;
+}
+
+// An error in plain words, the request's field (a TOML path on the design tab) second:
+// "Side L (side min): you gave 70 mm, which is greater than max; allowed at most ... — constraints.side.min".
+function plainError(e, input) {
+  const message = String(e.message || '');
+  if (!input || !e.field || e.field === 'body') return message;
+  const name = fieldName(input);
+  const prefix = `${e.field} = `;
+  const tail = e.allowed ? `: allowed ${e.allowed}` : null;
+  if (e.value != null && tail && message.startsWith(`${prefix}${e.value} `) && message.endsWith(tail)) {
+    const reason = message.slice(prefix.length + String(e.value).length + 1, message.length - tail.length);
+    const value = String(e.value).replace(/^'(.*)'$/, '$1');
+    return `${name}: you gave ${value}, which ${reason}; allowed ${e.allowed} — ${e.field}`;
+  }
+  let rest = message;
+  if (rest.startsWith(prefix)) rest = rest.slice(prefix.length);
+  else if (rest.startsWith(`${e.field} `)) rest = rest.slice(e.field.length + 1);
+  return `${name}: ${rest} — ${e.field}`;
+}
+
 function showErrors(payload, status) {
   const errors = (payload && payload.errors && payload.errors.length)
     ? payload.errors
@@ -109,7 +140,7 @@ function showErrors(payload, status) {
     if (target && target.closest('[hidden]')) target = null;
     if (input && target) input.setAttribute('aria-invalid', 'true');
     if (target && input && input.closest('details')) input.closest('details').open = true;
-    (target || $('error-body')).textContent = e.message;
+    (target || $('error-body')).textContent = target ? plainError(e, input) : e.message;
   }
 }
 
@@ -196,6 +227,9 @@ class Viewer {
     this.renderer = new THREE.WebGLRenderer({ antialias: true });
     this.renderer.setPixelRatio(window.devicePixelRatio || 1);
     container.appendChild(this.renderer.domElement);
+    this.renderer.domElement.setAttribute('role', 'img');
+    this.renderer.domElement.setAttribute(
+      'aria-label', '3D view of the folded assembly: layer 1 blue, layer 2 orange, connector band grey');
     this.scene = new THREE.Scene();
     this.scene.background = new THREE.Color(0xf4f6fa);
     this.scene.add(new THREE.HemisphereLight(0xffffff, 0x8090a0, 1.6));
@@ -222,26 +256,49 @@ class Viewer {
 
   render() { this.renderer.render(this.scene, this.camera); }
 
+  setExploded(on) {
+    this.exploded = on;
+    (this.parts || []).forEach((o, i) => { o.position.z = on ? this.offsets[i] * this.gap : 0; });
+    this.container.dataset.exploded = String(on);
+    this.render();
+  }
+
   async show(url) {
     const gltf = await new GLTFLoader().loadAsync(url);
     if (this.model) {
       this.scene.remove(this.model);
       this.model.traverse((o) => { if (o.geometry) o.geometry.dispose(); });
     }
-    const material = new THREE.MeshStandardMaterial({
-      color: 0x9cc0e8, roughness: 0.65, metalness: 0.0, side: THREE.DoubleSide, flatShading: true,
-    });
+    // One mesh per part (layer 1, layer 2, band), each in its GLB material's colour.
     let triangles = 0;
+    const parts = [];
     gltf.scene.traverse((o) => {
       if (o.isMesh) {
-        o.material = material;
+        const color = o.material && o.material.color ? o.material.color.clone() : new THREE.Color(0x9cc0e8);
+        o.material = new THREE.MeshStandardMaterial({
+          color, roughness: 0.65, metalness: 0.0, side: THREE.DoubleSide, flatShading: true,
+        });
+        parts.push(o);
         const g = o.geometry;
         triangles += (g.index ? g.index.count : g.attributes.position.count) / 3;
       }
     });
     this.model = gltf.scene;
+    this.parts = parts;
     this.scene.add(this.model);
     const box = new THREE.Box3().setFromObject(this.model);
+    // Exploded view: the layers move apart along z (below and above the band) by its height.
+    const middle = box.getCenter(new THREE.Vector3()).z;
+    this.gap = Math.max(box.max.z - box.min.z, 1);
+    this.offsets = parts.map((o) => {
+      if (/band/i.test(o.name)) return 0;
+      const z = new THREE.Box3().setFromObject(o).getCenter(new THREE.Vector3()).z;
+      if (Math.abs(z - middle) > 1e-9) return Math.sign(z - middle);
+      return /2/.test(o.name) ? 1 : -1;
+    });
+    this.container.dataset.parts = parts.map((o) => o.name.replace(/_/g, ' ')).join(',');
+    this.container.dataset.colors = parts.map((o) => `#${o.material.color.getHexString()}`).join(',');
+    this.setExploded(this.exploded || false);
     const center = box.getCenter(new THREE.Vector3());
     const size = box.getSize(new THREE.Vector3()).length() || 1;
     this.camera.near = size / 100;
@@ -299,6 +356,8 @@ async function submit(event) {
   event.preventDefault();
   const mine = ++generation;
   clearErrors();
+  $('cut-downloads').replaceChildren();  // the cut files of another design are not this one's
+  $('cut-downloads').dataset.state = 'empty';
   const button = $('submit');
   button.disabled = true;
   $('status').textContent = 'analysing...';
@@ -558,7 +617,7 @@ function showDesignErrors(payload, status) {
       const details = input.closest('details');
       if (details) details.open = true;
     }
-    (target || $('d-error-body')).textContent = e.message;
+    (target || $('d-error-body')).textContent = target ? plainError(e, input) : e.message;
   }
 }
 
@@ -640,15 +699,10 @@ function rank(name) {
   return i < 0 ? DOWNLOAD_ORDER.length : i;
 }
 
-async function showDesignFiles(result, mine) {
-  const box = $('d-files');
-  if (!result) {
-    box.hidden = true;
-    return;
-  }
-  box.hidden = false;
+// The download links of a stored result (its files in a useful order, "Download all" first);
+// returns the files in that order.
+function fileLinks(downloads, result) {
   const files = [...result.files].sort((a, b) => rank(a.name) - rank(b.name));
-  const downloads = $('d-downloads');
   downloads.replaceChildren();
   if (files.length > 1) {
     const all = document.createElement('a');
@@ -666,6 +720,51 @@ async function showDesignFiles(result, mine) {
     a.textContent = `${f.name} (${Math.ceil(f.bytes / 1024)} KiB)`;
     downloads.appendChild(a);
   }
+  return files;
+}
+
+// The analyse tab's cut files: POST /api/pattern (what `corrugate pattern --out` writes).
+async function makeCutFiles() {
+  const button = $('make-cut-files');
+  const box = $('cut-downloads');
+  button.disabled = true;
+  box.replaceChildren();
+  $('error-cutter').textContent = '';
+  box.dataset.state = 'busy';
+  $('cut-status').textContent = 'writing the files...';
+  try {
+    const answer = await postJSON('/api/pattern', { ...requestBody(), cutter: $('cutter').value });
+    if (!answer.ok) {
+      showErrors(answer.payload, answer.status);
+      box.dataset.state = 'error';
+      return;
+    }
+    fileLinks(box, answer.payload);
+    box.dataset.state = 'ready';
+  } catch (err) {
+    $('error-cutter').textContent = `request failed: ${err.message}`;
+    box.dataset.state = 'error';
+  } finally {
+    button.disabled = false;
+    $('cut-status').textContent = '';
+  }
+}
+
+function toggleExploded(button, getViewer) {
+  const v = getViewer();
+  const on = button.getAttribute('aria-pressed') !== 'true';
+  button.setAttribute('aria-pressed', String(on));
+  if (v) v.setExploded(on);
+}
+
+async function showDesignFiles(result, mine) {
+  const box = $('d-files');
+  if (!result) {
+    box.hidden = true;
+    return;
+  }
+  box.hidden = false;
+  const files = fileLinks($('d-downloads'), result);
   const byName = Object.fromEntries(files.map((f) => [f.name, f]));
   // Every sheet of the written plan: the sheet-N.svg files themselves, in order.
   const sheets = files
@@ -760,6 +859,9 @@ form.addEventListener('submit', submit);
 $('material').addEventListener('change', syncVisibility);
 $('layout').addEventListener('change', syncVisibility);
 designForm.addEventListener('submit', submitDesign);
+$('make-cut-files').addEventListener('click', makeCutFiles);
+$('explode').addEventListener('click', (event) => toggleExploded(event.currentTarget, () => viewer));
+$('d-explode').addEventListener('click', (event) => toggleExploded(event.currentTarget, () => designViewer));
 $('d-layout').addEventListener('change', syncDesignVisibility);
 $('d-fold-style').addEventListener('change', syncDesignVisibility);
 $('d-cutter').addEventListener('change', syncDesignVisibility);
