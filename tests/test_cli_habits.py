@@ -59,9 +59,13 @@ def test_show_completion_prints_a_bash_script(capsys: pytest.CaptureFixture[str]
         ("corrugate des", 1, {"design"}),
         ("corrugate analyze --mod", 2, {"--model"}),
         ("corrugate docs validation/", 2, {"validation/off_axis"}),
+        ("corrugate analyze --model", 3, {"paper", "xia", "refined"}),
+        ("corrugate analyze --material dura", 3, {"dura-lar"}),
+        ("corrugate pattern --cutter maker", 3, {"maker-12x12", "maker-12x24"}),
+        ("corrugate validate --support f", 3, {"free", "frame"}),
     ],
 )
-def test_bash_completion_completes_commands_options_and_doc_names(
+def test_bash_completion_completes_commands_options_and_values(
     words: str,
     cword: int,
     expected: set[str],

@@ -106,12 +106,22 @@ def analyze_cmd(
     material2: o.Material2 = None,
     thickness2: o.Thickness2 = None,
     layout: Annotated[
-        str, Opt(metavar=o.LAYOUTS, help="Outline: square | rectangle | circle | polygon.")
+        str,
+        Opt(
+            metavar=o.LAYOUTS,
+            autocompletion=o.complete_layouts,
+            help="Outline: square | rectangle | circle | polygon.",
+        ),
     ] = "square",
     vertices: o.Vertices = None,
     holes: o.Holes = None,
     model: Annotated[
-        str, Opt(metavar=o.MODEL_CHOICES, help="Moduli variant: paper | xia | refined.")
+        str,
+        Opt(
+            metavar=o.MODEL_CHOICES,
+            autocompletion=o.complete_models,
+            help="Moduli variant: paper | xia | refined.",
+        ),
     ] = DEFAULT_MODEL,
     eta: Annotated[
         list[str] | None,

@@ -40,13 +40,49 @@ __all__ = [
 
 Opt = typer.Option
 
+
+def complete_materials(incomplete: str) -> list[str]:
+    """Shell completion of a material option: the library's ids."""
+    from ..materials import library
+
+    return [m for m in library() if m.startswith(incomplete)]
+
+
+def complete_models(incomplete: str) -> list[str]:
+    """Shell completion of ``--model``: the moduli variants."""
+    from ..model_names import MODEL_NAMES
+
+    return [m for m in MODEL_NAMES if m.startswith(incomplete)]
+
+
+def complete_layouts(incomplete: str) -> list[str]:
+    """Shell completion of ``--layout``."""
+    return [m for m in ("square", "rectangle", "circle", "polygon") if m.startswith(incomplete)]
+
+
+def complete_machines(incomplete: str) -> list[str]:
+    """Shell completion of ``--machine``/``--cutter`` (a laser takes its bed: ``laser:WxH``)."""
+    names = ("cameo4-12x12", "cameo4-12x24", "maker-12x12", "maker-12x24", "laser:")
+    return [m for m in names if m.startswith(incomplete)]
+
+
+def complete_supports(incomplete: str) -> list[str]:
+    """Shell completion of ``--support``."""
+    return [m for m in ("free", "frame") if m.startswith(incomplete)]
+
+
 W = Annotated[str, Opt("--W", metavar="LENGTH", help="Facet width (mm, or with units: '0.3 in').")]
 N = Annotated[str, Opt("--n", metavar="INTEGER", help="Number of creases (n + 1 facets).")]
 Alpha = Annotated[
     str, Opt("--alpha", metavar="ANGLE", help="Interior fold angle (deg, 180 = flat).")
 ]
 Material = Annotated[
-    str | None, Opt(metavar="MATERIAL", help="Library material id (see `corrugate materials`).")
+    str | None,
+    Opt(
+        metavar="MATERIAL",
+        autocompletion=complete_materials,
+        help="Library material id (see `corrugate materials`).",
+    ),
 ]
 Thickness = Annotated[
     str | None, Opt(metavar="LENGTH", help="Sheet thickness (mm); default: the material's.")
@@ -67,7 +103,12 @@ Alpha2 = Annotated[
     str | None, Opt("--alpha2", metavar="ANGLE", help="Layer 2 fold angle (default: layer 1's).")
 ]
 Material2 = Annotated[
-    str | None, Opt(metavar="MATERIAL", help="Layer 2 library material (default: layer 1's).")
+    str | None,
+    Opt(
+        metavar="MATERIAL",
+        autocompletion=complete_materials,
+        help="Layer 2 library material (default: layer 1's).",
+    ),
 ]
 Thickness2 = Annotated[
     str | None, Opt(metavar="LENGTH", help="Layer 2 thickness (default: layer 1's).")
@@ -85,6 +126,7 @@ Machine = Annotated[
         "--machine",
         "--cutter",
         metavar="MACHINE",
+        autocompletion=complete_machines,
         help="Machine and sheet: cameo4-12x12 | cameo4-12x24 (Silhouette Cameo 4: cut-N.dxf) | "
         "maker-12x12 | maker-12x24 (Cricut Maker: cut-N.svg) | laser:WxH (bed in mm: cut-N.svg "
         "and cut-N.dxf, hairlines).",
@@ -105,6 +147,7 @@ SupportOpt = Annotated[
     Opt(
         "--support",
         metavar="[free|frame]",
+        autocompletion=complete_supports,
         help="free (sides free: a bench test, most mounts; default) | frame (held in a rigid "
         "frame on all four edges: the paper's cos^2 rule). Matters off the crease directions.",
     ),
