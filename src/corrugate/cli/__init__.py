@@ -43,6 +43,11 @@ def _help_markup() -> Literal["rich"] | None:
         return None
 
 
+#: Plain help (piped) is laid out for 120 columns, as the commands' tables are, so that the
+#: command list keeps each summary's first sentence whole instead of cutting it at 80 columns.
+_PLAIN_HELP_WIDTH = {"terminal_width": 120, "max_content_width": 120}
+
+
 #: The exit codes, shown under ``corrugate --help``.
 EXIT_CODES = (
     "Exit codes: 0 an answer; 1 no design meets the spec (infeasible, with the diagnosis) or an "
@@ -58,6 +63,7 @@ app = typer.Typer(
     add_completion=True,
     pretty_exceptions_enable=False,
     epilog=EXIT_CODES,
+    context_settings=_PLAIN_HELP_WIDTH if _help_markup() is None else {},
 )
 
 

@@ -147,8 +147,9 @@ def design_cmd(
     spec: Annotated[
         Path,
         typer.Argument(
+            metavar="SPEC",
             help="Spec file (TOML), or - to read it from standard input; start from "
-            "`corrugate init`, every key in `corrugate spec`."
+            "`corrugate init`, every key in `corrugate spec`.",
         ),
     ],
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
@@ -253,8 +254,9 @@ def pareto_cmd(
     spec: Annotated[
         Path,
         typer.Argument(
+            metavar="SPEC",
             help="Spec file (TOML), or - to read it from standard input; start from "
-            "`corrugate init`, every key in `corrugate spec`."
+            "`corrugate init`, every key in `corrugate spec`.",
         ),
     ],
     vs: Annotated[
@@ -353,7 +355,9 @@ def _relative(value: str, field: str) -> float:
 
 
 def tolerance_cmd(
-    spec: Annotated[Path, typer.Argument(help="Spec file (TOML); its optimum is analysed.")],
+    spec: Annotated[
+        Path, typer.Argument(metavar="SPEC", help="Spec file (TOML); its optimum is analysed.")
+    ],
     samples: Annotated[int, typer.Option(help="Monte Carlo samples.")] = 10_000,
     seed: Annotated[int, typer.Option(help="Random seed.")] = 0,
     W_tol: Annotated[
