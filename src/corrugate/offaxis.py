@@ -10,7 +10,8 @@ other. Its model here is a **lower bound** (for the homogenised plate) built fro
 own springs, the layers acting in parallel (as the unconnected layers of the FE coupons do).
 Against FE coupons (docs/validation/off_axis.md; three designs, eta 0-90 deg, FE extrapolated
 from 2/4/8 or 4/8/16 elements per facet) K is 0.83-1.18 of the FE (not conservative near 15
-and 75 deg); D is 0.62-1.12 of the 3-point FE at
+and 75 deg; at 15 deg the converged coupon is 22, 15 and 9 % below the model at 4, 8 and 16 cells:
+docs/offaxis.md, coupon-size series); D is 0.62-1.12 of the 3-point FE at
 15-30 deg but 0.008-0.02 at 45 deg (very conservative there). For a layer whose creases
 make the angle theta with the load direction, c = cos theta, s = sin theta:
 
