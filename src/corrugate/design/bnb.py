@@ -146,18 +146,15 @@ def _split(
             starts = d.var.lo + d.var.step * first[:-1]
             ends = d.var.lo + d.var.step * (first[1:] - 1)
             valid = first[1:] > first[:-1]  # a part holds at least one grid value
-        k = len(a)
-        child_lo = np.repeat(lo[sel][None], parts, axis=0)
-        child_hi = np.repeat(hi[sel][None], parts, axis=0)
-        child_lo[:, :, i] = starts
-        child_hi[:, :, i] = ends
+        # rows: the boxes not cut here, then part by part each cut box's valid parts (no copies
+        # of whole boxes per part: one gather, then this coordinate's new edges)
         keep = valid.reshape(-1)
-        lo = np.concatenate([lo[~sel], child_lo.reshape(parts * k, -1)[keep]])
-        hi = np.concatenate([hi[~sel], child_hi.reshape(parts * k, -1)[keep]])
-        rep = np.repeat(split[sel][None], parts, axis=0).reshape(parts * k, -1)[keep]
-        split = np.concatenate([split[~sel], rep])
-        rep_tag = np.repeat(tag[sel][None], parts, axis=0).reshape(parts * k)[keep]
-        tag = np.concatenate([tag[~sel], rep_tag])
+        src = np.concatenate([np.flatnonzero(~sel), np.tile(np.flatnonzero(sel), parts)[keep]])
+        first_child = len(lo) - len(a)
+        lo, hi = lo[src], hi[src]
+        lo[first_child:, i] = starts.reshape(-1)[keep]
+        hi[first_child:, i] = ends.reshape(-1)[keep]
+        split, tag = split[src], tag[src]
     return lo, hi, tag
 
 
@@ -165,14 +162,14 @@ def _grid_points(lo: FloatArray, counts: FloatArray, dims: list[_Dim]) -> FloatA
     """Every grid point of each box (lower corners ``lo``, ``counts`` grid values per
     coordinate), as rows; values lo + step k exactly as :func:`_split` and :func:`_snap` make."""
     per_box = counts.prod(axis=1).astype(np.int64)
-    box = np.repeat(np.arange(len(lo)), per_box)
     r = np.arange(int(per_box.sum())) - np.repeat(np.cumsum(per_box) - per_box, per_box)
-    out = np.empty((len(box), len(dims)))
+    out = np.empty((len(r), len(dims)))
     for i in range(len(dims) - 1, -1, -1):  # mixed radix, last coordinate fastest
         var = dims[i].var
         assert var.step is not None
-        c = counts[box, i].astype(np.int64)
-        k0 = np.round((lo[box, i] - var.lo) / var.step)
+        # per box, then repeated for its points (cheaper than indexing by each point's box)
+        c = np.repeat(counts[:, i].astype(np.int64), per_box)
+        k0 = np.repeat(np.round((lo[:, i] - var.lo) / var.step), per_box)
         out[:, i] = var.lo + var.step * (k0 + r % c)
         r = r // c
     return out
