@@ -13,9 +13,11 @@ inherited from their parent, so the search is best-first when there are many):
    box with at most :data:`ENUMERATE` points (the box is then closed), else its lower corner,
    its upper corner and its centre, snapped to the grid; keep the best feasible one;
 4. cut the boxes still open in two along their relatively widest coordinate (and, while there
-   are few boxes, into :data:`MULTI_PARTS` along every coordinate nearly as wide), cutting grid
-   coordinates between two grid values. All boxes of an iteration go through numpy together:
-   the cost of an iteration is mostly fixed, so few iterations of many boxes are cheapest.
+   are few boxes, into :data:`MULTI_PARTS` along every coordinate when that makes at most
+   :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate nearly as wide as the widest),
+   cutting grid coordinates between two grid values. All boxes of an iteration go through numpy
+   together: the cost of an iteration is mostly fixed, so few iterations of many boxes are
+   cheapest.
 
 Certificate. Every design of the original box lies in exactly one box that was either (a) dropped
 because a rigorous bound shows it infeasible or no better than the incumbent, (b) a grid box
@@ -59,6 +61,9 @@ BATCH = 20_000
 MULTI_SPLIT_BELOW = 2_000
 #: Parts per coordinate in such a split.
 MULTI_PARTS = 8
+#: Such a split cuts every coordinate when that makes at most this many boxes (grid
+#: coordinates may give fewer), else only the coordinates at least half as wide as the widest.
+MULTI_SPLIT_CHILDREN = 4096
 #: Grid boxes with at most this many points are enumerated (each point evaluated exactly) and
 #: closed, instead of being bounded and split further: a point costs far less than a box.
 ENUMERATE = 512
@@ -117,12 +122,16 @@ def _split(
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Cut each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
     counted as n + 1, so every coordinate is judged by how much it changes across the box) into
-    two, and (``multi``) along every coordinate at least half as wide into :data:`MULTI_PARTS`
-    (so few boxes become many in few iterations: the per-iteration cost is mostly fixed).
+    two, and (``multi``) into :data:`MULTI_PARTS` along every coordinate if that makes at most
+    :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate at least half as wide as the
+    widest (so few boxes become many in few iterations: the per-iteration cost is mostly fixed;
+    the case study then takes 2 iterations instead of 3).
     Grid coordinates are cut between two grid values, into at most as many parts as values."""
     widest = width.max(axis=1, keepdims=True)
     if multi:
-        split = (width >= 0.5 * widest) & (width > 0)
+        split = width > 0  # every coordinate, while the children stay few
+        if int((float(MULTI_PARTS) ** split.sum(axis=1)).sum()) > MULTI_SPLIT_CHILDREN:
+            split &= width >= 0.5 * widest
     else:
         split = np.zeros(width.shape, dtype=bool)
         split[np.arange(len(width)), np.argmax(width, axis=1)] = True
