@@ -186,8 +186,12 @@ def first_non_finite(obj: object, where: str = "") -> str | None:
     stack: list[tuple[object, str]] = [(obj, where)]
     while stack:
         item, path = stack.pop()
-        if isinstance(item, float) and not math.isfinite(item):
-            return path or "result"
+        if isinstance(item, float):
+            if not math.isfinite(item):
+                return path or "result"
+            continue
+        if isinstance(item, str | int) or item is None:  # the common leaves: no ABC check
+            continue
         if isinstance(item, Mapping):
             stack.extend((v, f"{path}.{k}" if path else str(k)) for k, v in item.items())
         elif isinstance(item, list | tuple):

@@ -13,9 +13,11 @@ inherited from their parent, so the search is best-first when there are many):
    box with at most :data:`ENUMERATE` points (the box is then closed), else its lower corner,
    its upper corner and its centre, snapped to the grid; keep the best feasible one;
 4. cut the boxes still open in two along their relatively widest coordinate (and, while there
-   are few boxes, into :data:`MULTI_PARTS` along every coordinate nearly as wide), cutting grid
-   coordinates between two grid values. All boxes of an iteration go through numpy together:
-   the cost of an iteration is mostly fixed, so few iterations of many boxes are cheapest.
+   are few boxes, into :data:`MULTI_PARTS` along every coordinate when that makes at most
+   :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate nearly as wide as the widest),
+   cutting grid coordinates between two grid values. All boxes of an iteration go through numpy
+   together: the cost of an iteration is mostly fixed, so few iterations of many boxes are
+   cheapest.
 
 Certificate. Every design of the original box lies in exactly one box that was either (a) dropped
 because a rigorous bound shows it infeasible or no better than the incumbent, (b) a grid box
@@ -59,6 +61,9 @@ BATCH = 20_000
 MULTI_SPLIT_BELOW = 2_000
 #: Parts per coordinate in such a split.
 MULTI_PARTS = 8
+#: Such a split cuts every coordinate when that makes at most this many boxes (grid
+#: coordinates may give fewer), else only the coordinates at least half as wide as the widest.
+MULTI_SPLIT_CHILDREN = 4096
 #: Grid boxes with at most this many points are enumerated (each point evaluated exactly) and
 #: closed, instead of being bounded and split further: a point costs far less than a box.
 ENUMERATE = 512
@@ -117,12 +122,16 @@ def _split(
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Cut each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
     counted as n + 1, so every coordinate is judged by how much it changes across the box) into
-    two, and (``multi``) along every coordinate at least half as wide into :data:`MULTI_PARTS`
-    (so few boxes become many in few iterations: the per-iteration cost is mostly fixed).
+    two, and (``multi``) into :data:`MULTI_PARTS` along every coordinate if that makes at most
+    :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate at least half as wide as the
+    widest (so few boxes become many in few iterations: the per-iteration cost is mostly fixed;
+    the case study then takes 2 iterations instead of 3).
     Grid coordinates are cut between two grid values, into at most as many parts as values."""
     widest = width.max(axis=1, keepdims=True)
     if multi:
-        split = (width >= 0.5 * widest) & (width > 0)
+        split = width > 0  # every coordinate, while the children stay few
+        if int((float(MULTI_PARTS) ** split.sum(axis=1)).sum()) > MULTI_SPLIT_CHILDREN:
+            split &= width >= 0.5 * widest
     else:
         split = np.zeros(width.shape, dtype=bool)
         split[np.arange(len(width)), np.argmax(width, axis=1)] = True
@@ -146,18 +155,15 @@ def _split(
             starts = d.var.lo + d.var.step * first[:-1]
             ends = d.var.lo + d.var.step * (first[1:] - 1)
             valid = first[1:] > first[:-1]  # a part holds at least one grid value
-        k = len(a)
-        child_lo = np.repeat(lo[sel][None], parts, axis=0)
-        child_hi = np.repeat(hi[sel][None], parts, axis=0)
-        child_lo[:, :, i] = starts
-        child_hi[:, :, i] = ends
+        # rows: the boxes not cut here, then part by part each cut box's valid parts (no copies
+        # of whole boxes per part: one gather, then this coordinate's new edges)
         keep = valid.reshape(-1)
-        lo = np.concatenate([lo[~sel], child_lo.reshape(parts * k, -1)[keep]])
-        hi = np.concatenate([hi[~sel], child_hi.reshape(parts * k, -1)[keep]])
-        rep = np.repeat(split[sel][None], parts, axis=0).reshape(parts * k, -1)[keep]
-        split = np.concatenate([split[~sel], rep])
-        rep_tag = np.repeat(tag[sel][None], parts, axis=0).reshape(parts * k)[keep]
-        tag = np.concatenate([tag[~sel], rep_tag])
+        src = np.concatenate([np.flatnonzero(~sel), np.tile(np.flatnonzero(sel), parts)[keep]])
+        first_child = len(lo) - len(a)
+        lo, hi = lo[src], hi[src]
+        lo[first_child:, i] = starts.reshape(-1)[keep]
+        hi[first_child:, i] = ends.reshape(-1)[keep]
+        split, tag = split[src], tag[src]
     return lo, hi, tag
 
 
@@ -165,14 +171,14 @@ def _grid_points(lo: FloatArray, counts: FloatArray, dims: list[_Dim]) -> FloatA
     """Every grid point of each box (lower corners ``lo``, ``counts`` grid values per
     coordinate), as rows; values lo + step k exactly as :func:`_split` and :func:`_snap` make."""
     per_box = counts.prod(axis=1).astype(np.int64)
-    box = np.repeat(np.arange(len(lo)), per_box)
     r = np.arange(int(per_box.sum())) - np.repeat(np.cumsum(per_box) - per_box, per_box)
-    out = np.empty((len(box), len(dims)))
+    out = np.empty((len(r), len(dims)))
     for i in range(len(dims) - 1, -1, -1):  # mixed radix, last coordinate fastest
         var = dims[i].var
         assert var.step is not None
-        c = counts[box, i].astype(np.int64)
-        k0 = np.round((lo[box, i] - var.lo) / var.step)
+        # per box, then repeated for its points (cheaper than indexing by each point's box)
+        c = np.repeat(counts[:, i].astype(np.int64), per_box)
+        k0 = np.repeat(np.round((lo[:, i] - var.lo) / var.step), per_box)
         out[:, i] = var.lo + var.step * (k0 + r % c)
         r = r // c
     return out

@@ -81,14 +81,17 @@ class RangeTable:
         #: +1 if f is non-decreasing in n, -1 if non-increasing, 0 otherwise (then the table)
         self.monotone = 1 if np.all(d >= 0) else (-1 if np.all(d <= 0) else 0)
         self._values = v
-        self._min = [np.asarray(values, dtype=np.float64)]
-        self._max = [np.asarray(values, dtype=np.float64)]
-        k = 1
-        while 2 * k <= len(values):
-            a, b = self._min[-1], self._max[-1]
-            self._min.append(np.minimum(a[:-k], a[k:]))
-            self._max.append(np.maximum(b[:-k], b[k:]))
-            k *= 2
+        self._min: list[FloatArray] = []
+        self._max: list[FloatArray] = []
+        if not self.monotone:  # a monotone f needs no table (its extremes are at the ends)
+            self._min.append(v)
+            self._max.append(v)
+            k = 1
+            while 2 * k <= len(v):
+                a, b = self._min[-1], self._max[-1]
+                self._min.append(np.minimum(a[:-k], a[k:]))
+                self._max.append(np.maximum(b[:-k], b[k:]))
+                k *= 2
 
     def bounds(self, lo: FloatArray, hi: FloatArray) -> tuple[FloatArray, FloatArray]:
         """min and max of f over n in [lo, hi] (arrays of integers)."""
@@ -221,16 +224,6 @@ def point_values(
     return out
 
 
-def _thickness(lo: Arrays, hi: Arrays, same: bool) -> tuple[FloatArray, FloatArray]:
-    """Bounds of t_d = W1 c1 + W2 c2 over boxes (increasing in W, decreasing in alpha)."""
-    if same:
-        return 2.0 * _height(lo["W1"], hi["a1"]), 2.0 * _height(hi["W1"], lo["a1"])
-    return (
-        _height(lo["W1"], hi["a1"]) + _height(lo["W2"], hi["a2"]),
-        _height(hi["W1"], lo["a1"]) + _height(hi["W2"], lo["a2"]),
-    )
-
-
 def _same_layers(c1: Candidate, c2: Candidate, x: Arrays) -> bool:
     """Whether layer 2's coordinates are layer 1's (identical layers: the same arrays)."""
     return (
@@ -240,16 +233,23 @@ def _same_layers(c1: Candidate, c2: Candidate, x: Arrays) -> bool:
     )
 
 
-def _extent(n: FloatArray, W: FloatArray, a: FloatArray) -> FloatArray:
-    return np.asarray(LayerArrays(0, 0, 0, W, n, a, 0).chord_extent())
+@dataclass(frozen=True, slots=True)
+class _Corner:
+    """One layer at one corner of the boxes, computed as :func:`corrugate.analysis.evaluate`
+    does (sin and cos of alpha/2 once): W (mm), cos(alpha/2), pitch W sin(alpha/2) and chord
+    extent (n + 1) p (mm)."""
+
+    W: FloatArray
+    c: FloatArray
+    p: FloatArray
+    extent: FloatArray
 
 
-def _height(W: FloatArray, a: FloatArray) -> FloatArray:
-    return np.asarray(LayerArrays(0, 0, 0, W, 0, a, 0).height())
-
-
-def _pitch(W: FloatArray, a: FloatArray) -> FloatArray:
-    return np.asarray(LayerArrays(0, 0, 0, W, 0, a, 0).pitch())
+def _corner(b: Arrays, i: int) -> _Corner:
+    half = np.asarray(b[f"a{i}"], dtype=np.float64) * (np.pi / 360.0)
+    W = np.asarray(b[f"W{i}"], dtype=np.float64)
+    p = W * np.sin(half)
+    return _Corner(W, np.cos(half), p, (np.asarray(b[f"n{i}"], dtype=np.float64) + 1.0) * p)
 
 
 def box_bounds(
@@ -261,52 +261,60 @@ def box_bounds(
     tables: Tables,
     quantities: set[str],
 ) -> Bounds:
-    """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi]."""
+    """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi] (``lo is hi``:
+    the values at points, each computed once)."""
     lay = problem.layout
-    same = _same_layers(c1, c2, lo) and _same_layers(c1, c2, hi)
-    Lx_lo, Lx_hi = _extent(lo["n1"], lo["W1"], lo["a1"]), _extent(hi["n1"], hi["W1"], hi["a1"])
-    if same:
-        Ly_lo, Ly_hi = Lx_lo, Lx_hi
-    else:
-        Ly_lo, Ly_hi = _extent(lo["n2"], lo["W2"], lo["a2"]), _extent(hi["n2"], hi["W2"], hi["a2"])
+    point = lo is hi
+    same = _same_layers(c1, c2, lo) and (point or _same_layers(c1, c2, hi))
+    # each layer at the lower and the upper corner (the same objects for points or the same layer)
+    g1_lo = _corner(lo, 1)
+    g1_hi = g1_lo if point else _corner(hi, 1)
+    g2_lo = g1_lo if same else _corner(lo, 2)
+    g2_hi = g1_hi if same else (g2_lo if point else _corner(hi, 2))
+    Lx_lo, Lx_hi = g1_lo.extent, g1_hi.extent
+    Ly_lo, Ly_hi = g2_lo.extent, g2_hi.extent
     out: Bounds = {"Lx": (Lx_lo, Lx_hi), "Ly": (Ly_lo, Ly_hi)}
-    if "thickness" in quantities:
-        out["thickness"] = _thickness(lo, hi, same)
+    if "thickness" in quantities or "mass" in quantities:
+        # t_d = W1 c1 + W2 c2 grows with W and falls with alpha: W low with alpha high, and back
+        if same:
+            td_lo = 2.0 * (g1_lo.W * g1_hi.c)
+            td_hi = td_lo if point else 2.0 * (g1_hi.W * g1_lo.c)
+        else:
+            td_lo = g1_lo.W * g1_hi.c + g2_lo.W * g2_hi.c
+            td_hi = td_lo if point else g1_hi.W * g1_lo.c + g2_hi.W * g2_lo.c
+        out["thickness"] = (td_lo, td_hi)
     if "flat" in quantities:
-        out["flat"] = (
-            np.maximum((lo["n1"] + 1) * lo["W1"], (lo["n2"] + 1) * lo["W2"]),
-            np.maximum((hi["n1"] + 1) * hi["W1"], (hi["n2"] + 1) * hi["W2"]),
+        flat_lo = np.maximum((lo["n1"] + 1) * lo["W1"], (lo["n2"] + 1) * lo["W2"])
+        flat_hi = (
+            flat_lo if point else np.maximum((hi["n1"] + 1) * hi["W1"], (hi["n2"] + 1) * hi["W2"])
         )
+        out["flat"] = (flat_lo, flat_hi)
     if "facet" in quantities:
         f1 = tables.Fx.bounds(lo["n1"], hi["n1"])
         f2 = tables.Fy.bounds(lo["n2"], hi["n2"])
-        out["facet"] = (
-            np.maximum(f1[0] * Ly_lo, f2[0] * Lx_lo),
-            np.maximum(f1[1] * Ly_hi, f2[1] * Lx_hi),
-        )
+        facet_lo = np.maximum(f1[0] * Ly_lo, f2[0] * Lx_lo)
+        facet_hi = facet_lo if point else np.maximum(f1[1] * Ly_hi, f2[1] * Lx_hi)
+        out["facet"] = (facet_lo, facet_hi)
     if "mass" in quantities:
 
-        def mass(b: Arrays, Lx: FloatArray, Ly: FloatArray) -> FloatArray:
+        def mass(b: Arrays, g1: _Corner, g2: _Corner, td: FloatArray) -> FloatArray:
             # holes remove rho t A_h / s(alpha) per layer, most at the box's lowest alpha: the
-            # corner's own pitch gives the bound on the same side as its blank
-            p1 = _pitch(b["W1"], b["a1"])
+            # corner's own pitch gives the bound on the same side as its blank.
+            # The band (cut from layer 1's sheet) grows with Lx, Ly and t_d (corrugate.pattern.
+            # connectors), so its bounds are its values at those quantities' own bounds.
+            band = connector_mass(c1.material.density, c1.t, lay, g1.extent, g2.extent, td)
             m1 = layer_mass(
-                c1.material.density, c1.t, b["W1"], length_sum(lay, b["n1"], Ly), lay, p1
+                c1.material.density, c1.t, g1.W, length_sum(lay, b["n1"], g2.extent), lay, g1.p
             )
             if same:  # the same layer twice (x + x = 2 x exactly, as evaluate does)
-                return np.asarray(2.0 * m1)
-            p2 = _pitch(b["W2"], b["a2"])
+                return np.asarray(2.0 * m1 + band)
             m2 = layer_mass(
-                c2.material.density, c2.t, b["W2"], length_sum(lay, b["n2"], Lx), lay, p2
+                c2.material.density, c2.t, g2.W, length_sum(lay, b["n2"], g1.extent), lay, g2.p
             )
-            return np.asarray(m1 + m2)
+            return np.asarray(m1 + m2 + band)
 
-        # The band (cut from layer 1's sheet) grows with Lx, Ly and t_d (corrugate.pattern.
-        # connectors), so its bounds are its values at those quantities' own bounds.
-        td_lo, td_hi = out["thickness"] if "thickness" in out else _thickness(lo, hi, same)
-        band_lo = connector_mass(c1.material.density, c1.t, lay, Lx_lo, Ly_lo, td_lo)
-        band_hi = connector_mass(c1.material.density, c1.t, lay, Lx_hi, Ly_hi, td_hi)
-        out["mass"] = (mass(lo, Lx_lo, Ly_lo) + band_lo, mass(hi, Lx_hi, Ly_hi) + band_hi)
+        mass_lo = mass(lo, g1_lo, g2_lo, td_lo)
+        out["mass"] = (mass_lo, mass_lo if point else mass(hi, g1_hi, g2_hi, td_hi))
     stiff = sorted(q for q in quantities if "@" in q)
     if stiff:
         out.update(_stiffness_bounds(problem, c1, c2, lo, hi, tables, out, stiff))
@@ -334,7 +342,7 @@ def _layer_springs(
     a: tuple[FloatArray, FloatArray],
     S: tuple[FloatArray, FloatArray],
     Q: RangeTable,
-    Fmin: RangeTable,
+    tables: Tables,
     axis: str,
 ) -> _Springs:
     """K_C, K_S, D_C, D_S (DESIGN.md 3.2) and the shear and twisting springs K_T, D_T
@@ -361,6 +369,7 @@ def _layer_springs(
     if problem.layout.holes:
         p_lo = np.asarray(W[0] * np.sin(np.radians(a[0]) / 2))
         p_hi = np.asarray(W[1] * np.sin(np.radians(a[1]) / 2))
+        Fmin = tables.Fmin_x if axis == "x" else tables.Fmin_y  # built only with holes
         pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
     K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), sh, pq_par)
     return _Springs(
@@ -513,7 +522,7 @@ def _stiffness_bounds(
         (lo["a1"], hi["a1"]),
         Ly,
         tables.Qx,
-        tables.Fmin_x,
+        tables,
         "x",
     )
     if (
@@ -533,7 +542,7 @@ def _stiffness_bounds(
             (lo["a2"], hi["a2"]),
             Lx,
             tables.Qy,
-            tables.Fmin_y,
+            tables,
             "y",
         )
     out: Bounds = {}

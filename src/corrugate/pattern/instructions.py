@@ -55,25 +55,33 @@ def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
 
 def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
     """The assembly figure: the cut parts, then the folded layers, band and finished panel."""
+    from matplotlib.collections import LineCollection
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     fig = new_figure((11, 8.5), dpi=110)
     ax0 = fig.add_subplot(2, 2, 1)
     x0 = 0.0
+    shift = np.zeros(2)
+    # one collection per colour (outlines, then each role), not one Line2D per line
+    rings: list[Any] = []
+    lines: dict[str, list[Any]] = {}
     for part in pattern.parts:
         o = np.asarray(part.outline)
         w = o[:, 0].max() - o[:, 0].min()
-        closed = np.vstack([o, o[:1]])
-        ax0.plot(closed[:, 0] + x0, closed[:, 1], color="black", lw=0.6)
+        shift[0] = x0
+        rings.append(np.vstack([o, o[:1]]) + shift)
         for hole in part.holes:
             h = np.asarray(hole)
-            ax0.plot(np.append(h[:, 0], h[0, 0]) + x0, np.append(h[:, 1], h[0, 1]), "k", lw=0.6)
+            rings.append(np.vstack([h, h[:1]]) + shift)
         for ln in part.lines:
-            ax0.plot(
-                [ln.a[0] + x0, ln.b[0] + x0], [ln.a[1], ln.b[1]], color=_COLOURS[ln.role], lw=0.5
-            )
+            seg = ((ln.a[0] + x0, ln.a[1]), (ln.b[0] + x0, ln.b[1]))
+            lines.setdefault(_COLOURS[ln.role], []).append(seg)
         ax0.text(x0 + w / 2, o[:, 1].max() + 3, part.name, ha="center", fontsize=7)
         x0 += w + 6
+    ax0.add_collection(LineCollection(rings, colors="black", linewidths=0.6))
+    for colour, segs in lines.items():
+        ax0.add_collection(LineCollection(segs, colors=colour, linewidths=0.5))
+    ax0.autoscale_view()
     ax0.set_aspect("equal")
     ax0.set_title("1. cut (black), mountain red, valley blue, marks magenta", fontsize=9)
     ax0.axis("off")
