@@ -188,3 +188,20 @@ ANGLE = "ANGLE"  # '84', '84deg', '1.47 rad'
 LAYOUTS = "[square|rectangle|circle|polygon]"
 MODEL_CHOICES = "[paper|xia|refined]"
 FOLD_STYLES = "[solid|scored|perforated]"
+
+Layout = Annotated[
+    str,
+    Opt(
+        metavar=LAYOUTS,
+        autocompletion=complete_layouts,
+        help="Outline: square | rectangle | circle | polygon.",
+    ),
+]
+Model = Annotated[
+    str,
+    Opt(
+        metavar=MODEL_CHOICES,
+        autocompletion=complete_models,
+        help="Moduli variant: paper | xia | refined (the one design.json records).",
+    ),
+]

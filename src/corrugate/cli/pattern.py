@@ -33,24 +33,10 @@ def pattern_cmd(
     alpha2: o.Alpha2 = None,
     material2: o.Material2 = None,
     thickness2: o.Thickness2 = None,
-    layout: Annotated[
-        str,
-        Opt(
-            metavar=o.LAYOUTS,
-            autocompletion=o.complete_layouts,
-            help="Outline: square | rectangle | circle | polygon.",
-        ),
-    ] = "square",
+    layout: o.Layout = "square",
     vertices: o.Vertices = None,
     holes: o.Holes = None,
-    model: Annotated[
-        str,
-        Opt(
-            metavar=o.MODEL_CHOICES,
-            autocompletion=o.complete_models,
-            help="Moduli variant for design.json.",
-        ),
-    ] = DEFAULT_MODEL,
+    model: o.Model = DEFAULT_MODEL,
     support: o.SupportOpt = "free",
     cutter: o.Machine = "cameo4-12x12",
     labels: o.Labels = None,
