@@ -104,6 +104,22 @@ def _pixels(canvas: Any) -> np.ndarray:
     return matplotlib.image.imread(io.BytesIO(canvas.screenshot()), format="png")[..., :3]
 
 
+def _clear_border(image: Any, inset: int = 6, width: int = 4) -> bool:
+    """Whether a band ``width`` pixels wide, ``inset`` pixels inside the edge of an RGB image
+    (values 0-1), is all background (the colour at the band's top-left corner): nothing drawn is
+    cut off by the canvas edge. The inset skips the container's rounded border."""
+    a, b = inset, inset + width
+    band = np.concatenate(
+        [
+            image[a:b, a:-a].reshape(-1, 3),
+            image[-b:-a, a:-a].reshape(-1, 3),
+            image[a:-a, a:b].reshape(-1, 3),
+            image[a:-a, -b:-a].reshape(-1, 3),
+        ]
+    )
+    return bool(np.abs(band - image[a, a]).max() < 0.05)
+
+
 def test_layers_in_colours_exploded_view_and_cut_files_from_the_analyse_tab(
     browser: Any,  # noqa: F811
     live_server: str,
@@ -140,6 +156,7 @@ def test_layers_in_colours_exploded_view_and_cut_files_from_the_analyse_tab(
     assert np.abs(exploded - before).max() > 0.2  # the picture changed
     flat = exploded.reshape(-1, 3)  # the exploded view shows layer 1, blue, below the band
     assert ((flat[:, 2] - flat[:, 0]) > 0.15).sum() > 100
+    assert _clear_border(before) and _clear_border(exploded)  # the whole model stays in view
     page.click("#explode")
     assert page.get_attribute("#view3d", "data-exploded") == "false"
 

@@ -260,7 +260,27 @@ class Viewer {
     this.exploded = on;
     (this.parts || []).forEach((o, i) => { o.position.z = on ? this.offsets[i] * this.gap : 0; });
     this.container.dataset.exploded = String(on);
+    if (this.model) this.fit(true);  // the exploded model is taller: keep all of it in view
     this.render();
+  }
+
+  // Aim at the model's bounding box from a distance that keeps all of it in view; keepDirection
+  // keeps the direction the user has turned the camera to (else the default oblique view).
+  fit(keepDirection) {
+    const box = new THREE.Box3().setFromObject(this.model);
+    const center = box.getCenter(new THREE.Vector3());
+    const size = box.getSize(new THREE.Vector3()).length() || 1;
+    const oblique = new THREE.Vector3(0.7, -1.0, 0.8);
+    const away = keepDirection && this.fitted
+      ? this.camera.position.clone().sub(this.controls.target)
+      : oblique.clone();
+    this.camera.near = size / 100;
+    this.camera.far = size * 100;
+    this.camera.position.copy(center).add(away.normalize().multiplyScalar(size * oblique.length()));
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(center);
+    this.controls.update();
+    this.fitted = true;
   }
 
   async show(url) {
@@ -298,16 +318,8 @@ class Viewer {
     });
     this.container.dataset.parts = parts.map((o) => o.name.replace(/_/g, ' ')).join(',');
     this.container.dataset.colors = parts.map((o) => `#${o.material.color.getHexString()}`).join(',');
+    this.fitted = false;  // a new model: the default oblique view
     this.setExploded(this.exploded || false);
-    const center = box.getCenter(new THREE.Vector3());
-    const size = box.getSize(new THREE.Vector3()).length() || 1;
-    this.camera.near = size / 100;
-    this.camera.far = size * 100;
-    this.camera.position.copy(center).add(new THREE.Vector3(0.7, -1.0, 0.8).multiplyScalar(size));
-    this.camera.updateProjectionMatrix();
-    this.controls.target.copy(center);
-    this.controls.update();
-    this.render();
     return triangles;
   }
 }
