@@ -1,4 +1,5 @@
-"""Shared fixtures: where the project's reference data lives (``../shared/reference``)."""
+"""Shared fixtures: where the project's reference data lives (``../shared/reference``), the CalculiX
+executable, and the command line run in-process."""
 
 from __future__ import annotations
 
@@ -25,6 +26,20 @@ def reference() -> Path:
     if not path.is_dir():
         pytest.fail(f"reference data not found at {path} (set CORRUGATE_REFERENCE)")
     return path
+
+
+@pytest.fixture(scope="session")
+def ccx() -> str:
+    """The CalculiX executable; a test that needs it skips without it, except on CI
+    (``CI=true``), where it fails: there the finite-element tests must run."""
+    from corrugate.fea.ccx import SolverNotFoundError, find_ccx
+
+    try:
+        return find_ccx()
+    except SolverNotFoundError as exc:
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"CI=true and CalculiX is missing: {exc}")
+        pytest.skip(f"CalculiX not installed: {exc}")
 
 
 CliRun = Callable[[list[str]], tuple[int, str, str]]

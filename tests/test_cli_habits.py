@@ -231,20 +231,6 @@ def test_d4_legend_under_a_table_with_a_d4_row() -> None:
     assert "D4:" not in buffer.getvalue()
 
 
-@pytest.fixture
-def ccx() -> str:
-    import os
-
-    from corrugate.fea.ccx import SolverNotFoundError, find_ccx
-
-    try:
-        return find_ccx()
-    except SolverNotFoundError as exc:
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"CI=true and CalculiX is missing: {exc}")
-        pytest.skip(f"CalculiX not installed: {exc}")
-
-
 FE_SMALL = ["validate", "--W", "5", "--n", "3", "--alpha", "120", "--thickness", "0.1"]
 FE_SMALL += ["--mesh", "2", "--cell-mesh", "10x1"]
 

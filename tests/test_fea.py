@@ -9,7 +9,6 @@ from __future__ import annotations
 import csv
 import json
 import math
-import os
 import subprocess
 import sys
 from concurrent.futures import ThreadPoolExecutor
@@ -35,16 +34,6 @@ if TYPE_CHECKING:
     from conftest import CliRun
 
 REFERENCE = Path(__file__).resolve().parents[1] / "docs" / "data" / "unitcell_fe.csv"
-
-
-@pytest.fixture(scope="module")
-def ccx() -> str:
-    try:
-        return find_ccx()
-    except SolverNotFoundError as exc:
-        if os.environ.get("CI") == "true":
-            pytest.fail(f"CI=true and CalculiX is missing: {exc}")
-        pytest.skip(f"CalculiX not installed: {exc}")
 
 
 def test_parse_dat_reads_tables_of_several_steps() -> None:

@@ -442,17 +442,12 @@ def test_options_and_web_api_take_holes() -> None:
 # -- finite elements -------------------------------------------------------------------------------
 
 
-def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole() -> None:
+def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole(ccx: str) -> None:
     """Square, W 8, n 8, alpha 84 deg (the case study), in-plane compression at eta = 0: the FE
     (CalculiX, staircase hole) K with a 6 mm central hole is below the FE K without it and above
     the model's (which drops the 3 facets the hole touches from the parallel sum: conservative)."""
     from corrugate.fea.assembly import AssemblyMesh, assembly_deck, solve_assembly
-    from corrugate.fea.ccx import SolverNotFoundError, find_ccx
 
-    try:
-        find_ccx()
-    except SolverNotFoundError:
-        pytest.skip("CalculiX (ccx) not installed")
     layer = Layer(8.0, 8, 84.0, DURALAR)
     plain = Assembly.identical(layer, make_layout("square"))
     holed = Assembly.identical(layer, make_layout("square", holes=(AXLE,)))
