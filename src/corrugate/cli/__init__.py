@@ -55,15 +55,17 @@ EXIT_CODES = (
     "3 a bug (one line; please report it)."
 )
 
+_MARKUP = _help_markup()
+
 app = typer.Typer(
     name="corrugate",
-    rich_markup_mode=_help_markup(),
+    rich_markup_mode=_MARKUP,
     help="Design orthogonally assembled double-layered corrugated (OADLC) stiffening panels.",
     no_args_is_help=True,
     add_completion=True,
     pretty_exceptions_enable=False,
     epilog=EXIT_CODES,
-    context_settings=_PLAIN_HELP_WIDTH if _help_markup() is None else {},
+    context_settings=_PLAIN_HELP_WIDTH if _MARKUP is None else {},
 )
 
 
