@@ -10,13 +10,13 @@ and gmsh (the ``fea`` extra). About 15 minutes for 2, 4, 8 elements per facet on
 
 from __future__ import annotations
 
-import csv
 import math
 import sys
 import time
 from pathlib import Path
 
 from corrugate import Assembly, Layer, get_material
+from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
 CSV = OUT / "off_axis_fe.csv"
@@ -41,23 +41,11 @@ def designs() -> dict[str, Assembly]:
     }
 
 
-def _done() -> set[tuple[str, str, str, str]]:
-    if not CSV.exists():
-        return set()
-    with CSV.open() as f:
-        return {(r["design"], r["eta_deg"], r["test"], r["along"]) for r in csv.DictReader(f)}
-
-
 def run(alongs: tuple[int, ...], etas: tuple[float, ...] = ETAS) -> None:
     from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 
-    OUT.mkdir(parents=True, exist_ok=True)
-    done = _done()
-    new = not CSV.exists()
-    with CSV.open("a", newline="") as f:
-        w = csv.DictWriter(f, FIELDS)
-        if new:
-            w.writeheader()
+    done = done_keys(CSV, ("design", "eta_deg", "test", "along"))
+    with appender(CSV, FIELDS) as write:
         for along in alongs:
             for name, a in designs().items():
                 for eta in etas:
@@ -70,16 +58,7 @@ def run(alongs: tuple[int, ...], etas: tuple[float, ...] = ETAS) -> None:
                         t0 = time.perf_counter()
                         r = solve_assembly(a, test, AssemblyMesh(along), eta)  # type: ignore[arg-type]
                         s = time.perf_counter() - t0
-                        w.writerow(
-                            dict(
-                                zip(
-                                    FIELDS,
-                                    (*key[:3], along, r.nodes, f"{r.value():.8g}", f"{s:.1f}"),
-                                    strict=True,
-                                )
-                            )
-                        )
-                        f.flush()
+                        write((*key[:3], along, r.nodes, f"{r.value():.8g}", f"{s:.1f}"))
                         print(*key, f"{r.value():.5g}", f"{s:.0f} s", flush=True)
 
 

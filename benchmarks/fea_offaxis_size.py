@@ -13,11 +13,11 @@ Needs ccx and gmsh. Slow: minutes per run at 8 elements per facet for n = 16.
 from __future__ import annotations
 
 import argparse
-import csv
 import time
 from pathlib import Path
 
 from corrugate import Assembly, Layer, analyze, get_material
+from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
 
 FIELDS = ("n", "eta_deg", "along", "nodes", "K_FE", "K_model", "seconds")
 
@@ -32,19 +32,11 @@ def main() -> None:
     from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 
     dl = get_material("dura-lar")
-    done: set[tuple[str, str, str]] = set()
-    if a.csv.exists():
-        with a.csv.open() as f:
-            done = {(r["n"], r["eta_deg"], r["along"]) for r in csv.DictReader(f)}
-    new = not a.csv.exists()
-    with a.csv.open("a", newline="") as f:
-        w = csv.DictWriter(f, FIELDS)
-        if new:
-            w.writeheader()
+    done = done_keys(a.csv, ("n", "eta_deg", "along"))
+    with appender(a.csv, FIELDS) as write:
         for along in (int(v) for v in a.along.split(",")):
             for n in (int(v) for v in a.n.split(",")):
-                key = (str(n), f"{a.eta:g}", str(along))
-                if key in done:
+                if (str(n), f"{a.eta:g}", str(along)) in done:
                     continue
                 asm = Assembly.identical(Layer(W=8.0, n=n, alpha_deg=84.0, material=dl))
                 model = float(analyze(asm, eta_deg=(a.eta,)).stiffness[0].K)
@@ -60,8 +52,7 @@ def main() -> None:
                     f"{model:.6g}",
                     f"{s:.0f}",
                 )
-                w.writerow(dict(zip(FIELDS, row, strict=True)))
-                f.flush()
+                write(row)
                 print(*row, flush=True)
 
 
