@@ -15,7 +15,7 @@ import typer
 
 from ..errors import InputError
 from . import options as o
-from .console import make_console
+from .console import fmt, make_console
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -24,10 +24,6 @@ if TYPE_CHECKING:
     from ..design.pareto import ParetoFront
 
 __all__ = ["COMMANDS", "design_cmd", "pareto_cmd", "tolerance_cmd"]
-
-
-def _fmt(x: float | None, digits: int = 5) -> str:
-    return "-" if x is None else f"{x:.{digits}g}"
 
 
 def _print_solution(sol: Solution, console: Console, tightened: bool = False) -> None:
@@ -61,10 +57,10 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         t.add_row(
             str(i + 1),
             layer.material.id,
-            _fmt(layer.t),
-            _fmt(layer.W, 6),
+            fmt(layer.t, 5),
+            fmt(layer.W, 6),
             str(layer.n),
-            _fmt(layer.alpha_deg, 6),
+            fmt(layer.alpha_deg, 6),
         )
     console.print(t)
     a = sol.assembly
@@ -76,7 +72,9 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
     for col in ("eta deg", "K N/mm", "D N mm", "EI N mm^2", "EI mN m^2"):
         s.add_column(col, justify="right")
     for st in sol.analysis.stiffness:
-        s.add_row(_fmt(st.eta_deg), _fmt(st.K), _fmt(st.D), _fmt(st.EI), f"{st.EI / 1000:.2f}")
+        s.add_row(
+            fmt(st.eta_deg, 5), fmt(st.K, 5), fmt(st.D, 5), fmt(st.EI, 5), f"{st.EI / 1000:.2f}"
+        )
     console.print(s)
     c = Table(
         title="constraints (binding: relaxing it alone allows a better design)",
@@ -88,9 +86,9 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         op = ">=" if r.sense == "min" else "<="
         c.add_row(
             r.name,
-            _fmt(r.value),
-            f"{op} {_fmt(r.bound)}",
-            _fmt(r.margin, 3),
+            fmt(r.value, 5),
+            f"{op} {fmt(r.bound, 5)}",
+            fmt(r.margin, 3),
             r.unit,
             "yes" if r.binding else ("?" if r.binding is None else "no"),
         )
@@ -107,9 +105,9 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
             mark = " *" if ru.objective == sol.objective else ""
             u.add_row(
                 str(ru.n),
-                _fmt(float(lay["W_mm"]), 6),  # type: ignore[arg-type]
-                _fmt(float(lay["alpha_deg"]), 6),  # type: ignore[arg-type]
-                _fmt(ru.objective, 6) + mark,
+                fmt(float(lay["W_mm"]), 6),  # type: ignore[arg-type]
+                fmt(float(lay["alpha_deg"]), 6),  # type: ignore[arg-type]
+                fmt(ru.objective, 6) + mark,
             )
         console.print(u)
     for w in sol.warnings:
@@ -418,7 +416,7 @@ def tolerance_cmd(
         t.add_column(col, justify="right")
     for s in report.stats:
         t.add_row(
-            s.quantity, s.unit, *(_fmt(v) for v in (s.nominal, s.mean, s.sd, s.q05, s.q50, s.q95))
+            s.quantity, s.unit, *(fmt(v, 5) for v in (s.nominal, s.mean, s.sd, s.q05, s.q50, s.q95))
         )
     console.print(t)
     c = Table(title="probability that each constraint holds", title_justify="left")
