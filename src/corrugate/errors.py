@@ -11,6 +11,7 @@ from typing import Any
 __all__ = [
     "CorrugateError",
     "InputError",
+    "MissingExtraError",
     "OutputError",
     "ResultError",
     "UnknownNameError",
@@ -83,6 +84,28 @@ class OutputError(CorrugateError, OSError):
         self.path = path
         super().__init__(
             f"{field} = {path!s} cannot be written ({reason}): allowed a writable folder"
+        )
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+class MissingExtraError(CorrugateError, ImportError):
+    """Something was asked for that needs an optional extra which is not installed.
+
+    The message names what was asked for, the extra, the modules missing and the command that
+    installs them, e.g. ``writing a design's files needs the 'fab' extra (matplotlib is missing): pip
+    install 'corrugate[fab]'``.
+    """
+
+    def __init__(self, what: str, extra: str, missing: tuple[str, ...] | list[str]):
+        self.what = what
+        self.extra = extra
+        self.missing = tuple(missing)
+        verb = "is" if len(self.missing) == 1 else "are"
+        super().__init__(
+            f"{what} needs the '{extra}' extra ({', '.join(self.missing)} {verb} missing): "
+            f"pip install 'corrugate[{extra}]'"
         )
 
     def __str__(self) -> str:

@@ -53,8 +53,12 @@ def output_options(
     ``letter`` (see :class:`~corrugate.outputs.OutputOptions`). A bad value raises an
     :class:`InputError` naming ``cutter``, ``fold-line style``, ``cut``, ``gap``, ``spacing``,
     ``margin``, ``tab-depth`` or ``paper``; ``names`` maps those to the caller's own names
-    (the web app's ``fold_style``, ``tab_depth``).
+    (the web app's ``fold_style``, ``tab_depth``). Without the ``fab`` extra it raises
+    :class:`~corrugate.errors.MissingExtraError` first.
     """
+    from .extras import require_extra
+
+    require_extra("fab", "writing a design's files")  # before any work (or input check) is done
     from .export.machines import get_machine
     from .export.pdf import check_paper
     from .outputs import OutputOptions

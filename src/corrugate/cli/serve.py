@@ -10,8 +10,6 @@ from typing import Annotated
 
 import typer
 
-from ..errors import CorrugateError
-
 __all__ = ["COMMANDS", "LOOPBACK_HOSTS", "serve_cmd"]
 
 #: Hosts that only this machine can reach.
@@ -34,16 +32,15 @@ def serve_cmd(
 
     Example: corrugate serve --port 8000
     """
-    try:
-        import uvicorn
+    from ..extras import require_extra
 
-        from ..web import WebSettings, create_app
-        from ..web.app import LOOPBACK_NAMES
-    except ImportError as exc:
-        raise CorrugateError(
-            f"the web app needs the 'web' extra ({exc.name} is missing): "
-            "pip install 'corrugate[web]'"
-        ) from None
+    require_extra("web", "the web app")
+    require_extra("fab", "the web app's files")
+    import uvicorn
+
+    from ..web import WebSettings, create_app
+    from ..web.app import LOOPBACK_NAMES
+
     loopback = host in LOOPBACK_HOSTS
     if not loopback:
         typer.echo(
