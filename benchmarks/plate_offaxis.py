@@ -18,7 +18,10 @@ deflections, exact for a statically determinate Timoshenko beam): w_b carries th
 energy, w_s the energy S_s (dw_s/ds)^2 / 2 with S_s = G t cos^2(alpha/2) / sin(alpha/2) per unit
 width (the facets as inclined webs, derived, not fitted) and S_c = S_s / 100 across the creases.
 
-Findings (run 2026-11-29, see the closing note of the off-axis issue). Kirchhoff (8 16 32): 1.04x
+Findings (run 2026-12-01, ``16 32 64``, 9 min): plate/FE at 0, 15, 30, 45, 60, 75 deg: case study
+1.123, 1.044, 0.808, 1.950, 0.803, 1.039; alpha 40: 1.371, 1.216, 1.075, 3.039, 1.067, 1.206;
+differing layers: 1.123, 1.044, 0.808, 2.856, 1.052, 1.189 (docs/offaxis.md, "Why no homogenised
+model can meet the issue's targets"). Earlier run (2026-11-29). Kirchhoff (8 16 32): 1.04x
 the FE at 15 deg and 0.80x at 30 deg for the case study, but 1.9x (case study), 2.3x (alpha 40,
 still falling with the mesh) and 2.8x (differing layers) at 45 deg. With ``--shear 8 16``: 0.96,
 0.76, 1.8 (case study at 15, 30, 45 deg), 1.02, 0.97, 3.5 (alpha 40), and 1.04 / 1.16 at 0 deg
