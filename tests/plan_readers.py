@@ -7,7 +7,7 @@ import xml.etree.ElementTree as ET
 from html.parser import HTMLParser
 from pathlib import Path
 
-__all__ = ["Tables", "sheet_rows", "svg_parts"]
+__all__ = ["Tables", "sheet_rows", "svg_mm_per_unit", "svg_parts"]
 
 
 class Tables(HTMLParser):
@@ -48,6 +48,14 @@ def sheet_rows(text: str) -> list[tuple[int, str, float, float]]:
     return [(int(r[0]), r[1], float(r[2]), float(r[3])) for r in table[1:]]
 
 
+def svg_mm_per_unit(root: ET.Element) -> float:
+    """An SVG document's user unit in mm: its width (``...mm``) over its viewBox width (the fold
+    maps use 0.01 mm units, the cut files 1 mm: a reader must not assume either)."""
+    width = root.attrib["width"]
+    assert width.endswith("mm"), width
+    return float(width[:-2]) / float(root.attrib["viewBox"].split()[2])
+
+
 def svg_parts(
     folder: Path,
 ) -> tuple[list[tuple[int, str, float, float]], list[tuple[float, float]]]:
@@ -59,14 +67,15 @@ def svg_parts(
     k = 1
     while (folder / f"sheet-{k}.svg").exists():
         root = ET.parse(folder / f"sheet-{k}.svg").getroot()
-        _, _, w, h = (float(v) for v in root.attrib["viewBox"].split())
+        u = svg_mm_per_unit(root)
+        _, _, w, h = (u * float(v) for v in root.attrib["viewBox"].split())
         sizes.append((w, h))
         for g in root.iter(f"{ns}g"):
             name = g.attrib.get("data-part")
             if name is None:
                 continue
             pts = [
-                tuple(float(c) for c in pair.split(","))
+                tuple(u * float(c) for c in pair.split(","))
                 for el in g
                 if el.attrib.get("stroke") == "#000000" and "points" in el.attrib
                 for pair in el.attrib["points"].split()

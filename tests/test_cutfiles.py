@@ -35,6 +35,7 @@ from corrugate.pattern.build import build_pattern
 from corrugate.pattern.linestyle import SOLID, LineStyle, dash_layout, line_style
 from corrugate.pattern.model import Pattern, Point, Role
 from corrugate.pattern.sheets import SheetPlan, place, plan_sheets
+from plan_readers import svg_mm_per_unit
 
 if TYPE_CHECKING:
     from conftest import CliRun
@@ -418,10 +419,11 @@ def drawn_extent(path: Path) -> tuple[float, float, float, float]:
     if path.name.startswith("cut-"):
         return extent(paths_of(path))
     root = ET.parse(path).getroot()  # fold map: polygons and lines
-    H = float(root.attrib["viewBox"].split()[3])
+    u = svg_mm_per_unit(root)
+    H = u * float(root.attrib["viewBox"].split()[3])
     pts: list[Point] = []
     for e in root.iter(f"{SVG}polygon"):
-        nums = [float(v) for v in re.split(r"[ ,]+", e.attrib["points"].strip())]
+        nums = [u * float(v) for v in re.split(r"[ ,]+", e.attrib["points"].strip())]
         pts.extend((nums[i], H - nums[i + 1]) for i in range(0, len(nums), 2))
     a = np.array(pts)
     return float(a[:, 0].min()), float(a[:, 1].min()), float(a[:, 0].max()), float(a[:, 1].max())

@@ -26,6 +26,7 @@ from corrugate.pattern.linestyle import (
 )
 from corrugate.pattern.model import Line, Part, Role
 from corrugate.pattern.sheets import PartTooLargeError, SheetPlan, place, plan_sheets
+from plan_readers import svg_mm_per_unit
 
 SVG = "{http://www.w3.org/2000/svg}"
 COLOUR = {
@@ -123,15 +124,24 @@ def test_svg_size_in_mm_matches_viewbox(plan: SheetPlan, tmp_path: Path) -> None
     assert root.tag == f"{SVG}svg"
     w, h = root.attrib["width"], root.attrib["height"]
     assert w.endswith("mm") and h.endswith("mm")
+    assert [float(w[:-2]), float(h[:-2])] == pytest.approx(
+        [plan.sheets[0].width, plan.sheets[0].height], abs=1e-4
+    )
+    # the viewBox has the page's proportions, so the drawing prints at its size in mm
     vb = [float(v) for v in root.attrib["viewBox"].split()]
-    assert vb == pytest.approx([0.0, 0.0, float(w[:-2]), float(h[:-2])])
-    assert vb[2:] == pytest.approx([plan.sheets[0].width, plan.sheets[0].height], abs=1e-4)
+    unit = svg_mm_per_unit(root)
+    assert vb[:2] == [0.0, 0.0]
+    assert [vb[2] * unit, vb[3] * unit] == pytest.approx([float(w[:-2]), float(h[:-2])])
+    # Origami Simulator's SVG import merges vertices closer than 3 user units (its default
+    # vertex merge tolerance, js/globals.js vertTol = 3): that must stay below what a cutter can
+    # tell apart (about 0.1 mm), so no two points of a pattern are merged
+    assert 3 * unit <= 0.05
 
 
 def test_svg_every_crease_once_with_its_colour_and_opacity(plan: SheetPlan, tmp_path: Path) -> None:
     sheet = plan.sheets[0]
     root = ET.parse(write_svg(sheet, tmp_path / "s.svg")).getroot()
-    H = sheet.height
+    H, unit = sheet.height, svg_mm_per_unit(root)
     crease_elems = [e for e in root.iter(f"{SVG}line") if "data-crease" in e.attrib]
     expected = all_creases(plan)
     assert len(crease_elems) == len(expected) == 8 + 8 + 1 + 2 + 2
@@ -143,7 +153,7 @@ def test_svg_every_crease_once_with_its_colour_and_opacity(plan: SheetPlan, tmp_
         assert e.attrib["class"] == f"crease {ln.role.value}"
         assert float(e.attrib["opacity"]) == pytest.approx(ln.fold_angle_deg / 180, abs=1e-6)
         assert float(e.attrib["data-fold-angle"]) == pytest.approx(ln.fold_angle_deg)
-        got = [float(e.attrib[a]) for a in ("x1", "y1", "x2", "y2")]
+        got = [float(e.attrib[a]) * unit for a in ("x1", "y1", "x2", "y2")]
         assert got == pytest.approx([ln.a[0], H - ln.a[1], ln.b[0], H - ln.b[1]], abs=1e-4)
     # colours are plain hex, opacity an attribute: no rgba() anywhere, no stroke-opacity in colour
     text = (tmp_path / "s.svg").read_text()

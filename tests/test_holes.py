@@ -28,6 +28,7 @@ from corrugate.moduli import moduli
 from corrugate.outputs import write_design_files
 from corrugate.pattern.build import build_pattern
 from corrugate.pattern.model import polygon_area
+from plan_readers import svg_mm_per_unit
 
 if TYPE_CHECKING:
     from conftest import CliRun
@@ -193,10 +194,12 @@ def test_solver_bounds_hold_with_holes() -> None:
 def svg_rings(
     path: Path,
 ) -> tuple[list[list[tuple[float, float]]], list[list[tuple[float, float]]]]:
+    """Outline and hole rings of a fold map, in mm."""
     root = ET.parse(path).getroot()
+    u = svg_mm_per_unit(root)
     outlines, holes = [], []
     for poly in root.iter(f"{SVG}polygon"):
-        pts = [tuple(map(float, p.split(","))) for p in poly.attrib["points"].split()]
+        pts = [tuple(u * float(c) for c in p.split(",")) for p in poly.attrib["points"].split()]
         (holes if "hole" in poly.attrib["class"] else outlines).append(pts)
     return outlines, holes  # type: ignore[return-value]
 

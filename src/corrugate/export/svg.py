@@ -1,8 +1,14 @@
 """SVG writer, in millimetres, with the Origami Simulator colour convention (DESIGN.md section 7).
 
-The root has ``width="<W>mm" height="<H>mm" viewBox="0 0 W H"``, so one user unit is 1 mm. The
-sheet's y axis (up) is flipped to SVG's (down) by ``y_svg = H - y``: a rotation-free, mirror-free
-view of the sheet, so mountain and valley keep their meaning. Colours (stroke, ``fill="none"``):
+The root has ``width="<W>mm" height="<H>mm"`` and a viewBox of the same proportions in user
+units of :data:`FOLD_MAP_UNIT_MM` (0.01 mm: ``viewBox="0 0 100W 100H"``), so the drawing prints at
+its size in mm. The small unit is for Origami Simulator: its SVG import merges every two vertices
+closer than 3 user units (its default "vertex merge tolerance", in px), which with 1 mm units
+silently collapsed the creases of any design with W < 3 mm and moved the band's tab slits
+(checked by hand with the app, ``benchmarks/origami_simulator.py``); at 0.01 mm it merges only
+vertices closer than 0.03 mm. The sheet's y axis (up) is flipped to SVG's (down) by
+``y_svg = H - y``: a rotation-free, mirror-free view of the sheet, so mountain and valley keep
+their meaning. Colours (stroke, ``fill="none"``):
 
 ==========================  ===========  ===============================================
 what                        colour       ``opacity`` attribute
@@ -47,6 +53,7 @@ __all__ = [
     "ANNOTATION",
     "BOUNDARY",
     "COLOURS",
+    "FOLD_MAP_UNIT_MM",
     "STROKE_MM",
     "fold_opacity",
     "svg_document",
@@ -70,6 +77,9 @@ COLOURS: dict[Role, str] = {
 ANNOTATION = "#808080"
 #: Stroke width (mm).
 STROKE_MM = 0.25
+#: The fold map's user unit (mm): small enough that Origami Simulator's vertex merging (3 units)
+#: never joins two distinct points of a pattern (module docstring).
+FOLD_MAP_UNIT_MM = 0.01
 
 
 def svg_number(x: float) -> str:
@@ -78,8 +88,8 @@ def svg_number(x: float) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def svg_root(width: float, height: float) -> ET.Element:
-    """An ``<svg>`` element of ``width`` x ``height`` mm whose user unit is 1 mm."""
+def svg_root(width: float, height: float, unit_mm: float = 1.0) -> ET.Element:
+    """An ``<svg>`` element of ``width`` x ``height`` mm whose user unit is ``unit_mm`` mm."""
     return ET.Element(
         "svg",
         {
@@ -87,7 +97,7 @@ def svg_root(width: float, height: float) -> ET.Element:
             "version": "1.1",
             "width": f"{svg_number(width)}mm",
             "height": f"{svg_number(height)}mm",
-            "viewBox": f"0 0 {svg_number(width)} {svg_number(height)}",
+            "viewBox": f"0 0 {svg_number(width / unit_mm)} {svg_number(height / unit_mm)}",
         },
     )
 
@@ -103,8 +113,9 @@ def fold_opacity(fold_angle_deg: float) -> float:
     return min(max(abs(fold_angle_deg) / 180.0, 0.0), 1.0)
 
 
-def _points(ring: tuple[Point, ...], height: float) -> str:
-    return " ".join(f"{svg_number(x)},{svg_number(height - y)}" for x, y in ring)
+def _points(ring: tuple[Point, ...], height: float, unit: float) -> str:
+    """SVG points of ``ring`` (sheet mm, y up) in user units of ``unit`` mm, y down."""
+    return " ".join(f"{svg_number(x / unit)},{svg_number((height - y) / unit)}" for x, y in ring)
 
 
 def svg_document(
@@ -119,10 +130,15 @@ def svg_document(
     """The SVG text of one sheet (see the module docstring for the conventions)."""
     check_style((p.part for p in sheet.placements), style)
     W, H = sheet.width, sheet.height
-    root = svg_root(W, H)
+    u = FOLD_MAP_UNIT_MM
+
+    def num(mm: float) -> str:  # a length in mm, in user units
+        return svg_number(mm / u)
+
+    root = svg_root(W, H, u)
     if title:
         ET.SubElement(root, "title").text = title
-    common = {"fill": "none", "stroke-width": svg_number(STROKE_MM), "stroke-linecap": "butt"}
+    common = {"fill": "none", "stroke-width": num(STROKE_MM), "stroke-linecap": "butt"}
     text_group = ET.Element("g", {"id": "labels"})
     for j, placement in enumerate(sheet.placements):
         placed = place(placement)
@@ -138,7 +154,7 @@ def svg_document(
             "polygon",
             {
                 "class": "boundary outline",
-                "points": _points(placed.outline, H),
+                "points": _points(placed.outline, H, u),
                 "stroke": BOUNDARY,
                 "opacity": "1",
                 **common,
@@ -150,7 +166,7 @@ def svg_document(
                 "polygon",
                 {
                     "class": "boundary hole",
-                    "points": _points(hole, H),
+                    "points": _points(hole, H, u),
                     "stroke": BOUNDARY,
                     "opacity": "1",
                     **common,
@@ -161,10 +177,10 @@ def svg_document(
             if ln.role is Role.MARK and not marks:
                 continue
             attrs = {
-                "x1": svg_number(ln.a[0]),
-                "y1": svg_number(H - ln.a[1]),
-                "x2": svg_number(ln.b[0]),
-                "y2": svg_number(H - ln.b[1]),
+                "x1": num(ln.a[0]),
+                "y1": num(H - ln.a[1]),
+                "x2": num(ln.b[0]),
+                "y2": num(H - ln.b[1]),
                 "stroke": COLOURS[ln.role],
                 **common,
             }
@@ -186,12 +202,12 @@ def svg_document(
             if spot.size < MIN_TEXT_MM:  # too small to read: the part's name only
                 text = prefix + part.name
                 spot = label_spot(placed, text)
-            x, y = svg_number(spot.x), svg_number(H - spot.y)
+            x, y = num(spot.x), num(H - spot.y)
             t_attrs = {
                 "x": x,
                 "y": y,
-                "font-size": svg_number(spot.size),
-                "textLength": svg_number(spot.length),
+                "font-size": num(spot.size),
+                "textLength": num(spot.length),
                 "lengthAdjust": "spacingAndGlyphs",
                 "font-family": "sans-serif",
                 "text-anchor": "middle",
