@@ -254,6 +254,11 @@ def test_axle_hole_in_every_file_and_mass_equals_the_cut_area(tmp_path: Path) ->
         V = np.asarray(fold["vertices_coords"])
         faces = [[tuple(V[k]) for k in f] for f in fold["faces_vertices"]]
         assert sum(polygon_area(f) for f in faces) == pytest.approx(part.area, rel=1e-9)
+        # a valid FOLD mesh: every face a simple polygon (no vertex visited twice), no edge from
+        # a vertex to itself (there were 14 and 20 such edges: one point's v computed twice,
+        # up to 1.4e-14 mm apart, kept twice by the pass that removes T-junctions)
+        assert all(len(set(f)) == len(f) >= 3 for f in fold["faces_vertices"])
+        assert all(u != w for u, w in fold["edges_vertices"])
         hole = np.asarray(part.holes[0])
         c = hole.mean(axis=0)
         for f in faces:

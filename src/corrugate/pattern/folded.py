@@ -168,6 +168,16 @@ def facet_pieces(part: Part, layer: Layer) -> list[tuple[int, list[Point]]]:
     return _no_t_junctions(out)
 
 
+def _distinct(values: list[float], tol: float = 1e-7) -> list[float]:
+    """``values`` sorted, each run of values within ``tol`` (mm) of the run's first kept once:
+    the same point computed twice (a hole's row on both sides of a crease) is one vertex."""
+    out: list[float] = []
+    for v in sorted(values):
+        if not out or v - out[-1] > tol:
+            out.append(v)
+    return out
+
+
 def _no_t_junctions(faces: list[tuple[int, list[Point]]]) -> list[tuple[int, list[Point]]]:
     """Insert into every vertical or horizontal face edge the vertices lying inside it."""
     columns: dict[int, list[float]] = {}
@@ -178,7 +188,7 @@ def _no_t_junctions(faces: list[tuple[int, list[Point]]]) -> list[tuple[int, lis
             rows.setdefault(round(v * 1e6), []).append(u)
     for d in (columns, rows):
         for key in d:
-            d[key] = sorted(set(d[key]))
+            d[key] = _distinct(d[key])
     out = []
     for j, face in faces:
         ring: list[Point] = []
@@ -215,7 +225,12 @@ def fold_document(part: Part, layer: Layer) -> dict[str, object]:
             coords.append(p)
         return index[key]
 
-    faces_vertices = [[vid(p) for p in face] for face in faces]
+    faces_vertices = []
+    for face in faces:  # consecutive points that are one vertex (within 1 nm) are kept once
+        ring = [vid(p) for p in face]
+        ring = [v for i, v in enumerate(ring) if v != ring[i - 1]] if len(set(ring)) > 1 else []
+        if len(ring) >= 3:
+            faces_vertices.append(ring)
     edge_faces: dict[tuple[int, int], int] = {}
     edges: list[tuple[int, int]] = []
     for fv in faces_vertices:
