@@ -15,7 +15,7 @@ import sys
 import time
 from pathlib import Path
 
-from corrugate import Assembly, Layer, get_material
+from corrugate import Assembly, Layer, get_material, make_layout
 from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
@@ -26,18 +26,25 @@ FIELDS = ("design", "eta_deg", "test", "along", "nodes", "value", "seconds")
 
 
 def designs() -> dict[str, Assembly]:
-    """The three designs of the validation: the case study, one at alpha = 40 deg, and one with
-    differing layers (layer 2's alpha solved so that both span the case study's side)."""
+    """The designs of the validation: three squares (the case study, one at alpha = 40 deg, and
+    one with differing layers, layer 2's alpha solved so that both span the case study's side)
+    and a rectangle twice as long as it is wide (the case study's layer 1 across, 18 of its
+    facets along: 48.2 x 96.4 mm), whose coupon has the rectangle's proportions
+    (:func:`corrugate.fea.shells.specimen`)."""
     dl = get_material("dura-lar")
     case = Layer(W=8.0, n=8, alpha_deg=84.0, material=dl)
     deep = Layer(W=10.0, n=10, alpha_deg=40.0, material=dl)
     side = case.chord_extent
     a2 = 2 * math.degrees(math.asin(side / (7 * 10.0)))
     other = Layer(W=10.0, n=6, alpha_deg=a2, material=dl)
+    long = Layer(W=8.0, n=17, alpha_deg=84.0, material=dl)
     return {
         "case study W 8, n 8, alpha 84": Assembly.identical(case),
         "W 10, n 10, alpha 40": Assembly.identical(deep),
         f"layer 1 W 8, n 8, alpha 84; layer 2 W 10, n 6, alpha {a2:.4f}": Assembly(case, other),
+        "rectangle 48.2 x 96.4: layer 1 W 8, n 8, alpha 84; layer 2 W 8, n 17": Assembly(
+            case, long, layout=make_layout("rectangle")
+        ),
     }
 
 

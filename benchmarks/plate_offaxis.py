@@ -152,6 +152,8 @@ def three_point(
 def main(ms: tuple[int, ...], with_shear: bool) -> None:
     fe = _load()
     for name, asm in designs().items():
+        if asm.layout.name == "rectangle":  # the plate coupon here is a square
+            continue
         an = analyze(asm, eta_deg=[0.0])
         s1, s2 = an.springs
         L = an.stiffness[0].span

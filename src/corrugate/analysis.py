@@ -10,7 +10,7 @@ Two entry points share one implementation:
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -20,11 +20,18 @@ from numpy.typing import ArrayLike, NDArray
 from .buckling import BucklingEstimate, buckling_bounds
 from .checks import ModelWarning, design_warnings
 from .errors import InputError
-from .geometry import Assembly, Layer
-from .layouts import Circle, Layout, Rectangle, layer_inverse_sums, length_sum
+from .geometry import Assembly, Layer, crease_layer
+from .layouts import (
+    Circle,
+    Layout,
+    Rectangle,
+    inverse_length_sum,
+    layer_inverse_sums,
+    length_sum,
+)
 from .mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from .moduli import DEFAULT_MODEL, Moduli, ModuliFromSC, get_model
-from .offaxis import Support, assembly_directional, check_support
+from .offaxis import Coupon, Support, assembly_directional, check_support
 from .pattern.options import DEFAULT_FABRICATION, FabricationOptions
 from .springs import LayerSprings, layer_springs
 
@@ -34,6 +41,7 @@ __all__ = [
     "Evaluation",
     "LayerArrays",
     "analyze",
+    "coupon_of",
     "evaluate",
     "facet_buckling_load",
     "identical_layers",
@@ -78,19 +86,36 @@ class LayerArrays:
         return np.asarray((np.asarray(self.n) + 1) * self.pitch())
 
 
+def coupon_of(layout: Layout, Lx: Any, Ly: Any, pq: Callable[[], tuple[Any, Any]]) -> Coupon | None:
+    """How ``layout`` is read off the crease directions under the free support
+    (:class:`corrugate.offaxis.Coupon`): None for a square; a rectangle's coupon from Lx / Ly
+    alone; a circle or polygon from its box and the layers' geometry factors ``pq()`` (called
+    only for them: p sum_j 1/L_j of each layer without holes), capped by its own springs.
+    Arrays and intervals alike."""
+    if isinstance(layout, Rectangle):
+        if layout.equal_sides:
+            return None
+        return Coupon(Lx / Ly, Lx / Ly, Ly / Lx)
+    pq1, pq2 = pq()
+    return Coupon(Lx / Ly, pq1, pq2, capped=True)
+
+
 def directional(
     kind: Literal["K", "D"],
     springs: tuple[LayerSprings, LayerSprings],
     eta_deg: ArrayLike,
     support: Support,
+    coupon: Coupon | None = None,
 ) -> FloatArray:
-    """K or D of the assembly (:func:`corrugate.offaxis.assembly_directional`) broadcast over the
-    springs' arrays and ``eta_deg`` (deg): one evaluation per distinct eta."""
+    """K or D of the assembly (:func:`corrugate.offaxis.assembly_directional`; ``coupon``:
+    :func:`coupon_of`) broadcast over the springs' arrays and ``eta_deg`` (deg): one
+    evaluation per distinct eta."""
     eta = np.asarray(eta_deg, dtype=np.float64)
     if eta.ndim == 0:  # one direction: no masks, no copies
-        return np.asarray(assembly_directional(kind, springs, float(eta), support))
+        return np.asarray(assembly_directional(kind, springs, float(eta), support, coupon))
     values = {
-        float(e): assembly_directional(kind, springs, float(e), support) for e in np.unique(eta)
+        float(e): assembly_directional(kind, springs, float(e), support, coupon)
+        for e in np.unique(eta)
     }
     shape = np.broadcast_shapes(np.shape(springs[0].K_S), np.shape(springs[1].K_S), eta.shape)
     out = np.zeros(shape)
@@ -209,7 +234,20 @@ def evaluate(
     else:
         q2, qs2 = layer_inverse_sums(layout, layer2.n, g2.p, Lx, "y")
         s2 = layer_springs(g2.moduli, layer2.t, g2.p, q2, layer2.E, layer2.nu, g2.s, qs2)
-    D = directional("D", (s1, s2), eta_deg, support)
+    coupon = None
+    if support == "free" and any(
+        crease_layer(float(e)) is None for e in np.unique(np.asarray(eta_deg, dtype=float))
+    ):
+        coupon = coupon_of(
+            layout,
+            Lx,
+            Ly,
+            lambda: (
+                g1.p * inverse_length_sum(layout, layer1.n, Ly, "x"),
+                g2.p * inverse_length_sum(layout, layer2.n, Lx, "y"),
+            ),
+        )
+    D = directional("D", (s1, s2), eta_deg, support, coupon)
     mass = layer_mass(
         layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly), layout, g1.p
     )
@@ -228,7 +266,7 @@ def evaluate(
         thickness=thickness,
         mass=mass + m_conn,
         mass_connectors=m_conn,
-        K=directional("K", (s1, s2), eta_deg, support),
+        K=directional("K", (s1, s2), eta_deg, support, coupon),
         D=D,
         EI=np.asarray(D * layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float))),
         moduli=(g1.moduli, g2.moduli),

@@ -121,7 +121,7 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
     return out
 
 
-def _off_axis(eta_deg: Sequence[float], support: str) -> list[ModelWarning]:
+def _off_axis(eta_deg: Sequence[float], support: str, layout: str = "square") -> list[ModelWarning]:
     off = [e for e in eta_deg if crease_layer(e) is None]
     if not off:
         return []
@@ -140,6 +140,17 @@ def _off_axis(eta_deg: Sequence[float], support: str) -> list[ModelWarning]:
             "the large-panel limit), and D is far below it near 45 deg "
             "(`corrugate docs validation/off_axis`): check a part loaded there with corrugate validate --eta"
         )
+        if layout == "rectangle":
+            text += (
+                "; a rectangle is read as the coupon of its proportions cut along eta (Lx x Ly "
+                "up to 45 deg, Ly x Lx above)"
+            )
+        elif layout != "square":
+            text += (
+                f"; a {layout} has no straight edges to load: its value is the smaller of its "
+                "box's coupon and the square's formula on its own springs, a convention no FE "
+                "has checked"
+            )
     return [ModelWarning("off-axis", text)]
 
 
@@ -175,4 +186,4 @@ def design_warnings(
                 "Ecy and Ebx slightly off); use 'refined' for design",
             )
         )
-    return out + _off_axis(eta_deg, support)
+    return out + _off_axis(eta_deg, support, a.layout.name)

@@ -198,6 +198,11 @@ class Interval:
         o = Interval.of(other)
         return Interval(np.maximum(self.lo, o.lo), np.maximum(self.hi, o.hi))
 
+    def minimum(self, other: Interval | ArrayLike) -> Interval:
+        """min(x, y): monotone in both, so the bounds are the endpoints' minima (exact)."""
+        o = Interval.of(other)
+        return Interval(np.minimum(self.lo, o.lo), np.minimum(self.hi, o.hi))
+
     def sqrt(self) -> Interval:
         return Interval._raw(_down0(np.sqrt(np.maximum(self.lo, 0.0))), _up(np.sqrt(self.hi)), True)
 
@@ -232,6 +237,7 @@ class Interval:
         np.sqrt: "sqrt",
         np.absolute: "abs",
         np.maximum: "max",
+        np.minimum: "min",
     }
 
     def __array_ufunc__(self, ufunc: Any, method: str, *inputs: Any, **kwargs: Any) -> Any:
@@ -258,4 +264,6 @@ class Interval:
             return x * y
         if name == "max":
             return x.maximum(y)
+        if name == "min":
+            return x.minimum(y)
         return x / y

@@ -52,8 +52,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..analysis import LayerArrays, evaluate
+from ..analysis import LayerArrays, coupon_of, evaluate
 from ..buckling import K_SIMPLE_FREE, buckling_scale
+from ..geometry import crease_layer
 from ..layouts import Axis, Circle, Rectangle, facet_lengths, inverse_length_sum, length_sum
 from ..mass import connector_mass, layer_mass
 from ..moduli import get_model
@@ -332,6 +333,7 @@ class _Springs:
     D_S: Interval
     K_T: Interval
     D_T: Interval
+    pq: Interval  # p sum_j 1/L_j without holes (corrugate.offaxis.Coupon)
 
 
 def _layer_springs(
@@ -379,6 +381,7 @@ def _layer_springs(
         Eby * (t3 / 12.0) * pq_par,
         Interval.of(K_T),
         Interval.of(D_T),
+        pq,
     )
 
 
@@ -546,6 +549,24 @@ def _stiffness_bounds(
             "y",
         )
     out: Bounds = {}
+    # how the layout is read off the crease directions (corrugate.offaxis.Coupon), when a
+    # free-support stiffness is asked for off them
+    off_axis = any(
+        not k.startswith("Pb")
+        and not k.split("@")[0].endswith("frame")
+        and crease_layer(float(k.split("@")[1])) is None
+        for k in keys
+    )
+    coupon = (
+        coupon_of(
+            problem.layout,
+            Interval(Lx[0], Lx[1]),
+            Interval(Ly[0], Ly[1]),
+            lambda: (sp1.pq, sp2.pq),
+        )
+        if off_axis
+        else None
+    )
     for key in keys:
         kind, eta_s = key.split("@")
         eta = float(eta_s)
@@ -571,7 +592,7 @@ def _stiffness_bounds(
             continue
         support: Support = "frame" if kind.endswith("frame") else "free"
         base = kind.removesuffix("frame")
-        v = assembly_directional("K" if base == "K" else "D", (sp1, sp2), eta, support)
+        v = assembly_directional("K" if base == "K" else "D", (sp1, sp2), eta, support, coupon)
         if base == "EI":
             v = v * _span_bounds(problem, Lx, Ly, eta)
         out[key] = (np.maximum(v.lo, 0.0), v.hi)

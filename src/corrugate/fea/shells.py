@@ -105,10 +105,13 @@ def principal_axis(eta_deg: float) -> int | None:
 
 def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
     """Width A (across eta) and length B (along eta) of the FE specimen, mm: the rectangle
-    Lx x Ly itself at eta = 0 or 90 deg; at any other eta a square of the layout's side whose
-    edges run along and across eta (a coupon cut from the same two layers), which needs a square
-    layout (Lx = Ly). Circles and polygons are refused (:class:`InputError`): they have no
-    straight edges for platens and supports."""
+    Lx x Ly itself at eta = 0 or 90 deg; at any other eta a coupon cut from the same two layers
+    with its edges along and across eta, of the layout's proportions turned to the crease
+    direction nearer to eta (Lx x Ly up to 45 deg, Ly x Lx above): the coupon the free-panel
+    model of a rectangle describes (:func:`corrugate.offaxis.assembly_directional`; at 45 deg
+    the model is the smaller of the two orientations, so the Lx x Ly coupon checks it from
+    above). A square's coupon is the square. Circles and polygons are refused
+    (:class:`InputError`): they have no straight edges for platens and supports."""
     a = assembly
     if a.layout.name not in ("square", "rectangle"):
         raise InputError(
@@ -123,13 +126,8 @@ def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
         return a.Lx, a.Ly
     if axis == 0:
         return a.Ly, a.Lx
-    if not math.isclose(a.Lx, a.Ly, rel_tol=1e-9):
-        raise InputError(
-            "eta",
-            f"{eta_deg:g} deg",
-            "0 or 90 deg for a rectangle (other angles need a square layout, Lx = Ly)",
-        )
-    return a.Lx, a.Ly
+    e = float(eta_deg) % 180.0
+    return (a.Ly, a.Lx) if min(e, 180.0 - e) > 45.0 else (a.Lx, a.Ly)
 
 
 def oblique_shells(
