@@ -20,6 +20,8 @@ from corrugate.extras import EXTRAS
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLE = ROOT / "examples" / "blimp_gripper.toml"
+#: the case study's design as command-line options
+CASE = ("--W", "8", "--n", "8", "--alpha", "84", "--material", "dura-lar")
 
 
 def _run(hidden: tuple[str, ...], *args: str) -> subprocess.CompletedProcess[str]:
@@ -52,19 +54,7 @@ def test_pyproject_extras_list_the_modules_the_checks_look_for() -> None:
     "args",
     [
         ("design", str(EXAMPLE), "--out", "{out}"),
-        (
-            "pattern",
-            "--W",
-            "8",
-            "--n",
-            "8",
-            "--alpha",
-            "84",
-            "--material",
-            "dura-lar",
-            "--out",
-            "{out}",
-        ),
+        ("pattern", *CASE, "--out", "{out}"),
     ],
     ids=["design", "pattern"],
 )
@@ -88,19 +78,7 @@ def test_files_without_the_fab_extra_are_one_line_and_nothing_written(
 def test_the_core_commands_work_without_the_fab_extra() -> None:
     r = _run(("ezdxf", "matplotlib"), "design", str(EXAMPLE), "-q")
     assert r.returncode == 0, r.stderr
-    r = _run(
-        ("ezdxf", "matplotlib"),
-        "analyze",
-        "--W",
-        "8",
-        "--n",
-        "8",
-        "--alpha",
-        "84",
-        "--material",
-        "dura-lar",
-        "--json",
-    )
+    r = _run(("ezdxf", "matplotlib"), "analyze", *CASE, "--json")
     assert r.returncode == 0, r.stderr
     assert '"support": "free"' in r.stdout
 
