@@ -580,7 +580,6 @@ def test_validate_cli_rejects_what_the_fe_cannot_model(ccx: str, cli: CliRun) ->
     """Each refusal before any ccx run: exit 2, one line naming the field."""
     base = ["validate", "--W", "5", "--n", "3", "--alpha", "120"]
     for extra, words in (
-        (["--layout", "rectangle", "--n2", "5", "--eta", "45"], "eta = 45 deg"),
         (["--eta", "30", "--connectors"], "with --connectors"),
         (["--layout", "circle"], "straight loaded edges"),
         (["--bond", "flanges"], "needs the band"),
