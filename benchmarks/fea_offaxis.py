@@ -1,6 +1,7 @@
 """Off-axis FE coupons with mesh series, for docs/validation/off_axis.md (issue: free panel).
 
-    python benchmarks/fea_offaxis.py run [ALONG ...] [--etas 15,45]   # FE series -> off_axis_fe.csv
+    python benchmarks/fea_offaxis.py run [ALONG ...] [--etas 15,45] [--design NAME] [--tests compression]
+                                                       # FE series -> off_axis_fe.csv
     python benchmarks/fea_offaxis.py table             # model vs FE -> off_axis.md and polar plots
 
 ``run`` appends one CSV row per (design, eta, test, elements per facet) as soon as ccx returns,
@@ -48,17 +49,26 @@ def designs() -> dict[str, Assembly]:
     }
 
 
-def run(alongs: tuple[int, ...], etas: tuple[float, ...] = ETAS) -> None:
+def run(
+    alongs: tuple[int, ...],
+    etas: tuple[float, ...] = ETAS,
+    only: str = "",
+    tests: tuple[str, ...] = TESTS,
+) -> None:
+    """FE rows for each mesh of ``alongs`` and each eta of ``etas``, for the designs whose name
+    contains ``only`` and the load cases ``tests``."""
     from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 
     done = done_keys(CSV, ("design", "eta_deg", "test", "along"))
     with appender(CSV, FIELDS) as write:
         for along in alongs:
             for name, a in designs().items():
+                if only not in name:
+                    continue
                 for eta in etas:
                     if eta not in ETAS or (eta > 45 and a.layer1 == a.layer2 and along > 4):
                         continue  # identical layers: eta and 90 - eta are mirror images
-                    for test in TESTS:
+                    for test in tests:
                         key = (name, f"{eta:g}", test, str(along))
                         if key in done:
                             continue
@@ -72,12 +82,18 @@ def run(alongs: tuple[int, ...], etas: tuple[float, ...] = ETAS) -> None:
 if __name__ == "__main__":
     if sys.argv[1:2] == ["run"]:
         args = sys.argv[2:]
-        etas = ETAS
-        if "--etas" in args:
-            i = args.index("--etas")
-            etas = tuple(float(v) for v in args[i + 1].split(","))
-            args = args[:i] + args[i + 2 :]
-        run(tuple(int(v) for v in args) or (2, 4, 8), etas)
+        opts = {"--etas": ",".join(f"{e:g}" for e in ETAS), "--design": "", "--tests": ""}
+        for flag in opts:
+            if flag in args:
+                i = args.index(flag)
+                opts[flag] = args[i + 1]
+                args = args[:i] + args[i + 2 :]
+        run(
+            tuple(int(v) for v in args) or (2, 4, 8),
+            tuple(float(v) for v in opts["--etas"].split(",")),
+            opts["--design"],
+            tuple(opts["--tests"].split(",")) if opts["--tests"] else TESTS,
+        )
     elif sys.argv[1:2] == ["table"]:
         from offaxis_table import table  # type: ignore[import-not-found]
 
