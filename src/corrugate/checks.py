@@ -136,8 +136,9 @@ def _off_axis(eta_deg: Sequence[float], support: str, layout: str = "square") ->
         text = (
             f"K and D at eta = {angles} deg are the free-panel model (support 'free', "
             "`corrugate docs offaxis`): against FE coupons K is 0.83-1.22 times the FE, above it "
-            "near 15 and 75 deg by 22, 15 and 9 % for coupons 4, 8 and 16 cells wide (the model is "
-            "the large-panel limit), and D is far below it near 45 deg "
+            "near 15 and 75 deg by 22, 15 and 9 % for square coupons 4, 8 and 16 cells wide and "
+            "19 % for a 9 x 18-cell rectangle (the model is the large-panel limit), and D is far "
+            "below it where no facet runs from support to support (near 45 deg) "
             "(`corrugate docs validation/off_axis`): check a part loaded there with corrugate validate --eta"
         )
         if layout == "rectangle":

@@ -8,11 +8,12 @@ A panel with free sides (``support = "free"``, the default: a bench test, a part
 edges) is far softer off-axis, because its facets no longer run from one loaded edge to the
 other. Its model here is a **lower bound** (for the homogenised plate) built from each layer's
 own springs, the layers acting in parallel (as the unconnected layers of the FE coupons do).
-Against FE coupons (docs/validation/off_axis.md; three designs, eta 0-90 deg, FE extrapolated
-from 2/4/8 or 4/8/16 elements per facet) K is 0.83-1.18 of the FE (not conservative near 15
-and 75 deg; at 15 deg the converged coupon is 22, 15 and 9 % below the model at 4, 8 and 16 cells:
-docs/offaxis.md, coupon-size series); D is 0.62-1.12 of the 3-point FE at
-15-30 deg but 0.008-0.02 at 45 deg (very conservative there). For a layer whose creases
+Against FE coupons (docs/validation/off_axis.md; three squares and a 1:2 rectangle, eta 0-90
+deg, FE extrapolated from 2/4/8 or 4/8/16 elements per facet) K is 0.83-1.19 of the FE (not
+conservative near 15 and 75 deg; at 15 deg the converged coupon is 22, 15 and 9 % below the model
+at 4, 8 and 16 cells: docs/offaxis.md, coupon-size series; 19 % for the rectangle); D is
+0.62-1.12 of the 3-point FE at 15-30 deg for the squares but 0.008-0.02 at 45 deg, and 0.017
+at 30 deg for the rectangle (very conservative where no facet runs from support to support). For a layer whose creases
 make the angle theta with the load direction, c = cos theta, s = sin theta:
 
 * In-plane (plate of the layer under uniaxial stress along the load, free sides; the complementary
