@@ -246,3 +246,22 @@ def test_validate_prints_a_line_per_calculix_run_on_stderr(ccx: str, cli: CliRun
     assert "D4(0) N mm" in out and "D4: the bending stiffness from a 4-point" in out
     code, quiet_out, quiet_err = cli([*FE_SMALL, "--quiet"])
     assert (code, quiet_out, quiet_err) == (0, "", "")
+
+
+def test_pareto_and_tolerance_quiet(cli: CliRun, tmp_path: Path) -> None:
+    """--quiet on the last two commands that print: nothing on stdout or stderr, pareto's files
+    still written (the same as without it), --json still printed, exit codes unchanged."""
+    spec = str(_spec(tmp_path, "blimp_gripper"))
+    quiet_dir, loud_dir = tmp_path / "pq", tmp_path / "pl"
+    args = ["pareto", spec, "--vs", "flexural_rigidity", "--max-points", "5"]
+    code, out, err = cli([*args, "--out", str(quiet_dir), "-q"])
+    assert (code, out, err) == (0, "", "")
+    loud_code, loud_out, loud_err = cli([*args, "--out", str(loud_dir)])
+    assert loud_code == 0 and "wrote" in loud_out + loud_err
+    assert (quiet_dir / "pareto.csv").read_text() == (loud_dir / "pareto.csv").read_text()
+    code, csv_text, err = cli([*args, "-q"])  # no --out: the CSV on stdout is the answer
+    assert code == 0 and err == "" and csv_text == (loud_dir / "pareto.csv").read_text()
+    code, out, err = cli(["tolerance", spec, "--samples", "50", "-q"])
+    assert (code, out, err) == (0, "", "")
+    code, out, _ = cli(["tolerance", spec, "--samples", "50", "-q", "--json"])
+    assert code == 0 and 0.0 <= json.loads(out)["probability_all_met"] <= 1.0

@@ -274,6 +274,7 @@ def pareto_cmd(
         Path | None,
         typer.Option("--out", metavar="DIR", help="Directory for pareto.csv and pareto.png."),
     ] = None,
+    quiet: o.Quiet = False,
 ) -> None:
     """The exact mass-versus-stiffness Pareto front of a spec (each point a certified optimum).
 
@@ -302,6 +303,7 @@ def pareto_cmd(
         TimeElapsedColumn(),
         console=console,
         transient=True,
+        disable=quiet,
     ) as bar:
         task = bar.add_task("solve", total=None)
 
@@ -318,20 +320,23 @@ def pareto_cmd(
         if out.exists() and not out.is_dir():
             raise InputError("--out", str(out), "a directory", reason="is a file")
         write_set(out, {"pareto.csv": text}, kind="pareto")
-        console.print(f"wrote {out / 'pareto.csv'}")
-        if _plot(front, f"{problem.name}: Pareto front", out / "pareto.png"):
-            console.print(f"wrote {out / 'pareto.png'}")
-        else:
-            console.print(
-                "[yellow]warning[/yellow]: matplotlib is not installed (extra 'fab'); "
-                "no plot written"
-            )
+        plotted = _plot(front, f"{problem.name}: Pareto front", out / "pareto.png")
+        if not quiet:
+            console.print(f"wrote {out / 'pareto.csv'}")
+            if plotted:
+                console.print(f"wrote {out / 'pareto.png'}")
+            else:
+                console.print(
+                    "[yellow]warning[/yellow]: matplotlib is not installed (extra 'fab'); "
+                    "no plot written"
+                )
     kind = "exact staircase" if front.exact else f"{len(front.points)} sampled levels"
     note = " (truncated at --max-points)" if front.truncated else ""
-    console.print(
-        f"{len(front.points)} points, {kind}{note}, every point certified: {front.certified}"
-    )
-    if not front.points or not front.certified:
+    summary = f"{len(front.points)} points, {kind}{note}, every point certified: {front.certified}"
+    failed = not front.points or not front.certified
+    if not quiet or failed:  # with --quiet, only why the exit code is 1 (on stderr)
+        console.print(summary)
+    if failed:
         raise typer.Exit(1)
 
 
@@ -371,6 +376,7 @@ def tolerance_cmd(
         str, typer.Option("--E-tol", metavar="FRACTION", help="1-sigma relative error of E.")
     ] = "10%",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    quiet: o.Quiet = False,
 ) -> None:
     """Monte Carlo of the certified design of a spec over manufacturing and material tolerances:
     stiffness distribution and the probability that the spec is still met.
@@ -402,6 +408,8 @@ def tolerance_cmd(
     if as_json:
         design = sol.to_dict()["design"]
         typer.echo(json.dumps({"design": design, **report.as_dict()}, indent=2))
+        return
+    if quiet:
         return
     console = make_console()
     lay = sol.assembly.layer1

@@ -171,7 +171,7 @@ Holes = Annotated[
     ),
 ]
 
-#: ``--quiet`` of the commands that print (design, analyze, pattern, validate).
+#: ``--quiet`` of the commands that print (design, analyze, pattern, validate, pareto, tolerance).
 Quiet = Annotated[
     bool,
     Opt(
