@@ -58,7 +58,7 @@ from ..geometry import crease_layer
 from ..layouts import Axis, Circle, Rectangle, facet_lengths, inverse_length_sum, length_sum
 from ..mass import connector_mass, layer_mass
 from ..moduli import get_model
-from ..offaxis import Support, assembly_directional, shear_springs
+from ..offaxis import Coupon, Support, assembly_directional, shear_springs
 from .interval import Interval
 from .problem import Candidate, Problem
 
@@ -549,24 +549,9 @@ def _stiffness_bounds(
             "y",
         )
     out: Bounds = {}
-    # how the layout is read off the crease directions (corrugate.offaxis.Coupon), when a
-    # free-support stiffness is asked for off them
-    off_axis = any(
-        not k.startswith("Pb")
-        and not k.split("@")[0].endswith("frame")
-        and crease_layer(float(k.split("@")[1])) is None
-        for k in keys
-    )
-    coupon = (
-        coupon_of(
-            problem.layout,
-            Interval(Lx[0], Lx[1]),
-            Interval(Ly[0], Ly[1]),
-            lambda: (sp1.pq, sp2.pq),
-        )
-        if off_axis
-        else None
-    )
+    # how the layout is read off the crease directions (corrugate.offaxis.Coupon): made at the
+    # first free-support stiffness asked for off them (None for a square)
+    coupon: Coupon | None = None
     for key in keys:
         kind, eta_s = key.split("@")
         eta = float(eta_s)
@@ -592,6 +577,13 @@ def _stiffness_bounds(
             continue
         support: Support = "frame" if kind.endswith("frame") else "free"
         base = kind.removesuffix("frame")
+        if coupon is None and support == "free" and crease_layer(eta) is None:
+            coupon = coupon_of(
+                problem.layout,
+                Interval(Lx[0], Lx[1]),
+                Interval(Ly[0], Ly[1]),
+                lambda: (sp1.pq, sp2.pq),
+            )
         v = assembly_directional("K" if base == "K" else "D", (sp1, sp2), eta, support, coupon)
         if base == "EI":
             v = v * _span_bounds(problem, Lx, Ly, eta)
