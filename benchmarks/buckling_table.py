@@ -1,11 +1,11 @@
-"""The plate bounds of corrugate.buckling against the FE first buckling load, on the paper's
+"""The plate bounds of corrugate.mechanics.buckling against the FE first buckling load, on the paper's
 bench designs (docs/fea.md, section 2.6): is the lower bound, which the solver's
 ``buckling_load`` constraints use, below the FE for every design?
 
     python benchmarks/buckling_table.py            # 2 and 4 elements/facet; 8 for two designs
     python benchmarks/buckling_table.py 2 4 8      # these meshes for every design
 
-The paper's validation sweep (``corrugate validate --sweep paper``, corrugate.fea.sweep) has 12
+The paper's validation sweep (``corrugate validate --sweep paper``, corrugate.fea.series) has 12
 cases, 10 distinct designs (W = 10, n = 11, alpha = 90 is in each set); each distinct design is
 run once. Compression along eta = 0 (layer 1's creases), no connector band. Prints a Markdown
 table. Needs ccx. About 15 min on 2 shared cores (the 8-per-facet runs dominate: 3-4 min each).
@@ -16,9 +16,9 @@ from __future__ import annotations
 import sys
 import time
 
-from corrugate.analysis import facet_buckling_load
+from corrugate.analysis.evaluate import facet_buckling_load
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
-from corrugate.fea.sweep import paper_cases
+from corrugate.fea.series import paper_cases
 
 #: Designs also run at 8 elements per facet: the deepest fold and the widest facet.
 SERIES = ("W=10 n=11 alpha=40", "W=14 n=11 alpha=90")

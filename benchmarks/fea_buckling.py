@@ -1,5 +1,5 @@
 """First buckling load of the assembly in compression: FE mesh convergence against the plate
-bounds of corrugate.buckling (docs/fea.md, section 2.6).
+bounds of corrugate.mechanics.buckling (docs/fea.md, section 2.6).
 
     python benchmarks/fea_buckling.py
 
@@ -11,7 +11,7 @@ from __future__ import annotations
 import time
 
 from corrugate import Assembly, Layer, get_material
-from corrugate.analysis import facet_buckling_load
+from corrugate.analysis.evaluate import facet_buckling_load
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 
 DESIGNS = {

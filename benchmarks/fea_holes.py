@@ -16,13 +16,13 @@ import time
 
 import numpy as np
 
-from corrugate.analysis import analyze
+from corrugate.analysis.evaluate import analyze
 from corrugate.fea.assembly import AssemblyMesh, _cut_holes, solve_assembly
 from corrugate.fea.shells import Shell, layer_shell
-from corrugate.geometry import Assembly, Layer
-from corrugate.holes import Hole
-from corrugate.layouts import make_layout
-from corrugate.materials import get_material
+from corrugate.geometry.holes import Hole
+from corrugate.geometry.layer import Assembly, Layer
+from corrugate.geometry.layouts import make_layout
+from corrugate.materials.library import get_material
 
 
 def plan_area(sh: Shell) -> float:

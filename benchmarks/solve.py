@@ -37,8 +37,8 @@ from numpy.typing import NDArray
 from scipy.optimize import differential_evolution
 
 from corrugate import LayerArrays, evaluate, get_material, make_layout
-from corrugate.design import Problem, solve
-from corrugate.spec import Spec, load_spec
+from corrugate.solver import Problem, solve
+from corrugate.spec.schema import Spec, load_spec
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 Arr = NDArray[np.float64]

@@ -32,9 +32,9 @@ from typing import Any
 import numpy as np
 
 from corrugate import Assembly, Layer, analyze, get_material
-from corrugate.analysis import LayerArrays, evaluate
-from corrugate.layouts import Square
-from corrugate.sweep import sweep
+from corrugate.analysis.evaluate import LayerArrays, evaluate
+from corrugate.analysis.sweep import sweep
+from corrugate.geometry.layouts import Square
 
 N = 1_000_000
 SAMPLE = 2_000

@@ -15,13 +15,13 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from corrugate.design import Problem, solve
+from corrugate.solver import Problem, solve
 from corrugate.export.pdf import sheet_figure
-from corrugate.pattern.build import build_pattern
-from corrugate.pattern.instructions import instructions_figure
-from corrugate.pattern.sheets import plan_sheets
+from corrugate.fabrication.build import build_pattern
+from corrugate.fabrication.instructions import instructions_figure
+from corrugate.fabrication.sheets import plan_sheets
 from corrugate.report import design_space_figure, mass_by_n_figure, polar_figure
-from corrugate.spec import load_spec
+from corrugate.spec.schema import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
 IMG = ROOT / "docs" / "img"

@@ -11,16 +11,15 @@ Quick use::
     result = analyze(Assembly.identical(layer), model="refined", eta_deg=[0, 90])
     print(result.to_dict())
 
-Internal units: mm, N, MPa, g (DESIGN.md section 8).
+Internal units: mm, N, MPa, g (docs/theory.md section 8).
 """
 
-import sys
-from importlib import import_module
-from types import ModuleType
-from typing import TYPE_CHECKING, Any
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
 
-if TYPE_CHECKING:
-    from .analysis import (
+if _TYPE_CHECKING:
+    from corrugate.analysis.evaluate import (
         Analysis,
         DirectionalStiffness,
         Evaluation,
@@ -28,68 +27,53 @@ if TYPE_CHECKING:
         analyze,
         evaluate,
     )
-    from .checks import ModelWarning, design_warnings
-    from .errors import CorrugateError, InputError, UnknownNameError
-    from .geometry import Assembly, Layer
-    from .layouts import Circle, Polygon, Rectangle, Square, make_layout
-    from .mass import MassBreakdown, assembly_mass
-    from .materials import Material, get_material, inline_material, library
-    from .moduli import DEFAULT_MODEL, MODELS, Moduli, get_model, moduli
+    from corrugate.analysis.warnings import ModelWarning, design_warnings
+    from corrugate.core.errors import CorrugateError, InputError, UnknownNameError
+    from corrugate.geometry.layer import Assembly, Layer
+    from corrugate.geometry.layouts import Circle, Polygon, Rectangle, Square, make_layout
+    from corrugate.materials.library import Material, get_material, inline_material, library
+    from corrugate.mechanics.mass import MassBreakdown, assembly_mass
+    from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS, Moduli, get_model, moduli
+    from corrugate.workflow import DesignResult, design, write_files
 
 #: Where each public name lives; imported on first use (PEP 562), so ``import corrugate`` (and
 #: every ``corrugate.x`` submodule import, the command line's start-up included) costs nothing
-#: until a name is used.
+#: until a name is used. No public name is also a subpackage's name, so the import system's
+#: binding of a loaded subpackage never hides one.
 _WHERE: dict[str, str] = {
     **dict.fromkeys(
         ("Analysis", "DirectionalStiffness", "Evaluation", "LayerArrays", "analyze", "evaluate"),
-        "analysis",
+        "analysis.evaluate",
     ),
-    **dict.fromkeys(("ModelWarning", "design_warnings"), "checks"),
-    **dict.fromkeys(("CorrugateError", "InputError", "UnknownNameError"), "errors"),
-    **dict.fromkeys(("Assembly", "Layer"), "geometry"),
-    **dict.fromkeys(("Circle", "Polygon", "Rectangle", "Square", "make_layout"), "layouts"),
-    **dict.fromkeys(("MassBreakdown", "assembly_mass"), "mass"),
-    **dict.fromkeys(("Material", "get_material", "inline_material", "library"), "materials"),
-    **dict.fromkeys(("DEFAULT_MODEL", "MODELS", "Moduli", "get_model", "moduli"), "moduli"),
-    **dict.fromkeys(("DesignResult", "write_files"), "api"),
+    **dict.fromkeys(("ModelWarning", "design_warnings"), "analysis.warnings"),
+    **dict.fromkeys(("CorrugateError", "InputError", "UnknownNameError"), "core.errors"),
+    **dict.fromkeys(("Assembly", "Layer"), "geometry.layer"),
+    **dict.fromkeys(
+        ("Circle", "Polygon", "Rectangle", "Square", "make_layout"), "geometry.layouts"
+    ),
+    **dict.fromkeys(("MassBreakdown", "assembly_mass"), "mechanics.mass"),
+    **dict.fromkeys(
+        ("Material", "get_material", "inline_material", "library"), "materials.library"
+    ),
+    **dict.fromkeys(
+        ("DEFAULT_MODEL", "MODELS", "Moduli", "get_model", "moduli"), "mechanics.moduli"
+    ),
+    **dict.fromkeys(("DesignResult", "design", "write_files"), "workflow"),
 }
 
-#: Public names that are subpackages themselves (``corrugate.design(spec)`` is callable).
-_SUBPACKAGES = ("design",)
 
-
-def __getattr__(name: str) -> Any:
-    if name in _SUBPACKAGES:
-        return import_module(f".{name}", __name__)
+def __getattr__(name: str) -> _Any:
     where = _WHERE.get(name)
     if where is None:
         raise AttributeError(f"module 'corrugate' has no attribute {name!r}")
-    value = getattr(import_module(f".{where}", __name__), name)
+    value = getattr(_import_module(f".{where}", __name__), name)
     globals()[name] = value
     return value
 
 
 def __dir__() -> list[str]:
-    return sorted({*globals(), *_WHERE})
-
-
-class _Package(ModuleType):
-    """The package module: the import system binds each loaded submodule on it
-    (``corrugate.moduli`` the module), which would hide the public function of the same name;
-    such a binding is dropped, so the name still resolves through :func:`__getattr__`, as it did
-    when this file imported every name eagerly."""
-
-    def __setattr__(self, name: str, value: Any) -> None:
-        if (
-            name in _WHERE
-            and isinstance(value, ModuleType)
-            and value.__name__ == f"{__name__}.{name}"
-        ):
-            return
-        super().__setattr__(name, value)
-
-
-sys.modules[__name__].__class__ = _Package
+    """The public API (:data:`__all__`): ``dir(corrugate)`` lists what a user may call."""
+    return sorted(__all__)
 
 
 __version__ = "0.1.0"

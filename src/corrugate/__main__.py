@@ -1,5 +1,5 @@
 """``python -m corrugate``: the command line."""
 
-from .cli import main
+from corrugate.cli import main
 
 main()

@@ -21,9 +21,9 @@ from typing import Annotated, Any, Literal
 
 import typer
 
-from .. import __version__
-from ..errors import CorrugateError, describe
-from . import analyze, design, pattern, serve, spec, validate
+from corrugate import __version__
+from corrugate.cli import analyze, design, pattern, serve, spec, validate
+from corrugate.core.errors import CorrugateError, describe
 
 __all__ = ["COMMAND_MODULES", "EXIT_CODES", "app", "main"]
 

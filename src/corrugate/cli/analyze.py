@@ -7,15 +7,15 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from ..model_names import DEFAULT_MODEL
-from . import options as o
-from .console import fmt as _fmt
-from .console import make_console
+from corrugate.cli import options as o
+from corrugate.cli.console import fmt as _fmt
+from corrugate.cli.console import make_console
+from corrugate.names import DEFAULT_MODEL
 
 if TYPE_CHECKING:
     from rich.console import Console
 
-    from ..analysis import Analysis
+    from corrugate.analysis.evaluate import Analysis
 
 __all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
 
@@ -25,8 +25,8 @@ Opt = typer.Option
 def _print_analysis(r: Analysis, console: Console) -> None:
     from rich.table import Table
 
-    from ..holes import holes_text
-    from ..moduli import get_model
+    from corrugate.geometry.holes import holes_text
+    from corrugate.mechanics.moduli import get_model
 
     a = r.assembly
     console.print(f"[bold]model[/bold] {r.model}: {get_model(r.model).source}")
@@ -127,10 +127,10 @@ def analyze_cmd(
 
     Example: corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper --eta 0
     """
-    from ..analysis import analyze
-    from ..inputs import assembly_from_namespace, parse_etas
-    from ..moduli import MODELS, get_model
-    from ..offaxis import check_support
+    from corrugate.analysis.evaluate import analyze
+    from corrugate.mechanics.moduli import MODELS, get_model
+    from corrugate.mechanics.offaxis import check_support
+    from corrugate.spec.inputs import assembly_from_namespace, parse_etas
 
     assembly = assembly_from_namespace(locals())
     etas = parse_etas(eta)
@@ -163,7 +163,7 @@ def materials_cmd(
     """List the bundled material library."""
     from rich.table import Table
 
-    from ..materials import library
+    from corrugate.materials.library import library
 
     lib = library()
     if as_json:

@@ -13,15 +13,15 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from ..errors import InputError
-from . import options as o
-from .console import fmt, make_console
+from corrugate.cli import options as o
+from corrugate.cli.console import fmt, make_console
+from corrugate.core.errors import InputError
 
 if TYPE_CHECKING:
     from rich.console import Console
 
-    from ..design import Solution
-    from ..design.pareto import ParetoFront
+    from corrugate.solver import Solution
+    from corrugate.solver.pareto import ParetoFront
 
 __all__ = ["COMMANDS", "design_cmd", "pareto_cmd", "tolerance_cmd"]
 
@@ -177,10 +177,10 @@ def design_cmd(
 
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     """
-    from ..design import Problem
-    from ..export.pdf import check_paper
-    from ..pipeline import output_options, solve_spec, write_design
-    from ..spec import load_spec_text
+    from corrugate.export.pdf import check_paper
+    from corrugate.solver import Problem
+    from corrugate.spec.schema import load_spec_text
+    from corrugate.workflow import output_options, solve_spec, write_design
 
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
@@ -226,8 +226,8 @@ def _plot(front: ParetoFront, title: str, path: Path) -> bool:
         import matplotlib  # noqa: F401
     except ImportError:
         return False
-    from ..figure import new_figure
-    from ..fileio import staged
+    from corrugate.core.fileio import staged
+    from corrugate.core.plotting import new_figure
 
     fig = new_figure((6, 4))
     ax = fig.subplots()
@@ -282,11 +282,11 @@ def pareto_cmd(
     """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from ..design import Problem
-    from ..design.pareto import pareto_front
-    from ..fileio import write_set
-    from ..spec import load_spec
-    from ..units import parse_quantity
+    from corrugate.core.fileio import write_set
+    from corrugate.core.units import parse_quantity
+    from corrugate.solver import Problem
+    from corrugate.solver.pareto import pareto_front
+    from corrugate.spec.schema import load_spec
 
     kinds = ("flexural_rigidity", "bending_stiffness", "inplane_stiffness")
     if vs not in kinds:
@@ -385,10 +385,10 @@ def tolerance_cmd(
     """
     from rich.table import Table
 
-    from ..design import Problem, solve
-    from ..design.tolerance import Tolerances, monte_carlo
-    from ..spec import load_spec
-    from ..units import parse_quantity
+    from corrugate.core.units import parse_quantity
+    from corrugate.solver import Problem, solve
+    from corrugate.solver.tolerance import Tolerances, monte_carlo
+    from corrugate.spec.schema import load_spec
 
     if samples < 2:
         raise InputError("--samples", samples, "an integer >= 2")

@@ -1,7 +1,7 @@
 """The command-line options that describe a design, declared once for every command that takes
 them (``analyze``, ``pattern``, ``validate``): typer reads each ``Annotated`` alias below as the
-option it declares. :func:`corrugate.inputs.assembly_from_namespace` turns their values into an
-:class:`~corrugate.geometry.Assembly`.
+option it declares. :func:`corrugate.spec.inputs.assembly_from_namespace` turns their values into an
+:class:`~corrugate.geometry.layer.Assembly`.
 """
 
 from __future__ import annotations
@@ -43,14 +43,14 @@ Opt = typer.Option
 
 def complete_materials(incomplete: str) -> list[str]:
     """Shell completion of a material option: the library's ids."""
-    from ..materials import library
+    from corrugate.materials.library import library
 
     return [m for m in library() if m.startswith(incomplete)]
 
 
 def complete_models(incomplete: str) -> list[str]:
     """Shell completion of ``--model``: the moduli variants."""
-    from ..model_names import MODEL_NAMES
+    from corrugate.names import MODEL_NAMES
 
     return [m for m in MODEL_NAMES if m.startswith(incomplete)]
 

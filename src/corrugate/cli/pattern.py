@@ -7,9 +7,9 @@ from typing import Annotated
 
 import typer
 
-from ..model_names import DEFAULT_MODEL
-from . import options as o
-from .console import make_console
+from corrugate.cli import options as o
+from corrugate.cli.console import make_console
+from corrugate.names import DEFAULT_MODEL
 
 __all__ = ["COMMANDS", "pattern_cmd"]
 
@@ -58,12 +58,11 @@ def pattern_cmd(
 ) -> None:
     """Write the machine's cut files, the fold map, the PDF, FOLD, GLB/STL and assembly steps of one
     design (`corrugate docs fabrication`)."""
-    from ..analysis import analyze
-    from ..inputs import assembly_from_namespace
-    from ..moduli import get_model
-    from ..offaxis import check_support
-    from ..outputs import write_design_files
-    from ..pipeline import output_options
+    from corrugate.analysis.evaluate import analyze
+    from corrugate.mechanics.moduli import get_model
+    from corrugate.mechanics.offaxis import check_support
+    from corrugate.spec.inputs import assembly_from_namespace
+    from corrugate.workflow import output_options, write_design_files
 
     assembly = assembly_from_namespace(locals())
     get_model(model)

@@ -32,14 +32,14 @@ def serve_cmd(
 
     Example: corrugate serve --port 8000
     """
-    from ..extras import require_extra
+    from corrugate.core.extras import require_extra
 
     require_extra("web", "the web app")
     require_extra("fab", "the web app's files")
     import uvicorn
 
-    from ..web import WebSettings, create_app
-    from ..web.app import LOOPBACK_NAMES
+    from corrugate.web import WebSettings, create_app
+    from corrugate.web.app import LOOPBACK_NAMES
 
     loopback = host in LOOPBACK_HOSTS
     if not loopback:

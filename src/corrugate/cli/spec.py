@@ -22,7 +22,7 @@ def spec_cmd(
 
     Example: corrugate spec --schema > corrugate-spec.schema.json
     """
-    from ..spec_reference import json_schema, reference_markdown
+    from corrugate.spec.reference import json_schema, reference_markdown
 
     if schema:
         typer.echo(json.dumps(json_schema(), indent=2))
@@ -44,7 +44,7 @@ def init_cmd(
 
     Example: corrugate init > my.toml && corrugate design my.toml
     """
-    from ..examples import example_names, example_text, template_text
+    from corrugate.spec.examples import example_names, example_text, template_text
 
     if list_:
         for name in example_names():
@@ -57,13 +57,13 @@ def init_cmd(
 
 def _complete_doc(incomplete: str) -> list[str]:
     """Shell completion of ``corrugate docs NAME``: the shipped doc names."""
-    from ..docs import doc_names
+    from corrugate.core.docs import doc_names
 
     return [n for n in doc_names() if n.startswith(incomplete)]
 
 
 def _doc_name(value: str) -> str:
-    """The doc name as given; :func:`corrugate.docs.doc_text` checks it (one line, exit 2)."""
+    """The doc name as given; :func:`corrugate.core.docs.doc_text` checks it (one line, exit 2)."""
     return value
 
 
@@ -87,7 +87,7 @@ def docs_cmd(
 
     Example: corrugate docs offaxis | less
     """
-    from ..docs import doc_names, doc_text, doc_title
+    from corrugate.core.docs import doc_names, doc_text, doc_title
 
     if name is None:
         names = doc_names()

@@ -2,7 +2,7 @@
 
 Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). The FE subpackage
 (:mod:`corrugate.fea`) is imported only when the command runs, so the core CLI works without it.
-``--design`` reads a design.json through :func:`corrugate.record.read_record`.
+``--design`` reads a design.json through :func:`corrugate.export.record.read_record`.
 
 Examples::
 
@@ -22,17 +22,17 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from ..errors import InputError
-from ..model_names import MODEL_NAMES as MODELS
-from . import options as o
-from .console import make_console
+from corrugate.cli import options as o
+from corrugate.cli.console import make_console
+from corrugate.core.errors import InputError
+from corrugate.names import MODEL_NAMES as MODELS
 
 if TYPE_CHECKING:
     from rich.console import Console
 
-    from ..fea.band import Bond
-    from ..fea.validation import CaseResult, Progress, Refinement
-    from ..geometry import Assembly, Layer
+    from corrugate.fea.connector_band import Bond
+    from corrugate.fea.validation import CaseResult, Progress, Refinement
+    from corrugate.geometry.layer import Assembly, Layer
 
 __all__ = ["COMMANDS", "validate_cmd"]
 
@@ -116,7 +116,7 @@ D4_LEGEND = (
 
 def _buckling_bounds(r: CaseResult) -> dict[str, tuple[float, float]]:
     """Plate-theory bounds (N) beside each FE buckling load of ``r``, by eta."""
-    from ..analysis import facet_buckling_load
+    from corrugate.analysis.evaluate import facet_buckling_load
 
     out: dict[str, tuple[float, float]] = {}
     for key in r.fe:
@@ -269,10 +269,10 @@ def validate_cmd(
     """
     import sys
 
-    from ..fea.ccx import find_ccx
-    from ..fea.sweep import check_sweep_options
-    from ..fea.validation import Case, run_case
-    from ..offaxis import check_support
+    from corrugate.fea.ccx import find_ccx
+    from corrugate.fea.series import check_sweep_options
+    from corrugate.fea.validation import Case, run_case
+    from corrugate.mechanics.offaxis import check_support
 
     bond_ = _bond(bond, connectors)
     refinement = _refinement(mesh, cell_mesh, refine)
@@ -358,9 +358,9 @@ def _bond(bond: str, connectors: bool) -> Bond:
 
 def _refinement(mesh: int, cell_mesh: str, refine: float | None) -> Refinement:
     """The meshes to start from (``--mesh``, ``--cell-mesh``) and the refinement tolerance."""
-    from ..fea.assembly import AssemblyMesh
-    from ..fea.unitcell import UnitCellMesh
-    from ..fea.validation import Refinement
+    from corrugate.fea.assembly import AssemblyMesh
+    from corrugate.fea.unitcell import UnitCellMesh
+    from corrugate.fea.validation import Refinement
 
     if refine is not None and not 0 < refine < 1:
         raise InputError("refine", refine, "0 < TOL < 1 (a relative change, e.g. 0.01)")
@@ -376,8 +376,8 @@ def _refinement(mesh: int, cell_mesh: str, refine: float | None) -> Refinement:
 def _assembly(design: Path | None, options: Mapping[str, object]) -> Assembly:
     """The design to check: the record of ``--design`` or the layer ``options`` (``--W``, ...),
     never both."""
-    from ..inputs import assembly_from_namespace
-    from ..record import read_record
+    from corrugate.export.record import read_record
+    from corrugate.spec.inputs import assembly_from_namespace
 
     layer = {"--W": options.get("W"), "--n": options.get("n"), "--alpha": options.get("alpha")}
     if design is not None:
@@ -403,8 +403,8 @@ def _assembly(design: Path | None, options: Mapping[str, object]) -> Assembly:
 def _etas(assembly: Assembly, eta: list[str] | None, connectors: bool) -> tuple[float, ...]:
     """The directions of ``--eta`` (default 0), checked against the FE model before any run:
     layout, eta and connectors must fit it."""
-    from ..fea.assembly import principal_axis, specimen
-    from ..inputs import parse_etas
+    from corrugate.fea.assembly import principal_axis, specimen
+    from corrugate.spec.inputs import parse_etas
 
     etas = parse_etas(eta or ["0"])
     for e in etas:
@@ -448,7 +448,7 @@ def _run_sweep(
 ) -> None:
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from ..fea.sweep import SWEEPS, dask_executor, run_sweep, write_sweep_files
+    from corrugate.fea.series import SWEEPS, dask_executor, run_sweep, write_sweep_files
 
     if name not in SWEEPS:
         raise InputError("sweep", repr(name), "one of " + ", ".join(SWEEPS), reason="is unknown")

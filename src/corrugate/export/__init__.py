@@ -5,13 +5,13 @@ importing this package costs nothing and the core of corrugate never imports the
 with the ``fab`` extra.
 """
 
-from ..fileio import staged
-from .cutfile import cut_dxf_document, cut_paths, cut_svg_document, write_cut_files
-from .dxf import dxf_document, write_dxf
-from .files import FORMATS, write_files
-from .machines import DEFAULT_MACHINE, OPERATIONS, Machine, get_machine
-from .pdf import PAPER_CHOICES, write_pdf, write_tiled_pdf
-from .svg import svg_document, write_svg
+from corrugate.core.fileio import staged
+from corrugate.export.cutfile import cut_dxf_document, cut_paths, cut_svg_document, write_cut_files
+from corrugate.export.dxf import dxf_document, write_dxf
+from corrugate.export.files import FORMATS, write_files
+from corrugate.export.machines import DEFAULT_MACHINE, OPERATIONS, Machine, get_machine
+from corrugate.export.pdf import PAPER_CHOICES, write_pdf, write_tiled_pdf
+from corrugate.export.svg import svg_document, write_svg
 
 __all__ = [
     "DEFAULT_MACHINE",

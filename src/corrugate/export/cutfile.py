@@ -3,7 +3,7 @@
 Coordinates are sheet mm (y up, as in DXF; the SVG flips y with ``y_svg = H - y``, no mirror).
 Each path belongs to one operation of :data:`corrugate.export.machines.OPERATIONS` and is real
 geometry: a perforated fold is its dashes, each a separate two-point path of the set cut length
-(:func:`corrugate.pattern.linestyle.dashes`: evenly spread, half a gap or more at each end, so no
+(:func:`corrugate.fabrication.linestyle.dashes`: evenly spread, half a gap or more at each end, so no
 dash reaches the outline); a scored fold is one line on SCORE; a ``solid`` fold is left out (it is in
 the fold map). No ``stroke-dasharray``, no ``<text>`` and no DXF TEXT: labels, when asked, are
 glyph outlines of the part's name (e.g. ``L1``, ``B3``) on the LABEL operation, placed clear of
@@ -26,13 +26,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..fileio import staged
-from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease_name, dashes
-from ..pattern.model import Point, Role
-from ..pattern.sheets import Sheet, place
-from .labels import label_outlines, label_spot
-from .machines import OPERATIONS, Family, Machine, get_machine
-from .svg import svg_number, svg_root, svg_text
+from corrugate.core.fileio import staged
+from corrugate.export.labels import label_outlines, label_spot
+from corrugate.export.machines import OPERATIONS, Family, Machine, get_machine
+from corrugate.export.svg import svg_number, svg_root, svg_text
+from corrugate.fabrication.linestyle import (
+    SOLID,
+    LineStyle,
+    StyleKind,
+    check_style,
+    crease_name,
+    dashes,
+)
+from corrugate.fabrication.model import Point, Role
+from corrugate.fabrication.sheets import Sheet, place
 
 if TYPE_CHECKING:
     from ezdxf.document import Drawing
@@ -56,7 +63,7 @@ class CutPath:
 def cut_paths(sheet: Sheet, style: LineStyle = SOLID, *, labels: bool = False) -> list[CutPath]:
     """Every path of ``sheet``'s cut file, operation by operation (see the module docstring).
 
-    Raises :class:`~corrugate.pattern.linestyle.PerforationError` if a perforation does not fit a
+    Raises :class:`~corrugate.fabrication.linestyle.PerforationError` if a perforation does not fit a
     crease.
     """
     check_style((p.part for p in sheet.placements), style)

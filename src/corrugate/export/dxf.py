@@ -27,11 +27,18 @@ import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..fileio import staged
-from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease_name, dashes
-from ..pattern.model import Role
-from ..pattern.sheets import Sheet, place
-from .labels import label_spot
+from corrugate.core.fileio import staged
+from corrugate.export.labels import label_spot
+from corrugate.fabrication.linestyle import (
+    SOLID,
+    LineStyle,
+    StyleKind,
+    check_style,
+    crease_name,
+    dashes,
+)
+from corrugate.fabrication.model import Role
+from corrugate.fabrication.sheets import Sheet, place
 
 if TYPE_CHECKING:
     from ezdxf.document import Drawing
@@ -104,7 +111,7 @@ def dxf_document(sheet: Sheet, style: LineStyle = SOLID, *, labels: bool = True)
 def write_dxf(
     sheet: Sheet, path: str | os.PathLike[str], style: LineStyle = SOLID, *, labels: bool = True
 ) -> Path:
-    """Write one sheet as DXF to ``path`` (all or nothing, see :mod:`corrugate.fileio`); returns the path."""
+    """Write one sheet as DXF to ``path`` (all or nothing, see :mod:`corrugate.core.fileio`); returns the path."""
     doc = dxf_document(sheet, style, labels=labels)
     target = Path(path)
     with staged() as st:

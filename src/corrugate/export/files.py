@@ -12,7 +12,7 @@ For sheet N (numbered from 1: ``sheet-1.svg`` is ``plan.sheets[0]``):
 
 and ``pattern.pdf`` (every sheet at 1:1, :mod:`.pdf`). Options are checked and every document is
 built before anything is written; the files are then written to temporary names in ``out_dir`` and
-moved into place together (:mod:`corrugate.fileio`), so a bad option or a failure while writing
+moved into place together (:mod:`corrugate.core.fileio`), so a bad option or a failure while writing
 leaves no file behind, new or partial. Files of an earlier run with more sheets are not removed.
 """
 
@@ -24,15 +24,15 @@ from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..errors import UnknownNameError
-from ..fileio import Staging, staged
-from ..pattern.linestyle import SOLID, LineStyle, check_style
-from ..pattern.model import Part
-from ..pattern.sheets import SheetPlan
-from .cutfile import cut_dxf_document, cut_svg_document
-from .machines import Machine, get_machine
-from .pdf import check_paper, render_pdf, render_tiled_pdf
-from .svg import svg_document
+from corrugate.core.errors import UnknownNameError
+from corrugate.core.fileio import Staging, staged
+from corrugate.export.cutfile import cut_dxf_document, cut_svg_document
+from corrugate.export.machines import Machine, get_machine
+from corrugate.export.pdf import check_paper, render_pdf, render_tiled_pdf
+from corrugate.export.svg import svg_document
+from corrugate.fabrication.linestyle import SOLID, LineStyle, check_style
+from corrugate.fabrication.model import Part
+from corrugate.fabrication.sheets import SheetPlan
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -79,7 +79,7 @@ def write_files(
     instead of being committed here. ``paper`` is ``mat`` (``pdf_name`` only) or ``a4``/``letter``:
     then ``pattern-a4.pdf``/``pattern-letter.pdf`` (the tiles) is written besides ``pdf_name``.
     ``sheet_figures``: the sheets' :func:`~corrugate.export.pdf.sheet_figure` with these
-    ``style`` and labels, built already, for ``pdf_name`` (``None``: built here). Raises :class:`~corrugate.errors.InputError` subclasses for
+    ``style`` and labels, built already, for ``pdf_name`` (``None``: built here). Raises :class:`~corrugate.core.errors.InputError` subclasses for
     bad options before writing anything.
     """
     wanted = [f.strip().lower() for f in formats]

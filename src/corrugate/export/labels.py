@@ -18,8 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from ..pattern.model import Point
-from ..pattern.sheets import PlacedPart
+from corrugate.fabrication.model import Point
+from corrugate.fabrication.sheets import PlacedPart
 
 __all__ = ["MAX_TEXT_MM", "MIN_TEXT_MM", "LabelSpot", "label_outlines", "label_spot", "label_text"]
 

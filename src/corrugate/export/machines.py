@@ -19,7 +19,7 @@ operation      colour       ACI    what the machine does with it
 Folds of the ``solid`` style are not in the cut files (the machine does nothing with them): they are
 in the fold map (``sheet-N.svg``), for folding by hand. Assembly marks are in the fold map only.
 
-Profiles (``get_machine``; the names are those of :data:`corrugate.pattern.sheets.CUTTERS`):
+Profiles (``get_machine``; the names are those of :data:`corrugate.fabrication.sheets.CUTTERS`):
 
 ``cameo4-12x12``, ``cameo4-12x24`` (Silhouette Cameo 4)
     ``cut-N.dxf``: the basic edition of Silhouette Studio opens DXF, not SVG.
@@ -37,7 +37,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
-from ..pattern.sheets import Cutter, get_cutter
+from corrugate.fabrication.sheets import Cutter, get_cutter
 
 __all__ = [
     "DEFAULT_MACHINE",
@@ -106,9 +106,9 @@ class Machine:
 def get_machine(name: str | Cutter | Machine = DEFAULT_MACHINE) -> Machine:
     """The profile of machine ``name`` (a cutter name or ``laser:WxH`` in mm).
 
-    Raises :class:`~corrugate.errors.UnknownNameError` for an unknown name and
-    :class:`~corrugate.errors.InputError` for a bad laser bed (see
-    :func:`corrugate.pattern.sheets.get_cutter`).
+    Raises :class:`~corrugate.core.errors.UnknownNameError` for an unknown name and
+    :class:`~corrugate.core.errors.InputError` for a bad laser bed (see
+    :func:`corrugate.fabrication.sheets.get_cutter`).
     """
     if isinstance(name, Machine):
         return name

@@ -5,7 +5,7 @@ Each page is exactly the sheet: the figure is ``width / 25.4`` by ``height / 25.
 ``width / 25.4 * 72`` by ``height / 25.4 * 72`` pt), with one axes filling the whole figure and limits
 0..width, 0..height mm, so 1 mm of the drawing is 1 mm on paper (print at 100 %, "actual size").
 A 10 mm check square labelled "10 mm" sits in the box the sheet layout keeps free in the top-right
-corner (:data:`corrugate.pattern.sheets.CHECK_BOX`); on a sheet without that box it goes to the
+corner (:data:`corrugate.fabrication.sheets.CHECK_BOX`); on a sheet without that box it goes to the
 first free spot found, and is left out only if no 10 mm spot is free. Lines use the SVG colours
 (:data:`corrugate.export.svg.COLOURS`), solid; with the ``perforated`` style the creases are drawn
 as their dashes. Part labels, the check square and a one-line note in the bottom margin are grey
@@ -33,13 +33,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..errors import InputError, UnknownNameError
-from ..fileio import staged
-from ..pattern.linestyle import SOLID, LineStyle, StyleKind, check_style, crease_name, dashes
-from ..pattern.model import Point, Role
-from ..pattern.sheets import Sheet, SheetPlan, place
-from .labels import label_spot
-from .svg import ANNOTATION, BOUNDARY, COLOURS
+from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.core.fileio import staged
+from corrugate.export.labels import label_spot
+from corrugate.export.svg import ANNOTATION, BOUNDARY, COLOURS
+from corrugate.fabrication.linestyle import (
+    SOLID,
+    LineStyle,
+    StyleKind,
+    check_style,
+    crease_name,
+    dashes,
+)
+from corrugate.fabrication.model import Point, Role
+from corrugate.fabrication.sheets import Sheet, SheetPlan, place
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -280,7 +287,7 @@ MARK_SIZE_MM = 6.0
 
 def get_paper(name: str) -> Paper:
     """The paper called ``name`` (``a4`` or ``letter``, any case); raises
-    :class:`~corrugate.errors.UnknownNameError` naming the field ``paper`` otherwise."""
+    :class:`~corrugate.core.errors.UnknownNameError` naming the field ``paper`` otherwise."""
     key = name.strip().lower()
     if key not in PAPERS:
         raise UnknownNameError("paper", name, list(PAPERS))
@@ -289,7 +296,7 @@ def get_paper(name: str) -> Paper:
 
 def check_paper(name: str) -> str:
     """``name`` normalised if it is one of :data:`PAPER_CHOICES`; else
-    :class:`~corrugate.errors.UnknownNameError` naming the field ``paper``."""
+    :class:`~corrugate.core.errors.UnknownNameError` naming the field ``paper``."""
     key = name.strip().lower()
     if key not in PAPER_CHOICES:
         raise UnknownNameError("paper", name, list(PAPER_CHOICES))

@@ -43,11 +43,11 @@ import xml.etree.ElementTree as ET
 from collections.abc import Mapping
 from pathlib import Path
 
-from ..fileio import staged
-from ..pattern.linestyle import SOLID, LineStyle, check_style
-from ..pattern.model import Point, Role
-from ..pattern.sheets import Sheet, place
-from .labels import MIN_TEXT_MM, label_spot, label_text
+from corrugate.core.fileio import staged
+from corrugate.export.labels import MIN_TEXT_MM, label_spot, label_text
+from corrugate.fabrication.linestyle import SOLID, LineStyle, check_style
+from corrugate.fabrication.model import Point, Role
+from corrugate.fabrication.sheets import Sheet, place
 
 __all__ = [
     "ANNOTATION",
@@ -232,7 +232,7 @@ def write_svg(
     labels: bool = True,
     marks: bool = True,
 ) -> Path:
-    """Write one sheet as SVG to ``path`` (all or nothing, see :mod:`corrugate.fileio`); returns the path."""
+    """Write one sheet as SVG to ``path`` (all or nothing, see :mod:`corrugate.core.fileio`); returns the path."""
     text = svg_document(sheet, style, labels=labels, marks=marks)
     target = Path(path)
     with staged() as st:

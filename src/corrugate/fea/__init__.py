@@ -5,20 +5,20 @@
 * :mod:`~corrugate.fea.assembly`: the whole two-layer assembly as shells: compression, 3-point
   bending, the 4-point (pure bending) diagnostic, linear buckling and the frame test, meshed by
   :mod:`~corrugate.fea.shells` (layers; coupons along any eta through
-  :mod:`~corrugate.fea.planmesh`, gmsh) and :mod:`~corrugate.fea.band` (the connector band);
+  :mod:`~corrugate.fea.planmesh`, gmsh) and :mod:`~corrugate.fea.connector_band` (the connector band);
 * :mod:`~corrugate.fea.frame`: the panel in a rigid frame, the paper's cos^2 rule's own fixture;
 * :mod:`~corrugate.fea.validation`: FE beside every model variant for one design, mesh refinement;
-* :mod:`~corrugate.fea.sweep`: sweeps through a ``concurrent.futures`` executor, tables;
+* :mod:`~corrugate.fea.series`: sweeps through a ``concurrent.futures`` executor, tables;
 * :mod:`~corrugate.fea.plots`: Fig. 7-style plots (matplotlib).
 
 The core package never imports this subpackage (DESIGN.md section 9). See docs/fea.md.
 """
 
-from .assembly import AssemblyMesh, AssemblyResult, solve_assembly
-from .ccx import SolverError, SolverNotFoundError, find_ccx
-from .frame import FrameStiffness, solve_frame
-from .unitcell import UnitCell, UnitCellMesh, UnitCellResult, solve_unit_cell
-from .validation import Case, CaseResult, Refinement, run_case
+from corrugate.fea.assembly import AssemblyMesh, AssemblyResult, solve_assembly
+from corrugate.fea.ccx import SolverError, SolverNotFoundError, find_ccx
+from corrugate.fea.frame import FrameStiffness, solve_frame
+from corrugate.fea.unitcell import UnitCell, UnitCellMesh, UnitCellResult, solve_unit_cell
+from corrugate.fea.validation import Case, CaseResult, Refinement, run_case
 
 __all__ = [
     "AssemblyMesh",

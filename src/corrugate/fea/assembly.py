@@ -1,6 +1,6 @@
 """The whole OADLC assembly as shells in CalculiX: in-plane compression and 3-point bending.
 
-The meshes come from :mod:`corrugate.fea.shells` (the layers) and :mod:`corrugate.fea.band`
+The meshes come from :mod:`corrugate.fea.shells` (the layers) and :mod:`corrugate.fea.connector_band`
 (the connector band); this module writes the deck of each load case and reads the result.
 
 Model (every choice stated; DESIGN.md section 6):
@@ -11,9 +11,9 @@ Model (every choice stated; DESIGN.md section 6):
   run along y, its zig-zag spans x in [0, Lx] between z = 0 and z = h1 (it starts and ends on a
   bottom crease line); layer 2's creases run along x, it spans y in [0, Ly] between z = h1 and
   z = h1 + h2, resting on layer 1.
-* **Connectors** (``connectors=True``, off by default). The band of :mod:`corrugate.pattern.
+* **Connectors** (``connectors=True``, off by default). The band of :mod:`corrugate.fabrication.
   connectors` as four flat walls standing on the rectangle's outline from z = 0 to t_d = h1 + h2
-  (as :func:`corrugate.pattern.folded.band_walls`), S8R shells of layer 1's material and
+  (as :func:`corrugate.fabrication.folded.band_walls`), S8R shells of layer 1's material and
   thickness. Each wall is meshed to conform to the layer edges it meets: the wall at y = 0 (and
   Ly) is cut by layer 1's zig-zag edge into two triangles per facet (each meshed as three
   quadrilateral patches meeting at its centroid, ``along`` elements on every side), with a plain
@@ -70,7 +70,7 @@ Model (every choice stated; DESIGN.md section 6):
   tied (``*EQUATION``) to one reference node loaded by 1 N, and a ``*BUCKLE`` step (linear
   eigenvalue buckling about the unloaded state, 3 modes, relative accuracy 1e-6; ccx's default
   is 1e-2): the first buckling factor is the
-  platen force (N) of the first mode. Bounds from plate theory: :mod:`corrugate.buckling`.
+  platen force (N) of the first mode. Bounds from plate theory: :mod:`corrugate.mechanics.buckling`.
 * **Frame** (``frame``, the kinematics of the paper's spring rule): compression along eta = 0 or
   90 as above with the two side edges of each layer on platens too, held in place (normal
   displacement and the rotations about their in-plane axes zero); the side platen's reaction
@@ -105,11 +105,11 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError
-from ..geometry import Assembly
-from .band import Bond, band_shell
-from .ccx import SolverError, run_ccx, work_dir
-from .shells import Shell, layer_shell, oblique_shells, principal_axis, specimen
+from corrugate.core.errors import InputError
+from corrugate.fea.ccx import SolverError, run_ccx, work_dir
+from corrugate.fea.connector_band import Bond, band_shell
+from corrugate.fea.shells import Shell, layer_shell, oblique_shells, principal_axis, specimen
+from corrugate.geometry.layer import Assembly
 
 __all__ = [
     "TESTS",
@@ -141,7 +141,7 @@ class AssemblyMesh:
         v = self.along
         if isinstance(v, bool) or not isinstance(v, int) or v < 2 or v % 2:
             raise InputError("mesh.along", v, "an even integer >= 2")
-        from ..limits import check_count
+        from corrugate.core.limits import check_count
 
         check_count("mesh", v, "mesh")
 
@@ -234,7 +234,7 @@ def _cut_holes(sh: Shell, a: Assembly) -> Shell:
     """The shell less every element whose centroid (in plan) lies inside one of the layout's
     holes, and less the nodes no element uses: a staircase hole that converges to the true one as
     the mesh is refined."""
-    from ..holes import hole_rings
+    from corrugate.geometry.holes import hole_rings
 
     rings = hole_rings(a.layout.holes, a.Lx, a.Ly)
     index = {int(n): i for i, n in enumerate(sh.ids)}

@@ -26,7 +26,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..errors import CorrugateError
+from corrugate.core.errors import CorrugateError
 
 __all__ = [
     "CCX_ENV",

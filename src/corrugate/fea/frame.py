@@ -23,8 +23,8 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from ..geometry import Assembly
-from .assembly import AssemblyMesh, solve_assembly
+from corrugate.fea.assembly import AssemblyMesh, solve_assembly
+from corrugate.geometry.layer import Assembly
 
 __all__ = ["FrameStiffness", "solve_frame"]
 

@@ -27,7 +27,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import NDArray
 
-from .ccx import SolverError
+from corrugate.fea.ccx import SolverError
 
 __all__ = ["Corrugation", "PlanMesh", "plan_mesh"]
 

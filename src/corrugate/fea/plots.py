@@ -14,12 +14,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..analysis import analyze
-from ..errors import InputError
-from ..figure import new_figure
-from ..geometry import Assembly, Layer
-from ..moduli import DEFAULT_MODEL, MODELS
-from .validation import CaseResult
+from corrugate.analysis.evaluate import analyze
+from corrugate.core.errors import InputError
+from corrugate.core.plotting import new_figure
+from corrugate.fea.validation import CaseResult
+from corrugate.geometry.layer import Assembly, Layer
+from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
 
 __all__ = ["plot_sweep"]
 

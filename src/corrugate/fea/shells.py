@@ -15,8 +15,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError
-from ..geometry import Assembly, Layer, crease_layer
+from corrugate.core.errors import InputError
+from corrugate.geometry.layer import Assembly, Layer, crease_layer
 
 __all__ = ["Shell", "layer_shell", "oblique_shells", "principal_axis", "specimen"]
 
@@ -108,7 +108,7 @@ def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
     Lx x Ly itself at eta = 0 or 90 deg; at any other eta a coupon cut from the same two layers
     with its edges along and across eta, of the layout's proportions turned to the crease
     direction nearer to eta (Lx x Ly up to 45 deg, Ly x Lx above): the coupon the free-panel
-    model of a rectangle describes (:func:`corrugate.offaxis.assembly_directional`; at 45 deg
+    model of a rectangle describes (:func:`corrugate.mechanics.offaxis.assembly_directional`; at 45 deg
     the model is the smaller of the two orientations, so the Lx x Ly coupon checks it from
     above). A square's coupon is the square. Circles and polygons are refused
     (:class:`InputError`): they have no straight edges for platens and supports."""
@@ -137,7 +137,7 @@ def oblique_shells(
     across), meshed by :mod:`corrugate.fea.planmesh`. The specimen's centre is the layout's
     centre; beyond the layout's extent the zig-zags continue periodically (the specimen is cut
     from the panel's material)."""
-    from .planmesh import Corrugation, plan_mesh
+    from corrugate.fea.planmesh import Corrugation, plan_mesh
 
     a = assembly
     A, B = specimen(a, eta_deg)

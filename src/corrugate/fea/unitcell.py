@@ -27,7 +27,7 @@ Model (CalculiX, :mod:`corrugate.fea.ccx`):
 
       Ecx = 1 / (t C_xx),  Ecy = 1 / (t C_yy),  Ebx = 12 / (t^3 C_kx),  Eby = 12 / (t^3 C_ky),
 
-  moduli per plan width p of a facet, the convention of :mod:`corrugate.moduli` (DESIGN.md 3.1).
+  moduli per plan width p of a facet, the convention of :mod:`corrugate.mechanics.moduli` (DESIGN.md 3.1).
 
 Source of the method: periodic homogenisation of plates (e.g. Xia et al. 2012, Int. J. Solids
 Struct. 49:1453, whose A and D this cell computes numerically).
@@ -41,10 +41,10 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from ..errors import InputError
-from ..geometry import FacetGeometry
-from ..moduli import Moduli
-from .ccx import SolverError, run_ccx, work_dir
+from corrugate.core.errors import InputError
+from corrugate.fea.ccx import SolverError, run_ccx, work_dir
+from corrugate.geometry.layer import FacetGeometry
+from corrugate.mechanics.moduli import Moduli
 
 __all__ = ["UnitCell", "UnitCellMesh", "UnitCellResult", "solve_unit_cell", "unit_cell_deck"]
 
@@ -79,7 +79,7 @@ class UnitCellMesh:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
                 raise InputError(f"mesh.{name}", v, "an integer >= 1")
-            from ..limits import check_count
+            from corrugate.core.limits import check_count
 
             check_count(
                 "cell_mesh" if name == "along" else "cell_mesh_through", v, f"cell-mesh.{name}"

@@ -5,7 +5,7 @@ the FE settings; :func:`run_case` runs the periodic unit cell of each distinct l
 (:mod:`~corrugate.fea.unitcell`) and the assembly under in-plane compression and 3-point bending
 (:mod:`~corrugate.fea.assembly`) at each eta, optionally refining the meshes until the results
 change by less than a tolerance, and puts the closed forms of every model variant beside them
-(:func:`corrugate.analysis.analyze`, never reimplemented here).
+(:func:`corrugate.analysis.evaluate.analyze`, never reimplemented here).
 
 Failures (solver errors, time-outs) are caught and reported in :attr:`CaseResult.error`, so a
 sweep goes on with the other cases.
@@ -18,12 +18,9 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Protocol, TypeVar
 
-from ..analysis import analyze
-from ..errors import CorrugateError
-from ..geometry import Assembly
-from ..moduli import MODELS
-from ..offaxis import Support
-from .assembly import (
+from corrugate.analysis.evaluate import analyze
+from corrugate.core.errors import CorrugateError
+from corrugate.fea.assembly import (
     AssemblyMesh,
     AssemblyResult,
     Bond,
@@ -31,8 +28,11 @@ from .assembly import (
     principal_axis,
     solve_assembly,
 )
-from .frame import solve_frame
-from .unitcell import UnitCell, UnitCellMesh, solve_unit_cell
+from corrugate.fea.frame import solve_frame
+from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
+from corrugate.geometry.layer import Assembly
+from corrugate.mechanics.moduli import MODELS
+from corrugate.mechanics.offaxis import Support
 
 
 class _Mesh(Protocol):
@@ -100,7 +100,7 @@ class CaseResult:
     3-point bending, as the paper tested; EI along the layout's axes only), ``"Kframe_N_per_mm@eta"``
     (the panel in a rigid frame, :mod:`~corrugate.fea.frame`; in ``fe`` only when an off-axis eta
     is asked for), ``"Pcr_N@eta"`` (first buckling load in compression, N; ``fe`` only, with
-    ``buckling`` and eta 0 or 90; the bounds are :func:`corrugate.analysis.facet_buckling_load`), ``"D4_Nmm@eta"`` (pure bending between the load lines
+    ``buckling`` and eta 0 or 90; the bounds are :func:`corrugate.analysis.evaluate.facet_buckling_load`), ``"D4_Nmm@eta"`` (pure bending between the load lines
     of a 4-point test; the closed forms' D for the models) and the layer moduli
     ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
     ``history`` lists (mesh label, values) of every refinement step. ``converged`` is True only

@@ -6,8 +6,8 @@
 * :func:`mass_by_n_figure`: the lightest feasible mass for each n over a grid of W and alpha;
 * :func:`polar_figure`: K(eta) and D(eta) of the design, eta from layer 1's creases.
 
-All values come from :func:`corrugate.design.quantities.point_values`, i.e. from
-:func:`corrugate.analysis.evaluate`, the one implementation of the model.
+All values come from :func:`corrugate.solver.quantities.point_values`, i.e. from
+:func:`corrugate.analysis.evaluate.evaluate`, the one implementation of the model.
 """
 
 from __future__ import annotations
@@ -17,10 +17,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from ..analysis import Analysis, analyze
-from ..design.problem import Candidate, Problem, describe
-from ..design.quantities import Tables, point_values
-from ..figure import new_figure
+from corrugate.analysis.evaluate import Analysis, analyze
+from corrugate.core.plotting import new_figure
+from corrugate.solver.problem import Candidate, Problem, describe
+from corrugate.solver.quantities import Tables, point_values
 
 __all__ = ["design_space_figure", "mass_by_n_figure", "polar_figure"]
 
@@ -30,7 +30,7 @@ GRID = 161
 #: Design points evaluated per call of the model when the figures scan a range of n: about
 #: 16000 keeps each working array (125 KiB) below glibc's mmap threshold (128 KiB), so the calls
 #: reuse heap memory instead of faulting in fresh pages (the case study's scan: 72 ms against
-#: 121 ms with 100000, medians of 5, see corrugate.sweep.DEFAULT_CHUNK).
+#: 121 ms with 100000, medians of 5, see corrugate.analysis.sweep.DEFAULT_CHUNK).
 BATCH_POINTS = 16_000
 #: Fixed margins of each figure (fractions of the figure), those ``tight_layout`` finds for the
 #: case study with a little room to spare. Not ``tight_layout``: it measures every tick label
@@ -186,7 +186,7 @@ def _plain_number(value: float, _pos: object = None) -> str:
 
 def polar_figure(a: Analysis) -> Any:
     """K(eta) (N/mm) and D(eta) (N mm) of the design on polar axes, eta from layer 1's creases:
-    the free panel's lower bounds (:mod:`corrugate.offaxis`) and the rule of a panel held in a
+    the free panel's lower bounds (:mod:`corrugate.mechanics.offaxis`) and the rule of a panel held in a
     rigid frame, on a logarithmic radius (they differ by up to three orders of magnitude); the
     design's own support condition is the solid line."""
 

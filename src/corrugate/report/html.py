@@ -7,16 +7,16 @@ import html
 import io
 from typing import TYPE_CHECKING, Any
 
-from ..analysis import analyze
-from ..design.solve import Solution
-from ..holes import holes_text
-from ..moduli import MODELS
-from ..pattern.instructions import assembly_steps, instructions_png
-from ..pattern.linestyle import StyleKind
-from .figures import design_space_figure, mass_by_n_figure, polar_figure
+from corrugate.analysis.evaluate import analyze
+from corrugate.fabrication.instructions import assembly_steps, instructions_png
+from corrugate.fabrication.linestyle import StyleKind
+from corrugate.geometry.holes import holes_text
+from corrugate.mechanics.moduli import MODELS
+from corrugate.report.figures import design_space_figure, mass_by_n_figure, polar_figure
+from corrugate.solver.solve import Solution
 
 if TYPE_CHECKING:
-    from ..outputs import CutPlan
+    from corrugate.export.plan import CutPlan
 
 __all__ = ["report_html"]
 
@@ -87,10 +87,10 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     """The report of a solved design (see :mod:`corrugate.report`); needs matplotlib.
 
     ``cut`` is the parts and sheet plan the design's cut files are written from
-    (:func:`corrugate.outputs.cut_plan`), drawn as they are; ``None`` makes one with the default
+    (:func:`corrugate.export.plan.cut_plan`), drawn as they are; ``None`` makes one with the default
     output options (a report on its own, without cut files).
     """
-    from ..export.pdf import sheet_figure
+    from corrugate.export.pdf import sheet_figure
 
     p = sol.problem
     parts: list[str] = [
@@ -212,7 +212,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
         "<code>refined</code> is the variant that agrees with finite elements.</p>"
     )
     if cut is None:
-        from ..outputs import cut_plan
+        from corrugate.export.plan import cut_plan
 
         cut = cut_plan(asm)
     pattern, plan = cut.pattern, cut.plan

@@ -4,6 +4,6 @@ Needs the ``web`` extra (``pip install 'corrugate[web]'``). The core package nev
 subpackage; ``corrugate serve`` imports it when run.
 """
 
-from .app import WebSettings, create_app
+from corrugate.web.app import WebSettings, create_app
 
 __all__ = ["WebSettings", "create_app"]

@@ -51,18 +51,17 @@ from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
-from .. import __version__
-from ..analysis import Analysis
-from ..design import Problem, Solution
-from ..errors import InputError
-from ..inputs import AnalysisRequest, analysis_request
-from ..materials import library
-from ..moduli import DEFAULT_MODEL, MODELS
-from ..outputs import OutputOptions
-from ..pipeline import output_options, solve_spec, write_design
-from ..spec import Spec, SpecError, parse_spec
-from ..units import ureg
-from .limits import (
+from corrugate import __version__
+from corrugate.analysis.evaluate import Analysis
+from corrugate.core.errors import InputError
+from corrugate.core.units import ureg
+from corrugate.export.plan import OutputOptions
+from corrugate.materials.library import library
+from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
+from corrugate.solver import Problem, Solution
+from corrugate.spec.inputs import AnalysisRequest, analysis_request
+from corrugate.spec.schema import Spec, SpecError, parse_spec
+from corrugate.web.guards import (
     BodySizeLimit,
     CatchAll,
     ComputeTimeoutError,
@@ -71,7 +70,7 @@ from .limits import (
     ServerBusyError,
     release_memory,
 )
-from .schemas import (
+from corrugate.web.schemas import (
     OUTPUT_OPTIONS,
     AnalyzeBody,
     DesignAnswer,
@@ -85,7 +84,8 @@ from .schemas import (
     ResultBody,
     ResultFile,
 )
-from .store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
+from corrugate.web.store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
+from corrugate.workflow import output_options, solve_spec, write_design
 
 __all__ = [
     "LOOPBACK_NAMES",
@@ -219,8 +219,8 @@ def analysis_payload(body: AnalyzeBody, settings: WebSettings) -> dict[str, obje
 
 def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> list[StoredFile]:
     """Build the folded assembly of the request and store it as GLB and STL (worker thread)."""
-    from ..pattern.build import build_pattern
-    from ..pattern.files3d import write_mesh
+    from corrugate.export.files3d import write_mesh
+    from corrugate.fabrication.build import build_pattern
 
     req = _parse(body, settings)
     a = req.assembly
@@ -229,9 +229,9 @@ def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> 
 
 def pattern_files(body: PatternBody, settings: WebSettings, store: ResultStore) -> list[StoredFile]:
     """Every file ``corrugate pattern --out`` writes for the request's design, stored as a new
-    result (worker thread): the CLI's own writer, :func:`corrugate.outputs.write_design_files`."""
-    from ..analysis import analyze
-    from ..outputs import write_design_files
+    result (worker thread): the CLI's own writer, :func:`corrugate.workflow.write_design_files`."""
+    from corrugate.analysis.evaluate import analyze
+    from corrugate.workflow import write_design_files
 
     req = _parse(body, settings)
     with _PARSE_LOCK:
@@ -248,8 +248,8 @@ def pattern_files(body: PatternBody, settings: WebSettings, store: ResultStore) 
 @contextmanager
 def _output_errors(cutter: str) -> Iterator[None]:
     """The writers' errors about the output options, renamed to the request's fields."""
-    from ..pattern.linestyle import PerforationError
-    from ..pattern.sheets import PartTooLargeError
+    from corrugate.fabrication.linestyle import PerforationError
+    from corrugate.fabrication.sheets import PartTooLargeError
 
     try:
         yield
@@ -264,7 +264,7 @@ def _output_errors(cutter: str) -> Iterator[None]:
 def _output_options(body: OutputBody) -> OutputOptions:
     """The output options of a design or pattern request, as ``corrugate design --cutter ...
     --fold-style ... --cut ... --gap ... --paper ...`` reads them
-    (:func:`corrugate.pipeline.output_options`, default spacing, margin and tabs); errors name
+    (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs); errors name
     the request's field."""
     return output_options(
         body.cutter,
@@ -317,7 +317,7 @@ def _spec_data(body: DesignBody) -> dict[str, Any]:
 
 def design_payload(spec: Spec, problem: Problem) -> tuple[Solution, dict[str, Any]]:
     """The solution of ``problem`` and the object ``corrugate design --json`` prints for it
-    (:func:`corrugate.pipeline.solve_spec`, the CLI's own steps, robust specs included)."""
+    (:func:`corrugate.workflow.solve_spec`, the CLI's own steps, robust specs included)."""
     run = solve_spec(spec, problem)
     return run.solution, run.payload
 
@@ -337,7 +337,7 @@ def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[A
     folder of the store); returns the ``corrugate design --json`` object and the paths written
     (none for an infeasible spec). Runs in a worker process (or thread): it takes and returns
     plain, picklable values, and the store itself stays in the server. The worker hands its
-    freed memory back to the system afterwards (:func:`~corrugate.web.limits.release_memory`)."""
+    freed memory back to the system afterwards (:func:`~corrugate.web.guards.release_memory`)."""
     try:
         return _design_job(body, settings, folder)
     finally:

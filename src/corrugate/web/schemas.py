@@ -1,7 +1,7 @@
 """Request and response bodies of the JSON API (pydantic), with the CLI's field names.
 
 Values are numbers in the field's default unit or strings that may carry units, exactly as the CLI
-takes them; the conversion and every range check are :mod:`corrugate.inputs`', so a bad value gets
+takes them; the conversion and every range check are :mod:`corrugate.spec.inputs`', so a bad value gets
 the same message on both. Only the sizes of things (string lengths, list lengths) are checked here.
 """
 
@@ -11,7 +11,7 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field, StrictFloat, StrictInt, StringConstraints
 
-from ..moduli import DEFAULT_MODEL
+from corrugate.mechanics.moduli import DEFAULT_MODEL
 
 __all__ = [
     "OUTPUT_OPTIONS",
@@ -45,7 +45,7 @@ MAX_HOLES = 16
 
 
 class HoleBody(BaseModel):
-    """An inner cut-out of the layout (:mod:`corrugate.holes`): lengths in mm (or with units) from
+    """An inner cut-out of the layout (:mod:`corrugate.geometry.holes`): lengths in mm (or with units) from
     the centre of the layout's bounding box, x across layer 1's creases."""
 
     model_config = ConfigDict(extra="forbid")
@@ -119,7 +119,7 @@ class AnalyzeBody(BaseModel):
 #: The keys of a design request that are output options, not spec keys.
 OUTPUT_OPTIONS = ("cutter", "fold_style", "cut", "gap", "paper")
 
-_SPEC_KEY = "A key of the spec, as in the TOML file (see corrugate.spec and examples/)."
+_SPEC_KEY = "A key of the spec, as in the TOML file (see corrugate.spec.schema and examples/)."
 
 #: The paper's case study (``examples/blimp_gripper.toml``) as a design request.
 BLIMP_GRIPPER: dict[str, Any] = {
@@ -171,7 +171,7 @@ class DesignBody(OutputBody):
     """A design spec as JSON, with the keys of the TOML file, plus the output options of
     ``corrugate design`` (``cutter``, ``fold_style``, ``cut``, ``gap``, ``paper``).
 
-    The spec keys are validated by :func:`corrugate.spec.parse_spec` (the CLI's own rules), so a
+    The spec keys are validated by :func:`corrugate.spec.schema.parse_spec` (the CLI's own rules), so a
     bad value gets 422 naming its TOML path (``constraints.side.min``); only the output options
     are typed here.
     """

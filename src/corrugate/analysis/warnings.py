@@ -1,0 +1,190 @@
+"""Warnings attached to every result: where the model is being used outside its evidence.
+
+* outside the range the paper validated on the bench (n 7-13, W 8-14 mm, alpha 40-115 deg;
+  Liu, Yan and Mehta, section 'Model Validation');
+* thick sheets: the closed forms assume zero-thickness creases; periodic unit-cell FE
+  (``reference/unitcell_fe.csv``) puts the resulting error in Ecx and Ebx at about t/W at
+  alpha = 90 deg, growing as (90 deg / alpha)^2 for sharper folds (9 % at t/W = 0.02, 45 deg);
+* very few facets: the spring model homogenises the corrugation, which needs several periods;
+* a thickness the material is not sold in (the library lists what is sold);
+* short panels: D is a pure-bending stiffness; a panel loaded as a short beam also shears. The
+  shell FE of docs/fea.md (section 3) measured the 3-point D below the pure-bending D by
+  1.1-2.0 times the Timoshenko estimate 2 (1 + nu) (W / L)^2, L = (n + 1) W sin(alpha/2);
+* directions other than along the creases (eta not a multiple of 90 deg): with ``support =
+  "free"`` K(eta) and D(eta) are the free-panel model of :mod:`corrugate.mechanics.offaxis` (lower bounds
+  of the homogenised plate; docs/validation/off_axis.md compares them with FE coupons); with ``"frame"``
+  the paper's cos^2 rule, which holds only for a panel held in a rigid frame (docs/fea.md 2.5);
+* the ``paper`` model, which has known errors (DESIGN.md 3.1).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from corrugate.geometry.layer import Assembly, Layer, crease_layer
+
+__all__ = [
+    "CREASE_ERROR_LIMIT",
+    "MIN_FACETS",
+    "SHEAR_LIMIT",
+    "VALIDATED",
+    "ModelWarning",
+    "crease_error_estimate",
+    "design_warnings",
+    "shear_estimate",
+]
+
+#: Ranges validated experimentally in the paper.
+VALIDATED = {"n": (7, 13), "W": (8.0, 14.0), "alpha": (40.0, 115.0)}
+#: Estimated crease-thickness error above which a sheet counts as thick.
+CREASE_ERROR_LIMIT = 0.05
+#: Fewest facets (n + 1) for which the homogenised spring model is trusted.
+MIN_FACETS = 6
+#: Timoshenko shear estimate above which a short-panel warning is given.
+SHEAR_LIMIT = 0.05
+
+
+def shear_estimate(nu: float, n: int, alpha_deg: float) -> float:
+    """Timoshenko estimate of the shear share of a 3-point deflection, 2 (1 + nu) (W/L)^2 with
+    W / L = 1 / ((n + 1) sin(alpha/2)) (docs/fea.md, section 3)."""
+    ratio = 1.0 / ((n + 1) * math.sin(math.radians(alpha_deg) / 2))
+    return 2 * (1 + nu) * ratio**2
+
+
+@dataclass(frozen=True, slots=True)
+class ModelWarning:
+    """A warning: a stable ``code`` for programs and a ``message`` for people."""
+
+    code: str
+    message: str
+
+    def as_dict(self) -> dict[str, str]:
+        return {"code": self.code, "message": self.message}
+
+
+def crease_error_estimate(t: float, W: float, alpha_deg: float) -> float:
+    """Estimated relative error of Ecx and Ebx from finite crease thickness: (t/W)(90/alpha)^2."""
+    return (t / W) * (90.0 / alpha_deg) ** 2
+
+
+def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
+    out: list[ModelWarning] = []
+    checks = (("n", layer.n, ""), ("W", layer.W, " mm"), ("alpha", layer.alpha_deg, " deg"))
+    for name, value, unit in checks:
+        lo, hi = VALIDATED[name]
+        if not lo <= value <= hi:
+            out.append(
+                ModelWarning(
+                    "outside-validated-range",
+                    f"{label}: {name} = {value:g}{unit} is outside the range the paper validated "
+                    f"experimentally ({lo:g}-{hi:g}{unit})",
+                )
+            )
+    err = crease_error_estimate(layer.t, layer.W, layer.alpha_deg)
+    if err > CREASE_ERROR_LIMIT:
+        out.append(
+            ModelWarning(
+                "thick-sheet",
+                f"{label}: t/W = {layer.t / layer.W:.3g} at alpha = {layer.alpha_deg:g} deg is a thick "
+                f"sheet; the thin-sheet formulas may be off by about {100 * err:.0f} % in Ecx and Ebx",
+            )
+        )
+    sold = layer.material.thicknesses
+    if sold and min(abs(layer.t - x) for x in sold) > 1e-6 * layer.t:
+        out.append(
+            ModelWarning(
+                "unusual-thickness",
+                f"{label}: t = {layer.t:g} mm is not a thickness {layer.material.id} is sold in "
+                f"({', '.join(f'{x:g}' for x in sold)} mm)",
+            )
+        )
+    shear = shear_estimate(layer.material.nu, layer.n, layer.alpha_deg)
+    if shear > SHEAR_LIMIT:
+        out.append(
+            ModelWarning(
+                "short-panel-shear",
+                f"{label}: a short panel (L/W = {(layer.n + 1) * layer.s:.3g}); D is a pure-bending "
+                f"stiffness, and a 3-point bending test may measure about {100 * 1.1 * shear:.0f}-"
+                f"{100 * 2.0 * shear:.0f} % less, from shear (finite elements: `corrugate docs fea`, section 3)",
+            )
+        )
+    if layer.n + 1 < MIN_FACETS:
+        out.append(
+            ModelWarning(
+                "few-facets",
+                f"{label}: only {layer.n + 1} facets; the homogenised spring model needs at least "
+                f"{MIN_FACETS} to be trusted",
+            )
+        )
+    return out
+
+
+def _off_axis(eta_deg: Sequence[float], support: str, layout: str = "square") -> list[ModelWarning]:
+    off = [e for e in eta_deg if crease_layer(e) is None]
+    if not off:
+        return []
+    angles = ", ".join(f"{e:g}" for e in off)
+    if support == "frame":
+        text = (
+            f"K and D at eta = {angles} deg follow the paper's cos^2 rule (support 'frame'): "
+            "true only for a panel held in a rigid frame on all four edges; a panel with free "
+            "sides is up to hundreds of times softer off-axis (`corrugate docs fea`, section 2.5)"
+        )
+    else:
+        text = (
+            f"K and D at eta = {angles} deg are the free-panel model (support 'free', "
+            "`corrugate docs offaxis`): against FE coupons K is 0.83-1.22 times the FE, above it "
+            "near 15 and 75 deg by 22, 15 and 9 % for square coupons 4, 8 and 16 cells wide and "
+            "19 % for a 9 x 18-cell rectangle (the model is the large-panel limit), and D is far "
+            "below it where no facet runs from support to support (near 45 deg) "
+            "(`corrugate docs validation/off_axis`): check a part loaded there with corrugate validate --eta"
+        )
+        if layout == "rectangle":
+            text += (
+                "; a rectangle is read as the coupon of its proportions cut along eta (Lx x Ly "
+                "up to 45 deg, Ly x Lx above)"
+            )
+        elif layout != "square":
+            text += (
+                f"; a {layout} has no straight edges to load: its value is the smaller of its "
+                "box's coupon and the square's formula on its own springs, a convention no FE "
+                "has checked"
+            )
+    return [ModelWarning("off-axis", text)]
+
+
+def design_warnings(
+    a: Assembly, model: str, eta_deg: Sequence[float] = (), support: str = "free"
+) -> list[ModelWarning]:
+    """Every warning for assembly ``a`` analysed with moduli variant ``model`` in the directions
+    ``eta_deg`` (deg) under ``support`` (free or frame)."""
+    out = _layer_warnings("layer 1", a.layer1)
+    if a.layer2 != a.layer1:
+        out += _layer_warnings("layer 2", a.layer2)
+    else:
+        out = [ModelWarning(w.code, w.message.replace("layer 1", "both layers", 1)) for w in out]
+    if model == "paper":
+        from corrugate.mechanics.moduli import moduli
+
+        for label, layer in (("layer 1", a.layer1), ("layer 2", a.layer2)):
+            m = layer.material
+            values = moduli(m.E, m.nu, layer.t, layer.W, layer.alpha_deg, "paper").as_dict()
+            bad = [k for k, v in values.items() if not v > 0]
+            if bad:
+                out.append(
+                    ModelWarning(
+                        "paper-model-negative",
+                        f"{label}: the printed formulas give non-positive {', '.join(bad)} here "
+                        f"(nu = {m.nu:g}); the results are meaningless, use 'xia' or 'refined'",
+                    )
+                )
+        out.append(
+            ModelWarning(
+                "paper-model",
+                "model 'paper' uses the formulas as printed, with known errors (Ecx 55-89 % too low, "
+                "Ecy and Ebx slightly off); use 'refined' for design",
+            )
+        )
+    return out + _off_axis(eta_deg, support, a.layout.name)

@@ -1,0 +1,209 @@
+"""The one table of input limits: every number a user can give, with its physical meaning.
+
+The command line, the spec parser and the web API check their inputs against :data:`LIMITS` before
+any arithmetic or allocation, so that no input can overflow a formula, ask numpy for gigabytes, run
+for minutes or print NaN. The bounds are generous physical ones (a facet narrower than 0.01 mm
+cannot be cut, a sheet thicker than 100 mm does not fold), not the limits of the models' validity
+(those give warnings). Each failure is one :class:`~corrugate.core.errors.InputError` line naming the
+field, the value and the allowed range.
+
+:func:`require_finite` is the last check before anything is printed: NaN or infinity never reaches
+stdout or JSON.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from corrugate.core.errors import InputError, ResultError
+
+__all__ = [
+    "LIMITS",
+    "MAX_DEPTH",
+    "MAX_GRID_POINTS",
+    "MAX_NAME_CHARS",
+    "MAX_PATH_CHARS",
+    "MAX_SPEC_BYTES",
+    "MAX_TEXT_CHARS",
+    "Limit",
+    "check",
+    "check_count",
+    "check_depth",
+    "check_grid",
+    "check_text",
+    "first_non_finite",
+    "require_finite",
+]
+
+
+@dataclass(frozen=True, slots=True)
+class Limit:
+    """Allowed range ``lo .. hi`` of one input, in ``unit``; ``open_lo`` / ``open_hi`` exclude the
+    bound itself. ``meaning`` says why the bounds are where they are."""
+
+    key: str
+    lo: float
+    hi: float
+    unit: str
+    meaning: str
+    open_lo: bool = False
+    open_hi: bool = False
+
+    @property
+    def allowed(self) -> str:
+        u = f" {self.unit}" if self.unit else ""
+        lo = "<" if self.open_lo else "<="
+        hi = "<" if self.open_hi else "<="
+        return f"{self.lo:g} {lo} {self.key} {hi} {self.hi:g}{u}"
+
+    def contains(self, x: float) -> bool:
+        if not math.isfinite(x):
+            return False
+        above = x > self.lo if self.open_lo else x >= self.lo
+        below = x < self.hi if self.open_hi else x <= self.hi
+        return above and below
+
+
+#: The table. Lengths in mm, angles in deg, moduli in MPa, densities in g/cm^3, times in s.
+LIMITS: dict[str, Limit] = {
+    lim.key: lim
+    for lim in (
+        Limit("W", 0.01, 10_000.0, "mm", "facet width: 10 um (below any cutter) to 10 m"),
+        Limit("thickness", 1e-5, 100.0, "mm", "sheet thickness: 10 nm film to a 100 mm board"),
+        Limit(
+            "n", 1, 5000, "", "number of creases: one fold to 5000 (a 10 m sheet of 2 mm pleats)"
+        ),
+        Limit("alpha", 0.0, 180.0, "deg", "interior fold angle: closed to flat", True, True),
+        Limit("E", 1e-3, 1e7, "MPa", "Young's modulus: a soft foam (1 kPa) to above diamond"),
+        Limit("nu", -1.0, 0.5, "", "Poisson's ratio of a stable isotropic solid", True, True),
+        Limit("density", 1e-3, 30.0, "g/cm^3", "aerogel to above osmium (22.6 g/cm^3)"),
+        Limit("length", 0.0, 1e6, "mm", "any other length (sizes, holes, bounds): up to 1 km"),
+        Limit("coordinate", -1e6, 1e6, "mm", "a position in the plan: within 1 km"),
+        Limit("mass", 0.0, 1e9, "g", "a mass bound: up to 1000 t"),
+        Limit("stiffness", 0.0, 1e15, "", "a stiffness bound in N/mm, N mm or N mm^2"),
+        Limit("mesh", 2, 64, "", "shell elements across one facet (the refinement stops at 16)"),
+        Limit("cell_mesh", 1, 2000, "", "unit-cell elements along a facet (refinement: <= 640)"),
+        Limit("cell_mesh_through", 1, 64, "", "unit-cell elements through t or along y"),
+        Limit("jobs", 1, 64, "", "parallel solver processes"),
+        Limit("timeout", 1.0, 86_400.0, "s", "time allowed for one solver run: 1 s to a day"),
+        Limit("samples", 2, 1_000_000, "", "Monte Carlo samples"),
+        Limit("points", 2, 10_000, "", "points on a Pareto front"),
+    )
+}
+
+#: Most points a gridded design variable may have ((max - min) / step + 1).
+MAX_GRID_POINTS = 100_000
+#: Longest name (spec name, material name) in characters; longest other text value.
+MAX_NAME_CHARS = 200
+MAX_TEXT_CHARS = 10_000
+#: Largest spec file, deepest nesting of arrays and tables in a spec or request body.
+MAX_SPEC_BYTES = 1 << 20
+MAX_DEPTH = 16
+#: Longest output path (Linux PATH_MAX is 4096, NAME_MAX 255).
+MAX_PATH_CHARS = 4000
+
+
+def _shown(value: object, unit: str) -> str:
+    if isinstance(value, numbers.Real) and not isinstance(value, bool):
+        return f"{float(value):g} {unit}".strip()
+    return repr(value)[:60]
+
+
+def check(key: str, value: float, field: str | None = None) -> float:
+    """``value`` if it lies within ``LIMITS[key]``, else :class:`InputError` naming ``field``
+    (default: the key)."""
+    lim = LIMITS[key]
+    x = float(value)
+    if not lim.contains(x):
+        raise InputError(field or key, _shown(x, lim.unit), lim.allowed)
+    return x
+
+
+def check_count(key: str, value: int, field: str | None = None) -> int:
+    """An integer ``value`` within ``LIMITS[key]`` (compared as an int: no float overflow)."""
+    lim = LIMITS[key]
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise InputError(field or key, repr(value)[:60], lim.allowed, reason="is not an integer")
+    if not lim.lo <= int(value) <= lim.hi:
+        shown = str(value) if abs(int(value)) < 10**30 else f"{float(value):g}"
+        raise InputError(field or key, shown, lim.allowed)
+    return int(value)
+
+
+def check_grid(field: str, lo: float, hi: float, step: float | None, unit: str) -> None:
+    """A gridded variable ``lo, lo + step, ... hi`` has at most :data:`MAX_GRID_POINTS` points."""
+    if step is None:
+        return
+    if not (math.isfinite(step) and step > 0):
+        raise InputError(f"{field}.step", f"{step:g} {unit}", f"step > 0 {unit}")
+    points = (hi - lo) / step + 1
+    if not math.isfinite(points) or points > MAX_GRID_POINTS:
+        raise InputError(
+            f"{field}.step",
+            f"{step:g} {unit}",
+            f"a step giving at most {MAX_GRID_POINTS} grid points on {lo:g}..{hi:g} {unit} "
+            f"(step >= {(hi - lo) / (MAX_GRID_POINTS - 1):.3g} {unit})",
+            reason="is too fine",
+        )
+
+
+def check_text(field: str, value: str, limit: int = MAX_NAME_CHARS) -> str:
+    """A text value of at most ``limit`` characters."""
+    if len(value) > limit:
+        raise InputError(
+            field,
+            f"{value[:20]!r}... ({len(value)} characters)",
+            f"at most {limit} characters",
+            reason="is too long",
+        )
+    return value
+
+
+def check_depth(data: Any, field: str, limit: int = MAX_DEPTH) -> None:
+    """Arrays and tables nested at most ``limit`` deep (checked without recursion)."""
+    stack: list[tuple[Any, int]] = [(data, 0)]
+    while stack:
+        obj, depth = stack.pop()
+        if depth > limit:
+            raise InputError(
+                field,
+                f"nesting {depth} deep",
+                f"at most {limit} levels of arrays and tables",
+                reason="is nested too deeply",
+            )
+        if isinstance(obj, Mapping):
+            stack.extend((v, depth + 1) for v in obj.values())
+        elif isinstance(obj, list | tuple):
+            stack.extend((v, depth + 1) for v in obj)
+
+
+def first_non_finite(obj: object, where: str = "") -> str | None:
+    """The path of the first NaN or infinite float in nested dicts and lists, or None."""
+    stack: list[tuple[object, str]] = [(obj, where)]
+    while stack:
+        item, path = stack.pop()
+        if isinstance(item, float):
+            if not math.isfinite(item):
+                return path or "result"
+            continue
+        if isinstance(item, str | int) or item is None:  # the common leaves: no ABC check
+            continue
+        if isinstance(item, Mapping):
+            stack.extend((v, f"{path}.{k}" if path else str(k)) for k, v in item.items())
+        elif isinstance(item, list | tuple):
+            stack.extend((v, f"{path}[{i}]") for i, v in enumerate(item))
+    return None
+
+
+def require_finite(obj: object, what: str = "result") -> None:
+    """Raise :class:`ResultError` if ``obj`` holds a NaN or an infinity (before printing it)."""
+    bad = first_non_finite(obj)
+    if bad is not None:
+        raise ResultError(
+            f"{what} {bad} is not a finite number: the inputs are outside the "
+            "range the models can evaluate"
+        )

@@ -1,0 +1,74 @@
+"""The cut plan of one design: the options of its output files (:class:`OutputOptions`), its parts
+laid out on the cutter's sheets (:class:`CutPlan`, made once by :func:`cut_plan`) and the figures
+drawn of them (:class:`Drawings`), so that the cut files, ``pattern.pdf`` and the report show the
+very same sheets. Lengths in mm.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from corrugate.export.machines import DEFAULT_MACHINE
+from corrugate.export.pdf import check_paper
+from corrugate.fabrication.build import build_pattern
+from corrugate.fabrication.linestyle import SOLID, LineStyle, check_style
+from corrugate.fabrication.model import Pattern
+from corrugate.fabrication.sheets import SheetPlan, plan_sheets
+from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION, FabricationOptions
+from corrugate.geometry.layer import Assembly
+
+__all__ = ["CutPlan", "Drawings", "OutputOptions", "cut_plan"]
+
+
+@dataclass(frozen=True, slots=True)
+class OutputOptions:
+    """Where and how to cut: the machine (``cutter``: a name of
+    :data:`corrugate.fabrication.sheets.CUTTERS` or ``laser:WxH`` in mm; its profile is
+    :func:`corrugate.export.machines.get_machine`), fold-line style, spacing and margin on the sheet
+    (mm), connector sizes, and ``labels`` (``None``: on the fold map and the PDF, not in the cut
+    files; ``True``: in the cut files too; ``False``: nowhere),
+    and ``paper``: ``mat`` (``pattern.pdf`` only) or ``a4`` / ``letter`` (also the 1:1 tiles,
+    ``pattern-a4.pdf`` / ``pattern-letter.pdf``)."""
+
+    cutter: str = DEFAULT_MACHINE
+    style: LineStyle = SOLID
+    spacing: float = 5.0
+    margin: float = 5.0
+    fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
+    labels: bool | None = None
+    paper: str = "mat"
+
+
+@dataclass(slots=True)
+class Drawings:
+    """Figures the files step drew, for the report to show instead of drawing them again:
+    ``sheets``, the matplotlib figures of ``pattern.pdf`` (one per sheet, labels on, empty when
+    none were drawn so) and ``assembly_png``, the bytes of ``assembly.png`` (None before)."""
+
+    sheets: list[Any] = field(default_factory=list)
+    assembly_png: bytes | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class CutPlan:
+    """What one design's cut files are written from: the parts (``pattern``, mm), their
+    arrangement on the cutter's sheets (``plan``) and the fold-line ``style``; ``drawings``
+    collects what :func:`write_design_files` drew of them."""
+
+    pattern: Pattern
+    plan: SheetPlan
+    style: LineStyle
+    drawings: Drawings = field(default_factory=Drawings, compare=False)
+
+
+def cut_plan(assembly: Assembly, options: OutputOptions | None = None) -> CutPlan:
+    """Build the parts of ``assembly`` with ``options``' connector sizes and lay them out on its
+    cutter's sheets; raises :class:`~corrugate.core.errors.InputError` subclasses for a bad option (an
+    unknown cutter or paper, a part larger than the sheet, a perforation that does not fit)."""
+    opts = options or OutputOptions()
+    check_paper(opts.paper)
+    pattern = build_pattern(assembly, opts.fabrication)
+    plan = plan_sheets(pattern, opts.cutter, spacing=opts.spacing, margin=opts.margin)
+    check_style(pattern.parts, opts.style)
+    return CutPlan(pattern, plan, opts.style)

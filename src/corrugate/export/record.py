@@ -1,0 +1,216 @@
+"""``design.json``: the typed record of one design, with its one writer and its one reader.
+
+``corrugate design --out``, ``corrugate pattern --out`` and ``POST /api/design`` write it
+(:func:`write_record`, through :func:`corrugate.workflow.write_design` and
+:func:`corrugate.workflow.write_design_files`); ``corrugate validate --design`` reads it back
+(:func:`read_record`, then :meth:`DesignRecord.assembly`).
+
+The file is one JSON object. Its keys (every length in mm, mass in g, stiffness as the keys say):
+the analysis of the design (``corrugate analyze --json``: ``model``, ``layout``, ``layers``,
+``stiffness``, ...), the cut parts (``cut_parts``), the sheets (``sheets``), the fold-line style
+(``fold_style``), the answer of ``corrugate design --json`` when the design came from a spec, and
+``files``, the names of the files written beside it. An infeasible spec's record holds only the
+design answer (no ``layers``).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from corrugate.core.errors import InputError
+from corrugate.core.fileio import Staging, write_set
+from corrugate.geometry.holes import Hole
+
+if TYPE_CHECKING:
+    from corrugate.geometry.layer import Assembly
+
+__all__ = [
+    "RECORD_NAME",
+    "DesignRecord",
+    "LayerRecord",
+    "parse_record",
+    "read_record",
+    "write_record",
+]
+
+#: The record's file name in an output folder.
+RECORD_NAME = "design.json"
+
+_LAYER_FIELDS = ("W_mm", "n", "alpha_deg", "material", "t_mm")
+
+
+@dataclass(frozen=True, slots=True)
+class LayerRecord:
+    """One layer as design.json stores it: facet width ``W_mm`` (mm), crease count ``n``, fold
+    angle ``alpha_deg`` (deg), library ``material`` id and sheet thickness ``t_mm`` (mm)."""
+
+    W_mm: float
+    n: int
+    alpha_deg: float
+    material: str
+    t_mm: float
+
+
+@dataclass(frozen=True, slots=True)
+class DesignRecord:
+    """The content of one design.json.
+
+    ``shape`` is the layout's shape (None when there is no design: an infeasible spec), ``holes``
+    its inner cut-outs (mm from the layout's centre), ``layers`` the two layers (empty without a
+    design); ``content`` is the whole JSON object, every key as written (see the module docstring).
+    """
+
+    shape: str | None
+    holes: tuple[Hole, ...]
+    layers: tuple[LayerRecord, ...]
+    content: Mapping[str, Any] = field(repr=False)
+
+    def to_json(self) -> str:
+        """The file's text (indented JSON)."""
+        return json.dumps(self.content, indent=2)
+
+    def assembly(self) -> Assembly:
+        """The assembly of this record for the FE model: two layers of library materials on a
+        square or rectangle; anything else is an :class:`InputError` naming the field."""
+        from corrugate.geometry.layer import Assembly, Layer
+        from corrugate.geometry.layouts import Rectangle, Square
+        from corrugate.materials.library import get_material, library
+
+        if self.shape not in ("square", "rectangle"):
+            raise InputError(
+                "layout.shape",
+                repr(self.shape),
+                "square or rectangle for the FE assembly (to check the layers of another outline, "
+                "validate them on a square: the same --W --n --alpha)",
+                reason="is not supported",
+            )
+        if len(self.layers) != 2:
+            raise InputError(
+                "layers", "?", "a list of two layer objects", reason="is missing or malformed"
+            )
+        built: list[Layer] = []
+        for i, entry in enumerate(self.layers):
+            if entry.material.strip().lower() not in library():
+                raise InputError(
+                    f"layers[{i}].material",
+                    repr(entry.material),
+                    "a library material id (design.json does not store E and nu of an inline "
+                    "material; use --W, --n, --alpha, --E, --nu instead)",
+                    reason="is not in the library",
+                )
+            try:
+                built.append(
+                    Layer(
+                        W=entry.W_mm,
+                        n=entry.n,
+                        alpha_deg=entry.alpha_deg,
+                        material=get_material(entry.material),
+                        t=entry.t_mm,
+                    )
+                )
+            except InputError as exc:
+                raise exc.renamed(f"layers[{i}].{exc.field}") from None
+        layout = Square(holes=self.holes) if self.shape == "square" else Rectangle(holes=self.holes)
+        return Assembly(built[0], built[1], layout)
+
+
+def parse_record(content: Mapping[str, Any]) -> DesignRecord:
+    """The record of a design.json object; an :class:`InputError` names a malformed field."""
+    layout = content.get("layout")
+    shape = layout.get("shape") if isinstance(layout, Mapping) else None
+    holes = _holes(layout.get("holes")) if isinstance(layout, Mapping) else ()
+    raw = content.get("layers")
+    if raw is None:
+        return DesignRecord(None if shape is None else str(shape), holes, (), content)
+    if not isinstance(raw, list) or len(raw) != 2 or not all(isinstance(x, dict) for x in raw):
+        raise InputError(
+            "layers", "?", "a list of two layer objects", reason="is missing or malformed"
+        )
+    layers = tuple(_layer(i, entry) for i, entry in enumerate(raw))
+    return DesignRecord(None if shape is None else str(shape), holes, layers, content)
+
+
+def _layer(i: int, entry: Mapping[str, Any]) -> LayerRecord:
+    for key in _LAYER_FIELDS:
+        if key not in entry:
+            raise InputError(f"layers[{i}].{key}", None, "a value", reason="is missing")
+    try:
+        return LayerRecord(
+            W_mm=float(entry["W_mm"]),
+            n=int(entry["n"]),
+            alpha_deg=float(entry["alpha_deg"]),
+            material=str(entry["material"]),
+            t_mm=float(entry["t_mm"]),
+        )
+    except (TypeError, ValueError):
+        raise InputError(
+            f"layers[{i}]", "?", "numbers for W_mm, n, alpha_deg, t_mm", reason="is malformed"
+        ) from None
+
+
+def _holes(raw: object) -> tuple[Hole, ...]:
+    """The holes of ``layout.holes`` (as :meth:`Hole.describe` writes them)."""
+    if raw is None:
+        return ()
+    if not isinstance(raw, list):
+        raise InputError("layout.holes", repr(raw), "a list of holes", reason="is malformed")
+    out = []
+    for i, h in enumerate(raw):
+        try:
+            out.append(
+                Hole(
+                    h["shape"],
+                    (float(h["center_mm"][0]), float(h["center_mm"][1])),
+                    diameter=float(h.get("diameter_mm", 0.0)),
+                    vertices=tuple((float(x), float(y)) for x, y in h.get("vertices_mm", [])),
+                )
+            )
+        except InputError as exc:
+            raise exc.renamed(f"layout.holes[{i}].{exc.field}") from None
+        except (TypeError, ValueError, KeyError, IndexError, AttributeError):
+            raise InputError(
+                f"layout.holes[{i}]",
+                "?",
+                "shape, center_mm and diameter_mm or vertices_mm",
+                reason="is malformed",
+            ) from None
+    return tuple(out)
+
+
+def write_record(
+    content: Mapping[str, Any], folder: str | Path, staging: Staging | None = None
+) -> Path:
+    """Write ``content`` as ``folder/design.json`` (checked by :func:`parse_record` first, so
+    what is written can be read back); with ``staging`` the file joins that output step, otherwise
+    it is written all or nothing. Returns the path."""
+    record = parse_record(content)
+    target = Path(folder) / RECORD_NAME
+    if staging is None:  # design.json alone, committed as the folder's design set
+        write_set(folder, {RECORD_NAME: record.to_json() + "\n"}, kind="design")
+        return target
+    staging.path(target).write_text(record.to_json() + "\n", encoding="utf-8")
+    return target
+
+
+def read_record(path: str | Path) -> DesignRecord:
+    """The record in ``path`` (a design.json or its folder); an :class:`InputError` when it cannot
+    be read or is malformed."""
+    path = Path(path)
+    file = path / RECORD_NAME if path.is_dir() else path
+    try:
+        data = json.loads(file.read_text(encoding="utf-8"))
+    except OSError as exc:
+        raise InputError(
+            "design", str(file), "a readable design.json", reason="cannot be read"
+        ) from exc
+    except json.JSONDecodeError as exc:
+        raise InputError(
+            "design", str(file), "a JSON file", reason=f"is not JSON ({exc.msg})"
+        ) from None
+    if not isinstance(data, dict):
+        raise InputError("design", str(file), "a JSON object", reason="is not an object")
+    return parse_record(data)

@@ -1,0 +1,157 @@
+"""Assembly instructions: numbered steps (Markdown) and a figure, made from the design itself."""
+
+from __future__ import annotations
+
+import contextlib
+import io
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from corrugate.core.fileio import Staging, staged
+from corrugate.core.plotting import new_figure
+from corrugate.fabrication.folded import band_walls, layer_faces
+from corrugate.fabrication.model import Pattern, Role
+from corrugate.geometry.layer import Assembly
+
+__all__ = ["assembly_steps", "instructions_figure", "instructions_png", "write_instructions"]
+
+_COLOURS = {
+    Role.MOUNTAIN: "#ff0000",
+    Role.VALLEY: "#0000ff",
+    Role.MARK: "#ff00ff",
+    Role.CUT: "#00ff00",
+}
+
+
+def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
+    """The numbered assembly steps for this design (plain sentences, mm and degrees)."""
+    bands = [p.name for p in pattern.parts if p.kind == "connector"]
+    l1, l2 = a.layer1, a.layer2
+    ring = " -> ".join([*bands, bands[0]])
+    folds = (
+        f"{l1.fold_angle_deg:g} deg (facets meet at {l1.alpha_deg:g} deg)"
+        if l1.alpha_deg == l2.alpha_deg
+        else f"{l1.fold_angle_deg:g} deg on L1 and {l2.fold_angle_deg:g} deg on L2"
+    )
+    return [
+        f"Cut L1, L2 and {', '.join(bands)} (the sheet files; L1 {l1.material.id} {l1.t:g} mm, "
+        f"L2 {l2.material.id} {l2.t:g} mm, band from L1's sheet).",
+        f"Pre-fold L1 and L2 along every crease: mountains (red) towards you, valleys (blue) away, "
+        f"each by {folds}.",
+        "On each band segment fold the glue tabs on both long edges 90 deg towards the printed face "
+        "(the inner face, with the marks); fold the line before the overlap tab by its corner angle.",
+        f"Join the band into a ring, {ring}: glue each overlap tab behind the start of the next "
+        "segment, marks facing in.",
+        f"Lower L1 into the ring, valleys down on the bottom tabs. Set each crease end on its lower "
+        f"mark (the marks from the base to {l1.height:.1f} mm); this sets the fold angle. Glue.",
+        f"Lay L2 on top, its creases at 90 deg to L1's, its valleys on L1's ridges, each crease end on "
+        f"its upper mark ({l1.height:.1f} to {a.thickness:.1f} mm). Fold the top tabs over its ridges "
+        "and glue.",
+        f"Check: the panel measures {a.Lx:.1f} x {a.Ly:.1f} mm and {a.thickness:.1f} mm thick.",
+    ]
+
+
+def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
+    """The assembly figure: the cut parts, then the folded layers, band and finished panel."""
+    from matplotlib.collections import LineCollection
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    fig = new_figure((11, 8.5), dpi=110)
+    ax0 = fig.add_subplot(2, 2, 1)
+    x0 = 0.0
+    shift = np.zeros(2)
+    # one collection per colour (outlines, then each role), not one Line2D per line
+    rings: list[Any] = []
+    lines: dict[str, list[Any]] = {}
+    for part in pattern.parts:
+        o = np.asarray(part.outline)
+        w = o[:, 0].max() - o[:, 0].min()
+        shift[0] = x0
+        rings.append(np.vstack([o, o[:1]]) + shift)
+        for hole in part.holes:
+            h = np.asarray(hole)
+            rings.append(np.vstack([h, h[:1]]) + shift)
+        for ln in part.lines:
+            seg = ((ln.a[0] + x0, ln.a[1]), (ln.b[0] + x0, ln.b[1]))
+            lines.setdefault(_COLOURS[ln.role], []).append(seg)
+        ax0.text(x0 + w / 2, o[:, 1].max() + 3, part.name, ha="center", fontsize=7)
+        x0 += w + 6
+    ax0.add_collection(LineCollection(rings, colors="black", linewidths=0.6))
+    for colour, segs in lines.items():
+        ax0.add_collection(LineCollection(segs, colors=colour, linewidths=0.5))
+    ax0.autoscale_view()
+    ax0.set_aspect("equal")
+    ax0.set_title("1. cut (black), mountain red, valley blue, marks magenta", fontsize=9)
+    ax0.axis("off")
+
+    walls = band_walls(a)
+    f1, f2 = layer_faces(a, pattern.parts, 1), layer_faces(a, pattern.parts, 2)
+    blue, green = "#9ecae1", "#a1d99b"
+    views: list[tuple[str, list[tuple[list[Any], str]], list[Any]]] = [
+        ("2. fold L1 (blue) and L2 (green)", [(f1, blue)], []),
+        ("3-5. band ring, L1 inside on the lower marks", [(f1, blue)], walls),
+        ("6. L2 on top: the finished panel", [(f1, blue), (f2, green)], walls),
+    ]
+    for k, (title, layers, band) in enumerate(views):
+        ax = fig.add_subplot(2, 2, k + 2, projection="3d")
+        for faces, colour in layers:
+            # the limits are set below; matplotlib's autoscale can overflow (NaN limits) on
+            # the many small faces of a layer with holes
+            ax.add_collection3d(
+                Poly3DCollection(faces, facecolor=colour, edgecolor="#08306b", lw=0.3),
+                autolim=False,
+            )
+        if band:
+            ax.add_collection3d(
+                Poly3DCollection(
+                    band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35
+                ),
+                autolim=False,
+            )
+        ax.set_xlim(0, a.Lx)
+        ax.set_ylim(0, a.Ly)
+        ax.set_zlim(0, max(a.Lx, a.Ly) / 2)
+        ax.set_box_aspect((a.Lx, a.Ly, max(a.Lx, a.Ly) / 2))
+        ax.set_xlabel("x (mm)", fontsize=7)
+        ax.set_ylabel("y (mm)", fontsize=7)
+        ax.set_zlabel("z (mm)", fontsize=7)
+        ax.tick_params(labelsize=6)
+        ax.set_title(title, fontsize=9)
+    # fixed margins: tight_layout on 3D axes costs about a second of tick layout and leaves
+    # these boxes where they are
+    fig.subplots_adjust(left=0.03, right=0.97, bottom=0.04, top=0.95, wspace=0.1, hspace=0.15)
+    return fig
+
+
+def instructions_png(a: Assembly, pattern: Pattern) -> bytes:
+    """:func:`instructions_figure` as PNG bytes (the file ``assembly.png``; the report embeds the
+    same bytes)."""
+    buf = io.BytesIO()
+    instructions_figure(a, pattern).savefig(buf, format="png")
+    return buf.getvalue()
+
+
+def write_instructions(
+    a: Assembly,
+    pattern: Pattern,
+    out_dir: Path,
+    staging: Staging | None = None,
+    png: bytes | None = None,
+) -> list[Path]:
+    """Write ``ASSEMBLY.md`` (numbered steps) and ``assembly.png`` (the figure, or ``png`` when
+    it was drawn already: :func:`instructions_png`) into ``out_dir``."""
+    image = instructions_png(a, pattern) if png is None else png
+    steps = assembly_steps(a, pattern)
+    text = (
+        "# Assembly\n\n![assembly steps](assembly.png)\n\n"
+        + "\n".join(f"{i}. {s}" for i, s in enumerate(steps, 1))
+        + "\n"
+    )
+    out_dir.mkdir(parents=True, exist_ok=True)
+    png_path, md = out_dir / "assembly.png", out_dir / "ASSEMBLY.md"
+    with contextlib.nullcontext(staging) if staging is not None else staged() as st:
+        st.path(png_path).write_bytes(image)
+        st.path(md).write_text(text, encoding="utf-8")
+    return [md, png_path]

@@ -1,0 +1,2 @@
+"""Sheet materials: the bundled library (``data/materials.toml``) and inline materials
+(:mod:`.library`)."""

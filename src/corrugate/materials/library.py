@@ -1,0 +1,145 @@
+"""Sheet materials: the bundled library (``data/materials.toml``) and inline definitions.
+
+A :class:`Material` holds E (MPa), nu (-), density (g/mm^3), the thicknesses it is sold in (mm)
+and where the values come from. The library is data, not code: edit the TOML file to add a sheet.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+from corrugate.core.errors import UnknownNameError
+from corrugate.core.units import parse_quantity
+
+__all__ = ["Material", "get_material", "inline_material", "library", "validate_elastic"]
+
+#: g/cm^3 expressed in the internal unit g/mm^3.
+G_PER_CM3 = 1.0e-3
+
+
+@dataclass(frozen=True, slots=True)
+class Material:
+    """An isotropic sheet material.
+
+    Attributes are in internal units: ``E`` in MPa, ``density`` in g/mm^3, thicknesses in mm.
+    """
+
+    id: str
+    name: str
+    E: float
+    nu: float
+    density: float
+    thicknesses: tuple[float, ...] = ()
+    default_thickness: float | None = None
+    category: str = "custom"
+    source: str = "defined by the user"
+
+    def __repr__(self) -> str:
+        """One short line (the source text is in :meth:`as_dict`)."""
+        return (
+            f"Material({self.id!r}, E={self.E:g} MPa, nu={self.nu:g}, "
+            f"density={self.density_g_cm3:.4g} g/cm^3)"
+        )
+
+    @property
+    def density_g_cm3(self) -> float:
+        """Density in g/cm^3."""
+        return self.density / G_PER_CM3
+
+    def as_dict(self) -> dict[str, Any]:
+        """A JSON-ready description with units in the keys."""
+        return {
+            "id": self.id,
+            "name": self.name,
+            "E_MPa": self.E,
+            "nu": self.nu,
+            "density_g_cm3": self.density_g_cm3,
+            "thicknesses_mm": list(self.thicknesses),
+            "default_thickness_mm": self.default_thickness,
+            "category": self.category,
+            "source": self.source,
+        }
+
+
+def validate_elastic(E: float, nu: float, density: float, *, prefix: str = "") -> None:
+    """Raise :class:`InputError` unless E, nu and density lie within :data:`corrugate.core.limits.LIMITS`
+    (E in MPa, density in the internal unit, shown in g/cm^3)."""
+    from corrugate.core.limits import check
+
+    check("E", E, f"{prefix}E")
+    check("nu", nu, f"{prefix}nu")
+    check("density", density / G_PER_CM3, f"{prefix}density")
+
+
+def _from_entry(key: str, entry: dict[str, Any]) -> Material:
+    where = f"materials.toml [{key}]."
+    E = parse_quantity(entry["E"], "MPa", where + "E")
+    nu = float(entry["nu"])
+    density = parse_quantity(entry["density"], "g/cm^3", where + "density") * G_PER_CM3
+    validate_elastic(E, nu, density, prefix=where)
+    thicknesses = tuple(
+        parse_quantity(t, "mm", where + "thicknesses") for t in entry.get("thicknesses", [])
+    )
+    default = entry.get("default_thickness")
+    return Material(
+        id=key,
+        name=str(entry.get("name", key)),
+        E=E,
+        nu=nu,
+        density=density,
+        thicknesses=thicknesses,
+        default_thickness=(
+            parse_quantity(default, "mm", where + "default_thickness")
+            if default is not None
+            else (thicknesses[0] if thicknesses else None)
+        ),
+        category=str(entry.get("category", "")),
+        source=str(entry.get("source", "")),
+    )
+
+
+@lru_cache(maxsize=1)
+def library() -> dict[str, Material]:
+    """The bundled material library, keyed by id (read once from ``data/materials.toml``)."""
+    path = Path(__file__).parents[1] / "data" / "materials.toml"
+    if path.is_file():  # an installed or source tree (importlib.resources costs ~20 ms to import)
+        text = path.read_text("utf-8")
+    else:  # e.g. a zipped install
+        from importlib import resources
+
+        text = resources.files("corrugate").joinpath("data/materials.toml").read_text("utf-8")
+    data = tomllib.loads(text)
+    return {key: _from_entry(key, entry) for key, entry in data.items()}
+
+
+def get_material(material_id: str) -> Material:
+    """The library material ``material_id`` (case-insensitive); :class:`UnknownNameError` if absent."""
+    lib = library()
+    key = material_id.strip().lower()
+    if key not in lib:
+        raise UnknownNameError("material", material_id, list(lib))
+    return lib[key]
+
+
+def inline_material(
+    E: object, nu: object, density: object, *, name: str = "custom", thickness: object = None
+) -> Material:
+    """A user-defined material; plain numbers are read as MPa, -, g/cm^3 and mm."""
+    E_mpa = parse_quantity(E, "MPa", "E")
+    nu_f = parse_quantity(nu, "dimensionless", "nu")
+    rho = parse_quantity(density, "g/cm^3", "density") * G_PER_CM3
+    validate_elastic(E_mpa, nu_f, rho)
+    t = None if thickness is None else parse_quantity(thickness, "mm", "thickness")
+    return Material(
+        id=name,
+        name=name,
+        E=E_mpa,
+        nu=nu_f,
+        density=rho,
+        thicknesses=() if t is None else (t,),
+        default_thickness=t,
+    )

@@ -1,0 +1,8 @@
+"""The stiffness, strength and mass models of an OADLC panel (docs/theory.md sections 3-4).
+
+* :mod:`.moduli`: the equivalent moduli of one layer, as named variants (paper, xia, refined);
+* :mod:`.springs`: facets to layer springs (section 3.2);
+* :mod:`.offaxis`: the assembly's directional stiffness under each support condition (3.3);
+* :mod:`.buckling`: buckling estimates; :mod:`.mass`: the mass of every cut part (section 4);
+* :mod:`.profiles`: Xia's general equivalent-plate theory, a cross-check of the zig-zag moduli.
+"""

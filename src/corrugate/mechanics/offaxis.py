@@ -1,0 +1,246 @@
+"""Stiffness along any direction eta for the two support conditions (docs/offaxis.md).
+
+The paper's rule, ``support = "frame"``: K(eta) = K_y cos^2 + K_x sin^2 (and D likewise,
+:mod:`corrugate.mechanics.springs`). It is the stiffness of a panel whose both crease directions are
+driven at once, i.e. held in a rigid frame (the project's frame FE agrees within 0.2 %).
+
+A panel with free sides (``support = "free"``, the default: a bench test, a part held at two
+edges) is far softer off-axis, because its facets no longer run from one loaded edge to the
+other. Its model here is a **lower bound** (for the homogenised plate) built from each layer's
+own springs, the layers acting in parallel (as the unconnected layers of the FE coupons do).
+Against FE coupons (docs/validation/off_axis.md; three squares and a 1:2 rectangle, eta 0-90
+deg, FE extrapolated from 2/4/8 or 4/8/16 elements per facet) K is 0.83-1.19 of the FE (not
+conservative near 15 and 75 deg; at 15 deg the converged coupon is 22, 15 and 9 % below the model
+at 4, 8 and 16 cells: docs/offaxis.md, coupon-size series; 19 % for the rectangle); D is
+0.62-1.12 of the 3-point FE at 15-30 deg for the squares but 0.008-0.02 at 45 deg, and 0.017
+at 30 deg for the rectangle (very conservative where no facet runs from support to support). For a layer whose creases
+make the angle theta with the load direction, c = cos theta, s = sin theta:
+
+* In-plane (plate of the layer under uniaxial stress along the load, free sides; the complementary
+  energy of that statically admissible stress field bounds the stiffness from below, whatever
+  the platens do):
+
+      K_i(theta) = 1 / (c^4 / K_S + s^4 / K_C + s^2 c^2 / K_T)
+
+  with K_T = A66 p q, A66 = G t sin(alpha/2) the in-plane shear stiffness of the zig-zag
+  (Xia et al. 2012) and p q = p sum_j 1/L_j the layer's spanwise geometry factor (1 for a square).
+  The Poisson coupling a12 = -nu a22 is left out: it can only lower the compliance, so leaving it
+  out keeps the bound (at most 0.65 % of the compliance for W 8-14 mm, alpha 40-115 deg, Dura-Lar
+  0.125 mm; docs/offaxis.md).
+* Bending, the larger of two lower bounds: the same uniaxial-moment plate bound with D_S, D_C
+  and the twisting rigidity D_T = D66 p q, D66 = G t^3 / (12 sin(alpha/2)) (Xia 2012), and a
+  strip bound: the facets that run from one support to the other in a square coupon
+  (a fraction 1 - |tan theta| of them) as independent beams of span L / cos theta loaded at
+  mid-span, every other facet discarded, which gives D_S c^4 (1 - |tan theta|). Discarding
+  material and the connections between strips can only soften a linear structure; the strips
+  are Euler-Bernoulli beams, as the paper's D is, so shear deformation of a stubby panel (about
+  10 % in the FE 3-point test at eta = 0) is not in it.
+
+At eta = 0 and 90 deg both conditions give the paper's springs exactly. Every function here is
+plain arithmetic, so it takes NumPy arrays or :class:`~corrugate.solver.interval.Interval`
+arguments alike: the certified solver bounds the very formula ``analyze`` evaluates.
+
+Units: K in N/mm, D in N mm, angles in degrees at the API.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from corrugate.core.errors import UnknownNameError
+
+__all__ = [
+    "SUPPORTS",
+    "Coupon",
+    "Support",
+    "assembly_directional",
+    "check_support",
+    "free_bending",
+    "free_inplane",
+    "shear_springs",
+    "strip_fraction",
+]
+
+Support = Literal["free", "frame"]
+#: The support conditions a stiffness can be asked for under.
+SUPPORTS: tuple[Support, ...] = ("free", "frame")
+
+FloatArray = NDArray[np.float64]
+
+
+def check_support(value: str, field: str = "support") -> Support:
+    """``value`` if it names a support condition, else an error naming ``field``."""
+    if value not in SUPPORTS:
+        raise UnknownNameError(field, value, list(SUPPORTS))
+    return value
+
+
+def shear_springs(E: Any, nu: Any, t: Any, s: Any, pq: Any) -> tuple[Any, Any]:
+    """In-plane shear spring K_T (N/mm) and twisting spring D_T (N mm) of a layer.
+
+    ``E`` MPa, ``nu``, ``t`` mm, ``s`` = sin(alpha/2), ``pq`` = p sum_j 1/L_j (the factor that
+    turns a plate stiffness per unit width into the layer's spanwise spring, K_S = Ecy t pq).
+    A66 = G t s and D66 = G t^3 / (12 s) are Xia et al. (2012) for a zig-zag of developed
+    width W = p / s; G = E / (2 (1 + nu))."""
+    G = E / (2.0 * (1.0 + nu))
+    return (G * t) * s * pq, (G * (t * t * t / 12.0)) / s * pq
+
+
+def _cs(theta_deg: float) -> tuple[float, float]:
+    """cos^2 and sin^2 of theta (deg), exactly 1 and 0 on the crease directions."""
+    t = float(theta_deg) % 180.0
+    if min(t, 180.0 - t) < 1e-12:
+        return 1.0, 0.0
+    if abs(t - 90.0) < 1e-12:
+        return 0.0, 1.0
+    th = np.radians(t)
+    return float(np.cos(th) ** 2), float(np.sin(th) ** 2)
+
+
+def _plate(along: Any, across: Any, shear: Any, theta_deg: float) -> Any:
+    c2, s2 = _cs(theta_deg)
+    if s2 == 0.0:
+        return along
+    if c2 == 0.0:
+        return across
+    # a spring of 0 (every facet cut by a hole) makes its term infinite and the layer's share 0
+    with np.errstate(divide="ignore", over="ignore"):
+        return 1.0 / (c2 * c2 / along + s2 * s2 / across + s2 * c2 / shear)
+
+
+def free_inplane(K_S: Any, K_C: Any, K_T: Any, theta_deg: float) -> Any:
+    """K (N/mm) of one free layer loaded at theta (deg) from its creases: plate lower bound."""
+    return _plate(K_S, K_C, K_T, theta_deg)
+
+
+def strip_fraction(theta_deg: float, span_over_width: Any = 1.0) -> Any:
+    """Share of a coupon's facets that run from one support to the other at theta (deg): 1 -
+    (span / width) |tan theta|, at least 0 (1 - |tan theta| for a square)."""
+    c2, s2 = _cs(theta_deg)
+    if s2 == 0.0:
+        return 1.0
+    if c2 == 0.0:
+        return 0.0
+    tan = float(np.sqrt(s2 / c2))
+    if isinstance(span_over_width, float | int) and span_over_width == 1:
+        return max(0.0, 1.0 - tan)
+    return np.maximum(1.0 - span_over_width * tan, 0.0)  # arrays and intervals
+
+
+def free_bending(D_S: Any, D_C: Any, D_T: Any, theta_deg: float, span_over_width: Any = 1.0) -> Any:
+    """D (N mm) of one free layer bent about theta (deg) from its creases: the larger of the
+    plate and the strip lower bounds (module docstring), on a coupon whose span is
+    ``span_over_width`` times its width (1: a square)."""
+    c2, s2 = _cs(theta_deg)
+    if s2 == 0.0:  # along the creases plate and strip bounds are both D_S
+        return D_S
+    plate = _plate(D_S, D_C, D_T, theta_deg)
+    f = strip_fraction(theta_deg, span_over_width)
+    if isinstance(f, float) and f == 0.0:
+        return plate
+    strip = D_S * (c2 * c2 * f)
+    return np.maximum(plate, strip)  # intervals too (Interval.maximum)
+
+
+def _free_pair(
+    kind: Literal["K", "D"],
+    s1: Any,
+    s2: Any,
+    eta_deg: float,
+    scale: tuple[tuple[Any, Any], tuple[Any, Any]] | None = None,
+    r: Any = 1.0,
+) -> Any:
+    """The free panel's K or D from the two layers' springs: with ``scale`` = ((g1, h1), (g2,
+    h2)) each layer's parallel and shear springs times g and its series spring times h, and the
+    strip bound on a coupon of span over width ``r`` (None, 1: the layout's own springs; a
+    coupon: :func:`assembly_directional`)."""
+    if scale is None:
+        if kind == "K":
+            return free_inplane(s1.K_S, s1.K_C, s1.K_T, eta_deg) + free_inplane(
+                s2.K_S, s2.K_C, s2.K_T, eta_deg - 90.0
+            )
+        return free_bending(s1.D_S, s1.D_C, s1.D_T, eta_deg) + free_bending(
+            s2.D_S, s2.D_C, s2.D_T, eta_deg - 90.0
+        )
+    (g1, h1), (g2, h2) = scale
+    if kind == "K":
+        return free_inplane(s1.K_S * g1, s1.K_C * h1, s1.K_T * g1, eta_deg) + free_inplane(
+            s2.K_S * g2, s2.K_C * h2, s2.K_T * g2, eta_deg - 90.0
+        )
+    return free_bending(s1.D_S * g1, s1.D_C * h1, s1.D_T * g1, eta_deg, r) + free_bending(
+        s2.D_S * g2, s2.D_C * h2, s2.D_T * g2, eta_deg - 90.0, r
+    )
+
+
+@dataclass(frozen=True)
+class Coupon:
+    """How a layout that is not a square is read off the crease directions (arrays or
+    intervals): ``aspect`` = Lx / Ly of its box, ``pq1`` and ``pq2`` the two layers' geometry
+    factors p sum_j 1/L_j without holes (the springs over the plate stiffnesses: Lx / Ly and
+    Ly / Lx for a rectangle), and ``capped``: whether the value is also kept at most the
+    square's formula on the layout's own springs (circles and polygons, whose coupon is a
+    convention: see :func:`assembly_directional`)."""
+
+    aspect: Any
+    pq1: Any
+    pq2: Any
+    capped: bool = False
+
+
+def assembly_directional(
+    kind: Literal["K", "D"],
+    springs: tuple[Any, Any],
+    eta_deg: float,
+    support: Support = "free",
+    coupon: Coupon | None = None,
+) -> Any:
+    """K(eta) (N/mm) or D(eta) (N mm) of the two-layer assembly at one direction eta (deg from
+    layer 1's creases) under ``support``; ``springs`` are the layers'
+    :class:`~corrugate.mechanics.springs.LayerSprings` (or anything with the same fields, intervals too).
+
+    ``frame``: the paper's rule (DESIGN.md 3.3). ``free``: the layers in parallel, layer 1 at
+    theta = eta and layer 2 (turned by 90 deg) at theta = eta - 90, each by the lower bounds of
+    the module docstring, for a square.
+
+    A layout that is not a square (``coupon``, :class:`Coupon`; None: a square) is taken off the
+    crease directions as the coupon of its box's proportions cut along eta, turned to the crease
+    direction nearer to eta: width across eta / length along eta f = Lx / Ly below 45 deg,
+    Ly / Lx above, the smaller of the two values at 45. A layer's springs are its plate
+    stiffnesses times its geometry factor pq (parallel and shear springs) or over it (series),
+    and a coupon's stiffness is its plate stiffness times f; so the coupon is the square's
+    formula on each layer's springs times f / pq (parallel, shear) and f pq (series), with the
+    strip bound's span over width 1 / f. For a rectangle (pq1 = Lx / Ly, pq2 = Ly / Lx) this is
+    derived and checked against FE coupons of the rectangle's proportions (docs/offaxis.md,
+    "Rectangles"): the layout's own springs mix Lx / Ly (spanwise) and Ly / Lx (chordwise) in
+    one compliance, which no coupon has, and gave 42.9 N/mm for 48 x 96 mm at 15 deg where the
+    FE coupon gives 13.4 at 4 elements per facet. A circle or polygon has no straight edges to
+    load; its value is the smaller of its box's coupon and the square's formula on its own
+    springs (``capped``), so it is never more than either."""
+    s1, s2 = springs
+    c2, s2_ = _cs(eta_deg)
+    if support == "frame":
+        if kind == "K":
+            return (s1.K_S + s2.K_C) * c2 + (s2.K_S + s1.K_C) * s2_
+        return (s1.D_S + s2.D_C) * c2 + (s2.D_S + s1.D_C) * s2_
+    check_support(support)
+    if coupon is None or c2 == 0.0 or s2_ == 0.0:  # a square, or along the creases
+        return _free_pair(kind, s1, s2, eta_deg)
+    c = coupon
+    e = float(eta_deg) % 180.0
+    e = min(e, 180.0 - e)
+
+    def oriented(f: Any) -> Any:  # the coupon of width / length f
+        scale = ((f / c.pq1, f * c.pq1), (f / c.pq2, f * c.pq2))
+        return _free_pair(kind, s1, s2, eta_deg, scale, 1.0 / f)
+
+    if e < 45.0:
+        value = oriented(c.aspect)
+    elif e > 45.0:
+        value = oriented(1.0 / c.aspect)
+    else:
+        value = np.minimum(oriented(c.aspect), oriented(1.0 / c.aspect))
+    return np.minimum(value, _free_pair(kind, s1, s2, eta_deg)) if c.capped else value

@@ -1,0 +1,61 @@
+"""Trapezoidal corrugation profile (Xia et al. 2012, section 4 and Table 5)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from corrugate.core.errors import InputError
+from corrugate.mechanics.profiles.xia import ProfileIntegrals
+
+__all__ = ["Trapezoid"]
+
+
+@dataclass(frozen=True, slots=True)
+class Trapezoid:
+    """Trapezoid of half period ``c`` (mm), amplitude ``f`` (mid-plane to crest, mm) and incline
+    ``theta_deg`` of its sloped segments; the flat part of each half period is c - 2 f / tan(theta).
+
+    With no flat part (c = 2 f / tan(theta)) it is the zig-zag.
+    """
+
+    c: float
+    f: float
+    theta_deg: float
+
+    def __post_init__(self) -> None:
+        if not self.c > 0:
+            raise InputError("c", self.c, "c > 0 mm")
+        if not self.f > 0:
+            raise InputError("f", self.f, "f > 0 mm")
+        if not 0 < self.theta_deg <= 90:
+            raise InputError("theta", f"{self.theta_deg} deg", "0 < theta <= 90 deg")
+        if self.flat < -1e-9 * self.c:
+            raise InputError(
+                "f",
+                self.f,
+                f"f <= c tan(theta) / 2 = {self.c * self.tan / 2:g} mm",
+                reason="leaves a negative flat part",
+            )
+
+    @property
+    def tan(self) -> float:
+        return math.tan(math.radians(self.theta_deg))
+
+    @property
+    def flat(self) -> float:
+        """Length of the flat part of a half period, c - 2 f / tan(theta) (mm)."""
+        return self.c - 2 * self.f / self.tan
+
+    def integrals(self) -> ProfileIntegrals:
+        """Xia's integrals: l = 2f/sin + flat, I1 = 4 f cos^2/sin + 2 flat,
+        I2 = 4 f^3/(3 sin) + 2 f^2 flat (the flat part is at |z| = f)."""
+        th = math.radians(self.theta_deg)
+        sin, cos = math.sin(th), math.cos(th)
+        flat = max(self.flat, 0.0)
+        return ProfileIntegrals(
+            c=self.c,
+            l=2 * self.f / sin + flat,
+            I1=4 * self.f * cos**2 / sin + 2 * flat,
+            I2=4 * self.f**3 / (3 * sin) + 2 * self.f**2 * flat,
+        )

@@ -1,0 +1,25 @@
+"""The certified solver: a spec's problem, its branch and bound and the explained answer.
+
+Pipeline (DESIGN.md section 9): :func:`corrugate.spec.schema.load_spec` -> :meth:`Problem.from_spec`
+-> :func:`solve` -> :class:`Solution` (``to_dict()`` is the ``corrugate design --json`` object).
+"""
+
+from corrugate.solver.bnb import BnBResult, branch_and_bound
+from corrugate.solver.problem import Candidate, Constraint, DesignVariable, Objective, Problem
+from corrugate.solver.solve import ConstraintReport, Diagnosis, RunnerUp, Solution, optimize, solve
+
+__all__ = [
+    "BnBResult",
+    "Candidate",
+    "Constraint",
+    "ConstraintReport",
+    "DesignVariable",
+    "Diagnosis",
+    "Objective",
+    "Problem",
+    "RunnerUp",
+    "Solution",
+    "branch_and_bound",
+    "optimize",
+    "solve",
+]

@@ -1,0 +1,615 @@
+"""The quantities constraints bound: exact values at points, rigorous bounds over boxes.
+
+Points and boxes are given per layer as arrays ``n1, W1, a1, n2, W2, a2`` (creases, mm, deg); for
+identical layers layer 2's arrays are layer 1's.
+
+:func:`point_values` calls :func:`corrugate.analysis.evaluate.evaluate` (the one implementation of the
+model), so a design the solver accepts is exactly the design ``analyze`` reports.
+
+:func:`box_bounds` returns, for each quantity, a lower and an upper bound valid for every design in
+a box ``lo <= x <= hi`` (elementwise over many boxes). The arguments, per quantity:
+
+* extents, thickness, blank, mass: monotone. With s = sin(alpha/2), c = cos(alpha/2) and
+  0 < alpha < 180 deg, Lx = (n1 + 1) W1 s1 increases with n1, W1 and alpha1; t_d = W1 c1 + W2 c2
+  increases with W and decreases with alpha; the blank (n + 1) W increases with n and W; the mass
+  rho t W (n + 1) S a_f of each layer (S the other layer's extent, a_f the outline's area fraction;
+  :mod:`corrugate.mechanics.mass`) increases with every variable, and the connector band's mass increases
+  with Lx, Ly and t_d (:mod:`corrugate.geometry.connectors`). So their bounds are their values at
+  the box corners (the band's at the bounds of Lx, Ly and t_d), computed with the same building
+  blocks as ``evaluate``.
+* facet length: max_j L_j = F(n) S with F(n) = (n + 1) max_j dA_j (:mod:`corrugate.geometry.layouts`),
+  bounded by the range of F over the box's n and the range of S.
+* holes (:mod:`corrugate.geometry.holes`): each layer's mass drops by rho t A_h / s, largest at the box's
+  lowest alpha, so the corner bounds stay bounds; a hole only removes terms from the parallel
+  sums and lengthens the series ones, so the hole-free stiffness bounds remain upper bounds, and
+  the lower bounds come from :func:`_hole_pq_bounds` (touched facets and blocked lengths over
+  the box).
+* stiffness: the moduli variant's own function evaluated in :class:`~.interval.Interval`
+  arithmetic over the box (W, alpha), then the spring sums of DESIGN.md 3.2 and the assembly
+  (:func:`corrugate.mechanics.offaxis.assembly_directional`: the rule of 3.3 for a frame, the free-panel
+  lower bounds otherwise, each variable once per term so the intervals are tight)
+  in interval arithmetic, with q = sum_j 1/L_j = Q(n) / S (Q from
+  :func:`corrugate.geometry.layouts.inverse_length_sum`). For identical layers p q = Q(n) / (n + 1) exactly,
+  which removes the dependency on p. EI = D x span: for square, rectangle and circle the span grows
+  with Lx and Ly (its value at the upper corner bounds it); for a polygon the span moves by at most
+  2 (|dLx sin eta| + |dLy cos eta|) when the box is shrunk to a corner (each vertex moves by at most
+  its share of dLx, dLy), which bounds it from both sides.
+
+* buckling load: :func:`corrugate.mechanics.buckling.buckling_scale` in interval arithmetic (each variable
+  appears once, and K_C / K_S from the interval springs).
+
+Interval bounds converge to the exact value as the box shrinks, which is what makes branch and
+bound terminate.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from corrugate.analysis.evaluate import LayerArrays, coupon_of, evaluate
+from corrugate.geometry.layer import crease_layer
+from corrugate.geometry.layouts import (
+    Axis,
+    Circle,
+    Rectangle,
+    facet_lengths,
+    inverse_length_sum,
+    length_sum,
+)
+from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
+from corrugate.mechanics.mass import connector_mass, layer_mass
+from corrugate.mechanics.moduli import get_model
+from corrugate.mechanics.offaxis import Coupon, Support, assembly_directional, shear_springs
+from corrugate.solver.interval import Interval
+from corrugate.solver.problem import Candidate, Problem
+
+__all__ = ["DIMS", "RangeTable", "box_bounds", "point_values"]
+
+FloatArray = NDArray[np.float64]
+Arrays = Mapping[str, FloatArray]
+Bounds = dict[str, tuple[FloatArray, FloatArray]]
+
+#: Names of the point/box coordinates.
+DIMS = ("n1", "W1", "a1", "n2", "W2", "a2")
+
+
+class RangeTable:
+    """Minimum and maximum of a table f(n), n = n0..n1, over index ranges (sparse table)."""
+
+    def __init__(self, n0: int, values: FloatArray) -> None:
+        self.n0 = n0
+        v = np.asarray(values, dtype=np.float64)
+        d = np.diff(v)
+        #: +1 if f is non-decreasing in n, -1 if non-increasing, 0 otherwise (then the table)
+        self.monotone = 1 if np.all(d >= 0) else (-1 if np.all(d <= 0) else 0)
+        self._values = v
+        self._min: list[FloatArray] = []
+        self._max: list[FloatArray] = []
+        if not self.monotone:  # a monotone f needs no table (its extremes are at the ends)
+            self._min.append(v)
+            self._max.append(v)
+            k = 1
+            while 2 * k <= len(v):
+                a, b = self._min[-1], self._max[-1]
+                self._min.append(np.minimum(a[:-k], a[k:]))
+                self._max.append(np.maximum(b[:-k], b[k:]))
+                k *= 2
+
+    def bounds(self, lo: FloatArray, hi: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """min and max of f over n in [lo, hi] (arrays of integers)."""
+        i = np.asarray(lo, dtype=np.int64) - self.n0
+        j = np.asarray(hi, dtype=np.int64) - self.n0
+        if self.monotone:  # the extremes sit at the ends of the range
+            a, b = self._values[i], self._values[j]
+            return (a, b) if self.monotone > 0 else (b, a)
+        length = j - i + 1
+        level = np.floor(np.log2(np.maximum(length, 1))).astype(np.int64)
+        mins = np.empty(i.shape)
+        maxs = np.empty(i.shape)
+        for lv in np.unique(level):
+            sel = level == lv
+            k = 1 << int(lv)
+            a, b = i[sel], j[sel] - k + 1
+            mins[sel] = np.minimum(self._min[lv][a], self._min[lv][b])
+            maxs[sel] = np.maximum(self._max[lv][a], self._max[lv][b])
+        return mins, maxs
+
+
+@dataclass(frozen=True)
+class Tables:
+    """Per-n tables of the layout for a problem: Q(n) = (n + 1) G(n) and F(n), per axis."""
+
+    problem: Problem
+
+    def _table(self, what: str, axis: str) -> RangeTable:
+        p = self.problem
+        ns = np.arange(p.n_lo, p.n_hi + 1)
+        if what == "Q":
+            vals = inverse_length_sum(p.layout, ns, 1.0, axis)  # type: ignore[arg-type]
+        elif isinstance(p.layout, Rectangle):
+            vals = np.ones(len(ns))
+        else:
+            pick = np.max if what == "F" else np.min
+            vals = np.array(
+                [
+                    pick(facet_lengths(p.layout, int(k), 1.0, axis))  # type: ignore[arg-type]
+                    for k in ns
+                ]
+            )
+        return RangeTable(p.n_lo, np.asarray(vals, dtype=np.float64))
+
+    @cached_property
+    def Qx(self) -> RangeTable:
+        return self._table("Q", "x")
+
+    @cached_property
+    def Qy(self) -> RangeTable:
+        return self._table("Q", "y")
+
+    @cached_property
+    def Fx(self) -> RangeTable:
+        return self._table("F", "x")
+
+    @cached_property
+    def Fy(self) -> RangeTable:
+        return self._table("F", "y")
+
+    @cached_property
+    def Fmin_x(self) -> RangeTable:
+        """min_j L_j / S per n (layer 1), for the bounds with holes."""
+        return self._table("Fmin", "x")
+
+    @cached_property
+    def Fmin_y(self) -> RangeTable:
+        return self._table("Fmin", "y")
+
+    def facet_factor(self, n: FloatArray, axis: str) -> FloatArray:
+        """F(n) = max_j L_j / S at integer n (array)."""
+        table = self.Fx if axis == "x" else self.Fy
+        return table.bounds(n, n)[0]
+
+
+def _layers(
+    cand: Candidate, n: FloatArray, W: FloatArray, a: FloatArray, x: Arrays, i: int
+) -> LayerArrays:
+    """Layer ``i`` at the points; ``x`` may override E (MPa) and t (mm) per point as
+    ``E{i}`` and ``t{i}`` (used by the tolerance analysis)."""
+    m = cand.material
+    E = x[f"E{i}"][:, None] if f"E{i}" in x else m.E
+    t = x[f"t{i}"][:, None] if f"t{i}" in x else cand.t
+    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), a, m.density)
+
+
+def point_values(
+    problem: Problem, c1: Candidate, c2: Candidate, x: Arrays, tables: Tables
+) -> dict[str, FloatArray]:
+    """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``."""
+    etas = np.asarray(problem.etas or (0.0,), dtype=np.float64)
+    keys = [c.quantity for c in problem.constraints] + [problem.objective.quantity]
+    wanted = {"frame" for k in keys if "frame@" in k} | {"Pb" for k in keys if k.startswith("Pb@")}
+    l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
+    if _same_layers(c1, c2, x):  # evaluate computes one layer (analysis.identical_layers)
+        l2 = l1
+    else:
+        l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
+    # one direction: a scalar eta keeps evaluate on its fast path (no per-eta masks)
+    ev = evaluate(l1, l2, problem.layout, problem.model, etas[0] if len(etas) == 1 else etas)
+    Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
+    out: dict[str, FloatArray] = {
+        "Lx": Lx,
+        "Ly": Ly,
+        "thickness": ev.thickness[:, 0],
+        "mass": ev.mass[:, 0],
+        "flat": np.maximum((x["n1"] + 1) * x["W1"], (x["n2"] + 1) * x["W2"]),
+        "facet": np.maximum(
+            tables.facet_factor(x["n1"], "x") * Ly, tables.facet_factor(x["n2"], "y") * Lx
+        ),
+    }
+    for k, eta in enumerate(etas):
+        key = f"@{float(eta):.12g}"
+        out["EI" + key] = np.asarray(ev.EI[:, k])
+        out["D" + key] = np.asarray(ev.D[:, k])
+        out["K" + key] = np.asarray(ev.K[:, k])
+        if "frame" in wanted:
+            span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(float(eta))))
+            D_frame = np.asarray(assembly_directional("D", ev.springs, float(eta), "frame"))
+            out["Dframe" + key] = D_frame[:, 0]
+            out["EIframe" + key] = D_frame[:, 0] * span
+            K_frame = np.asarray(assembly_directional("K", ev.springs, float(eta), "frame"))
+            out["Kframe" + key] = K_frame[:, 0]
+    if "Pb" in wanted:
+        s1, s2 = ev.springs
+        for e, (lay, sa, sc) in {"0": (l1, s1, s2), "90": (l2, s2, s1)}.items():
+            out["Pb@" + e] = np.asarray(
+                K_SIMPLE_FREE * buckling_scale(lay.E, lay.nu, lay.t, lay.W, lay.n, sa.K_S, sc.K_C)
+            )[:, 0]
+    return out
+
+
+def _same_layers(c1: Candidate, c2: Candidate, x: Arrays) -> bool:
+    """Whether layer 2's coordinates are layer 1's (identical layers: the same arrays)."""
+    return (
+        c1 == c2
+        and all(x[f"{k}2"] is x[f"{k}1"] for k in ("n", "W", "a"))
+        and all(f"{k}{i}" not in x for k in ("E", "t") for i in (1, 2))
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class _Corner:
+    """One layer at one corner of the boxes, computed as :func:`corrugate.analysis.evaluate.evaluate`
+    does (sin and cos of alpha/2 once): W (mm), cos(alpha/2), pitch W sin(alpha/2) and chord
+    extent (n + 1) p (mm)."""
+
+    W: FloatArray
+    c: FloatArray
+    p: FloatArray
+    extent: FloatArray
+
+
+def _corner(b: Arrays, i: int) -> _Corner:
+    half = np.asarray(b[f"a{i}"], dtype=np.float64) * (np.pi / 360.0)
+    W = np.asarray(b[f"W{i}"], dtype=np.float64)
+    p = W * np.sin(half)
+    return _Corner(W, np.cos(half), p, (np.asarray(b[f"n{i}"], dtype=np.float64) + 1.0) * p)
+
+
+def box_bounds(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    lo: Arrays,
+    hi: Arrays,
+    tables: Tables,
+    quantities: set[str],
+) -> Bounds:
+    """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi] (``lo is hi``:
+    the values at points, each computed once)."""
+    lay = problem.layout
+    point = lo is hi
+    same = _same_layers(c1, c2, lo) and (point or _same_layers(c1, c2, hi))
+    # each layer at the lower and the upper corner (the same objects for points or the same layer)
+    g1_lo = _corner(lo, 1)
+    g1_hi = g1_lo if point else _corner(hi, 1)
+    g2_lo = g1_lo if same else _corner(lo, 2)
+    g2_hi = g1_hi if same else (g2_lo if point else _corner(hi, 2))
+    Lx_lo, Lx_hi = g1_lo.extent, g1_hi.extent
+    Ly_lo, Ly_hi = g2_lo.extent, g2_hi.extent
+    out: Bounds = {"Lx": (Lx_lo, Lx_hi), "Ly": (Ly_lo, Ly_hi)}
+    if "thickness" in quantities or "mass" in quantities:
+        # t_d = W1 c1 + W2 c2 grows with W and falls with alpha: W low with alpha high, and back
+        if same:
+            td_lo = 2.0 * (g1_lo.W * g1_hi.c)
+            td_hi = td_lo if point else 2.0 * (g1_hi.W * g1_lo.c)
+        else:
+            td_lo = g1_lo.W * g1_hi.c + g2_lo.W * g2_hi.c
+            td_hi = td_lo if point else g1_hi.W * g1_lo.c + g2_hi.W * g2_lo.c
+        out["thickness"] = (td_lo, td_hi)
+    if "flat" in quantities:
+        flat_lo = np.maximum((lo["n1"] + 1) * lo["W1"], (lo["n2"] + 1) * lo["W2"])
+        flat_hi = (
+            flat_lo if point else np.maximum((hi["n1"] + 1) * hi["W1"], (hi["n2"] + 1) * hi["W2"])
+        )
+        out["flat"] = (flat_lo, flat_hi)
+    if "facet" in quantities:
+        f1 = tables.Fx.bounds(lo["n1"], hi["n1"])
+        f2 = tables.Fy.bounds(lo["n2"], hi["n2"])
+        facet_lo = np.maximum(f1[0] * Ly_lo, f2[0] * Lx_lo)
+        facet_hi = facet_lo if point else np.maximum(f1[1] * Ly_hi, f2[1] * Lx_hi)
+        out["facet"] = (facet_lo, facet_hi)
+    if "mass" in quantities:
+
+        def mass(b: Arrays, g1: _Corner, g2: _Corner, td: FloatArray) -> FloatArray:
+            # holes remove rho t A_h / s(alpha) per layer, most at the box's lowest alpha: the
+            # corner's own pitch gives the bound on the same side as its blank.
+            # The band (cut from layer 1's sheet) grows with Lx, Ly and t_d (corrugate.fabrication.
+            # connectors), so its bounds are its values at those quantities' own bounds.
+            band = connector_mass(c1.material.density, c1.t, lay, g1.extent, g2.extent, td)
+            m1 = layer_mass(
+                c1.material.density, c1.t, g1.W, length_sum(lay, b["n1"], g2.extent), lay, g1.p
+            )
+            if same:  # the same layer twice (x + x = 2 x exactly, as evaluate does)
+                return np.asarray(2.0 * m1 + band)
+            m2 = layer_mass(
+                c2.material.density, c2.t, g2.W, length_sum(lay, b["n2"], g1.extent), lay, g2.p
+            )
+            return np.asarray(m1 + m2 + band)
+
+        mass_lo = mass(lo, g1_lo, g2_lo, td_lo)
+        out["mass"] = (mass_lo, mass_lo if point else mass(hi, g1_hi, g2_hi, td_hi))
+    stiff = sorted(q for q in quantities if "@" in q)
+    if stiff:
+        out.update(_stiffness_bounds(problem, c1, c2, lo, hi, tables, out, stiff))
+    return out
+
+
+@dataclass(frozen=True)
+class _Springs:
+    """A layer's springs over boxes, as intervals (the fields of
+    :class:`~corrugate.mechanics.springs.LayerSprings`)."""
+
+    K_C: Interval
+    K_S: Interval
+    D_C: Interval
+    D_S: Interval
+    K_T: Interval
+    D_T: Interval
+    pq: Interval  # p sum_j 1/L_j without holes (corrugate.mechanics.offaxis.Coupon)
+
+
+def _layer_springs(
+    problem: Problem,
+    cand: Candidate,
+    n: tuple[FloatArray, FloatArray],
+    W: tuple[FloatArray, FloatArray],
+    a: tuple[FloatArray, FloatArray],
+    S: tuple[FloatArray, FloatArray],
+    Q: RangeTable,
+    tables: Tables,
+    axis: str,
+) -> _Springs:
+    """K_C, K_S, D_C, D_S (DESIGN.md 3.2) and the shear and twisting springs K_T, D_T
+    (:func:`corrugate.mechanics.offaxis.shear_springs`, on the parallel sum) of a layer over a box, in
+    interval arithmetic."""
+    m = cand.material
+    t = cand.t
+    Wi = Interval(W[0], W[1])
+    alpha = Interval(np.radians(a[0]), np.radians(a[1]))
+    # the model functions are plain arithmetic, so they accept intervals (duck typing); sin and
+    # cos of alpha/2 once, as evaluate does
+    from_sc: Any = get_model(problem.model).from_sc
+    half = alpha * 0.5
+    sh, ch = half.sin(), half.cos()
+    mod = from_sc(float(m.E), float(m.nu), float(t), Wi, sh, ch)
+    q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
+    if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
+        pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))
+    else:
+        pq = Wi * sh * Interval(q_lo, q_hi) / Interval(S[0], S[1])
+    Ecx, Ecy, Ebx, Eby = (Interval.of(v) for v in (mod.Ecx, mod.Ecy, mod.Ebx, mod.Eby))
+    t3 = t**3
+    pq_par, pq_ser = pq, pq
+    if problem.layout.holes:
+        p_lo = np.asarray(W[0] * np.sin(np.radians(a[0]) / 2))
+        p_hi = np.asarray(W[1] * np.sin(np.radians(a[1]) / 2))
+        Fmin = tables.Fmin_x if axis == "x" else tables.Fmin_y  # built only with holes
+        pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
+    K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), sh, pq_par)
+    return _Springs(
+        Ecx * t / pq_ser,
+        Ecy * t * pq_par,
+        Ebx * (t3 / 12.0) / pq_ser,
+        Eby * (t3 / 12.0) * pq_par,
+        Interval.of(K_T),
+        Interval.of(D_T),
+        pq,
+    )
+
+
+#: Relative widening of the hole bounds against floating-point rounding.
+_ROUND = 1e-12
+
+
+def _hole_pq_bounds(
+    problem: Problem,
+    n: tuple[FloatArray, FloatArray],
+    p: tuple[FloatArray, FloatArray],
+    S: tuple[FloatArray, FloatArray],
+    Q: tuple[FloatArray, FloatArray],
+    Fmin: RangeTable,
+    pq: Interval,
+    axis: str,
+) -> tuple[Interval, Interval]:
+    """Bounds of p x (parallel sum) and p x (series sum) of a layer with the layout's holes
+    (:mod:`corrugate.geometry.holes`) over boxes; ``pq`` bounds p x sum_j 1/L_j without holes.
+
+    A hole only removes terms from the parallel sum and lengthens series terms, so ``pq.hi``
+    bounds the parallel sum from above and ``pq.lo`` the series sum from below for every box.
+    Loose, for any box: at most sum_h (w_h / p_lo + 2) facets are touched (w_h the hole's width
+    across the creases), each of length >= L_min = S_lo min_j(L_j / S) and blocked by at most
+    B = sum_h (the holes' extents along the creases). Tight, for boxes of one n, with
+    L_j in S (n + 1) dA_j: every facet that a hole touches for some p of the box (it meets the
+    union of strip j over p_lo..p_hi) is left out of the parallel sum's lower bound and blocked by
+    at most the holes' extent inside that union; every facet a hole touches for all p (it meets
+    the intersection of strip j over the box) is left out of the upper bound and blocked by at
+    least the extent inside the intersection. Both sides converge to the exact value as
+    p_hi - p_lo -> 0 for one n (except where a strip edge meets a hole's edge).
+    """
+    lay = problem.layout
+    holes = lay.holes
+    ax: Axis = "x" if axis == "x" else "y"
+    other: Axis = "y" if axis == "x" else "x"
+    p_lo, p_hi = p
+    shape = np.shape(pq.lo)
+    S_lo, S_hi = np.asarray(S[0], dtype=np.float64), np.asarray(S[1], dtype=np.float64)
+    n_lo, n_hi = np.asarray(n[0]), np.asarray(n[1])
+    # loose
+    count = sum((h.extent(ax)[1] - h.extent(ax)[0]) / p_lo + 2.0 for h in holes)
+    B = float(sum(h.extent(other)[1] - h.extent(other)[0] for h in holes))
+    L_min = S_lo * Fmin.bounds(n_lo, n_hi)[0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        f = np.where(L_min > B, B / (L_min * (L_min - B)), np.inf)
+        par_lo = np.array(np.broadcast_to(pq.lo - p_hi * count / L_min, shape), dtype=np.float64)
+        ser_hi = np.array(np.broadcast_to(pq.hi + p_hi * count * f, shape), dtype=np.float64)
+    par_hi = np.array(pq.hi, dtype=np.float64)
+    ser_lo = np.array(pq.lo, dtype=np.float64)
+    # tight, one n per box
+    idx = np.flatnonzero(np.broadcast_to(n_lo == n_hi, shape))
+    if idx.size:
+
+        def pick(x: ArrayLike) -> FloatArray:
+            return np.asarray(np.broadcast_to(np.asarray(x, dtype=np.float64), shape)[idx])
+
+        nn = pick(n_lo).astype(np.int64)
+        pl, ph, sl, sh = pick(p_lo), pick(p_hi), pick(S_lo), pick(S_hi)
+        c = (nn + 1) / 2.0
+        j_lo = np.full(nn.shape, np.iinfo(np.int64).max)
+        j_hi = np.full(nn.shape, -1)
+        for h in holes:
+            lo, hi = h.extent(ax)
+            a = np.floor(c + np.minimum(lo / pl, lo / ph)).astype(np.int64)
+            b = np.ceil(c + np.maximum(hi / pl, hi / ph)).astype(np.int64) - 1
+            j_lo = np.minimum(j_lo, np.clip(a, 0, nn))
+            j_hi = np.maximum(j_hi, np.clip(b, 0, nn))
+        K = max(int(np.max(j_hi - j_lo + 1)), 1)
+        j = j_lo[:, None] + np.arange(K)[None, :]
+        valid = j <= j_hi[:, None]
+        j = np.minimum(j, nn[:, None])
+        m = (nn + 1)[:, None].astype(np.float64)
+        cum = lay.cumulative_area
+        dA = np.asarray(cum((j + 1) / m, ax)) - np.asarray(cum(j / m, ax))
+        dA = np.where(valid, dA, 1.0)
+        jc = j - c[:, None]
+        union = (
+            np.minimum(jc * pl[:, None], jc * ph[:, None]),
+            np.maximum((jc + 1) * pl[:, None], (jc + 1) * ph[:, None]),
+        )
+        common = (
+            np.maximum(jc * pl[:, None], jc * ph[:, None]),
+            np.minimum((jc + 1) * pl[:, None], (jc + 1) * ph[:, None]),
+        )
+        some = np.zeros(j.shape, dtype=bool)
+        always = np.zeros(j.shape, dtype=bool)
+        b_max = np.zeros(j.shape)
+        b_min = np.zeros(j.shape)
+        for h in holes:
+            lo, hi = h.extent(ax)
+            some |= (lo < union[1]) & (hi > union[0])
+            hit = (lo < common[1]) & (hi > common[0]) & (common[0] < common[1])
+            always |= hit
+            b_max += h.blocked(ax, union[0], union[1])
+            b_min += np.where(hit, h.blocked(ax, common[0], common[1]), 0.0)
+        some &= valid
+        always &= valid
+        inv = 1.0 / (m * dA)  # (n + 1) dA_j = L_j / S
+        Qlo, Qhi = pick(Q[0]), pick(Q[1])
+        if problem.identical:  # p / S = 1 / (n + 1)
+            r_lo = r_hi = 1.0 / (nn + 1.0)
+        else:
+            r_lo, r_hi = pl / sh, ph / sl
+        t_par_lo = r_lo * np.maximum(Qlo - np.where(some, inv, 0.0).sum(axis=1), 0.0)
+        t_par_hi = r_hi * np.maximum(Qhi - np.where(always, inv, 0.0).sum(axis=1), 0.0)
+        L_lo = m * sl[:, None] * dA
+        L_hi = m * sh[:, None] * dA
+        with np.errstate(divide="ignore", invalid="ignore"):
+            f_hi = np.where(L_lo > b_max, b_max / (L_lo * (L_lo - b_max)), np.inf)
+            f_lo = np.where(L_hi > b_min, b_min / (L_hi * (L_hi - b_min)), np.inf)
+        f_hi = np.where(some & (b_max > 0), f_hi, 0.0).sum(axis=1)
+        f_lo = np.where(always & (b_min > 0), f_lo, 0.0).sum(axis=1)
+        pq_lo, pq_hi = pick(pq.lo), pick(pq.hi)
+        par_lo[idx] = np.maximum(par_lo[idx], t_par_lo * (1 - _ROUND))
+        par_hi[idx] = np.minimum(par_hi[idx], t_par_hi * (1 + _ROUND))
+        ser_hi[idx] = np.minimum(ser_hi[idx], (pq_hi + ph * f_hi) * (1 + _ROUND))
+        ser_lo[idx] = np.maximum(ser_lo[idx], (pq_lo + pl * f_lo) * (1 - _ROUND))
+    par_lo = np.maximum(par_lo, 0.0)
+    return Interval(par_lo, np.maximum(par_hi, par_lo)), Interval(
+        ser_lo, np.maximum(ser_hi, ser_lo)
+    )
+
+
+def _stiffness_bounds(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    lo: Arrays,
+    hi: Arrays,
+    tables: Tables,
+    geo: Bounds,
+    keys: list[str],
+) -> Bounds:
+    Lx, Ly = geo["Lx"], geo["Ly"]
+    sp1 = _layer_springs(
+        problem,
+        c1,
+        (lo["n1"], hi["n1"]),
+        (lo["W1"], hi["W1"]),
+        (lo["a1"], hi["a1"]),
+        Ly,
+        tables.Qx,
+        tables,
+        "x",
+    )
+    if (
+        problem.identical
+        and isinstance(problem.layout, Rectangle | Circle)
+        and not problem.layout.holes  # holes need not be symmetric under x <-> y
+    ):
+        # outline symmetric under x <-> y: identical layers have identical springs
+        sp2 = sp1
+    else:  # a polygon's facet lengths differ across x and across y (regression: issue found
+        # by brute force on a pentagon; layer 2 must use Q_y even when the layers are identical)
+        sp2 = _layer_springs(
+            problem,
+            c2,
+            (lo["n2"], hi["n2"]),
+            (lo["W2"], hi["W2"]),
+            (lo["a2"], hi["a2"]),
+            Lx,
+            tables.Qy,
+            tables,
+            "y",
+        )
+    out: Bounds = {}
+    # how the layout is read off the crease directions (corrugate.mechanics.offaxis.Coupon): made at the
+    # first free-support stiffness asked for off them (None for a square)
+    coupon: Coupon | None = None
+    for key in keys:
+        kind, eta_s = key.split("@")
+        eta = float(eta_s)
+        v: Interval
+        if kind == "Pb":  # buckling along layer 1's (0) or layer 2's (90) creases
+            along, across, b, m = (sp1, sp2, "1", c1) if eta == 0.0 else (sp2, sp1, "2", c2)
+            Wb = Interval(lo["W" + b], hi["W" + b])
+            nb = Interval(lo["n" + b], hi["n" + b])
+            mat = m.material
+            v = (
+                buckling_scale(
+                    np.float64(mat.E),
+                    np.float64(mat.nu),
+                    np.float64(m.t),
+                    Wb,
+                    nb,
+                    along.K_S,
+                    across.K_C,
+                )
+                * K_SIMPLE_FREE
+            )
+            out[key] = (np.maximum(v.lo, 0.0), v.hi)
+            continue
+        support: Support = "frame" if kind.endswith("frame") else "free"
+        base = kind.removesuffix("frame")
+        if coupon is None and support == "free" and crease_layer(eta) is None:
+            coupon = coupon_of(
+                problem.layout,
+                Interval(Lx[0], Lx[1]),
+                Interval(Ly[0], Ly[1]),
+                lambda: (sp1.pq, sp2.pq),
+            )
+        v = assembly_directional("K" if base == "K" else "D", (sp1, sp2), eta, support, coupon)
+        if base == "EI":
+            v = v * _span_bounds(problem, Lx, Ly, eta)
+        out[key] = (np.maximum(v.lo, 0.0), v.hi)
+    return out
+
+
+def _span_bounds(
+    problem: Problem,
+    Lx: tuple[FloatArray, FloatArray],
+    Ly: tuple[FloatArray, FloatArray],
+    eta_deg: float,
+) -> Interval:
+    lay = problem.layout
+    eta = np.asarray(eta_deg, dtype=np.float64)
+    hi = np.asarray(lay.span(Lx[1], Ly[1], eta), dtype=np.float64)
+    if isinstance(lay, Rectangle | Circle):  # monotone in Lx and Ly
+        lo = np.asarray(lay.span(Lx[0], Ly[0], eta), dtype=np.float64)
+        return Interval(np.nextafter(lo, 0.0), np.nextafter(hi, np.inf))
+    e = np.radians(eta_deg)
+    slack = 2.0 * (np.abs(np.sin(e)) * (Lx[1] - Lx[0]) + np.abs(np.cos(e)) * (Ly[1] - Ly[0]))
+    return Interval(np.maximum(hi - slack, 0.0), hi + slack)

@@ -1,0 +1,476 @@
+"""Solve a design problem and explain the answer (DESIGN.md section 5).
+
+:func:`solve` runs the certified branch and bound (:mod:`.bnb`) over every candidate sheet pair
+(the material and thickness are a discrete variable; a shared incumbent prunes the later pairs),
+then, unless ``explain=False``, builds the explanation:
+
+* the design's performance, exactly as :func:`corrugate.analysis.evaluate.analyze` reports it;
+* every constraint with its value, bound, margin (>= 0 when met, in the quantity's unit), whether
+  it is *active* (margin within 1e-6 of the bound) and whether it is *binding*: dropping it alone
+  lets the solver find a strictly better design (re-solved, certified);
+* runner-ups: the certified best design for each n near the optimum's n;
+* warnings: the model's (``analyze``) plus the solver's;
+* when no design exists, a diagnosis: for each constraint, the best value of its quantity that
+  the *other* constraints allow (e.g. the most rigidity reachable inside the size limits), so the
+  conflicting constraints and the shortfall are named; if no single constraint is to blame, the
+  pairs whose joint removal restores feasibility.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from corrugate.analysis.evaluate import Analysis, analyze
+from corrugate.geometry.layer import Assembly, Layer
+from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
+from corrugate.solver.problem import Candidate, Constraint, Problem, describe
+from corrugate.solver.quantities import Tables, point_values
+
+__all__ = [
+    "ConstraintReport",
+    "Diagnosis",
+    "Optimum",
+    "RunnerUp",
+    "Solution",
+    "assembly_of",
+    "layer_dict",
+    "optimize",
+    "solve",
+]
+
+#: Relative margin under which a constraint counts as active.
+ACTIVE_RTOL = 1e-6
+#: How many n on each side of the optimum's n the runner-ups cover.
+RUNNER_UP_SPREAD = 3
+
+
+@dataclass(frozen=True)
+class Optimum:
+    """The best design over all sheet pairs, with its certificate."""
+
+    point: dict[str, float] | None
+    candidates: tuple[Candidate, Candidate] | None
+    value: float
+    certified: bool
+    gap: float
+    boxes: int
+    iterations: int
+
+
+@dataclass(frozen=True, slots=True)
+class ConstraintReport:
+    """One constraint at the design: value and bound in ``unit``, margin >= 0 when met."""
+
+    name: str
+    quantity: str
+    sense: str
+    value: float
+    bound: float
+    margin: float
+    unit: str
+    active: bool
+    binding: bool | None
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "name": self.name,
+            "quantity": self.quantity,
+            "sense": self.sense,
+            "value": self.value,
+            "bound": self.bound,
+            "margin": self.margin,
+            "unit": self.unit,
+            "relative_margin": self.margin / abs(self.bound) if self.bound else None,
+            "active": self.active,
+            "binding": self.binding,
+        }
+
+
+@dataclass(frozen=True, slots=True)
+class RunnerUp:
+    """The certified best design with layer 1 having ``n`` creases."""
+
+    n: int
+    objective: float
+    layers: tuple[dict[str, object], ...]
+    certified: bool
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "n": self.n,
+            "objective": self.objective,
+            "layers": list(self.layers),
+            "certified": self.certified,
+        }
+
+
+@dataclass(frozen=True, slots=True)
+class Diagnosis:
+    """Why no design exists: constraint ``names`` cannot all hold; ``reachable`` is the best
+    value of the first one's quantity that the other constraints allow (None if they conflict
+    among themselves)."""
+
+    names: tuple[str, ...]
+    bound: float | None
+    reachable: float | None
+    unit: str
+    message: str
+
+    def as_dict(self) -> dict[str, object]:
+        return {
+            "constraints": list(self.names),
+            "bound": self.bound,
+            "reachable": self.reachable,
+            "unit": self.unit,
+            "message": self.message,
+        }
+
+
+@dataclass(frozen=True)
+class Solution:
+    """The answer to a design problem (see the module docstring)."""
+
+    problem: Problem
+    status: str  # "optimal" | "infeasible" | "unknown"
+    certified: bool
+    gap: float
+    objective: float
+    assembly: Assembly | None
+    analysis: Analysis | None
+    constraints: tuple[ConstraintReport, ...] = ()
+    runner_ups: tuple[RunnerUp, ...] = ()
+    warnings: tuple[dict[str, str], ...] = ()
+    diagnosis: tuple[Diagnosis, ...] = ()
+    stats: dict[str, float] = field(default_factory=dict)
+
+    def __repr__(self) -> str:
+        """Five lines at most (:func:`corrugate.solver.display.solution_repr`)."""
+        from corrugate.solver.display import solution_repr
+
+        return solution_repr(self)
+
+    def _repr_html_(self) -> str:
+        from corrugate.solver.display import solution_html
+
+        return solution_html(self)
+
+    @property
+    def mass(self) -> float | None:
+        return None if self.analysis is None else self.analysis.mass.total
+
+    def to_dict(self) -> dict[str, object]:
+        """The JSON object of ``corrugate design --json`` (keys carry units)."""
+        p = self.problem
+        perf = self.analysis.to_dict() if self.analysis is not None else None
+        design = None
+        if self.assembly is not None and perf is not None:
+            design = {
+                "layout": perf["layout"],
+                "layers": [
+                    layer_dict(i + 1, layer) for i, layer in enumerate(self.assembly.layers)
+                ],
+                "L_mm": perf["L_mm"],
+                "extent_x_mm": perf["extent_x_mm"],
+                "extent_y_mm": perf["extent_y_mm"],
+                "thickness_mm": perf["thickness_mm"],
+            }
+        return {
+            "name": p.name,
+            "status": self.status,
+            "certified": self.certified,
+            "gap": self.gap,
+            "model": p.model,
+            "objective": {
+                "quantity": p.objective.quantity,
+                "sense": p.objective.sense,
+                "value": None if math.isnan(self.objective) else self.objective,
+            },
+            "design": design,
+            "mass_g": self.mass,
+            "stiffness": perf["stiffness"] if perf is not None else None,
+            "performance": perf,
+            "constraints": [c.as_dict() for c in self.constraints],
+            "runner_ups": [r.as_dict() for r in self.runner_ups],
+            "warnings": list(self.warnings),
+            "diagnosis": [d.as_dict() for d in self.diagnosis],
+            "solver": {
+                "method": "vectorised branch and bound with interval bounds (exhaustive on grids)",
+                "gap_rtol": 0.0 if p.gridded else GAP_RTOL,
+                **self.stats,
+            },
+        }
+
+
+def layer_dict(index: int, layer: Layer) -> dict[str, object]:
+    """A layer as the ``design.layers`` entries of the JSON output (units in the keys)."""
+    return {
+        "index": index,
+        "W_mm": layer.W,
+        "n": layer.n,
+        "alpha_deg": layer.alpha_deg,
+        "material": layer.material.id,
+        "t_mm": layer.t,
+    }
+
+
+def _pairs(problem: Problem) -> list[tuple[Candidate, Candidate]]:
+    if problem.identical:
+        return [(c, c) for c in problem.candidates]
+    return [(a, b) for a in problem.candidates for b in problem.candidates]
+
+
+def optimize(
+    problem: Problem,
+    *,
+    n_fixed: tuple[int, int] | None = None,
+    tables: Tables | None = None,
+    incumbent: float | None = None,
+) -> Optimum:
+    """The certified optimum of ``problem`` over every candidate sheet pair."""
+    tables = tables or Tables(problem)
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    best: BnBResult | None = None
+    best_pair: tuple[Candidate, Candidate] | None = None
+    certified = True
+    bound = math.inf
+    boxes = iterations = 0
+    inc = incumbent
+    for pair in _pairs(problem):
+        r = branch_and_bound(problem, *pair, incumbent=inc, n_fixed=n_fixed, tables=tables)
+        boxes += r.boxes
+        iterations += r.iterations
+        certified &= r.certified
+        if r.point is not None and (best is None or sign * r.value < sign * best.value):
+            best, best_pair = r, pair
+            inc = r.value
+        if not r.certified:
+            bound = min(bound, sign * r.bound)
+    if best is None:
+        return Optimum(
+            None, None, math.nan, certified, 0.0 if certified else math.inf, boxes, iterations
+        )
+    best_val = sign * best.value
+    gap_abs = (
+        max(best_val - bound, best.gap * abs(best_val))
+        if not certified
+        else (best.gap * abs(best_val))
+    )
+    gap = 0.0 if problem.gridded and certified else gap_abs / max(abs(best_val), 1e-300)
+    return Optimum(best.point, best_pair, best.value, certified, gap, boxes, iterations)
+
+
+def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
+    """The :class:`~corrugate.geometry.layer.Assembly` of an optimum's point and sheets."""
+    assert opt.point is not None
+    assert opt.candidates is not None
+    x = opt.point
+    c1, c2 = opt.candidates
+    l1 = Layer(x["W1"], round(x["n1"]), x["a1"], c1.material, c1.t)
+    l2 = Layer(x["W2"], round(x["n2"]), x["a2"], c2.material, c2.t)
+    return Assembly(l1, l2, problem.layout)
+
+
+def solve(problem: Problem, *, explain: bool = True) -> Solution:
+    """Certified optimum of ``problem`` and (if ``explain``) its explanation."""
+    t0 = time.perf_counter()
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables)
+    t_opt = time.perf_counter() - t0
+    stats = {"boxes": float(opt.boxes), "iterations": float(opt.iterations), "solve_seconds": t_opt}
+    if opt.point is None:
+        status = "infeasible" if opt.certified else "unknown"
+        diag = tuple(_diagnose(problem, tables)) if explain else ()
+        warnings = (
+            []
+            if opt.certified
+            else [
+                {
+                    "code": "not-certified",
+                    "message": "the search stopped at its iteration limit before proving "
+                    "infeasibility",
+                }
+            ]
+        )
+        stats["total_seconds"] = time.perf_counter() - t0
+        return Solution(
+            problem,
+            status,
+            opt.certified,
+            opt.gap,
+            math.nan,
+            None,
+            None,
+            diagnosis=diag,
+            warnings=tuple(warnings),
+            stats=stats,
+        )
+    assembly = assembly_of(problem, opt)
+    etas = sorted(set(problem.etas) | {0.0, 90.0})
+    analysis = analyze(assembly, problem.model, etas, support=problem.support)
+    warnings = [w.as_dict() for w in analysis.warnings]
+    if not opt.certified:
+        warnings.append(
+            {
+                "code": "not-certified",
+                "message": (
+                    f"the search stopped at its iteration limit; the design may be up to "
+                    f"{100 * opt.gap:.3g} % from the optimum"
+                ),
+            }
+        )
+    elif not problem.gridded:
+        warnings.append(
+            {
+                "code": "continuous-gap",
+                "message": (
+                    f"continuous variables: proved optimal to a relative gap of {opt.gap:.1e} "
+                    "(no feasible design is better by more than that)"
+                ),
+            }
+        )
+    reports: tuple[ConstraintReport, ...] = ()
+    runner_ups: tuple[RunnerUp, ...] = ()
+    if explain:
+        reports = tuple(_constraint_reports(problem, opt, tables))
+        runner_ups = tuple(_runner_ups(problem, opt, tables))
+    stats["total_seconds"] = time.perf_counter() - t0
+    return Solution(
+        problem,
+        "optimal",
+        opt.certified,
+        opt.gap,
+        opt.value,
+        assembly,
+        analysis,
+        reports,
+        runner_ups,
+        tuple(warnings),
+        stats=stats,
+    )
+
+
+def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, float]:
+    assert opt.point is not None
+    assert opt.candidates is not None
+    x = {k: np.array([v]) for k, v in opt.point.items()}
+    vals = point_values(problem, *opt.candidates, x, tables)
+    return {k: float(v[0]) for k, v in vals.items()}
+
+
+def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
+    vals = _values_at(problem, opt, tables)
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    out = []
+    for c in problem.constraints:
+        v = vals[c.quantity]
+        margin = c.margin(v)
+        relaxed = optimize(problem.without(c.name), tables=tables, incumbent=opt.value)
+        binding: bool | None = None
+        if relaxed.certified:
+            tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
+            binding = relaxed.point is not None and sign * relaxed.value < sign * opt.value - tol
+        out.append(
+            ConstraintReport(
+                c.name,
+                c.quantity,
+                c.sense,
+                v,
+                c.bound,
+                margin,
+                c.unit,
+                active=abs(margin) <= ACTIVE_RTOL * abs(c.bound),
+                binding=binding,
+            )
+        )
+    return out
+
+
+def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
+    assert opt.point is not None
+    n_star = round(opt.point["n1"])
+    out = []
+    for n in range(
+        max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
+        min(problem.n_hi, n_star + RUNNER_UP_SPREAD) + 1,
+    ):
+        r = optimize(problem, n_fixed=(n, n), tables=tables)
+        if r.point is None:
+            continue
+        a = assembly_of(problem, r)
+        out.append(
+            RunnerUp(
+                n,
+                r.value,
+                tuple(layer_dict(i + 1, layer) for i, layer in enumerate(a.layers)),
+                r.certified,
+            )
+        )
+    return out
+
+
+def _best_value(problem: Problem, c: Constraint, tables: Tables) -> Optimum:
+    """Best value of c's quantity under the other constraints (max for a lower bound)."""
+    relaxed = problem.without(c.name).with_objective(
+        c.quantity, "max" if c.sense == "min" else "min"
+    )
+    return optimize(relaxed, tables=tables)
+
+
+def _diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
+    out: list[Diagnosis] = []
+    for c in problem.constraints:
+        best = _best_value(problem, c, tables)
+        if best.point is None:
+            continue
+        r = best.value
+        short = (c.bound - r) if c.sense == "min" else (r - c.bound)
+        word = "largest" if c.sense == "min" else "smallest"
+        need = ">=" if c.sense == "min" else "<="
+        what = describe(c.quantity)
+        pct = 100 * abs(short) / abs(c.bound)
+        out.append(
+            Diagnosis(
+                (c.name,),
+                c.bound,
+                r,
+                c.unit,
+                f"{c.name} asks {what} {need} {c.bound:.6g} {c.unit}; the {word} reachable "
+                f"while meeting every other constraint is {r:.6g} {c.unit} (misses by "
+                f"{abs(short):.4g} {c.unit}, {pct:.3g} %); relaxing it alone makes the spec "
+                "feasible",
+            )
+        )
+    if out:
+        return out
+    names = [c.name for c in problem.constraints]
+    for a, b in itertools.combinations(names, 2):
+        relaxed = problem.without(a).without(b)
+        if optimize(relaxed, tables=tables).point is not None:
+            out.append(
+                Diagnosis(
+                    (a, b),
+                    None,
+                    None,
+                    "",
+                    (f"{a} and {b} together exclude every design; dropping both allows one"),
+                )
+            )
+    if not out:
+        out.append(
+            Diagnosis(
+                tuple(names),
+                None,
+                None,
+                "",
+                (
+                    "no design meets the variable bounds and constraints even with any two "
+                    "constraints dropped; widen the variable bounds ([variables])"
+                ),
+            )
+        )
+    return out

@@ -1,0 +1,298 @@
+"""The spec reference (``docs/spec.md``) and a JSON Schema, both generated from the spec model.
+
+:func:`spec_keys` walks the pydantic models of :mod:`corrugate.spec.schema` and lists every key the
+parser accepts, by TOML path (``constraints.flexural_rigidity[].eta``). :data:`KEYS` says for each
+one its unit and what it means; a key the parser accepts but :data:`KEYS` does not describe is
+an error of :func:`reference_markdown` (and of the tests), so the reference cannot fall behind the
+parser. :func:`json_schema` is pydantic's schema of :class:`~corrugate.spec.schema.Spec`, widened where
+the parser is wider than the types say: every quantity also takes a string with units
+(``"48 mm"``), and each key gets its description, so an editor (e.g. Taplo or VS Code's Even Better
+TOML, through a ``#:schema`` comment or a schema association) can complete and check spec files.
+"""
+
+from __future__ import annotations
+
+import json
+import types
+import typing
+from dataclasses import dataclass
+from typing import Any
+
+from pydantic import BaseModel
+
+from corrugate.spec.schema import Spec
+
+__all__ = ["KEYS", "KeyDoc", "json_schema", "reference_markdown", "spec_keys"]
+
+
+@dataclass(frozen=True, slots=True)
+class KeyDoc:
+    """What one spec key means: its ``unit`` (internal unit of the value, "" for none; a plain
+    number is read in it, a string may carry any compatible unit) and a one-line ``text``."""
+
+    unit: str
+    text: str
+
+
+_STIFF = {
+    "flexural_rigidity": ("N*mm^2", "EI(eta), the flexural rigidity of the panel over its span"),
+    "bending_stiffness": ("N*mm", "D(eta), the bending stiffness (EI per span)"),
+    "inplane_stiffness": ("N/mm", "K(eta), the in-plane compressive stiffness"),
+}
+
+#: Every key of a spec by TOML path (``[]`` marks the items of an array of tables).
+KEYS: dict[str, KeyDoc] = {
+    "name": KeyDoc("", "Name of the design; names the files and the report."),
+    "model": KeyDoc(
+        "",
+        "Moduli variant: 'refined' (default, this project's), 'xia' (Xia et al. 2012) or "
+        "'paper' (Liu, Yan and Mehta, with its known errors; for reproducing Table 1).",
+    ),
+    "support": KeyDoc(
+        "",
+        "Support condition of every stiffness bound unless it says otherwise: 'free' (default; "
+        "free sides, as a bench test or a part held at two edges) or 'frame' (a rigid frame: "
+        "the paper's cos^2 rule).",
+    ),
+    "layers": KeyDoc(
+        "",
+        "'identical' (default: both layers the same W, n, alpha, t) or 'independent' (each "
+        "layer its own; slower).",
+    ),
+    "material": KeyDoc("", "The sheet material (a table); or use [[materials]] for a choice."),
+    "materials": KeyDoc(
+        "", "Candidate materials ([[materials]] tables): the designer picks the lightest."
+    ),
+    "layout": KeyDoc("", "The plan outline of the panel (a table)."),
+    "layout.shape": KeyDoc("", "'square' (default), 'rectangle', 'circle' or 'polygon'."),
+    "layout.vertices": KeyDoc(
+        "", "Polygon outline: [[x, y], ...], scaled to the folded extents (polygon only)."
+    ),
+    "layout.holes": KeyDoc("", "Inner cut-outs, e.g. an axle hole (array of tables)."),
+    "layout.holes[].shape": KeyDoc("", "'circle' (default) or 'polygon'."),
+    "layout.holes[].diameter": KeyDoc("mm", "Diameter of a circular hole."),
+    "layout.holes[].center": KeyDoc(
+        "mm", "[x, y] of the hole from the centre of the layout (x across layer 1's creases)."
+    ),
+    "layout.holes[].vertices": KeyDoc(
+        "mm", "Polygonal hole: [[x, y], ...] relative to its center."
+    ),
+    "variables": KeyDoc("", "Bounds of the design variables (a table)."),
+    "variables.W": KeyDoc("mm", "Facet width W: { min, max, step } (step optional: a grid)."),
+    "variables.W.min": KeyDoc("mm", "Smallest facet width."),
+    "variables.W.max": KeyDoc("mm", "Largest facet width."),
+    "variables.W.step": KeyDoc("mm", "Grid step of W (omit for a continuous W)."),
+    "variables.n": KeyDoc("", "Number of creases n per layer: { min, max } (integers)."),
+    "variables.n.min": KeyDoc("", "Fewest creases (default 1)."),
+    "variables.n.max": KeyDoc("", "Most creases (default 200)."),
+    "variables.alpha": KeyDoc("deg", "Fold angle alpha: { min, max, step }, 0 < alpha < 180."),
+    "variables.alpha.min": KeyDoc("deg", "Smallest fold angle."),
+    "variables.alpha.max": KeyDoc("deg", "Largest fold angle."),
+    "variables.alpha.step": KeyDoc("deg", "Grid step of alpha (omit for a continuous alpha)."),
+    "constraints": KeyDoc("", "What the part must do and fit (a table)."),
+    "constraints.sheet_max": KeyDoc(
+        "mm", "Longest flat blank the cutter takes: bounds (n + 1) W and every facet length."
+    ),
+    "constraints.side": KeyDoc("mm", "Folded side L of a square: { min, max }."),
+    "constraints.diameter": KeyDoc("mm", "Folded diameter of a circle: { min, max }."),
+    "constraints.side_x": KeyDoc("mm", "Folded extent Lx of a rectangle or polygon: { min, max }."),
+    "constraints.side_y": KeyDoc("mm", "Folded extent Ly of a rectangle or polygon: { min, max }."),
+    "constraints.thickness": KeyDoc("mm", "Folded thickness t_d of the panel: { min, max }."),
+    **{
+        f"constraints.{k}": KeyDoc(u, f"Lower bounds on {t} (array of tables).")
+        for k, (u, t) in _STIFF.items()
+    },
+    **{f"constraints.{k}[].min": KeyDoc(u, f"Least {t}.") for k, (u, t) in _STIFF.items()},
+    **{
+        f"constraints.{k}[].eta": KeyDoc("deg", "Direction eta, from layer 1's creases.")
+        for k in _STIFF
+    },
+    **{
+        f"constraints.{k}[].support": KeyDoc(
+            "", "'free' or 'frame' for this bound (default: the spec's support)."
+        )
+        for k in _STIFF
+    },
+    "constraints.buckling_load": KeyDoc(
+        "N", "Lower bounds on the compressive buckling load (array of tables)."
+    ),
+    "constraints.buckling_load[].min": KeyDoc("N", "Least buckling load (plate lower bound)."),
+    "constraints.buckling_load[].eta": KeyDoc("deg", "Load direction: 0 or 90 deg (required)."),
+    "constraints.mass": KeyDoc("g", "Mass budget: { max }."),
+    "constraints.mass.max": KeyDoc("g", "Heaviest part allowed (layers and connector band)."),
+    "objective": KeyDoc("", "What to optimise (a table); default: minimize = 'mass'."),
+    "objective.minimize": KeyDoc("", "'mass'."),
+    "objective.maximize": KeyDoc(
+        "", "A stiffness kind to maximise: " + ", ".join(f"'{k}'" for k in _STIFF) + "."
+    ),
+    "objective.eta": KeyDoc("deg", "Direction of the stiffness to maximise."),
+    "objective.support": KeyDoc("", "'free' or 'frame' for the maximised stiffness."),
+    "robust": KeyDoc(
+        "", "Meet every bound with a probability under manufacturing tolerances (a table)."
+    ),
+    "robust.probability": KeyDoc("", "Probability of meeting every bound (default 0.9)."),
+    "robust.W": KeyDoc("mm", "One-sigma tolerance of W (default 0.1 mm)."),
+    "robust.alpha": KeyDoc("deg", "One-sigma tolerance of alpha (default 2 deg)."),
+    "robust.t": KeyDoc("", "Relative one-sigma tolerance of the thickness (default 5 %)."),
+    "robust.E": KeyDoc("", "Relative one-sigma tolerance of E (default 10 %)."),
+    "robust.samples": KeyDoc("", "Monte Carlo samples (default 4000)."),
+    "robust.seed": KeyDoc("", "Seed of the random samples (default 0)."),
+}
+for _r in ("side", "diameter", "side_x", "side_y", "thickness"):
+    KEYS[f"constraints.{_r}.min"] = KeyDoc("mm", "Least value.")
+    KEYS[f"constraints.{_r}.max"] = KeyDoc("mm", "Greatest value.")
+for _m in ("material", "materials[]"):
+    KEYS |= {
+        f"{_m}.name": KeyDoc("", "A library material (corrugate materials) or 'custom'."),
+        f"{_m}.thickness": KeyDoc(
+            "mm",
+            "One thickness, a list of candidates, 'all' (every thickness sold) or nothing "
+            "(the material's default).",
+        ),
+        f"{_m}.E": KeyDoc("MPa", "Young's modulus of an inline material."),
+        f"{_m}.nu": KeyDoc("", "Poisson's ratio of an inline material (-1 < nu < 0.5)."),
+        f"{_m}.density": KeyDoc("g/cm^3", "Density of an inline material."),
+    }
+
+
+def _models(annotation: Any) -> tuple[type[BaseModel] | None, bool]:
+    """The pydantic model inside ``annotation`` (through Optional and list) and whether it is a
+    list of them."""
+    origin = typing.get_origin(annotation)
+    if origin in (typing.Union, types.UnionType):
+        for arg in typing.get_args(annotation):
+            found = _models(arg)
+            if found[0] is not None:
+                return found
+        return None, False
+    if origin is list:
+        inner, _ = _models(typing.get_args(annotation)[0])
+        return inner, True
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation, False
+    return None, False
+
+
+def spec_keys(model: type[BaseModel] = Spec, prefix: str = "") -> list[str]:
+    """Every key path the spec parser accepts, depth first in declaration order."""
+    out = []
+    for name, field in model.model_fields.items():
+        path = f"{prefix}{name}"
+        out.append(path)
+        inner, many = _models(field.annotation)
+        if inner is not None:
+            out += spec_keys(inner, f"{path}[]." if many else f"{path}.")
+    return out
+
+
+def _check_documented() -> list[str]:
+    keys = spec_keys()
+    missing = [k for k in keys if k not in KEYS]
+    if missing:
+        raise AssertionError(f"spec keys without a description in KEYS: {missing}")
+    return keys
+
+
+def _default(path: str) -> str:
+    """The default of ``path`` as TOML-ish text, or '' when the key has none."""
+    model: type[BaseModel] = Spec
+    parts = path.replace("[]", "").split(".")
+    for part in parts[:-1]:
+        inner, _ = _models(model.model_fields[part].annotation)
+        assert inner is not None
+        model = inner
+    field = model.model_fields[parts[-1]]
+    if field.is_required():
+        return "required"
+    value = field.get_default()
+    if value is None or isinstance(value, BaseModel) or value == []:
+        return ""
+    return json.dumps(value)
+
+
+def _shown(default: str) -> str:
+    return "**required**" if default == "required" else f"`{default}`" if default else "-"
+
+
+def reference_markdown() -> str:
+    """``docs/spec.md``: every key with its unit, default and meaning (Markdown)."""
+    keys = _check_documented()
+    lines = [
+        "# Spec reference",
+        "",
+        "Generated from the spec model by `corrugate spec --reference` "
+        "(`corrugate.spec.reference`); do not edit by hand. A spec is a TOML file; start from "
+        "`corrugate init` or an example (`corrugate init --example NAME`). Every quantity is a "
+        "plain number in the unit shown or a string with any compatible unit "
+        '(`"48 mm"`, `"1.9 in"`, `"80 mN*m^2"`). `[]` marks the items of an array of tables '
+        "(`flexural_rigidity = [{ min = ..., eta = ... }]`).",
+        "",
+        "| key | unit | default | meaning |",
+        "|---|---|---|---|",
+    ]
+    for k in keys:
+        doc = KEYS[k]
+        default = _default(k)
+        lines.append(f"| `{k}` | {doc.unit or '-'} | {_shown(default)} | {doc.text} |")
+    lines += [
+        "",
+        "Exit codes of `corrugate design`: 0 an answer, 1 no design meets the spec (infeasible), "
+        "2 bad input (one line naming the key, the value and what is allowed).",
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def _widen(node: Any, docs: dict[str, KeyDoc], path: str) -> Any:
+    """Let every number also be a string with units and attach descriptions, recursively."""
+    if isinstance(node, dict):
+        if node.get("type") in ("number", "integer") and node.get("title") != "Seed":
+            return {
+                "anyOf": [{"type": node["type"]}, {"type": "string"}],
+                **{k: v for k, v in node.items() if k != "type"},
+            }
+        return {k: _widen(v, docs, path) for k, v in node.items()}
+    if isinstance(node, list):
+        return [_widen(v, docs, path) for v in node]
+    return node
+
+
+def json_schema() -> dict[str, Any]:
+    """A JSON Schema (draft 2020-12) of spec files, from :class:`~corrugate.spec.schema.Spec`."""
+    _check_documented()
+    schema = Spec.model_json_schema(mode="validation")
+    defs = schema.get("$defs", {})
+
+    def describe(props: dict[str, Any], prefix: str) -> None:
+        for name, sub in props.items():
+            path = f"{prefix}{name}"
+            doc = KEYS.get(path)
+            if doc is not None:
+                unit = f" [{doc.unit}]" if doc.unit else ""
+                sub["description"] = doc.text + unit
+            ref = _ref_of(sub)
+            if ref is not None:
+                many = sub.get("type") == "array" or any(
+                    s.get("type") == "array" for s in sub.get("anyOf", [])
+                )
+                describe(defs[ref].get("properties", {}), f"{path}[]." if many else f"{path}.")
+
+    describe(schema["properties"], "")
+    schema = _widen(schema, KEYS, "")
+    schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
+    schema["title"] = "corrugate design spec"
+    return dict(schema)
+
+
+def _ref_of(node: dict[str, Any]) -> str | None:
+    """The $defs name a property refers to, through anyOf and array items."""
+    if "$ref" in node:
+        return str(node["$ref"]).rsplit("/", 1)[-1]
+    for key in ("anyOf", "allOf"):
+        for sub in node.get(key, []):
+            found = _ref_of(sub)
+            if found is not None:
+                return found
+    if "items" in node and isinstance(node["items"], dict):
+        return _ref_of(node["items"])
+    return None

@@ -1,0 +1,850 @@
+"""Design specs: TOML files validated with pydantic, quantities with units read by pint.
+
+A spec states what a part must do (DESIGN.md section 5); :func:`load_spec` reads one from a TOML
+file and :func:`parse_spec` from a dict. Every quantity may carry units (``"48 mm"``,
+``"80 mN*m^2"``, ``"84 deg"``) or be a plain number in the field's internal unit (mm, deg, N mm^2,
+N mm, N/mm, g). The validated :class:`Spec` holds plain floats in those internal units.
+
+Anything wrong (an unknown key, a wrong unit, min > max, a negative size, an unknown material)
+raises :class:`SpecError`, an :class:`~corrugate.core.errors.InputError` whose ``field`` is the TOML path
+of the offending value (``constraints.side.min``, ``constraints.flexural_rigidity[0].eta``), with
+the value and what is allowed. The CLI prints it as one line and exits with code 2.
+
+Example (the paper's case study, ``examples/blimp_gripper.toml``)::
+
+    name = "blimp-gripper"
+    model = "paper"
+    [material]
+    name = "dura-lar"
+    thickness = "0.125 mm"
+    [layout]
+    shape = "square"
+    [variables]
+    W = { min = "1 mm", max = "30 mm", step = "1 mm" }
+    n = { min = 1, max = 200 }
+    alpha = { min = "1 deg", max = "120 deg", step = "1 deg" }
+    [constraints]
+    sheet_max = "250 mm"
+    side = { min = "48 mm", max = "60 mm" }
+    thickness = { min = "10 mm", max = "12.5 mm" }
+    flexural_rigidity = [{ min = "80 mN*m^2", eta = "0 deg" }]
+    [objective]
+    minimize = "mass"
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+import typing
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, ValidationError
+from pydantic_core import PydanticCustomError
+
+from corrugate.core.errors import InputError
+from corrugate.core.limits import (
+    LIMITS,
+    MAX_DEPTH,
+    MAX_NAME_CHARS,
+    MAX_SPEC_BYTES,
+    MAX_TEXT_CHARS,
+    check_depth,
+    check_grid,
+    check_text,
+)
+from corrugate.core.units import parse_quantity
+from corrugate.geometry.holes import Hole, check_holes
+from corrugate.materials.library import G_PER_CM3
+
+__all__ = [
+    "STIFFNESS_KINDS",
+    "ConstraintsSpec",
+    "HoleSpec",
+    "LayoutSpec",
+    "MaterialSpec",
+    "ObjectiveSpec",
+    "Range",
+    "RobustSpec",
+    "Spec",
+    "SpecError",
+    "StiffnessSpec",
+    "Variable",
+    "VariablesSpec",
+    "load_spec",
+    "load_spec_text",
+    "parse_spec",
+    "parse_spec_text",
+]
+
+#: Stiffness quantities a spec may bound or maximise, with their internal unit.
+STIFFNESS_KINDS: dict[str, str] = {
+    "flexural_rigidity": "N*mm^2",  # EI(eta)
+    "bending_stiffness": "N*mm",  # D(eta)
+    "inplane_stiffness": "N/mm",  # K(eta)
+}
+
+#: Largest number of creases a spec may allow.
+N_MAX = int(LIMITS["n"].hi)
+#: Longest list (thicknesses, vertices, holes) in a spec.
+MAX_LIST_ITEMS = 10_000
+
+
+class SpecError(InputError):
+    """A spec value is invalid; ``field`` is its TOML path (e.g. ``constraints.side.min``)."""
+
+    def __init__(self, path: str, value: Any, allowed: str, *, reason: str = "is invalid"):
+        super().__init__(path, value, allowed, reason=reason)
+
+
+# -- quantities --------------------------------------------------------------------------------
+
+
+def _quantity(
+    unit: str,
+    *,
+    lo: float | None = None,
+    lo_open: bool = True,
+    hi: float | None = None,
+    hi_open: bool = True,
+    scale: float = 1.0,
+    shown: str | None = None,
+) -> Callable[[Any], float]:
+    """A pydantic before-validator reading a quantity in ``unit`` and checking its range."""
+    label = shown or unit
+    parts = []
+    if lo is not None:
+        parts.append(f"{'>' if lo_open else '>='} {lo:g} {label}")
+    if hi is not None:
+        parts.append(f"{'<' if hi_open else '<='} {hi:g} {label}")
+    allowed = " and ".join(parts) if parts else f"a quantity in {label}"
+
+    def validate(value: Any) -> float:
+        try:
+            x = parse_quantity(value, unit, "value")
+        except InputError as exc:
+            raise PydanticCustomError(
+                "quantity", "{reason}", {"reason": exc.reason, "allowed": exc.allowed}
+            ) from None
+        bad = not math.isfinite(x)
+        if lo is not None:
+            bad |= x <= lo if lo_open else x < lo
+        if hi is not None:
+            bad |= x >= hi if hi_open else x > hi
+        if bad:
+            raise PydanticCustomError(
+                "quantity", "{reason}", {"reason": "is out of range", "allowed": allowed}
+            )
+        return x * scale
+
+    return validate
+
+
+def _limited(key: str, unit: str, **kw: Any) -> Callable[[Any], float]:
+    """:func:`_quantity` with the bounds of :data:`corrugate.core.limits.LIMITS` ``[key]``."""
+    lim = LIMITS[key]
+    return _quantity(unit, lo=lim.lo, lo_open=lim.open_lo, hi=lim.hi, hi_open=lim.open_hi, **kw)
+
+
+Length = Annotated[
+    float, BeforeValidator(_quantity("mm", lo=0.0, hi=LIMITS["length"].hi, hi_open=False))
+]
+FacetWidth = Annotated[float, BeforeValidator(_limited("W", "mm"))]
+SheetThickness = Annotated[float, BeforeValidator(_limited("thickness", "mm"))]
+FoldAngle = Annotated[float, BeforeValidator(_quantity("deg", lo=0.0, hi=180.0))]
+Direction = Annotated[float, BeforeValidator(_quantity("deg"))]
+MassQ = Annotated[
+    float, BeforeValidator(_quantity("g", lo=0.0, hi=LIMITS["mass"].hi, hi_open=False))
+]
+Modulus = Annotated[float, BeforeValidator(_limited("E", "MPa"))]
+Poisson = Annotated[float, BeforeValidator(_limited("nu", "dimensionless", shown=""))]
+Density = Annotated[
+    float, BeforeValidator(_limited("density", "g/cm^3", scale=G_PER_CM3, shown="g/cm^3"))
+]
+
+
+def _count(value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int | float | str):
+        raise PydanticCustomError(
+            "count", "{reason}", {"reason": "is not an integer", "allowed": "an integer >= 1"}
+        )
+    try:
+        f = float(value)
+    except ValueError:
+        f = math.nan
+    if not (math.isfinite(f) and f.is_integer()):
+        raise PydanticCustomError(
+            "count", "{reason}", {"reason": "is not an integer", "allowed": "an integer >= 1"}
+        )
+    if not 1 <= f <= N_MAX:
+        raise PydanticCustomError(
+            "count",
+            "{reason}",
+            {"reason": "is out of range", "allowed": f"an integer 1 <= n <= {N_MAX}"},
+        )
+    return int(f)
+
+
+Count = Annotated[int, BeforeValidator(_count)]
+
+_length = _limited("thickness", "mm")
+
+
+def _thicknesses(value: Any) -> Any:
+    """One thickness, a list of them (each checked, the index in the path) or ``"all"``."""
+    if value is None or value == "all":
+        return value
+    if isinstance(value, list):
+        if not value:
+            raise PydanticCustomError(
+                "quantity", "{reason}", {"reason": "is empty", "allowed": "at least one thickness"}
+            )
+        out = []
+        for i, item in enumerate(value):
+            try:
+                out.append(_length(item))
+            except PydanticCustomError as exc:
+                ctx = exc.context or {}
+                raise PydanticCustomError(
+                    "quantity",
+                    "{reason}",
+                    {
+                        "reason": f"has item [{i}] = {item!r} that {ctx.get('reason')}",
+                        "allowed": ctx.get("allowed"),
+                    },
+                ) from None
+        return out
+    return _length(value)
+
+
+Thicknesses = Annotated[float | list[float] | Literal["all"] | None, BeforeValidator(_thicknesses)]
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+# -- sections ----------------------------------------------------------------------------------
+
+
+class Range(_Strict):
+    """Lower and/or upper bound of a length (mm)."""
+
+    min: Length | None = None
+    max: Length | None = None
+
+
+class Variable(_Strict):
+    """Bounds of a continuous design variable (mm or deg) and an optional grid ``step``.
+
+    Without ``step`` the variable is continuous on [min, max]; with it, it takes the values
+    min, min + step, ... up to max.
+    """
+
+    min: float
+    max: float
+    step: float | None = None
+
+
+class LengthVariable(Variable):
+    min: FacetWidth
+    max: FacetWidth
+    step: Length | None = None
+
+
+class AngleVariable(Variable):
+    min: FoldAngle
+    max: FoldAngle
+    step: FoldAngle | None = None
+
+
+class CountVariable(_Strict):
+    """Bounds of the (integer) number of creases n."""
+
+    min: Count = 1
+    max: Count = 200
+
+
+class VariablesSpec(_Strict):
+    """Bounds of the design variables, shared by both layers."""
+
+    W: LengthVariable = LengthVariable(min=1.0, max=50.0)
+    n: CountVariable = CountVariable()
+    alpha: AngleVariable = AngleVariable(min=10.0, max=170.0)
+
+
+class MaterialSpec(_Strict):
+    """A library material (``name``) or an inline one (``E``, ``nu``, ``density``, ``thickness``).
+
+    ``thickness``: one quantity, a list of candidate thicknesses, ``"all"`` (every thickness the
+    library sells) or nothing (the material's default thickness).
+    """
+
+    name: str = "custom"
+    thickness: Thicknesses = None
+    E: Modulus | None = None
+    nu: Poisson | None = None
+    density: Density | None = None
+
+
+Coordinate = Annotated[
+    float,
+    BeforeValidator(
+        _quantity(
+            "mm",
+            lo=LIMITS["coordinate"].lo,
+            hi=LIMITS["coordinate"].hi,
+            lo_open=False,
+            hi_open=False,
+        )
+    ),
+]
+
+
+class HoleSpec(_Strict):
+    """An inner cut-out (:mod:`corrugate.geometry.holes`): a ``circle`` of ``diameter`` or a ``polygon`` of
+    ``vertices`` (relative to ``center``), placed at ``center``; lengths in mm from the centre of
+    the layout's bounding box, x across layer 1's creases, y along them."""
+
+    shape: Literal["circle", "polygon"] = "circle"
+    diameter: Length | None = None
+    center: tuple[Coordinate, Coordinate] = (0.0, 0.0)
+    vertices: list[tuple[Coordinate, Coordinate]] | None = None
+
+
+class LayoutSpec(_Strict):
+    """The plan outline: ``square`` | ``rectangle`` | ``circle`` | ``polygon`` (with vertices),
+    and its ``holes``, e.g. ``holes = [{ shape = "circle", diameter = "6 mm", center = ["0 mm",
+    "0 mm"] }]``. A layout with holes needs a minimum size (``constraints.side.min``,
+    ``diameter.min`` or ``side_x.min`` and ``side_y.min``): every hole must fit the smallest
+    panel allowed, hence every larger one (not supported for polygon outlines)."""
+
+    shape: Literal["square", "rectangle", "circle", "polygon"] = "square"
+    vertices: list[tuple[float, float]] | None = None
+    holes: list[HoleSpec] = []
+
+    def hole_list(self) -> tuple[Hole, ...]:
+        """The holes as :class:`~corrugate.geometry.holes.Hole` values (mm); errors name
+        ``layout.holes[i].<key>``."""
+        out = []
+        for i, h in enumerate(self.holes):
+            where = f"layout.holes[{i}]"
+            if h.shape == "circle" and h.vertices is not None:
+                raise SpecError(
+                    f"{where}.vertices",
+                    "[...]",
+                    "only for shape = 'polygon'",
+                    reason="does not apply",
+                )
+            if h.shape == "polygon" and h.diameter is not None:
+                raise SpecError(
+                    f"{where}.diameter",
+                    f"{h.diameter:g} mm",
+                    "only for shape = 'circle'",
+                    reason="does not apply",
+                )
+            key = "diameter" if h.shape == "circle" else "vertices"
+            if getattr(h, key) is None:
+                raise SpecError(f"{where}.{key}", None, "a value", reason="is missing")
+            try:
+                out.append(
+                    Hole(
+                        h.shape,
+                        h.center,
+                        diameter=h.diameter or 0.0,
+                        vertices=tuple(h.vertices or ()),
+                    )
+                )
+            except InputError as exc:
+                raise SpecError(
+                    f"{where}.{exc.field}", exc.value, exc.allowed, reason=exc.reason
+                ) from None
+        return tuple(out)
+
+
+def _check_holes(spec: Spec) -> None:
+    """Every hole of the layout fits the smallest panel the size constraints allow."""
+    lay = spec.layout
+    holes = lay.hole_list()
+    if not holes:
+        return
+    if lay.shape == "polygon":
+        raise SpecError(
+            "layout.holes",
+            f"{len(holes)} hole(s)",
+            "holes with a square, rectangle or circle layout in a design spec "
+            "(a polygon's fit is not monotone in its size; use analyze or pattern)",
+            reason="is not supported for a polygon layout",
+        )
+    c = spec.constraints
+    keys = {"square": ("side", "side"), "circle": ("diameter", "diameter")}.get(
+        lay.shape, ("side_x", "side_y")
+    )
+    sizes = []
+    for key in keys:
+        r: Range | None = getattr(c, key)
+        if r is None or r.min is None:
+            raise SpecError(
+                f"constraints.{key}.min",
+                None,
+                "a minimum size, to check that layout.holes fit every panel allowed",
+                reason="is missing",
+            )
+        sizes.append(r.min)
+    from corrugate.geometry.layouts import make_layout
+
+    Lx, Ly = sizes
+    outline = make_layout(lay.shape).plan_outline(Lx, Ly)
+    try:
+        check_holes(holes, outline, Lx, Ly, "layout.holes")
+    except InputError as exc:
+        raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
+
+
+def _stiffness_validator(kind: str) -> Callable[[Any], float]:
+    return _quantity(STIFFNESS_KINDS[kind], lo=0.0, hi=LIMITS["stiffness"].hi, hi_open=False)
+
+
+Support = Literal["free", "frame"]
+
+
+class StiffnessSpec(_Strict):
+    """A lower bound ``min`` on a stiffness at direction ``eta`` (deg from layer 1's creases),
+    under ``support`` (``free`` sides or a rigid ``frame``; default: the spec's ``support``)."""
+
+    min: float
+    eta: Direction = 0.0
+    support: Support | None = None
+
+
+class RigiditySpec(StiffnessSpec):
+    min: Annotated[float, BeforeValidator(_stiffness_validator("flexural_rigidity"))]
+
+
+class BendingSpec(StiffnessSpec):
+    min: Annotated[float, BeforeValidator(_stiffness_validator("bending_stiffness"))]
+
+
+class InPlaneSpec(StiffnessSpec):
+    min: Annotated[float, BeforeValidator(_stiffness_validator("inplane_stiffness"))]
+
+
+class BucklingSpec(_Strict):
+    """A lower bound ``min`` (N) on the in-plane compressive load at which the panel buckles
+    along ``eta`` (0 or 90 deg, required): the plate lower bound of :mod:`corrugate.mechanics.buckling`."""
+
+    min: Annotated[float, BeforeValidator(_quantity("N", lo=0.0))]
+    eta: Direction
+
+
+class MassBound(_Strict):
+    """An upper bound on the mass (g)."""
+
+    max: MassQ
+
+
+class ConstraintsSpec(_Strict):
+    """Fabrication, size and behaviour constraints (DESIGN.md section 5).
+
+    ``side`` bounds the folded side L of a square; ``diameter`` that of a circle; ``side_x`` and
+    ``side_y`` the folded extents Lx and Ly of a rectangle or of a polygon's bounding box.
+    ``thickness`` bounds the folded thickness t_d. ``sheet_max`` bounds the flat blank (n + 1) W
+    and every facet length L_j.
+    """
+
+    sheet_max: Length | None = None
+    side: Range | None = None
+    diameter: Range | None = None
+    side_x: Range | None = None
+    side_y: Range | None = None
+    thickness: Range | None = None
+    flexural_rigidity: list[RigiditySpec] = []
+    bending_stiffness: list[BendingSpec] = []
+    inplane_stiffness: list[InPlaneSpec] = []
+    buckling_load: list[BucklingSpec] = []
+    mass: MassBound | None = None
+
+
+class ObjectiveSpec(_Strict):
+    """``minimize = "mass"`` (the default when neither is given) or ``maximize = <stiffness
+    kind>`` at ``eta`` (then a ``constraints.mass`` budget is usually wanted)."""
+
+    minimize: Literal["mass"] | None = None
+    maximize: Literal["flexural_rigidity", "bending_stiffness", "inplane_stiffness"] | None = None
+    eta: Direction = 0.0
+    support: Support | None = None
+
+
+def _fraction(value: Any) -> float:
+    """A relative tolerance: ``"5%"`` or ``0.05``; 0 <= x < 1."""
+    try:
+        x = (
+            float(value[:-1]) / 100
+            if isinstance(value, str) and value.strip().endswith("%")
+            else (float(value))
+        )
+    except (TypeError, ValueError):
+        raise PydanticCustomError(
+            "quantity",
+            "{reason}",
+            {"reason": "cannot be read", "allowed": "a fraction such as 0.05 or '5%'"},
+        ) from None
+    if not 0 <= x < 1:
+        raise PydanticCustomError(
+            "quantity",
+            "{reason}",
+            {"reason": "is out of range", "allowed": "0 <= tolerance < 100 %"},
+        )
+    return x
+
+
+Fraction = Annotated[float, BeforeValidator(_fraction)]
+Probability = Annotated[
+    float, BeforeValidator(_quantity("dimensionless", lo=0.0, hi=1.0, shown=""))
+]
+
+
+class RobustSpec(_Strict):
+    """Ask for a design that still meets every bound with ``probability`` under manufacturing
+    and material tolerances (one-sigma: W in mm, alpha in deg, t and E relative)."""
+
+    probability: Probability = 0.9
+    W: Annotated[float, BeforeValidator(_quantity("mm", lo=0.0, lo_open=False))] = 0.1
+    alpha: Annotated[float, BeforeValidator(_quantity("deg", lo=0.0, lo_open=False))] = 2.0
+    t: Fraction = 0.05
+    E: Fraction = 0.10
+    samples: Annotated[int, BeforeValidator(_count)] = 4000
+    seed: int = 0
+
+
+class Spec(_Strict):
+    """A validated design spec; every quantity in internal units (mm, deg, g, N)."""
+
+    name: str = "design"
+    model: Literal["paper", "xia", "refined"] = "refined"
+    support: Support = "free"
+    layers: Literal["identical", "independent"] = "identical"
+    material: MaterialSpec | None = None
+    materials: list[MaterialSpec] | None = None
+    layout: LayoutSpec = LayoutSpec()
+    variables: VariablesSpec = VariablesSpec()
+    constraints: ConstraintsSpec = ConstraintsSpec()
+    objective: ObjectiveSpec = ObjectiveSpec()
+    robust: RobustSpec | None = None
+
+
+# -- errors with TOML paths -------------------------------------------------------------------
+
+
+def _toml_path(loc: tuple[int | str, ...]) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        else:
+            out += ("." if out else "") + part
+    return out or "spec"
+
+
+def _model_at(loc: tuple[int | str, ...]) -> type[BaseModel] | None:
+    """The pydantic model class found by following ``loc`` from :class:`Spec`."""
+    cls: Any = Spec
+    for part in loc:
+        if isinstance(part, int):
+            continue
+        if not (isinstance(cls, type) and issubclass(cls, BaseModel)):
+            return None
+        field = cls.model_fields.get(part)
+        if field is None:
+            return None
+        cls = _unwrap(field.annotation)
+    return cls if isinstance(cls, type) and issubclass(cls, BaseModel) else None
+
+
+def _unwrap(annotation: Any) -> Any:
+    """The model class inside ``X | None`` or ``list[X]``, else ``annotation``."""
+    for arg in (*typing.get_args(annotation), annotation):
+        if isinstance(arg, type) and issubclass(arg, BaseModel):
+            return arg
+        inner = typing.get_args(arg)
+        for a in inner:
+            if isinstance(a, type) and issubclass(a, BaseModel):
+                return a
+    return annotation
+
+
+def _from_validation_error(exc: ValidationError) -> SpecError:
+    err = exc.errors()[0]
+    loc = tuple(p for p in err["loc"] if not (isinstance(p, str) and "[" in p))
+    # pydantic tags union members (e.g. 'list[...]'); drop those tags from the path
+    path = _toml_path(loc)
+    value = err.get("input")
+    ctx = err.get("ctx") or {}
+    kind = err["type"]
+    if kind == "extra_forbidden":
+        parent = _model_at(loc[:-1])
+        known = sorted(parent.model_fields) if parent is not None else []
+        return SpecError(
+            path,
+            repr(value),
+            "one of " + ", ".join(known) if known else "no key",
+            reason="is not a known key",
+        )
+    if kind == "missing":
+        return SpecError(path, None, "a value", reason="is missing")
+    if kind in {"quantity", "count"}:
+        return SpecError(path, repr(value), str(ctx.get("allowed")), reason=str(ctx["reason"]))
+    if kind == "literal_error":
+        return SpecError(path, repr(value), str(ctx.get("expected")), reason="is not allowed")
+    return SpecError(
+        path,
+        repr(value),
+        "see the spec reference in corrugate.spec.schema",
+        reason=str(err["msg"]).lower(),
+    )
+
+
+# -- cross-field checks -----------------------------------------------------------------------
+
+_EQUAL_SIDES_SIZES = {"square": ("side",), "circle": ("diameter",)}
+_SIZE_KEYS = ("side", "diameter", "side_x", "side_y")
+
+
+def _check_range(path: str, lo: float | None, hi: float | None, unit: str) -> None:
+    if lo is not None and hi is not None and lo > hi:
+        raise SpecError(
+            f"{path}.min",
+            f"{lo:g} {unit}",
+            f"at most {path}.max = {hi:g} {unit}",
+            reason="is greater than max",
+        )
+
+
+def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
+    v = spec.variables
+    for key, unit in (("W", "mm"), ("alpha", "deg")):
+        var: Variable = getattr(v, key)
+        _check_range(f"variables.{key}", var.min, var.max, unit)
+    _check_range("variables.n", v.n.min, v.n.max, "")
+    for key, unit in (("W", "mm"), ("alpha", "deg")):
+        var = getattr(v, key)
+        check_grid(f"variables.{key}", var.min, var.max, var.step, unit)
+    c = spec.constraints
+    for key in (*_SIZE_KEYS, "thickness"):
+        r: Range | None = getattr(c, key)
+        if r is not None:
+            _check_range(f"constraints.{key}", r.min, r.max, "mm")
+            if r.min is None and r.max is None:
+                raise SpecError(
+                    f"constraints.{key}", "{}", "a table with min and/or max", reason="is empty"
+                )
+    shape = spec.layout.shape
+    allowed_sizes = _EQUAL_SIDES_SIZES.get(shape, ("side_x", "side_y"))
+    for key in _SIZE_KEYS:
+        if getattr(c, key) is not None and key not in allowed_sizes:
+            raise SpecError(
+                f"constraints.{key}",
+                raw["constraints"][key] if "constraints" in raw else key,
+                f"for layout {shape!r}: " + ", ".join(allowed_sizes),
+                reason=f"does not apply to a {shape} layout",
+            )
+    if shape == "polygon" and spec.layout.vertices is None:
+        raise SpecError("layout.vertices", None, "at least 3 [x, y] pairs", reason="is missing")
+    if shape != "polygon" and spec.layout.vertices is not None:
+        raise SpecError(
+            "layout.vertices",
+            spec.layout.vertices,
+            "only for shape = 'polygon'",
+            reason="does not apply",
+        )
+    if spec.layout.vertices is not None:
+        from corrugate.geometry.layouts import make_layout
+
+        try:
+            make_layout("polygon", spec.layout.vertices)
+        except InputError as exc:
+            raise SpecError("layout.vertices", exc.value, exc.allowed, reason=exc.reason) from None
+    _check_holes(spec)
+    if spec.layers == "independent" and shape in _EQUAL_SIDES_SIZES:
+        raise SpecError(
+            "layers",
+            "'independent'",
+            "'identical' for a square or circle layout, "
+            "or layout 'rectangle' / 'polygon' for independent layers",
+            reason=f"is not supported by the solver for a {shape} layout (Lx = Ly)",
+        )
+    if (spec.material is None) == (spec.materials is None):
+        raise SpecError(
+            "material",
+            None,
+            "exactly one of [material] or [[materials]]",
+            reason="is missing" if spec.material is None else "is given twice",
+        )
+    mats = [spec.material] if spec.material is not None else list(spec.materials or [])
+    if not mats:
+        raise SpecError("materials", "[]", "at least one material", reason="is empty")
+    for i, m in enumerate(mats):
+        where = "material" if spec.material is not None else f"materials[{i}]"
+        _check_material(where, m)
+    o = spec.objective
+    if o.minimize is not None and o.maximize is not None:  # neither: minimise mass
+        raise SpecError(
+            "objective.maximize",
+            repr(o.maximize),
+            "either minimize = 'mass' or maximize = '<stiffness>', not both",
+            reason="conflicts with objective.minimize",
+        )
+
+
+def _check_material(where: str, m: MaterialSpec) -> None:
+    inline = [x is not None for x in (m.E, m.nu, m.density)]
+    if any(inline):
+        for key, given in zip(("E", "nu", "density"), inline, strict=True):
+            if not given:
+                raise SpecError(
+                    f"{where}.{key}",
+                    None,
+                    "E, nu and density together for an inline material",
+                    reason="is missing",
+                )
+        if m.thickness is None or m.thickness == "all":
+            raise SpecError(
+                f"{where}.thickness",
+                m.thickness,
+                "a thickness (or a list) for an inline material",
+                reason="is missing",
+            )
+        return
+    from corrugate.materials.library import get_material
+
+    try:
+        get_material(m.name)
+    except InputError as exc:
+        raise SpecError(f"{where}.name", exc.value, exc.allowed, reason=exc.reason) from None
+
+
+def _check_raw(data: Mapping[str, Any]) -> None:
+    """Limits on the raw data before pydantic sees it: nesting depth and text lengths."""
+    check_depth(data, "spec")
+    stack: list[tuple[Any, str]] = [(data, "")]
+    while stack:
+        obj, path = stack.pop()
+        if isinstance(obj, str):
+            limit = MAX_NAME_CHARS if path.rsplit(".", 1)[-1] == "name" else MAX_TEXT_CHARS
+            check_text(path or "spec", obj, limit)
+        elif isinstance(obj, Mapping):
+            for k, val in obj.items():
+                check_text(f"{path}.<key>" if path else "<key>", str(k), MAX_NAME_CHARS)
+                stack.append((val, f"{path}.{k}" if path else str(k)))
+        elif isinstance(obj, list | tuple):
+            if len(obj) > MAX_LIST_ITEMS:
+                raise SpecError(
+                    path,
+                    f"[{len(obj)} items]",
+                    f"at most {MAX_LIST_ITEMS} items",
+                    reason="is too long",
+                )
+            stack.extend((val, f"{path}[{i}]") for i, val in enumerate(obj))
+
+
+def parse_spec(data: Mapping[str, Any]) -> Spec:
+    """Validate a spec given as a dict (as read from TOML); raise :class:`SpecError`."""
+    try:
+        _check_raw(data)
+    except InputError as exc:
+        raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
+    try:
+        spec = Spec.model_validate(dict(data))
+    except ValidationError as exc:
+        raise _from_validation_error(exc) from None
+    except RecursionError:
+        raise SpecError(
+            "spec", "(nested data)", f"at most {MAX_DEPTH} levels", reason="is nested too deeply"
+        ) from None
+    _check(spec, data)
+    return spec
+
+
+def load_spec(path: str | Path) -> Spec:
+    """Read and validate the TOML spec file ``path`` (``-``: standard input); raise
+    :class:`SpecError`.
+
+    The file must be at most :data:`~corrugate.core.limits.MAX_SPEC_BYTES` long, UTF-8 and nested at
+    most :data:`~corrugate.core.limits.MAX_DEPTH` deep; each failure is one line naming the file."""
+    return load_spec_text(path)[0]
+
+
+def load_spec_text(path: str | Path) -> tuple[Spec, str]:
+    """:func:`load_spec` and the spec's text as read (for the report), from a file or, for
+    ``-``, from standard input (read once)."""
+    import sys
+
+    p = Path(path)
+    stdin = str(path) == "-"
+    shown = "<stdin>" if stdin else str(p) if len(str(p)) <= 200 else str(p)[:200] + "..."
+    try:
+        if stdin:
+            raw = sys.stdin.buffer.read(MAX_SPEC_BYTES + 1)
+        else:
+            with p.open("rb") as fh:
+                raw = fh.read(MAX_SPEC_BYTES + 1)
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or type(exc).__name__
+        raise SpecError(
+            "spec", shown, "a readable TOML file", reason=f"cannot be read ({reason})"
+        ) from None
+    if len(raw) > MAX_SPEC_BYTES:
+        raise SpecError(
+            "spec", shown, f"a file of at most {MAX_SPEC_BYTES} bytes", reason="is too large"
+        )
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise SpecError(
+            "spec",
+            shown,
+            "a UTF-8 text file",
+            reason=f"is not UTF-8 text (byte {exc.start})",
+        ) from None
+    return parse_spec_text(text, shown), text
+
+
+def parse_spec_text(text: str, shown: str = "<text>") -> Spec:
+    """Validate a spec given as TOML ``text`` (``shown`` names it in errors); nesting deeper than
+    :data:`~corrugate.core.limits.MAX_DEPTH` is refused before the TOML parser recurses into it."""
+    if _bracket_depth(text) > MAX_DEPTH:
+        raise SpecError(
+            "spec",
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
+        )
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
+        raise SpecError("spec", shown, "valid TOML", reason=f"is not valid TOML ({msg})") from None
+    except RecursionError:
+        raise SpecError(
+            "spec",
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
+        ) from None
+    return parse_spec(data)
+
+
+def _bracket_depth(text: str) -> int:
+    """An upper bound of the nesting of inline arrays and tables (brackets and braces in a row,
+    counted without parsing; quoted text may only make it larger than the truth). Deep nesting is
+    rejected before tomllib recurses into it."""
+    depth = best = 0
+    for ch in text:
+        if ch in "[{":
+            depth += 1
+            best = max(best, depth)
+        elif ch in "]}":
+            depth = max(0, depth - 1)
+    return best

@@ -1,0 +1,351 @@
+"""Spec -> answer -> files: the one chain behind ``corrugate design``, ``corrugate pattern``,
+``POST /api/design`` and the notebook's two calls.
+
+* :func:`solve_spec`: the certified design of a spec (robust specs included) and the JSON object
+  ``corrugate design --json`` prints (:class:`DesignRun`);
+* :func:`output_options`: the output options (machine, fold-line style, spacing, paper, ...) from
+  the strings a user types (plain numbers in mm), for the command line and the web app alike;
+* :func:`write_design_files`: every file a maker needs of an analysed design, written all or
+  nothing into one folder: ``sheet-N.svg`` (the fold map, for people and Origami Simulator),
+  ``cut-N.dxf`` / ``cut-N.svg`` (the machine's cut-ready files), ``pattern.pdf`` (and with
+  ``paper`` a4 or letter its 1:1 tiles), ``layer1.fold`` / ``layer2.fold``, ``assembly.glb`` /
+  ``assembly.stl``, ``ASSEMBLY.md`` + ``assembly.png``, ``report.html`` and ``design.json``
+  (:mod:`corrugate.export.record`). Every option is checked and every document built before
+  anything is written; the files are committed together as one set
+  (:mod:`corrugate.core.fileio`), so a bad option, a failure or a kill leaves either the folder's
+  earlier set or the new one, never a mix. The parts and their sheet plan are made once
+  (:func:`corrugate.export.plan.cut_plan`); the report gets that very plan, so its sheet figures
+  are the cut files';
+* :func:`write_design`: the files of a solved spec (``design.json`` only when it is infeasible);
+* :func:`design` and :func:`write_files`: the two calls of a notebook::
+
+    import corrugate
+    result = corrugate.design("examples/blimp_gripper.toml")   # a path, a dict or TOML text
+    result                                                      # five lines; HTML in Jupyter
+    corrugate.write_files(result, "out/gripper", cutter="maker-12x12")
+
+The heavy modules (the solver, the writers, the report) are imported when a function runs, so
+the command line starts without them.
+"""
+
+from __future__ import annotations
+
+import json
+import threading
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from corrugate.core.errors import InputError
+
+if TYPE_CHECKING:
+    from corrugate.analysis.evaluate import Analysis
+    from corrugate.export.plan import CutPlan, OutputOptions
+    from corrugate.solver.problem import Problem
+    from corrugate.solver.robust import RobustResult
+    from corrugate.solver.solve import Solution
+    from corrugate.spec.schema import Spec
+
+__all__ = [
+    "DesignResult",
+    "DesignRun",
+    "design",
+    "output_options",
+    "solve_spec",
+    "write_design",
+    "write_design_files",
+    "write_files",
+]
+
+#: matplotlib's pyplot (the assembly figure, the report's plots) keeps global state and is not
+#: thread-safe: one design's files are written at a time in one process.
+_FILES_LOCK = threading.Lock()
+
+
+_ROBUST_WARNING = {
+    "code": "robust-not-certified",
+    "message": (
+        "robust design: certified optimum of the spec with tightened bounds; its probability of "
+        "meeting the spec is a Monte Carlo estimate and its optimality is not proven"
+    ),
+}
+
+
+@dataclass(frozen=True)
+class DesignRun:
+    """The solution, the JSON object ``corrugate design --json`` prints, and the robust search
+    (None for a plain spec)."""
+
+    solution: Solution
+    payload: dict[str, Any]
+    robust: RobustResult | None
+
+
+def solve_spec(spec: Spec, problem: Problem | None = None) -> DesignRun:
+    """The solution of ``spec`` (its ``problem`` may be given when already built) and the JSON
+    object ``corrugate design --json`` prints for it. A plain spec is solved
+    (:func:`corrugate.solver.solve`); a spec with a ``[robust]`` table by
+    :func:`corrugate.solver.robust.robust_solve`, whose answer is labelled ``certified: false``
+    (its probability is a Monte Carlo estimate and its optimality is not proven)."""
+    from corrugate.solver.problem import Problem
+    from corrugate.solver.robust import robust_solve
+    from corrugate.solver.solve import solve
+    from corrugate.solver.tolerance import Tolerances
+
+    problem = problem if problem is not None else Problem.from_spec(spec)
+    if spec.robust is None:
+        sol = solve(problem)
+        return DesignRun(sol, sol.to_dict(), None)
+    r = spec.robust
+    tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
+    robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
+    sol = robust.solution
+    payload = sol.to_dict()
+    payload["certified"] = False  # the robust optimum itself is not proven (see robust.py)
+    payload["robust"] = robust.as_dict(problem)
+    payload["warnings"] = [*sol.warnings, dict(_ROBUST_WARNING)]
+    return DesignRun(sol, payload, robust)
+
+
+def output_options(
+    cutter: str = "cameo4-12x12",
+    fold_style: str = "solid",
+    cut: str | float | None = None,
+    gap: str | float | None = None,
+    spacing: str | float = "5",
+    margin: str | float = "5",
+    tab_depth: str | float = "4",
+    labels: bool | None = None,
+    paper: str = "mat",
+    *,
+    names: Mapping[str, str] | None = None,
+) -> OutputOptions:
+    """Output options from user strings (plain numbers in mm, or with units: ``'0.04 in'``).
+
+    ``cutter`` is the machine (``cameo4-12x12``, ``maker-12x24``, ``laser:WxH``, ...), ``labels``
+    the ``--labels/--no-labels`` flag (``None`` when not given), ``paper`` is ``mat``, ``a4`` or
+    ``letter`` (see :class:`~corrugate.export.plan.OutputOptions`). A bad value raises an
+    :class:`InputError` naming ``cutter``, ``fold-line style``, ``cut``, ``gap``, ``spacing``,
+    ``margin``, ``tab-depth`` or ``paper``; ``names`` maps those to the caller's own names
+    (the web app's ``fold_style``, ``tab_depth``). Without the ``fab`` extra it raises
+    :class:`~corrugate.core.errors.MissingExtraError` first.
+    """
+    from corrugate.core.extras import require_extra
+
+    require_extra("fab", "writing a design's files")  # before any work (or input check) is done
+    from corrugate.core.units import parse_quantity
+    from corrugate.export.machines import get_machine
+    from corrugate.export.pdf import check_paper
+    from corrugate.export.plan import OutputOptions
+    from corrugate.fabrication.linestyle import line_style
+    from corrugate.geometry.fabrication_options import FabricationOptions
+
+    def length(value: str | float | None, field: str) -> float | None:
+        return None if value is None else parse_quantity(value, "mm", field)
+
+    try:
+        get_machine(cutter)  # an unknown machine is an error before anything else
+        cut_mm, gap_mm = length(cut, "cut"), length(gap, "gap")
+        if fold_style.strip().lower() == "perforated":
+            for field, value in (("cut", cut_mm), ("gap", gap_mm)):
+                if value is None:
+                    raise InputError(
+                        field,
+                        None,
+                        f"a {field} length (mm) for perforated fold lines",
+                        reason="is missing",
+                    )
+        spacing_mm, margin_mm = length(spacing, "spacing"), length(margin, "margin")
+        tab_mm = length(tab_depth, "tab-depth")
+        assert spacing_mm is not None and margin_mm is not None and tab_mm is not None
+        return OutputOptions(
+            cutter=cutter,
+            style=line_style(fold_style, cut_mm, gap_mm),
+            spacing=spacing_mm,
+            margin=margin_mm,
+            fabrication=FabricationOptions(tab_depth=tab_mm),
+            labels=labels,
+            paper=check_paper(paper),
+        )
+    except InputError as exc:
+        fields = {"perforation cut": "cut", "perforation gap": "gap", **(names or {})}
+        if exc.field in fields:
+            raise exc.renamed(fields[exc.field]) from None
+        raise
+
+
+def write_design_files(
+    analysis: Analysis,
+    out_dir: str | Path,
+    options: OutputOptions | None = None,
+    extra: dict[str, Any] | None = None,
+    report: str | Callable[[CutPlan], str] | None = None,
+) -> list[Path]:
+    """Write every file of the analysed design into ``out_dir``; returns the paths written.
+
+    ``extra`` is merged into ``design.json`` (the design command puts its spec and constraints
+    there); ``report`` is the text of ``report.html`` (see :mod:`corrugate.report`), or a function
+    that makes it from the :class:`CutPlan` the cut files are written from, or None.
+    """
+    from corrugate.core.fileio import staged
+    from corrugate.export.files import write_files as write_sheet_files
+    from corrugate.export.files3d import write_fold, write_mesh
+    from corrugate.export.machines import get_machine
+    from corrugate.export.pdf import sheet_figure
+    from corrugate.export.plan import OutputOptions, cut_plan
+    from corrugate.export.record import RECORD_NAME, write_record
+    from corrugate.fabrication.instructions import instructions_png, write_instructions
+
+    opts = options or OutputOptions()
+    a = analysis.assembly
+    out = Path(out_dir)
+    cut = cut_plan(a, opts)
+    pattern, plan = cut.pattern, cut.plan
+    record: dict[str, Any] = dict(analysis.to_dict())
+    record["cut_parts"] = [
+        {
+            "name": p.name,
+            "kind": p.kind,
+            "label": p.label,
+            "size_mm": list(p.size),
+            "area_mm2": p.area,
+            "mass_g": pattern.part_mass(p),
+        }
+        for p in pattern.parts
+    ]
+    machine = get_machine(plan.cutter)
+    record["sheets"] = {
+        "cutter": plan.cutter.name,
+        "machine": machine.family.value,
+        "cut_file_formats": list(machine.formats),
+        "labels_in_cut_files": opts.labels is True,
+        "size_mm": [plan.cutter.width, plan.cutter.height],
+        "count": len(plan.sheets),
+        "parts": [[pl.part.name for pl in sheet.placements] for sheet in plan.sheets],
+    }
+    record["fold_style"] = {
+        "kind": str(opts.style.kind),
+        "cut_mm": opts.style.cut,
+        "gap_mm": opts.style.gap,
+    }
+    if extra:
+        record.update(extra)
+    drawn = cut.drawings
+    if opts.labels is not False:  # pattern.pdf shows the labels, as the report's sheets do
+        drawn.sheets = [sheet_figure(plan, k, opts.style) for k in range(1, len(plan.sheets) + 1)]
+    with staged(out, kind="design") as st:  # one set: the old files or the new ones, never a mix
+        written = list(
+            write_sheet_files(
+                plan,
+                out,
+                opts.style,
+                labels=opts.labels,
+                paper=opts.paper,
+                staging=st,
+                sheet_figures=drawn.sheets or None,
+            )
+        )
+        written += write_fold(a, pattern, out, st)
+        written += write_mesh(a, pattern, out, st)
+        drawn.assembly_png = instructions_png(a, pattern)
+        written += write_instructions(a, pattern, out, st, png=drawn.assembly_png)
+        # the report last, from the figures drawn above; nothing is committed before it is made
+        report_text = report(cut) if callable(report) else report
+        if report_text is not None:
+            st.path(out / "report.html").write_text(report_text, encoding="utf-8")
+            written.append(out / "report.html")
+        record["files"] = [p.name for p in written] + [RECORD_NAME]
+        written.append(write_record(record, out, st))
+    return written
+
+
+def write_design(
+    run: DesignRun, out: str | Path, options: OutputOptions, spec_text: str
+) -> list[Path]:
+    """Write the files of a solved spec into ``out`` (created if missing), all or nothing; returns
+    the paths written. ``spec_text`` is the spec as the user wrote it (shown in the report).
+
+    A design gets every file of :func:`write_design_files`, with the design
+    answer merged into ``design.json``; an infeasible spec gets ``design.json`` only."""
+    from corrugate.export.record import write_record
+
+    sol = run.solution
+    analysis = sol.analysis
+    if analysis is None:
+        return [write_record(run.payload, out)]
+
+    def report(cut: CutPlan) -> str:
+        from corrugate.report import report_html
+
+        return report_html(sol, spec_text, cut)
+
+    with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
+        return write_design_files(analysis, out, options, extra=run.payload, report=report)
+
+
+@dataclass(frozen=True)
+class DesignResult:
+    """The answer to a spec: the certified ``solution`` (:class:`~corrugate.solver.Solution`), the
+    JSON object of ``corrugate design --json`` (``payload``), the ``spec`` and its ``text``."""
+
+    run: DesignRun
+    spec: Spec
+    text: str
+
+    @property
+    def solution(self) -> Solution:
+        return self.run.solution
+
+    @property
+    def payload(self) -> dict[str, Any]:
+        return self.run.payload
+
+    def __repr__(self) -> str:
+        """Five lines at most: the solution's (:func:`corrugate.solver.display.solution_repr`)."""
+        from corrugate.solver.display import solution_repr
+
+        return solution_repr(self.run.solution)
+
+    def _repr_html_(self) -> str:
+        from corrugate.solver.display import solution_html
+
+        return solution_html(self.run.solution)
+
+
+def _read(spec: str | Path | Mapping[str, Any]) -> tuple[Spec, str]:
+    from corrugate.spec.schema import load_spec_text, parse_spec, parse_spec_text
+
+    if isinstance(spec, Mapping):
+        return parse_spec(spec), json.dumps(spec, indent=2, default=str)
+    if isinstance(spec, Path) or ("\n" not in spec and spec.strip().endswith(".toml")):
+        return load_spec_text(spec)
+    return parse_spec_text(spec), spec
+
+
+def design(spec: str | Path | Mapping[str, Any]) -> DesignResult:
+    """The certified lightest design that meets ``spec``: a path to a TOML file, the TOML text
+    itself, or a dict with the keys of the file (docs/spec.md). Bad input raises a
+    :class:`~corrugate.core.errors.InputError` naming the key."""
+    if not isinstance(spec, str | Path | Mapping):
+        raise InputError("spec", type(spec).__name__, "a path, TOML text or a dict")
+    parsed, text = _read(spec)
+    return DesignResult(solve_spec(parsed), parsed, text)
+
+
+def write_files(
+    result: DesignResult,
+    out: str | Path,
+    *,
+    cutter: str = "cameo4-12x12",
+    fold_style: str = "solid",
+    cut: str | float | None = None,
+    gap: str | float | None = None,
+    labels: bool | None = None,
+    paper: str = "mat",
+) -> list[Path]:
+    """Every file of ``result`` into the folder ``out`` (as ``corrugate design --out``: cut files
+    for ``cutter``, fold map, FOLD, GLB/STL, assembly steps, report, ``design.json``), committed as
+    one set; returns the paths. Options as the command line's (lengths in mm or with units)."""
+    options = output_options(cutter, fold_style, cut, gap, labels=labels, paper=paper)
+    return write_design(result.run, out, options, result.text)

@@ -1,0 +1,193 @@
+"""``corrugate design``: JSON contract, --out files, exit codes, one-line errors."""
+
+from __future__ import annotations
+
+import json
+import tomllib
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import pytest
+
+if TYPE_CHECKING:
+    from conftest import CliRun
+
+
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+BLIMP = EXAMPLES / "blimp_gripper.toml"
+
+
+def _dump(d: dict[str, Any]) -> str:
+    """Minimal TOML writer for the nested dicts these tests build."""
+
+    def value(v: Any) -> str:
+        if isinstance(v, str):
+            return json.dumps(v)
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, int | float):
+            return repr(v)
+        if isinstance(v, list):
+            return "[" + ", ".join(value(x) for x in v) + "]"
+        return "{ " + ", ".join(f"{k} = {value(x)}" for k, x in v.items()) + " }"
+
+    lines = [f"{k} = {value(v)}" for k, v in d.items() if not isinstance(v, dict)]
+    for k, v in d.items():
+        if isinstance(v, dict):
+            lines.append(f"[{k}]")
+            lines += [f"{kk} = {value(vv)}" for kk, vv in v.items()]
+    return "\n".join(lines) + "\n"
+
+
+def test_json_contract_for_the_case_study(cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(BLIMP), "--json"])
+    assert code == 0
+    d = json.loads(out)
+    assert d["status"] == "optimal"
+    assert d["certified"] is True
+    layers = d["design"]["layers"]
+    assert len(layers) == 2
+    for layer in layers:
+        assert layer == {
+            "index": layer["index"],
+            "W_mm": 8.0,
+            "n": 8,
+            "alpha_deg": 84.0,
+            "material": "dura-lar",
+            "t_mm": 0.125,
+        }
+    assert d["mass_g"] == pytest.approx(d["performance"]["mass_g"])
+    # stiffness exactly as `corrugate analyze --json` reports it for the same design
+    code, out2, _ = cli(
+        [
+            "analyze",
+            "--W",
+            "8",
+            "--n",
+            "8",
+            "--alpha",
+            "84",
+            "--material",
+            "dura-lar",
+            "--model",
+            "paper",
+            "--eta",
+            "0",
+            "--eta",
+            "90",
+            "--json",
+        ],
+    )
+    assert code == 0
+    assert d["stiffness"] == json.loads(out2)["stiffness"]
+    for c in d["constraints"]:
+        assert set(c) >= {"name", "value", "bound", "margin", "binding"}
+        assert c["margin"] >= 0
+    names = {c["name"] for c in d["constraints"]}
+    assert "constraints.side.min" in names
+    assert "constraints.flexural_rigidity[0].min" in names
+    assert isinstance(d["warnings"], list)
+    assert {w["code"] for w in d["warnings"]} >= {"paper-model"}
+
+
+def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
+    out_dir = tmp_path / "nested" / "blimp"
+    code, out, _ = cli(["design", str(BLIMP), "--json", "--out", str(out_dir)])
+    assert code == 0
+    written = json.loads((out_dir / "design.json").read_text("utf-8"))
+    printed = json.loads(out)
+    for key, value in printed.items():  # design.json holds the printed object, plus the files'
+        assert written[key] == value, key
+    names = sorted(p.name for p in out_dir.iterdir())
+    assert [n for n in names if n.startswith(".")] == [".corrugate-set.json"]  # no temp file
+    assert {
+        "design.json",
+        "sheet-1.svg",
+        "cut-1.dxf",
+        "pattern.pdf",
+        "layer1.fold",
+        "layer2.fold",
+        "assembly.glb",
+        "assembly.stl",
+        "ASSEMBLY.md",
+    } <= set(names)
+    assert set(written["files"]) == set(names) - {".corrugate-set.json"}
+    # the mass of the cut parts is the mass the solver minimised
+    parts = sum(p["mass_g"] for p in written["cut_parts"])
+    assert parts == pytest.approx(printed["mass_g"], rel=5e-3)
+
+
+def test_out_dir_takes_the_machine_and_labels(tmp_path: Path, cli: CliRun) -> None:
+    out_dir = tmp_path / "maker"
+    args = ["design", str(BLIMP), "--out", str(out_dir), "--machine", "maker-12x12"]
+    code, _, err = cli([*args, "--labels", "--fold-style", "scored"])
+    assert code == 0, err
+    names = {p.name for p in out_dir.iterdir()}
+    assert "cut-1.svg" in names and "cut-1.dxf" not in names  # Design Space reads SVG
+    text = (out_dir / "cut-1.svg").read_text("utf-8")
+    assert 'id="SCORE"' in text and 'id="LABEL"' in text and "<text" not in text
+    written = json.loads((out_dir / "design.json").read_text("utf-8"))
+    assert written["sheets"]["cutter"] == "maker-12x12"
+    assert written["sheets"]["cut_file_formats"] == ["svg"]
+    assert written["sheets"]["labels_in_cut_files"] is True
+
+
+def test_readable_summary(cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(BLIMP)])
+    assert code == 0
+    assert "certified" in out
+    assert "84" in out
+    assert "constraints.side.min" in out
+
+
+@pytest.mark.parametrize(
+    ("edit", "field"),
+    [
+        (lambda d: d["constraints"].update(colour="red"), "constraints.colour"),
+        (lambda d: d["constraints"]["side"].update(min="48 kg"), "constraints.side.min"),
+        (lambda d: d["constraints"]["side"].update(min="70 mm"), "constraints.side.min"),
+        (lambda d: d["variables"]["W"].update(min="-1 mm"), "variables.W.min"),
+    ],
+    ids=["unknown-key", "wrong-unit", "min-above-max", "negative-size"],
+)
+def test_malformed_spec_exits_2_with_the_toml_path(
+    tmp_path: Path, cli: CliRun, edit: Any, field: str
+) -> None:
+    d = tomllib.loads(BLIMP.read_text("utf-8"))
+    edit(d)
+    spec = tmp_path / "bad.toml"
+    spec.write_text(_dump(d), "utf-8")
+    out_dir = tmp_path / "out"
+    code, out, err = cli(["design", str(spec), "--json", "--out", str(out_dir)])
+    assert code == 2
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1
+    assert lines[0].startswith(f"corrugate: error: {field} = ")
+    assert "Traceback" not in err
+    assert not out_dir.exists()  # nothing written on failure
+
+
+def test_infeasible_spec_exits_1_with_a_diagnosis(tmp_path: Path, cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(EXAMPLES / "infeasible.toml"), "--json"])
+    assert code == 1
+    d = json.loads(out)
+    assert d["status"] == "infeasible"
+    assert d["certified"] is True
+    assert d["design"] is None
+    named = {n for diag in d["diagnosis"] for n in diag["constraints"]}
+    assert "constraints.flexural_rigidity[0].min" in named
+    assert all(diag["message"] for diag in d["diagnosis"])
+
+
+@pytest.mark.parametrize(
+    "name",
+    ["blimp_gripper_continuous.toml", "wheel_circle.toml", "rectangle_independent.toml"],
+)
+def test_every_example_solves_certified(name: str, cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(EXAMPLES / name), "--json"])
+    assert code == 0
+    d = json.loads(out)
+    assert d["status"] == "optimal"
+    assert d["certified"] is True
+    assert all(c["margin"] >= -1e-9 * abs(c["bound"]) for c in d["constraints"])

@@ -1,0 +1,243 @@
+"""report.html: self-contained, every figure present, every constraint reported; opens cleanly in
+Chromium (no missing image, no console error)."""
+
+from __future__ import annotations
+
+import base64
+import io
+import os
+import struct
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+from corrugate.report import report_html
+from corrugate.solver import Problem, Solution, solve
+from corrugate.spec.schema import load_spec
+from plan_readers import Tables, sheet_rows, svg_parts
+
+ROOT = Path(__file__).resolve().parents[2]
+BLIMP = ROOT / "examples" / "blimp_gripper.toml"
+CHROMIUM = Path("/usr/bin/chromium")
+ARTIFACTS = ROOT / "test-artifacts"
+
+
+def test_report_draws_the_sheet_plan_the_files_are_written_from(
+    solution: Solution, tmp_path: Path
+) -> None:
+    """Non-default cutter, fold style and tab depth: the report beside the files shows their sheets
+    (the same parts at the same places, the same figures), not a plan rebuilt with defaults."""
+    from corrugate.export.pdf import sheet_figure
+    from corrugate.export.plan import CutPlan, OutputOptions
+    from corrugate.fabrication.linestyle import line_style
+    from corrugate.geometry.fabrication_options import FabricationOptions
+    from corrugate.workflow import write_design_files
+
+    assert solution.analysis is not None
+    spec_text = BLIMP.read_text()
+    options = OutputOptions(
+        cutter="laser:130x80",
+        style=line_style("perforated", cut=1.5, gap=1.0),
+        fabrication=FabricationOptions(tab_depth=7.0),
+    )
+    seen: list[CutPlan] = []
+
+    def make_report(cut: CutPlan) -> str:
+        seen.append(cut)
+        return report_html(solution, spec_text, cut)
+
+    out = tmp_path / "out"
+    write_design_files(solution.analysis, out, options, report=make_report)
+    (cut,) = seen
+    text = (out / "report.html").read_text(encoding="utf-8")
+    in_files, sizes = svg_parts(out)
+    assert len(sizes) == len(cut.plan.sheets) > 1
+    assert all(size == pytest.approx((130.0, 80.0)) for size in sizes)
+    rows = sheet_rows(text)
+    assert sorted((r[0], r[1]) for r in rows) == [(s, n) for s, n, _, _ in in_files]
+    for (s, n, x, y), (s2, n2, x2, y2) in zip(sorted(rows), in_files, strict=True):
+        assert (s, n) == (s2, n2)
+        assert x == pytest.approx(x2, abs=0.01) and y == pytest.approx(y2, abs=0.01)
+    # the report's sheet figures are those of the written plan, at the sheet's proportions
+    parsed = Tables()
+    parsed.feed(text)
+    figures = [src for alt, src in parsed.images if alt.startswith("sheet ")]
+    assert len(figures) == len(cut.plan.sheets)
+    for k, src in enumerate(figures, start=1):
+        buf = io.BytesIO()
+        sheet_figure(cut.plan, k, cut.style).savefig(buf, format="png")
+        png = base64.b64decode(src.split(",", 1)[1])
+        assert png == buf.getvalue()
+        width, height = struct.unpack(">II", png[16:24])
+        assert width / height == pytest.approx(130.0 / 80.0, rel=0.01)
+    assert "perforated (1.5 mm cut, 1 mm gap)" in text
+    # a report made with the default options would show another plan than these files
+    default_rows = sheet_rows(report_html(solution, spec_text))
+    assert sorted((r[0], r[1], round(r[2], 2), round(r[3], 2)) for r in default_rows) != sorted(
+        (s, n, round(x, 2), round(y, 2)) for s, n, x, y in in_files
+    )
+
+
+def test_each_figure_is_drawn_once(
+    solution: Solution, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The report beside the files shows the figures the files step drew: each sheet figure and
+    the assembly figure is built once, ``assembly.png`` is embedded byte for byte, and pyplot is
+    never used (figures on their own canvases, so threads can draw in parallel)."""
+    import sys
+
+    from corrugate import workflow
+    from corrugate.export import pdf
+    from corrugate.export.plan import OutputOptions
+    from corrugate.fabrication import instructions
+
+    assert solution.analysis is not None
+    calls = {"sheet": 0, "assembly": 0}
+    sheet_figure, instructions_figure = pdf.sheet_figure, instructions.instructions_figure
+
+    def count_sheet(*args: object, **kwargs: object) -> object:
+        calls["sheet"] += 1
+        return sheet_figure(*args, **kwargs)  # type: ignore[arg-type]
+
+    def count_assembly(*args: object, **kwargs: object) -> object:
+        calls["assembly"] += 1
+        return instructions_figure(*args, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(pdf, "sheet_figure", count_sheet)
+    monkeypatch.setattr(instructions, "instructions_figure", count_assembly)
+    spec_text = BLIMP.read_text()
+    out = tmp_path / "out"
+    options = OutputOptions(cutter="laser:130x80")
+    workflow.write_design_files(
+        solution.analysis, out, options, report=lambda cut: report_html(solution, spec_text, cut)
+    )
+    sheets = len(list(out.glob("sheet-*.svg")))
+    assert sheets > 1
+    assert calls == {"sheet": sheets, "assembly": 1}
+    parsed = Tables()
+    parsed.feed((out / "report.html").read_text(encoding="utf-8"))
+    (folded,) = [src for alt, src in parsed.images if alt.startswith("the folded assembly")]
+    assert base64.b64decode(folded.split(",", 1)[1]) == (out / "assembly.png").read_bytes()
+    assert "matplotlib.pyplot" not in sys.modules or not any(
+        getattr(sys.modules["matplotlib.pyplot"], "get_fignums", list)()
+    )
+
+
+class _Collect(HTMLParser):
+    def __init__(self) -> None:
+        super().__init__()
+        self.images: list[dict[str, str | None]] = []
+        self.headings: list[str] = []
+        self.scripts = 0
+        self.links: list[str] = []
+        self._in_h2 = False
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if tag == "img":
+            self.images.append(dict(attrs))
+        if tag == "script":
+            self.scripts += 1
+        if tag in ("link", "a") and dict(attrs).get("href"):
+            self.links.append(str(dict(attrs)["href"]))
+        self._in_h2 = tag == "h2"
+
+    def handle_data(self, data: str) -> None:
+        if self._in_h2:
+            self.headings.append(data.strip())
+            self._in_h2 = False
+
+
+@pytest.fixture(scope="module")
+def solution() -> Solution:
+    return solve(Problem.from_spec(load_spec(BLIMP)))
+
+
+@pytest.fixture(scope="module")
+def report(solution: Solution, tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("report") / "report.html"
+    path.write_text(report_html(solution, BLIMP.read_text()), encoding="utf-8")
+    return path
+
+
+def test_report_is_self_contained_and_complete(report: Path) -> None:
+    text = report.read_text(encoding="utf-8")
+    parsed = _Collect()
+    parsed.feed(text)
+    assert parsed.scripts == 0
+    assert parsed.links == []  # nothing fetched from anywhere
+    assert len(parsed.images) >= 5  # design space, mass by n, polar, sheet(s), folded part
+    for img in parsed.images:
+        src = str(img["src"])
+        assert src.startswith("data:image/png;base64,")
+        png = base64.b64decode(src.split(",", 1)[1])
+        assert png[:8] == b"\x89PNG\r\n\x1a\n"
+        assert img.get("alt")
+    for heading in (
+        "Design",
+        "Constraints and margins",
+        "Design space",
+        "Stiffness in every direction",
+        "The three model variants",
+        "Flat pattern and folded part",
+        "Assembly",
+        "Warnings",
+        "Spec",
+        "Buckling in compression",
+    ):
+        assert heading in parsed.headings, heading
+    for name in (
+        "constraints.side.min",
+        "constraints.thickness.max",
+        "constraints.flexural_rigidity[0].min",
+    ):
+        assert name in text
+    assert "name = &quot;blimp-gripper&quot;" in text  # the spec itself, escaped
+    # the buckling bounds of the solved design (W 8, n 8, alpha 84; the spec's model 'paper')
+    from corrugate import Assembly, Layer, get_material
+    from corrugate.analysis.evaluate import facet_buckling_load
+
+    b = facet_buckling_load(
+        Assembly.identical(Layer(8.0, 8, 84.0, get_material("dura-lar"))), 0.0, "paper"
+    )
+    assert f"buckle at {b.low:.3g}-{b.high:.3g} N" in text
+
+
+def test_report_opens_in_chromium(report: Path) -> None:
+    if not CHROMIUM.exists():
+        if os.environ.get("CI", "").strip().lower() in ("true", "1", "yes"):
+            pytest.fail(f"{CHROMIUM} not found (required in CI)")
+        pytest.skip(f"{CHROMIUM} not found: run `make system-deps` as root")
+    from playwright.sync_api import sync_playwright
+
+    errors: list[str] = []
+    with sync_playwright() as p:
+        browser = p.chromium.launch(
+            executable_path=str(CHROMIUM),
+            headless=True,
+            args=[
+                "--no-sandbox",
+                "--disable-gpu",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--no-first-run",
+            ],
+        )
+        try:
+            page = browser.new_page(viewport={"width": 1100, "height": 1400})
+            page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+            page.on("pageerror", lambda e: errors.append(str(e)))
+            page.goto(report.as_uri())
+            page.wait_for_load_state("load")
+            broken = page.evaluate(
+                "Array.from(document.images).filter(i => !i.complete || i.naturalWidth === 0)"
+                ".length"
+            )
+            count = page.evaluate("document.images.length")
+            ARTIFACTS.mkdir(exist_ok=True)
+            page.screenshot(path=str(ARTIFACTS / "report.png"), full_page=True)
+        finally:
+            browser.close()
+    assert count >= 5
+    assert broken == 0
+    assert errors == []

@@ -1,0 +1,194 @@
+"""Kill ``corrugate design --out`` at random moments and check what is left (run by test_faults).
+
+Usage: ``python tests/system/kill_driver.py SPEC OUT TRIALS SEED`` prints one JSON summary.
+
+The spec is solved once in this process; every trial forks a child that runs
+``corrugate design SPEC --out OUT`` through :func:`corrugate.cli.main` (the solve answered from
+that cache, so a trial costs the writing only), alternating two cutters so that consecutive sets
+differ (``cut-1.dxf`` against ``cut-1.svg``). The parent kills the child with SIGKILL at a random
+moment of its writing (between the appearance of its staging folder and its exit, as measured by a
+calibration run; one trial in five at a random moment before it). After each kill the folder must
+hold one complete set: the manifest's files all present with their SHA-256, each parsing, no other
+file. After the last trial one more run must leave no leftovers.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import os
+import random
+import signal
+import sys
+import time
+import xml.etree.ElementTree as ET
+from pathlib import Path
+from typing import Any
+
+CUTTERS = ("cameo4-12x12", "maker-12x12")
+
+
+def _run(spec: str, out: Path, cutter: str) -> None:
+    from corrugate.cli import main
+
+    with contextlib.suppress(SystemExit):
+        main(["design", spec, "--out", str(out), "--cutter", cutter, "--json"])
+
+
+def _parses(path: Path) -> bool:
+    data = path.read_bytes()
+    suffix = path.suffix
+    try:
+        if suffix in (".json", ".fold"):
+            json.loads(data)
+        elif suffix in (".svg", ".html") and suffix == ".svg":
+            ET.fromstring(data)
+        elif suffix == ".pdf":
+            return data.startswith(b"%PDF") and b"%%EOF" in data[-64:]
+        elif suffix == ".png":
+            return data.startswith(b"\x89PNG") and data.endswith(b"IEND\xaeB`\x82")
+        elif suffix == ".glb":
+            return data[:4] == b"glTF" and int.from_bytes(data[8:12], "little") == len(data)
+        elif suffix in (".dxf",):
+            return data.rstrip().endswith(b"EOF")
+        elif suffix == ".html":
+            return data.rstrip().endswith(b"</html>")
+        else:
+            return len(data) > 0
+    except ValueError:
+        return False
+    return True
+
+
+def check_set(out: Path) -> tuple[bool, str, str]:
+    """(one complete set?, run id, why not)."""
+    from corrugate.core.fileio import MANIFEST, read_manifest
+
+    if not out.exists():
+        return True, "none", ""
+    sets = read_manifest(out)
+    if "design" not in sets:
+        names = [p.name for p in out.iterdir()]
+        return (not names), "none", f"no manifest, files {names}"
+    files: dict[str, str] = sets["design"]["files"]  # type: ignore[assignment]
+    present = {p.name for p in out.iterdir()} - {MANIFEST}
+    if present != set(files):
+        return False, "", f"files {sorted(present ^ set(files))} differ from the manifest"
+    for name, sha in files.items():
+        data = (out / name).read_bytes()
+        if hashlib.sha256(data).hexdigest() != sha:
+            return False, "", f"{name} is not the manifest's"
+        if not _parses(out / name):
+            return False, "", f"{name} does not parse"
+    record = json.loads((out / "design.json").read_text())
+    if set(record["files"]) != set(files):
+        return False, "", "design.json lists other files"
+    return True, str(sets["design"]["run"]), ""
+
+
+def leftovers(out: Path) -> list[str]:
+    found = [p.name for p in out.parent.iterdir() if p.name.startswith(f".{out.name}.")]
+    if out.is_dir():
+        found += [p.name for p in out.iterdir() if p.name.endswith(".tmp")]
+    return found
+
+
+def _staging_seen(out: Path, pid: int) -> bool:
+    prefix = f".{out.name}.corrugate-{pid}-"
+    return any(p.name.startswith(prefix) for p in out.parent.iterdir())
+
+
+def _fork_run(spec: str, out: Path, cutter: str) -> int:
+    pid = os.fork()
+    if pid == 0:  # child
+        try:
+            sys.stdout = open(os.devnull, "w")  # noqa: SIM115
+            _run(spec, out, cutter)
+        finally:
+            os._exit(0)
+    return pid
+
+
+def main() -> None:
+    spec, out, trials, seed = sys.argv[1], Path(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
+    rng = random.Random(seed)
+    import corrugate.workflow as dr  # the commands import solve_spec from it at run time
+
+    real = dr.solve_spec
+    cache: dict[str, Any] = {}
+
+    def cached(parsed: Any, problem: Any) -> Any:
+        if "run" not in cache:
+            cache["run"] = real(parsed, problem)
+        return cache["run"]
+
+    dr.solve_spec = cached  # type: ignore[assignment]
+    sys.stdout = open(os.devnull, "w")  # noqa: SIM115
+    _run(spec, out, CUTTERS[1])  # the earlier set, and the cache filled
+    ok, first_run, why = check_set(out)
+    assert ok, why
+    # calibration: how long the writing takes (staging folder seen -> exit)
+    pid = _fork_run(spec, out, CUTTERS[0])
+    t_start = time.monotonic()
+    t_seen = None
+    while True:
+        if t_seen is None and _staging_seen(out, pid):
+            t_seen = time.monotonic()
+        done, _ = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        time.sleep(0.0005)
+    t_end = time.monotonic()
+    write_s = t_end - (t_seen or t_start)
+    runs_seen: list[str] = [first_run]
+    ok, run, why = check_set(out)
+    assert ok, why
+    runs_seen.append(run)
+    mixed: list[str] = []
+    killed_before_commit = 0
+    old_kept = new_set = 0
+    for i in range(trials):
+        before = check_set(out)[1]
+        pid = _fork_run(spec, out, CUTTERS[i % 2])
+        early = rng.random() < 0.2
+        t0 = time.monotonic()
+        delay = rng.uniform(0, 0.3) if early else rng.uniform(0, write_s * 1.1)
+        if not early:
+            while not _staging_seen(out, pid) and time.monotonic() - t0 < 60:
+                if os.waitpid(pid, os.WNOHANG)[0]:
+                    break
+                time.sleep(0.0005)
+        time.sleep(delay)
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        ok, run, why = check_set(out)
+        if not ok:
+            mixed.append(f"trial {i}: {why}")
+            continue
+        if run == before:
+            old_kept += 1
+            killed_before_commit += 1
+        else:
+            new_set += 1
+        runs_seen.append(run)
+    left_after_kills = leftovers(out)
+    _run(spec, out, CUTTERS[0])  # the next run cleans up
+    ok, run, why = check_set(out)
+    if not ok:
+        mixed.append(f"final: {why}")
+    summary = {
+        "trials": trials,
+        "write_s": round(write_s, 3),
+        "mixed": mixed,
+        "old_set_kept": old_kept,
+        "new_set_complete": new_set,
+        "leftovers_before_next_run": len(left_after_kills),
+        "leftovers_after_next_run": leftovers(out),
+    }
+    sys.stdout = sys.__stdout__
+    print(json.dumps(summary))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,110 @@
+"""Start-up: what a process imports before it needs it (issue 13). Speed itself is measured by
+benchmarks/pipeline.py, not here; these tests pin the imports that made it slow."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import corrugate
+
+ROOT = Path(__file__).resolve().parents[2]
+
+
+def _run(script: str, *args: str) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-c", script, *args], capture_output=True, text=True, cwd=ROOT
+    )
+
+
+def test_import_corrugate_loads_nothing_heavy() -> None:
+    done = _run(
+        "import sys, corrugate\n"
+        "heavy = [m for m in ('numpy', 'pint', 'pydantic', 'matplotlib') if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+    assert done.returncode == 0, done.stderr
+
+
+def test_every_public_name_resolves_to_its_module() -> None:
+    import importlib
+
+    for name in corrugate.__all__:
+        value = getattr(corrugate, name)
+        if name == "__version__":
+            continue
+        module = importlib.import_module(f"corrugate.{corrugate._WHERE[name]}")
+        assert value is getattr(module, name), name
+    public = set(corrugate.__all__) - {"__version__"}
+    assert public == set(corrugate._WHERE)
+    # dir(corrugate) is the public API, without the names the module uses itself
+    assert dir(corrugate) == sorted(corrugate.__all__)
+    # no public name is a subpackage's too (the import system would bind the subpackage over it)
+    packages = {p.name for p in Path(corrugate.__file__).parent.iterdir() if p.is_dir()}
+    assert not public & packages, public & packages
+    namespace: dict[str, object] = {}
+    exec("from corrugate import *", namespace)
+    assert set(corrugate.__all__) <= set(namespace)
+
+
+def test_design_files_need_no_mesh_library_pyplot_or_pint(tmp_path: Path) -> None:
+    """Every file of a design is written without trimesh, scipy, pyplot, pint or dask, and the
+    meshes still read back (here with the test's own parser: the STL triangle count)."""
+    done = _run(
+        "import sys\n"
+        "from pathlib import Path\n"
+        "from corrugate import Assembly, Layer, analyze, get_material\n"
+        "from corrugate.workflow import write_design_files\n"
+        "a = Assembly.identical(Layer(8, 8, 84, get_material('dura-lar')))\n"
+        "write_design_files(analyze(a), Path(sys.argv[1]))\n"
+        "bad = [m for m in ('trimesh', 'scipy', 'matplotlib.pyplot', 'pint', 'dask')\n"
+        "       if m in sys.modules]\n"
+        "assert not bad, bad\n",
+        str(tmp_path),
+    )
+    assert done.returncode == 0, done.stderr
+    stl = (tmp_path / "assembly.stl").read_bytes()
+    count = int.from_bytes(stl[80:84], "little")
+    assert count > 0 and len(stl) == 84 + 50 * count
+    assert (tmp_path / "assembly.glb").read_bytes()[:4] == b"glTF"
+
+
+def test_help_loads_neither_numpy_nor_rich_nor_pydantic() -> None:
+    """``corrugate --help`` (piped, so click's plain help) needs none of the heavy libraries: they
+    cost most of its CPU before (0.64 s against 0.15 s after, benchmarks/pipeline.py)."""
+    done = _run(
+        "import sys\n"
+        "from corrugate.cli import main\n"
+        "try:\n"
+        "    main(['--help'])\n"
+        "except SystemExit as exc:\n"
+        "    assert exc.code in (0, None), exc.code\n"
+        "heavy = [m for m in ('numpy', 'rich', 'pydantic', 'pint') if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+    assert done.returncode == 0, done.stderr
+    assert "Usage: " in done.stdout and "analyze" in done.stdout
+
+
+def test_analyze_needs_no_pydantic_pint_or_scipy() -> None:
+    """``corrugate analyze`` with plain numbers builds no spec, units or solver machinery."""
+    done = _run(
+        "import sys\n"
+        "from corrugate.cli import main\n"
+        "try:\n"
+        "    main(['analyze', '--W', '8', '--n', '8', '--alpha', '84', '--material', 'dura-lar'])\n"
+        "except SystemExit as exc:\n"
+        "    assert exc.code in (0, None), exc.code\n"
+        "heavy = [m for m in ('pydantic', 'pint', 'scipy', 'matplotlib') if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+    assert done.returncode == 0, done.stderr
+    assert "504.5" in done.stdout  # K at eta 0 of the case study, docs/validation/off_axis.md
+
+
+def test_model_names_match_the_moduli_table() -> None:
+    from corrugate.mechanics.moduli import MODELS
+    from corrugate.names import DEFAULT_MODEL, MODEL_NAMES
+
+    assert tuple(MODELS) == MODEL_NAMES and DEFAULT_MODEL in MODELS

@@ -1,0 +1,374 @@
+"""The JSON API in process (FastAPI's TestClient): answers, validation, limits and downloads."""
+
+from __future__ import annotations
+
+import io
+import json
+import subprocess
+import sys
+import threading
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+import trimesh
+from fastapi.testclient import TestClient
+
+import corrugate.web.app as web_app
+from corrugate import Assembly, Layer, get_material
+from corrugate.fabrication.build import build_pattern
+from corrugate.fabrication.folded import folded_mesh
+from corrugate.web import WebSettings, create_app
+from corrugate.web.app import STATIC_DIR
+
+from .conftest import CASE1, direct
+
+
+def alive(client: TestClient) -> None:
+    """The app still answers normally."""
+    r = client.get("/api/materials")
+    assert r.status_code == 200 and any(m["id"] == "dura-lar" for m in r.json())
+
+
+# ---- answers ------------------------------------------------------------------------------
+
+
+def test_analyze_returns_the_cli_json_object(client: TestClient) -> None:
+    r = client.post("/api/analyze", json=CASE1)
+    assert r.status_code == 200
+    d = r.json()
+    assert d == direct(CASE1)
+    assert d["stiffness"][0]["EI_Nmm2"] / 1000 == pytest.approx(87.84, abs=0.005)  # Table 1
+    assert r.headers["cache-control"] == "no-store"
+
+
+def test_analyze_equals_the_cli_json(
+    client: TestClient, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The same options, some with units, give the very object `corrugate analyze --json` prints."""
+    from corrugate.cli import main
+
+    body = {
+        "W": "0.3 in",
+        "n": "9",
+        "alpha": "1.4 rad",
+        "E": "2.7GPa",
+        "nu": 0.43,
+        "density": "1.39 g/cm^3",
+        "thickness": "5 mil",
+        "W2": 6,
+        "n2": 12,
+        "layout": "rectangle",
+        "model": "xia",
+        "eta": [0, "30 deg", 90],
+    }
+    args = ["analyze", "--json"]
+    for key, value in body.items():
+        for v in value if isinstance(value, list) else [value]:
+            args += [f"--{key}", str(v)]
+    with pytest.raises(SystemExit) as exc:
+        main(args)
+    assert exc.value.code in (0, None)
+    cli = json.loads(capsys.readouterr().out)
+    r = client.post("/api/analyze", json=body)
+    assert r.status_code == 200
+    assert r.json() == cli
+    assert [s["eta_deg"] for s in cli["stiffness"]] == [0, 30, 90]
+
+
+def test_materials_and_models(client: TestClient) -> None:
+    materials = client.get("/api/materials").json()
+    dura = next(m for m in materials if m["id"] == "dura-lar")
+    assert dura["default_thickness_mm"] == 0.125
+    models = client.get("/api/models").json()
+    assert models["default"] == "refined"
+    assert {m["name"] for m in models["models"]} == {"paper", "xia", "refined"}
+
+
+def test_mesh_is_the_folded_assembly_as_glb(client: TestClient) -> None:
+    r = client.post("/api/mesh", json=CASE1)
+    assert r.status_code == 200
+    result = r.json()
+    files = {f["name"]: f for f in result["files"]}
+    assert set(files) == {"assembly.glb", "assembly.stl"}
+    glb = client.get(files["assembly.glb"]["url"])
+    assert glb.status_code == 200
+    assert glb.headers["content-type"] == "model/gltf-binary"
+    assert glb.content[:4] == b"glTF" and len(glb.content) == files["assembly.glb"]["bytes"]
+    layer = Layer(8, 8, 84, get_material("dura-lar"))
+    a = Assembly.identical(layer)
+    vertices, faces = folded_mesh(a, build_pattern(a).parts)
+    loaded = trimesh.load(io.BytesIO(glb.content), file_type="glb", force="mesh", process=False)
+    assert len(loaded.faces) == len(faces)
+    assert np.asarray(loaded.bounds).ravel() == pytest.approx(
+        np.concatenate([vertices.min(axis=0), vertices.max(axis=0)])
+    )
+
+
+def test_two_meshes_get_two_ids(client: TestClient) -> None:
+    a = client.post("/api/mesh", json=CASE1).json()
+    b = client.post("/api/mesh", json={**CASE1, "n": 10}).json()
+    assert a["id"] != b["id"]
+    ga = client.get(a["files"][0]["url"]).content
+    gb = client.get(b["files"][0]["url"]).content
+    assert ga != gb
+
+
+def test_docs_work_offline(client: TestClient) -> None:
+    """Swagger UI comes from the package, not a CDN, and the OpenAPI document lists the API."""
+    html = client.get("/docs").text
+    assert "cdn" not in html.lower() and "https://" not in html
+    for asset in (
+        "/static/vendor/swagger-ui/swagger-ui-bundle.js",
+        "/static/vendor/swagger-ui/swagger-ui.css",
+    ):
+        assert asset in html
+        assert client.get(asset).status_code == 200
+    spec = client.get("/openapi.json").json()
+    assert {"/api/analyze", "/api/mesh", "/api/materials", "/api/models"} <= set(spec["paths"])
+    schema = spec["components"]["schemas"]["AnalyzeBody"]
+    assert {"W", "n", "alpha", "material", "W2", "eta", "model"} <= set(schema["properties"])
+
+
+def test_page_and_its_files_are_served_locally(client: TestClient) -> None:
+    r = client.get("/")
+    assert r.status_code == 200 and 'id="analyze-form"' in r.text
+    assert "script-src 'self' 'sha256-" in r.headers["content-security-policy"]
+    for path in (
+        "/static/app.js",
+        "/static/style.css",
+        "/static/vendor/three/build/three.module.min.js",
+        "/static/vendor/three/build/three.core.min.js",
+        "/static/vendor/three/examples/jsm/loaders/GLTFLoader.js",
+        "/static/vendor/three/examples/jsm/controls/OrbitControls.js",
+    ):
+        assert client.get(path).status_code == 200, path
+    for source in [*STATIC_DIR.glob("*.html"), *STATIC_DIR.glob("*.js")]:
+        assert "https://" not in source.read_text(encoding="utf-8"), source
+
+
+# ---- validation: 4xx naming the field, and the app keeps serving -------------------------------
+
+
+@pytest.mark.parametrize(
+    ("change", "field", "words"),
+    [
+        ({"alpha": 190}, "alpha", "0 < alpha < 180"),
+        ({"alpha2": "200 deg"}, "alpha2", "0 < alpha < 180"),
+        ({"W": "8 MPa"}, "W", "wrong dimension"),  # a modulus for a length
+        ({"thickness": "2 GPa"}, "thickness", "wrong dimension"),
+        ({"material": None, "E": "3 mm", "nu": 0.4, "density": 1.2}, "E", "wrong dimension"),
+        ({"material": None, "E": 2700, "nu": 0.4}, "density", "is missing"),
+        ({"n": 8.5}, "n", "not an integer"),
+        ({"n": "1e9"}, "n", "1 <= n <= 5000"),
+        ({"n": "2000"}, "n", "in the web app"),
+        ({"W": "8 blorps"}, "W", "unknown unit"),
+        ({"material": "unobtainium"}, "material", "is unknown"),
+        ({"material2": "unobtainium"}, "material2", "is unknown"),
+        ({"model": "magic"}, "model", "is unknown"),
+        ({"layout": "hexagon"}, "layout", "is unknown"),
+        ({"layout": "polygon", "vertices": "0,0 1"}, "vertices", "cannot be read"),
+        ({"W2": 6}, "layout", "rectangle"),
+        ({"eta": ["north"]}, "eta", "cannot be read"),
+        ({"eta": ["nan"]}, "eta", "finite"),
+        ({"W": True}, "W", "wrong type"),
+        ({"W": [8]}, "W", "wrong type"),
+        ({"surprise": 1}, "surprise", "not a field"),
+        ({"W": None}, "W", "wrong type"),
+        ({"W": 1e300}, "W", "0.01 <= W <= 10000 mm"),
+        ({"W": "1e300 m"}, "W", "0.01 <= W <= 10000 mm"),
+        ({"W": 1e-320}, "W", "0.01 <= W <= 10000 mm"),
+        ({"W2": "2 m", "layout": "rectangle"}, "W2", "in the web app"),
+        (
+            {"E": 1e306, "nu": 0.3, "density": 1, "thickness": 0.1, "material": None},
+            "E",
+            "0.001 <= E <= 1e+07 MPa",
+        ),
+        ({"n": "9" * 100}, "n", "at most 64 characters"),
+        ({"eta": list(range(500))}, "eta", "at most 181 items"),
+    ],
+)
+def test_bad_values_get_422_naming_the_field(
+    client: TestClient, change: dict[str, Any], field: str, words: str
+) -> None:
+    body = {k: v for k, v in {**CASE1, **change}.items() if v is not None or k != "material"}
+    r = client.post("/api/analyze", json=body)
+    assert r.status_code == 422, r.text
+    d = r.json()
+    assert d["field"] == field
+    assert d["errors"][0]["field"] == field
+    assert words in d["detail"]
+    alive(client)
+
+
+@pytest.mark.parametrize("W", [1e300, 1e20, "1e6 mm", 1e-300])
+def test_mesh_sizes_are_bounded_or_quick(client: TestClient, W: object) -> None:
+    """A huge part would need millions of glue tabs: refused at once, never a hung worker."""
+    r = client.post("/api/mesh", json={"W": W, "n": 8, "alpha": 84})
+    assert r.status_code in (200, 422), r.text
+    if r.status_code == 422:
+        assert r.json()["field"] == "W"
+
+
+def test_missing_fields_are_all_named(client: TestClient) -> None:
+    r = client.post("/api/analyze", json={"W": 8})
+    assert r.status_code == 422
+    assert [e["field"] for e in r.json()["errors"]] == ["n", "alpha"]
+
+
+@pytest.mark.parametrize(
+    "raw",
+    [b"{bad json", b'{"W": 8,', b"", b"\xff\xfe\x00", b"[1, 2]", b"null", b'"W"', b"NaN"],
+)
+def test_malformed_json_is_4xx(client: TestClient, raw: bytes) -> None:
+    r = client.post("/api/analyze", content=raw, headers={"content-type": "application/json"})
+    assert 400 <= r.status_code < 500, (raw, r.status_code, r.text)
+    assert r.json()["field"] == "body"
+    alive(client)
+
+
+def test_wrong_content_type_is_4xx(client: TestClient) -> None:
+    r = client.post("/api/analyze", content=b"W=8&n=8", headers={"content-type": "text/plain"})
+    assert 400 <= r.status_code < 500
+    alive(client)
+
+
+def test_huge_bodies_get_413(client: TestClient) -> None:
+    big = json.dumps({**CASE1, "vertices": "0,0 " * 50_000}).encode()
+    assert len(big) > 64 * 1024
+    r = client.post("/api/analyze", content=big, headers={"content-type": "application/json"})
+    assert r.status_code == 413 and "limit" in r.json()["detail"]
+
+    def chunks() -> Iterator[bytes]:  # no Content-Length: the limit counts what arrives
+        for _ in range(100):
+            yield b" " * 1024
+
+    r = client.post("/api/analyze", content=chunks(), headers={"content-type": "application/json"})
+    assert r.status_code == 413
+    r = client.post("/api/analyze", content=b"{}", headers={"content-length": "99999999999"})
+    assert r.status_code == 413
+    alive(client)
+
+
+def test_a_body_just_under_the_limit_is_read() -> None:
+    with TestClient(create_app(WebSettings(max_body_bytes=1000))) as c:
+        body = json.dumps(CASE1).encode()
+        padded = body[:-1] + b" " * (1000 - len(body)) + b"}"
+        assert len(padded) == 1000
+        r = c.post("/api/analyze", content=padded, headers={"content-type": "application/json"})
+        assert r.status_code == 200
+
+
+# ---- downloads: only files the app made ------------------------------------------------------
+
+
+def test_path_tricks_in_download_urls_are_4xx(client: TestClient) -> None:
+    result = client.post("/api/mesh", json=CASE1).json()
+    rid = result["id"]
+    tricks = [
+        f"/api/results/{rid}/../../../../etc/passwd",
+        f"/api/results/{rid}/..%2F..%2F..%2Fetc%2Fpasswd",
+        f"/api/results/{rid}/%2e%2e%2f%2e%2e%2fetc%2fpasswd",
+        f"/api/results/{rid}/%2Fetc%2Fpasswd",
+        "/api/results/%2Fetc/passwd",
+        "/api/results/..%2F..%2F..%2Fetc/passwd",
+        f"/api/results/{rid}/assembly.glb%00.txt",
+        f"/api/results/{rid}/ASSEMBLY.GLB",
+        f"/api/results/{rid}/.",
+        f"/api/results/{rid.upper()}/assembly.glb",
+        "/api/results/00000000000000000000000000000000/assembly.glb",
+        f"/api/results/{rid}/{web_app.__file__}",
+        "/static/../app.py",
+        "/static/%2e%2e/app.py",
+        "/static/..%2f..%2f..%2fetc%2fpasswd",
+    ]
+    for url in tricks:
+        r = client.get(url)
+        assert 400 <= r.status_code < 500, (url, r.status_code)
+        assert b"root:" not in r.content and b"def create_app" not in r.content, url
+    assert client.get(result["files"][0]["url"]).status_code == 200
+    alive(client)
+
+
+# ---- time and load bounds ---------------------------------------------------------------------
+
+
+@pytest.fixture
+def blocked(monkeypatch: pytest.MonkeyPatch) -> Iterator[threading.Event]:
+    """Make every analysis wait for the event (at most 10 s) before it computes."""
+    release = threading.Event()
+    real = web_app.analysis_payload
+
+    def slow(body: Any, settings: WebSettings) -> dict[str, object]:
+        release.wait(timeout=10)
+        return real(body, settings)
+
+    monkeypatch.setattr(web_app, "analysis_payload", slow)
+    yield release
+    release.set()
+
+
+def test_slow_computations_get_504_and_the_slot_comes_back(blocked: threading.Event) -> None:
+    with TestClient(create_app(WebSettings(timeout_s=0.05, max_pending=1, workers=1))) as c:
+        r = c.post("/api/analyze", json=CASE1)
+        assert r.status_code == 504 and "did not finish" in r.json()["detail"]
+        # The abandoned computation still holds the only slot: the next request is refused.
+        r = c.post("/api/analyze", json=CASE1)
+        assert r.status_code == 503 and r.headers["retry-after"]
+        alive(c)
+        blocked.set()
+        for _ in range(500):  # the slot is freed when the abandoned thread ends (bounded wait)
+            r = c.post("/api/analyze", json=CASE1)
+            if r.status_code != 503:
+                break
+            threading.Event().wait(0.01)
+        assert r.status_code == 200 and r.json() == direct(CASE1)
+
+
+def test_only_local_host_names_are_answered_on_loopback() -> None:
+    """DNS rebinding: a page on another name that resolves to 127.0.0.1 gets nothing."""
+    settings = WebSettings(allowed_hosts=("127.0.0.1", "localhost", "[::1]"))
+    with TestClient(create_app(settings), base_url="http://127.0.0.1:8000") as c:
+        for host in ("127.0.0.1:8000", "localhost", "LOCALHOST:1", "[::1]:8000"):
+            assert c.get("/api/models", headers={"host": host}).status_code == 200, host
+        for host in ("evil.example", "evil.example:8000", "127.0.0.1.evil.example", "", "[::2]"):
+            r = c.post("/api/analyze", json=CASE1, headers={"host": host})
+            assert r.status_code == 400, host
+
+
+def test_core_package_does_not_import_the_web_app() -> None:
+    code = (
+        "import sys, corrugate, corrugate.cli, corrugate.spec.inputs\n"
+        "bad = [m for m in sys.modules if m.split('.')[0] in ('fastapi', 'uvicorn', 'starlette')"
+        " or m.startswith('corrugate.web.') or m == 'corrugate.web']\n"
+        "print(bad)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "[]"
+
+
+def test_serve_command_runs_uvicorn_on_loopback(monkeypatch: pytest.MonkeyPatch) -> None:
+    import uvicorn
+    from fastapi import FastAPI
+
+    from corrugate.cli import main
+
+    calls: list[dict[str, Any]] = []
+
+    def fake_run(app: Any, **kwargs: Any) -> None:
+        calls.append({"app": app, **kwargs})
+
+    monkeypatch.setattr(uvicorn, "run", fake_run)
+    for args in (["--port", "8123"], ["--host", "0.0.0.0", "--port", "8124", "--timeout", "5"]):
+        with pytest.raises(SystemExit) as exc:
+            main(["serve", *args])
+        assert exc.value.code in (0, None)
+    assert calls[0]["host"] == "127.0.0.1" and calls[0]["port"] == 8123
+    assert calls[0]["limit_concurrency"] == 100
+    assert isinstance(calls[0]["app"], FastAPI)
+    assert calls[0]["app"].state.settings.allowed_hosts == ("127.0.0.1", "localhost", "[::1]")
+    assert calls[1]["host"] == "0.0.0.0" and calls[1]["app"].state.settings.timeout_s == 5
+    assert calls[1]["app"].state.settings.allowed_hosts is None
+    for call in calls:
+        call["app"].state.store.close()
