@@ -90,26 +90,29 @@ _MAKER_SOURCE = "Cricut help centre: maximum cut size on the mat"
 
 #: The named cutters; ``laser:WxH`` (mm) is accepted besides these.
 CUTTERS: dict[str, Cutter] = {
-    "cameo4-12x12": Cutter(
-        "cameo4-12x12",
-        11.5 * INCH,
-        11.5 * INCH,
-        "Silhouette Cameo 4, 12 x 12 in mat",
-        _CAMEO_SOURCE,
-    ),
-    "cameo4-12x24": Cutter(
-        "cameo4-12x24",
-        11.5 * INCH,
-        23.5 * INCH,
-        "Silhouette Cameo 4, 12 x 24 in mat",
-        _CAMEO_SOURCE,
-    ),
-    "maker-12x12": Cutter(
-        "maker-12x12", 11.5 * INCH, 11.5 * INCH, "Cricut Maker, 12 x 12 in mat", _MAKER_SOURCE
-    ),
-    "maker-12x24": Cutter(
-        "maker-12x24", 11.5 * INCH, 23.5 * INCH, "Cricut Maker, 12 x 24 in mat", _MAKER_SOURCE
-    ),
+    c.name: c
+    for c in (
+        Cutter(
+            "cameo4-12x12",
+            11.5 * INCH,
+            11.5 * INCH,
+            "Silhouette Cameo 4, 12 x 12 in mat",
+            _CAMEO_SOURCE,
+        ),
+        Cutter(
+            "cameo4-12x24",
+            11.5 * INCH,
+            23.5 * INCH,
+            "Silhouette Cameo 4, 12 x 24 in mat",
+            _CAMEO_SOURCE,
+        ),
+        Cutter(
+            "maker-12x12", 11.5 * INCH, 11.5 * INCH, "Cricut Maker, 12 x 12 in mat", _MAKER_SOURCE
+        ),
+        Cutter(
+            "maker-12x24", 11.5 * INCH, 23.5 * INCH, "Cricut Maker, 12 x 24 in mat", _MAKER_SOURCE
+        ),
+    )
 }
 
 _LASER = re.compile(r"^laser:\s*([0-9]*\.?[0-9]+)\s*[x×]\s*([0-9]*\.?[0-9]+)\s*(mm)?$")
