@@ -38,6 +38,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from corrugate.core.errors import InputError
+from corrugate.names import (
+    DEFAULT_FOLD_STYLE,
+    DEFAULT_MACHINE,
+    DEFAULT_MARGIN_MM,
+    DEFAULT_PAPER,
+    DEFAULT_SPACING_MM,
+    DEFAULT_TAB_DEPTH_MM,
+)
 
 if TYPE_CHECKING:
     from corrugate.analysis.evaluate import Analysis
@@ -109,15 +117,15 @@ def solve_spec(spec: Spec, problem: Problem | None = None) -> DesignRun:
 
 
 def output_options(
-    cutter: str = "cameo4-12x12",
-    fold_style: str = "solid",
+    cutter: str = DEFAULT_MACHINE,
+    fold_style: str = DEFAULT_FOLD_STYLE,
     cut: str | float | None = None,
     gap: str | float | None = None,
-    spacing: str | float = "5",
-    margin: str | float = "5",
-    tab_depth: str | float = "4",
+    spacing: str | float = DEFAULT_SPACING_MM,
+    margin: str | float = DEFAULT_MARGIN_MM,
+    tab_depth: str | float = DEFAULT_TAB_DEPTH_MM,
     labels: bool | None = None,
-    paper: str = "mat",
+    paper: str = DEFAULT_PAPER,
     *,
     names: Mapping[str, str] | None = None,
 ) -> OutputOptions:
@@ -138,7 +146,7 @@ def output_options(
     from corrugate.export.machines import get_machine
     from corrugate.export.pdf import check_paper
     from corrugate.export.plan import OutputOptions
-    from corrugate.fabrication.linestyle import line_style
+    from corrugate.fabrication.linestyle import StyleKind, line_style
     from corrugate.geometry.fabrication_options import FabricationOptions
 
     def length(value: str | float | None, field: str) -> float | None:
@@ -147,7 +155,7 @@ def output_options(
     try:
         get_machine(cutter)  # an unknown machine is an error before anything else
         cut_mm, gap_mm = length(cut, "cut"), length(gap, "gap")
-        if fold_style.strip().lower() == "perforated":
+        if fold_style.strip().lower() == StyleKind.PERFORATED:
             for field, value in (("cut", cut_mm), ("gap", gap_mm)):
                 if value is None:
                     raise InputError(
@@ -337,12 +345,12 @@ def write_files(
     result: DesignResult,
     out: str | Path,
     *,
-    cutter: str = "cameo4-12x12",
-    fold_style: str = "solid",
+    cutter: str = DEFAULT_MACHINE,
+    fold_style: str = DEFAULT_FOLD_STYLE,
     cut: str | float | None = None,
     gap: str | float | None = None,
     labels: bool | None = None,
-    paper: str = "mat",
+    paper: str = DEFAULT_PAPER,
 ) -> list[Path]:
     """Every file of ``result`` into the folder ``out`` (as ``corrugate design --out``: cut files
     for ``cutter``, fold map, FOLD, GLB/STL, assembly steps, report, ``design.json``), committed as

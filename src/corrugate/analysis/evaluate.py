@@ -34,6 +34,7 @@ from corrugate.mechanics.mass import MassBreakdown, assembly_mass, connector_mas
 from corrugate.mechanics.moduli import DEFAULT_MODEL, Moduli, ModuliFromSC, get_model
 from corrugate.mechanics.offaxis import Coupon, Support, assembly_directional, check_support
 from corrugate.mechanics.springs import LayerSprings, layer_springs
+from corrugate.names import DEFAULT_SUPPORT
 
 __all__ = [
     "Analysis",
@@ -203,7 +204,7 @@ def evaluate(
     model: str = DEFAULT_MODEL,
     eta_deg: ArrayLike = 0.0,
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
-    support: Support = "free",
+    support: Support = DEFAULT_SUPPORT,
 ) -> Evaluation:
     """Stiffness, size and mass of assemblies given as arrays of layer parameters.
 
@@ -380,7 +381,7 @@ def analyze(
     model: str = DEFAULT_MODEL,
     eta_deg: Sequence[float] = (0.0, 90.0),
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
-    support: Support = "free",
+    support: Support = DEFAULT_SUPPORT,
 ) -> Analysis:
     """Analyse ``assembly`` with moduli variant ``model`` at the directions ``eta_deg`` (deg),
     its sides ``free`` (default) or held in a rigid ``frame`` (:mod:`corrugate.mechanics.offaxis`).

@@ -47,6 +47,7 @@ from corrugate.geometry.layouts import Layout, Square
 from corrugate.materials.library import Material
 from corrugate.mechanics.moduli import DEFAULT_MODEL, get_model
 from corrugate.mechanics.offaxis import Support, check_support
+from corrugate.names import DEFAULT_SUPPORT
 
 __all__ = ["FIELDS", "SweepResult", "sweep"]
 
@@ -254,7 +255,7 @@ def sweep(
     layout: Layout | None = None,
     model: str = DEFAULT_MODEL,
     eta_deg: float = 0.0,
-    support: Support = "free",
+    support: Support = DEFAULT_SUPPORT,
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
     bounds: Bounds | None = None,
     objective: str = "mass",

@@ -24,6 +24,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from corrugate.geometry.layer import Assembly, Layer, crease_layer
+from corrugate.names import DEFAULT_LAYOUT, DEFAULT_SUPPORT
 
 __all__ = [
     "CREASE_ERROR_LIMIT",
@@ -121,7 +122,9 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
     return out
 
 
-def _off_axis(eta_deg: Sequence[float], support: str, layout: str = "square") -> list[ModelWarning]:
+def _off_axis(
+    eta_deg: Sequence[float], support: str, layout: str = DEFAULT_LAYOUT
+) -> list[ModelWarning]:
     off = [e for e in eta_deg if crease_layer(e) is None]
     if not off:
         return []
@@ -156,7 +159,7 @@ def _off_axis(eta_deg: Sequence[float], support: str, layout: str = "square") ->
 
 
 def design_warnings(
-    a: Assembly, model: str, eta_deg: Sequence[float] = (), support: str = "free"
+    a: Assembly, model: str, eta_deg: Sequence[float] = (), support: str = DEFAULT_SUPPORT
 ) -> list[ModelWarning]:
     """Every warning for assembly ``a`` analysed with moduli variant ``model`` in the directions
     ``eta_deg`` (deg) under ``support`` (free or frame)."""

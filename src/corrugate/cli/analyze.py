@@ -10,7 +10,8 @@ import typer
 from corrugate.cli import options as o
 from corrugate.cli.console import fmt as _fmt
 from corrugate.cli.console import make_console
-from corrugate.names import DEFAULT_MODEL
+from corrugate.core.parameters import PARAMETERS
+from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -105,7 +106,7 @@ def analyze_cmd(
     alpha2: o.Alpha2 = None,
     material2: o.Material2 = None,
     thickness2: o.Thickness2 = None,
-    layout: o.Layout = "square",
+    layout: o.Layout = DEFAULT_LAYOUT,
     vertices: o.Vertices = None,
     holes: o.Holes = None,
     model: o.Model = DEFAULT_MODEL,
@@ -116,7 +117,7 @@ def analyze_cmd(
             help="Direction (deg from layer 1's creases); repeat for several. Default 0 and 90.",
         ),
     ] = None,
-    support: o.SupportOpt = "free",
+    support: o.SupportOpt = DEFAULT_SUPPORT,
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object.")] = False,
     compare_models: Annotated[
         bool, Opt(help="Show the three model variants side by side.")
@@ -135,7 +136,7 @@ def analyze_cmd(
     assembly = assembly_from_namespace(locals())
     etas = parse_etas(eta)
     get_model(model)
-    support = check_support(support, "--support")
+    support = check_support(support, PARAMETERS["support"].flag)
     models = list(MODELS) if compare_models else [model]
     results = [analyze(assembly, m, etas, support=support) for m in models]
     if as_json:

@@ -16,6 +16,7 @@ import typer
 from corrugate.cli import options as o
 from corrugate.cli.console import fmt, make_console
 from corrugate.core.errors import InputError
+from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_MACHINE, DEFAULT_PAPER, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -159,18 +160,12 @@ def design_cmd(
             help="Folder for design.json and, for a design, every cut file.",
         ),
     ] = None,
-    cutter: o.Machine = "cameo4-12x12",
+    cutter: o.Machine = DEFAULT_MACHINE,
     labels: o.Labels = None,
-    fold_style: Annotated[
-        str, typer.Option(metavar=o.FOLD_STYLES, help="solid | scored | perforated.")
-    ] = "solid",
-    cut: Annotated[
-        str | None, typer.Option(metavar=o.LENGTH, help="Perforation: cut length (mm).")
-    ] = None,
-    gap: Annotated[
-        str | None, typer.Option(metavar=o.LENGTH, help="Perforation: gap length (mm).")
-    ] = None,
-    paper: o.Paper = "mat",
+    fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
+    cut: o.Cut = None,
+    gap: o.Gap = None,
+    paper: o.Paper = DEFAULT_PAPER,
     quiet: o.Quiet = False,
 ) -> None:
     """The certified lightest OADLC design that meets a spec, with its explanation.
@@ -262,9 +257,9 @@ def pareto_cmd(
         typer.Option(
             "--vs",
             metavar="QUANTITY",
-            help="flexural_rigidity | bending_stiffness | inplane_stiffness",
+            help=" | ".join(STIFFNESS_NAMES),
         ),
-    ] = "flexural_rigidity",
+    ] = STIFFNESS_NAMES[0],
     eta: Annotated[
         str, typer.Option(metavar=o.ANGLE, help="Direction of the stiffness (deg).")
     ] = "0",
@@ -288,9 +283,10 @@ def pareto_cmd(
     from corrugate.solver.pareto import pareto_front
     from corrugate.spec.schema import load_spec
 
-    kinds = ("flexural_rigidity", "bending_stiffness", "inplane_stiffness")
-    if vs not in kinds:
-        raise InputError("--vs", repr(vs), "one of " + ", ".join(kinds), reason="is unknown")
+    if vs not in STIFFNESS_NAMES:
+        raise InputError(
+            "--vs", repr(vs), "one of " + ", ".join(STIFFNESS_NAMES), reason="is unknown"
+        )
     if points < 2:
         raise InputError("--points", points, "an integer >= 2")
     eta_deg = parse_quantity(eta, "deg", "--eta")

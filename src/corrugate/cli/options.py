@@ -1,17 +1,27 @@
-"""The command-line options that describe a design, declared once for every command that takes
-them (``analyze``, ``pattern``, ``validate``): typer reads each ``Annotated`` alias below as the
-option it declares. :func:`corrugate.spec.inputs.assembly_from_namespace` turns their values into an
-:class:`~corrugate.geometry.layer.Assembly`.
+"""The command-line options that describe a design and its files, made from the one table of
+parameters (:data:`corrugate.core.parameters.PARAMETERS`: flags, metavar, help text), for every
+command that takes them (``analyze``, ``pattern``, ``validate``, ``design``): typer reads each
+``Annotated`` alias below as the option it declares; the commands' signatures give the defaults
+(the constants of :mod:`corrugate.names`). :func:`corrugate.spec.inputs.assembly_from_namespace`
+turns their values into an :class:`~corrugate.geometry.layer.Assembly`.
 """
 
 from __future__ import annotations
 
-from typing import Annotated
+from collections.abc import Callable
+from typing import Annotated, Any
 
 import typer
 
+from corrugate.core.parameters import PARAMETERS, choices_metavar
+from corrugate.names import FOLD_STYLES as FOLD_STYLE_NAMES
+from corrugate.names import LASER_PREFIX, LAYOUT_SHAPES, MACHINE_NAMES, MODEL_NAMES, SUPPORTS
+
 __all__ = [
     "ANGLE",
+    "DEFAULT_MARGIN",
+    "DEFAULT_SPACING",
+    "DEFAULT_TAB_DEPTH",
     "FOLD_STYLES",
     "LAYOUTS",
     "LENGTH",
@@ -20,22 +30,34 @@ __all__ = [
     "W2",
     "Alpha",
     "Alpha2",
+    "Cut",
     "Density",
+    "FoldStyle",
+    "Gap",
     "Holes",
     "Labels",
+    "Layout",
     "Machine",
+    "Margin",
     "Material",
     "Material2",
+    "Model",
     "N",
     "Nu",
+    "OptionalAlpha",
+    "OptionalN",
+    "OptionalW",
     "Paper",
     "Quiet",
+    "Spacing",
     "SupportOpt",
+    "TabDepth",
     "Thickness",
     "Thickness2",
     "Vertices",
     "W",
     "YoungsModulus",
+    "option",
 ]
 
 Opt = typer.Option
@@ -50,126 +72,96 @@ def complete_materials(incomplete: str) -> list[str]:
 
 def complete_models(incomplete: str) -> list[str]:
     """Shell completion of ``--model``: the moduli variants."""
-    from corrugate.names import MODEL_NAMES
-
     return [m for m in MODEL_NAMES if m.startswith(incomplete)]
 
 
 def complete_layouts(incomplete: str) -> list[str]:
     """Shell completion of ``--layout``."""
-    return [m for m in ("square", "rectangle", "circle", "polygon") if m.startswith(incomplete)]
+    return [m for m in LAYOUT_SHAPES if m.startswith(incomplete)]
 
 
 def complete_machines(incomplete: str) -> list[str]:
     """Shell completion of ``--machine``/``--cutter`` (a laser takes its bed: ``laser:WxH``)."""
-    names = ("cameo4-12x12", "cameo4-12x24", "maker-12x12", "maker-12x24", "laser:")
-    return [m for m in names if m.startswith(incomplete)]
+    return [m for m in (*MACHINE_NAMES, LASER_PREFIX) if m.startswith(incomplete)]
 
 
 def complete_supports(incomplete: str) -> list[str]:
     """Shell completion of ``--support``."""
-    return [m for m in ("free", "frame") if m.startswith(incomplete)]
+    return [m for m in SUPPORTS if m.startswith(incomplete)]
 
 
-W = Annotated[str, Opt("--W", metavar="LENGTH", help="Facet width (mm, or with units: '0.3 in').")]
-N = Annotated[str, Opt("--n", metavar="INTEGER", help="Number of creases (n + 1 facets).")]
-Alpha = Annotated[
-    str, Opt("--alpha", metavar="ANGLE", help="Interior fold angle (deg, 180 = flat).")
-]
-Material = Annotated[
-    str | None,
-    Opt(
-        metavar="MATERIAL",
-        autocompletion=complete_materials,
-        help="Library material id (see `corrugate materials`).",
-    ),
-]
-Thickness = Annotated[
-    str | None, Opt(metavar="LENGTH", help="Sheet thickness (mm); default: the material's.")
-]
-YoungsModulus = Annotated[
-    str | None,
-    Opt("--E", metavar="MODULUS", help="Inline material: Young's modulus (MPa or '2.7GPa')."),
-]
-Nu = Annotated[str | None, Opt("--nu", metavar="NUMBER", help="Inline material: Poisson's ratio.")]
-Density = Annotated[str | None, Opt(metavar="DENSITY", help="Inline material: density (g/cm^3).")]
-W2 = Annotated[
-    str | None, Opt("--W2", metavar="LENGTH", help="Layer 2 facet width (default: layer 1's).")
-]
-N2 = Annotated[
-    str | None, Opt("--n2", metavar="INTEGER", help="Layer 2 creases (default: layer 1's).")
-]
-Alpha2 = Annotated[
-    str | None, Opt("--alpha2", metavar="ANGLE", help="Layer 2 fold angle (default: layer 1's).")
-]
-Material2 = Annotated[
-    str | None,
-    Opt(
-        metavar="MATERIAL",
-        autocompletion=complete_materials,
-        help="Layer 2 library material (default: layer 1's).",
-    ),
-]
-Thickness2 = Annotated[
-    str | None, Opt(metavar="LENGTH", help="Layer 2 thickness (default: layer 1's).")
-]
-Vertices = Annotated[
-    str | None,
-    Opt(
-        metavar="POINTS",
-        help="Polygon outline, e.g. '0,0 1,0 0.5,1' (shape only; scaled to the layers).",
-    ),
-]
-Machine = Annotated[
-    str,
-    Opt(
-        "--machine",
-        "--cutter",
-        metavar="MACHINE",
-        autocompletion=complete_machines,
-        help="Machine and sheet: cameo4-12x12 | cameo4-12x24 (Silhouette Cameo 4: cut-N.dxf) | "
-        "maker-12x12 | maker-12x24 (Cricut Maker: cut-N.svg) | laser:WxH (bed in mm: cut-N.svg "
-        "and cut-N.dxf, hairlines).",
-    ),
-]
-Labels = Annotated[
-    bool | None,
-    Opt(
-        "--labels/--no-labels",
-        help="Part names in the cut files too (drawn with a pen, engraved on a laser) / no labels "
-        "anywhere. "
-        "Default: on the fold map and the PDF only.",
-        show_default=False,
-    ),
-]
-SupportOpt = Annotated[
-    str,
-    Opt(
-        "--support",
-        metavar="[free|frame]",
-        autocompletion=complete_supports,
-        help="free (sides free: a bench test, most mounts; default) | frame (held in a rigid "
-        "frame on all four edges: the paper's cos^2 rule). Matters off the crease directions.",
-    ),
-]
+#: The shell completion of the parameters that have one.
+_COMPLETION: dict[str, Callable[[str], list[str]]] = {
+    "material": complete_materials,
+    "material2": complete_materials,
+    "layout": complete_layouts,
+    "model": complete_models,
+    "support": complete_supports,
+    "cutter": complete_machines,
+}
 
+
+def option(name: str, **overrides: Any) -> Any:
+    """The typer option of the parameter ``name`` (:data:`~corrugate.core.parameters.PARAMETERS`):
+    its flags, metavar, help text and shell completion; ``overrides`` replace any of those keyword
+    arguments of :func:`typer.Option` (a command that takes only some of the choices)."""
+    p = PARAMETERS[name]
+    kwargs: dict[str, Any] = {
+        "metavar": p.metavar,
+        "autocompletion": _COMPLETION.get(name),
+        "help": p.help,
+    }
+    if p.kind == "flag":
+        kwargs["show_default"] = False  # its default (None) is "not given", said in the help
+    return Opt(*p.flags, **(kwargs | overrides))
+
+
+W = Annotated[str, option("W")]
+N = Annotated[str, option("n")]
+Alpha = Annotated[str, option("alpha")]
+#: ``validate`` takes the design from ``--design`` instead, so W, n and alpha may be left out.
+OptionalW = Annotated[str | None, option("W")]
+OptionalN = Annotated[str | None, option("n")]
+OptionalAlpha = Annotated[str | None, option("alpha")]
+Material = Annotated[str | None, option("material")]
+Thickness = Annotated[str | None, option("thickness")]
+YoungsModulus = Annotated[str | None, option("E")]
+Nu = Annotated[str | None, option("nu")]
+Density = Annotated[str | None, option("density")]
+W2 = Annotated[str | None, option("W2")]
+N2 = Annotated[str | None, option("n2")]
+Alpha2 = Annotated[str | None, option("alpha2")]
+Material2 = Annotated[str | None, option("material2")]
+Thickness2 = Annotated[str | None, option("thickness2")]
+Layout = Annotated[str, option("layout")]
+Vertices = Annotated[str | None, option("vertices")]
+Holes = Annotated[str | None, option("holes")]
+Model = Annotated[str, option("model")]
+SupportOpt = Annotated[str, option("support")]
+
+Machine = Annotated[str, option("cutter")]
+Labels = Annotated[bool | None, option("labels")]
+FoldStyle = Annotated[str, option("fold_style")]
+Cut = Annotated[str | None, option("cut")]
+Gap = Annotated[str | None, option("gap")]
+Spacing = Annotated[str, option("spacing")]
+Margin = Annotated[str, option("margin")]
+TabDepth = Annotated[str, option("tab_depth")]
 #: Output option of ``pattern`` and ``design``: the 1:1 tiles of the sheets for office paper.
-Paper = Annotated[
-    str,
-    Opt(
-        metavar="[mat|a4|letter]",
-        help="mat: pattern.pdf, one mat-size page per sheet; a4 | letter: also pattern-a4.pdf / "
-        "pattern-letter.pdf, the sheets at 1:1 on pages to tape together.",
-    ),
-]
-Holes = Annotated[
-    str | None,
-    Opt(
-        metavar="JSON",
-        help="Inner cut-outs as JSON, mm from the layout's centre, e.g. "
-        '\'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'.',
-    ),
-]
+Paper = Annotated[str, option("paper")]
+
+
+def _text_default(name: str) -> str:
+    """The default of the parameter ``name`` as the command line takes it (a string)."""
+    default = PARAMETERS[name].default
+    assert default is not None, name
+    return default
+
+
+#: The defaults of the length options as ``--help`` shows them (plain numbers in mm).
+DEFAULT_SPACING = _text_default("spacing")
+DEFAULT_MARGIN = _text_default("margin")
+DEFAULT_TAB_DEPTH = _text_default("tab_depth")
 
 #: ``--quiet`` of the commands that print (design, analyze, pattern, validate, pareto, tolerance).
 Quiet = Annotated[
@@ -185,23 +177,6 @@ Quiet = Annotated[
 #: Metavars shown in ``--help`` for options read as a quantity with an optional unit.
 LENGTH = "LENGTH"  # '8', '8mm', '0.3 in'
 ANGLE = "ANGLE"  # '84', '84deg', '1.47 rad'
-LAYOUTS = "[square|rectangle|circle|polygon]"
-MODEL_CHOICES = "[paper|xia|refined]"
-FOLD_STYLES = "[solid|scored|perforated]"
-
-Layout = Annotated[
-    str,
-    Opt(
-        metavar=LAYOUTS,
-        autocompletion=complete_layouts,
-        help="Outline: square | rectangle | circle | polygon.",
-    ),
-]
-Model = Annotated[
-    str,
-    Opt(
-        metavar=MODEL_CHOICES,
-        autocompletion=complete_models,
-        help="Moduli variant: paper | xia | refined (the one design.json records).",
-    ),
-]
+LAYOUTS = choices_metavar(LAYOUT_SHAPES)
+MODEL_CHOICES = choices_metavar(MODEL_NAMES)
+FOLD_STYLES = choices_metavar(FOLD_STYLE_NAMES)

@@ -9,7 +9,15 @@ import typer
 
 from corrugate.cli import options as o
 from corrugate.cli.console import make_console
-from corrugate.names import DEFAULT_MODEL
+from corrugate.core.parameters import PARAMETERS
+from corrugate.names import (
+    DEFAULT_FOLD_STYLE,
+    DEFAULT_LAYOUT,
+    DEFAULT_MACHINE,
+    DEFAULT_MODEL,
+    DEFAULT_PAPER,
+    DEFAULT_SUPPORT,
+)
 
 __all__ = ["COMMANDS", "pattern_cmd"]
 
@@ -33,26 +41,20 @@ def pattern_cmd(
     alpha2: o.Alpha2 = None,
     material2: o.Material2 = None,
     thickness2: o.Thickness2 = None,
-    layout: o.Layout = "square",
+    layout: o.Layout = DEFAULT_LAYOUT,
     vertices: o.Vertices = None,
     holes: o.Holes = None,
     model: o.Model = DEFAULT_MODEL,
-    support: o.SupportOpt = "free",
-    cutter: o.Machine = "cameo4-12x12",
+    support: o.SupportOpt = DEFAULT_SUPPORT,
+    cutter: o.Machine = DEFAULT_MACHINE,
     labels: o.Labels = None,
-    fold_style: Annotated[
-        str, Opt(metavar=o.FOLD_STYLES, help="Fold lines: solid | scored | perforated.")
-    ] = "solid",
-    cut: Annotated[str | None, Opt(metavar=o.LENGTH, help="Perforation: cut length (mm).")] = None,
-    gap: Annotated[str | None, Opt(metavar=o.LENGTH, help="Perforation: gap length (mm).")] = None,
-    spacing: Annotated[
-        str, Opt(metavar=o.LENGTH, help="Space between parts on the sheet (mm).")
-    ] = "5",
-    margin: Annotated[str, Opt(metavar=o.LENGTH, help="Margin to the sheet's edge (mm).")] = "5",
-    tab_depth: Annotated[
-        str, Opt(metavar=o.LENGTH, help="Depth of the connector's glue tabs (mm).")
-    ] = "4",
-    paper: o.Paper = "mat",
+    fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
+    cut: o.Cut = None,
+    gap: o.Gap = None,
+    spacing: o.Spacing = o.DEFAULT_SPACING,
+    margin: o.Margin = o.DEFAULT_MARGIN,
+    tab_depth: o.TabDepth = o.DEFAULT_TAB_DEPTH,
+    paper: o.Paper = DEFAULT_PAPER,
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
     quiet: o.Quiet = False,
 ) -> None:
@@ -68,7 +70,11 @@ def pattern_cmd(
     get_model(model)
     opts = output_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, labels, paper)
     result = analyze(
-        assembly, model, (0.0, 90.0), opts.fabrication, check_support(support, "--support")
+        assembly,
+        model,
+        (0.0, 90.0),
+        opts.fabrication,
+        check_support(support, PARAMETERS["support"].flag),
     )
     paths = write_design_files(result, out, opts)
     if as_json:

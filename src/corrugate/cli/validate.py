@@ -25,6 +25,8 @@ import typer
 from corrugate.cli import options as o
 from corrugate.cli.console import make_console
 from corrugate.core.errors import InputError
+from corrugate.core.parameters import PARAMETERS, choices_metavar
+from corrugate.names import DEFAULT_LAYOUT, DEFAULT_SUPPORT, RECTANGULAR_LAYOUTS
 from corrugate.names import MODEL_NAMES as MODELS
 
 if TYPE_CHECKING:
@@ -46,7 +48,7 @@ def _label(a: Assembly) -> str:
         return f"W={x.W:g} n={x.n} alpha={x.alpha_deg:g} t={x.t:g}"
 
     text = one(a.layer1) if a.layer1 == a.layer2 else f"{one(a.layer1)} / {one(a.layer2)}"
-    return text if a.layout.name == "square" else f"{text} {a.layout.name}"
+    return text if a.layout.name == DEFAULT_LAYOUT else f"{text} {a.layout.name}"
 
 
 def _print_result(r: CaseResult, console: Console) -> None:
@@ -158,13 +160,9 @@ def _model_cells(r: CaseResult, key: str) -> list[str]:
 
 
 def validate_cmd(
-    W: Annotated[str | None, Opt("--W", metavar=o.LENGTH, help="Facet width (mm).")] = None,
-    n: Annotated[
-        str | None, Opt("--n", metavar="INTEGER", help="Number of creases (n + 1 facets).")
-    ] = None,
-    alpha: Annotated[
-        str | None, Opt("--alpha", metavar=o.ANGLE, help="Interior fold angle (deg).")
-    ] = None,
+    W: o.OptionalW = None,
+    n: o.OptionalN = None,
+    alpha: o.OptionalAlpha = None,
     material: o.Material = None,
     thickness: o.Thickness = None,
     E: o.YoungsModulus = None,
@@ -177,11 +175,13 @@ def validate_cmd(
     thickness2: o.Thickness2 = None,
     layout: Annotated[
         str,
-        Opt(
-            metavar="[square|rectangle]",
-            help="square | rectangle (the FE tests need straight loaded edges).",
+        o.option(
+            "layout",
+            metavar=choices_metavar(RECTANGULAR_LAYOUTS),
+            help=" | ".join(RECTANGULAR_LAYOUTS) + " (the FE tests need straight loaded edges).",
+            autocompletion=None,
         ),
-    ] = "square",
+    ] = DEFAULT_LAYOUT,
     design: Annotated[
         Path | None,
         Opt(help="A design.json (or its folder) from `corrugate design/pattern --out`."),
@@ -194,7 +194,7 @@ def validate_cmd(
             "a square coupon cut along eta (square layout only).",
         ),
     ] = None,
-    support: o.SupportOpt = "free",
+    support: o.SupportOpt = DEFAULT_SUPPORT,
     mesh: Annotated[int, Opt(help="Shell elements across each facet (even).")] = 4,
     cell_mesh: Annotated[
         str,
@@ -311,7 +311,7 @@ def validate_cmd(
         connectors=connectors,
         buckling=buckling,
         bond=bond_,
-        support=check_support(support, "--support"),
+        support=check_support(support, PARAMETERS["support"].flag),
     )
     result = run_case(case, _progress_lines(quiet or (as_json and not sys.stderr.isatty())))
     if as_json:
@@ -379,7 +379,7 @@ def _assembly(design: Path | None, options: Mapping[str, object]) -> Assembly:
     from corrugate.export.record import read_record
     from corrugate.spec.inputs import assembly_from_namespace
 
-    layer = {"--W": options.get("W"), "--n": options.get("n"), "--alpha": options.get("alpha")}
+    layer = {PARAMETERS[k].flag: options.get(k) for k in ("W", "n", "alpha")}
     if design is not None:
         given = [name for name, value in layer.items() if value is not None]
         if given:

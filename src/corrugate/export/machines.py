@@ -38,6 +38,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 from corrugate.fabrication.sheets import Cutter, get_cutter
+from corrugate.names import DEFAULT_MACHINE, LASER_PREFIX, CutFormat
 
 __all__ = [
     "DEFAULT_MACHINE",
@@ -51,8 +52,6 @@ __all__ = [
 
 #: A laser driver's hairline: 0.001 in (mm).
 HAIRLINE_MM = 0.0254
-#: The default machine: the paper's cutter, a Silhouette Cameo 4 on its 12 x 12 in mat.
-DEFAULT_MACHINE = "cameo4-12x12"
 
 
 class Family(StrEnum):
@@ -90,7 +89,7 @@ class Machine:
 
     cutter: Cutter
     family: Family
-    formats: tuple[str, ...]
+    formats: tuple[CutFormat, ...]
     stroke_mm: float
 
     @property
@@ -113,7 +112,7 @@ def get_machine(name: str | Cutter | Machine = DEFAULT_MACHINE) -> Machine:
     if isinstance(name, Machine):
         return name
     cutter = get_cutter(name)
-    if cutter.name.startswith("laser:"):
+    if cutter.name.startswith(LASER_PREFIX):
         return Machine(cutter, Family.LASER, ("svg", "dxf"), HAIRLINE_MM)
     if cutter.name.startswith("maker"):
         return Machine(cutter, Family.CRICUT, ("svg",), 0.25)

@@ -47,6 +47,7 @@ from corrugate.fabrication.linestyle import (
 )
 from corrugate.fabrication.model import Point, Role
 from corrugate.fabrication.sheets import Sheet, SheetPlan, place
+from corrugate.names import PAPER_NAMES
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -270,7 +271,7 @@ PAPERS: dict[str, Paper] = {
     "letter": Paper("letter", 8.5 * 25.4, 11.0 * 25.4),
 }
 #: Values of the ``paper`` option: ``mat`` (the mat-size pages only) or a :data:`PAPERS` name.
-PAPER_CHOICES: tuple[str, ...] = ("mat", *PAPERS)
+PAPER_CHOICES: tuple[str, ...] = PAPER_NAMES
 #: Blank margin (mm) at the left, right and top of a tile page, outside most printers' dead zone.
 PAGE_MARGIN_MM = 10.0
 #: Height (mm) of the strip at the bottom of a tile page: its 10 mm check square and its position.

@@ -9,7 +9,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from corrugate.export.machines import DEFAULT_MACHINE
 from corrugate.export.pdf import check_paper
 from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.linestyle import SOLID, LineStyle, check_style
@@ -17,6 +16,7 @@ from corrugate.fabrication.model import Pattern
 from corrugate.fabrication.sheets import SheetPlan, plan_sheets
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION, FabricationOptions
 from corrugate.geometry.layer import Assembly
+from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_PAPER, DEFAULT_SPACING_MM
 
 __all__ = ["CutPlan", "Drawings", "OutputOptions", "cut_plan"]
 
@@ -33,11 +33,11 @@ class OutputOptions:
 
     cutter: str = DEFAULT_MACHINE
     style: LineStyle = SOLID
-    spacing: float = 5.0
-    margin: float = 5.0
+    spacing: float = DEFAULT_SPACING_MM
+    margin: float = DEFAULT_MARGIN_MM
     fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
     labels: bool | None = None
-    paper: str = "mat"
+    paper: str = DEFAULT_PAPER
 
 
 @dataclass(slots=True)

@@ -24,6 +24,7 @@ from typing import TYPE_CHECKING, Any
 from corrugate.core.errors import InputError
 from corrugate.core.fileio import Staging, write_set
 from corrugate.geometry.holes import Hole
+from corrugate.names import RECTANGULAR_LAYOUTS
 
 if TYPE_CHECKING:
     from corrugate.geometry.layer import Assembly
@@ -80,7 +81,7 @@ class DesignRecord:
         from corrugate.geometry.layouts import Rectangle, Square
         from corrugate.materials.library import get_material, library
 
-        if self.shape not in ("square", "rectangle"):
+        if self.shape not in RECTANGULAR_LAYOUTS:
             raise InputError(
                 "layout.shape",
                 repr(self.shape),

@@ -43,6 +43,7 @@ from dataclasses import dataclass, field
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.fabrication.model import Line, Part, Pattern, Point
+from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM, LASER
 
 __all__ = [
     "CHECK_BOX",
@@ -89,26 +90,29 @@ _MAKER_SOURCE = "Cricut help centre: maximum cut size on the mat"
 
 #: The named cutters; ``laser:WxH`` (mm) is accepted besides these.
 CUTTERS: dict[str, Cutter] = {
-    "cameo4-12x12": Cutter(
-        "cameo4-12x12",
-        11.5 * INCH,
-        11.5 * INCH,
-        "Silhouette Cameo 4, 12 x 12 in mat",
-        _CAMEO_SOURCE,
-    ),
-    "cameo4-12x24": Cutter(
-        "cameo4-12x24",
-        11.5 * INCH,
-        23.5 * INCH,
-        "Silhouette Cameo 4, 12 x 24 in mat",
-        _CAMEO_SOURCE,
-    ),
-    "maker-12x12": Cutter(
-        "maker-12x12", 11.5 * INCH, 11.5 * INCH, "Cricut Maker, 12 x 12 in mat", _MAKER_SOURCE
-    ),
-    "maker-12x24": Cutter(
-        "maker-12x24", 11.5 * INCH, 23.5 * INCH, "Cricut Maker, 12 x 24 in mat", _MAKER_SOURCE
-    ),
+    c.name: c
+    for c in (
+        Cutter(
+            "cameo4-12x12",
+            11.5 * INCH,
+            11.5 * INCH,
+            "Silhouette Cameo 4, 12 x 12 in mat",
+            _CAMEO_SOURCE,
+        ),
+        Cutter(
+            "cameo4-12x24",
+            11.5 * INCH,
+            23.5 * INCH,
+            "Silhouette Cameo 4, 12 x 24 in mat",
+            _CAMEO_SOURCE,
+        ),
+        Cutter(
+            "maker-12x12", 11.5 * INCH, 11.5 * INCH, "Cricut Maker, 12 x 12 in mat", _MAKER_SOURCE
+        ),
+        Cutter(
+            "maker-12x24", 11.5 * INCH, 23.5 * INCH, "Cricut Maker, 12 x 24 in mat", _MAKER_SOURCE
+        ),
+    )
 }
 
 _LASER = re.compile(r"^laser:\s*([0-9]*\.?[0-9]+)\s*[x×]\s*([0-9]*\.?[0-9]+)\s*(mm)?$")
@@ -140,7 +144,7 @@ def get_cutter(name: str | Cutter) -> Cutter:
         return Cutter(
             f"laser:{w:g}x{h:g}", w, h, f"laser bed {w:g} x {h:g} mm", "given by the user"
         )
-    raise UnknownNameError("cutter", name, [*CUTTERS, "laser:WxH"])
+    raise UnknownNameError("cutter", name, [*CUTTERS, LASER])
 
 
 @dataclass(frozen=True, slots=True)
@@ -203,8 +207,8 @@ class SheetPlan:
 
     cutter: Cutter
     sheets: tuple[Sheet, ...]
-    spacing: float = 5.0
-    margin: float = 5.0
+    spacing: float = DEFAULT_SPACING_MM
+    margin: float = DEFAULT_MARGIN_MM
 
     @property
     def placements(self) -> tuple[Placement, ...]:
@@ -311,10 +315,10 @@ def _try_place(
 
 def plan_sheets(
     parts: Pattern | Iterable[Part],
-    cutter: str | Cutter = "cameo4-12x12",
+    cutter: str | Cutter = DEFAULT_MACHINE,
     *,
-    spacing: float = 5.0,
-    margin: float = 5.0,
+    spacing: float = DEFAULT_SPACING_MM,
+    margin: float = DEFAULT_MARGIN_MM,
     reserve: tuple[float, float] | None = CHECK_BOX,
 ) -> SheetPlan:
     """Arrange ``parts`` on as many sheets of ``cutter`` as needed (deterministic).

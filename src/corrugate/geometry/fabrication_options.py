@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from corrugate.core.errors import InputError
+from corrugate.names import DEFAULT_TAB_DEPTH_MM
 
 __all__ = ["DEFAULT_FABRICATION", "FabricationOptions"]
 
@@ -20,7 +21,7 @@ class FabricationOptions:
     arcs no longer than this, so that it fits the cutter's mat).
     """
 
-    tab_depth: float = 4.0
+    tab_depth: float = DEFAULT_TAB_DEPTH_MM
     tab_length: float = 12.0
     overlap: float = 8.0
     segment_max: float = 200.0

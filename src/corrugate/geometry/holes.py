@@ -48,6 +48,7 @@ from numpy.typing import ArrayLike, NDArray
 from corrugate.core.errors import InputError
 from corrugate.geometry.planar import crosses_itself
 from corrugate.geometry.planar import signed_area as _signed_area
+from corrugate.names import DEFAULT_HOLE_SHAPE, HOLE_SHAPES, HoleShape
 
 __all__ = [
     "HOLE_SEGMENTS",
@@ -79,7 +80,7 @@ class Hole:
     relative to ``center``, simple, at least 3). ``center`` (mm) places either.
     """
 
-    shape: Literal["circle", "polygon"]
+    shape: HoleShape
     center: tuple[float, float] = (0.0, 0.0)
     diameter: float = 0.0
     vertices: tuple[tuple[float, float], ...] = ()
@@ -375,8 +376,8 @@ def holes_from_data(data: object, field: str = "holes") -> tuple[Hole, ...]:
                 "one of center, diameter, shape, vertices",
                 reason="is not a known key",
             )
-        shape = item.get("shape", "circle")
-        if shape not in ("circle", "polygon"):
+        shape = item.get("shape", DEFAULT_HOLE_SHAPE)
+        if shape not in HOLE_SHAPES:
             raise InputError(
                 f"{where}.shape", repr(shape), "'circle' or 'polygon'", reason="is unknown"
             )

@@ -47,6 +47,7 @@ from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.geometry.holes import Hole, touched_sums
 from corrugate.geometry.planar import crosses_itself
 from corrugate.geometry.planar import signed_area as _signed_area
+from corrugate.names import LAYOUT_SHAPES
 
 __all__ = [
     "LAYOUTS",
@@ -362,7 +363,8 @@ def _with_holes(out: dict[str, object], holes: tuple[Hole, ...]) -> dict[str, ob
     return out
 
 
-LAYOUTS = ("square", "rectangle", "circle", "polygon")
+#: The outlines :func:`make_layout` builds, by name.
+LAYOUTS = LAYOUT_SHAPES
 
 
 def make_layout(shape: str, vertices: object = None, holes: tuple[Hole, ...] = ()) -> Layout:

@@ -52,6 +52,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.core.errors import UnknownNameError
+from corrugate.names import DEFAULT_SUPPORT, SUPPORTS, Support
 
 __all__ = [
     "SUPPORTS",
@@ -64,10 +65,6 @@ __all__ = [
     "shear_springs",
     "strip_fraction",
 ]
-
-Support = Literal["free", "frame"]
-#: The support conditions a stiffness can be asked for under.
-SUPPORTS: tuple[Support, ...] = ("free", "frame")
 
 FloatArray = NDArray[np.float64]
 
@@ -195,7 +192,7 @@ def assembly_directional(
     kind: Literal["K", "D"],
     springs: tuple[Any, Any],
     eta_deg: float,
-    support: Support = "free",
+    support: Support = DEFAULT_SUPPORT,
     coupon: Coupon | None = None,
 ) -> Any:
     """K(eta) (N/mm) or D(eta) (N mm) of the two-layer assembly at one direction eta (deg from

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.plotting import new_figure
+from corrugate.names import SUPPORTS
 from corrugate.solver.problem import Candidate, Problem, describe
 from corrugate.solver.quantities import Tables, point_values
 
@@ -194,8 +195,7 @@ def polar_figure(a: Analysis) -> Any:
 
     etas = np.linspace(0.0, 360.0, 145)
     curves = {
-        sup: analyze(a.assembly, a.model, list(etas), support=sup).stiffness
-        for sup in ("free", "frame")
+        sup: analyze(a.assembly, a.model, list(etas), support=sup).stiffness for sup in SUPPORTS
     }
     fig = new_figure((8, 4), dpi=100)
     axes = fig.subplots(1, 2, subplot_kw={"projection": "polar"})

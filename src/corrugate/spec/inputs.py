@@ -22,8 +22,9 @@ from corrugate.geometry.holes import Hole, holes_from_data
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.geometry.layouts import make_layout
 from corrugate.materials.library import Material, get_material, inline_material
-from corrugate.mechanics.moduli import DEFAULT_MODEL, get_model
-from corrugate.mechanics.offaxis import Support, check_support
+from corrugate.mechanics.moduli import get_model
+from corrugate.mechanics.offaxis import check_support
+from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT, Support
 
 __all__ = [
     "ASSEMBLY_OPTIONS",
@@ -195,7 +196,7 @@ def assembly_from_options(
     alpha2: object = None,
     material2: str | None = None,
     thickness2: object = None,
-    layout: str = "square",
+    layout: str = DEFAULT_LAYOUT,
     vertices: object = None,
     holes: object = None,
 ) -> Assembly:
@@ -263,7 +264,7 @@ class AnalysisRequest:
     assembly: Assembly
     model: str
     eta_deg: tuple[float, ...]
-    support: Support = "free"
+    support: Support = DEFAULT_SUPPORT
 
     def run(self) -> Analysis:
         """Analyse it (:func:`corrugate.analysis.evaluate.analyze`)."""
@@ -274,7 +275,7 @@ def analysis_request(
     *,
     model: str = DEFAULT_MODEL,
     eta: Sequence[object] | None = None,
-    support: str = "free",
+    support: str = DEFAULT_SUPPORT,
     **options: object,
 ) -> AnalysisRequest:
     """Validate the options of ``corrugate analyze`` (as keywords, see

@@ -20,6 +20,7 @@ from typing import Any
 
 from pydantic import BaseModel
 
+from corrugate.core.parameters import PARAMETERS
 from corrugate.spec.schema import Spec
 
 __all__ = ["KEYS", "KeyDoc", "json_schema", "reference_markdown", "spec_keys"]
@@ -43,11 +44,7 @@ _STIFF = {
 #: Every key of a spec by TOML path (``[]`` marks the items of an array of tables).
 KEYS: dict[str, KeyDoc] = {
     "name": KeyDoc("", "Name of the design; names the files and the report."),
-    "model": KeyDoc(
-        "",
-        "Moduli variant: 'refined' (default, this project's), 'xia' (Xia et al. 2012) or "
-        "'paper' (Liu, Yan and Mehta, with its known errors; for reproducing Table 1).",
-    ),
+    "model": KeyDoc("", PARAMETERS["model"].help),
     "support": KeyDoc(
         "",
         "Support condition of every stiffness bound unless it says otherwise: 'free' (default; "
@@ -64,7 +61,7 @@ KEYS: dict[str, KeyDoc] = {
         "", "Candidate materials ([[materials]] tables): the designer picks the lightest."
     ),
     "layout": KeyDoc("", "The plan outline of the panel (a table)."),
-    "layout.shape": KeyDoc("", "'square' (default), 'rectangle', 'circle' or 'polygon'."),
+    "layout.shape": KeyDoc("", PARAMETERS["layout"].help),
     "layout.vertices": KeyDoc(
         "", "Polygon outline: [[x, y], ...], scaled to the folded extents (polygon only)."
     ),
@@ -149,9 +146,11 @@ for _m in ("material", "materials[]"):
             "One thickness, a list of candidates, 'all' (every thickness sold) or nothing "
             "(the material's default).",
         ),
-        f"{_m}.E": KeyDoc("MPa", "Young's modulus of an inline material."),
-        f"{_m}.nu": KeyDoc("", "Poisson's ratio of an inline material (-1 < nu < 0.5)."),
-        f"{_m}.density": KeyDoc("g/cm^3", "Density of an inline material."),
+        # the same parameters as the command line's inline material (--E, --nu, --density)
+        **{
+            f"{_m}.{k}": KeyDoc(PARAMETERS[k].unit, PARAMETERS[k].help)
+            for k in ("E", "nu", "density")
+        },
     }
 
 

@@ -58,6 +58,17 @@ from corrugate.core.limits import (
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
 from corrugate.materials.library import G_PER_CM3
+from corrugate.names import (
+    DEFAULT_HOLE_SHAPE,
+    DEFAULT_LAYOUT,
+    DEFAULT_MODEL,
+    DEFAULT_SUPPORT,
+    HoleShape,
+    LayoutShape,
+    ModelName,
+    StiffnessName,
+    Support,
+)
 
 __all__ = [
     "STIFFNESS_KINDS",
@@ -80,7 +91,7 @@ __all__ = [
 ]
 
 #: Stiffness quantities a spec may bound or maximise, with their internal unit.
-STIFFNESS_KINDS: dict[str, str] = {
+STIFFNESS_KINDS: dict[StiffnessName, str] = {
     "flexural_rigidity": "N*mm^2",  # EI(eta)
     "bending_stiffness": "N*mm",  # D(eta)
     "inplane_stiffness": "N/mm",  # K(eta)
@@ -308,7 +319,7 @@ class HoleSpec(_Strict):
     ``vertices`` (relative to ``center``), placed at ``center``; lengths in mm from the centre of
     the layout's bounding box, x across layer 1's creases, y along them."""
 
-    shape: Literal["circle", "polygon"] = "circle"
+    shape: HoleShape = DEFAULT_HOLE_SHAPE
     diameter: Length | None = None
     center: tuple[Coordinate, Coordinate] = (0.0, 0.0)
     vertices: list[tuple[Coordinate, Coordinate]] | None = None
@@ -321,7 +332,7 @@ class LayoutSpec(_Strict):
     ``diameter.min`` or ``side_x.min`` and ``side_y.min``): every hole must fit the smallest
     panel allowed, hence every larger one (not supported for polygon outlines)."""
 
-    shape: Literal["square", "rectangle", "circle", "polygon"] = "square"
+    shape: LayoutShape = DEFAULT_LAYOUT
     vertices: list[tuple[float, float]] | None = None
     holes: list[HoleSpec] = []
 
@@ -403,11 +414,8 @@ def _check_holes(spec: Spec) -> None:
         raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
 
 
-def _stiffness_validator(kind: str) -> Callable[[Any], float]:
+def _stiffness_validator(kind: StiffnessName) -> Callable[[Any], float]:
     return _quantity(STIFFNESS_KINDS[kind], lo=0.0, hi=LIMITS["stiffness"].hi, hi_open=False)
-
-
-Support = Literal["free", "frame"]
 
 
 class StiffnessSpec(_Strict):
@@ -472,7 +480,7 @@ class ObjectiveSpec(_Strict):
     kind>`` at ``eta`` (then a ``constraints.mass`` budget is usually wanted)."""
 
     minimize: Literal["mass"] | None = None
-    maximize: Literal["flexural_rigidity", "bending_stiffness", "inplane_stiffness"] | None = None
+    maximize: StiffnessName | None = None
     eta: Direction = 0.0
     support: Support | None = None
 
@@ -523,8 +531,8 @@ class Spec(_Strict):
     """A validated design spec; every quantity in internal units (mm, deg, g, N)."""
 
     name: str = "design"
-    model: Literal["paper", "xia", "refined"] = "refined"
-    support: Support = "free"
+    model: ModelName = DEFAULT_MODEL
+    support: Support = DEFAULT_SUPPORT
     layers: Literal["identical", "independent"] = "identical"
     material: MaterialSpec | None = None
     materials: list[MaterialSpec] | None = None

@@ -11,7 +11,8 @@ from typing import Annotated, Any
 
 from pydantic import BaseModel, ConfigDict, Field, StrictFloat, StrictInt, StringConstraints
 
-from corrugate.mechanics.moduli import DEFAULT_MODEL
+from corrugate.core.parameters import PARAMETERS
+from corrugate.names import DEFAULT_HOLE_SHAPE, DEFAULT_MACHINE, HOLE_SHAPES
 
 __all__ = [
     "OUTPUT_OPTIONS",
@@ -44,13 +45,23 @@ Pair = tuple[
 MAX_HOLES = 16
 
 
+def parameter(name: str) -> Any:
+    """The pydantic field of the parameter ``name`` (:data:`~corrugate.core.parameters.PARAMETERS`):
+    its default (required when the command line requires it) and its help text as the
+    description."""
+    p = PARAMETERS[name]
+    if p.required:
+        return Field(description=p.help)
+    return Field(p.default, description=p.help)
+
+
 class HoleBody(BaseModel):
     """An inner cut-out of the layout (:mod:`corrugate.geometry.holes`): lengths in mm (or with units) from
     the centre of the layout's bounding box, x across layer 1's creases."""
 
     model_config = ConfigDict(extra="forbid")
 
-    shape: Text = Field("circle", description="circle | polygon.")
+    shape: Text = Field(DEFAULT_HOLE_SHAPE, description=" | ".join(HOLE_SHAPES) + ".")
     diameter: Value | None = Field(None, description="Circle: diameter (mm or '6 mm').")
     center: Annotated[list[Value], Field(min_length=2, max_length=2)] | None = Field(
         None, description="Centre [x, y] (mm) from the layout's centre; default [0, 0]."
@@ -83,37 +94,31 @@ class AnalyzeBody(BaseModel):
         },
     )
 
-    W: Value = Field(description="Facet width (mm, or with units: '0.3 in').")
-    n: Value = Field(description="Number of creases (n + 1 facets).")
-    alpha: Value = Field(description="Interior fold angle (deg, 180 = flat; or '1.4 rad').")
-    material: Text | None = Field(None, description="Library material id (GET /api/materials).")
-    thickness: Value | None = Field(None, description="Sheet thickness (mm); default: material's.")
-    E: Value | None = Field(None, description="Inline material: Young's modulus (MPa or '2.7GPa').")
-    nu: Value | None = Field(None, description="Inline material: Poisson's ratio.")
-    density: Value | None = Field(None, description="Inline material: density (g/cm^3).")
-    W2: Value | None = Field(None, description="Layer 2 facet width (default: layer 1's).")
-    n2: Value | None = Field(None, description="Layer 2 creases (default: layer 1's).")
-    alpha2: Value | None = Field(None, description="Layer 2 fold angle (default: layer 1's).")
-    material2: Text | None = Field(None, description="Layer 2 library material.")
-    thickness2: Value | None = Field(None, description="Layer 2 thickness (default: layer 1's).")
-    layout: Text = Field("square", description="square | rectangle | circle | polygon.")
+    W: Value = parameter("W")
+    n: Value = parameter("n")
+    alpha: Value = parameter("alpha")
+    material: Text | None = parameter("material")
+    thickness: Value | None = parameter("thickness")
+    E: Value | None = parameter("E")
+    nu: Value | None = parameter("nu")
+    density: Value | None = parameter("density")
+    W2: Value | None = parameter("W2")
+    n2: Value | None = parameter("n2")
+    alpha2: Value | None = parameter("alpha2")
+    material2: Text | None = parameter("material2")
+    thickness2: Value | None = parameter("thickness2")
+    layout: Text = parameter("layout")
     vertices: (
         Annotated[str, StringConstraints(max_length=8 * MAX_VERTICES)]
         | Annotated[list[Pair], Field(max_length=MAX_VERTICES)]
         | None
-    ) = Field(None, description="Polygon outline: '0,0 1,0 0.5,1' or [[0,0],[1,0],[0.5,1]].")
-    holes: Annotated[list[HoleBody], Field(max_length=MAX_HOLES)] | None = Field(
-        None,
-        description="Inner cut-outs, e.g. [{shape: 'circle', diameter: '6 mm', center: [0, 0]}].",
-    )
-    model: Text = Field(DEFAULT_MODEL, description="Moduli variant: paper | xia | refined.")
+    ) = parameter("vertices")
+    holes: Annotated[list[HoleBody], Field(max_length=MAX_HOLES)] | None = parameter("holes")
+    model: Text = parameter("model")
     eta: Annotated[list[Value], Field(max_length=MAX_ETAS)] | None = Field(
         None, description="Directions (deg from layer 1's creases). Default [0, 90]."
     )
-    support: Text = Field(
-        "free",
-        description="free (sides free, default) | frame (held in a rigid frame: the cos^2 rule).",
-    )
+    support: Text = parameter("support")
 
 
 #: The keys of a design request that are output options, not spec keys.
@@ -139,7 +144,7 @@ BLIMP_GRIPPER: dict[str, Any] = {
         "flexural_rigidity": [{"min": "80 mN*m^2", "eta": "0 deg"}],
     },
     "objective": {"minimize": "mass"},
-    "cutter": "cameo4-12x12",
+    "cutter": DEFAULT_MACHINE,
 }
 
 
@@ -147,18 +152,11 @@ class OutputBody(BaseModel):
     """The output options of ``corrugate design`` and ``corrugate pattern`` (the keys of
     :data:`OUTPUT_OPTIONS`)."""
 
-    cutter: Text = Field(
-        "cameo4-12x12",
-        description="cameo4-12x12 | cameo4-12x24 | maker-12x12 | maker-12x24 | laser:WxH (mm).",
-    )
-    fold_style: Text = Field("solid", description="Fold lines: solid | scored | perforated.")
-    cut: Value | None = Field(None, description="Perforation: cut length (mm).")
-    gap: Value | None = Field(None, description="Perforation: gap length (mm).")
-    paper: Text = Field(
-        "mat",
-        description="mat: pattern.pdf only (one mat-size page per sheet); a4 | letter: also "
-        "pattern-a4.pdf / pattern-letter.pdf, the sheets at 1:1 on pages to tape together.",
-    )
+    cutter: Text = parameter("cutter")
+    fold_style: Text = parameter("fold_style")
+    cut: Value | None = parameter("cut")
+    gap: Value | None = parameter("gap")
+    paper: Text = parameter("paper")
 
 
 class PatternBody(AnalyzeBody, OutputBody):
