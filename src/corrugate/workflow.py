@@ -10,8 +10,9 @@
   ``cut-N.dxf`` / ``cut-N.svg`` (the machine's cut-ready files), ``pattern.pdf`` (and with
   ``paper`` a4 or letter its 1:1 tiles), ``layer1.fold`` / ``layer2.fold``, ``assembly.glb`` /
   ``assembly.stl``, ``ASSEMBLY.md`` + ``assembly.png``, ``report.html`` and ``design.json``
-  (:mod:`corrugate.export.record`). Every option is checked and every document built before
-  anything is written; the files are committed together as one set
+  (:mod:`corrugate.export.record`): the entries of the writers registry
+  (:mod:`corrugate.export.writers`), written through it. Every option is checked and every
+  document built before anything is written; the files are committed together as one set
   (:mod:`corrugate.core.fileio`), so a bad option, a failure or a kill leaves either the folder's
   earlier set or the new one, never a mix. The parts and their sheet plan are made once
   (:func:`corrugate.export.plan.cut_plan`); the report gets that very plan, so its sheet figures
@@ -196,14 +197,14 @@ def write_design_files(
     there); ``report`` is the text of ``report.html`` (see :mod:`corrugate.report`), or a function
     that makes it from the :class:`CutPlan` the cut files are written from, or None.
     """
+    from dataclasses import replace
+
     from corrugate.core.fileio import staged
-    from corrugate.export.files import write_files as write_sheet_files
-    from corrugate.export.files3d import write_fold, write_mesh
+    from corrugate.export.files import plan_job
     from corrugate.export.machines import get_machine
     from corrugate.export.pdf import sheet_figure
     from corrugate.export.plan import OutputOptions, cut_plan
-    from corrugate.export.record import RECORD_NAME, write_record
-    from corrugate.fabrication.instructions import instructions_png, write_instructions
+    from corrugate.export.writers import WRITERS, write_job
 
     opts = options or OutputOptions()
     a = analysis.assembly
@@ -242,29 +243,29 @@ def write_design_files(
     drawn = cut.drawings
     if opts.labels is not False:  # pattern.pdf shows the labels, as the report's sheets do
         drawn.sheets = [sheet_figure(plan, k, opts.style) for k in range(1, len(plan.sheets) + 1)]
+
+    def report_text() -> str | None:
+        # written after the assembly steps, from the figures drawn by then (Drawings)
+        return report(cut) if callable(report) else report
+
     with staged(out, kind="design") as st:  # one set: the old files or the new ones, never a mix
-        written = list(
-            write_sheet_files(
+        job = replace(
+            plan_job(
                 plan,
                 out,
                 opts.style,
                 labels=opts.labels,
                 paper=opts.paper,
-                staging=st,
                 sheet_figures=drawn.sheets or None,
-            )
+            ),
+            assembly=a,
+            pattern=pattern,
+            drawings=drawn,
+            report=report_text,
+            record=record,
         )
-        written += write_fold(a, pattern, out, st)
-        written += write_mesh(a, pattern, out, st)
-        drawn.assembly_png = instructions_png(a, pattern)
-        written += write_instructions(a, pattern, out, st, png=drawn.assembly_png)
-        # the report last, from the figures drawn above; nothing is committed before it is made
-        report_text = report(cut) if callable(report) else report
-        if report_text is not None:
-            st.path(out / "report.html").write_text(report_text, encoding="utf-8")
-            written.append(out / "report.html")
-        record["files"] = [p.name for p in written] + [RECORD_NAME]
-        written.append(write_record(record, out, st))
+        # every entry of the writers registry, in its order; nothing is committed before the last
+        written = write_job(job, WRITERS, st)
     return written
 
 

@@ -17,6 +17,7 @@ from fastapi.testclient import TestClient
 
 import corrugate.web.app as web_app
 from corrugate import Assembly, Layer, get_material
+from corrugate.export.writers import WRITERS
 from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.folded import folded_mesh
 from corrugate.web import WebSettings, create_app
@@ -86,6 +87,20 @@ def test_materials_and_models(client: TestClient) -> None:
     assert {m["name"] for m in models["models"]} == {"paper", "xia", "refined"}
 
 
+def test_formats_are_the_writers_registry(client: TestClient) -> None:
+    r = client.get("/api/formats")
+    assert r.status_code == 200 and r.headers["cache-control"] == "no-store"
+    keys = ("name", "pattern", "media_type", "extra", "description", "order")
+    assert r.json() == [{k: getattr(w, k) for k in keys} for w in WRITERS]
+    # documented in the OpenAPI document, with the fields of each entry
+    spec = client.get("/openapi.json").json()
+    answer = spec["paths"]["/api/formats"]["get"]["responses"]["200"]["content"]
+    ref = answer["application/json"]["schema"]["items"]["$ref"]
+    schema = spec["components"]["schemas"][ref.rsplit("/", 1)[-1]]
+    assert set(schema["properties"]) == set(keys)
+    assert all(schema["properties"][k].get("description") for k in keys)
+
+
 def test_mesh_is_the_folded_assembly_as_glb(client: TestClient) -> None:
     r = client.post("/api/mesh", json=CASE1)
     assert r.status_code == 200
@@ -126,7 +141,9 @@ def test_docs_work_offline(client: TestClient) -> None:
         assert asset in html
         assert client.get(asset).status_code == 200
     spec = client.get("/openapi.json").json()
-    assert {"/api/analyze", "/api/mesh", "/api/materials", "/api/models"} <= set(spec["paths"])
+    assert {"/api/analyze", "/api/mesh", "/api/materials", "/api/models", "/api/formats"} <= set(
+        spec["paths"]
+    )
     schema = spec["components"]["schemas"]["AnalyzeBody"]
     assert {"W", "n", "alpha", "material", "W2", "eta", "model"} <= set(schema["properties"])
 

@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from corrugate import Assembly, Layer, get_material
+from corrugate.export.writers import WRITERS
 from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.folded import folded_mesh
 
@@ -230,6 +231,8 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
 
     w = Watched(browser, live_server)
     page = w.page
+    requested: list[str] = []
+    page.on("request", lambda r: requested.append(urlsplit(r.url).path))
     page.goto(live_server + "/")
     page.wait_for_selector("#design-form[data-ready='true']", state="attached")
     page.click("#tab-design")
@@ -276,6 +279,26 @@ def test_design_form_files_3d_view_and_field_errors(browser: Any, live_server: s
         assert name in names
     assert {"assembly.glb", "assembly.stl"} <= set(names)
     assert "pattern-letter.pdf" in names  # the paper option reached the files
+    # The buttons in the writers registry's download order (read once, from GET /api/formats);
+    # for this one-sheet design the order the page had before the registry.
+    assert requested.count("/api/formats") == 1
+    assert names[0] == "all.zip"
+    ranks = [next(w.order for w in WRITERS if w.matches(n)) for n in names[1:]]
+    assert ranks == sorted(ranks)
+    assert names[1:] == [
+        "sheet-1.svg",
+        "cut-1.dxf",
+        "pattern.pdf",
+        "pattern-letter.pdf",
+        "layer1.fold",
+        "layer2.fold",
+        "assembly.glb",
+        "assembly.stl",
+        "report.html",
+        "ASSEMBLY.md",
+        "assembly.png",
+        "design.json",
+    ]
     # the preview shows every sheet that was written, in order
     sheets = sorted(n for n in names if n.startswith("sheet-") and n.endswith(".svg"))
     shown = page.eval_on_selector_all(

@@ -9,8 +9,11 @@ from typing import Any
 
 import pytest
 
+from corrugate import Assembly, Layer, analyze, get_material
+from corrugate.export.writers import WRITERS
 from corrugate.web.guards import BodySizeLimit
-from corrugate.web.store import ResultStore
+from corrugate.web.store import UNKNOWN_MEDIA_TYPE, ResultStore, file_response
+from corrugate.workflow import output_options, write_design_files
 
 
 class Clock:
@@ -28,34 +31,69 @@ def store(tmp_path: Path) -> ResultStore:
 
 def make(store: ResultStore, text: str = "x") -> str:
     rid, folder = store.create()
-    (folder / "a.glb").write_text(text)
-    (folder / "b.svg").write_text(text)
-    store.publish(rid, [folder / "a.glb", folder / "b.svg"])
+    (folder / "assembly.glb").write_text(text)
+    (folder / "sheet-1.svg").write_text(text)
+    store.publish(rid, [folder / "assembly.glb", folder / "sheet-1.svg"])
     return rid
 
 
 def test_publish_and_get(store: ResultStore, tmp_path: Path) -> None:
     rid = make(store, "hello")
     assert len(rid) == 32 and int(rid, 16) >= 0
-    f = store.get(rid, "a.glb")
+    f = store.get(rid, "assembly.glb")
     assert f is not None and f.path.read_text() == "hello" and f.media_type == "model/gltf-binary"
-    assert f.url == f"/api/results/{rid}/a.glb"
-    svg = store.get(rid, "b.svg")
+    assert f.url == f"/api/results/{rid}/assembly.glb"
+    svg = store.get(rid, "sheet-1.svg")
     assert svg is not None and svg.media_type == "image/svg+xml"
     assert f.path.parent.parent == store.root and store.root.parent == tmp_path
     assert (f.path.parent.stat().st_mode & 0o777) == 0o700
 
 
+def test_every_file_of_a_design_gets_its_registry_media_type(tmp_path: Path) -> None:
+    """The files ``write_design_files`` writes (a laser: SVG and DXF cut files; A4 tiles; a
+    report), published: each has the media type of the one registry entry it is a file of, and is
+    served with it; every entry has a file among them."""
+    store = ResultStore(tmp_path)
+    a = Assembly.identical(Layer(8.0, 8, 84.0, get_material("dura-lar")))
+    analysis = analyze(a, "paper", [0.0, 90.0])
+    options = output_options("laser:600x400", paper="a4")
+    files = store.make(
+        lambda folder: write_design_files(analysis, folder, options, report="<!doctype html>")
+    )
+    kinds = set()
+    for f in files:
+        (entry,) = [w for w in WRITERS if w.matches(f.name)]
+        kinds.add(entry.name)
+        assert f.media_type == entry.media_type, f.name
+        response = file_response(store, f.result_id, f.name)
+        assert response is not None and response.headers["content-type"] == entry.media_type
+    assert kinds == {w.name for w in WRITERS}
+    rid, folder = store.create()
+    (folder / "notes.txt").write_text("x")
+    (other,) = store.publish(rid, [folder / "notes.txt"])
+    assert other.media_type == UNKNOWN_MEDIA_TYPE == "application/octet-stream"
+
+
 @pytest.mark.parametrize(
     "name",
-    ["../a.glb", "./a.glb", "A.GLB", "a.glb/", "", "..", "/etc/passwd", "a.glb\x00", "c.txt"],
+    [
+        "../assembly.glb",
+        "./assembly.glb",
+        "ASSEMBLY.GLB",
+        "assembly.glb/",
+        "",
+        "..",
+        "/etc/passwd",
+        "assembly.glb\x00",
+        "c.txt",
+    ],
 )
 def test_only_published_names_are_found(store: ResultStore, name: str) -> None:
     rid = make(store)
     (store.root / rid / "c.txt").write_text("not published")
     assert store.get(rid, name) is None
-    assert store.get(f"../{rid}", "a.glb") is None
-    assert store.get(str(store.root / rid), "a.glb") is None
+    assert store.get(f"../{rid}", "assembly.glb") is None
+    assert store.get(str(store.root / rid), "assembly.glb") is None
 
 
 def test_publish_refuses_files_from_elsewhere(store: ResultStore, tmp_path: Path) -> None:
@@ -70,10 +108,10 @@ def test_eviction_by_count_and_age(store: ResultStore) -> None:
     clock = store._clock
     assert isinstance(clock, Clock)
     ids = [make(store) for _ in range(4)]
-    assert store.get(ids[0], "a.glb") is None and not (store.root / ids[0]).exists()
-    assert all(store.get(i, "a.glb") is not None for i in ids[1:])
+    assert store.get(ids[0], "assembly.glb") is None and not (store.root / ids[0]).exists()
+    assert all(store.get(i, "assembly.glb") is not None for i in ids[1:])
     clock.now = 101.0
-    assert store.get(ids[3], "a.glb") is None
+    assert store.get(ids[3], "assembly.glb") is None
     assert len(store) == 0 and list(store.root.iterdir()) == []
 
 
@@ -96,7 +134,7 @@ def test_make_publishes_what_the_writer_wrote_or_nothing(store: ResultStore) -> 
 
 def test_discard_and_close(store: ResultStore) -> None:
     rid, folder = store.create()
-    (folder / "a.glb").write_text("x")
+    (folder / "assembly.glb").write_text("x")
     store.discard(rid)
     assert not folder.exists()
     make(store)

@@ -10,26 +10,29 @@ For sheet N (numbered from 1: ``sheet-1.svg`` is ``plan.sheets[0]``):
     cut, score or draw, each operation on its own layer or colour. A Silhouette gets DXF, a Cricut
     SVG, a laser both.
 
-and ``pattern.pdf`` (every sheet at 1:1, :mod:`.pdf`). Options are checked and every document is
-built before anything is written; the files are then written to temporary names in ``out_dir`` and
+and ``pattern.pdf`` (every sheet at 1:1, :mod:`.pdf`), with ``--paper a4`` or ``letter`` also
+``pattern-a4.pdf`` / ``pattern-letter.pdf``. Each is an entry of the writers registry
+(:mod:`corrugate.export.writers`) and the functions below are their write steps;
+:func:`write_files` writes the entries of the formats asked for through it. Options are checked
+and every document is built before anything is written; the files are then written to temporary names in ``out_dir`` and
 moved into place together (:mod:`corrugate.core.fileio`), so a bad option or a failure while writing
 leaves no file behind, new or partial. Files of an earlier run with more sheets are not removed.
 """
 
 from __future__ import annotations
 
-import contextlib
 import os
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from corrugate.core.errors import UnknownNameError
-from corrugate.core.fileio import Staging, staged
+from corrugate.core.fileio import Staging
 from corrugate.export.cutfile import cut_dxf_document, cut_svg_document
 from corrugate.export.machines import Machine, get_machine
 from corrugate.export.pdf import check_paper, render_pdf, render_tiled_pdf
 from corrugate.export.svg import svg_document
+from corrugate.export.writers import WRITERS, Commit, Job, Writer, get_writer, write_job
 from corrugate.fabrication.linestyle import SOLID, LineStyle, check_style
 from corrugate.fabrication.model import Part
 from corrugate.fabrication.sheets import SheetPlan
@@ -37,10 +40,21 @@ from corrugate.fabrication.sheets import SheetPlan
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["FORMATS", "fold_order", "write_files"]
+__all__ = [
+    "FORMATS",
+    "cut_dxfs",
+    "cut_svgs",
+    "fold_maps",
+    "fold_order",
+    "pattern_pdf",
+    "pattern_tiles",
+    "plan_job",
+    "write_files",
+]
 
-#: What :func:`write_files` can write: the fold map (``svg``), the cut files (``cut``), the PDF.
-FORMATS = ("svg", "cut", "pdf")
+#: What :func:`write_files` can write: the fold map (``svg``), the cut files (``cut``), the PDF
+#: (``pdf``): the ``format`` groups of the writers registry (:mod:`corrugate.export.writers`).
+FORMATS = tuple(dict.fromkeys(w.format for w in WRITERS if w.format is not None))
 
 
 def fold_order(parts: Iterable[Part]) -> dict[str, int]:
@@ -55,6 +69,37 @@ def fold_order(parts: Iterable[Part]) -> dict[str, int]:
     return {p.name: k for k, p in enumerate(sorted(parts, key=key), start=1)}
 
 
+def plan_job(
+    plan: SheetPlan,
+    out_dir: str | os.PathLike[str],
+    style: LineStyle = SOLID,
+    *,
+    machine: str | Machine | None = None,
+    labels: bool | None = None,
+    marks: bool = True,
+    pdf_name: str | None = None,
+    paper: str = "mat",
+    sheet_figures: Sequence[Figure] | None = None,
+) -> Job:
+    """The :class:`~corrugate.export.writers.Job` of ``plan``'s files, its options checked (see
+    :func:`write_files`); raises :class:`~corrugate.core.errors.InputError` subclasses for a bad
+    paper, machine or fold-line style."""
+    tiles = check_paper(paper)
+    m = get_machine(plan.cutter if machine is None else machine)
+    check_style((p.part for p in plan.placements), style)
+    return Job(
+        out=Path(out_dir),
+        plan=plan,
+        style=style,
+        machine=m,
+        labels=labels,
+        marks=marks,
+        paper=tiles,
+        pdf_name=pdf_name,
+        sheet_figures=sheet_figures,
+    )
+
+
 def write_files(
     plan: SheetPlan,
     out_dir: str | os.PathLike[str],
@@ -64,7 +109,7 @@ def write_files(
     formats: Iterable[str] = FORMATS,
     labels: bool | None = None,
     marks: bool = True,
-    pdf_name: str = "pattern.pdf",
+    pdf_name: str | None = None,
     paper: str = "mat",
     staging: Staging | None = None,
     sheet_figures: Sequence[Figure] | None = None,
@@ -77,60 +122,134 @@ def write_files(
     ``marks=False`` leaves assembly marks out of the fold map (Origami Simulator reads them as
     undriven creases). With ``staging``, the files join that output step (committed with it)
     instead of being committed here. ``paper`` is ``mat`` (``pdf_name`` only) or ``a4``/``letter``:
-    then ``pattern-a4.pdf``/``pattern-letter.pdf`` (the tiles) is written besides ``pdf_name``.
-    ``sheet_figures``: the sheets' :func:`~corrugate.export.pdf.sheet_figure` with these
-    ``style`` and labels, built already, for ``pdf_name`` (``None``: built here). Raises :class:`~corrugate.core.errors.InputError` subclasses for
-    bad options before writing anything.
+    then ``pattern-a4.pdf``/``pattern-letter.pdf`` (the tiles) is written besides ``pdf_name``
+    (None: ``pattern.pdf``). ``sheet_figures``: the sheets' :func:`~corrugate.export.pdf.sheet_figure`
+    with these ``style`` and labels, built already, for ``pdf_name`` (``None``: built here). The
+    files are those of the writers registry's entries of ``formats``
+    (:mod:`corrugate.export.writers`). Raises :class:`~corrugate.core.errors.InputError`
+    subclasses for bad options before writing anything.
     """
     wanted = [f.strip().lower() for f in formats]
     for f in wanted:
         if f not in FORMATS:
             raise UnknownNameError("format", f, list(FORMATS))
-    tiles = check_paper(paper)
-    m = get_machine(plan.cutter if machine is None else machine)
-    check_style((p.part for p in plan.placements), style)
-    people = labels is not False
-    order = fold_order(p.part for p in plan.placements)
-    svgs = (
-        [svg_document(s, style, labels=people, marks=marks, fold_order=order) for s in plan.sheets]
-        if "svg" in wanted
+    job = plan_job(
+        plan,
+        out_dir,
+        style,
+        machine=machine,
+        labels=labels,
+        marks=marks,
+        pdf_name=pdf_name,
+        paper=paper,
+        sheet_figures=sheet_figures,
+    )
+    return tuple(write_job(job, [w for w in WRITERS if w.format in wanted], staging))
+
+
+# -- the registry's steps of a sheet plan's files (see corrugate.export.writers) ----------------
+
+
+def _commit_texts(out: Path, writer: Writer, texts: Sequence[str]) -> Commit:
+    """What writes ``texts`` (one per sheet, from sheet 1) under ``writer``'s file names."""
+
+    def commit(st: Staging, _: Sequence[Path]) -> list[Path]:
+        paths = []
+        for n, text in enumerate(texts, start=1):
+            target = out / writer.file(sheet=n)
+            st.path(target).write_text(text, encoding="utf-8")
+            paths.append(target)
+        return paths
+
+    return commit
+
+
+def fold_maps(job: Job) -> Commit:
+    """``sheet-N.svg``: the fold map of each sheet (:func:`~corrugate.export.svg.svg_document`),
+    labels with the folding order unless ``labels`` is False."""
+    order = fold_order(p.part for p in job.plan.placements)
+    people = job.labels is not False
+    texts = [
+        svg_document(s, job.style, labels=people, marks=job.marks, fold_order=order)
+        for s in job.plan.sheets
+    ]
+    return _commit_texts(job.out, get_writer("fold-map"), texts)
+
+
+def cut_svgs(job: Job) -> Commit:
+    """``cut-N.svg`` for a machine that takes SVG (:func:`~corrugate.export.cutfile.cut_svg_document`),
+    labels only when ``labels`` is True; nothing for another machine."""
+    texts = (
+        [
+            cut_svg_document(s, job.machine, job.style, labels=job.labels is True)
+            for s in job.plan.sheets
+        ]
+        if "svg" in job.machine.formats
         else []
     )
-    cut_svgs: list[str] = []
-    cut_dxfs = []
-    if "cut" in wanted:
-        on = labels is True
-        if "svg" in m.formats:
-            cut_svgs = [cut_svg_document(s, m, style, labels=on) for s in plan.sheets]
-        if "dxf" in m.formats:
-            cut_dxfs = [cut_dxf_document(s, m, style, labels=on) for s in plan.sheets]
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    with contextlib.nullcontext(staging) if staging is not None else staged() as st:
-        start = len(st.targets)
-        for n, text in enumerate(svgs, start=1):
-            st.path(out / f"sheet-{n}.svg").write_text(text, encoding="utf-8")
-        for n, text in enumerate(cut_svgs, start=1):
-            st.path(out / f"cut-{n}.svg").write_text(text, encoding="utf-8")
-        for n, doc in enumerate(cut_dxfs, start=1):
-            doc.saveas(st.path(out / f"cut-{n}.dxf"))
-        if "pdf" in wanted:
-            render_pdf(
-                plan,
-                st.path(out / pdf_name),
-                style,
-                labels=people,
-                title="corrugate pattern",
-                figures=sheet_figures,
-            )
-            if tiles != "mat":
-                render_tiled_pdf(
-                    plan,
-                    st.path(out / f"pattern-{tiles}.pdf"),
-                    tiles,
-                    style,
-                    labels=people,
-                    title=f"corrugate pattern, 1:1 on {tiles} pages",
-                )
-        written = st.targets[start:]
-    return written
+    return _commit_texts(job.out, get_writer("cut-svg"), texts)
+
+
+def cut_dxfs(job: Job) -> Commit:
+    """``cut-N.dxf`` for a machine that takes DXF (:func:`~corrugate.export.cutfile.cut_dxf_document`),
+    labels only when ``labels`` is True; nothing for another machine."""
+    docs = (
+        [
+            cut_dxf_document(s, job.machine, job.style, labels=job.labels is True)
+            for s in job.plan.sheets
+        ]
+        if "dxf" in job.machine.formats
+        else []
+    )
+    writer = get_writer("cut-dxf")
+
+    def commit(st: Staging, _: Sequence[Path]) -> list[Path]:
+        paths = []
+        for n, doc in enumerate(docs, start=1):
+            target = job.out / writer.file(sheet=n)
+            doc.saveas(st.path(target))
+            paths.append(target)
+        return paths
+
+    return commit
+
+
+def pattern_pdf(job: Job) -> Commit:
+    """``pattern.pdf`` (``pdf_name``): every sheet at 1:1, one page each
+    (:func:`~corrugate.export.pdf.render_pdf`, drawn when it is written, from ``sheet_figures``
+    when given)."""
+
+    def commit(st: Staging, _: Sequence[Path]) -> list[Path]:
+        target = job.out / (job.pdf_name or get_writer("pattern-pdf").pattern)
+        render_pdf(
+            job.plan,
+            st.path(target),
+            job.style,
+            labels=job.labels is not False,
+            title="corrugate pattern",
+            figures=job.sheet_figures,
+        )
+        return [target]
+
+    return commit
+
+
+def pattern_tiles(job: Job) -> Commit:
+    """``pattern-a4.pdf`` / ``pattern-letter.pdf`` with ``paper`` a4 or letter: the sheets at 1:1 on
+    office pages (:func:`~corrugate.export.pdf.render_tiled_pdf`); nothing with ``mat``."""
+
+    def commit(st: Staging, _: Sequence[Path]) -> list[Path]:
+        if job.paper == "mat":
+            return []
+        target = job.out / get_writer("pattern-tiles").file(paper=job.paper)
+        render_tiled_pdf(
+            job.plan,
+            st.path(target),
+            job.paper,
+            job.style,
+            labels=job.labels is not False,
+            title=f"corrugate pattern, 1:1 on {job.paper} pages",
+        )
+        return [target]
+
+    return commit

@@ -6,6 +6,9 @@ Endpoints (all JSON unless said otherwise):
 * ``GET /docs``: Swagger UI served from the package (no CDN); ``GET /openapi.json``;
 * ``GET /api/materials``: the library, as ``corrugate materials --json``;
 * ``GET /api/models``: the moduli variants and the default;
+* ``GET /api/formats``: every kind of file the app writes (the writers registry,
+  :mod:`corrugate.export.writers`): name, file-name pattern, media type, extra, description and
+  its place in the page's downloads;
 * ``POST /api/analyze``: the options of ``corrugate analyze`` -> ``Analysis.to_dict()`` (the CLI's
   ``--json`` object);
 * ``POST /api/mesh``: the same options -> the folded assembly as ``assembly.glb`` and
@@ -61,6 +64,7 @@ from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
 from corrugate.solver import Problem, Solution
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
+from corrugate.web.formats import FormatInfo, format_list
 from corrugate.web.guards import (
     BodySizeLimit,
     CatchAll,
@@ -562,6 +566,14 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
             default=DEFAULT_MODEL,
             models=[ModelInfo(name=m.name, source=m.source) for m in MODELS.values()],
         )
+
+    @app.get("/api/formats", summary="The kinds of file the app writes")
+    async def formats() -> list[FormatInfo]:
+        """Every kind of file ``corrugate design --out`` writes (the writers registry), in the
+        order they are written: its ``name``, file-name ``pattern`` (``cut-{sheet}.dxf``),
+        ``media_type``, the ``extra`` it needs, a ``description`` and its place in the page's
+        list of downloads (``order``, ascending)."""
+        return format_list()
 
     @app.post(
         "/api/analyze",

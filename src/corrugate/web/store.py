@@ -2,7 +2,8 @@
 
 Each result (one mesh, later one design with its SVG, DXF, PDF, FOLD, GLB and report) gets its own
 folder under a private temporary root, named by a fresh random UUID. Writers put files there; the
-store then *publishes* them under their plain names. A download looks the pair (id, name) up in an
+store then *publishes* them under their plain names, each with the media type of its entry in the
+writers registry (:mod:`corrugate.export.writers`). A download looks the pair (id, name) up in an
 in-memory table: an id or a name that was not published, whatever it contains (``..``, ``/``,
 an absolute path, percent escapes), is simply not found. Old results are evicted (oldest first past
 ``max_results``, and after ``ttl_s`` seconds); the root is made on first use and goes when the
@@ -23,22 +24,19 @@ from urllib.parse import quote
 
 from starlette.responses import Response
 
-__all__ = ["MEDIA_TYPES", "ZIP_NAME", "ResultStore", "StoredFile", "file_response", "zip_response"]
+from corrugate.export.writers import writer_for
 
-#: Media type of each kind of file the app makes, by suffix.
-MEDIA_TYPES: dict[str, str] = {
-    ".glb": "model/gltf-binary",
-    ".stl": "model/stl",
-    ".fold": "application/json",
-    ".json": "application/json",
-    ".svg": "image/svg+xml",
-    ".dxf": "image/vnd.dxf",
-    ".pdf": "application/pdf",
-    ".html": "text/html; charset=utf-8",
-    ".png": "image/png",
-    ".txt": "text/plain; charset=utf-8",
-    ".md": "text/markdown; charset=utf-8",
-}
+__all__ = [
+    "UNKNOWN_MEDIA_TYPE",
+    "ZIP_NAME",
+    "ResultStore",
+    "StoredFile",
+    "file_response",
+    "zip_response",
+]
+
+#: The media type of a file that is no entry of the writers registry.
+UNKNOWN_MEDIA_TYPE = "application/octet-stream"
 
 
 @dataclass(frozen=True, slots=True)
@@ -114,7 +112,8 @@ class ResultStore:
         for path in paths:
             if path.parent != folder or not path.is_file():
                 raise ValueError(f"{path} is not a file of result {result_id}")
-            media = MEDIA_TYPES.get(path.suffix.lower(), "application/octet-stream")
+            writer = writer_for(path.name)
+            media = UNKNOWN_MEDIA_TYPE if writer is None else writer.media_type
             files[path.name] = StoredFile(result_id, path.name, path, media)
         expired: list[Path] = []
         with self._lock:

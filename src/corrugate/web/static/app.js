@@ -405,8 +405,21 @@ async function submit(event) {
 
 let designGeneration = 0;
 let designViewer = null;
-// The order of the download buttons (other files follow in the server's order).
-const DOWNLOAD_ORDER = [/\.svg$/, /\.dxf$/, /\.pdf$/, /\.fold$/, /\.glb$/, /\.stl$/, /^report\.html$/];
+// The kinds of file the server writes (GET /api/formats, read once): the download buttons follow
+// their order; a file of no kind follows them, in the server's order.
+let formats = [];
+
+// A pattern's file names as a regular expression: '{sheet}' etc. stand for one or more
+// characters other than '/', the rest is literal.
+function patternRegExp(pattern) {
+  const literal = pattern.split(/\{[a-z]+\}/).map((s) => s.replace(/[.*+?^${}()|[\]\\]/g, '\\$&'));
+  return new RegExp(`^${literal.join('[^/]+')}$`);
+}
+
+const formatsLoaded = fetch('/api/formats')
+  .then((response) => (response.ok ? response.json() : []))
+  .then((list) => { formats = list.map((f) => ({ order: f.order, re: patternRegExp(f.pattern) })); })
+  .catch(() => {});
 
 function pathTokens(path) {
   const tokens = [];
@@ -707,8 +720,8 @@ function showDesign(d) {
 }
 
 function rank(name) {
-  const i = DOWNLOAD_ORDER.findIndex((re) => re.test(name));
-  return i < 0 ? DOWNLOAD_ORDER.length : i;
+  const kind = formats.find((f) => f.re.test(name));
+  return kind ? kind.order : Number.MAX_SAFE_INTEGER;
 }
 
 // The download links of a stored result (its files in a useful order, "Download all" first);
@@ -751,6 +764,7 @@ async function makeCutFiles() {
       box.dataset.state = 'error';
       return;
     }
+    await formatsLoaded;
     fileLinks(box, answer.payload);
     box.dataset.state = 'ready';
   } catch (err) {
@@ -775,6 +789,7 @@ async function showDesignFiles(result, mine) {
     box.hidden = true;
     return;
   }
+  await formatsLoaded;
   box.hidden = false;
   const files = fileLinks($('d-downloads'), result);
   const byName = Object.fromEntries(files.map((f) => [f.name, f]));
