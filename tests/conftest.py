@@ -1,10 +1,11 @@
 """Shared fixtures: where the project's reference data lives (``../shared/reference``), the CalculiX
-executable, and the command line run in-process."""
+executable, and the command line run in-process; and the check that every test needing
+CalculiX or a browser carries its marker (``fea``, ``browser``: ``make test-fast`` leaves them out)."""
 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import pytest
@@ -12,6 +13,26 @@ import pytest
 from corrugate.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
+
+#: Fixtures that need something outside Python, and the marker their tests must carry.
+MARKED_FIXTURES = {"ccx": "fea", "browser": "browser"}
+
+
+def unmarked(items: Iterable[pytest.Item]) -> list[str]:
+    """The ids of the tests that use a fixture of :data:`MARKED_FIXTURES` without its marker."""
+    return [
+        f"{item.nodeid} uses the {fixture!r} fixture without @pytest.mark.{marker}"
+        for item in items
+        for fixture, marker in MARKED_FIXTURES.items()
+        if fixture in getattr(item, "fixturenames", ()) and item.get_closest_marker(marker) is None
+    ]
+
+
+@pytest.hookimpl(tryfirst=True)  # before -m deselects: every collected test is checked
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    missing = unmarked(items)
+    if missing:
+        raise pytest.UsageError("\n".join(missing))
 
 
 def reference_dir() -> Path:

@@ -450,6 +450,7 @@ def test_options_and_web_api_take_holes() -> None:
 # -- finite elements -------------------------------------------------------------------------------
 
 
+@pytest.mark.fea
 def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole(ccx: str) -> None:
     """Square, W 8, n 8, alpha 84 deg (the case study), in-plane compression at eta = 0: the FE
     (CalculiX, staircase hole) K with a 6 mm central hole is below the FE K without it and above

@@ -203,6 +203,7 @@ def test_report_is_self_contained_and_complete(report: Path) -> None:
     assert f"buckle at {b.low:.3g}-{b.high:.3g} N" in text
 
 
+@pytest.mark.browser
 def test_report_opens_in_chromium(report: Path) -> None:
     if not CHROMIUM.exists():
         if os.environ.get("CI", "").strip().lower() in ("true", "1", "yes"):

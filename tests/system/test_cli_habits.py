@@ -235,6 +235,7 @@ FE_SMALL = ["validate", "--W", "5", "--n", "3", "--alpha", "120", "--thickness",
 FE_SMALL += ["--mesh", "2", "--cell-mesh", "10x1"]
 
 
+@pytest.mark.fea
 def test_validate_prints_a_line_per_calculix_run_on_stderr(ccx: str, cli: CliRun) -> None:
     code, out, err = cli(FE_SMALL)
     assert code == 0
