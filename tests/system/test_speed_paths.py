@@ -130,6 +130,7 @@ def test_sweep_finds_the_case_study_optimum_like_the_solver_and_a_hand_search() 
     model=st.sampled_from(["paper", "xia", "refined"]),
     eta=st.sampled_from([0.0, 30.0, 90.0]),
 )
+@pytest.mark.slow
 def test_chunked_sweep_equals_one_block(chunk: int, model: str, eta: float) -> None:
     W, n, A = np.arange(2.0, 20.0, 1.5), np.arange(3, 40, 2), np.arange(30.0, 150.0, 4.0)
     bounds = {"Lx": (20.0, None), "EI": (1e3, None)}
