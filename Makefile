@@ -5,7 +5,7 @@ BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip
 export PIP_DISABLE_PIP_VERSION_CHECK := 1
 
-.PHONY: demo test lint typecheck check system-deps clean
+.PHONY: demo test test-fast lint typecheck check system-deps clean
 
 $(BIN)/python:
 	$(PYTHON) -m venv $(VENV)
@@ -54,6 +54,13 @@ typecheck: $(VENV)/.installed-dev
 
 test: $(VENV)/.installed-dev system-deps lint typecheck
 	$(BIN)/python -m pytest -q
+
+# The edit-test loop: the same venv, no system packages, lint or type check, and only the tests
+# marked neither fea (CalculiX), browser (Chromium) nor slow: under a minute. exec: pytest runs as
+# make's child, as in `make test`, not under /bin/sh (the completion test detects the shell it runs
+# under from its parent processes, and sh has no completion).
+test-fast: $(VENV)/.installed-dev
+	exec $(BIN)/python -m pytest -q -m "not fea and not browser and not slow"
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .mypy_cache .ruff_cache .hypothesis

@@ -1,10 +1,11 @@
-"""Shared fixtures: where the project's reference data lives (``../shared/reference``), the CalculiX
-executable, and the command line run in-process."""
+"""Shared fixtures: the project's reference data (``tests/data``, inside the repository), the
+CalculiX executable, and the command line run in-process; and the check that every test needing
+CalculiX or a browser carries its marker (``fea``, ``browser``: ``make test-fast`` leaves them out)."""
 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import pytest
@@ -12,20 +13,36 @@ import pytest
 from corrugate.cli import main
 
 ROOT = Path(__file__).resolve().parents[1]
+#: The reference data the tests read, each file with its source in its header: Xia et al.'s
+#: Table 5 and the periodic unit-cell FE moduli (a link to docs/data/unitcell_fe.csv, the one copy
+#: that docs/fea.md and the benchmarks cite).
+DATA = ROOT / "tests" / "data"
+
+#: Fixtures that need something outside Python, and the marker their tests must carry.
+MARKED_FIXTURES = {"ccx": "fea", "browser": "browser"}
 
 
-def reference_dir() -> Path:
-    """``shared/reference`` beside the checkout (or ``$CORRUGATE_REFERENCE``)."""
-    env = os.environ.get("CORRUGATE_REFERENCE")
-    return Path(env) if env else ROOT.parent / "shared" / "reference"
+def unmarked(items: Iterable[pytest.Item]) -> list[str]:
+    """The ids of the tests that use a fixture of :data:`MARKED_FIXTURES` without its marker."""
+    return [
+        f"{item.nodeid} uses the {fixture!r} fixture without @pytest.mark.{marker}"
+        for item in items
+        for fixture, marker in MARKED_FIXTURES.items()
+        if fixture in getattr(item, "fixturenames", ()) and item.get_closest_marker(marker) is None
+    ]
+
+
+@pytest.hookimpl(tryfirst=True)  # before -m deselects: every collected test is checked
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    missing = unmarked(items)
+    if missing:
+        raise pytest.UsageError("\n".join(missing))
 
 
 @pytest.fixture(scope="session")
 def reference() -> Path:
-    path = reference_dir()
-    if not path.is_dir():
-        pytest.fail(f"reference data not found at {path} (set CORRUGATE_REFERENCE)")
-    return path
+    """The folder of the reference data (:data:`DATA`)."""
+    return DATA
 
 
 @pytest.fixture(scope="session")

@@ -17,6 +17,7 @@ ROOT = Path(__file__).resolve().parents[1]
 BLIMP = ROOT / "examples" / "blimp_gripper.toml"
 
 
+@pytest.mark.slow
 def test_path_text_and_dict_give_the_same_certified_answer(tmp_path: Path) -> None:
     text = BLIMP.read_text()
     answers = [

@@ -90,6 +90,7 @@ def test_json_contract_for_the_case_study(cli: CliRun) -> None:
     assert {w["code"] for w in d["warnings"]} >= {"paper-model"}
 
 
+@pytest.mark.slow
 def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
     out_dir = tmp_path / "nested" / "blimp"
     code, out, _ = cli(["design", str(BLIMP), "--json", "--out", str(out_dir)])
@@ -117,6 +118,7 @@ def test_out_dir_gets_design_json(tmp_path: Path, cli: CliRun) -> None:
     assert parts == pytest.approx(printed["mass_g"], rel=5e-3)
 
 
+@pytest.mark.slow
 def test_out_dir_takes_the_machine_and_labels(tmp_path: Path, cli: CliRun) -> None:
     out_dir = tmp_path / "maker"
     args = ["design", str(BLIMP), "--out", str(out_dir), "--machine", "maker-12x12"]
@@ -184,6 +186,7 @@ def test_infeasible_spec_exits_1_with_a_diagnosis(tmp_path: Path, cli: CliRun) -
     "name",
     ["blimp_gripper_continuous.toml", "wheel_circle.toml", "rectangle_independent.toml"],
 )
+@pytest.mark.slow
 def test_every_example_solves_certified(name: str, cli: CliRun) -> None:
     code, out, _ = cli(["design", str(EXAMPLES / name), "--json"])
     assert code == 0

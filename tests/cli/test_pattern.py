@@ -22,6 +22,7 @@ SVG = "{http://www.w3.org/2000/svg}"
 CASE1 = ["pattern", "--W", "8", "--n", "8", "--alpha", "84", "--material", "dura-lar"]
 
 
+@pytest.mark.slow
 def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
     code, _, err = cli([*CASE1, "--out", str(tmp_path)])
     assert code == 0, err
@@ -71,6 +72,7 @@ def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
     assert not (tmp_path / "cut-1.svg").exists()  # Silhouette Studio basic reads DXF
 
 
+@pytest.mark.slow
 def test_circle_and_polygon_patterns(tmp_path: Path, cli: CliRun) -> None:
     for name, extra in (
         ("circle", ["--layout", "circle"]),

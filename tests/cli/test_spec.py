@@ -10,6 +10,7 @@ import tomllib
 from pathlib import Path
 
 import jsonschema
+import pytest
 
 from corrugate.spec.examples import template_text
 from corrugate.spec.reference import reference_markdown
@@ -28,6 +29,7 @@ def corrugate(*args: str, stdin: str | None = None) -> subprocess.CompletedProce
     )
 
 
+@pytest.mark.slow
 def test_init_then_design_and_the_same_spec_from_stdin(tmp_path: Path) -> None:
     init = corrugate("init")
     assert init.returncode == 0 and init.stdout == template_text()
@@ -64,6 +66,7 @@ def test_init_example_and_list() -> None:
     assert bad.returncode == 2 and "wheel_circle" in bad.stderr
 
 
+@pytest.mark.slow
 def test_spec_prints_the_reference_and_a_schema_the_examples_satisfy() -> None:
     assert corrugate("spec").stdout == reference_markdown()
     schema = json.loads(corrugate("spec", "--schema").stdout)

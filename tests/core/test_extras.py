@@ -58,6 +58,7 @@ def test_pyproject_extras_list_the_modules_the_checks_look_for() -> None:
     ],
     ids=["design", "pattern"],
 )
+@pytest.mark.slow
 @pytest.mark.parametrize("hidden", [("matplotlib",), ("ezdxf",), ("ezdxf", "matplotlib")])
 def test_files_without_the_fab_extra_are_one_line_and_nothing_written(
     tmp_path: Path, args: tuple[str, ...], hidden: tuple[str, ...]
@@ -75,6 +76,7 @@ def test_files_without_the_fab_extra_are_one_line_and_nothing_written(
     assert list(tmp_path.iterdir()) == []  # no staging folder left either
 
 
+@pytest.mark.slow
 def test_the_core_commands_work_without_the_fab_extra() -> None:
     r = _run(("ezdxf", "matplotlib"), "design", str(EXAMPLE), "-q")
     assert r.returncode == 0, r.stderr

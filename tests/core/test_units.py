@@ -96,6 +96,7 @@ def test_table_and_pint_agree(value: str, unit: str) -> None:
     assert parse_quantity(value, unit, "x") == pytest.approx(float(expected.magnitude), rel=1e-12)
 
 
+@pytest.mark.slow
 def test_a_spec_in_common_units_does_not_import_pint_or_dask(tmp_path: Path) -> None:
     """Start-up: a whole spec in the usual units is read without pint; a rarer unit brings pint in
     (from its disk cache) but not dask."""

@@ -179,6 +179,7 @@ def test_cut_files_hold_only_the_machines_operations(
     assert len(colours) == len(OPERATIONS)  # distinct colours
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("which", ["case1", "circle"])
 @pytest.mark.parametrize(("cut", "gap"), [(2.0, 1.0), (1.3, 0.7)])
 @pytest.mark.parametrize("machine", ["cameo4-12x12", "maker-12x12", "laser:400x300"])
@@ -358,6 +359,7 @@ def test_unknown_machine_is_one_line_exit_2(tmp_path: Path, cli: CliRun) -> None
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 def test_machine_option_picks_the_files_and_labels_flag(tmp_path: Path, cli: CliRun) -> None:
     args = ["pattern", "--W", "8", "--n", "8", "--alpha", "84", "--material", "dura-lar"]
     for machine, names in (
@@ -429,6 +431,7 @@ def drawn_extent(path: Path) -> tuple[float, float, float, float]:
     return float(a[:, 0].min()), float(a[:, 1].min()), float(a[:, 0].max()), float(a[:, 1].max())
 
 
+@pytest.mark.slow
 def test_every_svg_renders_in_inkscape_at_its_drawn_extent(
     patterns: dict[str, Pattern], tmp_path: Path
 ) -> None:
@@ -499,6 +502,7 @@ def _pdf_extent(pdf: Path) -> tuple[float, float, float, float, float, float]:
     return min(xs) * mm, min(ys) * mm, max(xs) * mm, max(ys) * mm, pw * mm, ph * mm
 
 
+@pytest.mark.slow
 def test_every_dxf_renders_in_librecad_at_its_drawn_extent(
     patterns: dict[str, Pattern], tmp_path: Path
 ) -> None:

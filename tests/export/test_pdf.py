@@ -128,6 +128,7 @@ def _plan(name: str, real_plan: SheetPlan, multi_plan: SheetPlan) -> SheetPlan:
 # -- the tests ---------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "paper"), CASES)
 def test_pages_are_office_paper_one_per_tile(
     name: str,
@@ -230,6 +231,7 @@ def test_registration_marks_at_the_stated_spacing(
     assert pairs > 0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(("name", "paper"), CASES)
 def test_tiles_cover_the_drawn_sheet(
     name: str,
@@ -287,6 +289,7 @@ def test_tiles_cover_the_drawn_sheet(
     assert corners >= 4 * len(plan.placements)
 
 
+@pytest.mark.slow
 def test_pages_with_nothing_to_cut_are_left_out(real_plan: SheetPlan, tmp_path: Path) -> None:
     """Case 1's parts fill the upper part of the 12 x 24 in mat (packed from its top-left
     corner): its lower pages are left out, unless asked for; the pages kept keep their row and
@@ -329,6 +332,7 @@ def test_bad_paper_names_the_field_and_writes_nothing(real_plan: SheetPlan, tmp_
     assert not out.exists() or list(out.iterdir()) == []
 
 
+@pytest.mark.slow
 def test_cli_paper_option(tmp_path: Path, cli: CliRun) -> None:
     case1 = ["pattern", "--W", "8", "--n", "8", "--alpha", "84", "--material", "dura-lar"]
     bad = tmp_path / "bad"

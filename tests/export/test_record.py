@@ -16,6 +16,7 @@ from corrugate.workflow import output_options, write_design_files
 DURALAR = get_material("dura-lar")
 
 
+@pytest.mark.slow
 def test_the_files_record_reads_back_typed(tmp_path: Path) -> None:
     hole = Hole("circle", (2.0, -1.0), diameter=6.0)
     layer1 = Layer(8.0, 8, 84.0, DURALAR)

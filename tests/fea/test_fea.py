@@ -72,6 +72,7 @@ def test_core_package_does_not_import_fea() -> None:
     assert out.stdout.strip() == "False"
 
 
+@pytest.mark.fea
 def test_unit_cell_matches_refined_closed_forms(ccx: str) -> None:
     """Thin sheet, t/W = 0.02, alpha = 90 deg, nu = 0.3, 80 x 2 C3D20R elements per facet.
 
@@ -96,6 +97,7 @@ def test_unit_cell_matches_refined_closed_forms(ccx: str) -> None:
     assert abs(fe["Eby"] / xia["Eby"] - (1 - nu**2)) < 5e-3
 
 
+@pytest.mark.fea
 def test_unit_cell_compliance_is_symmetric(ccx: str) -> None:
     """Maxwell-Betti: the 4 x 4 compliance of a linear elastic cell is symmetric."""
     r = solve_unit_cell(UnitCell(2700.0, 0.43, 0.125, 8.0, 84.0), UnitCellMesh(20, 1))
@@ -111,6 +113,7 @@ def _reference_rows() -> list[dict[str, str]]:
     return list(csv.DictReader(lines))
 
 
+@pytest.mark.fea
 def test_unit_cell_reproduces_reference_at_half_its_mesh(ccx: str) -> None:
     """reference/unitcell_fe.csv (an independent CalculiX model) within 1 %, at half its mesh
     density along the facets (the full mesh agrees within 0.01 %; see docs/fea.md)."""
@@ -131,6 +134,7 @@ def small_assembly() -> Assembly:
     return Assembly.identical(layer)
 
 
+@pytest.mark.fea
 def test_assembly_compression_matches_closed_forms(ccx: str, small_assembly: Assembly) -> None:
     """K(0) = K_S1 + K_C2. K_S1 (facets stretched along their creases, free to contract) is exact
     membrane theory, and K_C2 is below 0.5 % of the total, so even a 30 % error of the coarse
@@ -142,6 +146,7 @@ def test_assembly_compression_matches_closed_forms(ccx: str, small_assembly: Ass
     assert fe.layer_forces[0] / fe.displacement == pytest.approx(float(springs[0].K_S), rel=0.01)
 
 
+@pytest.mark.fea
 def test_assembly_bending_matches_closed_forms(ccx: str, small_assembly: Assembly) -> None:
     """3-point bending about eta = 0. The closed forms are Euler-Bernoulli; the FE panel also
     shears. Timoshenko's estimate for the in-plane shear of the facets (shear area t W c^2 per
@@ -164,6 +169,7 @@ def test_assembly_bending_matches_closed_forms(ccx: str, small_assembly: Assembl
     assert err["refined"] < err["paper"]
 
 
+@pytest.mark.fea
 def test_assembly_pure_bending_matches_refined(ccx: str, small_assembly: Assembly) -> None:
     """4-point bending: between the load lines the moment is constant and the shear zero, so the
     FE measures what the closed forms model. The refined Eby agrees with the periodic unit cell to
@@ -185,6 +191,7 @@ def _tiny_case(label: str, timeout: float = 120.0) -> Case:
     return Case(label, Assembly.identical(layer), refinement=ref, timeout=timeout)
 
 
+@pytest.mark.fea
 def test_sweep_reports_a_failed_case_and_goes_on(ccx: str, tmp_path: Path) -> None:
     """A case that times out is reported with its message; the other case still finishes; the
     work folders are removed (nothing left under tmp_path) since keep is False."""
@@ -203,6 +210,7 @@ def test_sweep_reports_a_failed_case_and_goes_on(ccx: str, tmp_path: Path) -> No
     assert text.count("\n") == 4  # header, rule, two cases
 
 
+@pytest.mark.fea
 def test_validate_cli_json_agrees_with_analyze(ccx: str) -> None:
     args = [
         "validate",
@@ -233,6 +241,7 @@ def test_validate_cli_json_agrees_with_analyze(ccx: str) -> None:
     assert data["converged"] is False
 
 
+@pytest.mark.fea
 def test_converged_only_after_a_refinement_study(ccx: str, tmp_path: Path) -> None:
     """Regression: ``converged`` is True only when a refinement study ran and its last change fell
     below the tolerance; a single mesh, or a study stopped at the finest mesh allowed, is not
@@ -269,6 +278,7 @@ def test_default_unit_cell_mesh_is_the_same_everywhere() -> None:
         UnitCellMesh(grading=1.0)
 
 
+@pytest.mark.fea
 def test_default_graded_cell_is_within_1_percent_of_a_finer_one_at_alpha_40(ccx: str) -> None:
     """alpha = 40 deg, t/W = 0.0156 is where the uniform cell converged slowest (320 x 4 was
     1.2 % stiff). The default graded mesh against twice as many elements along the facet: within
@@ -297,6 +307,7 @@ def test_validate_cli_without_solver_is_one_line(monkeypatch: pytest.MonkeyPatch
     assert "calculix-ccx" in lines[0]
 
 
+@pytest.mark.fea
 def test_dask_cluster_gives_the_process_pool_numbers(ccx: str) -> None:
     """The same cases through a local dask.distributed cluster (the `dist` extra) and through the
     default process pool give identical numbers (ccx is deterministic)."""
@@ -314,6 +325,7 @@ def test_dask_cluster_gives_the_process_pool_numbers(ccx: str) -> None:
     assert pool["b"]["K_N_per_mm@90"] > 0
 
 
+@pytest.mark.fea
 def test_assembly_eta_90_mirrors_eta_0_for_identical_layers(
     ccx: str, small_assembly: Assembly
 ) -> None:
@@ -348,6 +360,7 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
         assembly_deck(odd, "bending4", AssemblyMesh(2))
 
 
+@pytest.mark.fea
 def test_validate_reads_a_pattern_design_json(ccx: str, tmp_path: Path) -> None:
     """`corrugate pattern --out` writes design.json; `validate --design` must model the layers
     written there: its closed forms are those of the same layers given as options, and its FE K is
@@ -405,6 +418,7 @@ def test_design_json_that_validate_cannot_model_is_one_clear_error(tmp_path: Pat
         read_record(path).assembly()
 
 
+@pytest.mark.fea
 def test_connector_band_stiffens_as_its_walls_predict(ccx: str) -> None:
     """The band (four S8R walls on the outline, 0..t_d, sharing the layers' edge nodes) on the same
     layer mesh as the run without it (match_layers=True).
@@ -476,6 +490,7 @@ def test_connector_band_shares_every_layer_edge_node(small_assembly: Assembly) -
         assert area > 1e-3 * (a.layer1.W / 2) ** 2
 
 
+@pytest.mark.fea
 def test_gmsh_mesher_matches_the_structured_mesh_at_eta_0(
     ccx: str, small_assembly: Assembly
 ) -> None:
@@ -530,6 +545,7 @@ def _plate_bounds(assembly: Assembly, eta_deg: float) -> dict[str, float]:
     return out
 
 
+@pytest.mark.fea
 def test_oblique_coupon_lies_between_plate_bounds_and_below_the_cos2_rule(
     ccx: str, small_assembly: Assembly
 ) -> None:
@@ -562,6 +578,7 @@ def test_oblique_coupon_lies_between_plate_bounds_and_below_the_cos2_rule(
     assert b0["K_voigt"] == pytest.approx(cf0.K, rel=0.01)
 
 
+@pytest.mark.fea
 def test_oblique_coupons_at_eta_and_90_minus_eta_agree_for_identical_layers(
     ccx: str, small_assembly: Assembly
 ) -> None:
@@ -576,6 +593,7 @@ def test_oblique_coupons_at_eta_and_90_minus_eta_agree_for_identical_layers(
         assert a.layer_values[0] == pytest.approx(b.layer_values[1], rel=0.03), test
 
 
+@pytest.mark.fea
 def test_validate_cli_rejects_what_the_fe_cannot_model(ccx: str, cli: CliRun) -> None:
     """Each refusal before any ccx run: exit 2, one line naming the field."""
     base = ["validate", "--W", "5", "--n", "3", "--alpha", "120"]
@@ -590,6 +608,7 @@ def test_validate_cli_rejects_what_the_fe_cannot_model(ccx: str, cli: CliRun) ->
         assert len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.fea
 def test_frame_is_what_the_cos2_rule_describes(ccx: str, small_assembly: Assembly) -> None:
     """The cos^2 rule is the stiffness of the panel in a rigid frame of four platens
     (corrugate.fea.frame). Checks: Maxwell-Betti reciprocity of the two runs (K_xy = K_yx, to the
@@ -631,6 +650,7 @@ def test_parse_buckling_reads_the_factors_of_a_buckle_step() -> None:
     assert parse_buckling("no buckling here") == []
 
 
+@pytest.mark.fea
 def test_first_buckling_load_lies_between_the_plate_bounds(
     ccx: str, small_assembly: Assembly
 ) -> None:
@@ -670,6 +690,7 @@ def _frd_modes(path: Path) -> tuple[dict[int, np.ndarray], list[dict[int, np.nda
     return rows(lines[c0 + 1 :]), [rows(lines[s + 1 :]) for s in starts]
 
 
+@pytest.mark.fea
 def test_first_buckling_mode_is_the_end_facets(
     ccx: str, small_assembly: Assembly, tmp_path: Path
 ) -> None:
@@ -696,6 +717,7 @@ def test_first_buckling_mode_is_the_end_facets(
     assert share > 0.9
 
 
+@pytest.mark.fea
 def test_flange_band_is_glued_only_on_its_flanges(ccx: str) -> None:
     """`bond="flanges"`: the band as cut (walls, glue flanges at foot and top slit into tabs),
     tied to the layers only where they rest on a flange. Read back from the deck: every layer
@@ -777,6 +799,7 @@ def test_sweep_plot_is_written_without_pyplot(tmp_path: Path) -> None:
     )
 
 
+@pytest.mark.fea
 def test_a_rectangle_coupon_scales_with_its_proportions_as_the_model_does(
     ccx: str, small_assembly: Assembly
 ) -> None:

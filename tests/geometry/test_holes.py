@@ -114,6 +114,7 @@ def test_square_facet_sums_by_hand(hole: Hole) -> None:
     assert res.to_dict()["stiffness"][0]["D_Nmm"] == pytest.approx(float(D0), rel=1e-10)
 
 
+@pytest.mark.slow
 def test_a_hole_never_stiffens_and_mass_drops_by_rho_t_area_over_s() -> None:
     rng = np.random.default_rng(3)
     plain = analyze(wheel(()), "refined", (0.0, 30.0, 90.0))
@@ -204,6 +205,7 @@ def svg_rings(
     return outlines, holes  # type: ignore[return-value]
 
 
+@pytest.mark.slow
 def test_axle_hole_in_every_file_and_mass_equals_the_cut_area(tmp_path: Path) -> None:
     import trimesh
     from ezdxf.filemanagement import readfile
@@ -347,6 +349,7 @@ inplane_stiffness = [{ min = "600 N/mm", eta = "0 deg" }]
 """
 
 
+@pytest.mark.slow
 def test_design_with_an_axle_hole_writes_it_into_the_report(tmp_path: Path, cli: CliRun) -> None:
     spec = tmp_path / "wheel.toml"
     spec.write_text(SPEC.replace("HOLES", '{ diameter = "6 mm", center = ["0 mm", "0 mm"] }'))
@@ -422,6 +425,7 @@ def test_hole_needs_a_minimum_size_in_a_spec(tmp_path: Path, cli: CliRun) -> Non
     assert not (tmp_path / "o").exists()
 
 
+@pytest.mark.slow
 def test_options_and_web_api_take_holes() -> None:
     from fastapi.testclient import TestClient
 
@@ -450,6 +454,7 @@ def test_options_and_web_api_take_holes() -> None:
 # -- finite elements -------------------------------------------------------------------------------
 
 
+@pytest.mark.fea
 def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole(ccx: str) -> None:
     """Square, W 8, n 8, alpha 84 deg (the case study), in-plane compression at eta = 0: the FE
     (CalculiX, staircase hole) K with a 6 mm central hole is below the FE K without it and above
@@ -471,6 +476,7 @@ def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole(ccx:
     assert model[1] < fe[1] < fe[0]  # type: ignore[operator]
 
 
+@pytest.mark.slow
 def test_validate_reads_the_holes_of_a_design_json(tmp_path: Path) -> None:
     """``corrugate validate --design`` must not drop the holes: design.json round trip."""
     from corrugate.export.record import read_record

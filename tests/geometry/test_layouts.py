@@ -77,6 +77,7 @@ def test_polygon_strips_match_clipping(axis: str) -> None:
     assert q[0] == pytest.approx(np.sum(1 / np.array(expected)), rel=1e-10)
 
 
+@pytest.mark.slow
 def test_polygon_many_sided_approaches_circle() -> None:
     k = 4000
     verts = tuple(

@@ -23,6 +23,7 @@ CHROMIUM = Path("/usr/bin/chromium")
 ARTIFACTS = ROOT / "test-artifacts"
 
 
+@pytest.mark.slow
 def test_report_draws_the_sheet_plan_the_files_are_written_from(
     solution: Solution, tmp_path: Path
 ) -> None:
@@ -79,6 +80,7 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     )
 
 
+@pytest.mark.slow
 def test_each_figure_is_drawn_once(
     solution: Solution, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -160,6 +162,7 @@ def report(solution: Solution, tmp_path_factory: pytest.TempPathFactory) -> Path
     return path
 
 
+@pytest.mark.slow
 def test_report_is_self_contained_and_complete(report: Path) -> None:
     text = report.read_text(encoding="utf-8")
     parsed = _Collect()
@@ -203,6 +206,7 @@ def test_report_is_self_contained_and_complete(report: Path) -> None:
     assert f"buckle at {b.low:.3g}-{b.high:.3g} N" in text
 
 
+@pytest.mark.browser
 def test_report_opens_in_chromium(report: Path) -> None:
     if not CHROMIUM.exists():
         if os.environ.get("CI", "").strip().lower() in ("true", "1", "yes"):

@@ -374,6 +374,7 @@ def _de_mass(d: dict[str, Any]) -> float:
     ],
     ids=["case-study-continuous", "refined-two-bounds", "circle-xia"],
 )
+@pytest.mark.slow
 def test_continuous_optimum_beats_fine_grid_and_differential_evolution(d: dict[str, Any]) -> None:
     sol = _solve(d)
     assert sol.status == "optimal"
@@ -524,6 +525,7 @@ def test_material_list_is_a_discrete_variable() -> None:
     assert sol.mass == pytest.approx(best, rel=1e-12)
 
 
+@pytest.mark.slow
 def test_identical_layers_on_a_pentagon_maximise_continuous() -> None:
     """Regression: identical layers on an outline that is not symmetric under x <-> y have
     different springs per layer; the bound once reused layer 1's and pruned the optimum."""
@@ -697,6 +699,7 @@ def test_box_bounds_contain_every_sampled_design(
         assert np.all(v <= b_hi + slack), (q, b_hi, v.max())
 
 
+@pytest.mark.slow
 def test_a_very_wide_crease_range_still_certifies() -> None:
     """Regression: with n up to thousands, splitting by absolute width left n unsplit and the
     search ran out of boxes uncertified; relative widths split n where it matters."""

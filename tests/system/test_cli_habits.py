@@ -137,6 +137,7 @@ def test_infeasible_diagnosis_lines_are_whole_and_end_with_a_hint(
 # --- --quiet ----------------------------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_design_quiet_prints_nothing_and_writes_the_files(cli: CliRun, tmp_path: Path) -> None:
     out_dir = tmp_path / "out"
     code, out, err = cli(
@@ -165,6 +166,7 @@ def test_quiet_bad_input_still_one_line_exit_2(cli: CliRun) -> None:
     assert len(err.strip().splitlines()) == 1 and err.startswith("corrugate: error:")
 
 
+@pytest.mark.slow
 def test_analyze_and_pattern_quiet(cli: CliRun, tmp_path: Path) -> None:
     code, out, err = cli([*ANALYZE, "--quiet"])
     assert (code, out, err) == (0, "", "")
@@ -235,6 +237,7 @@ FE_SMALL = ["validate", "--W", "5", "--n", "3", "--alpha", "120", "--thickness",
 FE_SMALL += ["--mesh", "2", "--cell-mesh", "10x1"]
 
 
+@pytest.mark.fea
 def test_validate_prints_a_line_per_calculix_run_on_stderr(ccx: str, cli: CliRun) -> None:
     code, out, err = cli(FE_SMALL)
     assert code == 0

@@ -107,6 +107,7 @@ def test_output_folder_os_errors_are_one_line(tmp_path: Path, where: str, words:
     assert "\n" not in text and words in text and text.startswith("--out = ")
 
 
+@pytest.mark.slow
 def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
     """SIGKILL at random moments while ``design --out`` writes into a folder holding an earlier
     set (tests/system/kill_driver.py): every time the folder holds one complete set (every file parses
@@ -139,6 +140,7 @@ def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
 # -- downloads across evictions ------------------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_downloads_across_evictions_never_fail() -> None:
     """1000+ downloads while results are published and evicted (3 kept): each answer is the whole
     file of the right result (200) or 404, never a 500 or a broken connection."""
@@ -227,6 +229,7 @@ def fake_run(case: Any) -> Any:
     return CaseResult(case, {"K_N_per_mm@0": 1.0}, {}, {}, (), False, None)
 
 
+@pytest.mark.slow
 def test_a_dead_worker_restarts_the_pool_and_its_case_is_retried(tmp_path: Path) -> None:
     from corrugate.fea.series import run_sweep
 

@@ -304,6 +304,7 @@ def cli_tmp(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return tmp
 
 
+@pytest.mark.slow
 def test_cli_fuzz(cli_tmp: Path) -> None:
     @settings(FUZZ, max_examples=120)
     @given(cli_args(cli_tmp))
@@ -388,6 +389,7 @@ class _ReachedError(CorrugateError):
     """The stubbed solver was reached: the body passed validation."""
 
 
+@pytest.mark.slow
 def test_api_fuzz(monkeypatch: pytest.MonkeyPatch) -> None:
     from fastapi.testclient import TestClient
 

@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 import corrugate
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -48,6 +50,7 @@ def test_every_public_name_resolves_to_its_module() -> None:
     assert set(corrugate.__all__) <= set(namespace)
 
 
+@pytest.mark.slow
 def test_design_files_need_no_mesh_library_pyplot_or_pint(tmp_path: Path) -> None:
     """Every file of a design is written without trimesh, scipy, pyplot, pint or dask, and the
     meshes still read back (here with the test's own parser: the STL triangle count)."""

@@ -44,9 +44,23 @@ def direct(body: dict[str, Any]) -> dict[str, Any]:
     return decoded
 
 
+#: Fixtures that start an app with its design worker processes: each process imports the package
+#: (about 1 s of CPU, which --durations does not show), so their tests are ``slow``.
+APP_FIXTURES = {"client", "live_server"}
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Mark ``slow`` every test that uses an app of :data:`APP_FIXTURES` (``make test-fast``
+    leaves them out; ``make test`` runs them)."""
+    for item in items:
+        if APP_FIXTURES & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
+
+
 @pytest.fixture
 def client() -> Iterator[TestClient]:
-    """A client of a fresh app (its own workers and result store), lifespan included."""
+    """A client of a fresh app (its own workers and result store), lifespan included; its tests
+    are marked slow (:func:`pytest_collection_modifyitems`)."""
     with TestClient(create_app()) as c:
         yield c
 

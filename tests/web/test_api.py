@@ -280,6 +280,7 @@ def test_a_body_just_under_the_limit_is_read() -> None:
 # ---- downloads: only files the app made ------------------------------------------------------
 
 
+@pytest.mark.slow
 def test_path_tricks_in_download_urls_are_4xx(client: TestClient) -> None:
     result = client.post("/api/mesh", json=CASE1).json()
     rid = result["id"]

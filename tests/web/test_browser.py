@@ -23,6 +23,9 @@ from corrugate.export.writers import WRITERS
 from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.folded import folded_mesh
 
+#: Needs Chromium and Playwright (tests/conftest.py checks every user of the browser fixture).
+pytestmark = pytest.mark.browser
+
 CHROMIUM = Path("/usr/bin/chromium")
 CHROMIUM_ARGS = [
     "--no-sandbox",

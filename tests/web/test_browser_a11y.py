@@ -10,8 +10,11 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pytest
 
 from .test_browser import Watched, browser  # noqa: F401  (the module's browser fixture)
+
+pytestmark = pytest.mark.browser  # needs Chromium and Playwright
 
 #: Roles of the accessibility tree that are form controls or buttons.
 CONTROL_ROLES = {

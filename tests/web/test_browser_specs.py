@@ -15,8 +15,12 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import unquote
 
+import pytest
+
 from .test_browser import Watched, browser  # noqa: F401  (the module's browser fixture)
 from .test_design_api import direct_design, without_timings
+
+pytestmark = pytest.mark.browser  # needs Chromium and Playwright
 
 #: Output options the page sends beside the spec (corrugate design's --cutter ... --paper).
 OUTPUT_KEYS = ("cutter", "fold_style", "cut", "gap", "paper")

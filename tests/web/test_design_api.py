@@ -304,6 +304,7 @@ def test_a_robust_spec_is_answered_as_the_cli_does(
     assert without_timings(d) == without_timings(cli)
 
 
+@pytest.mark.slow
 def test_a_slow_design_gets_504() -> None:
     """A design runs in a worker process; past the time limit the request gets 504, the server
     answers on and keeps no result of it."""
@@ -314,6 +315,7 @@ def test_a_slow_design_gets_504() -> None:
         assert len(c.app.state.store) == 0
 
 
+@pytest.mark.slow
 def test_designs_run_in_worker_processes_and_their_errors_come_back() -> None:
     """The design pool is processes (not the server's), sized to the cores by default, and an
     error raised in a worker arrives as the same error (422 naming the field)."""

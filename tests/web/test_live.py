@@ -12,6 +12,8 @@ from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 from urllib.parse import urlsplit
 
+import pytest
+
 from .conftest import direct
 from .test_design_api import EXAMPLES, direct_design, without_timings
 
@@ -125,6 +127,7 @@ def blimp_spec(rigidity_mNm2: float, name: str) -> dict[str, Any]:
     return spec
 
 
+@pytest.mark.slow
 def test_twenty_concurrent_designs_get_their_own_answers_and_files(live_server: str) -> None:
     # Twenty rigidities, 40 ... 277.5 mN m^2: twenty questions, several different optima.
     specs = [blimp_spec(40.0 + 12.5 * i, f"gripper-{i}") for i in range(20)]
