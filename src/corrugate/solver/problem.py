@@ -31,7 +31,6 @@ from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.materials.library import Material, get_material, inline_material
 from corrugate.mechanics.moduli import get_model
-from corrugate.mechanics.offaxis import Support
 from corrugate.spec.schema import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
 __all__ = [
@@ -196,7 +195,7 @@ class Problem:
     n_hi: int
     constraints: tuple[Constraint, ...]
     objective: Objective = field(default_factory=Objective)
-    support: Support = "free"  # the spec's global support condition (reports, tables)
+    support: str = "free"  # the spec's global support condition (reports, tables)
 
     @property
     def etas(self) -> tuple[float, ...]:

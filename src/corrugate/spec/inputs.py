@@ -22,8 +22,8 @@ from corrugate.geometry.holes import Hole, holes_from_data
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.geometry.layouts import make_layout
 from corrugate.materials.library import Material, get_material, inline_material
+from corrugate.mechanics.behaviours import check_support
 from corrugate.mechanics.moduli import DEFAULT_MODEL, get_model
-from corrugate.mechanics.offaxis import Support, check_support
 
 __all__ = [
     "ASSEMBLY_OPTIONS",
@@ -263,7 +263,7 @@ class AnalysisRequest:
     assembly: Assembly
     model: str
     eta_deg: tuple[float, ...]
-    support: Support = "free"
+    support: str = "free"
 
     def run(self) -> Analysis:
         """Analyse it (:func:`corrugate.analysis.evaluate.analyze`)."""
