@@ -354,10 +354,15 @@ def box_bounds(
 
         mass_lo = mass(lo, g1_lo, g2_lo, td_lo)
         out[MASS] = (mass_lo, mass_lo if point else mass(hi, g1_hi, g2_hi, td_hi))
-    stiff = sorted((q for q in quantities if q.directional), key=lambda q: q.key)
+    stiff = sorted((q for q in quantities if q.directional), key=_order)
     if stiff:
         out.update(_stiffness_bounds(problem, c1, c2, lo, hi, tables, out, stiff))
     return out
+
+
+def _order(q: Quantity) -> tuple[str, float, str, str]:
+    """A fixed order of the directional quantities (the bounds do not depend on it)."""
+    return (q.kind, q.eta or 0.0, q.support or "", q.test or "")
 
 
 @dataclass(frozen=True)

@@ -23,7 +23,7 @@ design --json`` and design.json): the kind, the support's key suffix (none for `
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from corrugate.core.errors import InputError
 from corrugate.mechanics.behaviours import (
@@ -76,10 +76,16 @@ class Quantity:
     eta: float | None = None
     support: str | None = None
     test: str | None = None
+    # the hash, once (the solver looks quantities up in dicts and sets in every iteration)
+    _hash: int = field(default=0, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.eta is not None:
             object.__setattr__(self, "eta", float(f"{self.eta:.12g}"))
+        object.__setattr__(self, "_hash", hash((self.kind, self.eta, self.support, self.test)))
+
+    def __hash__(self) -> int:
+        return self._hash
 
     @classmethod
     def stiffness(cls, kind: str, eta_deg: float, support: str = DEFAULT_SUPPORT) -> Quantity:
