@@ -31,6 +31,7 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Any, Literal, Protocol
 
 from corrugate.core.errors import InputError, UnknownNameError
@@ -39,6 +40,7 @@ __all__ = [
     "DEFAULT_SUPPORT",
     "STIFFNESS_UNITS",
     "Behaviour",
+    "DirectionalModel",
     "Role",
     "check_support",
     "either",
@@ -57,7 +59,7 @@ Role = Literal["support", "test"]
 DEFAULT_SUPPORT = "free"
 
 #: The kinds a support condition gives, with their internal units: EI (N mm^2), D (N mm), K (N/mm).
-STIFFNESS_UNITS: Mapping[str, str] = {"EI": "N*mm^2", "D": "N*mm", "K": "N/mm"}
+STIFFNESS_UNITS: Mapping[str, str] = MappingProxyType({"EI": "N*mm^2", "D": "N*mm", "K": "N/mm"})
 
 
 class DirectionalModel(Protocol):

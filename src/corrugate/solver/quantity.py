@@ -52,7 +52,8 @@ SPEC_KINDS = {"flexural_rigidity": "EI", "bending_stiffness": "D", "inplane_stif
 #: The stiffness kinds, each taken under a support condition.
 STIFFNESS = ("EI", "D", "K")
 
-#: Readable name and internal unit of each kind not given by a behaviour.
+#: Readable name and internal unit of each kind (a behaviour's own ``units`` come first; a load
+#: case may give a kind of its own, then named by its kind).
 _KINDS: dict[str, tuple[str, str]] = {
     "Lx": ("folded extent Lx", "mm"),
     "Ly": ("folded extent Ly", "mm"),
