@@ -133,22 +133,29 @@ def test_hole_shapes_are_what_the_holes_parser_takes() -> None:
         holes_from_data([{"shape": "square", "diameter": 3}], "holes")
 
 
-def test_supports_are_the_offaxis_ones_and_the_spec_takes_each() -> None:
-    from corrugate.mechanics import offaxis
+def test_supports_are_the_registered_built_ins_and_the_spec_takes_each() -> None:
+    """The built-in supports of the registry (mechanics/supports) are the names' ones; the spec's
+    JSON Schema lists them (the registry may hold more, so the spec's type is checked at run time)."""
+    from corrugate.mechanics import behaviours, offaxis
     from corrugate.spec.schema import Spec
 
-    assert offaxis.SUPPORTS == names.SUPPORTS
+    assert behaviours.support_names() == names.SUPPORTS
+    assert behaviours.DEFAULT_SUPPORT == names.DEFAULT_SUPPORT
+    assert typing.get_args(offaxis.Support) == names.SUPPORTS
     for s in names.SUPPORTS:
         assert offaxis.check_support(s) == s
     with pytest.raises(UnknownNameError):
         offaxis.check_support("glued")
-    assert typing.get_args(Spec.model_fields["support"].annotation) == names.SUPPORTS
+    schema = Spec.model_json_schema()
+    assert list(names.SUPPORTS) in [v.get("enum") for v in schema["$defs"].values()] + [
+        schema["properties"]["support"].get("enum")
+    ]
     assert Spec.model_fields["support"].default == names.DEFAULT_SUPPORT
     assert Spec.model_fields["model"].default == names.DEFAULT_MODEL
 
 
 def test_stiffness_names_are_the_spec_kinds_and_their_symbols_the_solver_keys() -> None:
-    from corrugate.solver.problem import stiffness_key
+    from corrugate.solver.quantity import Quantity
     from corrugate.spec.schema import STIFFNESS_KINDS, ConstraintsSpec, ObjectiveSpec
 
     assert tuple(STIFFNESS_KINDS) == names.STIFFNESS_NAMES
@@ -156,8 +163,9 @@ def test_stiffness_names_are_the_spec_kinds_and_their_symbols_the_solver_keys() 
     maximize = ObjectiveSpec.model_fields["maximize"].annotation
     assert set(typing.get_args(typing.get_args(maximize)[0])) == set(names.STIFFNESS_NAMES)
     for kind, symbol in names.STIFFNESS_SYMBOL.items():
-        assert stiffness_key(kind, 30.0) == f"{symbol}@30"
-        assert stiffness_key(symbol, 30.0) == f"{symbol}@30"
+        assert Quantity.stiffness(kind, 30.0).key == f"{symbol}@30"
+        assert Quantity.stiffness(symbol, 30.0).key == f"{symbol}@30"
+        assert Quantity.stiffness(kind, 30.0, "frame").key == f"{symbol}frame@30"
     # the units follow the symbols: EI in N mm^2, D in N mm, K in N/mm (docs/theory.md)
     units = {"EI": "N*mm^2", "D": "N*mm", "K": "N/mm"}
     assert {k: units[s] for k, s in names.STIFFNESS_SYMBOL.items()} == STIFFNESS_KINDS

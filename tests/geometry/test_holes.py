@@ -136,6 +136,7 @@ def test_solver_bounds_hold_with_holes() -> None:
     """Box bounds of mass, K and D contain the exact values at points sampled in each box."""
     from corrugate.solver.problem import Problem
     from corrugate.solver.quantities import Tables, box_bounds, point_values
+    from corrugate.solver.quantity import Quantity
     from corrugate.solver.solve import _pairs
     from corrugate.spec.schema import parse_spec
 
@@ -164,7 +165,7 @@ def test_solver_bounds_hold_with_holes() -> None:
     prob = Problem.from_spec(spec)
     tables = Tables(prob)
     c1, c2 = _pairs(prob)[0]
-    keys = {"mass", "K@0", "K@30", "D@90"}
+    keys = {Quantity.parse(k) for k in ("mass", "K@0", "K@30", "D@90")}
     rng = np.random.default_rng(7)
     for _ in range(60):
         nl = int(rng.integers(8, 30))
@@ -185,7 +186,7 @@ def test_solver_bounds_hold_with_holes() -> None:
             assert np.all(v[k] >= b[k][0][0] * (1 - 1e-12)), k
             assert np.all(v[k] <= b[k][1][0] * (1 + 1e-12)), k
         if nl == nh and Wh - Wl < 0.01 and ah - al < 0.01:  # narrow boxes: tight bounds
-            for k in ("K@0", "D@90"):
+            for k in (Quantity.parse("K@0"), Quantity.parse("D@90")):
                 assert b[k][0][0] >= 0.9 * b[k][1][0], k
 
 

@@ -27,6 +27,7 @@ from corrugate.mechanics.moduli import get_model, moduli
 from corrugate.solver import Problem, solve
 from corrugate.solver.interval import Interval
 from corrugate.solver.quantities import Tables, box_bounds, point_values
+from corrugate.solver.quantity import LX, LY, MASS
 from corrugate.spec.schema import load_spec, parse_spec
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
@@ -680,7 +681,7 @@ def test_box_bounds_contain_every_sampled_design(
         hi.update(n2=hi["n1"], W2=hi["W1"], a2=hi["a1"])
     blo = {k: np.array([float(v)]) for k, v in lo.items()}
     bhi = {k: np.array([float(v)]) for k, v in hi.items()}
-    quantities = {c.quantity for c in problem.constraints} | {"mass", "Lx", "Ly"}
+    quantities = {c.quantity for c in problem.constraints} | {MASS, LX, LY}
     bounds = box_bounds(problem, cand, cand, blo, bhi, tables, quantities)
     N = 300
     x = {}
@@ -691,7 +692,7 @@ def test_box_bounds_contain_every_sampled_design(
     if layers == "identical":
         x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
     vals = point_values(problem, cand, cand, x, tables)
-    for q in sorted(quantities):
+    for q in sorted(quantities, key=lambda q: q.key):
         b_lo, b_hi = bounds[q][0][0], bounds[q][1][0]
         v = vals[q]
         slack = 1e-12 * np.maximum(np.abs(v), 1.0)

@@ -29,10 +29,11 @@ from corrugate.geometry.layouts import (
     layer_inverse_sums,
     length_sum,
 )
+from corrugate.mechanics.behaviours import check_support, get_support
 from corrugate.mechanics.buckling import BucklingEstimate, buckling_bounds
 from corrugate.mechanics.mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from corrugate.mechanics.moduli import DEFAULT_MODEL, Moduli, ModuliFromSC, get_model
-from corrugate.mechanics.offaxis import Coupon, Support, assembly_directional, check_support
+from corrugate.mechanics.offaxis import Coupon, assembly_directional
 from corrugate.mechanics.springs import LayerSprings, layer_springs
 from corrugate.names import DEFAULT_SUPPORT
 
@@ -105,7 +106,7 @@ def directional(
     kind: Literal["K", "D"],
     springs: tuple[LayerSprings, LayerSprings],
     eta_deg: ArrayLike,
-    support: Support,
+    support: str,
     coupon: Coupon | None = None,
 ) -> FloatArray:
     """K or D of the assembly (:func:`corrugate.mechanics.offaxis.assembly_directional`; ``coupon``:
@@ -204,12 +205,13 @@ def evaluate(
     model: str = DEFAULT_MODEL,
     eta_deg: ArrayLike = 0.0,
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
-    support: Support = DEFAULT_SUPPORT,
+    support: str = DEFAULT_SUPPORT,
 ) -> Evaluation:
     """Stiffness, size and mass of assemblies given as arrays of layer parameters.
 
-    K (N/mm), D (N mm) and EI (N mm^2) are those of ``support`` (:mod:`corrugate.mechanics.offaxis`:
-    ``free`` sides, the default, or a rigid ``frame``); they agree at eta = 0 and 90 deg.
+    K (N/mm), D (N mm) and EI (N mm^2) are those of ``support``, a registered support condition
+    (:mod:`corrugate.mechanics.behaviours`: ``free`` sides, the default, or a rigid ``frame``,
+    :mod:`corrugate.mechanics.offaxis`); the built-in two agree at eta = 0 and 90 deg.
     Springs from DESIGN.md 3.2, moduli from the variant ``model`` (3.1), the assembly from 3.3.
 
     ``mass`` (g) counts both layers and the connector band (cut from layer 1's sheet), as the cut
@@ -236,7 +238,7 @@ def evaluate(
         q2, qs2 = layer_inverse_sums(layout, layer2.n, g2.p, Lx, "y")
         s2 = layer_springs(g2.moduli, layer2.t, g2.p, q2, layer2.E, layer2.nu, g2.s, qs2)
     coupon = None
-    if support == "free" and any(
+    if get_support(support).uses_coupon and any(
         crease_layer(float(e)) is None for e in np.unique(np.asarray(eta_deg, dtype=float))
     ):
         coupon = coupon_of(
@@ -301,7 +303,7 @@ class Analysis:
 
     assembly: Assembly
     model: str
-    support: Support
+    support: str
     moduli: tuple[Moduli, Moduli]
     springs: tuple[LayerSprings, LayerSprings]
     stiffness: tuple[DirectionalStiffness, ...]
@@ -381,10 +383,11 @@ def analyze(
     model: str = DEFAULT_MODEL,
     eta_deg: Sequence[float] = (0.0, 90.0),
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
-    support: Support = DEFAULT_SUPPORT,
+    support: str = DEFAULT_SUPPORT,
 ) -> Analysis:
     """Analyse ``assembly`` with moduli variant ``model`` at the directions ``eta_deg`` (deg),
-    its sides ``free`` (default) or held in a rigid ``frame`` (:mod:`corrugate.mechanics.offaxis`).
+    its sides ``free`` (default), held in a rigid ``frame`` (:mod:`corrugate.mechanics.offaxis`)
+    or under any other registered support condition (:mod:`corrugate.mechanics.behaviours`).
 
     Returns moduli (MPa) and springs of each layer, K (N/mm), D (N mm) and EI (N mm^2) at each eta,
     the mass (g; layers and connector band) and the model's warnings. Example::

@@ -45,8 +45,8 @@ from corrugate.core.errors import InputError
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION, FabricationOptions
 from corrugate.geometry.layouts import Layout, Square
 from corrugate.materials.library import Material
+from corrugate.mechanics.behaviours import check_support
 from corrugate.mechanics.moduli import DEFAULT_MODEL, get_model
-from corrugate.mechanics.offaxis import Support, check_support
 from corrugate.names import DEFAULT_SUPPORT
 
 __all__ = ["FIELDS", "SweepResult", "sweep"]
@@ -76,7 +76,7 @@ class _Setup:
     layout: Layout
     model: str
     eta: float
-    support: Support
+    support: str
     fabrication: FabricationOptions
     fields: tuple[str, ...]
     bounds: tuple[tuple[str, float | None, float | None], ...]
@@ -255,7 +255,7 @@ def sweep(
     layout: Layout | None = None,
     model: str = DEFAULT_MODEL,
     eta_deg: float = 0.0,
-    support: Support = DEFAULT_SUPPORT,
+    support: str = DEFAULT_SUPPORT,
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
     bounds: Bounds | None = None,
     objective: str = "mass",

@@ -10,10 +10,12 @@
 * short panels: D is a pure-bending stiffness; a panel loaded as a short beam also shears. The
   shell FE of docs/fea.md (section 3) measured the 3-point D below the pure-bending D by
   1.1-2.0 times the Timoshenko estimate 2 (1 + nu) (W / L)^2, L = (n + 1) W sin(alpha/2);
-* directions other than along the creases (eta not a multiple of 90 deg): with ``support =
-  "free"`` K(eta) and D(eta) are the free-panel model of :mod:`corrugate.mechanics.offaxis` (lower bounds
-  of the homogenised plate; docs/validation/off_axis.md compares them with FE coupons); with ``"frame"``
-  the paper's cos^2 rule, which holds only for a panel held in a rigid frame (docs/fea.md 2.5);
+* directions other than along the creases (eta not a multiple of 90 deg): each support
+  condition's own text (:mod:`corrugate.mechanics.supports`): with ``support = "free"`` K(eta) and
+  D(eta) are the free-panel model of :mod:`corrugate.mechanics.offaxis` (lower bounds of the
+  homogenised plate; docs/validation/off_axis.md compares them with FE coupons); with
+  ``"frame"`` the paper's cos^2 rule, which holds only for a panel held in a rigid frame
+  (docs/fea.md 2.5);
 * the ``paper`` model, which has known errors (DESIGN.md 3.1).
 """
 
@@ -24,6 +26,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from corrugate.geometry.layer import Assembly, Layer, crease_layer
+from corrugate.mechanics.behaviours import get_support, support_names
 from corrugate.names import DEFAULT_LAYOUT, DEFAULT_SUPPORT
 
 __all__ = [
@@ -125,44 +128,23 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
 def _off_axis(
     eta_deg: Sequence[float], support: str, layout: str = DEFAULT_LAYOUT
 ) -> list[ModelWarning]:
+    """The ``off-axis`` warning of ``support`` (its entry's text,
+    :mod:`corrugate.mechanics.supports`) at the directions off the creases; a name that is not
+    registered reads as the default support, as the text always did."""
     off = [e for e in eta_deg if crease_layer(e) is None]
     if not off:
         return []
     angles = ", ".join(f"{e:g}" for e in off)
-    if support == "frame":
-        text = (
-            f"K and D at eta = {angles} deg follow the paper's cos^2 rule (support 'frame'): "
-            "true only for a panel held in a rigid frame on all four edges; a panel with free "
-            "sides is up to hundreds of times softer off-axis (`corrugate docs fea`, section 2.5)"
-        )
-    else:
-        text = (
-            f"K and D at eta = {angles} deg are the free-panel model (support 'free', "
-            "`corrugate docs offaxis`): against FE coupons K is 0.83-1.22 times the FE, above it "
-            "near 15 and 75 deg by 22, 15 and 9 % for square coupons 4, 8 and 16 cells wide and "
-            "19 % for a 9 x 18-cell rectangle (the model is the large-panel limit), and D is far "
-            "below it where no facet runs from support to support (near 45 deg) "
-            "(`corrugate docs validation/off_axis`): check a part loaded there with corrugate validate --eta"
-        )
-        if layout == "rectangle":
-            text += (
-                "; a rectangle is read as the coupon of its proportions cut along eta (Lx x Ly "
-                "up to 45 deg, Ly x Lx above)"
-            )
-        elif layout != "square":
-            text += (
-                f"; a {layout} has no straight edges to load: its value is the smaller of its "
-                "box's coupon and the square's formula on its own springs, a convention no FE "
-                "has checked"
-            )
-    return [ModelWarning("off-axis", text)]
+    entry = get_support(support if support in support_names() else DEFAULT_SUPPORT)
+    return [ModelWarning("off-axis", entry.off_axis(angles, layout))]
 
 
 def design_warnings(
     a: Assembly, model: str, eta_deg: Sequence[float] = (), support: str = DEFAULT_SUPPORT
 ) -> list[ModelWarning]:
     """Every warning for assembly ``a`` analysed with moduli variant ``model`` in the directions
-    ``eta_deg`` (deg) under ``support`` (free or frame)."""
+    ``eta_deg`` (deg) under ``support`` (a registered support condition:
+    :mod:`corrugate.mechanics.behaviours`)."""
     out = _layer_warnings("layer 1", a.layer1)
     if a.layer2 != a.layer1:
         out += _layer_warnings("layer 2", a.layer2)

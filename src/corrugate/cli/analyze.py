@@ -129,8 +129,8 @@ def analyze_cmd(
     Example: corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper --eta 0
     """
     from corrugate.analysis.evaluate import analyze
+    from corrugate.mechanics.behaviours import check_support
     from corrugate.mechanics.moduli import MODELS, get_model
-    from corrugate.mechanics.offaxis import check_support
     from corrugate.spec.inputs import assembly_from_namespace, parse_etas
 
     assembly = assembly_from_namespace(locals())

@@ -96,7 +96,7 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
     console.print(c)
     if sol.runner_ups:
         u = Table(
-            title=f"runner-ups (best for each n; {p.objective.sense}imise {p.objective.quantity})",
+            title=f"runner-ups (best for each n; {p.objective.sense}imise {p.objective.quantity.key})",
             title_justify="left",
         )
         for col in ("n", "W mm", "alpha deg", "objective"):
@@ -233,7 +233,7 @@ def _plot(front: ParetoFront, title: str, path: Path) -> bool:
     else:
         ax.plot(s, m, color="0.6", lw=1)
     ax.plot(s, m, "o", ms=3)
-    ax.set_xlabel(f"{front.quantity} [{front.unit}]")
+    ax.set_xlabel(f"{front.quantity.key} [{front.unit}]")
     ax.set_ylabel("lightest mass [g]")
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
@@ -420,7 +420,9 @@ def tolerance_cmd(
         t.add_column(col, justify="right")
     for s in report.stats:
         t.add_row(
-            s.quantity, s.unit, *(fmt(v, 5) for v in (s.nominal, s.mean, s.sd, s.q05, s.q50, s.q95))
+            s.quantity.key,
+            s.unit,
+            *(fmt(v, 5) for v in (s.nominal, s.mean, s.sd, s.q05, s.q50, s.q95)),
         )
     console.print(t)
     c = Table(title="probability that each constraint holds", title_justify="left")

@@ -61,8 +61,8 @@ def pattern_cmd(
     """Write the machine's cut files, the fold map, the PDF, FOLD, GLB/STL and assembly steps of one
     design (`corrugate docs fabrication`)."""
     from corrugate.analysis.evaluate import analyze
+    from corrugate.mechanics.behaviours import check_support
     from corrugate.mechanics.moduli import get_model
-    from corrugate.mechanics.offaxis import check_support
     from corrugate.spec.inputs import assembly_from_namespace
     from corrugate.workflow import output_options, write_design_files
 

@@ -67,9 +67,11 @@ def _print_result(r: CaseResult, console: Console) -> None:
     for m in MODELS:
         t.add_column(m, justify="right")
         t.add_column(f"{m}/FE", justify="right")
+    from corrugate.fea.validation import fixture_key, fixture_supports
+
     units = {
         "K_N_per_mm": "N/mm",
-        "Kframe_N_per_mm": "N/mm",
+        **{fixture_key(b): "N/mm" for b in fixture_supports()},
         "D_Nmm": "N mm",
         "EI_Nmm2": "N mm^2",
         "D4_Nmm": "N mm",
@@ -130,9 +132,13 @@ def _buckling_bounds(r: CaseResult) -> dict[str, tuple[float, float]]:
 
 
 def _display_keys(r: CaseResult) -> list[str]:
-    """Stiffness keys first (by eta, then K, K in the frame, D, EI, D4), then the moduli of
-    layer 1 (and of layer 2 when it differs)."""
-    order = ("K_N_per_mm", "Kframe_N_per_mm", "D_Nmm", "EI_Nmm2", "D4_Nmm")
+    """Stiffness keys first (by eta, then K, K under each support condition with a fixture of its
+    own such as the frame, D, EI, D4), then the moduli of layer 1 (and of layer 2 when it
+    differs)."""
+    from corrugate.fea.validation import fixture_key, fixture_supports
+
+    fixed = tuple(fixture_key(b) for b in fixture_supports())
+    order = ("K_N_per_mm", *fixed, "D_Nmm", "EI_Nmm2", "D4_Nmm")
     etas = list(dict.fromkeys(f"{e:g}" for e in r.case.eta_deg))
     keys = sorted(
         (k for k in r.fe if "@" in k and not k.startswith("Pcr")),
@@ -272,7 +278,7 @@ def validate_cmd(
     from corrugate.fea.ccx import find_ccx
     from corrugate.fea.series import check_sweep_options
     from corrugate.fea.validation import Case, run_case
-    from corrugate.mechanics.offaxis import check_support
+    from corrugate.mechanics.behaviours import check_support
 
     bond_ = _bond(bond, connectors)
     refinement = _refinement(mesh, cell_mesh, refine)

@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Protocol, TypeVar
 
 from corrugate.analysis.evaluate import analyze
-from corrugate.core.errors import CorrugateError
+from corrugate.core.errors import CorrugateError, UnknownNameError
 from corrugate.fea.assembly import (
     AssemblyMesh,
     AssemblyResult,
@@ -31,8 +31,8 @@ from corrugate.fea.assembly import (
 from corrugate.fea.frame import solve_frame
 from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
 from corrugate.geometry.layer import Assembly
+from corrugate.mechanics.behaviours import Behaviour, supports
 from corrugate.mechanics.moduli import MODELS
-from corrugate.mechanics.offaxis import Support
 
 
 class _Mesh(Protocol):
@@ -41,7 +41,15 @@ class _Mesh(Protocol):
 
 M = TypeVar("M", bound=_Mesh)
 
-__all__ = ["Case", "CaseResult", "Refinement", "closed_forms", "run_case"]
+__all__ = [
+    "Case",
+    "CaseResult",
+    "Refinement",
+    "closed_forms",
+    "fixture_key",
+    "fixture_supports",
+    "run_case",
+]
 
 #: Quantities of a case, with their units: assembly stiffness and layer-1 moduli.
 STIFFNESS_KEYS = ("K_N_per_mm", "D_Nmm", "EI_Nmm2")
@@ -89,7 +97,7 @@ class Case:
     connectors: bool = False
     buckling: bool = False
     bond: Bond = "edges"
-    support: Support = "free"
+    support: str = "free"
 
 
 @dataclass(frozen=True, slots=True)
@@ -129,20 +137,38 @@ class CaseResult:
         return self.models[model][key] / self.fe[key]
 
 
+def fixture_supports() -> tuple[Behaviour, ...]:
+    """The registered support conditions that have an FE fixture of their own (their entry's
+    ``fixture`` is not the free ``coupon`` every case runs), e.g. ``frame``
+    (:mod:`corrugate.mechanics.behaviours`)."""
+    return tuple(b for b in supports() if b.fixture != "coupon")
+
+
+def fixture_key(support: Behaviour) -> str:
+    """The key of K (N/mm) under ``support`` in :class:`CaseResult`, e.g. ``Kframe_N_per_mm``."""
+    return f"K{support.suffix}_N_per_mm"
+
+
 def closed_forms(
-    assembly: Assembly, eta_deg: Sequence[float], support: Support = "free"
+    assembly: Assembly, eta_deg: Sequence[float], support: str = "free"
 ) -> dict[str, dict[str, float]]:
     """The closed forms of every model variant in the keys of :class:`CaseResult`: K and D under
-    ``support`` (the FE coupon has free sides), ``Kframe`` always the rule (the frame FE)."""
+    ``support`` (the FE coupon has free sides), and K under each support condition with a
+    fixture of its own (:func:`fixture_supports`: ``Kframe`` is always the rule, beside the
+    frame FE)."""
     out: dict[str, dict[str, float]] = {}
     for name in MODELS:
         r = analyze(assembly, name, list(eta_deg), support=support)
-        frame = analyze(assembly, name, list(eta_deg), support="frame").stiffness
+        fixed = [
+            (fixture_key(b), analyze(assembly, name, list(eta_deg), support=b.name).stiffness)
+            for b in fixture_supports()
+        ]
         values: dict[str, float] = {}
-        for d, fr in zip(r.stiffness, frame, strict=True):
+        for i, d in enumerate(r.stiffness):
             e = f"{d.eta_deg:g}"
             values[f"K_N_per_mm@{e}"] = d.K
-            values[f"Kframe_N_per_mm@{e}"] = fr.K  # the rule is the frame's stiffness
+            for key, st in fixed:  # e.g. the rule is the frame's stiffness
+                values[f"{key}@{e}"] = st[i].K
             values[f"D_Nmm@{e}"] = d.D
             if principal_axis(d.eta_deg) is not None:  # off-axis the FE coupon has its own span
                 values[f"EI_Nmm2@{e}"] = d.EI
@@ -152,6 +178,22 @@ def closed_forms(
                 values[f"layer{i}.{k}"] = v
         out[name] = values
     return out
+
+
+def _frame(case: Case, mesh: AssemblyMesh) -> Callable[[float], float]:
+    """K(eta) (N/mm) of the panel in a rigid frame (:func:`corrugate.fea.frame.solve_frame`)."""
+    frame = solve_frame(
+        case.assembly, mesh, folder=case.folder, keep=case.keep, timeout=case.timeout
+    )
+    return frame.K
+
+
+#: The FE fixtures a support condition's entry may name besides the free ``coupon`` (which every
+#: case runs: compression and bending): what a progress line calls it, and the run, which gives
+#: K (N/mm) at any eta (deg).
+_FIXTURES: dict[str, tuple[str, Callable[[Case, AssemblyMesh], Callable[[float], float]]]] = {
+    "frame": ("assembly in a rigid frame", _frame),
+}
 
 
 def _layers_to_run(a: Assembly) -> list[int]:
@@ -186,13 +228,17 @@ def _assembly_values(
     case: Case, mesh: AssemblyMesh, progress: Progress = _quiet
 ) -> dict[str, float]:
     out: dict[str, float] = {}
-    if any(principal_axis(e) is None for e in case.eta_deg):  # the cos^2 rule's own fixture
-        progress(f"assembly in a rigid frame, mesh {mesh.label()}")
-        frame = solve_frame(
-            case.assembly, mesh, folder=case.folder, keep=case.keep, timeout=case.timeout
-        )
-        for eta in case.eta_deg:
-            out[f"Kframe_N_per_mm@{eta:g}"] = frame.K(eta)
+    if any(principal_axis(e) is None for e in case.eta_deg):  # e.g. the cos^2 rule's own fixture
+        runs: dict[str, Callable[[float], float]] = {}
+        for sup in fixture_supports():
+            if sup.fixture not in runs:
+                if sup.fixture not in _FIXTURES:
+                    raise UnknownNameError("fixture", sup.fixture, list(_FIXTURES))
+                what, fixture = _FIXTURES[sup.fixture]
+                progress(f"{what}, mesh {mesh.label()}")
+                runs[sup.fixture] = fixture(case, mesh)
+            for eta in case.eta_deg:
+                out[f"{fixture_key(sup)}@{eta:g}"] = runs[sup.fixture](eta)
 
     names = {
         "compression": "in-plane compression",

@@ -1,4 +1,9 @@
-"""Stiffness along any direction eta for the two support conditions (docs/offaxis.md).
+"""Stiffness along any direction eta for the built-in support conditions (docs/offaxis.md).
+
+The models here are the point models (and, evaluated on intervals, the solver's bounds) of the
+entries ``free`` and ``frame`` of the registry of behaviours (:mod:`corrugate.mechanics.behaviours`,
+the entries in :mod:`corrugate.mechanics.supports`); :func:`assembly_directional` looks a support
+up there by name.
 
 The paper's rule, ``support = "frame"``: K(eta) = K_y cos^2 + K_x sin^2 (and D likewise,
 :mod:`corrugate.mechanics.springs`). It is the stiffness of a panel whose both crease directions are
@@ -51,29 +56,23 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from corrugate.core.errors import UnknownNameError
-from corrugate.names import DEFAULT_SUPPORT, SUPPORTS, Support
+from corrugate.mechanics.behaviours import check_support, get_support
+from corrugate.names import DEFAULT_SUPPORT, Support
 
 __all__ = [
-    "SUPPORTS",
     "Coupon",
     "Support",
     "assembly_directional",
     "check_support",
+    "frame_rule",
     "free_bending",
     "free_inplane",
+    "free_panel",
     "shear_springs",
     "strip_fraction",
 ]
 
 FloatArray = NDArray[np.float64]
-
-
-def check_support(value: str, field: str = "support") -> Support:
-    """``value`` if it names a support condition, else an error naming ``field``."""
-    if value not in SUPPORTS:
-        raise UnknownNameError(field, value, list(SUPPORTS))
-    return value
 
 
 def shear_springs(E: Any, nu: Any, t: Any, s: Any, pq: Any) -> tuple[Any, Any]:
@@ -192,16 +191,35 @@ def assembly_directional(
     kind: Literal["K", "D"],
     springs: tuple[Any, Any],
     eta_deg: float,
-    support: Support = DEFAULT_SUPPORT,
+    support: str = DEFAULT_SUPPORT,
     coupon: Coupon | None = None,
 ) -> Any:
     """K(eta) (N/mm) or D(eta) (N mm) of the two-layer assembly at one direction eta (deg from
-    layer 1's creases) under ``support``; ``springs`` are the layers'
-    :class:`~corrugate.mechanics.springs.LayerSprings` (or anything with the same fields, intervals too).
+    layer 1's creases) under ``support``, any registered support condition
+    (:func:`corrugate.mechanics.behaviours.get_support`: :func:`frame_rule` for ``frame``,
+    :func:`free_panel` for ``free``); ``springs`` are the layers'
+    :class:`~corrugate.mechanics.springs.LayerSprings` (or anything with the same fields,
+    intervals too) and ``coupon`` the layout's (:class:`Coupon`; None: a square)."""
+    return get_support(support).model(kind, springs, eta_deg, coupon)
 
-    ``frame``: the paper's rule (DESIGN.md 3.3). ``free``: the layers in parallel, layer 1 at
-    theta = eta and layer 2 (turned by 90 deg) at theta = eta - 90, each by the lower bounds of
-    the module docstring, for a square.
+
+def frame_rule(kind: str, springs: tuple[Any, Any], eta_deg: float, coupon: Any = None) -> Any:
+    """The paper's rule (docs/theory.md 3.3), ``support = "frame"``: K(eta) = (K_S1 + K_C2)
+    cos^2 + (K_S2 + K_C1) sin^2 (N/mm), D likewise (N mm); ``coupon`` is not read (the frame
+    drives both crease directions whatever the outline)."""
+    s1, s2 = springs
+    c2, s2_ = _cs(eta_deg)
+    if kind == "K":
+        return (s1.K_S + s2.K_C) * c2 + (s2.K_S + s1.K_C) * s2_
+    return (s1.D_S + s2.D_C) * c2 + (s2.D_S + s1.D_C) * s2_
+
+
+def free_panel(
+    kind: str, springs: tuple[Any, Any], eta_deg: float, coupon: Coupon | None = None
+) -> Any:
+    """K(eta) (N/mm) or D(eta) (N mm) of the assembly with free sides, ``support = "free"``:
+    the layers in parallel, layer 1 at theta = eta and layer 2 (turned by 90 deg) at theta =
+    eta - 90, each by the lower bounds of the module docstring, for a square.
 
     A layout that is not a square (``coupon``, :class:`Coupon`; None: a square) is taken off the
     crease directions as the coupon of its box's proportions cut along eta, turned to the crease
@@ -217,22 +235,18 @@ def assembly_directional(
     FE coupon gives 13.4 at 4 elements per facet. A circle or polygon has no straight edges to
     load; its value is the smaller of its box's coupon and the square's formula on its own
     springs (``capped``), so it is never more than either."""
+    k: Literal["K", "D"] = "K" if kind == "K" else "D"
     s1, s2 = springs
     c2, s2_ = _cs(eta_deg)
-    if support == "frame":
-        if kind == "K":
-            return (s1.K_S + s2.K_C) * c2 + (s2.K_S + s1.K_C) * s2_
-        return (s1.D_S + s2.D_C) * c2 + (s2.D_S + s1.D_C) * s2_
-    check_support(support)
     if coupon is None or c2 == 0.0 or s2_ == 0.0:  # a square, or along the creases
-        return _free_pair(kind, s1, s2, eta_deg)
+        return _free_pair(k, s1, s2, eta_deg)
     c = coupon
     e = float(eta_deg) % 180.0
     e = min(e, 180.0 - e)
 
     def oriented(f: Any) -> Any:  # the coupon of width / length f
         scale = ((f / c.pq1, f * c.pq1), (f / c.pq2, f * c.pq2))
-        return _free_pair(kind, s1, s2, eta_deg, scale, 1.0 / f)
+        return _free_pair(k, s1, s2, eta_deg, scale, 1.0 / f)
 
     if e < 45.0:
         value = oriented(c.aspect)
@@ -240,4 +254,4 @@ def assembly_directional(
         value = oriented(1.0 / c.aspect)
     else:
         value = np.minimum(oriented(c.aspect), oriented(1.0 / c.aspect))
-    return np.minimum(value, _free_pair(kind, s1, s2, eta_deg)) if c.capped else value
+    return np.minimum(value, _free_pair(k, s1, s2, eta_deg)) if c.capped else value

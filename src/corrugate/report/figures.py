@@ -19,9 +19,10 @@ from numpy.typing import NDArray
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.plotting import new_figure
-from corrugate.names import SUPPORTS
-from corrugate.solver.problem import Candidate, Problem, describe
+from corrugate.mechanics.behaviours import supports
+from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.quantity import MASS
 
 __all__ = ["design_space_figure", "mass_by_n_figure", "polar_figure"]
 
@@ -96,7 +97,9 @@ def design_space_figure(problem: Problem, a: Analysis) -> Any:
             colour = colours[k % len(colours)]
             cs = ax.contour(WW, AA, field, levels=[0.0], colors=[colour], linewidths=1.4)
             ax.clabel(cs, fmt={0.0: c.name.replace("constraints.", "")}, fontsize=7)
-            handles.append(Line2D([], [], color=colour, label=f"{c.name} ({describe(c.quantity)})"))
+            handles.append(
+                Line2D([], [], color=colour, label=f"{c.name} ({c.quantity.description})")
+            )
     ax.contourf(
         WW,
         AA,
@@ -105,7 +108,7 @@ def design_space_figure(problem: Problem, a: Analysis) -> Any:
         colors=["#a1d99b"],
         alpha=0.6,
     )
-    mass = values["mass"].reshape(WW.shape)
+    mass = values[MASS].reshape(WW.shape)
     cm = ax.contour(WW, AA, mass, levels=8, colors="grey", linewidths=0.5, linestyles="dotted")
     ax.clabel(cm, fmt="%.3g g", fontsize=6)
     ax.plot(
@@ -156,7 +159,7 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
         ok = np.ones(n1.size, dtype=bool)
         for c in problem.constraints:
             ok &= c.satisfied(values[c.quantity])
-        mass = np.where(ok, values["mass"], np.inf).reshape(len(chunk), W1.size).min(axis=1)
+        mass = np.where(ok, values[MASS], np.inf).reshape(len(chunk), W1.size).min(axis=1)
         best[start : start + len(chunk)] = np.where(np.isfinite(mass), mass, np.nan)
     fig = new_figure((7.5, 4.0), dpi=100)
     ax = fig.subplots()
@@ -187,15 +190,16 @@ def _plain_number(value: float, _pos: object = None) -> str:
 
 def polar_figure(a: Analysis) -> Any:
     """K(eta) (N/mm) and D(eta) (N mm) of the design on polar axes, eta from layer 1's creases:
-    the free panel's lower bounds (:mod:`corrugate.mechanics.offaxis`) and the rule of a panel held in a
-    rigid frame, on a logarithmic radius (they differ by up to three orders of magnitude); the
-    design's own support condition is the solid line."""
+    one curve per registered support condition (:mod:`corrugate.mechanics.behaviours`, labelled by
+    its entry): the free panel's lower bounds (:mod:`corrugate.mechanics.offaxis`) and the rule of
+    a panel held in a rigid frame, on a logarithmic radius (they differ by up to three orders of
+    magnitude); the design's own support condition is the solid line."""
 
     from matplotlib.ticker import FuncFormatter
 
     etas = np.linspace(0.0, 360.0, 145)
     curves = {
-        sup: analyze(a.assembly, a.model, list(etas), support=sup).stiffness for sup in SUPPORTS
+        b: analyze(a.assembly, a.model, list(etas), support=b.name).stiffness for b in supports()
     }
     fig = new_figure((8, 4), dpi=100)
     axes = fig.subplots(1, 2, subplot_kw={"projection": "polar"})
@@ -205,10 +209,8 @@ def polar_figure(a: Analysis) -> Any:
     ):
         for sup, st in curves.items():
             values = np.array([getattr(s, key) for s in st])
-            label = "free sides (lower bound)" if sup == "free" else "rigid frame (cos^2 rule)"
-            ax.plot(
-                np.radians(etas), values, "-" if sup == a.support else "--", label=label, lw=1.2
-            )
+            style = "-" if sup.name == a.support else "--"
+            ax.plot(np.radians(etas), values, style, label=sup.curve, lw=1.2)
         ax.set_rscale("symlog", linthresh=1.0)
         # radii as plain numbers (1, 10, 100): symlog's default 10^k labels are mathtext, whose
         # parser costs about 0.1 s of CPU to build in each process

@@ -155,7 +155,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
             [
                 [
                     c.name,
-                    c.quantity,
+                    c.quantity.key,
                     _g(c.value),
                     ("&ge; " if c.sense == "min" else "&le; ")
                     .replace("&ge; ", ">= ")

@@ -6,6 +6,7 @@ Pipeline (DESIGN.md section 9): :func:`corrugate.spec.schema.load_spec` -> :meth
 
 from corrugate.solver.bnb import BnBResult, branch_and_bound
 from corrugate.solver.problem import Candidate, Constraint, DesignVariable, Objective, Problem
+from corrugate.solver.quantity import Quantity
 from corrugate.solver.solve import ConstraintReport, Diagnosis, RunnerUp, Solution, optimize, solve
 
 __all__ = [
@@ -17,6 +18,7 @@ __all__ = [
     "Diagnosis",
     "Objective",
     "Problem",
+    "Quantity",
     "RunnerUp",
     "Solution",
     "branch_and_bound",

@@ -218,7 +218,7 @@ def branch_and_bound(
     dims = _dims(problem, n_fixed)
     cons = problem.constraints
     needed = {c.quantity for c in cons} | {obj_key}
-    costly = {q for q in needed if "@" in q}  # stiffness and buckling: interval arithmetic
+    costly = {q for q in needed if q.directional}  # stiffness and buckling: interval arithmetic
     cheap = needed - costly
     exact = all(d.var.gridded for d in dims)
     tol = 0.0 if exact else gap_rtol

@@ -24,8 +24,9 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from corrugate.solver.problem import Constraint, Problem, stiffness_key
+from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.quantity import MASS, Quantity
 from corrugate.solver.solve import Optimum, assembly_of, layer_dict, optimize
 
 __all__ = ["ParetoFront", "ParetoPoint", "pareto_front"]
@@ -50,7 +51,7 @@ class ParetoPoint:
 class ParetoFront:
     """Points in order of increasing stiffness; ``exact`` for gridded problems."""
 
-    quantity: str
+    quantity: Quantity
     unit: str
     points: tuple[ParetoPoint, ...]
     exact: bool
@@ -76,18 +77,20 @@ class ParetoFront:
         return "\n".join(rows) + "\n"
 
 
-def _at(problem: Problem, level: float, key: str, name: str) -> Problem:
+def _at(problem: Problem, level: float, key: Quantity, name: str) -> Problem:
     cons = [c for c in problem.constraints if c.quantity != key]
     if level > 0:
         cons.append(Constraint(name, key, "min", level))
     return replace(
         problem,
         constraints=tuple(cons),
-        objective=replace(problem.objective, quantity="mass", sense="min"),
+        objective=replace(problem.objective, quantity=MASS, sense="min"),
     )
 
 
-def _point(problem: Problem, opt: Optimum, key: str, level: float, tables: Tables) -> ParetoPoint:
+def _point(
+    problem: Problem, opt: Optimum, key: Quantity, level: float, tables: Tables
+) -> ParetoPoint:
     assert opt.point is not None
     assert opt.candidates is not None
     x = {k: np.array([v]) for k, v in opt.point.items()}
@@ -116,7 +119,7 @@ def pareto_front(
 
     ``progress(done, total)`` is called after each certified solve (``total`` is None on a gridded
     front, whose length is not known in advance)."""
-    key = stiffness_key(kind, eta_deg)
+    key = Quantity.stiffness(kind, eta_deg)
     name = f"pareto.{kind}"
     tables = Tables(problem)
     unit = Constraint(name, key, "min", 0.0).unit

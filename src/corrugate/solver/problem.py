@@ -4,17 +4,10 @@ A :class:`Problem` is what the solver sees: the moduli variant, the layout, whet
 are identical, the candidate sheets (material and thickness: a discrete variable), the bounds and
 optional grid steps of W (mm), alpha (deg) and the integer n, the constraints and the objective.
 
-Every constraint is a bound on one named *quantity* of a design (:data:`QUANTITIES`):
-
-* ``Lx``, ``Ly``: folded extents (mm), Lx = (n1 + 1) W1 sin(alpha1/2), Ly likewise for layer 2;
-* ``thickness``: folded thickness t_d = W1 cos(alpha1/2) + W2 cos(alpha2/2) (mm);
-* ``flat``: longest flat blank, max over layers of (n + 1) W (mm);
-* ``facet``: longest facet, max over layers and facets of L_j (mm);
-* ``mass``: g; ``EI@eta`` (N mm^2), ``D@eta`` (N mm), ``K@eta`` (N/mm): stiffness at eta (deg)
-  of the panel with free sides (:mod:`corrugate.mechanics.offaxis`); ``EIframe@eta``, ``Dframe@eta``,
-  ``Kframe@eta`` the same held in a rigid frame (the paper's rule);
-* ``Pb@eta``: lower bound (N) of the compressive load at which the end facets buckle along eta
-  (0 or 90 deg; :mod:`corrugate.mechanics.buckling`).
+Every constraint is a bound on one *quantity* of a design, a value
+(:class:`~corrugate.solver.quantity.Quantity`: its kind, the direction eta, the support condition
+and load case of a stiffness), e.g. the folded extent ``Lx``, the mass, ``EI@0`` (free sides),
+``Kframe@45`` (in a rigid frame) or the buckling load ``Pb@90``.
 """
 
 from __future__ import annotations
@@ -31,77 +24,22 @@ from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.materials.library import Material, get_material, inline_material
 from corrugate.mechanics.moduli import get_model
-from corrugate.mechanics.offaxis import Support
+from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
 from corrugate.spec.schema import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
 __all__ = [
     "FEAS_RTOL",
-    "QUANTITY_UNITS",
     "Candidate",
     "Constraint",
     "DesignVariable",
     "Objective",
     "Problem",
-    "describe",
-    "stiffness_key",
 ]
 
 #: Relative tolerance within which a constraint counts as met (floating-point slack only).
 FEAS_RTOL = 1e-9
 
-#: Stiffness quantity prefix for each spec kind (DESIGN.md 3.3).
-_PREFIX = {"flexural_rigidity": "EI", "bending_stiffness": "D", "inplane_stiffness": "K"}
-
-QUANTITY_UNITS = {
-    "Lx": "mm",
-    "Ly": "mm",
-    "thickness": "mm",
-    "flat": "mm",
-    "facet": "mm",
-    "mass": "g",
-    "EI": "N*mm^2",
-    "D": "N*mm",
-    "K": "N/mm",
-    "EIframe": "N*mm^2",
-    "Dframe": "N*mm",
-    "Kframe": "N/mm",
-    "Pb": "N",
-}
-
 Sense = Literal["min", "max"]
-
-
-_DESCRIPTIONS = {
-    "Lx": "folded extent Lx",
-    "Ly": "folded extent Ly",
-    "thickness": "folded thickness t_d",
-    "flat": "flat blank (n + 1) W",
-    "facet": "longest facet L_j",
-    "mass": "mass",
-    "EI": "flexural rigidity EI",
-    "D": "bending stiffness D",
-    "K": "in-plane stiffness K",
-    "EIframe": "flexural rigidity EI in a frame",
-    "Dframe": "bending stiffness D in a frame",
-    "Kframe": "in-plane stiffness K in a frame",
-    "Pb": "buckling load (lower bound)",
-}
-
-
-def describe(quantity: str) -> str:
-    """A readable name for a quantity key, e.g. ``EI@0`` -> ``flexural rigidity EI(0 deg)``."""
-    kind, _, eta = quantity.partition("@")
-    text = _DESCRIPTIONS.get(kind, kind)
-    return f"{text}({eta} deg)" if eta else text
-
-
-def stiffness_key(kind: str, eta_deg: float, support: str = "free") -> str:
-    """Quantity key of a stiffness kind (spec name or EI/D/K) at eta (deg) under ``support``,
-    e.g. ``EI@0`` (free sides) or ``Kframe@45`` (rigid frame)."""
-    prefix = _PREFIX.get(kind, kind)
-    if support == "frame" and not prefix.endswith("frame"):
-        prefix += "frame"
-    return f"{prefix}@{eta_deg:.12g}"
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,13 +91,13 @@ class Constraint:
     """
 
     name: str
-    quantity: str
+    quantity: Quantity
     sense: Sense
     bound: float
 
     @property
     def unit(self) -> str:
-        return QUANTITY_UNITS[self.quantity.split("@")[0]]
+        return self.quantity.unit
 
     def satisfied(self, value: NDArray[np.float64], rtol: float = FEAS_RTOL) -> NDArray[np.bool_]:
         """Whether ``value`` meets the bound to the relative tolerance ``rtol``."""
@@ -177,7 +115,7 @@ class Constraint:
 class Objective:
     """Minimise or maximise one quantity (mass by default)."""
 
-    quantity: str = "mass"
+    quantity: Quantity = MASS
     sense: Sense = "min"
 
 
@@ -196,13 +134,17 @@ class Problem:
     n_hi: int
     constraints: tuple[Constraint, ...]
     objective: Objective = field(default_factory=Objective)
-    support: Support = "free"  # the spec's global support condition (reports, tables)
+    support: str = "free"  # the spec's global support condition (reports, tables)
+
+    @property
+    def quantities(self) -> tuple[Quantity, ...]:
+        """The quantities of the constraints, then the objective's."""
+        return (*(c.quantity for c in self.constraints), self.objective.quantity)
 
     @property
     def etas(self) -> tuple[float, ...]:
         """Directions (deg) at which some stiffness is needed."""
-        keys = [c.quantity for c in self.constraints] + [self.objective.quantity]
-        return tuple(sorted({float(k.split("@")[1]) for k in keys if "@" in k}))
+        return tuple(sorted({q.eta for q in self.quantities if q.eta is not None}))
 
     @property
     def gridded(self) -> bool:
@@ -213,7 +155,7 @@ class Problem:
         """The same problem without the constraint called ``name``."""
         return replace(self, constraints=tuple(c for c in self.constraints if c.name != name))
 
-    def with_objective(self, quantity: str, sense: Sense) -> Problem:
+    def with_objective(self, quantity: Quantity, sense: Sense) -> Problem:
         return replace(self, objective=Objective(quantity, sense))
 
     @classmethod
@@ -233,18 +175,16 @@ class Problem:
         c = spec.constraints
         cons: list[Constraint] = []
         if c.sheet_max is not None:
+            cons.append(Constraint("constraints.sheet_max (flat blank)", FLAT, "max", c.sheet_max))
             cons.append(
-                Constraint("constraints.sheet_max (flat blank)", "flat", "max", c.sheet_max)
-            )
-            cons.append(
-                Constraint("constraints.sheet_max (facet length)", "facet", "max", c.sheet_max)
+                Constraint("constraints.sheet_max (facet length)", FACET, "max", c.sheet_max)
             )
         sizes = {
-            "side": ("Lx",),
-            "diameter": ("Lx",),
-            "side_x": ("Lx",),
-            "side_y": ("Ly",),
-            "thickness": ("thickness",),
+            "side": (LX,),
+            "diameter": (LX,),
+            "side_x": (LX,),
+            "side_y": (LY,),
+            "thickness": (THICKNESS,),
         }
         for key, (qty,) in sizes.items():
             r = getattr(c, key)
@@ -256,8 +196,8 @@ class Problem:
                 cons.append(Constraint(f"constraints.{key}.max", qty, "max", r.max))
         for kind in STIFFNESS_KINDS:
             for i, b in enumerate(getattr(c, kind)):
-                key = stiffness_key(kind, b.eta, b.support or spec.support)
-                cons.append(Constraint(f"constraints.{kind}[{i}].min", key, "min", b.min))
+                q = Quantity.stiffness(kind, b.eta, b.support or spec.support)
+                cons.append(Constraint(f"constraints.{kind}[{i}].min", q, "min", b.min))
         for i, bk in enumerate(c.buckling_load):
             if crease_layer(bk.eta) is None:
                 raise SpecError(
@@ -274,15 +214,17 @@ class Problem:
                 )
             eta = 0.0 if crease_layer(bk.eta) == 0 else 90.0
             cons.append(
-                Constraint(f"constraints.buckling_load[{i}].min", f"Pb@{eta:g}", "min", bk.min)
+                Constraint(
+                    f"constraints.buckling_load[{i}].min", Quantity("Pb", eta), "min", bk.min
+                )
             )
         if c.mass is not None:
-            cons.append(Constraint("constraints.mass.max", "mass", "max", c.mass.max))
+            cons.append(Constraint("constraints.mass.max", MASS, "max", c.mass.max))
         o = spec.objective
         objective = (
             Objective()
             if o.maximize is None
-            else Objective(stiffness_key(o.maximize, o.eta, o.support or spec.support), "max")
+            else Objective(Quantity.stiffness(o.maximize, o.eta, o.support or spec.support), "max")
         )
         return cls(
             name=spec.name,

@@ -26,8 +26,10 @@ a box ``lo <= x <= hi`` (elementwise over many boxes). The arguments, per quanti
   the box).
 * stiffness: the moduli variant's own function evaluated in :class:`~.interval.Interval`
   arithmetic over the box (W, alpha), then the spring sums of DESIGN.md 3.2 and the assembly
-  (:func:`corrugate.mechanics.offaxis.assembly_directional`: the rule of 3.3 for a frame, the free-panel
-  lower bounds otherwise, each variable once per term so the intervals are tight)
+  by the ``bounds`` of the quantity's support condition (or load case) in the registry of
+  behaviours (:mod:`corrugate.mechanics.behaviours`: the rule of 3.3 for a frame, the free-panel
+  lower bounds of :mod:`corrugate.mechanics.offaxis` for free sides, each variable once per term
+  so the intervals are tight)
   in interval arithmetic, with q = sum_j 1/L_j = Q(n) / S (Q from
   :func:`corrugate.geometry.layouts.inverse_length_sum`). For identical layers p q = Q(n) / (n + 1) exactly,
   which removes the dependency on p. EI = D x span: for square, rectangle and circle the span grows
@@ -62,18 +64,20 @@ from corrugate.geometry.layouts import (
     inverse_length_sum,
     length_sum,
 )
+from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, supports
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
-from corrugate.mechanics.offaxis import Coupon, Support, assembly_directional, shear_springs
+from corrugate.mechanics.offaxis import Coupon, shear_springs
 from corrugate.solver.interval import Interval
 from corrugate.solver.problem import Candidate, Problem
+from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
 
 __all__ = ["DIMS", "RangeTable", "box_bounds", "point_values"]
 
 FloatArray = NDArray[np.float64]
 Arrays = Mapping[str, FloatArray]
-Bounds = dict[str, tuple[FloatArray, FloatArray]]
+Bounds = dict[Quantity, tuple[FloatArray, FloatArray]]
 
 #: Names of the point/box coordinates.
 DIMS = ("n1", "W1", "a1", "n2", "W2", "a2")
@@ -188,45 +192,72 @@ def _layers(
 
 def point_values(
     problem: Problem, c1: Candidate, c2: Candidate, x: Arrays, tables: Tables
-) -> dict[str, FloatArray]:
-    """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``."""
+) -> dict[Quantity, FloatArray]:
+    """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``: the
+    sizes, the mass, EI, D and K at every eta of the problem under the default support (free
+    sides) and under each other support condition a quantity asks for (its entry's ``model`` in
+    :mod:`corrugate.mechanics.behaviours`), the load cases asked for, and the buckling loads when
+    one is bounded."""
     etas = np.asarray(problem.etas or (0.0,), dtype=np.float64)
-    keys = [c.quantity for c in problem.constraints] + [problem.objective.quantity]
-    wanted = {"frame" for k in keys if "frame@" in k} | {"Pb" for k in keys if k.startswith("Pb@")}
+    keys = problem.quantities
+    asked = {q.support for q in keys}
+    others = [b for b in supports() if b.name != DEFAULT_SUPPORT and b.name in asked]
+    tests = {(q.test, q.support) for q in keys if q.test is not None}
     l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
     if _same_layers(c1, c2, x):  # evaluate computes one layer (analysis.identical_layers)
         l2 = l1
     else:
         l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
     # one direction: a scalar eta keeps evaluate on its fast path (no per-eta masks)
-    ev = evaluate(l1, l2, problem.layout, problem.model, etas[0] if len(etas) == 1 else etas)
+    eta_arg = etas[0] if len(etas) == 1 else etas
+    ev = evaluate(l1, l2, problem.layout, problem.model, eta_arg)
     Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
-    out: dict[str, FloatArray] = {
-        "Lx": Lx,
-        "Ly": Ly,
-        "thickness": ev.thickness[:, 0],
-        "mass": ev.mass[:, 0],
-        "flat": np.maximum((x["n1"] + 1) * x["W1"], (x["n2"] + 1) * x["W2"]),
-        "facet": np.maximum(
+    out: dict[Quantity, FloatArray] = {
+        LX: Lx,
+        LY: Ly,
+        THICKNESS: ev.thickness[:, 0],
+        MASS: ev.mass[:, 0],
+        FLAT: np.maximum((x["n1"] + 1) * x["W1"], (x["n2"] + 1) * x["W2"]),
+        FACET: np.maximum(
             tables.facet_factor(x["n1"], "x") * Ly, tables.facet_factor(x["n2"], "y") * Lx
         ),
     }
+    # a support that reads the layout's coupon gets evaluate's own treatment of it
+    coupled = {
+        b.name: evaluate(l1, l2, problem.layout, problem.model, eta_arg, support=b.name)
+        for b in others
+        if b.uses_coupon
+    }
     for k, eta in enumerate(etas):
-        key = f"@{float(eta):.12g}"
-        out["EI" + key] = np.asarray(ev.EI[:, k])
-        out["D" + key] = np.asarray(ev.D[:, k])
-        out["K" + key] = np.asarray(ev.K[:, k])
-        if "frame" in wanted:
-            span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(float(eta))))
-            D_frame = np.asarray(assembly_directional("D", ev.springs, float(eta), "frame"))
-            out["Dframe" + key] = D_frame[:, 0]
-            out["EIframe" + key] = D_frame[:, 0] * span
-            K_frame = np.asarray(assembly_directional("K", ev.springs, float(eta), "frame"))
-            out["Kframe" + key] = K_frame[:, 0]
-    if "Pb" in wanted:
+        e = float(eta)
+        out[Quantity("EI", e, DEFAULT_SUPPORT)] = np.asarray(ev.EI[:, k])
+        out[Quantity("D", e, DEFAULT_SUPPORT)] = np.asarray(ev.D[:, k])
+        out[Quantity("K", e, DEFAULT_SUPPORT)] = np.asarray(ev.K[:, k])
+        for b in others:
+            if b.name in coupled:
+                evb = coupled[b.name]
+                out[Quantity("EI", e, b.name)] = np.asarray(evb.EI[:, k])
+                out[Quantity("D", e, b.name)] = np.asarray(evb.D[:, k])
+                out[Quantity("K", e, b.name)] = np.asarray(evb.K[:, k])
+                continue
+            span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(e)))
+            D_b = np.asarray(b.model("D", ev.springs, e, None))
+            out[Quantity("D", e, b.name)] = D_b[:, 0]
+            out[Quantity("EI", e, b.name)] = D_b[:, 0] * span
+            K_b = np.asarray(b.model("K", ev.springs, e, None))
+            out[Quantity("K", e, b.name)] = K_b[:, 0]
+        for test, support in tests:
+            t = get_load_case(test)
+            for kind in t.units:
+                base = "D" if kind == "EI" else kind
+                v = np.asarray(t.model(base, ev.springs, e, None))[:, 0]
+                if kind == "EI":
+                    v = v * np.asarray(problem.layout.span(Lx, Ly, np.asarray(e)))
+                out[Quantity(kind, e, support, test)] = v
+    if any(q.kind == "Pb" for q in keys):
         s1, s2 = ev.springs
-        for e, (lay, sa, sc) in {"0": (l1, s1, s2), "90": (l2, s2, s1)}.items():
-            out["Pb@" + e] = np.asarray(
+        for e_pb, (lay, sa, sc) in {0.0: (l1, s1, s2), 90.0: (l2, s2, s1)}.items():
+            out[Quantity("Pb", e_pb)] = np.asarray(
                 K_SIMPLE_FREE * buckling_scale(lay.E, lay.nu, lay.t, lay.W, lay.n, sa.K_S, sc.K_C)
             )[:, 0]
     return out
@@ -267,7 +298,7 @@ def box_bounds(
     lo: Arrays,
     hi: Arrays,
     tables: Tables,
-    quantities: set[str],
+    quantities: set[Quantity],
 ) -> Bounds:
     """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi] (``lo is hi``:
     the values at points, each computed once)."""
@@ -281,8 +312,8 @@ def box_bounds(
     g2_hi = g1_hi if same else (g2_lo if point else _corner(hi, 2))
     Lx_lo, Lx_hi = g1_lo.extent, g1_hi.extent
     Ly_lo, Ly_hi = g2_lo.extent, g2_hi.extent
-    out: Bounds = {"Lx": (Lx_lo, Lx_hi), "Ly": (Ly_lo, Ly_hi)}
-    if "thickness" in quantities or "mass" in quantities:
+    out: Bounds = {LX: (Lx_lo, Lx_hi), LY: (Ly_lo, Ly_hi)}
+    if THICKNESS in quantities or MASS in quantities:
         # t_d = W1 c1 + W2 c2 grows with W and falls with alpha: W low with alpha high, and back
         if same:
             td_lo = 2.0 * (g1_lo.W * g1_hi.c)
@@ -290,20 +321,20 @@ def box_bounds(
         else:
             td_lo = g1_lo.W * g1_hi.c + g2_lo.W * g2_hi.c
             td_hi = td_lo if point else g1_hi.W * g1_lo.c + g2_hi.W * g2_lo.c
-        out["thickness"] = (td_lo, td_hi)
-    if "flat" in quantities:
+        out[THICKNESS] = (td_lo, td_hi)
+    if FLAT in quantities:
         flat_lo = np.maximum((lo["n1"] + 1) * lo["W1"], (lo["n2"] + 1) * lo["W2"])
         flat_hi = (
             flat_lo if point else np.maximum((hi["n1"] + 1) * hi["W1"], (hi["n2"] + 1) * hi["W2"])
         )
-        out["flat"] = (flat_lo, flat_hi)
-    if "facet" in quantities:
+        out[FLAT] = (flat_lo, flat_hi)
+    if FACET in quantities:
         f1 = tables.Fx.bounds(lo["n1"], hi["n1"])
         f2 = tables.Fy.bounds(lo["n2"], hi["n2"])
         facet_lo = np.maximum(f1[0] * Ly_lo, f2[0] * Lx_lo)
         facet_hi = facet_lo if point else np.maximum(f1[1] * Ly_hi, f2[1] * Lx_hi)
-        out["facet"] = (facet_lo, facet_hi)
-    if "mass" in quantities:
+        out[FACET] = (facet_lo, facet_hi)
+    if MASS in quantities:
 
         def mass(b: Arrays, g1: _Corner, g2: _Corner, td: FloatArray) -> FloatArray:
             # holes remove rho t A_h / s(alpha) per layer, most at the box's lowest alpha: the
@@ -322,11 +353,16 @@ def box_bounds(
             return np.asarray(m1 + m2 + band)
 
         mass_lo = mass(lo, g1_lo, g2_lo, td_lo)
-        out["mass"] = (mass_lo, mass_lo if point else mass(hi, g1_hi, g2_hi, td_hi))
-    stiff = sorted(q for q in quantities if "@" in q)
+        out[MASS] = (mass_lo, mass_lo if point else mass(hi, g1_hi, g2_hi, td_hi))
+    stiff = sorted((q for q in quantities if q.directional), key=_order)
     if stiff:
         out.update(_stiffness_bounds(problem, c1, c2, lo, hi, tables, out, stiff))
     return out
+
+
+def _order(q: Quantity) -> tuple[str, float, str, str]:
+    """A fixed order of the directional quantities (the bounds do not depend on it)."""
+    return (q.kind, q.eta or 0.0, q.support or "", q.test or "")
 
 
 @dataclass(frozen=True)
@@ -521,9 +557,9 @@ def _stiffness_bounds(
     hi: Arrays,
     tables: Tables,
     geo: Bounds,
-    keys: list[str],
+    keys: list[Quantity],
 ) -> Bounds:
-    Lx, Ly = geo["Lx"], geo["Ly"]
+    Lx, Ly = geo[LX], geo[LY]
     sp1 = _layer_springs(
         problem,
         c1,
@@ -557,13 +593,13 @@ def _stiffness_bounds(
         )
     out: Bounds = {}
     # how the layout is read off the crease directions (corrugate.mechanics.offaxis.Coupon): made at the
-    # first free-support stiffness asked for off them (None for a square)
+    # first stiffness asked for off them under a behaviour that reads it (None for a square)
     coupon: Coupon | None = None
-    for key in keys:
-        kind, eta_s = key.split("@")
-        eta = float(eta_s)
+    for q in keys:
+        assert q.eta is not None
+        eta = q.eta
         v: Interval
-        if kind == "Pb":  # buckling along layer 1's (0) or layer 2's (90) creases
+        if q.kind == "Pb":  # buckling along layer 1's (0) or layer 2's (90) creases
             along, across, b, m = (sp1, sp2, "1", c1) if eta == 0.0 else (sp2, sp1, "2", c2)
             Wb = Interval(lo["W" + b], hi["W" + b])
             nb = Interval(lo["n" + b], hi["n" + b])
@@ -580,21 +616,21 @@ def _stiffness_bounds(
                 )
                 * K_SIMPLE_FREE
             )
-            out[key] = (np.maximum(v.lo, 0.0), v.hi)
+            out[q] = (np.maximum(v.lo, 0.0), v.hi)
             continue
-        support: Support = "frame" if kind.endswith("frame") else "free"
-        base = kind.removesuffix("frame")
-        if coupon is None and support == "free" and crease_layer(eta) is None:
+        entry = q.behaviour  # the support condition, or the load case in its place
+        assert entry is not None
+        if coupon is None and entry.uses_coupon and crease_layer(eta) is None:
             coupon = coupon_of(
                 problem.layout,
                 Interval(Lx[0], Lx[1]),
                 Interval(Ly[0], Ly[1]),
                 lambda: (sp1.pq, sp2.pq),
             )
-        v = assembly_directional("K" if base == "K" else "D", (sp1, sp2), eta, support, coupon)
-        if base == "EI":
+        v = entry.bounds("D" if q.kind == "EI" else q.kind, (sp1, sp2), eta, coupon)
+        if q.kind == "EI":
             v = v * _span_bounds(problem, Lx, Ly, eta)
-        out[key] = (np.maximum(v.lo, 0.0), v.hi)
+        out[q] = (np.maximum(v.lo, 0.0), v.hi)
     return out
 
 

@@ -28,8 +28,9 @@ import numpy as np
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
-from corrugate.solver.problem import Candidate, Constraint, Problem, describe
+from corrugate.solver.problem import Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.quantity import Quantity
 
 __all__ = [
     "ConstraintReport",
@@ -67,7 +68,7 @@ class ConstraintReport:
     """One constraint at the design: value and bound in ``unit``, margin >= 0 when met."""
 
     name: str
-    quantity: str
+    quantity: Quantity
     sense: str
     value: float
     bound: float
@@ -79,7 +80,7 @@ class ConstraintReport:
     def as_dict(self) -> dict[str, object]:
         return {
             "name": self.name,
-            "quantity": self.quantity,
+            "quantity": self.quantity.key,
             "sense": self.sense,
             "value": self.value,
             "bound": self.bound,
@@ -186,7 +187,7 @@ class Solution:
             "gap": self.gap,
             "model": p.model,
             "objective": {
-                "quantity": p.objective.quantity,
+                "quantity": p.objective.quantity.key,
                 "sense": p.objective.sense,
                 "value": None if math.isnan(self.objective) else self.objective,
             },
@@ -354,7 +355,7 @@ def solve(problem: Problem, *, explain: bool = True) -> Solution:
     )
 
 
-def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, float]:
+def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[Quantity, float]:
     assert opt.point is not None
     assert opt.candidates is not None
     x = {k: np.array([v]) for k, v in opt.point.items()}
@@ -431,7 +432,7 @@ def _diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
         short = (c.bound - r) if c.sense == "min" else (r - c.bound)
         word = "largest" if c.sense == "min" else "smallest"
         need = ">=" if c.sense == "min" else "<="
-        what = describe(c.quantity)
+        what = c.quantity.description
         pct = 100 * abs(short) / abs(c.bound)
         out.append(
             Diagnosis(

@@ -18,8 +18,9 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from corrugate.geometry.layer import Assembly
-from corrugate.solver.problem import FEAS_RTOL, QUANTITY_UNITS, Candidate, Problem, describe
+from corrugate.solver.problem import FEAS_RTOL, Candidate, Problem
 from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.quantity import LX, LY, MASS, THICKNESS, Quantity
 
 __all__ = ["QuantityStats", "ToleranceReport", "Tolerances", "monte_carlo"]
 
@@ -41,7 +42,7 @@ class Tolerances:
 class QuantityStats:
     """Distribution of one quantity over the samples (unit of the quantity)."""
 
-    quantity: str
+    quantity: Quantity
     unit: str
     nominal: float
     mean: float
@@ -52,8 +53,8 @@ class QuantityStats:
 
     def as_dict(self) -> dict[str, object]:
         return {
-            "quantity": self.quantity,
-            "description": describe(self.quantity),
+            "quantity": self.quantity.key,
+            "description": self.quantity.description,
             "unit": self.unit,
             "nominal": self.nominal,
             "mean": self.mean,
@@ -75,7 +76,7 @@ class ToleranceReport:
     probabilities: tuple[tuple[str, float], ...]
     p_all: float
     #: Every quantity of every sample (not in :meth:`as_dict`).
-    values: dict[str, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
+    values: dict[Quantity, np.ndarray] = field(default_factory=dict, repr=False, compare=False)
 
     def as_dict(self) -> dict[str, object]:
         return {
@@ -124,8 +125,8 @@ def monte_carlo(
         )
     }
     nominal = point_values(problem, c1, c2, nominal_x, tables)
-    keys = ["mass", "Lx", "Ly", "thickness"]
-    keys += sorted({c.quantity for c in problem.constraints} - set(keys))
+    keys = [MASS, LX, LY, THICKNESS]
+    keys += sorted({c.quantity for c in problem.constraints} - set(keys), key=lambda q: q.key)
     stats = []
     for k in keys:
         v = vals[k]
@@ -133,7 +134,7 @@ def monte_carlo(
         stats.append(
             QuantityStats(
                 k,
-                QUANTITY_UNITS[k.split("@")[0]],
+                k.unit,
                 float(nominal[k][0]),
                 float(v.mean()),
                 float(v.std(ddof=1)),

@@ -22,9 +22,9 @@ from corrugate.geometry.holes import Hole, holes_from_data
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.geometry.layouts import make_layout
 from corrugate.materials.library import Material, get_material, inline_material
+from corrugate.mechanics.behaviours import check_support
 from corrugate.mechanics.moduli import get_model
-from corrugate.mechanics.offaxis import check_support
-from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT, Support
+from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT
 
 __all__ = [
     "ASSEMBLY_OPTIONS",
@@ -264,7 +264,7 @@ class AnalysisRequest:
     assembly: Assembly
     model: str
     eta_deg: tuple[float, ...]
-    support: Support = DEFAULT_SUPPORT
+    support: str = DEFAULT_SUPPORT
 
     def run(self) -> Analysis:
         """Analyse it (:func:`corrugate.analysis.evaluate.analyze`)."""

@@ -15,12 +15,14 @@ from __future__ import annotations
 import json
 import types
 import typing
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from typing import Any
 
 from pydantic import BaseModel
 
 from corrugate.core.parameters import PARAMETERS
+from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, either, supports
 from corrugate.spec.schema import Spec
 
 __all__ = ["KEYS", "KeyDoc", "json_schema", "reference_markdown", "spec_keys"]
@@ -41,16 +43,10 @@ _STIFF = {
     "inplane_stiffness": ("N/mm", "K(eta), the in-plane compressive stiffness"),
 }
 
-#: Every key of a spec by TOML path (``[]`` marks the items of an array of tables).
-KEYS: dict[str, KeyDoc] = {
+#: The keys of a spec whose meaning does not depend on the registry of behaviours.
+_STATIC: dict[str, KeyDoc] = {
     "name": KeyDoc("", "Name of the design; names the files and the report."),
     "model": KeyDoc("", PARAMETERS["model"].help),
-    "support": KeyDoc(
-        "",
-        "Support condition of every stiffness bound unless it says otherwise: 'free' (default; "
-        "free sides, as a bench test or a part held at two edges) or 'frame' (a rigid frame: "
-        "the paper's cos^2 rule).",
-    ),
     "layers": KeyDoc(
         "",
         "'identical' (default: both layers the same W, n, alpha, t) or 'independent' (each "
@@ -104,12 +100,6 @@ KEYS: dict[str, KeyDoc] = {
         f"constraints.{k}[].eta": KeyDoc("deg", "Direction eta, from layer 1's creases.")
         for k in _STIFF
     },
-    **{
-        f"constraints.{k}[].support": KeyDoc(
-            "", "'free' or 'frame' for this bound (default: the spec's support)."
-        )
-        for k in _STIFF
-    },
     "constraints.buckling_load": KeyDoc(
         "N", "Lower bounds on the compressive buckling load (array of tables)."
     ),
@@ -123,7 +113,6 @@ KEYS: dict[str, KeyDoc] = {
         "", "A stiffness kind to maximise: " + ", ".join(f"'{k}'" for k in _STIFF) + "."
     ),
     "objective.eta": KeyDoc("deg", "Direction of the stiffness to maximise."),
-    "objective.support": KeyDoc("", "'free' or 'frame' for the maximised stiffness."),
     "robust": KeyDoc(
         "", "Meet every bound with a probability under manufacturing tolerances (a table)."
     ),
@@ -136,10 +125,10 @@ KEYS: dict[str, KeyDoc] = {
     "robust.seed": KeyDoc("", "Seed of the random samples (default 0)."),
 }
 for _r in ("side", "diameter", "side_x", "side_y", "thickness"):
-    KEYS[f"constraints.{_r}.min"] = KeyDoc("mm", "Least value.")
-    KEYS[f"constraints.{_r}.max"] = KeyDoc("mm", "Greatest value.")
+    _STATIC[f"constraints.{_r}.min"] = KeyDoc("mm", "Least value.")
+    _STATIC[f"constraints.{_r}.max"] = KeyDoc("mm", "Greatest value.")
 for _m in ("material", "materials[]"):
-    KEYS |= {
+    _STATIC |= {
         f"{_m}.name": KeyDoc("", "A library material (corrugate materials) or 'custom'."),
         f"{_m}.thickness": KeyDoc(
             "mm",
@@ -152,6 +141,49 @@ for _m in ("material", "materials[]"):
             for k in ("E", "nu", "density")
         },
     }
+
+
+def _support_docs() -> dict[str, KeyDoc]:
+    """The ``support`` keys, from the support conditions registered now
+    (:mod:`corrugate.mechanics.behaviours`: each one's name and meaning, the default marked)."""
+    entries = supports()
+    names = either([b.name for b in entries])
+    each = [
+        f"'{b.name}' ({'default; ' if b.name == DEFAULT_SUPPORT else ''}{b.text})" for b in entries
+    ]
+    listed = each[0] if len(each) < 2 else ", ".join(each[:-1]) + " or " + each[-1]
+    docs = {
+        "support": KeyDoc(
+            "", f"Support condition of every stiffness bound unless it says otherwise: {listed}."
+        ),
+        "objective.support": KeyDoc("", f"{names} for the maximised stiffness."),
+    }
+    for k in _STIFF:
+        docs[f"constraints.{k}[].support"] = KeyDoc(
+            "", f"{names} for this bound (default: the spec's support)."
+        )
+    return docs
+
+
+class _Keys(Mapping[str, KeyDoc]):
+    """:data:`_STATIC` and the ``support`` keys, the latter made from the registry at each
+    look-up (so a support condition registered after import is in the reference)."""
+
+    def _all(self) -> dict[str, KeyDoc]:
+        return _STATIC | _support_docs()
+
+    def __getitem__(self, key: str) -> KeyDoc:
+        return self._all()[key]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._all())
+
+    def __len__(self) -> int:
+        return len(self._all())
+
+
+#: Every key of a spec by TOML path (``[]`` marks the items of an array of tables).
+KEYS: Mapping[str, KeyDoc] = _Keys()
 
 
 def _models(annotation: Any) -> tuple[type[BaseModel] | None, bool]:
@@ -184,9 +216,9 @@ def spec_keys(model: type[BaseModel] = Spec, prefix: str = "") -> list[str]:
     return out
 
 
-def _check_documented() -> list[str]:
+def _check_documented(docs: Mapping[str, KeyDoc]) -> list[str]:
     keys = spec_keys()
-    missing = [k for k in keys if k not in KEYS]
+    missing = [k for k in keys if k not in docs]
     if missing:
         raise AssertionError(f"spec keys without a description in KEYS: {missing}")
     return keys
@@ -215,7 +247,8 @@ def _shown(default: str) -> str:
 
 def reference_markdown() -> str:
     """``docs/spec.md``: every key with its unit, default and meaning (Markdown)."""
-    keys = _check_documented()
+    docs = dict(KEYS)
+    keys = _check_documented(docs)
     lines = [
         "# Spec reference",
         "",
@@ -230,7 +263,7 @@ def reference_markdown() -> str:
         "|---|---|---|---|",
     ]
     for k in keys:
-        doc = KEYS[k]
+        doc = docs[k]
         default = _default(k)
         lines.append(f"| `{k}` | {doc.unit or '-'} | {_shown(default)} | {doc.text} |")
     lines += [
@@ -242,7 +275,7 @@ def reference_markdown() -> str:
     return "\n".join(lines)
 
 
-def _widen(node: Any, docs: dict[str, KeyDoc], path: str) -> Any:
+def _widen(node: Any, docs: Mapping[str, KeyDoc], path: str) -> Any:
     """Let every number also be a string with units and attach descriptions, recursively."""
     if isinstance(node, dict):
         if node.get("type") in ("number", "integer") and node.get("title") != "Seed":
@@ -258,14 +291,15 @@ def _widen(node: Any, docs: dict[str, KeyDoc], path: str) -> Any:
 
 def json_schema() -> dict[str, Any]:
     """A JSON Schema (draft 2020-12) of spec files, from :class:`~corrugate.spec.schema.Spec`."""
-    _check_documented()
+    docs = dict(KEYS)
+    _check_documented(docs)
     schema = Spec.model_json_schema(mode="validation")
     defs = schema.get("$defs", {})
 
     def describe(props: dict[str, Any], prefix: str) -> None:
         for name, sub in props.items():
             path = f"{prefix}{name}"
-            doc = KEYS.get(path)
+            doc = docs.get(path)
             if doc is not None:
                 unit = f" [{doc.unit}]" if doc.unit else ""
                 sub["description"] = doc.text + unit
@@ -277,7 +311,7 @@ def json_schema() -> dict[str, Any]:
                 describe(defs[ref].get("properties", {}), f"{path}[]." if many else f"{path}.")
 
     describe(schema["properties"], "")
-    schema = _widen(schema, KEYS, "")
+    schema = _widen(schema, docs, "")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "corrugate design spec"
     return dict(schema)

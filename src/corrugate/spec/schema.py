@@ -41,8 +41,9 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, ValidationError
-from pydantic_core import PydanticCustomError
+from pydantic import BaseModel, BeforeValidator, ConfigDict, GetJsonSchemaHandler, ValidationError
+from pydantic.json_schema import JsonSchemaValue
+from pydantic_core import CoreSchema, PydanticCustomError
 
 from corrugate.core.errors import InputError
 from corrugate.core.limits import (
@@ -58,6 +59,7 @@ from corrugate.core.limits import (
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
 from corrugate.materials.library import G_PER_CM3
+from corrugate.mechanics.behaviours import either, support_names
 from corrugate.names import (
     DEFAULT_HOLE_SHAPE,
     DEFAULT_LAYOUT,
@@ -67,7 +69,6 @@ from corrugate.names import (
     LayoutShape,
     ModelName,
     StiffnessName,
-    Support,
 )
 
 __all__ = [
@@ -418,9 +419,34 @@ def _stiffness_validator(kind: StiffnessName) -> Callable[[Any], float]:
     return _quantity(STIFFNESS_KINDS[kind], lo=0.0, hi=LIMITS["stiffness"].hi, hi_open=False)
 
 
+def _support(value: Any) -> Any:
+    """A pydantic before-validator: ``value`` if it names a registered support condition
+    (:func:`corrugate.mechanics.behaviours.support_names`), else the error a choice gives."""
+    names = support_names()
+    if not (isinstance(value, str) and value in names):
+        raise PydanticCustomError(
+            "literal_error", "Input should be {expected}", {"expected": either(names)}
+        )
+    return value
+
+
+class _SupportNames:
+    """The JSON Schema of a support value: one of the names registered when the schema is made."""
+
+    def __get_pydantic_json_schema__(
+        self, core_schema: CoreSchema, handler: GetJsonSchemaHandler
+    ) -> JsonSchemaValue:
+        return {"enum": list(support_names()), "type": "string"}
+
+
+#: A support condition, by name (``free``, ``frame`` or any other registered one).
+Support = Annotated[str, BeforeValidator(_support), _SupportNames()]
+
+
 class StiffnessSpec(_Strict):
     """A lower bound ``min`` on a stiffness at direction ``eta`` (deg from layer 1's creases),
-    under ``support`` (``free`` sides or a rigid ``frame``; default: the spec's ``support``)."""
+    under ``support`` (``free`` sides, a rigid ``frame`` or another registered support
+    condition; default: the spec's ``support``)."""
 
     min: float
     eta: Direction = 0.0

@@ -1,0 +1,189 @@
+"""The registry of behaviours: the support conditions (and load cases) a stiffness is asked under.
+
+A :class:`Behaviour` is one entry that carries everything the layers above need of it:
+
+* ``name``: the value a spec (``support = "frame"``), the command line and ``analyze`` take;
+* ``model``: K (N/mm) or D (N mm) of the two-layer assembly at eta (deg) from the layers' springs
+  (:class:`~corrugate.mechanics.springs.LayerSprings`), the value ``analyze`` reports (EI is D x
+  span for every behaviour, docs/theory.md 3.3);
+* ``bounds``: the same quantity over boxes of designs for the branch and bound, from springs that
+  are :class:`~corrugate.solver.interval.Interval` values (plain arithmetic evaluated on
+  intervals bounds itself, so it is usually ``model`` again);
+* ``fixture``: the finite-element fixture ``corrugate validate`` checks it against (``coupon``:
+  the free coupon of :mod:`corrugate.fea.assembly`; ``frame``: :mod:`corrugate.fea.frame`);
+* ``label`` (added to a quantity's readable name: ``in-plane stiffness K in a frame``), ``suffix``
+  (added to its kind in quantity keys: ``Kframe@45``), ``units`` (each kind it gives, with its
+  internal unit), ``text`` (its meaning in the spec reference), ``curve`` (its legend in the
+  report's polar figure) and ``off_axis`` (the model warning off the crease directions);
+* ``uses_coupon``: whether ``model`` reads the layout off the crease directions as a coupon
+  (:class:`~corrugate.mechanics.offaxis.Coupon`; the free support does).
+
+``role`` says which slot of a quantity it fills: a ``support`` condition, or a ``test`` (a load
+case; none is registered yet), whose model then gives the quantity in place of the support's.
+
+The built-in entries live one per module in :mod:`corrugate.mechanics.supports` and are
+registered there, each by one line; they are loaded on the first look-up. Adding a support
+condition or a load case is a module defining its :class:`Behaviour` and one ``register`` line.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, Final, Literal, Protocol
+
+from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.names import DEFAULT_SUPPORT as _DEFAULT_SUPPORT
+
+__all__ = [
+    "DEFAULT_SUPPORT",
+    "STIFFNESS_UNITS",
+    "Behaviour",
+    "DirectionalModel",
+    "Role",
+    "check_support",
+    "either",
+    "get_load_case",
+    "get_support",
+    "load_cases",
+    "register",
+    "support_names",
+    "supports",
+    "unregister",
+]
+
+Role = Literal["support", "test"]
+
+#: The support condition of every stiffness unless one is asked for (free sides: a bench test).
+DEFAULT_SUPPORT: Final[str] = _DEFAULT_SUPPORT
+
+#: The kinds a support condition gives, with their internal units: EI (N mm^2), D (N mm), K (N/mm).
+STIFFNESS_UNITS: Mapping[str, str] = MappingProxyType({"EI": "N*mm^2", "D": "N*mm", "K": "N/mm"})
+
+
+class DirectionalModel(Protocol):
+    """``model(kind, springs, eta_deg, coupon)``: the assembly's ``kind`` (``"K"`` in N/mm or
+    ``"D"`` in N mm) at ``eta_deg`` (deg from layer 1's creases) from the two layers' springs
+    (arrays or intervals); ``coupon`` is the layout's coupon or None (a square, or a behaviour
+    that does not read it)."""
+
+    def __call__(self, kind: str, springs: tuple[Any, Any], eta_deg: float, coupon: Any) -> Any: ...
+
+
+@dataclass(frozen=True, eq=False)
+class Behaviour:
+    """One support condition or load case (see the module docstring for each field)."""
+
+    name: str
+    model: DirectionalModel
+    bounds: DirectionalModel
+    fixture: str
+    label: str
+    suffix: str
+    units: Mapping[str, str]
+    text: str
+    curve: str
+    off_axis: Callable[[str, str], str]
+    uses_coupon: bool = False
+    role: Role = "support"
+
+    def unit(self, kind: str) -> str:
+        """Internal unit of ``kind`` under this behaviour."""
+        return self.units[kind]
+
+
+_REGISTRY: dict[Role, dict[str, Behaviour]] = {"support": {}, "test": {}}
+_lock = threading.RLock()
+_loaded = False
+_loading = False
+
+
+def _entries(role: Role) -> dict[str, Behaviour]:
+    """The entries of ``role`` in registration order, the built-ins loaded first (once, under a
+    lock: the web app looks supports up from several threads)."""
+    global _loaded, _loading
+    if not _loaded:
+        with _lock:
+            if not _loaded and not _loading:  # _loading: the built-ins registering themselves
+                _loading = True
+                try:
+                    import corrugate.mechanics.supports  # noqa: F401  (registers the built-ins)
+                finally:
+                    _loading = False
+                _loaded = True
+    return _REGISTRY[role]
+
+
+def register(behaviour: Behaviour) -> Behaviour:
+    """Add ``behaviour`` to the registry (after the built-ins) and return it; its name and its
+    key suffix must be new in its role (so every quantity key reads back one way), and a load
+    case may not read the coupon (the solver evaluates load cases on the layers' springs)."""
+    with _lock:
+        entries = _entries(behaviour.role)
+        for other in entries.values():
+            if other.name == behaviour.name or other.suffix == behaviour.suffix:
+                raise InputError(
+                    behaviour.role,
+                    repr(behaviour.name),
+                    f"a name and key suffix not yet registered (taken by {other.name!r})",
+                    reason="is already registered",
+                )
+        if behaviour.role == "test" and behaviour.uses_coupon:
+            raise InputError(
+                "test", repr(behaviour.name), "a load case whose model needs no coupon"
+            )
+        entries[behaviour.name] = behaviour
+    return behaviour
+
+
+def unregister(name: str, role: Role = "support") -> None:
+    """Remove the entry ``name`` of ``role`` (e.g. one a test registered)."""
+    with _lock:
+        _entries(role).pop(name)
+
+
+def supports() -> tuple[Behaviour, ...]:
+    """Every support condition, in registration order (the built-ins: free, frame)."""
+    return tuple(_entries("support").values())
+
+
+def support_names() -> tuple[str, ...]:
+    """The names of :func:`supports`."""
+    return tuple(_entries("support"))
+
+
+def get_support(name: str, field: str = "support") -> Behaviour:
+    """The support condition ``name``, else an error naming ``field`` and the names allowed."""
+    entries = _entries("support")
+    found = entries.get(name) if isinstance(name, str) else None
+    if found is None:
+        raise UnknownNameError(field, name, list(entries))
+    return found
+
+
+def check_support(value: str, field: str = "support") -> str:
+    """``value`` if it names a support condition, else an error naming ``field``."""
+    return get_support(value, field).name
+
+
+def load_cases() -> tuple[Behaviour, ...]:
+    """Every load case (role ``test``), in registration order (none built in)."""
+    return tuple(_entries("test").values())
+
+
+def get_load_case(name: str) -> Behaviour:
+    """The load case ``name``, else an error naming the ones registered."""
+    entries = _entries("test")
+    if name not in entries:
+        raise UnknownNameError("test", name, list(entries))
+    return entries[name]
+
+
+def either(names: tuple[str, ...] | list[str]) -> str:
+    """``'a' or 'b'``, ``'a', 'b' or 'c'``: the names quoted, as pydantic words a choice."""
+    quoted = [repr(n) for n in names]
+    if len(quoted) < 2:
+        return "".join(quoted)
+    return ", ".join(quoted[:-1]) + " or " + quoted[-1]

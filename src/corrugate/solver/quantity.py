@@ -1,0 +1,175 @@
+"""A quantity of a design that a constraint bounds or the objective optimises: a value.
+
+A :class:`Quantity` is a ``kind`` with, for what depends on a direction, ``eta`` (deg from layer
+1's creases), and for a stiffness the ``support`` condition it is taken under and room for a
+``test`` (a load case; None today), both names in the registry of behaviours
+(:mod:`corrugate.mechanics.behaviours`). The kinds (docs/theory.md sections 3-5):
+
+* ``Lx``, ``Ly``: folded extents (mm), Lx = (n1 + 1) W1 sin(alpha1/2), Ly likewise for layer 2;
+* ``thickness``: folded thickness t_d = W1 cos(alpha1/2) + W2 cos(alpha2/2) (mm);
+* ``flat``: longest flat blank, max over layers of (n + 1) W (mm);
+* ``facet``: longest facet, max over layers and facets of L_j (mm);
+* ``mass``: g;
+* ``EI`` (N mm^2), ``D`` (N mm), ``K`` (N/mm): stiffness at eta under a support condition
+  (``free`` sides by default, a rigid ``frame``, :mod:`corrugate.mechanics.offaxis`);
+* ``Pb``: lower bound (N) of the compressive load at which the end facets buckle along eta
+  (0 or 90 deg; :mod:`corrugate.mechanics.buckling`).
+
+Its :attr:`~Quantity.key` is the text the answer shows (``constraints[].quantity`` of ``corrugate
+design --json`` and design.json): the kind, the support's key suffix (none for ``free``,
+``frame`` for a frame) and the load case's, then ``@`` and eta, e.g. ``EI@0``, ``Kframe@45``,
+``Pb@90``; :meth:`Quantity.parse` reads one back.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from corrugate.core.errors import InputError
+from corrugate.mechanics.behaviours import (
+    DEFAULT_SUPPORT,
+    Behaviour,
+    get_load_case,
+    get_support,
+    load_cases,
+    supports,
+)
+from corrugate.names import STIFFNESS_SYMBOL, STIFFNESS_SYMBOLS
+
+__all__ = [
+    "FACET",
+    "FLAT",
+    "LX",
+    "LY",
+    "MASS",
+    "SPEC_KINDS",
+    "STIFFNESS",
+    "THICKNESS",
+    "Quantity",
+]
+
+#: Quantity kind of each stiffness a spec may bound (docs/theory.md 3.3).
+SPEC_KINDS: dict[str, str] = {name: symbol for name, symbol in STIFFNESS_SYMBOL.items()}
+#: The stiffness kinds, each taken under a support condition.
+STIFFNESS: tuple[str, ...] = STIFFNESS_SYMBOLS
+
+#: Readable name and internal unit of each kind (a behaviour's own ``units`` come first; a load
+#: case may give a kind of its own, then named by its kind).
+_KINDS: dict[str, tuple[str, str]] = {
+    "Lx": ("folded extent Lx", "mm"),
+    "Ly": ("folded extent Ly", "mm"),
+    "thickness": ("folded thickness t_d", "mm"),
+    "flat": ("flat blank (n + 1) W", "mm"),
+    "facet": ("longest facet L_j", "mm"),
+    "mass": ("mass", "g"),
+    "EI": ("flexural rigidity EI", "N*mm^2"),
+    "D": ("bending stiffness D", "N*mm"),
+    "K": ("in-plane stiffness K", "N/mm"),
+    "Pb": ("buckling load (lower bound)", "N"),
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Quantity:
+    """One quantity of a design (see the module docstring). ``eta`` is kept as its key shows it
+    (12 significant digits), so two quantities are equal exactly when their keys are."""
+
+    kind: str
+    eta: float | None = None
+    support: str | None = None
+    test: str | None = None
+    # the hash, once (the solver looks quantities up in dicts and sets in every iteration)
+    _hash: int = field(default=0, init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        if self.eta is not None:
+            object.__setattr__(self, "eta", float(f"{self.eta:.12g}"))
+        object.__setattr__(self, "_hash", hash((self.kind, self.eta, self.support, self.test)))
+
+    def __hash__(self) -> int:
+        return self._hash
+
+    @classmethod
+    def stiffness(cls, kind: str, eta_deg: float, support: str = DEFAULT_SUPPORT) -> Quantity:
+        """A stiffness (``kind``: a spec name such as ``flexural_rigidity``, or EI, D, K) at
+        ``eta_deg`` (deg) under ``support``."""
+        k = SPEC_KINDS.get(kind, kind)
+        if k not in STIFFNESS:
+            raise InputError("kind", repr(kind), "one of " + ", ".join([*SPEC_KINDS, *STIFFNESS]))
+        return cls(k, eta_deg, get_support(support).name)
+
+    @classmethod
+    def parse(cls, key: str) -> Quantity:
+        """The quantity whose :attr:`key` is ``key`` (e.g. ``Kframe@45``), over the behaviours
+        registered now."""
+        head, at, eta = key.partition("@")
+        if not at:
+            if head not in _KINDS or head in STIFFNESS or head == "Pb":
+                raise InputError("quantity", repr(key), "a quantity key such as mass or EI@0")
+            return cls(head)
+        if head == "Pb":
+            return cls("Pb", float(eta))
+        for s in supports():
+            for t in (None, *load_cases()):
+                kinds = STIFFNESS if t is None else tuple(t.units)
+                for kind in kinds:
+                    if head == kind + s.suffix + ("" if t is None else t.suffix):
+                        return cls(kind, float(eta), s.name, None if t is None else t.name)
+        raise InputError("quantity", repr(key), "a quantity key such as mass or EI@0")
+
+    @property
+    def behaviour(self) -> Behaviour | None:
+        """The entry that gives this quantity's value: its load case if it has one, else its
+        support condition (None for a quantity that has neither)."""
+        if self.test is not None:
+            return get_load_case(self.test)
+        return None if self.support is None else get_support(self.support)
+
+    @property
+    def key(self) -> str:
+        """The text of the answer (module docstring), e.g. ``EI@0``, ``Kframe@45``, ``mass``."""
+        if self.eta is None:
+            return self.kind
+        head = self.kind
+        if self.support is not None:
+            head += get_support(self.support).suffix
+        if self.test is not None:
+            head += get_load_case(self.test).suffix
+        return f"{head}@{self.eta:.12g}"
+
+    @property
+    def unit(self) -> str:
+        """Internal unit (``mm``, ``g``, ``N*mm^2``, ``N*mm``, ``N/mm``, ``N``)."""
+        b = self.behaviour
+        if b is not None and self.kind in b.units:
+            return b.unit(self.kind)
+        return _KINDS[self.kind][1]
+
+    @property
+    def description(self) -> str:
+        """A readable name, e.g. ``flexural rigidity EI(0 deg)``, ``in-plane stiffness K in a
+        frame(45 deg)``, ``mass``."""
+        text = _KINDS[self.kind][0] if self.kind in _KINDS else self.kind
+        if self.support is not None:
+            text += get_support(self.support).label
+        if self.test is not None:
+            text += get_load_case(self.test).label
+        return text if self.eta is None else f"{text}({self.eta:.12g} deg)"
+
+    @property
+    def directional(self) -> bool:
+        """Whether it depends on a direction (a stiffness or a buckling load: the quantities the
+        solver bounds in interval arithmetic)."""
+        return self.eta is not None
+
+    def __str__(self) -> str:
+        return self.key
+
+
+#: The size and mass quantities.
+LX = Quantity("Lx")
+LY = Quantity("Ly")
+THICKNESS = Quantity("thickness")
+FLAT = Quantity("flat")
+FACET = Quantity("facet")
+MASS = Quantity("mass")
