@@ -2,7 +2,7 @@
 
     python benchmarks/origami_simulator.py ORIGAMI_SIMULATOR_DIR [DESIGN_OUT_DIR]
 
-A check by hand with the third-party program makers use to preview a fold (DESIGN.md 7): it is not
+A check by hand with the third-party program makers use to preview a fold (docs/theory.md 7): it is not
 a test, because Origami Simulator is not in any package registry; clone it yourself
 (`git clone https://github.com/amandaghassaei/OrigamiSimulator`) and pass its folder. Nothing of
 it is copied into this project. DESIGN_OUT_DIR is a folder written by `corrugate design --out`
@@ -101,7 +101,7 @@ IMPORTED = """() => {
           warnings: window.__warnings.slice()};
 }"""
 
-#: Origami Simulator's stroke colours (DESIGN.md 7) and the FOLD assignment it gives each.
+#: Origami Simulator's stroke colours (docs/theory.md 7) and the FOLD assignment it gives each.
 COLOURS = {"#000000": "B", "#ff0000": "M", "#0000ff": "V", "#00ff00": "C", "#ff00ff": "U"}
 
 

@@ -1,8 +1,8 @@
-"""The paper's Table 1, as corrected in DESIGN.md section 3.4, with the ``paper`` model.
+"""The paper's Table 1, as corrected in docs/theory.md section 3.4, with the ``paper`` model.
 
 Source of the expected numbers: Liu, Yan and Mehta, Table 1 (column "D", which is EI at eta = 0 in
 mN m^2) and the case-study text (L = 48.18 mm, t_d = 11.89 mm for case 1). Case 5 is printed with
-alpha = 30 deg, a typo for 28 deg (DESIGN.md 3.4).
+alpha = 30 deg, a typo for 28 deg (docs/theory.md 3.4).
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ def test_case1_geometry() -> None:
 
 
 def test_case5_as_printed_breaks_the_side_limit() -> None:
-    """alpha = 30 deg (as printed) gives 285.12 and L = 63.67 mm > 60 mm: the typo of DESIGN.md 3.4."""
+    """alpha = 30 deg (as printed) gives 285.12 and L = 63.67 mm > 60 mm: the typo of docs/theory.md 3.4."""
     layer = Layer(6, 40, 30, get_material("dura-lar"))
     r = analyze(Assembly.identical(layer), model="paper", eta_deg=[0.0])
     assert pytest.approx(285.12, abs=0.01) == r.stiffness[0].EI / 1000

@@ -69,7 +69,7 @@ def test_every_crease_once_alternating(name: str, layout: Layout, l1: Layer, l2:
 
 
 def test_square_blank_is_the_papers() -> None:
-    """Flat blank of one layer: (n + 1) W by L (DESIGN.md section 2)."""
+    """Flat blank of one layer: (n + 1) W by L (docs/theory.md section 2)."""
     a = Assembly.identical(Layer(8, 8, 84, DURALAR))
     blank = build_pattern(a).parts[0]
     assert blank.size == pytest.approx((72.0, a.Lx))

@@ -1,7 +1,7 @@
 """Inner cut-outs (holes): geometry, the facet-sum model, mass, every file read back, bad input.
 
 Numbers are checked against hand derivations: the area of an inscribed regular polygon
-(k/2) r^2 sin(2 pi / k), the chord 2 sqrt(r^2 - d^2), and the spring sums of DESIGN.md 3.2 with the
+(k/2) r^2 sin(2 pi / k), the chord 2 sqrt(r^2 - d^2), and the spring sums of docs/theory.md 3.2 with the
 facets a hole touches left out of the parallel sums and shortened in the series sums.
 """
 
@@ -107,7 +107,7 @@ def test_square_facet_sums_by_hand(hole: Hole) -> None:
     assert float(par) == pytest.approx(q_par, rel=1e-12)
     assert float(ser) == pytest.approx(q_ser, rel=1e-12)
     m = moduli(DURALAR.E, DURALAR.nu, t, 8.0, 90.0, "refined")
-    K0 = m.Ecy * p * t * q_par + m.Ecx * t / (p * q_ser)  # K_S1 + K_C2, DESIGN.md 3.3
+    K0 = m.Ecy * p * t * q_par + m.Ecx * t / (p * q_ser)  # K_S1 + K_C2, docs/theory.md 3.3
     D0 = m.Eby * t**3 * p * q_par / 12 + m.Ebx * t**3 / (12 * p * q_ser)
     res = analyze(a, "refined", (0.0,))
     assert res.to_dict()["stiffness"][0]["K_N_per_mm"] == pytest.approx(float(K0), rel=1e-10)

@@ -46,7 +46,7 @@ def test_refined_matches_fe(reference: Path) -> None:
 
 
 def test_xia_overstates_spanwise_bending(reference: Path) -> None:
-    """Xia's Eby carries 1/(1 - nu^2): 10 % too stiff at nu = 0.3, more at higher nu (DESIGN.md 3.1)."""
+    """Xia's Eby carries 1/(1 - nu^2): 10 % too stiff at nu = 0.3, more at higher nu (docs/theory.md 3.1)."""
     for row in _rows(reference):
         ratio = _model(row, "xia")["Eby"] / row["Eby"]
         expected = 1 / (1 - row["nu"] ** 2)
@@ -56,7 +56,7 @@ def test_xia_overstates_spanwise_bending(reference: Path) -> None:
 
 
 def test_paper_variant_is_off_as_documented(reference: Path) -> None:
-    """Records the finding of DESIGN.md 3.1 so it stays true: the printed Ecx is far too low
+    """Records the finding of docs/theory.md 3.1 so it stays true: the printed Ecx is far too low
     (here 70-88 % below FE), the printed Ecy is off by -4 % to +16 % depending on nu only."""
     for row in _rows(reference):
         p = _model(row, "paper")

@@ -2,7 +2,7 @@
 with off-axis stiffness and buckling constraints.
 
 Independent sources: a hand derivation of the plate bound for a square from the closed-form
-moduli (DESIGN.md 3.1) and Xia's shear stiffness, the limit cases eta = 0 / 90 (where both
+moduli (docs/theory.md 3.1) and Xia's shear stiffness, the limit cases eta = 0 / 90 (where both
 support conditions are the paper's springs), Timoshenko's plate-buckling formula written out
 again, and an exhaustive search over the design grid.
 """
@@ -54,7 +54,7 @@ def test_square_at_45_deg_is_the_hand_derived_plate_bound() -> None:
     """For a square the springs are plate stiffnesses (K_S = Ecy t, K_C = Ecx t), so at 45 deg
     each identical layer gives 1 / K = (1/(Ecy t) + 1/(Ecx t) + 1/(G t s)) / 4 (uniaxial stress,
     the fourth-power rotation of the compliance), written here from the refined moduli of
-    DESIGN.md 3.1 and Xia's A66 = G t sin(alpha/2). D: the strip bound is zero at 45 deg
+    docs/theory.md 3.1 and Xia's A66 = G t sin(alpha/2). D: the strip bound is zero at 45 deg
     (no facet of a square runs from support to support), so D is the plate bound with
     Eby, Ebx and D66 = G t^3 / (12 s)."""
     W, n, alpha, t = 8.0, 8, 84.0, 0.125

@@ -55,7 +55,7 @@ def test_trapezoid_without_flat_is_the_zigzag_closed_form(
                 continue
             assert general[key] == pytest.approx(value, rel=1e-7), (name, key)
             assert zz[key] == pytest.approx(value, rel=1e-7), (name, key)
-    # The refined closed form keeps Xia's Ebx (DESIGN.md 3.1). The general theory with the uniaxial
+    # The refined closed form keeps Xia's Ebx (docs/theory.md 3.1). The general theory with the uniaxial
     # membrane gives Ebx = 12 D11 (1 - nu^2 D11/D22)/t^3 with a smaller D22 >= s D = D11, so it sits
     # below Xia's by a fraction in [0, nu^2/(1 - nu^2)] (hand derivation).
     refined_general = plate_moduli(equivalent_plate(trap, 1.0, nu, t, "uniaxial"), t).Ebx

@@ -51,7 +51,7 @@ def test_blimp_gripper_is_the_papers_case_1_certified() -> None:
     assert sol.gap == 0.0
     for layer in sol.assembly.layers:
         assert (layer.W, layer.n, layer.alpha_deg) == (8.0, 8, 84.0)
-    # DESIGN.md 3.4, Table 1 case 1: L = 48.18 mm, t_d = 11.89 mm, EI_0 = 87.84 mN m^2
+    # docs/theory.md 3.4, Table 1 case 1: L = 48.18 mm, t_d = 11.89 mm, EI_0 = 87.84 mN m^2
     assert sol.assembly.Lx == pytest.approx(48.18, abs=0.005)
     assert sol.assembly.thickness == pytest.approx(11.89, abs=0.005)
     assert pytest.approx(87.84, abs=0.005) == sol.analysis.stiffness[0].EI / 1000
@@ -62,7 +62,7 @@ def test_blimp_gripper_is_the_papers_case_1_certified() -> None:
 
 
 def test_wider_alpha_range_and_the_connector_band() -> None:
-    """DESIGN.md 3.5: with alpha allowed up to 179 deg a 3-crease design has the lightest LAYERS
+    """docs/theory.md 3.5: with alpha allowed up to 179 deg a 3-crease design has the lightest LAYERS
     under the model (W 15, n 3, alpha 131). Counting the connector band it needs (t_d 12.44 mm and
     L 54.6 mm against case 1's 11.89 and 48.18 mm), it is heavier than case 1, so the certified
     optimum stays case 1. Both halves are checked: the layers by hand, the total by the solver."""
@@ -82,7 +82,7 @@ def test_wider_alpha_range_and_the_connector_band() -> None:
     assert r3.stiffness[0].EI >= 80_000  # feasible: EI >= 80 mN m^2, 48 <= L <= 60, t_d in range
     assert 48 <= three.Lx <= 60
     assert 10 <= three.thickness <= 12.5
-    assert r3.mass.layer1 + r3.mass.layer2 < r1.mass.layer1 + r1.mass.layer2  # DESIGN.md 3.5
+    assert r3.mass.layer1 + r3.mass.layer2 < r1.mass.layer1 + r1.mass.layer2  # docs/theory.md 3.5
     assert r3.mass.total > r1.mass.total == pytest.approx(sol.mass)
 
 

@@ -67,7 +67,7 @@ def test_blimp_spec_values_in_internal_units() -> None:
     assert (c.side.min, c.side.max) == (48.0, 60.0)
     assert c.thickness is not None
     assert (c.thickness.min, c.thickness.max) == (10.0, 12.5)
-    # 80 mN m^2 = 80e-3 N * 1e6 mm^2 = 80 000 N mm^2 (DESIGN.md 3.4)
+    # 80 mN m^2 = 80e-3 N * 1e6 mm^2 = 80 000 N mm^2 (docs/theory.md 3.4)
     assert c.flexural_rigidity[0].min == pytest.approx(80_000.0)
     assert c.flexural_rigidity[0].eta == 0.0
     assert s.objective.minimize == "mass"

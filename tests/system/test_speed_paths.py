@@ -5,7 +5,7 @@
   the flattened grid;
 * the chunked :func:`corrugate.analysis.sweep.sweep` against one block, against a plain ``evaluate`` of
   the whole grid with the constraints written out by hand, against the certified solver on the
-  case study (DESIGN.md 3.5: W 8 mm, n 8, alpha 84 deg), and on a local dask cluster against
+  case study (docs/theory.md 3.5: W 8 mm, n 8, alpha 84 deg), and on a local dask cluster against
   the in-process run;
 * the branch and bound's k-way splits and grid enumeration against plain halving without
   enumeration (and the exhaustive hypothesis tests of tests/solver/test_solve.py);
@@ -113,7 +113,7 @@ def test_sweep_finds_the_case_study_optimum_like_the_solver_and_a_hand_search() 
     W, n, A = np.arange(1.0, 31.0), np.arange(1, 201), np.arange(1.0, 121.0)
     r = sweep(W, n, A, DURALAR, 0.125, model="paper", bounds=CASE_BOUNDS)
     assert r.best is not None
-    assert (r.best["W"], r.best["n"], r.best["alpha"]) == (8.0, 8.0, 84.0)  # DESIGN.md 3.5
+    assert (r.best["W"], r.best["n"], r.best["alpha"]) == (8.0, 8.0, 84.0)  # docs/theory.md 3.5
     sol = solve(Problem.from_spec(load_spec(EXAMPLES / "blimp_gripper.toml")), explain=False)
     assert sol.certified
     assert r.best["mass"] == pytest.approx(sol.mass, rel=1e-12)

@@ -156,7 +156,7 @@ def identical_layers(layer1: LayerArrays, layer2: LayerArrays, layout: Layout) -
     layer only: the same parameters (the same objects, or equal arrays of the same shape) on an
     outline that is symmetric under x <-> y (rectangle, square, circle) and has no holes (holes
     need not be symmetric). Then Lx = Ly and q = sum_j 1/L_j is the same for both layers
-    (DESIGN.md 3.2), so every per-layer quantity is bit for bit the same."""
+    (docs/theory.md 3.2), so every per-layer quantity is bit for bit the same."""
     if layout.holes or not isinstance(layout, Rectangle | Circle):
         return False
     if layer1 is layer2:
@@ -212,7 +212,7 @@ def evaluate(
     K (N/mm), D (N mm) and EI (N mm^2) are those of ``support``, a registered support condition
     (:mod:`corrugate.mechanics.behaviours`: ``free`` sides, the default, or a rigid ``frame``,
     :mod:`corrugate.mechanics.offaxis`); the built-in two agree at eta = 0 and 90 deg.
-    Springs from DESIGN.md 3.2, moduli from the variant ``model`` (3.1), the assembly from 3.3.
+    Springs from docs/theory.md 3.2, moduli from the variant ``model`` (3.1), the assembly from 3.3.
 
     ``mass`` (g) counts both layers and the connector band (cut from layer 1's sheet), as the cut
     files do; ``mass_connectors`` is the band's share.

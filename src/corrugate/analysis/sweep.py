@@ -10,7 +10,7 @@ designs fit in well under a gigabyte.
 Each block is the sub-grid ``W[i:j] x n[k:l] x alpha[u:v]`` passed to ``evaluate`` as broadcasting
 arrays of shapes (j - i, 1, 1), (1, l - k, 1) and (1, 1, v - u): the trigonometry runs once per
 alpha value, the moduli once per (W, alpha) pair, and only what depends on n runs once per design
-(the spring sums of DESIGN.md 3.2, the assembly of 3.3 and the mass of section 4). A block is small
+(the spring sums of docs/theory.md 3.2, the assembly of 3.3 and the mass of section 4). A block is small
 enough to stay in the processor's cache.
 
 Quantities (``fields``; units mm, g, N/mm, N mm, N mm^2):
@@ -279,7 +279,7 @@ def sweep(
     or a scheduler address; the grid is then split into ``tasks`` tasks (default: about 4 per
     worker thread) of whole W rows, and the result equals the in-process one.
 
-    Example, the case study of DESIGN.md 3.5 by exhaustive search::
+    Example, the case study of docs/theory.md 3.5 by exhaustive search::
 
         >>> import numpy as np
         >>> from corrugate import get_material

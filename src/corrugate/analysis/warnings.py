@@ -16,7 +16,7 @@
   homogenised plate; docs/validation/off_axis.md compares them with FE coupons); with
   ``"frame"`` the paper's cos^2 rule, which holds only for a panel held in a rigid frame
   (docs/fea.md 2.5);
-* the ``paper`` model, which has known errors (DESIGN.md 3.1).
+* the ``paper`` model, which has known errors (docs/theory.md 3.1).
 """
 
 from __future__ import annotations

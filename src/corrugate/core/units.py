@@ -1,6 +1,6 @@
 """Units at the boundaries: parse user quantities into corrugate's internal system.
 
-Internal units (DESIGN.md section 8): mm, N, MPa (= N/mm^2), g, degrees at the boundary and radians
+Internal units (docs/theory.md section 8): mm, N, MPa (= N/mm^2), g, degrees at the boundary and radians
 inside the formulas. Users may give a plain number (read in the field's default unit) or a string
 with units such as ``"0.3 in"`` or ``"2.7 GPa"``. The common units are converted from a small
 table (:data:`_TABLE`, checked against pint by the tests), so a spec in them never imports pint;

@@ -1,4 +1,4 @@
-"""Writers for the 2D cut files (SVG, DXF, PDF), all in millimetres (DESIGN.md section 7).
+"""Writers for the 2D cut files (SVG, DXF, PDF), all in millimetres (docs/theory.md section 7).
 
 The heavy libraries (ezdxf, matplotlib) are imported inside the functions that need them, so
 importing this package costs nothing and the core of corrugate never imports them; install them

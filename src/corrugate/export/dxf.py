@@ -1,4 +1,4 @@
-"""DXF writer (ezdxf), in millimetres, one layer per line role (DESIGN.md section 7).
+"""DXF writer (ezdxf), in millimetres, one layer per line role (docs/theory.md section 7).
 
 ``$INSUNITS`` = 4 (mm) and ``$MEASUREMENT`` = 1 (metric); coordinates are sheet mm, y up. Layers
 (ACI colour):

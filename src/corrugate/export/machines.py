@@ -2,7 +2,7 @@
 
 A cut-ready file holds only what the machine should do, because Silhouette Studio, Cricut Design
 Space and LightBurn cut every imported line unless the user changes its action, and cut a path
-whole whatever its dash style (DESIGN.md section 7). Every operation is real geometry on its own
+whole whatever its dash style (docs/theory.md section 7). Every operation is real geometry on its own
 layer (DXF) or stroke colour (SVG), named for it:
 
 =============  ===========  =====  =================================================================

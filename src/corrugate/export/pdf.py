@@ -1,5 +1,5 @@
 """PDF writer (matplotlib), one page per sheet, at 1:1 scale, for printing and for cutters that
-take PDF (DESIGN.md section 7).
+take PDF (docs/theory.md section 7).
 
 Each page is exactly the sheet: the figure is ``width / 25.4`` by ``height / 25.4`` inches (a page of
 ``width / 25.4 * 72`` by ``height / 25.4 * 72`` pt), with one axes filling the whole figure and limits

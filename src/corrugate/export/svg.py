@@ -1,4 +1,4 @@
-"""SVG writer, in millimetres, with the Origami Simulator colour convention (DESIGN.md section 7).
+"""SVG writer, in millimetres, with the Origami Simulator colour convention (docs/theory.md section 7).
 
 The root has ``width="<W>mm" height="<H>mm"`` and a viewBox of the same proportions in user
 units of :data:`FOLD_MAP_UNIT_MM` (0.01 mm: ``viewBox="0 0 100W 100H"``), so the drawing prints at

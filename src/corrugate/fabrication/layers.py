@@ -4,7 +4,7 @@ A layer's flat blank is its plan outline stretched across the creases by 1/sin(a
 point (chord x, span y) lies at flat (u, v) = (x / s, y). Crease k (k = 1..n) is the line u = k W
 inside the outline. With the layer's first facet rising from the base (z = 0 at u = 0), odd creases
 are ridges, i.e. mountains seen from the face that is up when cut, and even creases valleys; every
-crease has the dihedral fold angle 180 deg - alpha (DESIGN.md section 2). A layout's holes are
+crease has the dihedral fold angle 180 deg - alpha (docs/theory.md section 2). A layout's holes are
 stretched the same way and cut as inner rings; creases stop at them.
 """
 

@@ -11,7 +11,7 @@
 * :mod:`~corrugate.fea.series`: sweeps through a ``concurrent.futures`` executor, tables;
 * :mod:`~corrugate.fea.plots`: Fig. 7-style plots (matplotlib).
 
-The core package never imports this subpackage (DESIGN.md section 9). See docs/fea.md.
+The core package never imports this subpackage (docs/architecture.md). See docs/fea.md.
 """
 
 from corrugate.fea.assembly import AssemblyMesh, AssemblyResult, solve_assembly

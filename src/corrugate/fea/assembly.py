@@ -3,7 +3,7 @@
 The meshes come from :mod:`corrugate.fea.shells` (the layers) and :mod:`corrugate.fea.connector_band`
 (the connector band); this module writes the deck of each load case and reads the result.
 
-Model (every choice stated; DESIGN.md section 6):
+Model (every choice stated; docs/theory.md section 6):
 
 * **Geometry** (eta = 0 or 90 deg). Both layers of a rectangular layout (``square`` or
   ``rectangle``; the layers may differ), each as the
@@ -47,7 +47,7 @@ Model (every choice stated; DESIGN.md section 6):
   connectors at the edges. Here they are **not connected to each other at all**: each layer is
   loaded by the same rigid fixture (same prescribed displacement), and the assembly's force is the
   sum of the two layers' reactions. That is the parallel-spring assumption of the closed forms
-  (DESIGN.md 3.3), checked without contact or connector models, which would add stiffness the
+  (docs/theory.md 3.3), checked without contact or connector models, which would add stiffness the
   closed forms neglect (the paper saw its experiments slightly stiffer for that reason).
 * **Compression along eta** (eta = 0: along y, layer 1's creases; eta = 90: along x). Both loaded
   edges of each layer lie on rigid, frictionless, non-rotating platens: the displacement along the

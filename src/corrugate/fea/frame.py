@@ -1,6 +1,6 @@
 """The panel in a rigid frame: the FE counterpart of the paper's cos^2 rule for K(eta).
 
-The rule K(eta) = K_y cos^2(eta) + K_x sin^2(eta) (DESIGN.md 3.3; eta from layer 1's creases, the
+The rule K(eta) = K_y cos^2(eta) + K_x sin^2(eta) (docs/theory.md 3.3; eta from layer 1's creases, the
 y axis) is the stiffness of two orthogonal springs whose common end moves along eta. On the panel
 that is a rigid frame of four frictionless platens, one on each edge: the platen pair across y
 moves by delta cos(eta), the pair across x by delta sin(eta), and the force along eta is

@@ -1,6 +1,6 @@
 """Sweeps of FE validation cases through a ``concurrent.futures`` executor, and their reports.
 
-* :func:`paper_cases`: the paper's validation sets (Liu, Yan and Mehta, Fig. 7; DESIGN.md 3.5):
+* :func:`paper_cases`: the paper's validation sets (Liu, Yan and Mehta, Fig. 7; docs/theory.md 3.5):
   n = 11, alpha = 90 deg, W = 8/10/12/14 mm; W = 10 mm, alpha = 90 deg, n = 7/9/11/13; n = 11,
   W = 10 mm, alpha = 40/65/90/115 deg; Dura-Lar 0.125 mm, two identical layers on a square.
 * :func:`run_sweep`: submits every case to an executor (a local process pool by default, or a

@@ -27,7 +27,7 @@ Model (CalculiX, :mod:`corrugate.fea.ccx`):
 
       Ecx = 1 / (t C_xx),  Ecy = 1 / (t C_yy),  Ebx = 12 / (t^3 C_kx),  Eby = 12 / (t^3 C_ky),
 
-  moduli per plan width p of a facet, the convention of :mod:`corrugate.mechanics.moduli` (DESIGN.md 3.1).
+  moduli per plan width p of a facet, the convention of :mod:`corrugate.mechanics.moduli` (docs/theory.md 3.1).
 
 Source of the method: periodic homogenisation of plates (e.g. Xia et al. 2012, Int. J. Solids
 Struct. 49:1453, whose A and D this cell computes numerically).
@@ -143,7 +143,7 @@ class UnitCell(FacetGeometry):
 
 @dataclass(frozen=True, slots=True)
 class UnitCellResult:
-    """Moduli (MPa, per plan width, DESIGN.md 3.1) and the compliance C (per unit plan area;
+    """Moduli (MPa, per plan width, docs/theory.md 3.1) and the compliance C (per unit plan area;
     order eps_x, eps_y, kappa_x, kappa_y; mm/N and 1/(N mm)) of one unit-cell run."""
 
     cell: UnitCell

@@ -1,6 +1,6 @@
 """Connectors: the edge band that holds the two layers together and fixes their fold angle.
 
-Design (DESIGN.md section 4 asks for connectors whose area counts in the mass):
+Design (docs/theory.md section 4 asks for connectors whose area counts in the mass):
 
 * A **band** of height t_d (the folded thickness) wraps the whole perimeter of the outline, cut in
   segments: one per polygon edge (it folds at no corner, the joins sit at the corners), or equal arcs

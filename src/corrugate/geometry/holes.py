@@ -9,7 +9,7 @@ Shapes. A ``circle`` (``diameter``, ``center``) or a ``polygon`` (``vertices`` r
 :data:`HOLE_SEGMENTS` sides; the **mass** uses that polygon's area (so it equals rho t times the
 area cut), the **stiffness** uses the true circle (slightly larger, so conservative).
 
-The model of a hole (used by :mod:`corrugate.analysis.evaluate`, DESIGN.md 3.2 with holes). Facet j of a
+The model of a hole (used by :mod:`corrugate.analysis.evaluate`, docs/theory.md 3.2 with holes). Facet j of a
 layer is the plan strip of width p between two creases; its length L_j (:mod:`corrugate.geometry.layouts`)
 is that of the outline without holes. A hole *touches* facet j when it overlaps the strip with
 positive area. Each facet is read as a bundle of independent columns (lateral load sharing is

@@ -42,7 +42,7 @@ def crease_layer(eta_deg: float) -> int | None:
 
 class FacetGeometry:
     """Plan geometry of a zig-zag with facet width ``W`` (mm) and interior angle ``alpha_deg``:
-    s, c, the pitch p = W s and the height h = W c (DESIGN.md section 2). A mixin for the
+    s, c, the pitch p = W s and the height h = W c (docs/theory.md section 2). A mixin for the
     dataclasses that carry W and alpha_deg (a layer, a finite-element unit cell)."""
 
     __slots__ = ()
@@ -170,7 +170,7 @@ class Assembly:
 
     @property
     def thickness(self) -> float:
-        """Folded thickness t_d = W1 cos(alpha1/2) + W2 cos(alpha2/2) (mm), DESIGN.md section 2."""
+        """Folded thickness t_d = W1 cos(alpha1/2) + W2 cos(alpha2/2) (mm), docs/theory.md section 2."""
         return self.layer1.height + self.layer2.height
 
     def facet_lengths(self, index: int) -> NDArray[np.float64]:

@@ -3,7 +3,7 @@
 Coordinates. Layer 1's creases run along y, so its facets are strips across x (its chordwise
 direction); layer 2 lies on it rotated 90 deg, its facets strips across y. Both layers fill the same
 bounding box Lx x Ly, set by the layers themselves: Lx = (n1 + 1) p1 and Ly = (n2 + 1) p2 with the
-pitch p = W sin(alpha/2) (DESIGN.md section 2). A layout is a shape in the unit box, scaled to
+pitch p = W sin(alpha/2) (docs/theory.md section 2). A layout is a shape in the unit box, scaled to
 Lx x Ly:
 
 * ``square``: the box itself, with Lx = Ly = L (paper eq. rect_geo_constrain_1);

@@ -4,7 +4,7 @@ The stiffness K of ``analyze`` is a small-load stiffness; thin facets buckle lon
 sheet yields. Under compression along the creases of one layer (eta = 0: layer 1, eta = 90:
 layer 2) rigid platens give every facet of that layer the same strain, hence the same stress
 sigma along its creases, and the layer carries sigma (n + 1) W t; the other layer, loaded across
-its creases, carries the share K_C / K_S of that in parallel (DESIGN.md 3.3).
+its creases, carries the share K_C / K_S of that in parallel (docs/theory.md 3.3).
 
 Each facet is a long plate of width W and thickness t. An interior facet is held along both
 creases (its inclined neighbours keep each crease line straight): k >= 4. The two end facets have

@@ -1,4 +1,4 @@
-"""Mass of a design: rho t times the area of every cut part (DESIGN.md section 4).
+"""Mass of a design: rho t times the area of every cut part (docs/theory.md section 4).
 
 The cut parts are the two layers' flat blanks and the connector band (cut from layer 1's sheet).
 Facet j of a layer is a flat strip of width W and area W L_j (see :mod:`corrugate.geometry.layouts`), so a

@@ -1,7 +1,7 @@
 """Equivalent plate moduli of one zig-zag (triangular) corrugated layer, in three named variants.
 
 Each facet of a layer is replaced by a flat plate of thickness t and width p = W sin(alpha/2)
-(DESIGN.md section 3.1). The four equivalent Young's moduli, all in the unit of ``E`` (MPa), are
+(docs/theory.md section 3.1). The four equivalent Young's moduli, all in the unit of ``E`` (MPa), are
 
 * ``Ecx``: in-plane, chordwise (across the creases),
 * ``Ecy``: in-plane, spanwise (along the creases),
@@ -13,7 +13,7 @@ Variants (select by name everywhere a stiffness is computed):
 ``paper``
     The four formulas exactly as printed in Liu, Yan and Mehta (eqs. Ecx-Eby), kept to reproduce the
     paper's numbers. Known errors: Ecx 55-89 % too low, Ecy off by -4 % to +16 %, Ebx misses a
-    factor 2 s on its t^2 term (DESIGN.md 3.1).
+    factor 2 s on its t^2 term (docs/theory.md 3.1).
 ``xia``
     Xia, Friswell and Saavedra Flores (2012), Int. J. Solids Struct. 49:1453, specialised to the
     zig-zag and simplified: what the paper meant to print.
@@ -178,7 +178,7 @@ def xia_moduli_sc(
 def xia_moduli(
     E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, alpha: FloatArray
 ) -> Moduli:
-    """Xia et al. (2012) A and D of the zig-zag, reduced to moduli (DESIGN.md 3.1, 'checked').
+    """Xia et al. (2012) A and D of the zig-zag, reduced to moduli (docs/theory.md 3.1, 'checked').
 
     Ecx = E t^2 s / (t^2 s^2 + (1 - nu^2) W^2 c^2), Ecy = E / s,
     Ebx = E s [W^2 c^2 + (1 - nu^2) t^2 s^2] / [(1 - nu^2)(W^2 c^2 + t^2 s^2)],
@@ -252,8 +252,9 @@ def moduli(
 ) -> Moduli:
     """Equivalent moduli (unit of ``E``) of a zig-zag layer; ``alpha_deg`` in degrees.
 
-    Inputs broadcast against each other; no validation is done here (see
-    :mod:`corrugate.validation`), so this is the fast path for sweeps.
+    Inputs broadcast against each other; no validation is done here (the input limits are
+    :mod:`corrugate.core.limits`, which the command line, spec and web API apply), so this is the
+    fast path for sweeps.
     """
     arrays = np.broadcast_arrays(
         *(np.asarray(a, dtype=np.float64) for a in (E, nu, t, W, alpha_deg))

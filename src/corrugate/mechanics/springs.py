@@ -1,13 +1,13 @@
 """From facets to layers to the assembly: the spring model of the paper, vectorised.
 
-Per layer, with p = W sin(alpha/2) and the sums over its n + 1 facets (DESIGN.md section 3.2; the
+Per layer, with p = W sin(alpha/2) and the sums over its n + 1 facets (docs/theory.md section 3.2; the
 paper writes j = 1..n, but a layer with n creases has n + 1 facets and only that reproduces Table 1):
 
     K_C = 1 / sum_j p / (Ecx L_j t)          K_S = sum_j Ecy p t / L_j          [N/mm]
     D_C = 1 / sum_j 12 p / (Ebx L_j t^3)     D_S = sum_j Eby t^3 p / (12 L_j)   [N mm]
 
 Every sum needs only q = sum_j 1/L_j, so a layer is fully described by (moduli, p, t, q). The
-assembly along eta (the paper's rule for a panel in a rigid frame, DESIGN.md 3.3, or the free
+assembly along eta (the paper's rule for a panel in a rigid frame, docs/theory.md 3.3, or the free
 panel) is :func:`corrugate.mechanics.offaxis.assembly_directional`; EI(eta) = D(eta) x span(eta).
 """
 

@@ -1,6 +1,6 @@
 """The certified solver: a spec's problem, its branch and bound and the explained answer.
 
-Pipeline (DESIGN.md section 9): :func:`corrugate.spec.schema.load_spec` -> :meth:`Problem.from_spec`
+Pipeline (docs/architecture.md): :func:`corrugate.spec.schema.load_spec` -> :meth:`Problem.from_spec`
 -> :func:`solve` -> :class:`Solution` (``to_dict()`` is the ``corrugate design --json`` object).
 """
 

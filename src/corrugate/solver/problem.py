@@ -1,4 +1,4 @@
-"""The optimisation problem a spec states, in internal units (DESIGN.md section 5).
+"""The optimisation problem a spec states, in internal units (docs/theory.md section 5).
 
 A :class:`Problem` is what the solver sees: the moduli variant, the layout, whether the two layers
 are identical, the candidate sheets (material and thickness: a discrete variable), the bounds and

@@ -25,7 +25,7 @@ a box ``lo <= x <= hi`` (elementwise over many boxes). The arguments, per quanti
   the lower bounds come from :func:`_hole_pq_bounds` (touched facets and blocked lengths over
   the box).
 * stiffness: the moduli variant's own function evaluated in :class:`~.interval.Interval`
-  arithmetic over the box (W, alpha), then the spring sums of DESIGN.md 3.2 and the assembly
+  arithmetic over the box (W, alpha), then the spring sums of docs/theory.md 3.2 and the assembly
   by the ``bounds`` of the quantity's support condition (or load case) in the registry of
   behaviours (:mod:`corrugate.mechanics.behaviours`: the rule of 3.3 for a frame, the free-panel
   lower bounds of :mod:`corrugate.mechanics.offaxis` for free sides, each variable once per term
@@ -390,7 +390,7 @@ def _layer_springs(
     tables: Tables,
     axis: str,
 ) -> _Springs:
-    """K_C, K_S, D_C, D_S (DESIGN.md 3.2) and the shear and twisting springs K_T, D_T
+    """K_C, K_S, D_C, D_S (docs/theory.md 3.2) and the shear and twisting springs K_T, D_T
     (:func:`corrugate.mechanics.offaxis.shear_springs`, on the parallel sum) of a layer over a box, in
     interval arithmetic."""
     m = cand.material

@@ -1,4 +1,4 @@
-"""Solve a design problem and explain the answer (DESIGN.md section 5).
+"""Solve a design problem and explain the answer (docs/theory.md section 5).
 
 :func:`solve` runs the certified branch and bound (:mod:`.bnb`) over every candidate sheet pair
 (the material and thickness are a discrete variable; a shared incumbent prunes the later pairs),

@@ -1,6 +1,6 @@
 """Design specs: TOML files validated with pydantic, quantities with units read by pint.
 
-A spec states what a part must do (DESIGN.md section 5); :func:`load_spec` reads one from a TOML
+A spec states what a part must do (docs/theory.md section 5); :func:`load_spec` reads one from a TOML
 file and :func:`parse_spec` from a dict. Every quantity may carry units (``"48 mm"``,
 ``"80 mN*m^2"``, ``"84 deg"``) or be a plain number in the field's internal unit (mm, deg, N mm^2,
 N mm, N/mm, g). The validated :class:`Spec` holds plain floats in those internal units.
@@ -480,7 +480,7 @@ class MassBound(_Strict):
 
 
 class ConstraintsSpec(_Strict):
-    """Fabrication, size and behaviour constraints (DESIGN.md section 5).
+    """Fabrication, size and behaviour constraints (docs/theory.md section 5).
 
     ``side`` bounds the folded side L of a square; ``diameter`` that of a circle; ``side_x`` and
     ``side_y`` the folded extents Lx and Ly of a rectangle or of a polygon's bounding box.

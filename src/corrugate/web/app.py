@@ -64,7 +64,6 @@ from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
 from corrugate.solver import Problem, Solution
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
-from corrugate.web.formats import FormatInfo, format_list
 from corrugate.web.guards import (
     BodySizeLimit,
     CatchAll,
@@ -81,12 +80,14 @@ from corrugate.web.schemas import (
     DesignBody,
     ErrorBody,
     FieldError,
+    FormatInfo,
     ModelInfo,
     ModelsBody,
     OutputBody,
     PatternBody,
     ResultBody,
     ResultFile,
+    format_list,
 )
 from corrugate.web.store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
 from corrugate.workflow import output_options, solve_spec, write_design

@@ -12,6 +12,7 @@ from typing import Annotated, Any
 from pydantic import BaseModel, ConfigDict, Field, StrictFloat, StrictInt, StringConstraints
 
 from corrugate.core.parameters import PARAMETERS
+from corrugate.export.writers import WRITERS
 from corrugate.names import DEFAULT_HOLE_SHAPE, DEFAULT_MACHINE, HOLE_SHAPES
 
 __all__ = [
@@ -21,6 +22,7 @@ __all__ = [
     "DesignBody",
     "ErrorBody",
     "FieldError",
+    "FormatInfo",
     "HoleBody",
     "ModelInfo",
     "ModelsBody",
@@ -28,6 +30,7 @@ __all__ = [
     "PatternBody",
     "ResultBody",
     "ResultFile",
+    "format_list",
 ]
 
 MAX_ETAS = 181
@@ -242,3 +245,34 @@ class DesignAnswer(BaseModel):
     result: ResultBody | None = Field(
         description="The files of the design (null when the spec is infeasible)."
     )
+
+
+class FormatInfo(BaseModel):
+    """One kind of file a design's output folder holds (an entry of the writers registry)."""
+
+    name: str = Field(description="The entry's name, e.g. 'cut-dxf'.")
+    pattern: str = Field(
+        description="Its file names: '{sheet}' is the sheet number from 1, '{layer}' the layer "
+        "(1 or 2), '{paper}' a4 or letter; e.g. 'cut-{sheet}.dxf'."
+    )
+    media_type: str = Field(description="The media type its downloads are served with.")
+    extra: str | None = Field(
+        description="The package extra writing it needs ('fab'), or null for none."
+    )
+    description: str = Field(description="What the file is.")
+    order: int = Field(description="Its place in the page's list of downloads (ascending).")
+
+
+def format_list() -> list[FormatInfo]:
+    """Every entry of the registry, in the order the files are written."""
+    return [
+        FormatInfo(
+            name=w.name,
+            pattern=w.pattern,
+            media_type=w.media_type,
+            extra=w.extra,
+            description=w.description,
+            order=w.order,
+        )
+        for w in WRITERS
+    ]
