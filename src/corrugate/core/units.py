@@ -5,6 +5,15 @@ inside the formulas. Users may give a plain number (read in the field's default 
 with units such as ``"0.3 in"`` or ``"2.7 GPa"``. The common units are converted from a small
 table (:data:`_TABLE`, checked against pint by the tests), so a spec in them never imports pint;
 pint converts everything else, its registry loaded from its disk cache.
+
+A quantity string is a number, then a unit read by the grammar of
+:mod:`corrugate.core.unit_grammar` (never by an expression evaluator): unit names joined by
+``*``, ``/``, ``·`` or a space, each with an optional whole exponent ``^n`` or ``**n``
+(|n| <= 4, no exponent of an exponent, no parenthesised exponent), parentheses at most 4 deep,
+at most 64 characters; ``1/mm`` is allowed, any other number inside the unit is refused
+(``mm/0`` as a division by zero) and ``mm^0`` is the pure number 1. pint is given only single
+unit names; the unit is their product with the small integer powers the grammar found, so no
+text makes it compute. Every refusal is an :class:`InputError` naming the field.
 """
 
 from __future__ import annotations
@@ -17,6 +26,7 @@ from functools import lru_cache
 from typing import Any
 
 from corrugate.core.errors import InputError
+from corrugate.core.unit_grammar import parse_unit
 
 __all__ = ["parse_quantity", "ureg"]
 
@@ -178,28 +188,25 @@ def parse_quantity(value: object, unit: str, field: str) -> float:
     magnitude, unit_text = float(match.group(1)), match.group(2).strip()
     # Sheet thickness is sold in "mil" (a thousandth of an inch); pint reads "mil" as 1/1000.
     unit_text = _MIL.sub("thou", unit_text)
+    powers = parse_unit(unit_text, field, value)  # refuses every text outside the grammar
     factor = _table_factor(unit_text, unit)
     if factor is not None:  # the common units, without importing pint (~0.3 s of CPU)
         return magnitude * factor
     pint = _import_pint()
     reg = ureg()
+    unknown = InputError(
+        field,
+        repr(value),
+        f"a number or a quantity in {unit} such as '1 {unit}'",
+        reason=f"has an unknown unit {unit_text!r}",
+    )
     try:
-        q = reg.Quantity(magnitude, reg.Unit(unit_text))
-    except (
-        pint.errors.UndefinedUnitError,
-        pint.errors.DefinitionSyntaxError,
-        ValueError,
-        AttributeError,
-        TypeError,
-        SyntaxError,
-        AssertionError,
-    ) as exc:
-        raise InputError(
-            field,
-            repr(value),
-            f"a number or a quantity in {unit} such as '1 {unit}'",
-            reason=f"has an unknown unit {unit_text!r}",
-        ) from exc
+        q = reg.Quantity(magnitude, _product(reg, powers))
+    except _UnknownNameError:
+        raise unknown from None
+    except (pint.errors.PintError, ArithmeticError, TypeError, ValueError) as exc:
+        # an offset unit (degC) in a product, a size beyond a float: not a unit to convert
+        raise unknown from exc
     target = reg.Unit(unit)
     try:
         return float(q.to(target).magnitude)
@@ -210,3 +217,27 @@ def parse_quantity(value: object, unit: str, field: str) -> float:
             f"a quantity convertible to {unit}",
             reason=f"has the wrong dimension ({q.dimensionality})",
         ) from exc
+    except (pint.errors.PintError, ArithmeticError) as exc:
+        raise InputError(
+            field,
+            repr(value),
+            f"a quantity convertible to {unit}",
+            reason=f"cannot be converted to {unit} ({type(exc).__name__})",
+        ) from exc
+
+
+class _UnknownNameError(LookupError):
+    """A unit name pint does not read as one unit (internal to :func:`_product`)."""
+
+
+def _product(reg: Any, powers: tuple[tuple[str, int], ...]) -> Any:
+    """The pint unit ``prod(name ** power)``: each name looked up alone, the powers small integers
+    (:func:`corrugate.core.unit_grammar.parse_unit`), so nothing here evaluates an expression."""
+    unit = reg.Unit("dimensionless")
+    for name, power in powers:
+        try:
+            one = reg.Unit(name)  # one identifier (or ``°``, ``%``): pint reads it as one name
+        except Exception as exc:  # pint's name reader fails in many ways on odd names
+            raise _UnknownNameError(name) from exc
+        unit = unit * one**power
+    return unit
