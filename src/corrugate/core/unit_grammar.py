@@ -10,7 +10,8 @@ make the reader compute more than a few multiplications::
     exponent := ("^" | "**") [+-] DIGITS | SUPERSCRIPTS     |exponent| <= MAX_EXPONENT
 
 ``*``, ``/`` and implicit multiplication share one precedence and group from the left (pint's own
-reading: ``N/mm m`` is N m / mm). A NAME is an identifier (``mm``, ``mN``, ``inch_Hg``, ``µm``),
+reading: ``N/mm m`` is N m / mm); pint's words are read as it reads them (``N per mm``,
+``square mm``, ``sq mm``, ``cubic cm``, ``mm squared``, ``cm cubed``). A NAME is an identifier (``mm``, ``mN``, ``inch_Hg``, ``µm``),
 ``°`` with an optional identifier after it (``°C``) or ``%``; it is looked up later as one name.
 There is no exponent of an exponent (``mm^2^2``) and no parenthesised exponent (``mm^(1/2)``); a
 number inside a unit is refused (``mm/0``: division by zero; ``mm*2``: a scaling factor) except
@@ -53,6 +54,9 @@ _TOKEN = re.compile(
     """,
     re.VERBOSE,
 )
+#: pint's words for exponents: before a name (``square mm``) and after a unit (``mm squared``).
+_WORD_BEFORE = {"square": 2, "sq": 2, "cubic": 3}
+_WORD_AFTER = {"squared": "²", "cubed": "³"}
 _ALLOWED = (
     "unit names joined by '*', '/', '·' or a space, each with an optional whole exponent "
     f"'^n' or '**n' (|n| <= {MAX_EXPONENT}), parentheses at most {MAX_DEPTH} deep, "
@@ -114,9 +118,9 @@ class _Parser:
     def unit(self, depth: int) -> dict[str, int]:
         powers = self.term(depth)
         while (tok := self.peek()) is not None and tok.kind != "close":
-            if tok.kind in ("times", "divide"):
+            if tok.kind in ("times", "divide") or (tok.kind, tok.text) == ("name", "per"):
                 self.i += 1
-                sign = -1 if tok.kind == "divide" else 1
+                sign = 1 if tok.kind == "times" else -1
             elif tok.kind in ("name", "number", "open"):
                 sign = 1  # a unit right after a unit: implicit multiplication
             elif tok.kind in ("power", "superscript"):
@@ -133,11 +137,21 @@ class _Parser:
         return powers
 
     def term(self, depth: int) -> dict[str, int]:
-        powers = self.atom(depth)
         tok = self.peek()
-        if tok is None or tok.kind not in ("power", "superscript"):
+        before = self.tokens[self.i + 1] if self.i + 1 < len(self.tokens) else None
+        if tok is not None and tok.text in _WORD_BEFORE and before and before.kind == "name":
+            self.i += 1  # "square mm", "cubic cm": pint's words for ^2 and ^3
+            powers = self.combine({}, self.atom(depth), _WORD_BEFORE[tok.text])
+        else:
+            powers = self.atom(depth)
+        tok = self.peek()
+        if tok is not None and tok.kind == "name" and tok.text in _WORD_AFTER:
+            self.i += 1  # "mm squared", "cm cubed"
+            tok = _Token("superscript", _WORD_AFTER[tok.text], tok.space_before)
+        elif tok is None or tok.kind not in ("power", "superscript"):
             return powers
-        self.i += 1
+        else:
+            self.i += 1
         if tok.kind == "superscript":
             written = tok.text
             exponent_text = tok.text.translate(_SUPERSCRIPTS)
