@@ -1,13 +1,17 @@
-"""Quantities at the boundary: plain numbers in the default unit, strings with units via pint."""
+"""Quantities at the boundary: plain numbers in the default unit, strings with units read by the
+unit grammar (pint given single names only)."""
 
 from __future__ import annotations
 
 import os
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from corrugate.core.errors import InputError
 from corrugate.core.units import parse_quantity
@@ -117,3 +121,201 @@ def test_a_spec_in_common_units_does_not_import_pint_or_dask(tmp_path: Path) -> 
         )
         assert done.returncode == 0, done.stderr
     assert any((tmp_path / "cache").iterdir())
+
+
+# ---- the unit grammar (corrugate.core.unit_grammar): every accepted form, every hostile class ----
+
+
+@pytest.mark.parametrize(
+    ("value", "unit"),
+    [
+        ("0.3 in", "mm"),
+        ("2.7GPa", "MPa"),
+        ("84 deg", "deg"),
+        ("1.4 rad", "deg"),
+        ("80 mN*m^2", "N*mm^2"),
+        ("80 mN m^2", "N*mm^2"),
+        ("1.2 g/cm^3", "g/cm^3"),
+        ("0.125 mm", "mm"),
+        ("3 N/mm", "N/mm"),
+        ("4 N*mm", "N*mm"),
+        ("5 lbf/in", "N/mm"),
+        ("6 kgf/mm^2", "MPa"),
+        ("2 yard", "mm"),
+        ("0.8 cm", "mm"),
+        ("2 km", "mm"),
+        ("7 N/mm m", "N"),  # pint's reading: left to right, (N / mm) * m
+        ("2 (N/mm)^2", "N^2/mm^2"),
+        ("3 N/mm/mm", "MPa"),
+        ("4 1/mm", "1/mm"),
+        ("5 N·mm", "N*mm"),
+        ("6 mm²", "mm^2"),
+        ("7 mm⁻²", "1/mm^2"),
+        ("8 N per mm", "N/mm"),
+        ("9 square mm", "mm^2"),
+        ("2 sq in", "mm^2"),
+        ("3 cubic cm", "mm^3"),
+        ("4 mm squared", "mm^2"),
+        ("5 cm cubed", "mm^3"),
+        ("6 g per cubic cm", "g/cm^3"),
+        ("3 µm", "mm"),
+        ("30 °", "deg"),
+        ("5 %", "dimensionless"),
+        ("1 inch_Hg", "MPa"),
+        ("2 mm^-1", "1/m"),
+        ("3 ((((mm))))", "mm"),  # four levels: the deepest allowed
+        ("4 lbf in", "N*mm"),
+        ("  5   mN  *  m ^ 2 ", "N*mm^2"),
+    ],
+)
+def test_accepted_forms_keep_pints_value(value: str, unit: str) -> None:
+    """Each accepted form converts to the number pint's own parser gives for the same text (a
+    second method: pint evaluates these harmless texts itself)."""
+    from corrugate.core.units import ureg
+
+    reg = ureg()
+    magnitude, text = value.strip().split(maxsplit=1) if " " in value.strip() else (value, "")
+    if not text:  # "2.7GPa": the number and the unit written together
+        magnitude, text = value[:3], value[3:]
+    expected = reg.Quantity(float(magnitude), reg.Unit(text)).to(reg.Unit(unit)).magnitude
+    assert parse_quantity(value, unit, "x") == pytest.approx(float(expected), rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("value", "unit", "expected"),
+    [
+        ("5 mil", "mm", 0.127),  # a mil (thou) is 0.0254 mm, not pint's milliradian
+        ("0.3 in", "mm", 7.62),  # 0.3 * 25.4
+        ("80 mN m^2", "N*mm^2", 80_000.0),  # 80e-3 N * 1e6 mm^2
+        ("1.2 g/cm^3", "g/mm^3", 1.2e-3),  # 1 cm^3 = 1000 mm^3
+        ("3 N/mm/mm", "MPa", 3.0),  # N/mm^2 is MPa
+        ("2 (N/mm)^2", "N^2/m^2", 2e6),  # (1000 N/m)^2
+        ("6 mm²", "cm^2", 0.06),
+        ("1 kgf/mm^2", "MPa", 9.80665),  # standard gravity
+        ("4 N per square mm", "MPa", 4.0),
+    ],
+)
+def test_accepted_forms_by_hand(value: str, unit: str, expected: float) -> None:
+    """The same forms against hand conversions (no pint on the expected side)."""
+    assert parse_quantity(value, unit, "x") == pytest.approx(expected, rel=1e-12)
+
+
+def test_a_zero_exponent_is_the_number_one() -> None:
+    """``mm**-0`` and ``mm^0`` are read as dimensionless (mm^0 = 1): a pure number keeps its value,
+    and a length field refuses them as the wrong dimension instead of reading them as mm."""
+    assert parse_quantity("2 mm**-0", "dimensionless", "nu") == 2.0
+    assert parse_quantity("3 mm^0 N", "N", "F") == 3.0
+    for text in ("1 mm**-0", "1 mm^0"):
+        with pytest.raises(InputError, match=r"^W = .* wrong dimension \(dimensionless\)"):
+            parse_quantity(text, "mm", "W")
+
+
+HOSTILE = [
+    ("1 mm**9**9**9", "exponent of an exponent"),
+    ("1 mm^9^9", "exponent of an exponent"),
+    ("1 mm^2^2", "exponent of an exponent"),
+    ("1 mm²^2", "exponent of an exponent"),
+    ("1 mm**99", "exponent '\\*\\*99' that is too large"),
+    ("1 mm^5", "too large"),
+    ("1 mm^-5", "too large"),
+    ("1 mm^99999999999999999999999999999", "too large"),
+    ("1 mm**2.5", "not a whole number"),
+    ("1 mm/0", "divides its unit by zero"),
+    ("1 mm/0.0", "divides its unit by zero"),
+    ("1 mm*2", "number '2' inside its unit"),
+    ("1 mm/(0)", "number '0' inside its unit"),
+    ("1 mm**(1/0)", "parenthesised exponent"),
+    ("1 mm**(9**9)", "parenthesised exponent"),
+    ("1 mm^(2)", "parenthesised exponent"),
+    ("1 (mm", "unbalanced parenthesis"),
+    ("1 mm)", "unbalanced parenthesis"),
+    ("1 (mm))", "unbalanced parenthesis"),
+    ("1 ((((mm)))", "unbalanced parenthesis"),
+    ("1 (((((mm)))))", "nested more than 4 deep"),
+    ("1 " + "(" * 1000 + "mm" + ")" * 1000, "longer than 64 characters"),
+    ("1 " + "(" * 30 + "mm" + ")" * 30, "nested more than 4 deep"),
+    ("1 " + "m" * 100_000, "longer than 64 characters"),
+    ("1 " + "mm*" * 30 + "mm", "longer than 64 characters"),
+    ("1 (((mm^4)^4)^4)", "power 64"),
+    ("1 (mm^4)^4 mm", "power 17"),
+    ("1 mm\x00", "unexpected character '\\\\x00'"),
+    ("1 \x00", "unexpected character"),
+    ("1 mm;import os", "unexpected character ';'"),
+    ("1 mm.__class__", "unexpected character '\\.'"),
+    ("1 mm[0]", "unexpected character '\\['"),
+    ("1 mm-2", "unexpected '-'"),
+    ("1 mm^", "no exponent"),
+    ("1 mm^-", "no exponent"),
+    ("1 mm*", "incomplete unit"),
+    ("1 mm/", "incomplete unit"),
+    ("1 /mm", "where a unit name belongs"),
+    ("1 ()", "unit name missing before '\\)'"),
+    ("1 mm²²", "exponent '²²' that is too large"),  # pint reads it as mm**22
+    ("1 mm⁹", "too large"),
+    ("1 ^2", "where a unit name belongs"),
+    ("1 mm**", "no exponent"),
+    ("1 degC*mm", "wrong dimension"),
+    ("1 bogon^2", "unknown unit"),
+    ("1 °9", "unknown unit"),
+]
+
+
+@pytest.mark.parametrize(("value", "reason"), HOSTILE)
+def test_hostile_units_are_one_input_error_naming_the_field(value: str, reason: str) -> None:
+    """Every hostile class is refused quickly with one InputError that names the field."""
+    start = time.perf_counter()
+    with pytest.raises(InputError, match=rf"^W = .*{reason}.*: allowed ") as exc:
+        parse_quantity(value, "mm", "W")
+    assert time.perf_counter() - start < 0.5
+    assert exc.value.field == "W"
+    assert len(str(exc.value)) < 600  # one line, a long text cut short
+    assert "\n" not in str(exc.value)
+
+
+def _assert_float_or_input_error(text: str) -> None:
+    """``parse_quantity(text)`` is a float or one InputError naming the field, within 0.5 s."""
+    start = time.perf_counter()
+    outcome: object
+    try:
+        outcome = parse_quantity(text, "mm", "W")
+    except InputError as exc:
+        outcome = exc
+    assert time.perf_counter() - start < 0.5, repr(text)
+    if isinstance(outcome, InputError):
+        assert outcome.field == "W", repr(text)
+        assert str(outcome).startswith("W = "), repr(text)
+    else:
+        assert isinstance(outcome, float), repr(text)
+
+
+def test_binary_junk_is_an_input_error() -> None:
+    """Random bytes read as text (every code point 0-255, in a fixed shuffled order): an
+    InputError or, for the rare readable text, a number; never another exception."""
+    import random
+
+    rng = random.Random(22)
+    for _ in range(300):
+        junk = bytes(rng.randrange(256) for _ in range(rng.randrange(1, 40))).decode("latin-1")
+        for text in (junk, "1 " + junk, "1 mm" + junk):
+            _assert_float_or_input_error(text)
+
+
+_PIECES = ["mm", "m", "N", "mN", "in", "g", "cm", "deg", "%", "°", "µm", "per", "square", "squared"]
+_ALPHABET = "mNgcinµ°% ()*/^·-+0123456789.²⁻\t"
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(
+    st.text(alphabet=_ALPHABET, max_size=70)
+    | st.lists(
+        st.sampled_from([*_PIECES, *"()*/^·", "**", " ", "9", "-1", "0", "2"]), max_size=30
+    ).map("".join)
+)
+def test_random_texts_of_the_grammar_are_a_float_or_an_input_error(unit_text: str) -> None:
+    """Random texts over the grammar's alphabet (characters, or its pieces joined): each is a
+    float or one InputError naming the field, within 0.5 s."""
+    from corrugate.core.units import ureg
+
+    ureg()  # pint's registry loaded before the clock starts
+    for text in (unit_text, "1 " + unit_text):
+        _assert_float_or_input_error(text)

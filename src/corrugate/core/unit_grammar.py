@@ -11,8 +11,9 @@ make the reader compute more than a few multiplications::
 
 ``*``, ``/`` and implicit multiplication share one precedence and group from the left (pint's own
 reading: ``N/mm m`` is N m / mm); pint's words are read as it reads them (``N per mm``,
-``square mm``, ``sq mm``, ``cubic cm``, ``mm squared``, ``cm cubed``). A NAME is an identifier (``mm``, ``mN``, ``inch_Hg``, ``µm``),
-``°`` with an optional identifier after it (``°C``) or ``%``; it is looked up later as one name.
+``square mm``, ``sq mm``, ``cubic cm``, ``mm squared``, ``cm cubed``). A NAME is an identifier
+without superscript digits (``mm``, ``mN``, ``inch_Hg``, ``µm``), ``°`` with an optional identifier
+after it (``°``, ``°C``), or ``%``; it is looked up later as one name.
 There is no exponent of an exponent (``mm^2^2``) and no parenthesised exponent (``mm^(1/2)``); a
 number inside a unit is refused (``mm/0``: division by zero; ``mm*2``: a scaling factor) except
 ``1`` (``1/mm``); ``mm^0`` is the pure number 1 (dimensionless). The whole unit text has at most
@@ -42,7 +43,7 @@ _SUPERSCRIPTS = str.maketrans("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻", "0123456789+-
 _TOKEN = re.compile(
     r"""
     (?P<space>\s+)
-  | (?P<name>[^\W\d]\w*|°\w*|%)
+  | (?P<name>(?:(?![⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻])[^\W\d]|°)(?:(?![⁰¹²³⁴⁵⁶⁷⁸⁹])\w)*|%)
   | (?P<number>\d+(?:\.\d*)?|\.\d+)
   | (?P<power>\*\*|\^)
   | (?P<times>[*·])
@@ -223,6 +224,8 @@ class _Parser:
             self.i += 1
             return powers
         if tok.kind == "close":
+            if depth > 0:
+                raise self.fail("has a unit name missing before ')'")
             raise self.fail("has an unbalanced parenthesis in its unit (')' not opened)")
         raise self.fail(f"has an unexpected {tok.text!r} where a unit name belongs")
 
