@@ -319,3 +319,53 @@ def test_random_texts_of_the_grammar_are_a_float_or_an_input_error(unit_text: st
     ureg()  # pint's registry loaded before the clock starts
     for text in (unit_text, "1 " + unit_text):
         _assert_float_or_input_error(text)
+
+
+# ---- the same refusals at the command line and in a spec (subprocesses with a time limit) ----
+
+TOWER = "1 mm**9**9**9"
+
+
+def _corrugate(*args: str, timeout: float = 60) -> subprocess.CompletedProcess[str]:
+    """``python -m corrugate ARGS`` in a fresh process, killed after ``timeout`` seconds (before
+    the grammar, an exponent tower never ended)."""
+    return subprocess.run(
+        [sys.executable, "-m", "corrugate", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env={**os.environ, "COLUMNS": "200"},
+    )
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("text", [TOWER, "1 mm/0", "1 mm**(1/0)", "1 mm**-0", "1 (mm"])
+def test_cli_option_with_a_hostile_unit_exits_2_naming_the_option(text: str) -> None:
+    """``corrugate analyze --W TEXT``: exit 2 (bad input) with one line naming W, quickly."""
+    start = time.perf_counter()
+    done = _corrugate("analyze", "--W", text, "--n", "8", "--alpha", "84")
+    assert time.perf_counter() - start < 30  # a fresh interpreter importing the package
+    assert done.returncode == 2, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert lines[0].startswith("corrugate: error: W = ") and repr(text) in lines[0]
+    assert done.stdout == ""
+
+
+@pytest.mark.slow
+def test_spec_quantity_with_an_exponent_tower_exits_2_naming_the_key(tmp_path: Path) -> None:
+    """A TOML spec whose ``constraints.side.min`` is an exponent tower: ``corrugate design``
+    exits 2 with one line naming the key, writes nothing, and does not hang."""
+    example = Path(__file__).resolve().parents[2] / "examples" / "blimp_gripper.toml"
+    text = example.read_text(encoding="utf-8")
+    assert 'side = { min = "48 mm"' in text
+    spec = tmp_path / "tower.toml"
+    spec.write_text(text.replace('side = { min = "48 mm"', 'side = { min = "48 mm**9**9**9"'))
+    out = tmp_path / "out"
+    done = _corrugate("design", str(spec), "--out", str(out))
+    assert done.returncode == 2, done.stderr
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, done.stderr
+    assert lines[0].startswith("corrugate: error: constraints.side.min = '48 mm**9**9**9' ")
+    assert "exponent of an exponent" in lines[0]
+    assert not out.exists()
