@@ -7,6 +7,9 @@ import json
 import subprocess
 import sys
 import threading
+import time
+import urllib.error
+import urllib.request
 from collections.abc import Iterator
 from typing import Any
 
@@ -217,6 +220,65 @@ def test_bad_values_get_422_naming_the_field(
     assert d["errors"][0]["field"] == field
     assert words in d["detail"]
     alive(client)
+
+
+#: Unit texts that made pint compute (an exponent tower held the interpreter lock and froze every
+#: route) or fail outside InputError (422 "internal error" with ``field: null``).
+HOSTILE_UNITS = [
+    ("1 mm**9**9**9", "exponent of an exponent"),
+    ("1 mm^9^9", "exponent of an exponent"),
+    ("1 mm/0", "divides its unit by zero"),
+    ("1 mm**(1/0)", "parenthesised exponent"),
+    ("1 mm**-0", "wrong dimension"),
+    ("1 (mm", "unbalanced parenthesis"),
+]
+
+
+@pytest.mark.parametrize(("W", "words"), HOSTILE_UNITS)
+def test_hostile_units_get_422_naming_the_field_quickly(
+    client: TestClient, W: str, words: str
+) -> None:
+    start = time.perf_counter()
+    r = client.post("/api/analyze", json={"W": W, "n": 8, "alpha": 84})
+    assert time.perf_counter() - start < 2
+    assert r.status_code == 422, r.text
+    d = r.json()
+    assert d["field"] == "W" and d["errors"][0]["field"] == "W"
+    assert words in d["detail"] and "internal error" not in d["detail"]
+    alive(client)
+
+
+def test_the_page_answers_while_an_exponent_tower_is_posted(live_server: str) -> None:
+    """A real server: ``GET /`` keeps answering within 1 s while exponent towers are posted (they
+    are refused at once; before the unit grammar one froze every route)."""
+    answers: list[tuple[int, Any]] = []
+
+    def post_towers() -> None:
+        for _ in range(5):
+            request = urllib.request.Request(
+                live_server + "/api/analyze",
+                data=json.dumps({"W": "1 mm**9**9**9", "n": 8, "alpha": 84}).encode(),
+                headers={"content-type": "application/json"},
+                method="POST",
+            )
+            try:
+                urllib.request.urlopen(request, timeout=30)
+            except urllib.error.HTTPError as exc:
+                answers.append((exc.code, json.loads(exc.read())))
+
+    poster = threading.Thread(target=post_towers, daemon=True)
+    poster.start()
+    pages = 0
+    while poster.is_alive() or pages < 3:
+        start = time.perf_counter()
+        with urllib.request.urlopen(live_server + "/", timeout=1) as response:
+            assert response.status == 200
+            response.read()
+        assert time.perf_counter() - start < 1
+        pages += 1
+    poster.join(timeout=30)
+    assert [code for code, _ in answers] == [422] * 5
+    assert all(body["field"] == "W" for _, body in answers)
 
 
 @pytest.mark.parametrize("W", [1e300, 1e20, "1e6 mm", 1e-300])
