@@ -256,7 +256,10 @@ def reference_markdown() -> str:
         "(`corrugate.spec.reference`); do not edit by hand. A spec is a TOML file; start from "
         "`corrugate init` or an example (`corrugate init --example NAME`). Every quantity is a "
         "plain number in the unit shown or a string with any compatible unit "
-        '(`"48 mm"`, `"1.9 in"`, `"80 mN*m^2"`). `[]` marks the items of an array of tables '
+        '(`"48 mm"`, `"1.9 in"`, `"80 mN*m^2"`): a number, then unit names joined by `*`, `/`, '
+        "`·` or a space, each with an optional whole exponent `^n` or `**n` (-4 <= n <= 4; no "
+        "exponent of an exponent, no parenthesised exponent), parentheses at most 4 deep, at "
+        "most 64 characters of unit. `[]` marks the items of an array of tables "
         "(`flexural_rigidity = [{ min = ..., eta = ... }]`).",
         "",
         "| key | unit | default | meaning |",
