@@ -3,11 +3,14 @@ unit grammar (pint given single names only)."""
 
 from __future__ import annotations
 
+import contextlib
 import os
+import re
 import subprocess
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import given, settings
@@ -369,3 +372,32 @@ def test_spec_quantity_with_an_exponent_tower_exits_2_naming_the_key(tmp_path: P
     assert lines[0].startswith("corrugate: error: constraints.side.min = '48 mm**9**9**9' ")
     assert "exponent of an exponent" in lines[0]
     assert not out.exists()
+
+
+def test_pint_is_given_single_unit_names_only(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Whatever the text, pint's parser sees one unit name at a time (plus the caller's own target
+    unit): the expression itself is never handed to pint."""
+    from corrugate.core.units import ureg
+
+    reg = ureg()
+    seen: list[object] = []
+    unit_class = reg.Unit
+
+    def recording(text: object) -> Any:
+        seen.append(text)  # pint itself passes its parsed containers too (not texts)
+        return unit_class(text)
+
+    monkeypatch.setattr(reg, "Unit", recording)
+    for text in ("2 yard/s^2", "3 (lbf/in)^2", "1 N per square ft", "4 inch_Hg·m³", "5 mm**9"):
+        with contextlib.suppress(InputError):
+            parse_quantity(text, "mm", "W")
+    names = [t for t in seen if isinstance(t, str) and t not in ("mm", "dimensionless")]
+    assert names and all(re.fullmatch(r"°?\w+|%", t) for t in names), seen
+    assert {"yard", "s", "lbf", "in", "N", "ft", "inch_Hg", "m"} <= set(names)
+
+
+def test_a_size_beyond_a_float_is_an_input_error() -> None:
+    """(quettaparsec^4)^4 in mm^16 is about 1e793: beyond a float, refused as not convertible
+    rather than an OverflowError."""
+    with pytest.raises(InputError, match=r"^x = .* cannot be converted to mm\^16"):
+        parse_quantity("1 (quettaparsec^4)^4", "mm^16", "x")
