@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -23,6 +24,7 @@ from corrugate.core.errors import InputError, ResultError
 
 __all__ = [
     "LIMITS",
+    "MAX_DASHES",
     "MAX_DEPTH",
     "MAX_GRID_POINTS",
     "MAX_NAME_CHARS",
@@ -36,6 +38,7 @@ __all__ = [
     "check_grid",
     "check_text",
     "first_non_finite",
+    "is_normal",
     "require_finite",
 ]
 
@@ -61,7 +64,7 @@ class Limit:
         return f"{self.lo:g} {lo} {self.key} {hi} {self.hi:g}{u}"
 
     def contains(self, x: float) -> bool:
-        if not math.isfinite(x):
+        if not is_normal(x):
             return False
         above = x > self.lo if self.open_lo else x >= self.lo
         below = x < self.hi if self.open_hi else x <= self.hi
@@ -92,8 +95,27 @@ LIMITS: dict[str, Limit] = {
         Limit("timeout", 1.0, 86_400.0, "s", "time allowed for one solver run: 1 s to a day"),
         Limit("samples", 2, 1_000_000, "", "Monte Carlo samples"),
         Limit("points", 2, 10_000, "", "points on a Pareto front"),
+        Limit("seed", 0, 2**63 - 1, "", "random seed (numpy takes a non-negative integer)"),
+        Limit(
+            "perforation",
+            0.1,
+            1_000.0,
+            "mm",
+            "a perforation dash or gap: at least the 0.1 mm a blade or laser cutter resolves",
+        ),
     )
 }
+
+#: Most perforation dashes in one design (the cut files stay a few MB; see
+#: :func:`corrugate.fabrication.linestyle.check_dash_count`).
+MAX_DASHES = 200_000
+
+
+def is_normal(x: float) -> bool:
+    """Whether ``x`` is zero or a finite normal float: not NaN, not infinite, not subnormal
+    (below 2.2e-308 in magnitude, where a quotient or a cube overflows or loses all precision)."""
+    return math.isfinite(x) and (x == 0 or abs(x) >= sys.float_info.min)
+
 
 #: Most points a gridded design variable may have ((max - min) / step + 1).
 MAX_GRID_POINTS = 100_000
