@@ -95,6 +95,8 @@ LIMITS: dict[str, Limit] = {
         Limit("timeout", 1.0, 86_400.0, "s", "time allowed for one solver run: 1 s to a day"),
         Limit("samples", 2, 1_000_000, "", "Monte Carlo samples"),
         Limit("points", 2, 10_000, "", "points on a Pareto front"),
+        Limit("W_tol", 0.0, 1_000.0, "mm", "one-sigma error of W: up to 1 m"),
+        Limit("alpha_tol", 0.0, 90.0, "deg", "one-sigma error of alpha: up to 90 deg"),
         Limit("seed", 0, 2**63 - 1, "", "random seed (numpy takes a non-negative integer)"),
         Limit(
             "perforation",
@@ -108,7 +110,7 @@ LIMITS: dict[str, Limit] = {
 
 #: Most perforation dashes in one design (the cut files stay a few MB; see
 #: :func:`corrugate.fabrication.linestyle.check_dash_count`).
-MAX_DASHES = 200_000
+MAX_DASHES = 100_000
 
 
 def is_normal(x: float) -> bool:

@@ -170,7 +170,7 @@ def check_style(parts: Iterable[Part], style: LineStyle) -> None:
                 total += count
                 if total > MAX_DASHES:
                     raise PerforationError(
-                        "perforation cut",
+                        "cut",
                         f"{style.cut:g} mm (gap {style.gap:g} mm)",
                         f"a cut and gap giving at most {MAX_DASHES} dashes in the design",
                         reason="gives too many dashes",

@@ -564,8 +564,8 @@ class RobustSpec(_Strict):
     and material tolerances (one-sigma: W in mm, alpha in deg, t and E relative)."""
 
     probability: Probability = 0.9
-    W: Annotated[float, BeforeValidator(_quantity("mm", lo=0.0, lo_open=False))] = 0.1
-    alpha: Annotated[float, BeforeValidator(_quantity("deg", lo=0.0, lo_open=False))] = 2.0
+    W: Annotated[float, BeforeValidator(_limited("W_tol", "mm"))] = 0.1
+    alpha: Annotated[float, BeforeValidator(_limited("alpha_tol", "deg"))] = 2.0
     t: Fraction = 0.05
     E: Fraction = 0.10
     samples: Annotated[int, BeforeValidator(_counter("samples", "samples"))] = 4000
