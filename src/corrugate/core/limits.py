@@ -109,7 +109,7 @@ LIMITS: dict[str, Limit] = {
 }
 
 #: Most perforation dashes in one design (about 150 bytes of DXF a dash: at most about 15 MB; see
-#: :func:`corrugate.fabrication.linestyle.check_dash_count`).
+#: :func:`corrugate.fabrication.linestyle.check_style`).
 MAX_DASHES = 100_000
 
 
