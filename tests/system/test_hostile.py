@@ -316,6 +316,10 @@ HOSTILE_OPTIONS = {
     "analyze --alpha 5e-324": (["analyze", *LAYER[:4], "--alpha", "5e-324"], "alpha"),
     "analyze --thickness nan": (["analyze", *LAYER, "--thickness", "nan"], "thickness"),
     "analyze --thickness2 nan": (["analyze", *LAYER, "--thickness2", "nan"], "thickness2"),
+    "analyze --n of 4400 digits": (
+        ["analyze", "--W", "8", "--n", "9" * 4400, "--alpha", "84"],
+        "n",
+    ),
 }
 
 
@@ -325,6 +329,7 @@ def test_hostile_options_are_one_error_line(case: str) -> None:
     args, field = HOSTILE_OPTIONS[case]
     line = _one_error_line(run_child(args), field)
     assert "internal error" not in line
+    assert len(line) < 300, line  # the value is shown shortened
 
 
 @pytest.mark.slow
