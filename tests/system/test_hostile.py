@@ -126,6 +126,11 @@ CLI: dict[str, list[tuple[str, Callable[[str], list[str]]]]] = {
     "alpha_tol": [("--alpha-tol", _spec_cmd("tolerance", "--alpha-tol"))],
     "seed": [("--seed", _spec_cmd("tolerance", "--seed"))],
     "perforation": [],  # needs tmp_path: see PATTERN
+    "length": [
+        ("spacing", lambda v: ["pattern", *LAYER, "--spacing", v, "--out", "/nonexistent/x"]),
+        ("margin", lambda v: ["pattern", *LAYER, "--margin", v, "--out", "/nonexistent/x"]),
+        ("tab_depth", lambda v: ["pattern", *LAYER, "--tab-depth", v, "--out", "/nonexistent/x"]),
+    ],
 }
 PATTERN = ("--cut", "--gap")
 
@@ -316,6 +321,12 @@ HOSTILE_OPTIONS = {
     "analyze --alpha 5e-324": (["analyze", *LAYER[:4], "--alpha", "5e-324"], "alpha"),
     "analyze --thickness nan": (["analyze", *LAYER, "--thickness", "nan"], "thickness"),
     "analyze --thickness2 nan": (["analyze", *LAYER, "--thickness2", "nan"], "thickness2"),
+    "pattern --margin 5e-324": (["pattern", *LAYER, "--margin", "5e-324", "--out", "/x"], "margin"),
+    "pattern --spacing 1e308": (
+        ["pattern", *LAYER, "--spacing", "1e308", "--out", "/x"],
+        "spacing",
+    ),
+    "pattern --tab-depth nan": (["pattern", *LAYER, "--tab-depth", "nan", "--out", "/x"], "tab"),
     "analyze --n of 4400 digits": (
         ["analyze", "--W", "8", "--n", "9" * 4400, "--alpha", "84"],
         "n",
