@@ -4,8 +4,9 @@ The command line, the spec parser and the web API check their inputs against :da
 any arithmetic or allocation, so that no input can overflow a formula, ask numpy for gigabytes, run
 for minutes or print NaN. The bounds are generous physical ones (a facet narrower than 0.01 mm
 cannot be cut, a sheet thicker than 100 mm does not fold), not the limits of the models' validity
-(those give warnings). Each failure is one :class:`~corrugate.core.errors.InputError` line naming the
-field, the value and the allowed range.
+(those give warnings). NaN, infinity and subnormal values (:func:`is_normal`) lie outside every
+range. Each failure is one :class:`~corrugate.core.errors.InputError` line naming the field, the
+value and the allowed range.
 
 :func:`require_finite` is the last check before anything is printed: NaN or infinity never reaches
 stdout or JSON.
