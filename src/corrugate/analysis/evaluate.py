@@ -398,6 +398,30 @@ def analyze(
         >>> round(r.stiffness[0].EI / 1000, 2)  # mN m^2, the paper's Table 1, case 1
         87.84
     """
+    from corrugate.core.errors import ResultError
+    from corrugate.core.limits import require_finite
+
+    # A design at the edge of LIMITS (alpha 1e-200 deg) may overflow: the overflow is caught here
+    # and the non-finite results by require_finite, so no numpy warning reaches the user.
+    with np.errstate(all="ignore"):
+        try:
+            result = _analysis(assembly, model, eta_deg, fabrication, support)
+        except (OverflowError, ZeroDivisionError):
+            raise ResultError(
+                "result overflows: the inputs are outside the range the models can evaluate"
+            ) from None
+        require_finite(result.to_dict(), "result")  # NaN or infinity is never printed
+    return result
+
+
+def _analysis(
+    assembly: Assembly,
+    model: str,
+    eta_deg: Sequence[float],
+    fabrication: FabricationOptions,
+    support: str,
+) -> Analysis:
+    """The body of :func:`analyze` (its results may still be non-finite)."""
     variant = get_model(model)
     model = variant.name
     for i, layer in enumerate(assembly.layers):
@@ -429,9 +453,6 @@ def analyze(
         mass=assembly_mass(a, fabrication),
         warnings=tuple(design_warnings(a, model, [float(e) for e in etas], support)),
     )
-    from corrugate.core.limits import require_finite
-
-    require_finite(result.to_dict(), "result")  # NaN or infinity is never printed
     return result
 
 

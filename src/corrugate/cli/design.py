@@ -16,6 +16,7 @@ import typer
 from corrugate.cli import options as o
 from corrugate.cli.console import fmt, make_console
 from corrugate.core.errors import InputError
+from corrugate.core.limits import check, check_count, is_normal, require_finite
 from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_MACHINE, DEFAULT_PAPER, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
@@ -287,9 +288,13 @@ def pareto_cmd(
         raise InputError(
             "--vs", repr(vs), "one of " + ", ".join(STIFFNESS_NAMES), reason="is unknown"
         )
-    if points < 2:
-        raise InputError("--points", points, "an integer >= 2")
+    check_count("points", points, "--points")
+    check_count("points", max_points, "--max-points")
     eta_deg = parse_quantity(eta, "deg", "--eta")
+    if not is_normal(eta_deg):
+        raise InputError(
+            "--eta", f"{eta_deg:g} deg", "a finite angle in deg", reason="is not a finite number"
+        )
     problem = Problem.from_spec(load_spec(spec))
     console = make_console(stderr=True)
     with Progress(
@@ -309,6 +314,9 @@ def pareto_cmd(
         front = pareto_front(
             problem, vs, eta_deg, points=points, max_points=max_points, progress=tick
         )
+    require_finite(
+        [[p.level, p.stiffness, p.mass, *p.layers] for p in front.points], "Pareto front"
+    )
     text = front.csv()
     if out is None:
         typer.echo(text, nl=False)
@@ -348,7 +356,7 @@ def _relative(value: str, field: str) -> float:
             "a fraction such as 0.05 or a percentage such as '5%'",
             reason="cannot be read",
         ) from None
-    if not 0 <= x < 1:
+    if not 0 <= x < 1 or not is_normal(x):
         raise InputError(field, value, "0 <= tolerance < 100 %")
     return x
 
@@ -386,24 +394,23 @@ def tolerance_cmd(
     from corrugate.solver.tolerance import Tolerances, monte_carlo
     from corrugate.spec.schema import load_spec
 
-    if samples < 2:
-        raise InputError("--samples", samples, "an integer >= 2")
+    check_count("samples", samples, "--samples")
+    check_count("seed", seed, "--seed")
     tol = Tolerances(
-        W=parse_quantity(W_tol, "mm", "--W-tol"),
-        alpha=parse_quantity(alpha_tol, "deg", "--alpha-tol"),
+        W=check("W_tol", parse_quantity(W_tol, "mm", "--W-tol"), "--W-tol"),
+        alpha=check("alpha_tol", parse_quantity(alpha_tol, "deg", "--alpha-tol"), "--alpha-tol"),
         t_rel=_relative(t_tol, "--t-tol"),
         E_rel=_relative(E_tol, "--E-tol"),
     )
-    if tol.W < 0 or tol.alpha < 0:
-        raise InputError("--W-tol" if tol.W < 0 else "--alpha-tol", "negative", ">= 0")
     problem = Problem.from_spec(load_spec(spec))
     sol = solve(problem, explain=False)
     if sol.assembly is None:
         raise InputError("spec", str(spec), "a feasible spec", reason=f"is {sol.status}")
     report = monte_carlo(problem, sol.assembly, tol, samples, seed)
+    payload = {"design": sol.to_dict()["design"], **report.as_dict()}
+    require_finite(payload, "tolerance")
     if as_json:
-        design = sol.to_dict()["design"]
-        typer.echo(json.dumps({"design": design, **report.as_dict()}, indent=2))
+        typer.echo(json.dumps(payload, indent=2))
         return
     if quiet:
         return

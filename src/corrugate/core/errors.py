@@ -113,7 +113,10 @@ class MissingExtraError(CorrugateError, ImportError):
 
 
 class ResultError(CorrugateError, ArithmeticError):
-    """A computed result is not a finite number (never printed)."""
+    """A computed result is not a finite number (never printed). The inputs of the request as a
+    whole caused it: ``field`` is ``"body"`` (what the web API names in its 422 answer)."""
+
+    field = "body"
 
 
 def describe(exc: BaseException) -> str:

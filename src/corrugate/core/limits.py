@@ -4,8 +4,9 @@ The command line, the spec parser and the web API check their inputs against :da
 any arithmetic or allocation, so that no input can overflow a formula, ask numpy for gigabytes, run
 for minutes or print NaN. The bounds are generous physical ones (a facet narrower than 0.01 mm
 cannot be cut, a sheet thicker than 100 mm does not fold), not the limits of the models' validity
-(those give warnings). Each failure is one :class:`~corrugate.core.errors.InputError` line naming the
-field, the value and the allowed range.
+(those give warnings). NaN, infinity and subnormal values (:func:`is_normal`) lie outside every
+range. Each failure is one :class:`~corrugate.core.errors.InputError` line naming the field, the
+value and the allowed range.
 
 :func:`require_finite` is the last check before anything is printed: NaN or infinity never reaches
 stdout or JSON.
@@ -15,6 +16,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -23,6 +25,7 @@ from corrugate.core.errors import InputError, ResultError
 
 __all__ = [
     "LIMITS",
+    "MAX_DASHES",
     "MAX_DEPTH",
     "MAX_GRID_POINTS",
     "MAX_NAME_CHARS",
@@ -36,6 +39,7 @@ __all__ = [
     "check_grid",
     "check_text",
     "first_non_finite",
+    "is_normal",
     "require_finite",
 ]
 
@@ -61,7 +65,7 @@ class Limit:
         return f"{self.lo:g} {lo} {self.key} {hi} {self.hi:g}{u}"
 
     def contains(self, x: float) -> bool:
-        if not math.isfinite(x):
+        if not is_normal(x):
             return False
         above = x > self.lo if self.open_lo else x >= self.lo
         below = x < self.hi if self.open_hi else x <= self.hi
@@ -92,8 +96,29 @@ LIMITS: dict[str, Limit] = {
         Limit("timeout", 1.0, 86_400.0, "s", "time allowed for one solver run: 1 s to a day"),
         Limit("samples", 2, 1_000_000, "", "Monte Carlo samples"),
         Limit("points", 2, 10_000, "", "points on a Pareto front"),
+        Limit("W_tol", 0.0, 1_000.0, "mm", "one-sigma error of W: up to 1 m"),
+        Limit("alpha_tol", 0.0, 90.0, "deg", "one-sigma error of alpha: up to 90 deg"),
+        Limit("seed", 0, 2**63 - 1, "", "random seed (numpy takes a non-negative integer)"),
+        Limit(
+            "perforation",
+            0.1,
+            1_000.0,
+            "mm",
+            "a perforation dash or gap: at least the 0.1 mm a blade or laser cutter resolves",
+        ),
     )
 }
+
+#: Most perforation dashes in one design (about 150 bytes of DXF a dash: at most about 15 MB; see
+#: :func:`corrugate.fabrication.linestyle.check_style`).
+MAX_DASHES = 100_000
+
+
+def is_normal(x: float) -> bool:
+    """Whether ``x`` is zero or a finite normal float: not NaN, not infinite, not subnormal
+    (below 2.2e-308 in magnitude, where a quotient or a cube overflows or loses all precision)."""
+    return math.isfinite(x) and (x == 0 or abs(x) >= sys.float_info.min)
+
 
 #: Most points a gridded design variable may have ((max - min) / step + 1).
 MAX_GRID_POINTS = 100_000

@@ -13,8 +13,14 @@ as fit with at least half a gap, gap / 2, left free at each end of the line, and
 on the line: a crease of length L gets N = floor((L - gap / 2 - gap / 2 + gap) / (cut + gap)) =
 floor(L / (cut + gap)) dashes, and each end keeps (L - N cut - (N - 1) gap) / 2 >= gap / 2 > 0,
 so no dash touches a line end (where the crease meets an edge or a cut, a dash would tear the
-sheet). A crease shorter than ``cut + gap`` cannot hold one dash with its end gaps and is an error,
-as are a non-positive cut or gap.
+sheet). A crease shorter than ``cut + gap`` cannot hold one dash with its end gaps and is an error.
+
+Bounds (:data:`corrugate.core.limits.LIMITS` ``["perforation"]``, checked when the style is made,
+before any work): the cut and the gap each lie within 0.1 mm .. 1 m. The 0.1 mm floor is a chosen
+bound, of the order of a drag blade's offset and a laser's kerf: a shorter dash or gap is not cut
+as one by a Cameo, a Cricut or a laser. A design perforated with more than
+:data:`corrugate.core.limits.MAX_DASHES` dashes in all is refused by :func:`check_style` (its cut
+files would be tens of MB and take minutes to write).
 """
 
 from __future__ import annotations
@@ -25,6 +31,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.core.limits import LIMITS, MAX_DASHES
 from corrugate.fabrication.model import Line, Part, Point, Role
 
 __all__ = [
@@ -42,7 +49,8 @@ __all__ = [
 
 
 class PerforationError(InputError):
-    """A perforation that does not fit a crease, or whose cut or gap is not positive."""
+    """A perforation that does not fit a crease, whose cut or gap is outside
+    ``LIMITS["perforation"]``, or that has more than ``MAX_DASHES`` dashes."""
 
 
 class StyleKind(StrEnum):
@@ -63,10 +71,14 @@ class LineStyle:
 
     def __post_init__(self) -> None:
         if self.kind is StyleKind.PERFORATED:
+            lim = LIMITS["perforation"]
             for name, value in (("cut", self.cut), ("gap", self.gap)):
-                if not (math.isfinite(value) and value > 0):
+                if not lim.contains(value):
                     raise PerforationError(
-                        f"perforation {name}", f"{value:g} mm", f"a perforation {name} > 0 mm"
+                        f"perforation {name}",
+                        f"{value:g} mm",
+                        f"{lim.lo:g} mm <= {name} <= {lim.hi:g} mm (a dash and a gap the cutter "
+                        "resolves)",
                     )
 
 
@@ -148,7 +160,18 @@ def check_style(parts: Iterable[Part], style: LineStyle) -> None:
     (nothing to check for solid or scored lines). Call it before writing any file."""
     if style.kind is not StyleKind.PERFORATED:
         return
+    total = 0
     for part in parts:
         for i, ln in enumerate(part.lines):
             if is_crease(ln):
-                dash_layout(ln.length, style.cut, style.gap, where=crease_name(part, i))
+                count = math.floor(ln.length / (style.cut + style.gap) + 1e-9)
+                if count < 1:  # too short for one dash: dash_layout's error names the crease
+                    dash_layout(ln.length, style.cut, style.gap, where=crease_name(part, i))
+                total += count
+                if total > MAX_DASHES:
+                    raise PerforationError(
+                        "cut",
+                        f"{style.cut:g} mm (gap {style.gap:g} mm)",
+                        f"a cut and gap giving at most {MAX_DASHES} dashes in the design",
+                        reason="gives too many dashes",
+                    )

@@ -42,6 +42,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
 from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.core.limits import LIMITS, is_normal
 from corrugate.fabrication.model import Line, Part, Pattern, Point
 from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM, LASER
 
@@ -334,10 +335,10 @@ def plan_sheets(
     :class:`~corrugate.core.errors.UnknownNameError` for an unknown cutter.
     """
     cut = get_cutter(cutter)
-    if not (math.isfinite(spacing) and spacing >= 0):
-        raise InputError("spacing", f"{spacing} mm", "spacing >= 0 mm")
-    if not (math.isfinite(margin) and margin >= 0):
-        raise InputError("margin", f"{margin} mm", "margin >= 0 mm")
+    longest = LIMITS["length"].hi
+    for name, value in (("spacing", spacing), ("margin", margin)):
+        if not (is_normal(value) and 0 <= value <= longest):
+            raise InputError(name, f"{value} mm", f"0 <= {name} <= {longest:g} mm")
     seq: Sequence[Part] = parts.parts if isinstance(parts, Pattern) else tuple(parts)
     uw, uh = cut.width - 2 * margin, cut.height - 2 * margin
     if uw <= 0 or uh <= 0:

@@ -78,7 +78,7 @@ class UnitCellMesh:
         for name in ("along", "through", "span"):
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
-                raise InputError(f"mesh.{name}", v, "an integer >= 1")
+                raise InputError(f"cell-mesh.{name}", v, "an integer >= 1")
             from corrugate.core.limits import check_count
 
             check_count(

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from corrugate.core.errors import InputError
+from corrugate.core.limits import LIMITS, is_normal
 from corrugate.names import DEFAULT_TAB_DEPTH_MM
 
 __all__ = ["DEFAULT_FABRICATION", "FabricationOptions"]
@@ -29,8 +30,8 @@ class FabricationOptions:
     def __post_init__(self) -> None:
         for name in ("tab_depth", "tab_length", "overlap", "segment_max"):
             value = getattr(self, name)
-            if not value > 0:
-                raise InputError(name, f"{value} mm", f"{name} > 0 mm")
+            if not (is_normal(value) and 0 < value <= LIMITS["length"].hi):
+                raise InputError(name, f"{value} mm", f"0 < {name} <= {LIMITS['length'].hi:g} mm")
         if self.tab_length <= self.tab_depth:
             raise InputError(
                 "tab_length",

@@ -26,6 +26,9 @@ EQUAL_SIDES_RTOL = 1e-6
 
 
 LIMITS_W = "0.01 <= W <= 10000 mm"
+#: The default of :attr:`Layer.t`, "not given": this very object (a NaN of its own), so that a NaN
+#: a user gives is refused as not finite instead of taken for "the material's default".
+_DEFAULT_T = float("nan")
 
 
 def crease_layer(eta_deg: float) -> int | None:
@@ -83,7 +86,7 @@ class Layer(FacetGeometry):
     n: int
     alpha_deg: float
     material: Material
-    t: float = field(default=math.nan)
+    t: float = field(default=_DEFAULT_T)
 
     def __post_init__(self) -> None:
         from corrugate.core.limits import check, check_count
@@ -97,7 +100,7 @@ class Layer(FacetGeometry):
             raise InputError("alpha", repr(self.alpha_deg)[:60], "0 < alpha < 180 deg")
         check("alpha", self.alpha_deg)
         t = self.t
-        if isinstance(t, float) and math.isnan(t):
+        if t is _DEFAULT_T:
             if self.material.default_thickness is None:
                 raise InputError(
                     "thickness", None, "t > 0 mm", reason=f"is not given for {self.material.id}"

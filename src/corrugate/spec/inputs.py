@@ -57,6 +57,15 @@ def parse_int(value: object, field: str, allowed: str = _N_ALLOWED) -> int:
         f = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
         raise InputError(field, repr(value), allowed, reason="is not an integer") from None
+    text = str(value).strip()
+    if len(text) > 100:  # never echoed whole: one line (a 4400-digit integer is out of range)
+        digits = text.lstrip("+-").isdigit()
+        raise InputError(
+            field,
+            f"{text[:20]}... ({len(text)} characters)",
+            allowed,
+            reason="is out of range" if digits else "is not an integer",
+        )
     if not f.is_integer():
         raise InputError(field, value, allowed, reason="is not an integer")
     return int(f)

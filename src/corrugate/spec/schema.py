@@ -55,6 +55,7 @@ from corrugate.core.limits import (
     check_depth,
     check_grid,
     check_text,
+    is_normal,
 )
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
@@ -140,7 +141,12 @@ def _quantity(
             raise PydanticCustomError(
                 "quantity", "{reason}", {"reason": exc.reason, "allowed": exc.allowed}
             ) from None
-        bad = not math.isfinite(x)
+        if not is_normal(x):
+            reason = "is not a finite number" if not math.isfinite(x) else "is subnormal"
+            raise PydanticCustomError(
+                "quantity", "{reason}", {"reason": reason, "allowed": allowed}
+            )
+        bad = False
         if lo is not None:
             bad |= x <= lo if lo_open else x < lo
         if hi is not None:
@@ -177,27 +183,40 @@ Density = Annotated[
 ]
 
 
-def _count(value: Any) -> int:
-    if isinstance(value, bool) or not isinstance(value, int | float | str):
-        raise PydanticCustomError(
-            "count", "{reason}", {"reason": "is not an integer", "allowed": "an integer >= 1"}
-        )
-    try:
-        f = float(value)
-    except ValueError:
-        f = math.nan
-    if not (math.isfinite(f) and f.is_integer()):
-        raise PydanticCustomError(
-            "count", "{reason}", {"reason": "is not an integer", "allowed": "an integer >= 1"}
-        )
-    if not 1 <= f <= N_MAX:
-        raise PydanticCustomError(
-            "count",
-            "{reason}",
-            {"reason": "is out of range", "allowed": f"an integer 1 <= n <= {N_MAX}"},
-        )
-    return int(f)
+def _counter(key: str, name: str) -> Callable[[Any], int]:
+    """A pydantic before-validator reading an integer within ``LIMITS[key]`` (``name`` in the
+    allowed range it reports). Compared as an int: a huge integer neither overflows a float nor
+    reaches numpy."""
+    lim = LIMITS[key]
+    allowed = f"an integer {lim.lo:g} <= {name} <= {lim.hi:g}"
 
+    def validate(value: Any) -> int:
+        if isinstance(value, bool) or not isinstance(value, int | float | str):
+            raise PydanticCustomError(
+                "count", "{reason}", {"reason": "is not an integer", "allowed": allowed}
+            )
+        if isinstance(value, int):
+            i = value
+        else:
+            try:
+                f = float(value)
+            except ValueError:
+                f = math.nan
+            if not (math.isfinite(f) and f.is_integer()):
+                raise PydanticCustomError(
+                    "count", "{reason}", {"reason": "is not an integer", "allowed": allowed}
+                )
+            i = int(f)
+        if not lim.lo <= i <= lim.hi:
+            raise PydanticCustomError(
+                "count", "{reason}", {"reason": "is out of range", "allowed": allowed}
+            )
+        return i
+
+    return validate
+
+
+_count = _counter("n", "n")
 
 Count = Annotated[int, BeforeValidator(_count)]
 
@@ -545,12 +564,12 @@ class RobustSpec(_Strict):
     and material tolerances (one-sigma: W in mm, alpha in deg, t and E relative)."""
 
     probability: Probability = 0.9
-    W: Annotated[float, BeforeValidator(_quantity("mm", lo=0.0, lo_open=False))] = 0.1
-    alpha: Annotated[float, BeforeValidator(_quantity("deg", lo=0.0, lo_open=False))] = 2.0
+    W: Annotated[float, BeforeValidator(_limited("W_tol", "mm"))] = 0.1
+    alpha: Annotated[float, BeforeValidator(_limited("alpha_tol", "deg"))] = 2.0
     t: Fraction = 0.05
     E: Fraction = 0.10
-    samples: Annotated[int, BeforeValidator(_count)] = 4000
-    seed: int = 0
+    samples: Annotated[int, BeforeValidator(_counter("samples", "samples"))] = 4000
+    seed: Annotated[int, BeforeValidator(_counter("seed", "seed"))] = 0
 
 
 class Spec(_Strict):
@@ -857,7 +876,9 @@ def parse_spec_text(text: str, shown: str = "<text>") -> Spec:
         )
     try:
         data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
+    except ValueError as exc:
+        if not isinstance(exc, tomllib.TOMLDecodeError):  # an integer too long to convert
+            raise _long_integer(text, shown) from None
         msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
         raise SpecError("spec", shown, "valid TOML", reason=f"is not valid TOML ({msg})") from None
     except RecursionError:
@@ -868,6 +889,29 @@ def parse_spec_text(text: str, shown: str = "<text>") -> Spec:
             reason="is nested too deeply",
         ) from None
     return parse_spec(data)
+
+
+def _long_integer(text: str, shown: str) -> SpecError:
+    """The error for a TOML integer longer than Python converts (``sys.get_int_max_str_digits``,
+    4300 digits): its key and line when they can be found in ``text``."""
+    import re
+    import sys
+
+    digits = sys.get_int_max_str_digits() or 4300
+    allowed = f"an integer of at most {digits} digits"
+    m = re.search("[0-9_]{" + str(digits + 1) + ",}", text)  # one pass, no backtracking
+    if m is None:
+        return SpecError("spec", shown, allowed, reason="has a longer integer")
+    start = text.rfind("\n", 0, m.start()) + 1
+    key = re.findall(r"([A-Za-z0-9_.\"'-]+)\s*=", text[start : m.start()])
+    line = text.count("\n", 0, m.start()) + 1
+    where = f"{key[-1] if key else 'value'} (line {line} of {shown})"
+    return SpecError(
+        where,
+        f"an integer of {len(m.group(0).replace('_', ''))} digits",
+        allowed,
+        reason="is too long",
+    )
 
 
 def _bracket_depth(text: str) -> int:
