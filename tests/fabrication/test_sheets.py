@@ -221,8 +221,9 @@ def test_bad_spacing_or_margin(spacing: float, margin: float) -> None:
     sizes=st.lists(
         st.tuples(st.floats(1.0, 180.0), st.floats(1.0, 120.0)), min_size=1, max_size=25
     ),
-    spacing=st.floats(0.0, 8.0),
-    margin=st.floats(0.0, 10.0),
+    # subnormal spacings and margins are refused by plan_sheets (core.limits.is_normal)
+    spacing=st.floats(0.0, 8.0, allow_subnormal=False),
+    margin=st.floats(0.0, 10.0, allow_subnormal=False),
 )
 def test_random_parts_never_overlap(
     sizes: list[tuple[float, float]], spacing: float, margin: float

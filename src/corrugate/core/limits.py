@@ -33,6 +33,7 @@ __all__ = [
     "MAX_SPEC_BYTES",
     "MAX_TEXT_CHARS",
     "Limit",
+    "abnormal_reason",
     "check",
     "check_count",
     "check_depth",
@@ -120,6 +121,18 @@ def is_normal(x: float) -> bool:
     return math.isfinite(x) and (x == 0 or abs(x) >= sys.float_info.min)
 
 
+def abnormal_reason(x: float) -> str | None:
+    """Why ``x`` is not a value to compute with (the ``reason`` of its :class:`InputError`):
+    NaN, infinite or subnormal; None for zero and finite normal floats."""
+    if math.isnan(x):
+        return "is not a number (NaN)"
+    if math.isinf(x):
+        return "is infinite"
+    if not is_normal(x):
+        return f"is subnormal (closer to zero than {sys.float_info.min:.3g})"
+    return None
+
+
 #: Most points a gridded design variable may have ((max - min) / step + 1).
 MAX_GRID_POINTS = 100_000
 #: Longest name (spec name, material name) in characters; longest other text value.
@@ -144,6 +157,9 @@ def check(key: str, value: float, field: str | None = None) -> float:
     lim = LIMITS[key]
     x = float(value)
     if not lim.contains(x):
+        reason = abnormal_reason(x)
+        if reason is not None:
+            raise InputError(field or key, _shown(x, lim.unit), lim.allowed, reason=reason)
         raise InputError(field or key, _shown(x, lim.unit), lim.allowed)
     return x
 

@@ -42,7 +42,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
 from corrugate.core.errors import InputError, UnknownNameError
-from corrugate.core.limits import LIMITS, is_normal
+from corrugate.core.limits import LIMITS, abnormal_reason, is_normal
 from corrugate.fabrication.model import Line, Part, Pattern, Point
 from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM, LASER
 
@@ -338,7 +338,10 @@ def plan_sheets(
     longest = LIMITS["length"].hi
     for name, value in (("spacing", spacing), ("margin", margin)):
         if not (is_normal(value) and 0 <= value <= longest):
-            raise InputError(name, f"{value} mm", f"0 <= {name} <= {longest:g} mm")
+            allowed = f"0 <= {name} <= {longest:g} mm"
+            raise InputError(
+                name, f"{value} mm", allowed, reason=abnormal_reason(value) or "is out of range"
+            )
     seq: Sequence[Part] = parts.parts if isinstance(parts, Pattern) else tuple(parts)
     uw, uh = cut.width - 2 * margin, cut.height - 2 * margin
     if uw <= 0 or uh <= 0:

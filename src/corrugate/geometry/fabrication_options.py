@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from corrugate.core.errors import InputError
-from corrugate.core.limits import LIMITS, is_normal
+from corrugate.core.limits import LIMITS, abnormal_reason, is_normal
 from corrugate.names import DEFAULT_TAB_DEPTH_MM
 
 __all__ = ["DEFAULT_FABRICATION", "FabricationOptions"]
@@ -31,7 +31,10 @@ class FabricationOptions:
         for name in ("tab_depth", "tab_length", "overlap", "segment_max"):
             value = getattr(self, name)
             if not (is_normal(value) and 0 < value <= LIMITS["length"].hi):
-                raise InputError(name, f"{value} mm", f"0 < {name} <= {LIMITS['length'].hi:g} mm")
+                allowed = f"0 < {name} <= {LIMITS['length'].hi:g} mm"
+                raise InputError(
+                    name, f"{value} mm", allowed, reason=abnormal_reason(value) or "is out of range"
+                )
         if self.tab_length <= self.tab_depth:
             raise InputError(
                 "tab_length",
