@@ -1,4 +1,6 @@
-"""Writers for the 2D cut files (SVG, DXF, PDF), all in millimetres (docs/theory.md section 7).
+"""Every file of a design, all in millimetres (docs/theory.md section 7): the registry of output
+files (:mod:`.writers`), the cut plan (:mod:`.plan`), the 2D writers (SVG, DXF, PDF, the machines'
+cut files), FOLD and meshes (:mod:`.files3d`) and ``design.json`` (:mod:`.record`).
 
 The heavy libraries (ezdxf, matplotlib) are imported inside the functions that need them, so
 importing this package costs nothing and the core of corrugate never imports them; install them
