@@ -46,8 +46,8 @@ system-deps:
 	fi
 
 lint: $(VENV)/.installed-dev
-	$(BIN)/ruff check src tests benchmarks
-	$(BIN)/ruff format --check src tests benchmarks
+	$(BIN)/ruff check src tests benchmarks docs
+	$(BIN)/ruff format --check src tests benchmarks docs/*.py
 
 typecheck: $(VENV)/.installed-dev
 	$(BIN)/mypy

@@ -15,12 +15,12 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-from corrugate.solver import Problem, solve
 from corrugate.export.pdf import sheet_figure
 from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.instructions import instructions_figure
 from corrugate.fabrication.sheets import plan_sheets
 from corrugate.report import design_space_figure, mass_by_n_figure, polar_figure
+from corrugate.solver import Problem, solve
 from corrugate.spec.schema import load_spec
 
 ROOT = Path(__file__).resolve().parents[1]
