@@ -254,6 +254,7 @@ def write_design_files(
                 plan,
                 out,
                 opts.style,
+                machine=machine,
                 labels=opts.labels,
                 paper=opts.paper,
                 sheet_figures=drawn.sheets or None,

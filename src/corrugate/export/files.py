@@ -22,9 +22,9 @@ leaves no file behind, new or partial. Files of an earlier run with more sheets 
 from __future__ import annotations
 
 import os
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from corrugate.core.errors import UnknownNameError
 from corrugate.core.fileio import Staging
@@ -39,6 +39,9 @@ from corrugate.fabrication.sheets import SheetPlan
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
+
+#: One sheet's document: an SVG text or an ezdxf drawing.
+_Item = TypeVar("_Item")
 
 __all__ = [
     "FORMATS",
@@ -150,18 +153,29 @@ def write_files(
 # -- the registry's steps of a sheet plan's files (see corrugate.export.writers) ----------------
 
 
-def _commit_texts(out: Path, writer: Writer, texts: Sequence[str]) -> Commit:
-    """What writes ``texts`` (one per sheet, from sheet 1) under ``writer``'s file names."""
+def _commit_sheets(
+    out: Path, writer: Writer, items: Sequence[_Item], save: Callable[[_Item, Path], None]
+) -> Commit:
+    """What writes ``items`` (one per sheet, from sheet 1) under ``writer``'s file names, each by
+    ``save(item, path)``."""
 
     def commit(st: Staging, _: Sequence[Path]) -> list[Path]:
         paths = []
-        for n, text in enumerate(texts, start=1):
+        for n, item in enumerate(items, start=1):
             target = out / writer.file(sheet=n)
-            st.path(target).write_text(text, encoding="utf-8")
+            save(item, st.path(target))
             paths.append(target)
         return paths
 
     return commit
+
+
+def _save_text(text: str, path: Path) -> None:
+    path.write_text(text, encoding="utf-8")
+
+
+def _save_dxf(doc: Any, path: Path) -> None:
+    doc.saveas(path)
 
 
 def fold_maps(job: Job) -> Commit:
@@ -173,7 +187,7 @@ def fold_maps(job: Job) -> Commit:
         svg_document(s, job.style, labels=people, marks=job.marks, fold_order=order)
         for s in job.plan.sheets
     ]
-    return _commit_texts(job.out, get_writer("fold-map"), texts)
+    return _commit_sheets(job.out, get_writer("fold-map"), texts, _save_text)
 
 
 def cut_svgs(job: Job) -> Commit:
@@ -187,7 +201,7 @@ def cut_svgs(job: Job) -> Commit:
         if "svg" in job.machine.formats
         else []
     )
-    return _commit_texts(job.out, get_writer("cut-svg"), texts)
+    return _commit_sheets(job.out, get_writer("cut-svg"), texts, _save_text)
 
 
 def cut_dxfs(job: Job) -> Commit:
@@ -201,17 +215,7 @@ def cut_dxfs(job: Job) -> Commit:
         if "dxf" in job.machine.formats
         else []
     )
-    writer = get_writer("cut-dxf")
-
-    def commit(st: Staging, _: Sequence[Path]) -> list[Path]:
-        paths = []
-        for n, doc in enumerate(docs, start=1):
-            target = job.out / writer.file(sheet=n)
-            doc.saveas(st.path(target))
-            paths.append(target)
-        return paths
-
-    return commit
+    return _commit_sheets(job.out, get_writer("cut-dxf"), docs, _save_dxf)
 
 
 def pattern_pdf(job: Job) -> Commit:

@@ -135,12 +135,8 @@ class Writer:
 
     def step(self) -> Step:
         """The write step, imported."""
-        return _load_step(self.write)
-
-
-def _load_step(ref: str) -> Step:
-    module, _, function = ref.partition(":")
-    return cast("Step", getattr(importlib.import_module(module), function))
+        module, _, function = self.write.partition(":")
+        return cast("Step", getattr(importlib.import_module(module), function))
 
 
 @cache
@@ -300,8 +296,11 @@ def write_job(
     all or nothing (:func:`corrugate.core.fileio.staged`).
     """
     wanted = set(writers)
-    steps = dict.fromkeys(w.write for w in WRITERS if w in wanted)  # each step once, in order
-    commits = [_load_step(ref)(job) for ref in steps]
+    steps: dict[str, Writer] = {}  # each step once (entries of one step share it), in table order
+    for w in WRITERS:
+        if w in wanted:
+            steps.setdefault(w.write, w)
+    commits = [w.step()(job) for w in steps.values()]
     job.out.mkdir(parents=True, exist_ok=True)
     written: list[Path] = []
     with contextlib.nullcontext(staging) if staging is not None else staged() as st:
