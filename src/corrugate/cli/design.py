@@ -16,7 +16,7 @@ import typer
 from corrugate.cli import options as o
 from corrugate.cli.console import fmt, make_console
 from corrugate.core.errors import InputError
-from corrugate.core.limits import check, check_count, is_normal, require_finite
+from corrugate.core.limits import abnormal_reason, check, check_count, is_normal, require_finite
 from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_MACHINE, DEFAULT_PAPER, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
@@ -291,10 +291,9 @@ def pareto_cmd(
     check_count("points", points, "--points")
     check_count("points", max_points, "--max-points")
     eta_deg = parse_quantity(eta, "deg", "--eta")
-    if not is_normal(eta_deg):
-        raise InputError(
-            "--eta", f"{eta_deg:g} deg", "a finite angle in deg", reason="is not a finite number"
-        )
+    reason = abnormal_reason(eta_deg)
+    if reason is not None:
+        raise InputError("--eta", f"{eta_deg:g} deg", "a finite angle in deg", reason=reason)
     problem = Problem.from_spec(load_spec(spec))
     console = make_console(stderr=True)
     with Progress(

@@ -154,13 +154,18 @@ def support_names() -> tuple[str, ...]:
     return tuple(_entries("support"))
 
 
-def get_support(name: str, field: str = "support") -> Behaviour:
-    """The support condition ``name``, else an error naming ``field`` and the names allowed."""
-    entries = _entries("support")
+def _get(role: Role, name: str, field: str) -> Behaviour:
+    """The entry ``name`` of ``role``, else an error naming ``field`` and the names allowed."""
+    entries = _entries(role)
     found = entries.get(name) if isinstance(name, str) else None
     if found is None:
         raise UnknownNameError(field, name, list(entries))
     return found
+
+
+def get_support(name: str, field: str = "support") -> Behaviour:
+    """The support condition ``name``, else an error naming ``field`` and the names allowed."""
+    return _get("support", name, field)
 
 
 def check_support(value: str, field: str = "support") -> str:
@@ -175,10 +180,7 @@ def load_cases() -> tuple[Behaviour, ...]:
 
 def get_load_case(name: str) -> Behaviour:
     """The load case ``name``, else an error naming the ones registered."""
-    entries = _entries("test")
-    if name not in entries:
-        raise UnknownNameError("test", name, list(entries))
-    return entries[name]
+    return _get("test", name, "test")
 
 
 def either(names: tuple[str, ...] | list[str]) -> str:

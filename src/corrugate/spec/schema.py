@@ -52,10 +52,10 @@ from corrugate.core.limits import (
     MAX_NAME_CHARS,
     MAX_SPEC_BYTES,
     MAX_TEXT_CHARS,
+    abnormal_reason,
     check_depth,
     check_grid,
     check_text,
-    is_normal,
 )
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
@@ -141,8 +141,8 @@ def _quantity(
             raise PydanticCustomError(
                 "quantity", "{reason}", {"reason": exc.reason, "allowed": exc.allowed}
             ) from None
-        if not is_normal(x):
-            reason = "is not a finite number" if not math.isfinite(x) else "is subnormal"
+        reason = abnormal_reason(x)
+        if reason is not None:
             raise PydanticCustomError(
                 "quantity", "{reason}", {"reason": reason, "allowed": allowed}
             )
