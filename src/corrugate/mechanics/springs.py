@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.mechanics.moduli import Moduli
-from corrugate.mechanics.offaxis import shear_springs
+from corrugate.mechanics.offaxis import finite_panel_factor, shear_spring, shear_springs
 
 __all__ = ["LayerSprings", "layer_springs"]
 
@@ -37,6 +37,9 @@ class LayerSprings:
     D_S: FloatArray
     K_T: FloatArray  # in-plane shear (free-panel model, corrugate.mechanics.offaxis)
     D_T: FloatArray  # twisting (free-panel model, corrugate.mechanics.offaxis)
+    V_S: FloatArray  # transverse shear along the creases, per facet length (N/mm; load cases)
+    h: FloatArray  # depth W cos(alpha/2) of the zig-zag (mm; load cases)
+    F: FloatArray  # finite-panel factor of off-axis in-plane K (corrugate.mechanics.offaxis)
 
 
 def _num(x: ArrayLike) -> Any:
@@ -54,6 +57,10 @@ def layer_springs(
     nu: ArrayLike,
     sin_half: ArrayLike,
     inv_length_sum_series: ArrayLike | None = None,
+    *,
+    cos_half: ArrayLike = 0.0,
+    W: ArrayLike = 0.0,
+    n: ArrayLike = 0.0,
 ) -> LayerSprings:
     """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm), q = sum_j 1/L_j (1/mm),
     and, for the shear and twisting springs of the free-panel model
@@ -62,7 +69,12 @@ def layer_springs(
     With holes (:mod:`corrugate.geometry.holes`) the parallel sums (K_S, D_S, and the shear springs K_T,
     D_T) take ``inv_length_sum`` over the facets no hole touches and the series sums (K_C, D_C)
     ``inv_length_sum_series``, with the blocked lengths removed; without it both use
-    ``inv_length_sum``."""
+    ``inv_length_sum``.
+
+    For the load cases (:mod:`corrugate.mechanics.load_cases`), ``cos_half`` = cos(alpha/2), ``W``
+    (mm) and ``n`` give the transverse shear spring V_S (:func:`corrugate.mechanics.load_cases.
+    shear_spring`, on the parallel sum), the depth h = W cos(alpha/2) (mm) and the finite-panel
+    factor F of :func:`corrugate.mechanics.offaxis.finite_panel_factor`."""
     t_ = _num(t)
     p = np.asarray(pitch, dtype=np.float64)
     pq = p * np.asarray(inv_length_sum, dtype=np.float64)
@@ -71,6 +83,8 @@ def layer_springs(
     pqs = pq if series is None or series is inv_length_sum else p * np.asarray(series, np.float64)
     K_T, D_T = shear_springs(_num(E), _num(nu), t_, np.asarray(sin_half, dtype=np.float64), pq)
     t3_12 = t_ * t_ * t_ / 12.0
+    c = np.asarray(cos_half, dtype=np.float64)
+    V_S = shear_spring(_num(E), _num(nu), t_, np.asarray(sin_half, dtype=np.float64), c, pq)
     with np.errstate(divide="ignore"):
         return LayerSprings(
             K_C=m.Ecx * t_ / pqs,
@@ -79,4 +93,7 @@ def layer_springs(
             D_S=m.Eby * t3_12 * pq,
             K_T=K_T,
             D_T=D_T,
+            V_S=V_S,
+            h=np.asarray(W, dtype=np.float64) * c,
+            F=finite_panel_factor(np.asarray(n, dtype=np.float64)),
         )

@@ -87,17 +87,25 @@ class Candidate:
 class Constraint:
     """``quantity`` >= ``bound`` (sense ``min``) or <= ``bound`` (sense ``max``).
 
-    ``name`` is the spec path it comes from (e.g. ``constraints.side.min``).
+    ``name`` is the spec path it comes from (e.g. ``constraints.side.min``). A deflection
+    bound (``constraints.deflection[i].max``: delta <= max under ``load``) is P / delta >= load /
+    max, with ``load`` kept to report the deflection.
     """
 
     name: str
     quantity: Quantity
     sense: Sense
     bound: float
+    load: float | None = None  # N: a deflection bound's load (the quantity is P / delta)
 
     @property
     def unit(self) -> str:
         return self.quantity.unit
+
+    def deflection(self, value: float) -> float | None:
+        """The deflection (mm) under this bound's load at P / delta = ``value`` (N/mm), None
+        when it is not a deflection bound."""
+        return None if self.load is None else self.load / value
 
     def satisfied(self, value: NDArray[np.float64], rtol: float = FEAS_RTOL) -> NDArray[np.bool_]:
         """Whether ``value`` meets the bound to the relative tolerance ``rtol``."""
@@ -196,8 +204,31 @@ class Problem:
                 cons.append(Constraint(f"constraints.{key}.max", qty, "max", r.max))
         for kind in STIFFNESS_KINDS:
             for i, b in enumerate(getattr(c, kind)):
-                q = Quantity.stiffness(kind, b.eta, b.support or spec.support)
-                cons.append(Constraint(f"constraints.{kind}[{i}].min", q, "min", b.min))
+                where = f"constraints.{kind}[{i}]"
+                q = _stiffness_quantity(where, kind, b.eta, b.support or spec.support, b.test)
+                if q.test is not None:
+                    _check_load_case_layout(where, layout)
+                cons.append(Constraint(f"{where}.min", q, "min", b.min))
+        for i, d in enumerate(c.deflection):
+            where = f"constraints.deflection[{i}]"
+            support = d.support or spec.support
+            _check_load_case_layout(where, layout)
+            if d.test == "platens":
+                if d.span is not None:
+                    raise SpecError(
+                        f"{where}.span",
+                        f"{d.span:g} mm",
+                        "no span for platens (the panel's length along eta is compressed)",
+                        reason="does not apply",
+                    )
+                q = Quantity.stiffness("K", d.eta, support)
+            else:
+                q = Quantity.load_case("k", d.eta, d.test, support, d.span)
+                if d.span is not None:  # the panel must reach the supports (or the clamp)
+                    cons.append(
+                        Constraint(f"{where}.span", Quantity("length", d.eta), "min", d.span)
+                    )
+            cons.append(Constraint(f"{where}.max", q, "min", d.load / d.max, load=d.load))
         for i, bk in enumerate(c.buckling_load):
             if crease_layer(bk.eta) is None:
                 raise SpecError(
@@ -239,6 +270,33 @@ class Problem:
             constraints=tuple(cons),
             objective=objective,
             support=spec.support,
+        )
+
+
+def _stiffness_quantity(
+    where: str, kind: str, eta: float, support: str, test: str | None
+) -> Quantity:
+    """The quantity a stiffness bound names: ``test`` None, ``pure`` (EI, D) and ``platens``
+    (K) are the support's own stiffness; a bending test on K or platens on EI or D is refused."""
+    q = Quantity.stiffness(kind, eta, support)
+    if test is None or (test == "pure" and q.kind != "K") or (test == "platens" and q.kind == "K"):
+        return q
+    if (test == "platens") != (q.kind == "K") or test == "pure":
+        allowed = (
+            "'platens'" if q.kind == "K" else "'pure', 'three-point', 'four-point' or 'cantilever'"
+        )
+        raise SpecError(f"{where}.test", repr(test), allowed, reason=f"is not a test of {kind}")
+    return Quantity.load_case(q.kind, eta, test, support)
+
+
+def _check_load_case_layout(where: str, layout: Layout) -> None:
+    """Load cases need straight edges to support, clamp or load: a square or a rectangle."""
+    if layout.name not in ("square", "rectangle"):
+        raise SpecError(
+            f"{where}.test",
+            f"layout {layout.name}",
+            "a square or rectangle layout",
+            reason="has no straight edges to support or load",
         )
 
 

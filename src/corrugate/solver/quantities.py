@@ -64,11 +64,18 @@ from corrugate.geometry.layouts import (
     inverse_length_sum,
     length_sum,
 )
-from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, supports
+from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support, supports
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
+from corrugate.mechanics.load_cases import apparent, load_stiffness, shear_and_depth
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
-from corrugate.mechanics.offaxis import Coupon, shear_springs
+from corrugate.mechanics.offaxis import (
+    Coupon,
+    _cs,
+    finite_panel_factor,
+    shear_spring,
+    shear_springs,
+)
 from corrugate.solver.interval import Interval
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
@@ -202,7 +209,7 @@ def point_values(
     keys = problem.quantities
     asked = {q.support for q in keys}
     others = [b for b in supports() if b.name != DEFAULT_SUPPORT and b.name in asked]
-    tests = {(q.test, q.support) for q in keys if q.test is not None}
+    tests = [q for q in keys if q.test is not None]
     l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
     if _same_layers(c1, c2, x):  # evaluate computes one layer (analysis.identical_layers)
         l2 = l1
@@ -246,14 +253,18 @@ def point_values(
             out[Quantity("EI", e, b.name)] = D_b[:, 0] * span
             K_b = np.asarray(b.model("K", ev.springs, e, None))
             out[Quantity("K", e, b.name)] = K_b[:, 0]
-        for test, support in tests:
-            t = get_load_case(test)
-            for kind in t.units:
-                base = "D" if kind == "EI" else kind
-                v = np.asarray(t.model(base, ev.springs, e, None))[:, 0]
-                if kind == "EI":
-                    v = v * np.asarray(problem.layout.span(Lx, Ly, np.asarray(e)))
-                out[Quantity(kind, e, support, test)] = v
+        span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(e)))
+        out[Quantity("length", e)] = span
+        for q in tests:
+            if q.eta != e:
+                continue
+            form = get_load_case(q.test).form  # type: ignore[arg-type]
+            assert form is not None
+            base = out[Quantity("K" if form.kind == "inplane" else "D", e, q.support)]
+            cos2, sin2 = _cs(e)
+            V, h = shear_and_depth(ev.springs, cos2, sin2)
+            k = load_stiffness(form, base, np.asarray(V)[:, 0], np.asarray(h)[:, 0], span, q.span)
+            out[q] = np.asarray(apparent(form, q.kind, k, span))
     if any(q.kind == "Pb" for q in keys):
         s1, s2 = ev.springs
         for e_pb, (lay, sa, sc) in {0.0: (l1, s1, s2), 90.0: (l2, s2, s1)}.items():
@@ -377,6 +388,9 @@ class _Springs:
     K_T: Interval
     D_T: Interval
     pq: Interval  # p sum_j 1/L_j without holes (corrugate.mechanics.offaxis.Coupon)
+    V_S: Interval  # transverse shear spring (N/mm; corrugate.mechanics.load_cases)
+    h: Interval  # depth W cos(alpha/2) (mm)
+    F: Interval  # finite-panel factor (corrugate.mechanics.offaxis.finite_panel_factor)
 
 
 def _layer_springs(
@@ -417,6 +431,9 @@ def _layer_springs(
         Fmin = tables.Fmin_x if axis == "x" else tables.Fmin_y  # built only with holes
         pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
     K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), sh, pq_par)
+    # c^2 / s falls as alpha grows: one interval each (c and s are monotone on the box)
+    V_S = shear_spring(float(m.E), float(m.nu), float(t), sh, ch, pq_par)
+    F_lo, F_hi = finite_panel_factor(n[0]), finite_panel_factor(n[1])  # increasing in n
     return _Springs(
         Ecx * t / pq_ser,
         Ecy * t * pq_par,
@@ -425,6 +442,9 @@ def _layer_springs(
         Interval.of(K_T),
         Interval.of(D_T),
         pq,
+        Interval.of(V_S),
+        Wi * ch,
+        Interval(F_lo, F_hi),
     )
 
 
@@ -618,8 +638,11 @@ def _stiffness_bounds(
             )
             out[q] = (np.maximum(v.lo, 0.0), v.hi)
             continue
-        entry = q.behaviour  # the support condition, or the load case in its place
-        assert entry is not None
+        if q.kind == "length":
+            v = _span_bounds(problem, Lx, Ly, eta)
+            out[q] = (np.maximum(v.lo, 0.0), v.hi)
+            continue
+        entry = get_support(q.support or DEFAULT_SUPPORT)  # the support condition
         if coupon is None and entry.uses_coupon and crease_layer(eta) is None:
             coupon = coupon_of(
                 problem.layout,
@@ -627,11 +650,38 @@ def _stiffness_bounds(
                 Interval(Ly[0], Ly[1]),
                 lambda: (sp1.pq, sp2.pq),
             )
+        if q.test is not None:  # a load case on its support's D or K
+            v = _load_case_bounds(problem, q, (sp1, sp2), Lx, Ly, coupon)
+            out[q] = (np.maximum(v.lo, 0.0), v.hi)
+            continue
         v = entry.bounds("D" if q.kind == "EI" else q.kind, (sp1, sp2), eta, coupon)
         if q.kind == "EI":
             v = v * _span_bounds(problem, Lx, Ly, eta)
         out[q] = (np.maximum(v.lo, 0.0), v.hi)
     return out
+
+
+def _load_case_bounds(
+    problem: Problem,
+    q: Quantity,
+    springs: tuple[_Springs, _Springs],
+    Lx: tuple[FloatArray, FloatArray],
+    Ly: tuple[FloatArray, FloatArray],
+    coupon: Coupon | None,
+) -> Interval:
+    """Bounds of a load case's quantity over the boxes: the formula of
+    :mod:`corrugate.mechanics.load_cases` on the interval springs, the support's D or K bounds
+    (with the layout's ``coupon`` off the creases) and the panel length's bounds."""
+    assert q.eta is not None and q.test is not None
+    form = get_load_case(q.test).form
+    assert form is not None
+    support = get_support(q.support or DEFAULT_SUPPORT)
+    base = support.bounds("K" if form.kind == "inplane" else "D", springs, q.eta, coupon)
+    length = _span_bounds(problem, Lx, Ly, q.eta)
+    cos2, sin2 = _cs(q.eta)
+    V, h = shear_and_depth(springs, cos2, sin2)
+    k = load_stiffness(form, base, V, h, length, q.span)
+    return Interval.of(apparent(form, q.kind, k, length))
 
 
 def _span_bounds(

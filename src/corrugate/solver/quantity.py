@@ -13,12 +13,18 @@ A :class:`Quantity` is a ``kind`` with, for what depends on a direction, ``eta``
 * ``EI`` (N mm^2), ``D`` (N mm), ``K`` (N/mm): stiffness at eta under a support condition
   (``free`` sides by default, a rigid ``frame``, :mod:`corrugate.mechanics.offaxis`);
 * ``Pb``: lower bound (N) of the compressive load at which the end facets buckle along eta
-  (0 or 90 deg; :mod:`corrugate.mechanics.buckling`).
+  (0 or 90 deg; :mod:`corrugate.mechanics.buckling`);
+* ``length``: the panel's length along eta (mm; the span of its stiffness, which must hold a
+  load case's span);
+* ``k``: P / delta (N/mm) of a load case (``test``: three-point, four-point, cantilever, platens;
+  :mod:`corrugate.mechanics.load_cases`) over ``span`` (mm; None: the panel's length along eta).
+  A load case also gives EI, D (bending tests) or K (platens) as its own formula reads them.
 
 Its :attr:`~Quantity.key` is the text the answer shows (``constraints[].quantity`` of ``corrugate
 design --json`` and design.json): the kind, the support's key suffix (none for ``free``,
-``frame`` for a frame) and the load case's, then ``@`` and eta, e.g. ``EI@0``, ``Kframe@45``,
-``Pb@90``; :meth:`Quantity.parse` reads one back.
+``frame`` for a frame) and the load case's, then ``@`` and eta, and a load case's span after
+``/L=``, e.g. ``EI@0``, ``Kframe@45``, ``Pb@90``, ``EI3pt@0``, ``k3pt@0/L=120``;
+:meth:`Quantity.parse` reads one back.
 """
 
 from __future__ import annotations
@@ -66,6 +72,8 @@ _KINDS: dict[str, tuple[str, str]] = {
     "D": ("bending stiffness D", "N*mm"),
     "K": ("in-plane stiffness K", "N/mm"),
     "Pb": ("buckling load (lower bound)", "N"),
+    "length": ("panel length", "mm"),
+    "k": ("load over deflection P/delta", "N/mm"),
 }
 
 
@@ -78,13 +86,18 @@ class Quantity:
     eta: float | None = None
     support: str | None = None
     test: str | None = None
+    span: float | None = None
     # the hash, once (the solver looks quantities up in dicts and sets in every iteration)
     _hash: int = field(default=0, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.eta is not None:
             object.__setattr__(self, "eta", float(f"{self.eta:.12g}"))
-        object.__setattr__(self, "_hash", hash((self.kind, self.eta, self.support, self.test)))
+        if self.span is not None:
+            object.__setattr__(self, "span", float(f"{self.span:.12g}"))
+        object.__setattr__(
+            self, "_hash", hash((self.kind, self.eta, self.support, self.test, self.span))
+        )
 
     def __hash__(self) -> int:
         return self._hash
@@ -99,22 +112,47 @@ class Quantity:
         return cls(k, eta_deg, get_support(support).name)
 
     @classmethod
+    def load_case(
+        cls,
+        kind: str,
+        eta_deg: float,
+        test: str,
+        support: str = DEFAULT_SUPPORT,
+        span: float | None = None,
+    ) -> Quantity:
+        """``kind`` (EI, D, K or k) of the load case ``test`` at ``eta_deg`` (deg) under
+        ``support``, over ``span`` (mm; None: the panel's length along eta)."""
+        t = get_load_case(test)
+        if kind not in t.units:
+            raise InputError("kind", repr(kind), "one of " + ", ".join(t.units))
+        return cls(kind, eta_deg, get_support(support).name, t.name, span)
+
+    @classmethod
     def parse(cls, key: str) -> Quantity:
         """The quantity whose :attr:`key` is ``key`` (e.g. ``Kframe@45``), over the behaviours
         registered now."""
+        key, slash, span_text = key.partition("/L=")
+        span = None
+        if slash:
+            try:
+                span = float(span_text)
+            except ValueError:
+                raise InputError(
+                    "quantity", repr(key), "a quantity key such as k3pt@0/L=120"
+                ) from None
         head, at, eta = key.partition("@")
         if not at:
-            if head not in _KINDS or head in STIFFNESS or head == "Pb":
+            if head not in _KINDS or head in STIFFNESS or head in ("Pb", "length", "k"):
                 raise InputError("quantity", repr(key), "a quantity key such as mass or EI@0")
             return cls(head)
-        if head == "Pb":
-            return cls("Pb", float(eta))
+        if head in ("Pb", "length"):
+            return cls(head, float(eta))
         for s in supports():
             for t in (None, *load_cases()):
                 kinds = STIFFNESS if t is None else tuple(t.units)
                 for kind in kinds:
                     if head == kind + s.suffix + ("" if t is None else t.suffix):
-                        return cls(kind, float(eta), s.name, None if t is None else t.name)
+                        return cls(kind, float(eta), s.name, None if t is None else t.name, span)
         raise InputError("quantity", repr(key), "a quantity key such as mass or EI@0")
 
     @property
@@ -135,7 +173,8 @@ class Quantity:
             head += get_support(self.support).suffix
         if self.test is not None:
             head += get_load_case(self.test).suffix
-        return f"{head}@{self.eta:.12g}"
+        tail = "" if self.span is None else f"/L={self.span:.12g}"
+        return f"{head}@{self.eta:.12g}{tail}"
 
     @property
     def unit(self) -> str:
@@ -154,6 +193,8 @@ class Quantity:
             text += get_support(self.support).label
         if self.test is not None:
             text += get_load_case(self.test).label
+        if self.span is not None:
+            text += f" over {self.span:.12g} mm"
         return text if self.eta is None else f"{text}({self.eta:.12g} deg)"
 
     @property

@@ -65,7 +65,9 @@ class Optimum:
 
 @dataclass(frozen=True, slots=True)
 class ConstraintReport:
-    """One constraint at the design: value and bound in ``unit``, margin >= 0 when met."""
+    """One constraint at the design: value and bound in ``unit``, margin >= 0 when met. A
+    deflection bound is reported as a deflection (mm, sense ``max``) under its ``load`` (N), with
+    the test's P / delta (N/mm) the solver bounded in ``stiffness``."""
 
     name: str
     quantity: Quantity
@@ -76,6 +78,8 @@ class ConstraintReport:
     unit: str
     active: bool
     binding: bool | None
+    load: float | None = None
+    stiffness: float | None = None
 
     def as_dict(self) -> dict[str, object]:
         return {
@@ -89,6 +93,15 @@ class ConstraintReport:
             "relative_margin": self.margin / abs(self.bound) if self.bound else None,
             "active": self.active,
             "binding": self.binding,
+            **(
+                {}
+                if self.load is None
+                else {
+                    "test": self.quantity.test or "platens",
+                    "load_N": self.load,
+                    "stiffness_N_per_mm": self.stiffness,
+                }
+            ),
         }
 
 
@@ -375,17 +388,28 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         if relaxed.certified:
             tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
             binding = relaxed.point is not None and sign * relaxed.value < sign * opt.value - tol
+        active = abs(margin) <= ACTIVE_RTOL * abs(c.bound)
+        if c.load is not None:  # a deflection bound: delta = P / (P / delta) <= P / bound
+            delta, most = c.load / v, c.load / c.bound
+            out.append(
+                ConstraintReport(
+                    c.name,
+                    c.quantity,
+                    "max",
+                    delta,
+                    most,
+                    most - delta,
+                    "mm",
+                    active,
+                    binding,
+                    load=c.load,
+                    stiffness=v,
+                )
+            )
+            continue
         out.append(
             ConstraintReport(
-                c.name,
-                c.quantity,
-                c.sense,
-                v,
-                c.bound,
-                margin,
-                c.unit,
-                active=abs(margin) <= ACTIVE_RTOL * abs(c.bound),
-                binding=binding,
+                c.name, c.quantity, c.sense, v, c.bound, margin, c.unit, active, binding
             )
         )
     return out

@@ -105,6 +105,34 @@ _STATIC: dict[str, KeyDoc] = {
     ),
     "constraints.buckling_load[].min": KeyDoc("N", "Least buckling load (plate lower bound)."),
     "constraints.buckling_load[].eta": KeyDoc("deg", "Load direction: 0 or 90 deg (required)."),
+    **{
+        f"constraints.{k}[].test": KeyDoc(
+            "",
+            "The test the bound is for (`corrugate docs load_cases`): "
+            + (
+                "'platens' (the default: K between rigid platens)."
+                if k == "inplane_stiffness"
+                else "'pure' (the default: the panel's own pure-bending rigidity, EI = D x "
+                "span), 'three-point', 'four-point' or 'cantilever' (what that test reads, "
+                "shear of the facets included)."
+            ),
+        )
+        for k in _STIFF
+    },
+    "constraints.deflection": KeyDoc(
+        "mm", "Load cases: at most max of deflection under load (array of tables)."
+    ),
+    "constraints.deflection[].test": KeyDoc(
+        "", "'three-point', 'four-point', 'cantilever' or 'platens' (in-plane compression)."
+    ),
+    "constraints.deflection[].load": KeyDoc("N", "The load P (> 0)."),
+    "constraints.deflection[].max": KeyDoc("mm", "Largest deflection allowed under the load."),
+    "constraints.deflection[].span": KeyDoc(
+        "mm",
+        "Support spacing (cantilever: free length); default the panel's length along eta; "
+        "the panel must be at least this long. Not for platens.",
+    ),
+    "constraints.deflection[].eta": KeyDoc("deg", "Direction of the span, from layer 1's creases."),
     "constraints.mass": KeyDoc("g", "Mass budget: { max }."),
     "constraints.mass.max": KeyDoc("g", "Heaviest part allowed (layers and connector band)."),
     "objective": KeyDoc("", "What to optimise (a table); default: minimize = 'mass'."),
@@ -158,7 +186,7 @@ def _support_docs() -> dict[str, KeyDoc]:
         ),
         "objective.support": KeyDoc("", f"{names} for the maximised stiffness."),
     }
-    for k in _STIFF:
+    for k in (*_STIFF, "deflection"):
         docs[f"constraints.{k}[].support"] = KeyDoc(
             "", f"{names} for this bound (default: the spec's support)."
         )

@@ -462,14 +462,24 @@ class _SupportNames:
 Support = Annotated[str, BeforeValidator(_support), _SupportNames()]
 
 
+#: The tests a stiffness bound may name (docs/load_cases.md): ``pure`` bending (EI and D: the
+#: default, the panel's own rigidity) and ``platens`` (K: the default) keep the meaning a bound
+#: without ``test`` has.
+StiffnessTest = Literal["pure", "three-point", "four-point", "cantilever", "platens"]
+#: The load cases a deflection bound may name.
+DeflectionTest = Literal["three-point", "four-point", "cantilever", "platens"]
+
+
 class StiffnessSpec(_Strict):
     """A lower bound ``min`` on a stiffness at direction ``eta`` (deg from layer 1's creases),
     under ``support`` (``free`` sides, a rigid ``frame`` or another registered support
-    condition; default: the spec's ``support``)."""
+    condition; default: the spec's ``support``), as measured in ``test`` (default: ``pure``
+    bending for EI and D, ``platens`` for K; docs/load_cases.md)."""
 
     min: float
     eta: Direction = 0.0
     support: Support | None = None
+    test: StiffnessTest | None = None
 
 
 class RigiditySpec(StiffnessSpec):
@@ -490,6 +500,20 @@ class BucklingSpec(_Strict):
 
     min: Annotated[float, BeforeValidator(_quantity("N", lo=0.0))]
     eta: Direction
+
+
+class DeflectionSpec(_Strict):
+    """At most ``max`` (mm) of deflection under ``load`` (N) in the load case ``test``
+    (docs/load_cases.md): supported over ``span`` (mm; cantilever: its free length; default and
+    platens: the panel's length along ``eta``), along ``eta`` (deg), under ``support`` (default:
+    the spec's)."""
+
+    test: DeflectionTest
+    load: Annotated[float, BeforeValidator(_quantity("N", lo=0.0, hi=LIMITS["load"].hi))]
+    max: Annotated[float, BeforeValidator(_quantity("mm", lo=0.0, hi=LIMITS["length"].hi))]
+    span: Length | None = None
+    eta: Direction = 0.0
+    support: Support | None = None
 
 
 class MassBound(_Strict):
@@ -517,6 +541,7 @@ class ConstraintsSpec(_Strict):
     bending_stiffness: list[BendingSpec] = []
     inplane_stiffness: list[InPlaneSpec] = []
     buckling_load: list[BucklingSpec] = []
+    deflection: list[DeflectionSpec] = []
     mass: MassBound | None = None
 
 

@@ -1,0 +1,164 @@
+"""The built-in load cases: what a stiffness or a deflection is in a stated test (docs/load_cases.md).
+
+A support condition (:mod:`corrugate.mechanics.supports`) gives the panel's pure-bending
+rigidity D(eta) (N mm) and its in-plane K(eta) (N/mm); a load case turns them into what a test
+measures, in the user's terms: the deflection delta (mm) of the loading head under a load P (N),
+
+* ``three-point``: simply supported over the span Ls, P at mid-span;
+* ``four-point``: simply supported over Ls, P / 2 at a quarter and three quarters of the span,
+  delta at the load points (the loading head's travel);
+* ``cantilever``: clamped at the root, P at the free end Ls from it;
+* ``platens``: compressed between rigid platens along eta (delta = P / K; no span: the panel's
+  length along eta).
+
+For the bending tests (docs/load_cases.md, sections 2-3)
+
+    delta / P = a Ls^3 / EI + (b Ls + c h) / S
+
+with EI = D(eta) L the rigidity of the panel of length L along eta, S = V_S L the shear stiffness
+of the facets acting as webs (:func:`corrugate.mechanics.offaxis.shear_spring`: G t W c^2 per
+facet) and h the depth W cos(alpha/2) of the corrugation: (a, b) are the Timoshenko beam's, and
+the local term c h (c = 1.5) is fitted as an upper envelope of the extra compliance FE shows at
+the load and support lines. Off the crease directions S and h are taken as V_S1 cos^2 + V_S2 sin^2
+and the larger depth (docs/load_cases.md, section 3).
+
+Every function is plain arithmetic, so it takes arrays and
+:class:`~corrugate.solver.interval.Interval` values alike: the solver bounds the very formula a
+design is reported with.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from corrugate.mechanics.behaviours import Behaviour, TestForm
+
+__all__ = [
+    "CANTILEVER",
+    "FOUR_POINT",
+    "LOCAL",
+    "PLATENS",
+    "THREE_POINT",
+    "apparent",
+    "load_stiffness",
+    "shear_and_depth",
+]
+
+#: c of the local term c h / S (docs/load_cases.md, section 2).
+LOCAL = 1.5
+
+_BENDING_UNITS = {"EI": "N*mm^2", "D": "N*mm", "k": "N/mm"}
+
+
+def _no_model(kind: str, springs: tuple[Any, Any], eta_deg: float, coupon: Any) -> Any:
+    """A load case is not a directional model of the springs alone: its value needs the panel's
+    length and the span (:func:`load_stiffness`)."""
+    raise TypeError("a load case's value is corrugate.mechanics.load_cases.load_stiffness")
+
+
+def _warning(angles: str, layout: str) -> str:
+    return (
+        f"the test values at eta = {angles} deg use the free-panel D and K off the creases "
+        "(`corrugate docs load_cases`): off-axis bending of a free panel depends on where the "
+        "coupon is cut; check a part loaded there with corrugate validate --eta"
+    )
+
+
+def _entry(
+    name: str, form: TestForm, fixture: str, label: str, suffix: str, text: str
+) -> Behaviour:
+    units = _BENDING_UNITS if form.kind == "bending" else {"K": "N/mm", "k": "N/mm"}
+    return Behaviour(
+        name=name,
+        model=_no_model,
+        bounds=_no_model,
+        fixture=fixture,
+        label=label,
+        suffix=suffix,
+        units=units,
+        text=text,
+        curve=name,
+        off_axis=_warning,
+        role="test",
+        form=form,
+    )
+
+
+THREE_POINT = _entry(
+    "three-point",
+    TestForm("bending", 1.0 / 48.0, 0.25, LOCAL, 0.25),
+    "bending",
+    " in three-point bending",
+    "3pt",
+    "simply supported over the span, the load at mid-span (the deflection under the load)",
+)
+FOUR_POINT = _entry(
+    "four-point",
+    TestForm("bending", 1.0 / 96.0, 0.125, LOCAL, 0.125),
+    "bending4",
+    " in four-point bending",
+    "4pt",
+    "simply supported over the span, half the load at each quarter point (the deflection there)",
+)
+CANTILEVER = _entry(
+    "cantilever",
+    TestForm("bending", 1.0 / 3.0, 1.0, LOCAL, 1.0),
+    "cantilever",
+    " as a cantilever",
+    "cant",
+    "clamped at the root, the load at the free end a span away (the deflection there)",
+)
+PLATENS = _entry(
+    "platens",
+    TestForm("inplane"),
+    "compression",
+    " between platens",
+    "plat",
+    "compressed between rigid platens along eta (the shortening)",
+)
+
+
+def shear_and_depth(springs: tuple[Any, Any], c2: float, s2: float) -> tuple[Any, Any]:
+    """V (N/mm) and h (mm) of the two layers' springs at a direction with cos^2 ``c2`` and sin^2
+    ``s2``: layer 1's on its creases (eta = 0), layer 2's on its own (90), V_S1 c^2 + V_S2 s^2
+    and the larger depth in between (module docstring)."""
+    a, b = springs
+    if s2 == 0.0:
+        return a.V_S, a.h
+    if c2 == 0.0:
+        return b.V_S, b.h
+    return a.V_S * c2 + b.V_S * s2, _larger(a.h, b.h)
+
+
+def _larger(x: Any, y: Any) -> Any:
+    import numpy as np
+
+    if hasattr(x, "maximum"):
+        return x.maximum(y)
+    return np.maximum(x, y)
+
+
+def load_stiffness(
+    form: TestForm, stiffness: Any, V: Any, h: Any, length: Any, span: Any | None = None
+) -> Any:
+    """P / delta (N/mm) of a load case: ``stiffness`` is the support's pure-bending D (N mm) for
+    a bending test (EI = D x ``length``, the panel's length along eta in mm; S = ``V`` x length,
+    ``h`` the depth in mm, ``span`` the test's Ls in mm, the panel's length when None) or the
+    in-plane K (N/mm) for platens (V, h and span not used). Module docstring, docs/load_cases.md
+    section 3."""
+    if form.kind == "inplane":
+        return stiffness
+    Ls = length if span is None else span
+    compliance = form.a * Ls**3 / (stiffness * length) + (form.b * Ls + form.c * h) / (V * length)
+    return 1.0 / compliance
+
+
+def apparent(form: TestForm, kind: str, k: Any, length: Any) -> Any:
+    """The stiffness of ``kind`` that the test's own formula reads from P / delta = ``k`` over
+    the panel's ``length`` (mm) as span: EI = a L^3 k (N mm^2), D = EI / L (N mm), K = k (N/mm),
+    k itself."""
+    if kind == "EI":
+        return form.a * length**3 * k
+    if kind == "D":
+        return form.a * length**2 * k
+    return k
