@@ -52,6 +52,7 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
     console.print(
         f"[bold]{p.name}[/bold]: optimal, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
     )
+    console.print(sol.certificate, markup=False)
     t = Table(title="design", title_justify="left")
     for col in ("layer", "material", "t mm", "W mm", "n", "alpha deg"):
         t.add_column(col, justify="right")

@@ -33,8 +33,9 @@ make the angle theta with the load direction, c = cos theta, s = sin theta:
   out keeps the bound (at most 0.65 % of the compliance for W 8-14 mm, alpha 40-115 deg, Dura-Lar
   0.125 mm; docs/offaxis.md). That bound is for the homogenised (large) plate; a finite panel
   with free edges is softer off the creases, so each layer's share is multiplied there by the
-  finite-panel factor F(n) = 1 - 0.6 / sqrt(n) (:func:`finite_panel_factor`, docs/load_cases.md
-  section 4), which keeps the certified K at or below the converged FE coupons.
+  finite-panel factor 1 - w(eta) 0.6 / sqrt(n) (:func:`finite_panel_factor`, w = 1 up to 15 deg
+  from the creases, 0.25 at 45; docs/load_cases.md section 4), which keeps the certified K at or
+  below the converged FE coupons.
 * Bending, the larger of two lower bounds: the same uniaxial-moment plate bound with D_S, D_C
   and the twisting rigidity D_T = D66 p q, D66 = G t^3 / (12 sin(alpha/2)) (Xia 2012), and a
   strip bound: the facets that run from one support to the other in a square coupon
@@ -68,7 +69,9 @@ __all__ = [
     "Support",
     "assembly_directional",
     "check_support",
+    "finite_panel_deficit",
     "finite_panel_factor",
+    "finite_panel_weight",
     "frame_rule",
     "free_bending",
     "free_inplane",
@@ -96,14 +99,33 @@ def shear_springs(E: Any, nu: Any, t: Any, s: Any, pq: Any) -> tuple[Any, Any]:
 FINITE_PANEL_DEFICIT = 0.6
 
 
-def finite_panel_factor(n: Any) -> Any:
-    """F(n) = max(0, 1 - c / sqrt(n)), c = :data:`FINITE_PANEL_DEFICIT`: the share of the
-    homogenised (large-panel) in-plane K that a free panel whose layer has ``n`` creases keeps off
-    the crease directions (docs/load_cases.md, section 4: converged FE coupons of 4, 8 and 16
-    cells are 18, 13 and 8 % below the homogenised coupon near 15 deg, a 1:2 rectangle 16 %; c =
-    0.6 bounds every one of them, 0.36 would fit them). Increasing in n; arrays (n >= 0)."""
+def finite_panel_deficit(n: Any) -> Any:
+    """d(n) = min(1, c / sqrt(n)), c = :data:`FINITE_PANEL_DEFICIT`: the largest share of the
+    homogenised (large-panel) in-plane K that a free panel whose layer has ``n`` creases loses
+    off the crease directions, near 15 deg from them (docs/load_cases.md, section 4: converged
+    FE coupons of 4, 8 and 16 cells are 18, 13 and 8 % below the homogenised coupon at 15 deg,
+    a 1:2 rectangle 16 %; c = 0.6 bounds each, 0.36 would fit the squares). Falls with n;
+    arrays (n >= 0)."""
     n_ = np.maximum(np.asarray(n, dtype=np.float64), 1.0)
-    return np.maximum(1.0 - FINITE_PANEL_DEFICIT / np.sqrt(n_), 0.0)
+    return np.minimum(FINITE_PANEL_DEFICIT / np.sqrt(n_), 1.0)
+
+
+def finite_panel_weight(eta_deg: float) -> float:
+    """w(eta): how much of the deficit applies at eta (deg): 0 on the crease directions (K is
+    exact there), 1 up to 15 deg from them, falling linearly to 0.25 at 45 deg (the FE coupons'
+    deficit at 30 and 45 deg is at most a third and an eighth of that at 15; docs/load_cases.md
+    section 4)."""
+    e = float(eta_deg) % 90.0
+    off = min(e, 90.0 - e)
+    if off < 1e-12:
+        return 0.0
+    return 1.0 if off <= 15.0 else 1.0 - 0.75 * (off - 15.0) / 30.0
+
+
+def finite_panel_factor(n: Any, eta_deg: float = 15.0) -> Any:
+    """The share of a layer's homogenised in-plane K that a free panel keeps at ``eta_deg``:
+    1 - w(eta) d(n) (:func:`finite_panel_weight`, :func:`finite_panel_deficit`)."""
+    return 1.0 - finite_panel_weight(eta_deg) * finite_panel_deficit(n)
 
 
 def shear_spring(E: Any, nu: Any, t: Any, s: Any, c: Any, pq: Any) -> Any:
@@ -205,9 +227,10 @@ def _free_pair(
 
 def _finite(springs: Any, eta_deg: float) -> Any:
     """The finite-panel factor of a layer's in-plane share at eta: 1 on the crease directions
-    (exact there), its springs' ``F`` off them (:func:`finite_panel_factor`)."""
-    c2, s2 = _cs(eta_deg)
-    return 1.0 if c2 == 0.0 or s2 == 0.0 else springs.F
+    (exact there), 1 - w(eta) d(n) off them with d(n) the springs' ``deficit``
+    (:func:`finite_panel_factor`)."""
+    w = finite_panel_weight(eta_deg)
+    return 1.0 if w == 0.0 else 1.0 - springs.deficit * w
 
 
 @dataclass(frozen=True)

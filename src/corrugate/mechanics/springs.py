@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.mechanics.moduli import Moduli
-from corrugate.mechanics.offaxis import finite_panel_factor, shear_spring, shear_springs
+from corrugate.mechanics.offaxis import finite_panel_deficit, shear_spring, shear_springs
 
 __all__ = ["LayerSprings", "layer_springs"]
 
@@ -39,7 +39,7 @@ class LayerSprings:
     D_T: FloatArray  # twisting (free-panel model, corrugate.mechanics.offaxis)
     V_S: FloatArray  # transverse shear along the creases, per facet length (N/mm; load cases)
     h: FloatArray  # depth W cos(alpha/2) of the zig-zag (mm; load cases)
-    F: FloatArray  # finite-panel factor of off-axis in-plane K (corrugate.mechanics.offaxis)
+    deficit: FloatArray  # finite-panel deficit of off-axis in-plane K (mechanics.offaxis)
 
 
 def _num(x: ArrayLike) -> Any:
@@ -74,7 +74,7 @@ def layer_springs(
     For the load cases (:mod:`corrugate.mechanics.load_cases`), ``cos_half`` = cos(alpha/2), ``W``
     (mm) and ``n`` give the transverse shear spring V_S (:func:`corrugate.mechanics.load_cases.
     shear_spring`, on the parallel sum), the depth h = W cos(alpha/2) (mm) and the finite-panel
-    factor F of :func:`corrugate.mechanics.offaxis.finite_panel_factor`."""
+    deficit of :func:`corrugate.mechanics.offaxis.finite_panel_deficit`."""
     t_ = _num(t)
     p = np.asarray(pitch, dtype=np.float64)
     pq = p * np.asarray(inv_length_sum, dtype=np.float64)
@@ -95,5 +95,5 @@ def layer_springs(
             D_T=D_T,
             V_S=V_S,
             h=np.asarray(W, dtype=np.float64) * c,
-            F=finite_panel_factor(np.asarray(n, dtype=np.float64)),
+            deficit=finite_panel_deficit(np.asarray(n, dtype=np.float64)),
         )

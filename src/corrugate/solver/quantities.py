@@ -72,7 +72,7 @@ from corrugate.mechanics.moduli import get_model
 from corrugate.mechanics.offaxis import (
     Coupon,
     _cs,
-    finite_panel_factor,
+    finite_panel_deficit,
     shear_spring,
     shear_springs,
 )
@@ -390,7 +390,7 @@ class _Springs:
     pq: Interval  # p sum_j 1/L_j without holes (corrugate.mechanics.offaxis.Coupon)
     V_S: Interval  # transverse shear spring (N/mm; corrugate.mechanics.load_cases)
     h: Interval  # depth W cos(alpha/2) (mm)
-    F: Interval  # finite-panel factor (corrugate.mechanics.offaxis.finite_panel_factor)
+    deficit: Interval  # finite-panel deficit (corrugate.mechanics.offaxis.finite_panel_deficit)
 
 
 def _layer_springs(
@@ -433,7 +433,7 @@ def _layer_springs(
     K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), sh, pq_par)
     # c^2 / s falls as alpha grows: one interval each (c and s are monotone on the box)
     V_S = shear_spring(float(m.E), float(m.nu), float(t), sh, ch, pq_par)
-    F_lo, F_hi = finite_panel_factor(n[0]), finite_panel_factor(n[1])  # increasing in n
+    d_lo, d_hi = finite_panel_deficit(n[1]), finite_panel_deficit(n[0])  # falls with n
     return _Springs(
         Ecx * t / pq_ser,
         Ecy * t * pq_par,
@@ -444,7 +444,7 @@ def _layer_springs(
         pq,
         Interval.of(V_S),
         Wi * ch,
-        Interval(F_lo, F_hi),
+        Interval(d_lo, d_hi),
     )
 
 

@@ -27,6 +27,7 @@ import numpy as np
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.geometry.layer import Assembly, Layer
+from corrugate.mechanics.behaviours import get_load_case
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.problem import Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
@@ -177,6 +178,36 @@ class Solution:
     def mass(self) -> float | None:
         return None if self.analysis is None else self.analysis.mass.total
 
+    @property
+    def certificate(self) -> str:
+        """What the certificate is a statement about: the model variant, and for each
+        behavioural bound the support condition and the test it is taken in
+        (docs/load_cases.md), e.g. ``certified under the refined model: EI(0 deg) in pure
+        bending, free sides; deflection 0.93 mm <= 1 mm under 10 N in three-point bending over
+        120 mm, free sides``."""
+        p = self.problem
+        head = f"{'certified' if self.certified else 'not certified'} under the {p.model} model"
+        parts = []
+        for c in self.constraints:
+            q = c.quantity
+            if q.eta is None or q.kind in ("Pb", "length"):
+                continue
+            where = f"{q.support} sides" if q.support == "free" else f"support {q.support}"
+            test = (
+                get_load_case(q.test).label
+                if q.test is not None
+                else (" between platens" if q.kind == "K" else " in pure bending")
+            )
+            if c.load is not None:
+                span = "" if q.span is None else f" over {q.span:g} mm"
+                parts.append(
+                    f"deflection {c.value:.4g} mm <= {c.bound:.4g} mm under {c.load:g} N"
+                    f"{test}{span} at {q.eta:g} deg, {where}"
+                )
+            else:
+                parts.append(f"{q.kind}({q.eta:g} deg){test}, {where}")
+        return head + (": " + "; ".join(parts) if parts else "")
+
     def to_dict(self) -> dict[str, object]:
         """The JSON object of ``corrugate design --json`` (keys carry units)."""
         p = self.problem
@@ -197,6 +228,7 @@ class Solution:
             "name": p.name,
             "status": self.status,
             "certified": self.certified,
+            "certificate": self.certificate,
             "gap": self.gap,
             "model": p.model,
             "objective": {
