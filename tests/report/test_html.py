@@ -245,3 +245,21 @@ def test_report_opens_in_chromium(report: Path) -> None:
     assert count >= 5
     assert broken == 0
     assert errors == []
+
+
+@pytest.mark.slow
+def test_a_load_case_has_its_figure_and_its_deflection(tmp_path: Path) -> None:
+    """A spec with a deflection bound (examples/chassis_plate.toml) gets a 'Load cases' section
+    with one figure, titled with the certified deflection under the load, and the report's
+    constraint table shows the deflection (mm), not P / delta; a spec without one has none."""
+    spec = BLIMP.parent / "chassis_plate.toml"
+    sol = solve(Problem.from_spec(load_spec(spec)))
+    text = report_html(sol, spec.read_text())
+    parsed = _Collect()
+    parsed.feed(text)
+    assert "Load cases" in parsed.headings
+    [c] = [c for c in sol.constraints if c.load is not None]
+    assert c.unit == "mm" and c.value <= c.bound == pytest.approx(1.0)
+    assert "constraints.deflection[0].max" in text
+    blimp = report_html(solve(Problem.from_spec(load_spec(BLIMP))), BLIMP.read_text())
+    assert "<h2>Load cases</h2>" not in blimp

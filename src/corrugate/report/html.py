@@ -12,7 +12,12 @@ from corrugate.fabrication.instructions import assembly_steps, instructions_png
 from corrugate.fabrication.linestyle import StyleKind
 from corrugate.geometry.holes import holes_text
 from corrugate.mechanics.moduli import MODELS
-from corrugate.report.figures import design_space_figure, mass_by_n_figure, polar_figure
+from corrugate.report.figures import (
+    design_space_figure,
+    load_case_figure,
+    mass_by_n_figure,
+    polar_figure,
+)
 from corrugate.solver.solve import Solution
 
 if TYPE_CHECKING:
@@ -170,6 +175,15 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
             ["bind" if c.binding else "" for c in sol.constraints],
         )
     )
+    cases = load_case_figure(sol.constraints, (asm.Lx, asm.Ly))
+    if cases is not None:
+        parts.append("<h2>Load cases</h2>")
+        parts.append(_img(cases, "each load case: supports, load and deflected shape"))
+        parts.append(
+            "<p>Each test's deflection is the certified model's (pure bending plus the shear "
+            "of the facets, <code>corrugate docs load_cases</code>); the shapes are "
+            "exaggerated.</p>"
+        )
     parts.append("<h2>Design space</h2>")
     parts.append(_img(design_space_figure(p, a), "design space map: W against alpha"))
     parts.append(_img(mass_by_n_figure(p, a), "lightest mass against n"))
