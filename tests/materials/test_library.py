@@ -66,3 +66,47 @@ def test_repr_is_one_short_line_with_units() -> None:
     assert "\n" not in text and len(text) < 100
     assert text.startswith("Material('dura-lar'") and "2700 MPa" in text
     assert m.source not in text  # the source text is in as_dict, not the repr
+
+
+def test_every_library_material_has_an_allowable_stress() -> None:
+    """Each sheet carries a yield (or tensile) strength with its source, positive and below
+    E/20: no engineering sheet yields at a strain above 5 % in the linear range (the polymers
+    here yield at about 2-5 %, metals at 0.2-0.5 %)."""
+    for m in library().values():
+        assert m.yield_strength is not None, m.id
+        assert 0 < m.yield_strength < m.E / 20, m.id
+        assert "yield_strength:" in m.source, m.id
+        assert m.as_dict()["yield_strength_MPa"] == m.yield_strength
+
+
+def test_yield_strength_units_are_parsed() -> None:
+    """"100 MPa" and "0.1 GPa" are one stress; "14.5 ksi" is 100 MPa to 0.1 % (1 ksi = 6.895 MPa)."""
+    from corrugate.materials.library import _from_entry
+
+    base = {"name": "x", "E": "2 GPa", "nu": 0.3, "density": "1 g/cm^3"}
+    a = _from_entry("a", {**base, "yield_strength": "100 MPa"})
+    b = _from_entry("b", {**base, "yield_strength": "0.1 GPa"})
+    c = _from_entry("c", {**base, "yield_strength": "14.5 ksi"})
+    assert a.yield_strength == pytest.approx(100.0)
+    assert b.yield_strength == pytest.approx(100.0)
+    assert c.yield_strength == pytest.approx(100.0, rel=1e-3)
+    assert _from_entry("d", base).yield_strength is None
+
+
+@pytest.mark.parametrize("bad", ["0 MPa", "-5 MPa", "3 GPa", "2 mm"])
+def test_a_yield_strength_outside_zero_to_E_is_refused(bad: str) -> None:
+    from corrugate.materials.library import _from_entry
+
+    base = {"name": "x", "E": "2 GPa", "nu": 0.3, "density": "1 g/cm^3"}
+    with pytest.raises(InputError, match=r"yield_strength"):
+        _from_entry("x", {**base, "yield_strength": bad})
+
+
+def test_inline_materials_have_no_yield_strength() -> None:
+    assert inline_material("2.7 GPa", 0.43, 1.39).yield_strength is None
+
+
+def test_kapton_and_mylar_yield_match_their_datasheets() -> None:
+    """Kapton HN data sheet: yield point at 3 % 69 MPa; Mylar bulletin: F-5 10 kg/mm^2 = 98.1 MPa."""
+    assert get_material("kapton").yield_strength == pytest.approx(69.0)
+    assert get_material("mylar").yield_strength == pytest.approx(10 * 9.80665, rel=0.01)

@@ -171,7 +171,7 @@ def materials_cmd(
         typer.echo(json.dumps([m.as_dict() for m in lib.values()], indent=2))
         return
     t = Table(title="material library (src/corrugate/data/materials.toml)", title_justify="left")
-    for col in ("id", "E GPa", "nu", "rho g/cm^3", "t mm (default)", "sold in mm"):
+    for col in ("id", "E GPa", "nu", "rho g/cm^3", "yield MPa", "t mm (default)", "sold in mm"):
         t.add_column(col)
     for m in lib.values():
         sold = f"{min(m.thicknesses):g}-{max(m.thicknesses):g}" if m.thicknesses else "-"
@@ -180,6 +180,7 @@ def materials_cmd(
             f"{m.E / 1000:g}",
             f"{m.nu:g}",
             f"{m.density_g_cm3:g}",
+            _fmt(m.yield_strength),
             _fmt(m.default_thickness),
             sold,
         )

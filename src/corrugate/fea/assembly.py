@@ -106,7 +106,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.core.errors import InputError
-from corrugate.fea.ccx import SolverError, run_ccx, work_dir
+from corrugate.fea.ccx import FrdStresses, SolverError, parse_frd_stresses, run_ccx, work_dir
 from corrugate.fea.connector_band import Bond, band_shell
 from corrugate.fea.shells import Shell, layer_shell, oblique_shells, principal_axis, specimen
 from corrugate.geometry.layer import Assembly
@@ -160,7 +160,9 @@ class AssemblyResult:
     compressive) on the far side platen, held in place; for ``buckling``, ``buckling_load`` (N,
     the platen force of the first buckling mode; force and displacement are then NaN);
     ``force`` (N) at the prescribed ``displacement`` (mm), the share of the force carried by
-    each layer, and each layer's part of K or D (``layer_values``).
+    each layer, and each layer's part of K or D (``layer_values``); with ``stresses=True`` the
+    nodal stresses of the shells (``stresses``, :class:`~corrugate.fea.ccx.FrdStresses`; material
+    k is part k: layer 1, layer 2, the band) at that displacement.
     With ``connectors`` the band's own nodes carry ``band_value``; nodes shared by a layer and the
     band count for the layer, so the split between the parts is bookkeeping, the total is not."""
 
@@ -181,6 +183,7 @@ class AssemblyResult:
     connectors: bool = False
     side_force: float | None = None
     buckling_load: float | None = None
+    stresses: FrdStresses | None = None
 
     def value(self) -> float:
         """K (N/mm) for compression and the frame, D (N mm) for bending (what ``analyze``
@@ -274,12 +277,16 @@ def assembly_deck(
     match_layers: bool | None = None,
     mesher: Mesher = "auto",
     bond: Bond = "edges",
+    stresses: bool = False,
 ) -> tuple[str, DeckInfo]:
     """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
 
     ``connectors`` adds the band (see the module docstring); ``match_layers`` (default: as
     ``connectors``) meshes each layer with along x (n_other + 1) elements along its creases, the
-    mesh the band needs, so that a run without the band can be compared on the same layer mesh."""
+    mesh the band needs, so that a run without the band can be compared on the same layer mesh.
+    ``stresses`` asks ccx for the nodal stresses in the ``.frd`` file (``*EL FILE`` with ``S``;
+    not for ``buckling``); it adds output only, the model and the printed reactions are the
+    same."""
     if test not in TESTS:
         raise InputError("test", test, " or ".join(TESTS))
     # the specimen's length along eta (the span); refuses what the FE cannot model
@@ -460,6 +467,8 @@ def assembly_deck(
         lines += [f"*NODE PRINT,NSET={name}", "RF"]
     for name in mid_sets:
         lines += [f"*NODE PRINT,NSET={name}", "U"]
+    if stresses and test != "buckling":
+        lines += ["*EL FILE", "S"]
     lines.append("*END STEP")
     n_nodes = sum(len(sh.ids) for sh in shells)
     mids = tuple(zip(mid_sets[0::2], mid_sets[1::2], strict=True)) if mid_sets else None
@@ -482,8 +491,10 @@ def solve_assembly(
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
+    stresses: bool = False,
 ) -> AssemblyResult:
-    """Run one load case of the assembly in CalculiX (see the module docstring for the model)."""
+    """Run one load case of the assembly in CalculiX (see the module docstring for the model);
+    ``stresses``: also read the shells' nodal stresses (:class:`AssemblyResult` ``stresses``)."""
     mesh = mesh or AssemblyMesh()
     deck, info = assembly_deck(
         assembly,
@@ -494,9 +505,16 @@ def solve_assembly(
         match_layers=match_layers,
         mesher=mesher,
         bond=bond,
+        stresses=stresses,
     )
+    field: FrdStresses | None = None
     with work_dir(folder, keep) as wd:
         run = run_ccx(deck, wd, job=test, timeout=timeout)
+        if stresses and test != "buckling":
+            frd = wd / f"{test}.frd"
+            if not frd.exists():
+                raise SolverError(f"ccx wrote no {frd.name} in {wd}")
+            field = parse_frd_stresses(frd.read_text())
     if test == "buckling":
         if not run.buckling_factors:
             raise SolverError("ccx printed no buckling factor")
@@ -582,4 +600,5 @@ def solve_assembly(
         band_value=parts[2] if connectors else None,
         connectors=connectors,
         side_force=side_force,
+        stresses=field,
     )

@@ -3,7 +3,8 @@
 CalculiX is the finite-element solver of the ``fea`` subpackage (Debian package ``calculix-ccx``,
 command ``ccx``; version 2.20 was used to write and test this code). This module only finds the
 executable, runs it on a deck in a work folder with a time-out and parses the ``.dat`` file that
-``*NODE PRINT`` writes; the models are built in :mod:`corrugate.fea.unitcell` and
+``*NODE PRINT`` writes, and the nodal stresses that ``*EL FILE`` / ``S`` writes to the ``.frd``
+file (:func:`parse_frd_stresses`); the models are built in :mod:`corrugate.fea.unitcell` and
 :mod:`corrugate.fea.assembly`.
 
 The executable is looked up in the environment variable ``CORRUGATE_CCX`` first, then as ``ccx``
@@ -26,17 +27,22 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
+import numpy as np
+from numpy.typing import NDArray
+
 from corrugate.core.errors import CorrugateError
 
 __all__ = [
     "CCX_ENV",
     "CcxRun",
     "DatBlock",
+    "FrdStresses",
     "SolverError",
     "SolverNotFoundError",
     "find_ccx",
     "parse_buckling",
     "parse_dat",
+    "parse_frd_stresses",
     "run_ccx",
     "work_dir",
 ]
@@ -142,6 +148,98 @@ def parse_buckling(text: str) -> list[float]:
             if mode == len(factors) + 1:
                 factors.append(value)
     return factors
+
+
+@dataclass(frozen=True, slots=True)
+class FrdStresses:
+    """The nodal stresses of a ccx ``.frd`` file (``*EL FILE`` with ``S``: stresses extrapolated
+    from the integration points to the nodes and averaged over the elements sharing a node).
+
+    Shell elements appear as ccx expands them: 20-node bricks whose nodes lie on the shell's two
+    surfaces and its mid-surface (new node numbers; at a crease each facet has its own), so the
+    surface stresses are among these nodes. ``ids`` are the node numbers, ``xyz`` their
+    coordinates (mm), ``stress`` the components SXX, SYY, SZZ, SXY, SYZ, SZX (MPa, global axes)
+    of the last stress block, ``material`` the material number (1-based, in the deck's order of
+    ``*MATERIAL``) of the first element that uses each node (0: none)."""
+
+    ids: NDArray[np.int64]
+    xyz: NDArray[np.float64]
+    stress: NDArray[np.float64]
+    material: NDArray[np.int64]
+
+    def principal(self) -> NDArray[np.float64]:
+        """Principal stresses (MPa) of every node, ascending: shape (nodes, 3)."""
+        s = self.stress
+        tensor = np.empty((len(s), 3, 3))
+        tensor[:, 0, 0], tensor[:, 1, 1], tensor[:, 2, 2] = s[:, 0], s[:, 1], s[:, 2]
+        tensor[:, 0, 1] = tensor[:, 1, 0] = s[:, 3]
+        tensor[:, 1, 2] = tensor[:, 2, 1] = s[:, 4]
+        tensor[:, 2, 0] = tensor[:, 0, 2] = s[:, 5]
+        return np.asarray(np.linalg.eigvalsh(tensor), dtype=np.float64)
+
+    def von_mises(self) -> NDArray[np.float64]:
+        """Von Mises equivalent stress (MPa) of every node."""
+        xx, yy, zz, xy, yz, zx = self.stress.T
+        return np.asarray(
+            np.sqrt(
+                0.5 * ((xx - yy) ** 2 + (yy - zz) ** 2 + (zz - xx) ** 2)
+                + 3.0 * (xy * xy + yz * yz + zx * zx)
+            )
+        )
+
+
+def _frd_floats(line: str, count: int) -> list[float]:
+    """``count`` 12-character numbers after the node number of a ``-1`` result or node line
+    (the fields may touch: "-1.2E-01-3.4E-02")."""
+    return [float(line[13 + 12 * k : 25 + 12 * k]) for k in range(count)]
+
+
+def parse_frd_stresses(text: str) -> FrdStresses:
+    """The node coordinates, element materials and last ``STRESS`` block of an ASCII ``.frd``
+    file; :class:`SolverError` if it has no stress block."""
+    coords: dict[int, tuple[float, ...]] = {}
+    material: dict[int, int] = {}
+    stresses: dict[int, tuple[float, ...]] = {}
+    mode = ""
+    current_mat = 0
+    found = False
+    for line in text.splitlines():
+        head = line[:6]
+        if head == "    2C":
+            mode = "nodes"
+            continue
+        if head == "    3C":
+            mode = "elements"
+            continue
+        if line.startswith(" -4"):
+            if line.split()[1] == "STRESS":
+                mode, found = "stress", True
+                stresses = {}
+            else:
+                mode = "other"
+            continue
+        if line.startswith(" -3"):
+            mode = ""
+            continue
+        if mode == "nodes" and line.startswith(" -1"):
+            coords[int(line[3:13])] = tuple(_frd_floats(line, 3))
+        elif mode == "elements":
+            if line.startswith(" -1"):
+                current_mat = int(line.split()[4])
+            elif line.startswith(" -2"):
+                for node in line.split()[1:]:
+                    material.setdefault(int(node), current_mat)
+        elif mode == "stress" and line.startswith(" -1"):
+            stresses[int(line[3:13])] = tuple(_frd_floats(line, 6))
+    if not found:
+        raise SolverError("the .frd file holds no STRESS block (no *EL FILE with S?)")
+    ids = np.array(sorted(stresses), dtype=np.int64)
+    return FrdStresses(
+        ids,
+        np.array([coords[i] for i in ids], dtype=np.float64).reshape(-1, 3),
+        np.array([stresses[i] for i in ids], dtype=np.float64).reshape(-1, 6),
+        np.array([material.get(int(i), 0) for i in ids], dtype=np.int64),
+    )
 
 
 @dataclass(frozen=True, slots=True)

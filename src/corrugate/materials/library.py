@@ -1,7 +1,9 @@
 """Sheet materials: the bundled library (``data/materials.toml``) and inline definitions.
 
-A :class:`Material` holds E (MPa), nu (-), density (g/mm^3), the thicknesses it is sold in (mm)
-and where the values come from. The library is data, not code: edit the TOML file to add a sheet.
+A :class:`Material` holds E (MPa), nu (-), density (g/mm^3), the thicknesses it is sold in (mm),
+the allowable stress of a strength check (``yield_strength``, MPa: the tensile yield stress, or the
+tensile strength of a material without a yield point; :mod:`corrugate.mechanics.strength`) and where
+the values come from. The library is data, not code: edit the TOML file to add a sheet.
 """
 
 from __future__ import annotations
@@ -12,10 +14,17 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from corrugate.core.errors import UnknownNameError
+from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.units import parse_quantity
 
-__all__ = ["Material", "get_material", "inline_material", "library", "validate_elastic"]
+__all__ = [
+    "Material",
+    "get_material",
+    "inline_material",
+    "library",
+    "validate_elastic",
+    "validate_strength",
+]
 
 #: g/cm^3 expressed in the internal unit g/mm^3.
 G_PER_CM3 = 1.0e-3
@@ -25,7 +34,9 @@ G_PER_CM3 = 1.0e-3
 class Material:
     """An isotropic sheet material.
 
-    Attributes are in internal units: ``E`` in MPa, ``density`` in g/mm^3, thicknesses in mm.
+    Attributes are in internal units: ``E`` in MPa, ``density`` in g/mm^3, thicknesses in mm,
+    ``yield_strength`` in MPa (None when not known: an inline material defined by E, nu and
+    density only).
     """
 
     id: str
@@ -37,6 +48,7 @@ class Material:
     default_thickness: float | None = None
     category: str = "custom"
     source: str = "defined by the user"
+    yield_strength: float | None = None
 
     def __repr__(self) -> str:
         """One short line (the source text is in :meth:`as_dict`)."""
@@ -60,6 +72,7 @@ class Material:
             "density_g_cm3": self.density_g_cm3,
             "thicknesses_mm": list(self.thicknesses),
             "default_thickness_mm": self.default_thickness,
+            "yield_strength_MPa": self.yield_strength,
             "category": self.category,
             "source": self.source,
         }
@@ -75,6 +88,20 @@ def validate_elastic(E: float, nu: float, density: float, *, prefix: str = "") -
     check("density", density / G_PER_CM3, f"{prefix}density")
 
 
+def validate_strength(strength: float, E: float, field: str = "yield_strength") -> None:
+    """Raise :class:`InputError` unless the allowable stress ``strength`` (MPa) is a normal
+    number with 0 < strength < E (MPa): a sheet that yields at a stress above its modulus would
+    yield at a strain above 100 %."""
+    from corrugate.core.limits import abnormal_reason
+
+    allowed = f"0 < yield_strength < E = {E:g} MPa"
+    reason = abnormal_reason(strength)
+    if reason is not None:
+        raise InputError(field, f"{strength!r} MPa", allowed, reason=reason)
+    if not 0.0 < strength < E:
+        raise InputError(field, f"{strength:g} MPa", allowed)
+
+
 def _from_entry(key: str, entry: dict[str, Any]) -> Material:
     where = f"materials.toml [{key}]."
     E = parse_quantity(entry["E"], "MPa", where + "E")
@@ -85,6 +112,10 @@ def _from_entry(key: str, entry: dict[str, Any]) -> Material:
         parse_quantity(t, "mm", where + "thicknesses") for t in entry.get("thicknesses", [])
     )
     default = entry.get("default_thickness")
+    strength: float | None = None
+    if "yield_strength" in entry:
+        strength = parse_quantity(entry["yield_strength"], "MPa", where + "yield_strength")
+        validate_strength(strength, E, where + "yield_strength")
     return Material(
         id=key,
         name=str(entry.get("name", key)),
@@ -99,6 +130,7 @@ def _from_entry(key: str, entry: dict[str, Any]) -> Material:
         ),
         category=str(entry.get("category", "")),
         source=str(entry.get("source", "")),
+        yield_strength=strength,
     )
 
 
