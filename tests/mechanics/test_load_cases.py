@@ -19,7 +19,7 @@ from hypothesis import strategies as st
 from corrugate import Assembly, Layer, analyze, get_material
 from corrugate.solver import Problem, solve
 from corrugate.solver.quantities import Tables, box_bounds, point_values
-from corrugate.solver.quantity import Quantity
+from corrugate.solver.quantity import MASS, Quantity
 from corrugate.spec.schema import SpecError, parse_spec
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -251,7 +251,7 @@ def test_certified_load_case_answers_match_exhaustive_search(
         assert not ok.any()
         return
     assert sol.certified
-    best = float(np.min(vals[next(iter(vals)).__class__("mass")][ok]))
+    best = float(np.min(vals[MASS][ok]))
     assert sol.mass == pytest.approx(best, rel=1e-9)
     layer = sol.assembly.layer1
     at = _point(layer.n, layer.W, layer.alpha_deg)
@@ -306,3 +306,87 @@ def test_the_chassis_example_certifies_its_deflection() -> None:
     k = point_values(p, cand1, cand1, x, Tables(p))[c.quantity][0]
     assert c.deflection(k) <= 1.0 + 1e-9
     _ = copy  # the spec is read, not edited
+
+
+def test_strength_capacity_is_the_peak_stress_of_the_section_model() -> None:
+    """Second method: corrugate.mechanics.strength.peak_stress_bending computes the peak stress
+    from the zig-zag section's own rigidity (not the springs) with the moment shared by
+    stiffness; the solver's load capacity Pmax of a three-point test (refined moduli, whose
+    spanwise D_S x L is that section rigidity) is yield / (safety factor x peak stress per
+    newton) at M = P L / 4."""
+    from corrugate.mechanics.strength import LayerSection, peak_stress_bending
+
+    p = _problem(
+        {"safety_factor": 2.5},
+        strength=[{"test": "three-point", "load": "5 N", "eta": "0 deg"}],
+    )
+    [c] = [c for c in p.constraints if c.name == "constraints.strength[0].load"]
+    assert c.quantity.key == "Pmax3pt@0" and c.bound == 5.0 and p.safety_factor == 2.5
+    cand = p.candidates[0]
+    cap = point_values(p, cand, cand, _point(8, 8, 84), Tables(p))[c.quantity][0]
+    layer = Layer(W=8, n=8, alpha_deg=84, material=DL, t=0.125)
+    L = Assembly.identical(layer).Ly
+    sec = LayerSection.from_layer(layer)
+    peak = peak_stress_bending(sec, sec, 1.0 * L / 4).sigma  # per newton
+    assert DL.yield_strength is not None
+    assert cap == pytest.approx(DL.yield_strength / (2.5 * peak), rel=2e-3)
+
+
+def test_strength_bounds_refuse_what_is_not_modelled() -> None:
+    assert (
+        _fail(strength=[{"test": "three-point", "load": 1, "eta": 45}]).field
+        == "constraints.strength[0].eta"
+    )
+    assert (
+        _fail(strength=[{"test": "platens", "load": 1, "span": 30}]).field
+        == "constraints.strength[0].span"
+    )
+    inline = {"material": {"E": 3000, "nu": 0.3, "density": 1.2, "thickness": 0.1}}
+    with pytest.raises(SpecError) as info:
+        _problem(inline, strength=[{"test": "cantilever", "load": 1}])
+    assert info.value.field == "material.yield_strength"
+    p = _problem(
+        {"material": {**inline["material"], "yield_strength": "40 MPa"}},
+        strength=[{"test": "cantilever", "load": 1}],
+    )
+    assert p.candidates[0].material.yield_strength == 40.0
+    with pytest.raises(SpecError) as info:
+        _problem({"safety_factor": 0.5})
+    assert info.value.field == "safety_factor"
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    test=st.sampled_from(["three-point", "cantilever", "platens"]),
+    eta=st.sampled_from([0.0, 90.0]),
+    frac=st.floats(0.05, 0.9),
+)
+def test_certified_strength_answers_match_exhaustive_search(
+    test: str, eta: float, frac: float
+) -> None:
+    """A strength bound (a fraction of the grid's largest capacity) with an off-axis K bound:
+    the certified answer is the lightest grid point that meets both (exhaustive search over the
+    same point values) and meets them pointwise."""
+    grid = np.array(
+        [(n, W, a) for n in range(7, 14) for W in range(6, 15) for a in range(40, 116, 5)],
+        dtype=float,
+    )
+    x = {"n1": grid[:, 0], "W1": grid[:, 1], "a1": grid[:, 2]}
+    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+    probe = _problem(strength=[{"test": test, "load": 1, "eta": eta}])
+    cand = probe.candidates[0]
+    q = next(c.quantity for c in probe.constraints if c.quantity.kind == "Pmax")
+    load = frac * float(np.max(point_values(probe, cand, cand, x, Tables(probe))[q]))
+    p = _problem(
+        strength=[{"test": test, "load": load, "eta": eta}],
+        inplane_stiffness=[{"min": 0.2, "eta": 30}],
+    )
+    sol = solve(p, explain=False)
+    vals = point_values(p, cand, cand, x, Tables(p))
+    ok = np.ones(len(grid), dtype=bool)
+    for c in p.constraints:
+        ok &= c.satisfied(vals[c.quantity])
+    if sol.status != "optimal":
+        assert not ok.any()
+        return
+    assert sol.certified and sol.mass == pytest.approx(float(np.min(vals[MASS][ok])), rel=1e-9)

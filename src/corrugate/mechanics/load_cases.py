@@ -35,19 +35,22 @@ from corrugate.mechanics.behaviours import Behaviour, TestForm
 
 __all__ = [
     "CANTILEVER",
+    "DEFAULT_SAFETY_FACTOR",
     "FOUR_POINT",
     "LOCAL",
     "PLATENS",
     "THREE_POINT",
     "apparent",
+    "load_capacity",
     "load_stiffness",
     "shear_and_depth",
+    "stress_per_load",
 ]
 
 #: c of the local term c h / S (docs/load_cases.md, section 2).
 LOCAL = 1.5
 
-_BENDING_UNITS = {"EI": "N*mm^2", "D": "N*mm", "k": "N/mm"}
+_BENDING_UNITS = {"EI": "N*mm^2", "D": "N*mm", "k": "N/mm", "Pmax": "N"}
 
 
 def _no_model(kind: str, springs: tuple[Any, Any], eta_deg: float, coupon: Any) -> Any:
@@ -67,7 +70,7 @@ def _warning(angles: str, layout: str) -> str:
 def _entry(
     name: str, form: TestForm, fixture: str, label: str, suffix: str, text: str
 ) -> Behaviour:
-    units = _BENDING_UNITS if form.kind == "bending" else {"K": "N/mm", "k": "N/mm"}
+    units = _BENDING_UNITS if form.kind == "bending" else {"K": "N/mm", "k": "N/mm", "Pmax": "N"}
     return Behaviour(
         name=name,
         model=_no_model,
@@ -162,3 +165,63 @@ def apparent(form: TestForm, kind: str, k: Any, length: Any) -> Any:
     if kind == "D":
         return form.a * length**2 * k
     return k
+
+
+#: Safety factor of a strength check unless the spec gives one (docs/load_cases.md, section 6).
+DEFAULT_SAFETY_FACTOR = 2.0
+
+
+def stress_per_load(
+    form: TestForm,
+    springs: tuple[Any, Any],
+    along: int,
+    stiffness: Any,
+    E: tuple[float, float],
+    t: tuple[float, float],
+    length: Any,
+    width: Any,
+    span: Any | None = None,
+) -> Any:
+    """Peak facet stress per unit load (MPa/N) of a load case along a crease direction, of the
+    layer along eta and of the other (a pair)
+    (docs/load_cases.md, section 6; the formulas of :mod:`corrugate.mechanics.strength` written
+    on the layers' springs, so that intervals bound them): ``along`` is the layer whose creases
+    run along eta (0 or 1), ``stiffness`` the support's pure D (N mm, bending) or K (N/mm,
+    platens), ``E``, ``t`` the layers' moduli (MPa) and thicknesses (mm), ``length`` (mm) the
+    panel's length along eta, ``width`` (mm) across it and ``span`` the test's Ls (None: the
+    length).
+
+    Bending (the layers share the curvature kappa = M / (D L), M = moment x P x Ls): the layer
+    along eta peaks at its crease lines, E kappa (h + t) / 2; the other carries its share
+    M D_C / D as a plate moment over the width, 6 M D_C / (D width t^2). Platens (same strain
+    delta / L): the layer along eta carries the membrane stress E / (K L) per newton; the other
+    the crease moment of its share P K_C / K, (K_C / K) (3 h / t^2 + 1 / t) / width (the s / t
+    membrane term of :func:`corrugate.mechanics.strength.chordwise_compression_stress` taken at
+    its largest, s = 1)."""
+    a, c = springs[along], springs[1 - along]
+    Ea, ta = E[along], t[along]
+    tc = t[1 - along]
+    if form.kind == "inplane":
+        own = Ea / (stiffness * length)
+        other = (c.K_C / stiffness) * (3.0 * c.h / (tc * tc) + 1.0 / tc) / width
+    else:
+        Ls = length if span is None else span
+        M = form.moment * Ls  # per newton
+        own = Ea * M * (a.h + ta) / (2.0 * stiffness * length)
+        other = 6.0 * M * c.D_C / (stiffness * width * tc * tc)
+    return own, other
+
+
+def load_capacity(
+    per_load: tuple[Any, Any], allowable: tuple[float, float], safety_factor: float
+) -> Any:
+    """The largest load (N) at which each layer's peak stress times ``safety_factor`` stays at
+    or below its ``allowable`` stress (MPa): the smaller of allowable / (safety_factor x sigma
+    per newton) over (the layer along eta, the other), as :func:`stress_per_load` orders them."""
+    own = allowable[0] / (safety_factor * per_load[0])
+    other = allowable[1] / (safety_factor * per_load[1])
+    if hasattr(own, "minimum"):
+        return own.minimum(other)
+    import numpy as np
+
+    return np.minimum(own, other)

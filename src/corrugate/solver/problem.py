@@ -23,6 +23,7 @@ from corrugate.core.errors import InputError
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.materials.library import Material, get_material, inline_material
+from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.mechanics.moduli import get_model
 from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
 from corrugate.spec.schema import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
@@ -143,6 +144,7 @@ class Problem:
     constraints: tuple[Constraint, ...]
     objective: Objective = field(default_factory=Objective)
     support: str = "free"  # the spec's global support condition (reports, tables)
+    safety_factor: float = DEFAULT_SAFETY_FACTOR  # of the strength bounds (Pmax quantities)
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -229,6 +231,35 @@ class Problem:
                         Constraint(f"{where}.span", Quantity("length", d.eta), "min", d.span)
                     )
             cons.append(Constraint(f"{where}.max", q, "min", d.load / d.max, load=d.load))
+        for i, g in enumerate(c.strength):
+            where = f"constraints.strength[{i}]"
+            _check_load_case_layout(where, layout)
+            if crease_layer(g.eta) is None:
+                raise SpecError(
+                    f"{where}.eta",
+                    f"{g.eta:g} deg",
+                    "0 or 90 deg (stresses are modelled along a layer's creases)",
+                )
+            if g.test == "platens" and g.span is not None:
+                raise SpecError(
+                    f"{where}.span",
+                    f"{g.span:g} mm",
+                    "no span for platens (the panel's length along eta is compressed)",
+                    reason="does not apply",
+                )
+            for cand in cands:
+                if cand.material.yield_strength is None:
+                    raise SpecError(
+                        "material.yield_strength",
+                        None,
+                        "a yield strength (MPa) for a strength bound",
+                        reason=f"is missing for {cand.material.id}",
+                    )
+            eta = 0.0 if crease_layer(g.eta) == 0 else 90.0
+            q = Quantity.load_case("Pmax", eta, g.test, g.support or spec.support, g.span)
+            if g.span is not None and g.test != "platens":
+                cons.append(Constraint(f"{where}.span", Quantity("length", eta), "min", g.span))
+            cons.append(Constraint(f"{where}.load", q, "min", g.load))
         for i, bk in enumerate(c.buckling_load):
             if crease_layer(bk.eta) is None:
                 raise SpecError(
@@ -270,6 +301,7 @@ class Problem:
             constraints=tuple(cons),
             objective=objective,
             support=spec.support,
+            safety_factor=spec.safety_factor,
         )
 
 
@@ -306,8 +338,11 @@ def _candidates(where: str, m: MaterialSpec) -> list[Candidate]:
         assert m.density is not None
         ts = m.thickness if isinstance(m.thickness, list) else [m.thickness]
         mat = inline_material(m.E, m.nu, m.density / 1e-3, name=m.name)
+        mat = replace(mat, yield_strength=m.yield_strength)
         return [Candidate(mat, float(t)) for t in ts if isinstance(t, float)]
     mat = get_material(m.name)
+    if m.yield_strength is not None:
+        mat = replace(mat, yield_strength=m.yield_strength)
     if m.thickness == "all":
         if not mat.thicknesses:
             raise SpecError(

@@ -66,7 +66,13 @@ from corrugate.geometry.layouts import (
 )
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support, supports
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
-from corrugate.mechanics.load_cases import apparent, load_stiffness, shear_and_depth
+from corrugate.mechanics.load_cases import (
+    apparent,
+    load_capacity,
+    load_stiffness,
+    shear_and_depth,
+    stress_per_load,
+)
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
 from corrugate.mechanics.offaxis import (
@@ -261,6 +267,29 @@ def point_values(
             form = get_load_case(q.test).form  # type: ignore[arg-type]
             assert form is not None
             base = out[Quantity("K" if form.kind == "inplane" else "D", e, q.support)]
+            if q.kind == "Pmax":
+                along = 0 if crease_layer(e) == 0 else 1
+                extents = (Lx, Ly) if along == 0 else (Ly, Lx)
+                E = (np.asarray(l1.E, dtype=np.float64), np.asarray(l2.E, dtype=np.float64))
+                t = (np.asarray(l1.t, dtype=np.float64), np.asarray(l2.t, dtype=np.float64))
+                lay_E = (_column(E[along]), _column(E[1 - along]))
+                lay_t = (_column(t[along]), _column(t[1 - along]))
+                sp = ev.springs if along == 0 else ev.springs[::-1]
+                per = stress_per_load(
+                    form,
+                    (_columns(sp[0]), _columns(sp[1])),
+                    0,
+                    base,
+                    lay_E,
+                    lay_t,
+                    extents[1],
+                    extents[0],
+                    q.span,
+                )
+                out[q] = np.asarray(
+                    load_capacity(per, _allowables(c1, c2, along), problem.safety_factor)
+                )
+                continue
             cos2, sin2 = _cs(e)
             V, h = shear_and_depth(ev.springs, cos2, sin2)
             k = load_stiffness(form, base, np.asarray(V)[:, 0], np.asarray(h)[:, 0], span, q.span)
@@ -272,6 +301,34 @@ def point_values(
                 K_SIMPLE_FREE * buckling_scale(lay.E, lay.nu, lay.t, lay.W, lay.n, sa.K_S, sc.K_C)
             )[:, 0]
     return out
+
+
+def _column(v: FloatArray) -> Any:
+    """A (k, 1) column of per-point values as a 1-D array (a scalar as a float)."""
+    a = np.asarray(v, dtype=np.float64)
+    return float(a) if a.ndim == 0 else a.reshape(-1)
+
+
+class _Col:
+    """A layer's springs (arrays of shape (k, 1) or scalars) seen as 1-D arrays."""
+
+    def __init__(self, springs: Any) -> None:
+        self._s = springs
+
+    def __getattr__(self, name: str) -> Any:
+        return _column(getattr(self._s, name))
+
+
+def _columns(springs: Any) -> Any:
+    return _Col(springs)
+
+
+def _allowables(c1: Candidate, c2: Candidate, along: int) -> tuple[float, float]:
+    """The yield strengths (MPa) of (the layer along eta, the other) (Problem.from_spec refuses
+    a strength bound on a material without one)."""
+    y1, y2 = c1.material.yield_strength, c2.material.yield_strength
+    assert y1 is not None and y2 is not None
+    return (y1, y2) if along == 0 else (y2, y1)
 
 
 def _same_layers(c1: Candidate, c2: Candidate, x: Arrays) -> bool:
@@ -651,7 +708,7 @@ def _stiffness_bounds(
                 lambda: (sp1.pq, sp2.pq),
             )
         if q.test is not None:  # a load case on its support's D or K
-            v = _load_case_bounds(problem, q, (sp1, sp2), Lx, Ly, coupon)
+            v = _load_case_bounds(problem, q, (sp1, sp2), Lx, Ly, coupon, (c1, c2))
             out[q] = (np.maximum(v.lo, 0.0), v.hi)
             continue
         v = entry.bounds("D" if q.kind == "EI" else q.kind, (sp1, sp2), eta, coupon)
@@ -668,6 +725,7 @@ def _load_case_bounds(
     Lx: tuple[FloatArray, FloatArray],
     Ly: tuple[FloatArray, FloatArray],
     coupon: Coupon | None,
+    cands: tuple[Candidate, Candidate],
 ) -> Interval:
     """Bounds of a load case's quantity over the boxes: the formula of
     :mod:`corrugate.mechanics.load_cases` on the interval springs, the support's D or K bounds
@@ -678,6 +736,29 @@ def _load_case_bounds(
     support = get_support(q.support or DEFAULT_SUPPORT)
     base = support.bounds("K" if form.kind == "inplane" else "D", springs, q.eta, coupon)
     length = _span_bounds(problem, Lx, Ly, q.eta)
+    if q.kind == "Pmax":
+        along = 0 if crease_layer(q.eta) == 0 else 1
+        width = Interval(*(Lx if along == 0 else Ly))
+        sp = springs if along == 0 else springs[::-1]
+        E = (float(cands[0].material.E), float(cands[1].material.E))
+        t = (float(cands[0].t), float(cands[1].t))
+        per = stress_per_load(
+            form,
+            (sp[0], sp[1]),
+            0,
+            base,
+            (E[along], E[1 - along]),
+            (t[along], t[1 - along]),
+            length,
+            width,
+            q.span,
+        )
+        cap = load_capacity(
+            (Interval.of(per[0]), Interval.of(per[1])),
+            _allowables(cands[0], cands[1], along),
+            problem.safety_factor,
+        )
+        return Interval.of(cap)
     cos2, sin2 = _cs(q.eta)
     V, h = shear_and_depth(springs, cos2, sin2)
     k = load_stiffness(form, base, V, h, length, q.span)

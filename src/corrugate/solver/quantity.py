@@ -18,7 +18,10 @@ A :class:`Quantity` is a ``kind`` with, for what depends on a direction, ``eta``
   load case's span);
 * ``k``: P / delta (N/mm) of a load case (``test``: three-point, four-point, cantilever, platens;
   :mod:`corrugate.mechanics.load_cases`) over ``span`` (mm; None: the panel's length along eta).
-  A load case also gives EI, D (bending tests) or K (platens) as its own formula reads them.
+  A load case also gives EI, D (bending tests) or K (platens) as its own formula reads them;
+* ``Pmax``: the largest load (N) of a load case at which every layer's peak facet stress times
+  the problem's safety factor stays at or below its material's yield strength (along the
+  creases; :func:`corrugate.mechanics.load_cases.stress_per_load`).
 
 Its :attr:`~Quantity.key` is the text the answer shows (``constraints[].quantity`` of ``corrugate
 design --json`` and design.json): the kind, the support's key suffix (none for ``free``,
@@ -74,6 +77,7 @@ _KINDS: dict[str, tuple[str, str]] = {
     "Pb": ("buckling load (lower bound)", "N"),
     "length": ("panel length", "mm"),
     "k": ("load over deflection P/delta", "N/mm"),
+    "Pmax": ("load capacity at the safety factor", "N"),
 }
 
 
@@ -142,7 +146,7 @@ class Quantity:
                 ) from None
         head, at, eta = key.partition("@")
         if not at:
-            if head not in _KINDS or head in STIFFNESS or head in ("Pb", "length", "k"):
+            if head not in _KINDS or head in STIFFNESS or head in ("Pb", "length", "k", "Pmax"):
                 raise InputError("quantity", repr(key), "a quantity key such as mass or EI@0")
             return cls(head)
         if head in ("Pb", "length"):

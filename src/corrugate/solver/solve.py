@@ -21,7 +21,7 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -81,6 +81,7 @@ class ConstraintReport:
     binding: bool | None
     load: float | None = None
     stiffness: float | None = None
+    capacity: float | None = None  # N: the load case's load capacity at the safety factor
 
     def as_dict(self) -> dict[str, object]:
         return {
@@ -101,6 +102,10 @@ class ConstraintReport:
                     "test": self.quantity.test or "platens",
                     "load_N": self.load,
                     "stiffness_N_per_mm": self.stiffness,
+                    "load_capacity_N": self.capacity,
+                    "stress_margin": None
+                    if self.capacity is None
+                    else self.capacity / self.load - 1.0,
                 }
             ),
         }
@@ -198,11 +203,22 @@ class Solution:
                 if q.test is not None
                 else (" between platens" if q.kind == "K" else " in pure bending")
             )
+            span = "" if q.span is None else f" over {q.span:g} mm"
             if c.load is not None:
-                span = "" if q.span is None else f" over {q.span:g} mm"
+                held = ""
+                if c.capacity is not None:
+                    held = (
+                        f" (holds {c.capacity:.3g} N at safety factor {p.safety_factor:g}: "
+                        f"stress margin {100 * (c.capacity / c.load - 1):.0f} %)"
+                    )
                 parts.append(
                     f"deflection {c.value:.4g} mm <= {c.bound:.4g} mm under {c.load:g} N"
-                    f"{test}{span} at {q.eta:g} deg, {where}"
+                    f"{test}{span} at {q.eta:g} deg, {where}{held}"
+                )
+            elif q.kind == "Pmax":
+                parts.append(
+                    f"holds {c.bound:g} N{test}{span} at {q.eta:g} deg (capacity {c.value:.4g} N "
+                    f"at safety factor {p.safety_factor:g}), {where}"
                 )
             else:
                 parts.append(f"{q.kind}({q.eta:g} deg){test}, {where}")
@@ -408,8 +424,34 @@ def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[Quantity,
     return {k: float(v[0]) for k, v in vals.items()}
 
 
+def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, float]:
+    """The load capacity (N, at the problem's safety factor) of each deflection bound's load
+    case where it is modelled (along the creases, every material with a yield strength):
+    the stress margin every answer reports (docs/load_cases.md, section 6)."""
+    assert opt.candidates is not None
+    if any(c.material.yield_strength is None for c in opt.candidates):
+        return {}
+    asked = {}
+    for c in problem.constraints:
+        q = c.quantity
+        if c.load is None or q.eta is None or q.eta % 90 != 0:
+            continue
+        asked[c.name] = Quantity.load_case(
+            "Pmax", q.eta, q.test or "platens", q.support or problem.support, q.span
+        )
+    if not asked:
+        return {}
+    probe = replace(
+        problem,
+        constraints=tuple(Constraint(n, q, "min", 0.0) for n, q in asked.items()),
+    )
+    vals = _values_at(probe, opt, tables)
+    return {n: vals[q] for n, q in asked.items()}
+
+
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
     vals = _values_at(problem, opt, tables)
+    capacity = _capacities(problem, opt, tables)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     out = []
     for c in problem.constraints:
@@ -436,6 +478,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
                     binding,
                     load=c.load,
                     stiffness=v,
+                    capacity=capacity.get(c.name),
                 )
             )
             continue

@@ -133,6 +133,26 @@ _STATIC: dict[str, KeyDoc] = {
         "the panel must be at least this long. Not for platens.",
     ),
     "constraints.deflection[].eta": KeyDoc("deg", "Direction of the span, from layer 1's creases."),
+    "constraints.strength": KeyDoc(
+        "N",
+        "Loads the panel must hold: peak facet stress x safety_factor <= yield strength "
+        "(array of tables; `corrugate docs load_cases`, section 6).",
+    ),
+    "constraints.strength[].test": KeyDoc(
+        "", "'three-point', 'four-point', 'cantilever' or 'platens' (in-plane compression)."
+    ),
+    "constraints.strength[].load": KeyDoc("N", "The load P (> 0) to hold."),
+    "constraints.strength[].span": KeyDoc(
+        "mm", "Support spacing (cantilever: free length); default the panel's length along eta."
+    ),
+    "constraints.strength[].eta": KeyDoc(
+        "deg", "Load direction: 0 or 90 deg (along a layer's creases)."
+    ),
+    "safety_factor": KeyDoc(
+        "",
+        "Factor on the peak stress of every strength bound, 1-100 (default 2: datasheet yield "
+        "values are typical, not minimum, and polymer films creep under a sustained load).",
+    ),
     "constraints.mass": KeyDoc("g", "Mass budget: { max }."),
     "constraints.mass.max": KeyDoc("g", "Heaviest part allowed (layers and connector band)."),
     "objective": KeyDoc("", "What to optimise (a table); default: minimize = 'mass'."),
@@ -168,6 +188,10 @@ for _m in ("material", "materials[]"):
             f"{_m}.{k}": KeyDoc(PARAMETERS[k].unit, PARAMETERS[k].help)
             for k in ("E", "nu", "density")
         },
+        f"{_m}.yield_strength": KeyDoc(
+            "MPa",
+            "Allowable stress of strength bounds (tensile yield); replaces the library's value.",
+        ),
     }
 
 
@@ -186,7 +210,7 @@ def _support_docs() -> dict[str, KeyDoc]:
         ),
         "objective.support": KeyDoc("", f"{names} for the maximised stiffness."),
     }
-    for k in (*_STIFF, "deflection"):
+    for k in (*_STIFF, "deflection", "strength"):
         docs[f"constraints.{k}[].support"] = KeyDoc(
             "", f"{names} for this bound (default: the spec's support)."
         )

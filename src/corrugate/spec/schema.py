@@ -61,6 +61,7 @@ from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
 from corrugate.materials.library import G_PER_CM3
 from corrugate.mechanics.behaviours import either, support_names
+from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.names import (
     DEFAULT_HOLE_SHAPE,
     DEFAULT_LAYOUT,
@@ -306,8 +307,12 @@ class VariablesSpec(_Strict):
     alpha: AngleVariable = AngleVariable(min=10.0, max=170.0)
 
 
+YieldStrength = Annotated[float, BeforeValidator(_limited("E", "MPa"))]
+
+
 class MaterialSpec(_Strict):
-    """A library material (``name``) or an inline one (``E``, ``nu``, ``density``, ``thickness``).
+    """A library material (``name``) or an inline one (``E``, ``nu``, ``density``, ``thickness``),
+    with an optional ``yield_strength`` (MPa; for a library material it replaces the library's).
 
     ``thickness``: one quantity, a list of candidate thicknesses, ``"all"`` (every thickness the
     library sells) or nothing (the material's default thickness).
@@ -318,6 +323,7 @@ class MaterialSpec(_Strict):
     E: Modulus | None = None
     nu: Poisson | None = None
     density: Density | None = None
+    yield_strength: YieldStrength | None = None
 
 
 Coordinate = Annotated[
@@ -516,6 +522,18 @@ class DeflectionSpec(_Strict):
     support: Support | None = None
 
 
+class StrengthSpec(_Strict):
+    """The panel holds ``load`` (N) in the load case ``test`` (over ``span`` mm, along ``eta`` 0
+    or 90 deg, under ``support``) with every facet's peak stress times the spec's
+    ``safety_factor`` at or below its material's yield strength (docs/load_cases.md, section 6)."""
+
+    test: DeflectionTest
+    load: Annotated[float, BeforeValidator(_quantity("N", lo=0.0, hi=LIMITS["load"].hi))]
+    span: Length | None = None
+    eta: Direction = 0.0
+    support: Support | None = None
+
+
 class MassBound(_Strict):
     """An upper bound on the mass (g)."""
 
@@ -542,6 +560,7 @@ class ConstraintsSpec(_Strict):
     inplane_stiffness: list[InPlaneSpec] = []
     buckling_load: list[BucklingSpec] = []
     deflection: list[DeflectionSpec] = []
+    strength: list[StrengthSpec] = []
     mass: MassBound | None = None
 
 
@@ -597,6 +616,11 @@ class RobustSpec(_Strict):
     seed: Annotated[int, BeforeValidator(_counter("seed", "seed"))] = 0
 
 
+SafetyFactor = Annotated[
+    float, BeforeValidator(_quantity("dimensionless", lo=1.0, lo_open=False, hi=100.0, shown=""))
+]
+
+
 class Spec(_Strict):
     """A validated design spec; every quantity in internal units (mm, deg, g, N)."""
 
@@ -611,6 +635,7 @@ class Spec(_Strict):
     constraints: ConstraintsSpec = ConstraintsSpec()
     objective: ObjectiveSpec = ObjectiveSpec()
     robust: RobustSpec | None = None
+    safety_factor: SafetyFactor = DEFAULT_SAFETY_FACTOR
 
 
 # -- errors with TOML paths -------------------------------------------------------------------
