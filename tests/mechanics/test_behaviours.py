@@ -202,7 +202,7 @@ def test_spec_and_its_reference_list_the_registered_support(half: Behaviour) -> 
     [row] = [line for line in md.splitlines() if line.startswith("| `support` |")]
     assert "'half' (a toy: half the rigid frame)" in row
     rows = [line for line in md.splitlines() if "].support` |" in line]
-    assert len(rows) == 4 and all("'free', 'frame' or 'half'" in r for r in rows)
+    assert len(rows) == 5 and all("'free', 'frame' or 'half'" in r for r in rows)
     schema = json_schema()
     assert schema["properties"]["support"]["enum"] == ["free", "frame", "half"]
     for name in ("RigiditySpec", "BendingSpec", "InPlaneSpec", "ObjectiveSpec"):
