@@ -31,6 +31,7 @@ from corrugate.geometry.layouts import (
 )
 from corrugate.mechanics.behaviours import check_support, get_support
 from corrugate.mechanics.buckling import BucklingEstimate, buckling_bounds
+from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from corrugate.mechanics.moduli import DEFAULT_MODEL, Moduli, ModuliFromSC, get_model
 from corrugate.mechanics.offaxis import Coupon, assembly_directional
@@ -192,6 +193,12 @@ def _layer_part(layer: LayerArrays, from_sc: ModuliFromSC) -> _LayerPart:
     return _LayerPart(s, c, p, W * c, n1 * p, m)
 
 
+def _on_creases(eta_deg: ArrayLike) -> Any:
+    """Whether each eta (deg) runs along a layer's creases (0 or 90 deg, modulo 180)."""
+    e = np.mod(np.asarray(eta_deg, dtype=np.float64), 90.0)
+    return np.minimum(e, 90.0 - e) < 1e-12
+
+
 def _num(x: ArrayLike) -> Any:
     """A 0-d input as a Python float, an array as a float64 array."""
     a = np.asarray(x, dtype=np.float64)
@@ -206,8 +213,14 @@ def evaluate(
     eta_deg: ArrayLike = 0.0,
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
     support: str = DEFAULT_SUPPORT,
+    joint: str = "none",
 ) -> Evaluation:
     """Stiffness, size and mass of assemblies given as arrays of layer parameters.
+
+    ``joint`` (:data:`corrugate.mechanics.load_cases.JOINTS`): with the connector band bonded
+    (``band-edges``, ``band-flanges``) its two walls along eta add their bending D_w and axial
+    K_w along the crease directions (:func:`corrugate.mechanics.load_cases.band_walls`,
+    docs/load_cases.md section 7); off them, and with ``none``, the band is left out.
 
     K (N/mm), D (N mm) and EI (N mm^2) are those of ``support``, a registered support condition
     (:mod:`corrugate.mechanics.behaviours`: ``free`` sides, the default, or a rigid ``frame``,
@@ -287,15 +300,22 @@ def evaluate(
             layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx), layout, g2.p
         )
     m_conn = connector_mass(layer1.density, layer1.t, layout, Lx, Ly, thickness, fabrication)
+    K = directional("K", (s1, s2), eta_deg, support, coupon)
+    span = np.asarray(layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float)))
+    if joint != "none":
+        D_w, _, K_w = band_walls(layer1.E, layer1.nu, layer1.t, thickness, span)
+        on = _on_creases(eta_deg)
+        D = np.asarray(D + np.where(on, D_w, 0.0))
+        K = np.asarray(K + np.where(on, K_w, 0.0))
     return Evaluation(
         Lx=Lx,
         Ly=Ly,
         thickness=thickness,
         mass=mass + m_conn,
         mass_connectors=m_conn,
-        K=directional("K", (s1, s2), eta_deg, support, coupon),
+        K=K,
         D=D,
-        EI=np.asarray(D * layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float))),
+        EI=np.asarray(D * span),
         moduli=(g1.moduli, g2.moduli),
         springs=(s1, s2),
     )
@@ -333,6 +353,7 @@ class Analysis:
     stiffness: tuple[DirectionalStiffness, ...]
     mass: MassBreakdown
     warnings: tuple[ModelWarning, ...]
+    joint: str = "none"
 
     def __repr__(self) -> str:
         """Five lines at most (:func:`corrugate.analysis.display.analysis_repr`)."""
@@ -388,6 +409,7 @@ class Analysis:
             "model": self.model,
             "model_source": get_model(self.model).source,
             "support": self.support,
+            "joint": self.joint,
             "layout": a.layout.describe(),
             "layers": layers,
             "L_mm": self.L,
@@ -408,10 +430,13 @@ def analyze(
     eta_deg: Sequence[float] = (0.0, 90.0),
     fabrication: FabricationOptions = DEFAULT_FABRICATION,
     support: str = DEFAULT_SUPPORT,
+    joint: str = "none",
 ) -> Analysis:
     """Analyse ``assembly`` with moduli variant ``model`` at the directions ``eta_deg`` (deg),
     its sides ``free`` (default), held in a rigid ``frame`` (:mod:`corrugate.mechanics.offaxis`)
-    or under any other registered support condition (:mod:`corrugate.mechanics.behaviours`).
+    or under any other registered support condition (:mod:`corrugate.mechanics.behaviours`),
+    its layers joined by ``joint`` (``none``: the band left out; ``band-edges``,
+    ``band-flanges``: its walls added along the creases, :func:`evaluate`).
 
     Returns moduli (MPa) and springs of each layer, K (N/mm), D (N mm) and EI (N mm^2) at each eta,
     the mass (g; layers and connector band) and the model's warnings. Example::
@@ -429,7 +454,7 @@ def analyze(
     # and the non-finite results by require_finite, so no numpy warning reaches the user.
     with np.errstate(all="ignore"):
         try:
-            result = _analysis(assembly, model, eta_deg, fabrication, support)
+            result = _analysis(assembly, model, eta_deg, fabrication, support, joint)
         except (OverflowError, ZeroDivisionError):
             raise ResultError(
                 "result overflows: the inputs are outside the range the models can evaluate"
@@ -444,8 +469,24 @@ def _analysis(
     eta_deg: Sequence[float],
     fabrication: FabricationOptions,
     support: str,
+    joint: str = "none",
 ) -> Analysis:
     """The body of :func:`analyze` (its results may still be non-finite)."""
+    from corrugate.mechanics.load_cases import JOINTS
+
+    if joint not in JOINTS:
+        from corrugate.core.errors import UnknownNameError
+
+        raise UnknownNameError("joint", joint, list(JOINTS))
+    if joint != "none" and assembly.layout.name not in ("square", "rectangle"):
+        from corrugate.core.errors import InputError
+
+        raise InputError(
+            "joint",
+            repr(joint),
+            "'none' for a layout other than a square or rectangle",
+            reason="has no model for a curved band",
+        )
     variant = get_model(model)
     model = variant.name
     for i, layer in enumerate(assembly.layers):
@@ -461,6 +502,7 @@ def _analysis(
         etas,
         fabrication,
         support,
+        joint,
     )
     span = a.layout.span(np.asarray(a.Lx), np.asarray(a.Ly), etas)
     stiffness = tuple(
@@ -476,6 +518,7 @@ def _analysis(
         stiffness=stiffness,
         mass=assembly_mass(a, fabrication),
         warnings=tuple(design_warnings(a, model, [float(e) for e in etas], support)),
+        joint=joint,
     )
     return result
 

@@ -37,14 +37,18 @@ __all__ = [
     "CANTILEVER",
     "DEFAULT_SAFETY_FACTOR",
     "FOUR_POINT",
+    "JOINTS",
     "LOCAL",
     "PLATENS",
     "THREE_POINT",
     "apparent",
+    "band_walls",
     "load_capacity",
     "load_stiffness",
     "shear_and_depth",
     "stress_per_load",
+    "wall_capacity",
+    "walls_stiffness",
 ]
 
 #: c of the local term c h / S (docs/load_cases.md, section 2).
@@ -225,3 +229,62 @@ def load_capacity(
     import numpy as np
 
     return np.minimum(own, other)
+
+
+#: How the layers are joined (docs/load_cases.md, section 7): ``none`` ignores the connector
+#: band (the paper's assumption; a lower bound); ``band-edges`` and ``band-flanges`` add the
+#: band's two walls along the span as beams beside the layers (the same model for both: their
+#: glue flanges are left out, which only lowers it).
+JOINTS: tuple[str, ...] = ("none", "band-edges", "band-flanges")
+
+
+def band_walls(E: Any, nu: Any, t: Any, depth: Any, length: Any) -> tuple[Any, Any, Any]:
+    """The band's two walls along a crease direction as beams (docs/load_cases.md, section 7):
+    flat strips of height ``depth`` (the folded thickness t_d, mm), thickness ``t`` (mm, layer
+    1's sheet, E MPa, nu) and ``length`` (mm, the panel's length along eta), bent in their own
+    plane. Returns (D_w, S_w, K_w): their pure-bending D = 2 E t t_d^3 / (12 L) (N mm, as the
+    panel's D: EI / L), their shear stiffness 2 (5/6) G t t_d (N) and their axial spring
+    2 E t t_d / L (N/mm)."""
+    G = E / (2.0 * (1.0 + nu))
+    area = t * depth
+    return (
+        2.0 * E * area * depth * depth / (12.0 * length),
+        2.0 * (5.0 / 6.0) * G * area,
+        2.0 * E * area / length,
+    )
+
+
+def walls_stiffness(
+    form: TestForm, walls: tuple[Any, Any, Any], length: Any, span: Any | None = None
+) -> Any:
+    """P / delta (N/mm) of the band's walls alone in the load case ``form`` (Timoshenko beams,
+    no local term: flat walls carry the load lines on their edges): a Ls^3 / (D_w L) + b Ls /
+    S_w for bending, K_w for platens."""
+    D_w, S_w, K_w = walls
+    if form.kind == "inplane":
+        return K_w
+    Ls = length if span is None else span
+    return 1.0 / (form.a * Ls**3 / (D_w * length) + form.b * Ls / S_w)
+
+
+def wall_capacity(
+    form: TestForm,
+    stiffness: Any,
+    E: Any,
+    t: Any,
+    depth: Any,
+    length: Any,
+    span: Any | None,
+    allowable: float,
+    safety_factor: float,
+) -> Any:
+    """The load (N) at which the band's walls reach ``allowable`` / ``safety_factor`` (MPa): at
+    the panel's curvature M / (D L) (``stiffness`` the whole panel's D with its walls, N mm) the
+    walls' edges, (t_d + t) / 2 from their middle, carry E kappa (t_d + t) / 2; between platens
+    the walls' strain is the panel's, E P / (K L) (``stiffness`` its K, N/mm)."""
+    if form.kind == "inplane":
+        per = E / (stiffness * length)
+    else:
+        Ls = length if span is None else span
+        per = E * form.moment * Ls * (depth + t) / (2.0 * stiffness * length)
+    return allowable / (safety_factor * per)

@@ -201,7 +201,8 @@ def polar_figure(a: Analysis) -> Any:
 
     etas = np.linspace(0.0, 360.0, 145)
     curves = {
-        b: analyze(a.assembly, a.model, list(etas), support=b.name).stiffness for b in supports()
+        b: analyze(a.assembly, a.model, list(etas), support=b.name, joint=a.joint).stiffness
+        for b in supports()
     }
     fig = new_figure((8, 4), dpi=100)
     axes = fig.subplots(1, 2, subplot_kw={"projection": "polar"})

@@ -145,6 +145,7 @@ class Problem:
     objective: Objective = field(default_factory=Objective)
     support: str = "free"  # the spec's global support condition (reports, tables)
     safety_factor: float = DEFAULT_SAFETY_FACTOR  # of the strength bounds (Pmax quantities)
+    joint: str = "none"  # how the layers are joined (mechanics.load_cases.JOINTS)
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -302,6 +303,7 @@ class Problem:
             objective=objective,
             support=spec.support,
             safety_factor=spec.safety_factor,
+            joint=_joint(spec.joint, layout),
         )
 
 
@@ -319,6 +321,18 @@ def _stiffness_quantity(
         )
         raise SpecError(f"{where}.test", repr(test), allowed, reason=f"is not a test of {kind}")
     return Quantity.load_case(q.kind, eta, test, support)
+
+
+def _joint(joint: str, layout: Layout) -> str:
+    """``joint`` when the layout's band has a model (square, rectangle: straight walls)."""
+    if joint != "none" and layout.name not in ("square", "rectangle"):
+        raise SpecError(
+            "joint",
+            repr(joint),
+            "'none' for a layout other than a square or rectangle",
+            reason="has no model for a curved band",
+        )
+    return joint
 
 
 def _check_load_case_layout(where: str, layout: Layout) -> None:

@@ -68,10 +68,13 @@ from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_s
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
 from corrugate.mechanics.load_cases import (
     apparent,
+    band_walls,
     load_capacity,
     load_stiffness,
     shear_and_depth,
     stress_per_load,
+    wall_capacity,
+    walls_stiffness,
 )
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
@@ -223,7 +226,7 @@ def point_values(
         l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
     # one direction: a scalar eta keeps evaluate on its fast path (no per-eta masks)
     eta_arg = etas[0] if len(etas) == 1 else etas
-    ev = evaluate(l1, l2, problem.layout, problem.model, eta_arg)
+    ev = evaluate(l1, l2, problem.layout, problem.model, eta_arg, joint=problem.joint)
     Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
     out: dict[Quantity, FloatArray] = {
         LX: Lx,
@@ -237,10 +240,21 @@ def point_values(
     }
     # a support that reads the layout's coupon gets evaluate's own treatment of it
     coupled = {
-        b.name: evaluate(l1, l2, problem.layout, problem.model, eta_arg, support=b.name)
+        b.name: evaluate(
+            l1, l2, problem.layout, problem.model, eta_arg, support=b.name, joint=problem.joint
+        )
         for b in others
         if b.uses_coupon
     }
+    walls = None
+    if problem.joint != "none":
+        td = np.asarray(ev.thickness[:, 0])
+
+        def walls(length: FloatArray) -> tuple[Any, Any, Any]:
+            return band_walls(
+                _column(np.asarray(l1.E)), c1.material.nu, _column(np.asarray(l1.t)), td, length
+            )
+
     for k, eta in enumerate(etas):
         e = float(eta)
         out[Quantity("EI", e, DEFAULT_SUPPORT)] = np.asarray(ev.EI[:, k])
@@ -254,19 +268,23 @@ def point_values(
                 out[Quantity("K", e, b.name)] = np.asarray(evb.K[:, k])
                 continue
             span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(e)))
-            D_b = np.asarray(b.model("D", ev.springs, e, None))
-            out[Quantity("D", e, b.name)] = D_b[:, 0]
-            out[Quantity("EI", e, b.name)] = D_b[:, 0] * span
-            K_b = np.asarray(b.model("K", ev.springs, e, None))
-            out[Quantity("K", e, b.name)] = K_b[:, 0]
+            D_b = np.asarray(b.model("D", ev.springs, e, None))[:, 0]
+            K_b = np.asarray(b.model("K", ev.springs, e, None))[:, 0]
+            if walls is not None and crease_layer(e) is not None:
+                D_b, K_b = D_b + walls(span)[0], K_b + walls(span)[2]
+            out[Quantity("D", e, b.name)] = D_b
+            out[Quantity("EI", e, b.name)] = D_b * span
+            out[Quantity("K", e, b.name)] = K_b
         span = np.asarray(problem.layout.span(Lx, Ly, np.asarray(e)))
         out[Quantity("length", e)] = span
+        band = None if walls is None or crease_layer(e) is None else walls(span)
         for q in tests:
             if q.eta != e:
                 continue
             form = get_load_case(q.test).form  # type: ignore[arg-type]
             assert form is not None
             base = out[Quantity("K" if form.kind == "inplane" else "D", e, q.support)]
+            layers = base if band is None else base - band[2 if form.kind == "inplane" else 0]
             if q.kind == "Pmax":
                 along = 0 if crease_layer(e) == 0 else 1
                 extents = (Lx, Ly) if along == 0 else (Ly, Lx)
@@ -279,20 +297,36 @@ def point_values(
                     form,
                     (_columns(sp[0]), _columns(sp[1])),
                     0,
-                    base,
+                    layers,  # the layers' own D or K: their curvature or strain from above
                     lay_E,
                     lay_t,
                     extents[1],
                     extents[0],
                     q.span,
                 )
-                out[q] = np.asarray(
-                    load_capacity(per, _allowables(c1, c2, along), problem.safety_factor)
-                )
+                cap = load_capacity(per, _allowables(c1, c2, along), problem.safety_factor)
+                if band is not None:  # the walls, at the whole panel's curvature or strain
+                    cap = np.minimum(
+                        cap,
+                        wall_capacity(
+                            form,
+                            base,
+                            _column(np.asarray(l1.E)),
+                            _column(np.asarray(l1.t)),
+                            ev.thickness[:, 0],
+                            span,
+                            q.span,
+                            _allowables(c1, c1, 0)[0],
+                            problem.safety_factor,
+                        ),
+                    )
+                out[q] = np.asarray(cap)
                 continue
             cos2, sin2 = _cs(e)
             V, h = shear_and_depth(ev.springs, cos2, sin2)
-            k = load_stiffness(form, base, np.asarray(V)[:, 0], np.asarray(h)[:, 0], span, q.span)
+            k = load_stiffness(form, layers, np.asarray(V)[:, 0], np.asarray(h)[:, 0], span, q.span)
+            if band is not None:  # the walls beside the layers (parallel beams)
+                k = k + walls_stiffness(form, band, span, q.span)
             out[q] = np.asarray(apparent(form, q.kind, k, span))
     if any(q.kind == "Pb" for q in keys):
         s1, s2 = ev.springs
@@ -707,15 +741,40 @@ def _stiffness_bounds(
                 Interval(Ly[0], Ly[1]),
                 lambda: (sp1.pq, sp2.pq),
             )
+        band, depth = None, None
+        if problem.joint != "none" and crease_layer(eta) is not None:
+            depth = _thickness_bounds(lo, hi)
+            band = band_walls(
+                float(c1.material.E),
+                float(c1.material.nu),
+                float(c1.t),
+                depth,
+                _span_bounds(problem, Lx, Ly, eta),
+            )
         if q.test is not None:  # a load case on its support's D or K
-            v = _load_case_bounds(problem, q, (sp1, sp2), Lx, Ly, coupon, (c1, c2))
+            v = _load_case_bounds(problem, q, (sp1, sp2), Lx, Ly, coupon, (c1, c2), band, depth)
             out[q] = (np.maximum(v.lo, 0.0), v.hi)
             continue
         v = entry.bounds("D" if q.kind == "EI" else q.kind, (sp1, sp2), eta, coupon)
+        if band is not None:  # the band's walls along the creases (mechanics.load_cases)
+            v = v + (band[2] if q.kind == "K" else band[0])
         if q.kind == "EI":
             v = v * _span_bounds(problem, Lx, Ly, eta)
         out[q] = (np.maximum(v.lo, 0.0), v.hi)
     return out
+
+
+def _thickness_bounds(lo: Arrays, hi: Arrays) -> Interval:
+    """Bounds of t_d = W1 cos(alpha1/2) + W2 cos(alpha2/2) over the boxes: it grows with W and
+    falls with alpha (the corners, as :func:`box_bounds` takes them)."""
+
+    def td(w: Arrays, a: Arrays) -> FloatArray:
+        return np.asarray(
+            w["W1"] * np.cos(np.radians(a["a1"]) / 2) + w["W2"] * np.cos(np.radians(a["a2"]) / 2)
+        )
+
+    t_lo, t_hi = td(lo, hi), td(hi, lo)
+    return Interval(np.nextafter(t_lo, 0.0), np.nextafter(t_hi, np.inf))
 
 
 def _load_case_bounds(
@@ -726,6 +785,8 @@ def _load_case_bounds(
     Ly: tuple[FloatArray, FloatArray],
     coupon: Coupon | None,
     cands: tuple[Candidate, Candidate],
+    band: tuple[Any, Any, Any] | None = None,
+    depth: Interval | None = None,
 ) -> Interval:
     """Bounds of a load case's quantity over the boxes: the formula of
     :mod:`corrugate.mechanics.load_cases` on the interval springs, the support's D or K bounds
@@ -736,6 +797,7 @@ def _load_case_bounds(
     support = get_support(q.support or DEFAULT_SUPPORT)
     base = support.bounds("K" if form.kind == "inplane" else "D", springs, q.eta, coupon)
     length = _span_bounds(problem, Lx, Ly, q.eta)
+    whole = base if band is None else base + band[2 if form.kind == "inplane" else 0]
     if q.kind == "Pmax":
         along = 0 if crease_layer(q.eta) == 0 else 1
         width = Interval(*(Lx if along == 0 else Ly))
@@ -758,10 +820,25 @@ def _load_case_bounds(
             _allowables(cands[0], cands[1], along),
             problem.safety_factor,
         )
+        if band is not None:
+            wall = wall_capacity(
+                form,
+                whole,
+                float(cands[0].material.E),
+                float(cands[0].t),
+                depth,
+                length,
+                q.span,
+                _allowables(cands[0], cands[0], 0)[0],
+                problem.safety_factor,
+            )
+            cap = Interval.of(cap).minimum(Interval.of(wall))
         return Interval.of(cap)
     cos2, sin2 = _cs(q.eta)
     V, h = shear_and_depth(springs, cos2, sin2)
     k = load_stiffness(form, base, V, h, length, q.span)
+    if band is not None:  # the walls beside the layers (parallel beams)
+        k = k + walls_stiffness(form, band, length, q.span)
     return Interval.of(apparent(form, q.kind, k, length))
 
 

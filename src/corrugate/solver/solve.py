@@ -192,6 +192,8 @@ class Solution:
         120 mm, free sides``."""
         p = self.problem
         head = f"{'certified' if self.certified else 'not certified'} under the {p.model} model"
+        if p.joint != "none":
+            head += f", the layers joined by the connector band ({p.joint}: its walls counted)"
         parts = []
         for c in self.constraints:
             q = c.quantity
@@ -373,7 +375,7 @@ def solve(problem: Problem, *, explain: bool = True) -> Solution:
         )
     assembly = assembly_of(problem, opt)
     etas = sorted(set(problem.etas) | {0.0, 90.0})
-    analysis = analyze(assembly, problem.model, etas, support=problem.support)
+    analysis = analyze(assembly, problem.model, etas, support=problem.support, joint=problem.joint)
     warnings = [w.as_dict() for w in analysis.warnings]
     if not opt.certified:
         warnings.append(

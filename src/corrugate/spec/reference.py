@@ -148,6 +148,13 @@ _STATIC: dict[str, KeyDoc] = {
     "constraints.strength[].eta": KeyDoc(
         "deg", "Load direction: 0 or 90 deg (along a layer's creases)."
     ),
+    "joint": KeyDoc(
+        "",
+        "How the layers are joined: 'none' (default: the connector band left out, the paper's "
+        "assumption and a lower bound), 'band-edges' or 'band-flanges' (the band bonded: its "
+        "walls add to bending and in-plane stiffness along the creases; `corrugate docs "
+        "load_cases`, section 7).",
+    ),
     "safety_factor": KeyDoc(
         "",
         "Factor on the peak stress of every strength bound, 1-100 (default 2: datasheet yield "

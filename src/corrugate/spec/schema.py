@@ -636,6 +636,7 @@ class Spec(_Strict):
     objective: ObjectiveSpec = ObjectiveSpec()
     robust: RobustSpec | None = None
     safety_factor: SafetyFactor = DEFAULT_SAFETY_FACTOR
+    joint: Literal["none", "band-edges", "band-flanges"] = "none"
 
 
 # -- errors with TOML paths -------------------------------------------------------------------
