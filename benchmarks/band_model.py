@@ -7,7 +7,8 @@ along its edges (docs/validation/connectors/) or on its glue flanges (docs/valid
 3-point bending at eta = 0, CalculiX 8 elements per facet (one mesh, not refined): the layers'
 three-point model (corrugate.mechanics.load_cases) plus the two band walls along the span as
 independent Timoshenko beams (height t_d, the sheet of layer 1, shear area 5/6 of the section),
-printed as D = EI / L (N mm) with model/FE. Not wired into the solver (docs/load_cases.md, 7).
+printed as D = EI / L (N mm) with model/FE: the model of joint = 'band-edges' / 'band-flanges'
+(docs/load_cases.md, section 7), written out here independently of the solver's code.
 """
 
 from __future__ import annotations
