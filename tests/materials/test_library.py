@@ -80,7 +80,7 @@ def test_every_library_material_has_an_allowable_stress() -> None:
 
 
 def test_yield_strength_units_are_parsed() -> None:
-    """"100 MPa" and "0.1 GPa" are one stress; "14.5 ksi" is 100 MPa to 0.1 % (1 ksi = 6.895 MPa)."""
+    """ "100 MPa" and "0.1 GPa" are one stress; "14.5 ksi" is 100 MPa to 0.1 % (1 ksi = 6.895 MPa)."""
     from corrugate.materials.library import _from_entry
 
     base = {"name": "x", "E": "2 GPa", "nu": 0.3, "density": "1 g/cm^3"}

@@ -111,7 +111,8 @@ def test_spanwise_stress_is_beam_theory_at_the_extreme_fibre() -> None:
 
 
 def test_near_flat_sheet_gives_the_plate_formula() -> None:
-    """alpha -> 180 deg: the zig-zag is a flat plate of width b = (n + 1) W; sigma -> 6 M / (b t^2)."""
+    """alpha -> 180 deg: the zig-zag is a flat plate of width b = (n + 1) W, and sigma tends to
+    6 M / (b t^2)."""
     t, W, n, M = 0.2, 10.0, 5, 50.0
     b = (n + 1) * W
     plate = 6 * M / (b * t**2)
