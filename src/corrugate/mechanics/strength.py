@@ -50,7 +50,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -62,6 +62,7 @@ __all__ = [
     "BENDING_TESTS",
     "LayerSection",
     "PeakStress",
+    "assembly_sections",
     "bending_moment",
     "chordwise_bending_stress",
     "chordwise_compression_stress",
@@ -76,7 +77,6 @@ __all__ = [
     "stress_margin",
 ]
 
-BendingTest = Literal["three-point", "four-point", "cantilever"]
 
 #: Peak bending moment (N mm) of each bench test per unit load P (N) and span Ls (mm): M = k P Ls.
 BENDING_TESTS: dict[str, float] = {
@@ -295,6 +295,19 @@ class LayerSection:
         check("W", self.W, f"{label}.W")
         check_count("n", self.n, f"{label}.n")
         check("alpha", self.alpha_deg, f"{label}.alpha")
+
+
+def assembly_sections(assembly: Any) -> tuple[LayerSection, LayerSection, tuple[float, float]]:
+    """The two :class:`LayerSection` of a :class:`corrugate.geometry.layer.Assembly` and its facet
+    lengths (L_1, L_2) = (Ly, Lx) (mm), the arguments of :func:`peak_stress_bending` and
+    :func:`peak_stress_compression`. Exact for the rectangular layouts (square, rectangle); any
+    other outline is taken as its bounding box (its facets are shorter, not modelled here)."""
+    a = assembly
+    return (
+        LayerSection.from_layer(a.layer1),
+        LayerSection.from_layer(a.layer2),
+        (float(a.Ly), float(a.Lx)),
+    )
 
 
 @dataclass(frozen=True, slots=True)
