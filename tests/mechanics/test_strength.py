@@ -111,7 +111,8 @@ def test_spanwise_stress_is_beam_theory_at_the_extreme_fibre() -> None:
 
 
 def test_near_flat_sheet_gives_the_plate_formula() -> None:
-    """alpha -> 180 deg: the zig-zag is a flat plate of width b = (n + 1) W; sigma -> 6 M / (b t^2)."""
+    """alpha -> 180 deg: the zig-zag is a flat plate of width b = (n + 1) W, and sigma tends to
+    6 M / (b t^2)."""
     t, W, n, M = 0.2, 10.0, 5, 50.0
     b = (n + 1) * W
     plate = 6 * M / (b * t**2)
@@ -223,5 +224,14 @@ def test_from_a_library_layer() -> None:
     from corrugate.geometry.layer import Layer
     from corrugate.materials.library import get_material
 
-    sec = LayerSection.from_layer(Layer(8.0, 8, 84.0, get_material("dura-lar")))
+    layer = Layer(8.0, 8, 84.0, get_material("dura-lar"))
+    sec = LayerSection.from_layer(layer)
     assert sec == CASE
+    from corrugate.geometry.layer import Assembly
+    from corrugate.mechanics.strength import assembly_sections
+
+    s1, s2, lengths = assembly_sections(Assembly.identical(layer))
+    assert s1 == s2 == CASE
+    assert lengths == pytest.approx((CASE.chord_extent, CASE.chord_extent))  # L = 48.18 mm
+    a = peak_stress_bending(s1, s2, 100.0, 0.0, lengths)
+    assert a == peak_stress_bending(CASE, CASE, 100.0, 0.0)
