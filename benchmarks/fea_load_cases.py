@@ -1,0 +1,199 @@
+"""FE values of four load cases along eta, for docs/validation/load_cases.md (FE numbers only).
+
+    python benchmarks/fea_load_cases.py run [PHASE ...] [--minutes M]   # -> load_cases_fe.csv
+
+Writes ``docs/validation/load_cases_fe.csv``, one row per (design, eta_deg, test, shift, along):
+``value`` is K (N/mm) for ``compression`` and D (N mm) for ``bending`` (3-point), ``bending4``
+(4-point, pure bending) and ``cantilever``, as :meth:`corrugate.fea.assembly.AssemblyResult.value`
+reports them; ``nodes`` the model's node count, ``seconds`` the wall-clock time of the case (mesh,
+ccx, reading). Fixtures: docs/fea.md 2.1 (at eta 0 and 90 the layout itself on the structured
+mesh, at any other eta the coupon of section 2.4 meshed by gmsh). ``shift`` moves both layers'
+zig-zags relative to an off-axis coupon by that fraction of each layer's pitch
+(:func:`corrugate.fea.shells.oblique_shells`).
+
+Like ``fea_offaxis.py`` the run is resumable: the keys already in the CSV are skipped and each
+new row is appended as its case returns. Before running, the rows of
+``docs/validation/off_axis_fe.csv`` (compression and 3-point bending, the same fixtures and
+meshes, shift 0) are copied in with shift 0 instead of being recomputed.
+
+Designs: the four of ``fea_offaxis.designs()`` and the square of identical layers W 12, n 13,
+alpha 115, all Dura-Lar at its library thickness (0.125 mm). Etas 0, 15, ..., 90; for identical
+layers eta > 45 deg is the mirror image of 90 - eta and is run only at 2 and 4 elements per facet
+(a mirror check), as in ``fea_offaxis.py``. Phases, in the order run (most useful first):
+
+* ``a``: every design but the fifth, 3-point, 4-point and cantilever at eta 0 and 90, 2 / 4 / 8;
+* ``b``: the same designs, cantilever off-axis (15 ... 75 deg), shift 0, 2 / 4 / 8;
+* ``c``: the fifth design, every test at every eta, 2 / 4 / 8;
+* ``d``: shifts 0.25 and 0.5 of the off-axis 3-point and cantilever rows of every design, 2 / 4 / 8
+  (all designs at 2, then at 4, then at 8);
+* ``e``: 16 elements per facet at eta 0 and 90 for 3-point, 4-point and cantilever, for the
+  models of at most ``MAX_NODES_16`` nodes (larger ones would take more than about 5 minutes:
+  the 280 000-node rectangle coupons of off_axis_fe.csv took 484 and 624 s).
+
+Rows that are never written:
+
+* **4-point bending off-axis**: not run (the table asks for it along the creases only; off-axis
+  its gauge lines cross the creases obliquely and its series moved by 2.6 % and 6 % per doubling,
+  docs/fea.md 2.5).
+* **4-point bending where the structured mesh has no node lines at 1/4 and 3/8 of the span**:
+  the layer whose chord runs along the span has 2 x along x (n + 1) node intervals along it
+  (corner and mid-side nodes), which must be divisible by 8, else
+  :func:`corrugate.fea.assembly.assembly_deck` refuses the case (InputError) and the run prints
+  ``skip``: for n = 8 (9 facets), n = 10 (11) and n = 6 (7) along = 2 is skipped (4, 8 and 16
+  qualify); n = 17 (18 facets) and n = 13 (14) qualify at every along.
+
+``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
+"""
+
+from __future__ import annotations
+
+import csv
+import resource
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+from corrugate import Assembly, Layer, get_material
+from fea_offaxis import CSV as OFFAXIS_CSV  # type: ignore[import-not-found]
+from fea_offaxis import ETAS
+from fea_offaxis import designs as offaxis_designs
+from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
+
+OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
+CSV = OUT / "load_cases_fe.csv"
+FIELDS = ("design", "eta_deg", "test", "shift", "along", "nodes", "value", "seconds")
+KEY = ("design", "eta_deg", "test", "shift", "along")
+FIFTH = "W 12, n 13, alpha 115"
+PHASES = ("a", "b", "c", "d", "e")
+MAX_NODES_16 = 150_000
+Job = tuple[str, float, str, float, int]
+
+
+def designs() -> dict[str, Assembly]:
+    """The four designs of ``fea_offaxis.designs()`` and the square of identical layers W 12,
+    n 13, alpha 115 (Dura-Lar, library thickness)."""
+    out = offaxis_designs()
+    out[FIFTH] = Assembly.identical(
+        Layer(W=12.0, n=13, alpha_deg=115.0, material=get_material("dura-lar"))
+    )
+    return out
+
+
+def _mirror(a: Assembly, eta: float, along: int) -> bool:
+    """Identical layers: eta > 45 deg mirrors 90 - eta; run only at 2 and 4 per facet."""
+    return eta > 45 and a.layer1 == a.layer2 and along > 4
+
+
+def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
+    """(design, eta, test, shift, along) in the order of the phases (module docstring)."""
+    first4 = [n for n in ds if n != FIFTH]
+    ends = (0.0, 90.0)
+    off = tuple(e for e in ETAS if e not in ends)
+    for phase in phases:
+        if phase == "a":
+            for along in (2, 4, 8):
+                for name in first4:
+                    for eta in ends:
+                        for test in ("bending", "bending4", "cantilever"):
+                            yield name, eta, test, 0.0, along
+        elif phase == "b":
+            for along in (2, 4, 8):
+                for name in first4:
+                    for eta in off:
+                        yield name, eta, "cantilever", 0.0, along
+        elif phase == "c":
+            for along in (2, 4, 8):
+                for eta in ETAS:
+                    for test in ("compression", "bending", "bending4", "cantilever"):
+                        if test != "bending4" or eta in ends:
+                            yield FIFTH, eta, test, 0.0, along
+        elif phase == "d":
+            for along in (2, 4, 8):
+                for name in ds:
+                    for eta in off:
+                        for test in ("bending", "cantilever"):
+                            for shift in (0.25, 0.5):
+                                yield name, eta, test, shift, along
+        elif phase == "e":
+            for name in ds:
+                for eta in ends:
+                    for test in ("bending", "bending4", "cantilever"):
+                        yield name, eta, test, 0.0, 16
+
+
+def _key(name: str, eta: float, test: str, shift: float, along: int) -> tuple[str, ...]:
+    return (name, f"{eta:g}", test, f"{shift:g}", str(along))
+
+
+def reuse_offaxis() -> int:
+    """Copy the rows of off_axis_fe.csv (shift 0) that the new CSV lacks; their number."""
+    done = done_keys(CSV, KEY)
+    n = 0
+    with OFFAXIS_CSV.open() as f, appender(CSV, FIELDS) as write:
+        for r in csv.DictReader(f):
+            key = (r["design"], r["eta_deg"], r["test"], "0", r["along"])
+            if key in done:
+                continue
+            write((*key, r["nodes"], r["value"], r["seconds"]))
+            n += 1
+    return n
+
+
+def run(phases: tuple[str, ...] = PHASES, minutes: float = float("inf")) -> None:
+    """Run the cases of ``phases`` not yet in the CSV, one ccx at a time; no new case starts
+    after ``minutes``."""
+    from corrugate.core.errors import InputError
+    from corrugate.fea.assembly import AssemblyMesh, assembly_deck, solve_assembly
+    from corrugate.fea.ccx import SolverError
+
+    print(f"reused {reuse_offaxis()} rows of {OFFAXIS_CSV.name}", flush=True)
+    ds = designs()
+    done = done_keys(CSV, KEY)
+    start = time.perf_counter()
+    with appender(CSV, FIELDS) as write:
+        for name, eta, test, shift, along in jobs(phases, ds):
+            key = _key(name, eta, test, shift, along)
+            a = ds[name]
+            if key in done or _mirror(a, eta, along):
+                continue
+            if time.perf_counter() - start > 60 * minutes:
+                print(f"stopped: {minutes:g} minutes", flush=True)
+                return
+            mesh = AssemblyMesh(along)
+            try:
+                if along == 16:
+                    nodes = assembly_deck(a, test, mesh, eta)[1].nodes  # type: ignore[arg-type]
+                    if nodes > MAX_NODES_16:
+                        print("skip", *key, f"{nodes} nodes > {MAX_NODES_16}", flush=True)
+                        continue
+                t0 = time.perf_counter()
+                r = solve_assembly(a, test, mesh, eta, shift=shift)  # type: ignore[arg-type]
+            except InputError as exc:
+                print("skip", *key, exc, flush=True)
+                continue
+            except SolverError as exc:
+                print("failed", *key, exc, flush=True)
+                continue
+            s = time.perf_counter() - t0
+            done.add(key)
+            write((*key, r.nodes, f"{r.value():.8g}", f"{s:.1f}"))
+            peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+            print(*key, r.nodes, f"{r.value():.5g}", f"{s:.0f} s", f"peak child {peak:.0f} MB")
+            sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    if sys.argv[1:2] == ["run"]:
+        args = sys.argv[2:]
+        minutes = float("inf")
+        if "--minutes" in args:
+            i = args.index("--minutes")
+            minutes = float(args[i + 1])
+            args = args[:i] + args[i + 2 :]
+        bad = [p for p in args if p not in PHASES]
+        if bad:
+            sys.exit(f"unknown phase {bad[0]!r}: allowed {', '.join(PHASES)}")
+        run(tuple(args) or PHASES, minutes)
+    else:
+        sys.exit(__doc__)
