@@ -1,4 +1,5 @@
-"""The whole OADLC assembly as shells in CalculiX: in-plane compression and 3-point bending.
+"""The whole OADLC assembly as shells in CalculiX: in-plane compression, 3-point, 4-point and
+cantilever bending.
 
 The meshes come from :mod:`corrugate.fea.shells` (the layers) and :mod:`corrugate.fea.connector_band`
 (the connector band); this module writes the deck of each load case and reads the result.
@@ -84,13 +85,28 @@ Model (every choice stated; docs/theory.md section 6):
   the pure bending stiffness of each layer, EI_i = P_i span^3 / (1024 Delta_i), free of shear
   deformation: the quantity the closed forms model. Needs node lines at 1/4 and 3/8 of the span
   (``along`` x (n + 1) divisible by 8).
+* **Cantilever bending about eta** (``cantilever``): the root, every node of each layer's end edge
+  at the low end of the load axis, is clamped (the three displacements and the three rotations
+  zero); the free end, every node of each layer's end edge at the high end, is a rigid line load
+  u_z = -delta, free to slide along the span and to rotate (the clamped root holds every
+  rigid-body motion, so no node is held there). EI = P span^3 / (3 delta) (Euler-Bernoulli
+  cantilever with a tip load), D = EI / span, N mm^2 and N mm, as the 3-point test reports. Like
+  the 3-point value this is an apparent stiffness: it includes the panel's shear deformation (for a
+  Timoshenko beam a quarter of its share in 3-point bending over the same span) and the
+  restraint of the clamp (which holds the root section against warping and lateral contraction).
+  Along any eta the root and the free end are the coupon's edges across eta, so no fixture line is
+  needed inside the specimen.
 
 **Any other eta** (:mod:`corrugate.fea.shells`): the specimen is a square coupon of the
 layout's side cut from the same two layers with its edges along and across eta (the layers'
 zig-zags continue periodically past the layout's extent, centred on it), in a test frame with y
 along eta. Its plan is meshed by gmsh (:mod:`corrugate.fea.planmesh`) with the creases and the
 fixture lines as element edges and the nodes lifted onto the zig-zags: S8R quadrilaterals and a
-few S6 triangles. Fixtures as above, on the coupon's edges; no band. ``mesher="gmsh"`` meshes
+few S6 triangles. Fixtures as above, on the coupon's edges; no band. ``shift`` (a fraction
+0 <= shift < 1 of each layer's pitch, default 0) moves both layers' zig-zags along their chord
+directions relative to the coupon, each by that fraction of its own pitch (the plan width of a
+facet; a shift of 1 would swap valleys and ridges, the same layer upside down), so that the
+coupon's edges cut the creases at other places. ``mesher="gmsh"`` meshes
 eta = 0 and 90 this way too (a second discretisation of the same model, which the tests compare
 with the structured mesh). Circles and polygons are refused: no straight edges for the fixtures.
 """
@@ -108,7 +124,14 @@ from numpy.typing import NDArray
 from corrugate.core.errors import InputError
 from corrugate.fea.ccx import FrdStresses, SolverError, parse_frd_stresses, run_ccx, work_dir
 from corrugate.fea.connector_band import Bond, band_shell
-from corrugate.fea.shells import Shell, layer_shell, oblique_shells, principal_axis, specimen
+from corrugate.fea.shells import (
+    Shell,
+    check_shift,
+    layer_shell,
+    oblique_shells,
+    principal_axis,
+    specimen,
+)
 from corrugate.geometry.layer import Assembly
 
 __all__ = [
@@ -124,9 +147,16 @@ __all__ = [
     "specimen",
 ]
 
-LoadTest = Literal["compression", "bending", "bending4", "frame", "buckling"]
+LoadTest = Literal["compression", "bending", "bending4", "cantilever", "frame", "buckling"]
 Mesher = Literal["auto", "structured", "gmsh"]
-TESTS: tuple[LoadTest, ...] = ("compression", "bending", "bending4", "frame", "buckling")
+TESTS: tuple[LoadTest, ...] = (
+    "compression",
+    "bending",
+    "bending4",
+    "cantilever",
+    "frame",
+    "buckling",
+)
 FloatArray = NDArray[np.float64]
 
 
@@ -278,6 +308,7 @@ def assembly_deck(
     mesher: Mesher = "auto",
     bond: Bond = "edges",
     stresses: bool = False,
+    shift: float = 0.0,
 ) -> tuple[str, DeckInfo]:
     """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
 
@@ -286,9 +317,12 @@ def assembly_deck(
     mesh the band needs, so that a run without the band can be compared on the same layer mesh.
     ``stresses`` asks ccx for the nodal stresses in the ``.frd`` file (``*EL FILE`` with ``S``;
     not for ``buckling``); it adds output only, the model and the printed reactions are the
-    same."""
+    same.
+    ``shift`` moves the zig-zags of a gmsh-meshed coupon by that fraction of each layer's pitch
+    (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0."""
     if test not in TESTS:
         raise InputError("test", test, " or ".join(TESTS))
+    check_shift(shift)
     # the specimen's length along eta (the span); refuses what the FE cannot model
     L_load = specimen(assembly, eta_deg)[1]
     if mesher not in ("auto", "structured", "gmsh"):
@@ -316,12 +350,19 @@ def assembly_deck(
             "compression": (),
             "bending": (L_load / 2,),
             "bending4": tuple(L_load * f for f in (1 / 4, 3 / 8, 1 / 2, 5 / 8, 3 / 4)),
+            "cantilever": (),
         }[test]
-        shells = oblique_shells(a, eta_deg, mesh.along, fixture)
+        shells = oblique_shells(a, eta_deg, mesh.along, fixture, shift=shift)
         axis = 1
     else:
         if principal is None:
             raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg for the structured mesh")
+        if shift != 0:
+            raise InputError(
+                "shift",
+                shift,
+                "0 on the structured mesh (the layout's own edges; mesher='gmsh' takes a shift)",
+            )
         axis = principal
         mult = 8 if test == "bending4" else 2
         match = connectors if match_layers is None else match_layers
@@ -384,7 +425,7 @@ def assembly_deck(
         lo = [int(n) for n in sh.ids[np.abs(c_load) < tol]]
         hi = [int(n) for n in sh.ids[np.abs(c_load - L_load) < tol]]
         mid = [int(n) for n in sh.ids[np.abs(c_load - L_load / 2) < tol]]
-        if not (lo and hi and (mid or test == "compression")):
+        if not (lo and hi and (mid or test in ("compression", "cantilever"))):
             raise SolverError("assembly mesh has no node line at an end or at mid-span")
         lo_other = c_other[np.isin(sh.ids, lo)]
         a_node, b_node = lo[int(np.argmin(lo_other))], lo[int(np.argmax(lo_other))]
@@ -419,6 +460,11 @@ def assembly_deck(
             elif rigid:
                 bc += [f"{a_node},{ub},{ub},0", f"{a_node},3,3,0", f"{b_node},3,3,0"]
             load_sets.append(f"HI{k}")
+        elif test == "cantilever":
+            # root clamped (u and rotations), free end a rigid line load free to slide and rotate
+            lines += _fmt_set(f"ROOT{k}", lo) + _fmt_set(f"TIP{k}", hi)
+            bc += [f"ROOT{k},1,6,0", f"TIP{k},3,3,{-delta:.12g}"]
+            load_sets.append(f"TIP{k}")
         elif test == "bending4":
             quarter = np.abs(c_load - L_load / 4) < tol
             quarter |= np.abs(c_load - 3 * L_load / 4) < tol
@@ -488,6 +534,7 @@ def solve_assembly(
     match_layers: bool | None = None,
     mesher: Mesher = "auto",
     bond: Bond = "edges",
+    shift: float = 0.0,
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
@@ -506,6 +553,7 @@ def solve_assembly(
         mesher=mesher,
         bond=bond,
         stresses=stresses,
+        shift=shift,
     )
     field: FrdStresses | None = None
     with work_dir(folder, keep) as wd:
@@ -579,6 +627,10 @@ def solve_assembly(
         EI = sum(part_EI)
         K, D = None, EI / span
         parts = [v / span for v in part_EI]
+    elif test == "cantilever":
+        EI = P * span**3 / (3 * delta)
+        K, D = None, EI / span
+        parts = [f * span**2 / (3 * delta) for f in forces]
     else:
         EI = P * span**3 / (48 * delta)
         K, D = None, EI / span

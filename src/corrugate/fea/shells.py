@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 from corrugate.core.errors import InputError
 from corrugate.geometry.layer import Assembly, Layer, crease_layer
 
-__all__ = ["Shell", "layer_shell", "oblique_shells", "principal_axis", "specimen"]
+__all__ = ["Shell", "check_shift", "layer_shell", "oblique_shells", "principal_axis", "specimen"]
 
 FloatArray = NDArray[np.float64]
 
@@ -130,15 +130,33 @@ def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
     return (a.Ly, a.Lx) if min(e, 180.0 - e) > 45.0 else (a.Lx, a.Ly)
 
 
+def check_shift(shift: float) -> None:
+    """Refuse a coupon shift (:func:`oblique_shells`) that is not a real number in [0, 1):
+    :class:`InputError`."""
+    ok = isinstance(shift, int | float) and not isinstance(shift, bool) and math.isfinite(shift)
+    if not ok or not 0.0 <= shift < 1.0:
+        raise InputError("shift", shift, "0 <= shift < 1 (a fraction of each layer's pitch)")
+
+
 def oblique_shells(
-    assembly: Assembly, eta_deg: float, along: int, fixture_y: tuple[float, ...]
+    assembly: Assembly,
+    eta_deg: float,
+    along: int,
+    fixture_y: tuple[float, ...],
+    *,
+    shift: float = 0.0,
 ) -> list[Shell]:
     """Both layers over the specimen of :func:`specimen`, in the test frame (y along eta, x
     across), meshed by :mod:`corrugate.fea.planmesh`. The specimen's centre is the layout's
     centre; beyond the layout's extent the zig-zags continue periodically (the specimen is cut
-    from the panel's material)."""
+    from the panel's material). ``shift`` (0 <= shift < 1, default 0) moves each layer's zig-zag
+    by that fraction of its own pitch (the plan width p of a facet) along its chord direction,
+    relative to the coupon: a crease at chordwise position u moves to u + shift p. Values outside
+    [0, 1) are refused (:class:`InputError`): 1 would swap valleys and ridges, the same layer
+    upside down."""
     from corrugate.fea.planmesh import Corrugation, plan_mesh
 
+    check_shift(shift)
     a = assembly
     A, B = specimen(a, eta_deg)
     e = math.radians(eta_deg)
@@ -152,7 +170,7 @@ def oblique_shells(
     for layer, chord, centre, z0 in zip(
         a.layers, chords, centres, (0.0, a.layer1.height), strict=True
     ):
-        offset = centre - (chord[0] * A / 2 + chord[1] * B / 2)
+        offset = centre - (chord[0] * A / 2 + chord[1] * B / 2) - shift * layer.pitch
         corr = Corrugation(chord, offset, layer.pitch, layer.height, z0)
         pm = plan_mesh(corr, A, B, along, fixture_y)
         ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
