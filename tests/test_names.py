@@ -55,6 +55,7 @@ def test_importing_names_loads_no_numpy_and_no_other_corrugate_module() -> None:
         (names.StiffnessSymbol, names.STIFFNESS_SYMBOLS),
         (names.FoldStyle, names.FOLD_STYLES),
         (names.PaperName, names.PAPER_NAMES),
+        (names.LoadCaseName, names.LOAD_CASES),
     ],
 )
 def test_each_tuple_is_its_literal(literal: object, values: tuple[str, ...]) -> None:
@@ -67,6 +68,14 @@ def test_model_names_are_the_moduli_table() -> None:
 
     assert tuple(MODELS) == names.MODEL_NAMES
     assert get_model(names.DEFAULT_MODEL).name == names.DEFAULT_MODEL
+
+
+def test_load_case_names_are_the_behaviour_registrys_and_the_specs() -> None:
+    from corrugate.mechanics.behaviours import load_cases
+    from corrugate.spec.schema import DeflectionTest
+
+    assert tuple(b.name for b in load_cases()) == names.LOAD_CASES
+    assert typing.get_args(DeflectionTest) == names.LOAD_CASES
 
 
 def test_machine_names_are_the_cutters_table_and_a_laser_is_named_by_its_bed() -> None:

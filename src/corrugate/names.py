@@ -34,6 +34,7 @@ __all__ = [
     "LASER",
     "LASER_PREFIX",
     "LAYOUT_SHAPES",
+    "LOAD_CASES",
     "MACHINE_NAMES",
     "MODEL_NAMES",
     "PAPER_NAMES",
@@ -47,6 +48,7 @@ __all__ = [
     "FoldStyle",
     "HoleShape",
     "LayoutShape",
+    "LoadCaseName",
     "MachineName",
     "ModelName",
     "PaperName",
@@ -70,6 +72,13 @@ Support = Literal["free", "frame"]
 SUPPORTS: tuple[Support, ...] = get_args(Support)
 #: Free sides: a bench test and most mounts (docs/offaxis.md).
 DEFAULT_SUPPORT: Final[Support] = "free"
+
+# -- load cases (corrugate.mechanics.load_cases, docs/load_cases.md) --------------------------
+
+LoadCaseName = Literal["three-point", "four-point", "cantilever", "platens"]
+#: The tests a deflection is stated in: simply supported with the load at mid-span or at the
+#: quarter points, a cantilever loaded at its free end, compression between rigid platens.
+LOAD_CASES: tuple[LoadCaseName, ...] = get_args(LoadCaseName)
 
 # -- plan outlines (corrugate.geometry.layouts) and inner cut-outs (corrugate.geometry.holes) --
 

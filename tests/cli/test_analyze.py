@@ -181,3 +181,116 @@ def test_materials_command(cli: CliRun) -> None:
     assert {"dura-lar", "kapton", "fr4"} <= ids
     code, out, _ = cli(["materials"])
     assert code == 0 and "dura-lar" in out
+
+
+# ---- load cases: --test, --load, --span (docs/load_cases.md) --------------------------------
+
+#: delta / P = a Ls^3 / EI + (b Ls + 1.5 h) / S of each bending test (docs/load_cases.md,
+#: section 1: the Timoshenko beam's a and b, the local term 1.5 h).
+TESTS_AB = {"three-point": (1 / 48, 1 / 4), "four-point": (1 / 96, 1 / 8), "cantilever": (1 / 3, 1)}
+
+
+def _hand_deflection(d: dict[str, object], test: str, load: float, span: float | None) -> float:
+    """The test's deflection (mm) of the identical square 8/8/84 Dura-Lar panel at eta = 0 by
+    hand: EI = D L over the panel's length L, S = G t W c^2 (n + 1) (the n + 1 facets as webs,
+    c = cos(alpha/2)), h = W c (docs/load_cases.md, sections 1-2)."""
+    from corrugate import get_material
+
+    m = get_material("dura-lar")
+    st = d["stiffness"][0]  # type: ignore[index]
+    D, L = st["D_Nmm"], st["span_mm"]
+    W, n, t, c = 8.0, 8, 0.125, math.cos(math.radians(84 / 2))
+    S = m.E / (2 * (1 + m.nu)) * t * W * c**2 * (n + 1)
+    Ls = L if span is None else span
+    a, b = TESTS_AB[test]
+    return load * (a * Ls**3 / (D * L) + (b * Ls + 1.5 * W * c) / S)
+
+
+@pytest.mark.parametrize("test", sorted(TESTS_AB))
+@pytest.mark.parametrize("span", [None, 30.0])
+def test_load_case_deflection_is_the_documented_formula(
+    cli: CliRun, test: str, span: float | None
+) -> None:
+    extra = [] if span is None else ["--span", f"{span} mm"]
+    code, out, _ = cli([*BASE, "--eta", "0", "--test", test, "--load", "10 N", *extra, "--json"])
+    assert code == 0
+    d = json.loads(out)
+    case = d["load_case"]
+    assert (case["test"], case["load_N"], case["span_mm"]) == (test, 10.0, span)
+    (row,) = case["directions"]
+    length = d["stiffness"][0]["span_mm"]
+    assert math.isclose(length, 9 * 8 * math.sin(math.radians(42)))  # (n + 1) W sin(alpha/2)
+    assert row["eta_deg"] == 0
+    assert row["span_mm"] == pytest.approx(length if span is None else span)
+    assert row["deflection_mm"] == pytest.approx(_hand_deflection(d, test, 10.0, span), rel=1e-9)
+    assert row["deflection_mm"] * row["stiffness_N_per_mm"] == pytest.approx(10.0)
+
+
+def test_load_case_between_platens_is_the_load_over_K(cli: CliRun) -> None:
+    code, out, _ = cli([*BASE, "--test", "platens", "--load", "2 lbf", "--json"])
+    assert code == 0
+    d = json.loads(out)
+    assert d["load_case"]["load_N"] == pytest.approx(2 * 4.4482216152605)  # 1 lbf in N
+    for st, row in zip(d["stiffness"], d["load_case"]["directions"], strict=True):
+        assert row["eta_deg"] == st["eta_deg"]
+        assert row["stiffness_N_per_mm"] == pytest.approx(st["K_N_per_mm"])
+        assert row["deflection_mm"] == pytest.approx(2 * 4.4482216152605 / st["K_N_per_mm"])
+
+
+def test_load_case_is_linear_in_the_load_and_shortens_with_the_span(cli: CliRun) -> None:
+    def deflection(*extra: str) -> float:
+        code, out, _ = cli([*BASE, "--eta", "0", "--test", "three-point", *extra, "--json"])
+        assert code == 0
+        value: float = json.loads(out)["load_case"]["directions"][0]["deflection_mm"]
+        return value
+
+    assert deflection("--load", "20") == pytest.approx(2 * deflection("--load", "10"))
+    short, long = deflection("--load", "10", "--span", "20"), deflection("--load", "10")
+    assert 0 < short < long
+
+
+def test_load_case_text_and_compare_models(cli: CliRun) -> None:
+    code, out, _ = cli([*BASE, "--test", "four-point", "--load", "5", "--span", "40"])
+    assert code == 0
+    assert "load case: four-point, 5 N over 40 mm" in out and "deflection mm" in out
+    code, out, _ = cli([*BASE, "--test", "cantilever", "--load", "1", "--compare-models", "--json"])
+    assert code == 0
+    models = json.loads(out)["models"]
+    assert set(models) == {"paper", "xia", "refined"}
+    for d in models.values():
+        rows = d["load_case"]["directions"]
+        assert [r["eta_deg"] for r in rows] == [0, 90]
+        assert rows[0]["deflection_mm"] == pytest.approx(1 / rows[0]["stiffness_N_per_mm"])
+    code, out, _ = cli([*BASE, "--test", "cantilever", "--load", "1", "--compare-models"])
+    assert code == 0 and "cantilever delta(0) mm at 1 N" in out
+
+
+@pytest.mark.parametrize(
+    ("extra", "option", "words"),
+    [
+        (["--load", "10"], "--load", "without --test"),
+        (["--span", "30"], "--span", "without --test"),
+        (["--test", "three-point"], "--load", "required with --test"),
+        (["--test", "five-point", "--load", "1"], "--test", "cantilever, four-point"),
+        (["--test", "three-point", "--load", "0"], "--load", "> 0 N"),
+        (["--test", "three-point", "--load", "-2 N"], "--load", "> 0 N"),
+        (["--test", "three-point", "--load", "2 mm"], "--load", "N"),
+        (["--test", "three-point", "--load", "1", "--span", "0"], "--span", "> 0 mm"),
+        (["--test", "platens", "--load", "1", "--span", "30"], "--span", "no span for platens"),
+        (["--test", "three-point", "--load", "1", "--span", "60"], "--span", "48.1774 mm"),
+        (
+            ["--test", "cantilever", "--load", "1", "--layout", "circle"],
+            "--test",
+            "a square or rectangle layout",
+        ),
+    ],
+)
+def test_bad_load_case_one_line_exit_2(
+    cli: CliRun, extra: list[str], option: str, words: str
+) -> None:
+    code, out, err = cli([*BASE, *extra])
+    assert code == 2 and out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith(f"corrugate: error: {option} "), lines[0]
+    assert words in lines[0], lines[0]

@@ -41,3 +41,36 @@ def test_the_template_is_a_valid_commented_spec_that_a_design_can_meet() -> None
     assert pytest.approx(80000.0) == EI0
     at0 = [s for s in solution.analysis.stiffness if s.eta_deg == 0.0]
     assert at0 and at0[0].EI >= EI0 * (1 - 1e-9)
+
+
+def _uncommented_load_case(text: str) -> str:
+    """The template with its commented ``[[constraints.deflection]]`` example switched on: the
+    lines from its header to the next blank line, each without its leading ``# ``."""
+    lines = text.splitlines()
+    start = lines.index("# [[constraints.deflection]]")
+    end = lines.index("", start)
+    block = [line.removeprefix("# ") for line in lines[start:end]]
+    return "\n".join([*lines[:start], *block, *lines[end:]]) + "\n"
+
+
+def test_the_templates_load_case_example_parses_with_every_key_and_can_be_met() -> None:
+    from corrugate.solver import solve
+    from corrugate.solver.problem import Problem
+
+    text = _uncommented_load_case(template_text())
+    spec = parse_spec(tomllib.loads(text))
+    (d,) = spec.constraints.deflection
+    assert d.model_dump() == {  # every key of the table, in internal units (N, mm, deg)
+        "test": "three-point",
+        "load": 5.0,
+        "max": 0.5,
+        "span": 48.0,
+        "eta": 0.0,
+        "support": "free",
+    }
+    solution = solve(Problem.from_spec(spec))
+    assert solution.status == "optimal" and solution.certified
+    (row,) = [c for c in solution.constraints if c.name == "constraints.deflection[0].max"]
+    assert row.unit == "mm" and 0 < row.value <= 0.5 and row.load == 5.0
+    assert row.stiffness is not None
+    assert row.value == pytest.approx(5.0 / row.stiffness)  # delta = P / (P / delta)

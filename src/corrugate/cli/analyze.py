@@ -1,8 +1,16 @@
-"""``corrugate analyze`` and ``corrugate materials``: one design's stiffness, and the library."""
+"""``corrugate analyze`` and ``corrugate materials``: one design's stiffness, and the library.
+
+``analyze --test T --load P [--span Ls]`` also states a load case (docs/load_cases.md): at each
+direction asked, the deflection delta (mm) of the test ``T`` under the load P (N) and the test's
+P / delta (N/mm), from the support's D or K, the layers' shear springs and the panel's length
+along eta (:func:`load_case_rows`).
+"""
 
 from __future__ import annotations
 
 import json
+import math
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Annotated
 
 import typer
@@ -10,17 +18,174 @@ import typer
 from corrugate.cli import options as o
 from corrugate.cli.console import fmt as _fmt
 from corrugate.cli.console import make_console
+from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.parameters import PARAMETERS
-from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT
+from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT, LOAD_CASES
 
 if TYPE_CHECKING:
     from rich.console import Console
 
     from corrugate.analysis.evaluate import Analysis
 
-__all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
+__all__ = [
+    "COMMANDS",
+    "LoadCase",
+    "analyze_cmd",
+    "load_case_dict",
+    "load_case_of",
+    "load_case_rows",
+    "materials_cmd",
+]
 
 Opt = typer.Option
+
+
+@dataclass(frozen=True, slots=True)
+class LoadCase:
+    """A load case of ``analyze``: the test's name, the load (N) and the span (mm; None: the
+    panel's length along each eta, and always None between platens)."""
+
+    test: str
+    load: float
+    span: float | None = None
+
+
+def _flag(name: str) -> str:
+    return PARAMETERS[name].flag
+
+
+def load_case_of(test: str | None, load: str | None, span: str | None) -> LoadCase | None:
+    """The load case the options ``--test``, ``--load`` and ``--span`` state (None when none is
+    given); :class:`InputError` naming the option at fault: a load or a span without a test, a
+    test without a load, an unknown test, a load or span that is not > 0, a span between
+    platens."""
+    from corrugate.core.limits import LIMITS, abnormal_reason
+    from corrugate.core.units import parse_quantity
+
+    if test is None:
+        for name, value in (("load", load), ("span", span)):
+            if value is not None:
+                raise InputError(
+                    _flag(name),
+                    value,
+                    f"only with {_flag('test')} ({', '.join(LOAD_CASES)})",
+                    reason=f"is given without {_flag('test')}",
+                )
+        return None
+    if test not in LOAD_CASES:
+        raise UnknownNameError(_flag("test"), test, LOAD_CASES)
+    if load is None:
+        raise InputError(
+            _flag("load"),
+            "not given",
+            "a load in N (e.g. 10 or '2 lbf')",
+            reason=f"is required with {_flag('test')}",
+        )
+
+    def positive(name: str, value: str, unit: str, limit: str) -> float:
+        x = parse_quantity(value, unit, _flag(name))
+        hi = LIMITS[limit].hi
+        if not 0.0 < x <= hi:
+            reason = abnormal_reason(x) or "is out of range"
+            raise InputError(
+                _flag(name), f"{x:g} {unit}", f"> 0 {unit} and <= {hi:g} {unit}", reason=reason
+            )
+        return x
+
+    P = positive("load", load, "N", "load")
+    if span is None:
+        return LoadCase(test, P)
+    if test == "platens":
+        raise InputError(
+            _flag("span"),
+            span,
+            "no span for platens (the panel's length along eta is compressed)",
+            reason="does not apply",
+        )
+    return LoadCase(test, P, positive("span", span, "mm", "length"))
+
+
+def load_case_rows(r: Analysis, case: LoadCase) -> list[dict[str, float]]:
+    """For each direction of ``r``: the span Ls (mm; platens: the length compressed), the
+    deflection (mm) of ``case`` under its load and the test's P / delta (N/mm), by
+    :func:`corrugate.mechanics.load_cases.load_stiffness` (docs/load_cases.md, sections 1-3):
+    the support's D (bending tests, EI = D L over the panel's length L along eta, the layers'
+    shear spring V and depth h at eta) or K (platens). :class:`InputError` naming ``--span``
+    where it is longer than the panel, and ``--test`` for a layout without straight edges."""
+    from corrugate.mechanics.behaviours import get_load_case
+    from corrugate.mechanics.load_cases import load_stiffness, shear_and_depth
+    from corrugate.mechanics.offaxis import _cs
+
+    layout = r.assembly.layout
+    if layout.name not in ("square", "rectangle"):
+        raise InputError(
+            _flag("test"),
+            f"{case.test} on layout {layout.name}",
+            "a square or rectangle layout",
+            reason="has no straight edges to support or load",
+        )
+    form = get_load_case(case.test).form
+    assert form is not None
+    rows = []
+    for st in r.stiffness:
+        if case.span is not None and case.span > st.span:
+            raise InputError(
+                _flag("span"),
+                f"{case.span:g} mm",
+                f"at most the panel's length along eta = {st.eta_deg:g} deg, {st.span:.6g} mm",
+            )
+        if form.kind == "inplane":
+            k = float(load_stiffness(form, st.K, None, None, st.span))
+            Ls = st.span
+        else:
+            V, h = shear_and_depth(r.springs, *_cs(st.eta_deg))
+            k = float(load_stiffness(form, st.D, float(V), float(h), st.span, case.span))
+            Ls = st.span if case.span is None else case.span
+        if not (math.isfinite(k) and k > 0):
+            raise InputError("body", f"P/delta = {k}", "a positive stiffness", reason="is not")
+        rows.append(
+            {
+                "eta_deg": st.eta_deg,
+                "span_mm": Ls,
+                "deflection_mm": case.load / k,
+                "stiffness_N_per_mm": k,
+            }
+        )
+    return rows
+
+
+def load_case_dict(case: LoadCase, rows: list[dict[str, float]]) -> dict[str, object]:
+    """The ``load_case`` object of ``analyze --json``."""
+    return {
+        "test": case.test,
+        "load_N": case.load,
+        "span_mm": case.span,
+        "directions": rows,
+    }
+
+
+def _print_load_case(case: LoadCase, rows: list[dict[str, float]], console: Console) -> None:
+    from rich.table import Table
+
+    over = (
+        ""
+        if case.test == "platens"
+        else (f" over {case.span:g} mm" if case.span is not None else " over the panel's length")
+    )
+    t = Table(
+        title=f"load case: {case.test}, {case.load:g} N{over} (`corrugate docs load_cases`)",
+        title_justify="left",
+    )
+    for col in ("eta deg", "span mm", "deflection mm", "P/delta N/mm"):
+        t.add_column(col, justify="right")
+    for row in rows:
+        t.add_row(
+            _fmt(row["eta_deg"]),
+            _fmt(row["span_mm"]),
+            _fmt(row["deflection_mm"], 5),
+            _fmt(row["stiffness_N_per_mm"], 5),
+        )
+    console.print(t)
 
 
 def _print_analysis(r: Analysis, console: Console) -> None:
@@ -72,7 +237,9 @@ def _print_analysis(r: Analysis, console: Console) -> None:
         console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
 
 
-def _print_comparison(results: list[Analysis], console: Console) -> None:
+def _print_comparison(
+    results: list[Analysis], console: Console, case: LoadCase | None = None
+) -> None:
     from rich.table import Table
 
     t = Table(
@@ -89,6 +256,14 @@ def _print_comparison(results: list[Analysis], console: Console) -> None:
         t.add_row(f"K({e}) N/mm", *(_fmt(r.stiffness[i].K, 5) for r in results))
         t.add_row(f"D({e}) N mm", *(_fmt(r.stiffness[i].D, 5) for r in results))
         t.add_row(f"EI({e}) N mm^2", *(_fmt(r.stiffness[i].EI, 5) for r in results))
+    if case is not None:
+        per_model = [load_case_rows(r, case) for r in results]
+        for i, d in enumerate(results[0].stiffness):
+            e = _fmt(d.eta_deg)
+            t.add_row(
+                f"{case.test} delta({e}) mm at {case.load:g} N",
+                *(_fmt(rows[i]["deflection_mm"], 5) for rows in per_model),
+            )
     console.print(t)
 
 
@@ -118,6 +293,9 @@ def analyze_cmd(
         ),
     ] = None,
     support: o.SupportOpt = DEFAULT_SUPPORT,
+    test: o.TestOpt = None,
+    load: o.LoadOpt = None,
+    span: o.SpanOpt = None,
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object.")] = False,
     compare_models: Annotated[
         bool, Opt(help="Show the three model variants side by side.")
@@ -127,6 +305,8 @@ def analyze_cmd(
     """Stiffness, size, mass and warnings of one OADLC design.
 
     Example: corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar --model paper --eta 0
+
+    With a load case: ... --test three-point --load 10N --span 40mm (docs/load_cases.md).
     """
     from corrugate.analysis.evaluate import analyze
     from corrugate.mechanics.behaviours import check_support
@@ -137,25 +317,36 @@ def analyze_cmd(
     etas = parse_etas(eta)
     get_model(model)
     support = check_support(support, PARAMETERS["support"].flag)
+    case = load_case_of(test, load, span)
     models = list(MODELS) if compare_models else [model]
     results = [analyze(assembly, m, etas, support=support) for m in models]
+    cases = [None if case is None else load_case_rows(r, case) for r in results]
     if as_json:
-        if compare_models:
-            payload: object = {"models": {r.model: r.to_dict() for r in results}}
-        else:
-            payload = results[0].to_dict()
+        dicts = []
+        for r, rows in zip(results, cases, strict=True):
+            d = r.to_dict()
+            if case is not None and rows is not None:
+                d["load_case"] = load_case_dict(case, rows)
+            dicts.append(d)
+        payload: object = (
+            {"models": {r.model: d for r, d in zip(results, dicts, strict=True)}}
+            if compare_models
+            else dicts[0]
+        )
         typer.echo(json.dumps(payload, indent=2))
         return
     if quiet:
         return
     console = make_console()
     if compare_models:
-        _print_comparison(results, console)
+        _print_comparison(results, console, case)
         for w in results[0].warnings:
             if w.code != "paper-model":
                 console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
     else:
         _print_analysis(results[0], console)
+        if case is not None and cases[0] is not None:
+            _print_load_case(case, cases[0], console)
 
 
 def materials_cmd(

@@ -15,7 +15,14 @@ import typer
 
 from corrugate.core.parameters import PARAMETERS, choices_metavar
 from corrugate.names import FOLD_STYLES as FOLD_STYLE_NAMES
-from corrugate.names import LASER_PREFIX, LAYOUT_SHAPES, MACHINE_NAMES, MODEL_NAMES, SUPPORTS
+from corrugate.names import (
+    LASER_PREFIX,
+    LAYOUT_SHAPES,
+    LOAD_CASES,
+    MACHINE_NAMES,
+    MODEL_NAMES,
+    SUPPORTS,
+)
 
 __all__ = [
     "ANGLE",
@@ -37,6 +44,7 @@ __all__ = [
     "Holes",
     "Labels",
     "Layout",
+    "LoadOpt",
     "Machine",
     "Margin",
     "Material",
@@ -50,8 +58,10 @@ __all__ = [
     "Paper",
     "Quiet",
     "Spacing",
+    "SpanOpt",
     "SupportOpt",
     "TabDepth",
+    "TestOpt",
     "Thickness",
     "Thickness2",
     "Vertices",
@@ -90,6 +100,11 @@ def complete_supports(incomplete: str) -> list[str]:
     return [m for m in SUPPORTS if m.startswith(incomplete)]
 
 
+def complete_tests(incomplete: str) -> list[str]:
+    """Shell completion of ``--test``: the load cases."""
+    return [m for m in LOAD_CASES if m.startswith(incomplete)]
+
+
 #: The shell completion of the parameters that have one.
 _COMPLETION: dict[str, Callable[[str], list[str]]] = {
     "material": complete_materials,
@@ -97,6 +112,7 @@ _COMPLETION: dict[str, Callable[[str], list[str]]] = {
     "layout": complete_layouts,
     "model": complete_models,
     "support": complete_supports,
+    "test": complete_tests,
     "cutter": complete_machines,
 }
 
@@ -138,6 +154,10 @@ Vertices = Annotated[str | None, option("vertices")]
 Holes = Annotated[str | None, option("holes")]
 Model = Annotated[str, option("model")]
 SupportOpt = Annotated[str, option("support")]
+#: ``analyze``'s load case (docs/load_cases.md).
+TestOpt = Annotated[str | None, option("test")]
+LoadOpt = Annotated[str | None, option("load")]
+SpanOpt = Annotated[str | None, option("span")]
 
 Machine = Annotated[str, option("cutter")]
 Labels = Annotated[bool | None, option("labels")]

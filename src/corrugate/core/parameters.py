@@ -6,7 +6,8 @@ flags and metavar, its internal unit, default and kind, its one help text and th
 :data:`corrugate.core.limits.LIMITS` that bounds it. Every surface is made from it:
 
 * the command line's options of ``analyze``, ``pattern``, ``validate`` and ``design``
-  (:mod:`corrugate.cli.options` builds each typer option from its entry);
+  (:mod:`corrugate.cli.options` builds each typer option from its entry), ``analyze``'s load
+  case among them (:data:`LOAD_CASE_PARAMETERS`);
 * the design fields of the web API's request bodies (:mod:`corrugate.web.schemas`: each field's
   default and description);
 * the spec reference (:data:`corrugate.spec.reference.KEYS`), where a spec key is the same
@@ -34,6 +35,7 @@ from corrugate.names import (
     FOLD_STYLES,
     LASER,
     LAYOUT_SHAPES,
+    LOAD_CASES,
     MACHINE_NAMES,
     MODEL_NAMES,
     PAPER_NAMES,
@@ -42,6 +44,7 @@ from corrugate.names import (
 
 __all__ = [
     "DESIGN_PARAMETERS",
+    "LOAD_CASE_PARAMETERS",
     "OUTPUT_PARAMETERS",
     "PARAMETERS",
     "Kind",
@@ -65,7 +68,8 @@ class Parameter:
     value taken when it is not given, as the command line shows it (None: not given; ignored when
     ``required``); ``kind``: see :data:`Kind`; ``help``: the one help text of every surface;
     ``limits``: the key of :data:`corrugate.core.limits.LIMITS` that bounds the value (None: none
-    of them); ``choices``: the allowed names of a ``name`` (empty: any)."""
+    of them); ``choices``: the allowed names of a ``name`` (empty: any; a ``name`` without a
+    default is one that may be left out)."""
 
     name: str
     flags: tuple[str, ...]
@@ -332,5 +336,47 @@ OUTPUT_PARAMETERS: tuple[Parameter, ...] = (
     ),
 )
 
+#: The load case of ``corrugate analyze`` (docs/load_cases.md): the test, its load (N) and its
+#: span (mm); none given: no load case.
+LOAD_CASE_PARAMETERS: tuple[Parameter, ...] = (
+    Parameter(
+        "test",
+        ("--test",),
+        choices_metavar(LOAD_CASES),
+        "",
+        None,
+        "name",
+        "Load case (`corrugate docs load_cases`): "
+        + ", ".join(LOAD_CASES[:-1])
+        + " or "
+        + LOAD_CASES[-1]
+        + "; prints the deflection under --load and P/delta at each --eta.",
+        choices=LOAD_CASES,
+    ),
+    Parameter(
+        "load",
+        ("--load",),
+        "FORCE",
+        "N",
+        None,
+        "quantity",
+        "The load case's load (N, or '2 lbf'); needs --test.",
+        "load",
+    ),
+    Parameter(
+        "span",
+        ("--span",),
+        "LENGTH",
+        "mm",
+        None,
+        "quantity",
+        "The test's support spacing (cantilever: its free length; mm); default and at most the "
+        "panel's length along eta; none between platens.",
+        "length",
+    ),
+)
+
 #: Every parameter by name.
-PARAMETERS: dict[str, Parameter] = {p.name: p for p in (*DESIGN_PARAMETERS, *OUTPUT_PARAMETERS)}
+PARAMETERS: dict[str, Parameter] = {
+    p.name: p for p in (*DESIGN_PARAMETERS, *OUTPUT_PARAMETERS, *LOAD_CASE_PARAMETERS)
+}

@@ -186,7 +186,10 @@ class DesignBody(OutputBody):
     materials: Any = Field(None, description="Candidate materials (a list). " + _SPEC_KEY)
     layout: Any = Field(None, description="{shape, vertices, holes}. " + _SPEC_KEY)
     variables: Any = Field(None, description="Bounds and steps of W, n and alpha. " + _SPEC_KEY)
-    constraints: Any = Field(None, description="Size, stiffness and mass bounds. " + _SPEC_KEY)
+    constraints: Any = Field(
+        None,
+        description="Size, stiffness, load-case (deflection) and mass bounds. " + _SPEC_KEY,
+    )
     objective: Any = Field(None, description="{minimize = 'mass'} or {maximize, eta}.")
     robust: Any = Field(None, description="Tolerances for a robust design. " + _SPEC_KEY)
 

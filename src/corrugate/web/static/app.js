@@ -464,47 +464,101 @@ function syncDesignVisibility() {
   renumberRequirements();
 }
 
-// ---- requirement rows: any number of EI, D, K and buckling bounds -------------------------
+// ---- requirement rows: any number of EI, D, K, buckling and load-case bounds --------------
+
+// The tests a row of each kind may name (docs/load_cases.md): value '' is the spec's default
+// (pure bending for EI and D; K is measured between platens only, so its row names none).
+const BENDING_TESTS = [['', 'pure bending'], ['three-point', 'three-point test'],
+  ['four-point', 'four-point test'], ['cantilever', 'cantilever test']];
+const ROW_TESTS = {
+  flexural_rigidity: BENDING_TESTS,
+  bending_stiffness: BENDING_TESTS,
+  inplane_stiffness: [],
+  buckling_load: [],
+  deflection: [['three-point', 'three-point'], ['four-point', 'four-point'],
+    ['cantilever', 'cantilever'], ['platens', 'between platens']],
+};
+
+// The test choices of a row for its kind (kept when the kind changes to one with the same list).
+function syncRowTests(row) {
+  const kind = row.querySelector('.req-kind').value;
+  const select = row.querySelector('.req-test');
+  const tests = ROW_TESTS[kind] || [];
+  if (select.dataset.kind !== kind) {
+    const keep = select.value;
+    select.replaceChildren(...tests.map(([value, label]) => new Option(label, value)));
+    if (tests.some(([value]) => value === keep)) select.value = keep;
+    select.dataset.kind = kind;
+  }
+  select.hidden = tests.length === 0;
+}
 
 // Give each row's inputs the spec path of their place: the k-th row of a kind is
-// constraints.<kind>[k]; field errors from the server then land on the right row.
+// constraints.<kind>[k]; field errors from the server then land on the right row. A load-case
+// row is constraints.deflection[k]: its value is the most deflection (`max`), with `load`,
+// `test` and `span` (none between platens).
 function renumberRequirements() {
   const counts = {};
   const rows = [...$('d-req-rows').querySelectorAll('.req')];
   rows.forEach((row, i) => {
+    syncRowTests(row);
     const kind = row.querySelector('.req-kind').value;
+    const deflection = kind === 'deflection';
     const min = row.querySelector('.req-min');
     const used = min.value.trim() !== '';
     const k = used ? (counts[kind] = (counts[kind] ?? -1) + 1) : null;
     const base = used ? `constraints.${kind}[${k}]` : null;
     const support = row.querySelector('.req-support');
+    const test = row.querySelector('.req-test');
+    const load = row.querySelector('.req-load');
+    const span = row.querySelector('.req-span');
     support.hidden = kind === 'buckling_load';  // a buckling bound has no support condition
-    for (const [el, key] of [[min, 'min'], [row.querySelector('.req-eta'), 'eta'], [support, 'support']]) {
-      if (base && !(key === 'support' && support.hidden)) el.dataset.path = `${base}.${key}`;
+    load.hidden = !deflection;
+    span.hidden = !deflection || test.value === 'platens';  // platens compress the whole panel
+    if (min.dataset.placeholder === undefined) min.dataset.placeholder = min.placeholder;
+    min.placeholder = deflection ? 'most deflection, mm' : min.dataset.placeholder;
+    const fields = [[min, deflection ? 'max' : 'min'], [row.querySelector('.req-eta'), 'eta'],
+      [support, 'support'], [test, 'test'], [load, 'load'], [span, 'span']];
+    for (const [el, key] of fields) {
+      if (base && !el.hidden) el.dataset.path = `${base}.${key}`;
       else delete el.dataset.path;
     }
     const n = i + 1;
     row.querySelector('.req-kind').setAttribute('aria-label', `requirement ${n}: quantity`);
-    min.setAttribute('aria-label', `requirement ${n}: least value`);
+    min.setAttribute('aria-label', `requirement ${n}: ${deflection ? 'most deflection (mm)' : 'least value'}`);
     row.querySelector('.req-eta').setAttribute('aria-label', `requirement ${n}: direction eta (deg)`);
     support.setAttribute('aria-label', `requirement ${n}: support`);
+    test.setAttribute('aria-label', `requirement ${n}: test`);
+    load.setAttribute('aria-label', `requirement ${n}: load (N)`);
+    span.setAttribute('aria-label', `requirement ${n}: span (mm; default: the panel's length along eta)`);
     row.querySelector('.req-remove').setAttribute('aria-label', `remove requirement ${n}`);
   });
 }
 
-function addRequirement(kind = 'flexural_rigidity', min = '', eta = '0 deg', support = '') {
+// A new row (a copy of the first, emptied); ``values`` sets its fields: kind, min (the most
+// deflection of a load case), eta, support, test, load, span.
+function addRequirement(values = {}) {
   const rows = $('d-req-rows');
   const row = rows.querySelector('.req').cloneNode(true);
   for (const el of row.querySelectorAll('[id]')) el.removeAttribute('id');
   for (const el of row.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
   row.querySelector('.error').textContent = '';
-  row.querySelector('.req-kind').value = kind;
-  row.querySelector('.req-min').value = min;
-  row.querySelector('.req-eta').value = eta;
-  row.querySelector('.req-support').value = support;
   rows.appendChild(row);
-  renumberRequirements();
+  setRequirement(row, { kind: 'flexural_rigidity', eta: '0 deg', ...values });
   return row;
+}
+
+function setRequirement(row, { kind, min = '', eta = '0 deg', support = '', test = '', load = '', span = '' }) {
+  row.querySelector('.req-kind').value = kind;
+  syncRowTests(row);
+  const select = row.querySelector('.req-test');
+  if (test !== '' || [...select.options].some((o) => o.value === '')) select.value = test;
+  row.querySelector('.req-min').value = String(min);
+  row.querySelector('.req-eta').value = String(eta);
+  row.querySelector('.req-support').value = support;
+  row.querySelector('.req-load').value = String(load);
+  row.querySelector('.req-span').value = String(span);
+  renumberRequirements();
 }
 
 $('d-req-rows').addEventListener('click', (event) => {
@@ -522,11 +576,16 @@ $('d-add-req').addEventListener('click', () => addRequirement().querySelector('.
 // The unit each requirement row's label shows; a plain number typed there is in that unit.
 const REQUIREMENT_UNITS = {
   flexural_rigidity: 'mN*m^2', bending_stiffness: 'N*mm', inplane_stiffness: 'N/mm', buckling_load: 'N',
+  deflection: 'mm',
 };
 
+// A plain number typed in a load case's load is in N, its span in mm.
 function withRowUnit(el, value) {
   const row = el.closest('.req');
-  if (!row || !el.classList.contains('req-min') || !/^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(value)) return value;
+  if (!row || !/^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(value)) return value;
+  if (el.classList.contains('req-load')) return `${value} N`;
+  if (el.classList.contains('req-span')) return `${value} mm`;
+  if (!el.classList.contains('req-min')) return value;
   return `${value} ${REQUIREMENT_UNITS[row.querySelector('.req-kind').value]}`;
 }
 
@@ -558,8 +617,12 @@ function designBody() {
 
 window.designBodyForTests = designBody;  // the browser tests compare it with what was posted
 
-// The form from a spec (the inverse of designBody), e.g. one shared in the page's URL.
+// The form from a spec (the inverse of designBody), e.g. one shared in the page's URL. A text
+// field the spec leaves out is emptied (the form's default is not the spec's), unless it is
+// hidden once the form is filled (it sends nothing then): it keeps its default.
 function fillDesign(spec) {
+  const cleared = [...designForm.querySelectorAll('input[data-path]')].filter((el) => !el.closest('.req'));
+  for (const el of cleared) el.value = '';
   const setField = (path, value) => {
     const el = designForm.querySelector(`[data-path="${path}"]`);
     if (el && value !== undefined && value !== null) el.value = Array.isArray(value) ? value.join(', ') : String(value);
@@ -569,7 +632,7 @@ function fillDesign(spec) {
       const path = prefix ? `${prefix}.${key}` : key;
       if (value && typeof value === 'object' && !Array.isArray(value)) walk(value, path);
       else if (!['constraints.flexural_rigidity', 'constraints.bending_stiffness',
-        'constraints.inplane_stiffness', 'constraints.buckling_load', 'layout.holes',
+        'constraints.inplane_stiffness', 'constraints.buckling_load', 'constraints.deflection', 'layout.holes',
         'layout.vertices'].includes(path)) setField(path, value);
     }
   };
@@ -584,15 +647,19 @@ function fillDesign(spec) {
   for (const el of keep.querySelectorAll('input')) el.value = '';
   let first = true;
   const c = spec.constraints || {};
+  const fill = (values) => {
+    if (first) setRequirement(keep, values);
+    else addRequirement(values);
+    first = false;
+  };
   for (const kind of ['flexural_rigidity', 'bending_stiffness', 'inplane_stiffness', 'buckling_load']) {
     for (const b of c[kind] || []) {
-      const row = first ? keep : addRequirement();
-      first = false;
-      row.querySelector('.req-kind').value = kind;
-      row.querySelector('.req-min').value = String(b.min ?? '');
-      row.querySelector('.req-eta').value = String(b.eta ?? '0 deg');
-      row.querySelector('.req-support').value = b.support || '';
+      fill({ kind, min: b.min ?? '', eta: b.eta ?? '0 deg', support: b.support || '', test: b.test === 'pure' ? '' : (b.test || '') });
     }
+  }
+  for (const d of c.deflection || []) {
+    fill({ kind: 'deflection', min: d.max ?? '', eta: d.eta ?? '0 deg', support: d.support || '',
+      test: d.test || 'three-point', load: d.load ?? '', span: d.span ?? '' });
   }
   const o = spec.objective || {};
   $('d-objective').value = o.maximize ? `maximize:${o.maximize}` : 'minimize:mass';
@@ -606,6 +673,9 @@ function fillDesign(spec) {
     $('d-laser-bed').value = spec.cutter.slice(6);
   }
   syncDesignVisibility();
+  for (const el of cleared) {
+    if (el.value === '' && (el.hidden || el.closest('[hidden]'))) el.value = el.defaultValue;
+  }
 }
 
 // The spec in the page's URL (#design?spec=...), so that a design can be shared as a link.
@@ -705,7 +775,10 @@ function showDesign(d) {
       const row = table.insertRow();
       row.dataset.name = c.name;
       row.dataset.binding = c.binding === null ? '?' : (c.binding ? 'yes' : 'no');
-      cell(row, c.name).className = 'text';
+      // a load case: the deflection (mm) under its load, and the test's P / delta
+      const loadCase = c.load_N === undefined ? ''
+        : ` (${c.test}, ${fmt(c.load_N)} N; P/\u03b4 = ${fmt(c.stiffness_N_per_mm, 4)} N/mm)`;
+      cell(row, `${c.name}${loadCase}`).className = 'text';
       cell(row, fmt(c.value, 5), 'value');
       cell(row, `${c.sense === 'min' ? '\u2265' : '\u2264'} ${fmt(c.bound, 5)}`, 'bound');
       cell(row, fmt(c.margin, 3), 'margin');

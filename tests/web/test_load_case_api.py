@@ -1,0 +1,103 @@
+"""``POST /api/design`` with load cases: the chassis plate's deflection bound answered as a
+deflection in mm (the direct solve of the same spec), and bad load cases as 422 naming the
+TOML path of the field (the spec parser's and ``Problem.from_spec``'s own checks)."""
+
+from __future__ import annotations
+
+import copy
+from typing import Any
+
+import pytest
+from fastapi.testclient import TestClient
+
+from .test_design_api import alive, client, direct_design, spec_of, without_timings
+
+__all__ = ["client"]  # the module's app fixture
+
+
+def _chassis(**changes: Any) -> dict[str, Any]:
+    """The chassis plate's spec with keys of its deflection bound changed (None: removed)."""
+    spec = copy.deepcopy(spec_of("chassis_plate.toml"))
+    d = spec["constraints"]["deflection"][0]
+    for key, value in changes.items():
+        if value is None:
+            d.pop(key, None)
+        else:
+            d[key] = value
+    return spec
+
+
+def test_the_chassis_plate_answers_with_its_deflection_in_mm(client: TestClient) -> None:
+    spec = spec_of("chassis_plate.toml")
+    r = client.post("/api/design", json=spec)
+    assert r.status_code == 200, r.text
+    design = r.json()["design"]
+    assert without_timings(design) == direct_design(spec)
+    assert design["status"] == "optimal" and design["certified"] is True
+    (c,) = [c for c in design["constraints"] if c["name"] == "constraints.deflection[0].max"]
+    assert (c["unit"], c["sense"], c["test"], c["load_N"]) == ("mm", "max", "three-point", 10.0)
+    assert c["bound"] == pytest.approx(1.0) and 0 < c["value"] <= 1.0
+    assert c["margin"] == pytest.approx(c["bound"] - c["value"])
+    assert c["value"] * c["stiffness_N_per_mm"] == pytest.approx(10.0)  # delta x P/delta = P
+    (span,) = [c for c in design["constraints"] if c["name"] == "constraints.deflection[0].span"]
+    assert span["unit"] == "mm" and span["value"] >= 120.0  # the panel reaches the supports
+
+
+@pytest.mark.parametrize(
+    ("body", "field", "words"),
+    [
+        (_chassis(load="0 N"), "constraints.deflection[0].load", "out of range"),
+        (_chassis(load=-3), "constraints.deflection[0].load", "out of range"),
+        (_chassis(load="3 mm"), "constraints.deflection[0].load", "wrong dimension"),
+        (_chassis(load=None), "constraints.deflection[0].load", "missing"),
+        (_chassis(max="0 mm"), "constraints.deflection[0].max", "out of range"),
+        (_chassis(span="0 mm"), "constraints.deflection[0].span", "out of range"),
+        (_chassis(span="-5 mm"), "constraints.deflection[0].span", "out of range"),
+        (_chassis(test="five-point"), "constraints.deflection[0].test", "'platens'"),
+        (_chassis(test=None), "constraints.deflection[0].test", "missing"),
+        (_chassis(test="platens"), "constraints.deflection[0].span", "no span for platens"),
+        (_chassis(support="clamped"), "constraints.deflection[0].support", "'frame'"),
+        (
+            {
+                **_chassis(),
+                "layers": "identical",
+                "layout": {"shape": "circle"},
+                "constraints": {
+                    "diameter": {"min": "70 mm", "max": "80 mm"},
+                    "deflection": [{"test": "three-point", "load": "1 N", "max": "1 mm"}],
+                },
+            },
+            "constraints.deflection[0].test",
+            "square or rectangle",
+        ),
+        (
+            {
+                **_chassis(),
+                "constraints": {
+                    "inplane_stiffness": [{"min": "10 N/mm", "test": "three-point"}],
+                },
+            },
+            "constraints.inplane_stiffness[0].test",
+            "not a test of inplane_stiffness",
+        ),
+        (
+            {
+                **_chassis(),
+                "constraints": {
+                    "flexural_rigidity": [{"min": "10 mN*m^2", "test": "platens"}],
+                },
+            },
+            "constraints.flexural_rigidity[0].test",
+            "not a test of flexural_rigidity",
+        ),
+    ],
+)
+def test_bad_load_cases_get_422_naming_the_field(
+    client: TestClient, body: dict[str, Any], field: str, words: str
+) -> None:
+    r = client.post("/api/design", json=body)
+    assert r.status_code == 422, r.text
+    d = r.json()
+    assert d["field"] == field, d
+    assert words in d["detail"], d["detail"]
+    alive(client)
