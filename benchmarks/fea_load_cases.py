@@ -27,8 +27,10 @@ layers eta > 45 deg is the mirror image of 90 - eta and is run only at 2 and 4 e
 * ``d``: shifts 0.25 and 0.5 of the off-axis 3-point and cantilever rows of every design, 2 / 4 / 8
   (all designs at 2, then at 4, then at 8);
 * ``e``: 16 elements per facet at eta 0 and 90 for 3-point, 4-point and cantilever, for the
-  models of at most ``MAX_NODES_16`` nodes (larger ones would take more than about 5 minutes:
-  the 280 000-node rectangle coupons of off_axis_fe.csv took 484 and 624 s).
+  models of at most ``MAX_NODES_16`` nodes. That leaves out the rectangle (169 930 nodes at 16
+  per facet) and the fifth design (257 018): ccx's peak memory grew by about 46 kB per node in
+  this run (3.3 GB for the rectangle's 72 000-node coupons at 8 per facet), so they would need
+  about 8 and 12 GB, and the 280 000-node coupons of off_axis_fe.csv took 484 and 624 s.
 
 Rows that are never written:
 
@@ -41,6 +43,14 @@ Rows that are never written:
   :func:`corrugate.fea.assembly.assembly_deck` refuses the case (InputError) and the run prints
   ``skip``: for n = 8 (9 facets), n = 10 (11) and n = 6 (7) along = 2 is skipped (4, 8 and 16
   qualify); n = 17 (18 facets) and n = 13 (14) qualify at every along.
+
+**The committed CSV is partial** (about 90 minutes of runs on 2 cores shared with other jobs,
+load averages up to 50 at the end): phases ``a`` and ``b`` are complete; of ``c`` every row at
+2 and 4 per facet, and at 8 per facet eta 0 (all four tests) and 15 deg compression and 3-point
+(426 and 433 s, 86 500 nodes, 4.1 GB peak; the cantilever at 15 and everything at 30 and 45 deg
+at 8 per facet were not run); ``d`` (shifts) was not run; of ``e`` only
+the case study's 4-point bending at eta 0 (90 850 nodes, 201 s, 4.2 GB peak). ``run`` resumes
+from there.
 
 ``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
 """
