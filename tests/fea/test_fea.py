@@ -568,8 +568,10 @@ def test_oblique_coupon_lies_between_plate_bounds_and_below_the_cos2_rule(
     # the free-panel model (corrugate.mechanics.offaxis) is the Reuss value written independently here,
     # a lower bound of the coupon (complementary energy of the uniform stress field, whatever
     # the platens hold); it stays within the coupon's order of magnitude, where the rule is
-    # more than 10 times above (docs/validation/off_axis.md has the converged series)
-    assert pytest.approx(b["K_reuss"], rel=1e-6) == free.K
+    # more than 10 times above (docs/validation/off_axis.md has the converged series); the
+    # model carries the finite-panel factor 1 - 0.25 x 0.6 / sqrt(7) at 45 deg
+    # (docs/load_cases.md section 4), so it is that share of the Reuss value
+    assert pytest.approx(b["K_reuss"] * (1 - 0.25 * 0.6 / 7**0.5), rel=1e-6) == free.K
     assert free.K <= K < 5 * free.K
     assert free.D <= D
     # along the creases the cos^2 rule and the plate agree

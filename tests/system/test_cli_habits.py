@@ -58,7 +58,11 @@ def test_show_completion_prints_a_bash_script(capsys: pytest.CaptureFixture[str]
     [
         ("corrugate des", 1, {"design"}),
         ("corrugate analyze --mod", 2, {"--model"}),
-        ("corrugate docs validation/", 2, {"validation/off_axis", "validation/strength"}),
+        (
+            "corrugate docs validation/",
+            2,
+            {"validation/load_cases", "validation/off_axis", "validation/strength"},
+        ),
         ("corrugate analyze --model", 3, {"paper", "xia", "refined"}),
         ("corrugate analyze --material dura", 3, {"dura-lar"}),
         ("corrugate pattern --cutter maker", 3, {"maker-12x12", "maker-12x24"}),
