@@ -4,7 +4,6 @@ and certified answers against exhaustive search."""
 
 from __future__ import annotations
 
-import copy
 import csv
 import math
 import re
@@ -57,6 +56,18 @@ def _problem(
     if extra:
         d.update(extra)
     return Problem.from_spec(parse_spec(d))
+
+
+def _grid() -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """The whole grid of :func:`_problem` (n 7-13, W 6-14 step 1, alpha 40-115 step 5) as rows
+    (n, W, alpha) and as the point arrays of identical layers."""
+    grid = np.array(
+        [(n, W, a) for n in range(7, 14) for W in range(6, 15) for a in range(40, 116, 5)],
+        dtype=float,
+    )
+    x = {"n1": grid[:, 0], "W1": grid[:, 1], "a1": grid[:, 2]}
+    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+    return grid, x
 
 
 def _point(n: float, W: float, a: float) -> dict[str, np.ndarray]:
@@ -229,12 +240,7 @@ def test_certified_load_case_answers_match_exhaustive_search(
     p0 = _problem()
     cand = p0.candidates[0]
     # a bound that some grid points meet: a fraction of the grid's best P / delta
-    grid = np.array(
-        [(n, W, a) for n in range(7, 14) for W in range(6, 15) for a in range(40, 116, 5)],
-        dtype=float,
-    )
-    x = {"n1": grid[:, 0], "W1": grid[:, 1], "a1": grid[:, 2]}
-    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+    grid, x = _grid()
     probe = _problem({"joint": joint}, deflection=[{"test": test, "load": 1, "max": 1, "eta": eta}])
     qd = next(c.quantity for c in probe.constraints if c.load is not None)
     k_all = point_values(probe, cand, cand, x, Tables(probe))[qd]
@@ -307,7 +313,6 @@ def test_the_chassis_example_certifies_its_deflection() -> None:
     cand1 = next(cd for cd in p.candidates if cd.t == l1.t)
     k = point_values(p, cand1, cand1, x, Tables(p))[c.quantity][0]
     assert c.deflection(k) <= 1.0 + 1e-9
-    _ = copy  # the spec is read, not edited
 
 
 def test_strength_capacity_is_the_peak_stress_of_the_section_model() -> None:
@@ -369,12 +374,7 @@ def test_certified_strength_answers_match_exhaustive_search(
     """A strength bound (a fraction of the grid's largest capacity) with an off-axis K bound:
     the certified answer is the lightest grid point that meets both (exhaustive search over the
     same point values) and meets them pointwise."""
-    grid = np.array(
-        [(n, W, a) for n in range(7, 14) for W in range(6, 15) for a in range(40, 116, 5)],
-        dtype=float,
-    )
-    x = {"n1": grid[:, 0], "W1": grid[:, 1], "a1": grid[:, 2]}
-    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+    grid, x = _grid()
     probe = _problem(strength=[{"test": test, "load": 1, "eta": eta}])
     cand = probe.candidates[0]
     q = next(c.quantity for c in probe.constraints if c.quantity.kind == "Pmax")

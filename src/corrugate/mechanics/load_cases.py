@@ -31,6 +31,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
 from corrugate.mechanics.behaviours import Behaviour, TestForm
 
 __all__ = [
@@ -138,8 +140,6 @@ def shear_and_depth(springs: tuple[Any, Any], c2: float, s2: float) -> tuple[Any
 
 
 def _larger(x: Any, y: Any) -> Any:
-    import numpy as np
-
     if hasattr(x, "maximum"):
         return x.maximum(y)
     return np.maximum(x, y)
@@ -226,8 +226,6 @@ def load_capacity(
     other = allowable[1] / (safety_factor * per_load[1])
     if hasattr(own, "minimum"):
         return own.minimum(other)
-    import numpy as np
-
     return np.minimum(own, other)
 
 

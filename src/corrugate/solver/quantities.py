@@ -271,7 +271,8 @@ def point_values(
             D_b = np.asarray(b.model("D", ev.springs, e, None))[:, 0]
             K_b = np.asarray(b.model("K", ev.springs, e, None))[:, 0]
             if walls is not None and crease_layer(e) is not None:
-                D_b, K_b = D_b + walls(span)[0], K_b + walls(span)[2]
+                w = walls(span)
+                D_b, K_b = D_b + w[0], K_b + w[2]
             out[Quantity("D", e, b.name)] = D_b
             out[Quantity("EI", e, b.name)] = D_b * span
             out[Quantity("K", e, b.name)] = K_b
@@ -415,7 +416,8 @@ def box_bounds(
     Lx_lo, Lx_hi = g1_lo.extent, g1_hi.extent
     Ly_lo, Ly_hi = g2_lo.extent, g2_hi.extent
     out: Bounds = {LX: (Lx_lo, Lx_hi), LY: (Ly_lo, Ly_hi)}
-    if THICKNESS in quantities or MASS in quantities:
+    if THICKNESS in quantities or MASS in quantities or problem.joint != "none":
+        # (the band's walls of a bonded joint stand t_d high: their stiffness needs it too)
         # t_d = W1 c1 + W2 c2 grows with W and falls with alpha: W low with alpha high, and back
         if same:
             td_lo = 2.0 * (g1_lo.W * g1_hi.c)
@@ -743,7 +745,7 @@ def _stiffness_bounds(
             )
         band, depth = None, None
         if problem.joint != "none" and crease_layer(eta) is not None:
-            depth = _thickness_bounds(lo, hi)
+            depth = Interval(*geo[THICKNESS])
             band = band_walls(
                 float(c1.material.E),
                 float(c1.material.nu),
@@ -762,19 +764,6 @@ def _stiffness_bounds(
             v = v * _span_bounds(problem, Lx, Ly, eta)
         out[q] = (np.maximum(v.lo, 0.0), v.hi)
     return out
-
-
-def _thickness_bounds(lo: Arrays, hi: Arrays) -> Interval:
-    """Bounds of t_d = W1 cos(alpha1/2) + W2 cos(alpha2/2) over the boxes: it grows with W and
-    falls with alpha (the corners, as :func:`box_bounds` takes them)."""
-
-    def td(w: Arrays, a: Arrays) -> FloatArray:
-        return np.asarray(
-            w["W1"] * np.cos(np.radians(a["a1"]) / 2) + w["W2"] * np.cos(np.radians(a["a2"]) / 2)
-        )
-
-    t_lo, t_hi = td(lo, hi), td(hi, lo)
-    return Interval(np.nextafter(t_lo, 0.0), np.nextafter(t_hi, np.inf))
 
 
 def _load_case_bounds(
