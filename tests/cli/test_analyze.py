@@ -185,9 +185,14 @@ def test_materials_command(cli: CliRun) -> None:
 
 # ---- load cases: --test, --load, --span (docs/load_cases.md) --------------------------------
 
-#: delta / P = a Ls^3 / EI + (b Ls + 1.5 h) / S of each bending test (docs/load_cases.md,
-#: section 1: the Timoshenko beam's a and b, the local term 1.5 h).
-TESTS_AB = {"three-point": (1 / 48, 1 / 4), "four-point": (1 / 96, 1 / 8), "cantilever": (1 / 3, 1)}
+#: delta / P = a Ls^3 / EI + (b Ls + c h) / S of each bending test (docs/load_cases.md,
+#: section 1: the Timoshenko beam's a and b, the local term c h: 2 h on line supports, 2.5 h
+#: with a clamped root).
+TESTS_AB = {
+    "three-point": (1 / 48, 1 / 4, 2.0),
+    "four-point": (1 / 96, 1 / 8, 2.0),
+    "cantilever": (1 / 3, 1, 2.5),
+}
 
 
 def _hand_deflection(d: dict[str, object], test: str, load: float, span: float | None) -> float:
@@ -202,8 +207,8 @@ def _hand_deflection(d: dict[str, object], test: str, load: float, span: float |
     W, n, t, c = 8.0, 8, 0.125, math.cos(math.radians(84 / 2))
     S = m.E / (2 * (1 + m.nu)) * t * W * c**2 * (n + 1)
     Ls = L if span is None else span
-    a, b = TESTS_AB[test]
-    return load * (a * Ls**3 / (D * L) + (b * Ls + 1.5 * W * c) / S)
+    a, b, local = TESTS_AB[test]
+    return load * (a * Ls**3 / (D * L) + (b * Ls + local * W * c) / S)
 
 
 @pytest.mark.parametrize("test", sorted(TESTS_AB))

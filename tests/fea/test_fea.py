@@ -356,7 +356,7 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
     with pytest.raises(InputError, match="no straight loaded edges"):
         assembly_deck(circle, "compression", AssemblyMesh(2))
     odd = Assembly.identical(Layer(W=5.0, n=4, alpha_deg=120.0, material=get_material("dura-lar")))
-    with pytest.raises(InputError, match="divisible by 8"):
+    with pytest.raises(InputError, match="divisible by 4"):
         assembly_deck(odd, "bending4", AssemblyMesh(2))
 
 

@@ -28,7 +28,7 @@ DL = get_material("dura-lar")
 def _hand_three_point(W: float, n: int, alpha: float, t: float = 0.125) -> tuple[float, float]:
     """(P / delta in N/mm, L in mm) of a square of identical Dura-Lar layers in three-point
     bending over its own side at eta = 0, written out from docs/load_cases.md: delta / P = L^3 /
-    (48 EI) + (L / 4 + 1.5 h) / S with EI = D L from analyze (the pure-bending model, checked
+    (48 EI) + (L / 4 + 2 h) / S with EI = D L from analyze (the pure-bending model, checked
     elsewhere), S = G t W c^2 (n + 1), h = W c."""
     a = Assembly.identical(Layer(W=W, n=n, alpha_deg=alpha, material=DL, t=t))
     r = analyze(a, "refined", [0.0]).stiffness[0]
@@ -36,7 +36,7 @@ def _hand_three_point(W: float, n: int, alpha: float, t: float = 0.125) -> tuple
     G = DL.E / (2 * (1 + DL.nu))
     S = G * t * W * c * c * (n + 1)
     L = r.span
-    return 1.0 / (L**3 / (48 * r.D * L) + (L / 4 + 1.5 * W * c) / S), L
+    return 1.0 / (L**3 / (48 * r.D * L) + (L / 4 + 2.0 * W * c) / S), L
 
 
 def _problem(
@@ -140,15 +140,16 @@ def _sweep_fe() -> list[tuple[float, int, float, float, float]]:
 def test_three_point_model_is_at_or_below_the_fe_of_the_sweep() -> None:
     """Second method: the FE three-point D (apparent, P L^2 / (48 delta)) of the ten sweep designs
     (W 8-14, n 7-13, alpha 40-115 deg). The model's apparent D is at or below it (the
-    certificate holds) and within 10 % (docs/load_cases.md section 2: 0.924-0.998); without
-    the shear term (the pure D) it would be up to 30 % above."""
+    certificate holds) and at least 0.85 of it, the target along the creases (docs/load_cases.md
+    section 2: 0.876-0.996 with c = 2); without the shear term (the pure D) it would be up to
+    30 % above."""
     rows = _sweep_fe()
     assert len(rows) == 10
     worst_pure = 0.0
     for W, n, alpha, fe3, _fe4 in rows:
         k, L = _hand_three_point(W, n, alpha)
         model = k * L * L / 48.0
-        assert 0.9 * fe3 <= model <= fe3, (W, n, alpha, model, fe3)
+        assert 0.85 * fe3 <= model <= fe3, (W, n, alpha, model, fe3)
         pure = analyze(Assembly.identical(Layer(W=W, n=n, alpha_deg=alpha, material=DL)))
         worst_pure = max(worst_pure, pure.stiffness[0].D / fe3)
     assert worst_pure > 1.25

@@ -57,7 +57,8 @@ def test_square_at_45_deg_is_the_hand_derived_plate_bound() -> None:
     docs/theory.md 3.1 and Xia's A66 = G t sin(alpha/2). D: the strip bound is zero at 45 deg
     (no facet of a square runs from support to support), so D is the plate bound with
     Eby, Ebx and D66 = G t^3 / (12 s). K carries the finite-panel factor 1 - w 0.6 / sqrt(n) of
-    each layer off the creases, w = 0.25 at 45 deg (docs/load_cases.md section 4)."""
+    each layer off the creases, D 1 - w 0.3 / sqrt(n), w = 0.25 at 45 deg (docs/load_cases.md
+    sections 4-5)."""
     W, n, alpha, t = 8.0, 8, 84.0, 0.125
     E, nu = DL.E, DL.nu
     s, c = math.sin(math.radians(alpha / 2)), math.cos(math.radians(alpha / 2))
@@ -76,19 +77,20 @@ def test_square_at_45_deg_is_the_hand_derived_plate_bound() -> None:
     a = Assembly.identical(Layer(W=W, n=n, alpha_deg=alpha, material=DL))
     r = analyze(a, "refined", [45.0]).stiffness[0]
     assert pytest.approx(2 * K_layer * (1 - 0.25 * 0.6 / math.sqrt(8)), rel=1e-9) == r.K
-    assert pytest.approx(2 * D_layer, rel=1e-9) == r.D
+    assert pytest.approx(2 * D_layer * (1 - 0.25 * 0.3 / math.sqrt(8)), rel=1e-9) == r.D
     # the rule (frame) is hundreds of times stiffer in-plane
     assert analyze(a, "refined", [45.0], support="frame").stiffness[0].K > 300 * r.K
 
 
 def test_strip_bound_at_15_deg() -> None:
     """At 15 deg a fraction 1 - tan 15 of a square's facets of layer 1 run from one support to
-    the other: D >= D_S cos^4(15) (1 - tan 15) (layer 2, at 75 deg, has none)."""
+    the other: D >= D_S cos^4(15) (1 - tan 15) (layer 2, at 75 deg, has none), times the
+    finite-panel factor of bending, 1 - 0.3 / sqrt(n) at 15 deg (docs/load_cases.md section 5)."""
     a = Assembly.identical(Layer(W=8, n=8, alpha_deg=84, material=DL))
     r = analyze(a, "refined", [0.0, 15.0])
     D_S = float(r.springs[0].D_S)
     e = math.radians(15.0)
-    strip = D_S * math.cos(e) ** 4 * (1 - math.tan(e))
+    strip = D_S * math.cos(e) ** 4 * (1 - math.tan(e)) * (1 - 0.3 / math.sqrt(8))
     assert strip <= r.stiffness[1].D
     assert pytest.approx(strip, rel=0.01) == r.stiffness[1].D  # the plate bound is far smaller
 

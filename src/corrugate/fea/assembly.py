@@ -84,7 +84,8 @@ Model (every choice stated; docs/theory.md section 6):
   each layer's nodes on those lines; away from the local deformation at the load lines), gives
   the pure bending stiffness of each layer, EI_i = P_i span^3 / (1024 Delta_i), free of shear
   deformation: the quantity the closed forms model. Needs node lines at 1/4 and 3/8 of the span
-  (``along`` x (n + 1) divisible by 8).
+  (``along`` x (n + 1) divisible by 4: the chord holds 2 x along x (n + 1) node intervals,
+  corner and mid-side nodes).
 * **Cantilever bending about eta** (``cantilever``): the root, every node of each layer's end edge
   at the low end of the load axis, is clamped (the three displacements and the three rotations
   zero); the free end, every node of each layer's end edge at the high end, is a rigid line load
@@ -476,7 +477,7 @@ def assembly_deck(
                 raise InputError(
                     "mesh.along",
                     mesh.along,
-                    "a value with along x (n + 1) divisible by 8 for four-point bending",
+                    "a value with along x (n + 1) divisible by 4 for four-point bending (the facets across the span: n + 1)",
                     reason="gives no node lines at 1/4 and 3/8 of the span",
                 )
             mid_other = c_other[np.isin(sh.ids, mid)]

@@ -43,7 +43,11 @@ make the angle theta with the load direction, c = cos theta, s = sin theta:
   mid-span, every other facet discarded, which gives D_S c^4 (1 - |tan theta|). Discarding
   material and the connections between strips can only soften a linear structure; the strips
   are Euler-Bernoulli beams, as the paper's D is, so shear deformation of a stubby panel (about
-  10 % in the FE 3-point test at eta = 0) is not in it.
+  10 % in the FE 3-point test at eta = 0) is not in it. A finite coupon holds a whole number of
+  such strips, and which facets run through depends on where it is cut: shifted by half a pitch
+  it can bend several per cent less than the homogenised count says, so each layer's share of D
+  takes a finite-panel factor 1 - w(eta) 0.3 / sqrt(n) off the creases, of the same form as K's
+  (docs/load_cases.md section 5).
 
 At eta = 0 and 90 deg both conditions give the paper's springs exactly. Every function here is
 plain arithmetic, so it takes NumPy arrays or :class:`~corrugate.solver.interval.Interval`
@@ -64,6 +68,7 @@ from corrugate.mechanics.behaviours import check_support, get_support
 from corrugate.names import DEFAULT_SUPPORT, Support
 
 __all__ = [
+    "FINITE_PANEL_BENDING",
     "FINITE_PANEL_DEFICIT",
     "Coupon",
     "Support",
@@ -210,8 +215,8 @@ def _free_pair(
             return free_inplane(s1.K_S, s1.K_C, s1.K_T, eta_deg) * _finite(
                 s1, eta_deg
             ) + free_inplane(s2.K_S, s2.K_C, s2.K_T, eta_deg - 90.0) * _finite(s2, eta_deg)
-        return free_bending(s1.D_S, s1.D_C, s1.D_T, eta_deg) + free_bending(
-            s2.D_S, s2.D_C, s2.D_T, eta_deg - 90.0
+        return free_bending(s1.D_S, s1.D_C, s1.D_T, eta_deg) * _finite(s1, eta_deg, _B) + (
+            free_bending(s2.D_S, s2.D_C, s2.D_T, eta_deg - 90.0) * _finite(s2, eta_deg, _B)
         )
     (g1, h1), (g2, h2) = scale
     if kind == "K":
@@ -220,17 +225,28 @@ def _free_pair(
         ) + free_inplane(s2.K_S * g2, s2.K_C * h2, s2.K_T * g2, eta_deg - 90.0) * _finite(
             s2, eta_deg
         )
-    return free_bending(s1.D_S * g1, s1.D_C * h1, s1.D_T * g1, eta_deg, r) + free_bending(
-        s2.D_S * g2, s2.D_C * h2, s2.D_T * g2, eta_deg - 90.0, r
+    return free_bending(s1.D_S * g1, s1.D_C * h1, s1.D_T * g1, eta_deg, r) * _finite(
+        s1, eta_deg, _B
+    ) + free_bending(s2.D_S * g2, s2.D_C * h2, s2.D_T * g2, eta_deg - 90.0, r) * _finite(
+        s2, eta_deg, _B
     )
 
 
-def _finite(springs: Any, eta_deg: float) -> Any:
-    """The finite-panel factor of a layer's in-plane share at eta: 1 on the crease directions
-    (exact there), 1 - w(eta) d(n) off them with d(n) the springs' ``deficit``
-    (:func:`finite_panel_factor`)."""
+#: c of the finite-panel deficit of off-axis bending, c / sqrt(n) (docs/load_cases.md,
+#: section 5): smaller than K's (:data:`FINITE_PANEL_DEFICIT`), since it covers only where the
+#: coupon is cut (a whole number of facets runs from support to support).
+FINITE_PANEL_BENDING = 0.3
+_B = FINITE_PANEL_BENDING / FINITE_PANEL_DEFICIT
+
+
+def _finite(springs: Any, eta_deg: float, share: float = 1.0) -> Any:
+    """The finite-panel factor of a layer's share of K (``share`` 1) or D (``share`` = :data:`
+    FINITE_PANEL_BENDING` / :data:`FINITE_PANEL_DEFICIT`) at eta: 1 on the crease directions
+    (exact there), 1 - w(eta) share d(n) off them with d(n) the springs' ``deficit``
+    (:func:`finite_panel_factor`; n >= 1, where 0.6 / sqrt(n) <= 1, so the share scales the
+    deficit itself)."""
     w = finite_panel_weight(eta_deg)
-    return 1.0 if w == 0.0 else 1.0 - springs.deficit * w
+    return 1.0 if w == 0.0 else 1.0 - springs.deficit * (w * share)
 
 
 @dataclass(frozen=True)

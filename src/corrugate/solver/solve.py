@@ -188,7 +188,7 @@ class Solution:
         """What the certificate is a statement about: the model variant, and for each
         behavioural bound the support condition and the test it is taken in
         (docs/load_cases.md), e.g. ``certified under the refined model: EI(0 deg) in pure
-        bending, free sides; deflection 0.93 mm <= 1 mm under 10 N in three-point bending over
+        bending, free sides; deflection 0.94 mm <= 1 mm under 10 N in three-point bending over
         120 mm, free sides``."""
         p = self.problem
         head = f"{'certified' if self.certified else 'not certified'} under the {p.model} model"
