@@ -101,3 +101,56 @@ def test_bad_load_cases_get_422_naming_the_field(
     assert d["field"] == field, d
     assert words in d["detail"], d["detail"]
     alive(client)
+
+
+# ---- POST /api/analyze with a load case: the CLI's `analyze --test --load --span` ----------
+
+_CASE_STUDY = {"W": 8, "n": 8, "alpha": "84 deg", "material": "dura-lar", "eta": [0, 90]}
+
+
+def test_analyze_states_a_load_case_as_the_cli_does(client: TestClient) -> None:
+    """Second route: the web's load_case is the object ``corrugate analyze --json`` prints for
+    the same options (the shared :mod:`corrugate.analysis.load_case`), and its deflection is
+    load / (P / delta) with P / delta below the pure-bending 48 EI / L^3 (shear adds
+    compliance)."""
+    from corrugate.analysis.load_case import load_case_dict, load_case_of, load_case_rows
+    from corrugate.spec.inputs import analysis_request
+
+    body = {**_CASE_STUDY, "test": "three-point", "load": "10 N", "span": "40 mm"}
+    r = client.post("/api/analyze", json=body)
+    assert r.status_code == 200, r.text
+    got = r.json()["load_case"]
+    req = analysis_request(W=8, n=8, alpha="84 deg", material="dura-lar", eta=[0, 90])
+    res = req.run()
+    case = load_case_of("three-point", "10 N", "40 mm")
+    assert case is not None
+    assert got == load_case_dict(case, load_case_rows(res, case))  # JSON keeps floats exactly
+    for row, st in zip(got["directions"], res.stiffness, strict=True):
+        assert row["span_mm"] == 40.0
+        assert row["deflection_mm"] == pytest.approx(10.0 / row["stiffness_N_per_mm"])
+        assert row["stiffness_N_per_mm"] < 48 * st.D * st.span / 40.0**3
+
+
+@pytest.mark.parametrize(
+    ("extra", "field"),
+    [
+        ({"load": 10}, "load"),  # a load without a test
+        ({"span": "30 mm"}, "span"),
+        ({"test": "bending"}, "test"),  # unknown test
+        ({"test": "three-point"}, "load"),  # a test without a load
+        ({"test": "three-point", "load": 0}, "load"),
+        ({"test": "three-point", "load": "10 mm"}, "load"),  # not a force
+        ({"test": "three-point", "load": 10, "span": -5}, "span"),
+        ({"test": "three-point", "load": 10, "span": "1 m"}, "span"),  # longer than the panel
+        ({"test": "platens", "load": 10, "span": 20}, "span"),  # no span between platens
+    ],
+)
+def test_analyze_bad_load_cases_get_422_naming_the_field(
+    client: TestClient, extra: dict[str, Any], field: str
+) -> None:
+    r = client.post("/api/analyze", json={**_CASE_STUDY, **extra})
+    assert r.status_code == 422, r.text
+    body = r.json()
+    assert body["field"] == field, body
+    assert field in body["detail"]
+    alive(client)

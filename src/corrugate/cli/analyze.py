@@ -9,18 +9,16 @@ along eta (:func:`load_case_rows`).
 from __future__ import annotations
 
 import json
-import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Annotated
 
 import typer
 
+from corrugate.analysis.load_case import LoadCase, load_case_dict, load_case_of, load_case_rows
 from corrugate.cli import options as o
 from corrugate.cli.console import fmt as _fmt
 from corrugate.cli.console import make_console
-from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.parameters import PARAMETERS
-from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT, LOAD_CASES
+from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -37,131 +35,8 @@ __all__ = [
     "materials_cmd",
 ]
 
+
 Opt = typer.Option
-
-
-@dataclass(frozen=True, slots=True)
-class LoadCase:
-    """A load case of ``analyze``: the test's name, the load (N) and the span (mm; None: the
-    panel's length along each eta, and always None between platens)."""
-
-    test: str
-    load: float
-    span: float | None = None
-
-
-def _flag(name: str) -> str:
-    return PARAMETERS[name].flag
-
-
-def load_case_of(test: str | None, load: str | None, span: str | None) -> LoadCase | None:
-    """The load case the options ``--test``, ``--load`` and ``--span`` state (None when none is
-    given); :class:`InputError` naming the option at fault: a load or a span without a test, a
-    test without a load, an unknown test, a load or span that is not > 0, a span between
-    platens."""
-    from corrugate.core.limits import LIMITS, abnormal_reason
-    from corrugate.core.units import parse_quantity
-
-    if test is None:
-        for name, value in (("load", load), ("span", span)):
-            if value is not None:
-                raise InputError(
-                    _flag(name),
-                    value,
-                    f"only with {_flag('test')} ({', '.join(LOAD_CASES)})",
-                    reason=f"is given without {_flag('test')}",
-                )
-        return None
-    if test not in LOAD_CASES:
-        raise UnknownNameError(_flag("test"), test, LOAD_CASES)
-    if load is None:
-        raise InputError(
-            _flag("load"),
-            "not given",
-            "a load in N (e.g. 10 or '2 lbf')",
-            reason=f"is required with {_flag('test')}",
-        )
-
-    def positive(name: str, value: str, unit: str, limit: str) -> float:
-        x = parse_quantity(value, unit, _flag(name))
-        hi = LIMITS[limit].hi
-        if not 0.0 < x <= hi:
-            reason = abnormal_reason(x) or "is out of range"
-            raise InputError(
-                _flag(name), f"{x:g} {unit}", f"> 0 {unit} and <= {hi:g} {unit}", reason=reason
-            )
-        return x
-
-    P = positive("load", load, "N", "load")
-    if span is None:
-        return LoadCase(test, P)
-    if test == "platens":
-        raise InputError(
-            _flag("span"),
-            span,
-            "no span for platens (the panel's length along eta is compressed)",
-            reason="does not apply",
-        )
-    return LoadCase(test, P, positive("span", span, "mm", "length"))
-
-
-def load_case_rows(r: Analysis, case: LoadCase) -> list[dict[str, float]]:
-    """For each direction of ``r``: the span Ls (mm; platens: the length compressed), the
-    deflection (mm) of ``case`` under its load and the test's P / delta (N/mm), by
-    :func:`corrugate.mechanics.load_cases.load_stiffness` (docs/load_cases.md, sections 1-3):
-    the support's D (bending tests, EI = D L over the panel's length L along eta, the layers'
-    shear spring V and depth h at eta) or K (platens). :class:`InputError` naming ``--span``
-    where it is longer than the panel, and ``--test`` for a layout without straight edges."""
-    from corrugate.mechanics.behaviours import get_load_case
-    from corrugate.mechanics.load_cases import load_stiffness, shear_and_depth
-    from corrugate.mechanics.offaxis import _cs
-
-    layout = r.assembly.layout
-    if layout.name not in ("square", "rectangle"):
-        raise InputError(
-            _flag("test"),
-            f"{case.test} on layout {layout.name}",
-            "a square or rectangle layout",
-            reason="has no straight edges to support or load",
-        )
-    form = get_load_case(case.test).form
-    assert form is not None
-    rows = []
-    for st in r.stiffness:
-        if case.span is not None and case.span > st.span:
-            raise InputError(
-                _flag("span"),
-                f"{case.span:g} mm",
-                f"at most the panel's length along eta = {st.eta_deg:g} deg, {st.span:.6g} mm",
-            )
-        if form.kind == "inplane":
-            k = float(load_stiffness(form, st.K, None, None, st.span))
-            Ls = st.span
-        else:
-            V, h = shear_and_depth(r.springs, *_cs(st.eta_deg))
-            k = float(load_stiffness(form, st.D, float(V), float(h), st.span, case.span))
-            Ls = st.span if case.span is None else case.span
-        if not (math.isfinite(k) and k > 0):
-            raise InputError("body", f"P/delta = {k}", "a positive stiffness", reason="is not")
-        rows.append(
-            {
-                "eta_deg": st.eta_deg,
-                "span_mm": Ls,
-                "deflection_mm": case.load / k,
-                "stiffness_N_per_mm": k,
-            }
-        )
-    return rows
-
-
-def load_case_dict(case: LoadCase, rows: list[dict[str, float]]) -> dict[str, object]:
-    """The ``load_case`` object of ``analyze --json``."""
-    return {
-        "test": case.test,
-        "load_N": case.load,
-        "span_mm": case.span,
-        "directions": rows,
-    }
 
 
 def _print_load_case(case: LoadCase, rows: list[dict[str, float]], console: Console) -> None:

@@ -74,6 +74,7 @@ from corrugate.web.guards import (
     release_memory,
 )
 from corrugate.web.schemas import (
+    LOAD_CASE_KEYS,
     OUTPUT_OPTIONS,
     AnalyzeBody,
     DesignAnswer,
@@ -178,7 +179,7 @@ def _check_size(req: AnalysisRequest, settings: WebSettings) -> None:
 
 def _parse(body: AnalyzeBody, settings: WebSettings) -> AnalysisRequest:
     options = body.model_dump(
-        exclude={"model", "eta", "support", *OUTPUT_OPTIONS}, exclude_none=True
+        exclude={"model", "eta", "support", *OUTPUT_OPTIONS, *LOAD_CASE_KEYS}, exclude_none=True
     )
     with _PARSE_LOCK:
         req = analysis_request(model=body.model, eta=body.eta, support=body.support, **options)
@@ -213,11 +214,27 @@ def _require_finite(payload: dict[str, object]) -> None:
         )
 
 
+def _text(value: float | str | None) -> str | None:
+    return None if value is None else str(value)
+
+
 def analysis_payload(body: AnalyzeBody, settings: WebSettings) -> dict[str, object]:
-    """``Analysis.to_dict()`` of the request (runs on a worker thread)."""
+    """``Analysis.to_dict()`` of the request (runs on a worker thread), with the ``load_case``
+    of ``corrugate analyze --json`` when the body states one (``test``, ``load``, ``span``:
+    :mod:`corrugate.analysis.load_case`, errors naming those fields)."""
+    from corrugate.analysis.load_case import load_case_dict, load_case_of, load_case_rows
+
+    def field(name: str) -> str:
+        return name
+
+    with _PARSE_LOCK:
+        case = load_case_of(body.test, _text(body.load), _text(body.span), field)
     req = _parse(body, settings)
     with np.errstate(all="ignore"):  # overflow is reported as a 422 below, not as warnings
-        payload = req.run().to_dict()
+        result = req.run()
+        payload = result.to_dict()
+        if case is not None:
+            payload["load_case"] = load_case_dict(case, load_case_rows(result, case, field))
     _require_finite(payload)
     return payload
 
