@@ -28,6 +28,7 @@ from pathlib import Path
 from corrugate import Assembly, Layer, analyze, get_material
 from corrugate.mechanics.load_cases import (
     CANTILEVER,
+    FOUR_POINT,
     THREE_POINT,
     apparent,
     load_stiffness,
@@ -43,7 +44,9 @@ TESTS = {
     "bending": ("three-point", "D N mm"),
     "cantilever": ("cantilever", "D N mm"),
     "bending4": ("pure (4-point, between the load lines)", "D N mm"),
+    "bending4-load": ("four-point (at the load points)", "D N mm"),
 }
+FORMS = {"bending": THREE_POINT, "cantilever": CANTILEVER, "bending4-load": FOUR_POINT}
 Key = tuple[str, float, str, float]
 
 
@@ -109,7 +112,7 @@ def model_value(a: Assembly, test: str, eta: float) -> float:
         return st.K
     if test == "bending4":
         return st.D
-    form = (THREE_POINT if test == "bending" else CANTILEVER).form
+    form = FORMS[test].form
     assert form is not None
     V, h = shear_and_depth(r.springs, *_cs(eta))
     k = load_stiffness(form, st.D, float(V), float(h), st.span)
@@ -141,7 +144,7 @@ def local_needed(a: Assembly, test: str, eta: float, fe: float) -> tuple[float, 
     """(c, L / h): the local coefficient c that makes the load-case formula of ``test``
     (bending or cantilever) at ``eta`` (0 or 90) equal to the FE's apparent D ``fe`` (N mm),
     delta / P = a L^3 / (D L) + (b L + c h) / S over the panel's length L; and L / h."""
-    form = (THREE_POINT if test == "bending" else CANTILEVER).form
+    form = FORMS[test].form
     assert form is not None
     r = analyze(a, eta_deg=[eta])
     st = r.stiffness[0]
@@ -174,7 +177,7 @@ def _local_term(ds: dict[str, Assembly], series: dict[Key, dict[int, float]]) ->
     ]
     need: dict[str, list[float]] = defaultdict(list)
     for name, a in ds.items():
-        for test in ("bending", "cantilever"):
+        for test in FORMS:
             for eta in (0.0, 90.0):
                 s, _ = mirrored(a, name, eta, test, series)
                 if not s:
@@ -213,7 +216,8 @@ def table() -> str:
         "the FE say so: there the free-panel bound is too conservative to design with, and the",
         "FE verification (`corrugate validate`, the FE-verification work) has to decide.",
         "Bending values are D = EI / L in N mm as each test's own formula reads the deflection",
-        "(three-point P L^2 / (48 delta), cantilever P L^2 / (3 delta)); 'pure' is the",
+        "(three-point P L^2 / (48 delta), four-point at its load points P L^2 / (96 delta),",
+        "cantilever P L^2 / (3 delta)); 'pure' is the",
         "4-point test's curvature between its load lines (shear-free), against the model's D.",
         "",
     ]
