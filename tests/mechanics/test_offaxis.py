@@ -156,6 +156,10 @@ def test_certified_answer_with_off_axis_and_buckling_constraints(d: dict[str, An
     ok = (ev0.Lx >= c["side"]["min"] * (1 - rtol)) & (ev0.Lx <= c["side"]["max"] * (1 + rtol))
     ok &= value >= bound["min"] * (1 - rtol)
     ok &= _buckling_by_hand(layer, ev0, 0.0) >= c["buckling_load"][0]["min"] * (1 - rtol)
+    # [fabrication]'s defaults (docs/fabrication.md): W >= 3 mm and t / W <= 0.05; these small
+    # squares fit any mat
+    width = W
+    ok &= (width >= 3.0 * (1 - rtol)) & (0.125 / width <= 0.05 * (1 + rtol))
     assert sol.certified
     if not ok.any():
         assert sol.status == "infeasible"

@@ -152,12 +152,25 @@ def _feasible(
     ):
         if key in c:
             ok &= within(val, c[key].get("min"), c[key].get("max"))
+    f1 = _facet_factor(lay, np.asarray(n1), "x")
+    f2 = _facet_factor(lay, np.asarray(n2), "y")
     if "sheet_max" in c:
         s = c["sheet_max"]
         ok &= within((n1 + 1) * W1, None, s) & within((n2 + 1) * W2, None, s)
-        f1 = _facet_factor(lay, np.asarray(n1), "x")
-        f2 = _facet_factor(lay, np.asarray(n2), "y")
         ok &= within(f1 * Ly, None, s) & within(f2 * Lx, None, s)
+    # [fabrication]'s defaults (docs/fabrication.md): W >= 3 mm, t / W <= 0.05, and every cut
+    # part within the default 12 x 12 in mat's 282.1 mm square (11.5 in less 5 mm margins):
+    # the layers' blanks (n + 1) W by their longest facet, the band's longest segment + its
+    # 8 mm overlap tab by t_d + two 4 mm flanges (a smooth run cut in arcs of <= 200 mm)
+    t = float(l1.t)
+    ok &= within(np.minimum(W1, W2), 3.0, None) & within(t / np.minimum(W1, W2), None, 0.05)
+    runs = []
+    for length, cornered in lay.perimeter_runs(Lx, Ly):
+        L = np.asarray(length)
+        runs.append(L if cornered else L / np.maximum(1.0, np.ceil(L / 200.0 - 1e-9)))
+    band = np.maximum.reduce(runs) + 8.0
+    for side in ((n1 + 1) * W1, (n2 + 1) * W2, f1 * Ly, f2 * Lx, band, td + 8.0):
+        ok &= within(side, None, 11.5 * 25.4 - 10.0)
     for kind, attr in (
         ("flexural_rigidity", "EI"),
         ("bending_stiffness", "D"),

@@ -3,7 +3,7 @@
 ``analyze --test T --load P [--span Ls]`` also states a load case (docs/load_cases.md): at each
 direction asked, the deflection delta (mm) of the test ``T`` under the load P (N) and the test's
 P / delta (N/mm), from the support's D or K, the layers' shear springs and the panel's length
-along eta (:func:`load_case_rows`).
+along eta (:func:`corrugate.analysis.load_case.load_case_rows`).
 """
 
 from __future__ import annotations
@@ -13,7 +13,6 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from corrugate.analysis.load_case import LoadCase, load_case_dict, load_case_of, load_case_rows
 from corrugate.cli import options as o
 from corrugate.cli.console import fmt as _fmt
 from corrugate.cli.console import make_console
@@ -24,16 +23,9 @@ if TYPE_CHECKING:
     from rich.console import Console
 
     from corrugate.analysis.evaluate import Analysis
+    from corrugate.analysis.load_case import LoadCase
 
-__all__ = [
-    "COMMANDS",
-    "LoadCase",
-    "analyze_cmd",
-    "load_case_dict",
-    "load_case_of",
-    "load_case_rows",
-    "materials_cmd",
-]
+__all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
 
 
 Opt = typer.Option
@@ -132,6 +124,8 @@ def _print_comparison(
         t.add_row(f"D({e}) N mm", *(_fmt(r.stiffness[i].D, 5) for r in results))
         t.add_row(f"EI({e}) N mm^2", *(_fmt(r.stiffness[i].EI, 5) for r in results))
     if case is not None:
+        from corrugate.analysis.load_case import load_case_rows
+
         per_model = [load_case_rows(r, case) for r in results]
         for i, d in enumerate(results[0].stiffness):
             e = _fmt(d.eta_deg)
@@ -184,6 +178,7 @@ def analyze_cmd(
     With a load case: ... --test three-point --load 10N --span 40mm (docs/load_cases.md).
     """
     from corrugate.analysis.evaluate import analyze
+    from corrugate.analysis.load_case import load_case_dict, load_case_of, load_case_rows
     from corrugate.mechanics.behaviours import check_support
     from corrugate.mechanics.moduli import MODELS, get_model
     from corrugate.spec.inputs import assembly_from_namespace, parse_etas

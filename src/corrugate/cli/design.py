@@ -162,7 +162,7 @@ def design_cmd(
             help="Folder for design.json and, for a design, every cut file.",
         ),
     ] = None,
-    cutter: o.Machine = DEFAULT_MACHINE,
+    cutter: o.DesignMachine = None,
     labels: o.Labels = None,
     fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
     cut: o.Cut = None,
@@ -174,20 +174,37 @@ def design_cmd(
 
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     """
+    from corrugate.core.parameters import PARAMETERS
+    from corrugate.export.machines import get_machine
     from corrugate.export.pdf import check_paper
     from corrugate.solver import Problem
-    from corrugate.spec.schema import load_spec_text
+    from corrugate.spec.schema import load_spec_text, with_machine
     from corrugate.workflow import output_options, solve_spec, write_design
 
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     check_paper(paper)  # checked with or without --out
+    if cutter is not None:  # checked before the spec is read, and before solving
+        try:
+            get_machine(cutter)
+        except InputError as exc:
+            flag = PARAMETERS["cutter"].flag
+            raise InputError(flag, exc.value, exc.allowed, reason=exc.reason) from None
+    parsed, spec_text = load_spec_text(spec)
+    parsed = with_machine(parsed, cutter)
+    machine = parsed.fabrication.machine
     options = (
-        output_options(cutter, fold_style, cut, gap, labels=labels, paper=paper)
+        output_options(
+            DEFAULT_MACHINE if machine in (None, "none") else machine,
+            fold_style,
+            cut,
+            gap,
+            labels=labels,
+            paper=paper,
+        )
         if out is not None
         else None
     )
-    parsed, spec_text = load_spec_text(spec)
     problem = Problem.from_spec(parsed)
     run = solve_spec(parsed, problem)
     sol, robust = run.solution, run.robust

@@ -160,6 +160,9 @@ LoadOpt = Annotated[str | None, option("load")]
 SpanOpt = Annotated[str | None, option("span")]
 
 Machine = Annotated[str, option("cutter")]
+#: ``design``'s machine: given, it overrides the spec's ``[fabrication] machine``; not given,
+#: the spec's or the default.
+DesignMachine = Annotated[str | None, option("cutter")]
 Labels = Annotated[bool | None, option("labels")]
 FoldStyle = Annotated[str, option("fold_style")]
 Cut = Annotated[str | None, option("cut")]

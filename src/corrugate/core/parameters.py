@@ -271,7 +271,8 @@ OUTPUT_PARAMETERS: tuple[Parameter, ...] = (
         "name",
         "Machine and sheet: cameo4-12x12 | cameo4-12x24 (Silhouette Cameo 4: cut-N.dxf) | "
         "maker-12x12 | maker-12x24 (Cricut Maker: cut-N.svg) | laser:WxH (bed in mm: cut-N.svg "
-        "and cut-N.dxf, hairlines).",
+        "and cut-N.dxf, hairlines). For design: overrides the spec's [fabrication] machine, and "
+        "every cut part must fit it in the solve.",
         choices=(*MACHINE_NAMES, LASER),
     ),
     Parameter(

@@ -37,14 +37,14 @@ sheet holding a part too large for that gets no box).
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 
-from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.core.cutters import CUTTERS, Cutter, get_cutter
+from corrugate.core.errors import InputError
 from corrugate.core.limits import LIMITS, abnormal_reason, is_normal
 from corrugate.fabrication.model import Line, Part, Pattern, Point
-from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM, LASER
+from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
 
 __all__ = [
     "CHECK_BOX",
@@ -60,7 +60,6 @@ __all__ = [
     "plan_sheets",
 ]
 
-INCH = 25.4
 #: Width and height (mm) of the box kept free in the top-right corner of each sheet for the PDF's
 #: 10 mm check square and its "10 mm" label.
 CHECK_BOX: tuple[float, float] = (16.0, 20.0)
@@ -69,83 +68,6 @@ _EPS = 1e-9
 
 class PartTooLargeError(InputError):
     """A part does not fit on the cutter's sheet in either orientation."""
-
-
-@dataclass(frozen=True, slots=True)
-class Cutter:
-    """A cutter with one sheet (mat or bed) size: ``width`` x ``height`` is the usable cut area
-    (mm), ``source`` says where that area comes from."""
-
-    name: str
-    width: float
-    height: float
-    description: str
-    source: str
-
-
-_CAMEO_SOURCE = (
-    "assumed: 12 in adhesive area less a 1/4 in cut border each side (Silhouette quotes only the "
-    "12 in maximum cutting width)"
-)
-_MAKER_SOURCE = "Cricut help centre: maximum cut size on the mat"
-
-#: The named cutters; ``laser:WxH`` (mm) is accepted besides these.
-CUTTERS: dict[str, Cutter] = {
-    c.name: c
-    for c in (
-        Cutter(
-            "cameo4-12x12",
-            11.5 * INCH,
-            11.5 * INCH,
-            "Silhouette Cameo 4, 12 x 12 in mat",
-            _CAMEO_SOURCE,
-        ),
-        Cutter(
-            "cameo4-12x24",
-            11.5 * INCH,
-            23.5 * INCH,
-            "Silhouette Cameo 4, 12 x 24 in mat",
-            _CAMEO_SOURCE,
-        ),
-        Cutter(
-            "maker-12x12", 11.5 * INCH, 11.5 * INCH, "Cricut Maker, 12 x 12 in mat", _MAKER_SOURCE
-        ),
-        Cutter(
-            "maker-12x24", 11.5 * INCH, 23.5 * INCH, "Cricut Maker, 12 x 24 in mat", _MAKER_SOURCE
-        ),
-    )
-}
-
-_LASER = re.compile(r"^laser:\s*([0-9]*\.?[0-9]+)\s*[x×]\s*([0-9]*\.?[0-9]+)\s*(mm)?$")
-
-
-def get_cutter(name: str | Cutter) -> Cutter:
-    """The cutter called ``name`` (see the module docstring), or a ``laser:WxH`` bed in mm.
-
-    Raises :class:`~corrugate.core.errors.UnknownNameError` for an unknown name and
-    :class:`~corrugate.core.errors.InputError` for a laser bed that is not positive.
-    """
-    if isinstance(name, Cutter):
-        return name
-    key = name.strip().lower()
-    if key in CUTTERS:
-        return CUTTERS[key]
-    if key.startswith("laser"):
-        m = _LASER.match(key)
-        if m is None:
-            raise InputError(
-                "cutter",
-                repr(name),
-                "laser:WxH with W and H in mm, e.g. laser:600x400",
-                reason="is not a laser bed size",
-            )
-        w, h = float(m.group(1)), float(m.group(2))
-        if w <= 0 or h <= 0:
-            raise InputError("cutter", repr(name), "a bed of positive width and height (mm)")
-        return Cutter(
-            f"laser:{w:g}x{h:g}", w, h, f"laser bed {w:g} x {h:g} mm", "given by the user"
-        )
-    raise UnknownNameError("cutter", name, [*CUTTERS, LASER])
 
 
 @dataclass(frozen=True, slots=True)

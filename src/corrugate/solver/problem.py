@@ -25,7 +25,21 @@ from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.materials.library import Material, get_material, inline_material
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.mechanics.moduli import get_model
-from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
+from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM
+from corrugate.solver.quantity import (
+    CREASES,
+    FACET,
+    FLAT,
+    LX,
+    LY,
+    MASS,
+    PART_LONG,
+    PART_SHORT,
+    T_OVER_W,
+    THICKNESS,
+    W_MIN,
+    Quantity,
+)
 from corrugate.spec.schema import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
 __all__ = [
@@ -190,6 +204,7 @@ class Problem:
             cons.append(
                 Constraint("constraints.sheet_max (facet length)", FACET, "max", c.sheet_max)
             )
+        cons.extend(_making_constraints(spec))
         sizes = {
             "side": (LX,),
             "diameter": (LX,),
@@ -372,3 +387,37 @@ def _candidates(where: str, m: MaterialSpec) -> list[Candidate]:
         return [Candidate(mat, mat.default_thickness)]
     ts = m.thickness if isinstance(m.thickness, list) else [m.thickness]
     return [Candidate(mat, float(t)) for t in ts]
+
+
+def machine_area(name: str) -> tuple[float, float]:
+    """The usable area (mm, shorter side first) of the machine ``name`` in which every cut part
+    must fit, turned 90 deg or not: its cut area less the sheet planner's margin on each side
+    (:func:`corrugate.fabrication.sheets.plan_sheets`)."""
+    from corrugate.core.cutters import get_cutter
+
+    cut = get_cutter(name)
+    w, h = cut.width - 2 * DEFAULT_MARGIN_MM, cut.height - 2 * DEFAULT_MARGIN_MM
+    return min(w, h), max(w, h)
+
+
+def _making_constraints(spec: Spec) -> list[Constraint]:
+    """The constraints of the spec's ``[fabrication]`` (docs/fabrication.md, "What the solve
+    asks of the making"): every cut part fits the machine (the spec's, else the default), no
+    facet narrower than ``min_facet``, t / W at most ``max_t_over_W``, at most ``max_creases``."""
+    f = spec.fabrication
+    out = [
+        Constraint("fabrication.min_facet", W_MIN, "min", f.min_facet),
+        Constraint("fabrication.max_t_over_W", T_OVER_W, "max", f.max_t_over_W),
+    ]
+    if f.max_creases is not None:
+        out.append(Constraint("fabrication.max_creases", CREASES, "max", float(f.max_creases)))
+    machine = f.machine or DEFAULT_MACHINE
+    if machine != "none":
+        short, long = machine_area(machine)
+        out.append(
+            Constraint(f"fabrication.machine ({machine}: shorter side)", PART_SHORT, "max", short)
+        )
+        out.append(
+            Constraint(f"fabrication.machine ({machine}: longer side)", PART_LONG, "max", long)
+        )
+    return out

@@ -86,6 +86,7 @@ from corrugate.mechanics.offaxis import (
     shear_springs,
 )
 from corrugate.solver.interval import Interval
+from corrugate.solver.making import MAKING, making_bounds, making_values
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
 
@@ -238,6 +239,20 @@ def point_values(
             tables.facet_factor(x["n1"], "x") * Ly, tables.facet_factor(x["n2"], "y") * Lx
         ),
     }
+    if MAKING.intersection(keys):
+        out.update(
+            making_values(
+                problem.layout,
+                c1,
+                c2,
+                x,
+                tables.facet_factor(x["n1"], "x") * Ly,
+                tables.facet_factor(x["n2"], "y") * Lx,
+                Lx,
+                Ly,
+                ev.thickness[:, 0],
+            )
+        )
     # a support that reads the layout's coupon gets evaluate's own treatment of it
     coupled = {
         b.name: evaluate(
@@ -416,7 +431,8 @@ def box_bounds(
     Lx_lo, Lx_hi = g1_lo.extent, g1_hi.extent
     Ly_lo, Ly_hi = g2_lo.extent, g2_hi.extent
     out: Bounds = {LX: (Lx_lo, Lx_hi), LY: (Ly_lo, Ly_hi)}
-    if THICKNESS in quantities or MASS in quantities or problem.joint != "none":
+    making = bool(MAKING.intersection(quantities))
+    if THICKNESS in quantities or MASS in quantities or problem.joint != "none" or making:
         # (the band's walls of a bonded joint stand t_d high: their stiffness needs it too)
         # t_d = W1 c1 + W2 c2 grows with W and falls with alpha: W low with alpha high, and back
         if same:
@@ -438,6 +454,15 @@ def box_bounds(
         facet_lo = np.maximum(f1[0] * Ly_lo, f2[0] * Lx_lo)
         facet_hi = facet_lo if point else np.maximum(f1[1] * Ly_hi, f2[1] * Lx_hi)
         out[FACET] = (facet_lo, facet_hi)
+    if making:
+        F1 = tables.Fx.bounds(lo["n1"], hi["n1"])
+        F2 = tables.Fy.bounds(lo["n2"], hi["n2"])
+        facets = ((F1[0] * Ly_lo, F1[1] * Ly_hi), (F2[0] * Lx_lo, F2[1] * Lx_hi))
+        out.update(
+            making_bounds(
+                lay, c1, c2, lo, hi, facets, ((Lx_lo, Lx_hi), (Ly_lo, Ly_hi)), out[THICKNESS]
+            )
+        )
     if MASS in quantities:
 
         def mass(b: Arrays, g1: _Corner, g2: _Corner, td: FloatArray) -> FloatArray:

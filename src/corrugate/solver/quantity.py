@@ -46,14 +46,19 @@ from corrugate.mechanics.behaviours import (
 from corrugate.names import STIFFNESS_SYMBOL, STIFFNESS_SYMBOLS
 
 __all__ = [
+    "CREASES",
     "FACET",
     "FLAT",
     "LX",
     "LY",
     "MASS",
+    "PART_LONG",
+    "PART_SHORT",
     "SPEC_KINDS",
     "STIFFNESS",
     "THICKNESS",
+    "T_OVER_W",
+    "W_MIN",
     "Quantity",
 ]
 
@@ -70,6 +75,11 @@ _KINDS: dict[str, tuple[str, str]] = {
     "thickness": ("folded thickness t_d", "mm"),
     "flat": ("flat blank (n + 1) W", "mm"),
     "facet": ("longest facet L_j", "mm"),
+    "part_short": ("largest cut part's shorter side", "mm"),
+    "part_long": ("largest cut part's longer side", "mm"),
+    "W_min": ("narrowest facet W", "mm"),
+    "t_over_W": ("sheet thickness over facet width t/W", ""),
+    "creases": ("most creases n in a layer", ""),
     "mass": ("mass", "g"),
     "EI": ("flexural rigidity EI", "N*mm^2"),
     "D": ("bending stiffness D", "N*mm"),
@@ -218,3 +228,12 @@ THICKNESS = Quantity("thickness")
 FLAT = Quantity("flat")
 FACET = Quantity("facet")
 MASS = Quantity("mass")
+#: What a cutter and a pair of hands need (docs/fabrication.md, "What the solve asks of the
+#: making"): the cut parts' sides (every part fits the machine's area, turned or not, iff the
+#: largest shorter side fits its shorter side and the largest longer side its longer one), the
+#: narrowest facet, the thickest sheet for its facet and the most creases of a layer.
+PART_SHORT = Quantity("part_short")
+PART_LONG = Quantity("part_long")
+W_MIN = Quantity("W_min")
+T_OVER_W = Quantity("t_over_W")
+CREASES = Quantity("creases")

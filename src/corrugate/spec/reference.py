@@ -160,6 +160,26 @@ _STATIC: dict[str, KeyDoc] = {
         "Factor on the peak stress of every strength bound, 1-100 (default 2: datasheet yield "
         "values are typical, not minimum, and polymer films creep under a sustained load).",
     ),
+    "fabrication": KeyDoc(
+        "",
+        "What making the part asks, as constraints of the solve (a table; `corrugate docs "
+        "fabrication`, 'What the solve asks of the making').",
+    ),
+    "fabrication.machine": KeyDoc(
+        "",
+        "The cutter every cut part must fit, turned or not (cameo4-12x12, cameo4-12x24, "
+        "maker-12x12, maker-12x24, laser:WxH or 'none'); default: `--machine`, else "
+        "cameo4-12x12. `design --out` writes its files for it.",
+    ),
+    "fabrication.min_facet": KeyDoc(
+        "mm", "The narrowest facet W anyone is to fold (default 3 mm)."
+    ),
+    "fabrication.max_t_over_W": KeyDoc(
+        "",
+        "The thickest sheet for its facet, t / W (default 0.05: where the models were checked "
+        "and the thick-sheet warning starts).",
+    ),
+    "fabrication.max_creases": KeyDoc("", "The most creases n of one layer (default: no limit)."),
     "constraints.mass": KeyDoc("g", "Mass budget: { max }."),
     "constraints.mass.max": KeyDoc("g", "Heaviest part allowed (layers and connector band)."),
     "objective": KeyDoc("", "What to optimise (a table); default: minimize = 'mass'."),

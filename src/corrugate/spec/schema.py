@@ -127,12 +127,13 @@ def _quantity(
     shown: str | None = None,
 ) -> Callable[[Any], float]:
     """A pydantic before-validator reading a quantity in ``unit`` and checking its range."""
-    label = shown or unit
+    label = unit if shown is None else shown
+    tail = f" {label}" if label else ""
     parts = []
     if lo is not None:
-        parts.append(f"{'>' if lo_open else '>='} {lo:g} {label}")
+        parts.append(f"{'>' if lo_open else '>='} {lo:g}{tail}")
     if hi is not None:
-        parts.append(f"{'<' if hi_open else '<='} {hi:g} {label}")
+        parts.append(f"{'<' if hi_open else '<='} {hi:g}{tail}")
     allowed = " and ".join(parts) if parts else f"a quantity in {label}"
 
     def validate(value: Any) -> float:
@@ -620,6 +621,54 @@ SafetyFactor = Annotated[
     float, BeforeValidator(_quantity("dimensionless", lo=1.0, lo_open=False, hi=100.0, shown=""))
 ]
 
+#: The narrowest facet anyone folds by default (mm; docs/fabrication.md, "What the solve asks of
+#: the making").
+DEFAULT_MIN_FACET_MM = 3.0
+#: The thickest sheet for its facet by default, t / W (docs/fabrication.md): the models are
+#: checked against unit-cell FE up to t / W = 0.02 and Eby to 0.06, and the thick-sheet warning
+#: starts at (t/W)(90/alpha)^2 = 0.05.
+DEFAULT_MAX_T_OVER_W = 0.05
+ThicknessRatio = Annotated[
+    float, BeforeValidator(_quantity("dimensionless", lo=0.0, hi=1.0, hi_open=False, shown=""))
+]
+
+
+def _machine(value: Any) -> str:
+    """A machine profile's name (``corrugate.core.cutters.get_cutter``) or ``"none"``."""
+    from corrugate.core.cutters import get_cutter
+
+    if not isinstance(value, str):
+        raise PydanticCustomError(
+            "quantity",
+            "{reason}",
+            {"reason": "is not a name", "allowed": "a machine such as 'cameo4-12x12' or 'none'"},
+        )
+    if value.strip().lower() == "none":
+        return "none"
+    try:
+        return get_cutter(value).name
+    except InputError as exc:
+        raise PydanticCustomError(
+            "quantity", "{reason}", {"reason": exc.reason, "allowed": exc.allowed}
+        ) from None
+
+
+MachineName = Annotated[str, BeforeValidator(_machine)]
+
+
+class FabricationSpec(_Strict):
+    """What making the part asks (docs/fabrication.md, "What the solve asks of the making"):
+    ``machine``, the cutter whose usable area every cut part must fit (turned or not; default
+    the command line's ``--machine`` or ``cameo4-12x12``; ``"none"``: no machine);
+    ``min_facet``, the narrowest facet W (default 3 mm); ``max_t_over_W``, the thickest sheet
+    for its facet (default 0.05); ``max_creases``, the most creases n of a layer (default: no
+    limit)."""
+
+    machine: MachineName | None = None
+    min_facet: Length = DEFAULT_MIN_FACET_MM
+    max_t_over_W: ThicknessRatio = DEFAULT_MAX_T_OVER_W
+    max_creases: Count | None = None
+
 
 class Spec(_Strict):
     """A validated design spec; every quantity in internal units (mm, deg, g, N)."""
@@ -637,6 +686,16 @@ class Spec(_Strict):
     robust: RobustSpec | None = None
     safety_factor: SafetyFactor = DEFAULT_SAFETY_FACTOR
     joint: Literal["none", "band-edges", "band-flanges"] = "none"
+    fabrication: FabricationSpec = FabricationSpec()
+
+
+def with_machine(spec: Spec, machine: str | None) -> Spec:
+    """``spec`` with its ``[fabrication] machine`` set to ``machine`` (a checked machine name,
+    e.g. the command line's ``--machine``); None: ``spec`` itself."""
+    if machine is None:
+        return spec
+    fab = spec.fabrication.model_copy(update={"machine": _machine(machine)})
+    return spec.model_copy(update={"fabrication": fab})
 
 
 # -- errors with TOML paths -------------------------------------------------------------------

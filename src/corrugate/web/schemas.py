@@ -13,7 +13,7 @@ from pydantic import BaseModel, ConfigDict, Field, StrictFloat, StrictInt, Strin
 
 from corrugate.core.parameters import PARAMETERS
 from corrugate.export.writers import WRITERS
-from corrugate.names import DEFAULT_HOLE_SHAPE, DEFAULT_MACHINE, HOLE_SHAPES, LOAD_CASES
+from corrugate.names import DEFAULT_HOLE_SHAPE, DEFAULT_MACHINE, HOLE_SHAPES
 
 __all__ = [
     "OUTPUT_OPTIONS",
@@ -122,18 +122,9 @@ class AnalyzeBody(BaseModel):
         None, description="Directions (deg from layer 1's creases). Default [0, 90]."
     )
     support: Text = parameter("support")
-    test: Text | None = Field(
-        None,
-        description="Load case (`corrugate docs load_cases`): "
-        + ", ".join(LOAD_CASES)
-        + "; the answer's load_case gives the deflection under load at each eta.",
-    )
-    load: Value | None = Field(None, description="The load case's load (N, or '2 lbf').")
-    span: Value | None = Field(
-        None,
-        description="The test's support spacing (mm; cantilever: its free length); default and "
-        "at most the panel's length along eta; none between platens.",
-    )
+    test: Text | None = parameter("test")
+    load: Value | None = parameter("load")
+    span: Value | None = parameter("span")
 
 
 #: The keys of a request that state a load case (``corrugate analyze --test --load --span``).

@@ -1,0 +1,155 @@
+"""What making the part asks of a design, as solver quantities (docs/fabrication.md, "What the
+solve asks of the making").
+
+* ``part_short`` and ``part_long`` (mm): over every cut part (layer 1's and layer 2's flat blanks,
+  (n + 1) W by their longest facet L_j, and the band's longest segment with its overlap tab by
+  t_d plus its two glue flanges), the largest shorter side and the largest longer side. A part
+  fits a machine's usable area A x B (A <= B), turned 90 deg or not, exactly when its shorter
+  side is at most A and its longer side at most B; so every part fits exactly when
+  ``part_short`` <= A and ``part_long`` <= B.
+* ``W_min`` (mm): the narrowest facet of the two layers; ``t_over_W``: the largest t / W;
+  ``creases``: the most creases n of a layer.
+
+Each is monotone in the box's corners (the blanks grow with n and W, the extents with n, W and
+alpha, t_d with W and falling alpha), so its bounds over a box are its values at the corners;
+min and max of bounds bound the min and max. The band's segment along a smooth outline (a
+circle) is its perimeter over ceil(perimeter / segment_max) arcs, which is not monotone: it is
+bounded by the perimeter at the low corner over the arc count at the high one, and by
+min(perimeter, segment_max).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION
+from corrugate.solver.quantity import CREASES, PART_LONG, PART_SHORT, T_OVER_W, W_MIN, Quantity
+
+if TYPE_CHECKING:
+    from corrugate.geometry.layouts import Layout
+    from corrugate.solver.problem import Candidate
+
+__all__ = ["MAKING", "band_run", "making_bounds", "making_values"]
+
+FloatArray = NDArray[np.float64]
+Arrays = Mapping[str, Any]
+Pair = tuple[FloatArray, FloatArray]
+
+#: The quantities of this module.
+MAKING: frozenset[Quantity] = frozenset({PART_SHORT, PART_LONG, W_MIN, T_OVER_W, CREASES})
+
+
+def band_run(layout: Layout, Lx: Any, Ly: Any, low: bool | None = None) -> FloatArray:
+    """The band's longest segment (mm) on ``layout`` of folded extents Lx, Ly (arrays), as
+    :func:`corrugate.fabrication.band.band_parts` cuts it: the longest edge, or along a smooth
+    outline its arc. ``low`` True / False: a lower / upper bound of the arc over a box whose
+    low / high corner the extents are (module docstring); None: the exact value."""
+    smax = DEFAULT_FABRICATION.segment_max
+    out: FloatArray | None = None
+    for length, cornered in layout.perimeter_runs(Lx, Ly):
+        L = np.asarray(length, dtype=np.float64)
+        if not cornered:  # low: the whole run; making_bounds divides by the high count
+            if low is None:
+                L = L / np.maximum(1.0, np.ceil(L / smax - 1e-9))
+            elif not low:
+                L = np.minimum(L, smax)
+        out = L if out is None else np.maximum(out, L)
+    assert out is not None
+    return out
+
+
+def _smooth_count(layout: Layout, Lx: Any, Ly: Any) -> FloatArray | None:
+    """The largest number of arcs of a smooth run at extents Lx, Ly (None: every run cornered)."""
+    smax = DEFAULT_FABRICATION.segment_max
+    counts = [
+        np.maximum(1.0, np.ceil(np.asarray(length, dtype=np.float64) / smax - 1e-9))
+        for length, cornered in layout.perimeter_runs(Lx, Ly)
+        if not cornered
+    ]
+    return None if not counts else np.maximum.reduce(counts)
+
+
+def _parts(
+    blanks: tuple[Any, Any, Any, Any], band: tuple[Any, Any]
+) -> tuple[FloatArray, FloatArray]:
+    """(largest shorter side, largest longer side) of the parts: layer 1 (flat, facet), layer 2
+    (flat, facet) and the band segment (length, height)."""
+    f1, l1, f2, l2 = (np.asarray(v, dtype=np.float64) for v in blanks)
+    b_len, b_h = (np.asarray(v, dtype=np.float64) for v in band)
+    short = np.maximum.reduce([np.minimum(f1, l1), np.minimum(f2, l2), np.minimum(b_len, b_h)])
+    long = np.maximum.reduce([np.maximum(f1, l1), np.maximum(f2, l2), np.maximum(b_len, b_h)])
+    return short, long
+
+
+def making_values(
+    layout: Layout,
+    c1: Candidate,
+    c2: Candidate,
+    x: Arrays,
+    facet1: Any,
+    facet2: Any,
+    Lx: Any,
+    Ly: Any,
+    td: Any,
+) -> dict[Quantity, FloatArray]:
+    """The quantities of this module at the points ``x`` (arrays n1, W1, n2, W2): ``facet1`` and
+    ``facet2`` the layers' longest facets (mm), ``Lx``, ``Ly`` the folded extents and ``td`` the
+    folded thickness (mm)."""
+    opts = DEFAULT_FABRICATION
+    n1, W1 = np.asarray(x["n1"], np.float64), np.asarray(x["W1"], np.float64)
+    n2, W2 = np.asarray(x["n2"], np.float64), np.asarray(x["W2"], np.float64)
+    band = (band_run(layout, Lx, Ly) + opts.overlap, np.asarray(td) + 2.0 * opts.tab_depth)
+    short, long = _parts(((n1 + 1) * W1, facet1, (n2 + 1) * W2, facet2), band)
+    return {
+        PART_SHORT: short,
+        PART_LONG: long,
+        W_MIN: np.minimum(W1, W2),
+        T_OVER_W: np.maximum(c1.t / W1, c2.t / W2),
+        CREASES: np.maximum(n1, n2),
+    }
+
+
+def making_bounds(
+    layout: Layout,
+    c1: Candidate,
+    c2: Candidate,
+    lo: Arrays,
+    hi: Arrays,
+    facets: tuple[Pair, Pair],
+    extents: tuple[Pair, Pair],
+    td: Pair,
+) -> dict[Quantity, Pair]:
+    """Bounds of the quantities of this module over the boxes [lo, hi]: ``facets`` the (low,
+    high) bounds of each layer's longest facet, ``extents`` those of Lx and Ly, ``td`` of the
+    folded thickness (mm); module docstring for why the corners bound them."""
+    opts = DEFAULT_FABRICATION
+    (Lx_lo, Lx_hi), (Ly_lo, Ly_hi) = extents
+    run_lo = band_run(layout, Lx_lo, Ly_lo, low=True)
+    count_hi = _smooth_count(layout, Lx_hi, Ly_hi)
+    if count_hi is not None:  # a smooth run's arc: its low perimeter over its high count
+        run_lo = np.minimum(run_lo, run_lo / count_hi)
+    run_hi = band_run(layout, Lx_hi, Ly_hi, low=False)
+    out: dict[Quantity, Pair] = {}
+    sides = []
+    for b, run, t_d, k in ((lo, run_lo, td[0], 0), (hi, run_hi, td[1], 1)):
+        n1, W1 = np.asarray(b["n1"], np.float64), np.asarray(b["W1"], np.float64)
+        n2, W2 = np.asarray(b["n2"], np.float64), np.asarray(b["W2"], np.float64)
+        band = (run + opts.overlap, np.asarray(t_d) + 2.0 * opts.tab_depth)
+        sides.append(_parts(((n1 + 1) * W1, facets[0][k], (n2 + 1) * W2, facets[1][k]), band))
+    out[PART_SHORT] = (sides[0][0], sides[1][0])
+    out[PART_LONG] = (sides[0][1], sides[1][1])
+    W1lo, W1hi = np.asarray(lo["W1"], np.float64), np.asarray(hi["W1"], np.float64)
+    W2lo, W2hi = np.asarray(lo["W2"], np.float64), np.asarray(hi["W2"], np.float64)
+    out[W_MIN] = (np.minimum(W1lo, W2lo), np.minimum(W1hi, W2hi))
+    out[T_OVER_W] = (
+        np.maximum(c1.t / W1hi, c2.t / W2hi),
+        np.maximum(c1.t / W1lo, c2.t / W2lo),
+    )
+    n1lo, n1hi = np.asarray(lo["n1"], np.float64), np.asarray(hi["n1"], np.float64)
+    n2lo, n2hi = np.asarray(lo["n2"], np.float64), np.asarray(hi["n2"], np.float64)
+    out[CREASES] = (np.maximum(n1lo, n2lo), np.maximum(n1hi, n2hi))
+    return out
