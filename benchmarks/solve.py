@@ -261,7 +261,7 @@ def offaxis(repeats: int) -> None:
     for eta in (0.0, 45.0):
         d = dict(base)
         d["constraints"] = dict(base["constraints"])
-        d["constraints"]["inplane_stiffness"] = [{"min": 0.4, "eta": eta}]
+        d["constraints"]["inplane_stiffness"] = [{"min": "0.4 N/mm", "eta": eta}]
         spec = Spec.model_validate(d)
         cases[eta] = (Problem.from_spec(spec), Case(spec))
         solve(cases[eta][0], explain=False)  # warm-up

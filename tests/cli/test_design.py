@@ -170,6 +170,23 @@ def test_malformed_spec_exits_2_with_the_toml_path(
     assert not out_dir.exists()  # nothing written on failure
 
 
+def test_a_rigidity_without_a_unit_exits_2_with_how_to_write_it(
+    tmp_path: Path, cli: CliRun
+) -> None:
+    """The 1000x trap: ``min = 80`` for a rigidity is neither 80 N mm^2 nor 80 mN m^2 but an
+    error, one line on stderr, nothing written."""
+    spec = tmp_path / "plain.toml"
+    spec.write_text(BLIMP.read_text("utf-8").replace('min = "80 mN*m^2"', "min = 80"), "utf-8")
+    out_dir = tmp_path / "out"
+    code, out, err = cli(["design", str(spec), "--out", str(out_dir)])
+    assert (code, out) == (2, "")
+    assert err.strip() == (
+        "corrugate: error: constraints.flexural_rigidity[0].min = 80 has no unit: write it "
+        'with one, e.g. "80 mN*m^2" (or "80 N*mm^2")'
+    )
+    assert not out_dir.exists()
+
+
 def test_infeasible_spec_exits_1_with_a_diagnosis(tmp_path: Path, cli: CliRun) -> None:
     code, out, _ = cli(["design", str(EXAMPLES / "infeasible.toml"), "--json"])
     assert code == 1

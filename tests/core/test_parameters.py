@@ -158,10 +158,10 @@ def test_the_spec_reference_describes_the_same_keys_with_the_same_text() -> None
     for key, name in pairs.items():
         assert KEYS[key].text == PARAMETERS[name].help, key
         assert KEYS[key].unit == PARAMETERS[name].unit, key
-    # every row of the reference is still four cells (no help text breaks the Markdown table)
+    # every row of the reference is still five cells (no help text breaks the Markdown table)
     rows = [line for line in reference_markdown().splitlines() if line.startswith("| `")]
     assert len(rows) == len(KEYS)
-    assert all(line.count("|") == 5 for line in rows)
+    assert all(line.count("|") == 6 for line in rows)
 
 
 def test_the_examples_in_the_help_texts_are_values_the_parsers_take() -> None:

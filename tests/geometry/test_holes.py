@@ -157,8 +157,8 @@ def test_solver_bounds_hold_with_holes() -> None:
             "variables": {"W": {"min": 2, "max": 12}, "alpha": {"min": 40, "max": 140}},
             "constraints": {
                 "diameter": {"min": "60 mm"},
-                "inplane_stiffness": [{"min": 1, "eta": 0}, {"min": 1, "eta": 30}],
-                "bending_stiffness": [{"min": 1, "eta": 90}],
+                "inplane_stiffness": [{"min": "1 N/mm", "eta": 0}, {"min": "1 N/mm", "eta": 30}],
+                "bending_stiffness": [{"min": "1 N*mm", "eta": 90}],
             },
         }
     )

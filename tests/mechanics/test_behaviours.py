@@ -113,7 +113,9 @@ K_MIN = 300.0  # N/mm at 45 deg under 'half'; the frame needs 600 for the same p
 
 def _spec(support: str, k_min: float) -> dict[str, Any]:
     d = copy.deepcopy(BASE)
-    d["constraints"]["inplane_stiffness"] = [{"min": k_min, "eta": 45, "support": support}]
+    d["constraints"]["inplane_stiffness"] = [
+        {"min": f"{k_min} N/mm", "eta": 45, "support": support}
+    ]
     return d
 
 
@@ -154,9 +156,9 @@ def test_solver_bounds_hold_under_the_registered_support(half: Behaviour) -> Non
     """Box bounds of K, D and EI at 30 deg under 'half' contain the exact values at points
     sampled in each box, and are half the frame's bounds."""
     d = copy.deepcopy(BASE)
-    d["constraints"]["flexural_rigidity"] = [{"min": 1, "eta": 30, "support": "half"}]
-    d["constraints"]["inplane_stiffness"] = [{"min": 1, "eta": 30, "support": "half"}]
-    d["constraints"]["bending_stiffness"] = [{"min": 1, "eta": 30, "support": "frame"}]
+    d["constraints"]["flexural_rigidity"] = [{"min": "1 N*mm^2", "eta": 30, "support": "half"}]
+    d["constraints"]["inplane_stiffness"] = [{"min": "1 N/mm", "eta": 30, "support": "half"}]
+    d["constraints"]["bending_stiffness"] = [{"min": "1 N*mm", "eta": 30, "support": "frame"}]
     prob = Problem.from_spec(parse_spec(d))
     tables = Tables(prob)
     c = prob.candidates[0]

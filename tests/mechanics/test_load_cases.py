@@ -20,6 +20,7 @@ from corrugate.solver import Problem, solve
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import MASS, Quantity
 from corrugate.spec.schema import SpecError, parse_spec
+from spec_units import with_units
 
 ROOT = Path(__file__).resolve().parents[2]
 DL = get_material("dura-lar")
@@ -55,7 +56,7 @@ def _problem(
     }
     if extra:
         d.update(extra)
-    return Problem.from_spec(parse_spec(d))
+    return Problem.from_spec(parse_spec(with_units(d)))
 
 
 def _grid() -> tuple[np.ndarray, dict[str, np.ndarray]]:

@@ -23,6 +23,7 @@ from corrugate import Assembly, Layer, LayerArrays, analyze, evaluate, get_mater
 from corrugate.mechanics.offaxis import finite_panel_factor, free_inplane
 from corrugate.solver import Problem, solve
 from corrugate.spec.schema import parse_spec
+from spec_units import with_units
 
 DL = get_material("dura-lar")
 
@@ -140,7 +141,7 @@ def test_certified_answer_with_off_axis_and_buckling_constraints(d: dict[str, An
     """The certified answer meets every constraint under the model evaluated pointwise (analyze,
     and the buckling formula by hand), and no point of the whole grid is lighter and feasible
     (exhaustive search with evaluate, the constraints written out again from the dict)."""
-    sol = solve(Problem.from_spec(parse_spec(d)))
+    sol = solve(Problem.from_spec(parse_spec(with_units(d))))
     v, c = d["variables"], d["constraints"]
     Ws = v["W"]["min"] + 0.5 * np.arange(17)
     As = np.arange(v["alpha"]["min"], v["alpha"]["max"] + 0.5)
@@ -192,18 +193,20 @@ def test_support_per_constraint_and_global() -> None:
     frame["constraints"]["inplane_stiffness"] = [{"min": 300, "eta": 45, "support": "frame"}]
     free = copy.deepcopy(base)
     free["constraints"]["inplane_stiffness"] = [{"min": 3, "eta": 45}]
-    sf = solve(Problem.from_spec(parse_spec(frame)))
-    sr = solve(Problem.from_spec(parse_spec(free)))
+    sf = solve(Problem.from_spec(parse_spec(with_units(frame))))
+    sr = solve(Problem.from_spec(parse_spec(with_units(free))))
     assert sf.status == sr.status == "optimal" and sf.certified and sr.certified
     assert analyze(sf.assembly, "refined", [45.0], support="frame").stiffness[0].K >= 300
     assert analyze(sr.assembly, "refined", [45.0]).stiffness[0].K >= 3 * (1 - 1e-9)
     glob = copy.deepcopy(frame)
     del glob["constraints"]["inplane_stiffness"][0]["support"]
     glob["support"] = "frame"
-    assert solve(Problem.from_spec(parse_spec(glob))).mass == pytest.approx(sf.mass, rel=1e-12)
+    assert solve(Problem.from_spec(parse_spec(with_units(glob)))).mass == pytest.approx(
+        sf.mass, rel=1e-12
+    )
     # 300 N/mm at 45 deg is out of reach of a free panel of these layers
     free["constraints"]["inplane_stiffness"][0]["min"] = 300
-    assert solve(Problem.from_spec(parse_spec(free))).status == "infeasible"
+    assert solve(Problem.from_spec(parse_spec(with_units(free)))).status == "infeasible"
 
 
 @pytest.mark.parametrize(
@@ -402,7 +405,7 @@ def test_certified_rectangle_with_an_off_axis_bound_against_exhaustive_search() 
             "inplane_stiffness": [{"min": 40.0, "eta": 15.0}],
         },
     }
-    sol = solve(Problem.from_spec(parse_spec(d)))
+    sol = solve(Problem.from_spec(parse_spec(with_units(d))))
     assert sol.certified and sol.status == "optimal"
     Ws, ns, As = np.arange(6.0, 9.5, 1.0), np.arange(4, 15), np.arange(70.0, 100.5, 5.0)
     n, W, A = (g.ravel() for g in np.meshgrid(ns, Ws, As, indexing="ij"))

@@ -29,6 +29,7 @@ from corrugate.solver.interval import Interval
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import LX, LY, MASS
 from corrugate.spec.schema import load_spec, parse_spec
+from spec_units import with_units
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 RTOL = 1e-9  # floating-point slack on constraints, as a user would accept
@@ -38,7 +39,7 @@ Arr = NDArray[np.float64]
 
 
 def _solve(d: dict[str, Any], explain: bool = False) -> Any:
-    return solve(Problem.from_spec(parse_spec(d)), explain=explain)
+    return solve(Problem.from_spec(parse_spec(with_units(d))), explain=explain)
 
 
 # -- the paper's case study ------------------------------------------------------------------
@@ -679,7 +680,7 @@ def test_box_bounds_contain_every_sampled_design(
         ],
     )
     d["layers"] = layers
-    problem = Problem.from_spec(parse_spec(d))
+    problem = Problem.from_spec(parse_spec(with_units(d)))
     cand = problem.candidates[0]
     tables = Tables(problem)
     rng = np.random.default_rng(seed)

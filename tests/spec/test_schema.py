@@ -191,3 +191,119 @@ def test_unreadable_file(tmp_path: Path) -> None:
     with pytest.raises(SpecError) as info:
         load_spec(bad)
     assert "TOML" in str(info.value)
+
+
+# -- plain numbers: only where the unit cannot be mistaken -------------------------------------
+
+#: A valid item of each array of tables, every quantity with its unit, to put one plain value in.
+_ITEMS: dict[str, dict[str, Any]] = {
+    "constraints.flexural_rigidity": {"min": "1 N*mm^2"},
+    "constraints.bending_stiffness": {"min": "1 N*mm"},
+    "constraints.inplane_stiffness": {"min": "1 N/mm"},
+    "constraints.buckling_load": {"min": "1 N", "eta": "0 deg"},
+    "constraints.deflection": {"test": "three-point", "load": "1 N", "max": "1 mm"},
+    "constraints.strength": {"test": "three-point", "load": "1 N"},
+    "layout.holes": {"diameter": "2 mm"},
+    "materials": {"E": "3000 MPa", "nu": 0.3, "density": "1.2 g/cm^3", "thickness": "0.1 mm"},
+}
+
+
+def _with_plain(key: str, value: Any) -> dict[str, Any]:
+    """The case study with ``value`` at the reference's ``key`` (``[]``: the first item of a
+    valid array of tables; an inline material for the material's keys)."""
+    d = copy.deepcopy(_blimp())
+    if key.startswith("material."):
+        d["material"] = copy.deepcopy(_ITEMS["materials"])
+    if key.startswith("materials[]"):
+        del d["material"]
+    node: Any = d
+    parts = key.split(".")
+    for i, part in enumerate(parts[:-1]):
+        if part.endswith("[]"):
+            name = part[:-2]
+            table = ".".join([*parts[:i], name])
+            node[name] = [copy.deepcopy(_ITEMS[table])]
+            node = node[name][0]
+        else:
+            node = node.setdefault(part, {})
+    node[parts[-1]] = value
+    return d
+
+
+def _quantity_keys() -> list[str]:
+    """Every key with a unit that holds a value (not a table or an array of tables)."""
+    from corrugate.spec.reference import KEYS, spec_keys
+
+    keys = spec_keys()
+    tables = {k.rsplit(".", 1)[0].removesuffix("[]") for k in keys if "." in k}
+    return [k for k in keys if KEYS[k].unit and k not in tables]
+
+
+@pytest.mark.parametrize("key", _quantity_keys())
+@pytest.mark.parametrize("value", [5, 5.5, "5"])
+def test_a_plain_number_is_refused_exactly_where_the_reference_says(key: str, value: Any) -> None:
+    """Every key with a unit: a plain number is refused with the 'has no unit' line (naming the
+    key as the TOML path spells it) exactly when docs/spec.md marks it **no**, i.e. its unit is
+    neither mm nor deg; elsewhere it is read (or refused for another reason)."""
+    from corrugate.spec.reference import KEYS, plain_number
+    from corrugate.spec.schema import MissingUnitError
+
+    d = _with_plain(key, value)
+    path = key.replace("[]", "[0]")
+    if plain_number(key, KEYS[key]) == "**no**":
+        assert KEYS[key].unit not in ("mm", "deg")
+        with pytest.raises(MissingUnitError) as info:
+            parse_spec(d)
+        assert info.value.field == path
+        assert str(info.value).startswith(f"{path} = {value} has no unit: write it with one, e.g. ")
+    else:
+        assert KEYS[key].unit in ("mm", "deg")
+        error: SpecError | None = None
+        try:
+            parse_spec(d)
+        except SpecError as exc:
+            error = exc
+        assert not isinstance(error, MissingUnitError), str(error)
+
+
+def test_the_issue_rigidity_without_a_unit_is_one_line_saying_how_to_write_it() -> None:
+    from corrugate.spec.schema import parse_spec_text
+
+    text = ISSUE_TEXT.replace('min = "80 mN*m^2"', "min = 80")
+    with pytest.raises(SpecError) as info:
+        parse_spec_text(text)
+    assert str(info.value) == (
+        'constraints.flexural_rigidity[0].min = 80 has no unit: write it with one, e.g. "80 '
+        'mN*m^2" (or "80 N*mm^2")'
+    )
+    # both ways of writing it that the line offers are read, 1000 times apart (1 mN m^2 =
+    # 1e-3 N x 1e6 mm^2 = 1000 N mm^2)
+    for written, internal in (('"80 mN*m^2"', 80_000.0), ('"80 N*mm^2"', 80.0)):
+        s = parse_spec_text(ISSUE_TEXT.replace('"80 mN*m^2"', written))
+        assert s.constraints.flexural_rigidity[0].min == pytest.approx(internal, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "line"),
+    [
+        (
+            "constraints.mass.max",
+            2,
+            'constraints.mass.max = 2 has no unit: write it with one, e.g. "2 g"',
+        ),
+        (
+            "material.E",
+            2700,
+            'material.E = 2700 has no unit: write it with one, e.g. "2700 MPa" (or "2700 GPa")',
+        ),
+        (
+            "constraints.deflection[].load",
+            10.0,
+            'constraints.deflection[0].load = 10.0 has no unit: write it with one, e.g. "10.0 N"',
+        ),
+    ],
+)
+def test_other_quantities_without_a_unit_name_their_unit(key: str, value: Any, line: str) -> None:
+    with pytest.raises(SpecError) as info:
+        parse_spec(_with_plain(key, value))
+    assert str(info.value) == line

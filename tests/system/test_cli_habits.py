@@ -130,12 +130,14 @@ def test_infeasible_diagnosis_lines_are_whole_and_end_with_a_hint(
     assert code == 1
     items = [line for line in out.splitlines() if line.startswith("  - ")]
     assert len(items) >= 2
-    for line in items:  # each diagnosis is one line, never broken mid-phrase
-        assert line.rstrip().endswith("relaxing it alone makes the spec feasible")
+    for line in items:  # each diagnosis is one line, never broken mid-phrase, ending in its hint
+        assert re.search(r"relaxing it alone makes the spec feasible: hint: \S+ = \"[0-9.]+ ", line)
+        assert line.rstrip().endswith("%)")
     hint = out.splitlines()[-1]
-    # the smallest relative change of the example: the flat blank, 250 -> 252 mm (0.8 %)
-    assert hint.startswith("hint: the smallest change is constraints.sheet_max = 252 mm")
-    assert "instead of 250" in hint
+    # the smallest relative change of the example: the flat blank, 250 -> 252 mm (0.8 %), written
+    # as the spec takes it
+    assert hint.startswith('hint: the smallest single change is constraints.sheet_max = "252 mm"')
+    assert "instead of 250 mm (0.8 %)" in hint
 
 
 # --- --quiet ----------------------------------------------------------------------------------------
@@ -160,7 +162,7 @@ def test_design_quiet_infeasible_keeps_exit_1_and_says_why_on_stderr(
     code, out, err = cli(["design", str(_spec(tmp_path, "infeasible")), "--quiet"])
     assert code == 1
     assert out == ""
-    assert "infeasible" in err and "hint: the smallest change" in err
+    assert "infeasible" in err and "hint: the smallest single change" in err
 
 
 def test_quiet_bad_input_still_one_line_exit_2(cli: CliRun) -> None:

@@ -34,6 +34,7 @@ from corrugate.cli import main
 from corrugate.core.errors import InputError
 from corrugate.core.limits import LIMITS, Limit
 from corrugate.spec.schema import parse_spec
+from spec_units import with_units
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC = ROOT / "examples" / "blimp_gripper.toml"
@@ -220,7 +221,7 @@ def test_every_limit_is_enforced_where_its_value_enters(key: str, tmp_path: Path
             data = copy.deepcopy(BASE)
             put(data, v)
             with pytest.raises(InputError) as exc:
-                parse_spec(data)
+                parse_spec(with_units(data))
             assert exc.value.field.startswith(path), (key, v, exc.value.field, str(exc.value))
 
 

@@ -19,7 +19,7 @@ from fastapi.testclient import TestClient
 
 import corrugate.cli
 from corrugate.solver import Problem, solve
-from corrugate.spec.schema import parse_spec
+from corrugate.spec.schema import SpecError, parse_spec
 from corrugate.web import WebSettings, create_app
 from corrugate.web.app import _output_options
 from corrugate.web.schemas import BLIMP_GRIPPER, DesignBody
@@ -221,6 +221,17 @@ def _with(path: str, value: Any) -> dict[str, Any]:
             "constraints.flexural_rigidity[0].min",
             "wrong dimension",
         ),
+        (
+            _with("constraints.flexural_rigidity.0.min", 80),
+            "constraints.flexural_rigidity[0].min",
+            'has no unit: write it with one, e.g. "80 mN*m^2" (or "80 N*mm^2")',
+        ),
+        (
+            _with("constraints.flexural_rigidity.0.min", "80"),
+            "constraints.flexural_rigidity[0].min",
+            "= 80 has no unit",
+        ),
+        (_with("constraints.mass", {"max": 2}), "constraints.mass.max", 'e.g. "2 g"'),
         (_with("constraints.side.min", "70 mm"), "constraints.side.min", "greater than max"),
         (_with("variables.W.min", "40 mm"), "variables.W.min", "greater than max"),
         (_with("variables.n.max", 2.5), "variables.n.max", "not an integer"),
@@ -247,6 +258,23 @@ def test_bad_specs_get_422_naming_the_path(
     d = r.json()
     assert d["field"] == field
     assert words in d["detail"], d["detail"]
+    alive(client)
+
+
+def test_a_plain_rigidity_gets_the_clis_words(client: TestClient) -> None:
+    """422 with the very line the CLI prints (the same parser), naming the TOML path."""
+    body = _with("constraints.flexural_rigidity.0.min", 80)
+    with pytest.raises(SpecError) as info:
+        parse_spec(body)
+    r = client.post("/api/design", json=body)
+    assert r.status_code == 422
+    d = r.json()
+    assert d["detail"] == str(info.value)
+    assert d["detail"] == (
+        "constraints.flexural_rigidity[0].min = 80 has no unit: write it with one, e.g. "
+        '"80 mN*m^2" (or "80 N*mm^2")'
+    )
+    assert d["field"] == "constraints.flexural_rigidity[0].min"
     alive(client)
 
 

@@ -47,7 +47,7 @@ def test_the_chassis_plate_answers_with_its_deflection_in_mm(client: TestClient)
     ("body", "field", "words"),
     [
         (_chassis(load="0 N"), "constraints.deflection[0].load", "out of range"),
-        (_chassis(load=-3), "constraints.deflection[0].load", "out of range"),
+        (_chassis(load="-3 N"), "constraints.deflection[0].load", "out of range"),
         (_chassis(load="3 mm"), "constraints.deflection[0].load", "wrong dimension"),
         (_chassis(load=None), "constraints.deflection[0].load", "missing"),
         (_chassis(max="0 mm"), "constraints.deflection[0].max", "out of range"),

@@ -118,20 +118,14 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
 
 
 def relax_hint(sol: Solution) -> str | None:
-    """For an infeasible spec: the one constraint whose relaxation alone is the smallest change
-    (relative to its bound) that makes the spec feasible, as a ``hint:`` line; None without one."""
-    single = [
-        (abs(d.reachable - d.bound) / abs(d.bound), d.names[0].split(" ")[0], d)
-        for d in sol.diagnosis
-        if len(d.names) == 1 and d.bound and d.reachable is not None
-    ]
-    if not single:
+    """For an infeasible spec: the ``hint:`` line (:func:`corrugate.solver.diagnosis.best_hint`:
+    a structural change that restores feasibility, else the smallest relative edit of one bound,
+    else of a pair, else why no hint exists); None without a diagnosis."""
+    from corrugate.solver.diagnosis import best_hint
+
+    if not sol.diagnosis:
         return None
-    rel, name, best = min(single, key=lambda item: item[0])
-    return (
-        f"hint: the smallest change is {name} = {best.reachable:.6g} {best.unit} instead of "
-        f"{best.bound:.6g} ({100 * rel:.3g} %); edit that key of the spec and run again"
-    )
+    return f"hint: {best_hint(sol.diagnosis)}"
 
 
 def _print_failure(sol: Solution, robust: object, console: Console) -> None:

@@ -10,15 +10,15 @@ then, unless ``explain=False``, builds the explanation:
   lets the solver find a strictly better design (re-solved, certified);
 * runner-ups: the certified best design for each n near the optimum's n;
 * warnings: the model's (``analyze``) plus the solver's;
-* when no design exists, a diagnosis: for each constraint, the best value of its quantity that
-  the *other* constraints allow (e.g. the most rigidity reachable inside the size limits), so the
-  conflicting constraints and the shortfall are named; if no single constraint is to blame, the
-  pairs whose joint removal restores feasibility.
+* when no design exists, a diagnosis (:mod:`corrugate.solver.diagnosis`): the structural causes
+  (identical layers forcing a square, off-axis bounds on a free panel), and for each constraint
+  the best value of its quantity that the *other* constraints allow (e.g. the most rigidity
+  reachable inside the size limits), with the constraints it binds together with and a hint;
+  if no single constraint is to blame, the pairs that must both be relaxed.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 import time
 from dataclasses import dataclass, field, replace
@@ -131,22 +131,34 @@ class RunnerUp:
 
 @dataclass(frozen=True, slots=True)
 class Diagnosis:
-    """Why no design exists: constraint ``names`` cannot all hold; ``reachable`` is the best
-    value of the first one's quantity that the other constraints allow (None if they conflict
-    among themselves)."""
+    """Why no design exists (:mod:`corrugate.solver.diagnosis`): constraint ``names`` cannot all
+    hold. ``kind``: ``layers`` (identical layers force Lx = Ly), ``support`` (off-axis bounds on a
+    free panel), ``single`` (relaxing the one named constraint restores feasibility), ``pair``
+    (both named must be relaxed) or ``none`` (no hint exists). ``reachable`` is the best value of
+    the first one's quantity that the other constraints allow (a pair: with the other dropped),
+    ``alone`` its best with no other constraint (a pair: together, the other at its best), in
+    ``unit``; ``hint`` the spec edit that restores feasibility (None: the message says why there
+    is none), ``relative`` the edit's size relative to the bound."""
 
     names: tuple[str, ...]
     bound: float | None
     reachable: float | None
     unit: str
     message: str
+    kind: str = "single"
+    hint: str | None = None
+    alone: float | None = None
+    relative: float | None = None
 
     def as_dict(self) -> dict[str, object]:
         return {
+            "kind": self.kind,
             "constraints": list(self.names),
             "bound": self.bound,
             "reachable": self.reachable,
+            "reachable_alone": self.alone,
             "unit": self.unit,
+            "hint": self.hint,
             "message": self.message,
         }
 
@@ -469,6 +481,14 @@ def _under_refined(problem: Problem, opt: Optimum) -> dict[str, str] | None:
     }
 
 
+def _diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
+    """:func:`corrugate.solver.diagnosis.diagnose` (imported here: it re-solves with
+    :func:`optimize`)."""
+    from corrugate.solver.diagnosis import diagnose
+
+    return diagnose(problem, tables)
+
+
 def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[Quantity, float]:
     assert opt.point is not None
     assert opt.candidates is not None
@@ -561,69 +581,6 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
                 r.value,
                 tuple(layer_dict(i + 1, layer) for i, layer in enumerate(a.layers)),
                 r.certified,
-            )
-        )
-    return out
-
-
-def _best_value(problem: Problem, c: Constraint, tables: Tables) -> Optimum:
-    """Best value of c's quantity under the other constraints (max for a lower bound)."""
-    relaxed = problem.without(c.name).with_objective(
-        c.quantity, "max" if c.sense == "min" else "min"
-    )
-    return optimize(relaxed, tables=tables)
-
-
-def _diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
-    out: list[Diagnosis] = []
-    for c in problem.constraints:
-        best = _best_value(problem, c, tables)
-        if best.point is None:
-            continue
-        r = best.value
-        short = (c.bound - r) if c.sense == "min" else (r - c.bound)
-        word = "largest" if c.sense == "min" else "smallest"
-        need = ">=" if c.sense == "min" else "<="
-        what = c.quantity.description
-        pct = 100 * abs(short) / abs(c.bound)
-        out.append(
-            Diagnosis(
-                (c.name,),
-                c.bound,
-                r,
-                c.unit,
-                f"{c.name} asks {what} {need} {c.bound:.6g} {c.unit}; the {word} reachable "
-                f"while meeting every other constraint is {r:.6g} {c.unit} (misses by "
-                f"{abs(short):.4g} {c.unit}, {pct:.3g} %); relaxing it alone makes the spec "
-                "feasible",
-            )
-        )
-    if out:
-        return out
-    names = [c.name for c in problem.constraints]
-    for a, b in itertools.combinations(names, 2):
-        relaxed = problem.without(a).without(b)
-        if optimize(relaxed, tables=tables).point is not None:
-            out.append(
-                Diagnosis(
-                    (a, b),
-                    None,
-                    None,
-                    "",
-                    (f"{a} and {b} together exclude every design; dropping both allows one"),
-                )
-            )
-    if not out:
-        out.append(
-            Diagnosis(
-                tuple(names),
-                None,
-                None,
-                "",
-                (
-                    "no design meets the variable bounds and constraints even with any two "
-                    "constraints dropped; widen the variable bounds ([variables])"
-                ),
             )
         )
     return out

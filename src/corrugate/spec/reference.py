@@ -23,9 +23,9 @@ from pydantic import BaseModel
 
 from corrugate.core.parameters import PARAMETERS
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, either, supports
-from corrugate.spec.schema import Spec
+from corrugate.spec.schema import PLAIN_UNITS, Spec
 
-__all__ = ["KEYS", "KeyDoc", "json_schema", "reference_markdown", "spec_keys"]
+__all__ = ["KEYS", "KeyDoc", "json_schema", "plain_number", "reference_markdown", "spec_keys"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -320,6 +320,33 @@ def _default(path: str) -> str:
     return json.dumps(value)
 
 
+def plain_number(key: str, doc: KeyDoc, table: bool = False) -> str:
+    """The *plain* column of the reference: ``yes`` where a plain number is read in the key's
+    unit (mm, deg: :data:`~corrugate.spec.schema.PLAIN_UNITS`) or the value is a count or a
+    ratio, ``**no**`` where the unit must be written, ``-`` for a table, an array of tables or a
+    choice."""
+    if table or (not doc.unit and key not in _NUMBERS):
+        return "-"
+    if not doc.unit or doc.unit in PLAIN_UNITS:
+        return "yes"
+    return "**no**"
+
+
+#: Unit-less keys whose value is a number (counts, ratios); the others are names and choices.
+_NUMBERS = {
+    "variables.n.min",
+    "variables.n.max",
+    "safety_factor",
+    "robust.probability",
+    "robust.t",
+    "robust.E",
+    "robust.samples",
+    "robust.seed",
+    "material.nu",
+    "materials[].nu",
+}
+
+
 def _shown(default: str) -> str:
     return "**required**" if default == "required" else f"`{default}`" if default else "-"
 
@@ -334,20 +361,31 @@ def reference_markdown() -> str:
         "Generated from the spec model by `corrugate spec --reference` "
         "(`corrugate.spec.reference`); do not edit by hand. A spec is a TOML file; start from "
         "`corrugate init` or an example (`corrugate init --example NAME`). Every quantity is a "
-        "plain number in the unit shown or a string with any compatible unit "
+        "string with any unit compatible with the one shown "
         '(`"48 mm"`, `"1.9 in"`, `"80 mN*m^2"`): a number, then unit names joined by `*`, `/`, '
         "`·` or a space, each with an optional whole exponent `^n` or `**n` (-4 <= n <= 4; no "
         "exponent of an exponent, no parenthesised exponent), parentheses at most 4 deep, at "
         "most 64 characters of unit. `[]` marks the items of an array of tables "
         "(`flexural_rigidity = [{ min = ..., eta = ... }]`).",
         "",
-        "| key | unit | default | meaning |",
-        "|---|---|---|---|",
+        "**Plain numbers** (column *plain*): a length may be a plain number in mm and an angle "
+        "one in deg, and counts and ratios (`n`, `nu`, `safety_factor`, the `robust` "
+        "tolerances) are plain numbers. Every other quantity (a rigidity, stiffness, load, "
+        "modulus, density or mass) must carry its unit: a plain `80` could be 80 N mm^2 or the "
+        "80 mN m^2 the web form shows, 1000 times apart, so `flexural_rigidity = [{ min = 80 }]` "
+        "is refused with `constraints.flexural_rigidity[0].min = 80 has no unit: write it with "
+        'one, e.g. "80 mN*m^2" (or "80 N*mm^2")` (exit 2; HTTP 422 from `POST /api/design`).',
+        "",
+        "| key | unit | plain | default | meaning |",
+        "|---|---|---|---|---|",
     ]
+    tables = {k.rsplit(".", 1)[0] for k in keys if "." in k}
+    tables |= {t.removesuffix("[]") for t in tables}
     for k in keys:
         doc = docs[k]
         default = _default(k)
-        lines.append(f"| `{k}` | {doc.unit or '-'} | {_shown(default)} | {doc.text} |")
+        plain = plain_number(k, doc, k in tables)
+        lines.append(f"| `{k}` | {doc.unit or '-'} | {plain} | {_shown(default)} | {doc.text} |")
     lines += [
         "",
         "Exit codes of `corrugate design`: 0 an answer, 1 no design meets the spec (infeasible), "

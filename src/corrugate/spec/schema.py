@@ -2,8 +2,12 @@
 
 A spec states what a part must do (docs/theory.md section 5); :func:`load_spec` reads one from a TOML
 file and :func:`parse_spec` from a dict. Every quantity may carry units (``"48 mm"``,
-``"80 mN*m^2"``, ``"84 deg"``) or be a plain number in the field's internal unit (mm, deg, N mm^2,
-N mm, N/mm, g). The validated :class:`Spec` holds plain floats in those internal units.
+``"80 mN*m^2"``, ``"84 deg"``). A plain number is read in the field's internal unit only where
+that unit cannot be mistaken: lengths (mm), angles (deg), counts and ratios (:data:`PLAIN_UNITS`).
+Every other quantity (a rigidity, stiffness, load, modulus, density, mass) must carry its unit:
+``min = 80`` for a rigidity is refused (:class:`MissingUnitError`), because 80 N mm^2 and the
+80 mN m^2 a user most likely meant differ 1000-fold. The validated :class:`Spec` holds plain
+floats in the internal units (mm, deg, N mm^2, N mm, N/mm, N, MPa, g).
 
 Anything wrong (an unknown key, a wrong unit, min > max, a negative size, an unknown material)
 raises :class:`SpecError`, an :class:`~corrugate.core.errors.InputError` whose ``field`` is the TOML path
@@ -74,11 +78,13 @@ from corrugate.names import (
 )
 
 __all__ = [
+    "PLAIN_UNITS",
     "STIFFNESS_KINDS",
     "ConstraintsSpec",
     "HoleSpec",
     "LayoutSpec",
     "MaterialSpec",
+    "MissingUnitError",
     "ObjectiveSpec",
     "Range",
     "RobustSpec",
@@ -91,6 +97,7 @@ __all__ = [
     "load_spec_text",
     "parse_spec",
     "parse_spec_text",
+    "unit_example",
 ]
 
 #: Stiffness quantities a spec may bound or maximise, with their internal unit.
@@ -113,7 +120,59 @@ class SpecError(InputError):
         super().__init__(path, value, allowed, reason=reason)
 
 
+class MissingUnitError(SpecError):
+    """A quantity whose unit is not mm or deg was given as a plain number: one line saying how
+    to write it, e.g. ``constraints.flexural_rigidity[0].min = 80 has no unit: write it with one,
+    e.g. "80 mN*m^2" (or "80 N*mm^2")``."""
+
+    def __init__(self, path: str, value: str, example: str):
+        super().__init__(
+            path, value, f"a quantity with a unit, e.g. {example}", reason="has no unit"
+        )
+        self.args = (f"{path} = {value} has no unit: write it with one, e.g. {example}",)
+
+
 # -- quantities --------------------------------------------------------------------------------
+
+#: Internal units in which a spec value may be a plain number: lengths, angles and pure numbers
+#: (counts, ratios). A plain number for any other quantity is refused (:class:`MissingUnitError`).
+PLAIN_UNITS = frozenset({"mm", "deg", "dimensionless"})
+
+#: How to write a quantity of each internal unit that needs one: the unit a user most likely
+#: means first (the web form and the docs show it), then another one.
+_UNIT_EXAMPLES: dict[str, tuple[str, ...]] = {
+    "N*mm^2": ("mN*m^2", "N*mm^2"),
+    "N*mm": ("N*mm", "mN*m"),
+    "N/mm": ("N/mm", "kN/m"),
+    "N": ("N",),
+    "g": ("g",),
+    "MPa": ("MPa", "GPa"),
+    "g/cm^3": ("g/cm^3", "kg/m^3"),
+}
+
+
+def _plain_number(value: Any) -> str | None:
+    """``value`` as its text when it is a plain number (a TOML/JSON number or a string holding
+    only one), else None."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, int | float):
+        return str(value)
+    if isinstance(value, str):
+        try:
+            float(value)
+        except ValueError:
+            return None
+        return value.strip()
+    return None
+
+
+def unit_example(number: str, unit: str) -> str:
+    """How to write ``number`` with a unit compatible with ``unit``, e.g. ``"80 mN*m^2" (or "80
+    N*mm^2")``."""
+    first, *others = _UNIT_EXAMPLES.get(unit, (unit,))
+    text = f'"{number} {first}"'
+    return text + "".join(f' (or "{number} {u}")' for u in others)
 
 
 def _quantity(
@@ -126,9 +185,11 @@ def _quantity(
     scale: float = 1.0,
     shown: str | None = None,
 ) -> Callable[[Any], float]:
-    """A pydantic before-validator reading a quantity in ``unit`` and checking its range."""
+    """A pydantic before-validator reading a quantity in ``unit`` and checking its range; a plain
+    number is refused unless ``unit`` is in :data:`PLAIN_UNITS`."""
     label = unit if shown is None else shown
     tail = f" {label}" if label else ""
+    plain_ok = unit in PLAIN_UNITS
     parts = []
     if lo is not None:
         parts.append(f"{'>' if lo_open else '>='} {lo:g}{tail}")
@@ -137,6 +198,13 @@ def _quantity(
     allowed = " and ".join(parts) if parts else f"a quantity in {label}"
 
     def validate(value: Any) -> float:
+        number = None if plain_ok else _plain_number(value)
+        if number is not None:
+            raise PydanticCustomError(
+                "unit",
+                "{number} has no unit",
+                {"number": number, "example": unit_example(number, label)},
+            )
         try:
             x = parse_quantity(value, unit, "value")
         except InputError as exc:
@@ -757,6 +825,8 @@ def _from_validation_error(exc: ValidationError) -> SpecError:
         )
     if kind == "missing":
         return SpecError(path, None, "a value", reason="is missing")
+    if kind == "unit":
+        return MissingUnitError(path, str(ctx["number"]), str(ctx["example"]))
     if kind in {"quantity", "count"}:
         return SpecError(path, repr(value), str(ctx.get("allowed")), reason=str(ctx["reason"]))
     if kind == "literal_error":

@@ -1,0 +1,456 @@
+"""Why no design meets a spec: the numbers, the cause and what would change it.
+
+:func:`diagnose` explains an infeasible :class:`~corrugate.solver.problem.Problem` with certified
+re-solves of variants of it (each one the branch and bound of :mod:`.bnb`, so every number is the
+best a design in the variable bounds reaches, not an estimate):
+
+* **identical layers on a rectangle or polygon**: both layers fold to the same extent, Lx = Ly (a
+  square bounding box). When ``layers = "independent"`` makes the spec feasible, that is the
+  hint, with the lightest design it allows; when the side_x and side_y ranges do not overlap,
+  the diagnosis says that identical layers cannot meet them whatever else is changed.
+* **off-axis stiffness with free sides** (docs/offaxis.md): off the crease directions no facet of
+  a free panel runs from one loaded edge to the other, so its EI, D and K there are those of the
+  soft across-crease bending, twisting and shear. The diagnosis gives each off-axis bound's best
+  value with the other constraints held, what a rigid frame (``support = "frame"``) would give
+  (the spec re-solved with that support), the best along the creases, and names a face sheet
+  (not modelled) as the other way.
+* **one constraint**: for each constraint whose relaxation alone restores feasibility, the best
+  value of its quantity with every other constraint held (the most rigidity the size limits
+  allow, ...), the shortfall, the constraints it binds together with (each one dropped in turn:
+  the value reached without it) and the value with no other constraint at all (variable bounds
+  only); the hint is the edit, written with its unit, rounded towards feasible.
+* **two constraints** when no single one is to blame: each one's best with the other dropped,
+  and together (the other relaxed to its own best), and the pair of edits that restores
+  feasibility.
+* otherwise, why no hint exists.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from dataclasses import replace
+
+from corrugate.solver.problem import Constraint, Problem
+from corrugate.solver.quantities import Tables
+from corrugate.solver.quantity import STIFFNESS, Quantity
+from corrugate.solver.solve import Diagnosis, Optimum, optimize
+
+__all__ = ["SMALL_EDIT", "best_hint", "diagnose", "shown"]
+
+#: Relative improvement above which dropping a constraint counts as raising another's reach.
+_BETTER_RTOL = 1e-9
+#: A relative edit of one bound up to which it is the hint even when a structural change (independent
+#: layers, a frame) would also restore feasibility: a few per cent is a tolerance, not a redesign.
+SMALL_EDIT = 0.10
+#: How many constraints a single diagnosis names as binding together with it.
+_MAX_PARTNERS = 3
+
+
+def shown(value: float, unit: str) -> str:
+    """``value`` (internal ``unit``) as the spec writes it: a rigidity in mN*m^2, else the unit."""
+    if unit == "N*mm^2":
+        return f"{value / 1000:.4g} mN*m^2"
+    return f"{value:.4g} {unit}".rstrip()
+
+
+def _rounded(value: float, unit: str, down: bool) -> str:
+    """``value`` rounded to 4 significant digits towards ``down`` (a lower bound rounded down
+    still holds), as a quoted spec value with its unit."""
+    v = value / 1000 if unit == "N*mm^2" else value
+    text_unit = "mN*m^2" if unit == "N*mm^2" else unit
+    if v != 0 and math.isfinite(v):
+        step = 10.0 ** (math.floor(math.log10(abs(v))) - 3)
+        v = (math.floor(v / step) if down else math.ceil(v / step)) * step
+    return f'"{v:.4g} {text_unit}"'
+
+
+def _key(c: Constraint) -> str:
+    """The spec key of ``c`` (``constraints.sheet_max (flat blank)`` -> ``constraints.sheet_max``)."""
+    return c.name.split(" ")[0]
+
+
+def _best(problem: Problem, q: Quantity, sense: str, tables: Tables | None) -> Optimum:
+    """The best value of ``q`` (largest for ``sense`` min, smallest for max) under ``problem``'s
+    constraints."""
+    return optimize(
+        problem.with_objective(q, "max" if sense == "min" else "min"),
+        tables=tables if tables is not None else Tables(problem),
+    )
+
+
+def _improves(c: Constraint, new: float, old: float) -> bool:
+    sign = 1.0 if c.sense == "min" else -1.0
+    return sign * (new - old) > _BETTER_RTOL * max(abs(old), abs(c.bound), 1e-300)
+
+
+def _meets(c: Constraint, value: float) -> bool:
+    return bool(c.satisfied(value))  # type: ignore[arg-type]
+
+
+def _asked(c: Constraint) -> str:
+    """What ``c`` asks, e.g. ``flexural rigidity EI(45 deg) >= 80 mN*m^2``."""
+    if c.load is not None:
+        return f"a deflection <= {c.load / c.bound:.4g} mm under {c.load:g} N ({c.quantity.description})"
+    need = ">=" if c.sense == "min" else "<="
+    return f"{c.quantity.description} {need} {shown(c.bound, c.unit)}"
+
+
+def _value(c: Constraint, v: float) -> str:
+    """A value of ``c``'s quantity as the spec reads it (a deflection bound: the deflection)."""
+    return f"{c.load / v:.4g} mm" if c.load is not None else shown(v, c.unit)
+
+
+def _edit(c: Constraint, v: float) -> str:
+    """The spec edit that lets ``c`` accept the value ``v`` of its quantity."""
+    if c.load is not None:  # P/delta >= v: a deflection of load / v, rounded up
+        return f"{_key(c)} = {_rounded(c.load / v, 'mm', down=False)}"
+    return f"{_key(c)} = {_rounded(v, c.unit, down=c.sense == 'min')}"
+
+
+def _pct(c: Constraint, v: float) -> float:
+    return 100 * abs(c.bound - v) / abs(c.bound) if c.bound else math.inf
+
+
+def _off_axis_free(c: Constraint) -> bool:
+    """A bound on EI, D or K of the panel itself off the crease directions, without a frame."""
+    q = c.quantity
+    return (
+        q.kind in STIFFNESS
+        and q.test is None
+        and q.eta is not None
+        and q.eta % 90 != 0
+        and q.support != "frame"
+    )
+
+
+# -- the diagnosis --------------------------------------------------------------------------------
+
+
+def diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
+    """Why ``problem`` (infeasible) has no design: the structural causes first (identical layers
+    forcing a square, off-axis bounds on a free panel), then each constraint whose relaxation
+    alone restores feasibility, else the pairs that must both be relaxed; every entry with its
+    numbers and a hint, or why there is none (module docstring)."""
+    out: list[Diagnosis] = []
+    out += _layers(problem)
+    out += _free_off_axis(problem, tables)
+    singles = [d for c in problem.constraints if (d := _single(problem, c, tables)) is not None]
+    out += singles
+    if singles:
+        return out
+    pairs = _pairs(problem, tables)
+    out += pairs
+    if not pairs and not any(d.hint for d in out):
+        names = tuple(c.name for c in problem.constraints)
+        out.append(
+            Diagnosis(
+                names,
+                None,
+                None,
+                "",
+                "no design meets the variable bounds and constraints even with any two "
+                "constraints dropped, so no single edit of a bound is a hint: widen the variable "
+                "bounds ([variables] W, n, alpha) or choose a stiffer or thicker material",
+                kind="none",
+            )
+        )
+    return out
+
+
+def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:
+    """The one hint to act on: the smallest relative edit of one bound when it is at most
+    :data:`SMALL_EDIT` of the bound, else a structural change that restores feasibility
+    (independent layers, a frame), else the smallest single edit, else the pair of edits, else
+    why no hint exists."""
+    singles = [d for d in diagnosis if d.kind == "single" and d.hint]
+    best = min(
+        singles, key=lambda d: d.relative if d.relative is not None else math.inf, default=None
+    )
+    single = (
+        None
+        if best is None
+        else f"the smallest single change is {best.hint}; edit that key of the spec and run again"
+    )
+    if best is not None and single and best.relative is not None and best.relative <= SMALL_EDIT:
+        return single
+    for d in diagnosis:
+        if d.kind in ("layers", "support") and d.hint:
+            return d.hint
+    if single:
+        return single
+    for d in diagnosis:
+        if d.hint:
+            return d.hint
+    return "none: " + (diagnosis[-1].message if diagnosis else "no design meets the spec")
+
+
+def _layers(problem: Problem) -> list[Diagnosis]:
+    """Identical layers on a rectangle or polygon: Lx = Ly. Says so when the size constraints
+    need Lx != Ly, and re-solves with independent layers."""
+    if not problem.identical or problem.layout.name not in ("rectangle", "polygon"):
+        return []
+    lo = {"Lx": -math.inf, "Ly": -math.inf}
+    hi = {"Lx": math.inf, "Ly": math.inf}
+    names: dict[str, list[str]] = {"Lx": [], "Ly": []}
+    for c in problem.constraints:
+        k = c.quantity.kind
+        if k in lo:
+            names[k].append(c.name)
+            if c.sense == "min":
+                lo[k] = max(lo[k], c.bound)
+            else:
+                hi[k] = min(hi[k], c.bound)
+    apart = max(lo["Lx"], lo["Ly"]) > min(hi["Lx"], hi["Ly"])
+    independent = replace(problem, identical=False)
+    found = optimize(independent, tables=Tables(independent))
+    if found.point is None and not apart:
+        return []
+
+    def span(k: str) -> str:
+        a = f"{lo[k]:g}" if math.isfinite(lo[k]) else "0"
+        b = f"{hi[k]:g}" if math.isfinite(hi[k]) else "any"
+        return f"{a}-{b} mm"
+
+    why = (
+        'with layers = "identical" both layers are the same, so they fold to the same extent: '
+        "Lx = Ly, a square outline"
+    )
+    if apart:
+        why += f", but side_x allows Lx {span('Lx')} and side_y allows Ly {span('Ly')}"
+    if found.point is not None:
+        o = problem.objective
+        unit = o.quantity.unit
+        hint = 'layers = "independent" (each layer its own W, n, alpha)'
+        message = (
+            f"{why}; with {hint} the spec is feasible: the "
+            f"{'lightest' if o.quantity.key == 'mass' and o.sense == 'min' else 'best'} design "
+            f"is {shown(found.value, unit)}" + ("" if found.certified else " (not certified)")
+        )
+        return [
+            Diagnosis(
+                tuple(names["Lx"] + names["Ly"]),
+                None,
+                found.value,
+                unit,
+                message + f"; hint: {hint}",
+                kind="layers",
+                hint=hint,
+            )
+        ]
+    return [
+        Diagnosis(
+            tuple(names["Lx"] + names["Ly"]),
+            None,
+            None,
+            "mm",
+            f"{why}; independent layers alone do not make the spec feasible either (see below)",
+            kind="layers",
+        )
+    ]
+
+
+def _free_off_axis(problem: Problem, tables: Tables) -> list[Diagnosis]:
+    """Off-axis bounds on a panel with free sides: each one's best with the other constraints
+    held, the spec re-solved with a frame, and the best along the creases."""
+    off = [c for c in problem.constraints if _off_axis_free(c)]
+    if not off:
+        return []
+    # each off-axis bound alone among them, every other constraint held
+    base = replace(problem, constraints=tuple(c for c in problem.constraints if c not in off))
+    reach: list[tuple[Constraint, float | None]] = []
+    for c in off:
+        best = _best(base, c.quantity, c.sense, tables)
+        reach.append((c, None if best.point is None else best.value))
+    short = [(c, r) for c, r in reach if r is None or not _meets(c, r)]
+    framed = replace(
+        problem,
+        constraints=tuple(
+            replace(c, quantity=Quantity(c.quantity.kind, c.quantity.eta, "frame"))
+            if _off_axis_free(c)
+            else c
+            for c in problem.constraints
+        ),
+    )
+    fixed = optimize(framed, tables=Tables(framed))
+    if not short and fixed.point is None:
+        return []
+    parts = []
+    for c, r in reach:
+        got = "no design meets the rest" if r is None else f"at most {_value(c, r)}"
+        parts.append(f"{_key(c)} asks {_asked(c)}: {got}")
+    etas = sorted({f"{c.quantity.eta:g}" for c in off})
+    why = (
+        f"with free sides no facet runs from edge to edge at {' and '.join(etas)} deg off the "
+        "creases (docs/offaxis.md), so a free panel carries an off-axis load only through its "
+        "soft across-crease bending, twisting and shear; with every constraint but the "
+        "off-axis ones held, " + "; ".join(parts)
+    )
+    c0 = off[0]
+    along = []
+    for eta in (0.0, 90.0):
+        q = Quantity(c0.quantity.kind, eta, c0.quantity.support)
+        best = _best(base, q, c0.sense, tables)
+        if best.point is not None:
+            along.append((eta, best.value))
+    keys = ", ".join(_key(c) for c in off)
+    if fixed.point is not None:
+        o = problem.objective
+        hint = f'support = "frame" on {keys} (the panel held in a rigid frame on all four edges)'
+        frame_text = (
+            f'what would carry it: a rigid frame (support = "frame" on {keys}: then the spec '
+            f"is feasible, best {shown(fixed.value, o.quantity.unit)})"
+        )
+    else:
+        hint = None
+        frame_text = 'even a rigid frame (support = "frame") does not make the spec feasible'
+    if along:
+        eta, v = max(along, key=lambda item: item[1] if c0.sense == "min" else -item[1])
+        frame_text += (
+            f"; a load case along the creases (eta = {eta:g} deg, where the same constraints "
+            f"allow {c0.quantity.kind} up to {shown(v, c0.unit)})"
+        )
+    frame_text += "; or a face sheet bonded to one side (not modelled by corrugate)"
+    message = f"{why}; {frame_text}" + (f"; hint: {hint}" if hint else "")
+    first = reach[0][1]
+    return [
+        Diagnosis(
+            tuple(c.name for c in off),
+            c0.bound,
+            first,
+            c0.unit,
+            message,
+            kind="support",
+            hint=hint,
+        )
+    ]
+
+
+def _single(problem: Problem, c: Constraint, tables: Tables) -> Diagnosis | None:
+    """``c`` alone: its best with every other constraint held (None when those conflict among
+    themselves), the constraints it binds together with, and its best with none held."""
+    rest = problem.without(c.name)
+    best = _best(rest, c.quantity, c.sense, tables)
+    if best.point is None or _meets(c, best.value):
+        return None
+    r = best.value
+    word = "largest" if c.sense == "min" else "smallest"
+    if c.load is not None:
+        word = "smallest"
+    pct = _pct(c, r)
+    text = (
+        f"{c.name} asks {_asked(c)}; the {word} reachable with every other constraint held is "
+        f"{_value(c, r)} (short by {pct:.3g} %)"
+    )
+    partners = []
+    for d in problem.constraints:
+        if d.name == c.name:
+            continue
+        without = _best(rest.without(d.name), c.quantity, c.sense, tables)
+        if without.point is not None and _improves(c, without.value, r):
+            partners.append((d, without.value))
+    partners.sort(key=lambda item: -abs(item[1] - r))
+    alone = _best(replace(problem, constraints=()), c.quantity, c.sense, tables)
+    a = None if alone.point is None else alone.value
+    if partners:
+        named = [f"{_key(d)} (without it: {_value(c, v)})" for d, v in partners[:_MAX_PARTNERS]]
+        more = len(partners) - _MAX_PARTNERS
+        text += (
+            "; it binds together with "
+            + ", ".join(named)
+            + (f" and {more} more" if more > 0 else "")
+        )
+    if a is not None and _off_axis_free(c) and not _meets(c, a):
+        text += (
+            f"; even alone (variable bounds only) a free panel reaches {_value(c, a)} "
+            "(off-axis, free sides: see above)"
+        )
+    elif a is not None and not _meets(c, a):
+        text += (
+            f"; no design in the variable bounds reaches it even alone (best {_value(c, a)}): "
+            + _limits(problem, alone)
+        )
+    if c.load is not None:
+        hint = f"{_edit(c, r)} instead of {c.load / c.bound:.4g} mm"
+    else:
+        hint = f"{_edit(c, r)} instead of {shown(c.bound, c.unit)}"
+    hint += f" ({pct:.3g} %)"
+    text += f"; relaxing it alone makes the spec feasible: hint: {hint}"
+    return Diagnosis(
+        (c.name,), c.bound, r, c.unit, text, kind="single", hint=hint, alone=a, relative=pct / 100
+    )
+
+
+def _limits(problem: Problem, opt: Optimum) -> str:
+    """Which design variables sit on their bounds at ``opt`` (what to widen)."""
+    assert opt.point is not None
+    x = opt.point
+    at = []
+    for var, key, unit in ((problem.W, "W", "mm"), (problem.alpha, "a", "deg")):
+        for i in ("1", "2"):
+            v = x[f"{key}{i}"]
+            name = "W" if key == "W" else "alpha"
+            if math.isclose(v, var.lo, rel_tol=1e-9):
+                at.append(f"{name} at its min {var.lo:g} {unit}")
+            elif math.isclose(v, var.top, rel_tol=1e-9):
+                at.append(f"{name} at its max {var.top:g} {unit}")
+    for i in ("1", "2"):
+        n = round(x[f"n{i}"])
+        if n == problem.n_lo:
+            at.append(f"n at its min {n}")
+        elif n == problem.n_hi:
+            at.append(f"n at its max {n}")
+    at = list(dict.fromkeys(at))
+    if not at:
+        return "choose a stiffer or thicker material"
+    return "widen [variables] (" + ", ".join(at) + ") or choose a stiffer or thicker material"
+
+
+def _pairs(problem: Problem, tables: Tables) -> list[Diagnosis]:
+    """Pairs of constraints that must both be relaxed: each one's best with the other dropped and
+    together (the other relaxed to its own best)."""
+    out = []
+    for a, b in itertools.combinations(problem.constraints, 2):
+        rest = problem.without(a.name).without(b.name)
+        if optimize(rest, tables=tables).point is None:
+            continue
+        ra = _best(rest, a.quantity, a.sense, tables)
+        rb = _best(rest, b.quantity, b.sense, tables)
+        assert ra.point is not None and rb.point is not None
+        with_b = replace(rest, constraints=(*rest.constraints, replace(b, bound=rb.value)))
+        with_a = replace(rest, constraints=(*rest.constraints, replace(a, bound=ra.value)))
+        ta = _best(with_b, a.quantity, a.sense, tables)
+        tb = _best(with_a, b.quantity, b.sense, tables)
+        together = []
+        if ta.point is not None:
+            together.append(
+                f"{_key(a)} {_value(a, ta.value)} with {_key(b)} at {_value(b, rb.value)}"
+            )
+        if tb.point is not None:
+            together.append(
+                f"{_key(b)} {_value(b, tb.value)} with {_key(a)} at {_value(a, ra.value)}"
+            )
+        hint = None
+        if ta.point is not None:
+            hint = f"{_edit(a, ta.value)} and {_edit(b, rb.value)}"
+        text = (
+            f"{a.name} and {b.name} bind only together: neither alone can be met with the other "
+            f"constraints held, both dropped a design exists; {_key(a)} asks {_asked(a)} and reaches "
+            f"at most {_value(a, ra.value)} with {_key(b)} dropped; {_key(b)} asks {_asked(b)} and "
+            f"reaches at most {_value(b, rb.value)} with {_key(a)} dropped"
+            + (f"; together at most {' or '.join(together)}" if together else "")
+            + (f"; hint: {hint}" if hint else "")
+        )
+        out.append(
+            Diagnosis(
+                (a.name, b.name),
+                a.bound,
+                ra.value,
+                a.unit,
+                text,
+                kind="pair",
+                hint=hint,
+                alone=ta.value if ta.point is not None else None,
+            )
+        )
+    return out

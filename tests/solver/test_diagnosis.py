@@ -1,0 +1,228 @@
+"""Diagnoses of infeasible specs give numbers, causes and hints (corrugate.solver.diagnosis).
+
+The three specs of issue 21 (tests/data/diagnosis/): stiff in every direction with free sides,
+one bound at 45 deg, a rectangle with identical layers. Every number the diagnosis gives is
+checked against a direct evaluation of the model over the whole grid of the spec
+(:func:`corrugate.evaluate`, no solver), and every "this would make it feasible" against a design
+that meets the spec when analysed on its own (:func:`corrugate.analyze`).
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from conftest import CliRun
+from corrugate import LayerArrays, analyze, evaluate, get_material, make_layout
+from corrugate.solver import Problem, solve
+from corrugate.solver.diagnosis import best_hint, shown
+from corrugate.spec.schema import load_spec
+
+DATA = Path(__file__).resolve().parents[1] / "data" / "diagnosis"
+RTOL = 1e-9  # the solver's feasibility slack
+
+
+def _solve(name: str) -> Any:
+    sol = solve(Problem.from_spec(load_spec(DATA / f"{name}.toml")))
+    assert sol.status == "infeasible" and sol.certified
+    return sol
+
+
+def _by_kind(sol: Any, kind: str) -> list[Any]:
+    return [d for d in sol.diagnosis if d.kind == kind]
+
+
+def _number(text: str, after: str) -> float:
+    """The number printed right after ``after`` in ``text``."""
+    m = re.search(re.escape(after) + r"\s*([-+0-9.e]+)", text)
+    assert m, (after, text)
+    return float(m.group(1))
+
+
+class SquareGrid:
+    """Every identical-layer design of the square fixtures (Dura-Lar 0.125 mm, W 1-30 mm step 1,
+    n 6-200, alpha 40-120 deg step 1), evaluated with the refined model."""
+
+    def __init__(self) -> None:
+        mat = get_material("dura-lar")
+        n, W, A = np.meshgrid(
+            np.arange(6, 201), np.arange(1.0, 31.0), np.arange(40.0, 121.0), indexing="ij"
+        )
+        self.layer = LayerArrays(mat.E, mat.nu, 0.125, W, n, A, mat.density)
+        self.flat = (n + 1) * W
+        self.lay = make_layout("square")
+        self.cache: dict[tuple[float, str], Any] = {}
+
+    def at(self, eta: float, support: str = "free") -> Any:
+        key = (eta, support)
+        if key not in self.cache:
+            self.cache[key] = evaluate(
+                self.layer, self.layer, self.lay, "refined", eta, support=support
+            )
+        return self.cache[key]
+
+    def sizes(self) -> Any:
+        """sheet_max 250 mm (flat blank; a square's facets are its side, <= 60 mm), side 48-60
+        mm, thickness 10-12.5 mm."""
+        e = self.at(0.0)
+        ok = self.flat <= 250 * (1 + RTOL)
+        ok &= (e.Lx >= 48 * (1 - RTOL)) & (e.Lx <= 60 * (1 + RTOL))
+        ok &= (e.thickness >= 10 * (1 - RTOL)) & (e.thickness <= 12.5 * (1 + RTOL))
+        return ok
+
+
+@pytest.fixture(scope="module")
+def grid() -> SquareGrid:
+    return SquareGrid()
+
+
+def test_stiff_in_every_direction_says_why_and_what_would(grid: SquareGrid) -> None:
+    sol = _solve("every_direction")
+    [sup] = _by_kind(sol, "support")
+    # the cause, and the three ways out the issue names
+    assert "no facet runs from edge to edge at 45 deg" in sup.message
+    assert "docs/offaxis.md" in sup.message
+    assert 'support = "frame"' in sup.message and "along the creases" in sup.message
+    assert "face sheet" in sup.message
+    assert set(sup.names) == {
+        "constraints.flexural_rigidity[1].min",
+        "constraints.inplane_stiffness[1].min",
+    }
+    # the numbers: each off-axis bound's best with every on-axis bound held, by the grid
+    ok = grid.sizes()
+    for eta in (0.0, 90.0):
+        ok &= grid.at(eta).EI >= 80_000 * (1 - RTOL)
+        ok &= grid.at(eta).K >= 100 * (1 - RTOL)
+    ei45, k45 = grid.at(45.0).EI, grid.at(45.0).K
+    best_ei, best_k = float(ei45[ok].max()), float(k45[ok].max())
+    assert sup.reachable == pytest.approx(best_ei, rel=1e-9)
+    assert best_ei < 0.002 * 80_000 and best_k < 0.01 * 100  # far beyond any free panel
+    assert f"at most {shown(best_k, 'N/mm')}" in sup.message
+    # in a frame the spec is feasible: its lightest design, by the grid with the frame's rule
+    fr = ok & (grid.at(45.0, "frame").EI >= 80_000 * (1 - RTOL))
+    fr &= grid.at(45.0, "frame").K >= 100 * (1 - RTOL)
+    frame_mass = float(grid.at(0.0).mass[fr].min())
+    assert _number(sup.message, "then the spec is feasible, best") == pytest.approx(
+        frame_mass, rel=1e-3
+    )
+    # along the creases the same constraints allow much more EI
+    assert _number(sup.message, "allow EI up to") * 1000 == pytest.approx(
+        max(float(grid.at(0.0).EI[ok].max()), float(grid.at(90.0).EI[ok].max())), rel=1e-3
+    )
+    # the two bind only together: each one's best with the other dropped, and together
+    [pair] = _by_kind(sol, "pair")
+    assert pair.names == sup.names
+    assert "bind only together" in pair.message
+    assert pair.reachable == pytest.approx(best_ei, rel=1e-9)
+    together = float(ei45[ok & (k45 >= best_k * (1 - RTOL))].max())
+    assert pair.alone == pytest.approx(together, rel=1e-9)
+    assert together < best_ei  # they do compete
+    assert best_hint(sol.diagnosis).startswith('support = "frame" on ')
+
+
+def test_one_bound_at_45_deg_gives_numbers_and_the_frame_not_a_999_percent_cut(
+    grid: SquareGrid,
+) -> None:
+    sol = _solve("offaxis_45")
+    [single] = _by_kind(sol, "single")
+    ok = grid.sizes()
+    ei45 = grid.at(45.0).EI
+    best = float(ei45[ok].max())
+    assert single.reachable == pytest.approx(best, rel=1e-9)
+    assert single.bound == pytest.approx(80_000, rel=1e-12)
+    # the constraints it binds together with, each dropped in turn, by the grid
+    e0 = grid.at(0.0)
+    no_side_max = (
+        (grid.flat <= 250 * (1 + RTOL))
+        & (e0.Lx >= 48 * (1 - RTOL))
+        & (e0.thickness >= 10 * (1 - RTOL))
+        & (e0.thickness <= 12.5 * (1 + RTOL))
+    )
+    assert _number(single.message, "constraints.side.max (without it:") * 1000 == pytest.approx(
+        float(ei45[no_side_max].max()), rel=1e-3
+    )
+    # alone, in the variable bounds only, a free panel still falls short of 80 mN m^2
+    assert single.alone == pytest.approx(float(ei45.max()), rel=1e-9)
+    assert single.alone < 80_000
+    [sup] = _by_kind(sol, "support")
+    fr = ok & (grid.at(45.0, "frame").EI >= 80_000 * (1 - RTOL))
+    assert _number(sup.message, "then the spec is feasible, best") == pytest.approx(
+        float(e0.mass[fr].min()), rel=1e-3
+    )
+    hint = best_hint(sol.diagnosis)
+    assert hint.startswith('support = "frame" on constraints.flexural_rigidity[0].min')
+    assert "99.9" not in hint
+
+
+def test_a_rectangle_with_identical_layers_is_told_to_make_them_independent() -> None:
+    sol = _solve("rectangle_identical")
+    [lay] = _by_kind(sol, "layers")
+    assert "Lx = Ly" in lay.message and "78-82 mm" in lay.message and "118-122 mm" in lay.message
+    assert lay.hint is not None and lay.hint.startswith('layers = "independent"')
+    assert best_hint(sol.diagnosis) == lay.hint
+    # the claim: with independent layers a design of that mass meets every constraint
+    spec = load_spec(DATA / "rectangle_identical.toml").model_copy(update={"layers": "independent"})
+    free = solve(Problem.from_spec(spec), explain=False)
+    assert free.assembly is not None
+    a = analyze(free.assembly, "refined", [0.0])
+    assert lay.reachable == pytest.approx(a.mass.total, rel=1e-9)
+    asm = free.assembly
+    assert 78 * (1 - RTOL) <= asm.Lx <= 82 * (1 + RTOL)
+    assert 118 * (1 - RTOL) <= asm.Ly <= 122 * (1 + RTOL)
+    assert asm.thickness <= 15 * (1 + RTOL)
+    assert a.stiffness[0].EI >= 20_000 * (1 - RTOL)
+    # the size numbers: identical layers give Ly = Lx, so side_y reaches the largest Lx that
+    # side_x and the rest allow; by the grid of the spec (polypropylene 0.25 mm)
+    mat = get_material("polypropylene")
+    n, W, A = np.meshgrid(
+        np.arange(6, 41), np.arange(5.0, 31.0), np.arange(40.0, 121.0, 5.0), indexing="ij"
+    )
+    layer = LayerArrays(mat.E, mat.nu, 0.25, W, n, A, mat.density)
+    e = evaluate(layer, layer, make_layout("rectangle"), "refined", 0.0)
+    assert np.array_equal(e.Lx, e.Ly)
+    ok = ((n + 1) * W <= 280) & (e.thickness <= 15 * (1 + RTOL)) & (e.EI >= 20_000 * (1 - RTOL))
+    ok_x = ok & (e.Lx >= 78 * (1 - RTOL)) & (e.Lx <= 82 * (1 + RTOL))
+    [ymin] = [d for d in sol.diagnosis if d.names == ("constraints.side_y.min",)]
+    assert ymin.reachable == pytest.approx(float(e.Ly[ok_x & (e.Ly <= 122)].max()), rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("name", "hint"),
+    [
+        ("every_direction", 'hint: support = "frame" on constraints.flexural_rigidity[1].min'),
+        ("offaxis_45", 'hint: support = "frame" on constraints.flexural_rigidity[0].min'),
+        ("rectangle_identical", 'hint: layers = "independent"'),
+    ],
+)
+def test_the_cli_ends_with_the_hint(name: str, hint: str, cli: CliRun) -> None:
+    code, out, _ = cli(["design", str(DATA / f"{name}.toml")])
+    assert code == 1
+    lines = out.strip().splitlines()
+    assert lines[-1].startswith(hint)
+    assert all(line.startswith("  - ") for line in lines[1:-1])
+
+
+def test_a_small_edit_is_the_hint_before_a_frame() -> None:
+    """K(45) >= 1 N/mm with the case study's bounds (tests/fea/test_certified_offaxis.py): a frame
+    would do, but side.max 60 -> 60.19 mm (0.3 %) is the smaller change, so it is the hint."""
+    text = (DATA / "offaxis_45.toml").read_text("utf-8")
+    text = text.replace(
+        'flexural_rigidity = [{ min = "80 mN*m^2", eta = "45 deg" }]',
+        'flexural_rigidity = [{ min = "80 mN*m^2", eta = "0 deg" }]\n'
+        'inplane_stiffness = [{ min = "1 N/mm", eta = "45 deg" }]',
+    )
+    text = text.replace('W = { min = "1 mm", max = "30 mm"', 'W = { min = "4 mm", max = "16 mm"')
+    text = text.replace("n = { min = 6, max = 200 }", "n = { min = 4, max = 30 }")
+    from corrugate.spec.schema import parse_spec_text
+
+    sol = solve(Problem.from_spec(parse_spec_text(text)))
+    assert sol.status == "infeasible"
+    assert _by_kind(sol, "support")  # the frame is named
+    [side] = [d for d in sol.diagnosis if d.names == ("constraints.side.max",)]
+    assert side.relative is not None and side.relative < 0.01
+    hint = best_hint(sol.diagnosis)
+    assert hint.startswith('the smallest single change is constraints.side.max = "')
