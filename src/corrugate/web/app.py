@@ -63,7 +63,7 @@ from corrugate.materials.library import library
 from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
 from corrugate.solver import Problem, Solution
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
-from corrugate.spec.schema import Spec, SpecError, parse_spec
+from corrugate.spec.schema import Spec, SpecError, parse_spec, with_machine
 from corrugate.web.guards import (
     BodySizeLimit,
     CatchAll,
@@ -283,13 +283,13 @@ def _output_errors(cutter: str) -> Iterator[None]:
         raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
 
 
-def _output_options(body: OutputBody) -> OutputOptions:
+def _output_options(body: OutputBody, cutter: str | None = None) -> OutputOptions:
     """The output options of a design or pattern request, as ``corrugate design --cutter ...
     --fold-style ... --cut ... --gap ... --paper ...`` reads them
-    (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs); errors name
-    the request's field."""
+    (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs), for
+    ``cutter`` (None: the request's); errors name the request's field."""
     return output_options(
-        body.cutter,
+        body.cutter if cutter is None else cutter,
         body.fold_style,
         body.cut,
         body.gap,
@@ -375,8 +375,14 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
                 allowed = f"{exc.allowed}, or an output option: {', '.join(OUTPUT_OPTIONS)}"
                 raise SpecError(exc.field, exc.value, allowed, reason=exc.reason) from None
             raise
+        # the request's cutter, when given, is the spec's machine (as design --machine is);
+        # else the files are for the spec's [fabrication] machine
+        if "cutter" in body.model_fields_set:
+            spec = with_machine(spec, body.cutter)
+        machine = spec.fabrication.machine
+        cutter = body.cutter if machine in (None, "none") else machine
         problem = Problem.from_spec(spec)
-        options = _output_options(body)
+        options = _output_options(body, cutter)
     _check_spec_size(spec, settings)
     run = solve_spec(spec, problem)
     run = replace(run, payload=_json_safe(run.payload))
@@ -384,7 +390,7 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
         return run.payload, []
     _check_design_size(run.solution.analysis, settings)
     spec_text = json.dumps(_spec_data(body), indent=2)
-    with _output_errors(body.cutter):
+    with _output_errors(cutter):
         return run.payload, write_design(run, folder, options, spec_text)
 
 
