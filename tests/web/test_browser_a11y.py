@@ -74,23 +74,26 @@ def test_every_control_has_an_accessible_name_and_buttons_take_the_keyboard(
     assert len(controls) > 60  # both tabs' forms, the requirement rows, the view's buttons
     unnamed = [c for c in controls if not c["name"]]
     assert unnamed == [], unnamed
-    # every button is a real <button> none of which is taken out of the tab order
-    assert all(c["tabindex"] in (None, "0") for c in controls if c["tag"] == "BUTTON")
+    # every button is a real <button> none of which is taken out of the tab order, but the
+    # tabs: the chosen one is the tab list's one tab stop (roving tabindex)
+    buttons = [c for c in controls if c["tag"] == "BUTTON" and not c["id"].startswith("tab-")]
+    assert all(c["tabindex"] in (None, "0") for c in buttons)
+    tabs = {c["id"]: c["tabindex"] for c in controls if c["id"].startswith("tab-")}
+    assert tabs == {"tab-analyze": "0", "tab-design": "-1"}
     assert _unnamed_in_ax_tree(page) == []
     page.click("#tab-design")
     assert (
         _unnamed_in_ax_tree(page) == []
     )  # the design tab's visible controls, as Chromium names them
 
-    # Keyboard only: Tab reaches the design tab's button, Enter opens it, Tab reaches "Design".
+    # Keyboard only: Tab reaches the chosen tab, the right arrow opens the design tab (the
+    # WAI-ARIA tabs pattern: test_browser_parity.py), Tab reaches "Design".
     page.click("#tab-analyze")
-    page.focus("#tab-analyze")
-    for _ in range(5):
-        if page.evaluate("() => document.activeElement.id") == "tab-design":
-            break
-        page.keyboard.press("Tab")
+    page.focus("#nav-docs")
+    page.keyboard.press("Tab")
+    assert page.evaluate("() => document.activeElement.id") == "tab-analyze"
+    page.keyboard.press("ArrowRight")
     assert page.evaluate("() => document.activeElement.id") == "tab-design"
-    page.keyboard.press("Enter")
     assert page.is_visible("#panel-design") and page.is_hidden("#panel-analyze")
     for _ in range(200):
         if page.evaluate("() => document.activeElement.id") == "d-submit":

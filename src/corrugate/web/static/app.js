@@ -22,12 +22,35 @@ function fmt(x, digits = 4) {
   return String(Number(x.toPrecision(digits)));
 }
 
+// Fill ``td`` with ``text``, a line break allowed after each '.' and before each '[' of a spec
+// path (<wbr>: the text itself, and what is copied from it, stays the path).
+function breakable(td, text) {
+  td.replaceChildren();
+  for (const [i, part] of text.split(/(?<=\.)|(?=\[)/).entries()) {
+    if (i) td.appendChild(document.createElement('wbr'));
+    td.appendChild(document.createTextNode(part));
+  }
+  return td;
+}
+
 function cell(row, text, quantity) {
   const td = document.createElement('td');
   td.textContent = text;
   if (quantity) td.dataset.quantity = quantity;
   row.appendChild(td);
   return td;
+}
+
+// ---- units --------------------------------------------------------------------------------
+
+// A plain number ("80", "-1.5e3"); anything else is left for the server to read.
+const PLAIN_NUMBER = /^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i;
+
+// What the form posts for a value typed in a field that shows ``unit``: a plain number gets
+// that unit ("80" in an EI field is "80 mN*m^2"), so that every quantity posted says its unit
+// and a plain number is never read in another one; a value with a unit of its own is kept.
+function withUnit(value, unit) {
+  return unit && PLAIN_NUMBER.test(value) ? `${value} ${unit}` : value;
 }
 
 // ---- the form ----------------------------------------------------------------------------
@@ -63,12 +86,13 @@ function syncVisibility() {
   $('vertices-field').hidden = $('layout').value !== 'polygon';
 }
 
-// Circular holes, "d@x,y; d@x,y" (mm, from the layout's centre) -> the API's hole tables.
+// Circular holes, "d@x,y; d@x,y" (mm, from the layout's centre) -> the API's hole tables,
+// each length with its unit.
 function holes(text) {
   return text.split(';').map((s) => s.trim()).filter((s) => s !== '').map((h) => {
     const [d, at] = h.split('@');
-    const center = (at || '0,0').split(',').map((x) => x.trim());
-    return { shape: 'circle', diameter: d.trim(), center };
+    const center = (at || '0,0').split(',').map((x) => withUnit(x.trim(), 'mm'));
+    return { shape: 'circle', diameter: withUnit(d.trim(), 'mm'), center };
   });
 }
 
@@ -78,7 +102,7 @@ function requestBody() {
     const el = $(name);
     if (el.closest('[hidden]')) continue;
     const value = el.value.trim();
-    if (value !== '') body[name] = value;
+    if (value !== '') body[name] = withUnit(value, el.dataset.unit);
   }
   const holeText = $('holes').value.trim();
   if (holeText !== '') body.holes = holes(holeText);
@@ -88,8 +112,9 @@ function requestBody() {
   if (material2 !== '') body.material2 = material2;
   body.layout = $('layout').value;
   body.model = $('model').value;
-  const eta = $('eta').value.split(/[\s,;]+/).filter((s) => s !== '');
-  if (eta.length) body.eta = eta;
+  // "0 90" or "0 deg, 1.5 rad": directions, each posted with its unit
+  const eta = $('eta').value.split(/[,;]+|\s+(?=[+-]?[\d.])/).map((s) => s.trim()).filter((s) => s !== '');
+  if (eta.length) body.eta = eta.map((e) => withUnit(e, 'deg'));
   return body;
 }
 
@@ -516,7 +541,7 @@ function renumberRequirements() {
     load.hidden = !deflection;
     span.hidden = !deflection || test.value === 'platens';  // platens compress the whole panel
     if (min.dataset.placeholder === undefined) min.dataset.placeholder = min.placeholder;
-    min.placeholder = deflection ? 'most deflection, mm' : min.dataset.placeholder;
+    min.placeholder = deflection ? 'at most, mm' : min.dataset.placeholder;
     const fields = [[min, deflection ? 'max' : 'min'], [row.querySelector('.req-eta'), 'eta'],
       [support, 'support'], [test, 'test'], [load, 'load'], [span, 'span']];
     for (const [el, key] of fields) {
@@ -579,14 +604,11 @@ const REQUIREMENT_UNITS = {
   deflection: 'mm',
 };
 
-// A plain number typed in a load case's load is in N, its span in mm.
-function withRowUnit(el, value) {
+// The unit a field shows (its data-unit; a requirement's value: its kind's unit).
+function unitOf(el) {
   const row = el.closest('.req');
-  if (!row || !/^[+-]?(\d+\.?\d*|\.\d+)(e[+-]?\d+)?$/i.test(value)) return value;
-  if (el.classList.contains('req-load')) return `${value} N`;
-  if (el.classList.contains('req-span')) return `${value} mm`;
-  if (!el.classList.contains('req-min')) return value;
-  return `${value} ${REQUIREMENT_UNITS[row.querySelector('.req-kind').value]}`;
+  if (row && el.classList.contains('req-min')) return REQUIREMENT_UNITS[row.querySelector('.req-kind').value];
+  return el.dataset.unit;
 }
 
 // The spec (the keys of the TOML file) and the output options, from the visible fields.
@@ -599,7 +621,7 @@ function designBody() {
     if (value === '') continue;
     if (el.dataset.requires && $(el.dataset.requires).value.trim() === '') continue;
     const kinds = { vertices, holes };
-    setPath(body, el.dataset.path, kinds[el.dataset.kind] ? kinds[el.dataset.kind](value) : withRowUnit(el, value));
+    setPath(body, el.dataset.path, kinds[el.dataset.kind] ? kinds[el.dataset.kind](value) : withUnit(value, unitOf(el)));
   }
   const [sense, what] = $('d-objective').value.split(':');
   body.objective = { ...(body.objective || {}), [sense]: what };
@@ -636,9 +658,14 @@ function fillDesign(spec) {
         'layout.vertices'].includes(path)) setField(path, value);
     }
   };
+  // a spec that names no model is solved with refined (the form's own default is the case
+  // study's paper)
+  $('d-model').value = 'refined';
   walk(spec, '');
   if (spec.layout && spec.layout.holes) {
-    $('d-holes').value = spec.layout.holes.map((h) => `${h.diameter}@${(h.center || [0, 0]).join(',')}`).join('; ');
+    const mm = (x) => String(x).replace(/^(.*\S)\s*mm$/, '$1');  // the field's own unit
+    $('d-holes').value = spec.layout.holes
+      .map((h) => `${mm(h.diameter)}@${(h.center || [0, 0]).map(mm).join(',')}`).join('; ');
   }
   if (spec.layout && spec.layout.vertices) $('d-vertices').value = spec.layout.vertices.map((v) => v.join(',')).join(' ');
   const rows = $('d-req-rows');
@@ -778,18 +805,86 @@ function showDesign(d) {
       // a load case: the deflection (mm) under its load, and the test's P / delta
       const loadCase = c.load_N === undefined ? ''
         : ` (${c.test}, ${fmt(c.load_N)} N; P/\u03b4 = ${fmt(c.stiffness_N_per_mm, 4)} N/mm)`;
-      cell(row, `${c.name}${loadCase}`).className = 'text';
+      breakable(cell(row, ''), `${c.name}${loadCase}`).className = 'text';
       cell(row, fmt(c.value, 5), 'value');
       cell(row, `${c.sense === 'min' ? '\u2265' : '\u2264'} ${fmt(c.bound, 5)}`, 'bound');
       cell(row, fmt(c.margin, 3), 'margin');
       cell(row, c.unit).className = 'text';
       cell(row, row.dataset.binding, 'binding');
     }
+    showDesignStiffness(d);
+    showRunnerUps(d);
   } else {
     $('d-summary').textContent = 'No design meets every requirement:';
   }
   bulletList($('d-warnings'), d.warnings.map((w) => `${w.code}: ${w.message}`), 'none');
   $('design-results').hidden = false;
+}
+
+// The answer's stiffness at each direction (the `stiffness` of corrugate design --json).
+function showDesignStiffness(d) {
+  const body = $('d-stiffness').tBodies[0];
+  body.replaceChildren();
+  for (const s of d.stiffness || []) {
+    const row = body.insertRow();
+    row.dataset.eta = String(s.eta_deg);
+    cell(row, fmt(s.eta_deg), 'eta_deg');
+    cell(row, fmt(s.K_N_per_mm, 5), 'K_N_per_mm');
+    cell(row, fmt(s.D_Nmm, 5), 'D_Nmm');
+    cell(row, fmt(s.EI_Nmm2 / 1000, 5), 'EI_mNm2');
+  }
+  const p = d.performance || {};
+  const support = { free: 'free sides', frame: 'a rigid frame' }[p.support] || p.support || 'free sides';
+  $('d-stiffness-note').textContent = `Model ${p.model || d.model}, support: ${support}; `
+    + 'K in plane, D and EI in pure bending, at each direction \u03b7 from layer 1\'s creases.';
+}
+
+// The unit of an objective's value, from its quantity's key (mass, EI@0, Kframe@45, D@90...;
+// the solver's internal units, as in the constraints table).
+function objectiveUnit(key) {
+  if (key === 'mass') return 'g';
+  if (key.startsWith('EI')) return 'N mm\u00b2';
+  if (key.startsWith('Pb')) return 'N';
+  if (key.startsWith('D')) return 'N mm';
+  if (key.startsWith('K')) return 'N/mm';
+  return '';
+}
+
+// The runner-ups (best design for each n of layer 1), the answer's row marked; a layer-2 column
+// only when some runner-up's layer 2 differs from its layer 1.
+function showRunnerUps(d) {
+  const runners = d.runner_ups || [];
+  const key = d.objective.quantity;
+  const unit = objectiveUnit(key);
+  $('d-runner-objective').textContent = `${key}${unit ? ` (${unit})` : ''}`;
+  const differs = (r) => r.layers.length > 1 && ['W_mm', 'n', 'alpha_deg', 'material', 't_mm']
+    .some((k) => r.layers[1][k] !== r.layers[0][k]);
+  const layer2 = runners.some(differs);
+  for (const th of $('d-runner-ups').querySelectorAll('.layer2-col')) th.hidden = !layer2;
+  const body = $('d-runner-ups').tBodies[0];
+  body.replaceChildren();
+  for (const r of runners) {
+    const row = body.insertRow();
+    const best = r.objective === d.objective.value;
+    row.dataset.best = String(best);
+    const l1 = r.layers[0];
+    cell(row, String(r.n), 'n');
+    cell(row, fmt(l1.W_mm, 6), 'W_mm');
+    cell(row, fmt(l1.alpha_deg, 6), 'alpha_deg');
+    if (layer2) {
+      const l2 = r.layers[1];
+      cell(row, differs(r) ? `W ${fmt(l2.W_mm, 6)}, n ${l2.n}, \u03b1 ${fmt(l2.alpha_deg, 6)}` : 'same', 'layer2')
+        .className = 'text';
+    }
+    cell(row, fmt(r.objective, 6), 'objective');
+    cell(row, `${r.certified ? 'yes' : 'no'}${best ? ' \u2605' : ''}`, 'certified');
+  }
+  if (!runners.length) {
+    const row = body.insertRow();
+    const td = cell(row, 'none (a single n)');
+    td.colSpan = layer2 ? 6 : 5;
+    td.className = 'text muted';
+  }
 }
 
 function rank(name) {
@@ -942,17 +1037,31 @@ async function submitDesign(event) {
 
 // ---- tabs --------------------------------------------------------------------------------
 
-function selectTab(name) {
+// The WAI-ARIA tabs pattern (automatic activation): the chosen tab is the tab list's one tab
+// stop (roving tabindex); Left/Right move to the previous/next tab (wrapping round), Home/End
+// to the first/last, and the tab moved to is chosen.
+function selectTab(name, focus = false) {
   for (const tab of document.querySelectorAll('[role="tab"]')) {
     const on = tab.id === `tab-${name}`;
     tab.setAttribute('aria-selected', String(on));
+    tab.tabIndex = on ? 0 : -1;
     $(tab.getAttribute('aria-controls')).hidden = !on;
+    if (on && focus) tab.focus();
   }
   if (!location.hash.startsWith(`#${name}`)) history.replaceState(null, '', `#${name}`);
 }
 
-$('tab-analyze').addEventListener('click', () => selectTab('analyze'));
-$('tab-design').addEventListener('click', () => selectTab('design'));
+const TABS = [...document.querySelectorAll('[role="tab"]')];
+for (const tab of TABS) {
+  tab.addEventListener('click', () => selectTab(tab.id.slice(4)));
+  tab.addEventListener('keydown', (event) => {
+    const i = TABS.indexOf(tab);
+    const to = { ArrowRight: i + 1, ArrowLeft: i - 1, Home: 0, End: TABS.length - 1 }[event.key];
+    if (to === undefined) return;
+    event.preventDefault();
+    selectTab(TABS[(to + TABS.length) % TABS.length].id.slice(4), true);
+  });
+}
 if (location.hash.startsWith('#design')) selectTab('design');
 
 form.addEventListener('submit', submit);
