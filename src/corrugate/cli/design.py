@@ -165,6 +165,9 @@ def design_cmd(
     cutter: o.Machine = DEFAULT_MACHINE,
     labels: o.Labels = None,
     fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
+    mountain: o.Mountain = None,
+    valley: o.Valley = None,
+    marks: o.Marks = None,
     cut: o.Cut = None,
     gap: o.Gap = None,
     paper: o.Paper = DEFAULT_PAPER,
@@ -183,7 +186,17 @@ def design_cmd(
         raise InputError("--out", str(out), "a directory", reason="is a file")
     check_paper(paper)  # checked with or without --out
     options = (
-        output_options(cutter, fold_style, cut, gap, labels=labels, paper=paper)
+        output_options(
+            cutter,
+            fold_style,
+            cut,
+            gap,
+            labels=labels,
+            paper=paper,
+            mountain=mountain,
+            valley=valley,
+            marks=marks,
+        )
         if out is not None
         else None
     )
