@@ -190,7 +190,7 @@ def output_options(
         return OutputOptions(
             cutter=cutter,
             style=style,
-            operations=choice,
+            operations=None if choice == FoldChoice() else choice,
             spacing=spacing_mm,
             margin=margin_mm,
             fabrication=FabricationOptions(tab_depth=tab_mm),

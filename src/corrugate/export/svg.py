@@ -40,7 +40,8 @@ legend (:func:`corrugate.export.legend.fold_map_legend`: "FOLD MAP: for people, 
 then each colour's meaning and what the cut file does with each kind) is a ``<g id="legend">`` of
 ``<text>`` rows, each filled in the colour it names, in a free box off every part
 (:func:`~corrugate.export.legend.legend_spot`) or, when the sheet has none, in a strip added below
-the sheet; Origami Simulator reads no text, so it adds no edge.
+the sheet (the root's ``data-sheet-mm`` keeps the sheet's width and height); Origami Simulator
+reads no text, so it adds no edge.
 """
 
 from __future__ import annotations
@@ -168,6 +169,7 @@ def svg_document(
         extra = h + 2 * margin
         key = LegendSpot(margin, -h - margin, LEGEND_TEXT_MM, w, h)
     root = svg_root(W, H + extra, u)
+    root.set("data-sheet-mm", f"{svg_number(W)} {svg_number(H)}")  # the sheet, without a strip
     if title:
         ET.SubElement(root, "title").text = title
     common = {"fill": "none", "stroke-width": num(STROKE_MM), "stroke-linecap": "butt"}

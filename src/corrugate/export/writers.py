@@ -167,7 +167,7 @@ WRITERS: tuple[Writer, ...] = (
         "cut-svg",
         "cut-{sheet}.svg",
         "image/svg+xml",
-        None,
+        "fab",
         "the machine's cut-ready file of the sheet, SVG (a Cricut, a laser)",
         2,
         "cut",
