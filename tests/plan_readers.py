@@ -69,6 +69,8 @@ def svg_parts(
         root = ET.parse(folder / f"sheet-{k}.svg").getroot()
         u = svg_mm_per_unit(root)
         _, _, w, h = (u * float(v) for v in root.attrib["viewBox"].split())
+        if "data-sheet-mm" in root.attrib:  # a legend strip below the sheet is not the sheet
+            w, h = (float(v) for v in root.attrib["data-sheet-mm"].split())
         sizes.append((w, h))
         for g in root.iter(f"{ns}g"):
             name = g.attrib.get("data-part")

@@ -54,6 +54,7 @@ def test_importing_names_loads_no_numpy_and_no_other_corrugate_module() -> None:
         (names.StiffnessName, names.STIFFNESS_NAMES),
         (names.StiffnessSymbol, names.STIFFNESS_SYMBOLS),
         (names.FoldStyle, names.FOLD_STYLES),
+        (names.FoldOpName, names.FOLD_OP_NAMES),
         (names.PaperName, names.PAPER_NAMES),
         (names.LoadCaseName, names.LOAD_CASES),
     ],
@@ -180,11 +181,17 @@ def test_stiffness_names_are_the_spec_kinds_and_their_symbols_the_solver_keys() 
     assert {k: units[s] for k, s in names.STIFFNESS_SYMBOL.items()} == STIFFNESS_KINDS
 
 
-def test_fold_styles_are_the_line_styles() -> None:
-    from corrugate.fabrication.linestyle import SOLID, StyleKind, line_style
+def test_fold_styles_are_the_machine_default_and_the_line_styles() -> None:
+    from corrugate.export.operations import FoldOp, default_operations, style_operations
+    from corrugate.fabrication.linestyle import StyleKind
 
-    assert tuple(k.value for k in StyleKind) == names.FOLD_STYLES
-    assert line_style(names.DEFAULT_FOLD_STYLE) == SOLID
+    assert ("machine", *(k.value for k in StyleKind)) == names.FOLD_STYLES
+    assert names.DEFAULT_FOLD_STYLE == "machine"
+    for machine in names.MACHINE_NAMES:
+        assert style_operations(names.DEFAULT_FOLD_STYLE, machine, "dura-lar") == (
+            default_operations(machine, "dura-lar")
+        )
+    assert tuple(op.value for op in FoldOp) == names.FOLD_OP_NAMES
 
 
 def test_paper_names_are_mat_and_the_tile_papers() -> None:

@@ -29,6 +29,7 @@ __all__ = [
     "DEFAULT_SUPPORT",
     "DEFAULT_TAB_DEPTH_MM",
     "FILE_FORMATS",
+    "FOLD_OP_NAMES",
     "FOLD_STYLES",
     "HOLE_SHAPES",
     "LASER",
@@ -45,6 +46,7 @@ __all__ = [
     "SUPPORTS",
     "CutFormat",
     "FileFormat",
+    "FoldOpName",
     "FoldStyle",
     "HoleShape",
     "LayoutShape",
@@ -130,10 +132,17 @@ STIFFNESS_SYMBOL: Final[dict[StiffnessName, StiffnessSymbol]] = dict(
 
 # -- the output options of a pattern ------------------------------------------------------------
 
-FoldStyle = Literal["solid", "scored", "perforated"]
-#: The ways of making a fold line (:class:`corrugate.fabrication.linestyle.StyleKind`).
+FoldStyle = Literal["machine", "solid", "scored", "perforated"]
+#: ``--fold-style``: ``machine``, the machine's default fold operations for the sheet
+#: (:func:`corrugate.export.operations.default_operations`), or one of the ways of making every
+#: fold line (:class:`corrugate.fabrication.linestyle.StyleKind`).
 FOLD_STYLES: tuple[FoldStyle, ...] = get_args(FoldStyle)
-DEFAULT_FOLD_STYLE: Final[FoldStyle] = "solid"
+DEFAULT_FOLD_STYLE: Final[FoldStyle] = "machine"
+
+FoldOpName = Literal["cut-score", "perforate", "score", "pen", "none"]
+#: What the machine does with one kind of crease or mark
+#: (:class:`corrugate.export.operations.FoldOp`).
+FOLD_OP_NAMES: tuple[FoldOpName, ...] = get_args(FoldOpName)
 
 PaperName = Literal["mat", "a4", "letter"]
 #: ``mat``: ``pattern.pdf`` only (one mat-size page per sheet); ``a4``, ``letter``: also its 1:1

@@ -128,15 +128,22 @@ def output_options(
     labels: bool | None = None,
     paper: str = DEFAULT_PAPER,
     *,
+    mountain: str | None = None,
+    valley: str | None = None,
+    marks: str | None = None,
     names: Mapping[str, str] | None = None,
 ) -> OutputOptions:
     """Output options from user strings (plain numbers in mm, or with units: ``'0.04 in'``).
 
     ``cutter`` is the machine (``cameo4-12x12``, ``maker-12x24``, ``laser:WxH``, ...), ``labels``
     the ``--labels/--no-labels`` flag (``None`` when not given), ``paper`` is ``mat``, ``a4`` or
-    ``letter`` (see :class:`~corrugate.export.plan.OutputOptions`). A bad value raises an
-    :class:`InputError` naming ``cutter``, ``fold-line style``, ``cut``, ``gap``, ``spacing``,
-    ``margin``, ``tab-depth`` or ``paper``; ``names`` maps those to the caller's own names
+    ``letter`` (see :class:`~corrugate.export.plan.OutputOptions`). ``fold_style`` (``machine``:
+    the machine's default) and ``mountain``, ``valley``, ``marks`` (``cut-score``, ``perforate``,
+    ``score``, ``pen``, ``none``; None: the style's) choose the cut files' fold operations
+    (:func:`corrugate.export.operations.fold_operations`, resolved for the design's material when
+    its files are written; checked here against a generic sheet). A bad value raises an
+    :class:`InputError` naming ``cutter``, ``fold-line style``, ``cut``, ``gap``, ``mountain``,
+    ``valley``, ``marks``, ``spacing``, ``margin``, ``tab-depth`` or ``paper``; ``names`` maps those to the caller's own names
     (the web app's ``fold_style``, ``tab_depth``). Without the ``fab`` extra it raises
     :class:`~corrugate.core.errors.MissingExtraError` first.
     """
@@ -145,9 +152,10 @@ def output_options(
     require_extra("fab", "writing a design's files")  # before any work (or input check) is done
     from corrugate.core.units import parse_quantity
     from corrugate.export.machines import get_machine
+    from corrugate.export.operations import FoldChoice
     from corrugate.export.pdf import check_paper
     from corrugate.export.plan import OutputOptions
-    from corrugate.fabrication.linestyle import StyleKind, line_style
+    from corrugate.fabrication.linestyle import SOLID, StyleKind, line_style
     from corrugate.geometry.fabrication_options import FabricationOptions
 
     def length(value: str | float | None, field: str) -> float | None:
@@ -168,9 +176,21 @@ def output_options(
         spacing_mm, margin_mm = length(spacing, "spacing"), length(margin, "margin")
         tab_mm = length(tab_depth, "tab-depth")
         assert spacing_mm is not None and margin_mm is not None and tab_mm is not None
+        machine_default = fold_style.strip().lower() == "machine"
+        style = SOLID if machine_default else line_style(fold_style, cut_mm, gap_mm)
+        choice = FoldChoice(
+            "machine" if machine_default else style.kind.value,
+            mountain,
+            valley,
+            marks,
+            cut_mm,
+            gap_mm,
+        )
+        choice.resolve(cutter)  # an unknown or impossible operation: an error before solving
         return OutputOptions(
             cutter=cutter,
-            style=line_style(fold_style, cut_mm, gap_mm),
+            style=style,
+            operations=None if choice == FoldChoice() else choice,
             spacing=spacing_mm,
             margin=margin_mm,
             fabrication=FabricationOptions(tab_depth=tab_mm),
@@ -238,6 +258,7 @@ def write_design_files(
         "cut_mm": opts.style.cut,
         "gap_mm": opts.style.gap,
     }
+    record["fold_operations"] = {**cut.operations.as_dict(), "layers": _layer_names(cut)}
     if extra:
         record.update(extra)
     drawn = cut.drawings
@@ -255,6 +276,7 @@ def write_design_files(
                 out,
                 opts.style,
                 machine=machine,
+                operations=cut.operations,
                 labels=opts.labels,
                 paper=opts.paper,
                 sheet_figures=drawn.sheets or None,
@@ -268,6 +290,20 @@ def write_design_files(
         # every entry of the writers registry, in its order; nothing is committed before the last
         written = write_job(job, WRITERS, st)
     return written
+
+
+def _layer_names(cut: CutPlan) -> dict[str, str]:
+    """The cut files' layer of each kind of line (``mountain`` -> ``MOUNTAIN-PERFORATE``, ...;
+    a kind made by ``none`` is in no cut file)."""
+    from corrugate.export.machines import layer_name
+
+    ops = cut.operations
+    out = {"cut": "CUT"}
+    for kind in ("mountain", "valley", "marks"):
+        op = getattr(ops, kind)
+        if op.value != "none":
+            out[kind] = layer_name(kind, op.value)
+    return out
 
 
 def write_design(
@@ -353,9 +389,22 @@ def write_files(
     gap: str | float | None = None,
     labels: bool | None = None,
     paper: str = DEFAULT_PAPER,
+    mountain: str | None = None,
+    valley: str | None = None,
+    marks: str | None = None,
 ) -> list[Path]:
     """Every file of ``result`` into the folder ``out`` (as ``corrugate design --out``: cut files
     for ``cutter``, fold map, FOLD, GLB/STL, assembly steps, report, ``design.json``), committed as
     one set; returns the paths. Options as the command line's (lengths in mm or with units)."""
-    options = output_options(cutter, fold_style, cut, gap, labels=labels, paper=paper)
+    options = output_options(
+        cutter,
+        fold_style,
+        cut,
+        gap,
+        labels=labels,
+        paper=paper,
+        mountain=mountain,
+        valley=valley,
+        marks=marks,
+    )
     return write_design(result.run, out, options, result.text)

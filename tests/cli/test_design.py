@@ -127,7 +127,8 @@ def test_out_dir_takes_the_machine_and_labels(tmp_path: Path, cli: CliRun) -> No
     names = {p.name for p in out_dir.iterdir()}
     assert "cut-1.svg" in names and "cut-1.dxf" not in names  # Design Space reads SVG
     text = (out_dir / "cut-1.svg").read_text("utf-8")
-    assert 'id="SCORE"' in text and 'id="LABEL"' in text and "<text" not in text
+    assert 'id="MOUNTAIN-SCORE"' in text and 'id="VALLEY-SCORE"' in text
+    assert 'id="MARK-PEN"' in text and 'id="LABEL"' in text and "<text" not in text
     written = json.loads((out_dir / "design.json").read_text("utf-8"))
     assert written["sheets"]["cutter"] == "maker-12x12"
     assert written["sheets"]["cut_file_formats"] == ["svg"]

@@ -62,12 +62,19 @@ def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
     assert len(layer_creases) == 8
     assert {round(float(e.get("opacity", "0")), 4) for e in layer_creases} == {round(96 / 180, 4)}
 
-    # the Cameo's cut file (the default machine): the outlines and slits only, with solid folds
+    # the Cameo's cut file (the default machine): outlines and slits, and by default the
+    # creases and the band's marks as operations the machine performs, with a legend
     doc = ezdxf.readfile(tmp_path / "cut-1.dxf")
     assert not doc.audit().has_errors
     assert doc.header["$INSUNITS"] == 4
     msp = doc.modelspace()
-    assert {e.dxf.layer for e in msp} == {"CUT"}
+    assert {e.dxf.layer for e in msp} == {
+        "CUT",
+        "MOUNTAIN-PERFORATE",
+        "VALLEY-CUT-SCORE",
+        "MARK-PEN",
+        "LEGEND",
+    }
     assert len(msp.query('LWPOLYLINE[layer=="CUT"]')) == len(pattern.parts)
     assert not (tmp_path / "cut-1.svg").exists()  # Silhouette Studio basic reads DXF
 
@@ -101,7 +108,8 @@ def test_circle_and_polygon_patterns(tmp_path: Path, cli: CliRun) -> None:
         )
         doc = ezdxf.readfile(out / "cut-1.dxf")
         assert not doc.audit().has_errors
-        assert len(doc.modelspace().query('LINE[layer=="PERFORATE"]')) > 0
+        assert len(doc.modelspace().query('LINE[layer=="MOUNTAIN-PERFORATE"]')) > 0
+        assert len(doc.modelspace().query('LINE[layer=="VALLEY-PERFORATE"]')) > 0
 
 
 @pytest.mark.parametrize(

@@ -142,27 +142,40 @@ def test_cut_files_hold_only_the_machines_operations(
     # Silhouette Studio (basic) reads DXF, Cricut Design Space SVG, a laser either
     family = machine.split("-")[0].split(":")[0]
     assert m.formats == {"cameo4": ("dxf",), "maker": ("svg",), "laser": ("svg", "dxf")}[family]
-    ops = {"CUT"}
-    ops |= {"perforated": {"PERFORATE"}, "scored": {"SCORE"}, "solid": set()}[style_name]
+    made = {"perforated": "PERFORATE", "scored": "LASER" if family == "laser" else "SCORE"}
+    crease_ops = (
+        set()
+        if style_name == "solid"
+        else {f"MOUNTAIN-{made[style_name]}", f"VALLEY-{made[style_name]}"}
+    )
+    crease_ops = {op.replace("LASER", "CUT-SCORE") for op in crease_ops}  # a laser cannot press
+    ops = {"CUT", "MARK-PEN", "LEGEND", *crease_ops}
     if labels is True:
         ops.add("LABEL")
-    creases = sum(len(p.creases()) for p in patterns["case1"].parts)
+    parts = patterns["case1"].parts
+    mountains = sum(ln.role is Role.MOUNTAIN for p in parts for ln in p.lines)
+    valleys = sum(ln.role is Role.VALLEY for p in parts for ln in p.lines)
+    marks = sum(ln.role is Role.MARK for p in parts for ln in p.lines)
     for path in files:
         text = path.read_text(encoding="utf-8")
         assert "dasharray" not in text
         paths = paths_of(path)
         assert {op for op, _, _ in paths} == ops, path.name
+        count = {op: sum(o == op for o, _, _ in paths) for op in ops}
+        assert count["MARK-PEN"] == marks  # every band mark, drawn with the pen
         if style_name == "scored":
-            assert sum(op == "SCORE" for op, _, _ in paths) == creases
+            one = "CUT-SCORE" if family == "laser" else "SCORE"
+            assert count[f"MOUNTAIN-{one}"] == mountains
+            assert count[f"VALLEY-{one}"] == valleys
         outlines = [p for p in paths if p[0] == "CUT" and p[2]]
-        assert len(outlines) == len(patterns["case1"].parts)
+        assert len(outlines) == len(parts)
         if path.suffix == ".svg":
             root = ET.fromstring(text)
             assert not list(root.iter(f"{SVG}text"))  # labels are glyph outlines, never text
             assert root.attrib["width"] == f"{plan.cutter.width:.4f}".rstrip("0").rstrip(".") + "mm"
             for g in root.iter(f"{SVG}g"):
                 op = OPERATIONS[g.attrib["id"]]
-                assert g.attrib["stroke"] == op.colour  # one colour per operation
+                assert g.attrib["stroke"] == op.colour  # one colour per layer
                 assert float(g.attrib["stroke-width"]) == pytest.approx(m.stroke_mm)
                 if machine.startswith("laser"):
                     assert float(g.attrib["stroke-width"]) == pytest.approx(0.0254)
@@ -175,8 +188,9 @@ def test_cut_files_hold_only_the_machines_operations(
                 if machine.startswith("laser"):
                     assert doc.layers.get(name).dxf.lineweight == 0  # hairline
             assert not doc.modelspace().query("TEXT MTEXT")
-    colours = {OPERATIONS[o].colour for o in OPERATIONS}
-    assert len(colours) == len(OPERATIONS)  # distinct colours
+    # within a file one colour is one kind of line: the colours of the kinds differ
+    kinds = {name.split("-")[0]: OPERATIONS[name].colour for name in OPERATIONS}
+    assert len(set(kinds.values())) == len(kinds) - 1  # LABEL and LEGEND share the pen's grey
 
 
 @pytest.mark.slow
@@ -190,7 +204,7 @@ def test_each_perforated_fold_is_separate_dashes_of_the_set_cut_and_gap(
     plan = plan_sheets(patterns[which], machine, margin=MARGIN)
     for path in cut_files(plan, tmp_path / which, style, None):
         sheet = plan.sheets[int(path.stem.split("-")[1]) - 1]
-        dashes = [ps for op, ps, closed in paths_of(path) if op == "PERFORATE"]
+        dashes = [ps for op, ps, closed in paths_of(path) if op.endswith("-PERFORATE")]
         assert all(len(ps) == 2 for ps in dashes)  # each dash its own two-point segment
         used = np.zeros(len(dashes), dtype=bool)
         a_pts = np.array([d[0] for d in dashes])
@@ -283,7 +297,7 @@ def test_labels_in_cut_files_only_when_asked_and_clear_of_every_line(
         paths = paths_of(path)
         glyphs = [p for p in paths if p[0] == "LABEL"]
         assert glyphs and all(closed for _, _, closed in glyphs)
-        lines = _segments([p for p in paths if p[0] != "LABEL"])
+        lines = _segments([p for p in paths if p[0] not in ("LABEL", "LEGEND")])
         sheet = plan.sheets[int(path.stem.split("-")[1]) - 1]
         for placement in sheet.placements:
             x0, y0, x1, y1 = placement.bounds
@@ -306,7 +320,8 @@ def test_fold_map_labels_are_clear_of_every_line(
     (path,) = write_files(plan, tmp_path, STYLES["perforated"], formats=("svg",))
     root = ET.parse(path).getroot()
     H = plan.cutter.height
-    texts = list(root.iter(f"{SVG}text"))
+    (labels,) = (g for g in root.iter(f"{SVG}g") if g.attrib.get("id") == "labels")
+    texts = list(labels.iter(f"{SVG}text"))
     assert len(texts) == len(plan.placements)  # labels are on in the fold map by default
     assert sorted(t.text.split(".")[0] for t in texts if t.text) == [
         str(k) for k in range(1, len(texts) + 1)
@@ -330,7 +345,8 @@ def test_fold_map_labels_are_clear_of_every_line(
         assert not any(_crosses(box, a, b) for a, b in segs), t.text
     # --no-labels: none at all
     (path,) = write_files(plan, tmp_path / "n", SOLID, formats=("svg",), labels=False)
-    assert not list(ET.parse(path).getroot().iter(f"{SVG}text"))
+    (legend,) = (g for g in ET.parse(path).getroot() if g.attrib.get("id") == "legend")
+    assert len(list(ET.parse(path).getroot().iter(f"{SVG}text"))) == len(legend)  # legend only
 
 
 # -- bad input -----------------------------------------------------------------------------------
@@ -441,6 +457,11 @@ def test_every_svg_renders_in_inkscape_at_its_drawn_extent(
     for path, plan in all_files(patterns, tmp_path):
         if path.suffix != ".svg":
             continue
+        if path.name.startswith("sheet-"):  # the fold map's legend is text off the parts: the
+            root = ET.parse(path).getroot()  # geometry is what must render at its extent
+            for g in [g for g in root if g.attrib.get("id") == "legend"]:
+                root.remove(g)
+            ET.ElementTree(root).write(path)
         png = path.with_suffix(".png")
         subprocess.run(
             [

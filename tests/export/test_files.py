@@ -181,7 +181,8 @@ def test_svg_outlines_holes_cuts_marks_and_labels(plan: SheetPlan, tmp_path: Pat
         and marks[0].attrib["stroke"] == "#ff00ff"
         and marks[0].attrib["opacity"] == "1"
     )
-    labels = sorted(t.text or "" for t in root.iter(f"{SVG}text"))
+    (group,) = (g for g in root.iter(f"{SVG}g") if g.attrib.get("id") == "labels")
+    labels = sorted(t.text or "" for t in group.iter(f"{SVG}text"))
     assert labels == sorted(p.part.label for p in plan.placements)
     # without marks (for Origami Simulator) the marks are gone and the creases stay
     root2 = ET.parse(write_svg(plan.sheets[0], tmp_path / "m.svg", marks=False)).getroot()

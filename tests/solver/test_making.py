@@ -229,3 +229,29 @@ def test_the_spec_copy_is_not_changed_by_a_machine_override() -> None:
     other = with_machine(spec, "laser:300x200")
     assert other.fabrication.machine == "laser:300x200"
     assert spec.model_dump() == before
+
+
+def test_the_specs_fold_operations_reach_the_cut_file(tmp_path: Path, cli: CliRun) -> None:
+    """`[fabrication] mountain = "pen"` draws the mountains on the Silhouette's pen layer instead
+    of perforating them (read back with ezdxf); `--mountain` overrides the spec."""
+    import ezdxf
+
+    text = (ROOT / "examples" / "blimp_gripper.toml").read_text()
+    spec = tmp_path / "s.toml"
+    spec.write_text(text + '\n[fabrication]\nmountain = "pen"\n')
+
+    def layers(folder: Path) -> dict[str, int]:
+        doc = ezdxf.readfile(folder / "cut-1.dxf")
+        out: dict[str, int] = {}
+        for e in doc.modelspace():
+            out[e.dxf.layer] = out.get(e.dxf.layer, 0) + 1
+        return out
+
+    assert cli(["design", str(spec), "--out", str(tmp_path / "a"), "-q"])[0] == 0
+    a = layers(tmp_path / "a")
+    assert a.get("MOUNTAIN-PEN", 0) > 0 and "MOUNTAIN-PERFORATE" not in a
+    argv = ["design", str(spec), "--out", str(tmp_path / "b"), "--mountain", "perforate", "-q"]
+    assert cli(argv)[0] == 0
+    b = layers(tmp_path / "b")
+    assert b.get("MOUNTAIN-PERFORATE", 0) > a["MOUNTAIN-PEN"]  # dashes: many per crease
+    assert "MOUNTAIN-PEN" not in b

@@ -163,7 +163,7 @@ def test_an_infeasible_spec_has_a_diagnosis_and_no_files(client: TestClient) -> 
 
 def test_output_options_are_the_clis() -> None:
     cases: list[tuple[dict[str, Any], tuple[str, str, str | None, str | None]]] = [
-        ({}, ("cameo4-12x12", "solid", None, None)),
+        ({}, ("cameo4-12x12", "machine", None, None)),
         ({"cutter": "maker-12x24", "fold_style": "scored"}, ("maker-12x24", "scored", None, None)),
         (
             {"cutter": "laser:300x200", "fold_style": "perforated", "cut": 1.5, "gap": "0.04 in"},

@@ -159,6 +159,9 @@ def design_cmd(
     cutter: o.DesignMachine = None,
     labels: o.Labels = None,
     fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
+    mountain: o.Mountain = None,
+    valley: o.Valley = None,
+    marks: o.Marks = None,
     cut: o.Cut = None,
     gap: o.Gap = None,
     paper: o.Paper = DEFAULT_PAPER,
@@ -186,7 +189,11 @@ def design_cmd(
             raise InputError(flag, exc.value, exc.allowed, reason=exc.reason) from None
     parsed, spec_text = load_spec_text(spec)
     parsed = with_machine(parsed, cutter)
-    machine = parsed.fabrication.machine
+    fab = parsed.fabrication
+    machine = fab.machine
+    mountain = mountain if mountain is not None else fab.mountain
+    valley = valley if valley is not None else fab.valley
+    marks = marks if marks is not None else fab.marks
     options = (
         output_options(
             DEFAULT_MACHINE if machine in (None, "none") else machine,
@@ -195,6 +202,9 @@ def design_cmd(
             gap,
             labels=labels,
             paper=paper,
+            mountain=mountain,
+            valley=valley,
+            marks=marks,
         )
         if out is not None
         else None

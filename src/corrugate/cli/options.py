@@ -47,9 +47,11 @@ __all__ = [
     "LoadOpt",
     "Machine",
     "Margin",
+    "Marks",
     "Material",
     "Material2",
     "Model",
+    "Mountain",
     "N",
     "Nu",
     "OptionalAlpha",
@@ -64,6 +66,7 @@ __all__ = [
     "TestOpt",
     "Thickness",
     "Thickness2",
+    "Valley",
     "Vertices",
     "W",
     "YoungsModulus",
@@ -165,6 +168,9 @@ Machine = Annotated[str, option("cutter")]
 DesignMachine = Annotated[str | None, option("cutter")]
 Labels = Annotated[bool | None, option("labels")]
 FoldStyle = Annotated[str, option("fold_style")]
+Mountain = Annotated[str | None, option("mountain")]
+Valley = Annotated[str | None, option("valley")]
+Marks = Annotated[str | None, option("marks")]
 Cut = Annotated[str | None, option("cut")]
 Gap = Annotated[str | None, option("gap")]
 Spacing = Annotated[str, option("spacing")]

@@ -49,6 +49,9 @@ def pattern_cmd(
     cutter: o.Machine = DEFAULT_MACHINE,
     labels: o.Labels = None,
     fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
+    mountain: o.Mountain = None,
+    valley: o.Valley = None,
+    marks: o.Marks = None,
     cut: o.Cut = None,
     gap: o.Gap = None,
     spacing: o.Spacing = o.DEFAULT_SPACING,
@@ -68,7 +71,20 @@ def pattern_cmd(
 
     assembly = assembly_from_namespace(locals())
     get_model(model)
-    opts = output_options(cutter, fold_style, cut, gap, spacing, margin, tab_depth, labels, paper)
+    opts = output_options(
+        cutter,
+        fold_style,
+        cut,
+        gap,
+        spacing,
+        margin,
+        tab_depth,
+        labels,
+        paper,
+        mountain=mountain,
+        valley=valley,
+        marks=marks,
+    )
     result = analyze(
         assembly,
         model,

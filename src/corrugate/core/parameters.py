@@ -32,6 +32,7 @@ from corrugate.names import (
     DEFAULT_SPACING_MM,
     DEFAULT_SUPPORT,
     DEFAULT_TAB_DEPTH_MM,
+    FOLD_OP_NAMES,
     FOLD_STYLES,
     LASER,
     LAYOUT_SHAPES,
@@ -292,8 +293,29 @@ OUTPUT_PARAMETERS: tuple[Parameter, ...] = (
         "",
         DEFAULT_FOLD_STYLE,
         "name",
-        "Fold lines: " + " | ".join(FOLD_STYLES) + ".",
+        "Fold lines in the cut files: machine (the machine's default for the sheet: mountains "
+        "perforated, valleys cut-scored or scored, band marks drawn) | solid (creases left out) | "
+        "scored | perforated (needs --cut and --gap).",
         choices=FOLD_STYLES,
+    ),
+    *(
+        Parameter(
+            kind,
+            (f"--{kind}",),
+            choices_metavar(FOLD_OP_NAMES),
+            "",
+            None,
+            "name",
+            f"What the machine does with the {what}: "
+            + " | ".join(FOLD_OP_NAMES)
+            + " (default: the --fold-style's).",
+            choices=FOLD_OP_NAMES,
+        )
+        for kind, what in (
+            ("mountain", "mountain creases"),
+            ("valley", "valley creases"),
+            ("marks", "band's angle marks"),
+        )
     ),
     Parameter("cut", ("--cut",), "LENGTH", "mm", None, "quantity", "Perforation: cut length (mm)."),
     Parameter("gap", ("--gap",), "LENGTH", "mm", None, "quantity", "Perforation: gap length (mm)."),

@@ -7,8 +7,9 @@ For sheet N (numbered from 1: ``sheet-1.svg`` is ``plan.sheets[0]``):
     creases in their colours, assembly marks, labels with the folding order. Not for a cutter.
 ``cut-N.dxf`` / ``cut-N.svg``
     The cut-ready files of the machine (:mod:`.machines`, :mod:`.cutfile`): only what it should
-    cut, score or draw, each operation on its own layer or colour. A Silhouette gets DXF, a Cricut
-    SVG, a laser both.
+    cut, score or draw, each kind of line and its operation (:mod:`.operations`: by default
+    mountains perforated, valleys cut-scored or scored, the band's marks drawn) on its own layer
+    or colour, and a legend on the pen layer. A Silhouette gets DXF, a Cricut SVG, a laser both.
 
 and ``pattern.pdf`` (every sheet at 1:1, :mod:`.pdf`), with ``--paper a4`` or ``letter`` also
 ``pattern-a4.pdf`` / ``pattern-letter.pdf``. Each is an entry of the writers registry
@@ -30,6 +31,12 @@ from corrugate.core.errors import UnknownNameError
 from corrugate.core.fileio import Staging
 from corrugate.export.cutfile import cut_dxf_document, cut_svg_document
 from corrugate.export.machines import Machine, get_machine
+from corrugate.export.operations import (
+    FoldOperations,
+    check_operations,
+    default_operations,
+    style_operations,
+)
 from corrugate.export.pdf import check_paper, render_pdf, render_tiled_pdf
 from corrugate.export.svg import svg_document
 from corrugate.export.writers import WRITERS, Commit, Job, Writer, get_writer, write_job
@@ -75,9 +82,10 @@ def fold_order(parts: Iterable[Part]) -> dict[str, int]:
 def plan_job(
     plan: SheetPlan,
     out_dir: str | os.PathLike[str],
-    style: LineStyle = SOLID,
+    style: LineStyle | None = None,
     *,
     machine: str | Machine | None = None,
+    operations: FoldOperations | None = None,
     labels: bool | None = None,
     marks: bool = True,
     pdf_name: str | None = None,
@@ -86,14 +94,25 @@ def plan_job(
 ) -> Job:
     """The :class:`~corrugate.export.writers.Job` of ``plan``'s files, its options checked (see
     :func:`write_files`); raises :class:`~corrugate.core.errors.InputError` subclasses for a bad
-    paper, machine or fold-line style."""
+    paper, machine, fold-line style or fold operation."""
     tiles = check_paper(paper)
     m = get_machine(plan.cutter if machine is None else machine)
-    check_style((p.part for p in plan.placements), style)
+    parts = [p.part for p in plan.placements]
+    line = SOLID if style is None else style
+    check_style(parts, line)
+    if operations is None:
+        material = parts[0].material_id if parts else ""
+        operations = (
+            default_operations(m, material)
+            if style is None
+            else style_operations(style, m, material)
+        )
+    check_operations(parts, operations)
     return Job(
         out=Path(out_dir),
         plan=plan,
-        style=style,
+        style=line,
+        operations=operations,
         machine=m,
         labels=labels,
         marks=marks,
@@ -106,9 +125,10 @@ def plan_job(
 def write_files(
     plan: SheetPlan,
     out_dir: str | os.PathLike[str],
-    style: LineStyle = SOLID,
+    style: LineStyle | None = None,
     *,
     machine: str | Machine | None = None,
+    operations: FoldOperations | None = None,
     formats: Iterable[str] = FORMATS,
     labels: bool | None = None,
     marks: bool = True,
@@ -119,8 +139,12 @@ def write_files(
 ) -> tuple[Path, ...]:
     """Write ``plan`` to ``out_dir`` (created if missing) in ``formats``; returns the paths written.
 
-    ``style`` is the fold-line style; ``machine`` the machine profile (default: the plan's
-    cutter). ``labels``: ``None`` writes labels on the fold map and the PDF but not in the cut
+    ``style`` is the fold-line style of the fold map and the PDF (None: solid) and, without
+    ``operations``, the ``--fold-style`` shorthand of the cut files' fold operations
+    (:func:`~corrugate.export.operations.style_operations`); ``operations`` are the cut files'
+    fold operations (None with no style: the machine's default for the sheet's material,
+    :func:`~corrugate.export.operations.default_operations`); ``machine`` the machine profile
+    (default: the plan's cutter). ``labels``: ``None`` writes labels on the fold map and the PDF but not in the cut
     files, ``True`` everywhere (in the cut files as the LABEL operation), ``False`` nowhere.
     ``marks=False`` leaves assembly marks out of the fold map (Origami Simulator reads them as
     undriven creases). With ``staging``, the files join that output step (committed with it)
@@ -141,6 +165,7 @@ def write_files(
         out_dir,
         style,
         machine=machine,
+        operations=operations,
         labels=labels,
         marks=marks,
         pdf_name=pdf_name,
@@ -184,7 +209,16 @@ def fold_maps(job: Job) -> Commit:
     order = fold_order(p.part for p in job.plan.placements)
     people = job.labels is not False
     texts = [
-        svg_document(s, job.style, labels=people, marks=job.marks, fold_order=order)
+        svg_document(
+            s,
+            job.style,
+            labels=people,
+            marks=job.marks,
+            fold_order=order,
+            operations=job.operations,
+            margin=job.plan.margin,
+            spacing=job.plan.spacing,
+        )
         for s in job.plan.sheets
     ]
     return _commit_sheets(job.out, get_writer("fold-map"), texts, _save_text)
@@ -195,7 +229,14 @@ def cut_svgs(job: Job) -> Commit:
     labels only when ``labels`` is True; nothing for another machine."""
     texts = (
         [
-            cut_svg_document(s, job.machine, job.style, labels=job.labels is True)
+            cut_svg_document(
+                s,
+                job.machine,
+                job.operations,
+                labels=job.labels is True,
+                margin=job.plan.margin,
+                spacing=job.plan.spacing,
+            )
             for s in job.plan.sheets
         ]
         if "svg" in job.machine.formats
@@ -209,7 +250,14 @@ def cut_dxfs(job: Job) -> Commit:
     labels only when ``labels`` is True; nothing for another machine."""
     docs = (
         [
-            cut_dxf_document(s, job.machine, job.style, labels=job.labels is True)
+            cut_dxf_document(
+                s,
+                job.machine,
+                job.operations,
+                labels=job.labels is True,
+                margin=job.plan.margin,
+                spacing=job.plan.spacing,
+            )
             for s in job.plan.sheets
         ]
         if "dxf" in job.machine.formats

@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from corrugate.core.fileio import Staging, staged
 from corrugate.fabrication.folded import fold_document, folded_mesh_groups
 from corrugate.fabrication.model import Pattern
+from corrugate.fabrication.palette import PARTS, rgba
 from corrugate.geometry.layer import Assembly
 
 __all__ = ["PART_COLOURS", "glb_bytes", "stl_bytes", "write_fold", "write_mesh"]
@@ -76,12 +77,14 @@ def _pad(data: bytes, fill: bytes) -> bytes:
 
 #: Colours of the GLB's parts (linear RGBA, glTF's baseColorFactor): layer 1 blue, layer 2
 #: orange, the connector band grey.
+#: Each mesh's colour (glTF baseColorFactor): the palette's part colours
+#: (:data:`corrugate.fabrication.palette.PARTS`), as in the assembly figure.
 PART_COLOURS: dict[str, tuple[float, float, float, float]] = {
-    "layer 1": (0.33, 0.55, 0.85, 1.0),
-    "layer 2": (0.95, 0.55, 0.2, 1.0),
-    "band": (0.62, 0.62, 0.62, 1.0),
+    "layer 1": rgba(PARTS["L1"].hex),
+    "layer 2": rgba(PARTS["L2"].hex),
+    "band": rgba(PARTS["band"].hex),
 }
-_DEFAULT_COLOUR = (0.61, 0.75, 0.91, 1.0)
+_DEFAULT_COLOUR = rgba(PARTS["L1"].hex)
 
 
 def glb_bytes(

@@ -2,34 +2,41 @@
 
 A cut-ready file holds only what the machine should do, because Silhouette Studio, Cricut Design
 Space and LightBurn cut every imported line unless the user changes its action, and cut a path
-whole whatever its dash style (docs/theory.md section 7). Every operation is real geometry on its own
-layer (DXF) or stroke colour (SVG), named for it:
+whole whatever its dash style (docs/theory.md section 7). Every path is real geometry on a layer
+(DXF) or group (SVG) named for what it is and what the machine does with it, in the colour of what
+it is (:mod:`corrugate.fabrication.palette`): a colour is one setting in the machine's software.
 
-=============  ===========  =====  =================================================================
-operation      colour       ACI    what the machine does with it
-=============  ===========  =====  =================================================================
-``CUT``        ``#ff0000``  1      cut through: outlines, holes and slits
-``PERFORATE``  ``#00ff00``  3      cut through: the dashes of perforated folds (``--fold-style
-                                   perforated``), each dash a separate segment
-``SCORE``      ``#0000ff``  5      score, not cut: scored folds (``--fold-style scored``)
-``LABEL``      ``#000000``  7      draw with a pen (cutters) or engrave (laser): part names as
-                                   glyph outlines, only with ``--labels``
-=============  ===========  =====  =================================================================
+======================  ===========  ===  =========================================================
+layer / group           colour       ACI  content
+======================  ===========  ===  =========================================================
+``CUT``                 ``#000000``  7    outlines, holes and slits: cut through
+``MOUNTAIN-<OP>``       ``#ff0000``  1    mountain creases, by their operation (``PERFORATE``:
+                                          each dash a separate segment; ``CUT-SCORE``, ``SCORE``,
+                                          ``PEN``: one line each)
+``VALLEY-<OP>``         ``#0000ff``  5    valley creases, likewise
+``MARK-<OP>``           ``#ff00ff``  6    the band's angle marks, one line each (default ``PEN``)
+``LABEL``               ``#808080``  8    part names as glyph outlines, only with ``--labels``: pen
+``LEGEND``              ``#808080``  8    the file's legend as glyph outlines, off every part: pen
+======================  ===========  ===  =========================================================
 
-Folds of the ``solid`` style are not in the cut files (the machine does nothing with them): they are
-in the fold map (``sheet-N.svg``), for folding by hand. Assembly marks are in the fold map only.
+``<OP>`` is the kind's :class:`~corrugate.export.operations.FoldOp` (``CUT-SCORE``, ``PERFORATE``,
+``SCORE``, ``PEN``); a kind whose operation is ``none`` is not in the file (it is in the fold map).
+:meth:`Machine.action` says what to set each operation to in the machine's software; the legend
+drawn in the file says the same (:mod:`corrugate.export.legend`).
 
 Profiles (``get_machine``; the names are those of :data:`corrugate.fabrication.sheets.CUTTERS`):
 
 ``cameo4-12x12``, ``cameo4-12x24`` (Silhouette Cameo 4)
-    ``cut-N.dxf``: the basic edition of Silhouette Studio opens DXF, not SVG.
+    ``cut-N.dxf``: the basic edition of Silhouette Studio opens DXF, not SVG. Two tool holders: the
+    blade in the first, a pen (or an embossing tool) in the second.
 ``maker-12x12``, ``maker-12x24`` (Cricut Maker)
     ``cut-N.svg``: Cricut Design Space imports SVG (not DXF); strokes 0.25 mm, which Design Space
-    ignores (it cuts the path itself).
+    ignores (it cuts the path itself). Clamp A holds a pen or the scoring stylus, clamp B the blade
+    or the scoring wheel. One pressure for the whole mat: no cut-score.
 ``laser:WxH`` (a laser with a W x H mm bed)
     ``cut-N.svg`` and ``cut-N.dxf`` (LightBurn and most laser drivers read either), strokes a
     hairline, 0.001 in = 0.0254 mm, which laser drivers take as a vector cut; LightBurn makes a
-    layer of each colour.
+    layer of each colour. A laser cannot press a score.
 """
 
 from __future__ import annotations
@@ -37,6 +44,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
+from corrugate.fabrication.palette import LINES
 from corrugate.fabrication.sheets import Cutter, get_cutter
 from corrugate.names import DEFAULT_MACHINE, LASER_PREFIX, CutFormat
 
@@ -48,6 +56,7 @@ __all__ = [
     "Machine",
     "Operation",
     "get_machine",
+    "layer_name",
 ]
 
 #: A laser driver's hairline: 0.001 in (mm).
@@ -73,12 +82,65 @@ class Operation:
     action: str
 
 
-#: The operations, by name, in the order files list them.
+#: The kinds of line of a cut file and their palette colour.
+_KINDS = {"MOUNTAIN": "mountain", "VALLEY": "valley", "MARK": "mark"}
+_OPS = ("PERFORATE", "CUT-SCORE", "SCORE", "PEN")
+_ACTIONS = {
+    "CUT": "cut through",
+    "PERFORATE": "cut through (each dash is its own line)",
+    "CUT-SCORE": "cut part-way, not through (a kiss cut)",
+    "SCORE": "score: press a line, do not cut",
+    "PEN": "draw with a pen, or engrave",
+}
+
+
+def layer_name(kind: str, op: str) -> str:
+    """The layer (DXF) or group (SVG) of the lines of ``kind`` (``mountain``, ``valley``,
+    ``marks``) made by operation ``op`` (a fold operation's value: ``cut-score``, ...)."""
+    k = "MARK" if kind in ("mark", "marks") else kind.upper()
+    return f"{k}-{op.upper()}"
+
+
+def _operation(name: str, colour: str, op: str) -> Operation:
+    swatch = LINES[colour]
+    return Operation(name, swatch.hex, swatch.aci, _ACTIONS[op])
+
+
+#: Every layer a cut file may hold, by name, in the order files list them.
 OPERATIONS: dict[str, Operation] = {
-    "CUT": Operation("CUT", "#ff0000", 1, "cut through"),
-    "PERFORATE": Operation("PERFORATE", "#00ff00", 3, "cut through (the dashes of a fold)"),
-    "SCORE": Operation("SCORE", "#0000ff", 5, "score (scoring tool, or a light pass)"),
-    "LABEL": Operation("LABEL", "#000000", 7, "draw with a pen, or engrave"),
+    "CUT": _operation("CUT", "cut", "CUT"),
+    **{
+        f"{k}-{op}": _operation(f"{k}-{op}", colour, op)
+        for k, colour in _KINDS.items()
+        for op in _OPS
+    },
+    "LABEL": _operation("LABEL", "note", "PEN"),
+    "LEGEND": _operation("LEGEND", "note", "PEN"),
+}
+
+#: What to set each operation to, per machine family (in the machine's own software).
+ACTIONS: dict[Family, dict[str, str]] = {
+    Family.SILHOUETTE: {
+        "CUT": "Cut (blade in tool 1, the material's through-cut setting)",
+        "PERFORATE": "Cut, as CUT",
+        "CUT-SCORE": "Cut at about half the force: scored, not through",
+        "SCORE": "Emboss (embossing tool in tool 2)",
+        "PEN": "Sketch (a pen in tool 2)",
+    },
+    Family.CRICUT: {
+        "CUT": "Basic Cut",
+        "PERFORATE": "Basic Cut",
+        "CUT-SCORE": "(not possible: one pressure per mat)",
+        "SCORE": "Score (scoring wheel or stylus)",
+        "PEN": "Pen (Draw)",
+    },
+    Family.LASER: {
+        "CUT": "Line at cutting power",
+        "PERFORATE": "Line at cutting power",
+        "CUT-SCORE": "Line at a low power that does not cut through",
+        "SCORE": "(not possible: a laser cannot press)",
+        "PEN": "Line at the lowest power that marks (engrave)",
+    },
 }
 
 
@@ -100,6 +162,21 @@ class Machine:
     def label_action(self) -> str:
         """What the machine does with the LABEL operation."""
         return "engrave" if self.family is Family.LASER else "draw (pen)"
+
+    @property
+    def software(self) -> str:
+        """The program that sends the cut file to the machine."""
+        return {
+            Family.SILHOUETTE: "Silhouette Studio",
+            Family.CRICUT: "Cricut Design Space",
+            Family.LASER: "LightBurn or the laser's driver",
+        }[self.family]
+
+    def action(self, layer: str) -> str:
+        """What to set the layer (or group) ``layer`` of a cut file to in the machine's software,
+        e.g. ``Sketch (a pen in tool 2)`` for ``MARK-PEN`` on a Silhouette."""
+        op = "PEN" if layer in ("LABEL", "LEGEND") else layer.split("-", 1)[-1]
+        return ACTIONS[self.family]["CUT" if layer == "CUT" else op]
 
 
 def get_machine(name: str | Cutter | Machine = DEFAULT_MACHINE) -> Machine:

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from corrugate.export.operations import FoldChoice, FoldOperations, check_operations
 from corrugate.export.pdf import check_paper
 from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.linestyle import SOLID, LineStyle, check_style
@@ -25,7 +26,9 @@ __all__ = ["CutPlan", "Drawings", "OutputOptions", "cut_plan"]
 class OutputOptions:
     """Where and how to cut: the machine (``cutter``: a name of
     :data:`corrugate.fabrication.sheets.CUTTERS` or ``laser:WxH`` in mm; its profile is
-    :func:`corrugate.export.machines.get_machine`), fold-line style, spacing and margin on the sheet
+    :func:`corrugate.export.machines.get_machine`), fold-line ``style`` (the fold map and the
+    PDF), the cut files' fold ``operations`` (None: the machine's default for the material,
+    :func:`corrugate.export.operations.default_operations`), spacing and margin on the sheet
     (mm), connector sizes, and ``labels`` (``None``: on the fold map and the PDF, not in the cut
     files; ``True``: in the cut files too; ``False``: nowhere),
     and ``paper``: ``mat`` (``pattern.pdf`` only) or ``a4`` / ``letter`` (also the 1:1 tiles,
@@ -33,6 +36,7 @@ class OutputOptions:
 
     cutter: str = DEFAULT_MACHINE
     style: LineStyle = SOLID
+    operations: FoldOperations | FoldChoice | None = None
     spacing: float = DEFAULT_SPACING_MM
     margin: float = DEFAULT_MARGIN_MM
     fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
@@ -53,12 +57,13 @@ class Drawings:
 @dataclass(frozen=True, slots=True)
 class CutPlan:
     """What one design's cut files are written from: the parts (``pattern``, mm), their
-    arrangement on the cutter's sheets (``plan``) and the fold-line ``style``; ``drawings``
-    collects what :func:`write_design_files` drew of them."""
+    arrangement on the cutter's sheets (``plan``), the fold-line ``style`` and the cut files' fold
+    ``operations``; ``drawings`` collects what :func:`write_design_files` drew of them."""
 
     pattern: Pattern
     plan: SheetPlan
     style: LineStyle
+    operations: FoldOperations = field(default_factory=FoldOperations)
     drawings: Drawings = field(default_factory=Drawings, compare=False)
 
 
@@ -71,4 +76,8 @@ def cut_plan(assembly: Assembly, options: OutputOptions | None = None) -> CutPla
     pattern = build_pattern(assembly, opts.fabrication)
     plan = plan_sheets(pattern, opts.cutter, spacing=opts.spacing, margin=opts.margin)
     check_style(pattern.parts, opts.style)
-    return CutPlan(pattern, plan, opts.style)
+    ops = opts.operations
+    if not isinstance(ops, FoldOperations):
+        ops = (ops or FoldChoice()).resolve(opts.cutter, pattern.material_id)
+    check_operations(pattern.parts, ops)
+    return CutPlan(pattern, plan, opts.style, ops)

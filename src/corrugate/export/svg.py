@@ -34,6 +34,14 @@ clear of every line (:mod:`.labels`) and squeezed into their box with ``textLeng
 group carries ``data-fold-order``; a label that would be smaller than ``MIN_TEXT_MM`` (1.2 mm) is
 the part's name only. ``labels=False`` leaves them out, ``marks=False`` leaves the marks
 out (Origami Simulator would otherwise treat them as free hinges).
+
+The colours are the palette's (:mod:`corrugate.fabrication.palette`), the same in every file. The
+legend (:func:`corrugate.export.legend.fold_map_legend`: "FOLD MAP: for people, not the cutter",
+then each colour's meaning and what the cut file does with each kind) is a ``<g id="legend">`` of
+``<text>`` rows, each filled in the colour it names, in a free box off every part
+(:func:`~corrugate.export.legend.legend_spot`) or, when the sheet has none, in a strip added below
+the sheet (the root's ``data-sheet-mm`` keeps the sheet's width and height); Origami Simulator
+reads no text, so it adds no edge.
 """
 
 from __future__ import annotations
@@ -45,9 +53,18 @@ from pathlib import Path
 
 from corrugate.core.fileio import staged
 from corrugate.export.labels import MIN_TEXT_MM, label_spot, label_text
+from corrugate.export.legend import (
+    LEGEND_TEXT_MM,
+    fold_map_legend,
+    legend_size,
+    legend_spot,
+    row_length,
+)
 from corrugate.fabrication.linestyle import SOLID, LineStyle, check_style
 from corrugate.fabrication.model import Point, Role
+from corrugate.fabrication.palette import LINES
 from corrugate.fabrication.sheets import Sheet, place
+from corrugate.names import DEFAULT_MARGIN_MM, DEFAULT_SPACING_MM
 
 __all__ = [
     "ANNOTATION",
@@ -64,17 +81,18 @@ __all__ = [
 ]
 
 SVG_NS = "http://www.w3.org/2000/svg"
-#: Stroke colour of outlines and holes (Origami Simulator "boundary").
-BOUNDARY = "#000000"
-#: Stroke colour of each line role (Origami Simulator: cut, mountain, valley, undriven).
+#: Stroke colour of outlines and holes (Origami Simulator "boundary"; the palette's ``cut``).
+BOUNDARY = LINES["cut"].hex
+#: Stroke colour of each line role (Origami Simulator: cut, mountain, valley, undriven), from the
+#: palette (:mod:`corrugate.fabrication.palette`).
 COLOURS: dict[Role, str] = {
-    Role.CUT: "#00ff00",
-    Role.MOUNTAIN: "#ff0000",
-    Role.VALLEY: "#0000ff",
-    Role.MARK: "#ff00ff",
+    Role.CUT: LINES["slit"].hex,
+    Role.MOUNTAIN: LINES["mountain"].hex,
+    Role.VALLEY: LINES["valley"].hex,
+    Role.MARK: LINES["mark"].hex,
 }
 #: Colour of part labels (text fill) and other annotations that are neither cut nor folded.
-ANNOTATION = "#808080"
+ANNOTATION = LINES["note"].hex
 #: Stroke width (mm).
 STROKE_MM = 0.25
 #: The fold map's user unit (mm): small enough that Origami Simulator's vertex merging (3 units)
@@ -126,8 +144,14 @@ def svg_document(
     marks: bool = True,
     title: str | None = None,
     fold_order: Mapping[str, int] | None = None,
+    legend: bool = True,
+    operations: object | None = None,
+    margin: float = DEFAULT_MARGIN_MM,
+    spacing: float = DEFAULT_SPACING_MM,
 ) -> str:
-    """The SVG text of one sheet (see the module docstring for the conventions)."""
+    """The SVG text of one sheet (see the module docstring for the conventions); ``legend`` adds
+    the legend, naming what the cut file does with each kind when ``operations`` (a
+    :class:`~corrugate.export.operations.FoldOperations`) is given."""
     check_style((p.part for p in sheet.placements), style)
     W, H = sheet.width, sheet.height
     u = FOLD_MAP_UNIT_MM
@@ -135,7 +159,17 @@ def svg_document(
     def num(mm: float) -> str:  # a length in mm, in user units
         return svg_number(mm / u)
 
-    root = svg_root(W, H, u)
+    rows = fold_map_legend(operations) if legend else []
+    key = legend_spot(sheet, rows, margin, spacing) if rows else None
+    extra = 0.0
+    if rows and key is None:  # no room on the sheet: a strip below it (no machine reads this)
+        from corrugate.export.legend import LegendSpot
+
+        w, h = legend_size(rows, LEGEND_TEXT_MM)
+        extra = h + 2 * margin
+        key = LegendSpot(margin, -h - margin, LEGEND_TEXT_MM, w, h)
+    root = svg_root(W, H + extra, u)
+    root.set("data-sheet-mm", f"{svg_number(W)} {svg_number(H)}")  # the sheet, without a strip
     if title:
         ET.SubElement(root, "title").text = title
     common = {"fill": "none", "stroke-width": num(STROKE_MM), "stroke-linecap": "butt"}
@@ -221,6 +255,23 @@ def svg_document(
             ET.SubElement(text_group, "text", t_attrs).text = text
     if labels:
         root.append(text_group)
+    if key is not None:
+        g = ET.SubElement(root, "g", {"id": "legend", "data-for": "people, not the cutter"})
+        for k, row in enumerate(rows):
+            x0, y0, _x1, y1 = key.row_box(k, len(rows), row_length(row.text, key.size))
+            ET.SubElement(
+                g,
+                "text",
+                {
+                    "x": num(x0),
+                    "y": num(H - (y0 + y1) / 2),
+                    "font-size": num(key.size),
+                    "font-family": "sans-serif",
+                    "dominant-baseline": "central",
+                    "fill": row.colour,
+                    "stroke": "none",
+                },
+            ).text = row.text
     return svg_text(root)
 
 

@@ -37,6 +37,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from corrugate.export.machines import Machine
+    from corrugate.export.operations import FoldOperations
     from corrugate.export.plan import Drawings
     from corrugate.fabrication.linestyle import LineStyle
     from corrugate.fabrication.model import Pattern
@@ -65,7 +66,8 @@ Step = Callable[["Job"], Commit]
 class Job:
     """Everything the steps write from, into the folder ``out``.
 
-    The sheet plan's files need ``plan`` (mm), the fold-line ``style``, the ``machine`` profile,
+    The sheet plan's files need ``plan`` (mm), the fold-line ``style`` (fold map and PDF), the
+    cut files' fold ``operations`` (None: the machine's default), the ``machine`` profile,
     ``labels`` (``None``: on the fold map and the PDF, not in the cut files; ``True``: everywhere;
     ``False``: nowhere), ``marks`` (assembly marks on the fold map), ``paper`` (``mat``, ``a4`` or
     ``letter``, checked), ``pdf_name`` (None: the registry's ``pattern.pdf``) and ``sheet_figures`` (the sheets' figures for the PDF, drawn
@@ -80,6 +82,7 @@ class Job:
     plan: SheetPlan
     style: LineStyle
     machine: Machine
+    operations: FoldOperations | None = None
     labels: bool | None = None
     marks: bool = True
     paper: str = "mat"
@@ -164,7 +167,7 @@ WRITERS: tuple[Writer, ...] = (
         "cut-svg",
         "cut-{sheet}.svg",
         "image/svg+xml",
-        None,
+        "fab",
         "the machine's cut-ready file of the sheet, SVG (a Cricut, a laser)",
         2,
         "cut",

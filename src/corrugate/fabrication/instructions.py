@@ -13,15 +13,18 @@ from corrugate.core.fileio import Staging, staged
 from corrugate.core.plotting import new_figure
 from corrugate.fabrication.folded import band_walls, layer_faces
 from corrugate.fabrication.model import Pattern, Role
+from corrugate.fabrication.palette import LINES, PALETTE
 from corrugate.geometry.layer import Assembly
 
 __all__ = ["assembly_steps", "instructions_figure", "instructions_png", "write_instructions"]
 
+#: Line colours of the figure: the palette's (:mod:`corrugate.fabrication.palette`), as in the fold
+#: map and the cut files.
 _COLOURS = {
-    Role.MOUNTAIN: "#ff0000",
-    Role.VALLEY: "#0000ff",
-    Role.MARK: "#ff00ff",
-    Role.CUT: "#00ff00",
+    Role.MOUNTAIN: LINES["mountain"].hex,
+    Role.VALLEY: LINES["valley"].hex,
+    Role.MARK: LINES["mark"].hex,
+    Role.CUT: LINES["slit"].hex,
 }
 
 
@@ -78,21 +81,25 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
             lines.setdefault(_COLOURS[ln.role], []).append(seg)
         ax0.text(x0 + w / 2, o[:, 1].max() + 3, part.name, ha="center", fontsize=7)
         x0 += w + 6
-    ax0.add_collection(LineCollection(rings, colors="black", linewidths=0.6))
+    ax0.add_collection(LineCollection(rings, colors=LINES["cut"].hex, linewidths=0.6))
     for colour, segs in lines.items():
         ax0.add_collection(LineCollection(segs, colors=colour, linewidths=0.5))
     ax0.autoscale_view()
     ax0.set_aspect("equal")
-    ax0.set_title("1. cut (black), mountain red, valley blue, marks magenta", fontsize=9)
+    ax0.set_title(
+        f"1. cut ({LINES['cut'].name}), mountain {LINES['mountain'].name}, "
+        f"valley {LINES['valley'].name}, marks {LINES['mark'].name}",
+        fontsize=9,
+    )
     ax0.axis("off")
 
     walls = band_walls(a)
     f1, f2 = layer_faces(a, pattern.parts, 1), layer_faces(a, pattern.parts, 2)
-    blue, green = "#9ecae1", "#a1d99b"
+    c1, c2, cb = PALETTE.parts["L1"], PALETTE.parts["L2"], PALETTE.parts["band"]
     views: list[tuple[str, list[tuple[list[Any], str]], list[Any]]] = [
-        ("2. fold L1 (blue) and L2 (green)", [(f1, blue)], []),
-        ("3-5. band ring, L1 inside on the lower marks", [(f1, blue)], walls),
-        ("6. L2 on top: the finished panel", [(f1, blue), (f2, green)], walls),
+        (f"2. fold L1 ({c1.name}); L2 ({c2.name}) alike", [(f1, c1.hex)], []),
+        (f"3-5. band ring ({cb.name}), L1 inside on the lower marks", [(f1, c1.hex)], walls),
+        ("6. L2 on top: the finished panel", [(f1, c1.hex), (f2, c2.hex)], walls),
     ]
     for k, (title, layers, band) in enumerate(views):
         ax = fig.add_subplot(2, 2, k + 2, projection="3d")
@@ -100,14 +107,12 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
             # the limits are set below; matplotlib's autoscale can overflow (NaN limits) on
             # the many small faces of a layer with holes
             ax.add_collection3d(
-                Poly3DCollection(faces, facecolor=colour, edgecolor="#08306b", lw=0.3),
+                Poly3DCollection(faces, facecolor=colour, edgecolor="#303030", lw=0.3),
                 autolim=False,
             )
         if band:
             ax.add_collection3d(
-                Poly3DCollection(
-                    band, facecolor="#fdae6b", edgecolor="#a63603", lw=0.3, alpha=0.35
-                ),
+                Poly3DCollection(band, facecolor=cb.hex, edgecolor="#303030", lw=0.3, alpha=0.35),
                 autolim=False,
             )
         ax.set_xlim(0, a.Lx)

@@ -66,9 +66,14 @@ def _g(x: float | None, digits: int = 5) -> str:
 
 def _style_text(cut: CutPlan) -> str:
     st = cut.style
+    text = str(st.kind)
     if st.kind is StyleKind.PERFORATED:
-        return f"{st.kind} ({st.cut:g} mm cut, {st.gap:g} mm gap)"
-    return str(st.kind)
+        text = f"{st.kind} ({st.cut:g} mm cut, {st.gap:g} mm gap)"
+    ops = cut.operations
+    made = f"mountains {ops.mountain}, valleys {ops.valley}, band marks {ops.marks}"
+    if ops.perforates:
+        made += f" (dashes {ops.cut:g} mm, gaps {ops.gap:g} mm)"
+    return f"{text} on the fold map; in the cut files {made}"
 
 
 def _sheet_table(cut: CutPlan) -> str:

@@ -180,6 +180,19 @@ _STATIC: dict[str, KeyDoc] = {
         "and the thick-sheet warning starts).",
     ),
     "fabrication.max_creases": KeyDoc("", "The most creases n of one layer (default: no limit)."),
+    "fabrication.mountain": KeyDoc(
+        "",
+        "How mountain creases reach the cutter: 'cut-score', 'perforate', 'score', 'pen' or "
+        "'none' (default: the machine's, `corrugate docs fabrication`; --mountain overrides).",
+    ),
+    "fabrication.valley": KeyDoc(
+        "", "How valley creases reach the cutter (as mountain; --valley overrides)."
+    ),
+    "fabrication.marks": KeyDoc(
+        "",
+        "How the band's angle marks reach the cutter: 'pen', 'score', 'cut-score' or 'none' "
+        "(never perforated; --marks overrides).",
+    ),
     "constraints.mass": KeyDoc("g", "Mass budget: { max }."),
     "constraints.mass.max": KeyDoc("g", "Heaviest part allowed (layers and connector band)."),
     "objective": KeyDoc("", "What to optimise (a table); default: minimize = 'mass'."),

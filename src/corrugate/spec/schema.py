@@ -724,18 +724,26 @@ def _machine(value: Any) -> str:
 MachineName = Annotated[str, BeforeValidator(_machine)]
 
 
+#: How a crease kind or the band's marks reach the machine (corrugate.export.operations.FoldOp).
+FoldOperation = Literal["cut-score", "perforate", "score", "pen", "none"]
+
+
 class FabricationSpec(_Strict):
     """What making the part asks (docs/fabrication.md, "What the solve asks of the making"):
     ``machine``, the cutter whose usable area every cut part must fit (turned or not; default
     the command line's ``--machine`` or ``cameo4-12x12``; ``"none"``: no machine);
     ``min_facet``, the narrowest facet W (default 3 mm); ``max_t_over_W``, the thickest sheet
     for its facet (default 0.05); ``max_creases``, the most creases n of a layer (default: no
-    limit)."""
+    limit); ``mountain``, ``valley`` and ``marks``, how those reach the cutter (default: the
+    machine's, docs/fabrication.md; ``design --mountain/--valley/--marks`` override them)."""
 
     machine: MachineName | None = None
     min_facet: Length = DEFAULT_MIN_FACET_MM
     max_t_over_W: ThicknessRatio = DEFAULT_MAX_T_OVER_W
     max_creases: Count | None = None
+    mountain: FoldOperation | None = None
+    valley: FoldOperation | None = None
+    marks: FoldOperation | None = None
 
 
 class Spec(_Strict):

@@ -283,11 +283,12 @@ def _output_errors(cutter: str) -> Iterator[None]:
         raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
 
 
-def _output_options(body: OutputBody, cutter: str | None = None) -> OutputOptions:
+def _output_options(body: OutputBody, cutter: str | None = None, fab: Any = None) -> OutputOptions:
     """The output options of a design or pattern request, as ``corrugate design --cutter ...
     --fold-style ... --cut ... --gap ... --paper ...`` reads them
     (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs), for
-    ``cutter`` (None: the request's); errors name the request's field."""
+    ``cutter`` (None: the request's) and the fold operations of the spec's ``[fabrication]``
+    ``fab`` (None: the machine's); errors name the request's field."""
     return output_options(
         body.cutter if cutter is None else cutter,
         body.fold_style,
@@ -295,6 +296,9 @@ def _output_options(body: OutputBody, cutter: str | None = None) -> OutputOption
         body.gap,
         paper=body.paper,
         names={"fold-line style": "fold_style"},
+        mountain=None if fab is None else fab.mountain,
+        valley=None if fab is None else fab.valley,
+        marks=None if fab is None else fab.marks,
     )
 
 
@@ -382,7 +386,7 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
         machine = spec.fabrication.machine
         cutter = body.cutter if machine in (None, "none") else machine
         problem = Problem.from_spec(spec)
-        options = _output_options(body, cutter)
+        options = _output_options(body, cutter, spec.fabrication)
     _check_spec_size(spec, settings)
     run = solve_spec(spec, problem)
     run = replace(run, payload=_json_safe(run.payload))

@@ -9,6 +9,9 @@ import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 const TEXT_FIELDS = ['W', 'n', 'alpha', 'thickness', 'E', 'nu', 'density',
   'W2', 'n2', 'alpha2', 'thickness2', 'vertices'];
 const CUSTOM = '__custom__';
+// The palette's part colours (src/corrugate/fabrication/palette.py PARTS, the GLB's own materials):
+// used only when a mesh comes without a colour. tests/fabrication/test_palette.py checks them.
+const PART_COLOURS = { 'layer 1': 0x548cd9, 'layer 2': 0xf28c33, band: 0x9e9e9e };
 
 const $ = (id) => document.getElementById(id);
 const form = $('analyze-form');
@@ -319,7 +322,8 @@ class Viewer {
     const parts = [];
     gltf.scene.traverse((o) => {
       if (o.isMesh) {
-        const color = o.material && o.material.color ? o.material.color.clone() : new THREE.Color(0x9cc0e8);
+        const fallback = PART_COLOURS[o.name.replace(/_/g, ' ')] ?? PART_COLOURS['layer 1'];
+        const color = o.material && o.material.color ? o.material.color.clone() : new THREE.Color(fallback);
         o.material = new THREE.MeshStandardMaterial({
           color, roughness: 0.65, metalness: 0.0, side: THREE.DoubleSide, flatShading: true,
         });
