@@ -183,7 +183,12 @@ def test_svg_outlines_holes_cuts_marks_and_labels(plan: SheetPlan, tmp_path: Pat
     )
     (group,) = (g for g in root.iter(f"{SVG}g") if g.attrib.get("id") == "labels")
     labels = sorted(t.text or "" for t in group.iter(f"{SVG}text"))
-    assert labels == sorted(p.part.label for p in plan.placements)
+    # each label leads with the part's name, as ASSEMBLY.md's steps call the part
+    named = [
+        p.part.label if p.part.label.startswith(p.part.name) else f"{p.part.name}: {p.part.label}"
+        for p in plan.placements
+    ]
+    assert labels == sorted(named)
     # without marks (for Origami Simulator) the marks are gone and the creases stay
     root2 = ET.parse(write_svg(plan.sheets[0], tmp_path / "m.svg", marks=False)).getroot()
     assert not [e for e in root2.iter(f"{SVG}line") if e.attrib.get("class") == "mark"]

@@ -298,24 +298,41 @@ OUTPUT_PARAMETERS: tuple[Parameter, ...] = (
         "scored | perforated (needs --cut and --gap).",
         choices=FOLD_STYLES,
     ),
-    *(
-        Parameter(
-            kind,
-            (f"--{kind}",),
-            choices_metavar(FOLD_OP_NAMES),
-            "",
-            None,
-            "name",
-            f"What the machine does with the {what}: "
-            + " | ".join(FOLD_OP_NAMES)
-            + " (default: the --fold-style's).",
-            choices=FOLD_OP_NAMES,
-        )
-        for kind, what in (
-            ("mountain", "mountain creases"),
-            ("valley", "valley creases"),
-            ("marks", "band's angle marks"),
-        )
+    Parameter(
+        "mountain",
+        ("--mountain",),
+        choices_metavar(FOLD_OP_NAMES),
+        "",
+        None,
+        "name",
+        "What the machine does with the mountain creases: "
+        + " | ".join(FOLD_OP_NAMES)
+        + " (default: the --fold-style's).",
+        choices=FOLD_OP_NAMES,
+    ),
+    Parameter(
+        "valley",
+        ("--valley",),
+        choices_metavar(FOLD_OP_NAMES),
+        "",
+        None,
+        "name",
+        "What the machine does with the valley creases: "
+        + " | ".join(FOLD_OP_NAMES)
+        + " (default: the --fold-style's).",
+        choices=FOLD_OP_NAMES,
+    ),
+    Parameter(
+        "marks",
+        ("--marks",),
+        choices_metavar(FOLD_OP_NAMES),
+        "",
+        None,
+        "name",
+        "What the machine does with the band's angle marks: "
+        + " | ".join(FOLD_OP_NAMES)
+        + " (default: the --fold-style's).",
+        choices=FOLD_OP_NAMES,
     ),
     Parameter("cut", ("--cut",), "LENGTH", "mm", None, "quantity", "Perforation: cut length (mm)."),
     Parameter("gap", ("--gap",), "LENGTH", "mm", None, "quantity", "Perforation: gap length (mm)."),

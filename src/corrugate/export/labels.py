@@ -57,8 +57,12 @@ class LabelSpot:
 
 
 def label_text(placed: PlacedPart) -> str:
-    """The text written on a part: its label, or its name if it has no label."""
-    return placed.part.label or placed.part.name
+    """The text written on a part: its name (L1, L2, B1, ..., as ASSEMBLY.md's steps call it)
+    and its label, or its name alone if it has no label."""
+    name, label = placed.part.name, placed.part.label
+    if not label or label.startswith(name):
+        return label or name
+    return f"{name}: {label}"
 
 
 def _segments(rings: list[tuple[Point, ...]]) -> NDArray[np.float64]:

@@ -11,6 +11,7 @@ import numpy as np
 
 from corrugate.core.fileio import Staging, staged
 from corrugate.core.plotting import new_figure
+from corrugate.fabrication.adhesives import adhesive_for
 from corrugate.fabrication.folded import band_walls, layer_faces
 from corrugate.fabrication.model import Pattern, Role
 from corrugate.fabrication.palette import LINES, PALETTE
@@ -38,15 +39,21 @@ def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
         if l1.alpha_deg == l2.alpha_deg
         else f"{l1.fold_angle_deg:g} deg on L1 and {l2.fold_angle_deg:g} deg on L2"
     )
+    glue = adhesive_for(l1.material.id)
+    if l2.material.id != l1.material.id:
+        glue += f" (L2: {adhesive_for(l2.material.id)})"
     return [
-        f"Cut L1, L2 and {', '.join(bands)} (the sheet files; L1 {l1.material.id} {l1.t:g} mm, "
-        f"L2 {l2.material.id} {l2.t:g} mm, band from L1's sheet).",
-        f"Pre-fold L1 and L2 along every crease: mountains (red) towards you, valleys (blue) away, "
-        f"each by {folds}.",
-        "On each band segment fold the glue tabs on both long edges 90 deg towards the printed face "
-        "(the inner face, with the marks); fold the line before the overlap tab by its corner angle.",
+        f"Cut L1, L2 and {', '.join(bands)} from the cut files (cut-N.dxf or cut-N.svg, on the "
+        f"cutter; the fold maps sheet-N.svg are for you, not the cutter): L1 {l1.material.id} "
+        f"{l1.t:g} mm, L2 {l2.material.id} {l2.t:g} mm, the band from L1's sheet. A part "
+        "carries no name unless you ask for --labels (drawn by the pen): match each to its name on "
+        "the fold map.",
+        f"Pre-fold L1 and L2 along every crease: mountains (red on the fold map) towards you, "
+        f"valleys (blue) away, each by {folds}.",
+        "On each band segment fold the glue tabs on both long edges 90 deg towards the face with "
+        f"the drawn marks (the inner face); {_overlap_folds(pattern)}.",
         f"Join the band into a ring, {ring}: glue each overlap tab behind the start of the next "
-        "segment, marks facing in.",
+        f"segment, marks facing in. Glue: {glue}.",
         f"Lower L1 into the ring, valleys down on the bottom tabs. Set each crease end on its lower "
         f"mark (the marks from the base to {l1.height:.1f} mm); this sets the fold angle. Glue.",
         f"Lay L2 on top, its creases at 90 deg to L1's, its valleys on L1's ridges, each crease end on "
@@ -54,6 +61,29 @@ def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
         "and glue.",
         f"Check: the panel measures {a.Lx:.1f} x {a.Ly:.1f} mm and {a.thickness:.1f} mm thick.",
     ]
+
+
+def _overlap_folds(pattern: Pattern) -> str:
+    """What to do with the line before each band segment's overlap tab, with its angles: the
+    fold by the outline's turning angle at that corner (valley at a convex corner, mountain at a
+    reflex one), or along a smooth outline no fold (a drawn mark)."""
+    folds: dict[tuple[str, float], list[str]] = {}
+    for part in pattern.parts:
+        if part.kind != "connector":
+            continue
+        e = float(part.meta["length"])
+        for ln in part.lines:
+            vertical = abs(ln.a[0] - e) < 1e-9 and abs(ln.b[0] - e) < 1e-9
+            if vertical and ln.role in (Role.VALLEY, Role.MOUNTAIN):
+                kind = "valley" if ln.role is Role.VALLEY else "mountain"
+                folds.setdefault((kind, round(float(ln.fold_angle_deg), 1)), []).append(part.name)
+    if not folds:
+        return "the line before each overlap tab is a mark, not a fold (a smooth outline)"
+    text = "; ".join(
+        f"{', '.join(names)}: {kind} {angle:g} deg"
+        for (kind, angle), names in sorted(folds.items(), key=lambda kv: kv[1][0])
+    )
+    return f"fold the line before each overlap tab by the corner's angle ({text})"
 
 
 def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
