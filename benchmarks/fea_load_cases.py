@@ -51,13 +51,13 @@ Rows that are never written:
   ``skip``: for n = 8 (9 facets), n = 10 (11) and n = 6 (7) along = 2 is skipped (4, 8 and 16
   qualify); n = 17 (18 facets) and n = 13 (14) qualify at every along.
 
-**The committed CSV is partial** (about 90 minutes of runs on 2 cores shared with other jobs,
-load averages up to 50 at the end): phases ``a`` and ``b`` are complete; of ``c`` every row at
-2 and 4 per facet, and at 8 per facet eta 0 (all four tests) and 15 deg compression and 3-point
-(426 and 433 s, 86 500 nodes, 4.1 GB peak; the cantilever at 15 and everything at 30 and 45 deg
-at 8 per facet were not run); ``d`` (shifts) was not run; of ``e`` only
-the case study's 4-point bending at eta 0 (90 850 nodes, 201 s, 4.2 GB peak). ``run`` resumes
-from there.
+**The committed CSV** (runs of 2026-12-01 and 2026-12-02 on 2 cores shared with other jobs):
+phases ``a``, ``b``, ``c``, ``f`` and ``g`` are complete; ``d`` (shifts) at 2 and 4 per facet
+and at 8 per facet for 15, 30 and 45 deg (every design) and 60 and 75 deg (the differing layers
+and the rectangle; the identical squares mirror 15 and 30 deg there); of ``e`` only the case
+study's 4-point bending at eta 0 (90 850 nodes, 201 s, 4.2 GB peak). Peak ccx memory: 4.1-4.7 GB
+at 8 per facet, 11.3 GB for the chassis plate at 12 (218 130 nodes, 316-401 s). ``run``
+resumes from there.
 
 ``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
 """

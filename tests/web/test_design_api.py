@@ -245,7 +245,6 @@ def _with(path: str, value: Any) -> dict[str, Any]:
         (_with("fold_style", "zigzag"), "fold_style", "is unknown"),
         ({**_with("fold_style", "perforated"), "cut": 1}, "gap", "is missing"),
         ({**_with("fold_style", "perforated"), "cut": "1 MPa", "gap": 1}, "cut", "wrong dimension"),
-        (_with("cutter", "laser:30x30"), "cutter", "too small for part"),
         (_with("paper", "a3"), "paper", "is unknown"),
         (_with("paper", 4), "paper", "wrong type"),
     ],
@@ -417,3 +416,15 @@ def test_download_all_is_a_zip_of_exactly_the_result_files(
     for f in result["files"]:  # byte for byte the files served one by one
         assert archive.read(f["name"]) == client.get(f["url"]).content, f["name"]
     assert client.get("/api/results/" + "0" * 32 + "/all.zip").status_code == 404
+
+
+def test_a_cutter_too_small_for_every_design_is_an_infeasible_answer(client: TestClient) -> None:
+    """The request's cutter is in the solve (as design --machine is): on a 30 x 30 mm bed no
+    case-study design fits, so the answer is a certified "infeasible" whose diagnosis names the
+    machine and the size the parts need, not a file error."""
+    r = client.post("/api/design", json=_with("cutter", "laser:30x30"))
+    assert r.status_code == 200, r.text
+    d = r.json()["design"]
+    assert d["status"] == "infeasible" and d["certified"]
+    text = " ".join(x["message"] for x in d["diagnosis"])
+    assert "fabrication.machine (laser:30x30" in text and "a cutter whose" in text

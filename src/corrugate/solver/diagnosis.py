@@ -31,6 +31,7 @@ import itertools
 import math
 from dataclasses import replace
 
+from corrugate.names import DEFAULT_MARGIN_MM
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables
 from corrugate.solver.quantity import STIFFNESS, Quantity
@@ -103,6 +104,13 @@ def _value(c: Constraint, v: float) -> str:
 
 def _edit(c: Constraint, v: float) -> str:
     """The spec edit that lets ``c`` accept the value ``v`` of its quantity."""
+    if c.quantity.kind in ("part_short", "part_long"):  # a machine's side, not a number
+        side = "shorter" if c.quantity.kind == "part_short" else "longer"
+        bed = math.ceil(v + 2 * DEFAULT_MARGIN_MM)
+        return (
+            f"fabrication.machine = a cutter whose {side} side is at least {bed} mm (the parts "
+            f'need {v:.4g} mm, plus 5 mm margins), e.g. "laser:{bed}x{bed}"'
+        )
     if c.load is not None:  # P/delta >= v: a deflection of load / v, rounded up
         return f"{_key(c)} = {_rounded(c.load / v, 'mm', down=False)}"
     return f"{_key(c)} = {_rounded(v, c.unit, down=c.sense == 'min')}"

@@ -58,6 +58,7 @@ from corrugate import __version__
 from corrugate.analysis.evaluate import Analysis
 from corrugate.core.errors import InputError
 from corrugate.core.units import ureg
+from corrugate.export.machines import get_machine
 from corrugate.export.plan import OutputOptions
 from corrugate.materials.library import library
 from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
@@ -382,6 +383,7 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
         # the request's cutter, when given, is the spec's machine (as design --machine is);
         # else the files are for the spec's [fabrication] machine
         if "cutter" in body.model_fields_set:
+            get_machine(body.cutter)  # an unknown machine names the request's cutter
             spec = with_machine(spec, body.cutter)
         machine = spec.fabrication.machine
         cutter = body.cutter if machine in (None, "none") else machine
