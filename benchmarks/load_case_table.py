@@ -20,7 +20,6 @@ the digits printed); a direction whose own series is shorter uses its mirror's.
 from __future__ import annotations
 
 import csv
-import math
 import re
 from collections import defaultdict
 from pathlib import Path
@@ -36,7 +35,7 @@ from corrugate.mechanics.load_cases import (
 )
 from corrugate.mechanics.offaxis import _cs
 from fea_offaxis import designs
-from offaxis_table import estimate
+from offaxis_table import estimate, richardson
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
 TESTS = {
@@ -54,15 +53,7 @@ def limit(series: dict[int, float]) -> tuple[float, str]:
     """(value, how) from a mesh series {elements per facet: value}: Richardson extrapolation
     at the observed order p = log2(d1 / d2) of the last three meshes when the series is monotone
     and its steps shrink (0.5 <= p <= 4), else `estimate()` of benchmarks/offaxis_table.py."""
-    alongs = sorted(series)
-    if len(alongs) >= 3:
-        v1, v2, v3 = (series[k] for k in alongs[-3:])
-        d1, d2 = v1 - v2, v2 - v3
-        if d1 * d2 > 0 and abs(d2) < abs(d1):
-            p = math.log2(d1 / d2)
-            if 0.5 <= p <= 4:
-                return v3 - d2 / (2**p - 1), f"extrapolated (p = {p:.2f})"
-    return estimate(series)
+    return richardson(series) or estimate(series)
 
 
 def mirrored(
