@@ -62,7 +62,12 @@ def design(page: Any) -> tuple[dict[str, Any], dict[str, Any]]:
 
 
 def spec_of(body: dict[str, Any]) -> dict[str, Any]:
-    return {k: v for k, v in body.items() if k not in OUTPUT_KEYS}
+    """The spec the page posted: its keys but the output options, the posted cutter as the
+    spec's machine (the web solves for it, as design --machine does)."""
+    spec = {k: v for k, v in body.items() if k not in OUTPUT_KEYS}
+    if "cutter" in body:
+        spec["fabrication"] = {**spec.get("fabrication", {}), "machine": body["cutter"]}
+    return spec
 
 
 def check_answer(page: Any, body: dict[str, Any], answer: dict[str, Any]) -> None:
