@@ -62,9 +62,14 @@ def design(page: Any) -> tuple[dict[str, Any], dict[str, Any]]:
 
 
 def spec_of(body: dict[str, Any]) -> dict[str, Any]:
-    """The spec the page posted: its keys but the output options, the posted cutter as the
-    spec's machine (the web solves for it, as design --machine does)."""
-    spec = {k: v for k, v in body.items() if k not in OUTPUT_KEYS}
+    """The spec the page posted: its keys but the output options."""
+    return {k: v for k, v in body.items() if k not in OUTPUT_KEYS}
+
+
+def solved_spec_of(body: dict[str, Any]) -> dict[str, Any]:
+    """The spec the web solves for a posted body: :func:`spec_of`, with the posted cutter as the
+    spec's machine (as design --machine does)."""
+    spec = spec_of(body)
     if "cutter" in body:
         spec["fabrication"] = {**spec.get("fabrication", {}), "machine": body["cutter"]}
     return spec
@@ -72,7 +77,7 @@ def spec_of(body: dict[str, Any]) -> dict[str, Any]:
 
 def check_answer(page: Any, body: dict[str, Any], answer: dict[str, Any]) -> None:
     """The page shows the certified answer a direct solve of the posted spec gives."""
-    expected = direct_design(spec_of(body))
+    expected = direct_design(solved_spec_of(body))
     assert without_timings(answer["design"]) == expected
     assert expected["status"] == "optimal" and expected["certified"]
     shown = page.eval_on_selector_all(
