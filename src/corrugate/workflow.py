@@ -59,7 +59,9 @@ if TYPE_CHECKING:
 __all__ = [
     "DesignResult",
     "DesignRun",
+    "MadeFor",
     "design",
+    "made_for",
     "output_options",
     "solve_spec",
     "write_design",
@@ -115,6 +117,47 @@ def solve_spec(spec: Spec, problem: Problem | None = None) -> DesignRun:
     payload["robust"] = robust.as_dict(problem)
     payload["warnings"] = [*sol.warnings, dict(_ROBUST_WARNING)]
     return DesignRun(sol, payload, robust)
+
+
+@dataclass(frozen=True, slots=True)
+class MadeFor:
+    """What a spec is solved and its files are written for (:func:`made_for`): the ``spec`` to
+    solve, the ``cutter`` its files are for and the fold operations ``mountain``, ``valley`` and
+    ``marks`` (None: the machine's)."""
+
+    spec: Spec
+    cutter: str
+    mountain: str | None
+    valley: str | None
+    marks: str | None
+
+
+def made_for(
+    spec: Spec,
+    cutter: str | None = None,
+    *,
+    mountain: str | None = None,
+    valley: str | None = None,
+    marks: str | None = None,
+) -> MadeFor:
+    """The spec with its ``[fabrication] machine`` set to ``cutter`` when one is given (a checked
+    name: ``design --machine``, the web's ``cutter``), the machine its files are written for (that
+    one, else the spec's, else :data:`~corrugate.names.DEFAULT_MACHINE` when it has none or
+    ``"none"``) and the fold operations given, else the spec's (docs/fabrication.md, "What the
+    solve asks of the making")."""
+    from corrugate.spec.schema import with_machine
+
+    spec = with_machine(spec, cutter)
+    fab = spec.fabrication
+    machine = DEFAULT_MACHINE if fab.machine in (None, "none") else fab.machine
+    assert machine is not None
+    return MadeFor(
+        spec,
+        machine,
+        fab.mountain if mountain is None else mountain,
+        fab.valley if valley is None else valley,
+        fab.marks if marks is None else marks,
+    )
 
 
 def output_options(

@@ -17,7 +17,7 @@ from corrugate.cli import options as o
 from corrugate.cli.console import fmt, make_console
 from corrugate.core.errors import InputError
 from corrugate.core.limits import abnormal_reason, check, check_count, is_normal, require_finite
-from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_MACHINE, DEFAULT_PAPER, STIFFNESS_NAMES
+from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_PAPER, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -175,8 +175,8 @@ def design_cmd(
     from corrugate.export.machines import get_machine
     from corrugate.export.pdf import check_paper
     from corrugate.solver import Problem
-    from corrugate.spec.schema import load_spec_text, with_machine
-    from corrugate.workflow import output_options, solve_spec, write_design
+    from corrugate.spec.schema import load_spec_text
+    from corrugate.workflow import made_for, output_options, solve_spec, write_design
 
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
@@ -187,24 +187,20 @@ def design_cmd(
         except InputError as exc:
             flag = PARAMETERS["cutter"].flag
             raise InputError(flag, exc.value, exc.allowed, reason=exc.reason) from None
-    parsed, spec_text = load_spec_text(spec)
-    parsed = with_machine(parsed, cutter)
-    fab = parsed.fabrication
-    machine = fab.machine
-    mountain = mountain if mountain is not None else fab.mountain
-    valley = valley if valley is not None else fab.valley
-    marks = marks if marks is not None else fab.marks
+    loaded, spec_text = load_spec_text(spec)
+    made = made_for(loaded, cutter, mountain=mountain, valley=valley, marks=marks)
+    parsed = made.spec
     options = (
         output_options(
-            DEFAULT_MACHINE if machine in (None, "none") else machine,
+            made.cutter,
             fold_style,
             cut,
             gap,
             labels=labels,
             paper=paper,
-            mountain=mountain,
-            valley=valley,
-            marks=marks,
+            mountain=made.mountain,
+            valley=made.valley,
+            marks=made.marks,
         )
         if out is not None
         else None

@@ -64,7 +64,7 @@ from corrugate.materials.library import library
 from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
 from corrugate.solver import Problem, Solution
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
-from corrugate.spec.schema import Spec, SpecError, parse_spec, with_machine
+from corrugate.spec.schema import Spec, SpecError, parse_spec
 from corrugate.web.guards import (
     BodySizeLimit,
     CatchAll,
@@ -92,7 +92,7 @@ from corrugate.web.schemas import (
     format_list,
 )
 from corrugate.web.store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
-from corrugate.workflow import output_options, solve_spec, write_design
+from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, write_design
 
 __all__ = [
     "LOOPBACK_NAMES",
@@ -284,22 +284,22 @@ def _output_errors(cutter: str) -> Iterator[None]:
         raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
 
 
-def _output_options(body: OutputBody, cutter: str | None = None, fab: Any = None) -> OutputOptions:
+def _output_options(body: OutputBody, made: MadeFor | None = None) -> OutputOptions:
     """The output options of a design or pattern request, as ``corrugate design --cutter ...
     --fold-style ... --cut ... --gap ... --paper ...`` reads them
-    (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs), for
-    ``cutter`` (None: the request's) and the fold operations of the spec's ``[fabrication]``
-    ``fab`` (None: the machine's); errors name the request's field."""
+    (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs), for the
+    machine and fold operations a design's spec is made for (:func:`corrugate.workflow.made_for`;
+    None: the request's cutter, the machine's operations); errors name the request's field."""
     return output_options(
-        body.cutter if cutter is None else cutter,
+        body.cutter if made is None else made.cutter,
         body.fold_style,
         body.cut,
         body.gap,
         paper=body.paper,
         names={"fold-line style": "fold_style"},
-        mountain=None if fab is None else fab.mountain,
-        valley=None if fab is None else fab.valley,
-        marks=None if fab is None else fab.marks,
+        mountain=None if made is None else made.mountain,
+        valley=None if made is None else made.valley,
+        marks=None if made is None else made.marks,
     )
 
 
@@ -382,13 +382,13 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
             raise
         # the request's cutter, when given, is the spec's machine (as design --machine is);
         # else the files are for the spec's [fabrication] machine
-        if "cutter" in body.model_fields_set:
-            get_machine(body.cutter)  # an unknown machine names the request's cutter
-            spec = with_machine(spec, body.cutter)
-        machine = spec.fabrication.machine
-        cutter = body.cutter if machine in (None, "none") else machine
+        given = body.cutter if "cutter" in body.model_fields_set else None
+        if given is not None:
+            get_machine(given)  # an unknown machine names the request's cutter
+        made = made_for(spec, given)
+        spec, cutter = made.spec, made.cutter
         problem = Problem.from_spec(spec)
-        options = _output_options(body, cutter, spec.fabrication)
+        options = _output_options(body, made)
     _check_spec_size(spec, settings)
     run = solve_spec(spec, problem)
     run = replace(run, payload=_json_safe(run.payload))
