@@ -43,34 +43,37 @@ Pair = tuple[FloatArray, FloatArray]
 MAKING: frozenset[Quantity] = frozenset({PART_SHORT, PART_LONG, W_MIN, T_OVER_W, CREASES})
 
 
-def band_run(layout: Layout, Lx: Any, Ly: Any, low: bool | None = None) -> FloatArray:
+def _runs(layout: Layout, Lx: Any, Ly: Any) -> tuple[FloatArray | None, FloatArray | None]:
+    """The longest cornered run (mm) and the longest smooth run's whole length of ``layout`` at
+    extents Lx, Ly (None where it has no run of that kind)."""
+    cornered: FloatArray | None = None
+    smooth: FloatArray | None = None
+    for length, at_corner in layout.perimeter_runs(Lx, Ly):
+        L = np.asarray(length, dtype=np.float64)
+        if at_corner:
+            cornered = L if cornered is None else np.maximum(cornered, L)
+        else:
+            smooth = L if smooth is None else np.maximum(smooth, L)
+    return cornered, smooth
+
+
+def _arcs(L: FloatArray) -> FloatArray:
+    """How many equal arcs a smooth run of length L (mm) is cut into (at most segment_max each)."""
+    return np.maximum(1.0, np.ceil(L / DEFAULT_FABRICATION.segment_max - 1e-9))
+
+
+def _longest(cornered: FloatArray | None, smooth_arc: FloatArray | None) -> FloatArray:
+    parts = [v for v in (cornered, smooth_arc) if v is not None]
+    assert parts
+    return parts[0] if len(parts) == 1 else np.maximum(parts[0], parts[1])
+
+
+def band_run(layout: Layout, Lx: Any, Ly: Any) -> FloatArray:
     """The band's longest segment (mm) on ``layout`` of folded extents Lx, Ly (arrays), as
     :func:`corrugate.fabrication.band.band_parts` cuts it: the longest edge, or along a smooth
-    outline its arc. ``low`` True / False: a lower / upper bound of the arc over a box whose
-    low / high corner the extents are (module docstring); None: the exact value."""
-    smax = DEFAULT_FABRICATION.segment_max
-    out: FloatArray | None = None
-    for length, cornered in layout.perimeter_runs(Lx, Ly):
-        L = np.asarray(length, dtype=np.float64)
-        if not cornered:  # low: the whole run; making_bounds divides by the high count
-            if low is None:
-                L = L / np.maximum(1.0, np.ceil(L / smax - 1e-9))
-            elif not low:
-                L = np.minimum(L, smax)
-        out = L if out is None else np.maximum(out, L)
-    assert out is not None
-    return out
-
-
-def _smooth_count(layout: Layout, Lx: Any, Ly: Any) -> FloatArray | None:
-    """The largest number of arcs of a smooth run at extents Lx, Ly (None: every run cornered)."""
-    smax = DEFAULT_FABRICATION.segment_max
-    counts = [
-        np.maximum(1.0, np.ceil(np.asarray(length, dtype=np.float64) / smax - 1e-9))
-        for length, cornered in layout.perimeter_runs(Lx, Ly)
-        if not cornered
-    ]
-    return None if not counts else np.maximum.reduce(counts)
+    outline its arc."""
+    cornered, smooth = _runs(layout, Lx, Ly)
+    return _longest(cornered, None if smooth is None else smooth / _arcs(smooth))
 
 
 def _parts(
@@ -128,11 +131,16 @@ def making_bounds(
     folded thickness (mm); module docstring for why the corners bound them."""
     opts = DEFAULT_FABRICATION
     (Lx_lo, Lx_hi), (Ly_lo, Ly_hi) = extents
-    run_lo = band_run(layout, Lx_lo, Ly_lo, low=True)
-    count_hi = _smooth_count(layout, Lx_hi, Ly_hi)
-    if count_hi is not None:  # a smooth run's arc: its low perimeter over its high count
-        run_lo = np.minimum(run_lo, run_lo / count_hi)
-    run_hi = band_run(layout, Lx_hi, Ly_hi, low=False)
+    corner_lo, smooth_lo = _runs(layout, Lx_lo, Ly_lo)
+    corner_hi, smooth_hi = _runs(layout, Lx_hi, Ly_hi)
+    # a smooth run's arc: at least its low length over its high count, at most its high length
+    # and segment_max (module docstring)
+    run_lo = _longest(
+        corner_lo, None if smooth_lo is None or smooth_hi is None else smooth_lo / _arcs(smooth_hi)
+    )
+    run_hi = _longest(
+        corner_hi, None if smooth_hi is None else np.minimum(smooth_hi, opts.segment_max)
+    )
     out: dict[Quantity, Pair] = {}
     sides = []
     for b, run, t_d, k in ((lo, run_lo, td[0], 0), (hi, run_hi, td[1], 1)):

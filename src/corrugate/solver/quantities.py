@@ -229,29 +229,19 @@ def point_values(
     eta_arg = etas[0] if len(etas) == 1 else etas
     ev = evaluate(l1, l2, problem.layout, problem.model, eta_arg, joint=problem.joint)
     Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
+    facet1 = tables.facet_factor(x["n1"], "x") * Ly  # each layer's longest facet (mm)
+    facet2 = tables.facet_factor(x["n2"], "y") * Lx
     out: dict[Quantity, FloatArray] = {
         LX: Lx,
         LY: Ly,
         THICKNESS: ev.thickness[:, 0],
         MASS: ev.mass[:, 0],
         FLAT: np.maximum((x["n1"] + 1) * x["W1"], (x["n2"] + 1) * x["W2"]),
-        FACET: np.maximum(
-            tables.facet_factor(x["n1"], "x") * Ly, tables.facet_factor(x["n2"], "y") * Lx
-        ),
+        FACET: np.maximum(facet1, facet2),
     }
     if MAKING.intersection(keys):
         out.update(
-            making_values(
-                problem.layout,
-                c1,
-                c2,
-                x,
-                tables.facet_factor(x["n1"], "x") * Ly,
-                tables.facet_factor(x["n2"], "y") * Lx,
-                Lx,
-                Ly,
-                ev.thickness[:, 0],
-            )
+            making_values(problem.layout, c1, c2, x, facet1, facet2, Lx, Ly, ev.thickness[:, 0])
         )
     # a support that reads the layout's coupon gets evaluate's own treatment of it
     coupled = {
@@ -448,16 +438,15 @@ def box_bounds(
             flat_lo if point else np.maximum((hi["n1"] + 1) * hi["W1"], (hi["n2"] + 1) * hi["W2"])
         )
         out[FLAT] = (flat_lo, flat_hi)
-    if FACET in quantities:
+    if FACET in quantities or making:
+        # each layer's longest facet: the facet factor's range over n times the other extent
         f1 = tables.Fx.bounds(lo["n1"], hi["n1"])
         f2 = tables.Fy.bounds(lo["n2"], hi["n2"])
-        facet_lo = np.maximum(f1[0] * Ly_lo, f2[0] * Lx_lo)
-        facet_hi = facet_lo if point else np.maximum(f1[1] * Ly_hi, f2[1] * Lx_hi)
+        facets = ((f1[0] * Ly_lo, f1[1] * Ly_hi), (f2[0] * Lx_lo, f2[1] * Lx_hi))
+        facet_lo = np.maximum(facets[0][0], facets[1][0])
+        facet_hi = facet_lo if point else np.maximum(facets[0][1], facets[1][1])
         out[FACET] = (facet_lo, facet_hi)
     if making:
-        F1 = tables.Fx.bounds(lo["n1"], hi["n1"])
-        F2 = tables.Fy.bounds(lo["n2"], hi["n2"])
-        facets = ((F1[0] * Ly_lo, F1[1] * Ly_hi), (F2[0] * Lx_lo, F2[1] * Lx_hi))
         out.update(
             making_bounds(
                 lay, c1, c2, lo, hi, facets, ((Lx_lo, Lx_hi), (Ly_lo, Ly_hi)), out[THICKNESS]
