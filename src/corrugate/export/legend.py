@@ -23,7 +23,7 @@ from dataclasses import dataclass
 
 from corrugate.export.machines import Machine
 from corrugate.fabrication.palette import LINES
-from corrugate.fabrication.sheets import Sheet
+from corrugate.fabrication.sheets import Sheet, free_spot
 
 __all__ = [
     "LEGEND_TEXT_MM",
@@ -141,22 +141,7 @@ def _free_box(
     if sheet.reserved is not None:
         rx, ry, rw, rh = sheet.reserved
         boxes.append((rx, ry, rx + rw, ry + rh))
-    W, H, m, sp = sheet.width, sheet.height, margin, spacing
-    xs = {m, W - m - w} | {b[2] + sp for b in boxes} | {b[0] - sp - w for b in boxes}
-    ys = {m, H - m - h} | {b[3] + sp for b in boxes} | {b[1] - sp - h for b in boxes}
-    for y in sorted(ys):
-        for x in sorted(xs):
-            if x < m - _EPS or y < m - _EPS or x + w > W - m + _EPS or y + h > H - m + _EPS:
-                continue
-            if all(
-                x + w + sp <= b[0] + _EPS
-                or b[2] + sp <= x + _EPS
-                or y + h + sp <= b[1] + _EPS
-                or b[3] + sp <= y + _EPS
-                for b in boxes
-            ):
-                return x, y
-    return None
+    return free_spot(boxes, sheet.width, sheet.height, w, h, margin, spacing, top_right=False)
 
 
 def legend_spot(

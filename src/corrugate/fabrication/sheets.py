@@ -55,6 +55,7 @@ __all__ = [
     "Placement",
     "Sheet",
     "SheetPlan",
+    "free_spot",
     "get_cutter",
     "place",
     "plan_sheets",
@@ -339,18 +340,29 @@ def plan_sheets(
     return SheetPlan(cut, tuple(map(sheet, states, spots)), spacing, margin)
 
 
-def _free_box(state: _SheetState, w: float, h: float) -> tuple[float, float, float, float] | None:
-    """A w x h box (x, y, w, h) inside the margins of a packed sheet, ``spacing`` away from every
-    part, as near the top-right corner as candidate positions allow; ``None`` if there is none."""
-    m, sp = state.margin, state.spacing
-    boxes = [p.bounds for p in state.placements]
-    xs = {m, state.width - m - w} | {b[2] + sp for b in boxes} | {b[0] - sp - w for b in boxes}
-    ys = {m, state.height - m - h} | {b[3] + sp for b in boxes} | {b[1] - sp - h for b in boxes}
-    for y in sorted(ys, reverse=True):
-        for x in sorted(xs, reverse=True):
+def free_spot(
+    boxes: Sequence[tuple[float, float, float, float]],
+    width: float,
+    height: float,
+    w: float,
+    h: float,
+    margin: float,
+    spacing: float,
+    *,
+    top_right: bool,
+) -> tuple[float, float] | None:
+    """The lower-left corner (mm) of a ``w`` x ``h`` box inside the ``margin`` of a ``width`` x
+    ``height`` sheet, ``spacing`` clear of every box (x0, y0, x1, y1) of ``boxes``: among the
+    candidate positions (the margins and the edges of the boxes), the one nearest the top-right
+    corner (``top_right``) or the bottom-left one; None if there is none."""
+    m, sp = margin, spacing
+    xs = {m, width - m - w} | {b[2] + sp for b in boxes} | {b[0] - sp - w for b in boxes}
+    ys = {m, height - m - h} | {b[3] + sp for b in boxes} | {b[1] - sp - h for b in boxes}
+    for y in sorted(ys, reverse=top_right):
+        for x in sorted(xs, reverse=top_right):
             if x < m - _EPS or y < m - _EPS:
                 continue
-            if x + w > state.width - m + _EPS or y + h > state.height - m + _EPS:
+            if x + w > width - m + _EPS or y + h > height - m + _EPS:
                 continue
             if all(
                 x + w + sp <= b[0] + _EPS
@@ -359,5 +371,15 @@ def _free_box(state: _SheetState, w: float, h: float) -> tuple[float, float, flo
                 or b[3] + sp <= y + _EPS
                 for b in boxes
             ):
-                return x, y, w, h
+                return x, y
     return None
+
+
+def _free_box(state: _SheetState, w: float, h: float) -> tuple[float, float, float, float] | None:
+    """A w x h box (x, y, w, h) inside the margins of a packed sheet, ``spacing`` away from every
+    part, as near the top-right corner as candidate positions allow; ``None`` if there is none."""
+    boxes = [p.bounds for p in state.placements]
+    spot = free_spot(
+        boxes, state.width, state.height, w, h, state.margin, state.spacing, top_right=True
+    )
+    return None if spot is None else (spot[0], spot[1], w, h)
