@@ -110,8 +110,11 @@ def model_value(a: Assembly, test: str, eta: float) -> float:
     return float(apparent(form, "D", k, st.span))
 
 
-def _sweep() -> list[tuple[str, str, float, float, str]]:
-    """(design, test, model, FE, mesh) at eta = 0 from the parameter sweep."""
+SweepRow = tuple[str, Assembly, str, float, float, str]
+
+
+def _sweep() -> list[SweepRow]:
+    """(design, its assembly, test, model, FE, mesh) at eta = 0 from the parameter sweep."""
     fe: dict[str, dict[str, tuple[float, str]]] = defaultdict(dict)
     with (OUT / "sweep_paper.csv").open() as f:
         for r in csv.DictReader(f):
@@ -127,7 +130,7 @@ def _sweep() -> list[tuple[str, str, float, float, str]]:
         )
         for key, test in (("D_Nmm@0", "bending"), ("D4_Nmm@0", "bending4")):
             if key in q:
-                out.append((case, test, model_value(a, test, 0.0), *q[key]))
+                out.append((case, a, test, model_value(a, test, 0.0), *q[key]))
     return out
 
 
@@ -151,7 +154,9 @@ def _c(entry: object) -> str:
     return f"{form.c:g}" if form is not None else "?"
 
 
-def _local_term(ds: dict[str, Assembly], series: dict[Key, dict[int, float]]) -> list[str]:
+def _local_term(
+    ds: dict[str, Assembly], series: dict[Key, dict[int, float]], sweep: list[SweepRow]
+) -> list[str]:
     """The table of the c each FE row along the creases needs (docs/load_cases.md section 2)."""
     lines = [
         "",
@@ -176,16 +181,9 @@ def _local_term(ds: dict[str, Assembly], series: dict[Key, dict[int, float]]) ->
                 c, lh = local_needed(a, test, eta, limit(s)[0])
                 need[test].append(c)
                 lines.append(f"| {name} | {TESTS[test][0]} | {eta:g} | {lh:.1f} | {c:.2f} |")
-    for case, test, _, fe, _ in _sweep():
+    for case, a, test, _, fe, _ in sweep:
         if test != "bending":
             continue
-        m = re.match(r"W=(\S+) n=(\d+) alpha=(\S+)", case)
-        assert m is not None
-        a = Assembly.identical(
-            Layer(
-                W=float(m[1]), n=int(m[2]), alpha_deg=float(m[3]), material=get_material("dura-lar")
-            )
-        )
         c, lh = local_needed(a, test, 0.0, fe)
         need[test].append(c)
         lines.append(f"| sweep {case} | three-point | 0 | {lh:.1f} | {c:.2f} |")
@@ -252,7 +250,8 @@ def table() -> str:
         "| design | test | model D N mm | FE D N mm | mesh | model/FE |",
         "|---|---|---|---|---|---|",
     ]
-    for case, test, model, fe, mesh in _sweep():
+    sweep = _sweep()
+    for case, _, test, model, fe, mesh in sweep:
         worst[f"{test} on the creases (sweep)"].append(model / fe)
         lines.append(
             f"| {case} | {TESTS[test][0]} | {model:.4g} | {fe:.4g} | {mesh} | {model / fe:.3f} |"
@@ -280,7 +279,7 @@ def table() -> str:
             f"| {name} | {eta:g} | {bound:g} | {model:.5g} | {ser} | {fe:.4g} | {how} | "
             f"{'yes' if fe >= bound else 'NO'} |"
         )
-    lines += _local_term(ds, series)
+    lines += _local_term(ds, series, sweep)
     lines += ["", "## Range of model/FE", "", "| rows | n | min | max |", "|---|---|---|---|"]
     for k, v in worst.items():
         lines.append(f"| {k} | {len(v)} | {min(v):.3f} | {max(v):.3f} |")
