@@ -306,7 +306,10 @@ def write_design_files(
         record.update(extra)
     drawn = cut.drawings
     if opts.labels is not False:  # pattern.pdf shows the labels, as the report's sheets do
-        drawn.sheets = [sheet_figure(plan, k, opts.style) for k in range(1, len(plan.sheets) + 1)]
+        drawn.sheets = [
+            sheet_figure(plan, k, opts.style, operations=cut.operations)
+            for k in range(1, len(plan.sheets) + 1)
+        ]
 
     def report_text() -> str | None:
         # written after the assembly steps, from the figures drawn by then (Drawings)

@@ -150,7 +150,7 @@ def test_cut_files_hold_only_the_machines_operations(
     )
     crease_ops = {op.replace("LASER", "CUT-SCORE") for op in crease_ops}  # a laser cannot press
     ops = {"CUT", "MARK-PEN", "LEGEND", *crease_ops}
-    if labels is True:
+    if labels is not False:  # on by default: the cut parts carry their names
         ops.add("LABEL")
     parts = patterns["case1"].parts
     mountains = sum(ln.role is Role.MOUNTAIN for p in parts for ln in p.lines)
@@ -171,7 +171,7 @@ def test_cut_files_hold_only_the_machines_operations(
         assert len(outlines) == len(parts)
         if path.suffix == ".svg":
             root = ET.fromstring(text)
-            assert not list(root.iter(f"{SVG}text"))  # labels are glyph outlines, never text
+            assert not list(root.iter(f"{SVG}text"))  # labels are pen strokes, never text
             assert root.attrib["width"] == f"{plan.cutter.width:.4f}".rstrip("0").rstrip(".") + "mm"
             for g in root.iter(f"{SVG}g"):
                 op = OPERATIONS[g.attrib["id"]]
@@ -286,17 +286,17 @@ def _segments(paths: list[Path2D]) -> list[tuple[Point, Point]]:
 
 
 @pytest.mark.parametrize("machine", ["cameo4-12x12", "maker-12x12", "laser:400x300"])
-def test_labels_in_cut_files_only_when_asked_and_clear_of_every_line(
+def test_labels_in_cut_files_by_default_as_pen_strokes_clear_of_every_line(
     patterns: dict[str, Pattern], tmp_path: Path, machine: str
 ) -> None:
     plan = plan_sheets(patterns["case1"], machine, margin=MARGIN)
     style = STYLES["scored"]
-    for path in cut_files(plan, tmp_path / "off", style, None):
+    for path in cut_files(plan, tmp_path / "off", style, False):
         assert "LABEL" not in {op for op, _, _ in paths_of(path)}
-    for path in cut_files(plan, tmp_path / "on", style, True):
+    for path in cut_files(plan, tmp_path / "on", style, None):
         paths = paths_of(path)
         glyphs = [p for p in paths if p[0] == "LABEL"]
-        assert glyphs and all(closed for _, _, closed in glyphs)
+        assert glyphs and not any(closed for _, _, closed in glyphs)  # strokes, drawn once
         lines = _segments([p for p in paths if p[0] not in ("LABEL", "LEGEND")])
         sheet = plan.sheets[int(path.stem.split("-")[1]) - 1]
         for placement in sheet.placements:

@@ -111,7 +111,14 @@ def test_design_default_silhouette_dxf_carries_every_crease_and_mark(
     a = Assembly.identical(Layer(l1["W_mm"], l1["n"], l1["alpha_deg"], get_material("dura-lar")))
     want = expected_counts(build_pattern(a), *get_guidance("dura-lar").perforation)
     layers = dxf_layers(out / "cut-1.dxf")
-    assert set(layers) == {"CUT", "MOUNTAIN-PERFORATE", "VALLEY-CUT-SCORE", "MARK-PEN", "LEGEND"}
+    assert set(layers) == {
+        "CUT",
+        "MOUNTAIN-PERFORATE",
+        "VALLEY-CUT-SCORE",
+        "MARK-PEN",
+        "LABEL",
+        "LEGEND",
+    }
     assert len(layers["MOUNTAIN-PERFORATE"]) == want["dashes"] > 0
     assert len(layers["VALLEY-CUT-SCORE"]) == want["valley"]
     assert len(layers["MARK-PEN"]) == want["marks"]
@@ -168,7 +175,7 @@ def test_the_options_choose_each_kind(tmp_path: Path, cli: CliRun) -> None:
     assert code == 0, output
     _, pattern = case1()
     layers = dxf_layers(out / "cut-1.dxf")
-    assert set(layers) == {"CUT", "MOUNTAIN-CUT-SCORE", "VALLEY-PERFORATE", "LEGEND"}
+    assert set(layers) == {"CUT", "MOUNTAIN-CUT-SCORE", "VALLEY-PERFORATE", "LABEL", "LEGEND"}
     want = expected_counts(pattern, 2.0, 1.0)
     assert len(layers["MOUNTAIN-CUT-SCORE"]) == want["mountain"]
     dashes = sum(
@@ -183,7 +190,7 @@ def test_the_options_choose_each_kind(tmp_path: Path, cli: CliRun) -> None:
         cli, "pattern", *CASE1, "--out", str(tmp_path / "s"), "-q", "--fold-style", "solid"
     )
     assert code == 0, output
-    assert set(dxf_layers(tmp_path / "s" / "cut-1.dxf")) == {"CUT", "MARK-PEN", "LEGEND"}
+    assert set(dxf_layers(tmp_path / "s" / "cut-1.dxf")) == {"CUT", "MARK-PEN", "LABEL", "LEGEND"}
 
 
 @pytest.mark.parametrize(

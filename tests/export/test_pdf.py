@@ -356,3 +356,28 @@ def test_cli_paper_option(tmp_path: Path, cli: CliRun) -> None:
         assert float(page.mediabox.width) == pytest.approx(595.28, abs=0.01)
         assert float(page.mediabox.height) == pytest.approx(841.89, abs=0.01)
     assert (good / "pattern.pdf").exists()
+
+
+def test_each_mat_page_carries_the_fold_map_legend_naming_the_cut_files_operations(
+    tmp_path: Path,
+) -> None:
+    from pypdf import PdfReader
+
+    from corrugate.export.legend import fold_map_legend
+    from corrugate.export.machines import get_machine
+    from corrugate.export.operations import default_operations
+
+    m = get_material("dura-lar")
+    a = Assembly.identical(Layer(W=8.0, n=8, alpha_deg=84.0, material=m))
+    plan = plan_sheets(build_pattern(a).parts, "cameo4-12x12")
+    ops = default_operations(get_machine("cameo4-12x12"), "dura-lar")
+    (path,) = write_files(plan, tmp_path, operations=ops, formats=("pdf",))
+    pages = PdfReader(str(path)).pages
+    assert len(pages) == len(plan.sheets)
+    rows = [r.text for r in fold_map_legend(ops)]
+    assert rows[0].startswith("FOLD MAP: for people, not the cutter")
+    assert "(cut file: perforate)" in rows[1]  # the mountains, as the cut file makes them
+    for page in pages:
+        text = " ".join(page.extract_text().split())
+        for row in rows:
+            assert " ".join(row.split()) in text, row

@@ -180,7 +180,7 @@ _BLOCKED = """
 import json, sys, tempfile
 from dataclasses import replace
 from pathlib import Path
-for m in ("ezdxf", "matplotlib"):
+for m in ("ezdxf", "matplotlib", "HersheyFonts"):
     sys.modules[m] = None
 from corrugate.export.files import plan_job
 from corrugate.export.plan import OutputOptions, cut_plan
@@ -211,9 +211,9 @@ print(json.dumps(outcome))
 
 
 def test_the_extra_of_each_entry_is_what_writing_it_needs() -> None:
-    """An entry without an extra is written with ezdxf and matplotlib unimportable; an entry
+    """An entry without an extra is written with ezdxf, matplotlib and HersheyFonts unimportable; an entry
     that names ``fab`` cannot be (its step imports one of them)."""
-    assert set(EXTRAS["fab"]) == {"ezdxf", "matplotlib"}
+    assert set(EXTRAS["fab"]) == {"ezdxf", "matplotlib", "HersheyFonts"}
     run = subprocess.run(
         [sys.executable, "-c", _BLOCKED, str(CASE_STUDY)],
         capture_output=True,

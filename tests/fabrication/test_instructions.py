@@ -11,6 +11,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 import pytest
+from HersheyFonts import HersheyFonts
 
 from corrugate import Assembly, Layer, get_material, make_layout
 from corrugate.fabrication.adhesives import ADHESIVES, adhesive_for
@@ -18,6 +19,7 @@ from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.instructions import assembly_steps, instructions_figure
 from corrugate.fabrication.palette import PALETTE
 
+SVG = "http://www.w3.org/2000/svg"
 CliRun = Callable[[list[str]], tuple[int, str, str]]
 
 
@@ -51,6 +53,23 @@ def test_every_part_a_step_names_is_cut_and_named_on_the_fold_map(
         assert any(re.search(rf"\b{name}\b", t) for t in texts), (name, texts)
     md = (tmp_path / "ASSEMBLY.md").read_text()
     assert "fold maps sheet-N.svg are for you, not the cutter" in md
+    # the cut parts carry the same names by default: the Cricut file's LABEL strokes of each part
+    # are the stroke font's strokes of its name, one pen path each
+    cut = tmp_path / "cricut"
+    assert cli([*argv, "--machine", "maker-12x12", "--out", str(cut), "-q"])[0] == 0
+    strokes: dict[str, int] = {}
+    for svg in cut.glob("cut-*.svg"):
+        for g in ET.parse(svg).iter(f"{{{SVG}}}g"):
+            if g.attrib.get("id") == "LABEL":
+                for path in g.iter(f"{{{SVG}}}path"):
+                    assert not path.attrib["d"].endswith("Z")  # an open stroke, drawn once
+                    part = path.attrib["data-part"]
+                    strokes[part] = strokes.get(part, 0) + 1
+    font = HersheyFonts()
+    font.load_default_font("futural")
+    assert strokes == {
+        name: sum(len(s) >= 2 for s in font.strokes_for_text(name)) for name in named
+    }
     assert "printed face" not in md and "by its corner angle." not in md
 
 

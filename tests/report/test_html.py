@@ -67,7 +67,7 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     assert len(figures) == len(cut.plan.sheets)
     for k, src in enumerate(figures, start=1):
         buf = io.BytesIO()
-        sheet_figure(cut.plan, k, cut.style).savefig(buf, format="png")
+        sheet_figure(cut.plan, k, cut.style, operations=cut.operations).savefig(buf, format="png")
         png = base64.b64decode(src.split(",", 1)[1])
         assert png == buf.getvalue()
         width, height = struct.unpack(">II", png[16:24])

@@ -1,6 +1,6 @@
 """Which optional extras are installed, checked before work that needs them starts.
 
-The core package needs only its dependencies; writing files (``fab``: ezdxf, matplotlib) and the
+The core package needs only its dependencies; writing files (``fab``: ezdxf, matplotlib, Hershey-Fonts) and the
 web app (``web``: FastAPI, uvicorn, python-multipart) need extras. A command that needs a
 missing extra says so in one line (:class:`~corrugate.core.errors.MissingExtraError`) before it
 computes or writes anything, instead of failing midway with an import error.
@@ -16,7 +16,7 @@ __all__ = ["EXTRAS", "require_extra"]
 
 #: Each extra's packages as pyproject.toml lists them: import name -> distribution name.
 EXTRAS: dict[str, dict[str, str]] = {
-    "fab": {"ezdxf": "ezdxf", "matplotlib": "matplotlib"},
+    "fab": {"ezdxf": "ezdxf", "matplotlib": "matplotlib", "HersheyFonts": "Hershey-Fonts"},
     "web": {"fastapi": "fastapi", "uvicorn": "uvicorn", "multipart": "python-multipart"},
 }
 

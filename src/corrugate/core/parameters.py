@@ -283,8 +283,9 @@ OUTPUT_PARAMETERS: tuple[Parameter, ...] = (
         "",
         None,
         "flag",
-        "Part names in the cut files too (drawn with a pen, engraved on a laser) / no labels "
-        "anywhere. Default: on the fold map and the PDF only.",
+        "Part names (L1, L2, B1, ...: the names the assembly steps use) on every cut part "
+        "(drawn by the pen, engraved on a laser), the fold map and the PDF / no labels "
+        "anywhere. Default: on.",
     ),
     Parameter(
         "fold_style",

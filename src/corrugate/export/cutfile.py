@@ -9,16 +9,16 @@ path of the set cut length (:func:`corrugate.fabrication.linestyle.dashes`: even
 gap or more at each end, so no dash reaches the outline); a kind whose operation is ``none`` is
 left out (it is in the fold map). Without operations given, a cut file holds the machine's default
 for the sheet's material (:func:`corrugate.export.operations.default_operations`). No
-``stroke-dasharray``, no ``<text>`` and no DXF TEXT: labels, when asked, are glyph outlines of the
+``stroke-dasharray``, no ``<text>`` and no DXF TEXT: labels (on by default) are single-stroke glyphs of the
 part's name (e.g. ``L1``, ``B3``) on ``LABEL``, placed clear of every line (:mod:`.labels`), and
-the legend (:mod:`.legend`: the machine, then each layer and what to set it to) is glyph outlines
+the legend (:mod:`.legend`: the machine, then each layer and what to set it to) is single-stroke glyphs
 on ``LEGEND``, a pen layer, in a free box off every part.
 
 SVG: ``width``/``height`` in mm with a matching ``viewBox``; one ``<g>`` per layer, with ``id``
 and ``inkscape:label`` the layer's name, its stroke colour and the machine's stroke width,
 ``fill="none"``; every path a ``<path>`` of straight segments (``M``/``L``, ``Z`` when closed); the
 ``LEGEND`` group's ``<desc>`` holds the legend's text. DXF: R2010, ``$INSUNITS`` = 4 (mm); one
-layer per operation (ACI and true colour); closed rings as closed LWPOLYLINEs, open paths as LINEs;
+layer per operation (ACI and true colour); closed rings as closed LWPOLYLINEs, two-point paths as LINEs, pen strokes as open LWPOLYLINEs;
 the paper-space page is the sheet (``$PLIMMAX`` = width x height mm) at scale 1:1
 (``$PSVPSCALE`` = 1), so a CAD program prints the file at actual size; for a laser every layer's
 lineweight is 0 (0.00 mm, a hairline).
@@ -33,7 +33,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from corrugate.core.fileio import staged
-from corrugate.export.labels import LabelSpot, label_outlines, label_spot
+from corrugate.export.labels import LabelSpot, label_spot, label_strokes
 from corrugate.export.legend import LegendRow, cut_legend, legend_spot, row_length
 from corrugate.export.machines import OPERATIONS, Family, Machine, get_machine, layer_name
 from corrugate.export.operations import (
@@ -95,7 +95,7 @@ def resolve_operations(sheet: Sheet, machine: str | Machine, ops: Operations) ->
 def _legend_paths(
     sheet: Sheet, machine: Machine, layers: list[str], margin: float, spacing: float
 ) -> tuple[list[CutPath], list[LegendRow]]:
-    """The legend's glyph outlines (layer ``LEGEND``) in a free box off the parts, and its rows
+    """The legend's pen strokes (layer ``LEGEND``) in a free box off the parts, and its rows
     (no paths when no box takes it, :func:`~corrugate.export.legend.legend_spot`)."""
     rows = cut_legend(machine, layers)
     spot = legend_spot(sheet, rows, margin, spacing)
@@ -106,13 +106,12 @@ def _legend_paths(
         length = row_length(row.text, spot.size)
         x0, y0, x1, y1 = spot.row_box(k, len(rows), length)
         box = LabelSpot((x0 + x1) / 2, (y0 + y1) / 2, spot.size, 0.0, length)
-        rings = label_outlines(box, row.text)
-        if not rings:
+        strokes = label_strokes(box, row.text)
+        if not strokes:
             continue
-        shift = x0 - min(x for ring in rings for x, _ in ring)  # left-aligned rows
+        shift = x0 - min(x for s in strokes for x, _ in s)  # left-aligned rows
         out.extend(
-            CutPath("LEGEND", tuple((x + shift, y) for x, y in ring), True, "legend")
-            for ring in rings
+            CutPath("LEGEND", tuple((x + shift, y) for x, y in s), False, "legend") for s in strokes
         )
     return out, rows
 
@@ -163,9 +162,7 @@ def cut_paths(
         if labels:  # the part's name, e.g. "L1", large enough for a pen (the fold map says more)
             text = part.name
             spot = label_spot(placed, text)
-            paths.extend(
-                CutPath("LABEL", tuple(ring), True, name) for ring in label_outlines(spot, text)
-            )
+            paths.extend(CutPath("LABEL", tuple(s), False, name) for s in label_strokes(spot, text))
     order = list(OPERATIONS)
     if legend:
         present = [op for op in order if any(p.operation == op for p in paths)]
@@ -253,9 +250,10 @@ def cut_dxf_document(
         attribs = {"layer": p.operation}
         if p.closed:
             msp.add_lwpolyline(p.points, close=True, dxfattribs=attribs)
+        elif len(p.points) > 2:  # a pen stroke: one polyline, one pen-down
+            msp.add_lwpolyline(p.points, close=False, dxfattribs=attribs)
         else:
-            for a, b in zip(p.points, p.points[1:], strict=False):
-                msp.add_line(a, b, dxfattribs=attribs)
+            msp.add_line(p.points[0], p.points[1], dxfattribs=attribs)
     return doc
 
 

@@ -144,8 +144,9 @@ def write_files(
     (:func:`~corrugate.export.operations.style_operations`); ``operations`` are the cut files'
     fold operations (None with no style: the machine's default for the sheet's material,
     :func:`~corrugate.export.operations.default_operations`); ``machine`` the machine profile
-    (default: the plan's cutter). ``labels``: ``None`` writes labels on the fold map and the PDF but not in the cut
-    files, ``True`` everywhere (in the cut files as the LABEL operation), ``False`` nowhere.
+    (default: the plan's cutter). ``labels``: ``None`` or ``True`` writes labels everywhere (in the cut files as the LABEL
+    operation: the part's name drawn by the pen or engraved, so that the cut parts carry the names
+    the assembly steps use), ``False`` nowhere.
     ``marks=False`` leaves assembly marks out of the fold map (Origami Simulator reads them as
     undriven creases). With ``staging``, the files join that output step (committed with it)
     instead of being committed here. ``paper`` is ``mat`` (``pdf_name`` only) or ``a4``/``letter``:
@@ -226,14 +227,14 @@ def fold_maps(job: Job) -> Commit:
 
 def cut_svgs(job: Job) -> Commit:
     """``cut-N.svg`` for a machine that takes SVG (:func:`~corrugate.export.cutfile.cut_svg_document`),
-    labels only when ``labels`` is True; nothing for another machine."""
+    labels unless ``labels`` is False; nothing for another machine."""
     texts = (
         [
             cut_svg_document(
                 s,
                 job.machine,
                 job.operations,
-                labels=job.labels is True,
+                labels=job.labels is not False,
                 margin=job.plan.margin,
                 spacing=job.plan.spacing,
             )
@@ -247,14 +248,14 @@ def cut_svgs(job: Job) -> Commit:
 
 def cut_dxfs(job: Job) -> Commit:
     """``cut-N.dxf`` for a machine that takes DXF (:func:`~corrugate.export.cutfile.cut_dxf_document`),
-    labels only when ``labels`` is True; nothing for another machine."""
+    labels unless ``labels`` is False; nothing for another machine."""
     docs = (
         [
             cut_dxf_document(
                 s,
                 job.machine,
                 job.operations,
-                labels=job.labels is True,
+                labels=job.labels is not False,
                 margin=job.plan.margin,
                 spacing=job.plan.spacing,
             )
@@ -280,6 +281,7 @@ def pattern_pdf(job: Job) -> Commit:
             labels=job.labels is not False,
             title="corrugate pattern",
             figures=job.sheet_figures,
+            operations=job.operations,
         )
         return [target]
 

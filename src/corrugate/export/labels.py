@@ -8,12 +8,14 @@ The text runs along x or along y, whichever allows the larger letters, sized so 
 em per character long by 1.2 em tall (:attr:`LabelSpot.length`, :attr:`LabelSpot.height`), fits
 the free runs from the anchor; the box is then checked against every line and shrunk until it
 touches none. Writers fit the text into that box: the SVG fold map with ``textLength``, the cut
-files with the glyph outlines scaled into it (:func:`label_outlines`).
+files with single-stroke glyphs scaled into it (:func:`label_strokes`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -21,7 +23,15 @@ from numpy.typing import NDArray
 from corrugate.fabrication.model import Point
 from corrugate.fabrication.sheets import PlacedPart
 
-__all__ = ["MAX_TEXT_MM", "MIN_TEXT_MM", "LabelSpot", "label_outlines", "label_spot", "label_text"]
+__all__ = [
+    "MAX_TEXT_MM",
+    "MIN_TEXT_MM",
+    "LabelSpot",
+    "label_spot",
+    "label_strokes",
+    "label_text",
+    "plain_text",
+]
 
 #: Largest label text height (mm).
 MAX_TEXT_MM = 4.0
@@ -179,28 +189,51 @@ def label_spot(placed: PlacedPart, text: str | None = None) -> LabelSpot:
     return spot
 
 
-def label_outlines(spot: LabelSpot, text: str) -> list[list[Point]]:
-    """The glyph outlines of ``text`` as closed polylines (sheet mm), scaled to fit the box of
-    ``spot`` and centred in it, for files that take no text (cut files: a pen draws them, a laser
-    engraves them). Uses matplotlib's ``TextPath`` with the DejaVu Sans font."""
-    from matplotlib.font_manager import FontProperties
-    from matplotlib.textpath import TextPath
+#: Characters outside the stroke font's printable ASCII, written as the font can draw them.
+_PLAIN = {"°": " deg", "×": "x", "µ": "u", "–": "-", "—": "-", "≤": "<=", "≥": ">=", "·": "."}
 
-    path = TextPath((0.0, 0.0), text, size=1.0, prop=FontProperties(family="DejaVu Sans"))
-    polys = [np.asarray(q, dtype=np.float64) for q in path.to_polygons()]
-    polys = [q for q in polys if q.shape[0] >= 3]
-    if not polys:
+
+@lru_cache(maxsize=1)
+def _font() -> Any:
+    """The Hershey Simplex Roman font (``futural``, single-stroke) of the Hershey-Fonts package."""
+    from HersheyFonts import HersheyFonts
+
+    font = HersheyFonts()
+    font.load_default_font("futural")
+    font.normalize_rendering(1.0)
+    return font
+
+
+def plain_text(text: str) -> str:
+    """``text`` in the characters the stroke font draws: printable ASCII, with ``°``, ``×``,
+    ``µ``, dashes and ``≤``/``≥`` spelt out (:data:`_PLAIN`) and any other character as ``?``."""
+    out = []
+    for ch in text:
+        ch = _PLAIN.get(ch, ch)
+        out.append(ch if all(32 <= ord(c) < 127 for c in ch) else "?")
+    return "".join(out)
+
+
+def label_strokes(spot: LabelSpot, text: str) -> list[list[Point]]:
+    """The pen strokes of ``text`` as open polylines (sheet mm), scaled to fit the box of ``spot``
+    and centred in it, for files that take no text (cut files: a pen draws each stroke once, a
+    laser engraves it as a line). Single-stroke glyphs of the Hershey Simplex Roman font (the
+    Hershey-Fonts package): a pen's tip traces each letter once, where an outline font's glyphs
+    drawn by a pen are the letters' contours, which run together at a few mm."""
+    strokes = [np.asarray(s, dtype=np.float64) for s in _font().strokes_for_text(plain_text(text))]
+    strokes = [s for s in strokes if s.shape[0] >= 2]
+    if not strokes:
         return []
-    allp = np.vstack(polys)
+    allp = np.vstack(strokes)
     lo, hi = allp.min(axis=0), allp.max(axis=0)
     w, h = max(hi[0] - lo[0], 1e-9), max(hi[1] - lo[1], 1e-9)
     scale = min(spot.length / w, spot.height / h)
     mid = (lo + hi) / 2
     out: list[list[Point]] = []
-    for q in polys:
-        local = (q - mid) * scale
+    for s in strokes:
+        local = (s - mid) * scale
         if spot.rotation:
             local = np.column_stack([-local[:, 1], local[:, 0]])
-        ring = local + np.array([spot.x, spot.y])
-        out.append([(float(a), float(b)) for a, b in ring])
+        line = local + np.array([spot.x, spot.y])
+        out.append([(float(a), float(b)) for a, b in line])
     return out

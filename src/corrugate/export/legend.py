@@ -11,7 +11,7 @@ part's bounding box and of the PDF's check-square box, within the sheet's ``marg
 sheet as there is room (the parts are packed from the top-left corner, so the free strip is at the
 bottom). Text height is :data:`LEGEND_TEXT_MM` (2.5 mm), or smaller down to
 :data:`MIN_LEGEND_TEXT_MM` (2 mm: a pen still draws it legibly) when the free box is smaller; a
-row's box is 0.7 em per character long and 1.6 em tall. A cut file draws its legend as glyph outlines
+row's box is 0.7 em per character long and 1.6 em tall. A cut file draws its legend as single-stroke glyphs
 on the ``LEGEND`` layer (the pen: never a cutting layer); when no free box takes it, the cut file
 has no legend (the fold map and docs/fabrication.md still give it) and the fold map puts its legend
 in a strip below the sheet, which it is free to do as no machine reads it.

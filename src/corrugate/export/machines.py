@@ -15,8 +15,8 @@ layer / group           colour       ACI  content
                                           ``PEN``: one line each)
 ``VALLEY-<OP>``         ``#0000ff``  5    valley creases, likewise
 ``MARK-<OP>``           ``#ff00ff``  6    the band's angle marks, one line each (default ``PEN``)
-``LABEL``               ``#808080``  8    part names as glyph outlines, only with ``--labels``: pen
-``LEGEND``              ``#808080``  8    the file's legend as glyph outlines, off every part: pen
+``LABEL``               ``#808080``  8    part names, single-stroke glyphs (off with ``--no-labels``): pen
+``LEGEND``              ``#808080``  8    the file's legend, single-stroke glyphs, off every part: pen
 ======================  ===========  ===  =========================================================
 
 ``<OP>`` is the kind's :class:`~corrugate.export.operations.FoldOp` (``CUT-SCORE``, ``PERFORATE``,

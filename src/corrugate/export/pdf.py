@@ -36,6 +36,7 @@ from typing import TYPE_CHECKING
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.fileio import staged
 from corrugate.export.labels import label_spot
+from corrugate.export.legend import fold_map_legend, legend_spot, row_length
 from corrugate.export.svg import ANNOTATION, BOUNDARY, COLOURS
 from corrugate.fabrication.linestyle import (
     SOLID,
@@ -137,10 +138,17 @@ def write_pdf(
 
 
 def sheet_figure(
-    plan: SheetPlan, number: int, style: LineStyle = SOLID, *, labels: bool = True
+    plan: SheetPlan,
+    number: int,
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    operations: object | None = None,
 ) -> Figure:
     """The matplotlib figure of sheet ``number`` (1-based) of ``plan``, at 1:1 (see the module
-    docstring); save it as PDF for print, or as PNG for a preview."""
+    docstring); save it as PDF for print, or as PNG for a preview. ``operations`` (a
+    :class:`~corrugate.export.operations.FoldOperations`): the cut files' fold operations, which
+    the legend names."""
     from matplotlib.figure import Figure
 
     sheet = plan.sheets[number - 1]
@@ -151,7 +159,32 @@ def sheet_figure(
     ax.set_ylim(0.0, H)
     ax.set_axis_off()
     _draw_sheet(ax, plan, number, style, labels=labels)
+    _draw_legend(ax, plan, number, operations)
     return fig
+
+
+def _draw_legend(ax: Axes, plan: SheetPlan, number: int, operations: object | None) -> None:
+    """The fold map's legend (:func:`~corrugate.export.legend.fold_map_legend`: for people, not
+    the cutter; each colour's meaning and what the cut file does with it) in the free box of sheet
+    ``number`` that :func:`~corrugate.export.legend.legend_spot` finds, each row in its kind's
+    colour; none when no box takes it (the page is the sheet: there is no strip to add)."""
+    sheet = plan.sheets[number - 1]
+    rows = fold_map_legend(operations)
+    key = legend_spot(sheet, rows, plan.margin, plan.spacing)
+    if key is None:
+        return
+    for k, row in enumerate(rows):
+        x0, y0, _x1, y1 = key.row_box(k, len(rows), row_length(row.text, key.size))
+        ax.text(
+            x0,
+            (y0 + y1) / 2,
+            row.text,
+            fontsize=key.size * _PT,
+            ha="left",
+            va="center",
+            color=row.colour,
+            clip_on=True,
+        )
 
 
 def _draw_sheet(ax: Axes, plan: SheetPlan, number: int, style: LineStyle, *, labels: bool) -> None:
@@ -231,6 +264,7 @@ def render_pdf(
     labels: bool = True,
     title: str = "",
     figures: Sequence[Figure] | None = None,
+    operations: object | None = None,
 ) -> None:
     """Draw ``plan`` into a PDF at ``path`` directly (no staging: use :func:`write_pdf`).
 
@@ -245,7 +279,7 @@ def render_pdf(
     with PdfPages(path, metadata=metadata) as pdf:
         for number in range(1, len(plan.sheets) + 1):
             fig = (
-                sheet_figure(plan, number, style, labels=labels)
+                sheet_figure(plan, number, style, labels=labels, operations=operations)
                 if figures is None
                 else figures[number - 1]
             )

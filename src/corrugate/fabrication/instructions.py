@@ -45,9 +45,9 @@ def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
     return [
         f"Cut L1, L2 and {', '.join(bands)} from the cut files (cut-N.dxf or cut-N.svg, on the "
         f"cutter; the fold maps sheet-N.svg are for you, not the cutter): L1 {l1.material.id} "
-        f"{l1.t:g} mm, L2 {l2.material.id} {l2.t:g} mm, the band from L1's sheet. A part "
-        "carries no name unless you ask for --labels (drawn by the pen): match each to its name on "
-        "the fold map.",
+        f"{l1.t:g} mm, L2 {l2.material.id} {l2.t:g} mm, the band from L1's sheet. Each part "
+        "carries its name, drawn by the pen (engraved on a laser); with --no-labels match each "
+        "to its name on the fold map.",
         f"Pre-fold L1 and L2 along every crease: mountains (red on the fold map) towards you, "
         f"valleys (blue) away, each by {folds}.",
         "On each band segment fold the glue tabs on both long edges 90 deg towards the face with "

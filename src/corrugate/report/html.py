@@ -244,7 +244,11 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     drawn = cut.drawings  # what the files step drew of this plan: shown, not drawn again
     sheets = drawn.sheets if len(drawn.sheets) == len(plan.sheets) else None
     for k in range(len(plan.sheets)):
-        fig = sheet_figure(plan, k + 1, cut.style) if sheets is None else sheets[k]
+        fig = (
+            sheet_figure(plan, k + 1, cut.style, operations=cut.operations)
+            if sheets is None
+            else sheets[k]
+        )
         parts.append(_img(fig, f"sheet {k + 1} of the cut pattern"))
     parts.append(_sheet_table(cut))
     alt = "the folded assembly, step by step"
