@@ -51,3 +51,17 @@ def test_bad_specs_name_what_is_wrong() -> None:
         corrugate.design("no/such/file.toml")
     with pytest.raises(InputError, match="a path, TOML text or a dict"):
         corrugate.design(42)
+
+
+@pytest.mark.slow
+def test_write_files_writes_for_the_machine_the_spec_was_solved_for(tmp_path: Path) -> None:
+    """Without ``cutter``, the files are for the spec's ``[fabrication] machine`` (a Cricut: SVG
+    cut files, no DXF), with its fold operations, as ``design --out`` writes them."""
+    spec = tomllib.loads(BLIMP.read_text())
+    spec["fabrication"] = {"machine": "maker-12x12", "valley": "pen"}
+    result = corrugate.design(spec)
+    names = {p.name for p in corrugate.write_files(result, tmp_path / "out")}
+    assert "cut-1.svg" in names and not any(n.endswith(".dxf") for n in names)
+    record = json.loads((tmp_path / "out" / "design.json").read_text())
+    assert record["sheets"]["cutter"] == "maker-12x12"
+    assert record["fold_operations"]["valley"] == "pen"

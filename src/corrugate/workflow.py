@@ -429,7 +429,7 @@ def write_files(
     result: DesignResult,
     out: str | Path,
     *,
-    cutter: str = DEFAULT_MACHINE,
+    cutter: str | None = None,
     fold_style: str = DEFAULT_FOLD_STYLE,
     cut: str | float | None = None,
     gap: str | float | None = None,
@@ -441,16 +441,21 @@ def write_files(
 ) -> list[Path]:
     """Every file of ``result`` into the folder ``out`` (as ``corrugate design --out``: cut files
     for ``cutter``, fold map, FOLD, GLB/STL, assembly steps, report, ``design.json``), committed as
-    one set; returns the paths. Options as the command line's (lengths in mm or with units)."""
+    one set; returns the paths. ``cutter``, ``mountain``, ``valley`` and ``marks`` default to the
+    spec's ``[fabrication]`` (the machine the design was solved for, :func:`made_for`), as on the
+    command line; a ``cutter`` given here is checked but the design is not re-solved for it (its
+    parts may not fit: then an error naming the part). Other options as the command line's
+    (lengths in mm or with units)."""
+    made = made_for(result.spec, mountain=mountain, valley=valley, marks=marks)
     options = output_options(
-        cutter,
+        made.cutter if cutter is None else cutter,
         fold_style,
         cut,
         gap,
         labels=labels,
         paper=paper,
-        mountain=mountain,
-        valley=valley,
-        marks=marks,
+        mountain=made.mountain,
+        valley=made.valley,
+        marks=made.marks,
     )
     return write_design(result.run, out, options, result.text)
