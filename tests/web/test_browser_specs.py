@@ -235,3 +235,29 @@ def test_rectangle_with_independent_layers(browser: Any, live_server: str) -> No
     assert len(layers) == 2 and layers[0] != layers[1] | {"index": 1}
     assert w.page_errors == []
     page.close()
+
+
+def test_an_infeasible_spec_shows_its_diagnosis_and_the_hint_line(
+    browser: Any,  # noqa: F811
+    live_server: str,
+) -> None:
+    """A finger pad asked for 100x the rigidity its 3 g allow: the page lists the diagnosis and,
+    on a line of its own, the hint the answer carries (the CLI's ``hint:`` line)."""
+    w = Watched(browser, live_server)
+    page = open_design_tab(w, live_server + "/")
+    page.select_option("#d-model", "refined")
+    page.fill("#d-side-min", "48 mm")
+    page.fill("#d-side-max", "52 mm")
+    page.fill("#d-mass-max", "3 g")
+    set_requirements(page, [("flexural_rigidity", "4000 mN*m^2", "0 deg", "")])
+    body, answer = design(page)
+    d = answer["design"]
+    assert d["status"] == "infeasible" and answer["result"] is None
+    assert without_timings(d) == direct_design(solved_spec_of(body))
+    assert d["hint"]
+    assert page.is_visible("#d-hint")
+    assert page.inner_text("#d-hint") == f"hint: {d['hint']}"
+    shown = page.eval_on_selector_all("#d-diagnosis li", "items => items.map(i => i.textContent)")
+    assert shown == [x["message"] for x in d["diagnosis"]]
+    assert w.page_errors == [] and w.external == []
+    w.page.close()

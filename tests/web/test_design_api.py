@@ -151,13 +151,18 @@ def test_every_file_is_listed_downloads_and_parses(
             assert content.decode("utf-8").startswith("#"), name
 
 
-def test_an_infeasible_spec_has_a_diagnosis_and_no_files(client: TestClient) -> None:
+def test_an_infeasible_spec_has_a_diagnosis_and_no_files(client: TestClient, cli: Any) -> None:
     r = client.post("/api/design", json=spec_of("infeasible.toml"))
     assert r.status_code == 200
     d = r.json()
     assert d["result"] is None
     assert d["design"]["status"] == "infeasible" and d["design"]["design"] is None
     assert d["design"]["diagnosis"]
+    # the hint the page shows is the command line's "hint:" line for the same spec
+    code, out, _ = cli(["design", str(EXAMPLES / "infeasible.toml")])
+    assert code == 1
+    (line,) = [ln for ln in out.splitlines() if ln.startswith("hint: ")]
+    assert d["design"]["hint"] == line.removeprefix("hint: ")
     assert without_timings(d["design"]) == direct_design(spec_of("infeasible.toml"))
 
 

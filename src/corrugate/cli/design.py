@@ -121,11 +121,7 @@ def relax_hint(sol: Solution) -> str | None:
     """For an infeasible spec: the ``hint:`` line (:func:`corrugate.solver.diagnosis.best_hint`:
     a structural change that restores feasibility, else the smallest relative edit of one bound,
     else of a pair, else why no hint exists); None without a diagnosis."""
-    from corrugate.solver.diagnosis import best_hint
-
-    if not sol.diagnosis:
-        return None
-    return f"hint: {best_hint(sol.diagnosis)}"
+    return None if sol.hint is None else f"hint: {sol.hint}"
 
 
 def _print_failure(sol: Solution, robust: object, console: Console) -> None:

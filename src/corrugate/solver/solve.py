@@ -238,6 +238,14 @@ class Solution:
                 parts.append(f"{q.kind}({q.eta:g} deg){test}, {where}")
         return head + (": " + "; ".join(parts) if parts else "")
 
+    @property
+    def hint(self) -> str | None:
+        """The one edit to try first for an infeasible spec (``hint``,
+        :func:`corrugate.solver.diagnosis.best_hint`), None without a diagnosis."""
+        from corrugate.solver.diagnosis import best_hint
+
+        return best_hint(self.diagnosis) if self.diagnosis else None
+
     def to_dict(self) -> dict[str, object]:
         """The JSON object of ``corrugate design --json`` (keys carry units)."""
         p = self.problem
@@ -274,6 +282,7 @@ class Solution:
             "runner_ups": [r.as_dict() for r in self.runner_ups],
             "warnings": list(self.warnings),
             "diagnosis": [d.as_dict() for d in self.diagnosis],
+            "hint": self.hint,
             "solver": {
                 "method": "vectorised branch and bound with interval bounds (exhaustive on grids)",
                 "gap_rtol": 0.0 if p.gridded else GAP_RTOL,

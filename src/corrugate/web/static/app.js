@@ -774,6 +774,8 @@ function showDesign(d) {
   $('d-verdict').dataset.status = d.status;
   $('d-found').hidden = !found;
   bulletList($('d-diagnosis'), d.diagnosis.map((x) => x.message));
+  $('d-hint').textContent = d.hint ? `hint: ${d.hint}` : '';
+  $('d-hint').hidden = !d.hint;
   if (found) {
     const g = d.design;
     const l1 = g.layers[0];
