@@ -52,7 +52,14 @@ _PLAIN_HELP_WIDTH = {"terminal_width": 120, "max_content_width": 120}
 EXIT_CODES = (
     "Exit codes: 0 an answer; 1 no design meets the spec (infeasible, with the diagnosis) or an "
     "FE run failed; 2 bad input (one line naming the field, the value and what is allowed); "
-    "3 a bug (one line; please report it)."
+    "3 a bug (one line; please report it); 130 interrupted (Ctrl-C: one line; an --out folder "
+    "keeps its earlier set or has the new one whole)."
+)
+
+#: The line printed when Ctrl-C stops a command (exit code 130, the shell's code for SIGINT).
+INTERRUPTED = (
+    "corrugate: interrupted (Ctrl-C), nothing more computed; an --out folder keeps its earlier "
+    "set or has the new one whole, never a mix"
 )
 
 _MARKUP = _help_markup()
@@ -98,10 +105,18 @@ _register(app, COMMAND_MODULES)
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: runs the app, turning every user error into one line and exit code 2.
 
-    Usage errors found by the option parser (unknown option, missing value) also exit with 2.
+    Usage errors found by the option parser (unknown option, missing value) also exit with 2;
+    Ctrl-C (SIGINT) prints :data:`INTERRUPTED` and exits with 130.
     """
     try:
         app(args=argv)
+    except SystemExit as exc:
+        if exc.code == 130:  # typer's exit for KeyboardInterrupt (SIGINT), silent by itself
+            print(INTERRUPTED, file=sys.stderr)
+        raise
+    except KeyboardInterrupt:  # raised outside typer's own handling
+        print(INTERRUPTED, file=sys.stderr)
+        sys.exit(130)
     except (CorrugateError, OSError, RecursionError, MemoryError) as exc:
         print(f"corrugate: error: {describe(exc)}", file=sys.stderr)
         sys.exit(2)

@@ -402,7 +402,8 @@ def reference_markdown() -> str:
     lines += [
         "",
         "Exit codes of `corrugate design`: 0 an answer, 1 no design meets the spec (infeasible), "
-        "2 bad input (one line naming the key, the value and what is allowed).",
+        "2 bad input (one line naming the key, the value and what is allowed), "
+        "130 interrupted (Ctrl-C).",
         "",
     ]
     return "\n".join(lines)
