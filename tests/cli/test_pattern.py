@@ -63,7 +63,8 @@ def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
     assert {round(float(e.get("opacity", "0")), 4) for e in layer_creases} == {round(96 / 180, 4)}
 
     # the Cameo's cut file (the default machine): outlines and slits, and by default the
-    # creases and the band's marks as operations the machine performs, with a legend
+    # creases and the band's marks as operations the machine performs, the part names drawn by
+    # the pen, with a legend
     doc = ezdxf.readfile(tmp_path / "cut-1.dxf")
     assert not doc.audit().has_errors
     assert doc.header["$INSUNITS"] == 4
@@ -73,6 +74,7 @@ def test_case1_files(tmp_path: Path, cli: CliRun) -> None:
         "MOUNTAIN-PERFORATE",
         "VALLEY-CUT-SCORE",
         "MARK-PEN",
+        "LABEL",
         "LEGEND",
     }
     assert len(msp.query('LWPOLYLINE[layer=="CUT"]')) == len(pattern.parts)

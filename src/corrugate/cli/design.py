@@ -167,6 +167,7 @@ def design_cmd(
 
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     """
+    from corrugate.core.fileio import check_output_folder
     from corrugate.core.parameters import PARAMETERS
     from corrugate.export.machines import get_machine
     from corrugate.export.pdf import check_paper
@@ -176,6 +177,8 @@ def design_cmd(
 
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
+    if out is not None:  # the root, a system folder, home, the working folder: before solving
+        check_output_folder(out)
     check_paper(paper)  # checked with or without --out
     if cutter is not None:  # checked before the spec is read, and before solving
         try:
@@ -292,8 +295,11 @@ def pareto_cmd(
     """
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
 
-    from corrugate.core.fileio import write_set
+    from corrugate.core.fileio import check_output_folder, write_set
     from corrugate.core.units import parse_quantity
+
+    if out is not None:
+        check_output_folder(out)
     from corrugate.solver import Problem
     from corrugate.solver.pareto import pareto_front
     from corrugate.spec.schema import load_spec

@@ -30,6 +30,7 @@ import os
 import re
 import secrets
 import shutil
+import stat
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
@@ -39,9 +40,13 @@ from corrugate.core.limits import MAX_PATH_CHARS
 
 __all__ = [
     "MANIFEST",
+    "MAX_MANIFEST_BYTES",
+    "SYSTEM_FOLDERS",
+    "SYSTEM_TREES",
     "FolderStaging",
     "Staging",
     "atomic_write",
+    "check_output_folder",
     "read_manifest",
     "recover",
     "staged",
@@ -52,6 +57,18 @@ __all__ = [
 #: "files": {name: sha256}}}}``; one set per kind (``design``, ``pareto``, ``sweep``), so that a
 #: design and a Pareto front may share a folder while a new design replaces the old one whole.
 MANIFEST = ".corrugate-set.json"
+
+#: The largest manifest read (bytes): a real one lists a few dozen files.
+MAX_MANIFEST_BYTES = 1 << 20
+
+#: Folders that are never an output folder (after resolving symlinks and ``..``): the root, the
+#: system's own folders and everything under the pseudo file systems.
+SYSTEM_FOLDERS = ("/", "/bin", "/boot", "/dev", "/etc", "/lib", "/lib32", "/lib64", "/libx32",
+                  "/proc", "/root", "/run", "/sbin", "/sys", "/usr", "/var", "/tmp", "/home",
+                  "/opt", "/srv", "/mnt", "/media", "/snap")  # fmt: skip
+#: Folders under which nothing is written (pseudo file systems, the system's programs and settings).
+SYSTEM_TREES = ("/proc", "/sys", "/dev", "/run", "/etc", "/usr", "/bin", "/sbin", "/boot", "/lib",
+                "/lib32", "/lib64", "/libx32")  # fmt: skip
 
 _LEFTOVER = re.compile(
     r"^\.(?P<name>.+)\.corrugate-(?P<pid>\d+)-[0-9a-f]{12}\.(?P<kind>new|old|tmp)$"
@@ -97,6 +114,36 @@ def _remove(path: Path) -> None:
     else:
         with contextlib.suppress(OSError):
             path.unlink()
+
+
+def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") -> Path:
+    """``folder`` as an output folder, refused (:class:`~corrugate.core.errors.OutputError`
+    naming ``field``) when it is empty, the root or a system folder (:data:`SYSTEM_FOLDERS`),
+    inside a pseudo file system (:data:`SYSTEM_TREES`), the user's home folder itself, or the
+    working folder or one of its ancestors (a set replaces the folder it is written to: a run
+    must not take the folder it runs in, nor the user's files around it); returns the path with
+    symlinks resolved. Called before any computation, and again by :class:`FolderStaging`."""
+    text = os.fspath(folder)
+    if not str(text).strip():
+        raise OutputError(field, repr(text), "an empty path: name a folder, e.g. out/my-part")
+    real = Path(os.path.realpath(text))
+    shown = _short(text)
+    if str(real) in SYSTEM_FOLDERS:
+        raise OutputError(field, shown, f"{real} is a system folder: name a folder of your own")
+    for tree in SYSTEM_TREES:
+        if real.is_relative_to(tree):
+            raise OutputError(field, shown, f"{real} is inside {tree}, a system folder")
+    home = os.path.realpath(os.path.expanduser("~"))
+    if str(real) == home:
+        raise OutputError(field, shown, "it is your home folder: name a folder inside it")
+    cwd = Path(os.path.realpath(os.getcwd()))
+    if cwd == real or cwd.is_relative_to(real):
+        raise OutputError(
+            field,
+            shown,
+            "it is the working folder or holds it: name a folder inside it, e.g. out",
+        )
+    return real
 
 
 def recover(folder: str | os.PathLike[str]) -> None:
@@ -191,7 +238,7 @@ def _exchange(a: Path, b: Path) -> bool:
 def read_manifest(folder: str | os.PathLike[str]) -> dict[str, dict[str, object]]:
     """The sets committed in ``folder`` (kind -> ``{"run": id, "files": {name: sha256}}``)."""
     try:
-        data = json.loads((Path(folder) / MANIFEST).read_text(encoding="utf-8"))
+        data = json.loads(_read_regular(Path(folder) / MANIFEST, MAX_MANIFEST_BYTES))
         sets = data["sets"]
     except (OSError, ValueError, KeyError, TypeError):
         return {}
@@ -200,6 +247,32 @@ def read_manifest(folder: str | os.PathLike[str]) -> dict[str, dict[str, object]
     return {
         k: v for k, v in sets.items() if isinstance(v, dict) and isinstance(v.get("files"), dict)
     }
+
+
+def _read_regular(path: Path, limit: int) -> str:
+    """The text of ``path`` if it is a regular file (not a symlink, FIFO or device: opened with
+    ``O_NOFOLLOW | O_NONBLOCK``, checked by ``fstat``) of at most ``limit`` bytes; else OSError."""
+    fd = os.open(path, os.O_RDONLY | os.O_NOFOLLOW | os.O_NONBLOCK)
+    try:
+        info = os.fstat(fd)
+        if not stat.S_ISREG(info.st_mode) or info.st_size > limit:
+            raise OSError(errno.EINVAL, "not a regular file of bounded size", str(path))
+        with os.fdopen(fd, "rb", closefd=False) as fh:
+            data = fh.read(limit + 1)
+    finally:
+        os.close(fd)
+    if len(data) > limit:
+        raise OSError(errno.EFBIG, "too large", str(path))
+    return data.decode("utf-8")
+
+
+def _written_by_set(path: Path, digest: object) -> bool:
+    """Whether ``path`` is a regular file (not a symlink) whose SHA-256 is ``digest``: a file a
+    manifest lists is replaced or removed only if it is still the one the set wrote."""
+    try:
+        return path.is_file() and not path.is_symlink() and _sha256(path) == digest
+    except OSError:
+        return False
 
 
 def _sha256(path: Path) -> str:
@@ -236,10 +309,13 @@ class FolderStaging(Staging):
         self, folder: str | os.PathLike[str], field: str = "--out", kind: str = "files"
     ) -> None:
         super().__init__()
-        self.folder = Path(folder)
+        check_output_folder(folder, field)
+        given = Path(folder)
+        # a symlinked folder stays a symlink: the set is swapped in at its target
+        self.folder = Path(os.path.realpath(given)) if given.is_symlink() else given
         self.field = field
         self.kind = kind
-        self._abs = os.path.abspath(self.folder)
+        self._abs = os.path.abspath(given)
         if len(self._abs) > MAX_PATH_CHARS or any(
             len(part) > 200 for part in Path(self._abs).parts
         ):
@@ -271,7 +347,13 @@ class FolderStaging(Staging):
         """Write the manifest, carry over the folder's foreign files, fsync, swap."""
         files = {name: _sha256(self.stage / name) for name in self._names}
         sets = read_manifest(self.folder) if self.folder.is_dir() else {}
-        old_set = set(sets.pop(self.kind, {}).get("files", {}))  # type: ignore[call-overload]
+        listed = sets.pop(self.kind, {}).get("files", {})
+        old_files: dict[object, object] = listed if isinstance(listed, dict) else {}
+        old_set = {
+            name
+            for name, digest in old_files.items()
+            if isinstance(name, str) and _written_by_set(self.folder / name, digest)
+        }  # a listed file is dropped only if it is still what the set wrote
         for other in sets.values():  # files of other kinds that this set overwrites leave them
             other["files"] = {
                 k: v
@@ -289,6 +371,9 @@ class FolderStaging(Staging):
                 _link_into(Path(entry.path), self.stage / name)
         for name in [*self._names, MANIFEST]:
             _fsync_file(self.stage / name)
+        if self.folder.is_dir():  # the folder's mode, times and extended attributes stay
+            with contextlib.suppress(OSError):
+                shutil.copystat(self.folder, self.stage, follow_symlinks=False)
         _fsync_dir(self.stage)
         if not os.path.lexists(self.folder):
             os.rename(self.stage, self.folder)
