@@ -1,6 +1,8 @@
 """Kill ``corrugate design --out`` at random moments and check what is left (run by test_faults).
 
-Usage: ``python tests/system/kill_driver.py SPEC OUT TRIALS SEED`` prints one JSON summary.
+Usage: ``python tests/system/kill_driver.py SPEC OUT TRIALS SEED [user-folder]`` prints one JSON
+summary. With ``user-folder``, OUT is made a symlink to a 0700 folder holding a user's file
+(``mine.txt``): after every kill the symlink, the mode and that file must be as they were.
 
 The spec is solved once in this process; every trial forks a child that runs
 ``corrugate design SPEC --out OUT`` through :func:`corrugate.cli.main` (the solve answered from
@@ -61,18 +63,22 @@ def _parses(path: Path) -> bool:
     return True
 
 
-def check_set(out: Path) -> tuple[bool, str, str]:
-    """(one complete set?, run id, why not)."""
+#: The user's own file in the ``user-folder`` mode.
+USER_FILE = "mine.txt"
+
+
+def check_set(out: Path, ignore: frozenset[str] = frozenset()) -> tuple[bool, str, str]:
+    """(one complete set?, run id, why not); files named in ``ignore`` are the user's."""
     from corrugate.core.fileio import MANIFEST, read_manifest
 
     if not out.exists():
         return True, "none", ""
     sets = read_manifest(out)
     if "design" not in sets:
-        names = [p.name for p in out.iterdir()]
+        names = [p.name for p in out.iterdir() if p.name not in ignore]
         return (not names), "none", f"no manifest, files {names}"
     files: dict[str, str] = sets["design"]["files"]  # type: ignore[assignment]
-    present = {p.name for p in out.iterdir()} - {MANIFEST}
+    present = {p.name for p in out.iterdir()} - {MANIFEST} - ignore
     if present != set(files):
         return False, "", f"files {sorted(present ^ set(files))} differ from the manifest"
     for name, sha in files.items():
@@ -112,7 +118,29 @@ def _fork_run(spec: str, out: Path, cutter: str) -> int:
 
 def main() -> None:
     spec, out, trials, seed = sys.argv[1], Path(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4])
+    user = sys.argv[5:] == ["user-folder"]
     rng = random.Random(seed)
+    given = out
+    if user:  # OUT: a symlink to the user's 0700 folder, which holds a file of theirs
+        real_folder = out.parent / "real"
+        real_folder.mkdir()
+        os.chmod(real_folder, 0o700)
+        (real_folder / USER_FILE).write_text("mine")
+        out.symlink_to(real_folder)
+        out = real_folder  # where the sets land and staging folders appear
+    ignore = frozenset({USER_FILE}) if user else frozenset()
+    changed: list[str] = []
+
+    def folder_kept(when: str) -> None:
+        if not user:
+            return
+        if not given.is_symlink() or os.readlink(given) != str(out):
+            changed.append(f"{when}: the symlink")
+        elif (os.stat(out).st_mode & 0o777) != 0o700:
+            changed.append(f"{when}: mode {oct(os.stat(out).st_mode & 0o777)}")
+        elif (out / USER_FILE).read_text() != "mine":
+            changed.append(f"{when}: the user's file")
+
     import corrugate.workflow as dr  # the commands import solve_spec from it at run time
 
     real = dr.solve_spec
@@ -125,11 +153,11 @@ def main() -> None:
 
     dr.solve_spec = cached  # type: ignore[assignment]
     sys.stdout = open(os.devnull, "w")  # noqa: SIM115
-    _run(spec, out, CUTTERS[1])  # the earlier set, and the cache filled
-    ok, first_run, why = check_set(out)
+    _run(spec, given, CUTTERS[1])  # the earlier set, and the cache filled
+    ok, first_run, why = check_set(out, ignore)
     assert ok, why
     # calibration: how long the writing takes (staging folder seen -> exit)
-    pid = _fork_run(spec, out, CUTTERS[0])
+    pid = _fork_run(spec, given, CUTTERS[0])
     t_start = time.monotonic()
     t_seen = None
     while True:
@@ -142,15 +170,15 @@ def main() -> None:
     t_end = time.monotonic()
     write_s = t_end - (t_seen or t_start)
     runs_seen: list[str] = [first_run]
-    ok, run, why = check_set(out)
+    ok, run, why = check_set(out, ignore)
     assert ok, why
     runs_seen.append(run)
     mixed: list[str] = []
     killed_before_commit = 0
     old_kept = new_set = 0
     for i in range(trials):
-        before = check_set(out)[1]
-        pid = _fork_run(spec, out, CUTTERS[i % 2])
+        before = check_set(out, ignore)[1]
+        pid = _fork_run(spec, given, CUTTERS[i % 2])
         early = rng.random() < 0.2
         t0 = time.monotonic()
         delay = rng.uniform(0, 0.3) if early else rng.uniform(0, write_s * 1.1)
@@ -162,7 +190,8 @@ def main() -> None:
         time.sleep(delay)
         os.kill(pid, signal.SIGKILL)
         os.waitpid(pid, 0)
-        ok, run, why = check_set(out)
+        folder_kept(f"trial {i}")
+        ok, run, why = check_set(out, ignore)
         if not ok:
             mixed.append(f"trial {i}: {why}")
             continue
@@ -173,8 +202,9 @@ def main() -> None:
             new_set += 1
         runs_seen.append(run)
     left_after_kills = leftovers(out)
-    _run(spec, out, CUTTERS[0])  # the next run cleans up
-    ok, run, why = check_set(out)
+    _run(spec, given, CUTTERS[0])  # the next run cleans up
+    folder_kept("final")
+    ok, run, why = check_set(out, ignore)
     if not ok:
         mixed.append(f"final: {why}")
     summary = {
@@ -185,6 +215,7 @@ def main() -> None:
         "new_set_complete": new_set,
         "leftovers_before_next_run": len(left_after_kills),
         "leftovers_after_next_run": leftovers(out),
+        "folder_changed": changed,
     }
     sys.stdout = sys.__stdout__
     print(json.dumps(summary))

@@ -137,6 +137,39 @@ def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
     assert summary["old_set_kept"] + summary["new_set_complete"] == trials
 
 
+@pytest.mark.slow
+def test_kill_during_design_out_keeps_a_symlinked_0700_folder_and_a_users_file(
+    tmp_path: Path,
+) -> None:
+    """50 SIGKILLs at random moments of ``design --out LINK``, LINK a symlink to a 0700 folder
+    that holds a user's file: each time one complete set, and the symlink, the mode and the
+    user's file as they were (tests/system/kill_driver.py, ``user-folder``)."""
+    trials = 50
+    r = subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "tests" / "system" / "kill_driver.py"),
+            str(ROOT / "examples" / "blimp_gripper.toml"),
+            str(tmp_path / "out"),
+            str(trials),
+            "22",
+            "user-folder",
+        ],
+        capture_output=True,
+        text=True,
+        env=_env(),
+        timeout=1200,
+        check=False,
+    )
+    assert r.returncode == 0, r.stderr[-3000:]
+    summary = json.loads(r.stdout.strip().splitlines()[-1])
+    print(f"kill test, user's folder: {summary}")
+    assert summary["mixed"] == [] and summary["folder_changed"] == []
+    assert summary["leftovers_after_next_run"] == []
+    assert summary["old_set_kept"] + summary["new_set_complete"] == trials
+    assert summary["new_set_complete"] > 0  # some kills came after a commit
+
+
 # -- downloads across evictions ------------------------------------------------------------------
 
 
