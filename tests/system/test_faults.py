@@ -107,12 +107,8 @@ def test_output_folder_os_errors_are_one_line(tmp_path: Path, where: str, words:
     assert "\n" not in text and words in text and text.startswith("--out = ")
 
 
-@pytest.mark.slow
-def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
-    """SIGKILL at random moments while ``design --out`` writes into a folder holding an earlier
-    set (tests/system/kill_driver.py): every time the folder holds one complete set (every file parses
-    and matches its run's manifest), and the next run leaves no leftovers."""
-    trials = 20
+def _kill_driver(tmp_path: Path, trials: int, seed: int, *mode: str) -> dict[str, Any]:
+    """The JSON summary of tests/system/kill_driver.py run on the case study into tmp_path/out."""
     r = subprocess.run(
         [
             sys.executable,
@@ -120,16 +116,27 @@ def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
             str(ROOT / "examples" / "blimp_gripper.toml"),
             str(tmp_path / "out"),
             str(trials),
-            "12",
+            str(seed),
+            *mode,
         ],
         capture_output=True,
         text=True,
         env=_env(),
-        timeout=900,
+        timeout=1200,
         check=False,
     )
     assert r.returncode == 0, r.stderr[-3000:]
-    summary = json.loads(r.stdout.strip().splitlines()[-1])
+    summary: dict[str, Any] = json.loads(r.stdout.strip().splitlines()[-1])
+    return summary
+
+
+@pytest.mark.slow
+def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
+    """SIGKILL at random moments while ``design --out`` writes into a folder holding an earlier
+    set (tests/system/kill_driver.py): every time the folder holds one complete set (every file parses
+    and matches its run's manifest), and the next run leaves no leftovers."""
+    trials = 20
+    summary = _kill_driver(tmp_path, trials, 12)
     print(f"kill test: {summary}")
     assert summary["trials"] >= 20
     assert summary["mixed"] == []
@@ -145,24 +152,7 @@ def test_kill_during_design_out_keeps_a_symlinked_0700_folder_and_a_users_file(
     that holds a user's file: each time one complete set, and the symlink, the mode and the
     user's file as they were (tests/system/kill_driver.py, ``user-folder``)."""
     trials = 50
-    r = subprocess.run(
-        [
-            sys.executable,
-            str(ROOT / "tests" / "system" / "kill_driver.py"),
-            str(ROOT / "examples" / "blimp_gripper.toml"),
-            str(tmp_path / "out"),
-            str(trials),
-            "22",
-            "user-folder",
-        ],
-        capture_output=True,
-        text=True,
-        env=_env(),
-        timeout=1200,
-        check=False,
-    )
-    assert r.returncode == 0, r.stderr[-3000:]
-    summary = json.loads(r.stdout.strip().splitlines()[-1])
+    summary = _kill_driver(tmp_path, trials, 22, "user-folder")
     print(f"kill test, user's folder: {summary}")
     assert summary["mixed"] == [] and summary["folder_changed"] == []
     assert summary["leftovers_after_next_run"] == []
