@@ -85,6 +85,42 @@ def test_hole_must_clear_the_outline_and_other_holes() -> None:
         check_holes((AXLE, Hole("circle", (4.0, 0.0), 6.0)), square, 50.0, 50.0)
 
 
+def test_two_holes_are_refused_exactly_when_their_true_gap_is_under_the_ligament() -> None:
+    """Pairs of holes placed at random distances, near the ligament: check_holes (which skips
+    pairs whose enclosing circles are a ligament apart) refuses a pair exactly when the true
+    boundaries (two circles: centre distance minus radii; a circle and a square: by hand, centre to
+    the square's nearest point) are closer than MIN_LIGAMENT or overlap."""
+    from corrugate.geometry.holes import MIN_LIGAMENT
+
+    square = np.array([[0.0, 0.0], [80.0, 0.0], [80.0, 80.0], [0.0, 80.0]])
+    rng = np.random.default_rng(7)
+    box = ((-2.0, -2.0), (2.0, -2.0), (2.0, 2.0), (-2.0, 2.0))
+    refused = kept = 0
+    for _ in range(300):
+        d = float(rng.uniform(4.0, 12.0))
+        ang = float(rng.uniform(0.0, 2 * math.pi))
+        c2 = (d * math.cos(ang), d * math.sin(ang))
+        if rng.random() < 0.5:  # two circles of diameters 6 and 4
+            holes = (Hole("circle", (0.0, 0.0), 6.0), Hole("circle", c2, 4.0))
+            true_gap = d - 3.0 - 2.0
+        else:  # a circle of diameter 6 and a 4 mm square
+            holes = (Hole("circle", (0.0, 0.0), 6.0), Hole("polygon", c2, vertices=box))
+            nx = max(abs(c2[0]) - 2.0, 0.0)
+            ny = max(abs(c2[1]) - 2.0, 0.0)
+            true_gap = math.hypot(nx, ny) - 3.0
+        if abs(true_gap - MIN_LIGAMENT) < 0.05:  # the cut polygon's own tolerance
+            continue
+        try:
+            check_holes(holes, square, 80.0, 80.0)
+            ok = True
+        except InputError:
+            ok = False
+        assert ok == (true_gap >= MIN_LIGAMENT), (holes, true_gap)
+        refused += not ok
+        kept += ok
+    assert refused > 20 and kept > 20  # both sides of the ligament were drawn
+
+
 # -- model -----------------------------------------------------------------------------------------
 
 

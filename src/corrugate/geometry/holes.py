@@ -246,6 +246,8 @@ def check_holes(
     (plan polygon in [0, Lx] x [0, Ly], mm) with a ligament >= :data:`MIN_LIGAMENT` mm and the
     holes are as far apart. A circle is checked as the true circle."""
     rings = hole_rings(holes, Lx, Ly)
+    centres = [ring.mean(axis=0) for ring in rings]
+    reach = [float(np.max(np.hypot(*(ring - c).T))) for ring, c in zip(rings, centres, strict=True)]
     for i, (h, ring) in enumerate(zip(holes, rings, strict=True)):
         where = f"{field}[{i}]"
         size = f"the {Lx:.4g} x {Ly:.4g} mm outline"
@@ -262,6 +264,11 @@ def check_holes(
                 else f"leaves a ligament of {gap:.3g} mm",
             )
         for k in range(i):
+            # two holes whose enclosing circles are a ligament apart need no closer look: the
+            # boundaries are at least that far apart (and cannot overlap)
+            apart = float(np.hypot(*(centres[i] - centres[k]))) - reach[i] - reach[k]
+            if apart >= MIN_LIGAMENT:
+                continue
             other = rings[k]
             pad_k = (
                 holes[k].radius - holes[k].radius * math.cos(math.pi / HOLE_SEGMENTS)
