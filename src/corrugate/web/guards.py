@@ -408,11 +408,13 @@ def _worker_main(conn: Connection, memory_bytes: int | None) -> None:
     _cap_memory(memory_bytes)
     conn.send(("ready", os.getpid()))
     while True:
+        reply: tuple[str, Any]
         try:
             fn, args = conn.recv()
         except (EOFError, OSError):
             return
-        reply: tuple[str, Any]
+        except Exception as exc:  # a job this process cannot load
+            fn, args = _raise, (exc,)
         try:
             reply = ("ok", fn(*args))
         except MemoryError:
@@ -432,6 +434,10 @@ def _worker_main(conn: Connection, memory_bytes: int | None) -> None:
             conn.send(("error", RuntimeError(describe(exc))))
         if reply[0] == "memory":
             return
+
+
+def _raise(exc: BaseException) -> None:
+    raise exc
 
 
 @dataclass(eq=False)
@@ -517,6 +523,10 @@ class Runner:
             context = multiprocessing.get_context(
                 "forkserver" if "forkserver" in methods else "spawn"
             )
+            if context.get_start_method() == "forkserver":
+                # The forkserver imports them once (when this process starts it), so that a
+                # worker that replaces a killed one is ready at once.
+                context.set_forkserver_preload(list(WORKER_PRELOAD))
             ours, theirs = context.Pipe(duplex=True)
             process: BaseProcess = context.Process(  # type: ignore[attr-defined]
                 target=_worker_main,
