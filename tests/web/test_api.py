@@ -30,13 +30,13 @@ from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.folded import folded_mesh
 from corrugate.web import WebSettings, create_app
 from corrugate.web.app import STATIC_DIR
-from corrugate.web.schemas import AnalyzeBody
 from corrugate.web.guards import (
     ComputeTimeoutError,
     Runner,
     ServerBusyError,
     WorkerLostError,
 )
+from corrugate.web.schemas import AnalyzeBody
 
 from .conftest import CASE1, direct
 
@@ -434,6 +434,29 @@ def test_a_job_past_the_time_limit_is_killed_and_its_worker_replaced() -> None:
     finally:
         runner.shutdown()
     assert last and all(_wait_gone(pid) for pid in last), "shutdown left a worker running"
+
+
+@pytest.mark.slow
+def test_the_limit_counts_from_a_jobs_start_and_a_job_that_stops_waiting_loses_no_worker() -> None:
+    """Three 1 s jobs queued behind one worker all finish within a 1.5 s limit (their wait does
+    not count); a job cancelled while it waits for a worker does not take the worker with it."""
+    runner = Runner(max_pending=8, timeout_s=1.5, processes=1)
+
+    async def scenario() -> None:
+        pid = await runner.run(os.getpid)
+        jobs = [asyncio.ensure_future(runner.run(time.sleep, 1.0)) for _ in range(3)]
+        assert await asyncio.gather(*jobs) == [None, None, None]
+        first = asyncio.ensure_future(runner.run(time.sleep, 0.5))
+        waiting = asyncio.ensure_future(runner.run(os.getpid))
+        await asyncio.sleep(0.1)
+        waiting.cancel()
+        assert await first is None
+        assert await asyncio.wait_for(runner.run(os.getpid), 10) == pid
+
+    try:
+        asyncio.run(scenario())
+    finally:
+        runner.shutdown()
 
 
 @pytest.mark.slow

@@ -385,13 +385,17 @@ def _leave_forkserver() -> None:
 
 
 def _cap_memory(limit: int | None) -> None:
-    """Cap this process's address space at ``limit`` bytes (``RLIMIT_AS``; None: no cap)."""
+    """Cap this process's address space (``RLIMIT_AS``) at what it has mapped now (its modules,
+    thread stacks and arenas) plus ``limit`` bytes (None: no cap)."""
     if limit is None:
         return
     try:
         import resource
 
-        resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
+        with open("/proc/self/statm", encoding="ascii") as f:
+            mapped = int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+        cap = mapped + limit
+        resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
     except (ImportError, ValueError, OSError):  # not on this system
         pass
 
@@ -498,9 +502,13 @@ class Runner:
         self._starting = 0
         self._started = False
         self._closed = False
-        # Threads that start workers and wait on their pipes (never computing themselves).
+        # Threads that wait on the workers' pipes, and threads that start workers (never
+        # computing themselves): one per worker, and a few for the killed ones still ending.
         self._io = ThreadPoolExecutor(
             max_workers=2 * self.processes + 2, thread_name_prefix="corrugate-web-io"
+        )
+        self._starter = ThreadPoolExecutor(
+            max_workers=self.processes, thread_name_prefix="corrugate-web-start"
         )
 
     # -- worker life -------------------------------------------------------------------------
@@ -513,7 +521,7 @@ class Runner:
             self._started = True
             self._starting += self.processes
         for _ in range(self.processes):
-            self._io.submit(self._start_one)
+            self._starter.submit(self._start_one)
 
     def _start_one(self) -> None:
         """Start one worker, wait until it is ready, then hand it to a waiting job (a thread)."""
@@ -569,7 +577,7 @@ class Runner:
             if self._closed:
                 return
             self._starting += 1
-        self._io.submit(self._start_one)
+        self._starter.submit(self._start_one)
 
     def _kill(self, worker: _Worker) -> None:
         """SIGKILL ``worker`` and forget it (its parent, the forkserver, reaps it). Its pipe is
@@ -619,6 +627,7 @@ class Runner:
         for worker in workers:
             worker.process.join(5)  # killed: the forkserver reports its end at once
         self._io.shutdown(wait=False, cancel_futures=True)
+        self._starter.shutdown(wait=False, cancel_futures=True)
 
     # -- jobs ----------------------------------------------------------------------------------
 
@@ -657,7 +666,18 @@ class Runner:
                 raise WorkerLostError("no worker process could start; see the server's log")
             future: asyncio.Future[_Worker] = loop.create_future()
             self._waiters.append((loop, future))
-        return await future
+        try:
+            while True:
+                # kill_workers (a signal handler) cannot wake the waiting jobs: they look
+                done, _ = await asyncio.wait({future}, timeout=0.5)
+                if done:
+                    return future.result()
+                if self._closed:
+                    raise WorkerLostError("the server is shutting down")
+        except BaseException:  # stopped waiting (cancelled, or the server is stopping)
+            if not future.cancel() and not future.cancelled() and future.exception() is None:
+                self._release(future.result())  # handed over just now: pass it on
+            raise
 
     @staticmethod
     def _exchange(worker: _Worker, fn: Callable[..., Any], args: tuple[Any, ...]) -> Any:
