@@ -122,7 +122,7 @@ LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
 STATIC_DIR = Path(__file__).resolve().parent / "static"
 
 #: pint's registry keeps caches that are not documented as thread-safe: parse one request at a time
-#: (parsing takes microseconds; the computations themselves run in parallel).
+#: (parsing takes microseconds; each worker process runs one job at a time, so it rarely waits).
 _PARSE_LOCK = threading.Lock()
 
 _SWAGGER = "/static/vendor/swagger-ui"
@@ -390,7 +390,7 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
 def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
     """Solve the spec of a design request and write its files into ``folder`` (a new result's
     folder of the store); returns the ``corrugate design --json`` object and the paths written
-    (none for an infeasible spec). Runs in a worker process (or thread): it takes and returns
+    (none for an infeasible spec). A job: runs in a worker process; it takes and returns
     plain, picklable values, and the store itself stays in the server. The worker hands its
     freed memory back to the system afterwards (:func:`~corrugate.web.guards.release_memory`)."""
     try:
