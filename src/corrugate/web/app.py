@@ -146,8 +146,8 @@ class WebSettings:
     ``max_body_bytes``: longest request body (413 past it); ``body_timeout_s``: longest wait for
     a request's body after its head (408 past it); ``timeout_s``: longest computation (504 past
     it; its worker process is killed); ``processes``: worker processes, which run every
-    computation (None: one per core, at least 2); ``worker_memory_bytes``: the address space of
-    each (``RLIMIT_AS``; None: no cap); ``max_pending``: computations queued or running at once
+    computation (None: one per core, at least 2); ``worker_memory_bytes``: the address space
+    each may map beyond its imported modules (``RLIMIT_AS``; None: no cap); ``max_pending``: computations queued or running at once
     (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
     folded extent of a layer (422 past them; the pattern's glue tabs grow with the size, so these
     bound the memory and time of one request); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private

@@ -340,8 +340,9 @@ WORKER_PRELOAD = (
     "corrugate.fabrication.instructions",
 )
 
-#: The address space of one worker process (``RLIMIT_AS``): a computation that needs more fails
-#: with MemoryError in its worker, and its request gets 422.
+#: The address space one worker process may map beyond what it maps once its modules are imported
+#: (``RLIMIT_AS``): a computation that needs more fails with MemoryError in its worker, and its
+#: request gets 422.
 WORKER_MEMORY_BYTES = 2 * 1024**3
 
 #: Longest wait for a new worker process to start and import :data:`WORKER_PRELOAD`.
@@ -465,7 +466,8 @@ class Runner:
     * **Time limit**: ``timeout_s`` from when a worker takes the job (its wait in the queue does
       not count). Past it the worker is killed (SIGKILL), :class:`ComputeTimeoutError` is raised
       and a fresh worker takes its place.
-    * **Memory**: each worker's address space is capped at ``memory_bytes`` (``RLIMIT_AS``); a
+    * **Memory**: each worker's address space is capped at ``memory_bytes`` beyond what it
+      maps once its modules are imported (``RLIMIT_AS``); a
       job that needs more gets :class:`~corrugate.core.errors.InputError` naming the body (422),
       and its worker is replaced.
     * **Load**: at most ``max_pending`` computations queued or running at once; past that
