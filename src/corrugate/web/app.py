@@ -58,6 +58,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
+from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from corrugate import __version__
@@ -692,7 +693,8 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
     async def result_zip(result_id: str) -> Response:
         """Every file of a stored result (the cut files, fold map, FOLD, 3D, report,
         design.json) in one zip archive."""
-        response = zip_response(store, result_id)
+        # read and deflated on a thread: a large result would hold the event loop
+        response = await run_in_threadpool(zip_response, store, result_id)
         if response is None:
             return _error(404, "no such result (results are kept for a while only)", [])
         return response
@@ -708,7 +710,7 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
     )
     async def result_file(result_id: str, name: str) -> Response:
         """A file of a stored result, by the id and name the app returned (nothing else)."""
-        response = file_response(store, result_id, name)
+        response = await run_in_threadpool(file_response, store, result_id, name)
         if response is None:
             return _error(404, "no such result or file (results are kept for a while only)", [])
         return response
