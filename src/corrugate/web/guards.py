@@ -1,15 +1,19 @@
-"""Bounds that make the web app safe to leave running: request body size and computation time.
+"""Bounds that make the web app safe to leave running: request size, reading time, computation
+time and memory.
 
-* :class:`BodySizeLimit` is a pure ASGI middleware: it reads a request body (up to the limit) before
-  the app sees it and answers 413 past the limit, whether or not the client sent Content-Length.
-* :class:`Runner` runs computations on a small thread pool (:meth:`Runner.run`) or on a pool of
-  worker processes, one per core (:meth:`Runner.run_process`: the designs, whose solver holds the
-  GIL), raises :class:`ServerBusyError` when too many are in flight (including abandoned ones
-  still running) and :class:`ComputeTimeoutError` past the time limit.
-  A running computation is not killed: one that times out runs on in the background, holds its
-  slot until it ends, and its result is dropped. After each computation on a thread, freed memory
-  is returned to the system (:func:`release_memory`), so that the resident size stays bounded
-  (``benchmarks/web_memory.py`` measures it).
+* :class:`BodySizeLimit` is a pure ASGI middleware: it reads a request body (up to the limit,
+  within a time limit) before the app sees it and answers 413 past the size limit, whether or not
+  the client sent Content-Length, and 408 when the body does not arrive in time.
+* :func:`slow_client_protocol` is uvicorn's HTTP/1.1 protocol with a deadline for each request
+  head: a connection that has not sent a complete head within it gets 408 and is closed, so
+  clients that trickle bytes cannot hold the server's connections.
+* :class:`Runner` runs every computation of a request (parsing its quantities included) in a
+  worker process: killed at the time limit (:class:`ComputeTimeoutError`, 504), its address space
+  capped (``RLIMIT_AS``, :data:`WORKER_MEMORY_BYTES`: a job that needs more gets 422), replaced
+  by a fresh one; :class:`ServerBusyError` (503) when too many are queued. The event loop runs
+  no computation a request controls. Workers end with the server: killed at shutdown and on
+  SIGTERM or Ctrl-C (:meth:`Runner.kill_workers`), and by Linux when the server is killed
+  (``PR_SET_PDEATHSIG``).
 * :class:`CatchAll` is the innermost middleware: an exception no handler took (a bug, or an input
   that still got past the limits of :mod:`corrugate.core.limits`) becomes one clean JSON error, 422
   (or 503 for a server-side OS error or lack of memory), never a 500 or a dropped connection;
@@ -19,27 +23,39 @@
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import ctypes
 import gc
 import json
 import logging
 import multiprocessing
 import os
+import signal
 import threading
+import time
+from collections import deque
 from collections.abc import Awaitable, Callable, MutableMapping
-from concurrent.futures import Executor, Future, ProcessPoolExecutor, ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from multiprocessing.connection import Connection
+from multiprocessing.process import BaseProcess
 from typing import Any, TypeVar
 
+from uvicorn.protocols.http.h11_impl import H11Protocol
+
 __all__ = [
+    "WORKER_MEMORY_BYTES",
     "BodySizeLimit",
     "CatchAll",
     "ComputeTimeoutError",
     "HostCheck",
     "Runner",
     "ServerBusyError",
+    "WorkerLostError",
     "core_count",
     "host_name",
     "release_memory",
+    "slow_client_protocol",
 ]
 
 _log = logging.getLogger("corrugate.web")
@@ -62,19 +78,24 @@ class ComputeTimeoutError(Exception):
 
     def __init__(self, seconds: float) -> None:
         self.seconds = seconds
-        super().__init__(f"the computation did not finish within {seconds:g} s and was abandoned")
+        super().__init__(
+            f"the computation did not finish within the time limit of {seconds:g} s and was stopped"
+        )
 
 
 class BodySizeLimit:
-    """ASGI middleware: HTTP request bodies longer than ``max_bytes`` get 413 and never reach the app.
+    """ASGI middleware: HTTP request bodies longer than ``max_bytes`` get 413 and never reach the app;
+    a body not complete within ``timeout_s`` of the request's head gets 408 (and the connection
+    is closed).
 
     The body is read whole (at most ``max_bytes``) and replayed to the app, so a client that lies in
     Content-Length or streams chunks cannot get past the limit.
     """
 
-    def __init__(self, app: ASGIApp, max_bytes: int) -> None:
+    def __init__(self, app: ASGIApp, max_bytes: int, timeout_s: float | None = None) -> None:
         self.app = app
         self.max_bytes = max_bytes
+        self.timeout_s = timeout_s
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
@@ -92,8 +113,16 @@ class BodySizeLimit:
                     return
         chunks: list[bytes] = []
         size = 0
+        deadline = None if self.timeout_s is None else time.monotonic() + self.timeout_s
         while True:
-            message = await receive()
+            try:
+                left = None if deadline is None else max(0.0, deadline - time.monotonic())
+                message = await asyncio.wait_for(receive(), left)
+            except TimeoutError:
+                await self._reject(
+                    send, 408, f"the request body did not arrive within {self.timeout_s:g} s"
+                )
+                return
             if message["type"] == "http.disconnect":
                 return
             body = message.get("body", b"")
@@ -136,6 +165,75 @@ class BodySizeLimit:
             }
         )
         await send({"type": "http.response.body", "body": body})
+
+
+#: The answer to a client whose request head is late (then the connection is closed).
+_HEAD_LATE = b"the request head did not arrive in time"
+_REQUEST_TIMEOUT = (
+    b"HTTP/1.1 408 Request Timeout\r\ncontent-type: text/plain; charset=utf-8\r\n"
+    b"connection: close\r\ncontent-length: %d\r\n\r\n%s" % (len(_HEAD_LATE), _HEAD_LATE)
+)
+
+
+class _HeadDeadline(H11Protocol):
+    """uvicorn's HTTP/1.1 protocol (h11) with a deadline for each request head, counted from the
+    connection's start and from the end of each response: see :func:`slow_client_protocol`."""
+
+    head_timeout_s = 10.0
+    _head_timer: asyncio.TimerHandle | None = None
+    _head_of: object = None
+    _head_bytes = False
+
+    def connection_made(self, transport: asyncio.Transport) -> None:  # type: ignore[override]
+        super().connection_made(transport)
+        self._arm()
+
+    def data_received(self, data: bytes) -> None:
+        self._head_bytes = True
+        super().data_received(data)
+
+    def handle_events(self) -> None:
+        super().handle_events()
+        if self._head_timer is not None and self.cycle is not self._head_of:
+            self._disarm()  # a new request's head is complete
+
+    def on_response_complete(self) -> None:
+        done = self.cycle
+        super().on_response_complete()
+        if not self.transport.is_closing() and self.cycle is done:
+            self._arm()  # the next request's head is due (a keep-alive connection)
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self._disarm()
+        super().connection_lost(exc)
+
+    def _arm(self) -> None:
+        self._disarm()
+        self._head_of = self.cycle
+        self._head_bytes = False
+        self._head_timer = self.loop.call_later(self.head_timeout_s, self._expired)
+
+    def _disarm(self) -> None:
+        if self._head_timer is not None:
+            self._head_timer.cancel()
+            self._head_timer = None
+
+    def _expired(self) -> None:
+        self._head_timer = None
+        if self.transport.is_closing() or self.cycle is not self._head_of:
+            return
+        if self._head_bytes:  # part of a request came: say why it is closed
+            self.transport.write(_REQUEST_TIMEOUT)
+        self.transport.close()
+
+
+def slow_client_protocol(head_timeout_s: float) -> type[asyncio.Protocol]:
+    """uvicorn's HTTP/1.1 protocol class (``uvicorn.run(http=...)``) with a deadline for the
+    request head: a connection that has not sent a complete request head within
+    ``head_timeout_s`` of its start (or of the previous response) gets 408 and is closed (one
+    that sent nothing is just closed). With :class:`BodySizeLimit`'s body deadline, a client that
+    trickles bytes holds a connection for a bounded time."""
+    return type("SlowClientProtocol", (_HeadDeadline,), {"head_timeout_s": head_timeout_s})
 
 
 def host_name(header: str) -> str:
@@ -230,7 +328,7 @@ def core_count() -> int:
 
 
 #: What a new worker process imports before its first job (the web app, the solver, the writers),
-#: so the first design does not pay for it.
+#: so the first computation does not pay for it.
 WORKER_PRELOAD = (
     "corrugate.web.app",
     "corrugate.workflow",
@@ -242,125 +340,423 @@ WORKER_PRELOAD = (
     "corrugate.fabrication.instructions",
 )
 
+#: The address space one worker process may map beyond what it maps once its modules are imported
+#: (``RLIMIT_AS``): a computation that needs more fails with MemoryError in its worker, and its
+#: request gets 422.
+WORKER_MEMORY_BYTES = 2 * 1024**3
+
+#: Longest wait for a new worker process to start and import :data:`WORKER_PRELOAD`.
+_START_TIMEOUT_S = 300.0
+
+#: ``prctl`` option: the signal a process gets when its parent ends.
+_PR_SET_PDEATHSIG = 1
+
 
 def _warm_up() -> None:
-    """Import :data:`WORKER_PRELOAD` in a worker process (its initializer)."""
+    """Import :data:`WORKER_PRELOAD` (in a worker process, before it takes jobs)."""
     import importlib
 
     for name in WORKER_PRELOAD:
         importlib.import_module(name)
 
 
+def _die_with_parent() -> None:
+    """Ask Linux to SIGKILL this process when its parent ends (``PR_SET_PDEATHSIG``): a worker's
+    parent is the forkserver, which ends when the server ends, even by SIGKILL. Elsewhere, a
+    no-op (the worker still ends when its pipe to the server closes, between jobs)."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):
+        pass
+
+
+def _leave_forkserver() -> None:
+    """Close this worker's copy of the forkserver's "alive" pipe (every child of a forkserver
+    inherits one): the forkserver ends when the server ends, not when its last worker does, so
+    that ``PR_SET_PDEATHSIG`` then kills the workers."""
+    from multiprocessing import forkserver
+
+    server = getattr(forkserver, "_forkserver", None)
+    fd = getattr(server, "_forkserver_alive_fd", None)
+    if isinstance(fd, int):
+        with contextlib.suppress(OSError):
+            os.close(fd)
+        server._forkserver_alive_fd = None  # type: ignore[union-attr]
+
+
+def _cap_memory(limit: int | None) -> None:
+    """Cap this process's address space (``RLIMIT_AS``) at what it has mapped now (its modules,
+    thread stacks and arenas) plus ``limit`` bytes (None: no cap)."""
+    if limit is None:
+        return
+    try:
+        import resource
+
+        with open("/proc/self/statm", encoding="ascii") as f:
+            mapped = int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
+        cap = mapped + limit
+        resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
+    except (ImportError, ValueError, OSError):  # not on this system
+        pass
+
+
+def _worker_main(conn: Connection, memory_bytes: int | None) -> None:
+    """A worker process: import the modules, say "ready", then answer jobs ``(fn, args)`` one at
+    a time with ``("ok", result)``, ``("error", exception)`` or ``("memory", None)`` (after
+    which it ends: a process that ran out of memory is not trusted with another job). It ends
+    when the server closes its pipe."""
+    _die_with_parent()
+    _leave_forkserver()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the server's: it ends the workers
+    _warm_up()
+    _cap_memory(memory_bytes)
+    conn.send(("ready", os.getpid()))
+    while True:
+        reply: tuple[str, Any]
+        try:
+            fn, args = conn.recv()
+        except (EOFError, OSError):
+            return
+        except Exception as exc:  # a job this process cannot load
+            fn, args = _raise, (exc,)
+        try:
+            reply = ("ok", fn(*args))
+        except MemoryError:
+            reply = ("memory", None)
+        except BaseException as exc:
+            reply = ("error", exc)
+        release_memory()
+        try:
+            conn.send(reply)
+        except MemoryError:
+            conn.send(("memory", None))
+        except (EOFError, OSError):
+            return
+        except Exception as exc:  # a result or an error that does not pickle
+            from corrugate.core.errors import describe
+
+            conn.send(("error", RuntimeError(describe(exc))))
+        if reply[0] == "memory":
+            return
+
+
+def _raise(exc: BaseException) -> None:
+    raise exc
+
+
+@dataclass(eq=False)
+class _Worker:
+    """One worker process of a :class:`Runner` and the server's end of its pipe."""
+
+    process: BaseProcess
+    conn: Connection
+    pid: int
+
+
+class WorkerLostError(Exception):
+    """The worker process of a computation ended under it (killed from outside, or the server is
+    shutting down) (HTTP 503)."""
+
+
 class Runner:
-    """Run blocking computations with a time limit of ``timeout_s`` (from when a computation
-    starts; its wait in the queue does not count): on ``workers`` threads
-    (:meth:`run`) or on ``processes`` worker processes (:meth:`run_process`; None: one per core,
-    0: on the threads instead).
+    """Run each computation of a request in a worker process that can be killed: ``processes``
+    of them (None: one per core, at least 2), one job at a time each, jobs waiting in turn.
 
-    At most ``max_pending`` computations may be queued or running at once, on both pools together
-    (a timed-out one counts until it really ends); past that :meth:`run` and :meth:`run_process`
-    raise :class:`ServerBusyError` at once.
+    * **Time limit**: ``timeout_s`` from when a worker takes the job (its wait in the queue does
+      not count). Past it the worker is killed (SIGKILL), :class:`ComputeTimeoutError` is raised
+      and a fresh worker takes its place.
+    * **Memory**: each worker's address space is capped at ``memory_bytes`` beyond what it
+      maps once its modules are imported (``RLIMIT_AS``); a
+      job that needs more gets :class:`~corrugate.core.errors.InputError` naming the body (422),
+      and its worker is replaced.
+    * **Load**: at most ``max_pending`` computations queued or running at once; past that
+      :meth:`run` raises :class:`ServerBusyError` at once.
+    * **Lifetime**: workers start from a fresh interpreter (``forkserver``; ``spawn`` where
+      there is none), never as a fork of the server with its threads; each imports
+      :data:`WORKER_PRELOAD` before it takes a job (that start is not part of a time limit).
+      Each asks Linux to kill it when its parent ends, so a server killed with SIGKILL leaves no
+      worker behind; :meth:`kill_workers` (on SIGTERM or Ctrl-C) and :meth:`shutdown` (at the
+      app's end) kill them all.
 
-    The processes start from a fresh interpreter (``forkserver``, or ``spawn`` where there is no
-    fork), never as a fork of the server with its threads; they are made on first use and each
-    imports :data:`WORKER_PRELOAD` once. :meth:`start_processes` makes them ahead of the first
-    request; a computation waits until they are ready before its time limit starts.
+    Jobs are module-level functions with picklable arguments and results; their exceptions
+    come back as raised (corrugate's own errors with their fields).
     """
 
     def __init__(
-        self, workers: int, max_pending: int, timeout_s: float, processes: int | None = None
+        self,
+        max_pending: int,
+        timeout_s: float,
+        processes: int | None = None,
+        memory_bytes: int | None = WORKER_MEMORY_BYTES,
     ) -> None:
         self.timeout_s = timeout_s
-        self.processes = core_count() if processes is None else processes
-        self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="corrugate-web")
+        self.processes = max(2, core_count()) if processes is None else processes
+        if self.processes < 1:
+            raise ValueError(f"a runner needs at least one worker process, not {processes}")
+        self.memory_bytes = memory_bytes
         self._slots = threading.BoundedSemaphore(max_pending)
-        self._process_pool: ProcessPoolExecutor | None = None
-        self._warm: list[Future[None]] = []
         self._lock = threading.Lock()
-        self._done = 0
+        self._idle: deque[_Worker] = deque()
+        self._waiters: deque[tuple[asyncio.AbstractEventLoop, asyncio.Future[_Worker]]] = deque()
+        self._workers: dict[int, _Worker] = {}  # every started worker, by pid
+        self._pids: tuple[int, ...] = ()  # their pids, for kill_workers (read without the lock)
+        self._starting = 0
+        self._started = False
+        self._closed = False
+        # Threads that wait on the workers' pipes, and threads that start workers (never
+        # computing themselves): one per worker, and a few for the killed ones still ending.
+        self._io = ThreadPoolExecutor(
+            max_workers=2 * self.processes + 2, thread_name_prefix="corrugate-web-io"
+        )
+        self._starter = ThreadPoolExecutor(
+            max_workers=self.processes, thread_name_prefix="corrugate-web-start"
+        )
 
-    def _processes(self) -> Executor:
-        """The process pool (made on first use), or the thread pool when ``processes`` is 0."""
-        if self.processes <= 0:
-            return self._pool
-        with self._lock:
-            if self._process_pool is None:
-                methods = multiprocessing.get_all_start_methods()
-                context = multiprocessing.get_context(
-                    "forkserver" if "forkserver" in methods else "spawn"
-                )
-                self._process_pool = ProcessPoolExecutor(
-                    max_workers=self.processes, mp_context=context, initializer=_warm_up
-                )
-            return self._process_pool
+    # -- worker life -------------------------------------------------------------------------
 
     def start_processes(self) -> None:
         """Start every worker process now (they import their modules in the background)."""
-        pool = self._processes()
         with self._lock:
-            if pool is not self._pool and not self._warm:
-                self._warm = [pool.submit(_warm_up) for _ in range(self.processes)]
+            if self._started or self._closed:
+                return
+            self._started = True
+            self._starting += self.processes
+        for _ in range(self.processes):
+            self._starter.submit(self._start_one)
 
-    async def _ready(self) -> None:
-        """Wait until the worker processes have started and imported their modules (the start of
-        a worker is not part of a computation's time limit)."""
+    def _start_one(self) -> None:
+        """Start one worker, wait until it is ready, then hand it to a waiting job (a thread)."""
+        worker: _Worker | None = None
+        try:
+            methods = multiprocessing.get_all_start_methods()
+            context = multiprocessing.get_context(
+                "forkserver" if "forkserver" in methods else "spawn"
+            )
+            if context.get_start_method() == "forkserver":
+                # The forkserver imports them once (when this process starts it), so that a
+                # worker that replaces a killed one is ready at once.
+                context.set_forkserver_preload(list(WORKER_PRELOAD))
+            ours, theirs = context.Pipe(duplex=True)
+            process: BaseProcess = context.Process(  # type: ignore[attr-defined]
+                target=_worker_main,
+                args=(theirs, self.memory_bytes),
+                name="corrugate-web-worker",
+                daemon=True,
+            )
+            if self._closed:
+                raise WorkerLostError("the server is shutting down")
+            process.start()
+            theirs.close()
+            assert process.pid is not None
+            worker = _Worker(process, ours, process.pid)
+            with self._lock:
+                self._workers[worker.pid] = worker
+                self._pids = tuple(self._workers)
+            if self._closed:
+                raise WorkerLostError("the server is shutting down")
+            if not ours.poll(_START_TIMEOUT_S):
+                raise TimeoutError("the worker process did not start")
+            ours.recv()  # ("ready", pid)
+        except Exception:
+            if not self._closed:
+                _log.exception("a worker process could not start")
+            with self._lock:
+                self._starting -= 1
+            if worker is not None:
+                self._kill(worker)
+                worker.conn.close()
+            self._fail_waiters_if_no_worker()
+            return
+        with self._lock:
+            self._starting -= 1
+        self._release(worker)
+
+    def _replace(self, worker: _Worker) -> None:
+        """Kill ``worker`` (if it still runs) and start another in its place."""
+        self._kill(worker)
+        with self._lock:
+            if self._closed:
+                return
+            self._starting += 1
+        self._starter.submit(self._start_one)
+
+    def _kill(self, worker: _Worker) -> None:
+        """SIGKILL ``worker`` and forget it (its parent, the forkserver, reaps it). Its pipe is
+        closed by whoever holds it last: a thread may still be reading it (it reads EOF)."""
+        with self._lock:
+            self._workers.pop(worker.pid, None)
+            self._pids = tuple(self._workers)
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.kill(worker.pid, signal.SIGKILL)
+
+    def _fail_waiters_if_no_worker(self) -> None:
+        """When no worker runs or starts (they cannot start), the jobs waiting get 503."""
+        with self._lock:
+            if self._workers or self._starting:
+                return
+            waiters = list(self._waiters)
+            self._waiters.clear()
+        for loop, future in waiters:
+            with contextlib.suppress(RuntimeError):  # its loop has ended
+                loop.call_soon_threadsafe(_fail, future, "no worker process could start")
+
+    def kill_workers(self) -> None:
+        """Kill every worker now and take no more jobs (safe in a signal handler: no lock). The
+        computations running get :class:`WorkerLostError` (503)."""
+        self._closed = True
+        for pid in self._pids:
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.kill(pid, signal.SIGKILL)
+
+    def worker_pids(self) -> tuple[int, ...]:
+        """The process ids of the workers started and not yet killed."""
+        return self._pids
+
+    def shutdown(self) -> None:
+        """Kill every worker, fail the jobs waiting for one, and stop the runner's threads."""
+        self.kill_workers()
+        with self._lock:
+            workers = list(self._workers.values())
+            self._workers.clear()
+            self._pids = ()
+            self._idle.clear()
+            waiters = list(self._waiters)
+            self._waiters.clear()
+        for loop, future in waiters:
+            with contextlib.suppress(RuntimeError):  # its loop has ended
+                loop.call_soon_threadsafe(_fail, future, "the server is shutting down")
+        for worker in workers:
+            worker.process.join(5)  # killed: the forkserver reports its end at once
+        self._io.shutdown(wait=False, cancel_futures=True)
+        self._starter.shutdown(wait=False, cancel_futures=True)
+
+    # -- jobs ----------------------------------------------------------------------------------
+
+    def _release(self, worker: _Worker) -> None:
+        """Give an idle ``worker`` to the first job waiting for one, or keep it idle."""
+        with self._lock:
+            if not self._closed:
+                while self._waiters:
+                    loop, future = self._waiters.popleft()
+                    try:
+                        loop.call_soon_threadsafe(self._hand, future, worker)
+                    except RuntimeError:  # that job's loop has ended
+                        continue
+                    return
+                self._idle.append(worker)
+                return
+        self._kill(worker)
+
+    def _hand(self, future: asyncio.Future[_Worker], worker: _Worker) -> None:
+        """(On the waiting job's loop.) Give it ``worker``, or pass it on if it stopped waiting."""
+        if future.done():
+            self._release(worker)
+        else:
+            future.set_result(worker)
+
+    async def _take(self) -> _Worker:
+        """An idle worker, waiting in turn for one."""
         self.start_processes()
-        for future in list(self._warm):
-            await asyncio.wrap_future(future)
+        loop = asyncio.get_running_loop()
+        with self._lock:
+            if self._closed:
+                raise WorkerLostError("the server is shutting down")
+            if self._idle:
+                return self._idle.popleft()
+            if not self._workers and not self._starting:
+                raise WorkerLostError("no worker process could start; see the server's log")
+            future: asyncio.Future[_Worker] = loop.create_future()
+            self._waiters.append((loop, future))
+        try:
+            while True:
+                # kill_workers (a signal handler) cannot wake the waiting jobs: they look
+                done, _ = await asyncio.wait({future}, timeout=0.5)
+                if done:
+                    return future.result()
+                if self._closed:
+                    raise WorkerLostError("the server is shutting down")
+        except BaseException:  # stopped waiting (cancelled, or the server is stopping)
+            if not future.cancel() and not future.cancelled() and future.exception() is None:
+                self._release(future.result())  # handed over just now: pass it on
+            raise
 
-    async def run(self, fn: Callable[[], T]) -> T:
-        """The result of ``fn()``, computed on the thread pool; its exceptions propagate."""
-        return await self._submit(self._pool, fn)
+    @staticmethod
+    def _exchange(worker: _Worker, fn: Callable[..., Any], args: tuple[Any, ...]) -> Any:
+        """(On a thread.) Send the job, wait for its answer; EOFError/OSError if the worker
+        ends first."""
+        worker.conn.send((fn, args))
+        return worker.conn.recv()
 
-    async def run_process(
-        self, fn: Callable[..., T], *args: Any, abandoned: Callable[[], None] | None = None
-    ) -> T:
-        """The result of ``fn(*args)``, computed in a worker process: ``fn`` must be a module-level
-        function and ``args`` and the result picklable. Its exceptions propagate (corrugate's own
-        errors arrive as raised, :class:`~corrugate.core.errors.CorrugateError`). ``abandoned`` is
-        called when a computation that timed out finally ends (to remove what it left behind)."""
-        pool = self._processes()
-        if pool is not self._pool:
-            await self._ready()
-        return await self._submit(pool, fn, *args, abandoned=abandoned)
-
-    async def _submit(
-        self,
-        pool: Executor,
-        fn: Callable[..., T],
-        *args: Any,
-        abandoned: Callable[[], None] | None = None,
-    ) -> T:
+    async def run(self, fn: Callable[..., T], *args: Any) -> T:
+        """The result of ``fn(*args)``, computed in a worker process: ``fn`` must be a
+        module-level function and ``args`` and the result picklable. Its exceptions propagate;
+        see the class for the time limit, the memory cap and the load limit."""
         if not self._slots.acquire(blocking=False):
             raise ServerBusyError("the server is busy with other computations; try again shortly")
         try:
-            future: Future[T] = pool.submit(fn, *args)
-        except BaseException:
+            worker = await self._take()
+            return await self._run_on(worker, fn, args)  # type: ignore[no-any-return]
+        finally:
             self._slots.release()
-            raise
-        future.add_done_callback(lambda _: self._slots.release())
-        if pool is self._pool:  # a computation on a thread: its garbage is in this process
-            self._done += 1
-            full = self._done % 32 == 0
-            future.add_done_callback(lambda _: release_memory(full))
-        # The time limit counts the computation, not its wait in the queue behind others.
-        while not (future.running() or future.done()):
-            await asyncio.sleep(0.02)
-        try:
-            return await asyncio.wait_for(asyncio.wrap_future(future), self.timeout_s)
-        except TimeoutError:
-            if abandoned is not None:
-                future.add_done_callback(lambda _: abandoned())
-            raise ComputeTimeoutError(self.timeout_s) from None
 
-    def shutdown(self) -> None:
-        """Drop queued computations; running ones finish in their threads or processes."""
-        self._pool.shutdown(wait=False, cancel_futures=True)
-        with self._lock:
-            pool, self._process_pool = self._process_pool, None
-            self._warm = []
-        if pool is not None:
-            # Not terminated: a worker killed under its pipe would break it (EPIPE; fatal to a
-            # process where a library reset SIGPIPE, as gmsh does). A job that timed out ends on
-            # its own, its result dropped.
-            pool.shutdown(wait=False, cancel_futures=True)
+    async def _run_on(self, worker: _Worker, fn: Callable[..., Any], args: tuple[Any, ...]) -> Any:
+        loop = asyncio.get_running_loop()
+        exchange = loop.run_in_executor(self._io, self._exchange, worker, fn, args)
+        try:
+            kind, value = await asyncio.wait_for(asyncio.shield(exchange), self.timeout_s)
+        except TimeoutError:
+            _close_when_done(exchange, worker)
+            self._replace(worker)
+            raise ComputeTimeoutError(self.timeout_s) from None
+        except (EOFError, OSError):
+            worker.conn.close()
+            self._replace(worker)
+            if self._closed:
+                raise WorkerLostError("the server is shutting down") from None
+            await loop.run_in_executor(self._io, worker.process.join, 2)
+            code = worker.process.exitcode
+            how = f" (signal {-code})" if code is not None and code < 0 else ""
+            raise WorkerLostError(
+                f"the worker process computing this request ended{how}; try again"
+            ) from None
+        except BaseException:  # cancelled (the server is stopping): the job goes with its worker
+            _close_when_done(exchange, worker)
+            self._replace(worker)
+            raise
+        if kind == "memory":
+            worker.conn.close()
+            self._replace(worker)
+            raise _memory_error(self.memory_bytes)
+        self._release(worker)
+        if kind == "error":
+            raise value
+        return value
+
+
+def _close_when_done(exchange: asyncio.Future[Any], worker: _Worker) -> None:
+    """Close the pipe of a killed worker once the thread reading it has seen its end."""
+
+    def done(future: asyncio.Future[Any]) -> None:
+        if not future.cancelled():
+            future.exception()  # EOFError, expected: retrieved so that it is not logged
+        worker.conn.close()
+
+    exchange.add_done_callback(done)
+
+
+def _fail(future: asyncio.Future[Any], why: str) -> None:
+    if not future.done():
+        future.set_exception(WorkerLostError(why))
+
+
+def _memory_error(limit: int | None) -> Exception:
+    from corrugate.core.errors import InputError
+
+    cap = "" if limit is None else f" of {limit / 1024**3:g} GiB"
+    return InputError(
+        "body",
+        "the request",
+        "inputs whose computation needs less (bound the sizes and counts, or use the CLI)",
+        reason=f"needs more than the memory{cap} one request may use",
+    )
