@@ -30,13 +30,13 @@ from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.folded import folded_mesh
 from corrugate.web import WebSettings, create_app
 from corrugate.web.app import STATIC_DIR
-from corrugate.web.guards import (
+from corrugate.web.schemas import AnalyzeBody
+from corrugate.web.workers import (
     ComputeTimeoutError,
     Runner,
     ServerBusyError,
     WorkerLostError,
 )
-from corrugate.web.schemas import AnalyzeBody
 
 from .conftest import CASE1, direct
 

@@ -354,7 +354,7 @@ def test_designs_run_in_worker_processes_and_their_errors_come_back() -> None:
     error raised in a worker arrives as the same error (422 naming the field)."""
     import os
 
-    from corrugate.web.guards import Runner, core_count
+    from corrugate.web.workers import Runner, core_count
 
     runner = Runner(max_pending=4, timeout_s=60)
     try:

@@ -25,7 +25,7 @@ Endpoints (all JSON unless said otherwise):
   ``GET /api/results/{id}/all.zip``: all of them in one zip archive.
 
 Every computation of a request (its quantities parsed, analysed, meshed, its files written,
-its spec solved) runs in a worker process of :class:`~corrugate.web.guards.Runner`: the
+its spec solved) runs in a worker process of :class:`~corrugate.web.workers.Runner`: the
 ``*_job`` functions take and return plain picklable values (a job that writes files writes them
 into a new result's folder, the server publishes them). A worker is killed at the time limit
 (504) and replaced; its address space is capped (a job that needs more memory gets 422). The
@@ -72,17 +72,7 @@ from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
 from corrugate.solver import Problem, Solution
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
-from corrugate.web.guards import (
-    WORKER_MEMORY_BYTES,
-    BodySizeLimit,
-    CatchAll,
-    ComputeTimeoutError,
-    HostCheck,
-    Runner,
-    ServerBusyError,
-    WorkerLostError,
-    release_memory,
-)
+from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck
 from corrugate.web.schemas import (
     LOAD_CASE_KEYS,
     OUTPUT_OPTIONS,
@@ -101,6 +91,14 @@ from corrugate.web.schemas import (
     format_list,
 )
 from corrugate.web.store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
+from corrugate.web.workers import (
+    WORKER_MEMORY_BYTES,
+    ComputeTimeoutError,
+    Runner,
+    ServerBusyError,
+    WorkerLostError,
+    release_memory,
+)
 from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, write_design
 
 __all__ = [
@@ -393,7 +391,7 @@ def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[A
     folder of the store); returns the ``corrugate design --json`` object and the paths written
     (none for an infeasible spec). A job: runs in a worker process; it takes and returns
     plain, picklable values, and the store itself stays in the server. The worker hands its
-    freed memory back to the system afterwards (:func:`~corrugate.web.guards.release_memory`)."""
+    freed memory back to the system afterwards (:func:`~corrugate.web.workers.release_memory`)."""
     try:
         return _design_job(body, settings, folder)
     finally:
