@@ -427,3 +427,21 @@ def test_certified_rectangle_with_an_off_axis_bound_against_exhaustive_search() 
     assert sol.assembly is not None
     got = analyze(sol.assembly, "refined", [15.0]).stiffness[0].K
     assert got >= k_min
+
+
+@pytest.mark.parametrize("off", [1e-12, 1e-10, 4e-10, -1e-12, -4e-10])
+def test_an_angle_within_a_billionth_of_a_degree_of_a_crease_is_on_it(off: float) -> None:
+    """Regression (hypothesis, eta = 1e-12 deg, n = 1, alpha = 1 deg, t/W = 0.25): the crease
+    directions were recognised within 1e-12 deg, and 90 - eta rounds in floating point, so the
+    free K along eta was 8.59 and along 90 - eta 21.49. Now every angle is rounded to 1e-9 deg
+    first: near a crease direction both sides give the on-axis value, which is the free K at 0."""
+    a = Assembly.identical(Layer(10.0, 1, 1.0, get_material("dura-lar"), 2.5))
+    etas = [off, 90.0 - off, 90.0 + off, 180.0 - off]
+    on_axis = analyze(a, "refined", [0.0], support="free").stiffness[0]
+    for s in analyze(a, "refined", etas, support="free").stiffness:
+        assert pytest.approx(on_axis.K, rel=1e-12) == s.K
+        assert pytest.approx(on_axis.D, rel=1e-12) == s.D
+    # a millionth of a degree off is off the creases (the free panel's off-axis bound, lower)
+    off_axis = analyze(a, "refined", [1e-6, 90 - 1e-6], support="free").stiffness
+    assert pytest.approx(off_axis[1].K, rel=1e-12) == off_axis[0].K
+    assert off_axis[0].K < 0.5 * on_axis.K

@@ -68,6 +68,7 @@ from corrugate.mechanics.behaviours import check_support, get_support
 from corrugate.names import DEFAULT_SUPPORT, Support
 
 __all__ = [
+    "ANGLE_DECIMALS",
     "FINITE_PANEL_BENDING",
     "FINITE_PANEL_DEFICIT",
     "Coupon",
@@ -81,6 +82,7 @@ __all__ = [
     "free_bending",
     "free_inplane",
     "free_panel",
+    "on_grid",
     "shear_spring",
     "shear_springs",
     "strip_fraction",
@@ -120,9 +122,9 @@ def finite_panel_weight(eta_deg: float) -> float:
     exact there), 1 up to 15 deg from them, falling linearly to 0.25 at 45 deg (the FE coupons'
     deficit at 30 and 45 deg is at most a third and an eighth of that at 15; docs/load_cases.md
     section 4)."""
-    e = float(eta_deg) % 90.0
+    e = on_grid(eta_deg, 90.0)
     off = min(e, 90.0 - e)
-    if off < 1e-12:
+    if off == 0.0:
         return 0.0
     return 1.0 if off <= 15.0 else 1.0 - 0.75 * (off - 15.0) / 30.0
 
@@ -142,12 +144,27 @@ def shear_spring(E: Any, nu: Any, t: Any, s: Any, c: Any, pq: Any) -> Any:
     return (G * t) * (c * c) * pq / s
 
 
+#: Angles are rounded to this many decimals of a degree before the crease directions are
+#: recognised, so that eta and its mirror image 90 - eta (or eta - 90, as layer 2 sees it) fall on
+#: the same side of a crease direction whatever the rounding of the subtraction (1e-9 deg: far
+#: below any test's angle, far above the 1.4e-14 deg rounding of 90 - eta).
+ANGLE_DECIMALS = 9
+
+
+def on_grid(theta_deg: float, period: float = 180.0) -> float:
+    """``theta_deg`` modulo ``period`` (deg), rounded to :data:`ANGLE_DECIMALS` decimals: in
+    ``[0, period)``, exactly 0 or 90 on a crease direction."""
+    t = round(float(theta_deg) % period, ANGLE_DECIMALS)
+    return 0.0 if t >= period else t
+
+
 def _cs(theta_deg: float) -> tuple[float, float]:
-    """cos^2 and sin^2 of theta (deg), exactly 1 and 0 on the crease directions."""
-    t = float(theta_deg) % 180.0
-    if min(t, 180.0 - t) < 1e-12:
+    """cos^2 and sin^2 of theta (deg), exactly 1 and 0 on the crease directions (theta on the
+    rounding of :func:`on_grid`)."""
+    t = on_grid(theta_deg)
+    if t == 0.0:
         return 1.0, 0.0
-    if abs(t - 90.0) < 1e-12:
+    if t == 90.0:
         return 0.0, 1.0
     th = np.radians(t)
     return float(np.cos(th) ** 2), float(np.sin(th) ** 2)
