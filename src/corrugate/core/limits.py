@@ -96,6 +96,21 @@ LIMITS: dict[str, Limit] = {
         Limit("cell_mesh_through", 1, 64, "", "unit-cell elements through t or along y"),
         Limit("jobs", 1, 64, "", "parallel solver processes"),
         Limit("timeout", 1.0, 86_400.0, "s", "time allowed for one solver run: 1 s to a day"),
+        Limit(
+            "budget",
+            0.01,
+            86_400.0,
+            "s",
+            "CPU seconds one design or Pareto front may take (search and explanation): "
+            "10 ms to a day",
+        ),
+        Limit(
+            "budget_boxes",
+            1,
+            10**12,
+            "",
+            "boxes the branch and bound may bound for one design or Pareto front",
+        ),
         Limit("samples", 2, 1_000_000, "", "Monte Carlo samples"),
         Limit("points", 2, 10_000, "", "points on a Pareto front"),
         Limit("W_tol", 0.0, 1_000.0, "mm", "one-sigma error of W: up to 1 m"),
