@@ -148,10 +148,10 @@ def not_certified_line(sol: Solution) -> str:
         limit = (
             f"{budget['boxes']} boxes"
             if budget["stopped_by"] == "boxes"
-            else f"{float(budget['cpu_seconds']):g} s"  # type: ignore[arg-type]
+            else f"{float(budget['cpu_seconds']):g} s"
         )
         used = (
-            f" (used {float(budget['used_cpu_seconds']):.3g} s of CPU time, "  # type: ignore[arg-type]
+            f" (used {float(budget['used_cpu_seconds']):.3g} s of CPU time, "
             f"{budget['used_boxes']} boxes)"
         )
         head = f"not certified within the budget of {limit}{used}"
@@ -421,9 +421,7 @@ def pareto_cmd(
         console.print(summary)
     if front.stopped is not None and front.budget is not None:
         b = front.budget
-        limit = (
-            f"{b['boxes']} boxes" if front.stopped == "boxes" else f"{b['cpu_seconds']} s"
-        )
+        limit = f"{b['boxes']} boxes" if front.stopped == "boxes" else f"{b['cpu_seconds']} s"
         typer.echo(
             f"corrugate: not certified within the budget of {limit}: the front ends at the "
             f"{len(front.points)} point(s) found so far; run again with a larger --budget",

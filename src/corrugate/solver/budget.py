@@ -124,4 +124,3 @@ def budget_scope(budget: Budget | float | None = None) -> Iterator[Budget]:
         yield chosen
     finally:
         _CURRENT.reset(token)
-

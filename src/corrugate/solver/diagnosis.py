@@ -32,10 +32,10 @@ import math
 from dataclasses import replace
 
 from corrugate.names import DEFAULT_MARGIN_MM
+from corrugate.solver.budget import current_budget
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables
 from corrugate.solver.quantity import STIFFNESS, Quantity
-from corrugate.solver.budget import current_budget
 from corrugate.solver.solve import Diagnosis, Optimum, optimize
 
 __all__ = ["SMALL_EDIT", "best_hint", "diagnose", "shown"]
@@ -144,7 +144,7 @@ def diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
     out: list[Diagnosis] = []
     out += _layers(problem)
     out += _free_off_axis(problem, tables)
-    singles = []
+    singles: list[Diagnosis] = []
     for c in problem.constraints:
         if _spent():
             return [*out, *singles, _partial(problem)]
