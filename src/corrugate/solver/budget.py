@@ -22,7 +22,8 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field
 
-from corrugate.core.limits import check, check_count
+from corrugate.core.errors import InputError
+from corrugate.core.limits import MAX_BUDGET_BOXES, check
 
 __all__ = [
     "DEFAULT_BUDGET_BOXES",
@@ -53,7 +54,9 @@ class Budget:
 
     def __post_init__(self) -> None:
         self.seconds = check("budget", self.seconds)
-        self.boxes = check_count("budget_boxes", self.boxes)
+        if isinstance(self.boxes, bool) or not 1 <= int(self.boxes) <= MAX_BUDGET_BOXES:
+            raise InputError("budget.boxes", self.boxes, f"1 <= boxes <= {MAX_BUDGET_BOXES:g}")
+        self.boxes = int(self.boxes)
 
     def start(self) -> None:
         """Start the clock (a second call does nothing)."""
