@@ -168,7 +168,7 @@ def _front(
         # a lightest design may tie in mass with a stiffer one, which dominates it
         kept = [
             p
-            for p, q in zip(out, [*out[1:], None], strict=True)
+            for p, q in zip(out, [*out[1:], None][: len(out)], strict=True)
             if q is None or q.mass > p.mass * (1 + 1e-12)
         ]
         return ParetoFront(key, unit, tuple(kept), exact=True, truncated=truncated)
