@@ -316,8 +316,10 @@ def optimize(
     n_fixed: tuple[int, int] | None = None,
     tables: Tables | None = None,
     incumbent: float | None = None,
+    gap_rtol: float = GAP_RTOL,
 ) -> Optimum:
-    """The certified optimum of ``problem`` over every candidate sheet pair. Inside a
+    """The certified optimum of ``problem`` over every candidate sheet pair (continuous
+    variables: to the relative gap ``gap_rtol``). Inside a
     :func:`~.budget.budget_scope` whose budget is spent, the sheet pairs not yet searched are
     skipped: the optimum is then not certified and its gap infinite."""
     tables = tables or Tables(problem)
@@ -334,7 +336,9 @@ def optimize(
             certified = False
             bound = -math.inf
             break
-        r = branch_and_bound(problem, *pair, incumbent=inc, n_fixed=n_fixed, tables=tables)
+        r = branch_and_bound(
+            problem, *pair, incumbent=inc, n_fixed=n_fixed, tables=tables, gap_rtol=gap_rtol
+        )
         boxes += r.boxes
         iterations += r.iterations
         certified &= r.certified
