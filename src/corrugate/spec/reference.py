@@ -21,6 +21,7 @@ from typing import Any
 
 from pydantic import BaseModel
 
+from corrugate.core.limits import MAX_COUNTS
 from corrugate.core.parameters import PARAMETERS
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, either, supports
 from corrugate.spec.schema import PLAIN_UNITS, Spec
@@ -418,6 +419,13 @@ def reference_markdown() -> str:
         "the budget ran out keeps exit code 0, with the warning `explanation-partial`. In "
         "Python: `corrugate.design(spec, budget=10)`, `corrugate.workflow.solve_spec(spec, "
         "budget=10)`, `corrugate.solver.solve(problem, budget=10)`.",
+        "",
+        f"Counts. A spec has at most {MAX_COUNTS['holes']} `layout.holes`, "
+        f"{MAX_COUNTS['vertices']} vertices in `layout.vertices` and in each polygon hole, "
+        f"{MAX_COUNTS['bounds']} behavioural bounds (`flexural_rigidity`, `bending_stiffness`, "
+        "`inplane_stiffness`, `buckling_load`, `deflection` and `strength` together) and "
+        f"{MAX_COUNTS['thicknesses']} candidate sheets (thicknesses over every material); "
+        "more is one error line naming the list, its count and the cap (exit code 2).",
         "",
     ]
     return "\n".join(lines)
