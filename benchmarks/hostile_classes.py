@@ -354,6 +354,22 @@ def cases() -> list[Case]:
         .replace('sheet_max = "300 mm"', 'sheet_max = "100000 mm"')
     )
     out.append(Case("continuous full range", "full ranges, huge bound", design, full))
+    out.append(
+        Case(
+            "continuous full range",
+            "full ranges, bound inside the limits",
+            design,
+            full.replace("1e12 mN*m^2", "1e11 mN*m^2"),
+        )
+    )
+    out.append(
+        Case(
+            "budget",
+            "design --budget 0.01 (exit 4)",
+            ("design", "SPEC", "--budget", "0.01"),
+            spec(),
+        )
+    )
     # 5. output folders (after the fix only)
     for target in ("/", ".", "", "..", "/proc", "/etc", "/usr/lib"):
         out.append(

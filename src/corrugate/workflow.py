@@ -93,24 +93,33 @@ class DesignRun:
     robust: RobustResult | None
 
 
-def solve_spec(spec: Spec, problem: Problem | None = None) -> DesignRun:
+def solve_spec(
+    spec: Spec, problem: Problem | None = None, *, budget: float | None = None
+) -> DesignRun:
     """The solution of ``spec`` (its ``problem`` may be given when already built) and the JSON
     object ``corrugate design --json`` prints for it. A plain spec is solved
     (:func:`corrugate.solver.solve`); a spec with a ``[robust]`` table by
     :func:`corrugate.solver.robust.robust_solve`, whose answer is labelled ``certified: false``
-    (its probability is a Monte Carlo estimate and its optimality is not proven)."""
+    (its probability is a Monte Carlo estimate and its optimality is not proven).
+
+    ``budget``: CPU seconds for the whole solve, explanation included (checked against
+    ``LIMITS["budget"]``; None: the default 60 s, :mod:`corrugate.solver.budget`); when it runs
+    out the solution's status is ``not-certified`` (``corrugate design``: exit code 4)."""
+    from corrugate.solver.budget import Budget, budget_scope
     from corrugate.solver.problem import Problem
     from corrugate.solver.robust import robust_solve
     from corrugate.solver.solve import solve
     from corrugate.solver.tolerance import Tolerances
 
+    chosen = Budget() if budget is None else Budget(seconds=budget)
     problem = problem if problem is not None else Problem.from_spec(spec)
     if spec.robust is None:
-        sol = solve(problem)
+        sol = solve(problem, budget=chosen)
         return DesignRun(sol, sol.to_dict(), None)
     r = spec.robust
     tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
-    robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
+    with budget_scope(chosen):
+        robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
     sol = robust.solution
     payload = sol.to_dict()
     payload["certified"] = False  # the robust optimum itself is not proven (see robust.py)
@@ -415,14 +424,15 @@ def _read(spec: str | Path | Mapping[str, Any]) -> tuple[Spec, str]:
     return parse_spec_text(spec), spec
 
 
-def design(spec: str | Path | Mapping[str, Any]) -> DesignResult:
+def design(spec: str | Path | Mapping[str, Any], *, budget: float | None = None) -> DesignResult:
     """The certified lightest design that meets ``spec``: a path to a TOML file, the TOML text
-    itself, or a dict with the keys of the file (docs/spec.md). Bad input raises a
+    itself, or a dict with the keys of the file (docs/spec.md), within ``budget`` CPU seconds
+    (None: the default 60 s; see :func:`solve_spec`). Bad input raises a
     :class:`~corrugate.core.errors.InputError` naming the key."""
     if not isinstance(spec, str | Path | Mapping):
         raise InputError("spec", type(spec).__name__, "a path, TOML text or a dict")
     parsed, text = _read(spec)
-    return DesignResult(solve_spec(parsed), parsed, text)
+    return DesignResult(solve_spec(parsed, budget=budget), parsed, text)
 
 
 def write_files(

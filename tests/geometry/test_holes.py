@@ -525,3 +525,45 @@ def test_validate_reads_the_holes_of_a_design_json(tmp_path: Path) -> None:
     back = read_record(tmp_path / "design.json").assembly()
     assert back.layout.holes == (AXLE, tri)
     assert assembly_mass(back).total == pytest.approx(assembly_mass(a).total, rel=1e-12)
+
+
+def test_facet_sums_and_polygon_spans_in_slices_equal_one_pass(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """touched_sums and a polygon outline's span and cumulative area take their points in slices
+    to bound memory (issue 22): the values are those of one pass over every point (to the last
+    bits of a sum: numpy may add a row's terms in another order when the array's shape differs)."""
+    import corrugate.geometry.holes as holes_mod
+    import corrugate.geometry.layouts as layouts_mod
+
+    rng = np.random.default_rng(7)
+    ring = [(40 * math.cos(t), 30 * math.sin(t)) for t in np.linspace(0, 2 * math.pi, 40)[:-1]]
+    polygon = make_layout("polygon", ring)
+    disc = make_layout("circle", holes=(Hole("circle", (0.0, 0.0), diameter=60.0),))
+    n = rng.integers(2, 60, size=500)
+    p = rng.uniform(1.2, 1.5, size=500)
+    side = rng.uniform(70.0, 80.0, size=500)
+    u = rng.uniform(0.0, 1.0, size=(50, 7))
+    eta = rng.uniform(0.0, 180.0, size=500)
+
+    def values() -> list[np.ndarray]:
+        par, ser = layer_inverse_sums(disc, n, p, side, "x")
+        return [
+            par,
+            ser,
+            polygon.span(side, side * 0.8, eta),
+            polygon.cumulative_area(u, "x"),
+            polygon.cumulative_area(u, "y"),
+        ]
+
+    whole = values()
+    monkeypatch.setattr(holes_mod, "TOUCHED_SLICE", 97)
+    monkeypatch.setattr(layouts_mod, "SLICE_ELEMENTS", 101)
+    sliced = values()
+    for a, b in zip(whole, sliced, strict=True):
+        assert a.shape == b.shape
+        assert np.array_equal(np.isinf(a), np.isinf(b))  # a facet the hole cuts through
+        f = np.isfinite(a)
+        scale = float(np.max(np.abs(a[f])))
+        assert np.allclose(a[f], b[f], rtol=1e-13, atol=1e-15 * scale)
+    assert np.all(np.isfinite(whole[0])) and np.any(whole[1] > whole[0])  # the hole counts

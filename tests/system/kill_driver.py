@@ -146,9 +146,9 @@ def main() -> None:
     real = dr.solve_spec
     cache: dict[str, Any] = {}
 
-    def cached(parsed: Any, problem: Any) -> Any:
+    def cached(parsed: Any, problem: Any, budget: float | None = None) -> Any:
         if "run" not in cache:
-            cache["run"] = real(parsed, problem)
+            cache["run"] = real(parsed, problem, budget=budget)
         return cache["run"]
 
     dr.solve_spec = cached  # type: ignore[assignment]

@@ -32,7 +32,7 @@ import pytest
 
 from corrugate.cli import main
 from corrugate.core.errors import InputError
-from corrugate.core.limits import LIMITS, Limit
+from corrugate.core.limits import LIMITS, MAX_COUNTS, Limit
 from corrugate.spec.schema import parse_spec
 from spec_units import with_units
 
@@ -126,6 +126,10 @@ CLI: dict[str, list[tuple[str, Callable[[str], list[str]]]]] = {
     "W_tol": [("--W-tol", _spec_cmd("tolerance", "--W-tol"))],
     "alpha_tol": [("--alpha-tol", _spec_cmd("tolerance", "--alpha-tol"))],
     "seed": [("--seed", _spec_cmd("tolerance", "--seed"))],
+    "budget": [
+        ("--budget", _spec_cmd("design", "--budget")),
+        ("--budget", _spec_cmd("pareto", "--budget")),
+    ],
     "perforation": [],  # needs tmp_path: see PATTERN
     "length": [
         ("spacing", lambda v: ["pattern", *LAYER, "--spacing", v, "--out", "/nonexistent/x"]),
@@ -430,3 +434,172 @@ def test_tolerance_json_is_valid_json_at_the_largest_tolerances() -> None:
     data = json.loads(r.stdout, parse_constant=lambda c: pytest.fail(f"{c} in the JSON"))
     assert data["samples"] == 200
     assert 0.0 <= data["probability_all_met"] <= 1.0
+
+
+# -- work: counts capped where the spec enters, and the solver's work budget (issue 22, item 2) --
+
+
+def _counted(kind: str, count: int) -> tuple[dict[str, Any], str]:
+    """The case study's spec with ``count`` items of the list ``kind`` of MAX_COUNTS, and the
+    TOML path its refusal names."""
+    data = copy.deepcopy(BASE)
+    if kind == "holes":
+        hole = {"shape": "circle", "diameter": 1, "center": [0, 0]}
+        data["layout"] = {"shape": "square", "holes": [dict(hole) for _ in range(count)]}
+        return data, "layout.holes"
+    if kind == "vertices":
+        ring = [
+            [40 * math.cos(2 * math.pi * k / count), 40 * math.sin(2 * math.pi * k / count)]
+            for k in range(count)
+        ]
+        data["layout"] = {"shape": "polygon", "vertices": ring}
+        return data, "layout.vertices"
+    if kind == "bounds":
+        data["constraints"]["flexural_rigidity"] = [
+            {"min": "1 mN*m^2", "eta": f"{k * 90 / count:.6f} deg"} for k in range(count)
+        ]
+        return data, "constraints"
+    assert kind == "thicknesses"
+    data["material"] = {
+        "name": "dura-lar",
+        "thickness": [f"{0.1 + k * 1e-3:.4f} mm" for k in range(count)],
+    }
+    return data, "material.thickness"
+
+
+@pytest.mark.parametrize("kind", sorted(MAX_COUNTS))
+def test_every_count_cap_is_enforced_where_the_spec_enters(kind: str) -> None:
+    """One item over each cap of MAX_COUNTS is one InputError naming the list, its count and the
+    cap; at the cap the count itself is not what is refused."""
+    cap = MAX_COUNTS[kind]
+    data, field = _counted(kind, cap + 1)
+    with pytest.raises(InputError) as exc:
+        parse_spec(with_units(data))
+    assert exc.value.field.startswith(field), (kind, str(exc.value))
+    assert f"{cap + 1} " in str(exc.value) and f"at most {cap} " in str(exc.value)
+    assert "\n" not in str(exc.value)
+    data, _ = _counted(kind, cap)
+    refused = None
+    try:
+        parse_spec(with_units(data))
+    except InputError as err:  # e.g. holes on top of each other: another reason
+        refused = err
+    assert refused is None or refused.reason != "has too many items", str(refused)
+
+
+def test_the_budget_limit_is_a_row_of_the_table() -> None:
+    """The budget's allowed range is LIMITS["budget"], and the default lies inside it."""
+    from corrugate.solver.budget import DEFAULT_BUDGET_SECONDS, Budget
+
+    assert LIMITS["budget"].contains(DEFAULT_BUDGET_SECONDS)
+    with pytest.raises(InputError) as exc:
+        Budget(seconds=0.0)
+    assert exc.value.field == "budget"
+    with pytest.raises(InputError):
+        Budget(boxes=0)
+
+
+def _design_child(spec: Path, *extra: str) -> subprocess.CompletedProcess[str]:
+    return run_child(["design", str(spec), "-q", *extra])
+
+
+#: Specs of the fuzz that ran for minutes on main before the caps: each is now one line.
+def _over_cap_spec(kind: str, tmp: Path) -> tuple[Path, str]:
+    count = {"holes": 100, "vertices": 10_000, "bounds": 10_000, "thicknesses": 10_000}[kind]
+    data, field = _counted(kind, count)
+    if kind == "bounds":  # the fuzz's: 10 000 bounds in one list
+        field = "constraints.flexural_rigidity"
+    p = tmp / "spec.toml"
+    p.write_text(_toml(with_units(data)))
+    return p, field
+
+
+def _toml(data: Any, prefix: str = "") -> str:
+    """A minimal TOML writer for the specs here (tables, arrays, strings, numbers)."""
+    lines: list[str] = []
+    tables: list[tuple[str, dict[str, Any]]] = []
+    for k, v in data.items():
+        if isinstance(v, dict):
+            tables.append((k, v))
+        else:
+            lines.append(f"{k} = {_value(v)}")
+    out = "\n".join(lines) + "\n"
+    for k, v in tables:
+        name = f"{prefix}{k}"
+        out += f"[{name}]\n" + _toml(v, f"{name}.")
+    return out
+
+
+def _value(v: Any) -> str:
+    if isinstance(v, dict):
+        return "{ " + ", ".join(f"{k} = {_value(x)}" for k, x in v.items()) + " }"
+    if isinstance(v, list | tuple):
+        return "[" + ", ".join(_value(x) for x in v) + "]"
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, str):
+        return json.dumps(v)
+    return repr(v)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", sorted(MAX_COUNTS))
+def test_many_holes_vertices_bounds_and_candidates_are_one_error_line(
+    kind: str, tmp_path: Path
+) -> None:
+    """100 holes, a 10 000-vertex outline, 10 000 stiffness bounds, 10 000 thickness candidates
+    (on main 33 s to over 90 s each, or a memory error): exit 2, one line naming the list and
+    the cap, under the 1.5 GB address-space limit."""
+    spec, field = _over_cap_spec(kind, tmp_path)
+    line = _one_error_line(_design_child(spec), field)
+    assert f"at most {MAX_COUNTS[kind]} " in line
+
+
+#: The shipped wheel with a 68.9 mm axle hole: a 0.55 mm ligament to the 70 mm disc.
+WHEEL = ROOT / "src" / "corrugate" / "data" / "examples" / "wheel_circle.toml"
+
+
+@pytest.mark.slow
+def test_the_thin_ligament_wheel_is_answered_within_its_budget(tmp_path: Path) -> None:
+    """On main it ran for over 90 s. With --budget 3 (CPU s) it ends inside TIMEOUT_S with an
+    answer: infeasible (exit 1; the 0.55 mm ligament leaves too little disc) or not certified
+    within the budget (exit 4, its one line), under the memory limit, no warning."""
+    text = WHEEL.read_text().replace('diameter = "6 mm"', 'diameter = "68.9 mm"')
+    assert "68.9 mm" in text
+    spec = _spec_file(tmp_path, "", text)
+    r = _design_child(spec, "--budget", "3")
+    assert r.returncode in (1, 4), (r.returncode, r.stderr[-500:])
+    assert "Warning" not in r.stderr and "Traceback" not in r.stderr
+    if r.returncode == 4:
+        assert (
+            r.stderr.strip()
+            .splitlines()[-1]
+            .startswith("corrugate: not certified within the budget of 3 s")
+        )
+
+
+@pytest.mark.slow
+def test_a_spec_over_a_tiny_budget_ends_with_exit_4_and_its_line() -> None:
+    """The case study needs more than 0.01 s of CPU time: design stops at the budget, prints one
+    line (the best design found so far or none, the proven gap) and exits 4; --json says
+    not-certified and what was spent; pareto does the same with its own line."""
+    r = _design_child(SPEC, "--budget", "0.01")
+    assert r.returncode == 4, (r.returncode, r.stderr[-500:])
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1, r.stderr
+    assert lines[0].startswith("corrugate: not certified within the budget of 0.01 s (used ")
+    assert "run again with a larger --budget" in lines[0]
+    r = run_child(["design", str(SPEC), "--json", "--budget", "0.01"])
+    assert r.returncode == 4
+    data = json.loads(r.stdout)
+    assert data["status"] == "not-certified" and data["certified"] is False
+    budget = data["solver"]["budget"]
+    assert budget["exhausted"] is True and budget["stopped_by"] == "seconds"
+    assert budget["used_cpu_seconds"] >= 0.01 and budget["cpu_seconds"] == 0.01
+    r = run_child(["pareto", str(SPEC), "-q", "--budget", "0.01"])
+    assert r.returncode == 4, (r.returncode, r.stderr[-500:])
+    assert (
+        r.stderr.strip()
+        .splitlines()[-1]
+        .startswith("corrugate: not certified within the budget of 0.01 s")
+    )

@@ -1,13 +1,15 @@
 """``corrugate design``, ``pareto`` and ``tolerance``: certified designs from a spec, explained.
 
-Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). Exit codes: 0 success, 1 the spec is infeasible (the
-diagnosis says why) or could not be certified, 2 a user error (one line naming the spec field,
-e.g. ``constraints.side.min``).
+Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). Exit codes: 0 success, 1 the spec is
+infeasible (the diagnosis says why) or a robust target is missed, 2 a user error (one line naming
+the spec field, e.g. ``constraints.side.min``), 4 not certified within the work budget
+(``--budget``; one line on stderr: the best design found so far and the proven gap).
 """
 
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import TYPE_CHECKING, Annotated
 
@@ -35,7 +37,13 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
     cert = "certified" if sol.certified else "NOT certified"
     if tightened:
         cert += " for the tightened bounds below"
-    if sol.status != "optimal":
+    if sol.assembly is None and sol.status == "not-certified":
+        console.print(
+            f"[bold red]{p.name}: not certified[/bold red]: the search stopped before finding a "
+            "design or proving that none exists."
+        )
+        return
+    if sol.assembly is None:
         console.print(
             f"[bold red]{p.name}: {sol.status}[/bold red] ({cert}): no design meets "
             "every constraint."
@@ -49,8 +57,11 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
     assert sol.assembly is not None
     assert sol.analysis is not None
     gap = "exact (every variable on its grid)" if p.gridded else f"gap <= {sol.gap:.1e}"
+    if not sol.certified and not tightened:
+        gap = f"proven gap {_gap_text(sol.gap)}"
+    head = "optimal" if sol.certified else "best design found so far"
     console.print(
-        f"[bold]{p.name}[/bold]: optimal, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
+        f"[bold]{p.name}[/bold]: {head}, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
     )
     console.print(sol.certificate, markup=False)
     t = Table(title="design", title_justify="left")
@@ -124,12 +135,47 @@ def relax_hint(sol: Solution) -> str | None:
     return None if sol.hint is None else f"hint: {sol.hint}"
 
 
+def _gap_text(gap: float) -> str:
+    """A relative gap as a percentage, or ``none`` when nothing bounds it."""
+    return f"{100 * gap:.3g} %" if math.isfinite(gap) else "none (no bound proven)"
+
+
+def not_certified_line(sol: Solution) -> str:
+    """The one stderr line of exit code 4: what stopped the search (the budget, and what was
+    used of it), the best design found so far and the proven gap."""
+    budget = sol.stats.get("budget")
+    if isinstance(budget, dict) and budget.get("stopped_by") is not None:
+        limit = (
+            f"{budget['boxes']} boxes"
+            if budget["stopped_by"] == "boxes"
+            else f"{float(budget['cpu_seconds']):g} s"
+        )
+        used = (
+            f" (used {float(budget['used_cpu_seconds']):.3g} s of CPU time, "
+            f"{budget['used_boxes']} boxes)"
+        )
+        head = f"not certified within the budget of {limit}{used}"
+    else:
+        head = "not certified: the search stopped at its iteration or box limit"
+    if sol.analysis is None:
+        return (
+            f"corrugate: {head}: no design found so far and none proven impossible; "
+            "run again with a larger --budget"
+        )
+    from corrugate.analysis.display import layers_text
+
+    p = sol.problem
+    return (
+        f"corrugate: {head}: best design found so far {layers_text(sol.analysis)}, "
+        f"{p.objective.quantity.key} {sol.objective:.6g}; proven gap {_gap_text(sol.gap)}; "
+        "run again with a larger --budget"
+    )
+
+
 def _print_failure(sol: Solution, robust: object, console: Console) -> None:
-    """With --quiet: why the exit code is 1 (infeasible, not certified, robust target missed)."""
-    if sol.status != "optimal":
+    """With --quiet: why the exit code is 1 (infeasible, robust target missed)."""
+    if sol.status == "infeasible":
         _print_solution(sol, console)
-    elif not sol.certified:
-        console.print(f"{sol.problem.name}: the optimum could not be certified")
     elif robust is not None:
         console.print(f"{sol.problem.name}: the robust target is not met")
 
@@ -161,6 +207,7 @@ def design_cmd(
     cut: o.Cut = None,
     gap: o.Gap = None,
     paper: o.Paper = DEFAULT_PAPER,
+    budget: o.SolverBudget = None,
     quiet: o.Quiet = False,
 ) -> None:
     """The certified lightest OADLC design that meets a spec, with its explanation.
@@ -175,6 +222,7 @@ def design_cmd(
     from corrugate.spec.schema import load_spec_text
     from corrugate.workflow import made_for, output_options, solve_spec, write_design
 
+    seconds = None if budget is None else check("budget", budget, "--budget")
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     if out is not None:  # the root, a system folder, home, the working folder: before solving
@@ -205,12 +253,13 @@ def design_cmd(
         else None
     )
     problem = Problem.from_spec(parsed)
-    run = solve_spec(parsed, problem)
+    run = solve_spec(parsed, problem, budget=seconds)
     sol, robust = run.solution, run.robust
     written: list[Path] = []
     if out is not None and options is not None:
         written = write_design(run, out, options, spec_text)
-    failed = sol.status != "optimal" or not sol.certified or (robust is not None and not robust.met)
+    stopped = sol.status == "not-certified"
+    failed = sol.status == "infeasible" or (robust is not None and not robust.met)
     if as_json:
         typer.echo(json.dumps(run.payload, indent=2))
     elif quiet:
@@ -229,6 +278,9 @@ def design_cmd(
             )
         for path in written:
             console.print(f"wrote {path}")
+    if stopped:  # exit 4 (before 1: a robust target cannot be judged on an unfinished search)
+        typer.echo(not_certified_line(sol), err=True)
+        raise typer.Exit(4)
     if failed:
         raise typer.Exit(1)
 
@@ -287,6 +339,7 @@ def pareto_cmd(
         Path | None,
         typer.Option("--out", metavar="DIR", help="Directory for pareto.csv and pareto.png."),
     ] = None,
+    budget: o.SolverBudget = None,
     quiet: o.Quiet = False,
 ) -> None:
     """The exact mass-versus-stiffness Pareto front of a spec (each point a certified optimum).
@@ -310,6 +363,7 @@ def pareto_cmd(
         )
     check_count("points", points, "--points")
     check_count("points", max_points, "--max-points")
+    seconds = None if budget is None else check("budget", budget, "--budget")
     eta_deg = parse_quantity(eta, "deg", "--eta")
     reason = abnormal_reason(eta_deg)
     if reason is not None:
@@ -331,7 +385,13 @@ def pareto_cmd(
             bar.update(task, completed=done, total=total)
 
         front = pareto_front(
-            problem, vs, eta_deg, points=points, max_points=max_points, progress=tick
+            problem,
+            vs,
+            eta_deg,
+            points=points,
+            max_points=max_points,
+            progress=tick,
+            budget=seconds,
         )
     require_finite(
         [[p.level, p.stiffness, p.mass, *p.layers] for p in front.points], "Pareto front"
@@ -357,8 +417,17 @@ def pareto_cmd(
     note = " (truncated at --max-points)" if front.truncated else ""
     summary = f"{len(front.points)} points, {kind}{note}, every point certified: {front.certified}"
     failed = not front.points or not front.certified
-    if not quiet or failed:  # with --quiet, only why the exit code is 1 (on stderr)
+    if not quiet or failed:  # with --quiet, only why the exit code is 1 or 4 (on stderr)
         console.print(summary)
+    if front.stopped is not None and front.budget is not None:
+        b = front.budget
+        limit = f"{b['boxes']} boxes" if front.stopped == "boxes" else f"{b['cpu_seconds']} s"
+        typer.echo(
+            f"corrugate: not certified within the budget of {limit}: the front ends at the "
+            f"{len(front.points)} point(s) found so far; run again with a larger --budget",
+            err=True,
+        )
+        raise typer.Exit(4)
     if failed:
         raise typer.Exit(1)
 

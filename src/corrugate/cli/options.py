@@ -59,6 +59,7 @@ __all__ = [
     "OptionalW",
     "Paper",
     "Quiet",
+    "SolverBudget",
     "Spacing",
     "SpanOpt",
     "SupportOpt",
@@ -200,6 +201,18 @@ Quiet = Annotated[
         "-q",
         help="Print nothing but errors (on stderr); files are still written, --json still "
         "printed, exit codes unchanged.",
+    ),
+]
+
+#: ``--budget`` of ``design`` and ``pareto``: CPU seconds for the whole solve (None: the default).
+SolverBudget = Annotated[
+    float | None,
+    Opt(
+        "--budget",
+        metavar="SECONDS",
+        help="Work budget: CPU seconds for the whole solve, explanation included (default 60; "
+        "0.01 to 86400). When it runs out: the best design found so far, not certified, and "
+        "exit code 4.",
     ),
 ]
 

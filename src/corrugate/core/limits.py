@@ -25,6 +25,8 @@ from corrugate.core.errors import InputError, ResultError
 
 __all__ = [
     "LIMITS",
+    "MAX_BUDGET_BOXES",
+    "MAX_COUNTS",
     "MAX_DASHES",
     "MAX_DEPTH",
     "MAX_GRID_POINTS",
@@ -38,6 +40,7 @@ __all__ = [
     "check_count",
     "check_depth",
     "check_grid",
+    "check_items",
     "check_text",
     "first_non_finite",
     "is_normal",
@@ -96,6 +99,14 @@ LIMITS: dict[str, Limit] = {
         Limit("cell_mesh_through", 1, 64, "", "unit-cell elements through t or along y"),
         Limit("jobs", 1, 64, "", "parallel solver processes"),
         Limit("timeout", 1.0, 86_400.0, "s", "time allowed for one solver run: 1 s to a day"),
+        Limit(
+            "budget",
+            0.01,
+            86_400.0,
+            "s",
+            "CPU seconds one design or Pareto front may take (search and explanation): "
+            "10 ms to a day",
+        ),
         Limit("samples", 2, 1_000_000, "", "Monte Carlo samples"),
         Limit("points", 2, 10_000, "", "points on a Pareto front"),
         Limit("W_tol", 0.0, 1_000.0, "mm", "one-sigma error of W: up to 1 m"),
@@ -133,6 +144,25 @@ def abnormal_reason(x: float) -> str | None:
         return f"is subnormal (closer to zero than {sys.float_info.min:.3g})"
     return None
 
+
+#: Most boxes one design or Pareto front may bound (the work budget's box count,
+#: :mod:`corrugate.solver.budget`).
+MAX_BUDGET_BOXES = 10**12
+
+#: Most items of the lists of a spec that set how much work a solve is, by what they count
+#: (checked where the spec is parsed: command line, TOML and web alike; each refusal one
+#: :class:`InputError` line). Costs at the cap, one design on a 2-core machine
+#: (``corrugate design``, CPU time and peak memory; the benchmark specs of issue 22):
+#: 16 two-mm holes in a 70-90 mm square 1.9 s, 150 MB; a 256-vertex outline 8.5 s, 340 MB;
+#: 32 stiffness bounds 1.1 s, 110 MB (32 off-axis ones under ``maximize`` 9.7 s); 32 thickness
+#: candidates 2.3 s, 80 MB. Beyond, the work grows with the count (the pairs of sheets, every
+#: bound in every box, every vertex in every point) and the work budget stops it.
+MAX_COUNTS: dict[str, int] = {
+    "holes": 16,  # layout.holes
+    "vertices": 256,  # layout.vertices, and each polygon hole's vertices
+    "bounds": 32,  # behavioural bounds: stiffness, buckling, deflection and strength, together
+    "thicknesses": 32,  # candidate sheets: thicknesses over every material
+}
 
 #: Most points a gridded design variable may have ((max - min) / step + 1).
 MAX_GRID_POINTS = 100_000
@@ -174,6 +204,16 @@ def check_count(key: str, value: int, field: str | None = None) -> int:
         shown = str(value) if abs(int(value)) < 10**30 else f"{float(value):g}"
         raise InputError(field or key, shown, lim.allowed)
     return int(value)
+
+
+def check_items(kind: str, field: str, count: int, what: str) -> None:
+    """At most ``MAX_COUNTS[kind]`` items (``what``, e.g. ``holes``) in ``field``, else one
+    :class:`InputError` line naming the field, the count and the cap."""
+    cap = MAX_COUNTS[kind]
+    if count > cap:
+        raise InputError(
+            field, f"{count} {what}", f"at most {cap} {what}", reason="has too many items"
+        )
 
 
 def check_grid(field: str, lo: float, hi: float, step: float | None, unit: str) -> None:

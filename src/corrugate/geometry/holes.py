@@ -295,6 +295,11 @@ def _shown(h: Hole) -> str:
 
 # -- facet sums --------------------------------------------------------------------------------
 
+#: Most point-facet values :func:`touched_sums` holds at once (8 MB a temporary, a dozen of them):
+#: its points are taken in slices of TOUCHED_SLICE / (facets a hole touches) (the thin-ligament
+#: wheel's 225 885 points by 61 facets took 1.3 GB at once).
+TOUCHED_SLICE = 1 << 20
+
 
 def touched_sums(
     holes: Sequence[Hole],
@@ -333,6 +338,23 @@ def touched_sums(
         j_lo = np.minimum(j_lo, np.clip(a, 0, n_b))
         j_hi = np.maximum(j_hi, np.clip(b, 0, n_b))
     K = int(np.max(j_hi - j_lo + 1))
+    rows = max(1, TOUCHED_SLICE // max(K, 1))
+    if n_b.size > rows:  # points by facets touched, a dozen temporaries: in slices
+        parts = [
+            touched_sums(
+                holes,
+                axis,
+                n_b[k : k + rows],
+                p_b[k : k + rows],
+                S_b[k : k + rows],
+                cumulative_area,
+            )
+            for k in range(0, n_b.size, rows)
+        ]
+        return (
+            np.concatenate([t for t, _ in parts]).reshape(shape),
+            np.concatenate([e for _, e in parts]).reshape(shape),
+        )
     j = j_lo[:, None] + np.arange(max(K, 1))[None, :]
     valid = j <= j_hi[:, None]
     j = np.minimum(j, n_b[:, None])

@@ -36,6 +36,7 @@ fraction of the unit box's outline area in strip j; the springs need only the su
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Literal, Protocol
@@ -320,7 +321,12 @@ class Polygon:
 
     def cumulative_area(self, u: FloatArray, axis: Axis) -> FloatArray:
         """Exact area left of u: -sum over edges of the integral of y dx over their part with x < u
-        (counter-clockwise orientation); axis ``y`` swaps the coordinates (which flips orientation)."""
+        (counter-clockwise orientation); axis ``y`` swaps the coordinates (which flips orientation).
+        Evaluated in slices of u (:func:`_in_slices`): memory does not grow with u times edges."""
+        uu = np.asarray(u, dtype=np.float64)
+        return _in_slices(lambda part: self._cumulative_area(part, axis), len(self._unit), uu)
+
+    def _cumulative_area(self, u: FloatArray, axis: Axis) -> FloatArray:
         v = self._unit if axis == "x" else self._unit[:, ::-1]
         sign_orient = 1.0 if axis == "x" else -1.0
         x0, y0 = v[:, 0], v[:, 1]
@@ -338,6 +344,22 @@ class Polygon:
         return np.asarray(-sign_orient * integral.sum(axis=-1))
 
     def span(self, Lx: FloatArray, Ly: FloatArray, eta_deg: FloatArray) -> FloatArray:
+        """Width (mm) of the outline, scaled to Lx by Ly, across direction eta (deg), in slices
+        of the points (:func:`_in_slices`)."""
+        x, y, e = np.broadcast_arrays(
+            np.asarray(Lx, dtype=np.float64),
+            np.asarray(Ly, dtype=np.float64),
+            np.asarray(eta_deg, dtype=np.float64),
+        )
+        xye = np.stack([x, y, e], axis=-1)
+        return _in_slices(
+            lambda part: self._span(part[..., 0], part[..., 1], part[..., 2]),
+            len(self._unit),
+            xye,
+            trailing=1,
+        )
+
+    def _span(self, Lx: FloatArray, Ly: FloatArray, eta_deg: FloatArray) -> FloatArray:
         e = np.radians(np.asarray(eta_deg, dtype=np.float64))[..., None]
         px = self._unit[:, 0] * np.asarray(Lx, dtype=np.float64)[..., None]
         py = self._unit[:, 1] * np.asarray(Ly, dtype=np.float64)[..., None]
@@ -355,6 +377,26 @@ class Polygon:
         x, y = np.asarray(Lx, dtype=np.float64), np.asarray(Ly, dtype=np.float64)
         d = np.roll(self._unit, -1, axis=0) - self._unit
         return [(np.asarray(np.hypot(dx * x, dy * y)), True) for dx, dy in d]
+
+
+#: Most elements of a points-by-vertices temporary of a polygon outline (8 MB of float64 each).
+SLICE_ELEMENTS = 1 << 20
+
+
+def _in_slices(
+    fn: Callable[[FloatArray], FloatArray], vertices: int, a: FloatArray, trailing: int = 0
+) -> FloatArray:
+    """``fn(a)`` for a function of points (the leading axes of ``a``; ``trailing`` axes belong
+    to each point) whose temporaries hold ``vertices`` values a point, evaluated over slices of at
+    most :data:`SLICE_ELEMENTS` / ``vertices`` points: the same values, bounded memory."""
+    shape = a.shape[: a.ndim - trailing]
+    count = int(np.prod(shape, dtype=np.int64))
+    rows = max(1, SLICE_ELEMENTS // max(vertices, 1))
+    if count <= rows:
+        return np.asarray(fn(a))
+    flat = a.reshape(count, *a.shape[a.ndim - trailing :])
+    out = np.concatenate([np.asarray(fn(flat[k : k + rows])) for k in range(0, count, rows)])
+    return out.reshape(shape)
 
 
 def _with_holes(out: dict[str, object], holes: tuple[Hole, ...]) -> dict[str, object]:

@@ -5,12 +5,14 @@ Pipeline (docs/architecture.md): :func:`corrugate.spec.schema.load_spec` -> :met
 """
 
 from corrugate.solver.bnb import BnBResult, branch_and_bound
+from corrugate.solver.budget import Budget, budget_scope
 from corrugate.solver.problem import Candidate, Constraint, DesignVariable, Objective, Problem
 from corrugate.solver.quantity import Quantity
 from corrugate.solver.solve import ConstraintReport, Diagnosis, RunnerUp, Solution, optimize, solve
 
 __all__ = [
     "BnBResult",
+    "Budget",
     "Candidate",
     "Constraint",
     "ConstraintReport",
@@ -22,6 +24,7 @@ __all__ = [
     "RunnerUp",
     "Solution",
     "branch_and_bound",
+    "budget_scope",
     "optimize",
     "solve",
 ]

@@ -25,8 +25,9 @@ of at most :data:`ENUMERATE` points, every one of them evaluated exactly, or (c)
 the loop stops. The loop stops when no box is
 open (gridded problems: the optimum is exact, gap 0) or when every open box's bound is within the
 relative tolerance ``gap_rtol`` of the incumbent (continuous problems: no design is better than
-the incumbent by more than ``gap_rtol``, proved). If the iteration limit is hit first, the result
-is not certified and reports the remaining gap. Interval bounds are rounded outward. On a grid,
+the incumbent by more than ``gap_rtol``, proved). If the iteration limit is hit first, or the work
+budget of the enclosing :func:`~.budget.budget_scope` is spent (checked before each iteration), the
+result is not certified and reports the remaining gap. Interval bounds are rounded outward. On a grid,
 points and boxes are judged with the relative slack :data:`~.problem.FEAS_RTOL` (a grid value may
 sit exactly on a bound, up to floating-point noise); with continuous variables, with no slack, so
 the design meets every bound exactly (margin >= 0). Points and boxes always use the same rule.
@@ -42,6 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from corrugate.solver.budget import current_budget
 from corrugate.solver.problem import FEAS_RTOL, Candidate, DesignVariable, Problem
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 
@@ -238,7 +240,10 @@ def branch_and_bound(
     width = (q_hi - q_lo) / np.maximum(q_lo + offset, 1e-300)
     if np.any(width > 0):  # bounding the root alone prunes nothing: cut it first
         q_lo, q_hi, q_bound = _split(q_lo, q_hi, width, dims, True, q_bound)
+    budget = current_budget()
     while len(q_lo) and it < MAX_ITERATIONS and boxes < MAX_BOXES and len(q_lo) < MAX_OPEN:
+        if budget is not None and budget.exhausted:
+            break
         it += 1
         waiting = q_bound < _threshold(best_val, tol)
         q_lo, q_hi, q_bound = q_lo[waiting], q_hi[waiting], q_bound[waiting]
@@ -253,6 +258,8 @@ def branch_and_bound(
             lo, hi = q_lo, q_hi
             q_lo, q_hi, q_bound = q_lo[:0], q_hi[:0], q_bound[:0]
         boxes += len(lo)
+        if budget is not None:
+            budget.charge(len(lo))
         # on grids, a box of at most ENUMERATE grid points has every point evaluated and closes
         if exact:
             counts = np.round((hi - lo) / steps) + 1

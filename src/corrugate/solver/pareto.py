@@ -24,6 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from corrugate.solver.budget import Budget, budget_scope, current_budget
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import MASS, Quantity
@@ -56,10 +57,14 @@ class ParetoFront:
     points: tuple[ParetoPoint, ...]
     exact: bool
     truncated: bool
+    #: What ran out when the work budget stopped the front (``"seconds"`` or ``"boxes"``: the
+    #: front then ends early, not certified), None when it did not.
+    stopped: str | None = None
+    budget: dict[str, object] | None = None
 
     @property
     def certified(self) -> bool:
-        return all(p.certified for p in self.points)
+        return self.stopped is None and all(p.certified for p in self.points)
 
     def csv(self) -> str:
         """CSV text: one row per point, units in the header."""
@@ -113,13 +118,31 @@ def pareto_front(
     points: int = 25,
     max_points: int = 500,
     progress: Callable[[int, int | None], None] | None = None,
+    budget: Budget | float | None = None,
 ) -> ParetoFront:
     """Trace the mass-versus-``kind`` front (see the module docstring); ``kind`` is
     ``flexural_rigidity``, ``bending_stiffness`` or ``inplane_stiffness`` (or EI, D, K).
 
     ``progress(done, total)`` is called after each certified solve (``total`` is None on a gridded
-    front, whose length is not known in advance)."""
+    front, whose length is not known in advance). ``budget``: the work budget of the whole front
+    (:class:`~.budget.Budget` or CPU seconds; None: the default 60 s): when it runs out the front
+    ends at the points found so far, ``stopped`` says so and ``certified`` is False."""
+    with budget_scope(budget) as spent:
+        front = _front(problem, kind, eta_deg, points, max_points, progress)
+    stopped = spent.stopped
+    return replace(front, stopped=stopped, budget=spent.as_dict())
+
+
+def _front(
+    problem: Problem,
+    kind: str,
+    eta_deg: float,
+    points: int,
+    max_points: int,
+    progress: Callable[[int, int | None], None] | None,
+) -> ParetoFront:
     key = Quantity.stiffness(kind, eta_deg)
+    spent = current_budget()
     name = f"pareto.{kind}"
     tables = Tables(problem)
     unit = Constraint(name, key, "min", 0.0).unit
@@ -136,6 +159,8 @@ def pareto_front(
             out.append(pt)
             if progress is not None:
                 progress(len(out), None)
+            if spent is not None and spent.exhausted:
+                break
             if len(out) >= max_points:
                 truncated = True
                 break
@@ -143,7 +168,7 @@ def pareto_front(
         # a lightest design may tie in mass with a stiffer one, which dominates it
         kept = [
             p
-            for p, q in zip(out, [*out[1:], None], strict=True)
+            for p, q in zip(out, [*out[1:], None][: len(out)], strict=True)
             if q is None or q.mass > p.mass * (1 + 1e-12)
         ]
         return ParetoFront(key, unit, tuple(kept), exact=True, truncated=truncated)
@@ -161,6 +186,8 @@ def pareto_front(
     s1 = stiffest.value if stiffest.point is not None else s0
     n = max(points, 2)
     for k in range(n):
+        if spent is not None and spent.exhausted:
+            break
         level = s0 + (s1 - s0) * k / (n - 1)
         if k == n - 1:
             level = s1 * (1 - 1e-9)  # the maximum itself, inside the solver's gap

@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.core.errors import InputError
+from corrugate.core.limits import check_items
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.materials.library import Material, get_material, inline_material
@@ -193,6 +194,7 @@ class Problem:
         for i, m in enumerate(mats):
             where = "material" if spec.material is not None else f"materials[{i}]"
             cands.extend(_candidates(where, m))
+            check_items("thicknesses", "materials", len(cands), "candidate sheets")
             try:
                 get_model(spec.model).check_nu(cands[-1].material.nu)
             except InputError as exc:

@@ -29,6 +29,7 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
+from corrugate.solver.budget import Budget, budget_scope, current_budget
 from corrugate.solver.problem import Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
@@ -168,7 +169,7 @@ class Solution:
     """The answer to a design problem (see the module docstring)."""
 
     problem: Problem
-    status: str  # "optimal" | "infeasible" | "unknown"
+    status: str  # "optimal" | "infeasible" | "not-certified" (see :func:`solve`)
     certified: bool
     gap: float
     objective: float
@@ -178,7 +179,7 @@ class Solution:
     runner_ups: tuple[RunnerUp, ...] = ()
     warnings: tuple[dict[str, str], ...] = ()
     diagnosis: tuple[Diagnosis, ...] = ()
-    stats: dict[str, float] = field(default_factory=dict)
+    stats: dict[str, object] = field(default_factory=dict)
 
     def __repr__(self) -> str:
         """Five lines at most (:func:`corrugate.solver.display.solution_repr`)."""
@@ -315,8 +316,12 @@ def optimize(
     n_fixed: tuple[int, int] | None = None,
     tables: Tables | None = None,
     incumbent: float | None = None,
+    gap_rtol: float = GAP_RTOL,
 ) -> Optimum:
-    """The certified optimum of ``problem`` over every candidate sheet pair."""
+    """The certified optimum of ``problem`` over every candidate sheet pair (continuous
+    variables: to the relative gap ``gap_rtol``). Inside a
+    :func:`~.budget.budget_scope` whose budget is spent, the sheet pairs not yet searched are
+    skipped: the optimum is then not certified and its gap infinite."""
     tables = tables or Tables(problem)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best: BnBResult | None = None
@@ -325,8 +330,15 @@ def optimize(
     bound = math.inf
     boxes = iterations = 0
     inc = incumbent
+    budget = current_budget()
     for pair in _pairs(problem):
-        r = branch_and_bound(problem, *pair, incumbent=inc, n_fixed=n_fixed, tables=tables)
+        if budget is not None and budget.exhausted:  # the pairs left: nothing proven
+            certified = False
+            bound = -math.inf
+            break
+        r = branch_and_bound(
+            problem, *pair, incumbent=inc, n_fixed=n_fixed, tables=tables, gap_rtol=gap_rtol
+        )
         boxes += r.boxes
         iterations += r.iterations
         certified &= r.certified
@@ -360,24 +372,52 @@ def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
     return Assembly(l1, l2, problem.layout)
 
 
-def solve(problem: Problem, *, explain: bool = True) -> Solution:
-    """Certified optimum of ``problem`` and (if ``explain``) its explanation."""
+def stop_reason(budget: Budget | None) -> str:
+    """Why an uncertified search stopped: its budget (what ran out, :class:`~.budget.Budget`),
+    else the branch and bound's own iteration and box limits."""
+    if budget is not None and budget.stopped is not None:
+        return f"the budget of {budget.label}"
+    return "the search's iteration or box limit"
+
+
+def solve(
+    problem: Problem, *, explain: bool = True, budget: Budget | float | None = None
+) -> Solution:
+    """Certified optimum of ``problem`` and (if ``explain``) its explanation, within a work
+    ``budget`` (:class:`~.budget.Budget`, or CPU seconds; None: the enclosing
+    :func:`~.budget.budget_scope`'s, else the default 60 s) that covers the explanation too.
+
+    ``status``: ``optimal`` (certified), ``infeasible`` (certified: no design exists) or
+    ``not-certified`` (the search stopped at the budget or its own limits first: ``assembly`` is
+    the best design found so far, or None, and ``gap`` the proven relative gap, inf when nothing
+    bounds it). The budget used is in ``stats["budget"]``."""
+    with budget_scope(budget) as spent:
+        sol = _solve(problem, explain, spent)
+    return replace(sol, stats={**sol.stats, "budget": spent.as_dict()})
+
+
+def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     t0 = time.perf_counter()
     tables = Tables(problem)
     opt = optimize(problem, tables=tables)
     t_opt = time.perf_counter() - t0
-    stats = {"boxes": float(opt.boxes), "iterations": float(opt.iterations), "solve_seconds": t_opt}
+    stats: dict[str, object] = {
+        "boxes": float(opt.boxes),
+        "iterations": float(opt.iterations),
+        "solve_seconds": t_opt,
+    }
     if opt.point is None:
-        status = "infeasible" if opt.certified else "unknown"
-        diag = tuple(_diagnose(problem, tables)) if explain else ()
+        status = "infeasible" if opt.certified else "not-certified"
+        # not certified: no design found, none proven impossible: nothing to diagnose
+        diag = tuple(_diagnose(problem, tables)) if explain and opt.certified else ()
         warnings = (
             []
             if opt.certified
             else [
                 {
                     "code": "not-certified",
-                    "message": "the search stopped at its iteration limit before proving "
-                    "infeasibility",
+                    "message": f"the search stopped at {stop_reason(budget)} before finding a "
+                    "design or proving that none exists",
                 }
             ]
         )
@@ -403,8 +443,12 @@ def solve(problem: Problem, *, explain: bool = True) -> Solution:
             {
                 "code": "not-certified",
                 "message": (
-                    f"the search stopped at its iteration limit; the design may be up to "
-                    f"{100 * opt.gap:.3g} % from the optimum"
+                    f"the search stopped at {stop_reason(budget)}: the best design found so far; "
+                    + (
+                        f"it may be up to {100 * opt.gap:.3g} % from the optimum"
+                        if math.isfinite(opt.gap)
+                        else "no bound on how far it is from the optimum was proven"
+                    )
                 ),
             }
         )
@@ -426,10 +470,21 @@ def solve(problem: Problem, *, explain: bool = True) -> Solution:
     if explain:
         reports = tuple(_constraint_reports(problem, opt, tables))
         runner_ups = tuple(_runner_ups(problem, opt, tables))
+        if opt.certified and budget.stopped is not None:
+            warnings.append(
+                {
+                    "code": "explanation-partial",
+                    "message": (
+                        f"the design is certified, but {stop_reason(budget)} ran out while it "
+                        "was explained: whether a constraint binds is left unknown where it was "
+                        "not proven, and runner-ups not certified are shown as such"
+                    ),
+                }
+            )
     stats["total_seconds"] = time.perf_counter() - t0
     return Solution(
         problem,
-        "optimal",
+        "optimal" if opt.certified else "not-certified",
         opt.certified,
         opt.gap,
         opt.value,
@@ -534,14 +589,17 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, flo
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
     vals = _values_at(problem, opt, tables)
     capacity = _capacities(problem, opt, tables)
+    budget = current_budget()
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
         margin = c.margin(v)
-        relaxed = optimize(problem.without(c.name), tables=tables, incumbent=opt.value)
         binding: bool | None = None
-        if relaxed.certified:
+        relaxed = None
+        if not (budget is not None and budget.exhausted):
+            relaxed = optimize(problem.without(c.name), tables=tables, incumbent=opt.value)
+        if relaxed is not None and relaxed.certified:
             tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
             binding = relaxed.point is not None and sign * relaxed.value < sign * opt.value - tol
         active = abs(margin) <= ACTIVE_RTOL * abs(c.bound)
@@ -576,10 +634,13 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     assert opt.point is not None
     n_star = round(opt.point["n1"])
     out = []
+    budget = current_budget()
     for n in range(
         max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
         min(problem.n_hi, n_star + RUNNER_UP_SPREAD) + 1,
     ):
+        if budget is not None and budget.exhausted:
+            break
         r = optimize(problem, n_fixed=(n, n), tables=tables)
         if r.point is None:
             continue

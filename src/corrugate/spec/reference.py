@@ -21,6 +21,7 @@ from typing import Any
 
 from pydantic import BaseModel
 
+from corrugate.core.limits import MAX_COUNTS
 from corrugate.core.parameters import PARAMETERS
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, either, supports
 from corrugate.spec.schema import PLAIN_UNITS, Spec
@@ -403,7 +404,28 @@ def reference_markdown() -> str:
         "",
         "Exit codes of `corrugate design`: 0 an answer, 1 no design meets the spec (infeasible), "
         "2 bad input (one line naming the key, the value and what is allowed), "
-        "130 interrupted (Ctrl-C).",
+        "4 not certified within the work budget, 130 interrupted (Ctrl-C).",
+        "",
+        "Work budget. `design` and `pareto` take `--budget SECONDS` (default 60; 0.01 to 86400): "
+        "CPU seconds of the process (user + system; on an idle machine about wall seconds) for "
+        "the whole solve, the explanation included (binding checks, runner-ups, the diagnosis of "
+        "an infeasible spec), and at most 10^8 boxes bounded. The branch and bound checks the "
+        "budget before each iteration; when it runs out the answer is not certified within the "
+        "budget: one stderr line `corrugate: not certified within the budget of 60 s (used ...): "
+        "best design found so far ..., proven gap ...` (or: no design found so far and none "
+        "proven impossible) and exit code 4; `design --json` prints its object as usual with "
+        '`"status": "not-certified"` and `solver.budget` (`cpu_seconds`, `boxes`, '
+        "`used_cpu_seconds`, `used_boxes`, `exhausted`, `stopped_by`). A design certified before "
+        "the budget ran out keeps exit code 0, with the warning `explanation-partial`. In "
+        "Python: `corrugate.design(spec, budget=10)`, `corrugate.workflow.solve_spec(spec, "
+        "budget=10)`, `corrugate.solver.solve(problem, budget=10)`.",
+        "",
+        f"Counts. A spec has at most {MAX_COUNTS['holes']} `layout.holes`, "
+        f"{MAX_COUNTS['vertices']} vertices in `layout.vertices` and in each polygon hole, "
+        f"{MAX_COUNTS['bounds']} behavioural bounds (`flexural_rigidity`, `bending_stiffness`, "
+        "`inplane_stiffness`, `buckling_load`, `deflection` and `strength` together) and "
+        f"{MAX_COUNTS['thicknesses']} candidate sheets (thicknesses over every material); "
+        "more is one error line naming the list, its count and the cap (exit code 2).",
         "",
     ]
     return "\n".join(lines)

@@ -52,6 +52,7 @@ from pydantic_core import CoreSchema, PydanticCustomError
 from corrugate.core.errors import InputError
 from corrugate.core.limits import (
     LIMITS,
+    MAX_COUNTS,
     MAX_DEPTH,
     MAX_NAME_CHARS,
     MAX_SPEC_BYTES,
@@ -59,6 +60,7 @@ from corrugate.core.limits import (
     abnormal_reason,
     check_depth,
     check_grid,
+    check_items,
     check_text,
 )
 from corrugate.core.units import parse_quantity
@@ -990,10 +992,59 @@ def _check_raw(data: Mapping[str, Any]) -> None:
             stack.extend((val, f"{path}[{i}]") for i, val in enumerate(obj))
 
 
+#: The lists of behavioural bounds, capped together at ``MAX_COUNTS["bounds"]``.
+_BOUND_KEYS = (
+    "flexural_rigidity",
+    "bending_stiffness",
+    "inplane_stiffness",
+    "buckling_load",
+    "deflection",
+    "strength",
+)
+
+
+def _check_counts(data: Mapping[str, Any]) -> None:
+    """The lists that set how much work a solve is, capped before any of their items is read
+    (:data:`~corrugate.core.limits.MAX_COUNTS`): holes, the vertices of the outline and of each
+    hole, the behavioural bounds together, the candidate thicknesses over every material."""
+    lay = data.get("layout")
+    if isinstance(lay, Mapping):
+        holes = lay.get("holes")
+        if isinstance(holes, list):
+            check_items("holes", "layout.holes", len(holes), "holes")
+            for i, h in enumerate(holes):
+                if isinstance(h, Mapping) and isinstance(h.get("vertices"), list):
+                    where = f"layout.holes[{i}].vertices"
+                    check_items("vertices", where, len(h["vertices"]), "vertices")
+        if isinstance(lay.get("vertices"), list):
+            check_items("vertices", "layout.vertices", len(lay["vertices"]), "vertices")
+    cons = data.get("constraints")
+    if isinstance(cons, Mapping):
+        counts = {k: len(cons[k]) for k in _BOUND_KEYS if isinstance(cons.get(k), list)}
+        for k, count in counts.items():
+            check_items("bounds", f"constraints.{k}", count, "bounds")
+        if sum(counts.values()) > MAX_COUNTS["bounds"]:
+            shown = ", ".join(f"{k} {c}" for k, c in counts.items() if c)
+            check_items("bounds", "constraints", sum(counts.values()), f"bounds ({shown})")
+    mats: list[tuple[str, Any]] = []
+    if isinstance(data.get("material"), Mapping):
+        mats.append(("material", data["material"]))
+    if isinstance(data.get("materials"), list):
+        mats += [(f"materials[{i}]", m) for i, m in enumerate(data["materials"])]
+    total = 0
+    for where, m in mats:
+        t = m.get("thickness") if isinstance(m, Mapping) else None
+        count = len(t) if isinstance(t, list) else 1
+        check_items("thicknesses", f"{where}.thickness", count, "thicknesses")
+        total += count
+    check_items("thicknesses", "materials", total, "candidate sheets (material and thickness)")
+
+
 def parse_spec(data: Mapping[str, Any]) -> Spec:
     """Validate a spec given as a dict (as read from TOML); raise :class:`SpecError`."""
     try:
         _check_raw(data)
+        _check_counts(data)
     except InputError as exc:
         raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
     try:
