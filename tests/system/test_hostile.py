@@ -579,6 +579,10 @@ def test_the_thin_ligament_wheel_is_answered_within_its_budget(tmp_path: Path) -
 
 
 @pytest.mark.slow
+def _no_constant(name: str) -> None:
+    raise AssertionError(f"{name} is not JSON")
+
+
 def test_a_spec_over_a_tiny_budget_ends_with_exit_4_and_its_line() -> None:
     """The case study needs more than 0.01 s of CPU time: design stops at the budget, prints one
     line (the best design found so far or none, the proven gap) and exits 4; --json says
@@ -591,8 +595,9 @@ def test_a_spec_over_a_tiny_budget_ends_with_exit_4_and_its_line() -> None:
     assert "run again with a larger --budget" in lines[0]
     r = run_child(["design", str(SPEC), "--json", "--budget", "0.01"])
     assert r.returncode == 4
-    data = json.loads(r.stdout)
+    data = json.loads(r.stdout, parse_constant=_no_constant)  # strict JSON: no Infinity
     assert data["status"] == "not-certified" and data["certified"] is False
+    assert data["design"] is None and data["gap"] is None  # no design: no finite gap
     budget = data["solver"]["budget"]
     assert budget["exhausted"] is True and budget["stopped_by"] == "seconds"
     assert budget["used_cpu_seconds"] >= 0.01 and budget["cpu_seconds"] == 0.01

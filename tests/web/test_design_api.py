@@ -340,12 +340,28 @@ def test_a_robust_spec_is_answered_as_the_cli_does(
 def test_a_slow_design_gets_504() -> None:
     """A design runs in a worker process; past the time limit the request gets 504, the server
     answers on and keeps no result of it."""
-    with TestClient(create_app(WebSettings(timeout_s=0.05, processes=1))) as c:
+    with TestClient(create_app(WebSettings(timeout_s=0.05, solver_budget_s=600, processes=1))) as c:
         r = c.post("/api/design", json=spec_of("blimp_gripper.toml"))
         assert r.status_code == 504 and "time limit of 0.05 s" in r.json()["detail"]
         alive(c)
         assert len(c.app.state.store) == 0
         assert not any(c.app.state.store.root.iterdir())  # its folder went at once
+
+
+@pytest.mark.slow
+def test_a_design_past_its_solver_budget_is_answered_not_certified() -> None:
+    """The solver's CPU budget of a design request is a share of the time limit (or
+    ``solver_budget_s``): past it the answer is 'not certified within the budget' with the
+    search's own words, as ``corrugate design --budget`` exits 4 with, not a 504."""
+    settings = WebSettings(timeout_s=60, solver_budget_s=0.01, processes=1)
+    assert WebSettings(timeout_s=30).design_budget_s == pytest.approx(0.6 * 30)
+    with TestClient(create_app(settings)) as c:
+        r = c.post("/api/design", json=spec_of("blimp_gripper.toml"))
+        assert r.status_code == 200, r.text
+        design = r.json()["design"]
+        assert design["status"] == "not-certified" and design["certified"] is False
+        assert design["solver"]["budget"]["exhausted"] is True
+        assert "budget of 0.01 s" in json.dumps(design["warnings"])
 
 
 @pytest.mark.slow

@@ -156,8 +156,9 @@ def serving(tmp_path: Path, timeout_s: float) -> Iterator[tuple[subprocess.Popen
     port = free_port()
     log = (tmp_path / f"serve-{port}.log").open("wb")
     command = [sys.executable, "-m", "corrugate", "serve", "--port", str(port)]
+    # a solver budget past the time limit: a long design meets the limit (504), not its budget
     server = subprocess.Popen(
-        [*command, "--timeout", f"{timeout_s:g}"],
+        [*command, "--timeout", f"{timeout_s:g}", "--budget", "600"],
         stdout=log,
         stderr=subprocess.STDOUT,
     )

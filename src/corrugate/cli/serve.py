@@ -32,12 +32,20 @@ def serve_cmd(
             help="Longest computation of one request (s): past it the request gets 504 and the worker process computing it is killed.",
         ),
     ] = 30.0,
+    budget: Annotated[
+        float | None,
+        typer.Option(
+            metavar="SECONDS",
+            help="CPU seconds the solver may spend on one design, explanation included (default: 60 % of --timeout): past it the design is answered 'not certified within the budget' with the best design found so far.",
+        ),
+    ] = None,
 ) -> None:
     """Serve the web app and its JSON API (open http://HOST:PORT/, API docs at /docs).
 
     Example: corrugate serve --port 8000
     """
     from corrugate.core.extras import require_extra
+    from corrugate.core.limits import check
 
     require_extra("web", "the web app")
     require_extra("fab", "the web app's files")
@@ -52,7 +60,13 @@ def serve_cmd(
             err=True,
         )
     # On a loopback address only this machine's names are answered (no DNS rebinding).
-    settings = WebSettings(timeout_s=timeout, allowed_hosts=LOOPBACK_NAMES if loopback else None)
+    if budget is not None:
+        check("budget", budget, "--budget")
+    settings = WebSettings(
+        timeout_s=timeout,
+        solver_budget_s=budget,
+        allowed_hosts=LOOPBACK_NAMES if loopback else None,
+    )
     shown = f"[{host}]" if ":" in host else host
     typer.echo(f"corrugate: serving on http://{shown}:{port}/ (API docs at /docs); Ctrl-C stops")
     app = create_app(settings)

@@ -268,7 +268,7 @@ class Solution:
             "status": self.status,
             "certified": self.certified,
             "certificate": self.certificate,
-            "gap": self.gap,
+            "gap": self.gap if math.isfinite(self.gap) else None,  # JSON: null, unbounded
             "model": p.model,
             "objective": {
                 "quantity": p.objective.quantity.key,

@@ -64,6 +64,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 from corrugate import __version__
 from corrugate.analysis.evaluate import Analysis
 from corrugate.core.errors import InputError
+from corrugate.core.limits import LIMITS
 from corrugate.core.units import ureg
 from corrugate.export.machines import get_machine
 from corrugate.export.plan import OutputOptions
@@ -103,6 +104,7 @@ from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, wr
 
 __all__ = [
     "LOOPBACK_NAMES",
+    "SOLVER_SHARE",
     "STATIC_DIR",
     "WebSettings",
     "analysis_payload",
@@ -138,13 +140,21 @@ _EXPECTED: dict[str, str] = {
 }
 
 
+#: The share of a design request's time limit given to the solver as its CPU budget (the rest is
+#: for writing the files and for a busy machine, where CPU seconds run slower than wall seconds).
+SOLVER_SHARE = 0.6
+
+
 @dataclass(frozen=True, slots=True)
 class WebSettings:
     """Limits of the web app.
 
     ``max_body_bytes``: longest request body (413 past it); ``body_timeout_s``: longest wait for
     a request's body after its head (408 past it); ``timeout_s``: longest computation (504 past
-    it; its worker process is killed); ``processes``: worker processes, which run every
+    it; its worker process is killed); ``solver_budget_s``: CPU seconds the solver of one design
+    may spend, explanation included (None: :data:`SOLVER_SHARE` of ``timeout_s``, so that a
+    design the solver cannot certify in time answers "not certified within the budget" with its
+    best design, rather than 504; :mod:`corrugate.solver.budget`); ``processes``: worker processes, which run every
     computation (None: one per core, at least 2); ``worker_memory_bytes``: the address space
     each may map beyond its imported modules (``RLIMIT_AS``; None: no cap); ``max_pending``: computations queued or running at once
     (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
@@ -158,6 +168,7 @@ class WebSettings:
     max_body_bytes: int = 64 * 1024
     body_timeout_s: float = 30.0
     timeout_s: float = 30.0
+    solver_budget_s: float | None = None
     processes: int | None = None
     worker_memory_bytes: int | None = WORKER_MEMORY_BYTES
     max_pending: int = 32
@@ -167,6 +178,14 @@ class WebSettings:
     result_ttl_s: float = 3600.0
     results_dir: Path | None = None
     allowed_hosts: tuple[str, ...] | None = None
+
+    @property
+    def design_budget_s(self) -> float:
+        """CPU seconds of the solver for one design request (``solver_budget_s``, else
+        :data:`SOLVER_SHARE` of the time limit)."""
+        if self.solver_budget_s is not None:
+            return self.solver_budget_s
+        return max(LIMITS["budget"].lo, SOLVER_SHARE * self.timeout_s)
 
 
 def _check_size(req: AnalysisRequest, settings: WebSettings) -> None:
@@ -417,7 +436,7 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
         problem = Problem.from_spec(spec)
         options = _output_options(body, made)
     _check_spec_size(spec, settings)
-    run = solve_spec(spec, problem)
+    run = solve_spec(spec, problem, budget=settings.design_budget_s)
     run = replace(run, payload=_json_safe(run.payload))
     if run.solution.analysis is None:
         return run.payload, []
