@@ -365,9 +365,9 @@ def cases() -> list[Case]:
     out.append(
         Case(
             "budget",
-            "design --budget 0.01 (exit 4)",
+            "case study, design --budget 0.01 (exit 4)",
             ("design", "SPEC", "--budget", "0.01"),
-            spec(),
+            (Path(__file__).parents[1] / "examples" / "blimp_gripper.toml").read_text(),
         )
     )
     # 5. output folders (after the fix only)
