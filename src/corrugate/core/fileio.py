@@ -154,8 +154,8 @@ def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") ->
     """``folder`` as an output folder, refused (:class:`~corrugate.core.errors.OutputError`
     naming ``field``) when it is empty, the root or a system folder (:data:`SYSTEM_FOLDERS`),
     inside a pseudo file system (:data:`SYSTEM_TREES`), the user's home folder itself, or the
-    working folder or one of its ancestors (a set replaces the folder it is written to: a run
-    must not take the folder it runs in, nor the user's files around it); returns the path with
+    working folder or one of its ancestors (a set's files would land among the user's own, and a
+    later set of the same kind removes the earlier one's files there); returns the path with
     symlinks resolved. Called before any computation, and again by :class:`FolderStaging`."""
     text = os.fspath(folder)
     if not str(text).strip():
@@ -550,11 +550,11 @@ class FolderStaging(Staging):
             journal = self._journal(files)
             try:
                 _forward(self.folder, journal)
-            except BaseException:
-                with contextlib.suppress(OSError):  # else the next run settles it
+                _finish(self.folder, journal)
+            except BaseException:  # an OS error, Ctrl-C: rolled back or completed here
+                with contextlib.suppress(OSError):  # else by the next run
                     _settle(self.folder, journal)
                 raise
-            _finish(self.folder, journal)
         self._names.clear()
         self._created = False
         super().commit()
