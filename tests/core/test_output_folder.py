@@ -232,20 +232,29 @@ def test_a_full_disk_leaves_the_old_set_no_staged_file_and_one_line(tmp_path: Pa
         assert sorted(p.name for p in disk.iterdir()) == ["out"]
 
 
+@pytest.mark.parametrize("failing", [1, 2, 3, 4])
 def test_a_simulated_full_disk_while_staging_leaves_the_old_set(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, failing: int
 ) -> None:
-    """ENOSPC from fsync of a staged file (the case a tmpfs cannot be mounted for)."""
+    """ENOSPC from the ``failing``-th fsync of a file (where a tmpfs cannot be mounted): of a staged
+    file (1, 2), of the staged manifest (3), of the journal (4)."""
     out = tmp_path / "out"
     write_set(out, {"a.txt": "old", "b.txt": "old"}, kind="design")
     before = {p.name: p.read_bytes() for p in out.iterdir()}
+    real_fsync = os.fsync
+    calls = [0]
 
     def full(fd: int) -> None:
-        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        if stat.S_ISREG(os.fstat(fd).st_mode):  # a folder's fsync is not counted
+            calls[0] += 1
+            if calls[0] == failing:
+                raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+        real_fsync(fd)
 
     monkeypatch.setattr(os, "fsync", full)
     with pytest.raises(OutputError, match=r"No space left on device\)"):
         write_set(out, {"a.txt": "new", "c.txt": "new"}, kind="design")
+    assert calls[0] == failing
     assert {p.name: p.read_bytes() for p in out.iterdir()} == before
 
 
