@@ -7,7 +7,7 @@ and renamed onto its final name only when all of them are complete.
 Sets of files (:func:`staged` with a folder, :func:`write_set`): the files that belong together
 (a design's cut files, PDF, report and ``design.json``; a sweep's table, CSV and plot) are
 committed inside the existing folder, file by file. The folder itself is never replaced: its
-inode, a symlink to it, its mode, times and extended attributes, the user's own files in it and
+inode, a symlink to it, its mode, owner and extended attributes, the user's own files in it and
 processes whose working folder it is stay as they were. A commit (:class:`FolderStaging`):
 
 1. stages each file beside its target as a hidden file ``.corrugate-PID-XXXX.new.NAME`` (same
@@ -33,7 +33,10 @@ after a kill in them until the next run, the folder's files may be a mix of the 
 renamed, some not; the old set's extra files not yet dropped) while :data:`MANIFEST` still lists
 the old set (until step 4) and :data:`JOURNAL` is present. A reader that must see one whole set
 calls :func:`recover` first: it waits for a live commit's lock, settles a killed one and removes
-what killed runs left behind.
+what killed runs left behind. A file of the user's that has the name of one of the set's files is
+replaced by it (as it always was); the journal, like the manifest, is read only as a regular file
+of bounded size, and only plain names in the folder are taken from it. A missing folder is
+created (its mode from the umask) and removed again if the set fails before its commit.
 
 Every OS error becomes one :class:`~corrugate.core.errors.OutputError` line naming the path.
 """
