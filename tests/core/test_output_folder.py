@@ -392,3 +392,25 @@ def test_two_runs_at_once_each_commit_a_whole_set(tmp_path: Path) -> None:
     files = read_manifest(out)["design"]["files"]
     assert isinstance(files, dict) and set(files) == {p.name for p in out.iterdir()} - {MANIFEST}
     assert all(_sha((out / n).read_text()) == d for n, d in files.items())
+
+
+def test_a_forged_or_broken_journal_reaches_nothing_outside_the_folder(tmp_path: Path) -> None:
+    out = tmp_path / "out"
+    write_set(out, {"a.txt": "set"}, kind="design")
+    victim = tmp_path / "victim.txt"
+    victim.write_text("outside")
+    staged = ".corrugate-999999999-0123456789ab.new.x"
+    forged = {
+        "files": {"../victim.txt": {"staged": staged, "sha256": _sha("outside"), "backup": None}},
+        "drop": {"../victim.txt": _sha("outside")},
+        "manifest": {"staged": staged, "sha256": "0" * 64},
+    }
+    for text in (json.dumps(forged), "{not json", ""):
+        (out / JOURNAL).write_text(text)
+        assert recover(out) == "unreadable journal removed"
+        assert victim.read_text() == "outside" and not (out / JOURNAL).exists()
+    assert (out / "a.txt").read_text() == "set"
+    os.mkfifo(out / JOURNAL)  # not opened to read: removed
+    assert recover(out) == "unreadable journal removed"
+    write_set(out, {"b.txt": "new"}, kind="design")
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "b.txt"]
