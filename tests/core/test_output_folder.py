@@ -414,3 +414,36 @@ def test_a_forged_or_broken_journal_reaches_nothing_outside_the_folder(tmp_path:
     assert recover(out) == "unreadable journal removed"
     write_set(out, {"b.txt": "new"}, kind="design")
     assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "b.txt"]
+
+
+def test_without_a_lock_a_live_runs_journal_is_left_to_it(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Where flock is missing, a journal of a run still alive is not settled by another run (one
+    line, EBUSY); once that run is gone, the next run rolls it back."""
+    out = tmp_path / "out"
+    write_set(out, {"a.txt": "old"}, kind="design")
+    monkeypatch.setattr(fileio, "fcntl", None)
+    sleeper = subprocess.Popen(["sleep", "60"])
+    gen = f"corrugate-{sleeper.pid}-0123456789ab"
+    staged = f".{gen}.new.a.txt"
+    (out / staged).write_text("new")
+    backup = f".{gen}.bak.a.txt"
+    os.link(out / "a.txt", out / backup)
+    os.replace(out / staged, out / "a.txt")  # killed after its first rename
+    journal = {
+        "generation": gen,
+        "files": {"a.txt": {"staged": staged, "sha256": _sha("new"), "backup": backup}},
+        "drop": {},
+        "manifest": {"staged": f".{gen}.new.{MANIFEST}", "sha256": "0" * 64},
+    }
+    (out / JOURNAL).write_text(json.dumps(journal))
+    try:
+        with pytest.raises(OutputError, match="another run is committing"):
+            write_set(out, {"a.txt": "mine"}, kind="design")
+        assert (out / "a.txt").read_text() == "new" and (out / JOURNAL).exists()
+    finally:
+        sleeper.kill()
+        sleeper.wait()
+    assert recover(out) == "rolled back"
+    assert (out / "a.txt").read_text() == "old" and _leftovers(out) == []

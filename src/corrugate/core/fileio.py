@@ -193,13 +193,14 @@ def recover(folder: str | os.PathLike[str]) -> str | None:
     it is, so the folder then holds one complete set (see the module's text). Then the staged
     files, backups and temporary files of runs no longer alive are removed, and leftovers of an
     earlier version beside the folder (its staging folder, the old folder it swapped out) too, an
-    old folder left aside between two renames being put back. Runs still alive are left alone."""
+    old folder left aside between two renames being put back. Runs still alive are left alone
+    (where the file system has no ``flock``, a journal of one: OSError EBUSY)."""
     target = Path(folder)
     _recover_beside(target)
     if not target.is_dir():
         return None
-    with _locked(target):
-        done = _settle(target)
+    with _locked(target) as held:
+        done = _settle(target, held=held)
         _sweep(target)
     return done
 
@@ -239,15 +240,19 @@ def _sweep(folder: Path) -> None:
 
 
 @contextmanager
-def _locked(folder: Path) -> Iterator[None]:
-    """Hold the folder's exclusive lock (``flock`` on the folder itself; where the system or file
-    system has none, go on without): one set is committed or settled at a time."""
+def _locked(folder: Path) -> Iterator[bool]:
+    """Hold the folder's exclusive lock (``flock`` on the folder itself): one set is committed or
+    settled at a time. Where the system or file system has no such lock, go on without (yields
+    False): a journal of a run still alive is then left to it (see :func:`_settle`), but two runs
+    that begin their commits into one folder at the same moment are not kept apart."""
     fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    held = False
     try:
         if fcntl is not None:
             with contextlib.suppress(OSError):
                 fcntl.flock(fd, fcntl.LOCK_EX)
-        yield
+                held = True
+        yield held
     finally:
         os.close(fd)  # releases the lock; so does a kill
 
@@ -398,13 +403,18 @@ def _staged_name(name: object) -> bool:
     return isinstance(name, str) and "/" not in name and _STAGED.match(name) is not None
 
 
-def _settle(folder: Path, journal: dict[str, Any] | None = None) -> str | None:
+def _settle(folder: Path, journal: dict[str, Any] | None = None, held: bool = True) -> str | None:
     """Complete or roll back the half-committed set of ``journal`` (default: the folder's
     journal), under the folder's lock: completed when the manifest in place is the journal's new
-    one (the commit point passed), else rolled back."""
+    one (the commit point passed), else rolled back. Without the lock (``held`` False) the journal
+    of another run still alive is not touched: OSError (EBUSY)."""
     j = _read_journal(folder) if journal is None else journal
     if j is None:
         return None
+    if not held and journal is None and j:
+        m = re.match(r"^corrugate-(\d+)-", str(j.get("generation", "")))
+        if m is not None and int(m[1]) != os.getpid() and _pid_alive(int(m[1])):
+            raise OSError(errno.EBUSY, "another run is committing a set in this folder")
     if not j:
         if not (folder / JOURNAL).is_dir():
             _unlink(folder / JOURNAL)
@@ -548,8 +558,8 @@ class FolderStaging(Staging):
         for name in self._names:
             _fsync_file(self._temp("new", name))
             files[name] = _sha256(self._temp("new", name))
-        with _locked(self.folder):
-            _settle(self.folder)  # a run killed since this one began
+        with _locked(self.folder) as held:
+            _settle(self.folder, held=held)  # a run killed since this one began
             journal = self._journal(files)
             try:
                 _forward(self.folder, journal)
