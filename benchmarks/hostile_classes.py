@@ -80,7 +80,7 @@ def spec(
 
 def _holes(count: int) -> str:
     side = int(count**0.5 + 0.999)
-    pitch = 60.0 / side
+    pitch = 50.0 / side
     holes = []
     for i in range(count):
         x = (i % side - (side - 1) / 2) * pitch
@@ -99,22 +99,6 @@ def _polygon(count: int) -> str:
         for k in range(count)
     )
     return f'shape = "polygon"\nvertices = [{pts}]'
-
-
-def _wheel(axle_mm: float) -> str:
-    return (
-        'shape = "circle"\nholes = [{ shape = "circle", diameter = "'
-        + f"{axle_mm} mm"
-        + '", center = ["0 mm", "0 mm"] }]'
-    )
-
-
-_WHEEL_CONSTRAINTS = (
-    'diameter = { min = "70 mm", max = "80 mm" }\n'
-    'thickness = { min = "6 mm", max = "12 mm" }\n'
-    'inplane_stiffness = [{ min = "400 N/mm", eta = "0 deg" }, { min = "18 N/mm", eta = "45 deg" }]\n'
-    'bending_stiffness = [{ min = "500 N*mm", eta = "0 deg" }]'
-)
 
 
 def _bounds(count: int) -> str:
@@ -138,6 +122,9 @@ _MAXIMIZE_36 = (
 )
 
 BIGINT = "1" + "0" * 4400
+
+#: The shipped wheel example (its axle hole is made 68.9 mm: a 0.55 mm ligament at the 70 mm disc).
+WHEEL = (Path(__file__).parents[1] / "examples" / "wheel_circle.toml").read_text()
 
 
 @dataclass(frozen=True)
@@ -313,11 +300,14 @@ def cases() -> list[Case]:
             "holes",
             "wheel, 68.9 mm axle hole",
             design,
-            spec(layout=_wheel(68.9), constraints=_WHEEL_CONSTRAINTS),
+            WHEEL.replace('diameter = "6 mm"', 'diameter = "68.9 mm"'),
         )
     )
     for count in (25, 100, 1000):
-        out.append(Case("holes", f"{count} holes of 2 mm", design, spec(layout=_holes(count))))
+        holes = spec(layout=_holes(count)).replace(
+            'min = "40 mm", max = "90 mm"', 'min = "70 mm", max = "90 mm"'
+        )
+        out.append(Case("holes", f"{count} holes of 2 mm", design, holes))
     for count in (2000, 10_000):
         out.append(
             Case(

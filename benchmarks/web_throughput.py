@@ -2,16 +2,15 @@
 
 Run by hand (a few minutes on 2 cores)::
 
-    .venv/bin/python benchmarks/web_throughput.py [--requests 4] [--processes N] [--compare-threads]
+    .venv/bin/python benchmarks/web_throughput.py [--requests 4] [--processes N]
 
 It starts ``uvicorn`` with the app (:func:`corrugate.web.create_app`) in a child process on a free
 port of 127.0.0.1, waits until it answers, sends one design to warm it up, then posts
 ``examples/blimp_gripper.toml`` as JSON to ``/api/design`` from 1 client (``--requests`` designs one
 after another) and from 4 clients at once (``--requests`` designs each), and prints the designs per
 second of each, their ratio, and how many cores the server (with its worker processes) kept busy
-meanwhile: its CPU seconds per wall second, which shows what a shared, loaded machine left it. ``--processes`` is the app's design pool (default: one worker
-process per core; 0: the designs run on the server's threads, as before the process pool);
-``--compare-threads`` also measures the app with ``--processes 0``.
+meanwhile: its CPU seconds per wall second, which shows what a shared, loaded machine left it. ``--processes`` is the app's pool of worker processes
+(default: one per core, at least 2), which run every computation.
 
 Every answer must be 200 with a certified optimum and files; anything else stops the run.
 
@@ -190,16 +189,13 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--requests", type=int, default=4, help="Designs per client.")
     parser.add_argument(
-        "--processes", default="default", help="Design worker processes (default: one per core)."
-    )
-    parser.add_argument(
-        "--compare-threads", action="store_true", help="Also measure with --processes 0."
+        "--processes",
+        default="default",
+        help="Worker processes (default: one per core, at least 2).",
     )
     args = parser.parse_args()
     print(f"{os.cpu_count()} cores; {SPEC.name} posted to /api/design")
     measure(args.processes, args.requests)
-    if args.compare_threads:
-        measure("0", args.requests)
 
 
 if __name__ == "__main__":

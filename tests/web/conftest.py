@@ -82,9 +82,9 @@ def live_server() -> Iterator[str]:
     sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
     sock.bind(("127.0.0.1", 0))
     port = sock.getsockname()[1]
-    # A generous time limit: twenty designs queue behind four workers on a slow machine (the
-    # limit itself is tested in test_api.py).
-    settings = WebSettings(workers=4, max_pending=64, timeout_s=120, allowed_hosts=LOOPBACK_NAMES)
+    # A generous time limit: twenty designs queue behind the workers on a slow machine (the
+    # limit itself is tested in test_api.py and test_server.py).
+    settings = WebSettings(max_pending=64, timeout_s=120, allowed_hosts=LOOPBACK_NAMES)
     app = create_app(settings)
     config = uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning", lifespan="on")
     server = uvicorn.Server(config)

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import asyncio
 import io
 import json
+import os
+import signal
 import subprocess
 import sys
 import threading
@@ -11,6 +14,7 @@ import time
 import urllib.error
 import urllib.request
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -20,11 +24,19 @@ from fastapi.testclient import TestClient
 
 import corrugate.web.app as web_app
 from corrugate import Assembly, Layer, get_material
+from corrugate.core.errors import InputError
 from corrugate.export.writers import WRITERS
 from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.folded import folded_mesh
 from corrugate.web import WebSettings, create_app
 from corrugate.web.app import STATIC_DIR
+from corrugate.web.schemas import AnalyzeBody
+from corrugate.web.workers import (
+    ComputeTimeoutError,
+    Runner,
+    ServerBusyError,
+    WorkerLostError,
+)
 
 from .conftest import CASE1, direct
 
@@ -238,6 +250,7 @@ HOSTILE_UNITS = [
 def test_hostile_units_get_422_naming_the_field_quickly(
     client: TestClient, W: str, words: str
 ) -> None:
+    assert client.post("/api/analyze", json=CASE1).status_code == 200  # the workers are ready
     start = time.perf_counter()
     r = client.post("/api/analyze", json={"W": W, "n": 8, "alpha": 84})
     assert time.perf_counter() - start < 2
@@ -374,36 +387,116 @@ def test_path_tricks_in_download_urls_are_4xx(client: TestClient) -> None:
 # ---- time and load bounds ---------------------------------------------------------------------
 
 
-@pytest.fixture
-def blocked(monkeypatch: pytest.MonkeyPatch) -> Iterator[threading.Event]:
-    """Make every analysis wait for the event (at most 10 s) before it computes."""
-    release = threading.Event()
-    real = web_app.analysis_payload
-
-    def slow(body: Any, settings: WebSettings) -> dict[str, object]:
-        release.wait(timeout=10)
-        return real(body, settings)
-
-    monkeypatch.setattr(web_app, "analysis_payload", slow)
-    yield release
-    release.set()
+def _gone(pid: int) -> bool:
+    """The process has ended (no longer listed, or a zombie its parent has not reaped yet)."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().split(") ")[1][0] == "Z"
+    except (OSError, IndexError):
+        return True
 
 
-def test_slow_computations_get_504_and_the_slot_comes_back(blocked: threading.Event) -> None:
-    with TestClient(create_app(WebSettings(timeout_s=0.05, max_pending=1, workers=1))) as c:
-        r = c.post("/api/analyze", json=CASE1)
-        assert r.status_code == 504 and "did not finish" in r.json()["detail"]
-        # The abandoned computation still holds the only slot: the next request is refused.
-        r = c.post("/api/analyze", json=CASE1)
-        assert r.status_code == 503 and r.headers["retry-after"]
-        alive(c)
-        blocked.set()
-        for _ in range(500):  # the slot is freed when the abandoned thread ends (bounded wait)
-            r = c.post("/api/analyze", json=CASE1)
-            if r.status_code != 503:
-                break
-            threading.Event().wait(0.01)
-        assert r.status_code == 200 and r.json() == direct(CASE1)
+def _wait_gone(pid: int, seconds: float = 10) -> bool:
+    deadline = time.monotonic() + seconds
+    while not _gone(pid):
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.05)
+    return True
+
+
+@pytest.mark.slow
+def test_a_job_past_the_time_limit_is_killed_and_its_worker_replaced() -> None:
+    """Issue 22, item 3: the 504 kills its job. The worker running a job past the time limit is
+    killed at once (not left computing), a fresh worker takes its place and serves the next
+    job; while a job runs, a job past ``max_pending`` is refused at once."""
+    runner = Runner(max_pending=1, timeout_s=1.0, processes=1)
+
+    async def scenario() -> None:
+        first = await runner.run(os.getpid)
+        assert first != os.getpid() and runner.worker_pids() == (first,)
+        start = time.monotonic()
+        with pytest.raises(ComputeTimeoutError, match="time limit of 1 s"):
+            await runner.run(time.sleep, 120)
+        assert time.monotonic() - start < 10
+        assert _wait_gone(first), "the worker of the job past its limit still runs"
+        second = await runner.run(os.getpid)
+        assert second != first and runner.worker_pids() == (second,)
+        running = asyncio.ensure_future(runner.run(time.sleep, 0.5))
+        await asyncio.sleep(0.1)
+        with pytest.raises(ServerBusyError):
+            await runner.run(os.getpid)
+        assert await running is None
+        assert await runner.run(os.getpid) == second  # a job within its limit keeps its worker
+
+    try:
+        asyncio.run(scenario())
+        last = runner.worker_pids()
+    finally:
+        runner.shutdown()
+    assert last and all(_wait_gone(pid) for pid in last), "shutdown left a worker running"
+
+
+@pytest.mark.slow
+def test_the_limit_counts_from_a_jobs_start_and_a_job_that_stops_waiting_loses_no_worker() -> None:
+    """Three 1 s jobs queued behind one worker all finish within a 1.5 s limit (their wait does
+    not count); a job cancelled while it waits for a worker does not take the worker with it."""
+    runner = Runner(max_pending=8, timeout_s=1.5, processes=1)
+
+    async def scenario() -> None:
+        pid = await runner.run(os.getpid)
+        jobs = [asyncio.ensure_future(runner.run(time.sleep, 1.0)) for _ in range(3)]
+        assert await asyncio.gather(*jobs) == [None, None, None]
+        first = asyncio.ensure_future(runner.run(time.sleep, 0.5))
+        waiting = asyncio.ensure_future(runner.run(os.getpid))
+        await asyncio.sleep(0.1)
+        waiting.cancel()
+        assert await first is None
+        assert await asyncio.wait_for(runner.run(os.getpid), 10) == pid
+
+    try:
+        asyncio.run(scenario())
+    finally:
+        runner.shutdown()
+
+
+@pytest.mark.slow
+def test_a_job_over_the_memory_cap_is_422_and_a_lost_worker_503() -> None:
+    """A job that needs more than its worker's address space gets the InputError naming the
+    body (422), a worker killed from outside mid-job WorkerLostError (503) naming the signal;
+    both workers are replaced, and errors of a job arrive as raised."""
+    runner = Runner(max_pending=4, timeout_s=60, processes=1, memory_bytes=1024**3)
+
+    async def scenario() -> None:
+        first = await runner.run(os.getpid)
+        with pytest.raises(InputError, match="more than the memory of 1 GiB") as err:
+            await runner.run(bytearray, 2 * 1024**3)
+        assert err.value.field == "body"
+        assert _wait_gone(first)
+        second = await runner.run(os.getpid)
+        assert second != first
+        killer = threading.Timer(0.5, os.kill, (second, signal.SIGKILL))
+        killer.start()
+        with pytest.raises(WorkerLostError, match="signal 9"):
+            await runner.run(time.sleep, 60)
+        third = await runner.run(os.getpid)
+        assert third not in (first, second)
+        body = AnalyzeBody.model_validate({"W": "8 kg", "n": 8, "alpha": 84})
+        with pytest.raises(InputError) as err:
+            await runner.run(web_app.analysis_payload, body, WebSettings())
+        assert err.value.field == "W"
+        with pytest.raises(ModuleNotFoundError):  # a job the worker cannot load: its error
+            await runner.run(_local, "x")
+        assert await runner.run(os.getpid) == third
+
+    try:
+        asyncio.run(scenario())
+    finally:
+        runner.shutdown()
+
+
+def _local(value: str) -> str:
+    """A function of this test module, which a worker process cannot import."""
+    return value
 
 
 def test_only_local_host_names_are_answered_on_loopback() -> None:
@@ -433,22 +526,27 @@ def test_serve_command_runs_uvicorn_on_loopback(monkeypatch: pytest.MonkeyPatch)
     from fastapi import FastAPI
 
     from corrugate.cli import main
+    from corrugate.cli.serve import HEAD_TIMEOUT_S, MAX_CONNECTIONS
 
-    calls: list[dict[str, Any]] = []
+    calls: list[Any] = []
 
-    def fake_run(app: Any, **kwargs: Any) -> None:
-        calls.append({"app": app, **kwargs})
+    def fake_run(server: uvicorn.Server, sockets: Any = None) -> None:
+        calls.append(server)
 
-    monkeypatch.setattr(uvicorn, "run", fake_run)
+    monkeypatch.setattr(uvicorn.Server, "run", fake_run)
     for args in (["--port", "8123"], ["--host", "0.0.0.0", "--port", "8124", "--timeout", "5"]):
         with pytest.raises(SystemExit) as exc:
             main(["serve", *args])
         assert exc.value.code in (0, None)
-    assert calls[0]["host"] == "127.0.0.1" and calls[0]["port"] == 8123
-    assert calls[0]["limit_concurrency"] == 100
-    assert isinstance(calls[0]["app"], FastAPI)
-    assert calls[0]["app"].state.settings.allowed_hosts == ("127.0.0.1", "localhost", "[::1]")
-    assert calls[1]["host"] == "0.0.0.0" and calls[1]["app"].state.settings.timeout_s == 5
-    assert calls[1]["app"].state.settings.allowed_hosts is None
-    for call in calls:
-        call["app"].state.store.close()
+    configs = [server.config for server in calls]
+    assert configs[0].host == "127.0.0.1" and configs[0].port == 8123
+    assert configs[0].limit_concurrency == MAX_CONNECTIONS
+    assert configs[0].http.head_timeout_s == HEAD_TIMEOUT_S  # the slow-client deadline
+    assert configs[0].timeout_graceful_shutdown is not None
+    assert isinstance(configs[0].app, FastAPI)
+    assert configs[0].app.state.settings.allowed_hosts == ("127.0.0.1", "localhost", "[::1]")
+    assert configs[1].host == "0.0.0.0" and configs[1].app.state.settings.timeout_s == 5
+    assert configs[1].app.state.settings.allowed_hosts is None
+    for config in configs:
+        config.app.state.store.close()
+        config.app.state.runner.shutdown()

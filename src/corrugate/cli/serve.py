@@ -6,11 +6,12 @@ runs, so the rest of the command line works without them.
 
 from __future__ import annotations
 
-from typing import Annotated
+from types import FrameType
+from typing import Annotated, Any
 
 import typer
 
-__all__ = ["COMMANDS", "LOOPBACK_HOSTS", "serve_cmd"]
+__all__ = ["COMMANDS", "HEAD_TIMEOUT_S", "LOOPBACK_HOSTS", "MAX_CONNECTIONS", "serve_cmd"]
 
 #: Hosts that only this machine can reach.
 LOOPBACK_HOSTS = ("127.0.0.1", "localhost", "::1")
@@ -25,7 +26,11 @@ def serve_cmd(
     ] = "127.0.0.1",
     port: Annotated[int, typer.Option(min=1, max=65535, help="TCP port.")] = 8000,
     timeout: Annotated[
-        float, typer.Option(min=0.1, help="Longest computation of one request (s).")
+        float,
+        typer.Option(
+            min=0.1,
+            help="Longest computation of one request (s): past it the request gets 504 and the worker process computing it is killed.",
+        ),
     ] = 30.0,
 ) -> None:
     """Serve the web app and its JSON API (open http://HOST:PORT/, API docs at /docs).
@@ -36,7 +41,6 @@ def serve_cmd(
 
     require_extra("web", "the web app")
     require_extra("fab", "the web app's files")
-    import uvicorn
 
     from corrugate.web import WebSettings, create_app
     from corrugate.web.app import LOOPBACK_NAMES
@@ -51,15 +55,47 @@ def serve_cmd(
     settings = WebSettings(timeout_s=timeout, allowed_hosts=LOOPBACK_NAMES if loopback else None)
     shown = f"[{host}]" if ":" in host else host
     typer.echo(f"corrugate: serving on http://{shown}:{port}/ (API docs at /docs); Ctrl-C stops")
-    # At most 100 open connections (uvicorn answers 503 past that), idle ones closed after 5 s.
-    uvicorn.run(
-        create_app(settings),
+    app = create_app(settings)
+    server = _server(app, host, port)
+    server.run()
+
+
+#: A request's head must arrive within this many seconds of its connection (or of the previous
+#: answer on a kept-alive one), else 408 and the connection is closed.
+HEAD_TIMEOUT_S = 10.0
+
+#: Open connections at most (uvicorn answers 503 past it). A connection whose request head is
+#: still arriving lasts at most HEAD_TIMEOUT_S, so slow clients hold few of them for long.
+MAX_CONNECTIONS = 1000
+
+
+def _server(app: Any, host: str, port: int) -> Any:
+    """The uvicorn server of ``app``: slow request heads timed out
+    (:func:`corrugate.web.guards.slow_client_protocol`), idle connections closed after 5 s, and on
+    SIGTERM or Ctrl-C the app's worker processes killed at once (their requests get 503) before
+    uvicorn's graceful shutdown, which waits at most 5 s for answers still on their way."""
+    import uvicorn
+
+    from corrugate.web.guards import slow_client_protocol
+
+    runner = app.state.runner
+
+    class Server(uvicorn.Server):
+        def handle_exit(self, sig: int, frame: FrameType | None) -> None:
+            runner.kill_workers()
+            super().handle_exit(sig, frame)
+
+    config = uvicorn.Config(
+        app,
         host=host,
         port=port,
         log_level="info",
-        limit_concurrency=100,
+        http=slow_client_protocol(HEAD_TIMEOUT_S),
+        limit_concurrency=MAX_CONNECTIONS,
         timeout_keep_alive=5,
+        timeout_graceful_shutdown=5,
     )
+    return Server(config)
 
 
 #: The commands of this module, by name (registered by :mod:`corrugate.cli`).

@@ -20,15 +20,22 @@ Endpoints (all JSON unless said otherwise):
   ``corrugate design`` -> ``{"design": <corrugate design --json>, "result": {"id", "files"}}``:
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
   STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
-  ``"result": null`` when the spec is infeasible. Designs run on a pool of worker processes,
-  one per core (:func:`design_job` writes the files into the result's folder, the server
-  publishes them); everything else runs on threads;
+  ``"result": null`` when the spec is infeasible;
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path);
   ``GET /api/results/{id}/all.zip``: all of them in one zip archive.
 
+Every computation of a request (its quantities parsed, analysed, meshed, its files written,
+its spec solved) runs in a worker process of :class:`~corrugate.web.workers.Runner`: the
+``*_job`` functions take and return plain picklable values (a job that writes files writes them
+into a new result's folder, the server publishes them). A worker is killed at the time limit
+(504) and replaced; its address space is capped (a job that needs more memory gets 422). The
+event loop only reads requests, serves the page, the library and stored files, and waits.
+
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
-names it (a spec value by its TOML path, ``constraints.side.min``); malformed JSON -> 400; body over the limit -> 413; server busy -> 503; computation over
-the time limit -> 504; unknown result or file -> 404; a Host header not allowed -> 400.
+names it (a spec value by its TOML path, ``constraints.side.min``); malformed JSON -> 400; body over
+the limit -> 413; body not complete within ``body_timeout_s`` -> 408; server busy or a worker lost
+-> 503; computation over the time limit -> 504 (its worker killed); more memory than a worker
+may use -> 422 naming the body; unknown result or file -> 404; a Host header not allowed -> 400.
 """
 
 from __future__ import annotations
@@ -38,7 +45,6 @@ import hashlib
 import json
 import math
 import re
-import shutil
 import threading
 from collections.abc import AsyncIterator, Callable, Iterator
 from contextlib import asynccontextmanager, contextmanager
@@ -52,6 +58,7 @@ from fastapi.exceptions import RequestValidationError
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
 from fastapi.staticfiles import StaticFiles
+from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from corrugate import __version__
@@ -65,15 +72,7 @@ from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
 from corrugate.solver import Problem, Solution
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
-from corrugate.web.guards import (
-    BodySizeLimit,
-    CatchAll,
-    ComputeTimeoutError,
-    HostCheck,
-    Runner,
-    ServerBusyError,
-    release_memory,
-)
+from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck
 from corrugate.web.schemas import (
     LOAD_CASE_KEYS,
     OUTPUT_OPTIONS,
@@ -92,6 +91,14 @@ from corrugate.web.schemas import (
     format_list,
 )
 from corrugate.web.store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
+from corrugate.web.workers import (
+    WORKER_MEMORY_BYTES,
+    ComputeTimeoutError,
+    Runner,
+    ServerBusyError,
+    WorkerLostError,
+    release_memory,
+)
 from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, write_design
 
 __all__ = [
@@ -103,7 +110,8 @@ __all__ = [
     "design_answer",
     "design_job",
     "design_payload",
-    "mesh_files",
+    "mesh_job",
+    "pattern_job",
 ]
 
 #: Host names of this machine: what a browser sends to a server bound to a loopback address.
@@ -113,7 +121,7 @@ LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
 STATIC_DIR = Path(__file__).resolve().parent / "static"
 
 #: pint's registry keeps caches that are not documented as thread-safe: parse one request at a time
-#: (parsing takes microseconds; the computations themselves run in parallel).
+#: (parsing takes microseconds; each worker process runs one job at a time, so it rarely waits).
 _PARSE_LOCK = threading.Lock()
 
 _SWAGGER = "/static/vendor/swagger-ui"
@@ -134,11 +142,12 @@ _EXPECTED: dict[str, str] = {
 class WebSettings:
     """Limits of the web app.
 
-    ``max_body_bytes``: longest request body (413 past it); ``timeout_s``: longest computation
-    (504 past it); ``workers``: computation threads (analyses, meshes); ``processes``: worker
-    processes for designs (None: one per core, 0: designs run on the threads too);
-    ``max_pending``: computations queued or running at once, threads and processes together (503
-    past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
+    ``max_body_bytes``: longest request body (413 past it); ``body_timeout_s``: longest wait for
+    a request's body after its head (408 past it); ``timeout_s``: longest computation (504 past
+    it; its worker process is killed); ``processes``: worker processes, which run every
+    computation (None: one per core, at least 2); ``worker_memory_bytes``: the address space
+    each may map beyond its imported modules (``RLIMIT_AS``; None: no cap); ``max_pending``: computations queued or running at once
+    (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
     folded extent of a layer (422 past them; the pattern's glue tabs grow with the size, so these
     bound the memory and time of one request); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private
     result root is made (default: the system temporary folder); ``allowed_hosts``: the Host
@@ -147,9 +156,10 @@ class WebSettings:
     """
 
     max_body_bytes: int = 64 * 1024
+    body_timeout_s: float = 30.0
     timeout_s: float = 30.0
-    workers: int = 4
     processes: int | None = None
+    worker_memory_bytes: int | None = WORKER_MEMORY_BYTES
     max_pending: int = 32
     max_creases: int = 1000
     max_extent_mm: float = 5000.0
@@ -220,7 +230,7 @@ def _text(value: float | str | None) -> str | None:
 
 
 def analysis_payload(body: AnalyzeBody, settings: WebSettings) -> dict[str, object]:
-    """``Analysis.to_dict()`` of the request (runs on a worker thread), with the ``load_case``
+    """``Analysis.to_dict()`` of the request (a job: runs in a worker process), with the ``load_case``
     of ``corrugate analyze --json`` when the body states one (``test``, ``load``, ``span``:
     :mod:`corrugate.analysis.load_case`, errors naming those fields)."""
     from corrugate.analysis.load_case import load_case_dict, load_case_of, load_case_rows
@@ -240,19 +250,21 @@ def analysis_payload(body: AnalyzeBody, settings: WebSettings) -> dict[str, obje
     return payload
 
 
-def mesh_files(body: AnalyzeBody, settings: WebSettings, store: ResultStore) -> list[StoredFile]:
-    """Build the folded assembly of the request and store it as GLB and STL (worker thread)."""
+def mesh_job(body: AnalyzeBody, settings: WebSettings, folder: Path) -> list[Path]:
+    """Build the folded assembly of the request and write it as GLB and STL into ``folder`` (a
+    job: runs in a worker process)."""
     from corrugate.export.files3d import write_mesh
     from corrugate.fabrication.build import build_pattern
 
     req = _parse(body, settings)
     a = req.assembly
-    return store.make(lambda folder: write_mesh(a, build_pattern(a), folder))
+    return list(write_mesh(a, build_pattern(a), folder))
 
 
-def pattern_files(body: PatternBody, settings: WebSettings, store: ResultStore) -> list[StoredFile]:
-    """Every file ``corrugate pattern --out`` writes for the request's design, stored as a new
-    result (worker thread): the CLI's own writer, :func:`corrugate.workflow.write_design_files`."""
+def pattern_job(body: PatternBody, settings: WebSettings, folder: Path) -> list[Path]:
+    """Every file ``corrugate pattern --out`` writes for the request's design, written into
+    ``folder`` (a job: runs in a worker process): the CLI's own writer,
+    :func:`corrugate.workflow.write_design_files`."""
     from corrugate.analysis.evaluate import analyze
     from corrugate.workflow import write_design_files
 
@@ -261,11 +273,26 @@ def pattern_files(body: PatternBody, settings: WebSettings, store: ResultStore) 
         options = _output_options(body)
     analysis = analyze(req.assembly, req.model, (0.0, 90.0), options.fabrication, req.support)
 
-    def write(folder: Path) -> list[Path]:
-        with _output_errors(body.cutter):
-            return write_design_files(analysis, folder, options)
+    with _output_errors(body.cutter):
+        return list(write_design_files(analysis, folder, options))
 
-    return store.make(write)
+
+async def files_answer(
+    job: Callable[[Any, WebSettings, Path], list[Path]],
+    body: Any,
+    settings: WebSettings,
+    store: ResultStore,
+    runner: Runner,
+) -> list[StoredFile]:
+    """Run ``job(body, settings, folder)`` on the runner into a new result's folder of ``store``
+    and publish the files it wrote (the result goes when the job fails or is stopped)."""
+    result_id, folder = store.create()
+    try:
+        paths = await runner.run(job, body, settings, folder)
+        return store.publish(result_id, paths)
+    except BaseException:
+        store.discard(result_id)
+        raise
 
 
 @contextmanager
@@ -362,9 +389,9 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
 def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
     """Solve the spec of a design request and write its files into ``folder`` (a new result's
     folder of the store); returns the ``corrugate design --json`` object and the paths written
-    (none for an infeasible spec). Runs in a worker process (or thread): it takes and returns
+    (none for an infeasible spec). A job: runs in a worker process; it takes and returns
     plain, picklable values, and the store itself stays in the server. The worker hands its
-    freed memory back to the system afterwards (:func:`~corrugate.web.guards.release_memory`)."""
+    freed memory back to the system afterwards (:func:`~corrugate.web.workers.release_memory`)."""
     try:
         return _design_job(body, settings, folder)
     finally:
@@ -403,18 +430,11 @@ def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[
 async def design_answer(
     body: DesignBody, settings: WebSettings, store: ResultStore, runner: Runner
 ) -> DesignAnswer:
-    """Run :func:`design_job` on the runner's process pool into a new result of ``store`` and
-    publish its files (the result is discarded when the job fails, times out or has no files)."""
+    """Run :func:`design_job` on the runner (a worker process) into a new result of ``store`` and
+    publish its files (the result is discarded when the job fails, is stopped or has no files)."""
     result_id, folder = store.create()
     try:
-        payload, paths = await runner.run_process(
-            design_job,
-            body,
-            settings,
-            folder,
-            # A job past the time limit writes on; its folder goes when it ends.
-            abandoned=lambda: shutil.rmtree(folder, ignore_errors=True),
-        )
+        payload, paths = await runner.run(design_job, body, settings, folder)
     except BaseException:
         store.discard(result_id)
         raise
@@ -514,8 +534,16 @@ _ERROR_RESPONSES: dict[int | str, dict[str, Any]] = {
     400: {"model": ErrorBody, "description": "Malformed JSON"},
     413: {"model": ErrorBody, "description": "Request body too large"},
     422: {"model": ErrorBody, "description": "A value is invalid; `field` names it"},
-    503: {"model": ErrorBody, "description": "Too many computations in flight"},
-    504: {"model": ErrorBody, "description": "The computation took too long"},
+    408: {"model": ErrorBody, "description": "The request body did not arrive in time"},
+    503: {
+        "model": ErrorBody,
+        "description": "Too many computations in flight, or the worker "
+        "process was lost (the server is stopping)",
+    },
+    504: {
+        "model": ErrorBody,
+        "description": "The computation took longer than the time limit (it was stopped)",
+    },
 }
 
 
@@ -542,6 +570,12 @@ def _add_error_handlers(app: FastAPI) -> None:
 
     @app.exception_handler(ServerBusyError)
     async def on_busy(_: Request, exc: ServerBusyError) -> JSONResponse:
+        response = _error(503, str(exc), [])
+        response.headers["retry-after"] = "5"
+        return response
+
+    @app.exception_handler(WorkerLostError)
+    async def on_worker_lost(_: Request, exc: WorkerLostError) -> JSONResponse:
         response = _error(503, str(exc), [])
         response.headers["retry-after"] = "5"
         return response
@@ -613,14 +647,14 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
     async def analyze_endpoint(body: AnalyzeBody) -> JSONResponse:
         """Stiffness, size, mass and warnings of one design: the object ``corrugate analyze
         --json`` prints (keys carry their units)."""
-        payload = await runner.run(lambda: analysis_payload(body, cfg))
+        payload = await runner.run(analysis_payload, body, cfg)
         return JSONResponse(payload)
 
     @app.post("/api/mesh", summary="The folded assembly as GLB and STL", responses=error_responses)
     async def mesh_endpoint(body: AnalyzeBody) -> ResultBody:
         """Build the folded assembly (mm, z up) and keep it as a result; download its files from
         the URLs returned."""
-        files = await runner.run(lambda: mesh_files(body, cfg, store))
+        files = await files_answer(mesh_job, body, cfg, store, runner)
         return _result_body(files)
 
     @app.post(
@@ -632,7 +666,7 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
         """The files ``corrugate pattern --out`` writes for one design (the analyse options plus
         ``cutter``, ``fold_style``, ``cut``, ``gap``, ``paper``): cut files, fold map, PDF, FOLD,
         GLB/STL, assembly steps and design.json, kept as a result (``all.zip`` holds them all)."""
-        files = await runner.run(lambda: pattern_files(body, cfg, store))
+        files = await files_answer(pattern_job, body, cfg, store, runner)
         return _result_body(files)
 
     @app.post(
@@ -657,7 +691,8 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
     async def result_zip(result_id: str) -> Response:
         """Every file of a stored result (the cut files, fold map, FOLD, 3D, report,
         design.json) in one zip archive."""
-        response = zip_response(store, result_id)
+        # read and deflated on a thread: a large result would hold the event loop
+        response = await run_in_threadpool(zip_response, store, result_id)
         if response is None:
             return _error(404, "no such result (results are kept for a while only)", [])
         return response
@@ -673,7 +708,7 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
     )
     async def result_file(result_id: str, name: str) -> Response:
         """A file of a stored result, by the id and name the app returned (nothing else)."""
-        response = file_response(store, result_id, name)
+        response = await run_in_threadpool(file_response, store, result_id, name)
         if response is None:
             return _error(404, "no such result or file (results are kept for a while only)", [])
         return response
@@ -682,7 +717,12 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
 def create_app(settings: WebSettings | None = None) -> FastAPI:
     """A new, independent application (its own worker pool and result store)."""
     cfg = settings or WebSettings()
-    runner = Runner(cfg.workers, cfg.max_pending, cfg.timeout_s, processes=cfg.processes)
+    runner = Runner(
+        cfg.max_pending,
+        cfg.timeout_s,
+        processes=cfg.processes,
+        memory_bytes=cfg.worker_memory_bytes,
+    )
     store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
     # Load the unit registry and the material library before the first requests race for them.
     ureg()
@@ -691,7 +731,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
 
     @asynccontextmanager
     async def lifespan(_: FastAPI) -> AsyncIterator[None]:
-        runner.start_processes()  # the design workers import their modules before the first design
+        runner.start_processes()  # the workers import their modules before the first request
         try:
             yield
         finally:
@@ -722,7 +762,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(CatchAll)
     app.add_middleware(_SecurityHeaders)
-    app.add_middleware(BodySizeLimit, max_bytes=cfg.max_body_bytes)
+    app.add_middleware(BodySizeLimit, max_bytes=cfg.max_body_bytes, timeout_s=cfg.body_timeout_s)
     if cfg.allowed_hosts is not None:
         app.add_middleware(HostCheck, allowed=cfg.allowed_hosts)
     return app

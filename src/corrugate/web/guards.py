@@ -1,45 +1,37 @@
-"""Bounds that make the web app safe to leave running: request body size and computation time.
+"""Bounds that make the web app safe to leave running: request size, reading time and hosts.
 
-* :class:`BodySizeLimit` is a pure ASGI middleware: it reads a request body (up to the limit) before
-  the app sees it and answers 413 past the limit, whether or not the client sent Content-Length.
-* :class:`Runner` runs computations on a small thread pool (:meth:`Runner.run`) or on a pool of
-  worker processes, one per core (:meth:`Runner.run_process`: the designs, whose solver holds the
-  GIL), raises :class:`ServerBusyError` when too many are in flight (including abandoned ones
-  still running) and :class:`ComputeTimeoutError` past the time limit.
-  A running computation is not killed: one that times out runs on in the background, holds its
-  slot until it ends, and its result is dropped. After each computation on a thread, freed memory
-  is returned to the system (:func:`release_memory`), so that the resident size stays bounded
-  (``benchmarks/web_memory.py`` measures it).
+* :class:`BodySizeLimit` is a pure ASGI middleware: it reads a request body (up to the limit,
+  within a time limit) before the app sees it and answers 413 past the size limit, whether or not
+  the client sent Content-Length, and 408 when the body does not arrive in time.
+* :func:`slow_client_protocol` is uvicorn's HTTP/1.1 protocol with a deadline for each request
+  head: a connection that has not sent a complete head within it gets 408 and is closed, so
+  clients that trickle bytes cannot hold the server's connections.
+* :class:`HostCheck` answers 400 to a Host header that is not this server's (DNS rebinding).
 * :class:`CatchAll` is the innermost middleware: an exception no handler took (a bug, or an input
   that still got past the limits of :mod:`corrugate.core.limits`) becomes one clean JSON error, 422
   (or 503 for a server-side OS error or lack of memory), never a 500 or a dropped connection;
   the traceback goes to the log.
+
+The computations themselves run in killable worker processes: :mod:`corrugate.web.workers`.
 """
 
 from __future__ import annotations
 
 import asyncio
-import ctypes
-import gc
 import json
 import logging
-import multiprocessing
-import os
-import threading
+import time
 from collections.abc import Awaitable, Callable, MutableMapping
-from concurrent.futures import Executor, Future, ProcessPoolExecutor, ThreadPoolExecutor
 from typing import Any, TypeVar
+
+from uvicorn.protocols.http.h11_impl import H11Protocol
 
 __all__ = [
     "BodySizeLimit",
     "CatchAll",
-    "ComputeTimeoutError",
     "HostCheck",
-    "Runner",
-    "ServerBusyError",
-    "core_count",
     "host_name",
-    "release_memory",
+    "slow_client_protocol",
 ]
 
 _log = logging.getLogger("corrugate.web")
@@ -53,28 +45,19 @@ Send = Callable[[Message], Awaitable[None]]
 ASGIApp = Callable[[Scope, Receive, Send], Awaitable[None]]
 
 
-class ServerBusyError(Exception):
-    """Too many computations are in flight; try again later (HTTP 503)."""
-
-
-class ComputeTimeoutError(Exception):
-    """A computation did not finish within the time limit (HTTP 504)."""
-
-    def __init__(self, seconds: float) -> None:
-        self.seconds = seconds
-        super().__init__(f"the computation did not finish within {seconds:g} s and was abandoned")
-
-
 class BodySizeLimit:
-    """ASGI middleware: HTTP request bodies longer than ``max_bytes`` get 413 and never reach the app.
+    """ASGI middleware: HTTP request bodies longer than ``max_bytes`` get 413 and never reach the app;
+    a body not complete within ``timeout_s`` of the request's head gets 408 (and the connection
+    is closed).
 
     The body is read whole (at most ``max_bytes``) and replayed to the app, so a client that lies in
     Content-Length or streams chunks cannot get past the limit.
     """
 
-    def __init__(self, app: ASGIApp, max_bytes: int) -> None:
+    def __init__(self, app: ASGIApp, max_bytes: int, timeout_s: float | None = None) -> None:
         self.app = app
         self.max_bytes = max_bytes
+        self.timeout_s = timeout_s
 
     async def __call__(self, scope: Scope, receive: Receive, send: Send) -> None:
         if scope["type"] != "http":
@@ -92,8 +75,16 @@ class BodySizeLimit:
                     return
         chunks: list[bytes] = []
         size = 0
+        deadline = None if self.timeout_s is None else time.monotonic() + self.timeout_s
         while True:
-            message = await receive()
+            try:
+                left = None if deadline is None else max(0.0, deadline - time.monotonic())
+                message = await asyncio.wait_for(receive(), left)
+            except TimeoutError:
+                await self._reject(
+                    send, 408, f"the request body did not arrive within {self.timeout_s:g} s"
+                )
+                return
             if message["type"] == "http.disconnect":
                 return
             body = message.get("body", b"")
@@ -136,6 +127,75 @@ class BodySizeLimit:
             }
         )
         await send({"type": "http.response.body", "body": body})
+
+
+#: The answer to a client whose request head is late (then the connection is closed).
+_HEAD_LATE = b"the request head did not arrive in time"
+_REQUEST_TIMEOUT = (
+    b"HTTP/1.1 408 Request Timeout\r\ncontent-type: text/plain; charset=utf-8\r\n"
+    b"connection: close\r\ncontent-length: %d\r\n\r\n%s" % (len(_HEAD_LATE), _HEAD_LATE)
+)
+
+
+class _HeadDeadline(H11Protocol):
+    """uvicorn's HTTP/1.1 protocol (h11) with a deadline for each request head, counted from the
+    connection's start and from the end of each response: see :func:`slow_client_protocol`."""
+
+    head_timeout_s = 10.0
+    _head_timer: asyncio.TimerHandle | None = None
+    _head_of: object = None
+    _head_bytes = False
+
+    def connection_made(self, transport: asyncio.Transport) -> None:  # type: ignore[override]
+        super().connection_made(transport)
+        self._arm()
+
+    def data_received(self, data: bytes) -> None:
+        self._head_bytes = True
+        super().data_received(data)
+
+    def handle_events(self) -> None:
+        super().handle_events()
+        if self._head_timer is not None and self.cycle is not self._head_of:
+            self._disarm()  # a new request's head is complete
+
+    def on_response_complete(self) -> None:
+        done = self.cycle
+        super().on_response_complete()
+        if not self.transport.is_closing() and self.cycle is done:
+            self._arm()  # the next request's head is due (a keep-alive connection)
+
+    def connection_lost(self, exc: Exception | None) -> None:
+        self._disarm()
+        super().connection_lost(exc)
+
+    def _arm(self) -> None:
+        self._disarm()
+        self._head_of = self.cycle
+        self._head_bytes = False
+        self._head_timer = self.loop.call_later(self.head_timeout_s, self._expired)
+
+    def _disarm(self) -> None:
+        if self._head_timer is not None:
+            self._head_timer.cancel()
+            self._head_timer = None
+
+    def _expired(self) -> None:
+        self._head_timer = None
+        if self.transport.is_closing() or self.cycle is not self._head_of:
+            return
+        if self._head_bytes:  # part of a request came: say why it is closed
+            self.transport.write(_REQUEST_TIMEOUT)
+        self.transport.close()
+
+
+def slow_client_protocol(head_timeout_s: float) -> type[asyncio.Protocol]:
+    """uvicorn's HTTP/1.1 protocol class (``uvicorn.run(http=...)``) with a deadline for the
+    request head: a connection that has not sent a complete request head within
+    ``head_timeout_s`` of its start (or of the previous response) gets 408 and is closed (one
+    that sent nothing is just closed). With :class:`BodySizeLimit`'s body deadline, a client that
+    trickles bytes holds a connection for a bounded time."""
+    return type("SlowClientProtocol", (_HeadDeadline,), {"head_timeout_s": head_timeout_s})
 
 
 def host_name(header: str) -> str:
@@ -207,160 +267,3 @@ class CatchAll:
             status = 503 if server_side else 422
             field = getattr(exc, "field", None)
             await BodySizeLimit._reject(send, status, describe(exc), field=field)
-
-
-def release_memory(full: bool = False) -> None:
-    """Collect young garbage (all of it if ``full``: some 0.3 s) and hand freed heap pages back
-    to the system (glibc ``malloc_trim``, microseconds), so that the memory a large computation
-    needed does not stay resident."""
-    gc.collect() if full else gc.collect(1)
-    try:
-        libc = ctypes.CDLL(None)
-        libc.malloc_trim(0)
-    except (OSError, AttributeError):
-        pass
-
-
-def core_count() -> int:
-    """The cores this process may run on (at least 1)."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # not on Linux
-        return max(1, os.cpu_count() or 1)
-
-
-#: What a new worker process imports before its first job (the web app, the solver, the writers),
-#: so the first design does not pay for it.
-WORKER_PRELOAD = (
-    "corrugate.web.app",
-    "corrugate.workflow",
-    "corrugate.solver",
-    "corrugate.export.plan",
-    "corrugate.export.files",
-    "corrugate.export.files3d",
-    "corrugate.export.record",
-    "corrugate.fabrication.instructions",
-)
-
-
-def _warm_up() -> None:
-    """Import :data:`WORKER_PRELOAD` in a worker process (its initializer)."""
-    import importlib
-
-    for name in WORKER_PRELOAD:
-        importlib.import_module(name)
-
-
-class Runner:
-    """Run blocking computations with a time limit of ``timeout_s`` (from when a computation
-    starts; its wait in the queue does not count): on ``workers`` threads
-    (:meth:`run`) or on ``processes`` worker processes (:meth:`run_process`; None: one per core,
-    0: on the threads instead).
-
-    At most ``max_pending`` computations may be queued or running at once, on both pools together
-    (a timed-out one counts until it really ends); past that :meth:`run` and :meth:`run_process`
-    raise :class:`ServerBusyError` at once.
-
-    The processes start from a fresh interpreter (``forkserver``, or ``spawn`` where there is no
-    fork), never as a fork of the server with its threads; they are made on first use and each
-    imports :data:`WORKER_PRELOAD` once. :meth:`start_processes` makes them ahead of the first
-    request; a computation waits until they are ready before its time limit starts.
-    """
-
-    def __init__(
-        self, workers: int, max_pending: int, timeout_s: float, processes: int | None = None
-    ) -> None:
-        self.timeout_s = timeout_s
-        self.processes = core_count() if processes is None else processes
-        self._pool = ThreadPoolExecutor(max_workers=workers, thread_name_prefix="corrugate-web")
-        self._slots = threading.BoundedSemaphore(max_pending)
-        self._process_pool: ProcessPoolExecutor | None = None
-        self._warm: list[Future[None]] = []
-        self._lock = threading.Lock()
-        self._done = 0
-
-    def _processes(self) -> Executor:
-        """The process pool (made on first use), or the thread pool when ``processes`` is 0."""
-        if self.processes <= 0:
-            return self._pool
-        with self._lock:
-            if self._process_pool is None:
-                methods = multiprocessing.get_all_start_methods()
-                context = multiprocessing.get_context(
-                    "forkserver" if "forkserver" in methods else "spawn"
-                )
-                self._process_pool = ProcessPoolExecutor(
-                    max_workers=self.processes, mp_context=context, initializer=_warm_up
-                )
-            return self._process_pool
-
-    def start_processes(self) -> None:
-        """Start every worker process now (they import their modules in the background)."""
-        pool = self._processes()
-        with self._lock:
-            if pool is not self._pool and not self._warm:
-                self._warm = [pool.submit(_warm_up) for _ in range(self.processes)]
-
-    async def _ready(self) -> None:
-        """Wait until the worker processes have started and imported their modules (the start of
-        a worker is not part of a computation's time limit)."""
-        self.start_processes()
-        for future in list(self._warm):
-            await asyncio.wrap_future(future)
-
-    async def run(self, fn: Callable[[], T]) -> T:
-        """The result of ``fn()``, computed on the thread pool; its exceptions propagate."""
-        return await self._submit(self._pool, fn)
-
-    async def run_process(
-        self, fn: Callable[..., T], *args: Any, abandoned: Callable[[], None] | None = None
-    ) -> T:
-        """The result of ``fn(*args)``, computed in a worker process: ``fn`` must be a module-level
-        function and ``args`` and the result picklable. Its exceptions propagate (corrugate's own
-        errors arrive as raised, :class:`~corrugate.core.errors.CorrugateError`). ``abandoned`` is
-        called when a computation that timed out finally ends (to remove what it left behind)."""
-        pool = self._processes()
-        if pool is not self._pool:
-            await self._ready()
-        return await self._submit(pool, fn, *args, abandoned=abandoned)
-
-    async def _submit(
-        self,
-        pool: Executor,
-        fn: Callable[..., T],
-        *args: Any,
-        abandoned: Callable[[], None] | None = None,
-    ) -> T:
-        if not self._slots.acquire(blocking=False):
-            raise ServerBusyError("the server is busy with other computations; try again shortly")
-        try:
-            future: Future[T] = pool.submit(fn, *args)
-        except BaseException:
-            self._slots.release()
-            raise
-        future.add_done_callback(lambda _: self._slots.release())
-        if pool is self._pool:  # a computation on a thread: its garbage is in this process
-            self._done += 1
-            full = self._done % 32 == 0
-            future.add_done_callback(lambda _: release_memory(full))
-        # The time limit counts the computation, not its wait in the queue behind others.
-        while not (future.running() or future.done()):
-            await asyncio.sleep(0.02)
-        try:
-            return await asyncio.wait_for(asyncio.wrap_future(future), self.timeout_s)
-        except TimeoutError:
-            if abandoned is not None:
-                future.add_done_callback(lambda _: abandoned())
-            raise ComputeTimeoutError(self.timeout_s) from None
-
-    def shutdown(self) -> None:
-        """Drop queued computations; running ones finish in their threads or processes."""
-        self._pool.shutdown(wait=False, cancel_futures=True)
-        with self._lock:
-            pool, self._process_pool = self._process_pool, None
-            self._warm = []
-        if pool is not None:
-            # Not terminated: a worker killed under its pipe would break it (EPIPE; fatal to a
-            # process where a library reset SIGPIPE, as gmsh does). A job that timed out ends on
-            # its own, its result dropped.
-            pool.shutdown(wait=False, cancel_futures=True)
