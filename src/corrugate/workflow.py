@@ -13,8 +13,9 @@
   (:mod:`corrugate.export.record`): the entries of the writers registry
   (:mod:`corrugate.export.writers`), written through it. Every option is checked and every
   document built before anything is written; the files are committed together as one set
-  (:mod:`corrugate.core.fileio`), so a bad option, a failure or a kill leaves either the folder's
-  earlier set or the new one, never a mix. The parts and their sheet plan are made once
+  inside the folder (:mod:`corrugate.core.fileio`), so a bad option or a failure leaves the
+  folder's earlier set, and a kill, once the next run (or :func:`~corrugate.core.fileio.recover`)
+  has settled its journal, the earlier set or the new one whole, never a mix. The parts and their sheet plan are made once
   (:func:`corrugate.export.plan.cut_plan`); the report gets that very plan, so its sheet figures
   are the cut files';
 * :func:`write_design`: the files of a solved spec (``design.json`` only when it is infeasible);
@@ -324,7 +325,7 @@ def write_design_files(
         # written after the assembly steps, from the figures drawn by then (Drawings)
         return report(cut) if callable(report) else report
 
-    with staged(out, kind="design") as st:  # one set: the old files or the new ones, never a mix
+    with staged(out, kind="design") as st:  # one set: the old files or the new ones (fileio)
         job = replace(
             plan_job(
                 plan,

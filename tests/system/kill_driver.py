@@ -8,10 +8,14 @@ The spec is solved once in this process; every trial forks a child that runs
 ``corrugate design SPEC --out OUT`` through :func:`corrugate.cli.main` (the solve answered from
 that cache, so a trial costs the writing only), alternating two cutters so that consecutive sets
 differ (``cut-1.dxf`` against ``cut-1.svg``). The parent kills the child with SIGKILL at a random
-moment of its writing (between the appearance of its staging folder and its exit, as measured by a
-calibration run; one trial in five at a random moment before it). After each kill the folder must
-hold one complete set: the manifest's files all present with their SHA-256, each parsing, no other
-file. After the last trial one more run must leave no leftovers.
+moment of its writing (between the appearance of its first staged file in the folder and its exit,
+as measured by a calibration run; one trial in five at a random moment before it). After each kill
+the parent notes whether the folder is in a commit's window (its journal present) and whether it
+holds one complete set as it is, then settles it as the next run would
+(:func:`corrugate.core.fileio.recover`): then it must hold one complete set, the manifest's files
+all present with their SHA-256, each parsing, no other file. The folder must keep its inode (it is
+never replaced) and a ``sleep`` started in it must keep it as its working folder. After the last
+trial one more run must leave no leftovers.
 """
 
 from __future__ import annotations
@@ -22,6 +26,7 @@ import json
 import os
 import random
 import signal
+import subprocess
 import sys
 import time
 import xml.etree.ElementTree as ET
@@ -94,15 +99,24 @@ def check_set(out: Path, ignore: frozenset[str] = frozenset()) -> tuple[bool, st
 
 
 def leftovers(out: Path) -> list[str]:
+    """Staged files, backups, temporary files and a journal left in ``out`` or beside it."""
+    from corrugate.core.fileio import JOURNAL
+
     found = [p.name for p in out.parent.iterdir() if p.name.startswith(f".{out.name}.")]
     if out.is_dir():
-        found += [p.name for p in out.iterdir() if p.name.endswith(".tmp")]
+        found += [
+            p.name
+            for p in out.iterdir()
+            if (p.name.startswith(".corrugate-") and p.name != ".corrugate-set.json")
+            or p.name.endswith(".tmp")
+            or p.name == JOURNAL
+        ]
     return found
 
 
 def _staging_seen(out: Path, pid: int) -> bool:
-    prefix = f".{out.name}.corrugate-{pid}-"
-    return any(p.name.startswith(prefix) for p in out.parent.iterdir())
+    prefix = f".corrugate-{pid}-"
+    return out.is_dir() and any(p.name.startswith(prefix) for p in out.iterdir())
 
 
 def _fork_run(spec: str, out: Path, cutter: str) -> int:
@@ -130,8 +144,11 @@ def main() -> None:
         out = real_folder  # where the sets land and staging folders appear
     ignore = frozenset({USER_FILE}) if user else frozenset()
     changed: list[str] = []
+    inode: list[int] = []
 
     def folder_kept(when: str) -> None:
+        if inode and os.stat(out).st_ino != inode[0]:
+            changed.append(f"{when}: the folder's inode")
         if not user:
             return
         if not given.is_symlink() or os.readlink(given) != str(out):
@@ -142,6 +159,7 @@ def main() -> None:
             changed.append(f"{when}: the user's file")
 
     import corrugate.workflow as dr  # the commands import solve_spec from it at run time
+    from corrugate.core.fileio import JOURNAL, MANIFEST, recover
 
     real = dr.solve_spec
     cache: dict[str, Any] = {}
@@ -156,6 +174,8 @@ def main() -> None:
     _run(spec, given, CUTTERS[1])  # the earlier set, and the cache filled
     ok, first_run, why = check_set(out, ignore)
     assert ok, why
+    inode.append(os.stat(out).st_ino)
+    sleeper = subprocess.Popen(["sleep", "3600"], cwd=out)  # a process working in the folder
     # calibration: how long the writing takes (staging folder seen -> exit)
     pid = _fork_run(spec, given, CUTTERS[0])
     t_start = time.monotonic()
@@ -176,21 +196,41 @@ def main() -> None:
     mixed: list[str] = []
     killed_before_commit = 0
     old_kept = new_set = 0
+    in_window = mixed_before_recovery = left_before_recovery = aimed_trials = 0
+    settled: dict[str, int] = {}
     for i in range(trials):
         before = check_set(out, ignore)[1]
         pid = _fork_run(spec, given, CUTTERS[i % 2])
         early = rng.random() < 0.2
+        # one trial in three aims at the commit itself (milliseconds of the run): it waits for the
+        # journal to appear, then kills within 4 ms (a commit of the case study takes 3-70 ms here)
+        aimed = not early and rng.random() < 1 / 3
+        reaped = False
         t0 = time.monotonic()
         delay = rng.uniform(0, 0.3) if early else rng.uniform(0, write_s * 1.1)
+        if aimed:
+            delay = rng.uniform(0, 0.004)
         if not early:
-            while not _staging_seen(out, pid) and time.monotonic() - t0 < 60:
-                if os.waitpid(pid, os.WNOHANG)[0]:
+            while time.monotonic() - t0 < 60:
+                if (out / JOURNAL).exists() if aimed else _staging_seen(out, pid):
                     break
-                time.sleep(0.0005)
-        time.sleep(delay)
-        os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
+                if os.waitpid(pid, os.WNOHANG)[0]:
+                    reaped = True
+                    break
+                time.sleep(0.0002 if aimed else 0.0005)
+        if not reaped:  # a reaped child's pid may be another process's by now
+            time.sleep(delay)
+            os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
         folder_kept(f"trial {i}")
+        aimed_trials += aimed
+        in_window += (out / JOURNAL).exists()
+        temps = frozenset(p.name for p in out.iterdir() if p.name.startswith(".corrugate-"))
+        mixed_before_recovery += not check_set(out, ignore | temps - {MANIFEST})[0]
+        left_before_recovery += len(leftovers(out))
+        done = recover(given)  # as the next run, or a reader that cares, does first
+        if done is not None:
+            settled[done] = settled.get(done, 0) + 1
         ok, run, why = check_set(out, ignore)
         if not ok:
             mixed.append(f"trial {i}: {why}")
@@ -204,6 +244,11 @@ def main() -> None:
     left_after_kills = leftovers(out)
     _run(spec, given, CUTTERS[0])  # the next run cleans up
     folder_kept("final")
+    sleeper_cwd = os.readlink(f"/proc/{sleeper.pid}/cwd")
+    sleeper.kill()
+    sleeper.wait()
+    if sleeper_cwd != str(out.resolve()):
+        changed.append(f"final: the working folder of a process in it is {sleeper_cwd}")
     ok, run, why = check_set(out, ignore)
     if not ok:
         mixed.append(f"final: {why}")
@@ -213,6 +258,11 @@ def main() -> None:
         "mixed": mixed,
         "old_set_kept": old_kept,
         "new_set_complete": new_set,
+        "aimed_at_the_commit": aimed_trials,
+        "killed_in_commit_window": in_window,
+        "mixed_before_recovery": mixed_before_recovery,
+        "settled_by_recover": settled,
+        "leftovers_before_recovery": left_before_recovery,
         "leftovers_before_next_run": len(left_after_kills),
         "leftovers_after_next_run": leftovers(out),
         "folder_changed": changed,

@@ -51,28 +51,32 @@ def test_a_set_replaces_the_old_set_whole_and_keeps_foreign_files(tmp_path: Path
     assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]  # no leftovers beside it
 
 
-def test_a_failed_swap_leaves_the_old_set_and_one_line(
+def test_a_failed_commit_leaves_the_old_set_and_one_line(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    import corrugate.core.fileio as fileio
-
+    """A hard link refused while backing up the files a set replaces (here EACCES, which no
+    copy can fall back from): the run rolls back before any rename, one line."""
     out = tmp_path / "o"
     _write(out, {f"f{i}.txt": "old" for i in range(10)})
 
-    def broken(a: Path, b: Path) -> bool:
+    def broken(a: Path, b: Path, **kwargs: object) -> None:
         raise OSError(13, "Permission denied", str(b))
 
-    monkeypatch.setattr(fileio, "_exchange", broken)
+    monkeypatch.setattr(os, "link", broken)
     with pytest.raises(OutputError) as info:
         _write(out, {f"f{i}.txt": "new" for i in range(10)})
     assert "\n" not in str(info.value) and "Permission denied" in str(info.value)
     assert {p.read_text() for p in out.glob("f*.txt")} == {"old"}
+    assert sorted(p.name for p in out.iterdir()) == sorted(
+        [MANIFEST, *(f"f{i}.txt" for i in range(10))]
+    )
     assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]
 
 
 def test_a_kill_between_the_two_renames_is_undone_by_the_next_run(tmp_path: Path) -> None:
-    """The fallback without renameat2: the old folder set aside, the new one not yet in place;
-    the process dies. The next run puts the old folder back."""
+    """An earlier version's commit (a sibling folder swapped in by two renames where renameat2 was
+    missing): the old folder set aside, the new one not yet in place, the process died. The next
+    run puts the old folder back."""
     out = tmp_path / "o"
     _write(out, {"a.txt": "old"})
     aside = tmp_path / ".o.corrugate-999999999-0123456789ab.old"
@@ -133,13 +137,14 @@ def _kill_driver(tmp_path: Path, trials: int, seed: int, *mode: str) -> dict[str
 @pytest.mark.slow
 def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
     """SIGKILL at random moments while ``design --out`` writes into a folder holding an earlier
-    set (tests/system/kill_driver.py): every time the folder holds one complete set (every file parses
-    and matches its run's manifest), and the next run leaves no leftovers."""
+    set (tests/system/kill_driver.py): every time, once settled as the next run does, the folder
+    holds one complete set (every file parses and matches its run's manifest), keeps its inode, and
+    the next run leaves no leftovers."""
     trials = 20
     summary = _kill_driver(tmp_path, trials, 12)
     print(f"kill test: {summary}")
     assert summary["trials"] >= 20
-    assert summary["mixed"] == []
+    assert summary["mixed"] == [] and summary["folder_changed"] == []
     assert summary["leftovers_after_next_run"] == []
     assert summary["old_set_kept"] + summary["new_set_complete"] == trials
 
@@ -148,16 +153,20 @@ def test_kill_during_design_out_leaves_one_complete_set(tmp_path: Path) -> None:
 def test_kill_during_design_out_keeps_a_symlinked_0700_folder_and_a_users_file(
     tmp_path: Path,
 ) -> None:
-    """50 SIGKILLs at random moments of ``design --out LINK``, LINK a symlink to a 0700 folder
-    that holds a user's file: each time one complete set, and the symlink, the mode and the
-    user's file as they were (tests/system/kill_driver.py, ``user-folder``)."""
-    trials = 50
+    """60 SIGKILLs at random moments of ``design --out LINK``, LINK a symlink to a 0700 folder
+    that holds a user's file, a third of them aimed at the commit itself (after its journal
+    appears): each time, once settled as the next run does (:func:`recover`), one complete set;
+    the symlink, the folder's inode and mode, the user's file and the working folder of a process
+    in it as they were (tests/system/kill_driver.py, ``user-folder``)."""
+    trials = 60
     summary = _kill_driver(tmp_path, trials, 22, "user-folder")
     print(f"kill test, user's folder: {summary}")
     assert summary["mixed"] == [] and summary["folder_changed"] == []
     assert summary["leftovers_after_next_run"] == []
     assert summary["old_set_kept"] + summary["new_set_complete"] == trials
     assert summary["new_set_complete"] > 0  # some kills came after a commit
+    assert summary["killed_in_commit_window"] > 0  # and some inside one, settled by recover
+    assert sum(summary["settled_by_recover"].values()) == summary["killed_in_commit_window"]
 
 
 # -- downloads across evictions ------------------------------------------------------------------

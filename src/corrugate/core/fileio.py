@@ -5,16 +5,38 @@ is written to a hidden temporary file beside its target (``.NAME.corrugate-PID-X
 and renamed onto its final name only when all of them are complete.
 
 Sets of files (:func:`staged` with a folder, :func:`write_set`): the files that belong together
-(a design's cut files, PDF, report and ``design.json``; a sweep's table, CSV and plot) are written
-into a hidden sibling folder ``.NAME.corrugate-PID-XXXX.new``, together with a manifest
-(:data:`MANIFEST`: the run's id and every file's SHA-256); everything is fsynced; files of the old
-folder that are not part of its set (the user's own) are linked into the new one; then the two
-folders are swapped in one step (Linux ``renameat2(RENAME_EXCHANGE)``; elsewhere two renames, the
-old folder kept as ``.NAME.corrugate-PID-XXXX.old`` until the new one is in place). A failure or a
-kill at any moment thus leaves either the old complete set or the new complete set under the
-folder's name, never a mix. Leftovers of a killed run (its staging folder, the swapped-out old
-folder, temporary files) are removed by the next run that writes there (:func:`recover`); an old
-folder left aside between the two renames is put back.
+(a design's cut files, PDF, report and ``design.json``; a sweep's table, CSV and plot) are
+committed inside the existing folder, file by file. The folder itself is never replaced: its
+inode, a symlink to it, its mode, owner and extended attributes, the user's own files in it and
+processes whose working folder it is stay as they were. A commit (:class:`FolderStaging`):
+
+1. stages each file beside its target as a hidden file ``.corrugate-PID-XXXX.new.NAME`` (same
+   folder, same suffix) and fsyncs it; a failure here (a full disk) removes the staged files and
+   leaves the folder as it was;
+2. under an exclusive ``flock`` of the folder, reads the manifest (:data:`MANIFEST`: per kind of
+   set, the run's id and every file's SHA-256), stages the new one and reads it back, and writes
+   the journal :data:`JOURNAL`, the generation marker: the new generation, each file's staged
+   name, SHA-256 and backup name, the old files to drop and the new manifest's SHA-256 (fsynced);
+3. hard-links every file it replaces to a backup ``.corrugate-PID-XXXX.bak.NAME`` (a copy where
+   the file system has no hard links), then renames the staged files onto their names one by one;
+4. renames the staged manifest onto :data:`MANIFEST`: **the commit point**;
+5. removes the old set's files that the new set has not (only a file whose SHA-256 is still what
+   the old manifest says the set wrote: a user's file is never deleted), the backups, and last
+   the journal; the folder is fsynced between the steps.
+
+A journal whose new manifest is not in place is rolled back (the backups renamed back, the set's
+new files removed), one whose manifest is in place is rolled forward (step 5 finished): by the
+failing run itself, and after a kill by the next run that writes there or by :func:`recover`.
+After that the folder holds the old complete set or the new complete set, as its manifest lists
+them, never a mix. What a reader sees before: while a live run is in steps 3-5 (milliseconds), or
+after a kill in them until the next run, the folder's files may be a mix of the two sets (some
+renamed, some not; the old set's extra files not yet dropped) while :data:`MANIFEST` still lists
+the old set (until step 4) and :data:`JOURNAL` is present. A reader that must see one whole set
+calls :func:`recover` first: it waits for a live commit's lock, settles a killed one and removes
+what killed runs left behind. A file of the user's that has the name of one of the set's files is
+replaced by it (as it always was); the journal, like the manifest, is read only as a regular file
+of bounded size, and only plain names in the folder are taken from it. A missing folder is
+created (its mode from the umask) and removed again if the set fails before its commit.
 
 Every OS error becomes one :class:`~corrugate.core.errors.OutputError` line naming the path.
 """
@@ -22,7 +44,6 @@ Every OS error becomes one :class:`~corrugate.core.errors.OutputError` line nami
 from __future__ import annotations
 
 import contextlib
-import ctypes
 import errno
 import hashlib
 import json
@@ -34,11 +55,18 @@ import stat
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
+from typing import Any
 
 from corrugate.core.errors import CorrugateError, OutputError
 from corrugate.core.limits import MAX_PATH_CHARS
 
+try:
+    import fcntl
+except ImportError:  # pragma: no cover - not a POSIX system: commits are not locked
+    fcntl = None  # type: ignore[assignment]
+
 __all__ = [
+    "JOURNAL",
     "MANIFEST",
     "MAX_MANIFEST_BYTES",
     "SYSTEM_FOLDERS",
@@ -58,6 +86,10 @@ __all__ = [
 #: design and a Pareto front may share a folder while a new design replaces the old one whole.
 MANIFEST = ".corrugate-set.json"
 
+#: The journal of a set's commit in progress, inside the folder: its presence marks a
+#: half-committed generation, which the next run completes or rolls back (see the module's text).
+JOURNAL = ".corrugate-set.journal"
+
 #: The largest manifest read (bytes): a real one lists a few dozen files.
 MAX_MANIFEST_BYTES = 1 << 20
 
@@ -70,9 +102,14 @@ SYSTEM_FOLDERS = ("/", "/bin", "/boot", "/dev", "/etc", "/lib", "/lib32", "/lib6
 SYSTEM_TREES = ("/proc", "/sys", "/dev", "/run", "/etc", "/usr", "/bin", "/sbin", "/boot", "/lib",
                 "/lib32", "/lib64", "/libx32")  # fmt: skip
 
+#: A single file's temporary file, and (in a folder of an earlier version) a set's staging folder
+#: or old folder beside it.
 _LEFTOVER = re.compile(
     r"^\.(?P<name>.+)\.corrugate-(?P<pid>\d+)-[0-9a-f]{12}\.(?P<kind>new|old|tmp)$"
 )
+#: A set's staged file (``new``) or the backup of the file it replaces (``bak``), in the folder.
+_STAGED = re.compile(r"^\.corrugate-(?P<pid>\d+)-[0-9a-f]{12}\.(?P<kind>new|bak)\.(?P<name>.+)$")
+_SHA256 = re.compile(r"^[0-9a-f]{64}$")
 
 
 def _tag() -> str:
@@ -120,8 +157,8 @@ def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") ->
     """``folder`` as an output folder, refused (:class:`~corrugate.core.errors.OutputError`
     naming ``field``) when it is empty, the root or a system folder (:data:`SYSTEM_FOLDERS`),
     inside a pseudo file system (:data:`SYSTEM_TREES`), the user's home folder itself, or the
-    working folder or one of its ancestors (a set replaces the folder it is written to: a run
-    must not take the folder it runs in, nor the user's files around it); returns the path with
+    working folder or one of its ancestors (a set's files would land among the user's own, and a
+    later set of the same kind removes the earlier one's files there); returns the path with
     symlinks resolved. Called before any computation, and again by :class:`FolderStaging`."""
     text = os.fspath(folder)
     if not str(text).strip():
@@ -146,33 +183,78 @@ def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") ->
     return real
 
 
-def recover(folder: str | os.PathLike[str]) -> None:
-    """Clean up after killed runs that wrote ``folder``: remove their staging folders, the old
-    folders they swapped out and their temporary files; if a run was killed between its two renames
-    (``folder`` missing, its old folder aside), put the old folder back. Runs still alive are left
-    alone."""
+def recover(folder: str | os.PathLike[str]) -> str | None:
+    """Settle what killed runs left in ``folder`` and around it; returns what was done with a
+    half-committed set (``"rolled back"``, ``"completed"``, ``"unreadable journal removed"``) or
+    None when there was none.
+
+    Waits while a live run commits a set there (the folder's lock); a journal (:data:`JOURNAL`)
+    left by a killed run is rolled back when its new manifest is not in place and completed when
+    it is, so the folder then holds one complete set (see the module's text). Then the staged
+    files, backups and temporary files of runs no longer alive are removed, and leftovers of an
+    earlier version beside the folder (its staging folder, the old folder it swapped out) too, an
+    old folder left aside between two renames being put back. Runs still alive are left alone
+    (where the file system has no ``flock``, a journal of one: OSError EBUSY)."""
     target = Path(folder)
-    parent = target.parent
-    places: list[tuple[Path, str | None]] = [(parent, target.name)]
-    if target.is_dir():
-        places.append((target, None))
-    for where, name in places:
-        try:
-            entries = list(os.scandir(where))
-        except OSError:
+    _recover_beside(target)
+    if not target.is_dir():
+        return None
+    with _locked(target) as held:
+        done = _settle(target, held=held)
+        _sweep(target)
+    return done
+
+
+def _recover_beside(target: Path) -> None:
+    """Leftovers of an earlier version's commit beside ``target``: a staging folder
+    (``.NAME.corrugate-PID-XXXX.new``) removed, an old folder (``.old``) put back if ``target`` is
+    missing, else removed."""
+    try:
+        entries = list(os.scandir(target.parent))
+    except OSError:
+        return
+    for entry in entries:
+        m = _LEFTOVER.match(entry.name)
+        if m is None or m["name"] != target.name or _pid_alive(int(m["pid"])):
             continue
-        for entry in entries:
-            m = _LEFTOVER.match(entry.name)
-            if m is None or (name is not None and m["kind"] != "tmp" and m["name"] != name):
+        path = Path(entry.path)
+        if m["kind"] == "old" and not os.path.lexists(target):
+            with contextlib.suppress(OSError):
+                os.rename(path, target)
                 continue
-            if _pid_alive(int(m["pid"])):
-                continue
-            path = Path(entry.path)
-            if m["kind"] == "old" and name is not None and not os.path.lexists(target):
-                with contextlib.suppress(OSError):
-                    os.rename(path, target)
-                    continue
-            _remove(path)
+        _remove(path)
+
+
+def _sweep(folder: Path) -> None:
+    """Remove the staged files, backups and temporary files of runs no longer alive in
+    ``folder`` (after :func:`_settle`: no journal names them any more)."""
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return
+    for entry in entries:
+        m = _STAGED.match(entry.name) or _LEFTOVER.match(entry.name)
+        if m is None or m["kind"] == "old" or _pid_alive(int(m["pid"])):
+            continue
+        _remove(Path(entry.path))
+
+
+@contextmanager
+def _locked(folder: Path) -> Iterator[bool]:
+    """Hold the folder's exclusive lock (``flock`` on the folder itself): one set is committed or
+    settled at a time. Where the system or file system has no such lock, go on without (yields
+    False): a journal of a run still alive is then left to it (see :func:`_settle`), but two runs
+    that begin their commits into one folder at the same moment are not kept apart."""
+    fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY)
+    held = False
+    try:
+        if fcntl is not None:
+            with contextlib.suppress(OSError):
+                fcntl.flock(fd, fcntl.LOCK_EX)
+                held = True
+        yield held
+    finally:
+        os.close(fd)  # releases the lock; so does a kill
 
 
 class Staging:
@@ -214,25 +296,6 @@ class Staging:
         for tmp, _ in self._files:
             tmp.unlink(missing_ok=True)
         self._files.clear()
-
-
-def _exchange(a: Path, b: Path) -> bool:
-    """Swap the paths ``a`` and ``b`` atomically (Linux renameat2 with RENAME_EXCHANGE); False if
-    the system or the file system cannot."""
-    try:
-        libc = ctypes.CDLL(None, use_errno=True)
-        fn = libc.renameat2
-    except (OSError, AttributeError):
-        return False
-    fn.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p, ctypes.c_uint]
-    fn.restype = ctypes.c_int
-    at_fdcwd, rename_exchange = -100, 2
-    if fn(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
-        return True
-    err = ctypes.get_errno()
-    if err in (errno.ENOSYS, errno.EINVAL, errno.ENOTSUP, errno.EOPNOTSUPP):
-        return False
-    raise OSError(err, os.strerror(err), str(b))
 
 
 def read_manifest(folder: str | os.PathLike[str]) -> dict[str, dict[str, object]]:
@@ -283,27 +346,167 @@ def _sha256(path: Path) -> str:
     return h.hexdigest()
 
 
-def _link_into(src: Path, dst: Path) -> None:
-    if src.is_symlink():
-        os.symlink(os.readlink(src), dst)
-    elif src.is_dir():
-        shutil.copytree(src, dst, symlinks=True, copy_function=_link_or_copy)
-    else:
-        _link_or_copy(src, dst)
+def _unlink(path: Path) -> None:
+    with contextlib.suppress(FileNotFoundError):
+        os.unlink(path)
 
 
-def _link_or_copy(src: str | os.PathLike[str], dst: str | os.PathLike[str]) -> None:
+def _write_synced(path: Path, data: bytes) -> None:
+    """Create ``path`` (it must not exist) with ``data`` and fsync it."""
+    with path.open("xb") as fh:
+        fh.write(data)
+        fh.flush()
+        os.fsync(fh.fileno())
+
+
+def _plain(name: object) -> bool:
+    """Whether ``name`` is a plain file name of a set (no folder part, not ours)."""
+    return (
+        isinstance(name, str)
+        and name not in ("", ".", "..", MANIFEST, JOURNAL)
+        and "/" not in name
+        and "\0" not in name
+        and _STAGED.match(name) is None
+    )
+
+
+def _read_journal(folder: Path) -> dict[str, Any] | None:
+    """The journal in ``folder``: None if there is none, ``{}`` if it cannot be read or is not
+    one a commit wrote (its names are checked: a forged journal cannot reach outside the
+    folder nor name a file as staged or as a backup that is not)."""
+    path = folder / JOURNAL
+    if not os.path.lexists(path):
+        return None
     try:
-        os.link(src, dst)
-    except OSError:
-        shutil.copy2(src, dst)
+        j = json.loads(_read_regular(path, MAX_MANIFEST_BYTES))
+        files, drop, manifest = j["files"], j["drop"], j["manifest"]
+        ok = (
+            isinstance(files, dict)
+            and isinstance(drop, dict)
+            and all(_plain(n) and isinstance(d, str) for n, d in drop.items())
+            and _staged_name(manifest["staged"])
+            and _SHA256.match(manifest["sha256"]) is not None
+            and all(
+                _plain(n)
+                and _staged_name(f["staged"])
+                and _SHA256.match(f["sha256"]) is not None
+                and (f["backup"] is None or _staged_name(f["backup"]))
+                for n, f in files.items()
+            )
+        )
+    except (OSError, ValueError, KeyError, TypeError):
+        return {}
+    return j if ok and isinstance(j, dict) else {}
+
+
+def _staged_name(name: object) -> bool:
+    return isinstance(name, str) and "/" not in name and _STAGED.match(name) is not None
+
+
+def _settle(folder: Path, journal: dict[str, Any] | None = None, held: bool = True) -> str | None:
+    """Complete or roll back the half-committed set of ``journal`` (default: the folder's
+    journal), under the folder's lock: completed when the manifest in place is the journal's new
+    one (the commit point passed), else rolled back. Without the lock (``held`` False) the journal
+    of another run still alive is not touched: OSError (EBUSY)."""
+    j = _read_journal(folder) if journal is None else journal
+    if j is None:
+        return None
+    if not held and journal is None and j:
+        m = re.match(r"^corrugate-(\d+)-", str(j.get("generation", "")))
+        if m is not None and int(m[1]) != os.getpid() and _pid_alive(int(m[1])):
+            raise OSError(errno.EBUSY, "another run is committing a set in this folder")
+    if not j:
+        if not (folder / JOURNAL).is_dir():
+            _unlink(folder / JOURNAL)
+        return "unreadable journal removed"
+    if _written_by_set(folder / MANIFEST, j["manifest"]["sha256"]):
+        _finish(folder, j)
+        return "completed"
+    _roll_back(folder, j)
+    return "rolled back"
+
+
+def _roll_back(folder: Path, j: dict[str, Any]) -> None:
+    """Undo steps 3 and 4 of a commit: each replaced file's backup renamed back (if the file
+    there is still the one the set wrote, or missing), each new file the set added removed (if it
+    is still the one the set wrote); then the staged files and the journal removed."""
+    for name, f in j["files"].items():
+        target = folder / name
+        _unlink(folder / f["staged"])
+        ours = not os.path.lexists(target) or _written_by_set(target, f["sha256"])
+        if f["backup"] is not None:
+            backup = folder / f["backup"]
+            if os.path.lexists(backup):
+                if ours:
+                    os.replace(backup, target)
+                else:  # someone else's file came since: it stays
+                    _unlink(backup)
+        elif ours:
+            _unlink(target)
+    _unlink(folder / j["manifest"]["staged"])
+    _fsync_dir(folder)
+    _unlink(folder / JOURNAL)
+    _fsync_dir(folder)
+
+
+def _finish(folder: Path, j: dict[str, Any]) -> None:
+    """Step 5 of a commit: the old set's files that the new set has not removed (only if still
+    what the old set wrote), the backups, the staged leftovers and then the journal."""
+    for f in j["files"].values():
+        _unlink(folder / f["staged"])
+        if f["backup"] is not None:
+            _unlink(folder / f["backup"])
+    for name, digest in j["drop"].items():
+        if _written_by_set(folder / name, digest):
+            _unlink(folder / name)
+    _unlink(folder / j["manifest"]["staged"])
+    _fsync_dir(folder)
+    _unlink(folder / JOURNAL)
+    _fsync_dir(folder)
+
+
+def _backup(target: Path, backup: Path) -> None:
+    """``backup``: a hard link to ``target`` (the file itself if it is a symlink), or a copy where
+    the file system has no hard links."""
+    try:
+        os.link(target, backup, follow_symlinks=False)
+    except OSError as exc:
+        if exc.errno not in (
+            errno.EPERM,
+            errno.ENOTSUP,
+            errno.EOPNOTSUPP,
+            errno.EMLINK,
+            errno.EXDEV,
+        ):
+            raise
+        if target.is_symlink():
+            os.symlink(os.readlink(target), backup)
+        else:
+            shutil.copy2(target, backup)
+
+
+def _forward(folder: Path, j: dict[str, Any]) -> None:
+    """Steps 3 and 4 of a commit: the backups, the staged files renamed onto their names one by
+    one, then the manifest (the commit point), read back."""
+    for name, f in j["files"].items():
+        if f["backup"] is not None:
+            _backup(folder / name, folder / f["backup"])
+    _fsync_dir(folder)
+    for name, f in j["files"].items():
+        os.replace(folder / f["staged"], folder / name)
+    _fsync_dir(folder)
+    os.replace(folder / j["manifest"]["staged"], folder / MANIFEST)
+    _fsync_dir(folder)
+    if not _written_by_set(folder / MANIFEST, j["manifest"]["sha256"]):
+        raise OSError(errno.EIO, "the manifest did not read back", str(folder / MANIFEST))
 
 
 class FolderStaging(Staging):
-    """The files of one set, staged in a hidden sibling of ``folder`` and swapped in on commit.
+    """The files of one set, staged beside their targets in ``folder`` and committed there file by
+    file (see the module's text); the folder is created if missing.
 
-    :meth:`path` of a file directly in ``folder`` gives its place in the staging folder; any other
-    target is staged as a single file (:class:`Staging`)."""
+    :meth:`path` of a file directly in ``folder`` gives its staged file; any other target is
+    staged as a single file (:class:`Staging`)."""
 
     def __init__(
         self, folder: str | os.PathLike[str], field: str = "--out", kind: str = "files"
@@ -311,7 +514,7 @@ class FolderStaging(Staging):
         super().__init__()
         check_output_folder(folder, field)
         given = Path(folder)
-        # a symlinked folder stays a symlink: the set is swapped in at its target
+        # a symlinked folder stays a symlink: the set is written into its target
         self.folder = Path(os.path.realpath(given)) if given.is_symlink() else given
         self.field = field
         self.kind = kind
@@ -322,21 +525,26 @@ class FolderStaging(Staging):
             raise OutputError(field, _short(self.folder), "the path is too long")
         if self.folder.exists() and not self.folder.is_dir():
             raise OutputError(field, _short(self.folder), "it is a file, not a folder")
-        self.folder.parent.mkdir(parents=True, exist_ok=True)
+        self._created = not self.folder.is_dir()
+        self.folder.mkdir(parents=True, exist_ok=True)
         recover(self.folder)
-        self.stage = self.folder.parent / f".{self.folder.name}.{_tag()}.new"
-        self.stage.mkdir()
+        self.generation = _tag()
         self._names: list[str] = []
+        self._temps: list[Path] = []
+
+    def _temp(self, kind: str, name: str) -> Path:
+        return self.folder / f".{self.generation}.{kind}.{name}"
 
     def path(self, target: str | os.PathLike[str]) -> Path:
         final = Path(target)
         if os.path.abspath(final.parent) != self._abs:
             return super().path(target)
-        if final.name == MANIFEST or final.name in self._names:
-            raise ValueError(f"{final.name} is staged twice")
+        if not _plain(final.name) or final.name in self._names:
+            raise ValueError(f"{final.name} is staged twice or is not a plain file name")
+        p = self._temp("new", final.name)
+        p.open("x").close()
         self._names.append(final.name)
-        p = self.stage / final.name
-        p.touch()
+        self._temps.append(p)
         return p
 
     @property
@@ -344,15 +552,40 @@ class FolderStaging(Staging):
         return tuple(self.folder / n for n in self._names) + super().targets
 
     def commit(self) -> None:
-        """Write the manifest, carry over the folder's foreign files, fsync, swap."""
-        files = {name: _sha256(self.stage / name) for name in self._names}
-        sets = read_manifest(self.folder) if self.folder.is_dir() else {}
+        """fsync the staged files, then commit them under the folder's lock: the journal, the
+        renames, the manifest, the old set's files dropped (see the module's text)."""
+        files: dict[str, str] = {}
+        for name in self._names:
+            _fsync_file(self._temp("new", name))
+            files[name] = _sha256(self._temp("new", name))
+        with _locked(self.folder) as held:
+            _settle(self.folder, held=held)  # a run killed since this one began
+            journal = self._journal(files)
+            try:
+                _forward(self.folder, journal)
+                _finish(self.folder, journal)
+            except BaseException:  # an OS error, Ctrl-C: rolled back or completed here
+                with contextlib.suppress(OSError):  # else by the next run
+                    _settle(self.folder, journal)
+                raise
+        self._names.clear()
+        self._created = False
+        super().commit()
+
+    def _journal(self, files: dict[str, str]) -> dict[str, Any]:
+        """Step 2: the old manifest read, the new one staged and read back, the journal written
+        (a file the set writes that is a folder is refused here, before anything is renamed)."""
+        folder = self.folder
+        for name in files:
+            if (folder / name).is_dir() and not (folder / name).is_symlink():
+                raise OutputError(self.field, _short(folder / name), "it is a folder, not a file")
+        sets = read_manifest(folder)
         listed = sets.pop(self.kind, {}).get("files", {})
         old_files: dict[object, object] = listed if isinstance(listed, dict) else {}
-        old_set = {
-            name
+        drop = {
+            name: digest
             for name, digest in old_files.items()
-            if isinstance(name, str) and _written_by_set(self.folder / name, digest)
+            if _plain(name) and name not in files and _written_by_set(folder / str(name), digest)
         }  # a listed file is dropped only if it is still what the set wrote
         for other in sets.values():  # files of other kinds that this set overwrites leave them
             other["files"] = {
@@ -360,37 +593,46 @@ class FolderStaging(Staging):
                 for k, v in other["files"].items()  # type: ignore[attr-defined]
                 if k not in files
             }
-        sets[self.kind] = {"run": self.stage.name.split(".")[-2], "files": files}
-        text = json.dumps({"sets": sets}, indent=1)
-        (self.stage / MANIFEST).write_text(text, encoding="utf-8")
-        if self.folder.is_dir():
-            for entry in os.scandir(self.folder):
-                name = entry.name
-                if name in old_set or name in files or name == MANIFEST or _LEFTOVER.match(name):
-                    continue
-                _link_into(Path(entry.path), self.stage / name)
-        for name in [*self._names, MANIFEST]:
-            _fsync_file(self.stage / name)
-        if self.folder.is_dir():  # the folder's mode, times and extended attributes stay
-            with contextlib.suppress(OSError):
-                shutil.copystat(self.folder, self.stage, follow_symlinks=False)
-        _fsync_dir(self.stage)
-        if not os.path.lexists(self.folder):
-            os.rename(self.stage, self.folder)
-        elif _exchange(self.stage, self.folder):
-            _remove(self.stage)  # now the old set
-        else:
-            aside = self.folder.parent / f".{self.folder.name}.{_tag()}.old"
-            os.rename(self.folder, aside)
-            os.rename(self.stage, self.folder)
-            _remove(aside)
-        _fsync_dir(self.folder.parent)
-        self._names.clear()
-        super().commit()
+        sets[self.kind] = {"run": self.generation, "files": files}
+        staged_manifest = self._temp("new", MANIFEST)
+        self._temps.append(staged_manifest)
+        _write_synced(staged_manifest, json.dumps({"sets": sets}, indent=1).encode("utf-8"))
+        if json.loads(_read_regular(staged_manifest, MAX_MANIFEST_BYTES)) != {"sets": sets}:
+            raise OSError(errno.EIO, "the manifest did not read back", str(staged_manifest))
+        journal = {
+            "format": 1,
+            "generation": self.generation,
+            "kind": self.kind,
+            "files": {
+                name: {
+                    "staged": self._temp("new", name).name,
+                    "sha256": digest,
+                    "backup": self._temp("bak", name).name
+                    if os.path.lexists(folder / name)
+                    else None,
+                }
+                for name, digest in files.items()
+            },
+            "drop": drop,
+            "manifest": {"staged": staged_manifest.name, "sha256": _sha256(staged_manifest)},
+        }
+        staged_journal = self._temp("new", JOURNAL)
+        self._temps.append(staged_journal)
+        _write_synced(staged_journal, json.dumps(journal, indent=1).encode("utf-8"))
+        os.replace(staged_journal, folder / JOURNAL)
+        _fsync_dir(folder)
+        return journal
 
     def discard(self) -> None:
-        _remove(self.stage)
+        for p in self._temps:
+            with contextlib.suppress(OSError):
+                _unlink(p)
+        self._temps.clear()
         self._names.clear()
+        if self._created:  # a folder made for a set that never came
+            with contextlib.suppress(OSError):
+                self.folder.rmdir()
+            self._created = False
         super().discard()
 
 
