@@ -6,6 +6,8 @@ import json
 import socket
 import threading
 import time
+import urllib.error
+import urllib.request
 from collections.abc import Iterator
 from typing import Any
 
@@ -26,6 +28,21 @@ CASE1: dict[str, Any] = {
     "model": "paper",
     "eta": [0, 90],
 }
+
+
+def post_json(base: str, path: str, body: dict[str, Any], timeout: float = 60) -> tuple[int, Any]:
+    """POST ``body`` as JSON to a served app: its status and JSON answer (errors included)."""
+    request = urllib.request.Request(
+        base + path,
+        data=json.dumps(body).encode(),
+        headers={"content-type": "application/json"},
+        method="POST",
+    )
+    try:
+        with urllib.request.urlopen(request, timeout=timeout) as response:
+            return response.status, json.loads(response.read())
+    except urllib.error.HTTPError as exc:
+        return exc.code, json.loads(exc.read())
 
 
 def direct(body: dict[str, Any]) -> dict[str, Any]:

@@ -35,9 +35,13 @@ def spec_of(name: str) -> dict[str, Any]:
 
 
 def without_timings(design: dict[str, Any]) -> dict[str, Any]:
-    """A design answer without the solver's wall-clock times (they differ from run to run)."""
+    """A design answer without the solver's times (they differ from run to run) and the CPU
+    seconds its budget allowed (the web's is a share of its time limit, the CLI's --budget)."""
     out = copy.deepcopy(design)
     out["solver"] = {k: v for k, v in out["solver"].items() if not k.endswith("_seconds")}
+    if "budget" in out["solver"]:
+        budget = out["solver"]["budget"]
+        out["solver"]["budget"] = {k: v for k, v in budget.items() if not k.endswith("_seconds")}
     return out
 
 

@@ -7,7 +7,6 @@ import http.client
 import json
 import threading
 import tomllib
-import urllib.request
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 from urllib.parse import urlsplit
@@ -15,18 +14,8 @@ from urllib.parse import urlsplit
 import pytest
 
 from .conftest import direct
+from .conftest import post_json as post
 from .test_design_api import EXAMPLES, direct_design, without_timings
-
-
-def post(base: str, path: str, body: dict[str, Any], timeout: float = 30) -> tuple[int, Any]:
-    request = urllib.request.Request(
-        base + path,
-        data=json.dumps(body).encode(),
-        headers={"content-type": "application/json"},
-        method="POST",
-    )
-    with urllib.request.urlopen(request, timeout=timeout) as response:
-        return response.status, json.loads(response.read())
 
 
 def raw_get(base: str, target: str) -> tuple[int, bytes]:

@@ -40,6 +40,7 @@ from corrugate.web.guards import slow_client_protocol
 from corrugate.web.schemas import BLIMP_GRIPPER
 
 from .conftest import CASE1, direct
+from .conftest import post_json as post
 
 pytestmark = [
     pytest.mark.slow,
@@ -124,20 +125,6 @@ def free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
         return int(s.getsockname()[1])
-
-
-def post(base: str, path: str, body: dict[str, Any], timeout: float = 60) -> tuple[int, Any]:
-    request = urllib.request.Request(
-        base + path,
-        data=json.dumps(body).encode(),
-        headers={"content-type": "application/json"},
-        method="POST",
-    )
-    try:
-        with urllib.request.urlopen(request, timeout=timeout) as response:
-            return response.status, json.loads(response.read())
-    except urllib.error.HTTPError as exc:
-        return exc.code, json.loads(exc.read())
 
 
 def page_time(base: str) -> float:
