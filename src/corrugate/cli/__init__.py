@@ -22,13 +22,13 @@ from typing import Annotated, Any, Literal
 import typer
 
 from corrugate import __version__
-from corrugate.cli import analyze, design, pattern, serve, spec, validate
+from corrugate.cli import analyze, design, pattern, serve, spec, validate, verify
 from corrugate.core.errors import CorrugateError, describe
 
 __all__ = ["COMMAND_MODULES", "EXIT_CODES", "app", "main"]
 
 #: The command modules, in the order ``corrugate --help`` lists their commands.
-COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, serve, spec)
+COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, verify, serve, spec)
 
 
 def _help_markup() -> Literal["rich"] | None:

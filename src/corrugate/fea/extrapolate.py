@@ -96,7 +96,7 @@ def extrapolate(series: Series) -> Extrapolation:
     if r is not None:
         return Extrapolation(r[0], p, True, r[1])
     if p is None:
-        why = "not asymptotic (the steps change sign, or the meshes do not double)"
+        why = "not asymptotic (the steps change sign or vanish, or the meshes do not double)"
     else:
         why = f"not asymptotic (p = {p:.2f})"
     return Extrapolation(finest, p, False, f"{why}, the finest value")
