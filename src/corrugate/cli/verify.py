@@ -84,13 +84,14 @@ def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
     joint = data.get("joint", "none")
     if not isinstance(joint, str):
         raise InputError(str(file), "joint", "a name such as none", reason="is malformed")
+    _layout(record.shape)
     return record.assembly(), constraints, joint
 
 
-def _layout(assembly: Any) -> None:
+def _layout(name: str) -> None:
+    """Refuse a layout the FE has no fixtures for, naming what is missing."""
     from corrugate.names import RECTANGULAR_LAYOUTS
 
-    name = assembly.layout.name
     if name not in RECTANGULAR_LAYOUTS:
         raise InputError(
             "layout",
@@ -99,6 +100,11 @@ def _layout(assembly: Any) -> None:
             reason="has no FE fixtures yet (a wheel between a ground patch and its hub, a plate "
             "clamped at its corners: issue 23, item 4)",
         )
+
+
+def _writable(folder: Path) -> bool:
+    """Whether verify.json can be written into ``folder`` (checked before any FE run)."""
+    return os.access(folder, os.W_OK | os.X_OK)
 
 
 def _fmt(v: float | None) -> str:
@@ -179,8 +185,7 @@ def verify_cmd(
     meshes = _meshes(mesh)
     check_sweep_options(None, timeout, workdir)
     assembly, constraints, joint = _read_design(folder)
-    _layout(assembly)
-    if not os.access(folder, os.W_OK | os.X_OK):
+    if not _writable(folder):
         raise InputError(
             "DIR", str(folder), "a folder verify.json can be written to", reason="is not writable"
         )
