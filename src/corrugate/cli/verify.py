@@ -84,7 +84,8 @@ def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
     joint = data.get("joint", "none")
     if not isinstance(joint, str):
         raise InputError(str(file), "joint", "a name such as none", reason="is malformed")
-    _layout(record.shape)
+    if record.shape is not None:  # a missing shape: record.assembly() names it
+        _layout(record.shape)
     return record.assembly(), constraints, joint
 
 
