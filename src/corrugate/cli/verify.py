@@ -79,11 +79,16 @@ def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
     constraints = data.get("constraints")
     if not isinstance(constraints, list) or not all(isinstance(c, dict) for c in constraints):
         raise InputError(
-            str(file), "constraints", "a list of constraint objects", reason="is malformed"
+            f"{file}: constraints",
+            type(constraints).__name__,
+            "a list of constraint objects",
+            reason="is malformed",
         )
     joint = data.get("joint", "none")
     if not isinstance(joint, str):
-        raise InputError(str(file), "joint", "a name such as none", reason="is malformed")
+        raise InputError(
+            f"{file}: joint", repr(joint), "a name such as none", reason="is malformed"
+        )
     if record.shape is not None:  # a missing shape: record.assembly() names it
         _layout(record.shape)
     return record.assembly(), constraints, joint
