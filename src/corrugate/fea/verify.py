@@ -350,7 +350,7 @@ def verify_design(
         load = c.get("load_N") if q.kind == "k" and c.get("unit") == "mm" else None
         twin = twin_of(q, assembly, joint, None if load is None else float(load))
         if isinstance(twin, str):
-            rows.append(_replace_row(base, note=twin, how="no FE twin"))
+            rows.append(_replace_row(base, note=twin))
             continue
         series: dict[int, float | None] = {}
         failures: list[str] = []
@@ -359,7 +359,7 @@ def verify_design(
                 r = run(twin.test, twin.eta, along)
             except CorrugateError as exc:
                 series[along] = None
-                failures.append(f"{along}/facet: {exc}")
+                failures.append(f"{along}/facet not run: {_short(exc)}")
                 continue
             if isinstance(r, FrameStiffness):
                 series[along] = twin.value(None, r)
@@ -382,6 +382,13 @@ def verify_design(
             )
         )
     return Verification(tuple(rows), tuple(meshes))
+
+
+def _short(exc: CorrugateError) -> str:
+    """A failed run's message, short for a table row."""
+    if isinstance(exc, InputError) and exc.field == "mesh.along" and "four-point" in str(exc):
+        return "the 4-point fixture needs elements per facet x (n + 1) divisible by 4"
+    return str(exc)
 
 
 def _replace_row(row: Row, **changes: Any) -> Row:
