@@ -142,3 +142,43 @@ def test_a_bound_the_fe_misses_exits_1(
     code, out, _ = cli(["verify", str(folder), "--mesh", "2"])
     assert code == 1
     assert "not every constraint holds" in out
+
+
+@pytest.mark.fea
+def test_ctrl_c_mid_run_exits_130_with_one_line_and_writes_nothing(
+    ccx: str, designed: Path, tmp_path: Path
+) -> None:
+    """SIGINT while CalculiX runs (after the first progress line): exit 130, the CLI's one
+    interrupted line, no verify.json and the folder's manifest as it was."""
+    import os
+    import shutil
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from corrugate.cli import INTERRUPTED
+
+    folder = tmp_path / "int"
+    shutil.copytree(designed, folder)
+    (folder / "verify.json").unlink(missing_ok=True)
+    manifest = (folder / ".corrugate-set.json").read_bytes()
+    root = Path(__file__).resolve().parents[2]
+    run = subprocess.Popen(
+        [sys.executable, "-m", "corrugate", "verify", str(folder), "--mesh", "8,16"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(root / "src")},
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    assert run.stderr is not None
+    first = run.stderr.readline()
+    assert first.startswith("CalculiX run 1"), first
+    time.sleep(0.5)
+    run.send_signal(signal.SIGINT)
+    _, stderr = run.communicate(timeout=120)
+    assert run.returncode == 130, stderr
+    assert stderr.splitlines() == [INTERRUPTED]
+    assert not (folder / "verify.json").exists()
+    assert (folder / ".corrugate-set.json").read_bytes() == manifest
