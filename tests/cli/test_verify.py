@@ -98,3 +98,19 @@ def test_missing_calculix_is_one_line(
     assert code == 2
     _one_error_line(err, "ccx")
     assert not (square / "verify.json").exists()
+
+
+def test_the_folder_of_an_infeasible_spec_holds_no_design(
+    cli: CliRun, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from corrugate.cli import main
+
+    spec = tmp_path / "infeasible.toml"
+    spec.write_text(example_text("infeasible"))
+    with pytest.raises(SystemExit):
+        main(["design", str(spec), "--out", str(tmp_path / "x"), "-q"])
+    capsys.readouterr()  # the design's diagnosis
+    assert json.loads((tmp_path / "x" / "design.json").read_text())["design"] is None
+    code, _, err = cli(["verify", str(tmp_path / "x")])
+    assert code == 2
+    _one_error_line(err, "holds no design", "infeasible")

@@ -74,8 +74,15 @@ def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
             reason="is not a folder",
         )
     file = folder / RECORD_NAME
-    record = read_record(file)
+    record = read_record(file)  # one line naming the file when it is missing or not JSON
     data = json.loads(file.read_text(encoding="utf-8"))
+    if data.get("design", {}) is None:
+        raise InputError(
+            "DIR",
+            str(folder),
+            "the folder of a design",
+            reason=f"holds no design (its design.json: status {data.get('status')})",
+        )
     constraints = data.get("constraints")
     if not isinstance(constraints, list) or not all(isinstance(c, dict) for c in constraints):
         raise InputError(
