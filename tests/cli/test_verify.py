@@ -114,3 +114,23 @@ def test_the_folder_of_an_infeasible_spec_holds_no_design(
     code, _, err = cli(["verify", str(tmp_path / "x")])
     assert code == 2
     _one_error_line(err, "holds no design", "infeasible")
+
+
+def test_a_malformed_constraint_is_refused_before_any_run(
+    cli: CliRun, square: Path, tmp_path: Path
+) -> None:
+    """A bound that is not a number, or an unknown quantity key: exit 2, one line, no run."""
+    import shutil
+
+    for change, word in ((("bound", "x"), "bound"), (("quantity", "EQ@0"), "quantity")):
+        folder = tmp_path / word
+        shutil.copytree(square, folder)
+        record = json.loads((folder / "design.json").read_text())
+        for c in record["constraints"]:
+            if c["quantity"] == "EI@0":
+                c[change[0]] = change[1]
+        (folder / "design.json").write_text(json.dumps(record))
+        code, _, err = cli(["verify", str(folder)])
+        assert code == 2
+        _one_error_line(err, word)
+        assert "CalculiX run" not in err

@@ -333,7 +333,7 @@ def verify_design(
             raise r
         return r
 
-    rows: list[Row] = []
+    planned: list[tuple[Row, Twin | str]] = []  # every entry read before any run: bad input first
     for c, q in behavioural(constraints):
         name = str(c.get("name", q.key))
         sense = str(c.get("sense", "min"))
@@ -347,8 +347,12 @@ def verify_design(
             _number(c, "bound"),
             _number(c, "value"),
         )
-        load = c.get("load_N") if q.kind == "k" and c.get("unit") == "mm" else None
-        twin = twin_of(q, assembly, joint, None if load is None else float(load))
+        deflection = q.kind == "k" and c.get("unit") == "mm"  # a deflection bound, under load_N
+        load = _number(c, "load_N") if deflection else None
+        planned.append((base, twin_of(q, assembly, joint, load)))
+    rows: list[Row] = []
+    for base, twin in planned:
+        sense = base.sense
         if isinstance(twin, str):
             rows.append(_replace_row(base, note=twin))
             continue
