@@ -129,6 +129,7 @@ CLI: dict[str, list[tuple[str, Callable[[str], list[str]]]]] = {
     "budget": [
         ("--budget", _spec_cmd("design", "--budget")),
         ("--budget", _spec_cmd("pareto", "--budget")),
+        ("--budget", _spec_cmd("tolerance", "--budget")),
     ],
     "perforation": [],  # needs tmp_path: see PATTERN
     "length": [
@@ -601,6 +602,11 @@ def test_a_spec_over_a_tiny_budget_ends_with_exit_4_and_its_line() -> None:
     budget = data["solver"]["budget"]
     assert budget["exhausted"] is True and budget["stopped_by"] == "seconds"
     assert budget["used_cpu_seconds"] >= 0.01 and budget["cpu_seconds"] == 0.01
+    # tolerance runs no Monte Carlo of a design that may not be the optimum: the same line
+    r = run_child(["tolerance", str(SPEC), "--budget", "0.01", "--samples", "50"])
+    assert r.returncode == 4, (r.returncode, r.stderr[-500:])
+    (line,) = r.stderr.strip().splitlines()
+    assert line.startswith("corrugate: not certified within the budget of 0.01 s") and not r.stdout
     r = run_child(["pareto", str(SPEC), "-q", "--budget", "0.01"])
     assert r.returncode == 4, (r.returncode, r.stderr[-500:])
     assert (

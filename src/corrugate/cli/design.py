@@ -468,6 +468,7 @@ def tolerance_cmd(
         str, typer.Option("--E-tol", metavar="FRACTION", help="1-sigma relative error of E.")
     ] = "10%",
     as_json: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
+    budget: o.SolverBudget = None,
     quiet: o.Quiet = False,
 ) -> None:
     """Monte Carlo of the certified design of a spec over manufacturing and material tolerances:
@@ -484,6 +485,7 @@ def tolerance_cmd(
 
     check_count("samples", samples, "--samples")
     check_count("seed", seed, "--seed")
+    seconds = None if budget is None else check("budget", budget, "--budget")
     tol = Tolerances(
         W=check("W_tol", parse_quantity(W_tol, "mm", "--W-tol"), "--W-tol"),
         alpha=check("alpha_tol", parse_quantity(alpha_tol, "deg", "--alpha-tol"), "--alpha-tol"),
@@ -491,7 +493,10 @@ def tolerance_cmd(
         E_rel=_relative(E_tol, "--E-tol"),
     )
     problem = Problem.from_spec(load_spec(spec))
-    sol = solve(problem, explain=False)
+    sol = solve(problem, explain=False, budget=seconds)
+    if sol.status == "not-certified":  # no Monte Carlo of a design that may not be the optimum
+        typer.echo(not_certified_line(sol), err=True)
+        raise typer.Exit(4)
     if sol.assembly is None:
         raise InputError("spec", str(spec), "a feasible spec", reason=f"is {sol.status}")
     report = monte_carlo(problem, sol.assembly, tol, samples, seed)

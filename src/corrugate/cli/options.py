@@ -204,7 +204,7 @@ Quiet = Annotated[
     ),
 ]
 
-#: ``--budget`` of ``design`` and ``pareto``: CPU seconds for the whole solve (None: the default).
+#: ``--budget`` of ``design``, ``pareto`` and ``tolerance``: CPU seconds for the whole solve (None: the default).
 SolverBudget = Annotated[
     float | None,
     Opt(

@@ -406,7 +406,7 @@ def reference_markdown() -> str:
         "2 bad input (one line naming the key, the value and what is allowed), "
         "4 not certified within the work budget, 130 interrupted (Ctrl-C).",
         "",
-        "Work budget. `design` and `pareto` take `--budget SECONDS` (default 60; 0.01 to 86400): "
+        "Work budget. `design`, `pareto` and `tolerance` take `--budget SECONDS` (default 60; 0.01 to 86400): "
         "CPU seconds of the process (user + system; on an idle machine about wall seconds) for "
         "the whole solve, the explanation included (binding checks, runner-ups, the diagnosis of "
         "an infeasible spec), and at most 10^8 boxes bounded. The branch and bound checks the "
