@@ -25,6 +25,7 @@ from collections import defaultdict
 from pathlib import Path
 
 from corrugate import Assembly, Layer, analyze, get_material
+from corrugate.fea.extrapolate import richardson
 from corrugate.mechanics.load_cases import (
     CANTILEVER,
     FOUR_POINT,
@@ -35,7 +36,7 @@ from corrugate.mechanics.load_cases import (
 )
 from corrugate.mechanics.offaxis import _cs
 from fea_offaxis import designs
-from offaxis_table import estimate, richardson
+from offaxis_table import estimate
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
 TESTS = {

@@ -20,6 +20,7 @@ from pathlib import Path
 from matplotlib.figure import Figure
 
 from corrugate import analyze
+from corrugate.fea.extrapolate import richardson
 from fea_offaxis import CSV, ETAS, OUT, designs
 
 Series = dict[int, float]
@@ -52,21 +53,6 @@ def estimate(series: Series) -> tuple[float, str]:
     if extrapolated is not None:
         return extrapolated
     return series[b], f"not converged ({100 * change:.1f} % at {a}->{b})"
-
-
-def richardson(series: Series) -> tuple[float, str] | None:
-    """Richardson extrapolation of the three finest meshes at their observed order p =
-    log2(d1 / d2), when the series is monotone with shrinking steps and 0.5 <= p <= 4."""
-    alongs = sorted(series)
-    if len(alongs) < 3:
-        return None
-    v1, v2, v3 = (series[k] for k in alongs[-3:])
-    d1, d2 = v1 - v2, v2 - v3
-    if d1 * d2 > 0 and abs(d2) < abs(d1):
-        p = math.log2(d1 / d2)
-        if 0.5 <= p <= 4:
-            return v3 - d2 / (2**p - 1), f"extrapolated (p = {p:.2f})"
-    return None
 
 
 def table() -> None:

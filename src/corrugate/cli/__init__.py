@@ -22,13 +22,13 @@ from typing import Annotated, Any, Literal
 import typer
 
 from corrugate import __version__
-from corrugate.cli import analyze, design, pattern, serve, spec, validate
+from corrugate.cli import analyze, design, pattern, serve, spec, validate, verify
 from corrugate.core.errors import CorrugateError, describe
 
 __all__ = ["COMMAND_MODULES", "EXIT_CODES", "app", "main"]
 
 #: The command modules, in the order ``corrugate --help`` lists their commands.
-COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, serve, spec)
+COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, verify, serve, spec)
 
 
 def _help_markup() -> Literal["rich"] | None:
@@ -51,9 +51,10 @@ _PLAIN_HELP_WIDTH = {"terminal_width": 120, "max_content_width": 120}
 #: The exit codes, shown under ``corrugate --help``.
 EXIT_CODES = (
     "Exit codes: 0 an answer; 1 no design meets the spec (infeasible, with the diagnosis) or an "
-    "FE run failed; 2 bad input (one line naming the field, the value and what is allowed); "
-    "3 a bug (one line; please report it); 4 not certified within the work budget (design, "
-    "pareto and tolerance --budget, default 60 s of CPU time: one line with the best design found so far and "
+    "FE run failed, or (verify) a constraint does not hold in FE; 2 bad input (one line naming "
+    "the field, the value and what is allowed); 3 a bug (one line; please report it); 4 not "
+    "certified within the work budget (design, pareto and tolerance --budget, default 60 s of "
+    "CPU time: one line with the best design found so far and "
     "the proven gap); 130 interrupted (Ctrl-C: one line; an --out folder "
     "keeps its earlier set or has the new one whole)."
 )

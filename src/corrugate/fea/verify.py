@@ -1,0 +1,401 @@
+"""The FE twin of every behavioural constraint of a design: what ``corrugate verify`` runs.
+
+A design's ``design.json`` lists its constraints (``constraints[]``: name, quantity key, sense,
+bound, the model's value, unit). Each behavioural one (a stiffness K, D or EI, a load case's
+P / delta or deflection, a buckling load) is checked in the FE fixture of the test it states
+(:mod:`corrugate.fea.assembly`, the runs ``corrugate validate`` makes; the same function, the
+same arguments, so the same numbers):
+
+=========================================  =========================================================
+constraint                                 FE twin
+=========================================  =========================================================
+K, free sides (no test, or ``platens``)    ``compression``: K between platens
+K in a frame                               :func:`corrugate.fea.frame.solve_frame`: K_frame(eta)
+D, EI, no test (pure bending)              ``bending4``: the pure-bending gauge between load lines
+D, EI, P / delta, ``three-point``          ``bending``: P / delta under the load
+D, EI, P / delta, ``four-point``           ``bending4``: P / delta at the load points
+D, EI, P / delta, ``cantilever``           ``cantilever``: P / delta at the tip
+Pb (buckling, eta 0 or 90)                 ``buckling``: the first buckling load
+=========================================  =========================================================
+
+A bending test's D and EI are read as the test's own formula reads P / delta over the panel's
+length (:func:`corrugate.mechanics.load_cases.apparent`), a deflection bound as load / (P /
+delta). Each twin runs on a mesh series (elements per facet, default 2 / 4 / 8) and is
+extrapolated (:mod:`corrugate.fea.extrapolate`). What has no FE twin yet says so in its row and
+does not hold: a span other than the panel's length (the fixtures support the panel at its
+ends), D or EI in a frame, EI or a bending test's P / delta off the crease directions (the
+coupon has its own span), load capacities (strength), and the band joint off the crease
+directions or in a frame. Off the crease directions the coupon is cut at one position (the
+default of :func:`corrugate.fea.assembly.solve_assembly`), and the row says so.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from corrugate.core.errors import CorrugateError, InputError
+from corrugate.fea.assembly import (
+    AssemblyMesh,
+    AssemblyResult,
+    Bond,
+    LoadTest,
+    principal_axis,
+    solve_assembly,
+)
+from corrugate.fea.extrapolate import extrapolate
+from corrugate.fea.frame import FrameStiffness, solve_frame
+from corrugate.fea.shells import specimen
+from corrugate.geometry.layer import Assembly
+from corrugate.mechanics.behaviours import get_load_case
+from corrugate.solver.quantity import Quantity
+
+__all__ = [
+    "BEHAVIOURAL_KINDS",
+    "DEFAULT_MESHES",
+    "Row",
+    "Twin",
+    "Verification",
+    "behavioural",
+    "twin_of",
+    "verify_design",
+]
+
+#: The mesh series unless asked for another (elements per facet).
+DEFAULT_MESHES: tuple[int, ...] = (2, 4, 8)
+#: The quantity kinds a behavioural constraint bounds.
+BEHAVIOURAL_KINDS = ("K", "D", "EI", "k", "Pb", "Pmax")
+
+#: Called with one line before each CalculiX run.
+Progress = Callable[[str], None]
+
+_NAMES: dict[str, str] = {
+    "compression": "compression between platens",
+    "frame": "the panel in a rigid frame (2 runs)",
+    "bending": "3-point bending",
+    "bending4": "4-point bending",
+    "cantilever": "cantilever",
+    "buckling": "buckling in compression",
+}
+
+
+@dataclass(frozen=True, slots=True)
+class Twin:
+    """The FE fixture of one constraint: the ``test`` run at ``eta`` (deg), and how its result
+    is read (``read``: ``K``, ``D``, ``EI``, ``k`` (P / delta, N/mm), ``pure-D``, ``pure-EI``
+    (the 4-point gauge), ``Pb``), with the test's ``a`` coefficient for a bending test's
+    apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
+    row should add (one coupon position off the crease directions)."""
+
+    test: LoadTest
+    eta: float
+    read: str
+    a: float = 0.0
+    load: float | None = None
+    note: str = ""
+
+    def value(self, r: AssemblyResult | None, frame: FrameStiffness | None) -> float:
+        """The constraint's quantity (in its unit) from the fixture's result."""
+        if self.test == "frame":
+            assert frame is not None
+            return frame.K(self.eta)
+        assert r is not None
+        if self.read == "Pb":
+            return r.value()
+        if self.read == "K":
+            assert r.K is not None
+            return r.K
+        if self.read == "pure-D":
+            assert r.D is not None
+            return r.D
+        if self.read == "pure-EI":
+            assert r.EI is not None
+            return r.EI
+        k = r.force / r.displacement  # P / delta of the test (compression: K)
+        if self.read == "D":
+            return self.a * r.span**2 * k
+        if self.read == "EI":
+            return self.a * r.span**3 * k
+        return k if self.load is None else self.load / k
+
+
+@dataclass(frozen=True, slots=True)
+class Row:
+    """One constraint and its FE twin: ``name``, quantity key, ``sense`` (min or max), ``unit``,
+    the spec's ``bound``, the ``model`` value of the certificate, ``fe_series`` (elements per
+    facet -> FE value, None where the run failed), the estimate ``fe`` (None without a twin or
+    without a value), the observed ``order``, ``how`` the estimate was found, whether the
+    constraint ``holds`` in FE (False without a twin) and a ``note`` (why there is no twin,
+    failed runs, one coupon position)."""
+
+    name: str
+    quantity: str
+    sense: str
+    unit: str
+    bound: float
+    model: float
+    fe_series: dict[int, float | None] = field(default_factory=dict)
+    fe: float | None = None
+    order: float | None = None
+    how: str = ""
+    holds: bool = False
+    note: str = ""
+
+    @property
+    def has_twin(self) -> bool:
+        return bool(self.fe_series)
+
+    def as_json(self) -> dict[str, Any]:
+        """The row as ``verify --json`` and verify.json write it (no NaN: null where unknown)."""
+        return {
+            "name": self.name,
+            "quantity": self.quantity,
+            "sense": self.sense,
+            "unit": self.unit,
+            "bound": _finite(self.bound),
+            "model": _finite(self.model),
+            "fe_series": {str(k): _finite(v) for k, v in self.fe_series.items()},
+            "fe": _finite(self.fe),
+            "order": _finite(self.order),
+            "estimate": self.how or None,
+            "holds": self.holds,
+            "note": self.note or None,
+        }
+
+
+def _finite(v: float | None) -> float | None:
+    return v if v is not None and math.isfinite(v) else None
+
+
+@dataclass(frozen=True, slots=True)
+class Verification:
+    """Every row of a design and the mesh series they ran on; ``holds`` when every row does."""
+
+    rows: tuple[Row, ...]
+    meshes: tuple[int, ...]
+
+    @property
+    def holds(self) -> bool:
+        return all(r.holds for r in self.rows)
+
+    def as_json(self) -> dict[str, Any]:
+        return {
+            "holds": self.holds,
+            "meshes": list(self.meshes),
+            "constraints": [r.as_json() for r in self.rows],
+        }
+
+
+def _joint(joint: str) -> tuple[bool, Bond]:
+    """``connectors`` and ``bond`` of the FE for the design's joint (docs/load_cases.md 7)."""
+    if joint in ("none", ""):
+        return False, "edges"
+    if joint == "band-edges":
+        return True, "edges"
+    if joint == "band-flanges":
+        return True, "flanges"
+    raise InputError("joint", repr(joint), "none, band-edges or band-flanges", reason="is unknown")
+
+
+def twin_of(
+    q: Quantity, assembly: Assembly, joint: str = "none", load: float | None = None
+) -> Twin | str:
+    """The FE twin of the constraint on ``q`` (module docstring), or why it has none yet (one
+    phrase). ``load`` (N): a deflection bound's load (its value is then a deflection, mm)."""
+    connectors, _ = _joint(joint)
+    eta = q.eta if q.eta is not None else 0.0
+    principal = principal_axis(eta) is not None
+    note = "" if principal else "one coupon position run (the coupon is not shifted)"
+    if q.kind == "Pmax":
+        return "no FE twin yet (strength: load capacity)"
+    if q.kind == "Pb":
+        if not principal:
+            return "no FE twin yet (buckling off the crease directions)"
+        return Twin("buckling", eta, "Pb")
+    if q.support not in (None, "free", "frame"):
+        return f"no FE twin yet (support {q.support})"
+    if connectors and (not principal or q.support == "frame"):
+        return "no FE twin yet (the band joint off the crease directions or in a frame)"
+    test = q.test
+    if q.span is not None:
+        length = specimen(assembly, eta)[1]
+        if abs(q.span - length) > 1e-9 * max(1.0, length):
+            return (
+                f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its ends, "
+                f"{length:.6g} mm apart)"
+            )
+    if q.support == "frame":
+        if q.kind == "K" or (q.kind == "k" and test == "platens"):
+            if load is not None:
+                return "no FE twin yet (a deflection in a frame)"
+            return Twin("frame", eta, "K")
+        return "no FE twin yet (bending in a frame)"
+    if test is None:
+        if q.kind == "K":
+            return Twin("compression", eta, "K", note=note)
+        if q.kind == "EI" and not principal:
+            return "no FE twin yet (EI off the crease directions: the coupon has its own span)"
+        return Twin("bending4", eta, "pure-" + q.kind, note=note)
+    fixture = get_load_case(test).fixture
+    if test == "platens":
+        return Twin("compression", eta, "K" if q.kind == "K" else "k", load=load, note=note)
+    if not principal and q.kind != "D":
+        return (
+            f"no FE twin yet ({q.kind} of a bending test off the crease directions: "
+            "the coupon has its own span)"
+        )
+    form = get_load_case(test).form
+    assert form is not None
+    fe_test: LoadTest
+    if fixture == "bending":
+        fe_test = "bending"
+    elif fixture == "bending4":
+        fe_test = "bending4"
+    elif fixture == "cantilever":
+        fe_test = "cantilever"
+    else:
+        return f"no FE twin yet (test {test})"
+    return Twin(fe_test, eta, q.kind, a=form.a, load=load, note=note)
+
+
+def behavioural(
+    constraints: Sequence[Mapping[str, Any]],
+) -> list[tuple[Mapping[str, Any], Quantity]]:
+    """The behavioural constraints of a design.json's ``constraints`` with their quantities."""
+    out: list[tuple[Mapping[str, Any], Quantity]] = []
+    for c in constraints:
+        key = c.get("quantity")
+        if not isinstance(key, str) or "@" not in key:
+            continue
+        q = Quantity.parse(key)
+        if q.kind in BEHAVIOURAL_KINDS:
+            out.append((c, q))
+    return out
+
+
+def _number(c: Mapping[str, Any], name: str) -> float:
+    v = c.get(name)
+    if isinstance(v, bool) or not isinstance(v, int | float):
+        raise InputError(
+            f"constraints[{c.get('name', '?')}].{name}", repr(v), "a number", reason="is not one"
+        )
+    return float(v)
+
+
+def verify_design(
+    assembly: Assembly,
+    constraints: Sequence[Mapping[str, Any]],
+    joint: str = "none",
+    meshes: Sequence[int] = DEFAULT_MESHES,
+    *,
+    progress: Progress = lambda line: None,
+    folder: Path | None = None,
+    keep: bool = False,
+    timeout: float = 900.0,
+) -> Verification:
+    """Run the FE twin of every behavioural constraint (module docstring) on the mesh series
+    ``meshes`` (elements per facet) and compare its estimate with the bound. A run that fails
+    (a solver error, a mesh the fixture refuses) leaves None in the series and its message in
+    the row's note; runs shared by constraints (the same test, eta and mesh) run once."""
+    connectors, bond = _joint(joint)
+    runs: dict[tuple[str, float, int], AssemblyResult | FrameStiffness | CorrugateError] = {}
+
+    def run(test: LoadTest, eta: float, along: int) -> AssemblyResult | FrameStiffness:
+        key = (test, 0.0 if test == "frame" else eta, along)
+        if key not in runs:
+            mesh = AssemblyMesh(along)
+            where = "" if test == "frame" else f" along eta = {eta:g} deg"
+            progress(f"assembly, {_NAMES[test]}{where}, mesh {mesh.label()}")
+            try:
+                if test == "frame":
+                    runs[key] = solve_frame(
+                        assembly, mesh, folder=folder, keep=keep, timeout=timeout
+                    )
+                else:
+                    runs[key] = solve_assembly(
+                        assembly,
+                        test,
+                        mesh,
+                        eta,
+                        connectors=connectors,
+                        bond=bond,
+                        folder=folder,
+                        keep=keep,
+                        timeout=timeout,
+                    )
+            except CorrugateError as exc:
+                runs[key] = exc
+        r = runs[key]
+        if isinstance(r, CorrugateError):
+            raise r
+        return r
+
+    planned: list[tuple[Row, Twin | str]] = []  # every entry read before any run: bad input first
+    for c, q in behavioural(constraints):
+        name = str(c.get("name", q.key))
+        sense = str(c.get("sense", "min"))
+        if sense not in ("min", "max"):
+            raise InputError(f"constraints[{name}].sense", repr(sense), "min or max")
+        base = Row(
+            name,
+            q.key,
+            sense,
+            str(c.get("unit", "")),
+            _number(c, "bound"),
+            _number(c, "value"),
+        )
+        deflection = q.kind == "k" and c.get("unit") == "mm"  # a deflection bound, under load_N
+        load = _number(c, "load_N") if deflection else None
+        planned.append((base, twin_of(q, assembly, joint, load)))
+    rows: list[Row] = []
+    for base, twin in planned:
+        sense = base.sense
+        if isinstance(twin, str):
+            rows.append(_replace_row(base, note=twin))
+            continue
+        series: dict[int, float | None] = {}
+        failures: list[str] = []
+        for along in meshes:
+            try:
+                r = run(twin.test, twin.eta, along)
+            except CorrugateError as exc:
+                series[along] = None
+                failures.append(f"{along}/facet not run: {_short(exc)}")
+                continue
+            if isinstance(r, FrameStiffness):
+                series[along] = twin.value(None, r)
+            else:
+                series[along] = twin.value(r, None)
+        e = extrapolate({k: v for k, v in series.items() if v is not None})
+        holds = e.value is not None and (
+            e.value >= base.bound if sense == "min" else e.value <= base.bound
+        )
+        notes = [n for n in (twin.note, *failures) if n]
+        rows.append(
+            _replace_row(
+                base,
+                fe_series=series,
+                fe=e.value,
+                order=e.order,
+                how=e.how,
+                holds=bool(holds),
+                note="; ".join(notes),
+            )
+        )
+    return Verification(tuple(rows), tuple(meshes))
+
+
+def _short(exc: CorrugateError) -> str:
+    """A failed run's message, short for a table row."""
+    if isinstance(exc, InputError) and exc.field == "mesh.along" and "four-point" in str(exc):
+        return "the 4-point fixture needs elements per facet x (n + 1) divisible by 4"
+    return str(exc)
+
+
+def _replace_row(row: Row, **changes: Any) -> Row:
+    from dataclasses import replace
+
+    return replace(row, **changes)

@@ -1,0 +1,136 @@
+"""``corrugate verify``'s bad input (exit 2, one line naming it), before any CalculiX run."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import pytest
+
+from corrugate.spec.examples import example_text
+
+if TYPE_CHECKING:
+    from conftest import CliRun
+
+
+def _one_error_line(err: str, *words: str) -> None:
+    lines = err.strip().splitlines()
+    assert len(lines) == 1, err
+    assert lines[0].startswith("corrugate: error:"), err
+    for w in words:
+        assert w in lines[0], (w, err)
+
+
+def test_missing_folder_and_missing_or_garbled_design_json(cli: CliRun, tmp_path: Path) -> None:
+    code, _, err = cli(["verify", str(tmp_path / "nowhere")])
+    assert code == 2
+    _one_error_line(err, "nowhere")
+    code, _, err = cli(["verify", str(tmp_path)])
+    assert code == 2
+    _one_error_line(err, "design.json")
+    (tmp_path / "design.json").write_text("{not json")
+    code, _, err = cli(["verify", str(tmp_path)])
+    assert code == 2
+    _one_error_line(err, "design.json")
+
+
+@pytest.fixture(scope="module")
+def square(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from corrugate.cli import main
+
+    folder = tmp_path_factory.mktemp("verify-square")
+    spec = folder / "blimp_gripper.toml"
+    spec.write_text(example_text("blimp_gripper"))
+    with pytest.raises(SystemExit) as info:
+        main(["design", str(spec), "--out", str(folder / "d"), "-q"])
+    assert info.value.code in (0, None)
+    return folder / "d"
+
+
+def test_garbled_constraints_and_bad_meshes(cli: CliRun, square: Path, tmp_path: Path) -> None:
+    import shutil
+
+    for mesh in ("3", "2,x", "4,2", "0"):
+        code, _, err = cli(["verify", str(square), "--mesh", mesh])
+        assert code == 2, mesh
+        _one_error_line(err, "mesh")
+    folder = tmp_path / "garbled"
+    shutil.copytree(square, folder)
+    record = json.loads((folder / "design.json").read_text())
+    record["constraints"] = "EI"
+    (folder / "design.json").write_text(json.dumps(record))
+    code, _, err = cli(["verify", str(folder)])
+    assert code == 2
+    _one_error_line(err, "constraints")
+
+
+def test_a_folder_that_cannot_be_written_is_refused(
+    cli: CliRun, square: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import corrugate.cli.verify as verify
+
+    monkeypatch.setattr(verify, "_writable", lambda folder: False)
+    code, _, err = cli(["verify", str(square)])
+    assert code == 2
+    _one_error_line(err, "DIR", "not writable")
+    assert not (square / "verify.json").exists()
+
+
+def test_a_circle_is_refused_naming_what_is_missing(cli: CliRun, tmp_path: Path) -> None:
+    from corrugate.cli import main
+
+    spec = tmp_path / "wheel.toml"
+    spec.write_text(example_text("wheel_circle"))
+    with pytest.raises(SystemExit):
+        main(["design", str(spec), "--out", str(tmp_path / "w"), "-q"])
+    code, _, err = cli(["verify", str(tmp_path / "w")])
+    assert code == 2
+    _one_error_line(err, "layout", "circle", "no FE fixtures yet")
+
+
+def test_missing_calculix_is_one_line(
+    cli: CliRun, square: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setenv("PATH", "")
+    monkeypatch.delenv("CORRUGATE_CCX", raising=False)
+    code, _, err = cli(["verify", str(square)])
+    assert code == 2
+    _one_error_line(err, "ccx")
+    assert not (square / "verify.json").exists()
+
+
+def test_the_folder_of_an_infeasible_spec_holds_no_design(
+    cli: CliRun, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from corrugate.cli import main
+
+    spec = tmp_path / "infeasible.toml"
+    spec.write_text(example_text("infeasible"))
+    with pytest.raises(SystemExit):
+        main(["design", str(spec), "--out", str(tmp_path / "x"), "-q"])
+    capsys.readouterr()  # the design's diagnosis
+    assert json.loads((tmp_path / "x" / "design.json").read_text())["design"] is None
+    code, _, err = cli(["verify", str(tmp_path / "x")])
+    assert code == 2
+    _one_error_line(err, "holds no design", "infeasible")
+
+
+def test_a_malformed_constraint_is_refused_before_any_run(
+    cli: CliRun, square: Path, tmp_path: Path
+) -> None:
+    """A bound that is not a number, or an unknown quantity key: exit 2, one line, no run."""
+    import shutil
+
+    for change, word in ((("bound", "x"), "bound"), (("quantity", "EQ@0"), "quantity")):
+        folder = tmp_path / word
+        shutil.copytree(square, folder)
+        record = json.loads((folder / "design.json").read_text())
+        for c in record["constraints"]:
+            if c["quantity"] == "EI@0":
+                c[change[0]] = change[1]
+        (folder / "design.json").write_text(json.dumps(record))
+        code, _, err = cli(["verify", str(folder)])
+        assert code == 2
+        _one_error_line(err, word)
+        assert "CalculiX run" not in err

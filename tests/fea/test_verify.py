@@ -1,0 +1,184 @@
+"""``corrugate verify DIR`` against ``corrugate validate`` (issue 23, item 1): a small design's
+FE twins at a coarse mesh series are the numbers validate gives for the same fixtures; verify.json
+is the folder's ``verify`` set; the exit code follows ``holds``."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import pytest
+
+from corrugate.core.fileio import read_manifest
+
+if TYPE_CHECKING:
+    from conftest import CliRun
+
+#: A 20 mm square of Dura-Lar (W 5, n 5 when solved): pure-bending EI and a three-point
+#: deflection along the creases, a few seconds of CalculiX per mesh.
+SPEC = """
+name = "verify-small"
+model = "refined"
+
+[material]
+name = "dura-lar"
+thickness = "0.125 mm"
+
+[layout]
+shape = "square"
+
+[variables]
+W = { min = "4 mm", max = "8 mm", step = "1 mm" }
+n = { min = 3, max = 6 }
+alpha = { min = "60 deg", max = "120 deg", step = "1 deg" }
+
+[constraints]
+side = { min = "20 mm", max = "30 mm" }
+flexural_rigidity = [{ min = "10 mN*m^2", eta = "0 deg" }]
+
+[[constraints.deflection]]
+test = "three-point"
+load = "1 N"
+max = "0.5 mm"
+eta = "0 deg"
+
+[objective]
+minimize = "mass"
+"""
+
+
+def _strict(text: str) -> Any:
+    def refuse(name: str) -> None:
+        raise ValueError(f"not strict JSON: {name}")
+
+    return json.loads(text, parse_constant=refuse)
+
+
+@pytest.fixture(scope="module")
+def designed(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from corrugate.cli import main
+
+    folder = tmp_path_factory.mktemp("verify")
+    spec = folder / "small.toml"
+    spec.write_text(SPEC)
+    out = folder / "design"
+    with pytest.raises(SystemExit) as info:
+        main(["design", str(spec), "--out", str(out), "-q"])
+    assert info.value.code in (0, None)
+    return out
+
+
+@pytest.mark.fea
+def test_verify_json_matches_validate_at_the_same_meshes(
+    ccx: str, cli: CliRun, designed: Path
+) -> None:
+    code, out, _ = cli(["verify", str(designed), "--mesh", "2,4", "--json"])
+    result = _strict(out)
+    assert code == (0 if result["holds"] else 1)
+    rows = {r["quantity"]: r for r in result["constraints"]}
+    assert set(rows) == {"EI@0", "k3pt@0"}
+    for r in rows.values():
+        assert set(r) >= {"name", "bound", "model", "fe_series", "fe", "holds"}
+        assert list(r["fe_series"]) == ["2", "4"]
+        assert r["fe"] == r["fe_series"]["4"]  # two meshes: no order, the finest value
+        assert r["order"] is None
+        fe, bound = r["fe"], r["bound"]
+        assert r["holds"] == (fe >= bound if r["sense"] == "min" else fe <= bound)
+    assert result["holds"] == all(r["holds"] for r in rows.values())
+
+    record = json.loads((designed / "design.json").read_text())
+    L = record["L_mm"]  # the square's side: the span of both fixtures along eta = 0
+    load = next(c["load_N"] for c in record["constraints"] if c["quantity"] == "k3pt@0")
+    for along in (2, 4):
+        code, vout, _ = cli(
+            [
+                "validate",
+                "--design",
+                str(designed),
+                "--mesh",
+                str(along),
+                "--no-unit-cell",
+                "--json",
+            ]
+        )
+        assert code == 0
+        fe = json.loads(vout)["fe"]
+        # pure bending: validate's 4-point gauge D4 times the span is verify's EI
+        assert rows["EI@0"]["fe_series"][str(along)] == pytest.approx(fe["D4_Nmm@0"] * L, rel=1e-9)
+        # three-point: validate's D = P L^2 / (48 delta), so delta = load L^2 / (48 D)
+        assert rows["k3pt@0"]["fe_series"][str(along)] == pytest.approx(
+            load * L**2 / (48 * fe["D_Nmm@0"]), rel=1e-9
+        )
+
+    written = _strict((designed / "verify.json").read_text())
+    assert written["holds"] == result["holds"]
+    assert written["constraints"] == result["constraints"]
+    manifest = read_manifest(designed)
+    assert "verify.json" in manifest["verify"]["files"]  # type: ignore[operator]
+    assert "design.json" in manifest["design"]["files"]  # type: ignore[operator]
+
+
+@pytest.mark.fea
+def test_a_bound_the_fe_misses_exits_1(
+    ccx: str, cli: CliRun, designed: Path, tmp_path: Path
+) -> None:
+    """The same design with its deflection bound made tighter than the FE's deflection (edited
+    in design.json): that row does not hold, the design does not, exit 1; the table names it."""
+    import shutil
+
+    folder = tmp_path / "tight"
+    shutil.copytree(designed, folder)
+    record = json.loads((folder / "design.json").read_text())
+    for c in record["constraints"]:
+        if c["quantity"] == "k3pt@0":
+            c["bound"] = 1e-4
+    (folder / "design.json").write_text(json.dumps(record))
+    code, out, _ = cli(["verify", str(folder), "--mesh", "2", "--json"])
+    result = _strict(out)
+    assert code == 1 and result["holds"] is False
+    rows = {r["quantity"]: r for r in result["constraints"]}
+    assert rows["k3pt@0"]["holds"] is False and rows["EI@0"]["holds"] is True
+    code, out, _ = cli(["verify", str(folder), "--mesh", "2"])
+    assert code == 1
+    assert "not every constraint holds" in out
+
+
+@pytest.mark.fea
+def test_ctrl_c_mid_run_exits_130_with_one_line_and_writes_nothing(
+    ccx: str, designed: Path, tmp_path: Path
+) -> None:
+    """SIGINT while CalculiX runs (after the first progress line): exit 130, the CLI's one
+    interrupted line, no verify.json and the folder's manifest as it was."""
+    import os
+    import shutil
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    from corrugate.cli import INTERRUPTED
+
+    folder = tmp_path / "int"
+    shutil.copytree(designed, folder)
+    (folder / "verify.json").unlink(missing_ok=True)
+    manifest = (folder / ".corrugate-set.json").read_bytes()
+    root = Path(__file__).resolve().parents[2]
+    run = subprocess.Popen(
+        [sys.executable, "-m", "corrugate", "verify", str(folder), "--mesh", "8,16"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "PYTHONPATH": str(root / "src")},
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    assert run.stderr is not None
+    first = run.stderr.readline()
+    assert first.startswith("CalculiX run 1"), first
+    time.sleep(0.5)
+    run.send_signal(signal.SIGINT)
+    _, stderr = run.communicate(timeout=120)
+    assert run.returncode == 130, stderr
+    assert stderr.splitlines() == [INTERRUPTED]
+    assert not (folder / "verify.json").exists()
+    assert (folder / ".corrugate-set.json").read_bytes() == manifest

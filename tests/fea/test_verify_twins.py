@@ -1,0 +1,79 @@
+"""Which FE fixture checks which constraint (corrugate.fea.verify.twin_of), without CalculiX."""
+
+from __future__ import annotations
+
+import pytest
+
+from corrugate import Assembly, Layer, get_material
+from corrugate.fea.verify import Twin, behavioural, twin_of
+from corrugate.geometry.layouts import Rectangle
+from corrugate.mechanics.load_cases import CANTILEVER, FOUR_POINT, THREE_POINT
+from corrugate.solver.quantity import Quantity
+
+A = Assembly.identical(
+    Layer(W=5.0, n=5, alpha_deg=84.0, material=get_material("dura-lar"), t=0.125)
+)
+
+
+@pytest.mark.parametrize(
+    ("key", "test", "read", "a"),
+    [
+        ("K@0", "compression", "K", 0.0),
+        ("Kplat@90", "compression", "K", 0.0),
+        ("Kframe@45", "frame", "K", 0.0),
+        ("EI@0", "bending4", "pure-EI", 0.0),
+        ("D@90", "bending4", "pure-D", 0.0),
+        ("D@30", "bending4", "pure-D", 0.0),
+        ("EI3pt@0", "bending", "EI", THREE_POINT.form.a),  # type: ignore[union-attr]
+        ("k4pt@0", "bending4", "k", FOUR_POINT.form.a),  # type: ignore[union-attr]
+        ("Dcant@90", "cantilever", "D", CANTILEVER.form.a),  # type: ignore[union-attr]
+        ("D3pt@30", "bending", "D", THREE_POINT.form.a),  # type: ignore[union-attr]
+        ("Pb@0", "buckling", "Pb", 0.0),
+    ],
+)
+def test_each_constraint_has_the_fixture_of_its_test(
+    key: str, test: str, read: str, a: float
+) -> None:
+    t = twin_of(Quantity.parse(key), A)
+    assert isinstance(t, Twin), t
+    assert (t.test, t.read, t.a) == (test, read, a)
+    assert t.eta == Quantity.parse(key).eta
+    coupon = t.test != "frame" and t.eta not in (0.0, 90.0)  # the frame: the whole panel
+    assert ("one coupon position" in t.note) == coupon
+
+
+@pytest.mark.parametrize(
+    ("key", "why"),
+    [
+        ("k3pt@0/L=15", "span 15 mm"),
+        ("EIframe@0", "bending in a frame"),
+        ("EI@45", "EI off the crease directions"),
+        ("k3pt@45", "off the crease directions"),
+        ("Pmax3pt@0", "strength"),
+        ("Pb@45", "buckling off the crease directions"),
+    ],
+)
+def test_what_has_no_twin_says_why(key: str, why: str) -> None:
+    t = twin_of(Quantity.parse(key), A)
+    assert isinstance(t, str) and t.startswith("no FE twin yet"), t
+    assert why in t
+
+
+def test_a_span_equal_to_the_panel_length_has_its_twin_and_the_band_joint_only_on_axis() -> None:
+    L = A.Ly
+    assert isinstance(twin_of(Quantity.parse(f"k3pt@0/L={L:.12g}"), A), Twin)
+    r = Assembly(A.layer1, A.layer2, Rectangle())
+    assert isinstance(twin_of(Quantity.parse("K@0"), r, "band-edges"), Twin)
+    assert isinstance(twin_of(Quantity.parse("K@30"), r, "band-edges"), str)
+    t = twin_of(Quantity.parse("k3pt@0"), A, load=2.0)
+    assert isinstance(t, Twin) and t.load == 2.0
+
+
+def test_only_behavioural_constraints_are_checked() -> None:
+    rows = [
+        {"name": "side", "quantity": "Lx"},
+        {"name": "len", "quantity": "length@0"},
+        {"name": "ei", "quantity": "EI@0"},
+        {"name": "d", "quantity": "k3pt@0/L=120"},
+    ]
+    assert [c["name"] for c, _ in behavioural(rows)] == ["ei", "d"]
