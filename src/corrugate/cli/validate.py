@@ -197,7 +197,8 @@ def validate_cmd(
         Opt(
             metavar=o.ANGLE,
             help="Direction (deg from layer 1's creases); repeat. Default 0. Other than 0/90: "
-            "a square coupon cut along eta (square layout only).",
+            "a coupon cut from the two layers with its edges along and across eta (square or "
+            "rectangle layout; `corrugate docs fea`).",
         ),
     ] = None,
     support: o.SupportOpt = DEFAULT_SUPPORT,
