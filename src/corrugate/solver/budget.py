@@ -30,6 +30,7 @@ __all__ = [
     "DEFAULT_BUDGET_SECONDS",
     "Budget",
     "budget_scope",
+    "budget_spent",
     "current_budget",
 ]
 
@@ -108,6 +109,13 @@ _CURRENT: ContextVar[Budget | None] = ContextVar("corrugate_budget", default=Non
 def current_budget() -> Budget | None:
     """The budget of the innermost :func:`budget_scope`, None outside any."""
     return _CURRENT.get()
+
+
+def budget_spent() -> bool:
+    """Whether the budget of the innermost :func:`budget_scope` is spent (False outside any):
+    the check the search and each step of the explanation make before more work."""
+    budget = _CURRENT.get()
+    return budget is not None and budget.exhausted
 
 
 @contextmanager

@@ -32,7 +32,7 @@ import math
 from dataclasses import replace
 
 from corrugate.names import DEFAULT_MARGIN_MM
-from corrugate.solver.budget import current_budget
+from corrugate.solver.budget import budget_spent, current_budget
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables
 from corrugate.solver.quantity import STIFFNESS, Quantity
@@ -154,7 +154,7 @@ def diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
     out += _free_off_axis(problem, tables)
     singles: list[Diagnosis] = []
     for c in problem.constraints:
-        if _spent():
+        if budget_spent():
             return [*out, *singles, _partial(problem)]
         d = _single(problem, c, tables)
         if d is not None:
@@ -164,7 +164,7 @@ def diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
         return out
     pairs = _pairs(problem, tables)
     out += pairs
-    if _spent():
+    if budget_spent():
         return [*out, _partial(problem)]
     if not pairs and not any(d.hint for d in out):
         names = tuple(c.name for c in problem.constraints)
@@ -181,12 +181,6 @@ def diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
             )
         )
     return out
-
-
-def _spent() -> bool:
-    """Whether the enclosing work budget (:mod:`corrugate.solver.budget`) is spent."""
-    budget = current_budget()
-    return budget is not None and budget.exhausted
 
 
 def _partial(problem: Problem) -> Diagnosis:
@@ -390,7 +384,7 @@ def _single(problem: Problem, c: Constraint, tables: Tables) -> Diagnosis | None
     )
     partners = []
     for d in problem.constraints:
-        if d.name == c.name or _spent():
+        if d.name == c.name or budget_spent():
             continue
         without = _best(rest.without(d.name), c.quantity, c.sense, tables)
         if without.point is not None and _improves(c, without.value, r):
@@ -457,7 +451,7 @@ def _pairs(problem: Problem, tables: Tables) -> list[Diagnosis]:
     together (the other relaxed to its own best)."""
     out = []
     for a, b in itertools.combinations(problem.constraints, 2):
-        if _spent():
+        if budget_spent():
             break
         rest = problem.without(a.name).without(b.name)
         if optimize(rest, tables=tables).point is None:

@@ -24,7 +24,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from corrugate.solver.budget import Budget, budget_scope, current_budget
+from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import MASS, Quantity
@@ -142,7 +142,6 @@ def _front(
     progress: Callable[[int, int | None], None] | None,
 ) -> ParetoFront:
     key = Quantity.stiffness(kind, eta_deg)
-    spent = current_budget()
     name = f"pareto.{kind}"
     tables = Tables(problem)
     unit = Constraint(name, key, "min", 0.0).unit
@@ -159,7 +158,7 @@ def _front(
             out.append(pt)
             if progress is not None:
                 progress(len(out), None)
-            if spent is not None and spent.exhausted:
+            if budget_spent():
                 break
             if len(out) >= max_points:
                 truncated = True
@@ -186,7 +185,7 @@ def _front(
     s1 = stiffest.value if stiffest.point is not None else s0
     n = max(points, 2)
     for k in range(n):
-        if spent is not None and spent.exhausted:
+        if budget_spent():
             break
         level = s0 + (s1 - s0) * k / (n - 1)
         if k == n - 1:

@@ -29,7 +29,7 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
-from corrugate.solver.budget import Budget, budget_scope, current_budget
+from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.problem import Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
@@ -330,9 +330,8 @@ def optimize(
     bound = math.inf
     boxes = iterations = 0
     inc = incumbent
-    budget = current_budget()
     for pair in _pairs(problem):
-        if budget is not None and budget.exhausted:  # the pairs left: nothing proven
+        if budget_spent():  # the pairs left: nothing proven
             certified = False
             bound = -math.inf
             break
@@ -589,7 +588,6 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, flo
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
     vals = _values_at(problem, opt, tables)
     capacity = _capacities(problem, opt, tables)
-    budget = current_budget()
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     out = []
     for c in problem.constraints:
@@ -597,7 +595,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         margin = c.margin(v)
         binding: bool | None = None
         relaxed = None
-        if not (budget is not None and budget.exhausted):
+        if not budget_spent():
             relaxed = optimize(problem.without(c.name), tables=tables, incumbent=opt.value)
         if relaxed is not None and relaxed.certified:
             tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
@@ -634,12 +632,11 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     assert opt.point is not None
     n_star = round(opt.point["n1"])
     out = []
-    budget = current_budget()
     for n in range(
         max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
         min(problem.n_hi, n_star + RUNNER_UP_SPREAD) + 1,
     ):
-        if budget is not None and budget.exhausted:
+        if budget_spent():
             break
         r = optimize(problem, n_fixed=(n, n), tables=tables)
         if r.point is None:
