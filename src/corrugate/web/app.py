@@ -98,7 +98,6 @@ from corrugate.web.workers import (
     Runner,
     ServerBusyError,
     WorkerLostError,
-    release_memory,
 )
 from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, write_design
 
@@ -305,13 +304,9 @@ async def files_answer(
 ) -> list[StoredFile]:
     """Run ``job(body, settings, folder)`` on the runner into a new result's folder of ``store``
     and publish the files it wrote (the result goes when the job fails or is stopped)."""
-    result_id, folder = store.create()
-    try:
+    with store.reserved() as (result_id, folder):
         paths = await runner.run(job, body, settings, folder)
         return store.publish(result_id, paths)
-    except BaseException:
-        store.discard(result_id)
-        raise
 
 
 @contextmanager
@@ -408,16 +403,9 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
 def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
     """Solve the spec of a design request and write its files into ``folder`` (a new result's
     folder of the store); returns the ``corrugate design --json`` object and the paths written
-    (none for an infeasible spec). A job: runs in a worker process; it takes and returns
-    plain, picklable values, and the store itself stays in the server. The worker hands its
-    freed memory back to the system afterwards (:func:`~corrugate.web.workers.release_memory`)."""
-    try:
-        return _design_job(body, settings, folder)
-    finally:
-        release_memory()
-
-
-def _design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
+    (none for an infeasible spec). A job: runs in a worker process (which hands its freed memory
+    back to the system after every job, :func:`~corrugate.web.workers.release_memory`); it takes
+    and returns plain, picklable values, and the store itself stays in the server."""
     with _PARSE_LOCK:  # pint parses the spec's quantities, inline materials and the options
         try:
             spec = parse_spec(_spec_data(body))
@@ -451,16 +439,12 @@ async def design_answer(
 ) -> DesignAnswer:
     """Run :func:`design_job` on the runner (a worker process) into a new result of ``store`` and
     publish its files (the result is discarded when the job fails, is stopped or has no files)."""
-    result_id, folder = store.create()
-    try:
+    with store.reserved() as (result_id, folder):
         payload, paths = await runner.run(design_job, body, settings, folder)
-    except BaseException:
-        store.discard(result_id)
-        raise
-    if not paths:
-        store.discard(result_id)
-        return DesignAnswer(design=payload, result=None)
-    return DesignAnswer(design=payload, result=_result_body(store.publish(result_id, paths)))
+        if not paths:
+            store.discard(result_id)
+            return DesignAnswer(design=payload, result=None)
+        return DesignAnswer(design=payload, result=_result_body(store.publish(result_id, paths)))
 
 
 def _error(status: int, detail: str, errors: list[FieldError]) -> JSONResponse:

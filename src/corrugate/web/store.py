@@ -17,7 +17,8 @@ import tempfile
 import threading
 import time
 import uuid
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from urllib.parse import quote
@@ -123,15 +124,22 @@ class ResultStore:
             shutil.rmtree(old, ignore_errors=True)
         return list(files.values())
 
-    def make(self, write: Callable[[Path], Iterable[Path]]) -> list[StoredFile]:
-        """Run ``write(folder)`` on a new result's private folder and publish the files it returns;
-        if it fails, the folder and everything in it go."""
+    @contextmanager
+    def reserved(self) -> Iterator[tuple[str, Path]]:
+        """A new result id and its private folder (:meth:`create`) for the block to fill and
+        publish; if the block fails (or is cancelled), the result and its folder go."""
         result_id, folder = self.create()
         try:
-            return self.publish(result_id, list(write(folder)))
+            yield result_id, folder
         except BaseException:
             self.discard(result_id)
             raise
+
+    def make(self, write: Callable[[Path], Iterable[Path]]) -> list[StoredFile]:
+        """Run ``write(folder)`` on a new result's private folder and publish the files it returns;
+        if it fails, the folder and everything in it go."""
+        with self.reserved() as (result_id, folder):
+            return self.publish(result_id, list(write(folder)))
 
     def discard(self, result_id: str) -> None:
         """Forget a result that failed before it was published and remove its folder."""
