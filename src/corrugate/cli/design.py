@@ -140,16 +140,20 @@ def _gap_text(gap: float) -> str:
     return f"{100 * gap:.3g} %" if math.isfinite(gap) else "none (no bound proven)"
 
 
+def _budget_limit(budget: dict[str, object]) -> str:
+    """What ran out of a spent budget (``solver.budget`` of ``design --json``): ``60 s`` or
+    ``1000 boxes``."""
+    if budget["stopped_by"] == "boxes":
+        return f"{budget['boxes']} boxes"
+    return f"{float(budget['cpu_seconds']):g} s"  # type: ignore[arg-type]
+
+
 def not_certified_line(sol: Solution) -> str:
     """The one stderr line of exit code 4: what stopped the search (the budget, and what was
     used of it), the best design found so far and the proven gap."""
     budget = sol.stats.get("budget")
     if isinstance(budget, dict) and budget.get("stopped_by") is not None:
-        limit = (
-            f"{budget['boxes']} boxes"
-            if budget["stopped_by"] == "boxes"
-            else f"{float(budget['cpu_seconds']):g} s"
-        )
+        limit = _budget_limit(budget)
         used = (
             f" (used {float(budget['used_cpu_seconds']):.3g} s of CPU time, "
             f"{budget['used_boxes']} boxes)"
@@ -420,10 +424,9 @@ def pareto_cmd(
     if not quiet or failed:  # with --quiet, only why the exit code is 1 or 4 (on stderr)
         console.print(summary)
     if front.stopped is not None and front.budget is not None:
-        b = front.budget
-        limit = f"{b['boxes']} boxes" if front.stopped == "boxes" else f"{b['cpu_seconds']} s"
         typer.echo(
-            f"corrugate: not certified within the budget of {limit}: the front ends at the "
+            f"corrugate: not certified within the budget of {_budget_limit(front.budget)}: "
+            "the front ends at the "
             f"{len(front.points)} point(s) found so far; run again with a larger --budget",
             err=True,
         )
