@@ -23,7 +23,7 @@ import pytest
 from fastapi import FastAPI
 
 from corrugate.web import WebSettings
-from corrugate.web.app import LOOPBACK_NAMES, SOLVER_SHARE
+from corrugate.web.app import JOB_WALL_PER_CPU, LOOPBACK_NAMES
 from corrugate.web.jobs import Job, JobTable
 from corrugate.web.workers import ServerBusyError
 
@@ -136,7 +136,7 @@ def test_a_design_job_streams_progress_and_ends_with_the_answer_of_post_design(
     assert job["status"] in ("queued", "running") and job["kind"] == "design"
     settings: WebSettings = app.state.settings
     assert job["limits"]["budget_s"] == settings.job_budget_s
-    assert job["limits"]["time_limit_s"] == pytest.approx(settings.job_budget_s / SOLVER_SHARE)
+    assert job["limits"]["time_limit_s"] == pytest.approx(settings.job_budget_s * JOB_WALL_PER_CPU)
     stream = events(base, job["id"])
     *progress, (last, final) = stream
     assert last == "done" and final["status"] == "done"
@@ -254,16 +254,16 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
 
 
 def test_a_job_past_its_time_limit_fails_with_504_and_keeps_nothing() -> None:
-    """The time limit of a design job is its solver budget over SOLVER_SHARE: a budget of
-    0.03 s stops the blimp gripper (seconds of CPU) at 0.05 s wall."""
-    settings = WebSettings(processes=1, job_budget_s=0.03, allowed_hosts=LOOPBACK_NAMES)
-    assert settings.job_time_limit_s(0.03) == pytest.approx(0.05)
+    """The time limit of a design job is JOB_WALL_PER_CPU times its solver budget: a budget of
+    0.02 s stops the blimp gripper (seconds of CPU) at 0.08 s wall."""
+    settings = WebSettings(processes=1, job_budget_s=0.02, allowed_hosts=LOOPBACK_NAMES)
+    assert JOB_WALL_PER_CPU == 4.0 and settings.job_time_limit_s(0.02) == pytest.approx(0.08)
     with serve(settings) as (base, app):
         status, job = post_json(base, "/api/jobs/design", spec_of("blimp_gripper.toml"))
-        assert status == 202 and job["limits"]["time_limit_s"] == pytest.approx(0.05)
+        assert status == 202 and job["limits"]["time_limit_s"] == pytest.approx(0.08)
         kind, final = events(base, job["id"])[-1]
         assert kind == "failed" and final["error"]["status"] == 504
-        assert "time limit of 0.05 s" in final["error"]["body"]["detail"]
+        assert "time limit of 0.08 s" in final["error"]["body"]["detail"]
         assert not any(app.state.store.root.iterdir())
 
 

@@ -1118,6 +1118,7 @@ async function submitDesign(event) {
     $('d-progress-box').hidden = true;
     if (state.status === 'cancelled') {
       $('d-status').textContent = 'cancelled';
+      $('design-results').hidden = true;  // an earlier answer is not this spec's
       designForm.dataset.state = 'cancelled';
       return;
     }
