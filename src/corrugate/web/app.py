@@ -21,6 +21,14 @@ Endpoints (all JSON unless said otherwise):
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
   STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
   ``"result": null`` when the spec is infeasible;
+* ``POST /api/jobs/design``: the body of ``/api/design`` as a background job (202 once a worker
+  has read the spec; 422 naming the field before anything is queued), its solver under its own
+  CPU budget (query ``budget``) and stopped at :data:`JOB_WALL_PER_CPU` wall seconds per budget
+  second; ``POST /api/jobs/verify``: ``corrugate verify`` on a stored design (CalculiX);
+  ``GET /api/jobs/{id}`` (state, last progress event, result), ``GET /api/jobs/{id}/events``
+  (server-sent events), ``DELETE /api/jobs/{id}`` (cancel: the worker killed and replaced, no
+  result folder left); ``GET /api/fea``: whether CalculiX is installed
+  (:mod:`corrugate.web.jobs`);
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path);
   ``GET /api/results/{id}/all.zip``: all of them in one zip archive.
 
@@ -123,12 +131,15 @@ __all__ = [
     "STATIC_DIR",
     "WebSettings",
     "analysis_payload",
+    "check_design_job",
     "create_app",
     "design_answer",
     "design_job",
     "design_payload",
+    "fea_info",
     "mesh_job",
     "pattern_job",
+    "verify_job",
 ]
 
 _log = logging.getLogger("corrugate.web")
