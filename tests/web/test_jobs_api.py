@@ -299,3 +299,38 @@ def test_a_job_keeps_its_last_events_and_numbers_them() -> None:
     assert len(job.events) == MAX_EVENTS and job.events[0]["seq"] == 6
     assert [e["seq"] for e in job.events_after(MAX_EVENTS + 3)] == [MAX_EVENTS + 4, MAX_EVENTS + 5]
     assert job.as_dict()["progress"]["iterations"] == MAX_EVENTS + 5
+
+
+def test_an_fe_job_sets_its_own_memory_cap_and_calculix_inherits_it() -> None:
+    """A worker capped at 1 GiB beyond its start-up mapping, with a 3 GiB ceiling: inside
+    ``memory_cap(2 GiB)`` a program it starts (as CalculiX is started) sees the 2 GiB cap (plus
+    the mapping), the ceiling bounds a larger request, and the worker's own cap comes back after."""
+    import subprocess
+    import sys
+
+    code = """
+import subprocess
+from corrugate.web import workers
+GiB = 1024**3
+workers._cap_memory(1 * GiB, 3 * GiB)
+base = workers._MAPPED_AT_CAP
+def child():
+    return int(subprocess.run(["sh", "-c", "ulimit -v"], capture_output=True, text=True).stdout)
+print(base, child())
+with workers.memory_cap(2 * GiB) as cap:
+    print(cap, child())
+with workers.memory_cap(5 * GiB) as cap:
+    print(cap, child())
+print(child())
+"""
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=120
+    ).stdout.split("\n")
+    gib = 1024**3
+    base, before = map(int, out[0].split())
+    assert before == (base + 1 * gib) // 1024  # ulimit -v is in KiB
+    cap, inside = map(int, out[1].split())
+    assert cap == base + 2 * gib and inside == cap // 1024
+    cap, ceiling = map(int, out[2].split())
+    assert cap == base + 3 * gib and ceiling == cap // 1024  # no more than the ceiling
+    assert int(out[3]) == before

@@ -119,12 +119,14 @@ from corrugate.web.workers import (
     Runner,
     ServerBusyError,
     WorkerLostError,
+    memory_cap,
     send_progress,
     wants_progress,
 )
 from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, write_design
 
 __all__ = [
+    "FE_MEMORY_BYTES",
     "JOB_WALL_PER_CPU",
     "LOOPBACK_NAMES",
     "SOLVER_SHARE",
@@ -173,6 +175,10 @@ _EXPECTED: dict[str, str] = {
 SOLVER_SHARE = 0.6
 
 
+#: The address space an FE verification job may map beyond its worker's start-up mapping
+#: (``RLIMIT_AS``, inherited by its CalculiX runs): issue 23 asks the FE to fit in 8 GB.
+FE_MEMORY_BYTES = 8 * 1024**3
+
 #: Wall seconds a design job may take per CPU second of its solver budget: the budget is CPU
 #: time, and on a shared machine a CPU second takes several wall seconds (the chassis plate of
 #: issue 24 spent 66 s of CPU in 177 s of wall on this 2-core machine shared by other sessions);
@@ -203,9 +209,9 @@ class WebSettings:
     for a design job unless the client asks for another budget (at most ``max_job_budget_s``);
     such a job is stopped at :meth:`job_time_limit_s` wall seconds; ``max_jobs``: jobs kept (a
     finished one for ``result_ttl_s``); ``fe_timeout_s``: wall seconds of an FE verification job
-    (and of each CalculiX run in it); ``fe_max_mesh``: its finest mesh (elements per facet).
-    CalculiX runs as a child of the worker process and inherits its address-space cap
-    (``worker_memory_bytes``), so one FE run may map at most that much.
+    (and of each CalculiX run in it); ``fe_max_mesh``: its finest mesh (elements per facet);
+    ``fe_memory_bytes``: its address-space cap beyond the worker's start-up mapping (CalculiX
+    runs as a child of the worker and inherits it; None: the worker's ``worker_memory_bytes``).
     """
 
     max_body_bytes: int = 64 * 1024
@@ -226,6 +232,7 @@ class WebSettings:
     max_jobs: int = 64
     fe_timeout_s: float = 1800.0
     fe_max_mesh: int = 8
+    fe_memory_bytes: int | None = FE_MEMORY_BYTES
 
     def job_time_limit_s(self, budget_s: float) -> float:
         """Wall seconds a design job with a solver budget of ``budget_s`` CPU seconds may run
@@ -543,10 +550,14 @@ async def design_answer(
         return DesignAnswer(design=payload, result=_result_body(store.publish(result_id, paths)))
 
 
-def verify_job(folder: Path, meshes: tuple[int, ...], timeout_s: float) -> dict[str, Any]:
+def verify_job(
+    folder: Path, meshes: tuple[int, ...], timeout_s: float, memory_bytes: int | None = None
+) -> dict[str, Any]:
     """``corrugate verify --json`` of the design in ``folder`` (a stored result's folder), with
     its ``design`` label, on the mesh series ``meshes``, each CalculiX run stopped after
-    ``timeout_s`` (:func:`corrugate.fea.verify.verify_design`). A job: runs in a worker process
+    ``timeout_s`` (:func:`corrugate.fea.verify.verify_design`) and its address space capped at
+    ``memory_bytes`` beyond the worker's start-up mapping (None: the worker's own cap;
+    :func:`corrugate.web.workers.memory_cap`). A job: runs in a worker process
     and sends one progress event per CalculiX run (``{"stage": "fe", "run": k, "line": ...}``,
     the line ``corrugate verify`` prints on stderr). Constraints without an FE twin come back as
     verify's own rows (``holds`` false, ``note`` saying why)."""
@@ -563,7 +574,10 @@ def verify_job(folder: Path, meshes: tuple[int, ...], timeout_s: float) -> dict[
         send_progress({"stage": "fe", "run": count, "line": f"[{count}] {text}"})
 
     send_progress({"stage": "reading"})
-    result = verify_design(assembly, constraints, joint, meshes, progress=line, timeout=timeout_s)
+    with memory_cap(memory_bytes):
+        result = verify_design(
+            assembly, constraints, joint, meshes, progress=line, timeout=timeout_s
+        )
     payload: dict[str, Any] = _json_safe(
         {"design": _label(assembly), "runs": count, **result.as_json()}
     )
@@ -691,6 +705,7 @@ async def verify_job_task(
             folder,
             meshes,
             settings.fe_timeout_s,
+            settings.fe_memory_bytes,
             timeout_s=settings.fe_timeout_s,
         )
         job.end("done", result)
@@ -1038,7 +1053,7 @@ def _add_jobs(
         folder, meshes = await run_in_threadpool(_check_verify, body, cfg, store)
         limits = {
             "time_limit_s": cfg.fe_timeout_s,
-            "memory_bytes": cfg.worker_memory_bytes,
+            "memory_bytes": cfg.fe_memory_bytes or cfg.worker_memory_bytes,
             "meshes": list(meshes),
         }
         job = jobs.new("verify", limits)
@@ -1102,6 +1117,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         cfg.timeout_s,
         processes=cfg.processes,
         memory_bytes=cfg.worker_memory_bytes,
+        ceiling_bytes=cfg.fe_memory_bytes,
     )
     store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
     jobs = JobTable(cfg.max_jobs, cfg.result_ttl_s)

@@ -21,7 +21,7 @@ import os
 import signal
 import threading
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from multiprocessing.connection import Connection
@@ -35,6 +35,7 @@ __all__ = [
     "ServerBusyError",
     "WorkerLostError",
     "core_count",
+    "memory_cap",
     "release_memory",
     "send_progress",
     "wants_progress",
@@ -163,9 +164,15 @@ def _own_process_group() -> None:
         os.setpgid(0, 0)
 
 
-def _cap_memory(limit: int | None) -> None:
+#: In a worker process: what it had mapped when it was capped (bytes), for :func:`memory_cap`.
+_MAPPED_AT_CAP: int | None = None
+
+
+def _cap_memory(limit: int | None, ceiling: int | None = None) -> None:
     """Cap this process's address space (``RLIMIT_AS``) at what it has mapped now (its modules,
-    thread stacks and arenas) plus ``limit`` bytes (None: no cap)."""
+    thread stacks and arenas) plus ``limit`` bytes (None: no cap); the hard limit is that plus
+    ``ceiling`` bytes when larger, up to which a job may raise it (:func:`memory_cap`)."""
+    global _MAPPED_AT_CAP
     if limit is None:
         return
     try:
@@ -174,12 +181,41 @@ def _cap_memory(limit: int | None) -> None:
         with open("/proc/self/statm", encoding="ascii") as f:
             mapped = int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
         cap = mapped + limit
-        resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
+        hard = max(cap, mapped + (ceiling or 0))
+        resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
+        _MAPPED_AT_CAP = mapped
     except (ImportError, ValueError, OSError):  # not on this system
         pass
 
 
-def _worker_main(conn: Connection, memory_bytes: int | None) -> None:
+@contextlib.contextmanager
+def memory_cap(limit: int | None) -> Iterator[int | None]:
+    """(In a worker process.) Within the block, the address-space cap is what the worker had
+    mapped when it started plus ``limit`` bytes, at most the runner's ``ceiling_bytes`` (the
+    worker's hard limit); the programs the block starts (CalculiX) inherit it. Yields the cap in
+    bytes (None where there is none)."""
+    try:
+        import resource
+
+        soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    except (ImportError, ValueError, OSError):
+        yield None
+        return
+    if limit is None or _MAPPED_AT_CAP is None or soft == resource.RLIM_INFINITY:
+        yield None if soft == resource.RLIM_INFINITY else soft
+        return
+    wanted = _MAPPED_AT_CAP + limit
+    cap = wanted if hard == resource.RLIM_INFINITY else min(wanted, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
+    try:
+        yield cap
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+
+
+def _worker_main(
+    conn: Connection, memory_bytes: int | None, ceiling_bytes: int | None = None
+) -> None:
     """A worker process: import the modules, say "ready", then answer jobs ``(fn, args)`` one at
     a time with ``("ok", result)``, ``("error", exception)`` or ``("memory", None)`` (after
     which it ends: a process that ran out of memory is not trusted with another job), preceded,
@@ -191,7 +227,7 @@ def _worker_main(conn: Connection, memory_bytes: int | None) -> None:
     _leave_forkserver()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the server's: it ends the workers
     _warm_up()
-    _cap_memory(memory_bytes)
+    _cap_memory(memory_bytes, ceiling_bytes)
     conn.send(("ready", os.getpid()))
     while True:
         reply: tuple[str, Any]
@@ -255,7 +291,8 @@ class Runner:
     * **Memory**: each worker's address space is capped at ``memory_bytes`` beyond what it
       maps once its modules are imported (``RLIMIT_AS``); a
       job that needs more gets :class:`~corrugate.core.errors.InputError` naming the body (422),
-      and its worker is replaced.
+      and its worker is replaced. A job may set its own cap, up to ``ceiling_bytes`` beyond that
+      mapping (:func:`memory_cap`: the FE verification jobs, whose CalculiX runs inherit it).
     * **Load**: at most ``max_pending`` computations queued or running at once; past that
       :meth:`run` raises :class:`ServerBusyError` at once.
     * **Lifetime**: workers start from a fresh interpreter (``forkserver``; ``spawn`` where
@@ -275,12 +312,14 @@ class Runner:
         timeout_s: float,
         processes: int | None = None,
         memory_bytes: int | None = WORKER_MEMORY_BYTES,
+        ceiling_bytes: int | None = None,
     ) -> None:
         self.timeout_s = timeout_s
         self.processes = max(2, core_count()) if processes is None else processes
         if self.processes < 1:
             raise ValueError(f"a runner needs at least one worker process, not {processes}")
         self.memory_bytes = memory_bytes
+        self.ceiling_bytes = ceiling_bytes
         self._slots = threading.BoundedSemaphore(max_pending)
         self._lock = threading.Lock()
         self._idle: deque[_Worker] = deque()
@@ -326,7 +365,7 @@ class Runner:
             ours, theirs = context.Pipe(duplex=True)
             process: BaseProcess = context.Process(  # type: ignore[attr-defined]
                 target=_worker_main,
-                args=(theirs, self.memory_bytes),
+                args=(theirs, self.memory_bytes, self.ceiling_bytes),
                 name="corrugate-web-worker",
                 daemon=True,
             )
