@@ -334,3 +334,51 @@ print(child())
     cap, ceiling = map(int, out[2].split())
     assert cap == base + 3 * gib and ceiling == cap // 1024  # no more than the ceiling
     assert int(out[3]) == before
+
+
+def _group_members(pgid: int) -> list[int]:
+    """The processes of process group ``pgid`` other than its leader (and not zombies)."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit() or int(entry) == pgid:
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", encoding="ascii") as f:
+                state, _, group = f.read().rsplit(")", 1)[1].split()[:3]
+        except (FileNotFoundError, ProcessLookupError):
+            continue
+        if int(group) == pgid and state != "Z":
+            found.append(int(entry))
+    return found
+
+
+@pytest.mark.fea
+def test_cancelling_a_verification_kills_its_calculix(
+    served: tuple[str, FastAPI], ccx: str
+) -> None:
+    """A verification cancelled while CalculiX runs: the worker and the ccx it started (in the
+    worker's own process group) are killed; the job ends cancelled."""
+    base, app = served
+    runner = app.state.runner
+    status, answer = post_json(base, "/api/design", spec_of("blimp_gripper.toml"), timeout=300)
+    assert status == 200
+    status, job = post_json(
+        base, "/api/jobs/verify", {"result": answer["result"]["id"], "mesh": "2,4,8"}
+    )
+    assert status == 202, job
+    assert job["limits"]["meshes"] == [2, 4, 8] and job["limits"]["memory_bytes"] == 8 * 1024**3
+    children: list[int] = []
+    with urllib.request.urlopen(f"{base}/api/jobs/{job['id']}/events", timeout=600) as r:
+        for kind, data, _ in parse_sse(r):
+            assert kind == "progress", data
+            if json.loads(data).get("run", 0) >= 2:  # the 4-per-facet run (seconds of ccx)
+                break
+    deadline = time.monotonic() + 60
+    while not children and time.monotonic() < deadline:
+        children = [c for p in runner.worker_pids() for c in _group_members(p)]
+        time.sleep(0.02)
+    assert children, "no CalculiX process seen in a worker's process group"
+    status, state = request(base, f"/api/jobs/{job['id']}", "DELETE")
+    assert status == 200 and state["status"] == "cancelled"
+    for child in children:
+        _wait_for(lambda c=child: _ended(c), 10, f"CalculiX ({child}) killed")
