@@ -216,8 +216,8 @@ def memory_cap(limit: int | None) -> Iterator[int | None]:
 def _worker_main(
     conn: Connection, memory_bytes: int | None, ceiling_bytes: int | None = None
 ) -> None:
-    """A worker process: import the modules, say "ready", then answer jobs ``(fn, args)`` one at
-    a time with ``("ok", result)``, ``("error", exception)`` or ``("memory", None)`` (after
+    """A worker process: import the modules, say "ready", then answer jobs ``(fn, args,
+    progress)`` one at a time with ``("ok", result)``, ``("error", exception)`` or ``("memory", None)`` (after
     which it ends: a process that ran out of memory is not trusted with another job), preceded,
     for a job sent with ``progress`` true, by any number of ``("progress", event)``
     (:func:`send_progress`). It ends when the server closes its pipe."""
