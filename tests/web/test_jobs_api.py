@@ -382,3 +382,18 @@ def test_cancelling_a_verification_kills_its_calculix(
     assert status == 200 and state["status"] == "cancelled"
     for child in children:
         _wait_for(lambda c=child: _ended(c), 10, f"CalculiX ({child}) killed")
+
+
+def test_the_openapi_document_lists_the_job_api(served: tuple[str, FastAPI]) -> None:
+    base, _ = served
+    with urllib.request.urlopen(base + "/openapi.json", timeout=60) as r:
+        paths = json.loads(r.read())["paths"]
+    assert set(paths["/api/jobs/design"]) == {"post"} and set(paths["/api/jobs/verify"]) == {"post"}
+    assert set(paths["/api/jobs/{job_id}"]) == {"get", "delete"}
+    assert (
+        "text/event-stream"
+        in paths["/api/jobs/{job_id}/events"]["get"]["responses"]["200"]["content"]
+    )
+    assert "202" in paths["/api/jobs/design"]["post"]["responses"]
+    assert "budget" in [p["name"] for p in paths["/api/jobs/design"]["post"]["parameters"]]
+    assert set(paths["/api/fea"]) == {"get"}
