@@ -397,3 +397,32 @@ def test_the_openapi_document_lists_the_job_api(served: tuple[str, FastAPI]) -> 
     assert "202" in paths["/api/jobs/design"]["post"]["responses"]
     assert "budget" in [p["name"] for p in paths["/api/jobs/design"]["post"]["parameters"]]
     assert set(paths["/api/fea"]) == {"get"}
+
+
+def test_a_job_is_accepted_while_the_pool_is_busy() -> None:
+    """With one worker busy on the chassis plate, a second design job is read (by the job API's
+    own worker) and accepted at once, queued behind it; a bad one is refused at once."""
+    settings = WebSettings(processes=1, allowed_hosts=LOOPBACK_NAMES)
+    with serve(settings) as (base, app):
+        status, first = post_json(base, "/api/jobs/design", CHASSIS)
+        assert status == 202
+        url = f"{base}/api/jobs/{first['id']}/events"
+        with urllib.request.urlopen(url, timeout=300) as r:
+            for _, data, _ in parse_sse(r):
+                if json.loads(data)["stage"] == "solving":
+                    break
+        status, second = post_json(base, "/api/jobs/design", spec_of("blimp_gripper.toml"))
+        assert status == 202 and second["status"] == "queued"
+        bad = copy.deepcopy(spec_of("blimp_gripper.toml"))
+        bad["variables"]["n"]["max"] = 5000
+        status, answer = post_json(base, "/api/jobs/design", bad)
+        assert status == 422 and answer["field"] == "variables.n.max", answer
+        assert request(base, f"/api/jobs/{first['id']}")[1]["status"] == "running"
+        assert request(base, f"/api/jobs/{second['id']}")[1]["status"] == "queued"
+        assert app.state.checker.worker_pids() and not set(app.state.checker.worker_pids()) & set(
+            app.state.runner.worker_pids()
+        )
+        for job in (first, second):  # cancelled queued or running: both end, nothing kept
+            status, state = request(base, f"/api/jobs/{job['id']}", "DELETE")
+            assert status == 200 and state["status"] == "cancelled"
+        assert not any(app.state.store.root.iterdir())

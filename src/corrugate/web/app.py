@@ -22,9 +22,9 @@ Endpoints (all JSON unless said otherwise):
   STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
   ``"result": null`` when the spec is infeasible;
 * ``POST /api/jobs/design``: the body of ``/api/design`` as a background job (202 once a worker
-  has read the spec; 422 naming the field before anything is queued), its solver under its own
-  CPU budget (query ``budget``) and stopped at :data:`JOB_WALL_PER_CPU` wall seconds per budget
-  second; ``POST /api/jobs/verify``: ``corrugate verify`` on a stored design (CalculiX);
+  process of its own has read the spec; 422 naming the field before anything is queued), its
+  solver under its own CPU budget (query ``budget``) and stopped at :data:`JOB_WALL_PER_CPU`
+  wall seconds per budget second; ``POST /api/jobs/verify``: ``corrugate verify`` on a stored design (CalculiX);
   ``GET /api/jobs/{id}`` (state, last progress event, result), ``GET /api/jobs/{id}/events``
   (server-sent events), ``DELETE /api/jobs/{id}`` (cancel: the worker killed and replaced, no
   result folder left); ``GET /api/fea``: whether CalculiX is installed
@@ -986,9 +986,15 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
 
 
 def _add_jobs(
-    app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore, jobs: JobTable
+    app: FastAPI,
+    cfg: WebSettings,
+    runner: Runner,
+    checker: Runner,
+    store: ResultStore,
+    jobs: JobTable,
 ) -> None:
-    """The job API: designs and FE verifications that run in the background with progress."""
+    """The job API: designs and FE verifications that run in the background with progress on
+    ``runner``; a design's spec is read first on ``checker`` (a worker of its own)."""
     error_responses = _ERROR_RESPONSES
     not_found: dict[int | str, dict[str, Any]] = {
         404: {"model": ErrorBody, "description": "No such job (or it expired)"}
@@ -1014,7 +1020,8 @@ def _add_jobs(
         """The design of ``POST /api/design`` as a background job: answers 202 with the job
         (``id``, ``limits``: ``budget_s`` the solver's CPU seconds, ``budget`` in the query or
         the server's default, and ``time_limit_s`` the wall seconds after which it is stopped)
-        once the spec is read; a bad value is 422 at once, naming its field. Follow it with
+        once the spec is read (in a worker process of its own, so not behind the jobs running);
+        a bad value is 422 at once, naming its field. Follow it with
         ``GET /api/jobs/{id}`` or ``/events``; ``DELETE`` cancels it."""
         budget_s = cfg.job_budget_s if budget is None else budget
         if not LIMITS["budget"].lo <= budget_s <= cfg.max_job_budget_s:
@@ -1024,7 +1031,7 @@ def _add_jobs(
                 f"{LIMITS['budget'].lo:g} <= budget <= {cfg.max_job_budget_s:g} CPU seconds in "
                 "the web app (use the CLI's --budget)",
             )
-        await runner.run(check_design_job, body, cfg)
+        await checker.run(check_design_job, body, cfg)
         limits = {
             "budget_s": budget_s,
             "time_limit_s": cfg.job_time_limit_s(budget_s),
@@ -1119,6 +1126,11 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         memory_bytes=cfg.worker_memory_bytes,
         ceiling_bytes=cfg.fe_memory_bytes,
     )
+    # The job API reads a spec before it queues the job, in a worker process of its own (started
+    # at the first job), so that a 202 or a 422 does not wait for the pool's long jobs.
+    checker = Runner(
+        cfg.max_pending, cfg.timeout_s, processes=1, memory_bytes=cfg.worker_memory_bytes
+    )
     store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
     jobs = JobTable(cfg.max_jobs, cfg.result_ttl_s)
     # Load the unit registry and the material library before the first requests race for them.
@@ -1133,6 +1145,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
             yield
         finally:
             jobs.close()
+            checker.shutdown()
             runner.shutdown()
             store.close()
 
@@ -1158,7 +1171,8 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     _add_error_handlers(app)
     _add_pages(app, index_html)
     _add_api(app, cfg, runner, store)
-    _add_jobs(app, cfg, runner, store, jobs)
+    app.state.checker = checker
+    _add_jobs(app, cfg, runner, checker, store, jobs)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(CatchAll)
     app.add_middleware(_SecurityHeaders)
