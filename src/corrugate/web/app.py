@@ -181,8 +181,8 @@ FE_MEMORY_BYTES = 8 * 1024**3
 
 #: Wall seconds a design job may take per CPU second of its solver budget: the budget is CPU
 #: time, and on a shared machine a CPU second takes several wall seconds (the chassis plate of
-#: issue 24 spent 66 s of CPU in 177 s of wall on this 2-core machine shared by other sessions);
-#: the rest covers writing the files.
+#: issue 24: 66 s and 70 s of solver CPU, answered after 189 s and 204 s of wall on a 2-core
+#: machine shared by other sessions, ``benchmarks/web_job.py``); the rest covers the files.
 JOB_WALL_PER_CPU = 4.0
 
 
