@@ -253,6 +253,7 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
     assert all(os.path.exists(f"/proc/{p}") for p in runner.worker_pids())
 
 
+@pytest.mark.slow  # starts an app with its worker processes
 def test_a_job_past_its_time_limit_fails_with_504_and_keeps_nothing() -> None:
     """The time limit of a design job is JOB_WALL_PER_CPU times its solver budget: a budget of
     0.02 s stops the blimp gripper (seconds of CPU) at 0.08 s wall."""
@@ -399,6 +400,7 @@ def test_the_openapi_document_lists_the_job_api(served: tuple[str, FastAPI]) -> 
     assert set(paths["/api/fea"]) == {"get"}
 
 
+@pytest.mark.slow  # starts an app with its worker processes
 def test_a_job_is_accepted_while_the_pool_is_busy() -> None:
     """With one worker busy on the chassis plate, a second design job is read (by the job API's
     own worker) and accepted at once, queued behind it; a bad one is refused at once."""
