@@ -9,7 +9,9 @@ port of 127.0.0.1, waits until it answers, sends one design to warm it up, then 
 ``examples/blimp_gripper.toml`` as JSON to ``/api/design`` from 1 client (``--requests`` designs one
 after another) and from 4 clients at once (``--requests`` designs each), and prints the designs per
 second of each, their ratio, and how many cores the server (with its worker processes) kept busy
-meanwhile: its CPU seconds per wall second, which shows what a shared, loaded machine left it. ``--processes`` is the app's pool of worker processes
+meanwhile: its CPU seconds per wall second, which shows what a shared, loaded machine left it. ``--jobs`` runs
+each design through the job API instead (``POST /api/jobs/design``, then its server-sent events until
+it ends). ``--processes`` is the app's pool of worker processes
 (default: one per core, at least 2), which run every computation.
 
 Every answer must be 200 with a certified optimum and files; anything else stops the run.
@@ -73,6 +75,35 @@ def post_design(base: str, body: bytes) -> float:
     return took
 
 
+def post_design_job(base: str, body: bytes) -> float:
+    """Run one design as a job (``POST /api/jobs/design``, then its server-sent events until the
+    job ends); the seconds it took. Fails unless it is a certified optimum with files."""
+    request = urllib.request.Request(
+        f"{base}/api/jobs/design", data=body, headers={"content-type": "application/json"}
+    )
+    start = time.perf_counter()
+    with urllib.request.urlopen(request, timeout=900) as response:
+        job = json.loads(response.read())
+        if response.status != 202:
+            raise RuntimeError(f"unexpected answer: {response.status}")
+    final: dict[str, object] | None = None
+    kind = ""
+    with urllib.request.urlopen(f"{base}{job['links']['events']}", timeout=900) as stream:
+        for raw in stream:
+            line = raw.decode().rstrip("\r\n")
+            if line.startswith("event: "):
+                kind = line[7:]
+            elif line.startswith("data: ") and kind in ("done", "failed", "cancelled"):
+                final = json.loads(line[6:])
+    took = time.perf_counter() - start
+    answer = final.get("result") if final else None
+    if not isinstance(answer, dict) or answer["design"]["status"] != "optimal":
+        raise RuntimeError(f"unexpected end of the job: {kind} {final}")
+    if not answer["result"]["files"]:
+        raise RuntimeError("the job's design has no files")
+    return took
+
+
 def wait_until_up(base: str, server: subprocess.Popen[bytes], seconds: float = 120.0) -> None:
     deadline = time.monotonic() + seconds
     while time.monotonic() < deadline:
@@ -117,7 +148,7 @@ def tree_cpu_seconds(root: int) -> float | None:
 
 
 def throughput(
-    base: str, body: bytes, clients: int, per_client: int, server: int
+    base: str, body: bytes, clients: int, per_client: int, server: int, jobs: bool = False
 ) -> tuple[float, float, float | None]:
     """Designs per second with ``clients`` clients sending ``per_client`` designs each, the
     median seconds of one request, and the server's CPU seconds per wall second meanwhile (how
@@ -129,7 +160,7 @@ def throughput(
     def client() -> None:
         try:
             for _ in range(per_client):
-                took = post_design(base, body)
+                took = (post_design_job if jobs else post_design)(base, body)
                 with lock:
                     times.append(took)
         except BaseException as exc:  # reported below
@@ -151,7 +182,7 @@ def throughput(
     return len(times) / elapsed, times[len(times) // 2], busy
 
 
-def measure(processes: str, per_client: int) -> dict[int, float]:
+def measure(processes: str, per_client: int, jobs: bool = False) -> dict[int, float]:
     """Start a server with design pool ``processes``; designs per second by number of clients."""
     port = free_port()
     base = f"http://127.0.0.1:{port}"
@@ -170,7 +201,7 @@ def measure(processes: str, per_client: int) -> dict[int, float]:
             t.join()
         rates: dict[int, float] = {}
         for clients in (1, 4):
-            rate, median, busy = throughput(base, body, clients, per_client, server.pid)
+            rate, median, busy = throughput(base, body, clients, per_client, server.pid, jobs)
             rates[clients] = rate
             cores = "" if busy is None else f", server busy on {busy:.2f} cores"
             print(
@@ -193,9 +224,15 @@ def main() -> None:
         default="default",
         help="Worker processes (default: one per core, at least 2).",
     )
+    parser.add_argument(
+        "--jobs",
+        action="store_true",
+        help="Run each design as a job (POST /api/jobs/design, then its event stream).",
+    )
     args = parser.parse_args()
-    print(f"{os.cpu_count()} cores; {SPEC.name} posted to /api/design")
-    measure(args.processes, args.requests)
+    route = "/api/jobs/design (jobs, followed to their end)" if args.jobs else "/api/design"
+    print(f"{os.cpu_count()} cores; {SPEC.name} posted to {route}")
+    measure(args.processes, args.requests, args.jobs)
 
 
 if __name__ == "__main__":

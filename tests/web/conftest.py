@@ -9,10 +9,12 @@ import time
 import urllib.error
 import urllib.request
 from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
 
 import pytest
 import uvicorn
+from fastapi import FastAPI
 from fastapi.testclient import TestClient
 
 from corrugate import Assembly, Layer, analyze, get_material, make_layout
@@ -63,7 +65,7 @@ def direct(body: dict[str, Any]) -> dict[str, Any]:
 
 #: Fixtures that start an app with its design worker processes: each process imports the package
 #: (about 1 s of CPU, which --durations does not show), so their tests are ``slow``.
-APP_FIXTURES = {"client", "live_server"}
+APP_FIXTURES = {"client", "live_server", "served"}
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
@@ -92,16 +94,13 @@ def _wait(condition: Any, what: str, thread: threading.Thread) -> None:
     pytest.fail(f"the test server did not {what}")
 
 
-@pytest.fixture(scope="module")
-def live_server() -> Iterator[str]:
-    """A real uvicorn server on 127.0.0.1 (a free port, bound before it starts) in a thread;
-    yields its base URL and shuts itself down after the module's tests."""
+@contextmanager
+def serve(settings: WebSettings) -> Iterator[tuple[str, FastAPI]]:
+    """A real uvicorn server of a fresh app with ``settings`` on 127.0.0.1 (a free port, bound
+    before it starts) in a thread: yields its base URL and the app, and stops it after."""
     sock = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
     sock.bind(("127.0.0.1", 0))
     port = sock.getsockname()[1]
-    # A generous time limit: twenty designs queue behind the workers on a slow machine (the
-    # limit itself is tested in test_api.py and test_server.py).
-    settings = WebSettings(max_pending=64, timeout_s=120, allowed_hosts=LOOPBACK_NAMES)
     app = create_app(settings)
     config = uvicorn.Config(app, host="127.0.0.1", port=port, log_level="warning", lifespan="on")
     server = uvicorn.Server(config)
@@ -109,9 +108,20 @@ def live_server() -> Iterator[str]:
     thread.start()
     try:
         _wait(lambda: server.started, "start", thread)
-        yield f"http://127.0.0.1:{port}"
+        yield f"http://127.0.0.1:{port}", app
     finally:
         server.should_exit = True
         thread.join(timeout=10)
         sock.close()
         assert not thread.is_alive(), "the test server did not stop"
+
+
+@pytest.fixture(scope="module")
+def live_server() -> Iterator[str]:
+    """A real uvicorn server on 127.0.0.1 (:func:`serve`); yields its base URL and shuts itself
+    down after the module's tests."""
+    # A generous time limit: twenty designs queue behind the workers on a slow machine (the
+    # limit itself is tested in test_api.py and test_server.py).
+    settings = WebSettings(max_pending=64, timeout_s=120, allowed_hosts=LOOPBACK_NAMES)
+    with serve(settings) as (base, _):
+        yield base

@@ -159,7 +159,7 @@ def test_stiffness_rows_name_their_test_and_a_bad_load_is_shown_on_its_row(
     page.click("#d-add-req")
     row = set_load_case(page, 2, "cantilever", "0 N", "2 mm", "40 mm", "0 deg")
     assert narrow_controls(page) == []
-    with page.expect_response("**/api/design") as info:
+    with page.expect_response("**/api/jobs/design") as info:
         page.click("#d-submit")
     assert info.value.status == 422
     assert info.value.json()["field"] == "constraints.deflection[0].load"

@@ -50,15 +50,21 @@ def set_requirements(page: Any, rows: list[tuple[str, str, str, str]]) -> None:
             row.locator(".req-support").select_option(support)
 
 
-def design(page: Any) -> tuple[dict[str, Any], dict[str, Any]]:
-    """Submit; (the body the page posted, the answer's JSON)."""
-    with page.expect_response("**/api/design", timeout=120_000) as info:
+def design(page: Any, timeout_ms: float = 300_000) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Submit; (the body the page posted, the answer's JSON). The page runs the design as a job
+    (``POST /api/jobs/design``, 202) and shows it when the job is done; the answer is the done
+    job's ``result``, as ``POST /api/design`` answers (``test_jobs_api.py`` checks that)."""
+    with page.expect_response("**/api/jobs/design", timeout=timeout_ms) as info:
         page.click("#d-submit")
     response = info.value
-    assert response.status == 200, response.text()
+    assert response.status == 202, response.text()
     body = json.loads(response.request.post_data)
-    page.wait_for_selector("#design-form[data-state='done']", timeout=120_000)
-    return body, response.json()
+    page.wait_for_selector("#design-form[data-state='done']", timeout=timeout_ms)
+    job = page.evaluate(
+        "id => fetch('/api/jobs/' + id).then((r) => r.json())", response.json()["id"]
+    )
+    assert job["status"] == "done", job
+    return body, job["result"]
 
 
 def spec_of(body: dict[str, Any]) -> dict[str, Any]:

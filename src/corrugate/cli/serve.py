@@ -39,6 +39,13 @@ def serve_cmd(
             help="CPU seconds the solver may spend on one design, explanation included (default: 60 % of --timeout): past it the design is answered 'not certified within the budget' with the best design found so far.",
         ),
     ] = None,
+    job_budget: Annotated[
+        float,
+        typer.Option(
+            metavar="SECONDS",
+            help="CPU seconds the solver may spend on one design job (the page's designs, POST /api/jobs/design; a client may ask for up to 600 or this, whichever is more): the job is stopped after 4 wall seconds per budget second.",
+        ),
+    ] = 120.0,
 ) -> None:
     """Serve the web app and its JSON API (open http://HOST:PORT/, API docs at /docs).
 
@@ -62,9 +69,12 @@ def serve_cmd(
     # On a loopback address only this machine's names are answered (no DNS rebinding).
     if budget is not None:
         check("budget", budget, "--budget")
+    check("budget", job_budget, "--job-budget")
     settings = WebSettings(
         timeout_s=timeout,
         solver_budget_s=budget,
+        job_budget_s=job_budget,
+        max_job_budget_s=max(job_budget, WebSettings().max_job_budget_s),
         allowed_hosts=LOOPBACK_NAMES if loopback else None,
     )
     shown = f"[{host}]" if ":" in host else host

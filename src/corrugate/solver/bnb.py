@@ -45,6 +45,7 @@ from numpy.typing import NDArray
 
 from corrugate.solver.budget import current_budget
 from corrugate.solver.problem import FEAS_RTOL, Candidate, DesignVariable, Problem
+from corrugate.solver.progress import report
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 
 __all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound"]
@@ -249,6 +250,11 @@ def branch_and_bound(
         q_lo, q_hi, q_bound = q_lo[waiting], q_hi[waiting], q_bound[waiting]
         if not len(q_lo):
             break
+        report(  # the gap proved so far: best value against the lowest open bound
+            it,
+            (best_val - float(q_bound.min())) / max(abs(best_val), 1e-300) if best_pt else math.inf,
+            sign * best_val if best_pt else None,
+        )
         if len(q_lo) > BATCH:  # best-first: the boxes with the lowest bounds go first
             take = np.zeros(len(q_lo), dtype=bool)
             take[np.argpartition(q_bound, BATCH)[:BATCH]] = True

@@ -21,6 +21,14 @@ Endpoints (all JSON unless said otherwise):
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
   STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
   ``"result": null`` when the spec is infeasible;
+* ``POST /api/jobs/design``: the body of ``/api/design`` as a background job (202 once a worker
+  process of its own has read the spec; 422 naming the field before anything is queued), its
+  solver under its own CPU budget (query ``budget``) and stopped at :data:`JOB_WALL_PER_CPU`
+  wall seconds per budget second; ``POST /api/jobs/verify``: ``corrugate verify`` on a stored design (CalculiX);
+  ``GET /api/jobs/{id}`` (state, last progress event, result), ``GET /api/jobs/{id}/events``
+  (server-sent events), ``DELETE /api/jobs/{id}`` (cancel: the worker killed and replaced, no
+  result folder left); ``GET /api/fea``: whether CalculiX is installed
+  (:mod:`corrugate.web.jobs`);
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path);
   ``GET /api/results/{id}/all.zip``: all of them in one zip archive.
 
@@ -40,9 +48,12 @@ may use -> 422 naming the body; unknown result or file -> 404; a Host header not
 
 from __future__ import annotations
 
+import asyncio
 import base64
+import contextlib
 import hashlib
 import json
+import logging
 import math
 import re
 import threading
@@ -56,7 +67,13 @@ import numpy as np
 from fastapi import FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.openapi.docs import get_swagger_ui_html
-from fastapi.responses import FileResponse, HTMLResponse, JSONResponse, Response
+from fastapi.responses import (
+    FileResponse,
+    HTMLResponse,
+    JSONResponse,
+    Response,
+    StreamingResponse,
+)
 from fastapi.staticfiles import StaticFiles
 from starlette.concurrency import run_in_threadpool
 from starlette.exceptions import HTTPException as StarletteHTTPException
@@ -74,6 +91,7 @@ from corrugate.solver import Problem, Solution
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
 from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck
+from corrugate.web.jobs import Job, JobTable, solver_progress, sse
 from corrugate.web.schemas import (
     LOAD_CASE_KEYS,
     OUTPUT_OPTIONS,
@@ -81,14 +99,17 @@ from corrugate.web.schemas import (
     DesignAnswer,
     DesignBody,
     ErrorBody,
+    FeaInfo,
     FieldError,
     FormatInfo,
+    JobBody,
     ModelInfo,
     ModelsBody,
     OutputBody,
     PatternBody,
     ResultBody,
     ResultFile,
+    VerifyBody,
     format_list,
 )
 from corrugate.web.store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
@@ -98,22 +119,32 @@ from corrugate.web.workers import (
     Runner,
     ServerBusyError,
     WorkerLostError,
+    memory_cap,
+    send_progress,
+    wants_progress,
 )
 from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, write_design
 
 __all__ = [
+    "FE_MEMORY_BYTES",
+    "JOB_WALL_PER_CPU",
     "LOOPBACK_NAMES",
     "SOLVER_SHARE",
     "STATIC_DIR",
     "WebSettings",
     "analysis_payload",
+    "check_design_job",
     "create_app",
     "design_answer",
     "design_job",
     "design_payload",
+    "fea_info",
     "mesh_job",
     "pattern_job",
+    "verify_job",
 ]
+
+_log = logging.getLogger("corrugate.web")
 
 #: Host names of this machine: what a browser sends to a server bound to a loopback address.
 LOOPBACK_NAMES = ("127.0.0.1", "localhost", "[::1]")
@@ -144,6 +175,17 @@ _EXPECTED: dict[str, str] = {
 SOLVER_SHARE = 0.6
 
 
+#: The address space an FE verification job may map beyond its worker's start-up mapping
+#: (``RLIMIT_AS``, inherited by its CalculiX runs): issue 23 asks the FE to fit in 8 GB.
+FE_MEMORY_BYTES = 8 * 1024**3
+
+#: Wall seconds a design job may take per CPU second of its solver budget: the budget is CPU
+#: time, and on a shared machine a CPU second takes several wall seconds (the chassis plate of
+#: issue 24: 66 s and 70 s of solver CPU, answered after 189 s and 204 s of wall on a 2-core
+#: machine shared by other sessions, ``benchmarks/web_job.py``); the rest covers the files.
+JOB_WALL_PER_CPU = 4.0
+
+
 @dataclass(frozen=True, slots=True)
 class WebSettings:
     """Limits of the web app.
@@ -162,6 +204,14 @@ class WebSettings:
     result root is made (default: the system temporary folder); ``allowed_hosts``: the Host
     headers answered, others get 400 (None: any; ``corrugate serve`` on a loopback address sets
     :data:`LOOPBACK_NAMES` against DNS rebinding).
+
+    Jobs (``/api/jobs``, :mod:`corrugate.web.jobs`): ``job_budget_s``: the solver's CPU seconds
+    for a design job unless the client asks for another budget (at most ``max_job_budget_s``);
+    such a job is stopped at :meth:`job_time_limit_s` wall seconds; ``max_jobs``: jobs kept (a
+    finished one for ``result_ttl_s``); ``fe_timeout_s``: wall seconds of an FE verification job
+    (and of each CalculiX run in it); ``fe_max_mesh``: its finest mesh (elements per facet);
+    ``fe_memory_bytes``: its address-space cap beyond the worker's start-up mapping (CalculiX
+    runs as a child of the worker and inherits it; None: the worker's ``worker_memory_bytes``).
     """
 
     max_body_bytes: int = 64 * 1024
@@ -177,6 +227,18 @@ class WebSettings:
     result_ttl_s: float = 3600.0
     results_dir: Path | None = None
     allowed_hosts: tuple[str, ...] | None = None
+    job_budget_s: float = 120.0
+    max_job_budget_s: float = 600.0
+    max_jobs: int = 64
+    fe_timeout_s: float = 1800.0
+    fe_max_mesh: int = 8
+    fe_memory_bytes: int | None = FE_MEMORY_BYTES
+
+    def job_time_limit_s(self, budget_s: float) -> float:
+        """Wall seconds a design job with a solver budget of ``budget_s`` CPU seconds may run
+        before it is stopped: :data:`JOB_WALL_PER_CPU` times the budget, so that the solver's
+        budget, not the wall clock, ends a job on a busy machine."""
+        return JOB_WALL_PER_CPU * budget_s
 
     @property
     def design_budget_s(self) -> float:
@@ -400,12 +462,20 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
     )
 
 
-def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[Any, list[Path]]:
-    """Solve the spec of a design request and write its files into ``folder`` (a new result's
-    folder of the store); returns the ``corrugate design --json`` object and the paths written
-    (none for an infeasible spec). A job: runs in a worker process (which hands its freed memory
-    back to the system after every job, :func:`~corrugate.web.workers.release_memory`); it takes
-    and returns plain, picklable values, and the store itself stays in the server."""
+@dataclass(frozen=True, slots=True)
+class _Prepared:
+    """A design request read: its spec (made for the machine asked for), problem, output
+    options and cutter."""
+
+    spec: Spec
+    problem: Problem
+    options: OutputOptions
+    cutter: str
+
+
+def _prepare_design(body: DesignBody, settings: WebSettings) -> _Prepared:
+    """Read a design request as the CLI reads a spec and its options; errors name the request's
+    fields (the spec's by their TOML path)."""
     with _PARSE_LOCK:  # pint parses the spec's quantities, inline materials and the options
         try:
             spec = parse_spec(_spec_data(body))
@@ -424,14 +494,47 @@ def design_job(body: DesignBody, settings: WebSettings, folder: Path) -> tuple[A
         problem = Problem.from_spec(spec)
         options = _output_options(body, made)
     _check_spec_size(spec, settings)
-    run = solve_spec(spec, problem, budget=settings.design_budget_s)
+    return _Prepared(spec, problem, options, cutter)
+
+
+def check_design_job(body: DesignBody, settings: WebSettings) -> None:
+    """Read a design request and raise its first bad value (a job: runs in a worker process,
+    before a design job is queued, so that bad input is 422 at once)."""
+    _prepare_design(body, settings)
+
+
+def design_job(
+    body: DesignBody, settings: WebSettings, folder: Path, budget_s: float | None = None
+) -> tuple[Any, list[Path]]:
+    """Solve the spec of a design request within ``budget_s`` CPU seconds (None:
+    ``settings.design_budget_s``) and write its files into ``folder`` (a new result's folder of
+    the store); returns the ``corrugate design --json`` object and the paths written (none for
+    an infeasible spec). A job: runs in a worker process (which hands its freed memory back to
+    the system after every job, :func:`~corrugate.web.workers.release_memory`); it takes and
+    returns plain, picklable values, and the store itself stays in the server. When its caller
+    wants progress (a job of ``/api/jobs``) it sends the stage it is in and the branch and
+    bound's iterations, gap and best value (:func:`corrugate.web.jobs.solver_progress`)."""
+    if not wants_progress():
+        return _design(body, settings, folder, budget_s)
+    send_progress({"stage": "reading"})
+    with solver_progress():
+        return _design(body, settings, folder, budget_s)
+
+
+def _design(
+    body: DesignBody, settings: WebSettings, folder: Path, budget_s: float | None
+) -> tuple[Any, list[Path]]:
+    p = _prepare_design(body, settings)
+    budget = settings.design_budget_s if budget_s is None else budget_s
+    run = solve_spec(p.spec, p.problem, budget=budget)
     run = replace(run, payload=_json_safe(run.payload))
     if run.solution.analysis is None:
         return run.payload, []
     _check_design_size(run.solution.analysis, settings)
+    send_progress({"stage": "writing files"})
     spec_text = json.dumps(_spec_data(body), indent=2)
-    with _output_errors(cutter):
-        return run.payload, write_design(run, folder, options, spec_text)
+    with _output_errors(p.cutter):
+        return run.payload, write_design(run, folder, p.options, spec_text)
 
 
 async def design_answer(
@@ -445,6 +548,171 @@ async def design_answer(
             store.discard(result_id)
             return DesignAnswer(design=payload, result=None)
         return DesignAnswer(design=payload, result=_result_body(store.publish(result_id, paths)))
+
+
+def verify_job(
+    folder: Path, meshes: tuple[int, ...], timeout_s: float, memory_bytes: int | None = None
+) -> dict[str, Any]:
+    """``corrugate verify --json`` of the design in ``folder`` (a stored result's folder), with
+    its ``design`` label, on the mesh series ``meshes``, each CalculiX run stopped after
+    ``timeout_s`` (:func:`corrugate.fea.verify.verify_design`) and its address space capped at
+    ``memory_bytes`` beyond the worker's start-up mapping (None: the worker's own cap;
+    :func:`corrugate.web.workers.memory_cap`). A job: runs in a worker process
+    and sends one progress event per CalculiX run (``{"stage": "fe", "run": k, "line": ...}``,
+    the line ``corrugate verify`` prints on stderr). Constraints without an FE twin come back as
+    verify's own rows (``holds`` false, ``note`` saying why)."""
+    from corrugate.cli.validate import _label
+    from corrugate.cli.verify import _read_design
+    from corrugate.fea.verify import verify_design
+
+    assembly, constraints, joint = _read_design(folder)
+    count = 0
+
+    def line(text: str) -> None:
+        nonlocal count
+        count += 1
+        send_progress({"stage": "fe", "run": count, "line": f"[{count}] {text}"})
+
+    send_progress({"stage": "reading"})
+    with memory_cap(memory_bytes):
+        result = verify_design(
+            assembly, constraints, joint, meshes, progress=line, timeout=timeout_s
+        )
+    payload: dict[str, Any] = _json_safe(
+        {"design": _label(assembly), "runs": count, **result.as_json()}
+    )
+    return payload
+
+
+def fea_info(settings: WebSettings) -> FeaInfo:
+    """Whether CalculiX is installed (:func:`corrugate.fea.ccx.find_ccx`) and what a web
+    verification may run."""
+    from corrugate.fea.ccx import SolverNotFoundError, find_ccx
+
+    try:
+        ccx: str | None = find_ccx()
+        message = f"CalculiX found: {ccx}"
+    except SolverNotFoundError as exc:
+        ccx, message = None, f"FE verification needs CalculiX (ccx) on the server: {exc}"
+    return FeaInfo(
+        available=ccx is not None,
+        ccx=ccx,
+        message=message,
+        max_mesh=settings.fe_max_mesh,
+        time_limit_s=settings.fe_timeout_s,
+    )
+
+
+def _check_verify(
+    body: VerifyBody, settings: WebSettings, store: ResultStore
+) -> tuple[Path, tuple[int, ...]]:
+    """The folder of the design to verify and the mesh series, or an InputError naming the
+    request's field (``result``, ``mesh``, ``layout``: verify's own checks of the design)."""
+    from corrugate.cli.verify import _meshes, _read_design
+    from corrugate.export.record import RECORD_NAME
+
+    with _PARSE_LOCK:
+        meshes = _meshes(body.mesh)
+    if meshes[-1] > settings.fe_max_mesh:
+        raise InputError(
+            "mesh",
+            body.mesh,
+            f"at most {settings.fe_max_mesh} elements per facet in the web app (use corrugate verify)",
+        )
+    record = store.get(body.result, RECORD_NAME)
+    if record is None:
+        raise InputError(
+            "result",
+            body.result,
+            "the id of a stored design result (results are kept for a while only)",
+            reason="is not one",
+        )
+    folder = record.path.parent
+    _read_design(folder)  # the design's own record: a layout without FE fixtures is named here
+    return folder, meshes
+
+
+def _failure(exc: BaseException) -> dict[str, Any]:
+    """A failed job's ``error``: the HTTP status and body the same failure gets from a request."""
+    from corrugate.core.errors import describe
+
+    status, errors = 422, []
+    if isinstance(exc, InputError):
+        value = None if exc.value is None else str(exc.value)
+        errors = [FieldError(field=exc.field, message=str(exc), value=value, allowed=exc.allowed)]
+    elif isinstance(exc, ComputeTimeoutError):
+        status = 504
+    elif isinstance(exc, ServerBusyError | WorkerLostError | MemoryError | OSError):
+        status = 503
+    else:
+        _log.error("job failed", exc_info=exc)
+    body = ErrorBody(detail=describe(exc), field=errors[0].field if errors else None, errors=errors)
+    return {"status": status, "body": body.model_dump()}
+
+
+async def _run_job(
+    job: Job, runner: Runner, fn: Callable[..., Any], *args: Any, timeout_s: float
+) -> Any:
+    """``fn(*args)`` on the runner with ``job`` collecting its progress events."""
+    loop = asyncio.get_running_loop()
+
+    def on_progress(event: dict[str, Any]) -> None:  # on a runner thread
+        loop.call_soon_threadsafe(job.progress, event)
+
+    return await runner.run(fn, *args, timeout_s=timeout_s, on_progress=on_progress)
+
+
+async def design_job_task(
+    job: Job, body: DesignBody, settings: WebSettings, store: ResultStore, runner: Runner
+) -> None:
+    """The task of a design job: :func:`design_job` into a new result of ``store``, its files
+    published (the result discarded when it fails, is cancelled or has none); the job ends
+    ``done`` with the answer of ``POST /api/design``, or ``failed`` or ``cancelled``."""
+    try:
+        with store.reserved() as (result_id, folder):
+            payload, paths = await _run_job(
+                job,
+                runner,
+                design_job,
+                body,
+                settings,
+                folder,
+                job.limits["budget_s"],
+                timeout_s=job.limits["time_limit_s"],
+            )
+            if not paths:
+                store.discard(result_id)
+                answer = DesignAnswer(design=payload, result=None)
+            else:
+                files = store.publish(result_id, paths)
+                answer = DesignAnswer(design=payload, result=_result_body(files))
+        job.end("done", answer.model_dump())
+    except asyncio.CancelledError:
+        job.end("cancelled")
+    except Exception as exc:
+        job.end("failed", error=_failure(exc))
+
+
+async def verify_job_task(
+    job: Job, folder: Path, meshes: tuple[int, ...], settings: WebSettings, runner: Runner
+) -> None:
+    """The task of an FE verification job (:func:`verify_job`)."""
+    try:
+        result = await _run_job(
+            job,
+            runner,
+            verify_job,
+            folder,
+            meshes,
+            settings.fe_timeout_s,
+            settings.fe_memory_bytes,
+            timeout_s=settings.fe_timeout_s,
+        )
+        job.end("done", result)
+    except asyncio.CancelledError:
+        job.end("cancelled")
+    except Exception as exc:
+        job.end("failed", error=_failure(exc))
 
 
 def _error(status: int, detail: str, errors: list[FieldError]) -> JSONResponse:
@@ -717,6 +985,137 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
         return response
 
 
+def _add_jobs(
+    app: FastAPI,
+    cfg: WebSettings,
+    runner: Runner,
+    checker: Runner,
+    store: ResultStore,
+    jobs: JobTable,
+) -> None:
+    """The job API: designs and FE verifications that run in the background with progress on
+    ``runner``; a design's spec is read first on ``checker`` (a worker of its own)."""
+    error_responses = _ERROR_RESPONSES
+    not_found: dict[int | str, dict[str, Any]] = {
+        404: {"model": ErrorBody, "description": "No such job (or it expired)"}
+    }
+
+    def missing() -> JSONResponse:
+        return _error(404, "no such job (finished jobs are kept for a while only)", [])
+
+    def start(job: Job, coro: Any) -> JSONResponse:
+        job.task = asyncio.get_running_loop().create_task(coro)
+        return JSONResponse(
+            job.as_dict(), status_code=202, headers={"location": f"/api/jobs/{job.id}"}
+        )
+
+    @app.post(
+        "/api/jobs/design",
+        summary="Start a design job (progress, cancel)",
+        status_code=202,
+        response_model=JobBody,
+        responses=error_responses,
+    )
+    async def design_job_endpoint(body: DesignBody, budget: float | None = None) -> JSONResponse:
+        """The design of ``POST /api/design`` as a background job: answers 202 with the job
+        (``id``, ``limits``: ``budget_s`` the solver's CPU seconds, ``budget`` in the query or
+        the server's default, and ``time_limit_s`` the wall seconds after which it is stopped)
+        once the spec is read (in a worker process of its own, so not behind the jobs running);
+        a bad value is 422 at once, naming its field. Follow it with
+        ``GET /api/jobs/{id}`` or ``/events``; ``DELETE`` cancels it."""
+        budget_s = cfg.job_budget_s if budget is None else budget
+        if not LIMITS["budget"].lo <= budget_s <= cfg.max_job_budget_s:
+            raise InputError(
+                "budget",
+                budget_s,
+                f"{LIMITS['budget'].lo:g} <= budget <= {cfg.max_job_budget_s:g} CPU seconds in "
+                "the web app (use the CLI's --budget)",
+            )
+        await checker.run(check_design_job, body, cfg)
+        limits = {
+            "budget_s": budget_s,
+            "time_limit_s": cfg.job_time_limit_s(budget_s),
+            "memory_bytes": cfg.worker_memory_bytes,
+        }
+        job = jobs.new("design", limits)
+        return start(job, design_job_task(job, body, cfg, store, runner))
+
+    @app.post(
+        "/api/jobs/verify",
+        summary="Start an FE verification of a stored design (corrugate verify)",
+        status_code=202,
+        response_model=JobBody,
+        responses={
+            **error_responses,
+            503: {"model": ErrorBody, "description": "CalculiX is not installed, or busy"},
+        },
+    )
+    async def verify_job_endpoint(body: VerifyBody) -> JSONResponse:
+        """``corrugate verify`` on the folder of a design result (``result``: its id) as a
+        background job, one progress event per CalculiX run; its result is ``corrugate verify
+        --json``. 503 when CalculiX is not installed (``GET /api/fea`` says so beforehand)."""
+        info = fea_info(cfg)
+        if not info.available:
+            return _error(503, info.message, [])
+        folder, meshes = await run_in_threadpool(_check_verify, body, cfg, store)
+        limits = {
+            "time_limit_s": cfg.fe_timeout_s,
+            "memory_bytes": cfg.fe_memory_bytes or cfg.worker_memory_bytes,
+            "meshes": list(meshes),
+        }
+        job = jobs.new("verify", limits)
+        return start(job, verify_job_task(job, folder, meshes, cfg, runner))
+
+    @app.get("/api/fea", summary="Whether FE verification is available")
+    async def fea_endpoint() -> FeaInfo:
+        """Whether CalculiX is installed on the server, and the limits of a verification."""
+        return fea_info(cfg)
+
+    @app.get(
+        "/api/jobs/{job_id}", summary="A job's state", response_model=JobBody, responses=not_found
+    )
+    async def job_status(job_id: str) -> JSONResponse:
+        """The job: ``status``, the last ``progress`` event and, once done, its ``result``."""
+        job = jobs.get(job_id)
+        return missing() if job is None else JSONResponse(job.as_dict())
+
+    @app.get(
+        "/api/jobs/{job_id}/events",
+        summary="A job's progress as server-sent events",
+        response_class=StreamingResponse,
+        responses={200: {"content": {"text/event-stream": {}}}, **not_found},
+    )
+    async def job_events(job_id: str, request: Request) -> Response:
+        """``text/event-stream``: every ``progress`` event (``id`` its sequence number;
+        ``Last-Event-ID`` resumes after it), then one event named ``done``, ``failed`` or
+        ``cancelled`` carrying the job's state, and the stream ends."""
+        job = jobs.get(job_id)
+        if job is None:
+            return missing()
+        last = request.headers.get("last-event-id", "0")
+        after = int(last) if last.isdigit() else 0
+        return StreamingResponse(
+            sse(job, after),
+            media_type="text/event-stream",
+            headers={"x-accel-buffering": "no"},
+        )
+
+    @app.delete(
+        "/api/jobs/{job_id}", summary="Cancel a job", response_model=JobBody, responses=not_found
+    )
+    async def job_cancel(job_id: str) -> JSONResponse:
+        """Cancel the job if it has not finished (its worker process is killed and replaced; the
+        result it was writing is discarded); answers its state."""
+        job = jobs.get(job_id)
+        if job is None:
+            return missing()
+        jobs.cancel(job)
+        if job.task is not None:
+            with contextlib.suppress(asyncio.CancelledError):
+                await asyncio.wait({job.task}, timeout=10)
+        return JSONResponse(job.as_dict())
+
+
 def create_app(settings: WebSettings | None = None) -> FastAPI:
     """A new, independent application (its own worker pool and result store)."""
     cfg = settings or WebSettings()
@@ -725,8 +1124,15 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         cfg.timeout_s,
         processes=cfg.processes,
         memory_bytes=cfg.worker_memory_bytes,
+        ceiling_bytes=cfg.fe_memory_bytes,
+    )
+    # The job API reads a spec before it queues the job, in a worker process of its own (started
+    # at the first job), so that a 202 or a 422 does not wait for the pool's long jobs.
+    checker = Runner(
+        cfg.max_pending, cfg.timeout_s, processes=1, memory_bytes=cfg.worker_memory_bytes
     )
     store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
+    jobs = JobTable(cfg.max_jobs, cfg.result_ttl_s)
     # Load the unit registry and the material library before the first requests race for them.
     ureg()
     library()
@@ -738,6 +1144,8 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         try:
             yield
         finally:
+            jobs.close()
+            checker.shutdown()
             runner.shutdown()
             store.close()
 
@@ -759,9 +1167,12 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     app.state.settings = cfg
     app.state.store = store
     app.state.runner = runner
+    app.state.jobs = jobs
     _add_error_handlers(app)
     _add_pages(app, index_html)
     _add_api(app, cfg, runner, store)
+    app.state.checker = checker
+    _add_jobs(app, cfg, runner, checker, store, jobs)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(CatchAll)
     app.add_middleware(_SecurityHeaders)

@@ -285,3 +285,56 @@ def format_list() -> list[FormatInfo]:
         )
         for w in WRITERS
     ]
+
+
+class VerifyBody(BaseModel):
+    """An FE verification of a stored design (``corrugate verify DIR`` on its folder)."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    result: Text = Field(description="The id of a design's result (`result.id` of its answer).")
+    mesh: Annotated[str, StringConstraints(max_length=32)] = Field(
+        "2,4,8",
+        description="Mesh series: shell elements across each facet, even and increasing "
+        "(as `corrugate verify --mesh`).",
+    )
+
+
+class JobLinks(BaseModel):
+    """Where to follow a job."""
+
+    status: str = Field(description="GET: the job's state (this object).")
+    events: str = Field(description="GET: its progress as server-sent events.")
+
+
+class JobBody(BaseModel):
+    """A background job (``/api/jobs``): its state, the limits it runs under, its last progress
+    event and, when finished, its result (a design: the answer of ``POST /api/design``; a
+    verification: ``corrugate verify --json`` with the design's label) or its error."""
+
+    id: str
+    kind: str = Field(description="design | verify")
+    status: str = Field(description="queued | running | done | failed | cancelled")
+    limits: dict[str, Any] = Field(
+        description="budget_s: solver CPU seconds (design); time_limit_s: wall seconds after "
+        "which the job is stopped; memory_bytes: the worker's address-space cap."
+    )
+    created: float = Field(description="Unix time the job was made.")
+    elapsed_s: float
+    events: int = Field(description="Progress events so far.")
+    progress: dict[str, Any] | None = Field(description="The last progress event.")
+    result: Any = None
+    error: dict[str, Any] | None = Field(
+        None, description="{status: HTTP status it would have had, body: ErrorBody}"
+    )
+    links: JobLinks
+
+
+class FeaInfo(BaseModel):
+    """Whether this server can run FE verifications (CalculiX installed)."""
+
+    available: bool
+    ccx: str | None = Field(description="The ccx executable, or null.")
+    message: str
+    max_mesh: int = Field(description="Finest mesh (elements per facet) a web verification runs.")
+    time_limit_s: float = Field(description="Wall seconds after which a verification is stopped.")

@@ -21,7 +21,7 @@ import os
 import signal
 import threading
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from multiprocessing.connection import Connection
@@ -35,7 +35,10 @@ __all__ = [
     "ServerBusyError",
     "WorkerLostError",
     "core_count",
+    "memory_cap",
     "release_memory",
+    "send_progress",
+    "wants_progress",
 ]
 
 _log = logging.getLogger("corrugate.web")
@@ -135,9 +138,41 @@ def _leave_forkserver() -> None:
         server._forkserver_alive_fd = None  # type: ignore[union-attr]
 
 
-def _cap_memory(limit: int | None) -> None:
+#: In a worker process, while it runs a job whose caller asked for progress: the function that
+#: sends one progress event (a JSON-able dict) to the server; None otherwise.
+_PROGRESS_SINK: Callable[[dict[str, Any]], None] | None = None
+
+
+def wants_progress() -> bool:
+    """Whether the job running in this process was asked for progress (:meth:`Runner.run` with
+    ``on_progress``); False outside a worker."""
+    return _PROGRESS_SINK is not None
+
+
+def send_progress(event: dict[str, Any]) -> None:
+    """Send ``event`` (a JSON-able dict) to the server as progress of the job running in this
+    worker process, where its caller asked for progress; elsewhere, nothing. The job decides how
+    often (a few events a second at most: each is a message on the worker's pipe)."""
+    if _PROGRESS_SINK is not None:
+        _PROGRESS_SINK(event)
+
+
+def _own_process_group() -> None:
+    """Make this worker the leader of a process group of its own, so that killing it
+    (:meth:`Runner._kill`, ``killpg``) also kills the programs its job started (CalculiX)."""
+    with contextlib.suppress(OSError, AttributeError):
+        os.setpgid(0, 0)
+
+
+#: In a worker process: what it had mapped when it was capped (bytes), for :func:`memory_cap`.
+_MAPPED_AT_CAP: int | None = None
+
+
+def _cap_memory(limit: int | None, ceiling: int | None = None) -> None:
     """Cap this process's address space (``RLIMIT_AS``) at what it has mapped now (its modules,
-    thread stacks and arenas) plus ``limit`` bytes (None: no cap)."""
+    thread stacks and arenas) plus ``limit`` bytes (None: no cap); the hard limit is that plus
+    ``ceiling`` bytes when larger, up to which a job may raise it (:func:`memory_cap`)."""
+    global _MAPPED_AT_CAP
     if limit is None:
         return
     try:
@@ -146,36 +181,73 @@ def _cap_memory(limit: int | None) -> None:
         with open("/proc/self/statm", encoding="ascii") as f:
             mapped = int(f.read().split()[0]) * os.sysconf("SC_PAGE_SIZE")
         cap = mapped + limit
-        resource.setrlimit(resource.RLIMIT_AS, (cap, cap))
+        hard = max(cap, mapped + (ceiling or 0))
+        resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
+        _MAPPED_AT_CAP = mapped
     except (ImportError, ValueError, OSError):  # not on this system
         pass
 
 
-def _worker_main(conn: Connection, memory_bytes: int | None) -> None:
-    """A worker process: import the modules, say "ready", then answer jobs ``(fn, args)`` one at
-    a time with ``("ok", result)``, ``("error", exception)`` or ``("memory", None)`` (after
-    which it ends: a process that ran out of memory is not trusted with another job). It ends
-    when the server closes its pipe."""
+@contextlib.contextmanager
+def memory_cap(limit: int | None) -> Iterator[int | None]:
+    """(In a worker process.) Within the block, the address-space cap is what the worker had
+    mapped when it started plus ``limit`` bytes, at most the runner's ``ceiling_bytes`` (the
+    worker's hard limit); the programs the block starts (CalculiX) inherit it. Yields the cap in
+    bytes (None where there is none)."""
+    try:
+        import resource
+
+        soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    except (ImportError, ValueError, OSError):
+        yield None
+        return
+    if limit is None or _MAPPED_AT_CAP is None or soft == resource.RLIM_INFINITY:
+        yield None if soft == resource.RLIM_INFINITY else soft
+        return
+    wanted = _MAPPED_AT_CAP + limit
+    cap = wanted if hard == resource.RLIM_INFINITY else min(wanted, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (cap, hard))
+    try:
+        yield cap
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+
+
+def _worker_main(
+    conn: Connection, memory_bytes: int | None, ceiling_bytes: int | None = None
+) -> None:
+    """A worker process: import the modules, say "ready", then answer jobs ``(fn, args,
+    progress)`` one at a time with ``("ok", result)``, ``("error", exception)`` or ``("memory", None)`` (after
+    which it ends: a process that ran out of memory is not trusted with another job), preceded,
+    for a job sent with ``progress`` true, by any number of ``("progress", event)``
+    (:func:`send_progress`). It ends when the server closes its pipe."""
+    global _PROGRESS_SINK
     _die_with_parent()
+    _own_process_group()
     _leave_forkserver()
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the server's: it ends the workers
     _warm_up()
-    _cap_memory(memory_bytes)
+    _cap_memory(memory_bytes, ceiling_bytes)
     conn.send(("ready", os.getpid()))
     while True:
         reply: tuple[str, Any]
+        progress = False
         try:
-            fn, args = conn.recv()
+            fn, args, progress = conn.recv()
         except (EOFError, OSError):
             return
         except Exception as exc:  # a job this process cannot load
             fn, args = _raise, (exc,)
+        if progress:
+            _PROGRESS_SINK = lambda event: conn.send(("progress", event))  # noqa: E731
         try:
             reply = ("ok", fn(*args))
         except MemoryError:
             reply = ("memory", None)
         except BaseException as exc:
             reply = ("error", exc)
+        finally:
+            _PROGRESS_SINK = None
         release_memory()
         try:
             conn.send(reply)
@@ -219,7 +291,8 @@ class Runner:
     * **Memory**: each worker's address space is capped at ``memory_bytes`` beyond what it
       maps once its modules are imported (``RLIMIT_AS``); a
       job that needs more gets :class:`~corrugate.core.errors.InputError` naming the body (422),
-      and its worker is replaced.
+      and its worker is replaced. A job may set its own cap, up to ``ceiling_bytes`` beyond that
+      mapping (:func:`memory_cap`: the FE verification jobs, whose CalculiX runs inherit it).
     * **Load**: at most ``max_pending`` computations queued or running at once; past that
       :meth:`run` raises :class:`ServerBusyError` at once.
     * **Lifetime**: workers start from a fresh interpreter (``forkserver``; ``spawn`` where
@@ -239,12 +312,14 @@ class Runner:
         timeout_s: float,
         processes: int | None = None,
         memory_bytes: int | None = WORKER_MEMORY_BYTES,
+        ceiling_bytes: int | None = None,
     ) -> None:
         self.timeout_s = timeout_s
         self.processes = max(2, core_count()) if processes is None else processes
         if self.processes < 1:
             raise ValueError(f"a runner needs at least one worker process, not {processes}")
         self.memory_bytes = memory_bytes
+        self.ceiling_bytes = ceiling_bytes
         self._slots = threading.BoundedSemaphore(max_pending)
         self._lock = threading.Lock()
         self._idle: deque[_Worker] = deque()
@@ -290,7 +365,7 @@ class Runner:
             ours, theirs = context.Pipe(duplex=True)
             process: BaseProcess = context.Process(  # type: ignore[attr-defined]
                 target=_worker_main,
-                args=(theirs, self.memory_bytes),
+                args=(theirs, self.memory_bytes, self.ceiling_bytes),
                 name="corrugate-web-worker",
                 daemon=True,
             )
@@ -337,8 +412,7 @@ class Runner:
         with self._lock:
             self._workers.pop(worker.pid, None)
             self._pids = tuple(self._workers)
-        with contextlib.suppress(ProcessLookupError, PermissionError):
-            os.kill(worker.pid, signal.SIGKILL)
+        _kill_group(worker.pid)
 
     def _fail_waiters_if_no_worker(self) -> None:
         """When no worker runs or starts (they cannot start), the jobs waiting get 503."""
@@ -356,8 +430,7 @@ class Runner:
         computations running get :class:`WorkerLostError` (503)."""
         self._closed = True
         for pid in self._pids:
-            with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.kill(pid, signal.SIGKILL)
+            _kill_group(pid)
 
     def worker_pids(self) -> tuple[int, ...]:
         """The process ids of the workers started and not yet killed."""
@@ -432,33 +505,61 @@ class Runner:
             raise
 
     @staticmethod
-    def _exchange(worker: _Worker, fn: Callable[..., Any], args: tuple[Any, ...]) -> Any:
-        """(On a thread.) Send the job, wait for its answer; EOFError/OSError if the worker
-        ends first."""
-        worker.conn.send((fn, args))
-        return worker.conn.recv()
+    def _exchange(
+        worker: _Worker,
+        fn: Callable[..., Any],
+        args: tuple[Any, ...],
+        on_progress: Callable[[dict[str, Any]], None] | None,
+    ) -> Any:
+        """(On a thread.) Send the job, pass its progress events to ``on_progress`` (called on
+        this thread), return its answer; EOFError/OSError if the worker ends first."""
+        worker.conn.send((fn, args, on_progress is not None))
+        while True:
+            kind, value = worker.conn.recv()
+            if kind != "progress":
+                return kind, value
+            if on_progress is not None:
+                on_progress(value)
 
-    async def run(self, fn: Callable[..., T], *args: Any) -> T:
+    async def run(
+        self,
+        fn: Callable[..., T],
+        *args: Any,
+        timeout_s: float | None = None,
+        on_progress: Callable[[dict[str, Any]], None] | None = None,
+    ) -> T:
         """The result of ``fn(*args)``, computed in a worker process: ``fn`` must be a
         module-level function and ``args`` and the result picklable. Its exceptions propagate;
-        see the class for the time limit, the memory cap and the load limit."""
+        see the class for the time limit (``timeout_s``: this job's own, instead of the runner's),
+        the memory cap and the load limit. ``on_progress``: called (on a thread of the runner)
+        with each event the job sends (:func:`send_progress`); the job is told that progress is
+        wanted (:func:`wants_progress`). Cancelling the awaiting task kills the job's worker (and
+        the programs it started) and starts another."""
         if not self._slots.acquire(blocking=False):
             raise ServerBusyError("the server is busy with other computations; try again shortly")
         try:
             worker = await self._take()
-            return await self._run_on(worker, fn, args)  # type: ignore[no-any-return]
+            limit = self.timeout_s if timeout_s is None else timeout_s
+            return await self._run_on(worker, fn, args, limit, on_progress)  # type: ignore[no-any-return]
         finally:
             self._slots.release()
 
-    async def _run_on(self, worker: _Worker, fn: Callable[..., Any], args: tuple[Any, ...]) -> Any:
+    async def _run_on(
+        self,
+        worker: _Worker,
+        fn: Callable[..., Any],
+        args: tuple[Any, ...],
+        timeout_s: float,
+        on_progress: Callable[[dict[str, Any]], None] | None,
+    ) -> Any:
         loop = asyncio.get_running_loop()
-        exchange = loop.run_in_executor(self._io, self._exchange, worker, fn, args)
+        exchange = loop.run_in_executor(self._io, self._exchange, worker, fn, args, on_progress)
         try:
-            kind, value = await asyncio.wait_for(asyncio.shield(exchange), self.timeout_s)
+            kind, value = await asyncio.wait_for(asyncio.shield(exchange), timeout_s)
         except TimeoutError:
             _close_when_done(exchange, worker)
             self._replace(worker)
-            raise ComputeTimeoutError(self.timeout_s) from None
+            raise ComputeTimeoutError(timeout_s) from None
         except (EOFError, OSError):
             worker.conn.close()
             self._replace(worker)
@@ -493,6 +594,20 @@ def _close_when_done(exchange: asyncio.Future[Any], worker: _Worker) -> None:
         worker.conn.close()
 
     exchange.add_done_callback(done)
+
+
+def _kill_group(pid: int) -> None:
+    """SIGKILL the worker ``pid`` and its process group (the programs its job started: each
+    worker leads its own group, :func:`_own_process_group`); just the process if it has no group
+    of its own yet."""
+    try:
+        if os.getpgid(pid) == pid:
+            os.killpg(pid, signal.SIGKILL)
+            return
+    except (ProcessLookupError, PermissionError, OSError):
+        pass
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.kill(pid, signal.SIGKILL)
 
 
 def _fail(future: asyncio.Future[Any], why: str) -> None:

@@ -1,6 +1,7 @@
 // corrugate web app: two tabs. "Analyse a design": the form, the analysis tables and the 3D view
-// of the folded assembly. "Design from requirements": a spec form posted to /api/design, the
-// certified design, its margins, the pattern, the 3D view and the files.
+// of the folded assembly. "Design from requirements": a spec form run as a design job
+// (/api/jobs/design: progress as server-sent events, a cancel button), the certified design,
+// its margins, the pattern, the 3D view, the files and an FE verification job.
 // Plain ES module, no build step; three.js comes from /static/vendor (see the import map).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -1006,18 +1007,89 @@ async function showDesignFiles(result, mine) {
   view.dataset.state = 'ready';
 }
 
+// ---- jobs: a design or an FE verification running on the server, with progress ------------
+
+// Follow a job (POST /api/jobs/... answered 202 with it) through its server-sent events: each
+// progress event goes to ``onProgress``; resolves with the job's final state (done, failed or
+// cancelled). A stream that breaks is resumed by the browser (Last-Event-ID); a job the server
+// no longer knows ends as failed.
+function followJob(job, onProgress) {
+  return new Promise((resolve) => {
+    const source = new EventSource(job.links.events);
+    let settled = false;
+    const settle = (state) => {
+      if (settled) return;
+      settled = true;
+      source.close();
+      resolve(state);
+    };
+    source.addEventListener('progress', (e) => { if (!settled) onProgress(JSON.parse(e.data)); });
+    for (const kind of ['done', 'failed', 'cancelled']) {
+      source.addEventListener(kind, (e) => settle(JSON.parse(e.data)));
+    }
+    source.onerror = async () => {
+      if (settled || source.readyState !== EventSource.CLOSED) return;  // the browser retries
+      try {
+        const r = await fetch(job.links.status);
+        const state = await r.json();
+        if (r.ok && ['done', 'failed', 'cancelled'].includes(state.status)) { settle(state); return; }
+        if (!r.ok) settle({ ...job, status: 'failed', error: { status: r.status, body: state } });
+      } catch (err) {
+        settle({ ...job, status: 'failed', error: { status: 0, body: { detail: `connection lost: ${err.message}` } } });
+      }
+    };
+  });
+}
+
+async function cancelJob(id) {
+  try { await fetch(`/api/jobs/${id}`, { method: 'DELETE' }); } catch { /* the stream ends it */ }
+}
+
+function seconds(x) { return `${fmt(x, 3)} s`; }
+
+// One line of a design job's progress, and the share of its solver budget spent (0 to 1).
+function designProgress(e, job) {
+  const limit = `stopped at ${seconds(job.limits.time_limit_s)}`;
+  if (e.stage === 'solving') {
+    const objective = $('d-objective').value.split(':')[1];
+    const unit = { mass: 'g', flexural_rigidity: 'N mm\u00b2', bending_stiffness: 'N mm',
+      inplane_stiffness: 'N/mm' }[objective] || '';
+    const best = e.best === null ? 'no design yet' : `best ${fmt(e.best, 5)}${unit ? ` ${unit}` : ''}`;
+    const gap = e.gap === null ? '' : `, gap ${fmt(100 * e.gap, 3)} %`;
+    const text = `branch and bound: ${e.iterations} iterations in ${e.runs} `
+      + `${e.runs === 1 ? 'run' : 'runs'}${gap}, ${best}; ${seconds(e.cpu_s)} of the solver's `
+      + `${seconds(e.budget_s)} CPU budget (${limit})`;
+    return [text, e.budget_s ? Math.min(1, e.cpu_s / e.budget_s) : 0];
+  }
+  if (e.stage === 'writing files') return ['writing the files...', 1];
+  return [`reading the spec (solver budget ${seconds(job.limits.budget_s)} CPU, ${limit})`, 0];
+}
+
+function jobErrorText(state) {
+  const err = state.error || {};
+  const body = err.body || {};
+  return body.detail || `the job failed (HTTP ${err.status})`;
+}
+
+let designJob = null;  // the id of the design job running, if any
+
 async function submitDesign(event) {
   event.preventDefault();
   const mine = ++designGeneration;
   clearDesignErrors();
+  if (designJob) cancelJob(designJob);  // a new spec replaces the one being designed
+  designJob = null;
   const button = $('d-submit');
+  const cancel = $('d-cancel');
+  const bar = $('d-progress');
   button.disabled = true;
   $('d-status').textContent = 'designing...';
   designForm.dataset.state = 'busy';
+  delete designForm.dataset.job;
   try {
     const body = designBody();
     history.replaceState(null, '', `#design?spec=${encodeURIComponent(JSON.stringify(body))}`);
-    const answer = await postJSON('/api/design', body);
+    const answer = await postJSON('/api/jobs/design', body);
     if (mine !== designGeneration) return;
     if (!answer.ok) {
       showDesignErrors(answer.payload, answer.status);
@@ -1026,9 +1098,47 @@ async function submitDesign(event) {
       $('d-status').textContent = '';
       return;
     }
-    showDesign(answer.payload.design);
+    const job = answer.payload;
+    designJob = job.id;
+    designForm.dataset.job = job.id;
+    cancel.hidden = false;
+    $('d-progress-box').hidden = false;
+    bar.value = 0;
+    $('d-progress-text').textContent = designProgress({ stage: 'queued' }, job)[0];
+    const state = await followJob(job, (e) => {
+      if (mine !== designGeneration) return;
+      const [text, share] = designProgress(e, job);
+      $('d-progress-text').textContent = text;
+      bar.value = share;
+      designForm.dataset.events = String(e.seq);
+    });
+    if (mine !== designGeneration) return;
+    designJob = null;
+    cancel.hidden = true;
+    $('d-progress-box').hidden = true;
+    if (state.status === 'cancelled') {
+      $('d-status').textContent = 'cancelled';
+      $('design-results').hidden = true;  // an earlier answer is not this spec's
+      designForm.dataset.state = 'cancelled';
+      return;
+    }
+    if (state.status !== 'done') {
+      const err = state.error || {};
+      if (err.status === 422 && err.body) showDesignErrors(err.body, 422);
+      else $('d-error-body').textContent = jobErrorText(state);
+      $('design-results').hidden = true;
+      designForm.dataset.state = 'error';
+      $('d-status').textContent = '';
+      return;
+    }
+    showDesign(state.result.design);
     $('d-status').textContent = '';
-    await showDesignFiles(answer.payload.result, mine);
+    resetVerify(state.result.result);
+    // the answer arrived: take the reader (and a screen reader's focus) to it
+    const heading = $('d-result-heading');
+    heading.focus({ preventScroll: true });
+    heading.scrollIntoView({ block: 'start' });
+    await showDesignFiles(state.result.result, mine);
     if (mine === designGeneration) designForm.dataset.state = 'done';
   } catch (err) {
     $('d-error-body').textContent = `request failed: ${err.message}`;
@@ -1036,10 +1146,118 @@ async function submitDesign(event) {
   } finally {
     if (mine === designGeneration) {
       button.disabled = false;
+      cancel.hidden = true;
+      $('d-progress-box').hidden = true;
       if (designForm.dataset.state === 'busy') designForm.dataset.state = 'done';
     }
   }
 }
+
+$('d-cancel').addEventListener('click', () => {
+  if (!designJob) return;
+  $('d-status').textContent = 'cancelling...';
+  cancelJob(designJob);
+});
+
+// ---- FE verification of a design (POST /api/jobs/verify: corrugate verify) ----------------
+
+let verifyResult = null;  // the stored result of the design shown
+let verifyJob = null;
+let fea = null;  // GET /api/fea: whether CalculiX is installed on the server
+
+const feaLoaded = fetch('/api/fea').then((r) => r.json()).then((info) => { fea = info; })
+  .catch((err) => { fea = { available: false, message: `cannot ask the server: ${err.message}` }; });
+
+async function resetVerify(result) {
+  if (verifyJob) cancelJob(verifyJob);
+  verifyJob = null;
+  verifyResult = result ? result.id : null;
+  $('d-verify-log').replaceChildren();
+  $('d-verify-table').hidden = true;
+  $('d-verify-cancel').hidden = true;
+  const box = $('d-verify');
+  delete box.dataset.state;
+  await feaLoaded;
+  box.disabled = !fea.available || !verifyResult;
+  $('d-verify-status').textContent = fea.available ? '' : fea.message;
+  box.dataset.state = fea.available ? 'ready' : 'unavailable';
+}
+
+function showVerification(v) {
+  const body = $('d-verify-table').tBodies[0];
+  body.replaceChildren();
+  for (const c of v.constraints) {
+    const row = body.insertRow();
+    cell(row, `${c.name} [${c.quantity}]`, 'name').className = 'text';
+    const bound = c.bound === null ? '-' : `${c.sense === 'max' ? '\u2264' : '\u2265'} ${fmt(c.bound, 5)} ${c.unit}`;
+    cell(row, bound.trim(), 'bound');
+    cell(row, fmt(c.model, 5), 'model');
+    const series = Object.values(c.fe_series).map((x) => fmt(x, 5)).join(' / ') || '-';
+    cell(row, series, 'fe_series');
+    const notes = [c.estimate ? `(${c.estimate})` : '', c.note || ''].filter(Boolean).join('; ');
+    cell(row, `${fmt(c.fe, 5)}${notes ? ` ${notes}` : ''}`, 'fe').className = 'text';
+    const holds = cell(row, c.holds ? 'yes' : 'NO', 'holds');
+    holds.dataset.holds = String(c.holds);
+  }
+  $('d-verify-caption').textContent = `${v.design}: mesh series ${v.meshes.join(' / ')} elements `
+    + `per facet, ${v.runs} CalculiX ${v.runs === 1 ? 'run' : 'runs'}`;
+  $('d-verify-table').hidden = false;
+  $('d-verify-status').textContent = v.constraints.length
+    ? (v.holds ? 'every constraint holds in FE' : 'not every constraint holds in FE')
+    : 'no behavioural constraint: nothing for the FE to check';
+}
+
+async function verifyDesign() {
+  const button = $('d-verify');
+  const status = $('d-verify-status');
+  const log = $('d-verify-log');
+  if (!verifyResult) return;
+  button.disabled = true;
+  button.dataset.state = 'busy';
+  log.replaceChildren();
+  $('d-verify-table').hidden = true;
+  status.textContent = 'starting the FE runs...';
+  const mine = verifyResult;
+  try {
+    const answer = await postJSON('/api/jobs/verify', { result: verifyResult, mesh: $('d-verify-mesh').value });
+    if (!answer.ok) {
+      status.textContent = (answer.payload && answer.payload.detail) || `HTTP ${answer.status}`;
+      button.dataset.state = 'error';
+      return;
+    }
+    const job = answer.payload;
+    verifyJob = job.id;
+    button.dataset.job = job.id;
+    $('d-verify-cancel').hidden = false;
+    status.textContent = `running (stopped at ${seconds(job.limits.time_limit_s)})...`;
+    const state = await followJob(job, (e) => {
+      if (e.stage !== 'fe' || mine !== verifyResult) return;
+      const li = document.createElement('li');
+      li.textContent = e.line;
+      log.appendChild(li);
+    });
+    if (mine !== verifyResult) return;
+    verifyJob = null;
+    if (state.status === 'done') {
+      showVerification(state.result);
+      button.dataset.state = 'done';
+    } else {
+      status.textContent = state.status === 'cancelled' ? 'cancelled' : jobErrorText(state);
+      button.dataset.state = state.status === 'cancelled' ? 'cancelled' : 'error';
+    }
+  } catch (err) {
+    status.textContent = `request failed: ${err.message}`;
+    button.dataset.state = 'error';
+  } finally {
+    if (mine === verifyResult) {
+      button.disabled = false;
+      $('d-verify-cancel').hidden = true;
+    }
+  }
+}
+
+$('d-verify').addEventListener('click', verifyDesign);
+$('d-verify-cancel').addEventListener('click', () => { if (verifyJob) cancelJob(verifyJob); });
 
 // ---- tabs --------------------------------------------------------------------------------
 
