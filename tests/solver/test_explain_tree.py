@@ -61,13 +61,33 @@ def _small(tmp: Path, feasible: bool) -> Problem:
     return _problem(path)
 
 
-@pytest.mark.parametrize("feasible", [False, True])
-def test_archive_holds_every_design_of_every_relaxation(feasible: bool, tmp_path: Path) -> None:
-    problem = _small(tmp_path, feasible)
-    assert "side_y" in " ".join(c.name for c in problem.constraints)
+def _small_independent(tmp: Path) -> Problem:
+    """examples/rectangle_independent.toml on a small grid (per layer n 4-10, W 4-9 mm, alpha
+    60-140 deg step 10: 378 designs, 142 884 pairs)."""
+    text = (EXAMPLES / "rectangle_independent.toml").read_text("utf-8")
+    head, rest = text.split("[variables]", 1)
+    grid = (
+        '[variables]\nW = { min = "4 mm", max = "9 mm", step = "1 mm" }\nn = { min = 4, max = 10 }\n'
+        'alpha = { min = "60 deg", max = "140 deg", step = "10 deg" }\n'
+    )
+    path = tmp / "small_independent.toml"
+    path.write_text(head + grid + rest.split("\n\n", 1)[1], "utf-8")
+    return _problem(path)
+
+
+@pytest.mark.parametrize("case", ["identical-infeasible", "identical-feasible", "independent"])
+def test_archive_holds_every_design_of_every_relaxation(case: str, tmp_path: Path) -> None:
+    if case == "independent":  # the per-layer enumeration (bnb._enumerate) drops pairs too
+        problem = _small_independent(tmp_path)
+        assert not problem.identical
+    else:
+        problem = _small(tmp_path, case == "identical-feasible")
+        assert problem.identical
     tables = Tables(problem)
     opt = optimize(problem, tables=tables, record=True)
-    assert opt.certified and (opt.point is not None) is feasible
+    assert opt.certified
+    if problem.identical:
+        assert (opt.point is not None) is (case == "identical-feasible")
     tree = opt.tree()
     assert tree is not None and len(tree) == 1
     archive = tree[0]
@@ -77,12 +97,24 @@ def test_archive_holds_every_design_of_every_relaxation(feasible: bool, tmp_path
         v.reshape(-1)
         for v in np.meshgrid(ns, problem.W.values(), problem.alpha.values(), indexing="ij")
     )
-    x = {"n1": n, "W1": W, "a1": a, "n2": n, "W2": W, "a2": a}
+    if problem.identical:
+        x = {"n1": n, "W1": W, "a1": a, "n2": n, "W2": W, "a2": a}
+        pts = np.stack([n, W, a], axis=1)
+    else:  # every pair of layer designs
+        i, j = (
+            v.reshape(-1) for v in np.meshgrid(np.arange(len(n)), np.arange(len(n)), indexing="ij")
+        )
+        x = {"n1": n[i], "W1": W[i], "a1": a[i], "n2": n[j], "W2": W[j], "a2": a[j]}
+        pts = np.stack([x[k] for k in ("n1", "W1", "a1", "n2", "W2", "a2")], axis=1)
     c1 = problem.candidates[0]
     vals = point_values(problem, c1, c1, x, tables)
     broken = np.stack([~c.satisfied(vals[c.quantity]) for c in problem.constraints], axis=1)
     mass = vals[problem.objective.quantity]
-    pts = np.stack([n, W, a], axis=1)
+    if opt.point is not None:  # the search's optimum is the grid's
+        feasible = ~broken.any(axis=1)
+        assert opt.value == pytest.approx(float(mass[feasible].min()), rel=1e-12)
+    else:
+        assert broken.any(axis=1).all()
     cons = range(len(problem.constraints))
     sets = [()] + [(i,) for i in cons] + list(itertools.combinations(cons, 2))
     checked = 0

@@ -44,10 +44,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.solver.budget import current_budget
+from corrugate.solver.making import MAKING
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, DesignVariable, Problem
 from corrugate.solver.progress import report
-from corrugate.solver.quantities import Tables, box_bounds, point_values
-from corrugate.solver.quantity import Quantity
+from corrugate.solver.quantities import DIMS, Tables, _corner, box_bounds, point_values
+from corrugate.solver.quantity import LX, LY, Quantity
 
 __all__ = ["GAP_RTOL", "Archive", "BnBResult", "branch_and_bound"]
 
@@ -194,6 +195,53 @@ def _grid_points(lo: FloatArray, counts: FloatArray, dims: list[_Dim]) -> FloatA
     return out
 
 
+def _enumerate(
+    problem: Problem, lo: FloatArray, counts: FloatArray, dims: list[_Dim], rtol: float
+) -> tuple[FloatArray, NDArray[np.int64], list[tuple[NDArray[np.int64], NDArray[np.bool_]]]]:
+    """The grid points of each box (:func:`_grid_points`, same order) with the box each lies
+    in, less those that break a bound of one layer alone, which are found per layer.
+
+    With independent layers the extents decompose: Lx is layer 1's own (n1 + 1) W1 sin(a1/2)
+    and Ly layer 2's (:func:`~.quantities.box_bounds`, the same arithmetic), so a box of
+    k1 x k2 points needs k1 + k2 extents to drop every pair with a layer outside its side
+    range, before the pairs are formed. Returns the points, their boxes, and per layer the
+    dropped layer points' boxes and broken constraints (points x constraints; a dropped pair
+    breaks at least its layer's)."""
+    cons = problem.constraints
+    per_layer = [[i for i, c in enumerate(cons) if c.quantity == q] for q in (LX, LY)]
+    nbox = len(lo)
+    if len(dims) != 6 or not any(per_layer):
+        every = _grid_points(lo, counts, dims)
+        owner = np.repeat(np.arange(nbox), counts.prod(axis=1).astype(np.int64))
+        return every, owner, []
+    kept: list[NDArray[np.int64]] = []
+    sizes: list[NDArray[np.int64]] = []
+    pts: list[FloatArray] = []
+    dropped: list[tuple[NDArray[np.int64], NDArray[np.bool_]]] = []
+    for layer, idx in enumerate(per_layer):
+        cols = slice(3 * layer, 3 * layer + 3)
+        g = _grid_points(lo[:, cols], counts[:, cols], dims[cols])
+        own = np.repeat(np.arange(nbox), counts[:, cols].prod(axis=1).astype(np.int64))
+        i = str(layer + 1)
+        ext = _corner({"n" + i: g[:, 0], "W" + i: g[:, 1], "a" + i: g[:, 2]}, layer + 1).extent
+        broken = np.zeros((len(g), len(cons)), dtype=bool)
+        for k in idx:
+            broken[:, k] = ~cons[k].satisfied(ext, rtol=rtol)
+        ok = ~broken.any(axis=1)
+        dropped.append((own[~ok], broken[~ok]))
+        s = np.flatnonzero(ok)
+        kept.append(s)
+        sizes.append(np.bincount(own[s], minlength=nbox))
+        pts.append(g)
+    k1, k2 = sizes
+    per_box = k1 * k2
+    box = np.repeat(np.arange(nbox), per_box)
+    r = np.arange(int(per_box.sum())) - np.repeat(np.cumsum(per_box) - per_box, per_box)
+    i1 = kept[0][(np.cumsum(k1) - k1)[box] + r // k2[box]]
+    i2 = kept[1][(np.cumsum(k2) - k2)[box] + r % k2[box]]
+    return np.concatenate([pts[0][i1], pts[1][i2]], axis=1), box, dropped
+
+
 def _threshold(best: float, tol: float) -> float:
     """Boxes whose bound is below this may still hold a better design."""
     return best if not math.isfinite(best) else best - tol * abs(best)
@@ -335,6 +383,40 @@ def _broken(
     return out
 
 
+def _cheap_bounds(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    lo: dict[str, FloatArray],
+    hi: dict[str, FloatArray],
+    tables: Tables,
+    cheap: set[Quantity],
+    rtol: float,
+    objective: Quantity,
+) -> tuple[dict[Quantity, tuple[FloatArray, FloatArray]], NDArray[np.bool_]]:
+    """Bounds of the ``cheap`` quantities over the boxes (``lo is hi``: at points) and which
+    constraints they show broken (:func:`_broken`): the sizes and the mass for every box first,
+    then the making's part sizes (:mod:`.making`, the costliest of them) only for the boxes
+    those leave (the others get no bounds of them: their constraints count as not shown
+    broken). The ``objective``'s bounds are always there (it goes first)."""
+    cons = problem.constraints
+    then = (cheap & MAKING) - {objective}
+    first = cheap - then
+    if not then or not first:
+        bnd = box_bounds(problem, c1, c2, lo, hi, tables, cheap)
+        return bnd, _broken(cons, bnd, cheap, len(lo["n1"]), rtol)
+    bnd = box_bounds(problem, c1, c2, lo, hi, tables, first)
+    broken = _broken(cons, bnd, first, len(lo["n1"]), rtol)
+    alive = ~broken.any(axis=1)
+    if alive.any():
+        names = ("n1", "W1", "a1") if problem.identical else DIMS
+        slo = _full({k: lo[k][alive] for k in names}, problem.identical)
+        shi = slo if hi is lo else _full({k: hi[k][alive] for k in names}, problem.identical)
+        more = box_bounds(problem, c1, c2, slo, shi, tables, then)
+        broken[alive] |= _broken(cons, more, then, int(alive.sum()), rtol)
+    return bnd, broken
+
+
 def branch_and_bound(
     problem: Problem,
     c1: Candidate,
@@ -450,8 +532,7 @@ def branch_and_bound(
         # cheap bounds first (extents, thickness, blank, facet, mass: corner values), for all
         xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
         xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
-        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, cheap)
-        broken = _broken(cons, bnd, cheap, len(lo), feas_rtol)
+        bnd, broken = _cheap_bounds(problem, c1, c2, xlo, xhi, tables, cheap, feas_rtol, obj_key)
         if obj_key in cheap:
             o_lo, o_hi = bnd[obj_key]
             obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
@@ -486,18 +567,18 @@ def branch_and_bound(
             continue
         e_lo = lo[:0]
         if enum.any():
-            every = _grid_points(lo[enum], counts[enum], dims)
-            owner = np.repeat(
-                np.arange(int(enum.sum())), counts[enum].prod(axis=1).astype(np.int64)
-            )
+            every, owner, dropped = _enumerate(problem, lo[enum], counts[enum], dims, feas_rtol)
             e_lo, e_hi, e_bound = lo[enum], hi[enum], obj_bound[enum]
+            if rec is not None:  # the pairs dropped by one layer's bound: rows of its bits
+                for own, why in dropped:
+                    mask, kept = rec.masks(why)
+                    rec.add_points(e_lo, e_hi, e_bound, own[kept], mask[kept], e_bound[own[kept]])
             lo, hi, obj_bound = lo[~enum], hi[~enum], obj_bound[~enum]
             # each point is a box of its own: the same cheap bounds (values, there) drop the
             # points that break a cheap constraint or cannot beat the incumbent, before the
             # full evaluation
             e = _full({d.name: every[:, i] for i, d in enumerate(dims)}, problem.identical)
-            eb = box_bounds(problem, c1, c2, e, e, tables, cheap)
-            e_broken = _broken(cons, eb, cheap, len(every), feas_rtol)
+            eb, e_broken = _cheap_bounds(problem, c1, c2, e, e, tables, cheap, feas_rtol, obj_key)
             ok = ~e_broken.any(axis=1)
             if obj_key in cheap:
                 o_lo, o_hi = eb[obj_key]

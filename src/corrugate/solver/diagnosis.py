@@ -2,7 +2,10 @@
 
 :func:`diagnose` explains an infeasible :class:`~corrugate.solver.problem.Problem` with certified
 re-solves of variants of it (each one the branch and bound of :mod:`.bnb`, so every number is the
-best a design in the variable bounds reaches, not an estimate):
+best a design in the variable bounds reaches, not an estimate). A variant that only drops
+constraints (one, a partner, a pair, the off-axis set of at most two) is searched warm, from the
+boxes of the infeasible solve's tree that break nothing but the dropped constraints
+(:class:`~.bnb.Archive`): every design of the variant lies in them.
 
 * **identical layers on a rectangle or polygon**: both layers fold to the same extent, Lx = Ly (a
   square bounding box). When ``layers = "independent"`` makes the spec feasible, that is the

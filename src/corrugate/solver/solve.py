@@ -7,8 +7,11 @@ then, unless ``explain=False``, builds the explanation:
 * the design's performance, exactly as :func:`corrugate.analysis.evaluate.analyze` reports it;
 * every constraint with its value, bound, margin (>= 0 when met, in the quantity's unit), whether
   it is *active* (margin within 1e-6 of the bound) and whether it is *binding*: dropping it alone
-  lets the solver find a strictly better design (re-solved, certified);
-* runner-ups: the certified best design for each n near the optimum's n;
+  lets the solver find a strictly better design (certified: re-searched from the boxes of the
+  solve's own tree that this constraint alone closed below the optimum, :class:`~.bnb.Archive`,
+  stopping at the first better design; from the whole domain when there is no archive);
+* runner-ups: the certified best design for each n near the optimum's n (one search per sheet
+  pair, one incumbent per n, from the tree's boxes that may hold a feasible design);
 * warnings: the model's (``analyze``) plus the solver's;
 * when no design exists, a diagnosis (:mod:`corrugate.solver.diagnosis`): the structural causes
   (identical layers forcing a square, off-axis bounds on a free panel), and for each constraint
