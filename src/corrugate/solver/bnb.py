@@ -62,6 +62,8 @@ MAX_BOXES = 20_000_000
 MAX_OPEN = 2_000_000
 #: Boxes bounded per iteration; beyond it the lowest bounds go first (best-first).
 BATCH = 20_000
+#: The first batch of a search that stops at its first better design (``stop_below``).
+FIRST_BATCH = 64
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
 #: Parts per coordinate in such a split.
@@ -511,9 +513,12 @@ def branch_and_bound(
         report(it, _gap(best_val, q_bound), _best_of(best_val, sign))
         if not len(q_lo):
             break
-        if len(q_lo) > BATCH:  # best-first: the boxes with the lowest bounds go first
+        # a search that stops at its first better design takes its boxes best-first in batches
+        # growing from FIRST_BATCH fourfold (it often ends in the first few)
+        batch = BATCH if stop_below is None else min(BATCH, FIRST_BATCH * 4 ** (it - 1))
+        if len(q_lo) > batch:  # best-first: the boxes with the lowest bounds go first
             take = np.zeros(len(q_lo), dtype=bool)
-            take[np.argpartition(q_bound, BATCH)[:BATCH]] = True
+            take[np.argpartition(q_bound, batch)[:batch]] = True
             lo, hi, parent = q_lo[take], q_hi[take], q_bound[take]
             q_lo, q_hi, q_bound = q_lo[~take], q_hi[~take], q_bound[~take]
         else:
