@@ -5,6 +5,15 @@ Run by hand (about a minute; the exhaustive grid dominates)::
     .venv/bin/python benchmarks/solve.py [--repeats 21] [--de-runs 5] [--skip-grid]
     .venv/bin/python benchmarks/solve.py --offaxis-only   # eta 45 (free sides) against eta 0
     .venv/bin/python benchmarks/solve.py --headline-only  # the case study's ratios only
+    .venv/bin/python benchmarks/solve.py --chassis-only   # issue 24's chassis spec, examples
+
+``--chassis-only`` (issue 24, "Must show"): the chassis spec (benchmarks/specs/
+chassis_independent.toml: 6 variables, independent layers) as fresh processes of the installed
+package with compiled bytecode, interleaved: the certified solve (``solve(problem,
+explain=False)``), the explained answer (``corrugate design SPEC --json``) and a vectorised numpy
+exhaustive search of the same grid that decomposes by layer (``chassis_exhaustive``); the CPU
+time (user + system of the child, ``os.wait4``) median of ``--chassis-repeats``, peak RSS, the
+ratios; then ``design --json`` of every shipped example (examples/*.toml), CPU median and peak.
 
 First (``headline``), the case study's certified solve against the broadcast numpy exhaustive
 search of the spec's own grid and scipy's vectorised differential evolution, interleaved in one
@@ -25,8 +34,13 @@ so the certified optimum can be no heavier.
 from __future__ import annotations
 
 import argparse
+import compileall
 import math
+import os
 import statistics
+import subprocess
+import sys
+import sysconfig
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -34,13 +48,14 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import differential_evolution
 
 from corrugate import LayerArrays, evaluate, get_material, make_layout
 from corrugate.solver import Problem, solve
 from corrugate.spec.schema import Spec, load_spec
 
-EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+ROOT = Path(__file__).resolve().parents[1]
+EXAMPLES = ROOT / "examples"
+CHASSIS = ROOT / "benchmarks" / "specs" / "chassis_independent.toml"
 Arr = NDArray[np.float64]
 
 
@@ -130,6 +145,8 @@ def de(case: Case, seed: int, vectorized: bool = True) -> float:
     """Lightest feasible mass differential evolution finds (inf if none). ``vectorized``: the
     population is evaluated in one ``evaluate`` call per generation (fast); otherwise one
     Python call per design, scipy's default way of calling the objective."""
+    from scipy.optimize import differential_evolution  # (not in the exhaustive's child)
+
     v = case.spec.variables
     gridded = v.W.step is not None and v.alpha.step is not None
 
@@ -288,7 +305,172 @@ def offaxis(repeats: int) -> None:
         )
 
 
+def chassis_exhaustive(path: Path) -> tuple[float, dict[str, float]]:
+    """The lightest design of an independent-layer rectangle spec over its whole grid, by a
+    vectorised numpy exhaustive search that decomposes by layer (what a capable user writes):
+
+    1. each layer's grid (n x W x alpha, 410 k designs for the chassis) at once: its extent
+       (n + 1) W sin(alpha/2) (Lx for layer 1, Ly for layer 2: a rectangle's extents) and
+       depth W cos(alpha/2); the constraints of one layer alone (its side range, min_facet,
+       max_t_over_W) keep a few hundred of each;
+    2. the pairs whose thickness W1 c1 + W2 c2 (a sum of layer terms) meets its bound;
+    3. every constraint of the spec and the mass at each remaining pair, exactly, with the
+       package's vectorised point evaluation (``corrugate.solver.quantities.point_values``:
+       ``evaluate`` and the fabrication sizes), in chunks; the lightest feasible pair.
+
+    The layer filters keep every design within a relative 1e-9 of a bound; step 3 decides."""
+    from corrugate.solver.problem import FEAS_RTOL
+    from corrugate.solver.quantities import Tables, point_values
+    from corrugate.solver.quantity import LX, LY, T_OVER_W, THICKNESS, W_MIN
+
+    problem = Problem.from_spec(load_spec(path))
+    assert not problem.identical and problem.layout.name == "rectangle" and problem.gridded
+    tables = Tables(problem)
+    ns = np.arange(problem.n_lo, problem.n_hi + 1, dtype=np.float64)
+    n, W, a = (
+        v.reshape(-1)
+        for v in np.meshgrid(ns, problem.W.values(), problem.alpha.values(), indexing="ij")
+    )
+    half = np.radians(a) / 2
+    extent, depth = (n + 1) * W * np.sin(half), W * np.cos(half)
+    slack = 1e-9
+
+    def layer_ok(extent_q: Any) -> Any:
+        ok = np.ones(len(n), dtype=bool)
+        for c in problem.constraints:
+            q = c.quantity
+            v = extent if q == extent_q else W if q == W_MIN else None
+            if q == T_OVER_W:
+                v = problem.candidates[0].t / W
+            if v is None:
+                continue
+            ok &= v >= c.bound * (1 - slack) if c.sense == "min" else v <= c.bound * (1 + slack)
+        return ok
+
+    one, two = np.flatnonzero(layer_ok(LX)), np.flatnonzero(layer_ok(LY))
+    t_max = min(
+        (c.bound for c in problem.constraints if c.quantity == THICKNESS and c.sense == "max"),
+        default=math.inf,
+    )
+    i, j = np.nonzero(depth[one][:, None] + depth[two][None, :] <= t_max * (1 + slack))
+    i, j = one[i], two[j]
+    best, best_at = math.inf, {}
+    cand = problem.candidates[0]
+    chunk = 100_000
+    for k in range(0, len(i), chunk):
+        a_, b_ = i[k : k + chunk], j[k : k + chunk]
+        x = {"n1": n[a_], "W1": W[a_], "a1": a[a_], "n2": n[b_], "W2": W[b_], "a2": a[b_]}
+        vals = point_values(problem, cand, cand, x, tables)
+        ok = np.ones(len(a_), dtype=bool)
+        for c in problem.constraints:
+            ok &= c.satisfied(vals[c.quantity], rtol=FEAS_RTOL)
+        mass = np.where(ok, vals[problem.objective.quantity], np.inf)
+        m = int(np.argmin(mass))
+        if mass[m] < best:
+            best, best_at = float(mass[m]), {key: float(v[m]) for key, v in x.items()}
+    best_at["pairs"] = float(len(i))
+    best_at["layer1"], best_at["layer2"] = float(len(one)), float(len(two))
+    return best, best_at
+
+
+def _child(argv: list[str], env: dict[str, str]) -> tuple[float, float]:
+    """Run ``argv`` to its end: its user + system CPU seconds and peak RSS (MB)."""
+    proc = subprocess.Popen(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    assert proc.stderr is not None
+    err = proc.stderr.read()
+    _, status, usage = os.wait4(proc.pid, 0)
+    proc.returncode = os.waitstatus_to_exitcode(status)
+    if proc.returncode not in (0, 1):  # design exits 1 for an infeasible spec
+        raise RuntimeError(f"{argv} exited {proc.returncode}: {err.decode()[-2000:]}")
+    return usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024
+
+
+def chassis(repeats: int) -> None:
+    """Issue 24's must-show: the chassis spec as fresh processes (module docstring)."""
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    for tree in (ROOT / "src", Path(sysconfig.get_paths()["purelib"])):
+        compileall.compile_dir(str(tree), quiet=1, workers=1)  # bytecode, as an install has it
+    py = sys.executable
+    solve_code = (
+        "import sys; from corrugate.spec.schema import load_spec; "
+        "from corrugate.solver import Problem, solve; "
+        "s = solve(Problem.from_spec(load_spec(sys.argv[1])), explain=False); "
+        "assert s.certified, s.status"
+    )
+    floor_code = "import numpy, pydantic, corrugate.solver.solve, corrugate.spec.schema"
+    cmds = {
+        "python: import numpy, pydantic, the solver (floor)": [py, "-c", floor_code],
+        "certified solve (explain=False)": [py, "-c", solve_code, str(CHASSIS)],
+        "corrugate design SPEC --json (explained)": [
+            *(py, "-m", "corrugate", "design", str(CHASSIS), "--json"),
+        ],
+        "numpy exhaustive by layer": [py, __file__, "--chassis-exhaustive", str(CHASSIS)],
+    }
+    runs: dict[str, list[tuple[float, float]]] = {k: [] for k in cmds}
+    for _ in range(repeats):  # interleaved: the machine is shared
+        for label, argv in cmds.items():
+            runs[label].append(_child(argv, env))
+    best, at = chassis_exhaustive(CHASSIS)
+    sol = solve(Problem.from_spec(load_spec(CHASSIS)), explain=False)
+    a = sol.assembly
+    print(
+        f"\n== issue 24 chassis spec ({CHASSIS.relative_to(ROOT)}), fresh processes, median of {repeats}"
+    )
+    med = {k: statistics.median(c for c, _ in v) for k, v in runs.items()}
+    for label, v in runs.items():
+        print(
+            f"{label:44s} CPU {med[label]:6.2f} s (min {min(c for c, _ in v):.2f}, max "
+            f"{max(c for c, _ in v):.2f}); peak RSS {max(r for _, r in v):6.0f} MB"
+        )
+    brute = med["numpy exhaustive by layer"]
+    solved = med["certified solve (explain=False)"]
+    floor = med["python: import numpy, pydantic, the solver (floor)"]
+    print(
+        f"certified solve vs exhaustive: {brute / solved:.1f}x (whole processes); "
+        f"{(brute - floor) / max(solved - floor, 1e-9):.1f}x above the import floor"
+    )
+    print(
+        f"solver: mass {sol.mass:.12f} g, certified={sol.certified}, layer 1 W={a.layer1.W:g} "
+        f"n={a.layer1.n} alpha={a.layer1.alpha_deg:g}, layer 2 W={a.layer2.W:g} "
+        f"n={a.layer2.n} alpha={a.layer2.alpha_deg:g}; exhaustive: mass {best:.12f} g over "
+        f"{at['pairs']:.0f} pairs ({at['layer1']:.0f} x {at['layer2']:.0f} layers); same: "
+        f"{abs(best - sol.mass) <= 1e-12 * best}"
+    )
+    problem = Problem.from_spec(load_spec(CHASSIS))
+    warm: dict[str, list[float]] = {"solve": [], "explained": [], "exhaustive": []}
+    for _ in range(repeats):  # in this process, imports done, interleaved
+        for key, fn in (
+            ("solve", lambda: solve(problem, explain=False)),
+            ("explained", lambda: solve(problem)),
+            ("exhaustive", lambda: chassis_exhaustive(CHASSIS)),
+        ):
+            c0 = time.process_time()
+            fn()
+            warm[key].append(time.process_time() - c0)
+    w = {k: statistics.median(v) for k, v in warm.items()}
+    print(
+        f"in this process (imports done), median of {repeats}: certified solve {w['solve']:.3f} s "
+        f"CPU, explained solve {w['explained']:.3f} s, exhaustive {w['exhaustive']:.3f} s; "
+        f"exhaustive / certified solve {w['exhaustive'] / w['solve']:.2f}x"
+    )
+    print("\n== corrugate design EXAMPLE --json, every shipped example, fresh processes")
+    ex = sorted(EXAMPLES.glob("*.toml"))
+    per: dict[str, list[tuple[float, float]]] = {p.name: [] for p in ex}
+    for _ in range(repeats):
+        for p in ex:
+            per[p.name].append(_child([py, "-m", "corrugate", "design", str(p), "--json"], env))
+    for name, v in per.items():
+        m = statistics.median(c for c, _ in v)
+        print(
+            f"{name:36s} CPU {m:6.2f} s (above the floor {m - floor:5.2f} s); peak RSS "
+            f"{max(r for _, r in v):5.0f} MB; <= 1 s: {m <= 1.0}"
+        )
+
+
 def main() -> None:
+    if len(sys.argv) == 3 and sys.argv[1] == "--chassis-exhaustive":  # one child process
+        chassis_exhaustive(Path(sys.argv[2]))
+        return
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=21, help="runs of the certified solver")
     ap.add_argument("--de-runs", type=int, default=5, help="runs (seeds) of differential_evolution")
@@ -297,7 +479,12 @@ def main() -> None:
     ap.add_argument(
         "--headline-only", action="store_true", help="only the case study's ratios (headline)"
     )
+    ap.add_argument("--chassis-only", action="store_true", help="only issue 24's chassis spec")
+    ap.add_argument("--chassis-repeats", type=int, default=5, help="runs of each child (median)")
     args = ap.parse_args()
+    if args.chassis_only:
+        chassis(args.chassis_repeats)
+        return
     if not args.offaxis_only:
         headline(args.repeats, args.de_runs)
         if args.headline_only:

@@ -2,7 +2,10 @@
 
 :func:`diagnose` explains an infeasible :class:`~corrugate.solver.problem.Problem` with certified
 re-solves of variants of it (each one the branch and bound of :mod:`.bnb`, so every number is the
-best a design in the variable bounds reaches, not an estimate):
+best a design in the variable bounds reaches, not an estimate). A variant that only drops
+constraints (one, a partner, a pair, the off-axis set of at most two) is searched warm, from the
+boxes of the infeasible solve's tree that break nothing but the dropped constraints
+(:class:`~.bnb.Archive`): every design of the variant lies in them.
 
 * **identical layers on a rectangle or polygon**: both layers fold to the same extent, Lx = Ly (a
   square bounding box). When ``layers = "independent"`` makes the spec feasible, that is the
@@ -29,14 +32,18 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import replace
 
+import numpy as np
+
 from corrugate.names import DEFAULT_MARGIN_MM
+from corrugate.solver.bnb import ARCHIVE_DEPTH, Archive
 from corrugate.solver.budget import budget_spent, current_budget
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables
 from corrugate.solver.quantity import STIFFNESS, Quantity
-from corrugate.solver.solve import Diagnosis, Optimum, optimize
+from corrugate.solver.solve import Diagnosis, Optimum, Start, constraint_bits, optimize
 
 __all__ = ["SMALL_EDIT", "best_hint", "diagnose", "shown"]
 
@@ -79,13 +86,45 @@ def _key(c: Constraint) -> str:
 DIAGNOSIS_GAP_RTOL = 1e-6
 
 
-def _best(problem: Problem, q: Quantity, sense: str, tables: Tables | None) -> Optimum:
+class _Tree:
+    """The closed boxes of the infeasible solve (:attr:`~.solve.Optimum.archives`, per sheet
+    pair), reopened for a problem with some of its constraints dropped: only the boxes shown
+    to break nothing but dropped constraints can hold a design of it (None: search all)."""
+
+    def __init__(self, problem: Problem, archives: tuple[Archive, ...] | None) -> None:
+        self.problem = problem
+        self.archives = archives
+
+    def warm(self, *dropped: Constraint) -> list[Start] | None:
+        """Per pair, the boxes that may hold a design meeting every constraint but ``dropped``
+        (their bounds forgotten: the re-solve may optimise another quantity)."""
+        if self.archives is None:
+            return None
+        bits = 0
+        for c in dropped:
+            bits |= constraint_bits(self.problem, c.name)
+        out = []
+        for a in self.archives:
+            lo, hi, bound = a.reopen(bits)
+            out.append((lo, hi, np.full(len(bound), -np.inf)))
+        return out
+
+
+def _best(
+    problem: Problem,
+    q: Quantity,
+    sense: str,
+    tables: Tables | None,
+    warm: Sequence[Start] | None = None,
+) -> Optimum:
     """The best value of ``q`` (largest for ``sense`` min, smallest for max) under ``problem``'s
-    constraints, to the relative gap :data:`DIAGNOSIS_GAP_RTOL`."""
+    constraints, to the relative gap :data:`DIAGNOSIS_GAP_RTOL` (``warm``: per sheet pair, boxes
+    that hold every design of ``problem``, :func:`~.solve.optimize`)."""
     return optimize(
         problem.with_objective(q, "max" if sense == "min" else "min"),
         tables=tables if tables is not None else Tables(problem),
         gap_rtol=DIAGNOSIS_GAP_RTOL,
+        warm=warm,
     )
 
 
@@ -144,25 +183,30 @@ def _off_axis_free(c: Constraint) -> bool:
 # -- the diagnosis --------------------------------------------------------------------------------
 
 
-def diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
+def diagnose(
+    problem: Problem, tables: Tables, archives: tuple[Archive, ...] | None = None
+) -> list[Diagnosis]:
     """Why ``problem`` (infeasible) has no design: the structural causes first (identical layers
     forcing a square, off-axis bounds on a free panel), then each constraint whose relaxation
     alone restores feasibility, else the pairs that must both be relaxed; every entry with its
-    numbers and a hint, or why there is none (module docstring)."""
+    numbers and a hint, or why there is none (module docstring). ``archives``: the closed boxes
+    of the certified infeasible solve (:attr:`~.solve.Optimum.archives`), from which each
+    relaxed problem is searched (warm) instead of from its whole domain."""
+    tree = _Tree(problem, archives)
     out: list[Diagnosis] = []
     out += _layers(problem)
-    out += _free_off_axis(problem, tables)
+    out += _free_off_axis(problem, tables, tree)
     singles: list[Diagnosis] = []
     for c in problem.constraints:
         if budget_spent():
             return [*out, *singles, _partial(problem)]
-        d = _single(problem, c, tables)
+        d = _single(problem, c, tables, tree)
         if d is not None:
             singles.append(d)
     out += singles
     if singles:
         return out
-    pairs = _pairs(problem, tables)
+    pairs = _pairs(problem, tables, tree)
     out += pairs
     if budget_spent():
         return [*out, _partial(problem)]
@@ -290,7 +334,7 @@ def _layers(problem: Problem) -> list[Diagnosis]:
     ]
 
 
-def _free_off_axis(problem: Problem, tables: Tables) -> list[Diagnosis]:
+def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
     """Off-axis bounds on a panel with free sides: each one's best with the other constraints
     held, the spec re-solved with a frame, and the best along the creases."""
     off = [c for c in problem.constraints if _off_axis_free(c)]
@@ -299,8 +343,9 @@ def _free_off_axis(problem: Problem, tables: Tables) -> list[Diagnosis]:
     # each off-axis bound alone among them, every other constraint held
     base = replace(problem, constraints=tuple(c for c in problem.constraints if c not in off))
     reach: list[tuple[Constraint, float | None]] = []
+    warm = tree.warm(*off) if len(off) <= ARCHIVE_DEPTH else None
     for c in off:
-        best = _best(base, c.quantity, c.sense, tables)
+        best = _best(base, c.quantity, c.sense, tables, warm)
         reach.append((c, None if best.point is None else best.value))
     short = [(c, r) for c, r in reach if r is None or not _meets(c, r)]
     framed = replace(
@@ -330,7 +375,7 @@ def _free_off_axis(problem: Problem, tables: Tables) -> list[Diagnosis]:
     along = []
     for eta in (0.0, 90.0):
         q = Quantity(c0.quantity.kind, eta, c0.quantity.support)
-        best = _best(base, q, c0.sense, tables)
+        best = _best(base, q, c0.sense, tables, warm)
         if best.point is not None:
             along.append((eta, best.value))
     keys = ", ".join(_key(c) for c in off)
@@ -366,11 +411,11 @@ def _free_off_axis(problem: Problem, tables: Tables) -> list[Diagnosis]:
     ]
 
 
-def _single(problem: Problem, c: Constraint, tables: Tables) -> Diagnosis | None:
+def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Diagnosis | None:
     """``c`` alone: its best with every other constraint held (None when those conflict among
     themselves), the constraints it binds together with, and its best with none held."""
     rest = problem.without(c.name)
-    best = _best(rest, c.quantity, c.sense, tables)
+    best = _best(rest, c.quantity, c.sense, tables, tree.warm(c))
     if best.point is None or _meets(c, best.value):
         return None
     r = best.value
@@ -386,7 +431,7 @@ def _single(problem: Problem, c: Constraint, tables: Tables) -> Diagnosis | None
     for d in problem.constraints:
         if d.name == c.name or budget_spent():
             continue
-        without = _best(rest.without(d.name), c.quantity, c.sense, tables)
+        without = _best(rest.without(d.name), c.quantity, c.sense, tables, tree.warm(c, d))
         if without.point is not None and _improves(c, without.value, r):
             partners.append((d, without.value))
     partners.sort(key=lambda item: -abs(item[1] - r))
@@ -446,7 +491,7 @@ def _limits(problem: Problem, opt: Optimum) -> str:
     return "widen [variables] (" + ", ".join(at) + ") or choose a stiffer or thicker material"
 
 
-def _pairs(problem: Problem, tables: Tables) -> list[Diagnosis]:
+def _pairs(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
     """Pairs of constraints that must both be relaxed: each one's best with the other dropped and
     together (the other relaxed to its own best)."""
     out = []
@@ -454,16 +499,17 @@ def _pairs(problem: Problem, tables: Tables) -> list[Diagnosis]:
         if budget_spent():
             break
         rest = problem.without(a.name).without(b.name)
-        if optimize(rest, tables=tables).point is None:
+        warm = tree.warm(a, b)
+        if optimize(rest, tables=tables, warm=warm).point is None:
             continue
-        ra = _best(rest, a.quantity, a.sense, tables)
-        rb = _best(rest, b.quantity, b.sense, tables)
+        ra = _best(rest, a.quantity, a.sense, tables, warm)
+        rb = _best(rest, b.quantity, b.sense, tables, warm)
         if ra.point is None or rb.point is None:  # only when the budget ran out meanwhile
             continue
         with_b = replace(rest, constraints=(*rest.constraints, replace(b, bound=rb.value)))
         with_a = replace(rest, constraints=(*rest.constraints, replace(a, bound=ra.value)))
-        ta = _best(with_b, a.quantity, a.sense, tables)
-        tb = _best(with_a, b.quantity, b.sense, tables)
+        ta = _best(with_b, a.quantity, a.sense, tables, warm)
+        tb = _best(with_a, b.quantity, b.sense, tables, warm)
         together = []
         if ta.point is not None:
             together.append(

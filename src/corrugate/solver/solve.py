@@ -7,8 +7,11 @@ then, unless ``explain=False``, builds the explanation:
 * the design's performance, exactly as :func:`corrugate.analysis.evaluate.analyze` reports it;
 * every constraint with its value, bound, margin (>= 0 when met, in the quantity's unit), whether
   it is *active* (margin within 1e-6 of the bound) and whether it is *binding*: dropping it alone
-  lets the solver find a strictly better design (re-solved, certified);
-* runner-ups: the certified best design for each n near the optimum's n;
+  lets the solver find a strictly better design (certified: re-searched from the boxes of the
+  solve's own tree that this constraint alone closed below the optimum, :class:`~.bnb.Archive`,
+  stopping at the first better design; from the whole domain when there is no archive);
+* runner-ups: the certified best design for each n near the optimum's n (one search per sheet
+  pair, one incumbent per n, from the tree's boxes that may hold a feasible design);
 * warnings: the model's (``analyze``) plus the solver's;
 * when no design exists, a diagnosis (:mod:`corrugate.solver.diagnosis`): the structural causes
   (identical layers forcing a square, off-axis bounds on a free panel), and for each constraint
@@ -21,14 +24,16 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
+from numpy.typing import NDArray
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
-from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
+from corrugate.solver.bnb import GAP_RTOL, Archive, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.problem import Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
@@ -45,6 +50,8 @@ __all__ = [
     "optimize",
     "solve",
 ]
+
+FloatArray = NDArray[np.float64]
 
 #: Relative margin under which a constraint counts as active.
 ACTIVE_RTOL = 1e-6
@@ -63,6 +70,19 @@ class Optimum:
     gap: float
     boxes: int
     iterations: int
+    #: ``record``: each sheet pair's closed boxes (:func:`pairs` order; an entry is None when
+    #: its archive outgrew :data:`~.bnb.ARCHIVE_ROWS`), None otherwise
+    archives: tuple[Archive | None, ...] | None = None
+
+    def tree(self) -> tuple[Archive, ...] | None:
+        """Every pair's archive, or None when one is missing (then the explanation re-solves)."""
+        if self.archives is None or any(a is None for a in self.archives):
+            return None
+        return tuple(a for a in self.archives if a is not None)
+
+
+#: Boxes (lo, hi, lower bound of sign * objective) to start one pair's search from.
+Start = tuple[FloatArray, FloatArray, FloatArray]
 
 
 @dataclass(frozen=True, slots=True)
@@ -304,10 +324,14 @@ def layer_dict(index: int, layer: Layer) -> dict[str, object]:
     }
 
 
-def _pairs(problem: Problem) -> list[tuple[Candidate, Candidate]]:
+def pairs(problem: Problem) -> list[tuple[Candidate, Candidate]]:
+    """The sheet pairs a problem searches, in the order of :attr:`Optimum.archives`."""
     if problem.identical:
         return [(c, c) for c in problem.candidates]
     return [(a, b) for a in problem.candidates for b in problem.candidates]
+
+
+_pairs = pairs  # the former name
 
 
 def optimize(
@@ -317,11 +341,20 @@ def optimize(
     tables: Tables | None = None,
     incumbent: float | None = None,
     gap_rtol: float = GAP_RTOL,
+    record: bool = False,
+    warm: Sequence[Start] | None = None,
+    stop_below: float | None = None,
 ) -> Optimum:
     """The certified optimum of ``problem`` over every candidate sheet pair (continuous
     variables: to the relative gap ``gap_rtol``). Inside a
     :func:`~.budget.budget_scope` whose budget is spent, the sheet pairs not yet searched are
-    skipped: the optimum is then not certified and its gap infinite."""
+    skipped: the optimum is then not certified and its gap infinite.
+
+    ``record``: keep each pair's closed boxes (:attr:`Optimum.archives`). ``warm``: per pair,
+    the boxes to search instead of its whole domain (reopened from an archive of a search of a
+    problem whose feasible designs include this one's: the answer is then the same).
+    ``stop_below``: stop at the first design strictly better than this objective value (it
+    proves that one exists; the answer is then not certified unless the search had ended)."""
     tables = tables or Tables(problem)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best: BnBResult | None = None
@@ -330,25 +363,47 @@ def optimize(
     bound = math.inf
     boxes = iterations = 0
     inc = incumbent
-    for pair in _pairs(problem):
+    archives: list[Archive | None] = []
+    for i, pair in enumerate(pairs(problem)):
         if budget_spent():  # the pairs left: nothing proven
             certified = False
             bound = -math.inf
             break
+        if warm is not None and not len(warm[i][0]):
+            continue  # nothing of this pair to search
         r = branch_and_bound(
-            problem, *pair, incumbent=inc, n_fixed=n_fixed, tables=tables, gap_rtol=gap_rtol
+            problem,
+            *pair,
+            incumbent=inc,
+            n_fixed=n_fixed,
+            tables=tables,
+            gap_rtol=gap_rtol,
+            start=None if warm is None else warm[i],
+            record=record,
+            stop_below=stop_below,
         )
+        archives.append(r.archive)
         boxes += r.boxes
         iterations += r.iterations
         certified &= r.certified
         if r.point is not None and (best is None or sign * r.value < sign * best.value):
             best, best_pair = r, pair
             inc = r.value
+            if stop_below is not None and sign * r.value < sign * stop_below:
+                break  # shown: a better design exists
         if not r.certified:
             bound = min(bound, sign * r.bound)
+    kept = tuple(archives) if record and certified else None
     if best is None:
         return Optimum(
-            None, None, math.nan, certified, 0.0 if certified else math.inf, boxes, iterations
+            None,
+            None,
+            math.nan,
+            certified,
+            0.0 if certified else math.inf,
+            boxes,
+            iterations,
+            kept,
         )
     best_val = sign * best.value
     gap_abs = (
@@ -357,7 +412,7 @@ def optimize(
         else (best.gap * abs(best_val))
     )
     gap = 0.0 if problem.gridded and certified else gap_abs / max(abs(best_val), 1e-300)
-    return Optimum(best.point, best_pair, best.value, certified, gap, boxes, iterations)
+    return Optimum(best.point, best_pair, best.value, certified, gap, boxes, iterations, kept)
 
 
 def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
@@ -398,7 +453,7 @@ def solve(
 def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     t0 = time.perf_counter()
     tables = Tables(problem)
-    opt = optimize(problem, tables=tables)
+    opt = optimize(problem, tables=tables, record=explain)
     t_opt = time.perf_counter() - t0
     stats: dict[str, object] = {
         "boxes": float(opt.boxes),
@@ -408,7 +463,7 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     if opt.point is None:
         status = "infeasible" if opt.certified else "not-certified"
         # not certified: no design found, none proven impossible: nothing to diagnose
-        diag = tuple(_diagnose(problem, tables)) if explain and opt.certified else ()
+        diag = tuple(_diagnose(problem, tables, opt.tree())) if explain and opt.certified else ()
         warnings = (
             []
             if opt.certified
@@ -544,12 +599,14 @@ def _under_refined(problem: Problem, opt: Optimum) -> dict[str, str] | None:
     }
 
 
-def _diagnose(problem: Problem, tables: Tables) -> list[Diagnosis]:
+def _diagnose(
+    problem: Problem, tables: Tables, tree: tuple[Archive, ...] | None
+) -> list[Diagnosis]:
     """:func:`corrugate.solver.diagnosis.diagnose` (imported here: it re-solves with
     :func:`optimize`)."""
     from corrugate.solver.diagnosis import diagnose
 
-    return diagnose(problem, tables)
+    return diagnose(problem, tables, tree)
 
 
 def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[Quantity, float]:
@@ -589,6 +646,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     vals = _values_at(problem, opt, tables)
     capacity = _capacities(problem, opt, tables)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
+    tree = opt.tree()
+    tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -596,10 +655,25 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         binding: bool | None = None
         relaxed = None
         if not budget_spent():
-            relaxed = optimize(problem.without(c.name), tables=tables, incumbent=opt.value)
-        if relaxed is not None and relaxed.certified:
-            tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
-            binding = relaxed.point is not None and sign * relaxed.value < sign * opt.value - tol
+            # warm: only the boxes closed by this constraint alone, below the optimum
+            warm = (
+                None
+                if tree is None
+                else [a.reopen(constraint_bits(problem, c.name), sign * opt.value) for a in tree]
+            )
+            # binding once a design strictly better than the optimum (beyond the proven
+            # gap) meets every other constraint; not binding once none is proven to exist
+            relaxed = optimize(
+                problem.without(c.name),
+                tables=tables,
+                incumbent=opt.value,
+                warm=warm,
+                stop_below=opt.value - sign * tol,
+            )
+        if relaxed is not None:
+            better = relaxed.point is not None and sign * relaxed.value < sign * opt.value - tol
+            if better or relaxed.certified:
+                binding = better
         active = abs(margin) <= ACTIVE_RTOL * abs(c.bound)
         if c.load is not None:  # a deflection bound: delta = P / (P / delta) <= P / bound
             delta, most = c.load / v, c.load / c.bound
@@ -629,25 +703,53 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
 
 
 def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
+    """The certified best design for each n within :data:`RUNNER_UP_SPREAD` of the optimum's
+    layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
+    :func:`~.bnb._dims`): one search per sheet pair with one incumbent per n, from the boxes of
+    the solve that may hold a feasible design (:attr:`Optimum.archives`), else from the whole
+    domain."""
     assert opt.point is not None
     n_star = round(opt.point["n1"])
-    out = []
-    for n in range(
+    a, b = (
         max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
-        min(problem.n_hi, n_star + RUNNER_UP_SPREAD) + 1,
-    ):
+        min(problem.n_hi, n_star + RUNNER_UP_SPREAD),
+    )
+    tree = opt.tree()
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]] = {}
+    certified = {n: True for n in range(a, b + 1)}
+    for i, pair in enumerate(pairs(problem)):
         if budget_spent():
+            for n in certified:
+                certified[n] = False
             break
-        r = optimize(problem, n_fixed=(n, n), tables=tables)
-        if r.point is None:
+        start = None if tree is None else tree[i].reopen()
+        r = branch_and_bound(problem, *pair, tables=tables, start=start, per_n=(a, b))
+        assert r.by_n is not None
+        for n, rn in r.by_n.items():
+            certified[n] &= rn.certified
+            if rn.point is not None and (
+                n not in best or sign * rn.value < sign * best[n][0].value
+            ):
+                best[n] = (rn, pair)
+    out = []
+    for n in range(a, b + 1):
+        if n not in best:
             continue
-        a = assembly_of(problem, r)
+        rn, pair = best[n]
+        found = Optimum(rn.point, pair, rn.value, certified[n], 0.0, rn.boxes, rn.iterations)
+        layers = assembly_of(problem, found).layers
         out.append(
             RunnerUp(
                 n,
-                r.value,
-                tuple(layer_dict(i + 1, layer) for i, layer in enumerate(a.layers)),
-                r.certified,
+                rn.value,
+                tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers)),
+                certified[n],
             )
         )
     return out
+
+
+def constraint_bits(problem: Problem, name: str) -> int:
+    """The bit set of :class:`~.bnb.Archive` masks of the constraints called ``name``."""
+    return sum(1 << i for i, c in enumerate(problem.constraints) if c.name == name)

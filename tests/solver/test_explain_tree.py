@@ -1,0 +1,217 @@
+"""The explanation from the search's own tree (issue 24, item 1): the archive of closed boxes
+(:class:`corrugate.solver.bnb.Archive`) and what is built from it, checked against independent
+second methods.
+
+* The archive's promise, on the whole grid of a spec (every design evaluated, no search): every
+  design that meets all constraints but a set R (|R| <= 2) lies in a row that ``reopen(R)``
+  returns, with a bound no higher than its objective.
+* The explained answer (binding constraints, runner-ups) equals what independent certified
+  re-solves from the whole domain give (the path every earlier version took): each constraint
+  dropped in turn with the optimum as incumbent, and each n1 fixed in turn.
+* The diagnosis of infeasible specs equals the one made with the archive switched off (every
+  relaxed problem re-solved from its whole domain).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import corrugate.solver.bnb as bnb
+from corrugate.solver import Problem, solve
+from corrugate.solver.progress import reporting
+from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.solve import GAP_RTOL, optimize, pairs
+from corrugate.spec.schema import load_spec
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+DIAGNOSIS = ROOT / "tests" / "data" / "diagnosis"
+
+
+def _problem(path: Path) -> Problem:
+    return Problem.from_spec(load_spec(path))
+
+
+SMALL_GRID = """[variables]
+W = { min = "5 mm", max = "20 mm", step = "1 mm" }
+n = { min = 6, max = 30 }
+alpha = { min = "40 deg", max = "120 deg", step = "5 deg" }
+"""
+
+
+def _small(tmp: Path, feasible: bool) -> Problem:
+    """tests/data/diagnosis/rectangle_identical.toml on a small grid (n 6-30, W 5-20 mm, alpha
+    40-120 deg step 5: 6800 designs): infeasible (identical layers fold to Lx = Ly, but side_x
+    and side_y do not overlap), or (``feasible``) with side_y 78-82 mm like side_x."""
+    text = (DIAGNOSIS / "rectangle_identical.toml").read_text("utf-8")
+    head, rest = text.split("[variables]", 1)
+    text = head + SMALL_GRID + rest.split("\n\n", 1)[1]
+    if feasible:
+        text = text.replace(
+            'side_y = { min = "118 mm", max = "122 mm" }',
+            'side_y = { min = "78 mm", max = "82 mm" }',
+        )
+    path = tmp / "small.toml"
+    path.write_text(text, "utf-8")
+    return _problem(path)
+
+
+def _small_independent(tmp: Path) -> Problem:
+    """examples/rectangle_independent.toml on a small grid (per layer n 4-10, W 4-9 mm, alpha
+    60-140 deg step 10: 378 designs, 142 884 pairs)."""
+    text = (EXAMPLES / "rectangle_independent.toml").read_text("utf-8")
+    head, rest = text.split("[variables]", 1)
+    grid = (
+        '[variables]\nW = { min = "4 mm", max = "9 mm", step = "1 mm" }\nn = { min = 4, max = 10 }\n'
+        'alpha = { min = "60 deg", max = "140 deg", step = "10 deg" }\n'
+    )
+    path = tmp / "small_independent.toml"
+    path.write_text(head + grid + rest.split("\n\n", 1)[1], "utf-8")
+    return _problem(path)
+
+
+@pytest.mark.parametrize("case", ["identical-infeasible", "identical-feasible", "independent"])
+def test_archive_holds_every_design_of_every_relaxation(case: str, tmp_path: Path) -> None:
+    if case == "independent":  # the per-layer enumeration (bnb._enumerate) drops pairs too
+        problem = _small_independent(tmp_path)
+        assert not problem.identical
+    else:
+        problem = _small(tmp_path, case == "identical-feasible")
+        assert problem.identical
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables, record=True)
+    assert opt.certified
+    if problem.identical:
+        assert (opt.point is not None) is (case == "identical-feasible")
+    tree = opt.tree()
+    assert tree is not None and len(tree) == 1
+    archive = tree[0]
+    # every grid design, evaluated directly
+    ns = np.arange(problem.n_lo, problem.n_hi + 1, dtype=np.float64)
+    n, W, a = (
+        v.reshape(-1)
+        for v in np.meshgrid(ns, problem.W.values(), problem.alpha.values(), indexing="ij")
+    )
+    if problem.identical:
+        x = {"n1": n, "W1": W, "a1": a, "n2": n, "W2": W, "a2": a}
+        pts = np.stack([n, W, a], axis=1)
+    else:  # every pair of layer designs
+        i, j = (
+            v.reshape(-1) for v in np.meshgrid(np.arange(len(n)), np.arange(len(n)), indexing="ij")
+        )
+        x = {"n1": n[i], "W1": W[i], "a1": a[i], "n2": n[j], "W2": W[j], "a2": a[j]}
+        pts = np.stack([x[k] for k in ("n1", "W1", "a1", "n2", "W2", "a2")], axis=1)
+    c1 = problem.candidates[0]
+    vals = point_values(problem, c1, c1, x, tables)
+    broken = np.stack([~c.satisfied(vals[c.quantity]) for c in problem.constraints], axis=1)
+    mass = vals[problem.objective.quantity]
+    if opt.point is not None:  # the search's optimum is the grid's
+        feasible = ~broken.any(axis=1)
+        assert opt.value == pytest.approx(float(mass[feasible].min()), rel=1e-12)
+    else:
+        assert broken.any(axis=1).all()
+    cons = range(len(problem.constraints))
+    sets = [()] + [(i,) for i in cons] + list(itertools.combinations(cons, 2))
+    checked = 0
+    for relaxed in sets:
+        bits = sum(1 << i for i in relaxed)
+        others = [i for i in cons if i not in relaxed]
+        meets = ~broken[:, others].any(axis=1) if others else np.ones(len(pts), dtype=bool)
+        if not meets.any():
+            continue
+        lo, hi, bound = archive.reopen(bits)
+        p = pts[meets]
+        inside = np.all((lo[None] <= p[:, None]) & (p[:, None] <= hi[None]), axis=2)
+        low_enough = inside & (bound[None] <= mass[meets][:, None] * (1 + 1e-12))
+        assert low_enough.any(axis=1).all(), (relaxed, p[~low_enough.any(axis=1)][:5])
+        checked += int(meets.sum())
+    assert checked > 0
+
+
+EXPLAINED = [
+    EXAMPLES / "blimp_gripper.toml",
+    EXAMPLES / "blimp_gripper_continuous.toml",
+    EXAMPLES / "rectangle_independent.toml",
+    EXAMPLES / "wheel_circle.toml",
+    ROOT / "benchmarks" / "specs" / "chassis_independent.toml",
+]
+
+
+@pytest.mark.parametrize("path", EXPLAINED, ids=lambda p: p.stem)
+def test_binding_and_runner_ups_equal_independent_re_solves(path: Path) -> None:
+    problem = _problem(path)
+    sol = solve(problem)
+    assert sol.status == "optimal" and sol.certified
+    tables = Tables(problem)
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(sol.objective)
+    for report in sol.constraints:  # each constraint dropped: a cold certified re-solve
+        relaxed = optimize(problem.without(report.name), tables=tables, incumbent=sol.objective)
+        assert relaxed.certified
+        expected = relaxed.point is not None and sign * relaxed.value < sign * sol.objective - tol
+        assert report.binding is expected, report.name
+    assert any(r.binding for r in sol.constraints) or not sol.constraints
+    n_star = round(sol.assembly.layer1.n)
+    got = {r.n: r for r in sol.runner_ups}
+    assert n_star in got or not problem.identical
+    for n in range(max(problem.n_lo, n_star - 3), min(problem.n_hi, n_star + 3) + 1):
+        cold = optimize(problem, n_fixed=(n, n), tables=tables)
+        assert cold.certified
+        if cold.point is None:
+            assert n not in got
+            continue
+        assert got[n].certified
+        assert got[n].objective == pytest.approx(cold.value, rel=1e-9 if not problem.gridded else 0)
+        assert [layer["n"] for layer in got[n].layers] == [n, n]  # as n_fixed: both layers
+    if problem.identical or sol.assembly.layer2.n == n_star:
+        assert got[n_star].objective == pytest.approx(sol.objective, rel=1e-12)
+
+
+INFEASIBLE = [
+    EXAMPLES / "infeasible.toml",
+    DIAGNOSIS / "every_direction.toml",
+    DIAGNOSIS / "offaxis_45.toml",
+    DIAGNOSIS / "rectangle_identical.toml",
+]
+
+
+@pytest.mark.parametrize("path", INFEASIBLE, ids=lambda p: p.stem)
+def test_diagnosis_from_the_tree_equals_the_cold_re_solves(
+    path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    problem = _problem(path)
+    warm = solve(problem)
+    monkeypatch.setattr(bnb, "ARCHIVE_ROWS", 0)  # no archive: every relaxation from scratch
+    cold = solve(problem)
+    assert warm.status == cold.status == "infeasible"
+    assert warm.diagnosis  # something to compare
+    assert [d.as_dict() for d in warm.diagnosis] == [d.as_dict() for d in cold.diagnosis]
+    assert warm.stats["budget"]["used_boxes"] < cold.stats["budget"]["used_boxes"]  # type: ignore[index]
+
+
+def test_an_archive_past_its_row_limit_is_dropped(monkeypatch: pytest.MonkeyPatch) -> None:
+    problem = _problem(EXAMPLES / "blimp_gripper.toml")
+    monkeypatch.setattr(bnb, "ARCHIVE_ROWS", 10)
+    opt = optimize(problem, record=True)
+    assert opt.certified and opt.archives == (None,) and opt.tree() is None
+    monkeypatch.undo()
+    opt = optimize(problem, record=True)
+    tree = opt.tree()
+    assert tree is not None and len(tree) == len(pairs(problem)) and len(tree[0].lo) > 10
+
+
+def test_progress_is_reported_once_per_iteration() -> None:
+    problem = _problem(EXAMPLES / "rectangle_independent.toml")
+    seen: list[tuple[int, float, float | None]] = []
+    with reporting(lambda it, gap, best: seen.append((it, gap, best))):
+        opt = optimize(problem)
+    assert [s[0] for s in seen] == list(range(1, opt.iterations + 1))
+    assert seen[0][2] is None or seen[0][2] >= opt.value
+    finite = [s for s in seen if s[2] is not None]
+    assert finite and all(b >= opt.value * (1 - 1e-12) for _, _, b in finite)
+    assert all(g >= 0 and (math.isinf(g) or g < 10) for _, g, _ in seen)
