@@ -16,6 +16,10 @@ D, EI, P / delta, ``three-point``          ``bending``: P / delta under the load
 D, EI, P / delta, ``four-point``           ``bending4``: P / delta at the load points
 D, EI, P / delta, ``cantilever``           ``cantilever``: P / delta at the tip
 Pb (buckling, eta 0 or 90)                 ``buckling``: the first buckling load
+circle: K, free sides                      ``wheel`` (:mod:`corrugate.fea.outline`): not the
+                                           model's test, the row says so
+circle: D, EI                              none (the row says why)
+polygon at eta 0 or 90                     the rows above on the polygon cut from its box
 =========================================  =========================================================
 
 A bending test's D and EI are read as the test's own formula reads P / delta over the panel's
