@@ -61,7 +61,7 @@ def _disc(cx: float, cy: float, r: float, k: int = 720) -> np.ndarray:
 
 
 @pytest.mark.fea
-def test_wheel_fixture_on_a_flat_annulus_matches_plane_elasticity() -> None:
+def test_wheel_fixture_on_a_flat_annulus_matches_plane_elasticity(ccx: str) -> None:
     """A flat isotropic annulus (a = 20, b = 5 mm), the ground patch the whole rim: the
     fixture's K is the closed form's within the staircase rim's error (5 %; 2.8 % at this
     mesh, 1.7 % at 0.5 mm elements, docs/fea.md 2.8), and the same along every eta."""
@@ -84,7 +84,7 @@ def test_wheel_fixture_on_a_flat_annulus_matches_plane_elasticity() -> None:
 
 
 @pytest.mark.fea
-def test_corner_fixture_on_a_narrow_plate_is_a_simply_supported_beam() -> None:
+def test_corner_fixture_on_a_narrow_plate_is_a_simply_supported_beam(ccx: str) -> None:
     """A flat 100 x 10 mm plate (nu = 0: no anticlastic curvature) pinned at its four corner
     nodes, a point load at its centre: P / delta = 48 E I / L^3 of a simply supported beam,
     I = b t^3 / 12, within 1 % (0.09 % here: the local terms are of order (b / L)^2)."""
@@ -112,7 +112,7 @@ def test_a_square_polygon_writes_the_square_deck() -> None:
 
 
 @pytest.mark.fea
-def test_a_square_polygon_reproduces_the_square_and_a_hexagon_is_cut() -> None:
+def test_a_square_polygon_reproduces_the_square_and_a_hexagon_is_cut(ccx: str) -> None:
     """K and D of the 4-vertex polygon equal the square's to 1e-6; a hexagon (flat edges at
     y = 0 and Ly, half the width) is cut from its box: fewer elements, and between platens
     on its flat edges less than the box's K (the strips outside the edges carry nothing)."""
@@ -173,7 +173,7 @@ def _wheel_folder(tmp_path: Path) -> Path:
 
 
 @pytest.mark.fea
-def test_verify_on_a_wheel_is_validate_fixture_wheel(cli: CliRun, tmp_path: Path) -> None:
+def test_verify_on_a_wheel_is_validate_fixture_wheel(ccx: str, cli: CliRun, tmp_path: Path) -> None:
     """verify's K rows of a circle are `validate --fixture wheel` at the same mesh, number for
     number; the D row has no FE twin and says why; a bound the wheel misses exits 1."""
     folder = _wheel_folder(tmp_path)
@@ -223,3 +223,30 @@ def test_corner_fixtures_refuse_a_circle(cli: CliRun, tmp_path: Path) -> None:
     assert "fixture" in err and "corners" in err and len(err.strip().splitlines()) == 1
     code, _, err = cli(["validate", "--design", str(folder), "--fixture", "spokes"])
     assert code == 2 and "fixture" in err
+
+
+@pytest.mark.fea
+def test_verify_on_a_polygon_runs_the_cut_fixture(ccx: str, cli: CliRun, tmp_path: Path) -> None:
+    """A hexagon's K along its creases is the compression fixture on the hexagon cut from its
+    box, number for number, with the note saying what differs; off the creases it has no twin."""
+    hexagon = [[0.25, 0], [0.75, 0], [1, 0.5], [0.75, 1], [0.25, 1], [0, 0.5]]
+    layer = {"W_mm": 5.0, "n": 5, "alpha_deg": 100.0, "material": "dura-lar", "t_mm": 0.125}
+    record = {
+        "layout": {"shape": "polygon", "vertices": hexagon},
+        "layers": [layer, layer],
+        "constraints": [
+            {"name": n, "quantity": q, "sense": "min", "bound": 1.0, "value": 2.0, "unit": "N/mm"}
+            for n, q in (("K0", "K@0"), ("K30", "K@30"))
+        ],
+    }
+    folder = tmp_path / "hexagon"
+    folder.mkdir()
+    (folder / "design.json").write_text(json.dumps(record))
+    code, out, err = cli(["verify", str(folder), "--mesh", "2", "--json", "-q"])
+    assert code == 1, err  # K30 has no twin
+    rows = {r["name"]: r for r in json.loads(out)["constraints"]}
+    a = Assembly.identical(_layer(), Polygon(tuple((x, y) for x, y in hexagon)))
+    direct = solve_assembly(a, "compression", AssemblyMesh(2)).value()
+    assert rows["K0"]["fe_series"]["2"] == pytest.approx(direct, rel=1e-12)
+    assert "polygon cut from its box" in rows["K0"]["note"]
+    assert rows["K30"]["fe"] is None and "off the crease directions" in rows["K30"]["note"]
