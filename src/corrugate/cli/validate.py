@@ -463,15 +463,21 @@ def _run_fixture(
         f"{' / '.join(map(str, meshes))} elements per facet",
         title_justify="left",
     )
-    name = "K(eta) N/mm" if fixture == "wheel" else "P / delta N/mm"
-    for col in ("eta deg", f"FE series {name}", "FE estimate", "model K (spring sum)"):
+    wheel = fixture == "wheel"
+    name = "K(eta) N/mm" if wheel else "P / delta N/mm"
+    cols = ["eta deg"] if wheel else []
+    cols += [f"FE series {name}", "FE estimate"] + (["model K (spring sum)"] if wheel else [])
+    for col in cols:
         t.add_column(col, justify="right")
     for row in rows:
         ser = " / ".join(f"{v:.5g}" for v in row["fe_series"].values())  # type: ignore[attr-defined]
         fe = row["fe"]
         est = "-" if fe is None else f"{fe:.5g} ({row['estimate']})"
         mk = row["model_K"]
-        t.add_row(f"{row['eta_deg']:g}", ser, est, "-" if mk is None else f"{mk:.5g}")
+        cells = [ser, est]
+        if wheel:
+            cells = [f"{row['eta_deg']:g}", *cells, "-" if mk is None else f"{mk:.5g}"]
+        t.add_row(*cells)
     console.print(t)
     if fixture == "wheel":
         console.print(
