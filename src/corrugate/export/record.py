@@ -124,7 +124,11 @@ class DesignRecord:
             vertices = (
                 layout_content.get("vertices") if isinstance(layout_content, Mapping) else None
             )
-            return Assembly(built[0], built[1], make_layout(str(self.shape), vertices, self.holes))
+            try:
+                layout_ = make_layout(str(self.shape), vertices, self.holes)
+            except InputError as exc:
+                raise exc.renamed(f"layout.{exc.field}") from None
+            return Assembly(built[0], built[1], layout_)
         layout = Square(holes=self.holes) if self.shape == "square" else Rectangle(holes=self.holes)
         return Assembly(built[0], built[1], layout)
 
