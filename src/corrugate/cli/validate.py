@@ -312,6 +312,13 @@ def validate_cmd(
     refinement = _refinement(mesh, cell_mesh, refine)
     check_sweep_options(jobs, timeout, workdir)
     if fixture is not None or series is not None:
+        if connectors or sweep is not None:
+            raise InputError(
+                "connectors" if connectors else "sweep",
+                "given",
+                "no band and no sweep with --fixture (the outline fixtures: one design, no band)",
+                reason="conflicts with --fixture",
+            )
         _run_fixture(
             fixture, series, mesh, design, locals(), eta, workdir, keep, timeout, quiet, as_json
         )
