@@ -223,6 +223,13 @@ def test_corner_fixtures_refuse_a_circle(cli: CliRun, tmp_path: Path) -> None:
     assert "fixture" in err and "corners" in err and len(err.strip().splitlines()) == 1
     code, _, err = cli(["validate", "--design", str(folder), "--fixture", "spokes"])
     assert code == 2 and "fixture" in err
+    for series in ("3", "4,2", "2,x"):
+        code, _, err = cli(
+            ["validate", "--design", str(folder), "--fixture", "wheel", "--series", series]
+        )
+        assert code == 2 and "mesh" in err and len(err.strip().splitlines()) == 1, series
+    code, _, err = cli(["validate", "--design", str(folder), "--series", "2,4"])
+    assert code == 2 and "series" in err
 
 
 @pytest.mark.fea
