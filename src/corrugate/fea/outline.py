@@ -50,6 +50,7 @@ from corrugate.fea.shells import Shell, layer_shell
 from corrugate.geometry.layer import Assembly
 
 __all__ = [
+    "OUTLINE_NAMES",
     "OUTLINE_TESTS",
     "OutlineFixture",
     "OutlineResult",
@@ -59,6 +60,7 @@ __all__ = [
     "outline_shells",
     "plate_shell",
     "solve_outline",
+    "solve_shells",
 ]
 
 OutlineTest = Literal["wheel", "corners", "clamped-corners"]
