@@ -96,8 +96,20 @@ def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
         raise InputError(
             f"{file}: joint", repr(joint), "a name such as none", reason="is malformed"
         )
+    if record.shape is not None:  # a missing shape: record.assembly() names it
+        _layout(record.shape)
     # every layout: a circle's and a polygon's twins are the outline fixtures (docs/fea.md 2.8)
     return record.assembly(any_layout=True), constraints, joint
+
+
+def _layout(name: str) -> None:
+    """Refuse a layout the FE has no fixtures for, naming what is missing. Every layout has
+    them now (a circle: the wheel fixture; a polygon: the rectangle's fixtures cut to it;
+    docs/fea.md 2.8), so only an unknown name is refused."""
+    from corrugate.names import LAYOUT_SHAPES
+
+    if name not in LAYOUT_SHAPES:
+        raise InputError("layout", name, " or ".join(LAYOUT_SHAPES), reason="has no FE fixtures")
 
 
 def _writable(folder: Path) -> bool:
