@@ -77,18 +77,6 @@ def test_a_folder_that_cannot_be_written_is_refused(
     assert not (square / "verify.json").exists()
 
 
-def test_a_circle_is_refused_naming_what_is_missing(cli: CliRun, tmp_path: Path) -> None:
-    from corrugate.cli import main
-
-    spec = tmp_path / "wheel.toml"
-    spec.write_text(example_text("wheel_circle"))
-    with pytest.raises(SystemExit):
-        main(["design", str(spec), "--out", str(tmp_path / "w"), "-q"])
-    code, _, err = cli(["verify", str(tmp_path / "w")])
-    assert code == 2
-    _one_error_line(err, "layout", "circle", "no FE fixtures yet")
-
-
 def test_missing_calculix_is_one_line(
     cli: CliRun, square: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -10,6 +10,7 @@ Examples::
     corrugate validate --W 10 --n 7 --alpha 90 --refine 0.01
     corrugate validate --sweep paper --out docs/validation --jobs 2
     corrugate validate --design out/mydesign/design.json
+    corrugate validate --design out/wheel/design.json --fixture wheel --series 2,4,8 --eta 45
 """
 
 from __future__ import annotations
@@ -196,9 +197,31 @@ def validate_cmd(
         list[str] | None,
         Opt(
             metavar=o.ANGLE,
-            help="Direction (deg from layer 1's creases); repeat. Default 0. Other than 0/90: "
-            "a coupon cut from the two layers with its edges along and across eta (square or "
-            "rectangle layout; `corrugate docs fea`).",
+            help="Direction of the load, deg from layer 1's creases; repeat for several "
+            "(default 0). The platens compress the panel along eta and the bending span runs "
+            "along it: at 0 or 90 the layout itself (square, rectangle, or a polygon cut from "
+            "its box); at any other eta a coupon of the layout's proportions cut from the two "
+            "layers with its edges along and across eta (square or rectangle). With --fixture "
+            "wheel, the ground patch pushes the rim towards the hub along eta. `corrugate docs "
+            "fea`, 2.4 and 2.8.",
+        ),
+    ] = None,
+    fixture: Annotated[
+        str | None,
+        Opt(
+            metavar="wheel|corners|clamped-corners",
+            help="Instead of the paper's tests, a fixture for any outline (circle, polygon; "
+            "with --design): wheel (radial K between a no-slip ground patch of +-15 deg at eta "
+            "and a rigid axle in the hub), corners or clamped-corners (P / delta of the plate "
+            "bolted or clamped at its corners, loaded at its centre). `corrugate docs fea`, 2.8.",
+        ),
+    ] = None,
+    series: Annotated[
+        str | None,
+        Opt(
+            metavar="N,N,...",
+            help="With --fixture: run it on this mesh series (elements per facet, each twice "
+            "the one before) and extrapolate, e.g. 2,4,8 (default: --mesh alone).",
         ),
     ] = None,
     support: o.SupportOpt = DEFAULT_SUPPORT,
@@ -272,6 +295,10 @@ def validate_cmd(
 ) -> None:
     """Check a design (or a sweep) by finite elements: FE versus each model variant.
 
+    The paper's tests (platens, 3- and 4-point bending, and a cantilever) load the panel along
+    each --eta. Circles and polygons (--design) take --fixture instead: wheel (radial K between
+    a ground patch and the hub) or corners / clamped-corners (a plate held at its corners).
+
     Example: corrugate validate --W 10 --n 7 --alpha 90 --material dura-lar --refine 0.02
     """
     import sys
@@ -284,6 +311,18 @@ def validate_cmd(
     bond_ = _bond(bond, connectors)
     refinement = _refinement(mesh, cell_mesh, refine)
     check_sweep_options(jobs, timeout, workdir)
+    if fixture is not None or series is not None:
+        if connectors or sweep is not None:
+            raise InputError(
+                "connectors" if connectors else "sweep",
+                "given",
+                "no band and no sweep with --fixture (the outline fixtures: one design, no band)",
+                reason="conflicts with --fixture",
+            )
+        _run_fixture(
+            fixture, series, mesh, design, locals(), eta, workdir, keep, timeout, quiet, as_json
+        )
+        return
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
     console = make_console()
     if sweep is not None:
@@ -330,6 +369,128 @@ def validate_cmd(
         _print_result(result, console)
     if result.error:
         raise typer.Exit(1)
+
+
+def _run_fixture(
+    fixture: str | None,
+    series: str | None,
+    mesh: int,
+    design: Path | None,
+    options: Mapping[str, object],
+    eta: list[str] | None,
+    workdir: Path | None,
+    keep: bool,
+    timeout: float,
+    quiet: bool,
+    as_json: bool,
+) -> None:
+    """``validate --fixture``: an outline fixture (:mod:`corrugate.fea.outline`) on a mesh
+    series, extrapolated, beside the model's K(eta) for the wheel (a different statement: the
+    model's K sums the strips between platens)."""
+    import sys
+
+    from corrugate.analysis.evaluate import analyze
+    from corrugate.cli.verify import _meshes
+    from corrugate.export.record import read_record
+    from corrugate.fea.assembly import AssemblyMesh
+    from corrugate.fea.ccx import find_ccx
+    from corrugate.fea.extrapolate import extrapolate
+    from corrugate.fea.outline import OUTLINE_NAMES, OUTLINE_TESTS, solve_outline
+    from corrugate.spec.inputs import parse_etas
+
+    if fixture is None:
+        raise InputError("series", series, "together with --fixture", reason="needs a fixture")
+    if fixture not in OUTLINE_TESTS:
+        raise InputError("fixture", repr(fixture), " or ".join(OUTLINE_TESTS))
+    meshes = _meshes(series) if series is not None else (AssemblyMesh(mesh).along,)
+    if design is not None:
+        given = [PARAMETERS[k].flag for k in ("W", "n", "alpha") if options.get(k) is not None]
+        if given:
+            raise InputError(
+                given[0],
+                "given",
+                "either --design or the layer options",
+                reason="conflicts with --design",
+            )
+        assembly = read_record(design).assembly(any_layout=True)
+    else:
+        assembly = _assembly(None, options)
+    etas = parse_etas(eta or ["0"])
+    if fixture != "wheel" and len(etas) > 1:
+        raise InputError("eta", "repeated", "one eta (the corner fixtures have no direction)")
+    if fixture != "wheel" and assembly.layout.name == "circle":
+        raise InputError("fixture", fixture, "wheel for a circle", reason="needs corners")
+    find_ccx()
+    progress = _progress_lines(quiet or (as_json and not sys.stderr.isatty()))
+    model = analyze(assembly, "refined", list(etas)).stiffness if fixture == "wheel" else None
+    rows: list[dict[str, object]] = []
+    for i, e in enumerate(etas if fixture == "wheel" else etas[:1]):
+        values: dict[int, float] = {}
+        for along in meshes:
+            where = f" along eta = {e:g} deg" if fixture == "wheel" else ""
+            progress(f"{OUTLINE_NAMES[fixture]}{where}, mesh {along}/facet")
+            r = solve_outline(
+                assembly,
+                fixture,
+                AssemblyMesh(along),
+                e,
+                folder=workdir,
+                keep=keep,
+                timeout=timeout,
+            )
+            values[along] = r.value
+        x = extrapolate(values)
+        rows.append(
+            {
+                "eta_deg": e,
+                "fe_series": {str(k): v for k, v in values.items()},
+                "fe": x.value,
+                "order": x.order,
+                "estimate": x.how,
+                "model_K": None if model is None else model[i].K,
+            }
+        )
+    data = {
+        "design": _label(assembly),
+        "fixture": fixture,
+        "quantity": "K_N_per_mm" if fixture == "wheel" else "P_per_delta_N_per_mm",
+        "meshes": list(meshes),
+        "rows": rows,
+    }
+    if as_json:
+        typer.echo(json.dumps(data, indent=2, allow_nan=False))
+        return
+    if quiet:
+        return
+    from rich.table import Table
+
+    console = make_console()
+    t = Table(
+        title=f"{_label(assembly)}: {OUTLINE_NAMES[fixture]} (CalculiX), mesh "
+        f"{' / '.join(map(str, meshes))} elements per facet",
+        title_justify="left",
+    )
+    wheel = fixture == "wheel"
+    name = "K(eta) N/mm" if wheel else "P / delta N/mm"
+    cols = ["eta deg"] if wheel else []
+    cols += [f"FE series {name}", "FE estimate"] + (["model K (spring sum)"] if wheel else [])
+    for col in cols:
+        t.add_column(col, justify="right")
+    for row in rows:
+        ser = " / ".join(f"{v:.5g}" for v in row["fe_series"].values())  # type: ignore[attr-defined]
+        fe = row["fe"]
+        est = "-" if fe is None else f"{fe:.5g} ({row['estimate']})"
+        mk = row["model_K"]
+        cells = [ser, est]
+        if wheel:
+            cells = [f"{row['eta_deg']:g}", *cells, "-" if mk is None else f"{mk:.5g}"]
+        t.add_row(*cells)
+    console.print(t)
+    if fixture == "wheel":
+        console.print(
+            "the model's K is not this test: it sums the strips' springs between platens, a "
+            "statement no bench test of a disc makes (`corrugate docs fea`, 2.8)"
+        )
 
 
 def _progress_lines(quiet: bool) -> Progress:
@@ -396,7 +557,9 @@ def _assembly(design: Path | None, options: Mapping[str, object]) -> Assembly:
                 "either --design or the layer options",
                 reason="conflicts with --design",
             )
-        return read_record(design).assembly()
+        # a polygon runs the paper's tests cut from its box; a circle is refused by the
+        # fixtures with a line that names --fixture wheel (`corrugate docs fea`, 2.8)
+        return read_record(design).assembly(any_layout=True)
     if any(value is None for value in layer.values()):
         raise InputError(
             "design",

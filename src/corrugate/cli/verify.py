@@ -98,21 +98,18 @@ def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
         )
     if record.shape is not None:  # a missing shape: record.assembly() names it
         _layout(record.shape)
-    return record.assembly(), constraints, joint
+    # every layout: a circle's and a polygon's twins are the outline fixtures (docs/fea.md 2.8)
+    return record.assembly(any_layout=True), constraints, joint
 
 
 def _layout(name: str) -> None:
-    """Refuse a layout the FE has no fixtures for, naming what is missing."""
-    from corrugate.names import RECTANGULAR_LAYOUTS
+    """Refuse a layout the FE has no fixtures for, naming what is missing. Every layout has
+    them now (a circle: the wheel fixture; a polygon: the rectangle's fixtures cut to it;
+    docs/fea.md 2.8), so only an unknown name is refused."""
+    from corrugate.names import LAYOUT_SHAPES
 
-    if name not in RECTANGULAR_LAYOUTS:
-        raise InputError(
-            "layout",
-            name,
-            " or ".join(RECTANGULAR_LAYOUTS),
-            reason="has no FE fixtures yet (a wheel between a ground patch and its hub, a plate "
-            "clamped at its corners: issue 23, item 4)",
-        )
+    if name not in LAYOUT_SHAPES:
+        raise InputError("layout", name, " or ".join(LAYOUT_SHAPES), reason="has no FE fixtures")
 
 
 def _writable(folder: Path) -> bool:
@@ -186,7 +183,9 @@ def verify_cmd(
     Each stiffness, load-case and buckling bound of DIR/design.json runs in the FE fixture of
     its test (the runs of `corrugate validate`), at each mesh, Richardson-extrapolated; writes
     DIR/verify.json. Exit 0 when every constraint holds in FE, 1 when one does not or has no FE
-    twin yet, 2 for bad input. Square and rectangle layouts.
+    twin yet, 2 for bad input. Every layout: a circle's K runs in the wheel fixture (a ground
+    patch against the hub), a polygon's constraints along its creases in the rectangle's
+    fixtures on its cut outline (`corrugate docs fea`, 2.8); a row says how its test differs.
 
     Example: corrugate verify out/gripper --mesh 2,4,8
     """

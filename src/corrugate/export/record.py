@@ -74,14 +74,18 @@ class DesignRecord:
         """The file's text (indented JSON)."""
         return json.dumps(self.content, indent=2)
 
-    def assembly(self) -> Assembly:
+    def assembly(self, any_layout: bool = False) -> Assembly:
         """The assembly of this record for the FE model: two layers of library materials on a
-        square or rectangle; anything else is an :class:`InputError` naming the field."""
+        square or rectangle (with ``any_layout``, also a circle or a polygon, for the outline
+        fixtures of :mod:`corrugate.fea.outline`); anything else is an :class:`InputError`
+        naming the field."""
         from corrugate.geometry.layer import Assembly, Layer
-        from corrugate.geometry.layouts import Rectangle, Square
+        from corrugate.geometry.layouts import Rectangle, Square, make_layout
         from corrugate.materials.library import get_material, library
 
-        if self.shape not in RECTANGULAR_LAYOUTS:
+        if any_layout and self.shape in ("circle", "polygon"):
+            pass
+        elif self.shape not in RECTANGULAR_LAYOUTS:
             raise InputError(
                 "layout.shape",
                 repr(self.shape),
@@ -115,6 +119,16 @@ class DesignRecord:
                 )
             except InputError as exc:
                 raise exc.renamed(f"layers[{i}].{exc.field}") from None
+        if self.shape in ("circle", "polygon"):
+            layout_content = self.content.get("layout")
+            vertices = (
+                layout_content.get("vertices") if isinstance(layout_content, Mapping) else None
+            )
+            try:
+                layout_ = make_layout(str(self.shape), vertices, self.holes)
+            except InputError as exc:
+                raise exc.renamed(f"layout.{exc.field}") from None
+            return Assembly(built[0], built[1], layout_)
         layout = Square(holes=self.holes) if self.shape == "square" else Rectangle(holes=self.holes)
         return Assembly(built[0], built[1], layout)
 

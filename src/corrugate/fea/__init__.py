@@ -7,6 +7,8 @@
   :mod:`~corrugate.fea.shells` (layers; coupons along any eta through
   :mod:`~corrugate.fea.planmesh`, gmsh) and :mod:`~corrugate.fea.connector_band` (the connector band);
 * :mod:`~corrugate.fea.frame`: the panel in a rigid frame, the paper's cos^2 rule's own fixture;
+* :mod:`~corrugate.fea.outline`: circles and polygons: the wheel between a ground patch and its
+  hub, a plate bolted or clamped at its corners (docs/fea.md 2.8);
 * :mod:`~corrugate.fea.validation`: FE beside every model variant for one design, mesh refinement;
 * :mod:`~corrugate.fea.series`: sweeps through a ``concurrent.futures`` executor, tables;
 * :mod:`~corrugate.fea.plots`: Fig. 7-style plots (matplotlib).

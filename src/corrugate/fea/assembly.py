@@ -109,7 +109,11 @@ directions relative to the coupon, each by that fraction of its own pitch (the p
 facet; a shift of 1 would swap valleys and ridges, the same layer upside down), so that the
 coupon's edges cut the creases at other places. ``mesher="gmsh"`` meshes
 eta = 0 and 90 this way too (a second discretisation of the same model, which the tests compare
-with the structured mesh). Circles and polygons are refused: no straight edges for the fixtures.
+with the structured mesh). A polygon at eta = 0 or 90 deg is meshed as its box and cut to its
+outline (:func:`corrugate.fea.outline.cut_outline`, a staircase edge), the fixtures acting on the
+node lines where the outline lies on the box's edges (docs/fea.md 2.8); circles (and polygons
+at other eta) are refused: no straight edges for the fixtures (their fixtures:
+:mod:`corrugate.fea.outline`).
 """
 
 from __future__ import annotations
@@ -384,6 +388,17 @@ def assembly_deck(
         )
         if connectors:
             shells.append(band_shell(a, mesh.along, shells, tol, bond))
+    if a.layout.name == "polygon":  # cut to the outline (docs/fea.md 2.8)
+        from corrugate.fea.outline import cut_outline
+
+        if use_gmsh or connectors:
+            raise InputError(
+                "layout",
+                "polygon",
+                "the structured mesh without connectors (mesher auto, eta 0 or 90 deg)",
+            )
+        ring = a.layout.plan_outline(Lx, Ly)
+        shells = [cut_outline(sh, ring) for sh in shells]
     if a.layout.holes:
         shells = [_cut_holes(sh, a) for sh in shells]
     other = 1 - axis

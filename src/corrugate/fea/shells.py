@@ -110,15 +110,18 @@ def specimen(assembly: Assembly, eta_deg: float) -> tuple[float, float]:
     direction nearer to eta (Lx x Ly up to 45 deg, Ly x Lx above): the coupon the free-panel
     model of a rectangle describes (:func:`corrugate.mechanics.offaxis.assembly_directional`; at 45 deg
     the model is the smaller of the two orientations, so the Lx x Ly coupon checks it from
-    above). A square's coupon is the square. Circles and polygons are refused
+    above). A square's coupon is the square. A polygon at eta = 0 or 90 deg is its box: the
+    assembly cuts the layers to the outline and the fixtures act where the outline lies on the
+    box's edges (docs/fea.md 2.8). Circles, and polygons at any other eta, are refused
     (:class:`InputError`): they have no straight edges for platens and supports."""
     a = assembly
-    if a.layout.name not in ("square", "rectangle"):
+    polygon_ok = a.layout.name == "polygon" and principal_axis(eta_deg) is not None
+    if a.layout.name not in ("square", "rectangle") and not polygon_ok:
         raise InputError(
             "layout",
             a.layout.name,
-            "square or rectangle for the FE assembly (to check the layers of another outline, "
-            "validate them on a square: the same --W --n --alpha)",
+            "square or rectangle for the FE assembly, or a polygon at eta 0 or 90 deg (a circle: "
+            "validate --fixture wheel; `corrugate docs fea`, section 2.8)",
             reason="has no straight loaded edges for the paper's tests (`corrugate docs fea`, section 2.1)",
         )
     axis = principal_axis(eta_deg)

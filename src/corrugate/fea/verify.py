@@ -16,6 +16,10 @@ D, EI, P / delta, ``three-point``          ``bending``: P / delta under the load
 D, EI, P / delta, ``four-point``           ``bending4``: P / delta at the load points
 D, EI, P / delta, ``cantilever``           ``cantilever``: P / delta at the tip
 Pb (buckling, eta 0 or 90)                 ``buckling``: the first buckling load
+circle: K, free sides                      ``wheel`` (:mod:`corrugate.fea.outline`): not the
+                                           model's test, the row says so
+circle: D, EI                              none (the row says why)
+polygon at eta 0 or 90                     the rows above on the polygon cut from its box
 =========================================  =========================================================
 
 A bending test's D and EI are read as the test's own formula reads P / delta over the panel's
@@ -48,6 +52,13 @@ from corrugate.fea.assembly import (
 )
 from corrugate.fea.extrapolate import extrapolate
 from corrugate.fea.frame import FrameStiffness, solve_frame
+from corrugate.fea.outline import (
+    OUTLINE_NAMES,
+    OUTLINE_TESTS,
+    OutlineResult,
+    OutlineTest,
+    solve_outline,
+)
 from corrugate.fea.shells import specimen
 from corrugate.geometry.layer import Assembly
 from corrugate.mechanics.behaviours import get_load_case
@@ -79,6 +90,7 @@ _NAMES: dict[str, str] = {
     "bending4": "4-point bending",
     "cantilever": "cantilever",
     "buckling": "buckling in compression",
+    **OUTLINE_NAMES,
 }
 
 
@@ -90,19 +102,23 @@ class Twin:
     apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
     row should add (one coupon position off the crease directions)."""
 
-    test: LoadTest
+    test: LoadTest | OutlineTest
     eta: float
     read: str
     a: float = 0.0
     load: float | None = None
     note: str = ""
 
-    def value(self, r: AssemblyResult | None, frame: FrameStiffness | None) -> float:
+    def value(
+        self, r: AssemblyResult | OutlineResult | None, frame: FrameStiffness | None
+    ) -> float:
         """The constraint's quantity (in its unit) from the fixture's result."""
         if self.test == "frame":
             assert frame is not None
             return frame.K(self.eta)
         assert r is not None
+        if isinstance(r, OutlineResult):  # the wheel's K or the plate's P / delta
+            return r.value if self.load is None else self.load / r.value
         if self.read == "Pb":
             return r.value()
         if self.read == "K":
@@ -209,6 +225,14 @@ def twin_of(
     eta = q.eta if q.eta is not None else 0.0
     principal = principal_axis(eta) is not None
     note = "" if principal else "one coupon position run (the coupon is not shifted)"
+    shape = assembly.layout.name
+    if shape == "circle":
+        return _circle_twin(q, eta, connectors, load)
+    if shape == "polygon":
+        why = _polygon_refusal(q, principal, connectors)
+        if why:
+            return why
+        note = POLYGON_NOTE
     if q.kind == "Pmax":
         return "no FE twin yet (strength: load capacity)"
     if q.kind == "Pb":
@@ -261,6 +285,49 @@ def twin_of(
     return Twin(fe_test, eta, q.kind, a=form.a, load=load, note=note)
 
 
+#: What a polygon's FE twin is (docs/fea.md 2.8), added to its rows.
+POLYGON_NOTE = (
+    "the polygon cut from its box: platens and supports act where the outline lies on the box's "
+    "edges; the model sums its strips between their own ends on the outline"
+)
+#: What the wheel fixture measures against the model's statement (docs/fea.md 2.8).
+WHEEL_NOTE = (
+    "not the model's test: the model's K of a disc sums its strips' springs between platens "
+    "(no bench test); FE: the wheel's radial K, a no-slip ground patch of +-15 deg at eta "
+    "against a rigid axle in the hub"
+)
+
+
+def _circle_twin(q: Quantity, eta: float, connectors: bool, load: float | None) -> Twin | str:
+    """A circle's twin: its in-plane K in the wheel fixture (:mod:`corrugate.fea.outline`), or
+    why a constraint has none."""
+    if connectors:
+        return "no FE twin yet (the band joint on a circle)"
+    if q.support == "frame":
+        return "no FE twin yet (a circle in a frame)"
+    if q.kind == "K" or (q.kind == "k" and q.test == "platens"):
+        if q.support not in (None, "free"):
+            return f"no FE twin yet (support {q.support})"
+        return Twin("wheel", eta, "K", load=load, note=WHEEL_NOTE)
+    if q.kind in ("D", "EI"):
+        return (
+            "no FE twin: the model's D of a disc sums its strips' pure-bending springs (EI = D x "
+            "diameter), which no bench test of a disc measures (`corrugate docs fea`, 2.8)"
+        )
+    return f"no FE twin yet ({q.kind} of a circle)"
+
+
+def _polygon_refusal(q: Quantity, principal: bool, connectors: bool) -> str:
+    """Why a polygon's constraint has no FE twin ("" when it has the rectangle's)."""
+    if not principal:
+        return "no FE twin yet (a polygon off the crease directions: no coupon of its own)"
+    if connectors:
+        return "no FE twin yet (the band joint on a polygon)"
+    if q.support == "frame":
+        return "no FE twin yet (a polygon in a frame)"
+    return ""
+
+
 def behavioural(
     constraints: Sequence[Mapping[str, Any]],
 ) -> list[tuple[Mapping[str, Any], Quantity]]:
@@ -301,23 +368,37 @@ def verify_design(
     (a solver error, a mesh the fixture refuses) leaves None in the series and its message in
     the row's note; runs shared by constraints (the same test, eta and mesh) run once."""
     connectors, bond = _joint(joint)
-    runs: dict[tuple[str, float, int], AssemblyResult | FrameStiffness | CorrugateError] = {}
+    runs: dict[
+        tuple[str, float, int], AssemblyResult | OutlineResult | FrameStiffness | CorrugateError
+    ] = {}
 
-    def run(test: LoadTest, eta: float, along: int) -> AssemblyResult | FrameStiffness:
+    def run(
+        test: LoadTest | OutlineTest, eta: float, along: int
+    ) -> AssemblyResult | OutlineResult | FrameStiffness:
         key = (test, 0.0 if test == "frame" else eta, along)
         if key not in runs:
             mesh = AssemblyMesh(along)
             where = "" if test == "frame" else f" along eta = {eta:g} deg"
             progress(f"assembly, {_NAMES[test]}{where}, mesh {mesh.label()}")
             try:
-                if test == "frame":
+                if test in OUTLINE_TESTS:
+                    runs[key] = solve_outline(
+                        assembly,
+                        test,
+                        mesh,
+                        eta,
+                        folder=folder,
+                        keep=keep,
+                        timeout=timeout,
+                    )
+                elif test == "frame":
                     runs[key] = solve_frame(
                         assembly, mesh, folder=folder, keep=keep, timeout=timeout
                     )
                 else:
                     runs[key] = solve_assembly(
                         assembly,
-                        test,
+                        test,  # type: ignore[arg-type]
                         mesh,
                         eta,
                         connectors=connectors,

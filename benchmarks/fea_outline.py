@@ -1,0 +1,110 @@
+"""The outline fixtures of docs/fea.md section 2.8: their checks on a flat plate at finer meshes
+than the tests run, and a design's wheel or corner series with time and memory.
+
+    python benchmarks/fea_outline.py annulus 2,1,0.5         # flat annulus vs plane elasticity
+    python benchmarks/fea_outline.py strip 2,1,0.5           # narrow plate on 4 corners vs beam
+    python benchmarks/fea_outline.py design DESIGN.json wheel 2,4,8,16 0,45
+
+Runs that may exceed 3 GB (16 elements per facet on the wheel example: 4.3 GB) go under the
+big-run lock, e.g. ``flock /work/notes/fe-big.lock prlimit --as=17000000000 python ...``.
+Prints one line per run: the value (N/mm), the mesh's size, the wall time and the largest
+resident set of a child process so far (ccx, MB).
+"""
+
+from __future__ import annotations
+
+import resource
+import sys
+import time
+from dataclasses import replace
+
+import numpy as np
+
+from corrugate.fea.assembly import AssemblyMesh
+from corrugate.fea.outline import (
+    OutlineFixture,
+    cut_outline,
+    plate_shell,
+    solve_outline,
+    solve_shells,
+)
+
+
+def _child_rss_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+
+
+def _disc(cx: float, cy: float, r: float) -> np.ndarray:
+    th = np.arange(720) * 2 * np.pi / 720
+    return np.column_stack([cx + r * np.cos(th), cy + r * np.sin(th)])
+
+
+def annulus(sizes: list[float]) -> None:
+    """a = 20, b = 5 mm, E 1000 MPa, nu 0.3, t 0.2 mm, the whole rim the ground patch; the
+    closed form is tests/fea/test_outline.py's ``_annulus_K``."""
+    sys.path.insert(0, "tests/fea")
+    from test_outline import _annulus_K
+
+    E, nu, t, a, b = 1000.0, 0.3, 0.2, 20.0, 5.0
+    exact = _annulus_K(E, nu, t, a, b)
+    outline, hole = _disc(a, a, a), _disc(a, a, b)
+    print(f"plane elasticity: K = {exact:.6g} N/mm")
+    for size in sizes:
+        sh = cut_outline(plate_shell(2 * a, 2 * a, size, E, nu, t), outline)
+        inner = {tuple(e) for e in cut_outline(sh, hole).elements}
+        ring = [e for e in sh.elements if tuple(e) not in inner]
+        used = np.isin(sh.ids, np.array([n for e in ring for n in e]))
+        sh = replace(sh, ids=sh.ids[used], xyz=sh.xyz[used], elements=ring)
+        for eta in (0.0, 30.0):
+            t0 = time.time()
+            k = solve_shells([sh], "wheel", outline, [hole], eta, OutlineFixture(patch_deg=180))[0]
+            print(
+                f"{size:g} mm, eta {eta:g}: K = {k:.6g} N/mm ({k / exact - 1:+.2%}), "
+                f"{len(ring)} elements, {time.time() - t0:.1f} s, {_child_rss_mb():.0f} MB"
+            )
+
+
+def strip(sizes: list[float]) -> None:
+    """100 x 10 x 1 mm, E 1000 MPa, nu 0, corner nodes pinned (or clamped), a point load at the
+    centre, against 48 E I / L^3."""
+    E, t, L, b = 1000.0, 1.0, 100.0, 10.0
+    ring = np.array([[0.0, 0.0], [L, 0.0], [L, b], [0.0, b]])
+    beam = 48 * E * (b * t**3 / 12) / L**3
+    tiny = OutlineFixture(bolt_radius=1e-3, load_radius=1e-3)
+    for size in sizes:
+        sh = plate_shell(L, b, size, E, 0.0, t)
+        for test in ("corners", "clamped-corners"):
+            k = solve_shells([sh], test, ring, [], 0.0, tiny)[0]  # type: ignore[arg-type]
+            print(f"{size:g} mm, {test}: P/delta = {k:.7g} N/mm, beam {beam:.7g}, {k / beam:.5f}")
+
+
+def design(path: str, test: str, meshes: list[int], etas: list[float]) -> None:
+    from corrugate.export.record import read_record
+
+    a = read_record(path).assembly(any_layout=True)
+    for along in meshes:
+        for eta in etas:
+            t0 = time.time()
+            r = solve_outline(a, test, AssemblyMesh(along), eta, timeout=3000)  # type: ignore[arg-type]
+            print(
+                f"{test} {along}/facet eta {eta:g}: {r.value:.6g} N/mm, layers "
+                f"{', '.join(f'{f:.5g}' for f in r.layer_forces)} N at {r.displacement:.4g} mm, "
+                f"{r.nodes} nodes, {r.elements} elements, {time.time() - t0:.1f} s wall, "
+                f"{_child_rss_mb():.0f} MB",
+                flush=True,
+            )
+
+
+if __name__ == "__main__":
+    kind = sys.argv[1]
+    if kind == "annulus":
+        annulus([float(v) for v in sys.argv[2].split(",")])
+    elif kind == "strip":
+        strip([float(v) for v in sys.argv[2].split(",")])
+    else:
+        design(
+            sys.argv[2],
+            sys.argv[3],
+            [int(v) for v in sys.argv[4].split(",")],
+            [float(v) for v in sys.argv[5].split(",")],
+        )
