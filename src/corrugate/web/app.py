@@ -517,16 +517,25 @@ def design_job(
     if not wants_progress():
         return _design(body, settings, folder, budget_s)
     send_progress({"stage": "reading"})
-    with solver_progress():
-        return _design(body, settings, folder, budget_s)
+    with solver_progress() as events:
+        return _design(body, settings, folder, budget_s, solved=events.flush)
+
+
+def _nothing() -> None:
+    pass
 
 
 def _design(
-    body: DesignBody, settings: WebSettings, folder: Path, budget_s: float | None
+    body: DesignBody,
+    settings: WebSettings,
+    folder: Path,
+    budget_s: float | None,
+    solved: Callable[[], None] = _nothing,
 ) -> tuple[Any, list[Path]]:
     p = _prepare_design(body, settings)
     budget = settings.design_budget_s if budget_s is None else budget_s
     run = solve_spec(p.spec, p.problem, budget=budget)
+    solved()  # the search's last progress event, before the files' stage
     run = replace(run, payload=_json_safe(run.payload))
     if run.solution.analysis is None:
         return run.payload, []

@@ -211,13 +211,22 @@ class _SolverEvents:
     event per ``interval_s`` seconds: ``iterations`` (every branch-and-bound iteration of the job
     so far, all runs: the search and its explanation's re-solves), ``runs`` (branch-and-bound runs
     started), the current run's relative ``gap`` (null while no feasible point is known) and
-    ``best`` objective value, and the budget's ``cpu_s`` spent of ``budget_s``."""
+    ``best`` objective value, and the budget's ``cpu_s`` spent of ``budget_s``. An iteration
+    held back by the throttle is sent by :meth:`flush` (when the search is over), so the last
+    event shows where the search ended, not where it was up to ``interval_s`` before."""
 
     def __init__(self, interval_s: float) -> None:
         self.interval_s = interval_s
         self.iterations = 0
         self.runs = 0
         self.next_t = 0.0
+        self.pending: dict[str, Any] | None = None
+
+    def flush(self) -> None:
+        """Send the last iteration's event if the throttle held it back."""
+        if self.pending is not None:
+            send_progress(self.pending)
+            self.pending = None
 
     def __call__(self, iterations: int, gap: float, best: float | None) -> None:
         from corrugate.solver.budget import current_budget
@@ -225,13 +234,8 @@ class _SolverEvents:
         self.iterations += 1
         if iterations == 1:
             self.runs += 1
-        now = time.monotonic()
-        if now < self.next_t:
-            return
-        self.next_t = now + self.interval_s
         budget = current_budget()
-        send_progress(
-            {
+        self.pending = {
                 "stage": "solving",
                 "iterations": self.iterations,
                 "runs": self.runs,
@@ -240,14 +244,19 @@ class _SolverEvents:
                 "cpu_s": None if budget is None else round(budget.used_seconds, 3),
                 "budget_s": None if budget is None else budget.seconds,
             }
-        )
+        now = time.monotonic()
+        if now >= self.next_t:
+            self.next_t = now + self.interval_s
+            self.flush()
 
 
 @contextmanager
-def solver_progress(interval_s: float = PROGRESS_INTERVAL_S) -> Iterator[None]:
+def solver_progress(interval_s: float = PROGRESS_INTERVAL_S) -> Iterator[_SolverEvents]:
     """(In a worker process.) Send the branch and bound's progress of the block to the server,
-    throttled to one event per ``interval_s`` seconds (:class:`_SolverEvents`)."""
+    throttled to one event per ``interval_s`` seconds (:class:`_SolverEvents`); the block calls
+    the reporter's ``flush`` when its search is over."""
     from corrugate.solver.progress import reporting
 
-    with reporting(_SolverEvents(interval_s)):
-        yield
+    events = _SolverEvents(interval_s)
+    with reporting(events):
+        yield events
