@@ -108,15 +108,16 @@ def solve_spec(
     out the solution's status is ``not-certified`` (``corrugate design``: exit code 4)."""
     from corrugate.solver.budget import Budget, budget_scope
     from corrugate.solver.problem import Problem
-    from corrugate.solver.robust import robust_solve
     from corrugate.solver.solve import solve
-    from corrugate.solver.tolerance import Tolerances
 
     chosen = Budget() if budget is None else Budget(seconds=budget)
     problem = problem if problem is not None else Problem.from_spec(spec)
     if spec.robust is None:
         sol = solve(problem, budget=chosen)
         return DesignRun(sol, sol.to_dict(), None)
+    from corrugate.solver.robust import robust_solve  # a robust spec only: Monte Carlo's modules
+    from corrugate.solver.tolerance import Tolerances
+
     r = spec.robust
     tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
     with budget_scope(chosen):

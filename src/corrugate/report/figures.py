@@ -47,6 +47,13 @@ _MARGINS: dict[str, dict[str, float]] = {
 }
 
 
+#: The title's height on axes whose ticks and labels are all below them (axes coordinates): given,
+#: so that matplotlib does not measure every tick label of both axes at each draw to find that
+#: nothing stands above the axes (where it would move the title up; a polar axes' angle labels do,
+#: so its titles keep the automatic place).
+_TITLE_Y = 1.0
+
+
 def _axis(lo: float, hi: float, step: float | None) -> FloatArray:
     if step is not None and (hi - lo) / step + 1 <= GRID:
         return np.asarray(lo + step * np.arange(int(np.floor((hi - lo) / step + 1e-9)) + 1))
@@ -135,7 +142,9 @@ def design_space_figure(problem: Problem, a: Analysis) -> Any:
     handles.append(Rectangle((0, 0), 1, 1, color="#a1d99b", label="feasible"))
     ax.set_xlabel("facet width W (mm)")
     ax.set_ylabel("fold angle alpha (deg)")
-    ax.set_title(f"design space at n = {l1.n}: feasible region (continuous), grey: mass (g)")
+    ax.set_title(
+        f"design space at n = {l1.n}: feasible region (continuous), grey: mass (g)", y=_TITLE_Y
+    )
     ax.legend(handles=handles, fontsize=7, loc="best")
     fig.subplots_adjust(**_MARGINS["design_space"])
     return fig
@@ -179,7 +188,7 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     grid = "the spec's grid" if problem.gridded else f"a {GRID} x {GRID} grid of W and alpha"
     ax.set_xlabel("number of creases n")
     ax.set_ylabel("lightest feasible mass (g)")
-    ax.set_title(f"mass against n (best over {grid}; gaps: no feasible design)")
+    ax.set_title(f"mass against n (best over {grid}; gaps: no feasible design)", y=_TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.subplots_adjust(**_MARGINS["mass_by_n"])
