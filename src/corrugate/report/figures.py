@@ -49,9 +49,12 @@ _MARGINS: dict[str, dict[str, float]] = {
 
 #: The title's height on axes whose ticks and labels are all below them (axes coordinates): given,
 #: so that matplotlib does not measure every tick label of both axes at each draw to find that
-#: nothing stands above the axes (where it would move the title up; a polar axes' angle labels do,
-#: so its titles keep the automatic place).
+#: nothing stands above the axes (where it would move the title up).
 _TITLE_Y = 1.0
+#: The polar plots' titles, just above their 0 deg label: matplotlib's automatic place is 1.088
+#: for this layout (figure size, font sizes), found by measuring every tick label at each draw,
+#: 40 % of the figure's drawing time.
+_POLAR_TITLE_Y = 1.09
 
 
 def _axis(lo: float, hi: float, step: float | None) -> FloatArray:
@@ -229,7 +232,7 @@ def polar_figure(a: Analysis) -> Any:
         ax.yaxis.set_major_formatter(FuncFormatter(_plain_number))
         ax.set_theta_zero_location("N")
         ax.set_theta_direction(-1)
-        ax.set_title(title, fontsize=9)
+        ax.set_title(title, fontsize=9, y=_POLAR_TITLE_Y)
         ax.tick_params(labelsize=7)
     axes[0].legend(fontsize=7, loc="lower left", bbox_to_anchor=(-0.15, -0.2))
     fig.suptitle("eta measured from layer 1's creases", fontsize=8)
