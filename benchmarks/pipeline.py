@@ -1,8 +1,8 @@
 """Process CPU time of corrugate's commands, start-up included (issue 13, "Start-up and files").
 
-Run by hand (about a minute with the defaults)::
+Run by hand (about a minute with the defaults, two with ``--base``)::
 
-    .venv/bin/python benchmarks/pipeline.py [--repeats 5] [--src src] [--src /tmp/base/src]
+    .venv/bin/python benchmarks/pipeline.py [--repeats 5] [--base main] [--src src] [--src /tmp/x/src]
 
 Each command runs as a fresh process (``python -m corrugate ...`` with ``PYTHONPATH`` set to a
 source tree) and is charged the user + system CPU time of that child
@@ -15,8 +15,16 @@ machine is shared and noisy. The commands are interleaved (floor, --help, analyz
 * ``corrugate analyze --W 8 --n 8 --alpha 84 --material dura-lar``: <= 0.4 s;
 * ``corrugate design examples/blimp_gripper.toml --out <new tmpdir>``: <= 1.5 s.
 
-With two or more ``--src`` trees (e.g. a ``git archive`` of main unpacked under /tmp) the trees
-are interleaved too, and each command's median is printed per tree with the ratio to the first.
+With two or more trees the trees are interleaved too, and each command's median is printed per tree
+with the ratio to the first: ``--base REF`` puts a ``git archive`` of ``REF`` (e.g. ``main``),
+unpacked under a temporary folder, first and this checkout's ``src`` second (the before and after
+of a change in one run); ``--src`` names trees by hand. The last lines put each tree's
+``design --out`` median beside the import floor measured in the same run (what importing its
+libraries costs, which no code of ours can remove).
+
+Bytecode: this environment sets ``PYTHONDONTWRITEBYTECODE``, which would charge every run for
+compiling the sources again; the trees and the interpreter's site-packages are compiled once with
+:mod:`compileall` first, as an installed package has them.
 """
 
 from __future__ import annotations
@@ -27,6 +35,8 @@ import resource
 import statistics
 import subprocess
 import sys
+import sysconfig
+import tarfile
 import tempfile
 from pathlib import Path
 
@@ -34,8 +44,9 @@ ROOT = Path(__file__).resolve().parents[1]
 BLIMP = ROOT / "examples" / "blimp_gripper.toml"
 
 ANALYZE_LIBS = "import numpy, typer, rich.console, rich.table"
+#: The import floor of ``design --out`` (issue 24): every library it draws and writes with.
 DESIGN_LIBS = (
-    "import numpy, pydantic, typer, rich.console, matplotlib.figure, "
+    "import numpy, pydantic, typer, rich.console, rich.table, matplotlib.figure, "
     "matplotlib.backends.backend_agg, matplotlib.backends.backend_pdf, mpl_toolkits.mplot3d, ezdxf"
 )
 
@@ -62,6 +73,8 @@ COMMANDS: list[tuple[str, list[str], float | None]] = [
     ("import numpy, typer, rich.console (analyze's libraries)", ["-c", ANALYZE_LIBS], None),
     ("import numpy, pydantic, typer, matplotlib, ezdxf (design's)", ["-c", DESIGN_LIBS], None),
 ]
+#: Indices in COMMANDS of ``design --out`` and of its import floor.
+DESIGN, DESIGN_FLOOR = 3, 5
 
 
 def child_cpu(argv: list[str], env: dict[str, str]) -> float:
@@ -74,6 +87,17 @@ def child_cpu(argv: list[str], env: dict[str, str]) -> float:
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def archive(ref: str, into: Path) -> Path:
+    """The ``src`` tree of the commit ``ref`` of this checkout, unpacked into ``into``."""
+    tar = into / "base.tar"
+    subprocess.run(
+        ["git", "-C", str(ROOT), "archive", "--format=tar", "-o", str(tar), ref, "src"], check=True
+    )
+    with tarfile.open(tar) as t:
+        t.extractall(into / "base", filter="data")
+    return into / "base" / "src"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
     parser.add_argument("--repeats", type=int, default=5, help="runs of each command (median)")
@@ -83,22 +107,34 @@ def main() -> None:
         type=Path,
         help="source tree(s) put on PYTHONPATH (default: this checkout's src)",
     )
+    parser.add_argument(
+        "--base",
+        metavar="REF",
+        help="also time a git archive of REF (e.g. main), first, beside this checkout's src",
+    )
     args = parser.parse_args()
-    trees = [p.resolve() for p in (args.src or [ROOT / "src"])]
-    for tree in trees:  # bytecode once, as an installed package has it (PYTHONDONTWRITEBYTECODE
-        # would otherwise charge each run for compiling the sources again)
+    with tempfile.TemporaryDirectory(prefix="corrugate-bench-") as tmp:
+        trees = [p.resolve() for p in (args.src or [ROOT / "src"])]
+        if args.base:
+            trees.insert(0, archive(args.base, Path(tmp)))
+        run(trees, args.repeats, Path(tmp))
+
+
+def run(trees: list[Path], repeats: int, tmp: Path) -> None:
+    """Time every command on every tree, interleaved, ``repeats`` times; print the medians."""
+    site = sysconfig.get_paths()["purelib"]
+    for tree in [*trees, Path(site)]:  # bytecode once, as an installed package has it
         subprocess.run([sys.executable, "-m", "compileall", "-q", str(tree)], check=True)
     times: dict[tuple[int, int], list[float]] = {}
-    with tempfile.TemporaryDirectory(prefix="corrugate-bench-") as tmp:
-        for run in range(args.repeats):
-            for c, (_, tail, _) in enumerate(COMMANDS):
-                for t, tree in enumerate(trees):
-                    env = {**os.environ, "PYTHONPATH": str(tree)}
-                    out = Path(tmp) / f"out-{run}-{c}-{t}"
-                    argv = [sys.executable, *(a.replace("{out}", str(out)) for a in tail)]
-                    times.setdefault((c, t), []).append(child_cpu(argv, env))
-            print(f"run {run + 1}/{args.repeats} done", file=sys.stderr)
-    print(f"process CPU time (user + sys), median of {args.repeats} interleaved runs")
+    for k in range(repeats):
+        for c, (_, tail, _) in enumerate(COMMANDS):
+            for t, tree in enumerate(trees):
+                env = {**os.environ, "PYTHONPATH": str(tree)}
+                out = tmp / f"out-{k}-{c}-{t}"
+                argv = [sys.executable, *(a.replace("{out}", str(out)) for a in tail)]
+                times.setdefault((c, t), []).append(child_cpu(argv, env))
+        print(f"run {k + 1}/{repeats} done", file=sys.stderr)
+    print(f"process CPU time (user + sys), median of {repeats} interleaved runs")
     for t, tree in enumerate(trees):
         floor = statistics.median(times[(0, t)])
         print(f"\nsource tree {tree}")
@@ -118,6 +154,13 @@ def main() -> None:
                 f"{statistics.median(times[(c, t)]) / first:.2f}" for t in range(1, len(trees))
             )
             print(f"  {label:<62} {ratios}")
+    print("\ndesign --out beside its import floor (same run)")
+    for t, tree in enumerate(trees):
+        design = statistics.median(times[(DESIGN, t)])
+        floor = statistics.median(times[(DESIGN_FLOOR, t)])
+        print(
+            f"  {tree!s:<62} {design:.3f} s, floor {floor:.3f} s, {design - floor:.3f} s above it"
+        )
 
 
 if __name__ == "__main__":

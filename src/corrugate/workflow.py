@@ -16,8 +16,8 @@
   inside the folder (:mod:`corrugate.core.fileio`), so a bad option or a failure leaves the
   folder's earlier set, and a kill, once the next run (or :func:`~corrugate.core.fileio.recover`)
   has settled its journal, the earlier set or the new one whole, never a mix. The parts and their sheet plan are made once
-  (:func:`corrugate.export.plan.cut_plan`); the report gets that very plan, so its sheet figures
-  are the cut files';
+  (:func:`corrugate.export.plan.cut_plan`); the report gets that very plan, and its sheet figures
+  are the fold maps ``sheet-N.svg`` written beside it;
 * :func:`write_design`: the files of a solved spec (``design.json`` only when it is infeasible);
 * :func:`design` and :func:`write_files`: the two calls of a notebook::
 
@@ -108,15 +108,16 @@ def solve_spec(
     out the solution's status is ``not-certified`` (``corrugate design``: exit code 4)."""
     from corrugate.solver.budget import Budget, budget_scope
     from corrugate.solver.problem import Problem
-    from corrugate.solver.robust import robust_solve
     from corrugate.solver.solve import solve
-    from corrugate.solver.tolerance import Tolerances
 
     chosen = Budget() if budget is None else Budget(seconds=budget)
     problem = problem if problem is not None else Problem.from_spec(spec)
     if spec.robust is None:
         sol = solve(problem, budget=chosen)
         return DesignRun(sol, sol.to_dict(), None)
+    from corrugate.solver.robust import robust_solve  # a robust spec only: Monte Carlo's modules
+    from corrugate.solver.tolerance import Tolerances
+
     r = spec.robust
     tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
     with budget_scope(chosen):
@@ -275,7 +276,6 @@ def write_design_files(
     from corrugate.core.fileio import staged
     from corrugate.export.files import plan_job
     from corrugate.export.machines import get_machine
-    from corrugate.export.pdf import sheet_figure
     from corrugate.export.plan import OutputOptions, cut_plan
     from corrugate.export.writers import WRITERS, write_job
 
@@ -315,14 +315,9 @@ def write_design_files(
     if extra:
         record.update(extra)
     drawn = cut.drawings
-    if opts.labels is not False:  # pattern.pdf shows the labels, as the report's sheets do
-        drawn.sheets = [
-            sheet_figure(plan, k, opts.style, operations=cut.operations)
-            for k in range(1, len(plan.sheets) + 1)
-        ]
 
     def report_text() -> str | None:
-        # written after the assembly steps, from the figures drawn by then (Drawings)
+        # written after the fold maps and the assembly steps, from what they drew (Drawings)
         return report(cut) if callable(report) else report
 
     with staged(out, kind="design") as st:  # one set: the old files or the new ones (fileio)
@@ -335,7 +330,6 @@ def write_design_files(
                 operations=cut.operations,
                 labels=opts.labels,
                 paper=opts.paper,
-                sheet_figures=drawn.sheets or None,
             ),
             assembly=a,
             pattern=pattern,

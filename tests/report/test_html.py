@@ -4,9 +4,8 @@ Chromium (no missing image, no console error)."""
 from __future__ import annotations
 
 import base64
-import io
 import os
-import struct
+import xml.etree.ElementTree as ET
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -28,8 +27,8 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     solution: Solution, tmp_path: Path
 ) -> None:
     """Non-default cutter, fold style and tab depth: the report beside the files shows their sheets
-    (the same parts at the same places, the same figures), not a plan rebuilt with defaults."""
-    from corrugate.export.pdf import sheet_figure
+    (the same parts at the same places, the fold maps themselves), not a plan rebuilt with
+    defaults."""
     from corrugate.export.plan import CutPlan, OutputOptions
     from corrugate.fabrication.linestyle import line_style
     from corrugate.geometry.fabrication_options import FabricationOptions
@@ -60,17 +59,16 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     for (s, n, x, y), (s2, n2, x2, y2) in zip(sorted(rows), in_files, strict=True):
         assert (s, n) == (s2, n2)
         assert x == pytest.approx(x2, abs=0.01) and y == pytest.approx(y2, abs=0.01)
-    # the report's sheet figures are those of the written plan, at the sheet's proportions
+    # the report's sheet figures are the fold maps written beside it, at the sheet's proportions
     parsed = Tables()
     parsed.feed(text)
     figures = [src for alt, src in parsed.images if alt.startswith("sheet ")]
     assert len(figures) == len(cut.plan.sheets)
     for k, src in enumerate(figures, start=1):
-        buf = io.BytesIO()
-        sheet_figure(cut.plan, k, cut.style, operations=cut.operations).savefig(buf, format="png")
-        png = base64.b64decode(src.split(",", 1)[1])
-        assert png == buf.getvalue()
-        width, height = struct.unpack(">II", png[16:24])
+        assert src.startswith("data:image/svg+xml;base64,")
+        svg = base64.b64decode(src.split(",", 1)[1])
+        assert svg == (out / f"sheet-{k}.svg").read_bytes()
+        width, height = (float(v) for v in ET.fromstring(svg).attrib["data-sheet-mm"].split())
         assert width / height == pytest.approx(130.0 / 80.0, rel=0.01)
     assert "perforated (1.5 mm cut, 1 mm gap)" in text
     # a report made with the default options would show another plan than these files
@@ -84,9 +82,10 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
 def test_each_figure_is_drawn_once(
     solution: Solution, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The report beside the files shows the figures the files step drew: each sheet figure and
-    the assembly figure is built once, ``assembly.png`` is embedded byte for byte, and pyplot is
-    never used (figures on their own canvases, so threads can draw in parallel)."""
+    """The report beside the files shows the figures the files step drew: each sheet figure (of
+    ``pattern.pdf``) and the assembly figure is built once, ``assembly.png`` is embedded byte for
+    byte, and pyplot is never used (figures on their own canvases, so threads can draw in
+    parallel)."""
     import sys
 
     from corrugate import workflow
@@ -172,9 +171,13 @@ def test_report_is_self_contained_and_complete(report: Path) -> None:
     assert len(parsed.images) >= 5  # design space, mass by n, polar, sheet(s), folded part
     for img in parsed.images:
         src = str(img["src"])
-        assert src.startswith("data:image/png;base64,")
-        png = base64.b64decode(src.split(",", 1)[1])
-        assert png[:8] == b"\x89PNG\r\n\x1a\n"
+        data = base64.b64decode(src.split(",", 1)[1])
+        if str(img.get("alt")).startswith("sheet "):  # the fold map sheet-N.svg
+            assert src.startswith("data:image/svg+xml;base64,")
+            assert ET.fromstring(data).tag == "{http://www.w3.org/2000/svg}svg"
+        else:
+            assert src.startswith("data:image/png;base64,")
+            assert data[:8] == b"\x89PNG\r\n\x1a\n"
         assert img.get("alt")
     for heading in (
         "Design",

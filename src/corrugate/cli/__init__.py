@@ -14,6 +14,7 @@ Entry points: the console script ``corrugate`` and ``python -m corrugate`` both 
 
 from __future__ import annotations
 
+import gc
 import sys
 from collections.abc import Callable
 from types import ModuleType
@@ -25,7 +26,7 @@ from corrugate import __version__
 from corrugate.cli import analyze, design, pattern, serve, spec, validate, verify
 from corrugate.core.errors import CorrugateError, describe
 
-__all__ = ["COMMAND_MODULES", "EXIT_CODES", "app", "main"]
+__all__ = ["COMMAND_MODULES", "EXIT_CODES", "GC_THRESHOLDS", "app", "main"]
 
 #: The command modules, in the order ``corrugate --help`` lists their commands.
 COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, verify, serve, spec)
@@ -105,12 +106,23 @@ def _register(target: typer.Typer, modules: tuple[ModuleType, ...]) -> None:
 _register(app, COMMAND_MODULES)
 
 
+#: The cyclic garbage collector's thresholds in a command's process (:func:`gc.set_threshold`):
+#: the youngest generation is collected after 100 000 allocations, not 700. Python's default
+#: makes a ``design --out`` run collect 350 times, 3 of them full passes over the million objects
+#: the libraries keep alive for the whole run, 0.25 s of CPU freeing almost nothing; with these,
+#: 2 young collections, 0.07 s (``gc.callbacks`` timing on the case study; issue 24). Cycles
+#: are still collected; the memory they hold until then is a few MB.
+GC_THRESHOLDS = (100_000, 20, 100)
+
+
 def main(argv: list[str] | None = None) -> None:
     """Console entry point: runs the app, turning every user error into one line and exit code 2.
 
     Usage errors found by the option parser (unknown option, missing value) also exit with 2;
-    Ctrl-C (SIGINT) prints :data:`INTERRUPTED` and exits with 130.
+    Ctrl-C (SIGINT) prints :data:`INTERRUPTED` and exits with 130. The process collects its
+    garbage cycles less often (:data:`GC_THRESHOLDS`).
     """
+    gc.set_threshold(*GC_THRESHOLDS)
     try:
         app(args=argv)
     except SystemExit as exc:

@@ -54,6 +54,7 @@ __all__ = [
     "FORMATS",
     "cut_dxfs",
     "cut_svgs",
+    "fold_map_texts",
     "fold_maps",
     "fold_order",
     "pattern_pdf",
@@ -204,24 +205,45 @@ def _save_dxf(doc: Any, path: Path) -> None:
     doc.saveas(path)
 
 
-def fold_maps(job: Job) -> Commit:
-    """``sheet-N.svg``: the fold map of each sheet (:func:`~corrugate.export.svg.svg_document`),
-    labels with the folding order unless ``labels`` is False."""
-    order = fold_order(p.part for p in job.plan.placements)
-    people = job.labels is not False
-    texts = [
+def fold_map_texts(
+    plan: SheetPlan,
+    style: LineStyle = SOLID,
+    *,
+    labels: bool = True,
+    marks: bool = True,
+    operations: FoldOperations | None = None,
+) -> list[str]:
+    """The SVG text of each sheet's fold map (:func:`~corrugate.export.svg.svg_document`), labels
+    with the folding order (:func:`fold_order`) unless ``labels`` is False: ``sheet-N.svg``."""
+    order = fold_order(p.part for p in plan.placements)
+    return [
         svg_document(
             s,
-            job.style,
-            labels=people,
-            marks=job.marks,
+            style,
+            labels=labels,
+            marks=marks,
             fold_order=order,
-            operations=job.operations,
-            margin=job.plan.margin,
-            spacing=job.plan.spacing,
+            operations=operations,
+            margin=plan.margin,
+            spacing=plan.spacing,
         )
-        for s in job.plan.sheets
+        for s in plan.sheets
     ]
+
+
+def fold_maps(job: Job) -> Commit:
+    """``sheet-N.svg``: the fold map of each sheet (:func:`fold_map_texts`), labels with the
+    folding order unless ``labels`` is False; the texts are kept in ``job.drawings`` (when the job
+    has one) for the report."""
+    texts = fold_map_texts(
+        job.plan,
+        job.style,
+        labels=job.labels is not False,
+        marks=job.marks,
+        operations=job.operations,
+    )
+    if job.drawings is not None:  # the report embeds these very files
+        job.drawings.fold_maps = texts
     return _commit_sheets(job.out, get_writer("fold-map"), texts, _save_text)
 
 

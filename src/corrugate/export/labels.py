@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from corrugate.fabrication.model import Point
+from corrugate.fabrication.model import Line, Point
 from corrugate.fabrication.sheets import PlacedPart
 
 __all__ = [
@@ -83,14 +83,6 @@ def _segments(rings: list[tuple[Point, ...]]) -> NDArray[np.float64]:
     return np.vstack(segs)
 
 
-def _obstacles(placed: PlacedPart) -> NDArray[np.float64]:
-    """Every line drawn on a placed part as (x0, y0, x1, y1) rows: outline, holes and lines."""
-    segs = [_segments([placed.outline, *placed.holes])]
-    if placed.lines:
-        segs.append(np.array([(*ln.a, *ln.b) for ln in placed.lines], dtype=np.float64))
-    return np.vstack(segs)
-
-
 def _box_clear(spot: LabelSpot, segs: NDArray[np.float64]) -> bool:
     """Whether the (axis-aligned) box of ``spot`` meets none of ``segs`` (Liang-Barsky clip)."""
     (x0, y0), _, (x1, y1), _ = spot.corners()
@@ -148,38 +140,69 @@ def _run(
     return float(np.min(t[ok])) if np.any(ok) else 0.0
 
 
-def label_spot(placed: PlacedPart, text: str | None = None) -> LabelSpot:
-    """Where and how large to write ``text`` (default :func:`label_text`) on ``placed``, clear of
-    every line on it (see the module docstring)."""
-    text = label_text(placed) if text is None else text
-    outline = placed.outline
+@dataclass(frozen=True, slots=True)
+class _Anchor:
+    """What :func:`label_spot` finds on a part whatever its text: the bounding box ``lo``-``hi``,
+    the anchor ``best`` (None on a degenerate sliver with no sample inside), the free runs ``rx``
+    along x and ``ry`` along y from it, and the part's lines ``segs`` (mm)."""
+
+    lo: tuple[float, float]
+    hi: tuple[float, float]
+    best: tuple[float, float] | None
+    rx: float
+    ry: float
+    segs: NDArray[np.float64]
+
+
+@lru_cache(maxsize=256)
+def _anchor(
+    outline: tuple[Point, ...], holes: tuple[tuple[Point, ...], ...], lines: tuple[Line, ...]
+) -> _Anchor:
+    """The text-free part of :func:`label_spot` for a placed part's outline, holes and lines
+    (sheet mm), kept for the next writer: the fold map, the PDF and the cut files label the same
+    placed parts (with their own texts)."""
     p = np.asarray(outline, dtype=np.float64)
     lo, hi = p.min(axis=0), p.max(axis=0)
     gx = np.linspace(lo[0], hi[0], _GRID + 2)[1:-1]
     gy = np.linspace(lo[1], hi[1], _GRID + 2)[1:-1]
     pts = np.array([(x, y) for y in gy for x in gx] + [tuple((lo + hi) / 2)], dtype=np.float64)
     keep = _inside(pts, outline)
-    for hole in placed.holes:
+    for hole in holes:
         keep &= ~_inside(pts, hole)
     pts = pts[keep]
-    segs = _obstacles(placed)
-    chars = max(len(text), 1)
-    if len(pts) == 0:  # degenerate sliver: write at the bounding-box centre
-        c = (lo + hi) / 2
-        return LabelSpot(float(c[0]), float(c[1]), 1.0, 0.0, 0.6 * chars)
+    segs = _segments([outline, *holes])
+    if lines:
+        segs = np.vstack([segs, np.array([(*ln.a, *ln.b) for ln in lines], dtype=np.float64)])
+    box = (float(lo[0]), float(lo[1])), (float(hi[0]), float(hi[1]))
+    if len(pts) == 0:
+        return _Anchor(*box, None, 0.0, 0.0, segs)
     dist = _distance(pts, segs)
     near = pts[dist >= 0.95 * dist.max()]  # of the nearly best, the one nearest the middle
     centre = (lo + hi) / 2
     best = near[int(np.argmin(np.hypot(*(near - centre).T)))]
     rx = min(_run(best, (1.0, 0.0), segs), _run(best, (-1.0, 0.0), segs))
     ry = min(_run(best, (0.0, 1.0), segs), _run(best, (0.0, -1.0), segs))
+    return _Anchor(*box, (float(best[0]), float(best[1])), rx, ry, segs)
+
+
+def label_spot(placed: PlacedPart, text: str | None = None) -> LabelSpot:
+    """Where and how large to write ``text`` (default :func:`label_text`) on ``placed``, clear of
+    every line on it (see the module docstring)."""
+    text = label_text(placed) if text is None else text
+    found = _anchor(placed.outline, placed.holes, placed.lines)
+    segs = found.segs
+    chars = max(len(text), 1)
+    if found.best is None:  # degenerate sliver: write at the bounding-box centre
+        c = (np.asarray(found.lo) + np.asarray(found.hi)) / 2
+        return LabelSpot(float(c[0]), float(c[1]), 1.0, 0.0, 0.6 * chars)
+    rx, ry = found.rx, found.ry
 
     def fit(along: float, across: float) -> float:
         return min(MAX_TEXT_MM, 0.9 * 2 * along / (0.6 * chars), 0.9 * 2 * across / 1.2)
 
     horizontal, vertical = fit(rx, ry), fit(ry, rx)
     rotation, size = (90.0, vertical) if vertical > horizontal * 1.05 else (0.0, horizontal)
-    x, y = float(best[0]), float(best[1])
+    x, y = found.best
     spot = LabelSpot(x, y, size, rotation, 0.6 * chars * size)
     for _ in range(40):  # a slanted edge may still cut a corner of the box: shrink until clear
         if _box_clear(spot, segs):

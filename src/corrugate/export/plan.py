@@ -1,13 +1,12 @@
 """The cut plan of one design: the options of its output files (:class:`OutputOptions`), its parts
 laid out on the cutter's sheets (:class:`CutPlan`, made once by :func:`cut_plan`) and the figures
 drawn of them (:class:`Drawings`), so that the cut files, ``pattern.pdf`` and the report show the
-very same sheets. Lengths in mm.
+very same sheets (the report embeds the fold maps themselves). Lengths in mm.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
 
 from corrugate.export.operations import FoldChoice, FoldOperations, check_operations
 from corrugate.export.pdf import check_paper
@@ -46,11 +45,11 @@ class OutputOptions:
 
 @dataclass(slots=True)
 class Drawings:
-    """Figures the files step drew, for the report to show instead of drawing them again:
-    ``sheets``, the matplotlib figures of ``pattern.pdf`` (one per sheet, labels on, empty when
-    none were drawn so) and ``assembly_png``, the bytes of ``assembly.png`` (None before)."""
+    """What the files step drew, for the report to show instead of drawing it again:
+    ``fold_maps``, the SVG texts of ``sheet-N.svg`` (one per sheet, empty before they are made)
+    and ``assembly_png``, the bytes of ``assembly.png`` (None before)."""
 
-    sheets: list[Any] = field(default_factory=list)
+    fold_maps: list[str] = field(default_factory=list)
     assembly_png: bytes | None = None
 
 

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from corrugate.core.fileio import Staging, staged
 from corrugate.core.plotting import new_figure
@@ -17,7 +18,16 @@ from corrugate.fabrication.model import Pattern, Role
 from corrugate.fabrication.palette import LINES, PALETTE
 from corrugate.geometry.layer import Assembly
 
-__all__ = ["assembly_steps", "instructions_figure", "instructions_png", "write_instructions"]
+__all__ = [
+    "VIEW_AZIM_DEG",
+    "VIEW_ELEV_DEG",
+    "assembly_steps",
+    "instructions_figure",
+    "instructions_png",
+    "write_instructions",
+]
+
+FloatArray = NDArray[np.float64]
 
 #: Line colours of the figure: the palette's (:mod:`corrugate.fabrication.palette`), as in the fold
 #: map and the cut files.
@@ -86,10 +96,41 @@ def _overlap_folds(pattern: Pattern) -> str:
     return f"fold the line before each overlap tab by the corner's angle ({text})"
 
 
+#: The view of the figure's folded panels: azimuth and elevation (deg) of the viewer, matplotlib's
+#: default 3-D view (from +x, -y and above).
+VIEW_AZIM_DEG, VIEW_ELEV_DEG = -60.0, 30.0
+
+
+def _view_axes(azim_deg: float, elev_deg: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The orthographic (parallel) projection of a view: the screen's right and up directions and
+    the direction towards the viewer, unit vectors in model coordinates. A point p is drawn at
+    (p . right, p . up); p . towards is its nearness to the viewer (the painter's order)."""
+    az, el = np.radians(azim_deg), np.radians(elev_deg)
+    right = np.array([-np.sin(az), np.cos(az), 0.0])
+    up = np.array([-np.sin(el) * np.cos(az), -np.sin(el) * np.sin(az), np.cos(el)])
+    towards = np.array([np.cos(el) * np.cos(az), np.cos(el) * np.sin(az), np.sin(el)])
+    return right, up, towards
+
+
+def _painted(
+    faces: list[FloatArray], right: FloatArray, up: FloatArray, towards: FloatArray
+) -> list[FloatArray]:
+    """The faces (each a (k, 3) array, mm) projected onto the screen (each a (k, 2) array, mm),
+    far ones first (the painter's algorithm, by the nearness of each face's centroid)."""
+    order = sorted(range(len(faces)), key=lambda i: float(faces[i].mean(axis=0) @ towards))
+    return [faces[i] @ np.column_stack([right, up]) for i in order]
+
+
 def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
-    """The assembly figure: the cut parts, then the folded layers, band and finished panel."""
-    from matplotlib.collections import LineCollection
-    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    """The assembly figure: the cut parts, then the folded layers, band and finished panel.
+
+    The folded panels are drawn in an orthographic projection (:func:`_view_axes`, the view of
+    :data:`VIEW_AZIM_DEG` and :data:`VIEW_ELEV_DEG`) on 2-D axes: each layer's facets and the band's
+    walls are painted far to near (the band's walls behind the panel before the layers, those in
+    front of it after), the footprint (z = 0) is outlined in grey and its two front edges carry
+    the panel's extents in mm. 3-D axes would add a box, grids and ticks at about ten times the
+    drawing's cost (``benchmarks/pipeline.py``)."""
+    from matplotlib.collections import LineCollection, PolyCollection
 
     fig = new_figure((11, 8.5), dpi=110)
     ax0 = fig.add_subplot(2, 2, 1)
@@ -120,42 +161,70 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
         f"1. cut ({LINES['cut'].name}), mountain {LINES['mountain'].name}, "
         f"valley {LINES['valley'].name}, marks {LINES['mark'].name}",
         fontsize=9,
+        y=1.0,
     )
     ax0.axis("off")
 
+    right, up, towards = _view_axes(VIEW_AZIM_DEG, VIEW_ELEV_DEG)
+    screen = np.column_stack([right, up])
     walls = band_walls(a)
+    centre = np.array([a.Lx / 2, a.Ly / 2, a.thickness / 2]) @ towards
+    back = [w for w in walls if float(w.mean(axis=0) @ towards) <= centre]
+    front = [w for w in walls if float(w.mean(axis=0) @ towards) > centre]
     f1, f2 = layer_faces(a, pattern.parts, 1), layer_faces(a, pattern.parts, 2)
     c1, c2, cb = PALETTE.parts["L1"], PALETTE.parts["L2"], PALETTE.parts["band"]
-    views: list[tuple[str, list[tuple[list[Any], str]], list[Any]]] = [
-        (f"2. fold L1 ({c1.name}); L2 ({c2.name}) alike", [(f1, c1.hex)], []),
-        (f"3-5. band ring ({cb.name}), L1 inside on the lower marks", [(f1, c1.hex)], walls),
-        ("6. L2 on top: the finished panel", [(f1, c1.hex), (f2, c2.hex)], walls),
+    views: list[tuple[str, list[tuple[list[Any], str]], bool]] = [
+        (f"2. fold L1 ({c1.name}); L2 ({c2.name}) alike", [(f1, c1.hex)], False),
+        (f"3-5. band ring ({cb.name}), L1 inside on the lower marks", [(f1, c1.hex)], True),
+        ("6. L2 on top: the finished panel", [(f1, c1.hex), (f2, c2.hex)], True),
     ]
+    foot = np.array([[0.0, 0.0, 0.0], [a.Lx, 0.0, 0.0], [a.Lx, a.Ly, 0.0], [0.0, a.Ly, 0.0]])
+    box = np.vstack([foot, foot + np.array([0.0, 0.0, a.thickness])]) @ screen
+    pad = 0.08 * float(np.ptp(box[:, 0]))
+    (x_lo, y_lo), (x_hi, y_hi) = box.min(axis=0) - pad, box.max(axis=0) + pad
+    flat = foot @ screen
     for k, (title, layers, band) in enumerate(views):
-        ax = fig.add_subplot(2, 2, k + 2, projection="3d")
-        for faces, colour in layers:
-            # the limits are set below; matplotlib's autoscale can overflow (NaN limits) on
-            # the many small faces of a layer with holes
-            ax.add_collection3d(
-                Poly3DCollection(faces, facecolor=colour, edgecolor="#303030", lw=0.3),
+        ax = fig.add_subplot(2, 2, k + 2)
+        ring = np.vstack([flat, flat[:1]])
+        ax.plot(ring[:, 0], ring[:, 1], color="0.6", lw=0.6, zorder=0)
+        paint = [(back, cb.hex, 0.35)] if band and back else []
+        paint += [(faces, colour, 1.0) for faces, colour in layers]
+        paint += [(front, cb.hex, 0.35)] if band and front else []
+        for z, (faces, colour, alpha) in enumerate(paint, start=1):
+            ax.add_collection(
+                PolyCollection(
+                    _painted(faces, right, up, towards),
+                    facecolor=colour,
+                    edgecolor="#303030",
+                    lw=0.3,
+                    alpha=alpha,
+                    zorder=z,
+                ),
                 autolim=False,
             )
-        if band:
-            ax.add_collection3d(
-                Poly3DCollection(band, facecolor=cb.hex, edgecolor="#303030", lw=0.3, alpha=0.35),
-                autolim=False,
+        for (p, q), text, side in (
+            ((flat[0], flat[1]), f"{a.Lx:.1f} mm", "top"),
+            ((flat[1], flat[2]), f"{a.Ly:.1f} mm", "top"),
+        ):
+            angle = float(np.degrees(np.arctan2(q[1] - p[1], q[0] - p[0])))
+            mid = (p + q) / 2
+            ax.text(
+                mid[0],
+                mid[1] - 0.02 * (y_hi - y_lo),
+                text,
+                fontsize=7,
+                ha="center",
+                va=side,
+                rotation=angle,
+                rotation_mode="anchor",
+                color="0.3",
             )
-        ax.set_xlim(0, a.Lx)
-        ax.set_ylim(0, a.Ly)
-        ax.set_zlim(0, max(a.Lx, a.Ly) / 2)
-        ax.set_box_aspect((a.Lx, a.Ly, max(a.Lx, a.Ly) / 2))
-        ax.set_xlabel("x (mm)", fontsize=7)
-        ax.set_ylabel("y (mm)", fontsize=7)
-        ax.set_zlabel("z (mm)", fontsize=7)
-        ax.tick_params(labelsize=6)
-        ax.set_title(title, fontsize=9)
-    # fixed margins: tight_layout on 3D axes costs about a second of tick layout and leaves
-    # these boxes where they are
+        ax.set_xlim(x_lo, x_hi)
+        ax.set_ylim(y_lo, y_hi)
+        ax.set_aspect("equal")
+        ax.axis("off")
+        ax.set_title(title, fontsize=9, y=1.0)
+    # fixed margins: tight_layout measures every text once more
     fig.subplots_adjust(left=0.03, right=0.97, bottom=0.04, top=0.95, wspace=0.1, hspace=0.15)
     return fig
 

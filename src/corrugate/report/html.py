@@ -1,4 +1,5 @@
-"""``report.html``: one self-contained file (figures embedded as PNG data URIs, no scripts)."""
+"""``report.html``: one self-contained file (figures embedded as data URIs: the plots as PNG, the
+sheets as the fold maps' SVG; no scripts)."""
 
 from __future__ import annotations
 
@@ -51,6 +52,12 @@ def _img_png(png: bytes, alt: str) -> str:
     return f'<img src="{src}" alt="{html.escape(alt)}">'
 
 
+def _img_svg(svg: str, alt: str) -> str:
+    """An image of an SVG text (a fold map ``sheet-N.svg`` beside the report, byte for byte)."""
+    src = "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")
+    return f'<img src="{src}" alt="{html.escape(alt)}">'
+
+
 def _table(head: list[str], rows: list[list[str]], classes: list[str] | None = None) -> str:
     out = ["<table><tr>", *(f"<th>{html.escape(h)}</th>" for h in head), "</tr>"]
     for i, row in enumerate(rows):
@@ -100,7 +107,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     (:func:`corrugate.export.plan.cut_plan`), drawn as they are; ``None`` makes one with the default
     output options (a report on its own, without cut files).
     """
-    from corrugate.export.pdf import sheet_figure
+    from corrugate.export.files import fold_map_texts
 
     p = sol.problem
     parts: list[str] = [
@@ -239,17 +246,15 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     parts.append(
         f"<p>{len(plan.sheets)} sheet(s) of {html.escape(plan.cutter.description)} "
         f"({plan.cutter.width:.1f} x {plan.cutter.height:.1f} mm usable), fold lines "
-        f"{html.escape(_style_text(cut))}: the sheets of the cut files beside this report.</p>"
+        f"{html.escape(_style_text(cut))}. Each sheet is shown as its fold map "
+        "<code>sheet-N.svg</code>, the same sheet as the cut files beside this report.</p>"
     )
     drawn = cut.drawings  # what the files step drew of this plan: shown, not drawn again
-    sheets = drawn.sheets if len(drawn.sheets) == len(plan.sheets) else None
-    for k in range(len(plan.sheets)):
-        fig = (
-            sheet_figure(plan, k + 1, cut.style, operations=cut.operations)
-            if sheets is None
-            else sheets[k]
-        )
-        parts.append(_img(fig, f"sheet {k + 1} of the cut pattern"))
+    maps = drawn.fold_maps
+    if len(maps) != len(plan.sheets):  # a report on its own: the fold maps the files would have
+        maps = fold_map_texts(plan, cut.style, operations=cut.operations)
+    for k, svg in enumerate(maps, start=1):
+        parts.append(_img_svg(svg, f"sheet {k} of the cut pattern"))
     parts.append(_sheet_table(cut))
     alt = "the folded assembly, step by step"
     if drawn.assembly_png is not None:
