@@ -236,14 +236,14 @@ class _SolverEvents:
             self.runs += 1
         budget = current_budget()
         self.pending = {
-                "stage": "solving",
-                "iterations": self.iterations,
-                "runs": self.runs,
-                "gap": gap if math.isfinite(gap) else None,
-                "best": best if best is not None and math.isfinite(best) else None,
-                "cpu_s": None if budget is None else round(budget.used_seconds, 3),
-                "budget_s": None if budget is None else budget.seconds,
-            }
+            "stage": "solving",
+            "iterations": self.iterations,
+            "runs": self.runs,
+            "gap": gap if math.isfinite(gap) else None,
+            "best": best if best is not None and math.isfinite(best) else None,
+            "cpu_s": None if budget is None else round(budget.used_seconds, 3),
+            "budget_s": None if budget is None else budget.seconds,
+        }
         now = time.monotonic()
         if now >= self.next_t:
             self.next_t = now + self.interval_s
