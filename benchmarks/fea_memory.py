@@ -79,7 +79,7 @@ def one(design: str, test: str, eta: float, along: int, aspect: float, split: bo
                 "split": split,
                 "value": r.value(),
                 "nodes": r.nodes,
-                "ccx_peak_rss_GB": ru.ru_maxrss / 1e6,
+                "ccx_peak_rss_GiB": ru.ru_maxrss / 2**20,  # ru_maxrss is in KiB on Linux
                 "ccx_cpu_s": ru.ru_utime + ru.ru_stime,
                 "wall_s": wall,
             }
@@ -97,7 +97,7 @@ def _fresh(design: str, test: str, eta: float, along: int, aspect: float, split:
     if proc.returncode != 0 or not lines:
         tail = (proc.stderr.strip().splitlines() or ["?"])[-1]
         ru = resource.getrusage(resource.RUSAGE_CHILDREN)
-        return {"error": tail, "rc": proc.returncode, "peak_GB_so_far": ru.ru_maxrss / 1e6}
+        return {"error": tail, "rc": proc.returncode, "peak_GiB_so_far": ru.ru_maxrss / 2**20}
     return dict(json.loads(lines[-1]))
 
 
@@ -106,7 +106,7 @@ def _row(tag: str, r: dict) -> str:
         return f"  {tag}: FAILED rc {r['rc']}: {r['error']}"
     return (
         f"  {tag}: value {r['value']:.8g}, {r['nodes']} nodes, ccx peak RSS "
-        f"{r['ccx_peak_rss_GB']:.2f} GB, ccx CPU {r['ccx_cpu_s']:.1f} s, wall {r['wall_s']:.0f} s"
+        f"{r['ccx_peak_rss_GiB']:.2f} GiB, ccx CPU {r['ccx_cpu_s']:.1f} s, wall {r['wall_s']:.0f} s"
     )
 
 
@@ -121,7 +121,7 @@ def compare(design: str, test: str, eta: float, alongs: list[int], aspect: float
         if "error" not in before and "error" not in after:
             print(
                 f"  after / before: value {after['value'] / before['value'] - 1:+.2e} relative, "
-                f"peak RSS {after['ccx_peak_rss_GB'] / before['ccx_peak_rss_GB']:.3f}, "
+                f"peak RSS {after['ccx_peak_rss_GiB'] / before['ccx_peak_rss_GiB']:.3f}, "
                 f"ccx CPU {after['ccx_cpu_s'] / before['ccx_cpu_s']:.3f}",
                 flush=True,
             )
