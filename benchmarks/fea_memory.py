@@ -1,5 +1,5 @@
 """Peak memory and time of ccx for the largest runs of the validation tables, before and after
-the memory work of issue 23 item 3 (docs/fea.md 2.8).
+the memory work of issue 23 item 3 (docs/fea.md 2.9).
 
     python benchmarks/fea_memory.py one DESIGN TEST ETA ALONG [--aspect R] [--split 0|1]
         # one solve_assembly in this process: prints a JSON line with the value, nodes, the

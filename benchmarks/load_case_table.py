@@ -263,7 +263,7 @@ def table() -> str:
         "",
         "The two off-axis specs whose earlier certificates missed their bound in FE",
         "(tests/fea/test_certified_offaxis.py states them; `python benchmarks/fea_certified.py",
-        "2 4 8 16`, 16 per facet one ccx run per layer, docs/fea.md 2.8; compression coupon at eta,",
+        "2 4 8 16`, 16 per facet one ccx run per layer, docs/fea.md 2.9; compression coupon at eta,",
         "free sides).",
         "",
         "| design | eta deg | bound N/mm | certified model | FE series | FE | how | FE >= bound |",

@@ -1,4 +1,4 @@
-"""The memory-saving solver options of corrugate.fea.assembly (docs/fea.md 2.8): each layer in a
+"""The memory-saving solver options of corrugate.fea.assembly (docs/fea.md 2.9): each layer in a
 ccx run of its own (``split``) and meshes coarser along the creases (``AssemblyMesh.aspect``)."""
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ def test_split_decks_hold_one_layer_each_with_its_own_fixtures(small: Assembly) 
 def test_split_solve_equals_the_one_run_direct_solve(ccx: str, small: Assembly) -> None:
     """Second method: the one-run direct solve of the whole deck. The split solves the same
     block-diagonal system in two runs, so the values agree to the solver's round-off
-    (measured 1e-9 to 1e-12, docs/fea.md 2.8): bound 1e-7 on the total, and on each layer's part
+    (measured 1e-9 to 1e-12, docs/fea.md 2.9): bound 1e-7 on the total, and on each layer's part
     1e-7 of the total (the soft layer bent across its creases, 1e-3 of the total, carries the
     joint solve's round-off: 1.7e-9 of the total for the cantilever here),
     for the structured mesh (3-point, 4-point, cantilever, frame) and a gmsh coupon (compression

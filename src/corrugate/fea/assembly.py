@@ -167,7 +167,7 @@ class AssemblyMesh:
     element length is about ``aspect`` times the facet element width (``aspect`` = 1, the
     default: about square elements; on the structured mesh rounded to an even number of
     elements). ``aspect`` > 1 (at most 8) coarsens the mesh along the creases only, for about
-    1 / ``aspect`` as many nodes and less ccx memory (docs/fea.md 2.8). With the connector band
+    1 / ``aspect`` as many nodes and less ccx memory (docs/fea.md 2.9). With the connector band
     the layers are meshed to match the band and ``aspect`` is not used."""
 
     along: int = 4
@@ -626,7 +626,7 @@ def solve_assembly(
     ``split``: solve each layer in a ccx run of its own. Without the band the two layers share
     no node and no constraint (each has its own fixtures; the assembly's force is the sum of
     theirs), so the stiffness matrix is block-diagonal and the two runs solve exactly the same
-    equations as one, with about half the peak memory of ccx's direct solver (docs/fea.md 2.8).
+    equations as one, with about half the peak memory of ccx's direct solver (docs/fea.md 2.9).
     None (the default): split whenever the parts are not connected (no band, not ``buckling``,
     whose platen ties the layers) and no ``stresses`` are asked for; True where that is not
     possible is refused (:class:`InputError`)."""

@@ -137,7 +137,7 @@ def plan_mesh(
     than across them: the plan is meshed isotropically after the affine map that shortens it
     by 1 / ``aspect`` along the crease direction, and the nodes are mapped back (straight lines,
     the creases and fixture lines among them, and mid-side nodes at midpoints are kept by an
-    affine map). About 1 / ``aspect`` as many nodes (docs/fea.md 2.8).
+    affine map). About 1 / ``aspect`` as many nodes (docs/fea.md 2.9).
 
     A corrugation and its mirror image in x = A / 2 get mirror-image meshes: one whose chord
     points to -x is meshed as its mirror image (chord to +x) and mirrored back. So the two
