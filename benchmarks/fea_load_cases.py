@@ -38,6 +38,9 @@ layers eta > 45 deg is the mirror image of 90 - eta and is run only at 2 and 4 e
   per facet) and the fifth design (257 018): ccx's peak memory grew by about 46 kB per node in
   this run (3.3 GB for the rectangle's 72 000-node coupons at 8 per facet), so they would need
   about 8 and 12 GB, and the 280 000-node coupons of off_axis_fe.csv took 484 and 624 s.
+  (Measured since: one ccx run per layer, now the default of ``solve_assembly``, halves the peak
+  memory, docs/fea.md 2.9; ``MAX_NODES_16`` was not raised, the rectangle and the fifth design
+  at 16 per facet were not run.)
 
 Rows that are never written:
 

@@ -109,11 +109,7 @@ directions relative to the coupon, each by that fraction of its own pitch (the p
 facet; a shift of 1 would swap valleys and ridges, the same layer upside down), so that the
 coupon's edges cut the creases at other places. ``mesher="gmsh"`` meshes
 eta = 0 and 90 this way too (a second discretisation of the same model, which the tests compare
-with the structured mesh). A polygon at eta = 0 or 90 deg is meshed as its box and cut to its
-outline (:func:`corrugate.fea.outline.cut_outline`, a staircase edge), the fixtures acting on the
-node lines where the outline lies on the box's edges (docs/fea.md 2.8); circles (and polygons
-at other eta) are refused: no straight edges for the fixtures (their fixtures:
-:mod:`corrugate.fea.outline`).
+with the structured mesh). Circles and polygons are refused: no straight edges for the fixtures.
 """
 
 from __future__ import annotations
@@ -168,9 +164,14 @@ FloatArray = NDArray[np.float64]
 @dataclass(frozen=True, slots=True)
 class AssemblyMesh:
     """Shell mesh: ``along`` S8R elements across each facet (even, >= 2); along the creases the
-    element length is about the facet element width, rounded to an even number of elements."""
+    element length is about ``aspect`` times the facet element width (``aspect`` = 1, the
+    default: about square elements; on the structured mesh rounded to an even number of
+    elements). ``aspect`` > 1 (at most 8) coarsens the mesh along the creases only, for about
+    1 / ``aspect`` as many nodes and less ccx memory (docs/fea.md 2.9). With the connector band
+    the layers are meshed to match the band and ``aspect`` is not used."""
 
     along: int = 4
+    aspect: float = 1.0
 
     def __post_init__(self) -> None:
         v = self.along
@@ -179,13 +180,17 @@ class AssemblyMesh:
         from corrugate.core.limits import check_count
 
         check_count("mesh", v, "mesh")
+        r = self.aspect
+        ok = isinstance(r, int | float) and not isinstance(r, bool) and math.isfinite(r)
+        if not ok or not 1.0 <= r <= 8.0:
+            raise InputError("mesh.aspect", r, "a number from 1 to 8")
 
     def refined(self, factor: float = 2.0) -> AssemblyMesh:
-        """The mesh with ``along`` scaled by ``factor`` (kept even)."""
-        return AssemblyMesh(max(2, 2 * round(self.along * factor / 2)))
+        """The mesh with ``along`` scaled by ``factor`` (kept even), the same ``aspect``."""
+        return AssemblyMesh(max(2, 2 * round(self.along * factor / 2)), self.aspect)
 
     def label(self) -> str:
-        return f"{self.along}/facet"
+        return f"{self.along}/facet" + ("" if self.aspect == 1 else f" x{self.aspect:g}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -301,119 +306,34 @@ def _inside_ring(xy: FloatArray, ring: FloatArray) -> NDArray[np.bool_]:
     return np.asarray(np.count_nonzero(cond & (x < xc), axis=1) % 2 == 1)
 
 
-def assembly_deck(
-    assembly: Assembly,
+def _deck_text(
+    a: Assembly,
+    parts: list[tuple[int, Shell]],
     test: LoadTest,
-    mesh: AssemblyMesh | None = None,
-    eta_deg: float = 0.0,
-    delta: float | None = None,
-    *,
-    connectors: bool = False,
-    match_layers: bool | None = None,
-    mesher: Mesher = "auto",
-    bond: Bond = "edges",
-    stresses: bool = False,
-    shift: float = 0.0,
+    mesh: AssemblyMesh,
+    eta_deg: float,
+    delta: float,
+    L_load: float,
+    axis: int,
+    principal: int | None,
+    tol: float,
+    connectors: bool,
+    stresses: bool,
 ) -> tuple[str, DeckInfo]:
-    """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
-
-    ``connectors`` adds the band (see the module docstring); ``match_layers`` (default: as
-    ``connectors``) meshes each layer with along x (n_other + 1) elements along its creases, the
-    mesh the band needs, so that a run without the band can be compared on the same layer mesh.
-    ``stresses`` asks ccx for the nodal stresses in the ``.frd`` file (``*EL FILE`` with ``S``;
-    not for ``buckling``); it adds output only, the model and the printed reactions are the
-    same.
-    ``shift`` moves the zig-zags of a gmsh-meshed coupon by that fraction of each layer's pitch
-    (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0."""
-    if test not in TESTS:
-        raise InputError("test", test, " or ".join(TESTS))
-    check_shift(shift)
-    # the specimen's length along eta (the span); refuses what the FE cannot model
-    L_load = specimen(assembly, eta_deg)[1]
-    if mesher not in ("auto", "structured", "gmsh"):
-        raise InputError("mesher", mesher, "auto, structured or gmsh")
-    if bond not in ("edges", "flanges"):
-        raise InputError("bond", bond, "edges or flanges")
-    mesh = mesh or AssemblyMesh()
-    a = assembly
-    Lx, Ly = a.Lx, a.Ly
-    tol = 1e-7 * max(Lx, Ly)
-    principal = principal_axis(eta_deg)
-    use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
-    if use_gmsh and test == "frame":
-        raise InputError(
-            "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
-        )
-    if use_gmsh:
-        if connectors:
-            raise InputError(
-                "eta",
-                f"{eta_deg:g} deg",
-                "0 or 90 deg with connectors (the band is modelled on the structured mesh only)",
-            )
-        fixture: tuple[float, ...] = {
-            "compression": (),
-            "bending": (L_load / 2,),
-            "bending4": tuple(L_load * f for f in (1 / 4, 3 / 8, 1 / 2, 5 / 8, 3 / 4)),
-            "cantilever": (),
-        }[test]
-        shells = oblique_shells(a, eta_deg, mesh.along, fixture, shift=shift)
-        axis = 1
-    else:
-        if principal is None:
-            raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg for the structured mesh")
-        if shift != 0:
-            raise InputError(
-                "shift",
-                shift,
-                "0 on the structured mesh (the layout's own edges; mesher='gmsh' takes a shift)",
-            )
-        axis = principal
-        mult = 8 if test == "bending4" else 2
-        match = connectors if match_layers is None else match_layers
-        ns1 = mesh.along * (a.layer2.n + 1) if match else None
-        ns2 = mesh.along * (a.layer1.n + 1) if match else None
-        shells = [layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult, ns1)]
-        shells.append(
-            layer_shell(
-                a.layer2,
-                Lx,
-                mesh.along,
-                int(shells[0].ids.max()) + 1,
-                1,
-                a.layer1.height,
-                mult,
-                ns2,
-            )
-        )
-        if connectors:
-            shells.append(band_shell(a, mesh.along, shells, tol, bond))
-    if a.layout.name == "polygon":  # cut to the outline (docs/fea.md 2.8)
-        from corrugate.fea.outline import cut_outline
-
-        if use_gmsh or connectors:
-            raise InputError(
-                "layout",
-                "polygon",
-                "the structured mesh without connectors (mesher auto, eta 0 or 90 deg)",
-            )
-        ring = a.layout.plan_outline(Lx, Ly)
-        shells = [cut_outline(sh, ring) for sh in shells]
-    if a.layout.holes:
-        shells = [_cut_holes(sh, a) for sh in shells]
+    """The deck of :func:`assembly_deck` for the parts ``parts`` (part number k, 1-based, and its
+    shell): all of them, or one layer alone when the parts are not connected."""
     other = 1 - axis
-    if delta is None:
-        delta = 1e-3 * L_load
+    Lx, Ly = a.Lx, a.Ly
     lines = [
         "*HEADING",
         f"corrugate OADLC assembly, {test} at eta = {eta_deg:g} deg (S8R shells)",
         "*NODE",
     ]
-    for sh in shells:
+    for _, sh in parts:
         for n, (x, y, z) in zip(sh.ids, sh.xyz, strict=True):
             lines.append(f"{n},{x:.10g},{y:.10g},{z:.10g}")
     e_no = 1
-    for k, sh in enumerate(shells, start=1):
+    for k, sh in parts:
         for etype, elems in (("S8R", sh.elements), ("S6", sh.triangles)):
             if not elems:
                 continue
@@ -421,7 +341,7 @@ def assembly_deck(
             for e in elems:
                 lines.append(f"{e_no}," + ",".join(map(str, e)))
                 e_no += 1
-    for k, sh in enumerate(shells, start=1):
+    for k, sh in parts:
         lines += [
             f"*MATERIAL,NAME=M{k}",
             "*ELASTIC",
@@ -435,7 +355,7 @@ def assembly_deck(
     side_sets: list[str] = []
     platen: list[int] = []
     ua, ub = axis + 1, other + 1
-    for k, sh in enumerate(shells, start=1):
+    for k, sh in parts:
         c_load = sh.xyz[:, axis]
         c_other = sh.xyz[:, other]
         lo = [int(n) for n in sh.ids[np.abs(c_load) < tol]]
@@ -515,7 +435,7 @@ def assembly_deck(
                 bc.append(f"{m_node},{ub},{ub},0")
             load_sets.append(f"MID{k}")
     if test == "buckling":
-        ref = max(int(sh.ids.max()) for sh in shells) + 1
+        ref = max(int(sh.ids.max()) for _, sh in parts) + 1
         xyz_ref = [0.0, 0.0, 0.0]
         xyz_ref[axis] = L_load  # on the moving platen
         lines += ["*NODE", f"{ref},{xyz_ref[0]:.10g},{xyz_ref[1]:.10g},{xyz_ref[2]:.10g}"]
@@ -532,12 +452,166 @@ def assembly_deck(
     if stresses and test != "buckling":
         lines += ["*EL FILE", "S"]
     lines.append("*END STEP")
-    n_nodes = sum(len(sh.ids) for sh in shells)
+    n_nodes = sum(len(sh.ids) for _, sh in parts)
     mids = tuple(zip(mid_sets[0::2], mid_sets[1::2], strict=True)) if mid_sets else None
     info = DeckInfo(
         tuple(load_sets), mids, L_load, delta, axis, n_nodes, e_no - 1, tuple(side_sets)
     )
     return "\n".join(lines) + "\n", info
+
+
+def _decks(
+    assembly: Assembly,
+    test: LoadTest,
+    mesh: AssemblyMesh | None = None,
+    eta_deg: float = 0.0,
+    delta: float | None = None,
+    *,
+    connectors: bool = False,
+    match_layers: bool | None = None,
+    mesher: Mesher = "auto",
+    bond: Bond = "edges",
+    stresses: bool = False,
+    shift: float = 0.0,
+    split: bool = False,
+) -> list[tuple[str, DeckInfo]]:
+    """The decks of :func:`assembly_deck`: one, or with ``split`` one per layer (each layer alone
+    with its own fixtures; only for parts that are not connected: no band, not ``buckling``)."""
+    if test not in TESTS:
+        raise InputError("test", test, " or ".join(TESTS))
+    check_shift(shift)
+    # the specimen's length along eta (the span); refuses what the FE cannot model
+    L_load = specimen(assembly, eta_deg)[1]
+    if mesher not in ("auto", "structured", "gmsh"):
+        raise InputError("mesher", mesher, "auto, structured or gmsh")
+    if bond not in ("edges", "flanges"):
+        raise InputError("bond", bond, "edges or flanges")
+    mesh = mesh or AssemblyMesh()
+    a = assembly
+    Lx, Ly = a.Lx, a.Ly
+    tol = 1e-7 * max(Lx, Ly)
+    principal = principal_axis(eta_deg)
+    use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
+    if use_gmsh and test == "frame":
+        raise InputError(
+            "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
+        )
+    if use_gmsh:
+        if connectors:
+            raise InputError(
+                "eta",
+                f"{eta_deg:g} deg",
+                "0 or 90 deg with connectors (the band is modelled on the structured mesh only)",
+            )
+        fixture: tuple[float, ...] = {
+            "compression": (),
+            "bending": (L_load / 2,),
+            "bending4": tuple(L_load * f for f in (1 / 4, 3 / 8, 1 / 2, 5 / 8, 3 / 4)),
+            "cantilever": (),
+        }[test]
+        shells = oblique_shells(a, eta_deg, mesh.along, fixture, shift=shift, aspect=mesh.aspect)
+        axis = 1
+    else:
+        if principal is None:
+            raise InputError("eta", f"{eta_deg:g} deg", "0 or 90 deg for the structured mesh")
+        if shift != 0:
+            raise InputError(
+                "shift",
+                shift,
+                "0 on the structured mesh (the layout's own edges; mesher='gmsh' takes a shift)",
+            )
+        axis = principal
+        mult = 8 if test == "bending4" else 2
+        match = connectors if match_layers is None else match_layers
+        ns1 = mesh.along * (a.layer2.n + 1) if match else None
+        ns2 = mesh.along * (a.layer1.n + 1) if match else None
+        shells = [layer_shell(a.layer1, Ly, mesh.along, 1, 0, 0.0, mult, ns1, mesh.aspect)]
+        shells.append(
+            layer_shell(
+                a.layer2,
+                Lx,
+                mesh.along,
+                int(shells[0].ids.max()) + 1,
+                1,
+                a.layer1.height,
+                mult,
+                ns2,
+                mesh.aspect,
+            )
+        )
+        if connectors:
+            shells.append(band_shell(a, mesh.along, shells, tol, bond))
+    if a.layout.name == "polygon":  # cut to the outline (docs/fea.md 2.8)
+        from corrugate.fea.outline import cut_outline
+
+        if use_gmsh or connectors:
+            raise InputError(
+                "layout",
+                "polygon",
+                "the structured mesh without connectors (mesher auto, eta 0 or 90 deg)",
+            )
+        ring = a.layout.plan_outline(Lx, Ly)
+        shells = [cut_outline(sh, ring) for sh in shells]
+    if a.layout.holes:
+        shells = [_cut_holes(sh, a) for sh in shells]
+    if delta is None:
+        delta = 1e-3 * L_load
+    numbered = list(enumerate(shells, start=1))
+    if split:
+        if connectors or test == "buckling":
+            raise InputError(
+                "split",
+                split,
+                "False with the connector band or for buckling (the parts are then coupled)",
+            )
+        groups = [[item] for item in numbered]
+    else:
+        groups = [numbered]
+    return [
+        _deck_text(
+            a, g, test, mesh, eta_deg, delta, L_load, axis, principal, tol, connectors, stresses
+        )
+        for g in groups
+    ]
+
+
+def assembly_deck(
+    assembly: Assembly,
+    test: LoadTest,
+    mesh: AssemblyMesh | None = None,
+    eta_deg: float = 0.0,
+    delta: float | None = None,
+    *,
+    connectors: bool = False,
+    match_layers: bool | None = None,
+    mesher: Mesher = "auto",
+    bond: Bond = "edges",
+    stresses: bool = False,
+    shift: float = 0.0,
+) -> tuple[str, DeckInfo]:
+    """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
+
+    ``connectors`` adds the band (see the module docstring); ``match_layers`` (default: as
+    ``connectors``) meshes each layer with along x (n_other + 1) elements along its creases, the
+    mesh the band needs, so that a run without the band can be compared on the same layer mesh.
+    ``stresses`` asks ccx for the nodal stresses in the ``.frd`` file (``*EL FILE`` with ``S``;
+    not for ``buckling``); it adds output only, the model and the printed reactions are the
+    same.
+    ``shift`` moves the zig-zags of a gmsh-meshed coupon by that fraction of each layer's pitch
+    (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0."""
+    return _decks(
+        assembly,
+        test,
+        mesh,
+        eta_deg,
+        delta,
+        connectors=connectors,
+        match_layers=match_layers,
+        mesher=mesher,
+        bond=bond,
+        stresses=stresses,
+        shift=shift,
+    )[0]
 
 
 def solve_assembly(
@@ -555,11 +629,29 @@ def solve_assembly(
     keep: bool = False,
     timeout: float = 600.0,
     stresses: bool = False,
+    split: bool | None = None,
 ) -> AssemblyResult:
     """Run one load case of the assembly in CalculiX (see the module docstring for the model);
-    ``stresses``: also read the shells' nodal stresses (:class:`AssemblyResult` ``stresses``)."""
+    ``stresses``: also read the shells' nodal stresses (:class:`AssemblyResult` ``stresses``).
+
+    ``split``: solve each layer in a ccx run of its own. Without the band the two layers share
+    no node and no constraint (each has its own fixtures; the assembly's force is the sum of
+    theirs), so the stiffness matrix is block-diagonal and the two runs solve exactly the same
+    equations as one, with about half the peak memory of ccx's direct solver (docs/fea.md 2.9).
+    None (the default): split whenever the parts are not connected (no band, not ``buckling``,
+    whose platen ties the layers) and no ``stresses`` are asked for; True where that is not
+    possible is refused (:class:`InputError`)."""
     mesh = mesh or AssemblyMesh()
-    deck, info = assembly_deck(
+    separable = not connectors and test != "buckling"
+    if split is None:
+        split = separable and not stresses
+    elif split and (not separable or stresses):
+        raise InputError(
+            "split",
+            split,
+            "False with the connector band, for buckling or with stresses (one run)",
+        )
+    decks = _decks(
         assembly,
         test,
         mesh,
@@ -570,15 +662,30 @@ def solve_assembly(
         bond=bond,
         stresses=stresses,
         shift=shift,
+        split=split,
     )
     field: FrdStresses | None = None
     with work_dir(folder, keep) as wd:
-        run = run_ccx(deck, wd, job=test, timeout=timeout)
+        runs = [
+            run_ccx(deck, wd, job=test if len(decks) == 1 else f"{test}{k}", timeout=timeout)
+            for k, (deck, _) in enumerate(decks, start=1)
+        ]
         if stresses and test != "buckling":
             frd = wd / f"{test}.frd"
             if not frd.exists():
                 raise SolverError(f"ccx wrote no {frd.name} in {wd}")
             field = parse_frd_stresses(frd.read_text())
+    infos = [info for _, info in decks]
+    mids = [m for i in infos for m in (i.mid_sets or ())]
+    info = replace(
+        infos[0],
+        sets=tuple(name for i in infos for name in i.sets),
+        mid_sets=tuple(mids) if mids else None,
+        nodes=sum(i.nodes for i in infos),
+        elements=sum(i.elements for i in infos),
+        side_sets=tuple(name for i in infos for name in i.side_sets),
+    )
+    run = replace(runs[0], blocks=tuple(b for r in runs for b in r.blocks))
     if test == "buckling":
         if not run.buckling_factors:
             raise SolverError("ccx printed no buckling factor")

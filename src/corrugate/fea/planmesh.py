@@ -127,10 +127,17 @@ def plan_mesh(
     B: float,
     along: int,
     fixture_y: Sequence[float] = (),
+    aspect: float = 1.0,
 ) -> PlanMesh:
     """Mesh the folded layer ``corrugation`` over the plan rectangle [0, A] x [0, B] (mm) with
     about ``along`` elements across each facet's plan width, creases and the lines y = each of
     ``fixture_y`` as element edges; nodes lifted onto the folded surface.
+
+    ``aspect`` (>= 1, default 1) makes the elements that many times longer along the creases
+    than across them: the plan is meshed isotropically after the affine map that shortens it
+    by 1 / ``aspect`` along the crease direction, and the nodes are mapped back (straight lines,
+    the creases and fixture lines among them, and mid-side nodes at midpoints are kept by an
+    affine map). About 1 / ``aspect`` as many nodes (docs/fea.md 2.9).
 
     A corrugation and its mirror image in x = A / 2 get mirror-image meshes: one whose chord
     points to -x is meshed as its mirror image (chord to +x) and mirrored back. So the two
@@ -148,6 +155,18 @@ def plan_mesh(
     offset = round(corrugation.offset + cx * A if mirrored else corrugation.offset, 9)
     cells = _cells(replace(corrugation, chord=chord, offset=offset), A, B, fixture_y)
     size = corrugation.pitch / along
+    # the affine map P -> P + (1 / aspect - 1) (t . P) t, t the crease direction (unit, normal to
+    # the chord), and its inverse P -> P + (aspect - 1) (t . P) t
+    tx, ty = -chord[1], chord[0]
+    shrink = 1.0 / aspect - 1.0
+    if aspect != 1.0:
+        cells = [
+            [
+                (x + shrink * (tx * x + ty * y) * tx, y + shrink * (tx * x + ty * y) * ty)
+                for x, y in c
+            ]
+            for c in cells
+        ]
     with _LOCK:
         gmsh.initialize(interruptible=False)
         try:
@@ -200,6 +219,9 @@ def plan_mesh(
             gmsh.finalize()
     index = {int(t): i for i, t in enumerate(tags)}
     xy = np.asarray(coords, dtype=np.float64).reshape(-1, 3)[:, :2]
+    if aspect != 1.0:
+        along_t = xy @ np.array([tx, ty])
+        xy = xy + (aspect - 1.0) * np.outer(along_t, [tx, ty])
     if mirrored:
         xy[:, 0] = A - xy[:, 0]  # the element orientation is restored below
     elements: dict[str, list[list[int]]] = {"S8R": [], "S6": []}

@@ -46,15 +46,16 @@ def layer_shell(
     z0: float,
     multiple: int = 2,
     nel_s: int | None = None,
+    aspect: float = 1.0,
 ) -> Shell:
     """S8R mesh of a layer whose chord runs along ``chord_axis`` (0 = x, 1 = y); the number of
     elements along the creases is ``nel_s`` if given, else a multiple of ``multiple`` giving
-    elements about as long as they are wide."""
+    elements about ``aspect`` times as long as they are wide (W / ``along``)."""
     nf = layer.n + 1
     p, h = layer.pitch, layer.height
     nel_c = along * nf
     if nel_s is None:
-        nel_s = multiple * max(1, math.ceil(span / (layer.W / along) / multiple))
+        nel_s = multiple * max(1, math.ceil(span / (aspect * layer.W / along) / multiple))
     ni, nj = 2 * nel_c + 1, 2 * nel_s + 1
     chord = np.linspace(0.0, nf * p, ni)
     crease_c = np.arange(nf + 1) * p
@@ -148,6 +149,7 @@ def oblique_shells(
     fixture_y: tuple[float, ...],
     *,
     shift: float = 0.0,
+    aspect: float = 1.0,
 ) -> list[Shell]:
     """Both layers over the specimen of :func:`specimen`, in the test frame (y along eta, x
     across), meshed by :mod:`corrugate.fea.planmesh`. The specimen's centre is the layout's
@@ -156,7 +158,8 @@ def oblique_shells(
     by that fraction of its own pitch (the plan width p of a facet) along its chord direction,
     relative to the coupon: a crease at chordwise position u moves to u + shift p. Values outside
     [0, 1) are refused (:class:`InputError`): 1 would swap valleys and ridges, the same layer
-    upside down."""
+    upside down. ``aspect``: elements that many times longer along the creases than across
+    (:func:`corrugate.fea.planmesh.plan_mesh`)."""
     from corrugate.fea.planmesh import Corrugation, plan_mesh
 
     check_shift(shift)
@@ -175,7 +178,7 @@ def oblique_shells(
     ):
         offset = centre - (chord[0] * A / 2 + chord[1] * B / 2) - shift * layer.pitch
         corr = Corrugation(chord, offset, layer.pitch, layer.height, z0)
-        pm = plan_mesh(corr, A, B, along, fixture_y)
+        pm = plan_mesh(corr, A, B, along, fixture_y, aspect)
         ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
         m = layer.material
         shells.append(
