@@ -310,6 +310,7 @@ def assembly_deck(
     bond: Bond = "edges",
     stresses: bool = False,
     shift: float = 0.0,
+    span: float | None = None,
 ) -> tuple[str, DeckInfo]:
     """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
 
@@ -320,12 +321,25 @@ def assembly_deck(
     not for ``buckling``); it adds output only, the model and the printed reactions are the
     same.
     ``shift`` moves the zig-zags of a gmsh-meshed coupon by that fraction of each layer's pitch
-    (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0."""
+    (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0.
+    ``span`` (mm, 3-point bending only; default the specimen's length): line supports at
+    (L - span) / 2 and (L + span) / 2 of the specimen's length L, symmetric about the load line,
+    the panel overhanging them; a span shorter than L is meshed by gmsh with the support lines
+    as element edges."""
     if test not in TESTS:
         raise InputError("test", test, " or ".join(TESTS))
     check_shift(shift)
     # the specimen's length along eta (the span); refuses what the FE cannot model
     L_load = specimen(assembly, eta_deg)[1]
+    short = span is not None and abs(span - L_load) > 1e-9 * L_load
+    if span is not None and (
+        test != "bending" or not math.isfinite(span) or not 0 < span <= L_load * (1 + 1e-9)
+    ):
+        raise InputError(
+            "span",
+            f"{span:g} mm",
+            f"0 < span <= {L_load:.6g} mm (the specimen's length) for 3-point bending",
+        )
     if mesher not in ("auto", "structured", "gmsh"):
         raise InputError("mesher", mesher, "auto, structured or gmsh")
     if bond not in ("edges", "flanges"):
@@ -335,7 +349,9 @@ def assembly_deck(
     Lx, Ly = a.Lx, a.Ly
     tol = 1e-7 * max(Lx, Ly)
     principal = principal_axis(eta_deg)
-    use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
+    use_gmsh = mesher == "gmsh" or (mesher == "auto" and (principal is None or short))
+    if short and not use_gmsh:
+        raise InputError("mesher", mesher, "auto or gmsh for a span shorter than the specimen")
     if use_gmsh and test == "frame":
         raise InputError(
             "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
@@ -349,7 +365,11 @@ def assembly_deck(
             )
         fixture: tuple[float, ...] = {
             "compression": (),
-            "bending": (L_load / 2,),
+            "bending": (
+                ((L_load - span) / 2, L_load / 2, (L_load + span) / 2)
+                if short and span is not None
+                else (L_load / 2,)
+            ),
             "bending4": tuple(L_load * f for f in (1 / 4, 3 / 8, 1 / 2, 5 / 8, 3 / 4)),
             "cantilever": (),
         }[test]
@@ -493,6 +513,12 @@ def assembly_deck(
         else:
             mid_other = c_other[np.isin(sh.ids, mid)]
             m_node = mid[int(np.argmin(mid_other))]
+            if short and span is not None:  # supports inside the specimen, the ends overhang
+                at_lo = np.abs(c_load - (L_load - span) / 2) < tol
+                at_hi = np.abs(c_load - (L_load + span) / 2) < tol
+                lo, hi = [int(n) for n in sh.ids[at_lo]], [int(n) for n in sh.ids[at_hi]]
+                if not (lo and hi):
+                    raise SolverError("assembly mesh has no node line at a support")
             lines += _fmt_set(f"SUP{k}", lo + hi) + _fmt_set(f"MID{k}", mid)
             bc += [f"SUP{k},3,3,0", f"MID{k},3,3,{-delta:.12g}"]
             bc += _span_hold(f"MID{k}", m_node, ua, principal is not None, rigid)
@@ -519,8 +545,9 @@ def assembly_deck(
     lines.append("*END STEP")
     n_nodes = sum(len(sh.ids) for sh in shells)
     mids = tuple(zip(mid_sets[0::2], mid_sets[1::2], strict=True)) if mid_sets else None
+    L_span = span if short and span is not None else L_load
     info = DeckInfo(
-        tuple(load_sets), mids, L_load, delta, axis, n_nodes, e_no - 1, tuple(side_sets)
+        tuple(load_sets), mids, L_span, delta, axis, n_nodes, e_no - 1, tuple(side_sets)
     )
     return "\n".join(lines) + "\n", info
 
@@ -540,9 +567,11 @@ def solve_assembly(
     keep: bool = False,
     timeout: float = 600.0,
     stresses: bool = False,
+    span: float | None = None,
 ) -> AssemblyResult:
     """Run one load case of the assembly in CalculiX (see the module docstring for the model);
-    ``stresses``: also read the shells' nodal stresses (:class:`AssemblyResult` ``stresses``)."""
+    ``stresses``: also read the shells' nodal stresses (:class:`AssemblyResult` ``stresses``);
+    ``span``: 3-point bending over supports that far apart (:func:`assembly_deck`)."""
     mesh = mesh or AssemblyMesh()
     deck, info = assembly_deck(
         assembly,
@@ -555,6 +584,7 @@ def solve_assembly(
         bond=bond,
         stresses=stresses,
         shift=shift,
+        span=span,
     )
     field: FrdStresses | None = None
     with work_dir(folder, keep) as wd:

@@ -103,7 +103,8 @@ class Twin:
     is read (``read``: ``K``, ``D``, ``EI``, ``k`` (P / delta, N/mm), ``pure-D``, ``pure-EI``
     (the 4-point gauge), ``Pb``), with the test's ``a`` coefficient for a bending test's
     apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
-    row should add (one coupon position off the crease directions)."""
+    row should add; ``span`` (mm): 3-point bending over supports that far apart, inside a longer
+    panel (None: the panel's length, supported at its ends)."""
 
     test: LoadTest
     eta: float
@@ -111,6 +112,7 @@ class Twin:
     a: float = 0.0
     load: float | None = None
     note: str = ""
+    span: float | None = None
 
     @property
     def shifted(self) -> bool:
@@ -252,13 +254,18 @@ def twin_of(
     if connectors and (not principal or q.support == "frame"):
         return "no FE twin yet (the band joint off the crease directions or in a frame)"
     test = q.test
+    span: float | None = None  # 3-point bending over a span shorter than the panel
     if q.span is not None:
         length = specimen(assembly, eta)[1]
         if abs(q.span - length) > 1e-9 * max(1.0, length):
-            return (
-                f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its ends, "
-                f"{length:.6g} mm apart)"
-            )
+            three = test is not None and get_load_case(test).fixture == "bending"
+            if not (three and principal and q.span < length and q.support in (None, "free")):
+                return (
+                    f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its "
+                    f"ends, {length:.6g} mm apart, or 3-point along a crease direction over a "
+                    "shorter span)"
+                )
+            span = q.span
     if q.support == "frame":
         if q.kind == "K" or (q.kind == "k" and test == "platens"):
             if load is not None:
@@ -290,7 +297,7 @@ def twin_of(
         fe_test = "cantilever"
     else:
         return f"no FE twin yet (test {test})"
-    return Twin(fe_test, eta, q.kind, a=form.a, load=load, note=note)
+    return Twin(fe_test, eta, q.kind, a=form.a, load=load, note=note, span=span)
 
 
 def behavioural(
@@ -346,16 +353,20 @@ def verify_design(
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
     for sh in shifts:
         check_shift(sh)
-    runs: dict[tuple[str, float, int, float], AssemblyResult | FrameStiffness | CorrugateError] = {}
+    runs: dict[
+        tuple[str, float, int, float, float | None],
+        AssemblyResult | FrameStiffness | CorrugateError,
+    ] = {}
 
     def run(
-        test: LoadTest, eta: float, along: int, shift: float
+        test: LoadTest, eta: float, along: int, shift: float, span: float | None
     ) -> AssemblyResult | FrameStiffness:
-        key = (test, 0.0 if test == "frame" else eta, along, shift)
+        key = (test, 0.0 if test == "frame" else eta, along, shift, span)
         if key not in runs:
             mesh = AssemblyMesh(along)
             where = "" if test == "frame" else f" along eta = {eta:g} deg"
             at = f", coupon shifted {shift:g} pitch" if shift else ""
+            at += f", span {span:g} mm" if span is not None else ""
             progress(f"assembly, {_NAMES[test]}{where}{at}, mesh {mesh.label()}")
             try:
                 if test == "frame":
@@ -371,6 +382,7 @@ def verify_design(
                         connectors=connectors,
                         bond=bond,
                         shift=shift,
+                        span=span,
                         folder=folder,
                         keep=keep,
                         timeout=timeout,
@@ -389,7 +401,7 @@ def verify_design(
         failures: list[str] = []
         for along in which:
             try:
-                r = run(twin.test, twin.eta, along, shift)
+                r = run(twin.test, twin.eta, along, shift, twin.span)
             except CorrugateError as exc:
                 series[along] = None
                 failures.append(f"{along}/facet not run: {_short(exc)}")
