@@ -222,6 +222,7 @@ def refine(
                 }  # the FE is judged against the spec's bounds, never the corrected ones
                 cached[key] = verify(sol, checked)
             verification = cached[key]
+            progress(f"refine: design {k + 1}: {_verdict(verification)}")
         if k == 0:
             spec_bounds = {
                 r.name: c.bound
@@ -363,3 +364,14 @@ def answer_payload(refined: Refined, spec: Problem) -> dict[str, Any]:
         "attempts": [t.as_json(spec_bounds) for t in refined.attempts],
     }
     return out
+
+
+def _verdict(v: Verification) -> str:
+    """One line: each row's FE estimate against its bound."""
+    parts = [
+        f"{r.name} FE {'-' if r.fe is None else f'{r.fe:.5g}'} "
+        f"{'>=' if r.sense == 'min' else '<='} {r.bound:.5g}"
+        + ("" if r.shift is None else f" (worst shift {r.shift:g})")
+        for r in v.rows
+    ]
+    return ("holds in FE: " if v.holds else "does not hold in FE: ") + "; ".join(parts)
