@@ -244,7 +244,7 @@ def refine(
             break
         new = next_bounds(spec, bounds, verification, loosen=loosen)
         if _same(new, bounds):
-            stopped = "no bound to correct (every FE value within its bound's tolerance)"
+            stopped = "no bound to correct (the corrected bounds are the last attempt's)"
             break
         if any(_same(new, t) for t in tried):
             stopped = "the corrected bounds repeat an attempt's"
