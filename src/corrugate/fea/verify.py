@@ -485,12 +485,16 @@ def verify_design(
         if twin.shifted:
             each = ", ".join(f"{f[1]:g}: {_fmt_value(f[0])}" for f in found)
             if screened:
-                ran = ", ".join(f"{f[1]:g}" for f in found if f[3] is not None)
+                coarse_each = ", ".join(
+                    f"{f[1]:g}: {_fmt_value(f[2].get(meshes[-2]))}" for f in found
+                )
+                ran = ", ".join(f"{f[1]:g}: {_fmt_value(f[0])}" for f in found if f[3] is not None)
                 notes.insert(
                     0,
                     f"worst of {len(positions)} coupon positions at shift {shift:g} pitch "
-                    f"(at mesh {meshes[-2]}, by shift {each}; run on to mesh {meshes[-1]}: "
-                    f"shift {ran}, within {100 * SCREEN_WITHIN:g} % of the worst)",
+                    f"(at mesh {meshes[-2]}, by shift {coarse_each}; run on to mesh "
+                    f"{meshes[-1]} within {100 * SCREEN_WITHIN:g} % of the worst there, "
+                    f"estimates {ran})",
                 )
             else:
                 notes.insert(
