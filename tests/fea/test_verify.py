@@ -182,3 +182,23 @@ def test_ctrl_c_mid_run_exits_130_with_one_line_and_writes_nothing(
     assert stderr.splitlines() == [INTERRUPTED]
     assert not (folder / "verify.json").exists()
     assert (folder / ".corrugate-set.json").read_bytes() == manifest
+
+
+@pytest.mark.fea
+@pytest.mark.slow
+def test_three_point_over_a_shorter_span_lies_between_the_beam_limits(ccx: str) -> None:
+    """3-point bending over a span s inside a panel of length L (the ends overhang, carrying no
+    moment) against the same panel supported at its ends: shorter is stiffer, and P / delta
+    grows by at most (L / s)^3 (all bending, Euler-Bernoulli) and at least L / s (all shear)."""
+    from corrugate import Assembly, Layer, get_material
+    from corrugate.fea.assembly import AssemblyMesh, solve_assembly
+
+    a = Assembly.identical(
+        Layer(W=5.0, n=5, alpha_deg=84.0, material=get_material("dura-lar"), t=0.125)
+    )
+    L, s = a.Ly, 15.0
+    full = solve_assembly(a, "bending", AssemblyMesh(2), 0.0, mesher="gmsh")
+    short = solve_assembly(a, "bending", AssemblyMesh(2), 0.0, span=s)
+    assert short.span == s and full.span == pytest.approx(L)
+    ratio = (short.force / short.displacement) / (full.force / full.displacement)
+    assert L / s < ratio < (L / s) ** 3, ratio

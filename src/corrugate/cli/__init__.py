@@ -52,7 +52,7 @@ _PLAIN_HELP_WIDTH = {"terminal_width": 120, "max_content_width": 120}
 #: The exit codes, shown under ``corrugate --help``.
 EXIT_CODES = (
     "Exit codes: 0 an answer; 1 no design meets the spec (infeasible, with the diagnosis) or an "
-    "FE run failed, or (verify) a constraint does not hold in FE; 2 bad input (one line naming "
+    "FE run failed, or (verify, design --verify fe) a constraint does not hold in FE; 2 bad input (one line naming "
     "the field, the value and what is allowed); 3 a bug (one line; please report it); 4 not "
     "certified within the work budget (design, pareto and tolerance --budget, default 60 s of "
     "CPU time: one line with the best design found so far and "

@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import json
 import math
+import sys
+from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -22,10 +24,20 @@ from corrugate.core.limits import abnormal_reason, check, check_count, is_normal
 from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_PAPER, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
+    from collections.abc import Callable
+
     from rich.console import Console
 
-    from corrugate.solver import Solution
+    from corrugate.fea.refine import Refined
+    from corrugate.fea.verify import Verification
+    from corrugate.solver import Problem, Solution
     from corrugate.solver.pareto import ParetoFront
+    from corrugate.spec.schema import Spec
+    from corrugate.workflow import DesignRun
+
+#: ``--refine``'s cap on re-solves (:data:`corrugate.fea.refine.MAX_RESOLVES`, repeated here so
+#: that ``corrugate --help`` does not import the FE; tests/cli check they agree).
+MAX_RESOLVES = 4
 
 __all__ = ["COMMANDS", "design_cmd", "pareto_cmd", "tolerance_cmd"]
 
@@ -212,11 +224,47 @@ def design_cmd(
     gap: o.Gap = None,
     paper: o.Paper = DEFAULT_PAPER,
     budget: o.SolverBudget = None,
+    verify: Annotated[
+        str | None,
+        typer.Option(
+            "--verify",
+            metavar="fe",
+            help="fe: check every behavioural bound of the answer by its FE twin (CalculiX; "
+            "as `corrugate verify`) and add the table to the answer; exit 1 when one does not hold.",
+        ),
+    ] = None,
+    refine: Annotated[
+        bool,
+        typer.Option(
+            "--refine",
+            help="With --verify fe: correct each model bound the FE contradicts by the measured "
+            f"ratio and re-solve (at most {MAX_RESOLVES} times); the answer is the lightest "
+            "design the FE verifies.",
+        ),
+    ] = False,
+    verify_meshes: Annotated[
+        str,
+        typer.Option(
+            "--verify-meshes",
+            metavar="N,N,...",
+            help="Mesh series of --verify (elements per facet).",
+        ),
+    ] = "2,4,8",
+    verify_shifts: Annotated[
+        str,
+        typer.Option(
+            "--verify-shifts",
+            metavar="S,S,...",
+            help="Coupon positions of --verify off the crease directions (fractions of the "
+            "pitch); the worst counts.",
+        ),
+    ] = "0,0.25,0.5,0.75",
     quiet: o.Quiet = False,
 ) -> None:
     """The certified lightest OADLC design that meets a spec, with its explanation.
 
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
+    (--verify fe [--refine]: its FE verification, docs/fea.md section 6)
     """
     from corrugate.core.fileio import check_output_folder
     from corrugate.core.parameters import PARAMETERS
@@ -227,6 +275,7 @@ def design_cmd(
     from corrugate.workflow import made_for, output_options, solve_spec, write_design
 
     seconds = None if budget is None else check("budget", budget, "--budget")
+    fe = _fe_options(verify, refine, verify_meshes, verify_shifts)
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     if out is not None:  # the root, a system folder, home, the working folder: before solving
@@ -241,6 +290,12 @@ def design_cmd(
     loaded, spec_text = load_spec_text(spec)
     made = made_for(loaded, cutter, mountain=mountain, valley=valley, marks=marks)
     parsed = made.spec
+    if fe is not None:
+        from corrugate.cli.verify import _layout
+        from corrugate.fea.ccx import find_ccx
+
+        _layout(parsed.layout.shape)  # an unknown layout name has no FE fixtures
+        find_ccx()  # one clear line when CalculiX is missing, before solving
     options = (
         output_options(
             made.cutter,
@@ -258,10 +313,17 @@ def design_cmd(
     )
     problem = Problem.from_spec(parsed)
     run = solve_spec(parsed, problem, budget=seconds)
+    checked: FeCheck | None = None
+    if fe is not None and run.solution.certified and run.solution.assembly is not None:
+        progress = _fe_progress(quiet or (as_json and not sys.stderr.isatty()))
+        checked = _fe_check(run, parsed, problem, fe, seconds, progress)
+        run = checked.run
     sol, robust = run.solution, run.robust
     written: list[Path] = []
     if out is not None and options is not None:
         written = write_design(run, out, options, spec_text)
+        if checked is not None:
+            written.append(_write_verify(out, checked))
     stopped = sol.status == "not-certified"
     failed = sol.status == "infeasible" or (robust is not None and not robust.met)
     if as_json:
@@ -272,6 +334,8 @@ def design_cmd(
     else:
         console = make_console()
         _print_solution(sol, console, tightened=robust is not None)
+        if checked is not None:
+            _print_fe(checked, console)
         if robust is not None:
             rd = robust.as_dict(problem)
             met = "met" if robust.met else "NOT met"
@@ -287,6 +351,192 @@ def design_cmd(
         raise typer.Exit(4)
     if failed:
         raise typer.Exit(1)
+    if checked is not None and not checked.holds:
+        if quiet:
+            typer.echo(f"corrugate: {checked.statement}", err=True)
+        raise typer.Exit(1)
+
+
+@dataclass(frozen=True)
+class FeOptions:
+    """``design --verify fe``'s options, checked: mesh series, coupon shifts, ``--refine``."""
+
+    meshes: tuple[int, ...]
+    shifts: tuple[float, ...]
+    refine: bool
+
+
+@dataclass(frozen=True)
+class FeCheck:
+    """The answer after ``--verify fe`` (``run``, with ``verification`` and, with ``--refine``,
+    ``refine`` in its payload), the verification of its design and the loop (None without
+    ``--refine``)."""
+
+    run: DesignRun
+    verification: Verification
+    refined: Refined | None
+
+    @property
+    def holds(self) -> bool:
+        return self.verification.holds
+
+    @property
+    def statement(self) -> str:
+        from corrugate.fea.refine import statement
+
+        return statement(self.verification)
+
+
+def _fe_options(verify: str | None, refine: bool, meshes: str, shifts: str) -> FeOptions | None:
+    """``--verify``, ``--refine``, ``--verify-meshes`` and ``--verify-shifts`` checked before
+    the spec is read (one line naming the option, exit 2)."""
+    from corrugate.cli.verify import _meshes, _shifts
+
+    if verify is None:
+        if refine:
+            raise InputError("--refine", "given", "only with --verify fe", reason="needs --verify")
+        if meshes != "2,4,8" or shifts != "0,0.25,0.5,0.75":
+            raise InputError(
+                "--verify-meshes" if meshes != "2,4,8" else "--verify-shifts",
+                "given",
+                "only with --verify fe",
+                reason="needs --verify",
+            )
+        return None
+    if verify != "fe":
+        raise InputError("--verify", repr(verify), "fe (the FE twin of every behavioural bound)")
+    try:
+        m = _meshes(meshes)
+    except InputError as exc:
+        raise InputError("--verify-meshes", exc.value, exc.allowed, reason=exc.reason) from None
+    try:
+        sh = _shifts(shifts)
+    except InputError as exc:
+        raise InputError("--verify-shifts", exc.value, exc.allowed, reason=exc.reason) from None
+    return FeOptions(m, sh, refine)
+
+
+def _fe_progress(quiet: bool) -> Callable[[str], None]:
+    from corrugate.cli.validate import _progress_lines
+
+    return _progress_lines(quiet)
+
+
+def _fe_check(
+    run: DesignRun,
+    spec: Spec,
+    problem: Problem,
+    fe: FeOptions,
+    seconds: float | None,
+    progress: Callable[[str], None],
+) -> FeCheck:
+    """Verify the answer's design in FE and, with ``--refine``, run the correction loop
+    (:func:`corrugate.fea.refine.refine`, every re-solve with the same ``--budget``)."""
+    from corrugate.fea.refine import answer_payload, refine, statement
+    from corrugate.fea.verify import verify_design
+    from corrugate.workflow import DesignRun, solve_spec
+
+    def verify(sol: Solution, payload: dict[str, Any]) -> Verification:
+        assert sol.assembly is not None
+        return verify_design(
+            sol.assembly,
+            payload["constraints"],
+            problem.joint,
+            fe.meshes,
+            shifts=fe.shifts,
+            progress=progress,
+        )
+
+    if not fe.refine:
+        v = verify(run.solution, run.payload)
+        payload = {
+            **run.payload,
+            "verification": {"method": "fe", **v.as_json(), "statement": statement(v)},
+        }
+        return FeCheck(DesignRun(run.solution, payload, run.robust), v, None)
+
+    runs: dict[int, DesignRun] = {}
+
+    def solve(p: Problem) -> tuple[Solution, dict[str, Any]]:
+        r = solve_spec(spec, p, budget=seconds)
+        runs[id(r.solution)] = r
+        return r.solution, r.payload
+
+    runs[id(run.solution)] = run
+    refined = refine(problem, solve, verify, progress=progress, first=(run.solution, run.payload))
+    answer = refined.answer
+    assert answer.verification is not None
+    chosen = runs[id(answer.solution)]
+    payload = answer_payload(refined, problem)
+    return FeCheck(DesignRun(answer.solution, payload, chosen.robust), answer.verification, refined)
+
+
+def _write_verify(out: Path, checked: FeCheck) -> Path:
+    """``out/verify.json`` (the set ``corrugate verify`` writes) of the answer's design."""
+    from corrugate.cli.validate import _label
+    from corrugate.cli.verify import VERIFY_KIND, VERIFY_NAME
+    from corrugate.core.fileio import write_set
+
+    sol = checked.run.solution
+    assert sol.assembly is not None
+    data = {"design": _label(sol.assembly), **checked.verification.as_json()}
+    text = json.dumps(data, indent=2, allow_nan=False)
+    write_set(out, {VERIFY_NAME: text + "\n"}, field="--out", kind=VERIFY_KIND)
+    return out / VERIFY_NAME
+
+
+def _print_fe(checked: FeCheck, console: Console) -> None:
+    """The FE table of the answer's design, the loop's attempts with --refine, and both
+    statements."""
+    from rich.table import Table
+
+    from corrugate.cli.validate import _label
+    from corrugate.cli.verify import _print_table
+
+    sol = checked.run.solution
+    assert sol.assembly is not None
+    r = checked.refined
+    if r is not None:
+        t = Table(
+            title=f"--refine: {r.resolves} re-solve(s) (at most {MAX_RESOLVES}); stopped: "
+            f"{r.stopped}",
+            title_justify="left",
+        )
+        for col in ("attempt", "design", "mass g", "model bounds", "FE holds"):
+            t.add_column(col, justify="left" if col in ("design", "model bounds") else "right")
+        spec_bounds = r.attempts[0].bounds
+        for i, a in enumerate(r.attempts):
+            js = a.as_json(spec_bounds)
+            design = (
+                "; ".join(
+                    dict.fromkeys(
+                        f"{x['material']} {x['t_mm']:g} W {x['W_mm']:g} n {x['n']} "
+                        f"a {x['alpha_deg']:g}"
+                        for x in js["layers"]
+                    )
+                )
+                or a.solution.status
+            )
+            bounds = ", ".join(
+                f"{k.removeprefix('constraints.')} {b:.4g}" for k, b in a.bounds.items()
+            )
+            mark = " *" if i == r.chosen else ""
+            holds = "-" if a.verification is None else ("yes" if a.verification.holds else "no")
+            t.add_row(
+                f"{i}{mark}",
+                design,
+                "-" if a.solution.mass is None else f"{a.solution.mass:.4f}",
+                bounds,
+                holds,
+            )
+        console.print(t)
+        if r.chosen is None:
+            console.print(
+                "[red]no attempt is verified by FE[/red]: the answer is the spec's own design"
+            )
+    _print_table(checked.verification, _label(sol.assembly), console)
+    console.print(str(checked.run.payload.get("certificate", "")), markup=False)
+    console.print(checked.statement, markup=False)
 
 
 def _plot(front: ParetoFront, title: str, path: Path) -> bool:

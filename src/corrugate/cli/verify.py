@@ -61,6 +61,30 @@ def _meshes(text: str) -> tuple[int, ...]:
     return values
 
 
+def _shifts(text: str) -> tuple[float, ...]:
+    """``--shifts 0,0.25,0.5,0.75``: coupon positions, fractions of each layer's pitch in [0, 1),
+    increasing, without repeats."""
+    from corrugate.fea.shells import check_shift
+
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(
+            "shifts",
+            repr(text),
+            "fractions of the pitch separated by commas, e.g. 0,0.25,0.5,0.75",
+            reason="cannot be read",
+        ) from None
+    for v in values:
+        try:
+            check_shift(v)
+        except InputError as exc:
+            raise InputError("shifts", repr(text), exc.allowed) from None
+    if not values or list(values) != sorted(set(values)):
+        raise InputError("shifts", repr(text), "increasing fractions, e.g. 0,0.25,0.5,0.75")
+    return values
+
+
 def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
     """The assembly, the constraints and the joint of ``folder/design.json``; an InputError
     naming the file when it is missing, not JSON, or not a design record."""
@@ -125,9 +149,16 @@ def _print_table(v: Verification, label: str, console: Console) -> None:
     from rich.markup import escape
     from rich.table import Table
 
+    off_axis = any(r.shift is not None for r in v.rows)
+    where = (
+        f"; off the crease directions the worst of coupon shifts "
+        f"{' / '.join(f'{x:g}' for x in v.shifts)} pitch"
+        if off_axis
+        else ""
+    )
     t = Table(
         title=f"{label}: FE twins (CalculiX), mesh series {' / '.join(map(str, v.meshes))} "
-        "elements per facet",
+        f"elements per facet{where}",
         title_justify="left",
     )
     for col in ("constraint", "bound", "model", "FE series", "FE estimate", "holds"):
@@ -169,6 +200,14 @@ def verify_cmd(
             "the one before for an extrapolation).",
         ),
     ] = "2,4,8",
+    shifts: Annotated[
+        str,
+        Opt(
+            metavar="S,S,...",
+            help="Coupon positions off the crease directions (fractions of each layer's pitch, "
+            "0 <= s < 1); the worst counts.",
+        ),
+    ] = "0,0.25,0.5,0.75",
     workdir: Annotated[
         Path | None, Opt(metavar="DIR", help="Parent folder of the ccx work folders.")
     ] = None,
@@ -181,7 +220,8 @@ def verify_cmd(
     """Check every behavioural constraint of a design by its FE twin, on a mesh series.
 
     Each stiffness, load-case and buckling bound of DIR/design.json runs in the FE fixture of
-    its test (the runs of `corrugate validate`), at each mesh, Richardson-extrapolated; writes
+    its test (the runs of `corrugate validate`), at each mesh, Richardson-extrapolated; off the
+    crease directions at each coupon position of --shifts, the worst counting; writes
     DIR/verify.json. Exit 0 when every constraint holds in FE, 1 when one does not or has no FE
     twin yet, 2 for bad input. Every layout: a circle's K runs in the wheel fixture (a ground
     patch against the hub), a polygon's constraints along its creases in the rectangle's
@@ -195,6 +235,7 @@ def verify_cmd(
     from corrugate.fea.verify import verify_design
 
     meshes = _meshes(mesh)
+    positions = _shifts(shifts)
     check_sweep_options(None, timeout, workdir)
     assembly, constraints, joint = _read_design(folder)
     if not _writable(folder):
@@ -206,7 +247,14 @@ def verify_cmd(
 
     progress = _progress_lines(quiet or (as_json and not sys.stderr.isatty()))
     result = verify_design(
-        assembly, constraints, joint, meshes, progress=progress, folder=workdir, timeout=timeout
+        assembly,
+        constraints,
+        joint,
+        meshes,
+        shifts=positions,
+        progress=progress,
+        folder=workdir,
+        timeout=timeout,
     )
     data = {"design": _label(assembly), **result.as_json()}
     text = json.dumps(data, indent=2, allow_nan=False)

@@ -319,9 +319,12 @@ def _deck_text(
     tol: float,
     connectors: bool,
     stresses: bool,
+    span: float | None = None,
 ) -> tuple[str, DeckInfo]:
     """The deck of :func:`assembly_deck` for the parts ``parts`` (part number k, 1-based, and its
-    shell): all of them, or one layer alone when the parts are not connected."""
+    shell): all of them, or one layer alone when the parts are not connected; ``span``: the
+    3-point supports' spacing when shorter than the specimen (None: at its ends)."""
+    short = span is not None
     other = 1 - axis
     Lx, Ly = a.Lx, a.Ly
     lines = [
@@ -428,6 +431,12 @@ def _deck_text(
         else:
             mid_other = c_other[np.isin(sh.ids, mid)]
             m_node = mid[int(np.argmin(mid_other))]
+            if short and span is not None:  # supports inside the specimen, the ends overhang
+                at_lo = np.abs(c_load - (L_load - span) / 2) < tol
+                at_hi = np.abs(c_load - (L_load + span) / 2) < tol
+                lo, hi = [int(n) for n in sh.ids[at_lo]], [int(n) for n in sh.ids[at_hi]]
+                if not (lo and hi):
+                    raise SolverError("assembly mesh has no node line at a support")
             lines += _fmt_set(f"SUP{k}", lo + hi) + _fmt_set(f"MID{k}", mid)
             bc += [f"SUP{k},3,3,0", f"MID{k},3,3,{-delta:.12g}"]
             bc += _span_hold(f"MID{k}", m_node, ua, principal is not None, rigid)
@@ -454,8 +463,9 @@ def _deck_text(
     lines.append("*END STEP")
     n_nodes = sum(len(sh.ids) for _, sh in parts)
     mids = tuple(zip(mid_sets[0::2], mid_sets[1::2], strict=True)) if mid_sets else None
+    L_span = span if short and span is not None else L_load
     info = DeckInfo(
-        tuple(load_sets), mids, L_load, delta, axis, n_nodes, e_no - 1, tuple(side_sets)
+        tuple(load_sets), mids, L_span, delta, axis, n_nodes, e_no - 1, tuple(side_sets)
     )
     return "\n".join(lines) + "\n", info
 
@@ -474,6 +484,7 @@ def _decks(
     stresses: bool = False,
     shift: float = 0.0,
     split: bool = False,
+    span: float | None = None,
 ) -> list[tuple[str, DeckInfo]]:
     """The decks of :func:`assembly_deck`: one, or with ``split`` one per layer (each layer alone
     with its own fixtures; only for parts that are not connected: no band, not ``buckling``)."""
@@ -482,6 +493,15 @@ def _decks(
     check_shift(shift)
     # the specimen's length along eta (the span); refuses what the FE cannot model
     L_load = specimen(assembly, eta_deg)[1]
+    short = span is not None and abs(span - L_load) > 1e-9 * L_load
+    if span is not None and (
+        test != "bending" or not math.isfinite(span) or not 0 < span <= L_load * (1 + 1e-9)
+    ):
+        raise InputError(
+            "span",
+            f"{span:g} mm",
+            f"0 < span <= {L_load:.6g} mm (the specimen's length) for 3-point bending",
+        )
     if mesher not in ("auto", "structured", "gmsh"):
         raise InputError("mesher", mesher, "auto, structured or gmsh")
     if bond not in ("edges", "flanges"):
@@ -491,7 +511,9 @@ def _decks(
     Lx, Ly = a.Lx, a.Ly
     tol = 1e-7 * max(Lx, Ly)
     principal = principal_axis(eta_deg)
-    use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
+    use_gmsh = mesher == "gmsh" or (mesher == "auto" and (principal is None or short))
+    if short and not use_gmsh:
+        raise InputError("mesher", mesher, "auto or gmsh for a span shorter than the specimen")
     if use_gmsh and test == "frame":
         raise InputError(
             "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
@@ -505,7 +527,11 @@ def _decks(
             )
         fixture: tuple[float, ...] = {
             "compression": (),
-            "bending": (L_load / 2,),
+            "bending": (
+                ((L_load - span) / 2, L_load / 2, (L_load + span) / 2)
+                if short and span is not None
+                else (L_load / 2,)
+            ),
             "bending4": tuple(L_load * f for f in (1 / 4, 3 / 8, 1 / 2, 5 / 8, 3 / 4)),
             "cantilever": (),
         }[test]
@@ -569,7 +595,19 @@ def _decks(
         groups = [numbered]
     return [
         _deck_text(
-            a, g, test, mesh, eta_deg, delta, L_load, axis, principal, tol, connectors, stresses
+            a,
+            g,
+            test,
+            mesh,
+            eta_deg,
+            delta,
+            L_load,
+            axis,
+            principal,
+            tol,
+            connectors,
+            stresses,
+            span if short else None,
         )
         for g in groups
     ]
@@ -588,6 +626,7 @@ def assembly_deck(
     bond: Bond = "edges",
     stresses: bool = False,
     shift: float = 0.0,
+    span: float | None = None,
 ) -> tuple[str, DeckInfo]:
     """CalculiX deck of one load case of the assembly, and its bookkeeping (sets, span, delta).
 
@@ -598,7 +637,11 @@ def assembly_deck(
     not for ``buckling``); it adds output only, the model and the printed reactions are the
     same.
     ``shift`` moves the zig-zags of a gmsh-meshed coupon by that fraction of each layer's pitch
-    (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0."""
+    (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0.
+    ``span`` (mm, 3-point bending only; default the specimen's length): line supports at
+    (L - span) / 2 and (L + span) / 2 of the specimen's length L, symmetric about the load line,
+    the panel overhanging them; a span shorter than L is meshed by gmsh with the support lines
+    as element edges."""
     return _decks(
         assembly,
         test,
@@ -611,6 +654,7 @@ def assembly_deck(
         bond=bond,
         stresses=stresses,
         shift=shift,
+        span=span,
     )[0]
 
 
@@ -630,6 +674,7 @@ def solve_assembly(
     timeout: float = 600.0,
     stresses: bool = False,
     split: bool | None = None,
+    span: float | None = None,
 ) -> AssemblyResult:
     """Run one load case of the assembly in CalculiX (see the module docstring for the model);
     ``stresses``: also read the shells' nodal stresses (:class:`AssemblyResult` ``stresses``).
@@ -640,7 +685,9 @@ def solve_assembly(
     equations as one, with about half the peak memory of ccx's direct solver (docs/fea.md 2.9).
     None (the default): split whenever the parts are not connected (no band, not ``buckling``,
     whose platen ties the layers) and no ``stresses`` are asked for; True where that is not
-    possible is refused (:class:`InputError`)."""
+    possible is refused (:class:`InputError`).
+
+    ``span``: 3-point bending over supports that far apart (:func:`assembly_deck`)."""
     mesh = mesh or AssemblyMesh()
     separable = not connectors and test != "buckling"
     if split is None:
@@ -663,6 +710,7 @@ def solve_assembly(
         stresses=stresses,
         shift=shift,
         split=split,
+        span=span,
     )
     field: FrdStresses | None = None
     with work_dir(folder, keep) as wd:
