@@ -291,10 +291,10 @@ def design_cmd(
     made = made_for(loaded, cutter, mountain=mountain, valley=valley, marks=marks)
     parsed = made.spec
     if fe is not None:
-        from corrugate.cli.verify import _layout
+        from corrugate.cli.verify import check_layout
         from corrugate.fea.ccx import find_ccx
 
-        _layout(parsed.layout.shape)  # an unknown layout name has no FE fixtures
+        check_layout(parsed.layout.shape)  # an unknown layout name has no FE fixtures
         find_ccx()  # one clear line when CalculiX is missing, before solving
     options = (
         output_options(
@@ -390,7 +390,7 @@ class FeCheck:
 def _fe_options(verify: str | None, refine: bool, meshes: str, shifts: str) -> FeOptions | None:
     """``--verify``, ``--refine``, ``--verify-meshes`` and ``--verify-shifts`` checked before
     the spec is read (one line naming the option, exit 2)."""
-    from corrugate.cli.verify import _meshes, _shifts
+    from corrugate.cli.verify import parse_meshes, parse_shifts
 
     if verify is None:
         if refine:
@@ -406,20 +406,20 @@ def _fe_options(verify: str | None, refine: bool, meshes: str, shifts: str) -> F
     if verify != "fe":
         raise InputError("--verify", repr(verify), "fe (the FE twin of every behavioural bound)")
     try:
-        m = _meshes(meshes)
+        m = parse_meshes(meshes)
     except InputError as exc:
         raise InputError("--verify-meshes", exc.value, exc.allowed, reason=exc.reason) from None
     try:
-        sh = _shifts(shifts)
+        sh = parse_shifts(shifts)
     except InputError as exc:
         raise InputError("--verify-shifts", exc.value, exc.allowed, reason=exc.reason) from None
     return FeOptions(m, sh, refine)
 
 
 def _fe_progress(quiet: bool) -> Callable[[str], None]:
-    from corrugate.cli.validate import _progress_lines
+    from corrugate.cli.validate import progress_lines
 
-    return _progress_lines(quiet)
+    return progress_lines(quiet)
 
 
 def _fe_check(
@@ -473,13 +473,13 @@ def _fe_check(
 
 def _write_verify(out: Path, checked: FeCheck) -> Path:
     """``out/verify.json`` (the set ``corrugate verify`` writes) of the answer's design."""
-    from corrugate.cli.validate import _label
+    from corrugate.cli.validate import design_label
     from corrugate.cli.verify import VERIFY_KIND, VERIFY_NAME
     from corrugate.core.fileio import write_set
 
     sol = checked.run.solution
     assert sol.assembly is not None
-    data = {"design": _label(sol.assembly), **checked.verification.as_json()}
+    data = {"design": design_label(sol.assembly), **checked.verification.as_json()}
     text = json.dumps(data, indent=2, allow_nan=False)
     write_set(out, {VERIFY_NAME: text + "\n"}, field="--out", kind=VERIFY_KIND)
     return out / VERIFY_NAME
@@ -490,8 +490,8 @@ def _print_fe(checked: FeCheck, console: Console) -> None:
     statements."""
     from rich.table import Table
 
-    from corrugate.cli.validate import _label
-    from corrugate.cli.verify import _print_table
+    from corrugate.cli.validate import design_label
+    from corrugate.cli.verify import print_table
 
     sol = checked.run.solution
     assert sol.assembly is not None
@@ -534,7 +534,7 @@ def _print_fe(checked: FeCheck, console: Console) -> None:
             console.print(
                 "[red]no attempt is verified by FE[/red]: the answer is the spec's own design"
             )
-    _print_table(checked.verification, _label(sol.assembly), console)
+    print_table(checked.verification, design_label(sol.assembly), console)
     console.print(str(checked.run.payload.get("certificate", "")), markup=False)
     console.print(checked.statement, markup=False)
 

@@ -37,12 +37,12 @@ if TYPE_CHECKING:
     from corrugate.fea.validation import CaseResult, Progress, Refinement
     from corrugate.geometry.layer import Assembly, Layer
 
-__all__ = ["COMMANDS", "validate_cmd"]
+__all__ = ["COMMANDS", "design_label", "progress_lines", "validate_cmd"]
 
 Opt = typer.Option
 
 
-def _label(a: Assembly) -> str:
+def design_label(a: Assembly) -> str:
     """A short name of the design: each layer's W, n, alpha and t (one set when identical)."""
 
     def one(x: Layer) -> str:
@@ -345,7 +345,7 @@ def validate_cmd(
     etas = _etas(assembly, eta, connectors)
     band = (" +connectors" + (" (flanges)" if bond == "flanges" else "")) if connectors else ""
     case = Case(
-        _label(assembly) + band,
+        design_label(assembly) + band,
         assembly,
         eta_deg=etas,
         unit_cell=not no_unit_cell,
@@ -359,7 +359,7 @@ def validate_cmd(
         bond=bond_,
         support=check_support(support, PARAMETERS["support"].flag),
     )
-    result = run_case(case, _progress_lines(quiet or (as_json and not sys.stderr.isatty())))
+    result = run_case(case, progress_lines(quiet or (as_json and not sys.stderr.isatty())))
     if as_json:
         typer.echo(json.dumps(_result_json(result), indent=2))
     elif quiet:
@@ -390,7 +390,7 @@ def _run_fixture(
     import sys
 
     from corrugate.analysis.evaluate import analyze
-    from corrugate.cli.verify import _meshes
+    from corrugate.cli.verify import parse_meshes
     from corrugate.export.record import read_record
     from corrugate.fea.assembly import AssemblyMesh
     from corrugate.fea.ccx import find_ccx
@@ -402,7 +402,7 @@ def _run_fixture(
         raise InputError("series", series, "together with --fixture", reason="needs a fixture")
     if fixture not in OUTLINE_TESTS:
         raise InputError("fixture", repr(fixture), " or ".join(OUTLINE_TESTS))
-    meshes = _meshes(series) if series is not None else (AssemblyMesh(mesh).along,)
+    meshes = parse_meshes(series) if series is not None else (AssemblyMesh(mesh).along,)
     if design is not None:
         given = [PARAMETERS[k].flag for k in ("W", "n", "alpha") if options.get(k) is not None]
         if given:
@@ -421,7 +421,7 @@ def _run_fixture(
     if fixture != "wheel" and assembly.layout.name == "circle":
         raise InputError("fixture", fixture, "wheel for a circle", reason="needs corners")
     find_ccx()
-    progress = _progress_lines(quiet or (as_json and not sys.stderr.isatty()))
+    progress = progress_lines(quiet or (as_json and not sys.stderr.isatty()))
     model = analyze(assembly, "refined", list(etas)).stiffness if fixture == "wheel" else None
     rows: list[dict[str, object]] = []
     for i, e in enumerate(etas if fixture == "wheel" else etas[:1]):
@@ -451,7 +451,7 @@ def _run_fixture(
             }
         )
     data = {
-        "design": _label(assembly),
+        "design": design_label(assembly),
         "fixture": fixture,
         "quantity": "K_N_per_mm" if fixture == "wheel" else "P_per_delta_N_per_mm",
         "meshes": list(meshes),
@@ -466,7 +466,7 @@ def _run_fixture(
 
     console = make_console()
     t = Table(
-        title=f"{_label(assembly)}: {OUTLINE_NAMES[fixture]} (CalculiX), mesh "
+        title=f"{design_label(assembly)}: {OUTLINE_NAMES[fixture]} (CalculiX), mesh "
         f"{' / '.join(map(str, meshes))} elements per facet",
         title_justify="left",
     )
@@ -493,7 +493,7 @@ def _run_fixture(
         )
 
 
-def _progress_lines(quiet: bool) -> Progress:
+def progress_lines(quiet: bool) -> Progress:
     """One line on stderr before each CalculiX run (nothing with --quiet, nor with --json unless
     stderr is a terminal): the run's number, the seconds since the first one and what it
     computes."""

@@ -32,7 +32,17 @@ if TYPE_CHECKING:
 
     from corrugate.fea.verify import Verification
 
-__all__ = ["COMMANDS", "verify_cmd"]
+__all__ = [
+    "COMMANDS",
+    "VERIFY_KIND",
+    "VERIFY_NAME",
+    "check_layout",
+    "parse_meshes",
+    "parse_shifts",
+    "print_table",
+    "read_design",
+    "verify_cmd",
+]
 
 Opt = typer.Option
 
@@ -41,7 +51,7 @@ VERIFY_NAME = "verify.json"
 VERIFY_KIND = "verify"
 
 
-def _meshes(text: str) -> tuple[int, ...]:
+def parse_meshes(text: str) -> tuple[int, ...]:
     """``--mesh 2,4,8``: even element counts >= 2, increasing, without repeats."""
     from corrugate.fea.assembly import AssemblyMesh
 
@@ -61,7 +71,7 @@ def _meshes(text: str) -> tuple[int, ...]:
     return values
 
 
-def _shifts(text: str) -> tuple[float, ...]:
+def parse_shifts(text: str) -> tuple[float, ...]:
     """``--shifts 0,0.25,0.5,0.75``: coupon positions, fractions of each layer's pitch in [0, 1),
     increasing, without repeats."""
     from corrugate.fea.shells import check_shift
@@ -85,7 +95,7 @@ def _shifts(text: str) -> tuple[float, ...]:
     return values
 
 
-def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
+def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
     """The assembly, the constraints and the joint of ``folder/design.json``; an InputError
     naming the file when it is missing, not JSON, or not a design record."""
     from corrugate.export.record import RECORD_NAME, read_record
@@ -121,12 +131,12 @@ def _read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
             f"{file}: joint", repr(joint), "a name such as none", reason="is malformed"
         )
     if record.shape is not None:  # a missing shape: record.assembly() names it
-        _layout(record.shape)
+        check_layout(record.shape)
     # every layout: a circle's and a polygon's twins are the outline fixtures (docs/fea.md 2.8)
     return record.assembly(any_layout=True), constraints, joint
 
 
-def _layout(name: str) -> None:
+def check_layout(name: str) -> None:
     """Refuse a layout the FE has no fixtures for, naming what is missing. Every layout has
     them now (a circle: the wheel fixture; a polygon: the rectangle's fixtures cut to it;
     docs/fea.md 2.8), so only an unknown name is refused."""
@@ -145,7 +155,7 @@ def _fmt(v: float | None) -> str:
     return "-" if v is None else f"{v:.5g}"
 
 
-def _print_table(v: Verification, label: str, console: Console) -> None:
+def print_table(v: Verification, label: str, console: Console) -> None:
     from rich.markup import escape
     from rich.table import Table
 
@@ -234,18 +244,18 @@ def verify_cmd(
     from corrugate.fea.series import check_sweep_options
     from corrugate.fea.verify import verify_design
 
-    meshes = _meshes(mesh)
-    positions = _shifts(shifts)
+    meshes = parse_meshes(mesh)
+    positions = parse_shifts(shifts)
     check_sweep_options(None, timeout, workdir)
-    assembly, constraints, joint = _read_design(folder)
+    assembly, constraints, joint = read_design(folder)
     if not _writable(folder):
         raise InputError(
             "DIR", str(folder), "a folder verify.json can be written to", reason="is not writable"
         )
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
-    from corrugate.cli.validate import _label, _progress_lines
+    from corrugate.cli.validate import design_label, progress_lines
 
-    progress = _progress_lines(quiet or (as_json and not sys.stderr.isatty()))
+    progress = progress_lines(quiet or (as_json and not sys.stderr.isatty()))
     result = verify_design(
         assembly,
         constraints,
@@ -256,14 +266,14 @@ def verify_cmd(
         folder=workdir,
         timeout=timeout,
     )
-    data = {"design": _label(assembly), **result.as_json()}
+    data = {"design": design_label(assembly), **result.as_json()}
     text = json.dumps(data, indent=2, allow_nan=False)
     write_set(folder, {VERIFY_NAME: text + "\n"}, field="DIR", kind=VERIFY_KIND)
     if as_json:
         typer.echo(json.dumps(result.as_json(), indent=2, allow_nan=False))
     elif not quiet:
         console = make_console()
-        _print_table(result, _label(assembly), console)
+        print_table(result, design_label(assembly), console)
         console.print(f"wrote {folder / VERIFY_NAME}")
     if not result.holds:
         if quiet:

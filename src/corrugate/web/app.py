@@ -570,11 +570,11 @@ def verify_job(
     and sends one progress event per CalculiX run (``{"stage": "fe", "run": k, "line": ...}``,
     the line ``corrugate verify`` prints on stderr). Constraints without an FE twin come back as
     verify's own rows (``holds`` false, ``note`` saying why)."""
-    from corrugate.cli.validate import _label
-    from corrugate.cli.verify import _read_design
+    from corrugate.cli.validate import design_label
+    from corrugate.cli.verify import read_design
     from corrugate.fea.verify import verify_design
 
-    assembly, constraints, joint = _read_design(folder)
+    assembly, constraints, joint = read_design(folder)
     count = 0
 
     def line(text: str) -> None:
@@ -588,7 +588,7 @@ def verify_job(
             assembly, constraints, joint, meshes, progress=line, timeout=timeout_s
         )
     payload: dict[str, Any] = _json_safe(
-        {"design": _label(assembly), "runs": count, **result.as_json()}
+        {"design": design_label(assembly), "runs": count, **result.as_json()}
     )
     return payload
 
@@ -617,11 +617,11 @@ def _check_verify(
 ) -> tuple[Path, tuple[int, ...]]:
     """The folder of the design to verify and the mesh series, or an InputError naming the
     request's field (``result``, ``mesh``, ``layout``: verify's own checks of the design)."""
-    from corrugate.cli.verify import _meshes, _read_design
+    from corrugate.cli.verify import parse_meshes, read_design
     from corrugate.export.record import RECORD_NAME
 
     with _PARSE_LOCK:
-        meshes = _meshes(body.mesh)
+        meshes = parse_meshes(body.mesh)
     if meshes[-1] > settings.fe_max_mesh:
         raise InputError(
             "mesh",
@@ -637,7 +637,7 @@ def _check_verify(
             reason="is not one",
         )
     folder = record.path.parent
-    _read_design(folder)  # the design's own record: a layout without FE fixtures is named here
+    read_design(folder)  # the design's own record: a layout without FE fixtures is named here
     return folder, meshes
 
 
