@@ -131,6 +131,7 @@ from corrugate.fea.shells import (
     layer_shell,
     oblique_shells,
     principal_axis,
+    section_lines,
     specimen,
 )
 from corrugate.geometry.layer import Assembly
@@ -344,14 +345,7 @@ def _deck_text(
             for e in elems:
                 lines.append(f"{e_no}," + ",".join(map(str, e)))
                 e_no += 1
-    for k, sh in parts:
-        lines += [
-            f"*MATERIAL,NAME=M{k}",
-            "*ELASTIC",
-            f"{sh.E:.10g},{sh.nu:.10g}",
-            f"*SHELL SECTION,ELSET=L{k},MATERIAL=M{k}",
-            f"{sh.t:.10g}",
-        ]
+    lines += section_lines(parts)
     bc: list[str] = []
     load_sets: list[str] = []
     mid_sets: list[str] = []

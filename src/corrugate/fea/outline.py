@@ -46,7 +46,7 @@ from numpy.typing import NDArray
 from corrugate.core.errors import InputError
 from corrugate.fea.assembly import AssemblyMesh, _cut_holes, _fmt_set, _inside_ring
 from corrugate.fea.ccx import SolverError, run_ccx, work_dir
-from corrugate.fea.shells import Shell, layer_shell
+from corrugate.fea.shells import Shell, layer_shell, quad8_elements, section_lines
 from corrugate.geometry.layer import Assembly
 
 __all__ = [
@@ -135,21 +135,7 @@ def plate_shell(
             order.append(nid)
             coords.append((float(x), float(y), 0.0))
             nid += 1
-    elements: list[list[int]] = []
-    for ej in range(ny):
-        for ei in range(nx):
-            i0, j0 = 2 * ei, 2 * ej
-            quad = [
-                (i0, j0),
-                (i0 + 2, j0),
-                (i0 + 2, j0 + 2),
-                (i0, j0 + 2),
-                (i0 + 1, j0),
-                (i0 + 2, j0 + 1),
-                (i0 + 1, j0 + 2),
-                (i0, j0 + 1),
-            ]
-            elements.append([int(ids[a, b]) for a, b in quad])
+    elements = quad8_elements(ids, nx, ny)
     return Shell(np.asarray(order, dtype=np.int64), np.asarray(coords), elements, t, E, nu)
 
 
@@ -253,14 +239,7 @@ def outline_deck(
             for el in elems:
                 lines.append(f"{e_no}," + ",".join(map(str, el)))
                 e_no += 1
-    for k, sh in enumerate(shells, start=1):
-        lines += [
-            f"*MATERIAL,NAME=M{k}",
-            "*ELASTIC",
-            f"{sh.E:.10g},{sh.nu:.10g}",
-            f"*SHELL SECTION,ELSET=L{k},MATERIAL=M{k}",
-            f"{sh.t:.10g}",
-        ]
+    lines += section_lines(list(enumerate(shells, start=1)))
     bc: list[str] = []
     sets: list[str] = []
     direction: tuple[float, float] = (0.0, 0.0)

@@ -18,7 +18,16 @@ from numpy.typing import NDArray
 from corrugate.core.errors import InputError
 from corrugate.geometry.layer import Assembly, Layer, crease_layer
 
-__all__ = ["Shell", "check_shift", "layer_shell", "oblique_shells", "principal_axis", "specimen"]
+__all__ = [
+    "Shell",
+    "check_shift",
+    "layer_shell",
+    "oblique_shells",
+    "principal_axis",
+    "quad8_elements",
+    "section_lines",
+    "specimen",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -35,6 +44,43 @@ class Shell:
     E: float
     nu: float
     triangles: list[list[int]] = field(default_factory=list)
+
+
+def quad8_elements(ids: NDArray[np.int64], n1: int, n2: int) -> list[list[int]]:
+    """The S8R elements of a structured grid of ``n1`` x ``n2`` elements whose node ids are
+    ``ids[i, j]`` on the (2 n1 + 1) x (2 n2 + 1) grid of corner and mid-side points (no centre
+    nodes): each element's corners counter-clockwise, then its mid-side nodes, CalculiX's order."""
+    elements: list[list[int]] = []
+    for ej in range(n2):
+        for ei in range(n1):
+            i0, j0 = 2 * ei, 2 * ej
+            quad = [
+                (i0, j0),
+                (i0 + 2, j0),
+                (i0 + 2, j0 + 2),
+                (i0, j0 + 2),
+                (i0 + 1, j0),
+                (i0 + 2, j0 + 1),
+                (i0 + 1, j0 + 2),
+                (i0, j0 + 1),
+            ]
+            elements.append([int(ids[a, b]) for a, b in quad])
+    return elements
+
+
+def section_lines(parts: list[tuple[int, Shell]]) -> list[str]:
+    """The CalculiX material and shell-section cards of each part k (elements in set ``Lk``):
+    its E (MPa), nu and thickness (mm)."""
+    lines: list[str] = []
+    for k, sh in parts:
+        lines += [
+            f"*MATERIAL,NAME=M{k}",
+            "*ELASTIC",
+            f"{sh.E:.10g},{sh.nu:.10g}",
+            f"*SHELL SECTION,ELSET=L{k},MATERIAL=M{k}",
+            f"{sh.t:.10g}",
+        ]
+    return lines
 
 
 def layer_shell(
@@ -76,21 +122,7 @@ def layer_shell(
             c, s_ = float(chord[i]), float(spanw[j])
             xy = (c, s_) if chord_axis == 0 else (s_, c)
             coords.append((xy[0], xy[1], float(z_of[i])))
-    elements: list[list[int]] = []
-    for ej in range(nel_s):
-        for ei in range(nel_c):
-            i0, j0 = 2 * ei, 2 * ej
-            quad = [
-                (i0, j0),
-                (i0 + 2, j0),
-                (i0 + 2, j0 + 2),
-                (i0, j0 + 2),
-                (i0 + 1, j0),
-                (i0 + 2, j0 + 1),
-                (i0 + 1, j0 + 2),
-                (i0, j0 + 1),
-            ]
-            elements.append([int(ids[a, b]) for a, b in quad])
+    elements = quad8_elements(ids, nel_c, nel_s)
     m = layer.material
     return Shell(
         np.asarray(order, dtype=np.int64), np.asarray(coords), elements, layer.t, m.E, m.nu
