@@ -61,6 +61,16 @@ def _meshes(text: str) -> tuple[int, ...]:
     return values
 
 
+def _max_mesh(n: int, name: str = "--max-mesh") -> int:
+    """``--max-mesh N``: the finest mesh a series may be extended to (elements per facet); 0 is
+    the default cap (:data:`corrugate.fea.verify.DEFAULT_MAX_MESH`)."""
+    from corrugate.fea.verify import DEFAULT_MAX_MESH
+
+    if n < 0:
+        raise InputError(name, str(n), "0 (the default, 16) or elements per facet >= 1")
+    return n or DEFAULT_MAX_MESH
+
+
 def _shifts(text: str) -> tuple[float, ...]:
     """``--shifts 0,0.25,0.5,0.75``: coupon positions, fractions of each layer's pitch in [0, 1),
     increasing, without repeats."""
@@ -212,6 +222,16 @@ def verify_cmd(
         Path | None, Opt(metavar="DIR", help="Parent folder of the ccx work folders.")
     ] = None,
     timeout: Annotated[float, Opt(help="Time-out of one ccx run (s).")] = 900.0,
+    max_mesh: Annotated[
+        int,
+        Opt(
+            "--max-mesh",
+            metavar="N",
+            help="Extend a series whose verdict could still flip (estimate within its own "
+            "Richardson correction of the bound) by doubling its finest mesh, up to N elements "
+            "per facet (0: 16; a 16-per-facet run may take minutes and ~8 GB).",
+        ),
+    ] = 0,
     as_json: Annotated[
         bool, Opt("--json", help='Print {"holds", "constraints": [...]} as JSON.')
     ] = False,
@@ -236,6 +256,7 @@ def verify_cmd(
 
     meshes = _meshes(mesh)
     positions = _shifts(shifts)
+    cap = _max_mesh(max_mesh)
     check_sweep_options(None, timeout, workdir)
     assembly, constraints, joint = _read_design(folder)
     if not _writable(folder):
@@ -255,6 +276,7 @@ def verify_cmd(
         progress=progress,
         folder=workdir,
         timeout=timeout,
+        max_mesh=cap,
     )
     data = {"design": _label(assembly), **result.as_json()}
     text = json.dumps(data, indent=2, allow_nan=False)
