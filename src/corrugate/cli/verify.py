@@ -176,6 +176,8 @@ def _print_table(v: Verification, label: str, console: Console) -> None:
     for r in v.rows:
         bound = ("<= " if r.sense == "max" else ">= ") + f"{r.bound:.5g} {r.unit}".rstrip()
         series = " / ".join(_fmt(x) for x in r.fe_series.values()) or "-"
+        if r.fe_series and list(r.fe_series) != list(v.meshes):  # extended: say at which meshes
+            series += f" (at {' / '.join(map(str, r.fe_series))})"
         est = escape(
             _fmt(r.fe) + (f" ({r.how})" if r.how else "") + (f"; {r.note}" if r.note else "")
         )
