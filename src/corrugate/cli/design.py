@@ -266,7 +266,7 @@ def design_cmd(
             metavar="N",
             help="With --verify fe: extend a series whose verdict could still flip by doubling "
             "its finest mesh, up to N elements per facet (0: 16; a 16-per-facet run may take "
-            "minutes and ~8 GB).",
+            "minutes and up to ~8 GB).",
         ),
     ] = 0,
     quiet: o.Quiet = False,

@@ -231,7 +231,7 @@ def verify_cmd(
             metavar="N",
             help="Extend a series whose verdict could still flip (estimate within its own "
             "Richardson correction of the bound) by doubling its finest mesh, up to N elements "
-            "per facet (0: 16; a 16-per-facet run may take minutes and ~8 GB).",
+            "per facet (0: 16; a 16-per-facet run may take minutes and up to ~8 GB).",
         ),
     ] = 0,
     as_json: Annotated[

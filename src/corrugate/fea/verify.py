@@ -88,10 +88,12 @@ __all__ = [
 DEFAULT_MESHES: tuple[int, ...] = (2, 4, 8)
 #: The finest mesh a series is extended to (elements per facet) when its verdict could still flip
 #: (:func:`corrugate.fea.extrapolate.extend_reason`; docs/fea.md 6: with one ccx run per layer a
-#: 16-per-facet run of the off-axis coupons fits in ~8 GB).
+#: 16-per-facet run of the off-axis coupons fits in 7.5 GiB).
 DEFAULT_MAX_MESH = 16
-#: What a run on that mesh costs, said on stderr before it (docs/fea.md 2.9 and 6).
-FINE_COST = "a 16-per-facet run may take minutes and ~8 GB of memory"
+#: What a run on that mesh costs, said on stderr before it (docs/fea.md 2.9: the largest coupon of
+#: the validation tables, 518 s of ccx CPU and 7.47 GiB per layer's run; section 6: 3.1 GiB for
+#: the K(45) case-study coupon).
+FINE_COST = "a 16-per-facet run may take minutes and up to ~8 GB of memory"
 #: The coupon positions off the crease directions (fractions of each layer's pitch).
 DEFAULT_SHIFTS: tuple[float, ...] = (0.0, 0.25, 0.5, 0.75)
 #: The screen of coupon positions: the finest mesh runs at every position whose value on the
