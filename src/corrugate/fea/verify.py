@@ -87,7 +87,7 @@ __all__ = [
 #: The mesh series unless asked for another (elements per facet).
 DEFAULT_MESHES: tuple[int, ...] = (2, 4, 8)
 #: The finest mesh a series is extended to (elements per facet) when its verdict could still flip
-#: (:func:`corrugate.fea.extrapolate.extend_reason`; docs/fea.md 6: with one ccx run per layer a
+#: (:func:`corrugate.fea.extrapolate.extend_reason`; docs/fea.md 2.9: with one ccx run per layer a
 #: 16-per-facet run of the off-axis coupons fits in 7.5 GiB).
 DEFAULT_MAX_MESH = 16
 #: What a run on that mesh costs, said on stderr before it (docs/fea.md 2.9: the largest coupon of
