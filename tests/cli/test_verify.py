@@ -122,3 +122,47 @@ def test_a_malformed_constraint_is_refused_before_any_run(
         assert code == 2
         _one_error_line(err, word)
         assert "CalculiX run" not in err
+
+
+def test_an_extended_series_says_at_which_meshes() -> None:
+    """A row whose series ran past the requested meshes shows them beside its values, and its
+    reason in the estimate column; a row on the requested meshes shows none."""
+    from io import StringIO
+
+    from rich.console import Console
+
+    from corrugate.cli.verify import _print_table
+    from corrugate.fea.verify import Row, Verification
+
+    why = "extended to 16 per facet at shift 0.25 (reason)"
+    rows = (
+        Row(
+            "k",
+            "K@45",
+            "min",
+            "N/mm",
+            1.0,
+            1.0027,
+            {2: 2.0, 4: 1.3, 8: 1.1, 16: 1.03},
+            0.97,
+            note=why,
+            extended=why,
+            shift=0.25,
+        ),
+        Row(
+            "ei",
+            "EI@0",
+            "min",
+            "N*mm^2",
+            8e4,
+            8.6e4,
+            {2: None, 4: 8.55e4, 8: 8.59e4},
+            8.59e4,
+            holds=True,
+        ),
+    )
+    out = StringIO()
+    _print_table(Verification(rows, (2, 4, 8), (0.25,)), "d", Console(file=out, width=400))
+    text = out.getvalue()
+    assert "1.03 (at 2 / 4 / 8 / 16)" in text and why in text
+    assert text.count("(at ") == 1

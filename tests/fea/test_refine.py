@@ -199,6 +199,8 @@ def test_bad_options_exit_2_with_one_line(cli: CliRun, tmp_path: Path) -> None:
         (["--verify", "fe", "--verify-meshes", "3,4"], "mesh"),
         (["--verify", "fe", "--verify-shifts", "0,1.5"], "--verify-shifts"),
         (["--verify-meshes", "2,4"], "--verify-meshes"),
+        (["--verify", "fe", "--verify-max-mesh", "-1"], "--verify-max-mesh"),
+        (["--verify-max-mesh", "32"], "--verify-max-mesh"),
     ):
         code, out, err = cli(["design", str(spec), *args])
         assert code == 2, (args, out, err)
@@ -246,7 +248,17 @@ def test_refine_on_the_paper_model_against_separate_fe_runs(
     assert fe0 is not None and fe0 < B  # the paper model's design misses the bound in FE
 
     folder = tmp_path / "refined"
-    args = ["design", str(spec), "--verify", "fe", "--refine", "--verify-meshes", "2,4"]
+    args = [
+        "design",
+        str(spec),
+        "--verify",
+        "fe",
+        "--refine",
+        "--verify-meshes",
+        "2,4",
+        "--verify-max-mesh",
+        "4",
+    ]
     code, out, err = cli([*args, "--json", "--out", str(folder)])
     result = json.loads(out)
     ref = result["refine"]

@@ -73,7 +73,7 @@ def designed(tmp_path_factory: pytest.TempPathFactory) -> Path:
 def test_verify_json_matches_validate_at_the_same_meshes(
     ccx: str, cli: CliRun, designed: Path
 ) -> None:
-    code, out, _ = cli(["verify", str(designed), "--mesh", "2,4", "--json"])
+    code, out, _ = cli(["verify", str(designed), "--mesh", "2,4", "--max-mesh", "4", "--json"])
     result = _strict(out)
     assert code == (0 if result["holds"] else 1)
     rows = {r["quantity"]: r for r in result["constraints"]}

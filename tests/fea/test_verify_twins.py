@@ -151,3 +151,47 @@ def test_a_failed_run_at_any_coupon_position_leaves_the_row_unproven(
         assert "not proven" in row.note
     ok = verify.verify_design(A, c, meshes=(2,), shifts=(0.0, 0.5))
     assert ok.holds and ok.rows[0].fe == pytest.approx(5.0)
+
+
+def test_a_series_whose_verdict_could_flip_runs_on_to_16_per_facet(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A stand-in for CalculiX returning the K(45) series of docs/fea.md 6 (2.073 / 1.312 /
+    1.117 / 1.035 N/mm at 2 / 4 / 8 / 16 per facet; the coupon at shift 0.5 0.1 stiffer): from 2 /
+    4 / 8 the estimate 1.0498 is within its correction of the bound 1, so the worst position
+    (shift 0) runs at 16 and the row's estimate is Richardson's from 4 / 8 / 16, by hand d1 =
+    0.195, d2 = 0.082, p = log2(d1 / d2), 1.035 - d2 / (2^p - 1) = 0.9755: below the bound."""
+    import math
+    from types import SimpleNamespace
+
+    from corrugate.fea import verify
+
+    values = {2: 2.073, 4: 1.312, 8: 1.117, 16: 1.035}
+    calls: list[tuple[int, float]] = []
+
+    def fake(assembly, test, mesh, eta, *, shift=0.0, **kw):  # type: ignore[no-untyped-def]
+        calls.append((mesh.along, shift))
+        return SimpleNamespace(K=values[mesh.along] + (0.1 if shift else 0.0))
+
+    monkeypatch.setattr(verify, "solve_assembly", fake)
+    lines: list[str] = []
+    c = [{"name": "k45", "quantity": "K@45", "sense": "min", "bound": 1.0, "value": 1.0027}]
+    v = verify.verify_design(A, c, shifts=(0.0, 0.5), progress=lines.append)
+    [row] = v.rows
+    assert (16, 0.0) in calls and (16, 0.5) not in calls
+    d1, d2 = 1.312 - 1.117, 1.117 - 1.035
+    p = math.log2(d1 / d2)
+    assert row.fe == pytest.approx(1.035 - d2 / (2**p - 1), rel=1e-12)
+    assert row.fe == pytest.approx(0.9755, abs=1e-4)
+    assert row.fe_series[16] == pytest.approx(1.035) and row.shift == 0.0
+    assert not row.holds and not v.holds
+    assert "extended to 16 per facet at shift 0" in row.extended
+    assert "Richardson correction" in row.extended and row.extended in row.note
+    assert row.as_json()["extended"] == row.extended
+    assert any("extending" in x and "~8 GB" in x for x in lines)
+    # the cap: up to 8 per facet nothing runs past the requested series, and 2 / 4 / 8 holds
+    calls.clear()
+    capped = verify.verify_design(A, c, shifts=(0.0, 0.5), max_mesh=8)
+    assert max(a for a, _ in calls) == 8
+    assert capped.holds and capped.rows[0].fe == pytest.approx(1.0498, abs=1e-4)
+    assert capped.rows[0].extended == ""

@@ -185,7 +185,7 @@ def test_verify_by_fe_runs_calculix_and_shows_verifys_table(
     folder = tmp_path / "design"
     folder.mkdir()
     shutil.copy(stored.path, folder / "design.json")
-    code, out, _ = cli(["verify", str(folder), "--mesh", "2,4", "--json", "-q"])
+    code, out, _ = cli(["verify", str(folder), "--mesh", "2,4", "--max-mesh", "4", "--json", "-q"])
     expected = json.loads(out)
     assert code == (0 if expected["holds"] else 1)
     rows = page.locator("#d-verify-table tbody tr")

@@ -259,6 +259,16 @@ def design_cmd(
             "pitch); the worst counts.",
         ),
     ] = "0,0.25,0.5,0.75",
+    verify_max_mesh: Annotated[
+        int,
+        typer.Option(
+            "--verify-max-mesh",
+            metavar="N",
+            help="With --verify fe: extend a series whose verdict could still flip by doubling "
+            "its finest mesh, up to N elements per facet (0: 16; a 16-per-facet run may take "
+            "minutes and up to ~8 GB).",
+        ),
+    ] = 0,
     quiet: o.Quiet = False,
 ) -> None:
     """The certified lightest OADLC design that meets a spec, with its explanation.
@@ -275,7 +285,7 @@ def design_cmd(
     from corrugate.workflow import made_for, output_options, solve_spec, write_design
 
     seconds = None if budget is None else check("budget", budget, "--budget")
-    fe = _fe_options(verify, refine, verify_meshes, verify_shifts)
+    fe = _fe_options(verify, refine, verify_meshes, verify_shifts, verify_max_mesh)
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     if out is not None:  # the root, a system folder, home, the working folder: before solving
@@ -364,6 +374,7 @@ class FeOptions:
     meshes: tuple[int, ...]
     shifts: tuple[float, ...]
     refine: bool
+    max_mesh: int = 16
 
 
 @dataclass(frozen=True)
@@ -387,17 +398,23 @@ class FeCheck:
         return statement(self.verification)
 
 
-def _fe_options(verify: str | None, refine: bool, meshes: str, shifts: str) -> FeOptions | None:
-    """``--verify``, ``--refine``, ``--verify-meshes`` and ``--verify-shifts`` checked before
-    the spec is read (one line naming the option, exit 2)."""
-    from corrugate.cli.verify import parse_meshes, parse_shifts
+def _fe_options(
+    verify: str | None, refine: bool, meshes: str, shifts: str, max_mesh: int = 0
+) -> FeOptions | None:
+    """``--verify``, ``--refine``, ``--verify-meshes``, ``--verify-shifts`` and
+    ``--verify-max-mesh`` checked before the spec is read (one line naming the option, exit 2)."""
+    from corrugate.cli.verify import parse_max_mesh, parse_meshes, parse_shifts
 
     if verify is None:
         if refine:
             raise InputError("--refine", "given", "only with --verify fe", reason="needs --verify")
-        if meshes != "2,4,8" or shifts != "0,0.25,0.5,0.75":
+        if meshes != "2,4,8" or shifts != "0,0.25,0.5,0.75" or max_mesh:
             raise InputError(
-                "--verify-meshes" if meshes != "2,4,8" else "--verify-shifts",
+                "--verify-meshes"
+                if meshes != "2,4,8"
+                else "--verify-shifts"
+                if shifts != "0,0.25,0.5,0.75"
+                else "--verify-max-mesh",
                 "given",
                 "only with --verify fe",
                 reason="needs --verify",
@@ -413,7 +430,7 @@ def _fe_options(verify: str | None, refine: bool, meshes: str, shifts: str) -> F
         sh = parse_shifts(shifts)
     except InputError as exc:
         raise InputError("--verify-shifts", exc.value, exc.allowed, reason=exc.reason) from None
-    return FeOptions(m, sh, refine)
+    return FeOptions(m, sh, refine, parse_max_mesh(max_mesh, "--verify-max-mesh"))
 
 
 def _fe_progress(quiet: bool) -> Callable[[str], None]:
@@ -445,6 +462,7 @@ def _fe_check(
             fe.meshes,
             shifts=fe.shifts,
             progress=progress,
+            max_mesh=fe.max_mesh,
         )
 
     if not fe.refine:

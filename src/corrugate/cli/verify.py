@@ -37,6 +37,7 @@ __all__ = [
     "VERIFY_KIND",
     "VERIFY_NAME",
     "check_layout",
+    "parse_max_mesh",
     "parse_meshes",
     "parse_shifts",
     "print_table",
@@ -69,6 +70,16 @@ def parse_meshes(text: str) -> tuple[int, ...]:
     if not values or list(values) != sorted(set(values)):
         raise InputError("mesh", repr(text), "increasing element counts, e.g. 2,4,8")
     return values
+
+
+def parse_max_mesh(n: int, name: str = "--max-mesh") -> int:
+    """``--max-mesh N``: the finest mesh a series may be extended to (elements per facet); 0 is
+    the default cap (:data:`corrugate.fea.verify.DEFAULT_MAX_MESH`)."""
+    from corrugate.fea.verify import DEFAULT_MAX_MESH
+
+    if n < 0:
+        raise InputError(name, str(n), "0 (the default, 16) or elements per facet >= 1")
+    return n or DEFAULT_MAX_MESH
 
 
 def parse_shifts(text: str) -> tuple[float, ...]:
@@ -176,6 +187,8 @@ def print_table(v: Verification, label: str, console: Console) -> None:
     for r in v.rows:
         bound = ("<= " if r.sense == "max" else ">= ") + f"{r.bound:.5g} {r.unit}".rstrip()
         series = " / ".join(_fmt(x) for x in r.fe_series.values()) or "-"
+        if r.fe_series and list(r.fe_series) != list(v.meshes):  # extended: say at which meshes
+            series += f" (at {' / '.join(map(str, r.fe_series))})"
         est = escape(
             _fmt(r.fe) + (f" ({r.how})" if r.how else "") + (f"; {r.note}" if r.note else "")
         )
@@ -222,6 +235,16 @@ def verify_cmd(
         Path | None, Opt(metavar="DIR", help="Parent folder of the ccx work folders.")
     ] = None,
     timeout: Annotated[float, Opt(help="Time-out of one ccx run (s).")] = 900.0,
+    max_mesh: Annotated[
+        int,
+        Opt(
+            "--max-mesh",
+            metavar="N",
+            help="Extend a series whose verdict could still flip (estimate within its own "
+            "Richardson correction of the bound) by doubling its finest mesh, up to N elements "
+            "per facet (0: 16; a 16-per-facet run may take minutes and up to ~8 GB).",
+        ),
+    ] = 0,
     as_json: Annotated[
         bool, Opt("--json", help='Print {"holds", "constraints": [...]} as JSON.')
     ] = False,
@@ -246,6 +269,7 @@ def verify_cmd(
 
     meshes = parse_meshes(mesh)
     positions = parse_shifts(shifts)
+    cap = parse_max_mesh(max_mesh)
     check_sweep_options(None, timeout, workdir)
     assembly, constraints, joint = read_design(folder)
     if not _writable(folder):
@@ -265,6 +289,7 @@ def verify_cmd(
         progress=progress,
         folder=workdir,
         timeout=timeout,
+        max_mesh=cap,
     )
     data = {"design": design_label(assembly), **result.as_json()}
     text = json.dumps(data, indent=2, allow_nan=False)

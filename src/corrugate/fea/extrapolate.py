@@ -19,7 +19,15 @@ import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-__all__ = ["MAX_ORDER", "MIN_ORDER", "Extrapolation", "extrapolate", "observed_order", "richardson"]
+__all__ = [
+    "MAX_ORDER",
+    "MIN_ORDER",
+    "Extrapolation",
+    "extend_reason",
+    "extrapolate",
+    "observed_order",
+    "richardson",
+]
 
 #: The observed orders accepted as asymptotic.
 MIN_ORDER = 0.5
@@ -100,3 +108,43 @@ def extrapolate(series: Series) -> Extrapolation:
     else:
         why = f"not asymptotic (p = {p:.2f})"
     return Extrapolation(finest, p, False, f"{why}, the finest value")
+
+
+def extend_reason(series: Series, bound: float) -> str | None:
+    """Why the verdict "estimate against ``bound``" of a mesh series could still flip on a finer
+    mesh (a phrase for the table), or None when it cannot within the series' own error scale.
+
+    The error of a Richardson estimate is of the order of its own correction |v_finest -
+    estimate| (the part of the answer the extrapolation supplies: were the observed order off,
+    that part is what moves; docs/fea.md 2.9 and 6: the K(15) series 126.24 / 93.20 / 85.22 /
+    81.60 N/mm extrapolates to 82.68 from 2 / 4 / 8 and 78.59 from 4 / 8 / 16: it moved by 4.09,
+    1.6 times the 2 / 4 / 8 correction of 2.54). So, with ``est`` the estimate of
+    :func:`extrapolate`:
+
+    - asymptotic: extend when |est - bound| <= |v_finest - est|;
+    - not asymptotic, or fewer than three meshes (the estimate is the finest value): extend when
+      |v_finest - bound| <= |v_finest - v_previous|, the last step (the next step of a
+      converging series is smaller than the last one, so a bound farther than that cannot be
+      crossed).
+
+    A single mesh or no finite value: None (nothing to scale the error by)."""
+    finite = {k: v for k, v in series.items() if math.isfinite(v)}
+    if len(finite) < 2:
+        return None
+    alongs = sorted(finite)
+    finest, previous = finite[alongs[-1]], finite[alongs[-2]]
+    e = extrapolate(finite)
+    assert e.value is not None
+    if e.asymptotic:
+        gap, correction = abs(e.value - bound), abs(finest - e.value)
+        if gap <= correction:
+            return (
+                f"|estimate - bound| = {gap:.3g} <= the Richardson correction "
+                f"|finest - estimate| = {correction:.3g}"
+            )
+        return None
+    gap, step = abs(finest - bound), abs(finest - previous)
+    if gap <= step:
+        why = "not asymptotic" if len(alongs) >= 3 else "no observed order"
+        return f"{why} and |finest - bound| = {gap:.3g} <= the last step {step:.3g}"
+    return None

@@ -57,7 +57,7 @@ from corrugate.fea.assembly import (
     principal_axis,
     solve_assembly,
 )
-from corrugate.fea.extrapolate import extrapolate
+from corrugate.fea.extrapolate import extend_reason, extrapolate
 from corrugate.fea.frame import FrameStiffness, solve_frame
 from corrugate.fea.outline import (
     OUTLINE_NAMES,
@@ -73,6 +73,7 @@ from corrugate.solver.quantity import Quantity
 
 __all__ = [
     "BEHAVIOURAL_KINDS",
+    "DEFAULT_MAX_MESH",
     "DEFAULT_MESHES",
     "DEFAULT_SHIFTS",
     "Row",
@@ -85,6 +86,14 @@ __all__ = [
 
 #: The mesh series unless asked for another (elements per facet).
 DEFAULT_MESHES: tuple[int, ...] = (2, 4, 8)
+#: The finest mesh a series is extended to (elements per facet) when its verdict could still flip
+#: (:func:`corrugate.fea.extrapolate.extend_reason`; docs/fea.md 2.9: with one ccx run per layer a
+#: 16-per-facet run of the off-axis coupons fits in 7.5 GiB).
+DEFAULT_MAX_MESH = 16
+#: What a run on that mesh costs, said on stderr before it (docs/fea.md 2.9: the largest coupon of
+#: the validation tables, 518 s of ccx CPU and 7.47 GiB per layer's run; section 6: 3.1 GiB for
+#: the K(45) case-study coupon).
+FINE_COST = "a 16-per-facet run may take minutes and up to ~8 GB of memory"
 #: The coupon positions off the crease directions (fractions of each layer's pitch).
 DEFAULT_SHIFTS: tuple[float, ...] = (0.0, 0.25, 0.5, 0.75)
 #: The screen of coupon positions: the finest mesh runs at every position whose value on the
@@ -175,7 +184,9 @@ class Row:
     constraint ``holds`` in FE (False without a twin) and a ``note`` (why there is no twin,
     failed runs); off the crease directions ``shift`` is the coupon position whose value counts
     (the worst) and ``by_shift`` each position's estimate (empty along the creases); ``test``
-    names the FE fixture."""
+    names the FE fixture; ``extended`` says to which mesh the series was run on past the
+    requested ones and why (:func:`corrugate.fea.extrapolate.extend_reason`), "" when it was
+    not."""
 
     name: str
     quantity: str
@@ -192,6 +203,7 @@ class Row:
     shift: float | None = None
     by_shift: dict[float, float | None] = field(default_factory=dict)
     test: str = ""
+    extended: str = ""
 
     @property
     def has_twin(self) -> bool:
@@ -215,6 +227,7 @@ class Row:
             "test": self.test or None,
             "shift": self.shift,
             "fe_by_shift": {f"{k:g}": _finite(v) for k, v in self.by_shift.items()},
+            "extended": self.extended or None,
         }
 
 
@@ -408,6 +421,7 @@ def verify_design(
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 900.0,
+    max_mesh: int = DEFAULT_MAX_MESH,
 ) -> Verification:
     """Run the FE twin of every behavioural constraint (module docstring) on the mesh series
     ``meshes`` (elements per facet) and compare its estimate with the bound; off the crease
@@ -417,7 +431,14 @@ def verify_design(
     the positions within :data:`SCREEN_WITHIN` of the worst on the mesh before (docs/fea.md 6:
     the measured cost and ranking); ``by_shift`` holds the others' values at that mesh. A run that fails
     (a solver error, a mesh the fixture refuses) leaves None in the series and its message in
-    the row's note; runs shared by constraints (the same test, eta, shift and mesh) run once."""
+    the row's note; runs shared by constraints (the same test, eta, shift and mesh) run once.
+
+    When the verdict could still flip within the extrapolation's own error
+    (:func:`corrugate.fea.extrapolate.extend_reason`), the series of the worst position is extended
+    by doubling its finest mesh, up to ``max_mesh`` elements per facet, and extrapolated again
+    from its three finest meshes; the worst position is then chosen again among those that ran
+    the finest requested mesh (positions screened out stay out), and so on. The row's
+    ``extended`` says so and why."""
     from corrugate.fea.shells import check_shift
 
     connectors, bond = _joint(joint)
@@ -431,7 +452,12 @@ def verify_design(
     ] = {}
 
     def run(
-        test: LoadTest | OutlineTest, eta: float, along: int, shift: float, span: float | None
+        test: LoadTest | OutlineTest,
+        eta: float,
+        along: int,
+        shift: float,
+        span: float | None,
+        why: str = "",
     ) -> AssemblyResult | OutlineResult | FrameStiffness:
         key = (test, 0.0 if test == "frame" else eta, along, shift, span)
         if key not in runs:
@@ -439,7 +465,8 @@ def verify_design(
             where = "" if test == "frame" else f" along eta = {eta:g} deg"
             at = f", coupon shifted {shift:g} pitch" if shift else ""
             at += f", span {span:g} mm" if span is not None else ""
-            progress(f"assembly, {_NAMES[test]}{where}{at}, mesh {mesh.label()}")
+            why = f" ({why})" if why else ""
+            progress(f"assembly, {_NAMES[test]}{where}{at}, mesh {mesh.label()}{why}")
             try:
                 if test in OUTLINE_TESTS:
                     runs[key] = solve_outline(
@@ -477,13 +504,13 @@ def verify_design(
         return r
 
     def series_at(
-        twin: Twin, shift: float, which: tuple[int, ...]
+        twin: Twin, shift: float, which: tuple[int, ...], why: str = ""
     ) -> tuple[dict[int, float | None], list[str]]:
         series: dict[int, float | None] = {}
         failures: list[str] = []
         for along in which:
             try:
-                r = run(twin.test, twin.eta, along, shift, twin.span)
+                r = run(twin.test, twin.eta, along, shift, twin.span, why)
             except CorrugateError as exc:
                 series[along] = None
                 failures.append(f"{along}/facet not run: {_short(exc)}")
@@ -543,30 +570,50 @@ def verify_design(
                     found.append((e.value, sh, series, e, failures))
                 else:
                     found.append((at_last[sh], sh, series, None, failures))
-            finest = [f for f in found if f[1] in picks]
-            known_fine = [f for f in finest if f[0] is not None]
-            worst = min(known_fine, key=lambda f: sign * (f[0] or 0.0)) if known_fine else finest[0]
-            value, shift, series, e, failures = worst
-            known = [f for f in found if f[0] is not None]
         else:
             for sh in positions:
                 series, failures = series_at(twin, sh, tuple(meshes))
                 e = extrapolate({k: v for k, v in series.items() if v is not None})
                 found.append((e.value, sh, series, e, failures))
-            known = [f for f in found if f[0] is not None]
-            # the worst position counts; a position without a value leaves the row unproven
-            worst = min(known, key=lambda f: sign * (f[0] or 0.0)) if known else found[0]
-            value, shift, series, e, failures = worst
+
+        extended: list[str] = []
+        unsettled = False  # an extension's run failed: the verdict that could flip is open
+        while not unsettled:  # extend the worst position's series while its verdict could flip
+            i = _worst(found, sign)
+            value, sh, series, e, failures = found[i]
+            done = {k: v for k, v in series.items() if v is not None}
+            reason = extend_reason(done, base.bound) if value is not None else None
+            finer = 2 * max(series)
+            if reason is None or finer > max_mesh:
+                break
+            why = f"extending {base.name}'s series: {reason}"
+            if finer >= DEFAULT_MAX_MESH:
+                why += f"; {FINE_COST}"
+            more, more_failures = series_at(twin, sh, (finer,), why)
+            series = {**series, **more}
+            e = extrapolate({k: v for k, v in series.items() if v is not None})
+            found[i] = (e.value, sh, series, e, failures + more_failures)
+            unsettled = bool(more_failures)
+            extended.append(
+                f"extended to {finer} per facet"
+                f"{f' at shift {sh:g}' if twin.shifted else ''} ({reason})"
+            )
+        value, shift, series, e, failures = found[_worst(found, sign)]
+        known = [f for f in found if f[0] is not None]
         complete = len(known) == len(found)
         if twin.shifted:  # a run that failed at any position could hide the worst one
             failures = [f"shift {f[1]:g}: {x}" for f in found for x in f[4]]
             complete = complete and not failures
         holds = (
             complete
+            and not unsettled
             and value is not None
             and (value >= base.bound if sense == "min" else value <= base.bound)
         )
         notes = [n for n in (twin.note, *failures) if n]
+        notes += extended
+        if unsettled:
+            notes.append("the run extending the series failed: not proven")
         if twin.shifted:
             each = ", ".join(f"{f[1]:g}: {_fmt_value(f[0])}" for f in found)
             if screened:
@@ -602,9 +649,19 @@ def verify_design(
                 test=_NAMES[twin.test]
                 + ("" if twin.test == "frame" else f" along eta = {twin.eta:g} deg"),
                 by_shift={f[1]: f[0] for f in found} if twin.shifted else {},
+                extended="; ".join(extended),
             )
         )
     return Verification(tuple(rows), tuple(meshes), tuple(shifts))
+
+
+def _worst(found: Sequence[tuple[float | None, float, Any, Any, Any]], sign: float) -> int:
+    """The index in ``found`` (estimate, shift, series, extrapolation or None, failures: one
+    entry per coupon position) of the worst position among those that ran the finest mesh (an
+    extrapolation); when none of them has a value, the first (the row is unproven)."""
+    full = [i for i, f in enumerate(found) if f[3] is not None]
+    valued = [i for i in full if found[i][0] is not None]
+    return min(valued, key=lambda i: sign * (found[i][0] or 0.0)) if valued else full[0]
 
 
 def _fmt_value(v: float | None) -> str:

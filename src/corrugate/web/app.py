@@ -584,8 +584,14 @@ def verify_job(
 
     send_progress({"stage": "reading"})
     with memory_cap(memory_bytes):
-        result = verify_design(
-            assembly, constraints, joint, meshes, progress=line, timeout=timeout_s
+        result = verify_design(  # no series past the requested ones (the server's mesh cap)
+            assembly,
+            constraints,
+            joint,
+            meshes,
+            progress=line,
+            timeout=timeout_s,
+            max_mesh=max(meshes),
         )
     payload: dict[str, Any] = _json_safe(
         {"design": design_label(assembly), "runs": count, **result.as_json()}
