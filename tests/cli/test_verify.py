@@ -131,7 +131,7 @@ def test_an_extended_series_says_at_which_meshes() -> None:
 
     from rich.console import Console
 
-    from corrugate.cli.verify import _print_table
+    from corrugate.cli.verify import print_table
     from corrugate.fea.verify import Row, Verification
 
     why = "extended to 16 per facet at shift 0.25 (reason)"
@@ -162,7 +162,7 @@ def test_an_extended_series_says_at_which_meshes() -> None:
         ),
     )
     out = StringIO()
-    _print_table(Verification(rows, (2, 4, 8), (0.25,)), "d", Console(file=out, width=400))
+    print_table(Verification(rows, (2, 4, 8), (0.25,)), "d", Console(file=out, width=400))
     text = out.getvalue()
     assert "1.03 (at 2 / 4 / 8 / 16)" in text and why in text
     assert text.count("(at ") == 1
