@@ -301,8 +301,8 @@ def design_cmd(
     made = made_for(loaded, cutter, mountain=mountain, valley=valley, marks=marks)
     parsed = made.spec
     if fe is not None:
-        from corrugate.cli.verify import check_layout
         from corrugate.fea.ccx import find_ccx
+        from corrugate.fea.verify import check_layout
 
         check_layout(parsed.layout.shape)  # an unknown layout name has no FE fixtures
         find_ccx()  # one clear line when CalculiX is missing, before solving
@@ -403,7 +403,7 @@ def _fe_options(
 ) -> FeOptions | None:
     """``--verify``, ``--refine``, ``--verify-meshes``, ``--verify-shifts`` and
     ``--verify-max-mesh`` checked before the spec is read (one line naming the option, exit 2)."""
-    from corrugate.cli.verify import parse_max_mesh, parse_meshes, parse_shifts
+    from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts
 
     if verify is None:
         if refine:
@@ -491,9 +491,9 @@ def _fe_check(
 
 def _write_verify(out: Path, checked: FeCheck) -> Path:
     """``out/verify.json`` (the set ``corrugate verify`` writes) of the answer's design."""
-    from corrugate.cli.validate import design_label
     from corrugate.cli.verify import VERIFY_KIND, VERIFY_NAME
     from corrugate.core.fileio import write_set
+    from corrugate.export.record import design_label
 
     sol = checked.run.solution
     assert sol.assembly is not None
@@ -508,8 +508,8 @@ def _print_fe(checked: FeCheck, console: Console) -> None:
     statements."""
     from rich.table import Table
 
-    from corrugate.cli.validate import design_label
     from corrugate.cli.verify import print_table
+    from corrugate.export.record import design_label
 
     sol = checked.run.solution
     assert sol.assembly is not None

@@ -35,21 +35,11 @@ if TYPE_CHECKING:
 
     from corrugate.fea.connector_band import Bond
     from corrugate.fea.validation import CaseResult, Progress, Refinement
-    from corrugate.geometry.layer import Assembly, Layer
+    from corrugate.geometry.layer import Assembly
 
-__all__ = ["COMMANDS", "design_label", "progress_lines", "validate_cmd"]
+__all__ = ["COMMANDS", "progress_lines", "validate_cmd"]
 
 Opt = typer.Option
-
-
-def design_label(a: Assembly) -> str:
-    """A short name of the design: each layer's W, n, alpha and t (one set when identical)."""
-
-    def one(x: Layer) -> str:
-        return f"W={x.W:g} n={x.n} alpha={x.alpha_deg:g} t={x.t:g}"
-
-    text = one(a.layer1) if a.layer1 == a.layer2 else f"{one(a.layer1)} / {one(a.layer2)}"
-    return text if a.layout.name == DEFAULT_LAYOUT else f"{text} {a.layout.name}"
 
 
 def _print_result(r: CaseResult, console: Console) -> None:
@@ -303,6 +293,7 @@ def validate_cmd(
     """
     import sys
 
+    from corrugate.export.record import design_label
     from corrugate.fea.ccx import find_ccx
     from corrugate.fea.series import check_sweep_options
     from corrugate.fea.validation import Case, run_case
@@ -390,12 +381,12 @@ def _run_fixture(
     import sys
 
     from corrugate.analysis.evaluate import analyze
-    from corrugate.cli.verify import parse_meshes
-    from corrugate.export.record import read_record
+    from corrugate.export.record import design_label, read_record
     from corrugate.fea.assembly import AssemblyMesh
     from corrugate.fea.ccx import find_ccx
     from corrugate.fea.extrapolate import extrapolate
     from corrugate.fea.outline import OUTLINE_NAMES, OUTLINE_TESTS, solve_outline
+    from corrugate.fea.verify import parse_meshes
     from corrugate.spec.inputs import parse_etas
 
     if fixture is None:

@@ -19,7 +19,7 @@ import json
 import os
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -36,12 +36,7 @@ __all__ = [
     "COMMANDS",
     "VERIFY_KIND",
     "VERIFY_NAME",
-    "check_layout",
-    "parse_max_mesh",
-    "parse_meshes",
-    "parse_shifts",
     "print_table",
-    "read_design",
     "verify_cmd",
 ]
 
@@ -50,111 +45,6 @@ Opt = typer.Option
 #: The file verify writes into the design's folder, and its set kind in the folder's manifest.
 VERIFY_NAME = "verify.json"
 VERIFY_KIND = "verify"
-
-
-def parse_meshes(text: str) -> tuple[int, ...]:
-    """``--mesh 2,4,8``: even element counts >= 2, increasing, without repeats."""
-    from corrugate.fea.assembly import AssemblyMesh
-
-    try:
-        values = tuple(int(v) for v in text.split(","))
-    except ValueError:
-        raise InputError(
-            "mesh",
-            repr(text),
-            "even integers separated by commas, e.g. 2,4,8",
-            reason="cannot be read",
-        ) from None
-    for v in values:
-        AssemblyMesh(v)  # even, >= 2, within the limits
-    if not values or list(values) != sorted(set(values)):
-        raise InputError("mesh", repr(text), "increasing element counts, e.g. 2,4,8")
-    return values
-
-
-def parse_max_mesh(n: int, name: str = "--max-mesh") -> int:
-    """``--max-mesh N``: the finest mesh a series may be extended to (elements per facet); 0 is
-    the default cap (:data:`corrugate.fea.verify.DEFAULT_MAX_MESH`)."""
-    from corrugate.fea.verify import DEFAULT_MAX_MESH
-
-    if n < 0:
-        raise InputError(name, str(n), "0 (the default, 16) or elements per facet >= 1")
-    return n or DEFAULT_MAX_MESH
-
-
-def parse_shifts(text: str) -> tuple[float, ...]:
-    """``--shifts 0,0.25,0.5,0.75``: coupon positions, fractions of each layer's pitch in [0, 1),
-    increasing, without repeats."""
-    from corrugate.fea.shells import check_shift
-
-    try:
-        values = tuple(float(v) for v in text.split(","))
-    except ValueError:
-        raise InputError(
-            "shifts",
-            repr(text),
-            "fractions of the pitch separated by commas, e.g. 0,0.25,0.5,0.75",
-            reason="cannot be read",
-        ) from None
-    for v in values:
-        try:
-            check_shift(v)
-        except InputError as exc:
-            raise InputError("shifts", repr(text), exc.allowed) from None
-    if not values or list(values) != sorted(set(values)):
-        raise InputError("shifts", repr(text), "increasing fractions, e.g. 0,0.25,0.5,0.75")
-    return values
-
-
-def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
-    """The assembly, the constraints and the joint of ``folder/design.json``; an InputError
-    naming the file when it is missing, not JSON, or not a design record."""
-    from corrugate.export.record import RECORD_NAME, read_record
-
-    if not folder.is_dir():
-        raise InputError(
-            "DIR",
-            str(folder),
-            "a folder written by `corrugate design --out`",
-            reason="is not a folder",
-        )
-    file = folder / RECORD_NAME
-    record = read_record(file)  # one line naming the file when it is missing or not JSON
-    data = json.loads(file.read_text(encoding="utf-8"))
-    if data.get("design", {}) is None:
-        raise InputError(
-            "DIR",
-            str(folder),
-            "the folder of a design",
-            reason=f"holds no design (its design.json: status {data.get('status')})",
-        )
-    constraints = data.get("constraints")
-    if not isinstance(constraints, list) or not all(isinstance(c, dict) for c in constraints):
-        raise InputError(
-            f"{file}: constraints",
-            type(constraints).__name__,
-            "a list of constraint objects",
-            reason="is malformed",
-        )
-    joint = data.get("joint", "none")
-    if not isinstance(joint, str):
-        raise InputError(
-            f"{file}: joint", repr(joint), "a name such as none", reason="is malformed"
-        )
-    if record.shape is not None:  # a missing shape: record.assembly() names it
-        check_layout(record.shape)
-    # every layout: a circle's and a polygon's twins are the outline fixtures (docs/fea.md 2.8)
-    return record.assembly(any_layout=True), constraints, joint
-
-
-def check_layout(name: str) -> None:
-    """Refuse a layout the FE has no fixtures for, naming what is missing. Every layout has
-    them now (a circle: the wheel fixture; a polygon: the rectangle's fixtures cut to it;
-    docs/fea.md 2.8), so only an unknown name is refused."""
-    from corrugate.names import LAYOUT_SHAPES
-
-    if name not in LAYOUT_SHAPES:
-        raise InputError("layout", name, " or ".join(LAYOUT_SHAPES), reason="has no FE fixtures")
 
 
 def _writable(folder: Path) -> bool:
@@ -263,9 +153,10 @@ def verify_cmd(
     Example: corrugate verify out/gripper --mesh 2,4,8
     """
     from corrugate.core.fileio import write_set
+    from corrugate.export.record import design_label, read_design
     from corrugate.fea.ccx import find_ccx
     from corrugate.fea.series import check_sweep_options
-    from corrugate.fea.verify import verify_design
+    from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts, verify_design
 
     meshes = parse_meshes(mesh)
     positions = parse_shifts(shifts)
@@ -277,7 +168,7 @@ def verify_cmd(
             "DIR", str(folder), "a folder verify.json can be written to", reason="is not writable"
         )
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
-    from corrugate.cli.validate import design_label, progress_lines
+    from corrugate.cli.validate import progress_lines
 
     progress = progress_lines(quiet or (as_json and not sys.stderr.isatty()))
     result = verify_design(

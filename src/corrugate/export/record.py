@@ -24,16 +24,18 @@ from typing import TYPE_CHECKING, Any
 from corrugate.core.errors import InputError
 from corrugate.core.fileio import Staging, write_set
 from corrugate.geometry.holes import Hole
-from corrugate.names import RECTANGULAR_LAYOUTS
+from corrugate.names import DEFAULT_LAYOUT, RECTANGULAR_LAYOUTS
 
 if TYPE_CHECKING:
-    from corrugate.geometry.layer import Assembly
+    from corrugate.geometry.layer import Assembly, Layer
 
 __all__ = [
     "RECORD_NAME",
     "DesignRecord",
     "LayerRecord",
+    "design_label",
     "parse_record",
+    "read_design",
     "read_record",
     "write_record",
 ]
@@ -229,3 +231,54 @@ def read_record(path: str | Path) -> DesignRecord:
     if not isinstance(data, dict):
         raise InputError("design", str(file), "a JSON object", reason="is not an object")
     return parse_record(data)
+
+
+def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
+    """The assembly, the constraints and the joint of ``folder/design.json``; an InputError
+    naming the file when it is missing, not JSON, or not a design record."""
+    from corrugate.fea.verify import check_layout
+
+    if not folder.is_dir():
+        raise InputError(
+            "DIR",
+            str(folder),
+            "a folder written by `corrugate design --out`",
+            reason="is not a folder",
+        )
+    file = folder / RECORD_NAME
+    record = read_record(file)  # one line naming the file when it is missing or not JSON
+    data = json.loads(file.read_text(encoding="utf-8"))
+    if data.get("design", {}) is None:
+        raise InputError(
+            "DIR",
+            str(folder),
+            "the folder of a design",
+            reason=f"holds no design (its design.json: status {data.get('status')})",
+        )
+    constraints = data.get("constraints")
+    if not isinstance(constraints, list) or not all(isinstance(c, dict) for c in constraints):
+        raise InputError(
+            f"{file}: constraints",
+            type(constraints).__name__,
+            "a list of constraint objects",
+            reason="is malformed",
+        )
+    joint = data.get("joint", "none")
+    if not isinstance(joint, str):
+        raise InputError(
+            f"{file}: joint", repr(joint), "a name such as none", reason="is malformed"
+        )
+    if record.shape is not None:  # a missing shape: record.assembly() names it
+        check_layout(record.shape)
+    # every layout: a circle's and a polygon's twins are the outline fixtures (docs/fea.md 2.8)
+    return record.assembly(any_layout=True), constraints, joint
+
+
+def design_label(a: Assembly) -> str:
+    """A short name of the design: each layer's W, n, alpha and t (one set when identical)."""
+
+    def one(x: Layer) -> str:
+        return f"W={x.W:g} n={x.n} alpha={x.alpha_deg:g} t={x.t:g}"
+
+    text = one(a.layer1) if a.layer1 == a.layer2 else f"{one(a.layer1)} / {one(a.layer2)}"
+    return text if a.layout.name == DEFAULT_LAYOUT else f"{text} {a.layout.name}"

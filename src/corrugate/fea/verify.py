@@ -66,7 +66,7 @@ from corrugate.fea.outline import (
     OutlineTest,
     solve_outline,
 )
-from corrugate.fea.shells import specimen
+from corrugate.fea.shells import check_shift, specimen
 from corrugate.geometry.layer import Assembly
 from corrugate.mechanics.behaviours import get_load_case
 from corrugate.solver.quantity import Quantity
@@ -80,6 +80,10 @@ __all__ = [
     "Twin",
     "Verification",
     "behavioural",
+    "check_layout",
+    "parse_max_mesh",
+    "parse_meshes",
+    "parse_shifts",
     "twin_of",
     "verify_design",
 ]
@@ -439,8 +443,6 @@ def verify_design(
     from its three finest meshes; the worst position is then chosen again among those that ran
     the finest requested mesh (positions screened out stay out), and so on. The row's
     ``extended`` says so and why."""
-    from corrugate.fea.shells import check_shift
-
     connectors, bond = _joint(joint)
     if not shifts:
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
@@ -679,3 +681,61 @@ def _replace_row(row: Row, **changes: Any) -> Row:
     from dataclasses import replace
 
     return replace(row, **changes)
+
+
+def parse_meshes(text: str) -> tuple[int, ...]:
+    """``--mesh 2,4,8``: even element counts >= 2, increasing, without repeats."""
+    try:
+        values = tuple(int(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(
+            "mesh",
+            repr(text),
+            "even integers separated by commas, e.g. 2,4,8",
+            reason="cannot be read",
+        ) from None
+    for v in values:
+        AssemblyMesh(v)  # even, >= 2, within the limits
+    if not values or list(values) != sorted(set(values)):
+        raise InputError("mesh", repr(text), "increasing element counts, e.g. 2,4,8")
+    return values
+
+
+def parse_max_mesh(n: int, name: str = "--max-mesh") -> int:
+    """``--max-mesh N``: the finest mesh a series may be extended to (elements per facet); 0 is
+    the default cap (:data:`corrugate.fea.verify.DEFAULT_MAX_MESH`)."""
+    if n < 0:
+        raise InputError(name, str(n), "0 (the default, 16) or elements per facet >= 1")
+    return n or DEFAULT_MAX_MESH
+
+
+def parse_shifts(text: str) -> tuple[float, ...]:
+    """``--shifts 0,0.25,0.5,0.75``: coupon positions, fractions of each layer's pitch in [0, 1),
+    increasing, without repeats."""
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(
+            "shifts",
+            repr(text),
+            "fractions of the pitch separated by commas, e.g. 0,0.25,0.5,0.75",
+            reason="cannot be read",
+        ) from None
+    for v in values:
+        try:
+            check_shift(v)
+        except InputError as exc:
+            raise InputError("shifts", repr(text), exc.allowed) from None
+    if not values or list(values) != sorted(set(values)):
+        raise InputError("shifts", repr(text), "increasing fractions, e.g. 0,0.25,0.5,0.75")
+    return values
+
+
+def check_layout(name: str) -> None:
+    """Refuse a layout the FE has no fixtures for, naming what is missing. Every layout has
+    them now (a circle: the wheel fixture; a polygon: the rectangle's fixtures cut to it;
+    docs/fea.md 2.8), so only an unknown name is refused."""
+    from corrugate.names import LAYOUT_SHAPES
+
+    if name not in LAYOUT_SHAPES:
+        raise InputError("layout", name, " or ".join(LAYOUT_SHAPES), reason="has no FE fixtures")

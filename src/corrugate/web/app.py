@@ -570,8 +570,7 @@ def verify_job(
     and sends one progress event per CalculiX run (``{"stage": "fe", "run": k, "line": ...}``,
     the line ``corrugate verify`` prints on stderr). Constraints without an FE twin come back as
     verify's own rows (``holds`` false, ``note`` saying why)."""
-    from corrugate.cli.validate import design_label
-    from corrugate.cli.verify import read_design
+    from corrugate.export.record import design_label, read_design
     from corrugate.fea.verify import verify_design
 
     assembly, constraints, joint = read_design(folder)
@@ -623,8 +622,8 @@ def _check_verify(
 ) -> tuple[Path, tuple[int, ...]]:
     """The folder of the design to verify and the mesh series, or an InputError naming the
     request's field (``result``, ``mesh``, ``layout``: verify's own checks of the design)."""
-    from corrugate.cli.verify import parse_meshes, read_design
-    from corrugate.export.record import RECORD_NAME
+    from corrugate.export.record import RECORD_NAME, read_design
+    from corrugate.fea.verify import parse_meshes
 
     with _PARSE_LOCK:
         meshes = parse_meshes(body.mesh)
