@@ -20,7 +20,9 @@ import json
 import socket
 import threading
 import time
+import tomllib
 import urllib.request
+from pathlib import Path
 from typing import Any
 
 import uvicorn
@@ -28,25 +30,12 @@ import uvicorn
 from corrugate.web import WebSettings, create_app
 from corrugate.web.app import LOOPBACK_NAMES
 
-CHASSIS: dict[str, Any] = {
-    "name": "chassis-issue-24",
-    "model": "refined",
-    "layers": "independent",
-    "material": {"name": "polypropylene", "thickness": "0.25 mm"},
-    "layout": {"shape": "rectangle"},
-    "variables": {
-        "W": {"min": "5 mm", "max": "30 mm", "step": "1 mm"},
-        "n": {"min": 6, "max": 200},
-        "alpha": {"min": "40 deg", "max": "120 deg", "step": "1 deg"},
-    },
-    "constraints": {
-        "side_x": {"min": "78 mm", "max": "82 mm"},
-        "side_y": {"min": "118 mm", "max": "122 mm"},
-        "thickness": {"max": "15 mm"},
-        "flexural_rigidity": [{"eta": "0 deg", "min": "360 mN*m^2"}],
-    },
-    "objective": {"minimize": "mass"},
-}
+#: The chassis plate of issue 24, the spec benchmarks/solve.py times.
+CHASSIS: dict[str, Any] = tomllib.loads(
+    (Path(__file__).resolve().parent / "specs" / "chassis_independent.toml").read_text(
+        encoding="utf-8"
+    )
+)
 
 
 def events(url: str) -> Any:
