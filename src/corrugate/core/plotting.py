@@ -8,12 +8,13 @@ it is no longer referenced, so figures can be drawn in parallel threads (the web
 
 from __future__ import annotations
 
+import io
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-__all__ = ["new_figure"]
+__all__ = ["new_figure", "png_bytes"]
 
 
 def new_figure(figsize: tuple[float, float], dpi: float | None = None, **kwargs: Any) -> Figure:
@@ -25,3 +26,12 @@ def new_figure(figsize: tuple[float, float], dpi: float | None = None, **kwargs:
     fig = Figure(figsize=figsize, dpi=dpi, **kwargs)
     FigureCanvasAgg(fig)
     return fig
+
+
+def png_bytes(fig: Figure, compress_level: int = 6, **kwargs: Any) -> bytes:
+    """The PNG file of ``fig`` (bytes), compressed at zlib level ``compress_level`` (Pillow's
+    option; 6 is its default, the pixels are the same at every level); ``kwargs`` go to
+    :meth:`~matplotlib.figure.Figure.savefig` (``dpi``, ...)."""
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", pil_kwargs={"compress_level": compress_level}, **kwargs)
+    return buf.getvalue()
