@@ -20,7 +20,14 @@ with the ratio to the first: ``--base REF`` puts a ``git archive`` of ``REF`` (e
 unpacked under a temporary folder, first and this checkout's ``src`` second (the before and after
 of a change in one run); ``--src`` names trees by hand. The last lines put each tree's
 ``design --out`` median beside the import floor measured in the same run (what importing its
-libraries costs, which no code of ours can remove).
+libraries costs, which no code of ours can remove). The floor is those bare imports as the
+issue wrote them, exit included: ``design`` itself skips two parts of it, the interpreter's
+collection at exit (``corrugate.cli.main`` freezes the collector's objects then) and the
+execution of fontTools' subsetter, which matplotlib's PDF backend imports but uses only for Type
+42 fonts (``corrugate.core.plotting.pdf_pages``). So "above the floor" understates
+``design``'s own work by what those cost in the floor's process: its exit collection (the floor
+with ``gc.freeze()`` as its last statement took 0.2-0.4 s less in three runs of issue 24's
+session) and the subsetter's import (0.13-0.18 s).
 
 Bytecode: this environment sets ``PYTHONDONTWRITEBYTECODE``, which would charge every run for
 compiling the sources again; the trees and the interpreter's site-packages are compiled once with

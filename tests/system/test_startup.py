@@ -111,3 +111,25 @@ def test_model_names_match_the_moduli_table() -> None:
     from corrugate.names import DEFAULT_MODEL, MODEL_NAMES
 
     assert tuple(MODELS) == MODEL_NAMES and DEFAULT_MODEL in MODELS
+
+
+def test_the_command_line_freezes_the_collector_at_exit_only() -> None:
+    """main() freezes nothing while the process works (here: two commands in one process), and
+    at exit moves the tracked objects to the permanent generation (so the interpreter's
+    finalization does not collect over them; benchmarks/pipeline.py, issue 24)."""
+    done = _run(
+        "import atexit, gc, sys\n"
+        "atexit.register(lambda: print('frozen at exit', gc.get_freeze_count() > 1000))\n"
+        "from corrugate.cli import main\n"
+        "for _ in range(2):\n"
+        "    try:\n"
+        "        main(['--version'])\n"
+        "    except SystemExit:\n"
+        "        pass\n"
+        "print('frozen while running', gc.get_freeze_count())\n"
+    )
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    assert sum(x.startswith("corrugate ") for x in lines) == 2  # both commands ran
+    assert "frozen while running 0" in lines
+    assert lines[-1] == "frozen at exit True"

@@ -403,8 +403,6 @@ def _fe_options(
 ) -> FeOptions | None:
     """``--verify``, ``--refine``, ``--verify-meshes``, ``--verify-shifts`` and
     ``--verify-max-mesh`` checked before the spec is read (one line naming the option, exit 2)."""
-    from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts
-
     if verify is None:
         if refine:
             raise InputError("--refine", "given", "only with --verify fe", reason="needs --verify")
@@ -422,6 +420,9 @@ def _fe_options(
         return None
     if verify != "fe":
         raise InputError("--verify", repr(verify), "fe (the FE twin of every behavioural bound)")
+    # the FE package only when it is asked for (its import is about 0.03 s of a design run)
+    from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts
+
     try:
         m = parse_meshes(meshes)
     except InputError as exc:

@@ -35,6 +35,7 @@ from typing import TYPE_CHECKING
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.fileio import staged
+from corrugate.core.plotting import pdf_pages
 from corrugate.export.labels import label_spot
 from corrugate.export.legend import fold_map_legend, legend_spot, row_length
 from corrugate.export.svg import ANNOTATION, BOUNDARY, COLOURS
@@ -270,7 +271,7 @@ def render_pdf(
 
     ``figures``: the sheets' :func:`sheet_figure` (same plan, style and labels), built already
     (the report shows the same figures); ``None`` builds them here."""
-    from matplotlib.backends.backend_pdf import PdfPages
+    PdfPages = pdf_pages()
 
     check_style((p.part for p in plan.placements), style)
     if figures is not None and len(figures) != len(plan.sheets):
@@ -577,7 +578,7 @@ def render_tiled_pdf(
 ) -> None:
     """Draw ``plan`` as 1:1 tile pages of ``paper`` into a PDF at ``path`` directly (no staging:
     use :func:`write_tiled_pdf`); pages with nothing to cut are left out unless ``empty``."""
-    from matplotlib.backends.backend_pdf import PdfPages
+    PdfPages = pdf_pages()
 
     pp = paper if isinstance(paper, Paper) else get_paper(paper)
     check_style((p.part for p in plan.placements), style)

@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.plotting import new_figure
 from corrugate.mechanics.behaviours import supports
+from corrugate.solver.making import MAKING
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import MASS
@@ -171,6 +172,8 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     ns = np.arange(problem.n_lo, min(problem.n_hi, problem.n_lo + n_max - 1) + 1)
     c1, c2 = _candidates(a)
     cheap = {c.quantity for c in problem.constraints if not c.quantity.directional}
+    # the making quantities (parts, facets, t/W) after the others, at the points those pass
+    screens = [q for q in (cheap - MAKING, cheap & MAKING) if q]
     mass = np.full((len(ns), W1.size), np.inf)
     # the constraints on quantities without a direction (extents, thickness, blank, ...) first,
     # at every point, in passes of about SCREEN_POINTS; the model (stiffness, mass) only at the
@@ -180,11 +183,18 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
         chunk = ns[start : start + per_pass]
         n1 = np.repeat(chunk.astype(float), W1.size)
         x = _points(problem, a, n1, np.tile(W1, len(chunk)), np.tile(A1, len(chunk)))
-        cheap_values = box_bounds(problem, c1, c2, x, x, tables, cheap)
         keep = np.ones(n1.size, dtype=bool)
-        for c in problem.constraints:
-            if c.quantity in cheap:
-                keep &= c.satisfied(cheap_values[c.quantity][0], rtol=SCREEN_RTOL)
+        for screen in screens:
+            at = np.flatnonzero(keep)
+            if not at.size:
+                break
+            sub = x if at.size == n1.size else {k: v[at] for k, v in x.items()}
+            screened = box_bounds(problem, c1, c2, sub, sub, tables, screen)
+            ok = np.ones(at.size, dtype=bool)
+            for c in problem.constraints:
+                if c.quantity in screen:
+                    ok &= c.satisfied(screened[c.quantity][0], rtol=SCREEN_RTOL)
+            keep[at] = ok
         found = mass[start : start + len(chunk)].reshape(-1)
         passed = np.flatnonzero(keep)
         for first in range(0, passed.size, BATCH_POINTS):

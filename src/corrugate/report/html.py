@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import base64
 import html
-import io
 from typing import TYPE_CHECKING, Any
 
 from corrugate.analysis.evaluate import analyze
+from corrugate.core.plotting import png_bytes
 from corrugate.fabrication.instructions import assembly_steps, instructions_png
 from corrugate.fabrication.linestyle import StyleKind
 from corrugate.geometry.holes import holes_text
@@ -36,10 +36,16 @@ img{max-width:100%;height:auto}pre{background:#f7f7f7;padding:.75rem;overflow:au
 """
 
 
+#: zlib level of the report's plots (Pillow's ``compress_level``, default 6): on the case study's
+#: three plots level 3 encodes in 0.048 s of CPU against 0.075 s and the images come out smaller
+#: (246 622 bytes against 254 043), the same pixels (issue 24). assembly.png keeps the default: at
+#: level 3 it is 13 % larger for 0.01 s.
+PNG_LEVEL = 3
+
+
 def _png(fig: Any) -> str:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png")
-    return "data:image/png;base64," + base64.b64encode(buf.getvalue()).decode("ascii")
+    png = png_bytes(fig, compress_level=PNG_LEVEL)
+    return "data:image/png;base64," + base64.b64encode(png).decode("ascii")
 
 
 def _img(fig: Any, alt: str) -> str:
