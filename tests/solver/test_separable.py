@@ -29,7 +29,7 @@ from corrugate.solver import separable as sep
 from corrugate.solver.bnb import branch_and_bound
 from corrugate.solver.problem import Constraint
 from corrugate.solver.quantities import Tables, point_values
-from corrugate.solver.quantity import MASS, Quantity
+from corrugate.solver.quantity import FLAT, MASS, PART_LONG, PART_SHORT, W_MIN, Quantity
 from corrugate.solver.solve import optimize, pairs
 from corrugate.spec.schema import Spec, load_spec
 
@@ -220,8 +220,12 @@ def test_random_specs_match_the_whole_grid_and_the_branch_and_bound(
     assert _same(_bnb(problem), expected)
 
 
-def _binding_case() -> tuple[Problem, list]:
-    problem = _problem(stiffness=(("flexural_rigidity", 0.0, "free"),), depth=8.0)
+def _binding_case(
+    sides: tuple[tuple[float, float], tuple[float, float]] | None = None,
+) -> tuple[Problem, list]:
+    """EI(0) at the 70 % quantile of the size-feasible pairs, thickness at most 8 mm."""
+    more = {} if sides is None else {"side_x": sides[0], "side_y": sides[1]}
+    problem = _problem(stiffness=(("flexural_rigidity", 0.0, "free"),), depth=8.0, **more)
     grid = _grid(problem)
     return _with_bounds(problem, grid, [0.7]), grid
 
@@ -235,6 +239,38 @@ def test_a_binding_stiffness_bound_moves_the_optimum() -> None:
     assert with_bound.objective == pytest.approx(_grid_optimum(problem, grid), rel=1e-12)
     assert without.objective == pytest.approx(_grid_optimum(free, grid), rel=1e-12)
     assert without.objective < with_bound.objective * (1 - 1e-6)
+
+
+@pytest.mark.parametrize(
+    ("quantity", "sense", "wide"),
+    [
+        (PART_LONG, "max", True),
+        (PART_SHORT, "max", False),
+        (FLAT, "min", False),
+        (W_MIN, "max", True),
+    ],
+)
+def test_bounds_left_to_the_exact_evaluation_that_bind(
+    quantity: Quantity, sense: str, wide: bool
+) -> None:
+    """Bounds the formulas do not model (the cut parts' sides, the blank's minimum, the
+    narrowest facet's maximum) are judged only by the exact evaluation: set just past the
+    optimum's value, one binds, the pairs the formulas rank lightest break it, and the search
+    goes on (past its first threshold) to the whole grid's optimum, an EI bound binding too.
+    (``wide``: side ranges 35-50 and 50-75 mm, where a design remains.)"""
+    problem, grid = _binding_case(((35.0, 50.0), (50.0, 75.0)) if wide else None)
+    first = optimize(problem)
+    assert first.point is not None and first.candidates is not None
+    x = {k: np.array([v]) for k, v in first.point.items()}
+    at = float(point_values(problem, *first.candidates, x, Tables(problem))[quantity][0])
+    bound = at * (1 - 1e-6) if sense == "max" else at * (1 + 1e-6)
+    extra = Constraint("extra", quantity, sense, bound)  # type: ignore[arg-type]
+    tight = replace(problem, constraints=(*problem.constraints, extra))
+    expected = _grid_optimum(tight, grid)
+    assert expected > first.value * (1 + 1e-9)  # it binds (and leaves a design)
+    sol = solve(tight, explain=False)
+    assert sol.certified and sol.objective == pytest.approx(expected, rel=1e-12)
+    assert sol.objective == pytest.approx(_bnb(tight), rel=1e-12)
 
 
 def test_unreachable_sides_are_certified_infeasible() -> None:

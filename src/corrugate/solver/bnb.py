@@ -33,6 +33,12 @@ sit exactly on a bound, up to floating-point noise); with continuous variables, 
 the design meets every bound exactly (margin >= 0). Points and boxes always use the same rule.
 The corner bounds of the monotone quantities (extents, thickness, mass) are computed in ordinary
 floating point, so they are exact to a few units in the last place, far below both tolerances.
+
+A plain search (no start boxes, no archive, no n fixed, no runner-ups, no early stop) of a problem
+whose independent layers decompose (:mod:`.separable`: a rectangle, gridded, least mass, bounds
+along the creases) is made layer by layer instead, with the same certificate (gap 0 on the grid,
+the same feasibility rule); the explanation, which reopens this search's archive, still runs the
+branch and bound.
 """
 
 from __future__ import annotations

@@ -45,8 +45,9 @@ bound's. The formulas are those of ``evaluate`` rearranged, equal to it to round
 units in the last place, far below the slack; the tests compare them with ``point_values``).
 Problems of any other structure (identical layers, other layouts, holes, a connector band,
 continuous variables, off-axis or other support conditions, load cases, buckling, an objective
-other than the least mass), or whose layer lists are too long (:data:`MAX_LAYER_DESIGNS`), are
-left to the branch and bound (:func:`search` returns None).
+other than the least mass), or whose layer lists or pairs to score are too many
+(:data:`MAX_LAYER_DESIGNS`, :data:`MAX_PAIRS`), are left to the branch and bound (:func:`search`
+returns None).
 """
 
 from __future__ import annotations
@@ -79,7 +80,7 @@ from corrugate.solver.quantity import (
     Quantity,
 )
 
-__all__ = ["MAX_LAYER_DESIGNS", "SLACK", "SeparableResult", "applies", "search"]
+__all__ = ["MAX_LAYER_DESIGNS", "MAX_PAIRS", "SLACK", "SeparableResult", "applies", "search"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -91,6 +92,8 @@ Exact = Callable[[dict[str, FloatArray]], tuple[FloatArray, NDArray[np.bool_]]]
 SLACK = 1e-9
 #: Past this many designs in a layer's list the branch and bound is used instead.
 MAX_LAYER_DESIGNS = 200_000
+#: Past this many pairs to score (step 2) the branch and bound is used instead.
+MAX_PAIRS = 4_000_000
 #: Pairs scored by the formulas at once (memory: a few arrays of this length).
 CHUNK_PAIRS = 1_000_000
 #: Pairs evaluated exactly in the first batch (then fourfold each batch).
@@ -297,8 +300,8 @@ def search(
     exact: Exact,
 ) -> SeparableResult | None:
     """The least-mass design over sheets (c1, c2), certified (module docstring), lighter than
-    ``incumbent`` (g) if given; None when the problem lacks the structure (:func:`applies`) or a
-    layer list is too long. ``exact(x)`` returns the exact values and feasibility of the pairs
+    ``incumbent`` (g) if given; None when the problem lacks the structure (:func:`applies`) or
+    its layer lists or pairs are too many. ``exact(x)`` returns the exact values and feasibility of the pairs
     ``x`` (arrays n1, W1, a1, n2, W2, a2): ``(mass, feasible)``."""
     if not applies(problem):
         return None
@@ -342,6 +345,8 @@ def search(
     table = np.stack(counts)
     pick = np.argmin(table, axis=0)
     rows = table[pick, np.arange(len(L1))].astype(np.int64)
+    if int(rows.sum()) > MAX_PAIRS:
+        return None
     # a lower bound of each pair's mass, low1[i] + low2[j]: the mass grows with the partner's
     # extent and the thickness, so each layer's blank over the least extent of the other
     # layer's list, and the band at the least of those (module docstring)
