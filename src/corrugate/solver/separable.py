@@ -25,13 +25,19 @@ So the search (:func:`search`) is:
    extent grows with n, so for each (W, alpha) of the grid only the n whose extent lies in the
    range are formed, computed directly rather than scanned), the narrowest facet, t / W, the
    creases, the blank and the facet length;
-2. the pairs that may meet the most selective coupled bound (a stiffness bound (u_i + v_j) f_i
-   g_j >= C, or the thickness): with layer 2's designs sorted by v (or h), the partners of each
-   layer-1 design are a prefix of that order (a necessary condition, with g at its largest);
-3. on those pairs, every modelled quantity by the formulas above and the mass; the pairs that
-   meet every modelled bound (with a relative slack of :data:`SLACK` beyond the solver's own
-   :data:`~.problem.FEAS_RTOL`, so rounding never drops a feasible pair) and are lighter than
-   the incumbent;
+2. the pairs that may meet the coupled bounds: for each coupled bound (a stiffness bound
+   (u_i + v_j) f_i g_j >= C, or the thickness h_i + h_j <= T) layer 2's designs sorted by
+   their term (v, or h), so that the partners of a layer-1 design that can meet it are a prefix
+   of that order (a necessary condition, with g at its largest); each layer-1 design is paired
+   with the shortest of its prefixes;
+3. on those pairs, every modelled bound by the formulas above (with a relative slack of
+   :data:`SLACK` beyond the solver's own :data:`~.problem.FEAS_RTOL`, so rounding never drops a
+   feasible pair), and a lower bound of the mass, low1_i + low2_j (each layer's blank over the
+   least extent of the other layer's list, and the band at layer 1's own extent and depth with
+   layer 2's least: the mass grows with each); of the pairs left, first only those whose lower bound is below the
+   mass of the pair of least lower bound (the optimum is at most that if it proves feasible),
+   and all of them if the answer is heavier than that; their mass by the formulas, below the
+   incumbent;
 4. those pairs in order of their mass, in batches, evaluated exactly with
    :func:`~.quantities.point_values` (``evaluate``, the same values and the same feasibility rule,
    FEAS_RTOL, as the branch and bound), until the lightest exactly feasible pair is no heavier
@@ -39,8 +45,8 @@ So the search (:func:`search`) is:
 
 Certificate: every design of the grid is in a layer list that a constraint of its own layer
 alone excludes, in a pair that a necessary condition excludes, in a pair whose modelled values
-break a bound (or reach the incumbent) by more than the slack, or in a pair whose mass is at
-least the answer's: the answer is the exact optimum over the grid (gap 0), as the branch and
+break a bound (or reach the incumbent) by more than the slack, or in a pair whose mass (or its
+lower bound) is at least the answer's: the answer is the exact optimum over the grid (gap 0), as the branch and
 bound's. The formulas are those of ``evaluate`` rearranged, equal to it to rounding (a few
 units in the last place, far below the slack; the tests compare them with ``point_values``).
 Problems of any other structure (identical layers, other layouts, holes, a connector band,
