@@ -29,7 +29,15 @@ from corrugate.solver import separable as sep
 from corrugate.solver.bnb import branch_and_bound
 from corrugate.solver.problem import Constraint
 from corrugate.solver.quantities import Tables, point_values
-from corrugate.solver.quantity import FLAT, MASS, PART_LONG, PART_SHORT, W_MIN, Quantity
+from corrugate.solver.quantity import (
+    FLAT,
+    MASS,
+    PART_LONG,
+    PART_SHORT,
+    THICKNESS,
+    W_MIN,
+    Quantity,
+)
 from corrugate.solver.solve import optimize, pairs
 from corrugate.spec.schema import Spec, load_spec
 
@@ -271,6 +279,26 @@ def test_bounds_left_to_the_exact_evaluation_that_bind(
     sol = solve(tight, explain=False)
     assert sol.certified and sol.objective == pytest.approx(expected, rel=1e-12)
     assert sol.objective == pytest.approx(_bnb(tight), rel=1e-12)
+
+
+@pytest.mark.parametrize("mass_factor", [0.999, 1.0, 1.2])
+def test_a_thickness_minimum_and_a_mass_budget(mass_factor: float) -> None:
+    """A folded thickness of at least 7 mm (of the 8 mm allowed) and a mass budget of 0.999,
+    1 and 1.2 times the optimum so found: infeasible just below it, the same design at it and
+    above it; the whole grid and the branch and bound agree each time."""
+    problem, grid = _binding_case()
+    deep = replace(
+        problem, constraints=(*problem.constraints, Constraint("tmin", THICKNESS, "min", 7.0))
+    )
+    best = _grid_optimum(deep, grid)
+    assert best > _grid_optimum(problem, grid) * (1 + 1e-6)  # the minimum binds
+    budget = Constraint("budget", MASS, "max", best * mass_factor)
+    capped = replace(deep, constraints=(*deep.constraints, budget))
+    expected = _grid_optimum(capped, grid)
+    assert math.isnan(expected) == (mass_factor < 1)
+    sol = solve(capped, explain=False)
+    assert sol.certified and _same(sol.objective, expected)
+    assert _same(_bnb(capped), expected)
 
 
 def test_unreachable_sides_are_certified_infeasible() -> None:
