@@ -1,0 +1,481 @@
+"""The certified search of a problem whose layers are independent, layer by layer.
+
+When the two layers are independent (``layers = "independent"``) on a rectangle without holes and
+without a bonded connector band, every quantity the solver bounds is a function of a few terms of
+each layer (docs/theory.md sections 3-5; ``s``, ``c`` = sin, cos of alpha/2, p = W s, the extent
+E = (n + 1) p, the depth h = W c and the blank B = (n + 1) W of each layer, its moduli Ecx, Ecy,
+Ebx, Eby from the model's ``from_sc``):
+
+* Lx = E1 and Ly = E2 (each one layer's own), the narrowest facet, t / W, the creases, the blank
+  and the facet length L_j (each a max or min over the layers of one layer's term; a rectangle's
+  facets of layer 1 are Ly long, those of layer 2 Lx);
+* the folded thickness h1 + h2 (a sum of layer terms);
+* the mass rho1 t1 B1 E2 + rho2 t2 B2 E1 + the band's (a function of E1, E2 and h1 + h2,
+  increasing in each; :mod:`corrugate.mechanics.mass`);
+* along the creases (eta 0 or 90, free sides or a frame: both give the paper's rule there,
+  :mod:`corrugate.mechanics.offaxis`), with pq1 = E1 / E2 and pq2 = E2 / E1 (a rectangle's
+  q = (n + 1) / S): K(0) = (t1 Ecy1 + t2 Ecx2) E1 / E2, D(0) = (t1^3 Eby1 + t2^3 Ebx2) / 12 x
+  E1 / E2, EI(0) = D(0) Ly, and at 90 deg the same with the layers' roles exchanged (EI(90) =
+  D(90) Lx). Each is (u_i + v_j) f_i g_j: a sum of a term of layer 1 and a term of layer 2,
+  times positive factors of each.
+
+So the search (:func:`search`) is:
+
+1. per layer, the designs that meet the constraints of that layer alone: its extent range (the
+   extent grows with n, so for each (W, alpha) of the grid only the n whose extent lies in the
+   range are formed, computed directly rather than scanned), the narrowest facet, t / W, the
+   creases, the blank and the facet length;
+2. the pairs that may meet the coupled bounds: for each coupled bound (a stiffness bound
+   (u_i + v_j) f_i g_j >= C, or the thickness h_i + h_j <= T) layer 2's designs sorted by
+   their term (v, or h), so that the partners of a layer-1 design that can meet it are a prefix
+   of that order (a necessary condition, with g at its largest); each layer-1 design is paired
+   with the shortest of its prefixes;
+3. on those pairs, every modelled bound by the formulas above (with a relative slack of
+   :data:`SLACK` beyond the solver's own :data:`~.problem.FEAS_RTOL`, so rounding never drops a
+   feasible pair), and a lower bound of the mass, low1_i + low2_j (each layer's blank over the
+   least extent of the other layer's list, and the band at layer 1's own extent and depth with
+   layer 2's least: the mass grows with each); of the pairs left, first only those whose lower bound is below the
+   mass of the pair of least lower bound (the optimum is at most that if it proves feasible),
+   and all of them if the answer is heavier than that; their mass by the formulas, below the
+   incumbent;
+4. those pairs in order of their mass, in batches, evaluated exactly with
+   :func:`~.quantities.point_values` (``evaluate``, the same values and the same feasibility rule,
+   FEAS_RTOL, as the branch and bound), until the lightest exactly feasible pair is no heavier
+   than the next pair's mass less the slack.
+
+Certificate: every design of the grid is in a layer list that a constraint of its own layer
+alone excludes, in a pair that a necessary condition excludes, in a pair whose modelled values
+break a bound (or reach the incumbent) by more than the slack, or in a pair whose mass (or its
+lower bound) is at least the answer's: the answer is the exact optimum over the grid (gap 0), as the branch and
+bound's. The formulas are those of ``evaluate`` rearranged, equal to it to rounding (a few
+units in the last place, far below the slack; the tests compare them with ``point_values``).
+Problems of any other structure (identical layers, other layouts, holes, a connector band,
+continuous variables, off-axis or other support conditions, load cases, buckling, an objective
+other than the least mass), or whose layer lists or pairs to score are too many
+(:data:`MAX_LAYER_DESIGNS`, :data:`MAX_PAIRS`), are left to the branch and bound (:func:`search`
+returns None).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from corrugate.geometry.layouts import Rectangle, Square, length_sum
+from corrugate.mechanics.behaviours import DEFAULT_SUPPORT
+from corrugate.mechanics.mass import connector_mass, layer_mass
+from corrugate.mechanics.moduli import get_model
+from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
+from corrugate.solver.quantity import (
+    CREASES,
+    FACET,
+    FLAT,
+    LX,
+    LY,
+    MASS,
+    PART_LONG,
+    PART_SHORT,
+    T_OVER_W,
+    THICKNESS,
+    W_MIN,
+    Quantity,
+)
+
+__all__ = ["MAX_LAYER_DESIGNS", "MAX_PAIRS", "SLACK", "SeparableResult", "applies", "search"]
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+#: Exact values of pairs: (mass in g, feasible) at the points (arrays n1, W1, a1, n2, W2, a2).
+Exact = Callable[[dict[str, FloatArray]], tuple[FloatArray, NDArray[np.bool_]]]
+
+#: Relative slack beyond FEAS_RTOL with which the formulas judge a pair (rounding: far above the
+#: few units in the last place by which they may differ from ``evaluate``).
+SLACK = 1e-9
+#: Past this many designs in a layer's list the branch and bound is used instead.
+MAX_LAYER_DESIGNS = 200_000
+#: Past this many pairs to score (step 2) the branch and bound is used instead.
+MAX_PAIRS = 4_000_000
+#: Pairs scored by the formulas at once (memory: a few arrays of this length).
+CHUNK_PAIRS = 1_000_000
+#: Pairs evaluated exactly in the first batch (then fourfold each batch).
+FIRST_EXACT = 16
+#: The supports whose K and D along the creases are the paper's rule (docs/theory.md 3.3).
+_RULE_SUPPORTS = (DEFAULT_SUPPORT, "frame")
+#: Quantities that are one layer's own, or that the pair stage leaves to the exact evaluation.
+_LAYER_KINDS = {LX, LY, W_MIN, T_OVER_W, CREASES, FLAT, FACET}
+_EXACT_ONLY = {PART_SHORT, PART_LONG}
+
+
+@dataclass(frozen=True)
+class SeparableResult:
+    """The optimum over one sheet pair: its point (None: no design beats the incumbent, or none
+    exists), mass (g), and how many pairs of layer designs were scored and evaluated exactly."""
+
+    point: dict[str, float] | None
+    value: float
+    layer_designs: tuple[int, int]
+    scored: int
+    evaluated: int
+
+
+def _stiffness(q: Quantity) -> bool:
+    """Whether ``q`` is a stiffness along the creases under the paper's rule (module docstring)."""
+    return (
+        q.kind in ("EI", "D", "K")
+        and q.eta in (0.0, 90.0)
+        and q.support in _RULE_SUPPORTS
+        and q.test is None
+        and q.span is None
+    )
+
+
+def applies(problem: Problem) -> bool:
+    """Whether ``problem`` has the structure of the module docstring (else: branch and bound)."""
+    lay = problem.layout
+    if (
+        problem.identical
+        or not problem.gridded
+        or type(lay) is not Rectangle
+        or isinstance(lay, Square)
+        or lay.holes
+        or problem.joint != "none"
+        or problem.objective.quantity != MASS
+        or problem.objective.sense != "min"
+    ):
+        return False
+    for c in problem.constraints:
+        q = c.quantity
+        if q in _LAYER_KINDS or q in _EXACT_ONLY or q in (THICKNESS, MASS):
+            continue
+        if _stiffness(q) and c.sense == "min":
+            continue
+        return False
+    return True
+
+
+@dataclass(frozen=True)
+class _Layer:
+    """One layer's designs that meet its own constraints: n, W (mm), alpha (deg), the extent E,
+    depth h and blank B (mm), and the moduli (MPa)."""
+
+    n: FloatArray
+    W: FloatArray
+    a: FloatArray
+    E: FloatArray
+    h: FloatArray
+    B: FloatArray
+    Ecx: FloatArray
+    Ecy: FloatArray
+    Ebx: FloatArray
+    Eby: FloatArray
+
+    def __len__(self) -> int:
+        return len(self.n)
+
+    def take(self, idx: IntArray) -> _Layer:
+        return _Layer(*(getattr(self, f)[idx] for f in self.__dataclass_fields__))
+
+
+def _ok(c: Constraint, v: FloatArray, rtol: float) -> NDArray[np.bool_]:
+    return c.satisfied(v, rtol=rtol)
+
+
+def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
+    """Step 1 of the module docstring for layer ``which`` (1: its extent is Lx, 2: Ly); None if
+    the list is longer than :data:`MAX_LAYER_DESIGNS`."""
+    own = LX if which == 1 else LY
+    W_2d, a_2d = np.meshgrid(problem.W.values(), problem.alpha.values(), indexing="ij")
+    W_g: FloatArray = W_2d.reshape(-1)
+    a_g: FloatArray = a_2d.reshape(-1)
+    t = cand.t
+    keep = np.ones(len(W_g), dtype=bool)
+    n_lo, n_hi = float(problem.n_lo), float(problem.n_hi)
+    lo_n = np.full(len(W_g), n_lo)
+    hi_n = np.full(len(W_g), n_hi)
+    for c in problem.constraints:
+        q = c.quantity
+        if q == W_MIN and c.sense == "min":
+            keep &= _ok(c, W_g, FEAS_RTOL)
+        elif q == T_OVER_W and c.sense == "max":
+            keep &= _ok(c, t / W_g, FEAS_RTOL)
+        elif q == CREASES and c.sense == "max":
+            hi_n = np.minimum(hi_n, math.floor(c.bound * (1 + FEAS_RTOL) + 1e-9))
+    # the extent (n + 1) p grows with n: the n range of each (W, alpha) from its bounds, one
+    # value wider on each side, then checked exactly below with evaluate's arithmetic
+    half = a_g * (np.pi / 360.0)  # as analysis.evaluate._layer_part
+    s, cc = np.sin(half), np.cos(half)
+    p = W_g * s
+    for c in problem.constraints:
+        if c.quantity == own or (c.quantity == FACET and c.sense == "max"):
+            # FACET: the other layer's facets are this layer's extent long (a rectangle)
+            b = c.bound
+            if c.sense == "min":
+                lo_n = np.maximum(lo_n, np.floor(b * (1 - 2 * FEAS_RTOL) / p) - 2.0)
+            else:
+                hi_n = np.minimum(hi_n, np.ceil(b * (1 + 2 * FEAS_RTOL) / p))
+        elif c.quantity == FLAT and c.sense == "max":
+            hi_n = np.minimum(hi_n, np.ceil(c.bound * (1 + 2 * FEAS_RTOL) / W_g))
+    lo_n = np.maximum(lo_n, n_lo)
+    count = np.where(keep, np.maximum(hi_n - lo_n + 1.0, 0.0), 0.0).astype(np.int64)
+    total = int(count.sum())
+    if total > MAX_LAYER_DESIGNS:
+        return None
+    g = np.repeat(np.arange(len(W_g)), count)
+    n = lo_n[g] + (np.arange(total) - np.repeat(np.cumsum(count) - count, count))
+    E = (n + 1.0) * p[g]
+    B = (n + 1.0) * W_g[g]
+    ok = np.ones(total, dtype=bool)
+    for c in problem.constraints:
+        q = c.quantity
+        if q == own or (q == FACET and c.sense == "max"):
+            ok &= _ok(c, E, FEAS_RTOL)
+        elif q == FLAT and c.sense == "max":
+            ok &= _ok(c, B, FEAS_RTOL)
+        elif q == CREASES and c.sense == "max":
+            ok &= _ok(c, n, FEAS_RTOL)
+    idx = np.flatnonzero(ok)
+    g, n, E, B = g[idx], n[idx], E[idx], B[idx]
+    from_sc: Any = get_model(problem.model).from_sc  # (scalar material, arrays of the grid)
+    m = from_sc(float(cand.material.E), float(cand.material.nu), float(t), W_g, s, cc)
+
+    def per(x: object) -> FloatArray:
+        arr = np.asarray(x, dtype=np.float64)
+        return np.asarray(np.broadcast_to(arr, W_g.shape)[g])
+
+    return _Layer(
+        n, W_g[g], a_g[g], E, (W_g * cc)[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
+    )
+
+
+@dataclass(frozen=True)
+class _Coupled:
+    """A bound (u_i + v_j) f_i g_j >= bound (sense min) or h_i + h_j <= bound (thickness max):
+    the per-layer terms of layer 1 (u, f) and layer 2 (v, g)."""
+
+    constraint: Constraint
+    u: FloatArray
+    v: FloatArray
+    f: FloatArray
+    g: FloatArray
+
+
+def _terms(q: Quantity, L1: _Layer, L2: _Layer, t1: float, t2: float) -> tuple[FloatArray, ...]:
+    """(u, v, f, g) of a stiffness along the creases (module docstring)."""
+    one1, one2 = np.ones(len(L1)), np.ones(len(L2))
+    if q.eta == 0.0:
+        if q.kind == "K":
+            return t1 * L1.Ecy, t2 * L2.Ecx, L1.E, 1.0 / L2.E
+        u, v = t1**3 / 12.0 * L1.Eby, t2**3 / 12.0 * L2.Ebx
+        return (u, v, L1.E, 1.0 / L2.E) if q.kind == "D" else (u, v, L1.E, one2)
+    if q.kind == "K":
+        return t1 * L1.Ecx, t2 * L2.Ecy, 1.0 / L1.E, L2.E
+    u, v = t1**3 / 12.0 * L1.Ebx, t2**3 / 12.0 * L2.Eby
+    return (u, v, 1.0 / L1.E, L2.E) if q.kind == "D" else (u, v, one1, L2.E)
+
+
+def _prefix_pairs(order: IntArray, counts: IntArray) -> tuple[IntArray, IntArray]:
+    """Pairs (i, order[k]) for k < counts[i], as two index arrays."""
+    total = int(counts.sum())
+    i = np.repeat(np.arange(len(counts)), counts)
+    k = np.arange(total) - np.repeat(np.cumsum(counts) - counts, counts)
+    return i, order[k]
+
+
+def _mass(
+    problem: Problem, c1: Candidate, c2: Candidate, L1: _Layer, L2: _Layer, i: IntArray, j: IntArray
+) -> FloatArray:
+    """Mass (g) of the pairs: both layers' blanks and the band (``evaluate``'s terms)."""
+    lay = problem.layout
+    E1, E2 = L1.E[i], L2.E[j]
+    m1, m2 = c1.material, c2.material
+    mass = layer_mass(m1.density, c1.t, L1.W[i], length_sum(lay, L1.n[i], E2), lay)
+    mass = mass + layer_mass(m2.density, c2.t, L2.W[j], length_sum(lay, L2.n[j], E1), lay)
+    return np.asarray(mass + connector_mass(m1.density, c1.t, lay, E1, E2, L1.h[i] + L2.h[j]))
+
+
+def search(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    incumbent: float | None,
+    exact: Exact,
+) -> SeparableResult | None:
+    """The least-mass design over sheets (c1, c2), certified (module docstring), lighter than
+    ``incumbent`` (g) if given; None when the problem lacks the structure (:func:`applies`) or
+    its layer lists or pairs are too many. ``exact(x)`` returns the exact values and feasibility of the pairs
+    ``x`` (arrays n1, W1, a1, n2, W2, a2): ``(mass, feasible)``."""
+    if not applies(problem):
+        return None
+    L1 = _layer(problem, c1, 1)
+    L2 = _layer(problem, c2, 2) if L1 is not None else None
+    if L1 is None or L2 is None:
+        return None
+    sizes = (len(L1), len(L2))
+    worst = math.inf if incumbent is None else incumbent * (1 + SLACK)
+    loose = FEAS_RTOL + SLACK
+    coupled: list[_Coupled] = []
+    t_max = math.inf
+    mass_max = math.inf
+    for c in problem.constraints:
+        q = c.quantity
+        if _stiffness(q):
+            coupled.append(_Coupled(c, *_terms(q, L1, L2, c1.t, c2.t)))
+        elif q == THICKNESS and c.sense == "max":
+            t_max = min(t_max, c.bound * (1 + loose))
+        elif q == MASS and c.sense == "max":
+            mass_max = min(mass_max, c.bound * (1 + loose))
+    worst = min(worst, mass_max)
+    empty = SeparableResult(None, math.nan, sizes, 0, 0)
+    if not len(L1) or not len(L2):
+        return empty
+    # step 2: each layer-1 design's partners: a prefix of layer 2 sorted by one coupled term
+    # (a necessary condition), the shortest of those the coupled bounds give
+    orders: list[IntArray] = [np.arange(len(L2))]
+    counts: list[IntArray] = [np.full(len(L1), len(L2), dtype=np.int64)]
+    if math.isfinite(t_max):  # h1 + h2 <= t_max: layer 2 by rising h
+        order = np.argsort(L2.h, kind="stable")
+        orders.append(order)
+        counts.append(np.searchsorted(L2.h[order], t_max - L1.h, side="right"))
+    for k in coupled:
+        # (u + v) f g >= C(1 - loose) needs v >= C(1 - loose) / (f g_max) - u: layer 2 by
+        # falling v (a small relative widening against rounding)
+        need = k.constraint.bound * (1 - loose) / (k.f * float(k.g.max()) * (1 + SLACK)) - k.u
+        order = np.argsort(-k.v, kind="stable")
+        orders.append(order)
+        counts.append(np.searchsorted(-k.v[order], -need, side="right"))
+    table = np.stack(counts)
+    pick = np.argmin(table, axis=0)
+    rows = table[pick, np.arange(len(L1))].astype(np.int64)
+    if int(rows.sum()) > MAX_PAIRS:
+        return None
+    # a lower bound of each pair's mass, low1[i] + low2[j]: the mass grows with the partner's
+    # extent and the thickness, so each layer's blank over the least extent of the other
+    # layer's list, and the band at the least of those (module docstring)
+    lay, m1, m2 = problem.layout, c1.material, c2.material
+    E1_min, E2_min, h2_min = float(L1.E.min()), float(L2.E.min()), float(L2.h.min())
+    low1 = layer_mass(m1.density, c1.t, L1.W, length_sum(lay, L1.n, E2_min), lay)
+    low1 = low1 + connector_mass(m1.density, c1.t, lay, L1.E, E2_min, L1.h + h2_min)
+    low2 = layer_mass(m2.density, c2.t, L2.W, length_sum(lay, L2.n, E1_min), lay)
+    # step 3: the modelled values of the pairs, in chunks of layer-1 designs
+    evaluated = 0
+    cand_i: list[IntArray] = []
+    cand_j: list[IntArray] = []
+    cand_m: list[FloatArray] = []
+    scored = 0
+    start = 0
+    csum = np.cumsum(rows)
+    while start < len(L1):
+        base = 0 if start == 0 else int(csum[start - 1])
+        stop = int(np.searchsorted(csum, base + CHUNK_PAIRS, side="right"))
+        stop = max(stop, start + 1)
+        parts_i, parts_j = [], []
+        for o, order in enumerate(orders):
+            mine = start + np.flatnonzero(pick[start:stop] == o)
+            if len(mine):
+                a, b = _prefix_pairs(order, rows[mine])
+                parts_i.append(mine[a])
+                parts_j.append(b)
+        if not parts_i:
+            start = stop
+            continue
+        i, j = np.concatenate(parts_i), np.concatenate(parts_j)
+        scored += len(i)
+        if math.isfinite(t_max):
+            sel = L1.h[i] + L2.h[j] <= t_max
+            i, j = i[sel], j[sel]
+        for k in coupled:
+            val = (k.u[i] + k.v[j]) * k.f[i] * k.g[j]
+            sel = val >= k.constraint.bound * (1 - loose)
+            i, j = i[sel], j[sel]
+        for c in problem.constraints:  # the thickness's minimum, if any
+            if c.quantity == THICKNESS and c.sense == "min":
+                sel = L1.h[i] + L2.h[j] >= c.bound * (1 - loose)
+                i, j = i[sel], j[sel]
+        lb = (low1[i] + low2[j]) * (1 - SLACK)
+        sel = lb < worst
+        cand_i.append(i[sel])
+        cand_j.append(j[sel])
+        cand_m.append(lb[sel])
+        start = stop
+    if not cand_i:
+        return SeparableResult(None, math.nan, sizes, scored, 0)
+    si, sj, slb = np.concatenate(cand_i), np.concatenate(cand_j), np.concatenate(cand_m)
+    if not len(si):
+        return SeparableResult(None, math.nan, sizes, scored, 0)
+    # a first threshold: the mass of the pair of least lower bound (the optimum is at most that
+    # if the pair proves feasible; else the search below is repeated without the threshold)
+    first = int(np.argmin(slb))
+    cap = float(_mass(problem, c1, c2, L1, L2, si[first : first + 1], sj[first : first + 1])[0])
+    best, best_at = math.inf, -1
+    ci, cj = si[:0], sj[:0]
+    for threshold in (min(cap * (1 + SLACK), worst), worst):
+        keep = slb < threshold
+        ci, cj = si[keep], sj[keep]
+        cm = _mass(problem, c1, c2, L1, L2, ci, cj)
+        sel = cm < worst
+        ci, cj, cm = ci[sel], cj[sel], cm[sel]
+        best, best_at, n_exact = _lightest(L1, L2, ci, cj, cm, incumbent, exact)
+        evaluated += n_exact
+        if best <= threshold:  # every pair left out is at least as heavy
+            break
+    if best_at < 0:
+        return SeparableResult(None, math.nan, sizes, scored, evaluated)
+    one, two = int(ci[best_at]), int(cj[best_at])
+    point = {
+        "n1": float(L1.n[one]),
+        "W1": float(L1.W[one]),
+        "a1": float(L1.a[one]),
+        "n2": float(L2.n[two]),
+        "W2": float(L2.W[two]),
+        "a2": float(L2.a[two]),
+    }
+    return SeparableResult(point, best, sizes, scored, evaluated)
+
+
+def _lightest(
+    L1: _Layer,
+    L2: _Layer,
+    ci: IntArray,
+    cj: IntArray,
+    cm: FloatArray,
+    incumbent: float | None,
+    exact: Exact,
+) -> tuple[float, int, int]:
+    """Step 4 of the module docstring over the pairs (ci, cj) of modelled masses cm (g): the
+    lightest exactly feasible mass (inf: none), its index (-1: none) and the pairs evaluated."""
+    best, best_at = math.inf, -1
+    evaluated = 0
+    batch = FIRST_EXACT
+    remaining = np.arange(len(cm))
+    while len(remaining):
+        if len(remaining) > batch:
+            part = np.argpartition(cm[remaining], batch)
+            take, remaining = remaining[part[:batch]], remaining[part[batch:]]
+        else:
+            take, remaining = remaining, remaining[:0]
+        x = {
+            "n1": L1.n[ci[take]],
+            "W1": L1.W[ci[take]],
+            "a1": L1.a[ci[take]],
+            "n2": L2.n[cj[take]],
+            "W2": L2.W[cj[take]],
+            "a2": L2.a[cj[take]],
+        }
+        mass, feasible = exact(x)
+        evaluated += len(take)
+        if incumbent is not None:
+            feasible = feasible & (mass < incumbent)
+        f = np.where(feasible, mass, np.inf)
+        k = int(np.argmin(f))
+        if f[k] < best:
+            best = float(f[k])
+            best_at = int(take[k])
+        if len(remaining) and float(cm[remaining].min()) * (1 - SLACK) >= best:
+            break  # every pair left is at least as heavy as the best
+        batch *= 4
+    return best, best_at, evaluated
