@@ -25,7 +25,7 @@ import corrugate.solver.bnb as bnb
 from corrugate.solver import Problem, solve
 from corrugate.solver.progress import reporting
 from corrugate.solver.quantities import Tables, point_values
-from corrugate.solver.solve import GAP_RTOL, optimize, pairs
+from corrugate.solver.solve import GAP_RTOL, RUNNER_UP_GAP_RTOL, optimize, pairs
 from corrugate.spec.schema import load_spec
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -167,7 +167,12 @@ def test_binding_and_runner_ups_equal_independent_re_solves(path: Path) -> None:
             assert n not in got
             continue
         assert got[n].certified
-        assert got[n].objective == pytest.approx(cold.value, rel=1e-9 if not problem.gridded else 0)
+        if problem.gridded:
+            assert got[n].objective == cold.value
+        else:  # certified to RUNNER_UP_GAP_RTOL: a real design, no better one by more than that
+            assert problem.objective.sense == "min"
+            assert cold.value * (1 - 2 * GAP_RTOL) <= got[n].objective
+            assert got[n].objective <= cold.value * (1 + RUNNER_UP_GAP_RTOL)
         assert [layer["n"] for layer in got[n].layers] == [n, n]  # as n_fixed: both layers
     if problem.identical or sol.assembly.layer2.n == n_star:
         assert got[n_star].objective == pytest.approx(sol.objective, rel=1e-12)

@@ -276,7 +276,6 @@ def design_cmd(
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     (--verify fe [--refine]: its FE verification, docs/fea.md section 6)
     """
-    from corrugate.core.fileio import check_output_folder
     from corrugate.solver import Problem
     from corrugate.spec.schema import load_spec_text
     from corrugate.workflow import made_for, output_options, solve_spec, write_design
@@ -286,6 +285,8 @@ def design_cmd(
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     if out is not None:  # the root, a system folder, home, the working folder: before solving
+        from corrugate.core.fileio import check_output_folder
+
         check_output_folder(out)
     if paper.strip().lower() not in PAPER_NAMES:  # checked with or without --out; the writers
         from corrugate.export.pdf import check_paper  # (export) only for its message: not --json's

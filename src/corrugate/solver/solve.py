@@ -57,6 +57,9 @@ FloatArray = NDArray[np.float64]
 ACTIVE_RTOL = 1e-6
 #: How many n on each side of the optimum's n the runner-ups cover.
 RUNNER_UP_SPREAD = 3
+#: Relative gap to which a runner-up is certified with continuous variables (on grids: exact):
+#: no design with its n is better by more than this. The optimum's own n shows the optimum.
+RUNNER_UP_GAP_RTOL = 1e-6
 #: The probe of the binding checks (:func:`_witnesses`): moves of n and of gridded W and alpha
 #: by these many grid steps, and of continuous W and alpha by these fractions of their range.
 PROBE_STEPS = (1, 2, 3)
@@ -816,7 +819,9 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
     :func:`~.bnb._dims`): one search per sheet pair with one incumbent per n, from the boxes of
     the solve that may hold a feasible design (:attr:`Optimum.archives`), else from the whole
-    domain."""
+    domain; with continuous variables to the relative gap :data:`RUNNER_UP_GAP_RTOL`. The entry
+    of the optimum's n, when both its layers have it, is the certified optimum itself (the best
+    design of the whole problem is the best with that n)."""
     assert opt.point is not None
     n_star = round(opt.point["n1"])
     a, b = (
@@ -833,7 +838,9 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
                 certified[n] = False
             break
         start = None if tree is None else tree[i].reopen()
-        r = branch_and_bound(problem, *pair, tables=tables, start=start, per_n=(a, b))
+        r = branch_and_bound(
+            problem, *pair, tables=tables, start=start, per_n=(a, b), gap_rtol=RUNNER_UP_GAP_RTOL
+        )
         assert r.by_n is not None
         for n, rn in r.by_n.items():
             certified[n] &= rn.certified
@@ -842,18 +849,22 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
             ):
                 best[n] = (rn, pair)
     out = []
+    own = opt.certified and round(opt.point["n2"]) == n_star
     for n in range(a, b + 1):
-        if n not in best:
+        if n == n_star and own:
+            found = opt
+        elif n not in best:
             continue
-        rn, pair = best[n]
-        found = Optimum(rn.point, pair, rn.value, certified[n], 0.0, rn.boxes, rn.iterations)
+        else:
+            rn, pair = best[n]
+            found = Optimum(rn.point, pair, rn.value, certified[n], 0.0, rn.boxes, rn.iterations)
         layers = assembly_of(problem, found).layers
         out.append(
             RunnerUp(
                 n,
-                rn.value,
+                found.value,
                 tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers)),
-                certified[n],
+                found.certified,
             )
         )
     return out
