@@ -725,16 +725,17 @@ def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> se
     return found
 
 
-def _relaxed(problem: Problem, name: str) -> Problem:
+def _relaxed(problem: Problem, name: str, certified: bool = True) -> Problem:
     """The problem a binding check searches: ``problem`` without the constraint ``name`` and,
-    when that name is one constraint, with its negation (:func:`_negation`) instead. A design
-    better than the certified optimum (by more than twice its proven gap) that meets every
-    other constraint must break this one, else it would be a better design of ``problem``
-    itself; so both problems have such a design or neither has, and the negation lets the
-    search drop every box (and, on grids, every layer's point) that meets the constraint."""
+    when that name is one constraint and the optimum is ``certified``, with its negation
+    (:func:`_negation`) instead. A design better than the certified optimum (by more than twice
+    its proven gap) that meets every other constraint must break this one, else it would be a
+    better design of ``problem`` itself; so both problems have such a design or neither has,
+    and the negation lets the search drop every box (and, on grids, every layer's point) that
+    meets the constraint."""
     own = [c for c in problem.constraints if c.name == name]
     rest = problem.without(name)
-    if len(own) != 1:
+    if len(own) != 1 or not certified:
         return rest
     return replace(rest, constraints=(*rest.constraints, _negation(own[0], problem)))
 
@@ -776,7 +777,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
             relaxed = optimize(
-                _relaxed(problem, c.name),
+                _relaxed(problem, c.name, opt.certified),
                 tables=tables,
                 incumbent=opt.value,
                 warm=warm,
