@@ -6,6 +6,7 @@ Run by hand (about a minute; the exhaustive grid dominates)::
     .venv/bin/python benchmarks/solve.py --offaxis-only   # eta 45 (free sides) against eta 0
     .venv/bin/python benchmarks/solve.py --headline-only  # the case study's ratios only
     .venv/bin/python benchmarks/solve.py --chassis-only   # issue 24's chassis spec, examples
+    .venv/bin/python benchmarks/solve.py --examples-against /tmp/main  # examples, before/after
 
 ``--chassis-only`` (issue 24, "Must show"): the chassis spec (benchmarks/specs/
 chassis_independent.toml: 6 variables, independent layers) as fresh processes of the installed
@@ -487,6 +488,39 @@ def chassis(repeats: int) -> None:
         )
 
 
+def examples_against(other: Path, repeats: int) -> None:
+    """``design --json`` of every shipped example, as fresh processes with compiled bytecode,
+    interleaved with the same command run on the package of another source tree ``other`` (a
+    checkout of main, e.g. ``git archive main | tar -x -C /tmp/main``; its ``src`` first on
+    PYTHONPATH, same interpreter and libraries), each pair in turns of both orders: CPU medians
+    of ``repeats``, the import floor of both, and the ratio (before / after, on this tree's
+    examples/*.toml)."""
+    trees = {"other": other.resolve() / "src", "this": ROOT / "src"}
+    for tree in (*trees.values(), Path(sysconfig.get_paths()["purelib"])):
+        compileall.compile_dir(str(tree), quiet=1, workers=1)
+    base = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+    envs = {k: {**base, "PYTHONPATH": str(src)} for k, src in trees.items()}
+    py = sys.executable
+    floor = [py, "-c", "import numpy, pydantic, corrugate.solver.solve, corrugate.spec.schema"]
+    cases = {"(import floor)": floor}
+    for p in sorted(EXAMPLES.glob("*.toml")):
+        cases[p.name] = [py, "-m", "corrugate", "design", str(p), "--json"]
+    runs: dict[tuple[str, str], list[float]] = {(c, t): [] for c in cases for t in trees}
+    for r in range(repeats):  # interleaved (the machine is shared), the order swapped each round
+        for case, argv in cases.items():
+            for tree in list(trees)[:: 1 if r % 2 == 0 else -1]:
+                runs[(case, tree)].append(_child(argv, envs[tree])[0])
+    print(
+        f"\n== design EXAMPLE --json, {trees['other']} (before) against {trees['this']} (after), "
+        f"fresh processes interleaved, CPU median of {repeats}"
+    )
+    for case in cases:
+        a, b = (statistics.median(runs[(case, t)]) for t in trees)
+        print(
+            f"{case:34s} before {a:5.2f} s  after {b:5.2f} s  ratio {a / b:4.2f}x  <= 1 s: {b <= 1.0}"
+        )
+
+
 def main() -> None:
     if len(sys.argv) == 3 and sys.argv[1] == "--chassis-exhaustive":  # one child process
         chassis_exhaustive(Path(sys.argv[2]))
@@ -501,7 +535,16 @@ def main() -> None:
     )
     ap.add_argument("--chassis-only", action="store_true", help="only issue 24's chassis spec")
     ap.add_argument("--chassis-repeats", type=int, default=5, help="runs of each child (median)")
+    ap.add_argument(
+        "--examples-against",
+        type=Path,
+        metavar="DIR",
+        help="only design --json of the examples, interleaved with another source tree's package",
+    )
     args = ap.parse_args()
+    if args.examples_against is not None:
+        examples_against(args.examples_against, args.chassis_repeats)
+        return
     if args.chassis_only:
         chassis(args.chassis_repeats)
         return

@@ -121,6 +121,65 @@ def test_two_holes_are_refused_exactly_when_their_true_gap_is_under_the_ligament
     assert refused > 20 and kept > 20  # both sides of the ligament were drawn
 
 
+def test_a_hole_near_the_outline_is_refused_exactly_when_its_true_ligament_is_too_small() -> None:
+    """Circular and square holes at random places in a square and in a circle outline, many
+    near the edge: check_holes (whose shortcut passes a hole whose enclosing circle is a ligament
+    inside, without the vertex-by-vertex test) refuses a hole exactly when its true ligament,
+    by hand (the square: the distance to the nearest side; the circle outline: its radius less
+    the centre distance and the hole's reach), is under MIN_LIGAMENT; and the full test (the
+    shortcut disabled) agrees with it on every draw."""
+    from corrugate.geometry import holes as hmod
+    from corrugate.geometry.layouts import make_layout
+
+    square = np.array([[0.0, 0.0], [60.0, 0.0], [60.0, 60.0], [0.0, 60.0]])
+    disc = make_layout("circle").plan_outline(60.0, 60.0)
+    rng = np.random.default_rng(11)
+    box = ((-2.0, -2.0), (2.0, -2.0), (2.0, 2.0), (-2.0, 2.0))
+    seen = {True: 0, False: 0}
+    for _ in range(200):
+        in_disc = rng.random() < 0.5
+        r_c = float(rng.uniform(22.0, 29.0))  # centre distance from the middle: near an edge
+        ang = float(rng.uniform(0.0, 2 * math.pi))
+        c = (r_c * math.cos(ang), r_c * math.sin(ang))
+        if rng.random() < 0.5:
+            hole, corners = Hole("circle", c, 4.0), None
+        else:
+            hole, corners = Hole("polygon", c, vertices=box), np.array(box) + np.array(c)
+        if in_disc:  # the outline is a 720-gon inscribed in the radius-30 circle
+            far = 2.0 if corners is None else float(np.max(np.hypot(*corners.T)) - r_c)
+            true_gap = 30.0 * math.cos(math.pi / 720) - r_c - far
+        else:
+            pts = (
+                np.array(
+                    [
+                        [c[0] + 2 * math.cos(t), c[1] + 2 * math.sin(t)]
+                        for t in np.linspace(0, 2 * math.pi, 721)
+                    ]
+                )
+                if corners is None
+                else corners
+            ) + 30.0
+            true_gap = float(min(pts.min(), (60.0 - pts).min()))
+        if abs(true_gap - hmod.MIN_LIGAMENT) < 0.05:  # the cut polygons' own tolerance
+            continue
+        outline = disc if in_disc else square
+        verdicts = []
+        for shortcut in (True, False):
+            clear = hmod._clear
+            if not shortcut:
+                hmod._clear = lambda *a: False  # type: ignore[assignment]
+            try:
+                check_holes((hole,), outline, 60.0, 60.0)
+                verdicts.append(True)
+            except InputError:
+                verdicts.append(False)
+            finally:
+                hmod._clear = clear  # type: ignore[assignment]
+        assert verdicts == [true_gap >= hmod.MIN_LIGAMENT] * 2, (hole, in_disc, true_gap)
+        seen[verdicts[0]] += 1
+    assert seen[True] > 20 and seen[False] > 20  # both sides of the ligament were drawn
+
+
 # -- model -----------------------------------------------------------------------------------------
 
 

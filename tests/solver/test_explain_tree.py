@@ -25,7 +25,7 @@ import corrugate.solver.bnb as bnb
 from corrugate.solver import Problem, solve
 from corrugate.solver.progress import reporting
 from corrugate.solver.quantities import Tables, point_values
-from corrugate.solver.solve import GAP_RTOL, optimize, pairs
+from corrugate.solver.solve import GAP_RTOL, RUNNER_UP_GAP_RTOL, optimize, pairs
 from corrugate.spec.schema import load_spec
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -136,6 +136,7 @@ def test_archive_holds_every_design_of_every_relaxation(case: str, tmp_path: Pat
 EXPLAINED = [
     EXAMPLES / "blimp_gripper.toml",
     EXAMPLES / "blimp_gripper_continuous.toml",
+    EXAMPLES / "chassis_plate.toml",
     EXAMPLES / "rectangle_independent.toml",
     EXAMPLES / "wheel_circle.toml",
     ROOT / "benchmarks" / "specs" / "chassis_independent.toml",
@@ -166,10 +167,56 @@ def test_binding_and_runner_ups_equal_independent_re_solves(path: Path) -> None:
             assert n not in got
             continue
         assert got[n].certified
-        assert got[n].objective == pytest.approx(cold.value, rel=1e-9 if not problem.gridded else 0)
+        if problem.gridded:
+            assert got[n].objective == cold.value
+        else:  # certified to RUNNER_UP_GAP_RTOL: a real design, no better one by more than that
+            assert problem.objective.sense == "min"
+            assert cold.value * (1 - 2 * GAP_RTOL) <= got[n].objective
+            assert got[n].objective <= cold.value * (1 + RUNNER_UP_GAP_RTOL)
         assert [layer["n"] for layer in got[n].layers] == [n, n]  # as n_fixed: both layers
     if problem.identical or sol.assembly.layer2.n == n_star:
         assert got[n_star].objective == pytest.approx(sol.objective, rel=1e-12)
+
+
+def test_a_witnessed_binding_constraint_binds_and_its_negation_holds_every_breaking_design() -> (
+    None
+):
+    """The two shortcuts of the binding checks, each against a second method. (1) The probe
+    (``_witnesses``): every constraint it names binds by a cold certified re-solve without it,
+    and it names some on the shipped examples that have binding constraints (so the shortcut is
+    used). (2) The negation a check adds (``_negation``): on a grid, a value just past the
+    bound's slack (broken) meets it, and so does one on the slack's edge; continuous: the
+    bound itself."""
+    from corrugate.solver.problem import FEAS_RTOL, Constraint
+    from corrugate.solver.quantity import LX
+    from corrugate.solver.solve import _negation, _witnesses
+
+    named = 0
+    for path in (EXAMPLES / "wheel_circle.toml", EXAMPLES / "chassis_plate.toml"):
+        problem = _problem(path)
+        tables = Tables(problem)
+        opt = optimize(problem, tables=tables)
+        tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
+        for name in _witnesses(problem, opt, tables, tol):
+            relaxed = optimize(problem.without(name), tables=tables, incumbent=opt.value)
+            assert relaxed.point is not None and relaxed.value < opt.value - tol, name
+            named += 1
+    assert named >= 2
+    grid = _problem(EXAMPLES / "chassis_plate.toml")
+    cont = _problem(EXAMPLES / "blimp_gripper_continuous.toml")
+    for problem, r in ((grid, FEAS_RTOL), (cont, 0.0)):
+        for sense in ("min", "max"):
+            c = Constraint("side", LX, sense, 80.0)  # type: ignore[arg-type]
+            neg = _negation(c, problem)
+            assert neg.sense != c.sense
+            edge = 80.0 * (1 - r) if sense == "min" else 80.0 * (1 + r)  # c holds here
+            past = (
+                np.array([edge * (1 - 1e-13)]) if sense == "min" else np.array([edge * (1 + 1e-13)])
+            )
+            assert not c.satisfied(past, rtol=r)[0]  # broken ...
+            assert neg.satisfied(past, rtol=r)[0]  # ... so the negation holds
+            assert neg.satisfied(np.array([edge]), rtol=r)[0]
+            assert not neg.satisfied(np.array([80.0 * (1.1 if sense == "min" else 0.9)]), rtol=r)[0]
 
 
 INFEASIBLE = [

@@ -21,7 +21,7 @@ from corrugate.cli import options as o
 from corrugate.cli.console import fmt, make_console
 from corrugate.core.errors import InputError
 from corrugate.core.limits import abnormal_reason, check, check_count, is_normal, require_finite
-from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_PAPER, STIFFNESS_NAMES
+from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_PAPER, PAPER_NAMES, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -276,10 +276,6 @@ def design_cmd(
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     (--verify fe [--refine]: its FE verification, docs/fea.md section 6)
     """
-    from corrugate.core.fileio import check_output_folder
-    from corrugate.core.parameters import PARAMETERS
-    from corrugate.export.machines import get_machine
-    from corrugate.export.pdf import check_paper
     from corrugate.solver import Problem
     from corrugate.spec.schema import load_spec_text
     from corrugate.workflow import made_for, output_options, solve_spec, write_design
@@ -289,9 +285,17 @@ def design_cmd(
     if out is not None and out.exists() and not out.is_dir():
         raise InputError("--out", str(out), "a directory", reason="is a file")
     if out is not None:  # the root, a system folder, home, the working folder: before solving
+        from corrugate.core.fileio import check_output_folder
+
         check_output_folder(out)
-    check_paper(paper)  # checked with or without --out
+    if paper.strip().lower() not in PAPER_NAMES:  # checked with or without --out; the writers
+        from corrugate.export.pdf import check_paper  # (export) only for its message: not --json's
+
+        check_paper(paper)
     if cutter is not None:  # checked before the spec is read, and before solving
+        from corrugate.core.parameters import PARAMETERS
+        from corrugate.export.machines import get_machine
+
         try:
             get_machine(cutter)
         except InputError as exc:
@@ -402,7 +406,8 @@ def _fe_options(
     verify: str | None, refine: bool, meshes: str, shifts: str, max_mesh: int = 0
 ) -> FeOptions | None:
     """``--verify``, ``--refine``, ``--verify-meshes``, ``--verify-shifts`` and
-    ``--verify-max-mesh`` checked before the spec is read (one line naming the option, exit 2)."""
+    ``--verify-max-mesh`` checked before the spec is read (one line naming the option, exit 2).
+    The FE package is imported only with ``--verify`` (``design --json`` does without it)."""
     if verify is None:
         if refine:
             raise InputError("--refine", "given", "only with --verify fe", reason="needs --verify")
@@ -420,7 +425,6 @@ def _fe_options(
         return None
     if verify != "fe":
         raise InputError("--verify", repr(verify), "fe (the FE twin of every behavioural bound)")
-    # the FE package only when it is asked for (its import is about 0.03 s of a design run)
     from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts
 
     try:

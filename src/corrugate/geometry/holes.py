@@ -239,6 +239,24 @@ def _gap(p: FloatArray, q: FloatArray) -> float:
     return min(_point_segment_distance(p, q), _point_segment_distance(q, p))
 
 
+#: Slack (mm) of :func:`_clear`: within it of the ligament, the full check decides.
+_CLEAR_SLACK = 1e-9
+
+
+def _clear(centre: FloatArray, reach: float, outline: FloatArray) -> bool:
+    """Whether the disc of radius ``reach`` (mm) about ``centre`` lies inside ``outline`` with a
+    ligament of at least :data:`MIN_LIGAMENT` mm: its centre inside, and every edge of the
+    outline at least ``reach + MIN_LIGAMENT`` from it. Then any polygon inside that disc passes
+    :func:`check_holes`' outline test (every point of its boundary is within ``reach`` of the
+    centre, every point of the outline's at least that plus the ligament away, and the disc,
+    connected and clear of the outline, lies inside it). One point against the outline's edges
+    instead of every vertex of the hole (a circular hole has :data:`HOLE_SEGMENTS`)."""
+    c = np.asarray(centre, dtype=np.float64)[None, :]
+    if not bool(_inside(c, outline)[0]):
+        return False
+    return _point_segment_distance(c, outline) >= reach + MIN_LIGAMENT + _CLEAR_SLACK
+
+
 def check_holes(
     holes: Sequence[Hole], outline: FloatArray, Lx: float, Ly: float, field: str = "holes"
 ) -> None:
@@ -252,8 +270,11 @@ def check_holes(
         where = f"{field}[{i}]"
         size = f"the {Lx:.4g} x {Ly:.4g} mm outline"
         pad = h.radius - h.radius * math.cos(math.pi / HOLE_SEGMENTS) if h.shape == "circle" else 0
-        inside = bool(np.all(_inside(ring, outline)))
-        gap = _gap(ring, outline) - pad
+        if _clear(centres[i], reach[i] + pad, outline):
+            inside, gap = True, math.inf  # the ring's enclosing circle is a ligament inside
+        else:
+            inside = bool(np.all(_inside(ring, outline)))
+            gap = _gap(ring, outline) - pad
         if not inside or gap < MIN_LIGAMENT:
             raise InputError(
                 where,

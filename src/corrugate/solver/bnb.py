@@ -358,9 +358,13 @@ class _Recorder:
             return
         masks, m_id = np.unique(mask, return_inverse=True)  # few distinct bit sets
         key = owner.astype(np.int64) * len(masks) + m_id.reshape(-1)
-        groups, inv = np.unique(key, return_inverse=True)
-        least = np.full(len(groups), np.inf)
-        np.minimum.at(least, inv.reshape(-1), value)
+        # a dense (box, bit set) table instead of sorting the keys: the same rows, in key order
+        table = np.full(len(lo) * len(masks), np.inf)
+        np.minimum.at(table, key, value)
+        seen = np.zeros(len(table), dtype=bool)
+        seen[key] = True
+        groups = np.flatnonzero(seen)
+        least = table[groups]
         b = groups // len(masks)
         self.add(lo[b], hi[b], np.maximum(bound[b], least), masks[groups % len(masks)])
 

@@ -116,15 +116,47 @@ def _best(
     sense: str,
     tables: Tables | None,
     warm: Sequence[Start] | None = None,
+    record: bool = False,
 ) -> Optimum:
     """The best value of ``q`` (largest for ``sense`` min, smallest for max) under ``problem``'s
     constraints, to the relative gap :data:`DIAGNOSIS_GAP_RTOL` (``warm``: per sheet pair, boxes
-    that hold every design of ``problem``, :func:`~.solve.optimize`)."""
+    that hold every design of ``problem``, :func:`~.solve.optimize`; ``record``: keep the closed
+    boxes, :attr:`~.solve.Optimum.archives`)."""
     return optimize(
         problem.with_objective(q, "max" if sense == "min" else "min"),
         tables=tables if tables is not None else Tables(problem),
         gap_rtol=DIAGNOSIS_GAP_RTOL,
         warm=warm,
+        record=record,
+    )
+
+
+def _closes_alone(archives: tuple[Archive, ...], problem: Problem, kept: set[str], d: str) -> bool:
+    """Whether some box of ``archives`` (closed boxes of a search of ``problem``) was shown to
+    break the constraint ``d`` and no constraint outside the names ``kept`` (which include
+    ``d``)."""
+    bd = np.uint64(constraint_bits(problem, d))
+    allowed = np.uint64(sum(constraint_bits(problem, name) for name in kept))
+    return any(bool(np.any(((a.mask & ~allowed) == 0) & ((a.mask & bd) != 0))) for a in archives)
+
+
+def _cannot_improve(
+    problem: Problem, c: Constraint, d: Constraint, tree: _Tree, best: Optimum
+) -> bool:
+    """Whether dropping ``d`` as well certainly leaves ``c``'s best (``best``: the search of
+    ``problem`` without ``c``, recorded) where it is, on a grid (exact values): a design better
+    than ``best`` without ``c`` and ``d`` must break ``d`` (else ``best`` would not be the best),
+    so it lies in a box of the infeasible solve's tree shown to break ``d`` and nothing outside
+    {``c``, ``d``}, or, inside the boxes ``best`` searched, in one of its boxes shown to break
+    ``d`` alone (a box closed by its objective bound holds nothing better than ``best``; one
+    shown to break another constraint too still breaks it). With neither, no such design
+    exists and the re-solve without ``d`` is skipped."""
+    closed = best.tree()
+    if not problem.gridded or tree.archives is None or closed is None:
+        return False
+    rest = problem.without(c.name)
+    return not _closes_alone(tree.archives, problem, {c.name, d.name}, d.name) and not (
+        _closes_alone(closed, rest, {d.name}, d.name)
     )
 
 
@@ -415,7 +447,7 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
     """``c`` alone: its best with every other constraint held (None when those conflict among
     themselves), the constraints it binds together with, and its best with none held."""
     rest = problem.without(c.name)
-    best = _best(rest, c.quantity, c.sense, tables, tree.warm(c))
+    best = _best(rest, c.quantity, c.sense, tables, tree.warm(c), record=problem.gridded)
     if best.point is None or _meets(c, best.value):
         return None
     r = best.value
@@ -429,7 +461,7 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
     )
     partners = []
     for d in problem.constraints:
-        if d.name == c.name or budget_spent():
+        if d.name == c.name or budget_spent() or _cannot_improve(problem, c, d, tree, best):
             continue
         without = _best(rest.without(d.name), c.quantity, c.sense, tables, tree.warm(c, d))
         if without.point is not None and _improves(c, without.value, r):

@@ -35,7 +35,7 @@ from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
 from corrugate.solver.bnb import GAP_RTOL, Archive, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.problem import Candidate, Constraint, Problem
+from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, DesignVariable, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
 
@@ -57,6 +57,13 @@ FloatArray = NDArray[np.float64]
 ACTIVE_RTOL = 1e-6
 #: How many n on each side of the optimum's n the runner-ups cover.
 RUNNER_UP_SPREAD = 3
+#: Relative gap to which a runner-up is certified with continuous variables (on grids: exact):
+#: no design with its n is better by more than this. The optimum's own n shows the optimum.
+RUNNER_UP_GAP_RTOL = 1e-6
+#: The probe of the binding checks (:func:`_witnesses`): moves of n and of gridded W and alpha
+#: by these many grid steps, and of continuous W and alpha by these fractions of their range.
+PROBE_STEPS = (1, 2, 3)
+PROBE_FRACTIONS = (1e-6, 1e-4, 1e-3, 1e-2, 3e-2, 1e-1)
 
 
 @dataclass(frozen=True)
@@ -642,19 +649,125 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, flo
     return {n: vals[q] for n, q in asked.items()}
 
 
+def _probe_points(problem: Problem, point: dict[str, float]) -> dict[str, FloatArray]:
+    """Designs near ``point`` (the search's coordinates): every move of one coordinate, and of
+    two together, by :data:`PROBE_STEPS` grid steps (n; W and alpha on a grid) or
+    :data:`PROBE_FRACTIONS` of the range (continuous W, alpha), either way, inside the bounds;
+    grid values computed as the search computes them (lo + step k)."""
+    layers = ("1",) if problem.identical else ("1", "2")
+    n_var = DesignVariable(float(problem.n_lo), float(problem.n_hi), 1.0)
+    dims = [
+        (k + i, v)
+        for i in layers
+        for k, v in (("n", n_var), ("W", problem.W), ("a", problem.alpha))
+    ]
+    moves: list[FloatArray] = []  # per coordinate: the offsets of its index (grid) or value
+    for _name, var in dims:
+        if var.step is None:
+            span = var.hi - var.lo
+            m = np.array([f * span for f in PROBE_FRACTIONS])
+        else:
+            m = np.array(PROBE_STEPS, dtype=np.float64)
+        moves.append(np.concatenate([m, -m]))
+    base = np.zeros(len(dims))
+    rows = [base + np.eye(len(dims))[i] * m[:, None] for i, m in enumerate(moves)]
+    for i in range(len(dims)):
+        for j in range(i + 1, len(dims)):
+            a, b = np.meshgrid(moves[i], moves[j], indexing="ij")
+            r = np.zeros((a.size, len(dims)))
+            r[:, i], r[:, j] = a.ravel(), b.ravel()
+            rows.append(r)
+    d = np.concatenate(rows)
+    x: dict[str, FloatArray] = {}
+    ok = np.ones(len(d), dtype=bool)
+    for i, (name, var) in enumerate(dims):
+        if var.step is None:
+            v = point[name] + d[:, i]
+        else:
+            k = np.round((point[name] - var.lo) / var.step) + d[:, i]
+            v = var.lo + var.step * k
+        ok &= (v >= var.lo) & (v <= var.top)
+        x[name] = v
+    x = {k: v[ok] for k, v in x.items()}
+    if problem.identical:
+        x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+    return x
+
+
+def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> set[str]:
+    """Names of constraints shown binding by a design near the optimum (same sheets,
+    :func:`_probe_points`) that breaks only constraints of that name and whose objective is
+    better than the optimum's by more than ``tol``: such a design meets every other constraint
+    (judged as the search judges points: exactly for continuous variables, to
+    :data:`~.problem.FEAS_RTOL` on grids), so the search of the binding check would find a
+    better design too. One evaluation for every constraint, before any search."""
+    assert opt.point is not None
+    assert opt.candidates is not None
+    if not problem.constraints:
+        return set()
+    x = _probe_points(problem, opt.point)
+    if not len(x["n1"]):
+        return set()
+    vals = point_values(problem, *opt.candidates, x, tables)
+    rtol = FEAS_RTOL if problem.gridded else 0.0
+    broken = np.stack(
+        [~c.satisfied(vals[c.quantity], rtol=rtol) for c in problem.constraints], axis=1
+    )
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    better = sign * vals[problem.objective.quantity] < sign * opt.value - tol
+    found = set()
+    for c in problem.constraints:
+        if c.name in found:
+            continue
+        own = np.array([d.name == c.name for d in problem.constraints])
+        if bool(np.any(better & broken.any(axis=1) & ~broken[:, ~own].any(axis=1))):
+            found.add(c.name)
+    return found
+
+
+def _relaxed(problem: Problem, name: str, certified: bool = True) -> Problem:
+    """The problem a binding check searches: ``problem`` without the constraint ``name`` and,
+    when that name is one constraint and the optimum is ``certified``, with its negation
+    (:func:`_negation`) instead. A design better than the certified optimum (by more than twice
+    its proven gap) that meets every other constraint must break this one, else it would be a
+    better design of ``problem`` itself; so both problems have such a design or neither has,
+    and the negation lets the search drop every box (and, on grids, every layer's point) that
+    meets the constraint."""
+    own = [c for c in problem.constraints if c.name == name]
+    rest = problem.without(name)
+    if len(own) != 1 or not certified:
+        return rest
+    return replace(rest, constraints=(*rest.constraints, _negation(own[0], problem)))
+
+
+def _negation(c: Constraint, problem: Problem) -> Constraint:
+    """A constraint met by every design that breaks ``c`` as the search judges it (on grids to
+    the relative slack :data:`~.problem.FEAS_RTOL`, else exactly): ``q >= b`` (met when
+    ``q >= b - r |b|``) is broken only where ``q < b - r |b|``, inside ``q <= b - r |b|``;
+    ``q <= b`` only where ``q > b + r |b|``, inside ``q >= b + r |b|`` (the negation's own
+    slack only widens it)."""
+    r = FEAS_RTOL if problem.gridded else 0.0
+    if c.sense == "min":
+        return Constraint(f"{c.name} (broken)", c.quantity, "max", c.bound - r * abs(c.bound))
+    return Constraint(f"{c.name} (broken)", c.quantity, "min", c.bound + r * abs(c.bound))
+
+
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
     vals = _values_at(problem, opt, tables)
     capacity = _capacities(problem, opt, tables)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     tree = opt.tree()
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
+    witnessed = _witnesses(problem, opt, tables, tol)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
         margin = c.margin(v)
         binding: bool | None = None
         relaxed = None
-        if not budget_spent():
+        if c.name in witnessed:  # a better design breaking it alone was evaluated: binding
+            binding = True
+        elif not budget_spent():
             # warm: only the boxes closed by this constraint alone, below the optimum
             warm = (
                 None
@@ -664,7 +777,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
             relaxed = optimize(
-                problem.without(c.name),
+                _relaxed(problem, c.name, opt.certified),
                 tables=tables,
                 incumbent=opt.value,
                 warm=warm,
@@ -707,7 +820,9 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
     :func:`~.bnb._dims`): one search per sheet pair with one incumbent per n, from the boxes of
     the solve that may hold a feasible design (:attr:`Optimum.archives`), else from the whole
-    domain."""
+    domain; with continuous variables to the relative gap :data:`RUNNER_UP_GAP_RTOL`. The entry
+    of the optimum's n, when both its layers have it, is the certified optimum itself (the best
+    design of the whole problem is the best with that n)."""
     assert opt.point is not None
     n_star = round(opt.point["n1"])
     a, b = (
@@ -724,7 +839,9 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
                 certified[n] = False
             break
         start = None if tree is None else tree[i].reopen()
-        r = branch_and_bound(problem, *pair, tables=tables, start=start, per_n=(a, b))
+        r = branch_and_bound(
+            problem, *pair, tables=tables, start=start, per_n=(a, b), gap_rtol=RUNNER_UP_GAP_RTOL
+        )
         assert r.by_n is not None
         for n, rn in r.by_n.items():
             certified[n] &= rn.certified
@@ -733,18 +850,22 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
             ):
                 best[n] = (rn, pair)
     out = []
+    own = opt.certified and round(opt.point["n2"]) == n_star
     for n in range(a, b + 1):
-        if n not in best:
+        if n == n_star and own:
+            found = opt
+        elif n not in best:
             continue
-        rn, pair = best[n]
-        found = Optimum(rn.point, pair, rn.value, certified[n], 0.0, rn.boxes, rn.iterations)
+        else:
+            rn, pair = best[n]
+            found = Optimum(rn.point, pair, rn.value, certified[n], 0.0, rn.boxes, rn.iterations)
         layers = assembly_of(problem, found).layers
         out.append(
             RunnerUp(
                 n,
-                rn.value,
+                found.value,
                 tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers)),
-                certified[n],
+                found.certified,
             )
         )
     return out
