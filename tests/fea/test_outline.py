@@ -257,3 +257,28 @@ def test_verify_on_a_polygon_runs_the_cut_fixture(ccx: str, cli: CliRun, tmp_pat
     assert rows["K0"]["fe_series"]["2"] == pytest.approx(direct, rel=1e-12)
     assert "polygon cut from its box" in rows["K0"]["note"]
     assert rows["K30"]["fe"] is None and "off the crease directions" in rows["K30"]["note"]
+
+
+@pytest.mark.fea
+def test_a_wheel_test_bound_is_verified_as_the_models_test(
+    ccx: str, cli: CliRun, tmp_path: Path
+) -> None:
+    """A K bound in the wheel test (quantity Kwhl@0, docs/load_cases.md 9) runs the wheel fixture
+    and its row says it is the model's test; a K bound without a test on the same disc runs the
+    same fixture, number for number, and says it is not."""
+    folder = _wheel_folder(tmp_path)
+    record = json.loads((folder / "design.json").read_text())
+    record["constraints"] = [
+        {"name": n, "quantity": q, "sense": "min", "bound": 1.0, "value": 2.0, "unit": "N/mm"}
+        for n, q in (("Kwheel", "Kwhl@0"), ("Kplain", "K@0"))
+    ]
+    (folder / "design.json").write_text(json.dumps(record))
+    code, out, err = cli(["verify", str(folder), "--mesh", "2", "--json", "-q"])
+    assert code == 0, err
+    rows = {r["name"]: r for r in json.loads(out)["constraints"]}
+    wheel, plain = rows["Kwheel"], rows["Kplain"]
+    assert wheel["note"].startswith("the model's test") and "wheel's radial K" in wheel["note"]
+    assert plain["note"].startswith("not the model's test")
+    assert "wheel" in wheel["test"] and wheel["test"] == plain["test"]
+    assert wheel["fe_series"]["2"] == plain["fe_series"]["2"] > 1.0
+    assert wheel["holds"]
