@@ -94,6 +94,7 @@ def table(path: Path) -> None:
         c = cases.setdefault((r["design"], float(r["eta_deg"])), {"row": r, "fe": {}})
         if r["K_FE"] != "failed":
             c["fe"][int(r["along"])] = float(r["K_FE"])
+            c["row"] = r  # a run that ran: its mesh's size, the disc's diameter
     print("| design | eta | FE K 2 / 4 / 8 (/ 16) N/mm | model K | FE8 / model | lower / model |")
     print("|---|---|---|---|---|---|")
     least: dict[float, float] = {}
@@ -109,8 +110,12 @@ def table(path: Path) -> None:
         series = " / ".join(
             f"{fe[m]:.4g}" if m in fe else "-" for m in (2, 4, 8, 16) if m < 16 or m in fe
         )
+        what = (
+            f"{name}: {r['material']} {r['t_mm']} mm, W {r['W_mm']}, n {r['n']}, alpha "
+            f"{r['alpha_deg']}, {float(r['diameter_mm']):.1f} mm, hole {r['hole_mm']}"
+        )
         print(
-            f"| {name} | {eta:g} | {series} | {model:.4g} | {fe[8] / model:.3f} | "
+            f"| {what} | {eta:g} | {series} | {model:.4g} | {fe[8] / model:.3f} | "
             f"{low / model:.3f} |"
         )
     for eta, v in sorted(least.items()):
@@ -137,9 +142,11 @@ def main() -> None:
     preamble = (
         "FE radial stiffness of discs in the wheel fixture (docs/fea.md 2.8) against the model's "
         "K between platens (refined, free sides)",
-        "source: python benchmarks/fea_wheel.py (every design at --along 2,4,8 --eta 0,45), "
-        "then python benchmarks/fea_wheel.py --along 4 --eta 90,135 --designs example,"
-        "dl175-n11-a110 (the symmetry check); seconds: CPU (user + sys) of the run",
+        "source: python benchmarks/fea_wheel.py (every design at --along 2,4,8 --eta 0,45); "
+        "python benchmarks/fea_wheel.py --along 4 --eta 90,135 --designs example,dl175-n11-a110 "
+        "(the symmetry check); flock /work/notes/fe-big.lock prlimit --as=17000000000 python "
+        "benchmarks/fea_wheel.py --along 16 --eta 0,45 --designs example-hole3, and the same with "
+        "--eta 0 --designs dl125-n9-a90 (4.4 GB each); seconds: CPU (user + sys) of the run",
     )
     with appender(a.csv, FIELDS, preamble) as write:
         for name, mat, t, W, n, alpha, hole in DESIGNS:
