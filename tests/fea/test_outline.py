@@ -23,6 +23,7 @@ from corrugate.fea.outline import (
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.geometry.layouts import Polygon, Square
 from corrugate.materials.library import get_material
+from corrugate.mechanics.wheel import WHEEL_FACTOR
 
 if TYPE_CHECKING:
     from conftest import CliRun
@@ -202,6 +203,9 @@ def test_verify_on_a_wheel_is_validate_fixture_wheel(ccx: str, cli: CliRun, tmp_
     for name, eta in (("K0", 0.0), ("K45", 45.0)):
         assert rows[name]["fe_series"]["2"] == fixture[eta]["fe_series"]["2"]
         assert "wheel's radial K" in rows[name]["note"]
+        # beside the model's K, the wheel test's bound c(eta) K (docs/load_cases.md 9)
+        c = WHEEL_FACTOR[eta]
+        assert fixture[eta]["wheel_test_K"] == pytest.approx(c * fixture[eta]["model_K"])
     assert rows["K0"]["holds"] and not rows["K45"]["holds"]  # 1 N/mm met, 1e6 N/mm missed
     assert rows["D0"]["fe"] is None and not rows["D0"]["holds"]
     assert "no FE twin" in rows["D0"]["note"]

@@ -245,3 +245,22 @@ def test_a_disc_outside_the_sweep_is_warned() -> None:
     assert {w.code for w in wheel_warnings(many)} == {"wheel-outside-validated-range"}
     none = Assembly.identical(Layer(W=8.5, n=8, alpha_deg=132.42, material=PP, t=0.3), Circle())
     assert "no" in wheel_warnings(none)[0].message
+
+
+def test_a_solved_wheel_outside_the_sweep_says_so() -> None:
+    """A 2 mm axle hole in a 60-80 mm disc (hole / diameter below the sweep's 0.043): the
+    certified answer carries the warning; the same spec with a 6 mm hole inside the range does
+    not (its design: n, W, alpha, t / W inside VALIDATED_WHEEL, checked by wheel_warnings)."""
+    from corrugate.solver import solve
+
+    small = {"shape": "circle", "holes": [{"shape": "circle", "diameter": 2, "center": [0, 0]}]}
+    bounds = [{"min": 20, "eta": e, "test": "wheel"} for e in (0, 45)]
+    sol = solve(_problem(small, inplane_stiffness=bounds))
+    assert sol.certified and sol.assembly is not None
+    codes = [w["code"] for w in sol.warnings]
+    assert "wheel-outside-validated-range" in codes
+    assert any("hole/diameter" in w["message"] for w in sol.warnings)
+    inside = solve(_problem(CIRCLE, inplane_stiffness=bounds))
+    assert inside.certified and inside.assembly is not None
+    assert wheel_warnings(inside.assembly) == []
+    assert "wheel-outside-validated-range" not in [w["code"] for w in inside.warnings]

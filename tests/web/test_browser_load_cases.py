@@ -172,3 +172,25 @@ def test_stiffness_rows_name_their_test_and_a_bad_load_is_shown_on_its_row(
     assert page.is_hidden("#design-results")
     assert w.page_errors == [] and w.external == []
     page.close()
+
+
+def test_the_wheel_example_keeps_its_wheel_test_in_the_form(
+    browser: Any,  # noqa: F811
+    live_server: str,
+) -> None:
+    """examples/wheel_circle.toml opened in the form (its #design?spec= link) posts its K bounds
+    in the wheel test (docs/load_cases.md 9), not between platens."""
+    from urllib.parse import quote
+
+    spec = example("wheel_circle.toml")
+    w = Watched(browser, live_server)
+    page = w.page
+    page.goto(f"{live_server}/#design?spec={quote(json.dumps(spec))}")
+    page.wait_for_selector("#design-form[data-ready='true']", state="attached")
+    page.wait_for_function("() => document.getElementById('d-name').value !== ''")
+    body = page.evaluate("() => designBodyForTests()")
+    bounds = body["constraints"]["inplane_stiffness"]
+    assert [b.get("test") for b in bounds] == ["wheel", "wheel"]
+    assert [b["eta"] for b in bounds] == ["0 deg", "45 deg"]
+    assert w.page_errors == []
+    page.close()
