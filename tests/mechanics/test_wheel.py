@@ -200,6 +200,13 @@ def test_bad_wheel_bounds_name_their_field(
     assert words in str(info.value) and "\n" not in str(info.value)
 
 
+def test_a_frame_for_the_whole_spec_names_support() -> None:
+    spec = _spec(CIRCLE, inplane_stiffness=[{"min": 1, "test": "wheel"}])
+    with pytest.raises(SpecError) as info:
+        Problem.from_spec(parse_spec(with_units({**spec, "support": "frame"})))
+    assert info.value.field == "support" and "'free'" in str(info.value)
+
+
 def test_wheel_is_a_test_of_k_only() -> None:
     with pytest.raises(SpecError) as info:
         _problem(bending_stiffness=[{"min": 1, "test": "wheel"}])

@@ -228,7 +228,7 @@ class Problem:
                 where = f"constraints.{kind}[{i}]"
                 q = _stiffness_quantity(where, kind, b.eta, b.support or spec.support, b.test)
                 if q.test == "wheel":
-                    _check_wheel(where, layout, b.eta, q.support)
+                    _check_wheel(where, layout, b.eta, q.support, b.support is None)
                 elif q.test is not None:
                     _check_load_case_layout(where, layout)
                 cons.append(Constraint(f"{where}.min", q, "min", b.min))
@@ -346,9 +346,12 @@ def _stiffness_quantity(
     return Quantity.load_case(q.kind, eta, test, support)
 
 
-def _check_wheel(where: str, layout: Layout, eta: float, support: str | None) -> None:
+def _check_wheel(
+    where: str, layout: Layout, eta: float, support: str | None, inherited: bool = False
+) -> None:
     """The wheel test (docs/load_cases.md 9) is a disc's: a circle layout, free sides (it holds
-    the disc by its axle and ground patch, no frame), and a direction its FE factor covers."""
+    the disc by its axle and ground patch, no frame; ``inherited``: the support is the spec's
+    own, named as ``support``), and a direction its FE factor covers."""
     if layout.name != "circle":
         raise SpecError(
             f"{where}.test",
@@ -358,7 +361,7 @@ def _check_wheel(where: str, layout: Layout, eta: float, support: str | None) ->
         )
     if support not in (None, DEFAULT_SUPPORT):
         raise SpecError(
-            f"{where}.support",
+            "support" if inherited else f"{where}.support",
             repr(support),
             f"{DEFAULT_SUPPORT!r} for test 'wheel' (the disc is held by its axle and the ground)",
             reason="does not apply",
