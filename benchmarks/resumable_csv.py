@@ -15,18 +15,24 @@ def done_keys(path: Path, key_fields: Sequence[str]) -> set[tuple[str, ...]]:
     if not path.exists():
         return set()
     with path.open() as f:
-        return {tuple(r[k] for k in key_fields) for r in csv.DictReader(f)}
+        rows = csv.DictReader(line for line in f if not line.startswith("#"))
+        return {tuple(r[k] for k in key_fields) for r in rows}
 
 
 @contextmanager
-def appender(path: Path, fields: Sequence[str]) -> Iterator[Callable[[Sequence[object]], None]]:
+def appender(
+    path: Path, fields: Sequence[str], preamble: Sequence[str] = ()
+) -> Iterator[Callable[[Sequence[object]], None]]:
     """A function that appends one row (values in the order of ``fields``) and flushes it; the
-    header is written when the file is new."""
+    ``preamble`` (comment lines, each written after ``# ``: e.g. the command that makes the file)
+    and the header are written when the file is new (:func:`done_keys` skips the comments)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     new = not path.exists()
     with path.open("a", newline="") as f:
         writer = csv.DictWriter(f, fields)
         if new:
+            for line in preamble:
+                f.write(f"# {line}\n")
             writer.writeheader()
 
         def write(row: Sequence[object]) -> None:

@@ -73,10 +73,12 @@ def test_model_names_are_the_moduli_table() -> None:
 
 def test_load_case_names_are_the_behaviour_registrys_and_the_specs() -> None:
     from corrugate.mechanics.behaviours import load_cases
-    from corrugate.spec.schema import DeflectionTest
+    from corrugate.spec.schema import DeflectionTest, StiffnessTest
 
-    assert tuple(b.name for b in load_cases()) == names.LOAD_CASES
+    registered = tuple(b.name for b in load_cases())
+    assert registered == names.LOAD_CASES + names.STIFFNESS_ONLY_TESTS
     assert typing.get_args(DeflectionTest) == names.LOAD_CASES
+    assert set(registered) | {"pure"} == set(typing.get_args(StiffnessTest))
 
 
 def test_machine_names_are_the_cutters_table_and_a_laser_is_named_by_its_bed() -> None:

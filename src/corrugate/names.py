@@ -41,6 +41,7 @@ __all__ = [
     "PAPER_NAMES",
     "RECTANGULAR_LAYOUTS",
     "STIFFNESS_NAMES",
+    "STIFFNESS_ONLY_TESTS",
     "STIFFNESS_SYMBOL",
     "STIFFNESS_SYMBOLS",
     "SUPPORTS",
@@ -55,6 +56,7 @@ __all__ = [
     "ModelName",
     "PaperName",
     "StiffnessName",
+    "StiffnessOnlyTest",
     "StiffnessSymbol",
     "Support",
 ]
@@ -81,6 +83,10 @@ LoadCaseName = Literal["three-point", "four-point", "cantilever", "platens"]
 #: The tests a deflection is stated in: simply supported with the load at mid-span or at the
 #: quarter points, a cantilever loaded at its free end, compression between rigid platens.
 LOAD_CASES: tuple[LoadCaseName, ...] = get_args(LoadCaseName)
+#: The tests only a stiffness bound names (no deflection, load or strength): the wheel test of a
+#: circle's K (docs/load_cases.md 9), registered after the load cases.
+StiffnessOnlyTest = Literal["wheel"]
+STIFFNESS_ONLY_TESTS: tuple[StiffnessOnlyTest, ...] = get_args(StiffnessOnlyTest)
 
 # -- plan outlines (corrugate.geometry.layouts) and inner cut-outs (corrugate.geometry.holes) --
 

@@ -23,6 +23,7 @@ from corrugate.fea.outline import (
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.geometry.layouts import Polygon, Square
 from corrugate.materials.library import get_material
+from corrugate.mechanics.wheel import WHEEL_FACTOR
 
 if TYPE_CHECKING:
     from conftest import CliRun
@@ -202,6 +203,9 @@ def test_verify_on_a_wheel_is_validate_fixture_wheel(ccx: str, cli: CliRun, tmp_
     for name, eta in (("K0", 0.0), ("K45", 45.0)):
         assert rows[name]["fe_series"]["2"] == fixture[eta]["fe_series"]["2"]
         assert "wheel's radial K" in rows[name]["note"]
+        # beside the model's K, the wheel test's bound c(eta) K (docs/load_cases.md 9)
+        c = WHEEL_FACTOR[eta]
+        assert fixture[eta]["wheel_test_K"] == pytest.approx(c * fixture[eta]["model_K"])
     assert rows["K0"]["holds"] and not rows["K45"]["holds"]  # 1 N/mm met, 1e6 N/mm missed
     assert rows["D0"]["fe"] is None and not rows["D0"]["holds"]
     assert "no FE twin" in rows["D0"]["note"]
@@ -257,3 +261,28 @@ def test_verify_on_a_polygon_runs_the_cut_fixture(ccx: str, cli: CliRun, tmp_pat
     assert rows["K0"]["fe_series"]["2"] == pytest.approx(direct, rel=1e-12)
     assert "polygon cut from its box" in rows["K0"]["note"]
     assert rows["K30"]["fe"] is None and "off the crease directions" in rows["K30"]["note"]
+
+
+@pytest.mark.fea
+def test_a_wheel_test_bound_is_verified_as_the_models_test(
+    ccx: str, cli: CliRun, tmp_path: Path
+) -> None:
+    """A K bound in the wheel test (quantity Kwhl@0, docs/load_cases.md 9) runs the wheel fixture
+    and its row says it is the model's test; a K bound without a test on the same disc runs the
+    same fixture, number for number, and says it is not."""
+    folder = _wheel_folder(tmp_path)
+    record = json.loads((folder / "design.json").read_text())
+    record["constraints"] = [
+        {"name": n, "quantity": q, "sense": "min", "bound": 1.0, "value": 2.0, "unit": "N/mm"}
+        for n, q in (("Kwheel", "Kwhl@0"), ("Kplain", "K@0"))
+    ]
+    (folder / "design.json").write_text(json.dumps(record))
+    code, out, err = cli(["verify", str(folder), "--mesh", "2", "--json", "-q"])
+    assert code == 0, err
+    rows = {r["name"]: r for r in json.loads(out)["constraints"]}
+    wheel, plain = rows["Kwheel"], rows["Kplain"]
+    assert wheel["note"].startswith("the model's test") and "wheel's radial K" in wheel["note"]
+    assert plain["note"].startswith("not the model's test")
+    assert "wheel" in wheel["test"] and wheel["test"] == plain["test"]
+    assert wheel["fe_series"]["2"] == plain["fe_series"]["2"] > 1.0
+    assert wheel["holds"]

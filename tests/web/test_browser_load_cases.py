@@ -139,7 +139,8 @@ def test_stiffness_rows_name_their_test_and_a_bad_load_is_shown_on_its_row(
     first.locator(".req-test").select_option("four-point")
     second = page.locator("#d-req-rows .req").nth(1)
     assert second.locator(".req-kind").input_value() == "inplane_stiffness"
-    assert second.locator(".req-test").is_hidden()  # K: between platens only
+    k_tests = second.locator(".req-test option").evaluate_all("os => os.map(o => o.value)")
+    assert k_tests == ["", "wheel"]  # '' is between platens; the wheel test is a circle's
     second.locator(".req-kind").select_option("bending_stiffness")
     second.locator(".req-min").fill("500")
     second.locator(".req-test").select_option("cantilever")
@@ -170,4 +171,26 @@ def test_stiffness_rows_name_their_test_and_a_bad_load_is_shown_on_its_row(
     assert row.locator(".req-load").get_attribute("aria-invalid") == "true"
     assert page.is_hidden("#design-results")
     assert w.page_errors == [] and w.external == []
+    page.close()
+
+
+def test_the_wheel_example_keeps_its_wheel_test_in_the_form(
+    browser: Any,  # noqa: F811
+    live_server: str,
+) -> None:
+    """examples/wheel_circle.toml opened in the form (its #design?spec= link) posts its K bounds
+    in the wheel test (docs/load_cases.md 9), not between platens."""
+    from urllib.parse import quote
+
+    spec = example("wheel_circle.toml")
+    w = Watched(browser, live_server)
+    page = w.page
+    page.goto(f"{live_server}/#design?spec={quote(json.dumps(spec))}")
+    page.wait_for_selector("#design-form[data-ready='true']", state="attached")
+    page.wait_for_function("() => document.getElementById('d-name').value !== ''")
+    body = page.evaluate("() => designBodyForTests()")
+    bounds = body["constraints"]["inplane_stiffness"]
+    assert [b.get("test") for b in bounds] == ["wheel", "wheel"]
+    assert [b["eta"] for b in bounds] == ["0 deg", "45 deg"]
+    assert w.page_errors == []
     page.close()

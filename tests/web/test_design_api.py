@@ -249,6 +249,11 @@ def _with(path: str, value: Any) -> dict[str, Any]:
         (_with("model", "magic"), "model", "not allowed"),
         (_with("layout.shape", "hexagon"), "layout.shape", "not allowed"),
         (_with("constraints.diameter", {"min": 1}), "constraints.diameter", "square layout"),
+        (
+            _with("constraints.inplane_stiffness", [{"min": "1 N/mm", "test": "wheel"}]),
+            "constraints.inplane_stiffness[0].test",
+            "is not a test of a square",
+        ),
         (_with("cutter", "plotter"), "cutter", "is unknown"),
         (_with("cutter", 5), "cutter", "wrong type"),
         (_with("fold_style", "zigzag"), "fold_style", "is unknown"),

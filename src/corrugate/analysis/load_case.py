@@ -128,7 +128,7 @@ def load_case_rows(
                 f"at most the panel's length along eta = {st.eta_deg:g} deg, {st.span:.6g} mm",
             )
         if form.kind == "inplane":
-            k = float(load_stiffness(form, st.K, None, None, st.span))
+            k = float(load_stiffness(form, st.K, None, None, st.span, eta_deg=st.eta_deg))
             Ls = st.span
         else:
             V, h = shear_and_depth(r.springs, *_cs(st.eta_deg))

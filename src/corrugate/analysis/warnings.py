@@ -16,7 +16,9 @@
   homogenised plate; docs/validation/off_axis.md compares them with FE coupons); with
   ``"frame"`` the paper's cos^2 rule, which holds only for a panel held in a rigid frame
   (docs/fea.md 2.5);
-* the ``paper`` model, which has known errors (docs/theory.md 3.1).
+* the ``paper`` model, which has known errors (docs/theory.md 3.1);
+* a bound in the wheel test (:func:`wheel_warnings`) on a disc outside the range of designs
+  whose FE sweep gives the test's factor (:data:`corrugate.mechanics.wheel.VALIDATED_WHEEL`).
 """
 
 from __future__ import annotations
@@ -38,6 +40,7 @@ __all__ = [
     "crease_error_estimate",
     "design_warnings",
     "shear_estimate",
+    "wheel_warnings",
 ]
 
 #: Ranges validated experimentally in the paper.
@@ -173,3 +176,51 @@ def design_warnings(
             )
         )
     return out + _off_axis(eta_deg, support, a.layout.name)
+
+
+def wheel_warnings(a: Assembly) -> list[ModelWarning]:
+    """The ``wheel-outside-validated-range`` warning of a design with a bound in the wheel test
+    (docs/load_cases.md 9) for each of its layer 1's creases n, angle alpha (deg), facet width W
+    (mm), t / W and the axle hole's diameter over the disc's that lies outside the FE sweep that
+    gives the factor c(eta) (:data:`corrugate.mechanics.wheel.VALIDATED_WHEEL`; a circle's layers
+    are identical). A disc without a central circular hole is outside it too."""
+    from corrugate.mechanics.wheel import VALIDATED_WHEEL
+
+    lay = a.layer1
+    diameter = a.Lx
+    hub = [
+        h
+        for h in a.layout.holes
+        if h.shape == "circle"
+        and math.hypot(*h.center) + h.radius < 0.5 * diameter
+        and math.hypot(*h.center) <= h.radius
+    ]
+    values = {
+        "n": (float(lay.n), ""),
+        "alpha": (lay.alpha_deg, " deg"),
+        "W": (lay.W, " mm"),
+        "t/W": (lay.t / lay.W, ""),
+    }
+    out: list[ModelWarning] = []
+    if hub:
+        values["hole/diameter"] = (2.0 * hub[0].radius / diameter, "")
+    else:
+        out.append(
+            ModelWarning(
+                "wheel-outside-validated-range",
+                "the wheel test's factor was measured on discs with a central circular axle "
+                "hole; this disc has none (`corrugate docs load_cases`, section 9)",
+            )
+        )
+    for name, (value, unit) in values.items():
+        lo, hi = VALIDATED_WHEEL[name]
+        if not lo - 1e-9 <= value <= hi + 1e-9:
+            out.append(
+                ModelWarning(
+                    "wheel-outside-validated-range",
+                    f"{name} = {value:.4g}{unit} is outside the designs whose FE gives the wheel "
+                    f"test's factor ({lo:.4g}-{hi:.4g}{unit}): the wheel bound is not validated "
+                    "there; check it with corrugate verify (`corrugate docs load_cases`, section 9)",
+                )
+            )
+    return out

@@ -439,6 +439,7 @@ def _run_fixture(
                 "order": x.order,
                 "estimate": x.how,
                 "model_K": None if model is None else model[i].K,
+                "wheel_test_K": None if model is None else _wheel_test(model[i].K, e),
             }
         )
     data = {
@@ -464,24 +465,40 @@ def _run_fixture(
     wheel = fixture == "wheel"
     name = "K(eta) N/mm" if wheel else "P / delta N/mm"
     cols = ["eta deg"] if wheel else []
-    cols += [f"FE series {name}", "FE estimate"] + (["model K (spring sum)"] if wheel else [])
+    cols += [f"FE series {name}", "FE estimate"]
+    cols += ["model K (spring sum)", "wheel test c(eta) K"] if wheel else []
     for col in cols:
         t.add_column(col, justify="right")
     for row in rows:
         ser = " / ".join(f"{v:.5g}" for v in row["fe_series"].values())  # type: ignore[attr-defined]
         fe = row["fe"]
         est = "-" if fe is None else f"{fe:.5g} ({row['estimate']})"
-        mk = row["model_K"]
+        mk, wk = row["model_K"], row["wheel_test_K"]
         cells = [ser, est]
         if wheel:
-            cells = [f"{row['eta_deg']:g}", *cells, "-" if mk is None else f"{mk:.5g}"]
+            cells = [
+                f"{row['eta_deg']:g}",
+                *cells,
+                "-" if mk is None else f"{mk:.5g}",
+                "-" if wk is None else f"{wk:.5g}",
+            ]
         t.add_row(*cells)
     console.print(t)
     if fixture == "wheel":
         console.print(
             "the model's K is not this test: it sums the strips' springs between platens, a "
-            "statement no bench test of a disc makes (`corrugate docs fea`, 2.8)"
+            "statement no bench test of a disc makes (`corrugate docs fea`, 2.8); the wheel "
+            "test's bound c(eta) K is (`corrugate docs load_cases`, section 9; eta a multiple "
+            "of 45 deg)"
         )
+
+
+def _wheel_test(K: float, eta: float) -> float | None:
+    """The wheel test's bound c(eta) K (N/mm) from the model's K (N/mm) at ``eta`` (deg), or
+    None where it has no factor (docs/load_cases.md 9)."""
+    from corrugate.mechanics.wheel import wheel_direction, wheel_factor
+
+    return None if wheel_direction(eta) is None else K * wheel_factor(eta)
 
 
 def progress_lines(quiet: bool) -> Progress:

@@ -16,8 +16,9 @@ D, EI, P / delta, ``three-point``          ``bending``: P / delta under the load
 D, EI, P / delta, ``four-point``           ``bending4``: P / delta at the load points
 D, EI, P / delta, ``cantilever``           ``cantilever``: P / delta at the tip
 Pb (buckling, eta 0 or 90)                 ``buckling``: the first buckling load
-circle: K, free sides                      ``wheel`` (:mod:`corrugate.fea.outline`): not the
-                                           model's test, the row says so
+circle: K, ``test = "wheel"``              ``wheel`` (:mod:`corrugate.fea.outline`): the
+                                           model's test (docs/load_cases.md 9)
+circle: K, free sides (no test, platens)   ``wheel``: not the model's test, the row says so
 circle: D, EI                              none (the row says why)
 polygon at eta 0 or 90                     the rows above on the polygon cut from its box
 =========================================  =========================================================
@@ -359,13 +360,26 @@ WHEEL_NOTE = (
 )
 
 
+#: What the wheel fixture is for a bound in the wheel test (docs/load_cases.md 9).
+WHEEL_TEST_NOTE = (
+    "the model's test: the wheel's radial K between a no-slip ground patch of +-15 deg at eta and "
+    "a rigid axle in the hub, modelled as c(eta) x the strips' K (`corrugate docs load_cases`, "
+    "section 9)"
+)
+
+
 def _circle_twin(q: Quantity, eta: float, connectors: bool, load: float | None) -> Twin | str:
     """A circle's twin: its in-plane K in the wheel fixture (:mod:`corrugate.fea.outline`), or
-    why a constraint has none."""
+    why a constraint has none; a bound in the wheel test (``test = "wheel"``) is that fixture's
+    own statement, any other K is not."""
     if connectors:
         return "no FE twin yet (the band joint on a circle)"
     if q.support == "frame":
         return "no FE twin yet (a circle in a frame)"
+    if q.test == "wheel":
+        if q.kind not in ("K", "k"):
+            return f"no FE twin yet ({q.kind} in the wheel test)"
+        return Twin("wheel", eta, "K" if q.kind == "K" else "k", load=load, note=WHEEL_TEST_NOTE)
     if q.kind == "K" or (q.kind == "k" and q.test == "platens"):
         if q.support not in (None, "free"):
             return f"no FE twin yet (support {q.support})"

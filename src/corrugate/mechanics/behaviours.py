@@ -85,13 +85,15 @@ class TestForm:
     with EI the pure-bending rigidity, S the transverse shear stiffness (N) and h the depth of
     the corrugation (mm), and ``euler`` the coefficient of the Euler-Bernoulli formula the test's
     apparent EI is read with (EI_app = euler Ls^3 P / delta; ``euler`` = a); for an ``inplane``
-    test delta / P = 1 / K."""
+    test delta / P = 1 / (f(eta) K), with ``factor`` f the test's own factor at eta (deg; None:
+    1, K itself; the wheel test's FE-validated c(eta), :mod:`corrugate.mechanics.wheel`)."""
 
     kind: Literal["bending", "inplane"]
     a: float = 0.0
     b: float = 0.0
     c: float = 0.0
     moment: float = 0.0  # the largest bending moment is moment x P x Ls (N mm)
+    factor: Callable[[float], float] | None = None
 
 
 @dataclass(frozen=True, eq=False)

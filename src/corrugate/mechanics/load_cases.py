@@ -9,7 +9,9 @@ measures, in the user's terms: the deflection delta (mm) of the loading head und
   delta at the load points (the loading head's travel);
 * ``cantilever``: clamped at the root, P at the free end Ls from it;
 * ``platens``: compressed between rigid platens along eta (delta = P / K; no span: the panel's
-  length along eta).
+  length along eta);
+* ``wheel`` (circles, K only): a disc's radial stiffness between a ground patch and its axle,
+  c(eta) K with the FE-validated factor of :mod:`corrugate.mechanics.wheel` (docs/load_cases.md 9).
 
 For the bending tests (docs/load_cases.md, sections 2-3)
 
@@ -34,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from corrugate.mechanics.behaviours import Behaviour, TestForm
+from corrugate.mechanics.wheel import wheel_factor
 
 __all__ = [
     "CANTILEVER",
@@ -44,6 +47,7 @@ __all__ = [
     "LOCAL_CLAMPED",
     "PLATENS",
     "THREE_POINT",
+    "WHEEL",
     "apparent",
     "band_walls",
     "load_capacity",
@@ -129,6 +133,15 @@ PLATENS = _entry(
     "plat",
     "compressed between rigid platens along eta (the shortening)",
 )
+WHEEL = _entry(
+    "wheel",
+    TestForm("inplane", factor=wheel_factor),
+    "wheel",
+    " in the wheel test",
+    "whl",
+    "a disc's radial stiffness between a rigid ground patch under its rim (+-15 deg, no slip) "
+    "and an axle pinned through its central hole, the load along eta (docs/load_cases.md 9)",
+)
 
 
 def shear_and_depth(springs: tuple[Any, Any], c2: float, s2: float) -> tuple[Any, Any]:
@@ -150,15 +163,22 @@ def _larger(x: Any, y: Any) -> Any:
 
 
 def load_stiffness(
-    form: TestForm, stiffness: Any, V: Any, h: Any, length: Any, span: Any | None = None
+    form: TestForm,
+    stiffness: Any,
+    V: Any,
+    h: Any,
+    length: Any,
+    span: Any | None = None,
+    eta_deg: float = 0.0,
 ) -> Any:
     """P / delta (N/mm) of a load case: ``stiffness`` is the support's pure-bending D (N mm) for
     a bending test (EI = D x ``length``, the panel's length along eta in mm; S = ``V`` x length,
     ``h`` the depth in mm, ``span`` the test's Ls in mm, the panel's length when None) or the
-    in-plane K (N/mm) for platens (V, h and span not used). Module docstring, docs/load_cases.md
-    section 3."""
+    in-plane K (N/mm) for an in-plane test (V, h and span not used), times the test's own
+    factor at ``eta_deg`` (deg) when it has one (the wheel: docs/load_cases.md 9). Module
+    docstring, docs/load_cases.md section 3."""
     if form.kind == "inplane":
-        return stiffness
+        return stiffness if form.factor is None else stiffness * form.factor(eta_deg)
     Ls = length if span is None else span
     compliance = form.a * Ls**3 / (stiffness * length) + (form.b * Ls + form.c * h) / (V * length)
     return 1.0 / compliance

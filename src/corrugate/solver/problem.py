@@ -26,7 +26,8 @@ from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.materials.library import Material, get_material, inline_material
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.mechanics.moduli import get_model
-from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM
+from corrugate.mechanics.wheel import WHEEL_DIRECTIONS, wheel_direction
+from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SUPPORT
 from corrugate.solver.quantity import (
     CREASES,
     FACET,
@@ -226,7 +227,9 @@ class Problem:
             for i, b in enumerate(getattr(c, kind)):
                 where = f"constraints.{kind}[{i}]"
                 q = _stiffness_quantity(where, kind, b.eta, b.support or spec.support, b.test)
-                if q.test is not None:
+                if q.test == "wheel":
+                    _check_wheel(where, layout, b.eta, q.support, b.support is None)
+                elif q.test is not None:
                     _check_load_case_layout(where, layout)
                 cons.append(Constraint(f"{where}.min", q, "min", b.min))
         for i, d in enumerate(c.deflection):
@@ -332,12 +335,44 @@ def _stiffness_quantity(
     q = Quantity.stiffness(kind, eta, support)
     if test is None or (test == "pure" and q.kind != "K") or (test == "platens" and q.kind == "K"):
         return q
-    if (test == "platens") != (q.kind == "K") or test == "pure":
+    inplane = test in ("platens", "wheel")
+    if inplane != (q.kind == "K") or test == "pure":
         allowed = (
-            "'platens'" if q.kind == "K" else "'pure', 'three-point', 'four-point' or 'cantilever'"
+            "'platens' or 'wheel' (a circle)"
+            if q.kind == "K"
+            else "'pure', 'three-point', 'four-point' or 'cantilever'"
         )
         raise SpecError(f"{where}.test", repr(test), allowed, reason=f"is not a test of {kind}")
     return Quantity.load_case(q.kind, eta, test, support)
+
+
+def _check_wheel(
+    where: str, layout: Layout, eta: float, support: str | None, inherited: bool = False
+) -> None:
+    """The wheel test (docs/load_cases.md 9) is a disc's: a circle layout, free sides (it holds
+    the disc by its axle and ground patch, no frame; ``inherited``: the support is the spec's
+    own, named as ``support``), and a direction its FE factor covers."""
+    if layout.name != "circle":
+        raise SpecError(
+            f"{where}.test",
+            "'wheel'",
+            f"'platens' for a {layout.name} layout ('wheel' is a circle's test)",
+            reason=f"is not a test of a {layout.name}",
+        )
+    if support not in (None, DEFAULT_SUPPORT):
+        raise SpecError(
+            "support" if inherited else f"{where}.support",
+            repr(support),
+            f"{DEFAULT_SUPPORT!r} for test 'wheel' (the disc is held by its axle and the ground)",
+            reason="does not apply",
+        )
+    if wheel_direction(eta) is None:
+        raise SpecError(
+            f"{where}.eta",
+            f"{eta:g} deg",
+            f"{WHEEL_DIRECTIONS} for test 'wheel' (the directions its FE factor covers, "
+            "`corrugate docs load_cases`, section 9)",
+        )
 
 
 def _joint(joint: str, layout: Layout) -> str:

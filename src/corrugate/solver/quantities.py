@@ -331,7 +331,9 @@ def point_values(
                 continue
             cos2, sin2 = _cs(e)
             V, h = shear_and_depth(ev.springs, cos2, sin2)
-            k = load_stiffness(form, layers, np.asarray(V)[:, 0], np.asarray(h)[:, 0], span, q.span)
+            k = load_stiffness(
+                form, layers, np.asarray(V)[:, 0], np.asarray(h)[:, 0], span, q.span, e
+            )
             if band is not None:  # the walls beside the layers (parallel beams)
                 k = k + walls_stiffness(form, band, span, q.span)
             out[q] = np.asarray(apparent(form, q.kind, k, span))
@@ -840,7 +842,7 @@ def _load_case_bounds(
         return Interval.of(cap)
     cos2, sin2 = _cs(q.eta)
     V, h = shear_and_depth(springs, cos2, sin2)
-    k = load_stiffness(form, base, V, h, length, q.span)
+    k = load_stiffness(form, base, V, h, length, q.span, q.eta)
     if band is not None:  # the walls beside the layers (parallel beams)
         k = k + walls_stiffness(form, band, length, q.span)
     return Interval.of(apparent(form, q.kind, k, length))

@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.analysis.evaluate import Analysis, analyze
+from corrugate.analysis.warnings import wheel_warnings
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
 from corrugate.solver.bnb import GAP_RTOL, Archive, BnBResult, branch_and_bound
@@ -499,6 +500,8 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     etas = sorted(set(problem.etas) | {0.0, 90.0})
     analysis = analyze(assembly, problem.model, etas, support=problem.support, joint=problem.joint)
     warnings = [w.as_dict() for w in analysis.warnings]
+    if any(c.quantity.test == "wheel" for c in problem.constraints):
+        warnings += [w.as_dict() for w in wheel_warnings(assembly)]
     if not opt.certified:
         warnings.append(
             {

@@ -111,7 +111,9 @@ _STATIC: dict[str, KeyDoc] = {
             "",
             "The test the bound is for (`corrugate docs load_cases`): "
             + (
-                "'platens' (the default: K between rigid platens)."
+                "'platens' (the default: K between rigid platens) or, for a circle, 'wheel' "
+                "(its radial stiffness between a ground patch and an axle through its central "
+                "hole: c(eta) K, eta a multiple of 45 deg; section 9)."
                 if k == "inplane_stiffness"
                 else "'pure' (the default: the panel's own pure-bending rigidity, EI = D x "
                 "span), 'three-point', 'four-point' or 'cantilever' (what that test reads, "

@@ -541,8 +541,8 @@ Support = Annotated[str, BeforeValidator(_support), _SupportNames()]
 
 #: The tests a stiffness bound may name (docs/load_cases.md): ``pure`` bending (EI and D: the
 #: default, the panel's own rigidity) and ``platens`` (K: the default) keep the meaning a bound
-#: without ``test`` has.
-StiffnessTest = Literal["pure", "three-point", "four-point", "cantilever", "platens"]
+#: without ``test`` has; ``wheel`` (K of a circle) is a disc's radial stiffness (section 9).
+StiffnessTest = Literal["pure", "three-point", "four-point", "cantilever", "platens", "wheel"]
 #: The load cases a deflection bound may name.
 DeflectionTest = Literal["three-point", "four-point", "cantilever", "platens"]
 

@@ -4,7 +4,7 @@
 * :mod:`.free`: free sides (the default; a bench test, a part held at two edges);
 * :mod:`.frame`: a rigid frame on all four edges (the paper's cos^2 rule).
 
-The load cases (role ``test``: three-point, four-point, cantilever, platens) are defined in
+The load cases (role ``test``: three-point, four-point, cantilever, platens, wheel) are defined in
 :mod:`corrugate.mechanics.load_cases` and registered here too, after the supports.
 
 A new support condition (or load case) is a module beside these defining its
@@ -23,3 +23,4 @@ register(load_cases.THREE_POINT)
 register(load_cases.FOUR_POINT)
 register(load_cases.CANTILEVER)
 register(load_cases.PLATENS)
+register(load_cases.WHEEL)

@@ -497,13 +497,13 @@ function syncDesignVisibility() {
 // ---- requirement rows: any number of EI, D, K, buckling and load-case bounds --------------
 
 // The tests a row of each kind may name (docs/load_cases.md): value '' is the spec's default
-// (pure bending for EI and D; K is measured between platens only, so its row names none).
+// (pure bending for EI and D, between platens for K; a circle's K may name the wheel test).
 const BENDING_TESTS = [['', 'pure bending'], ['three-point', 'three-point test'],
   ['four-point', 'four-point test'], ['cantilever', 'cantilever test']];
 const ROW_TESTS = {
   flexural_rigidity: BENDING_TESTS,
   bending_stiffness: BENDING_TESTS,
-  inplane_stiffness: [],
+  inplane_stiffness: [['', 'between platens'], ['wheel', 'wheel test (a circle)']],
   buckling_load: [],
   deflection: [['three-point', 'three-point'], ['four-point', 'four-point'],
     ['cantilever', 'cantilever'], ['platens', 'between platens']],

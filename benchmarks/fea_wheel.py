@@ -1,0 +1,192 @@
+"""The wheel test's factor: FE radial stiffness of discs against the model's K (docs/load_cases.md 9).
+
+    python benchmarks/fea_wheel.py [--csv docs/validation/wheel_fe.csv] [--along 2,4,8]
+                                   [--eta 0,45] [--designs NAME,NAME]
+    python benchmarks/fea_wheel.py --table     # the table of docs/load_cases.md 9 and c(eta)
+
+Each design of :data:`DESIGNS` (a circle layout, identical layers, a central circular axle hole)
+runs in the wheel fixture of docs/fea.md 2.8 (:func:`corrugate.fea.outline.solve_outline`: a rigid
+axle pinned through the hole, a no-slip rigid ground patch of +-15 deg under the rim, the patch
+pushed towards the axle along eta) at each number of elements per facet, beside the model's K(eta)
+of the same disc (``refined`` model, free sides: the strips' springs summed between platens,
+:func:`corrugate.analyze`). One row per run is appended to the CSV and flushed, so a killed run
+resumes where it stopped (rows already in the file are skipped). The CSV starts with comment
+lines (``#``) naming this command. ``seconds`` is the CPU time (user + sys) of the run, ccx
+included; ``peak_MB`` the largest resident set of a ccx process so far. A run the fixture refuses
+(no mesh node on the edge of a small hole at 2 elements per facet) has ``K_FE`` = failed.
+
+Runs are one at a time; the 8-per-facet run of a 70-80 mm disc with 7-13 facets takes about a
+minute of CPU and 1-2 GB. :mod:`corrugate.mechanics.wheel` reads the table this writes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import math
+import resource
+import time
+from pathlib import Path
+from typing import Any
+
+from corrugate import Assembly, Layer, analyze, get_material
+from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
+
+FIELDS = (
+    "design",
+    "material",
+    "t_mm",
+    "W_mm",
+    "n",
+    "alpha_deg",
+    "diameter_mm",
+    "hole_mm",
+    "eta_deg",
+    "along",
+    "nodes",
+    "K_FE",
+    "K_model",
+    "seconds",
+    "peak_MB",
+)
+
+#: (name, material, t mm, W mm, n, alpha deg, hole diameter mm): the example's certified design
+#: and variations of W, n, alpha, hole, material and thickness over what examples/wheel_circle.toml
+#: allows (diameter 70-80 mm) and a bit beyond (n 6-13, diameter 56-82 mm, holes 3-16 mm).
+DESIGNS: tuple[tuple[str, str, float, float, int, float, float], ...] = (
+    ("example", "polypropylene", 0.3, 8.5, 8, 132.42, 6.0),
+    ("pp-n6-a140", "polypropylene", 0.3, 12.5, 6, 140.0, 6.0),
+    ("dl125-n9-a90", "dura-lar", 0.125, 10.0, 9, 90.0, 6.0),
+    ("dl175-n11-a110", "dura-lar", 0.175, 7.5, 11, 110.0, 6.0),
+    ("example-hole12", "polypropylene", 0.3, 8.5, 8, 132.42, 12.0),
+    ("example-hole3", "polypropylene", 0.3, 8.5, 8, 132.42, 3.0),
+    ("dl125-n6-a60", "dura-lar", 0.125, 20.0, 6, 60.0, 6.0),
+    ("pp-n12-a150", "polypropylene", 0.3, 6.0, 12, 150.0, 6.0),
+    ("dl175-n13-a120", "dura-lar", 0.175, 5.0, 13, 120.0, 6.0),
+    ("dl125-n8-a70-hole16", "dura-lar", 0.125, 12.0, 8, 70.0, 16.0),
+)
+
+
+def assembly(material: str, t: float, W: float, n: int, alpha: float, hole: float) -> Assembly:
+    """The disc of identical layers with a central circular hole of diameter ``hole`` (mm)."""
+    from corrugate.geometry.holes import Hole
+    from corrugate.geometry.layouts import Circle
+
+    layer = Layer(W=W, n=n, alpha_deg=alpha, material=get_material(material), t=t)
+    return Assembly.identical(layer, Circle(holes=(Hole("circle", (0.0, 0.0), hole),)))
+
+
+def _cpu() -> float:
+    me = resource.getrusage(resource.RUSAGE_SELF)
+    kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def table(path: Path) -> None:
+    """Print the sweep of ``path`` as docs/load_cases.md 9 shows it: per design and eta the FE
+    series, the model, FE / model at the finest mesh and the design's lower ratio (the FE at
+    8 per facet less its last step |K8 - K4|, and the 16-per-facet value where run, over the
+    model), then c(eta), the least lower ratio, and the range of designs."""
+    with path.open() as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    cases: dict[tuple[str, float], dict[str, Any]] = {}
+    for r in rows:
+        c = cases.setdefault((r["design"], float(r["eta_deg"])), {"row": r, "fe": {}})
+        if r["K_FE"] != "failed":
+            c["fe"][int(r["along"])] = float(r["K_FE"])
+            c["row"] = r  # a run that ran: its mesh's size, the disc's diameter
+    print("| design | eta | FE K 2 / 4 / 8 (/ 16) N/mm | model K | FE8 / model | lower / model |")
+    print("|---|---|---|---|---|---|")
+    least: dict[float, float] = {}
+    for (name, eta), c in cases.items():
+        fe, r = c["fe"], c["row"]
+        if 8 not in fe or 4 not in fe:
+            continue
+        model = float(r["K_model"])
+        low = fe[8] - abs(fe[8] - fe[4])
+        if 16 in fe:
+            low = min(low, fe[16])
+        least[eta] = min(least.get(eta, math.inf), low / model)
+        series = " / ".join(
+            f"{fe[m]:.4g}" if m in fe else "-" for m in (2, 4, 8, 16) if m < 16 or m in fe
+        )
+        what = (
+            f"{name}: {r['material']} {r['t_mm']} mm, W {r['W_mm']}, n {r['n']}, alpha "
+            f"{r['alpha_deg']}, {float(r['diameter_mm']):.1f} mm, hole {r['hole_mm']}"
+        )
+        print(
+            f"| {what} | {eta:g} | {series} | {model:.4g} | {fe[8] / model:.3f} | "
+            f"{low / model:.3f} |"
+        )
+    for eta, v in sorted(least.items()):
+        print(f"c({eta:g}) = {math.floor(1000 * v) / 1000:.3f} (least lower ratio {v:.5f})")
+
+
+def main() -> None:
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--csv", type=Path, default=Path("docs/validation/wheel_fe.csv"))
+    p.add_argument("--along", default="2,4,8")
+    p.add_argument("--eta", default="0,45")
+    p.add_argument("--designs", default="", help="names of DESIGNS to run (default: all)")
+    p.add_argument("--table", action="store_true", help="print the table and c(eta), run nothing")
+    a = p.parse_args()
+    if a.table:
+        table(a.csv)
+        return
+    from corrugate.fea.assembly import AssemblyMesh
+    from corrugate.fea.ccx import SolverError
+    from corrugate.fea.outline import solve_outline
+
+    names = set(a.designs.split(",")) if a.designs else None
+    done = done_keys(a.csv, ("design", "eta_deg", "along"))
+    preamble = (
+        "FE radial stiffness of discs in the wheel fixture (docs/fea.md 2.8) against the model's "
+        "K between platens (refined, free sides)",
+        "source: python benchmarks/fea_wheel.py (every design at --along 2,4,8 --eta 0,45); "
+        "python benchmarks/fea_wheel.py --along 4 --eta 90,135 --designs example,dl175-n11-a110 "
+        "(the symmetry check); flock /work/notes/fe-big.lock prlimit --as=17000000000 python "
+        "benchmarks/fea_wheel.py --along 16 --eta 0,45 --designs example-hole3, and the same with "
+        "--eta 0 --designs dl125-n9-a90 (4.4 GB each); seconds: CPU (user + sys) of the run",
+    )
+    with appender(a.csv, FIELDS, preamble) as write:
+        for name, mat, t, W, n, alpha, hole in DESIGNS:
+            if names is not None and name not in names:
+                continue
+            asm = assembly(mat, t, W, n, alpha, hole)
+            for eta in (float(v) for v in a.eta.split(",")):
+                model = float(analyze(asm, eta_deg=(eta,)).stiffness[0].K)
+                for along in (int(v) for v in a.along.split(",")):
+                    if (name, f"{eta:g}", str(along)) in done:
+                        continue
+                    c0, t0 = _cpu(), time.time()
+                    try:
+                        r = solve_outline(asm, "wheel", AssemblyMesh(along), eta, timeout=3000)
+                    except SolverError as exc:  # e.g. no node on a small hole's edge
+                        print(name, f"{eta:g}", along, "failed:", exc, flush=True)
+                        failed = (name, mat, t, W, n, alpha, "", hole, f"{eta:g}", along)
+                        write((*failed, "", "failed", f"{model:.6g}", "", ""))
+                        continue
+                    peak = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss / 1024
+                    row = (
+                        name,
+                        mat,
+                        f"{t:g}",
+                        f"{W:g}",
+                        n,
+                        f"{alpha:g}",
+                        f"{asm.Lx:.6g}",
+                        f"{hole:g}",
+                        f"{eta:g}",
+                        along,
+                        r.nodes,
+                        f"{r.value:.6g}",
+                        f"{model:.6g}",
+                        f"{_cpu() - c0:.1f}",
+                        f"{peak:.0f}",
+                    )
+                    write(row)
+                    print(*row, f"{time.time() - t0:.0f} s wall", flush=True)
+
+
+if __name__ == "__main__":
+    main()
