@@ -1,9 +1,11 @@
-"""Regenerate the figures under docs/img from the blimp gripper example (run by hand):
+"""Regenerate the figures under docs/img from the paper's case study (run by hand):
 
     .venv/bin/python docs/make_figures.py
 
-They are the report's own figures (corrugate.report) and the fabrication figures, so the README
-shows exactly what `corrugate design examples/blimp_gripper.toml --out DIR` produces.
+They are the report's own figures (corrugate.report) and the fabrication figures of the paper's
+case 1 (W 8, n 8, alpha 84: tests/data/paper_case_study.toml, the case study under the paper's
+printed model), so the README shows exactly what `corrugate design
+tests/data/paper_case_study.toml --out DIR` produces.
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ IMG = ROOT / "docs" / "img"
 
 def main() -> None:
     IMG.mkdir(parents=True, exist_ok=True)
-    sol = solve(Problem.from_spec(load_spec(ROOT / "examples" / "blimp_gripper.toml")))
+    sol = solve(Problem.from_spec(load_spec(ROOT / "tests" / "data" / "paper_case_study.toml")))
     assert sol.analysis is not None
     a = sol.analysis
     pattern = build_pattern(a.assembly)

@@ -4,12 +4,15 @@ from __future__ import annotations
 
 import tomllib
 from html.parser import HTMLParser
+from pathlib import Path
 
 from corrugate import Assembly, Layer, analyze, get_material
 from corrugate.solver import solve
 from corrugate.solver.problem import Problem
 from corrugate.spec.examples import example_text
 from corrugate.spec.schema import parse_spec
+
+PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 
 
 class _Cells(HTMLParser):
@@ -55,7 +58,7 @@ def test_analysis_html_table_has_one_row_per_direction() -> None:
 
 
 def test_solution_repr_fits_five_lines_and_names_the_binding_constraints() -> None:
-    spec = parse_spec(tomllib.loads(example_text("blimp_gripper")))
+    spec = parse_spec(tomllib.loads(PAPER_CASE_STUDY.read_text("utf-8")))
     s = solve(Problem.from_spec(spec))
     text = repr(s)
     assert len(text.splitlines()) <= 5

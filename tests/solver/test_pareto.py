@@ -18,6 +18,7 @@ from corrugate.solver.pareto import pareto_front
 from corrugate.spec.schema import parse_spec
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 
 
 def _spec(W_step: float | None, a_step: float | None) -> dict[str, Any]:
@@ -104,7 +105,7 @@ def test_pareto_cli_writes_csv_and_plot(tmp_path: Path, capsys: pytest.CaptureFi
         main(
             [
                 "pareto",
-                str(EXAMPLES / "blimp_gripper.toml"),
+                str(PAPER_CASE_STUDY),
                 "--vs",
                 "flexural_rigidity",
                 "--out",
@@ -127,6 +128,6 @@ def test_pareto_cli_writes_csv_and_plot(tmp_path: Path, capsys: pytest.CaptureFi
 
 def test_pareto_cli_rejects_unknown_quantity(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit) as info:
-        main(["pareto", str(EXAMPLES / "blimp_gripper.toml"), "--vs", "stiffness"])
+        main(["pareto", str(PAPER_CASE_STUDY), "--vs", "stiffness"])
     assert info.value.code == 2
     assert capsys.readouterr().err.startswith("corrugate: error: --vs = ")

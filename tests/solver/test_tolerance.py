@@ -16,11 +16,12 @@ from corrugate.solver.tolerance import Tolerances, monte_carlo
 from corrugate.spec.schema import load_spec
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 
 
 @pytest.fixture(scope="module")
 def case_study() -> tuple[Problem, Solution]:
-    problem = Problem.from_spec(load_spec(EXAMPLES / "blimp_gripper.toml"))
+    problem = Problem.from_spec(load_spec(PAPER_CASE_STUDY))
     return problem, solve(problem, explain=False)
 
 
@@ -54,7 +55,7 @@ def test_tolerance_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
         main(
             [
                 "tolerance",
-                str(EXAMPLES / "blimp_gripper.toml"),
+                str(PAPER_CASE_STUDY),
                 "--samples",
                 "500",
                 "--json",
@@ -74,7 +75,7 @@ def test_tolerance_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_tolerance_cli_rejects_bad_percentage(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit) as info:
-        main(["tolerance", str(EXAMPLES / "blimp_gripper.toml"), "--E-tol", "lots"])
+        main(["tolerance", str(PAPER_CASE_STUDY), "--E-tol", "lots"])
     assert info.value.code == 2
     assert capsys.readouterr().err.startswith("corrugate: error: --E-tol = ")
 

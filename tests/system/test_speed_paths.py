@@ -32,6 +32,7 @@ from corrugate.solver.interval import Interval
 from corrugate.spec.schema import load_spec
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
+PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 DURALAR = get_material("dura-lar")
 CASE_BOUNDS = {"Lx": (48.0, 60.0), "thickness": (10.0, 12.5), "flat": (None, 250.0)}
 CASE_BOUNDS["EI"] = (80e3, None)
@@ -114,7 +115,7 @@ def test_sweep_finds_the_case_study_optimum_like_the_solver_and_a_hand_search() 
     r = sweep(W, n, A, DURALAR, 0.125, model="paper", bounds=CASE_BOUNDS)
     assert r.best is not None
     assert (r.best["W"], r.best["n"], r.best["alpha"]) == (8.0, 8.0, 84.0)  # docs/theory.md 3.5
-    sol = solve(Problem.from_spec(load_spec(EXAMPLES / "blimp_gripper.toml")), explain=False)
+    sol = solve(Problem.from_spec(load_spec(PAPER_CASE_STUDY)), explain=False)
     assert sol.certified
     assert r.best["mass"] == pytest.approx(sol.mass, rel=1e-12)
     k, mass, count = _hand_search(W, n, A, "paper")

@@ -154,9 +154,10 @@ def test_the_design_forms_defaults_answer_as_the_cli(
     assert without_timings(answer["design"]) == without_timings(cli_answer)
     mass = cli_answer["mass_g"]
     assert f"mass {float(f'{mass:.4g}'):g} g" in (page.text_content("#d-mass") or "")
-    # The page says why the model is the paper's.
+    # The page says what the two models give: refined (the default) holds in FE, paper reproduces.
     note = page.text_content("#d-model-note") or ""
-    assert "paper" in note and "refined" in note and "blimp_gripper.toml" in note, note
+    assert "refined" in note and "finite elements" in note and "W 8, n 8" in note, note
+    assert page.input_value("#d-model") == "refined"
 
     # The stiffness table: a row per direction with the CLI's K, D and EI (mN m^2).
     rows = page.locator("#d-stiffness tbody tr")

@@ -254,8 +254,8 @@ def test_a_job_past_its_time_limit_fails_with_504_and_keeps_nothing() -> None:
     spec = spec_of("blimp_gripper.toml")
     spec["variables"] = {
         "W": {"min": "8 mm", "max": "8 mm", "step": "1 mm"},
-        "n": {"min": 8, "max": 8},
-        "alpha": {"min": "84 deg", "max": "84 deg", "step": "1 deg"},
+        "n": {"min": 9, "max": 9},
+        "alpha": {"min": "78 deg", "max": "78 deg", "step": "1 deg"},
     }
     with serve(settings) as (base, app):
         status, job = post_json(base, "/api/jobs/design", spec)

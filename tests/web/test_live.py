@@ -8,6 +8,7 @@ import json
 import threading
 import tomllib
 from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
@@ -15,7 +16,7 @@ import pytest
 
 from .conftest import direct
 from .conftest import post_json as post
-from .test_design_api import EXAMPLES, direct_design, without_timings
+from .test_design_api import direct_design, without_timings
 
 
 def raw_get(base: str, target: str) -> tuple[int, bytes]:
@@ -108,8 +109,8 @@ def test_raw_path_tricks_get_4xx_and_the_server_keeps_serving(live_server: str) 
 
 
 def blimp_spec(rigidity_mNm2: float, name: str) -> dict[str, Any]:
-    """The blimp gripper spec named ``name``, asking for another flexural rigidity (mN m^2)."""
-    with (EXAMPLES / "blimp_gripper.toml").open("rb") as f:
+    """The blimp gripper spec under the paper's model (tests/data/paper_case_study.toml) named ``name``, asking for another flexural rigidity (mN m^2)."""
+    with (Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml").open("rb") as f:
         spec = tomllib.load(f)
     spec["constraints"]["flexural_rigidity"][0]["min"] = f"{rigidity_mNm2:g} mN*m^2"
     spec["name"] = name

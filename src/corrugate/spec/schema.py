@@ -17,7 +17,7 @@ the value and what is allowed. The CLI prints it as one line and exits with code
 Example (the paper's case study, ``examples/blimp_gripper.toml``)::
 
     name = "blimp-gripper"
-    model = "paper"
+    model = "refined"
     [material]
     name = "dura-lar"
     thickness = "0.125 mm"

@@ -135,10 +135,10 @@ OUTPUT_OPTIONS = ("cutter", "fold_style", "cut", "gap", "paper")
 
 _SPEC_KEY = "A key of the spec, as in the TOML file (see corrugate.spec.schema and examples/)."
 
-#: The paper's case study (``examples/blimp_gripper.toml``) as a design request.
+#: The paper's case study (``examples/blimp_gripper.toml``, the project's model) as a design request.
 BLIMP_GRIPPER: dict[str, Any] = {
     "name": "blimp-gripper",
-    "model": "paper",
+    "model": "refined",
     "material": {"name": "dura-lar", "thickness": "0.125 mm"},
     "layout": {"shape": "square"},
     "variables": {
