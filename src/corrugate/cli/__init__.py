@@ -70,7 +70,6 @@ INTERRUPTED = (
 _MARKUP = _help_markup()
 
 
-
 def _new_app() -> typer.Typer:
     """The ``corrugate`` group, its root option (``--version``) registered, no command yet."""
     group = typer.Typer(
