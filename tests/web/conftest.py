@@ -84,6 +84,15 @@ def client() -> Iterator[TestClient]:
         yield c
 
 
+def wait_for(condition: Any, seconds: float, what: str) -> None:
+    """Poll ``condition`` every 0.05 s until it holds; fail the test after ``seconds``."""
+    deadline = time.monotonic() + seconds
+    while not condition():
+        if time.monotonic() > deadline:
+            pytest.fail(f"not within {seconds} s: {what}")
+        time.sleep(0.05)
+
+
 def _wait(condition: Any, what: str, thread: threading.Thread) -> None:
     for _ in range(1000):  # at most about 10 s
         if condition():

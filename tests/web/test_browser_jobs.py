@@ -14,7 +14,6 @@ from __future__ import annotations
 import json
 import re
 import shutil
-import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -25,7 +24,7 @@ from fastapi import FastAPI
 from corrugate.web import WebSettings
 from corrugate.web.app import LOOPBACK_NAMES
 
-from .conftest import serve
+from .conftest import serve, wait_for
 from .test_browser import Watched, browser  # noqa: F401  (the module's browser fixture)
 from .test_browser_specs import design, open_design_tab, set_requirements
 
@@ -76,14 +75,6 @@ def fill_chassis(page: Any) -> None:
     set_requirements(page, [("flexural_rigidity", "360 mN*m^2", "0 deg", "")])
 
 
-def _wait_for(condition: Any, seconds: float, what: str) -> None:
-    deadline = time.monotonic() + seconds
-    while not condition():
-        if time.monotonic() > deadline:
-            pytest.fail(f"not within {seconds} s: {what}")
-        time.sleep(0.05)
-
-
 def test_the_chassis_plate_designs_with_progress_and_a_job_is_cancelled(
     browser: Any,  # noqa: F811
     served: tuple[str, FastAPI],
@@ -131,7 +122,7 @@ def test_the_chassis_plate_designs_with_progress_and_a_job_is_cancelled(
 
     # the same spec again, cancelled from the page once the solver reports
     runner, store = app.state.runner, app.state.store
-    _wait_for(lambda: len(runner.worker_pids()) == runner.processes, 120, "workers up")
+    wait_for(lambda: len(runner.worker_pids()) == runner.processes, 120, "workers up")
     pids = set(runner.worker_pids())
     folders = set(store.root.iterdir())
     page.click("#d-submit")
@@ -147,7 +138,7 @@ def test_the_chassis_plate_designs_with_progress_and_a_job_is_cancelled(
     assert page.is_hidden("#d-cancel") and page.is_hidden("#design-results")
     job = page.evaluate("id => fetch('/api/jobs/' + id).then((r) => r.json())", job_id)
     assert job["status"] == "cancelled" and job["result"] is None
-    _wait_for(
+    wait_for(
         lambda: len(runner.worker_pids()) == runner.processes and set(runner.worker_pids()) != pids,
         120,
         "the cancelled job's worker replaced",

@@ -29,7 +29,7 @@ from corrugate.web.app import JOB_WALL_PER_CPU, LOOPBACK_NAMES
 from corrugate.web.jobs import Job, JobTable
 from corrugate.web.workers import ServerBusyError
 
-from .conftest import post_json, serve
+from .conftest import post_json, serve, wait_for
 from .test_design_api import spec_of, without_timings
 
 Event = tuple[str, dict[str, Any]]
@@ -182,14 +182,6 @@ def test_bad_input_is_422_before_anything_is_queued(served: tuple[str, FastAPI])
         assert status == 404 and "no such job" in answer["detail"]
 
 
-def _wait_for(condition: Any, seconds: float, what: str) -> None:
-    deadline = time.monotonic() + seconds
-    while not condition():
-        if time.monotonic() > deadline:
-            pytest.fail(f"not within {seconds} s: {what}")
-        time.sleep(0.05)
-
-
 def _ended(pid: int) -> bool:
     """Whether process ``pid`` is gone (or a zombie waiting for its parent to reap it)."""
     try:
@@ -206,7 +198,7 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
     worker running it is killed and replaced, the result folder it was writing goes."""
     base, app = served
     runner, store = app.state.runner, app.state.store
-    _wait_for(lambda: len(runner.worker_pids()) == runner.processes, 120, "workers up")
+    wait_for(lambda: len(runner.worker_pids()) == runner.processes, 120, "workers up")
     pids = set(runner.worker_pids())
     folders = set(store.root.iterdir())
     status, job = post_json(base, "/api/jobs/design", CHASSIS)
@@ -223,7 +215,7 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
     stream = events(base, job["id"])
     assert stream[-1][0] == "cancelled"
     # its worker was killed and another took its place; the others kept running
-    _wait_for(
+    wait_for(
         lambda: len(runner.worker_pids()) == runner.processes and set(runner.worker_pids()) != pids,
         120,
         "a worker replaced",
@@ -231,7 +223,7 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
     gone = pids - set(runner.worker_pids())
     assert len(gone) == 1
     (killed,) = gone
-    _wait_for(lambda: _ended(killed), 10, "the killed worker ended")
+    wait_for(lambda: _ended(killed), 10, "the killed worker ended")
     assert set(store.root.iterdir()) == folders  # no result folder left
     assert request(base, f"/api/jobs/{job['id']}")[1]["result"] is None
     # a cancelled job stays cancelled; the server designs on
@@ -380,7 +372,7 @@ def test_cancelling_a_verification_kills_its_calculix(
     status, state = request(base, f"/api/jobs/{job['id']}", "DELETE")
     assert status == 200 and state["status"] == "cancelled"
     for child in children:
-        _wait_for(lambda c=child: _ended(c), 10, f"CalculiX ({child}) killed")
+        wait_for(lambda c=child: _ended(c), 10, f"CalculiX ({child}) killed")
 
 
 def test_the_openapi_document_lists_the_job_api(served: tuple[str, FastAPI]) -> None:

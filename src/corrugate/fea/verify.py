@@ -45,9 +45,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, TypeVar
 
 from corrugate.core.errors import CorrugateError, InputError
 from corrugate.fea.assembly import (
@@ -111,6 +111,7 @@ BEHAVIOURAL_KINDS = ("K", "D", "EI", "k", "Pb", "Pmax")
 
 #: Called with one line before each CalculiX run.
 Progress = Callable[[str], None]
+_T = TypeVar("_T")
 
 _NAMES: dict[str, str] = {
     "compression": "compression between platens",
@@ -558,7 +559,7 @@ def verify_design(
     for base, twin in planned:
         sense = base.sense
         if isinstance(twin, str):
-            rows.append(_replace_row(base, note=twin))
+            rows.append(replace(base, note=twin))
             continue
         positions = tuple(shifts) if twin.shifted else (0.0,)
         sign = 1.0 if sense == "min" else -1.0
@@ -653,7 +654,7 @@ def verify_design(
             if not complete:
                 notes.append("a coupon position has a failed run or no FE value: not proven")
         rows.append(
-            _replace_row(
+            replace(
                 base,
                 fe_series=series,
                 fe=e.value,
@@ -691,23 +692,20 @@ def _short(exc: CorrugateError) -> str:
     return str(exc)
 
 
-def _replace_row(row: Row, **changes: Any) -> Row:
-    from dataclasses import replace
-
-    return replace(row, **changes)
+def _comma_values(
+    text: str, convert: Callable[[str], _T], name: str, allowed: str
+) -> tuple[_T, ...]:
+    """The values of option ``name`` given as ``text``, separated by commas, each read by
+    ``convert``; one line naming the option and what it allows when one cannot be read."""
+    try:
+        return tuple(convert(v) for v in text.split(","))
+    except ValueError:
+        raise InputError(name, repr(text), allowed, reason="cannot be read") from None
 
 
 def parse_meshes(text: str) -> tuple[int, ...]:
     """``--mesh 2,4,8``: even element counts >= 2, increasing, without repeats."""
-    try:
-        values = tuple(int(v) for v in text.split(","))
-    except ValueError:
-        raise InputError(
-            "mesh",
-            repr(text),
-            "even integers separated by commas, e.g. 2,4,8",
-            reason="cannot be read",
-        ) from None
+    values = _comma_values(text, int, "mesh", "even integers separated by commas, e.g. 2,4,8")
     for v in values:
         AssemblyMesh(v)  # even, >= 2, within the limits
     if not values or list(values) != sorted(set(values)):
@@ -726,15 +724,9 @@ def parse_max_mesh(n: int, name: str = "--max-mesh") -> int:
 def parse_shifts(text: str) -> tuple[float, ...]:
     """``--shifts 0,0.25,0.5,0.75``: coupon positions, fractions of each layer's pitch in [0, 1),
     increasing, without repeats."""
-    try:
-        values = tuple(float(v) for v in text.split(","))
-    except ValueError:
-        raise InputError(
-            "shifts",
-            repr(text),
-            "fractions of the pitch separated by commas, e.g. 0,0.25,0.5,0.75",
-            reason="cannot be read",
-        ) from None
+    values = _comma_values(
+        text, float, "shifts", "fractions of the pitch separated by commas, e.g. 0,0.25,0.5,0.75"
+    )
     for v in values:
         try:
             check_shift(v)
