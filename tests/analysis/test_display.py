@@ -4,15 +4,13 @@ from __future__ import annotations
 
 import tomllib
 from html.parser import HTMLParser
-from pathlib import Path
 
 from corrugate import Assembly, Layer, analyze, get_material
 from corrugate.solver import solve
 from corrugate.solver.problem import Problem
 from corrugate.spec.examples import example_text
 from corrugate.spec.schema import parse_spec
-
-PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
+from data_files import PAPER_CASE_STUDY
 
 
 class _Cells(HTMLParser):

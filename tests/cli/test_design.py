@@ -9,13 +9,15 @@ from typing import TYPE_CHECKING, Any
 
 import pytest
 
+from data_files import PAPER_CASE_STUDY
+
 if TYPE_CHECKING:
     from conftest import CliRun
 
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 # the case study under the paper's printed model: its answer is the paper's case 1
-BLIMP = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
+BLIMP = PAPER_CASE_STUDY
 
 
 def _dump(d: dict[str, Any]) -> str:

@@ -14,11 +14,12 @@ import pytest
 from corrugate.report import report_html
 from corrugate.solver import Problem, Solution, solve
 from corrugate.spec.schema import load_spec
+from data_files import PAPER_CASE_STUDY
 from plan_readers import Tables, sheet_rows, svg_parts
 
 ROOT = Path(__file__).resolve().parents[2]
 # the case study under the paper's printed model: its answer is the paper's case 1 (W 8, n 8, alpha 84)
-BLIMP = ROOT / "tests" / "data" / "paper_case_study.toml"
+BLIMP = PAPER_CASE_STUDY
 CHROMIUM = Path("/usr/bin/chromium")
 ARTIFACTS = ROOT / "test-artifacts"
 

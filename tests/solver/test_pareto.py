@@ -16,9 +16,9 @@ from corrugate.cli import main
 from corrugate.solver import Problem
 from corrugate.solver.pareto import pareto_front
 from corrugate.spec.schema import parse_spec
+from data_files import PAPER_CASE_STUDY
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 
 
 def _spec(W_step: float | None, a_step: float | None) -> dict[str, Any]:

@@ -29,10 +29,10 @@ from corrugate.solver.interval import Interval
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import LX, LY, MASS
 from corrugate.spec.schema import load_spec, parse_spec
+from data_files import PAPER_CASE_STUDY
 from spec_units import with_units
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 RTOL = 1e-9  # floating-point slack on constraints, as a user would accept
 PENTAGON = [[0, 0], [1, 0], [1, 0.6], [0.5, 1], [0, 0.6]]  # not symmetric under x <-> y
 

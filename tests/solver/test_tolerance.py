@@ -14,9 +14,9 @@ from corrugate.cli import main
 from corrugate.solver import Problem, Solution, solve
 from corrugate.solver.tolerance import Tolerances, monte_carlo
 from corrugate.spec.schema import load_spec
+from data_files import PAPER_CASE_STUDY
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 
 
 @pytest.fixture(scope="module")

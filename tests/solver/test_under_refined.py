@@ -14,9 +14,9 @@ import pytest
 from corrugate import analyze
 from corrugate.solver import Problem, solve
 from corrugate.spec.schema import load_spec, parse_spec
+from data_files import PAPER_CASE_STUDY
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 
 
 def _warning(sol: object, code: str) -> str | None:

@@ -11,10 +11,11 @@ import pytest
 
 from corrugate.core.errors import InputError
 from corrugate.spec.schema import SpecError, load_spec, parse_spec
+from data_files import PAPER_CASE_STUDY
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 # the case study under the paper's printed model, the issue's text below its header of comments
-BLIMP = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
+BLIMP = PAPER_CASE_STUDY
 
 # The spec exactly as issue 3 prints it (the shipped example must be this text).
 ISSUE_TEXT = """\

@@ -30,9 +30,9 @@ from corrugate.solver import Problem, solve
 from corrugate.solver import bnb as bnb_module
 from corrugate.solver.interval import Interval
 from corrugate.spec.schema import load_spec
+from data_files import PAPER_CASE_STUDY
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
-PAPER_CASE_STUDY = Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml"
 DURALAR = get_material("dura-lar")
 CASE_BOUNDS = {"Lx": (48.0, 60.0), "thickness": (10.0, 12.5), "flat": (None, 250.0)}
 CASE_BOUNDS["EI"] = (80e3, None)

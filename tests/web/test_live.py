@@ -8,11 +8,12 @@ import json
 import threading
 import tomllib
 from concurrent.futures import ThreadPoolExecutor
-from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
 import pytest
+
+from data_files import PAPER_CASE_STUDY
 
 from .conftest import direct
 from .conftest import post_json as post
@@ -110,7 +111,7 @@ def test_raw_path_tricks_get_4xx_and_the_server_keeps_serving(live_server: str) 
 
 def blimp_spec(rigidity_mNm2: float, name: str) -> dict[str, Any]:
     """The blimp gripper spec under the paper's model (tests/data/paper_case_study.toml) named ``name``, asking for another flexural rigidity (mN m^2)."""
-    with (Path(__file__).resolve().parents[1] / "data" / "paper_case_study.toml").open("rb") as f:
+    with PAPER_CASE_STUDY.open("rb") as f:
         spec = tomllib.load(f)
     spec["constraints"]["flexural_rigidity"][0]["min"] = f"{rigidity_mNm2:g} mN*m^2"
     spec["name"] = name
