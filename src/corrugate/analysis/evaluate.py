@@ -29,11 +29,12 @@ from corrugate.geometry.layouts import (
     layer_inverse_sums,
     length_sum,
 )
+from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.behaviours import check_support, get_support
 from corrugate.mechanics.buckling import BucklingEstimate, buckling_bounds
 from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
-from corrugate.mechanics.moduli import DEFAULT_MODEL, Moduli, ModuliFromSC, get_model
+from corrugate.mechanics.moduli import DEFAULT_MODEL, Moduli, ModuliModel, get_model
 from corrugate.mechanics.offaxis import Coupon, assembly_directional
 from corrugate.mechanics.springs import LayerSprings, layer_springs
 from corrugate.names import DEFAULT_SUPPORT
@@ -73,20 +74,25 @@ class LayerArrays:
         m = layer.material
         return cls(m.E, m.nu, layer.t, layer.W, layer.n, layer.alpha_deg, m.density)
 
+    def profile(self) -> ZigZag:
+        """The layers' cross-section (:class:`corrugate.geometry.profile.ZigZag`) over the arrays."""
+        return ZigZag.of(np.asarray(self.W), np.asarray(self.alpha_deg, dtype=float))
+
     def sin_half(self) -> FloatArray:
         """sin(alpha/2)."""
-        return np.asarray(np.sin(np.radians(np.asarray(self.alpha_deg, dtype=float)) / 2))
+        return np.asarray(self.profile().s)
 
     def pitch(self) -> FloatArray:
-        return np.asarray(np.asarray(self.W) * self.sin_half())
+        """p = W sin(alpha/2) (mm)."""
+        return np.asarray(self.profile().pitch)
 
     def height(self) -> FloatArray:
-        return np.asarray(
-            np.asarray(self.W) * np.cos(np.radians(np.asarray(self.alpha_deg, dtype=float)) / 2)
-        )
+        """h = W cos(alpha/2) (mm)."""
+        return np.asarray(self.profile().height)
 
     def chord_extent(self) -> FloatArray:
-        return np.asarray((np.asarray(self.n) + 1) * self.pitch())
+        """(n + 1) p (mm)."""
+        return np.asarray(self.profile().extent(np.asarray(self.n)))
 
 
 def coupon_of(layout: Layout, Lx: Any, Ly: Any, pq: Callable[[], tuple[Any, Any]]) -> Coupon | None:
@@ -170,7 +176,8 @@ def identical_layers(layer1: LayerArrays, layer2: LayerArrays, layout: Layout) -
 
 @dataclass(frozen=True, slots=True)
 class _LayerPart:
-    """One layer's share of :func:`evaluate`: s = sin(alpha/2), c = cos(alpha/2), pitch p and
+    """One layer's share of :func:`evaluate`, from its cross-section
+    (:class:`corrugate.geometry.profile.ZigZag`): s = sin(alpha/2), c = cos(alpha/2), pitch p and
     height h (mm), chord extent (n + 1) p (mm) and moduli (MPa)."""
 
     s: FloatArray
@@ -181,16 +188,16 @@ class _LayerPart:
     moduli: Moduli
 
 
-def _layer_part(layer: LayerArrays, from_sc: ModuliFromSC) -> _LayerPart:
-    """Trigonometry once per layer (s, c of alpha/2), then the geometry and the moduli."""
-    half = np.asarray(layer.alpha_deg, dtype=np.float64) * (np.pi / 360.0)
-    s, c = np.sin(half), np.cos(half)
-    W = np.asarray(layer.W, dtype=np.float64)
-    p = W * s
+def _layer_part(layer: LayerArrays, model: ModuliModel) -> _LayerPart:
+    """Trigonometry once per layer (the profile's s, c of alpha/2), then the geometry and the
+    moduli."""
+    z = ZigZag.of(
+        np.asarray(layer.W, dtype=np.float64), np.asarray(layer.alpha_deg, dtype=np.float64)
+    )
     # scalars as Python floats: the nu polynomials of the moduli cost nothing then
-    m = from_sc(_num(layer.E), _num(layer.nu), _num(layer.t), W, s, c)
-    n1 = np.asarray(layer.n, dtype=np.float64) + 1.0  # exact; float * float avoids a cast loop
-    return _LayerPart(s, c, p, W * c, n1 * p, m)
+    m = model.of_profile(_num(layer.E), _num(layer.nu), _num(layer.t), z)
+    # n as float64: (n + 1) is exact, and float * float avoids a cast loop
+    return _LayerPart(z.s, z.c, z.pitch, z.height, z.extent(np.asarray(layer.n, np.float64)), m)
 
 
 def _on_creases(eta_deg: ArrayLike) -> Any:
@@ -238,10 +245,10 @@ def evaluate(
     No validation is done (see :class:`~corrugate.geometry.layer.Layer` for the allowed ranges), and the
     equal-sides requirement of square and circle layouts is left to the caller.
     """
-    from_sc = get_model(model).from_sc
+    variant = get_model(model)
     same = identical_layers(layer1, layer2, layout)
-    g1 = _layer_part(layer1, from_sc)
-    g2 = g1 if same else _layer_part(layer2, from_sc)
+    g1 = _layer_part(layer1, variant)
+    g2 = g1 if same else _layer_part(layer2, variant)
     Lx, Ly = g1.extent, g2.extent
     q1, qs1 = layer_inverse_sums(layout, layer1.n, g1.p, Ly, "x")
     s1 = layer_springs(

@@ -28,6 +28,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 from corrugate.geometry.layer import Assembly, Layer, crease_layer
+from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.behaviours import get_support, support_names
 from corrugate.names import DEFAULT_LAYOUT, DEFAULT_SUPPORT
 
@@ -56,7 +57,8 @@ SHEAR_LIMIT = 0.05
 def shear_estimate(nu: float, n: int, alpha_deg: float) -> float:
     """Timoshenko estimate of the shear share of a 3-point deflection, 2 (1 + nu) (W/L)^2 with
     W / L = 1 / ((n + 1) sin(alpha/2)) (docs/fea.md, section 3)."""
-    ratio = 1.0 / ((n + 1) * math.sin(math.radians(alpha_deg) / 2))
+    # W / L = W / ((n + 1) W s): the extent of the zig-zag of unit facet width
+    ratio: float = 1.0 / ZigZag.of_float(1.0, alpha_deg).extent(n)
     return 2 * (1 + nu) * ratio**2
 
 

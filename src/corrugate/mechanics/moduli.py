@@ -49,11 +49,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.geometry.profile import ZigZag
 from corrugate.names import DEFAULT_MODEL
 
 __all__ = ["DEFAULT_MODEL", "MODELS", "Moduli", "ModuliModel", "get_model", "moduli"]
@@ -84,9 +86,10 @@ ModuliFromSC = Callable[
 
 @dataclass(frozen=True, slots=True)
 class ModuliModel:
-    """A named moduli variant: ``function(E, nu, t, W, alpha_rad) -> Moduli``, and the same
-    formulas as ``from_sc(E, nu, t, W, s, c)`` for callers that already hold s = sin(alpha/2) and
-    c = cos(alpha/2) (the vectorised evaluator computes them once per layer)."""
+    """A named moduli variant: ``function(E, nu, t, W, alpha_rad) -> Moduli``, the same formulas
+    as ``of_profile(E, nu, t, zigzag)`` for callers that hold the layer's
+    :class:`~corrugate.geometry.profile.ZigZag` (the vectorised evaluator builds it once per
+    layer), and ``from_sc(E, nu, t, W, s, c)`` with s = sin(alpha/2), c = cos(alpha/2)."""
 
     name: str
     from_sc: ModuliFromSC
@@ -110,13 +113,19 @@ class ModuliModel:
         self, E: FloatArray, nu: FloatArray, t: FloatArray, W: FloatArray, alpha: FloatArray
     ) -> Moduli:
         """The moduli (unit of ``E``) at fold angle ``alpha`` (rad)."""
-        s, c = _sc(alpha)
-        return self.from_sc(E, nu, t, W, s, c)
+        return self.of_profile(E, nu, t, _zigzag(W, alpha))
+
+    def of_profile(self, E: Any, nu: Any, t: Any, profile: ZigZag) -> Moduli:
+        """The moduli (unit of ``E``) of a sheet (``E``, ``nu``, ``t`` mm) folded to the zig-zag
+        ``profile`` (:class:`corrugate.geometry.profile.ZigZag`: its W, s and c); floats, arrays
+        or intervals alike."""
+        return self.from_sc(E, nu, t, profile.W, profile.s, profile.c)
 
 
-def _sc(alpha: FloatArray) -> tuple[FloatArray, FloatArray]:
-    half = 0.5 * alpha
-    return np.sin(half), np.cos(half)
+def _zigzag(W: FloatArray, alpha: FloatArray) -> ZigZag:
+    """The zig-zag of facet width ``W`` at the fold angle ``alpha`` (rad): sin and cos of
+    0.5 alpha."""
+    return ZigZag.of_half(W, 0.5 * alpha)
 
 
 def paper_moduli_sc(
@@ -158,7 +167,8 @@ def paper_moduli(
     Units follow ``E``; ``t`` and ``W`` in the same length unit; ``alpha`` in radians. The
     printed cos(alpha) + 1 of Ebx is evaluated as 2 cos^2(alpha/2) (the same number).
     """
-    return paper_moduli_sc(E, nu, t, W, *_sc(alpha))
+    z = _zigzag(W, alpha)
+    return paper_moduli_sc(E, nu, t, z.W, z.s, z.c)
 
 
 def xia_moduli_sc(
@@ -184,7 +194,8 @@ def xia_moduli(
     Ebx = E s [W^2 c^2 + (1 - nu^2) t^2 s^2] / [(1 - nu^2)(W^2 c^2 + t^2 s^2)],
     Eby = E [s + W^2 c^2 / (t^2 (1 - nu^2) s)].
     """
-    return xia_moduli_sc(E, nu, t, W, *_sc(alpha))
+    z = _zigzag(W, alpha)
+    return xia_moduli_sc(E, nu, t, z.W, z.s, z.c)
 
 
 def refined_moduli_sc(
@@ -212,7 +223,8 @@ def refined_moduli(
     deg and t/W = 0.0067-0.02 (largest at alpha = 40 deg, t/W = 0.02; all within 1 % only at
     alpha = 115 deg, and at 90 deg up to t/W = 0.009).
     """
-    return refined_moduli_sc(E, nu, t, W, *_sc(alpha))
+    z = _zigzag(W, alpha)
+    return refined_moduli_sc(E, nu, t, z.W, z.s, z.c)
 
 
 MODELS: dict[str, ModuliModel] = {

@@ -56,7 +56,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from corrugate.core.errors import InputError
-from corrugate.mechanics.moduli import refined_moduli_sc
+from corrugate.geometry.profile import ZigZag
+from corrugate.mechanics.moduli import MODELS
 
 __all__ = [
     "BENDING_TESTS",
@@ -78,6 +79,9 @@ __all__ = [
 ]
 
 
+#: The moduli variant the strength formulas use (Xia 2012 with Ye et al.'s spanwise bending).
+_REFINED = MODELS["refined"]
+
 #: Peak bending moment (N mm) of each bench test per unit load P (N) and span Ls (mm): M = k P Ls.
 BENDING_TESTS: dict[str, float] = {
     "three-point": 1.0 / 4.0,  # P at mid-span: reactions P/2, M(Ls/2) = (P/2)(Ls/2)
@@ -88,9 +92,10 @@ BENDING_TESTS: dict[str, float] = {
 _TEST_ALIASES = {"bending": "three-point", "bending4": "four-point", "3-point": "three-point"}
 
 
-def _sc(alpha_deg: ArrayLike) -> tuple[Any, Any]:
-    half = np.radians(np.asarray(alpha_deg, dtype=np.float64)) / 2.0
-    return np.sin(half), np.cos(half)
+def _zigzag(W: ArrayLike, alpha_deg: ArrayLike) -> ZigZag:
+    """The layer's cross-section (:class:`corrugate.geometry.profile.ZigZag`) from W (mm) and
+    alpha (deg) as float64 arrays: s = sin(alpha/2), c = cos(alpha/2), p = W s, h = W c."""
+    return ZigZag.of(np.asarray(W, dtype=np.float64), np.asarray(alpha_deg, dtype=np.float64))
 
 
 def _out(x: Any) -> Any:
@@ -118,11 +123,9 @@ def spanwise_rigidity(
     This is the refined spanwise spring of docs/theory.md 3.2 times the facet length: D_S L =
     (n + 1) Eby t^3 p / 12 with Eby = E (s + W^2 c^2 / (t^2 s)) and p = W s gives the same
     expression. E (not E / (1 - nu^2)): the facets contract freely across their width."""
-    s, c = _sc(alpha_deg)
-    W_ = np.asarray(W, dtype=np.float64)
+    z = _zigzag(W, alpha_deg)
     t_ = np.asarray(t, dtype=np.float64)
-    h = W_ * c
-    return _out(np.asarray(E) * (np.asarray(n) + 1) * W_ * t_ * (h * h + t_ * t_ * s * s) / 12.0)
+    return _out(np.asarray(E) * (np.asarray(n) + 1) * z.W * t_ * z.section_depth2(t_) / 12.0)
 
 
 def chordwise_rigidity(
@@ -136,14 +139,11 @@ def chordwise_rigidity(
 
     the equivalent plate of modulus Ebx (refined = Xia 2012; for thin sheets Ebx -> E s /
     (1 - nu^2), the facets as plates in series). Independent of n."""
-    s, c = _sc(alpha_deg)
-    m = refined_moduli_sc(
+    m = _REFINED.of_profile(
         np.asarray(E, np.float64),
         np.asarray(nu, np.float64),
         np.asarray(t, np.float64),
-        np.asarray(W, np.float64),
-        s,
-        c,
+        _zigzag(W, alpha_deg),
     )
     t_ = np.asarray(t, dtype=np.float64)
     return _out(m.Ebx * np.asarray(width) * t_**3 / 12.0)
@@ -171,10 +171,11 @@ def chordwise_stiffness(
 ) -> Any:
     """In-plane spring K_C (N/mm) of a layer of facet length ``width`` (mm) compressed across its
     creases: K_C = Ecx t width / ((n + 1) p) (docs/theory.md 3.2, refined = Xia Ecx)."""
-    s, c = _sc(alpha_deg)
-    E_, t_, W_ = (np.asarray(x, np.float64) for x in (E, t, W))
-    m = refined_moduli_sc(E_, np.asarray(nu, np.float64), t_, W_, s, c)
-    return _out(m.Ecx * t_ * np.asarray(width) / ((np.asarray(n) + 1) * W_ * s))
+    z = _zigzag(W, alpha_deg)
+    E_, t_ = (np.asarray(x, np.float64) for x in (E, t))
+    m = _REFINED.of_profile(E_, np.asarray(nu, np.float64), t_, z)
+    # (n + 1) p evaluated as ((n + 1) W) s
+    return _out(m.Ecx * t_ * np.asarray(width) / (z.flat_width(np.asarray(n)) * z.s))
 
 
 # --- one layer: peak stresses --------------------------------------------------------------
@@ -196,8 +197,7 @@ def spanwise_bending_stress(
     Membrane and bending of the facets together: a facet's own bending across its width and its
     in-plane bending are both in this linear strain field. Flat limit (alpha -> 180 deg, h -> 0):
     EI_S -> E b t^3 / 12 with b = (n + 1) W, and sigma -> 6 M / (b t^2), the plate formula."""
-    _s, c = _sc(alpha_deg)
-    h = np.asarray(W, dtype=np.float64) * c
+    h = _zigzag(W, alpha_deg).height
     EI = spanwise_rigidity(E, t, W, n, alpha_deg)
     return _out(np.asarray(E) * np.asarray(M) * (h + np.asarray(t)) / (2.0 * np.asarray(EI)))
 
@@ -244,11 +244,10 @@ def chordwise_compression_stress(
     This is the model behind Ecx: the strain energy q^2 c^2 W^3 / (24 D) of one facet gives the
     chordwise compliance p / (Ecx t) with Ecx = E t^2 s / ((1 - nu^2) W^2 c^2), the thin-sheet
     limit of docs/theory.md 3.1."""
-    s, c = _sc(alpha_deg)
+    z = _zigzag(W, alpha_deg)
     t_ = np.asarray(t, dtype=np.float64)
-    h = np.asarray(W, dtype=np.float64) * c
     q = np.asarray(P) / np.asarray(width)
-    return _out(q * (3.0 * h / (t_ * t_) + s / t_))
+    return _out(q * (3.0 * z.height / (t_ * t_) + z.s / t_))
 
 
 # --- the assembly ---------------------------------------------------------------------------
@@ -281,8 +280,10 @@ class LayerSection:
 
     @property
     def chord_extent(self) -> float:
-        """(n + 1) W sin(alpha/2) (mm): the other layer's facet length in a rectangle."""
-        return (self.n + 1) * self.W * math.sin(math.radians(self.alpha_deg) / 2.0)
+        """(n + 1) W sin(alpha/2) (mm): the other layer's facet length in a rectangle (evaluated
+        as ((n + 1) W) s)."""
+        z = ZigZag.of_float(self.W, self.alpha_deg)
+        return z.flat_width(self.n) * z.s  # type: ignore[no-any-return]
 
     def check(self, label: str) -> None:
         """:class:`InputError` unless every field is a positive, normal number, 0 < alpha <
