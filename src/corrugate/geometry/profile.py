@@ -24,8 +24,9 @@ cos: NumPy (arrays, intervals) or :mod:`math` (Python floats out, for one layer'
 
 Profiles are registered by name (:func:`register_profile`, :func:`get_profile`); ``zig-zag`` is
 the default and the only built-in one. The trapezoid of Xia's Table 5
-(:class:`corrugate.mechanics.profiles.Trapezoid`) implements the same protocol; a test registers
-it (tests/geometry/test_profile.py).
+(:class:`corrugate.mechanics.profiles.Trapezoid`) implements the same protocol; the tests register
+it and get Table 5's plate through the registry (tests/geometry/test_profile.py,
+tests/mechanics/test_profiles.py). A profile's moduli: :func:`corrugate.mechanics.profiles.profile_moduli`.
 """
 
 from __future__ import annotations
@@ -167,7 +168,7 @@ class ZigZag:
 
     def section_depth2(self, t: Any) -> Any:
         """h^2 + t^2 s^2 (mm^2): a facet's second moment about mid-depth is W t / 12 times this
-        (the rotated rectangle, W^3 t c^2 / 12 + W t^3 s^2 / 12; docs/theory.md section 9)."""
+        (the rotated rectangle, W^3 t c^2 / 12 + W t^3 s^2 / 12; docs/theory.md section 9.2)."""
         h = self.height
         return h * h + t * t * self.s * self.s
 
@@ -179,10 +180,10 @@ class ZigZag:
 
 
 _lock = threading.Lock()
-_PROFILES: dict[str, type] = {DEFAULT_PROFILE: ZigZag}
+_PROFILES: dict[str, type[Any]] = {DEFAULT_PROFILE: ZigZag}
 
 
-def register_profile(name: str, kind: type) -> type:
+def register_profile(name: str, kind: type[Any]) -> type[Any]:
     """Add the profile class ``kind`` (instances satisfy :class:`Profile`) under ``name`` and
     return it; the name (case-insensitive) must be new."""
     key = name.strip().lower()
@@ -207,7 +208,7 @@ def unregister_profile(name: str) -> None:
         _PROFILES.pop(key, None)
 
 
-def get_profile(name: str = DEFAULT_PROFILE) -> type:
+def get_profile(name: str = DEFAULT_PROFILE) -> type[Any]:
     """The profile class registered as ``name``; :class:`UnknownNameError` if there is none."""
     key = name.strip().lower()
     if key not in _PROFILES:

@@ -1,27 +1,36 @@
-"""Xia's general equivalent-plate theory for corrugation profiles, and the profiles themselves:
-an independent **cross-check** of the closed-form moduli, not a seam the models use.
+"""Any corrugation profile's equivalent plate: Xia's general theory (:mod:`.xia`), the seam through
+which a profile other than the zig-zag gets its moduli, and the trapezoid of Xia's worked example
+(:mod:`.trapezoid`).
 
-The stiffness models (:mod:`corrugate.mechanics.moduli`, the springs and the solver) use the
-zig-zag's closed forms only; nothing in the package evaluates a profile. The tests use this
-subpackage as a second method: the published trapezoidal benchmark (Xia et al. 2012, Table 5) and
-the zig-zag special case, which reproduces the ``xia`` variant's four moduli and the ``refined``
-variant's Ecx, Ecy and Eby (its Ebx keeps Xia's closed form)
-(tests/mechanics/test_profiles.py). A profile is anything that reports its
-:class:`~corrugate.mechanics.profiles.xia.ProfileIntegrals` (half period, developed length and the
-two integrals of Xia et al. 2012). Making another profile (sinusoidal, trapezoidal) a model users
-can design with would need its moduli in :mod:`corrugate.mechanics.moduli`'s table, interval bounds
-for the solver and a pattern generator; none exists today.
+A profile is a :class:`corrugate.geometry.profile.Profile` (registered by name there, ``zig-zag``
+the default): it reports its pitch, height, developed length and its
+:class:`~corrugate.geometry.profile.ProfileIntegrals` (half period, developed length and the two
+integrals of Xia et al. 2012). :func:`equivalent_plate` turns those into the plate's A and D,
+:func:`plate_moduli` into the four moduli, and :func:`profile_moduli` gives any profile's moduli
+in a named variant: the zig-zag's closed forms of :mod:`corrugate.mechanics.moduli` (what every
+design uses), another profile's from the general theory. The tests check the published trapezoidal
+benchmark (Xia et al. 2012, Table 5) through the registry, and that the zig-zag in the general
+theory reproduces the ``xia`` variant's four moduli and the ``refined`` variant's Ecx, Ecy and Eby
+(its Ebx keeps Xia's closed form) (tests/mechanics/test_profiles.py,
+tests/geometry/test_profile.py).
+
+A designable new profile would still need a layer that carries it (:class:`corrugate.geometry.layer.Layer`
+is the zig-zag's W and alpha), its interval bounds in the solver, its pattern generator and its FE
+mesh (docs/architecture.md section 3).
 """
 
 from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
 from corrugate.mechanics.profiles.trapezoid import Trapezoid
 from corrugate.mechanics.profiles.xia import (
+    MEMBRANES,
     PlateStiffness,
     equivalent_plate,
     plate_moduli,
+    profile_moduli,
 )
 
 __all__ = [
+    "MEMBRANES",
     "PlateStiffness",
     "Profile",
     "ProfileIntegrals",
@@ -29,4 +38,5 @@ __all__ = [
     "ZigZag",
     "equivalent_plate",
     "plate_moduli",
+    "profile_moduli",
 ]

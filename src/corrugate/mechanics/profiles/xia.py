@@ -21,12 +21,24 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-from corrugate.geometry.profile import Profile, ProfileIntegrals
-from corrugate.mechanics.moduli import Moduli
+from corrugate.core.errors import InputError
+from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
+from corrugate.mechanics.moduli import Moduli, get_model
 
-__all__ = ["PlateStiffness", "Profile", "ProfileIntegrals", "equivalent_plate", "plate_moduli"]
+__all__ = [
+    "MEMBRANES",
+    "PlateStiffness",
+    "Profile",
+    "ProfileIntegrals",
+    "equivalent_plate",
+    "plate_moduli",
+    "profile_moduli",
+]
 
 Membrane = Literal["plane-strain", "uniaxial"]
+#: The membrane stiffness along the corrugation of each moduli variant that has one in Xia's theory
+#: (:mod:`corrugate.mechanics.moduli`); ``paper`` is the zig-zag's printed formulas only.
+MEMBRANES: dict[str, Membrane] = {"xia": "plane-strain", "refined": "uniaxial"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,3 +95,22 @@ def plate_moduli(plate: PlateStiffness, t: float) -> Moduli:
         np.asarray(12 * detD / (t**3 * plate.D22)),
         np.asarray(12 * detD / (t**3 * plate.D11)),
     )
+
+
+def profile_moduli(profile: Profile, E: float, nu: float, t: float, model: str) -> Moduli:
+    """The four moduli (MPa) of a sheet (E MPa, nu, t mm) folded to ``profile``, in the variant
+    ``model``: the zig-zag's closed forms (:meth:`corrugate.mechanics.moduli.ModuliModel.of_profile`,
+    the numbers ``analyze`` prints), any other profile's from Xia's general theory with the
+    variant's membrane (:data:`MEMBRANES`; docs/theory.md section 3.1). The refined closed form
+    keeps Xia's Ebx, so for the zig-zag the general theory's uniaxial Ebx is a little lower."""
+    variant = get_model(model)
+    if isinstance(profile, ZigZag):
+        return variant.of_profile(E, nu, t, profile)
+    if variant.name not in MEMBRANES:
+        raise InputError(
+            "model",
+            repr(model),
+            f"one of {', '.join(MEMBRANES)} for a {type(profile).__name__} profile",
+            reason="has closed forms for the zig-zag only",
+        )
+    return plate_moduli(equivalent_plate(profile, E, nu, t, MEMBRANES[variant.name]), t)
