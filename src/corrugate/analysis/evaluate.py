@@ -75,24 +75,11 @@ class LayerArrays:
         return cls(m.E, m.nu, layer.t, layer.W, layer.n, layer.alpha_deg, m.density)
 
     def profile(self) -> ZigZag:
-        """The layers' cross-section (:class:`corrugate.geometry.profile.ZigZag`) over the arrays."""
-        return ZigZag.of(np.asarray(self.W), np.asarray(self.alpha_deg, dtype=float))
-
-    def sin_half(self) -> FloatArray:
-        """sin(alpha/2)."""
-        return np.asarray(self.profile().s)
-
-    def pitch(self) -> FloatArray:
-        """p = W sin(alpha/2) (mm)."""
-        return np.asarray(self.profile().pitch)
-
-    def height(self) -> FloatArray:
-        """h = W cos(alpha/2) (mm)."""
-        return np.asarray(self.profile().height)
-
-    def chord_extent(self) -> FloatArray:
-        """(n + 1) p (mm)."""
-        return np.asarray(self.profile().extent(np.asarray(self.n)))
+        """The layers' cross-section (:class:`corrugate.geometry.profile.ZigZag`) over the arrays:
+        s, c, pitch p = W s and height h = W c, extent (n + 1) p, flat width (n + 1) W (mm)."""
+        return ZigZag.of(
+            np.asarray(self.W, dtype=np.float64), np.asarray(self.alpha_deg, dtype=np.float64)
+        )
 
 
 def coupon_of(layout: Layout, Lx: Any, Ly: Any, pq: Callable[[], tuple[Any, Any]]) -> Coupon | None:
@@ -191,9 +178,7 @@ class _LayerPart:
 def _layer_part(layer: LayerArrays, model: ModuliModel) -> _LayerPart:
     """Trigonometry once per layer (the profile's s, c of alpha/2), then the geometry and the
     moduli."""
-    z = ZigZag.of(
-        np.asarray(layer.W, dtype=np.float64), np.asarray(layer.alpha_deg, dtype=np.float64)
-    )
+    z = layer.profile()
     # scalars as Python floats: the nu polynomials of the moduli cost nothing then
     m = model.of_profile(_num(layer.E), _num(layer.nu), _num(layer.t), z)
     # n as float64: (n + 1) is exact, and float * float avoids a cast loop

@@ -168,7 +168,7 @@ def _fields(setup: _Setup, W: FloatArray, n: NDArray[np.int64], a: FloatArray) -
     return {
         "Lx": ev.Lx,
         "thickness": ev.thickness,
-        "flat": (n.astype(np.float64) + 1.0) * W,
+        "flat": layer.profile().flat_width(n.astype(np.float64)),
         "mass": ev.mass,
         "K": ev.K,
         "D": ev.D,
