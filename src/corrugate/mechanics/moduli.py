@@ -41,7 +41,10 @@ At alpha = 40 deg these FE values are extrapolations of uniform meshes; the grad
 1.3, converged within 0.1 %) differs from them by -1.2 to +0.2 % (t/W = 0.02 to 0.0156), so the
 alpha = 40 deg gaps carry that much uncertainty.
 
-All functions broadcast over NumPy arrays: a sweep over a million designs is one call.
+All functions broadcast over NumPy arrays: a sweep over a million designs is one call. W, s and
+c are the layer's cross-section, :class:`corrugate.geometry.profile.ZigZag`
+(:meth:`ModuliModel.of_profile`); another profile's moduli come from Xia's general theory
+(:func:`corrugate.mechanics.profiles.profile_moduli`).
 """
 
 from __future__ import annotations

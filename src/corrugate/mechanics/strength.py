@@ -9,7 +9,8 @@ Every function is plain arithmetic on floats or NumPy arrays (they broadcast). U
 mm, forces in N, moments in N mm, moduli and stresses in MPa (N/mm^2), angles in degrees.
 Notation as in docs/theory.md 2: a layer of n creases has n + 1 facets of flat width W and
 thickness t, folded to the interior angle alpha; s = sin(alpha/2), c = cos(alpha/2), pitch
-p = W s, height h = W c (crease line to crease line, mid-surface).
+p = W s, height h = W c (crease line to crease line, mid-surface), all from the layer's
+cross-section, :class:`corrugate.geometry.profile.ZigZag`.
 
 **One layer** (the four closed forms; "width" is the layer's extent along its creases, i.e. the
 length of its facets, and the span of a load along the creases is that same length):
