@@ -20,7 +20,6 @@ min(perimeter, segment_max).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -31,12 +30,12 @@ from corrugate.solver.quantity import CREASES, PART_LONG, PART_SHORT, T_OVER_W, 
 
 if TYPE_CHECKING:
     from corrugate.geometry.layouts import Layout
+    from corrugate.solver.points import DesignPoints
     from corrugate.solver.problem import Candidate
 
 __all__ = ["MAKING", "band_run", "making_bounds", "making_values"]
 
 FloatArray = NDArray[np.float64]
-Arrays = Mapping[str, Any]
 Pair = tuple[FloatArray, FloatArray]
 
 #: The quantities of this module.
@@ -92,19 +91,20 @@ def making_values(
     layout: Layout,
     c1: Candidate,
     c2: Candidate,
-    x: Arrays,
+    x: DesignPoints,
     facet1: Any,
     facet2: Any,
     Lx: Any,
     Ly: Any,
     td: Any,
 ) -> dict[Quantity, FloatArray]:
-    """The quantities of this module at the points ``x`` (arrays n1, W1, n2, W2): ``facet1`` and
+    """The quantities of this module at the points ``x``: ``facet1`` and
     ``facet2`` the layers' longest facets (mm), ``Lx``, ``Ly`` the folded extents and ``td`` the
     folded thickness (mm)."""
     opts = DEFAULT_FABRICATION
-    n1, W1 = np.asarray(x["n1"], np.float64), np.asarray(x["W1"], np.float64)
-    n2, W2 = np.asarray(x["n2"], np.float64), np.asarray(x["W2"], np.float64)
+    x1, x2 = x.layer(0), x.layer(1)
+    n1, W1 = np.asarray(x1.n, np.float64), np.asarray(x1.W, np.float64)
+    n2, W2 = np.asarray(x2.n, np.float64), np.asarray(x2.W, np.float64)
     band = (band_run(layout, Lx, Ly) + opts.overlap, np.asarray(td) + 2.0 * opts.tab_depth)
     short, long = _parts(((n1 + 1) * W1, facet1, (n2 + 1) * W2, facet2), band)
     return {
@@ -120,8 +120,8 @@ def making_bounds(
     layout: Layout,
     c1: Candidate,
     c2: Candidate,
-    lo: Arrays,
-    hi: Arrays,
+    lo: DesignPoints,
+    hi: DesignPoints,
     facets: tuple[Pair, Pair],
     extents: tuple[Pair, Pair],
     td: Pair,
@@ -144,20 +144,21 @@ def making_bounds(
     out: dict[Quantity, Pair] = {}
     sides = []
     for b, run, t_d, k in ((lo, run_lo, td[0], 0), (hi, run_hi, td[1], 1)):
-        n1, W1 = np.asarray(b["n1"], np.float64), np.asarray(b["W1"], np.float64)
-        n2, W2 = np.asarray(b["n2"], np.float64), np.asarray(b["W2"], np.float64)
+        b1, b2 = b.layer(0), b.layer(1)
+        n1, W1 = np.asarray(b1.n, np.float64), np.asarray(b1.W, np.float64)
+        n2, W2 = np.asarray(b2.n, np.float64), np.asarray(b2.W, np.float64)
         band = (run + opts.overlap, np.asarray(t_d) + 2.0 * opts.tab_depth)
         sides.append(_parts(((n1 + 1) * W1, facets[0][k], (n2 + 1) * W2, facets[1][k]), band))
     out[PART_SHORT] = (sides[0][0], sides[1][0])
     out[PART_LONG] = (sides[0][1], sides[1][1])
-    W1lo, W1hi = np.asarray(lo["W1"], np.float64), np.asarray(hi["W1"], np.float64)
-    W2lo, W2hi = np.asarray(lo["W2"], np.float64), np.asarray(hi["W2"], np.float64)
+    W1lo, W1hi = np.asarray(lo.layer(0).W, np.float64), np.asarray(hi.layer(0).W, np.float64)
+    W2lo, W2hi = np.asarray(lo.layer(1).W, np.float64), np.asarray(hi.layer(1).W, np.float64)
     out[W_MIN] = (np.minimum(W1lo, W2lo), np.minimum(W1hi, W2hi))
     out[T_OVER_W] = (
         np.maximum(c1.t / W1hi, c2.t / W2hi),
         np.maximum(c1.t / W1lo, c2.t / W2lo),
     )
-    n1lo, n1hi = np.asarray(lo["n1"], np.float64), np.asarray(hi["n1"], np.float64)
-    n2lo, n2hi = np.asarray(lo["n2"], np.float64), np.asarray(hi["n2"], np.float64)
+    n1lo, n1hi = np.asarray(lo.layer(0).n, np.float64), np.asarray(hi.layer(0).n, np.float64)
+    n2lo, n2hi = np.asarray(lo.layer(1).n, np.float64), np.asarray(hi.layer(1).n, np.float64)
     out[CREASES] = (np.maximum(n1lo, n2lo), np.maximum(n1hi, n2hi))
     return out

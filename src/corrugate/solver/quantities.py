@@ -1,7 +1,7 @@
 """The quantities constraints bound: exact values at points, rigorous bounds over boxes.
 
-Points and boxes are given per layer as arrays ``n1, W1, a1, n2, W2, a2`` (creases, mm, deg); for
-identical layers layer 2's arrays are layer 1's.
+Points and boxes are :class:`~.points.DesignPoints` (per layer: creases n, facet width W in mm,
+fold angle alpha in deg); identical layers are one stored layer.
 
 :func:`point_values` calls :func:`corrugate.analysis.evaluate.evaluate` (the one implementation of the
 model), so a design the solver accepts is exactly the design ``analyze`` reports.
@@ -46,7 +46,6 @@ bound terminate.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -87,17 +86,14 @@ from corrugate.mechanics.offaxis import (
 )
 from corrugate.solver.interval import Interval
 from corrugate.solver.making import MAKING, making_bounds, making_values
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
 
-__all__ = ["DIMS", "RangeTable", "box_bounds", "point_values"]
+__all__ = ["RangeTable", "box_bounds", "layer_corner", "point_values"]
 
 FloatArray = NDArray[np.float64]
-Arrays = Mapping[str, FloatArray]
 Bounds = dict[Quantity, tuple[FloatArray, FloatArray]]
-
-#: Names of the point/box coordinates.
-DIMS = ("n1", "W1", "a1", "n2", "W2", "a2")
 
 
 class RangeTable:
@@ -197,19 +193,26 @@ class Tables:
         return table.bounds(n, n)[0]
 
 
-def _layers(
-    cand: Candidate, n: FloatArray, W: FloatArray, a: FloatArray, x: Arrays, i: int
-) -> LayerArrays:
-    """Layer ``i`` at the points; ``x`` may override E (MPa) and t (mm) per point as
-    ``E{i}`` and ``t{i}`` (used by the tolerance analysis)."""
+def _layers(cand: Candidate, x: LayerPoints) -> LayerArrays:
+    """The layer ``x`` at the points, as columns; ``x`` may override E (MPa) and t (mm) per
+    point (used by the tolerance analysis)."""
     m = cand.material
-    E = x[f"E{i}"][:, None] if f"E{i}" in x else m.E
-    t = x[f"t{i}"][:, None] if f"t{i}" in x else cand.t
-    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), a, m.density)
+    E = x.E[:, None] if x.E is not None else m.E
+    t = x.t[:, None] if x.t is not None else cand.t
+    n = np.asarray(x.n)[:, None]
+    return LayerArrays(
+        E,
+        m.nu,
+        t,
+        np.asarray(x.W)[:, None],
+        n.astype(np.int64),
+        np.asarray(x.alpha)[:, None],
+        m.density,
+    )
 
 
 def point_values(
-    problem: Problem, c1: Candidate, c2: Candidate, x: Arrays, tables: Tables
+    problem: Problem, c1: Candidate, c2: Candidate, x: DesignPoints, tables: Tables
 ) -> dict[Quantity, FloatArray]:
     """Exact values of every quantity at the points ``x`` (1-D arrays), via ``evaluate``: the
     sizes, the mass, EI, D and K at every eta of the problem under the default support (free
@@ -221,23 +224,22 @@ def point_values(
     asked = {q.support for q in keys}
     others = [b for b in supports() if b.name != DEFAULT_SUPPORT and b.name in asked]
     tests = [q for q in keys if q.test is not None]
-    l1 = _layers(c1, x["n1"][:, None], x["W1"][:, None], x["a1"][:, None], x, 1)
-    if _same_layers(c1, c2, x):  # evaluate computes one layer (analysis.identical_layers)
-        l2 = l1
-    else:
-        l2 = _layers(c2, x["n2"][:, None], x["W2"][:, None], x["a2"][:, None], x, 2)
+    x1, x2 = x.layer(0), x.layer(1)
+    l1 = _layers(c1, x1)
+    # identical layers: evaluate computes one layer (analysis.identical_layers)
+    l2 = l1 if _same_layers(c1, c2, x) else _layers(c2, x2)
     # one direction: a scalar eta keeps evaluate on its fast path (no per-eta masks)
     eta_arg = etas[0] if len(etas) == 1 else etas
     ev = evaluate(l1, l2, problem.layout, problem.model, eta_arg, joint=problem.joint)
     Lx, Ly = ev.Lx[:, 0], ev.Ly[:, 0]
-    facet1 = tables.facet_factor(x["n1"], "x") * Ly  # each layer's longest facet (mm)
-    facet2 = tables.facet_factor(x["n2"], "y") * Lx
+    facet1 = tables.facet_factor(x1.n, "x") * Ly  # each layer's longest facet (mm)
+    facet2 = tables.facet_factor(x2.n, "y") * Lx
     out: dict[Quantity, FloatArray] = {
         LX: Lx,
         LY: Ly,
         THICKNESS: ev.thickness[:, 0],
         MASS: ev.mass[:, 0],
-        FLAT: np.maximum((x["n1"] + 1) * x["W1"], (x["n2"] + 1) * x["W2"]),
+        FLAT: np.maximum((x1.n + 1) * x1.W, (x2.n + 1) * x2.W),
         FACET: np.maximum(facet1, facet2),
     }
     if MAKING.intersection(keys):
@@ -374,13 +376,9 @@ def _allowables(c1: Candidate, c2: Candidate, along: int) -> tuple[float, float]
     return (y1, y2) if along == 0 else (y2, y1)
 
 
-def _same_layers(c1: Candidate, c2: Candidate, x: Arrays) -> bool:
-    """Whether layer 2's coordinates are layer 1's (identical layers: the same arrays)."""
-    return (
-        c1 == c2
-        and all(x[f"{k}2"] is x[f"{k}1"] for k in ("n", "W", "a"))
-        and all(f"{k}{i}" not in x for k in ("E", "t") for i in (1, 2))
-    )
+def _same_layers(c1: Candidate, c2: Candidate, x: DesignPoints) -> bool:
+    """Whether layer 2 is layer 1 (identical layers of one sheet, no per-point overrides)."""
+    return c1 == c2 and x.identical and not x.layer(0).overrides
 
 
 @dataclass(frozen=True, slots=True)
@@ -395,19 +393,20 @@ class _Corner:
     extent: FloatArray
 
 
-def _corner(b: Arrays, i: int) -> _Corner:
-    half = np.asarray(b[f"a{i}"], dtype=np.float64) * (np.pi / 360.0)
-    W = np.asarray(b[f"W{i}"], dtype=np.float64)
+def layer_corner(b: LayerPoints) -> _Corner:
+    """The layer ``b`` at a corner of the boxes (:class:`_Corner`)."""
+    half = np.asarray(b.alpha, dtype=np.float64) * (np.pi / 360.0)
+    W = np.asarray(b.W, dtype=np.float64)
     p = W * np.sin(half)
-    return _Corner(W, np.cos(half), p, (np.asarray(b[f"n{i}"], dtype=np.float64) + 1.0) * p)
+    return _Corner(W, np.cos(half), p, (np.asarray(b.n, dtype=np.float64) + 1.0) * p)
 
 
 def box_bounds(
     problem: Problem,
     c1: Candidate,
     c2: Candidate,
-    lo: Arrays,
-    hi: Arrays,
+    lo: DesignPoints,
+    hi: DesignPoints,
     tables: Tables,
     quantities: set[Quantity],
 ) -> Bounds:
@@ -417,10 +416,10 @@ def box_bounds(
     point = lo is hi
     same = _same_layers(c1, c2, lo) and (point or _same_layers(c1, c2, hi))
     # each layer at the lower and the upper corner (the same objects for points or the same layer)
-    g1_lo = _corner(lo, 1)
-    g1_hi = g1_lo if point else _corner(hi, 1)
-    g2_lo = g1_lo if same else _corner(lo, 2)
-    g2_hi = g1_hi if same else (g2_lo if point else _corner(hi, 2))
+    g1_lo = layer_corner(lo.layer(0))
+    g1_hi = g1_lo if point else layer_corner(hi.layer(0))
+    g2_lo = g1_lo if same else layer_corner(lo.layer(1))
+    g2_hi = g1_hi if same else (g2_lo if point else layer_corner(hi.layer(1)))
     Lx_lo, Lx_hi = g1_lo.extent, g1_hi.extent
     Ly_lo, Ly_hi = g2_lo.extent, g2_hi.extent
     out: Bounds = {LX: (Lx_lo, Lx_hi), LY: (Ly_lo, Ly_hi)}
@@ -436,15 +435,14 @@ def box_bounds(
             td_hi = td_lo if point else g1_hi.W * g1_lo.c + g2_hi.W * g2_lo.c
         out[THICKNESS] = (td_lo, td_hi)
     if FLAT in quantities:
-        flat_lo = np.maximum((lo["n1"] + 1) * lo["W1"], (lo["n2"] + 1) * lo["W2"])
-        flat_hi = (
-            flat_lo if point else np.maximum((hi["n1"] + 1) * hi["W1"], (hi["n2"] + 1) * hi["W2"])
-        )
+        lo1, lo2, hi1, hi2 = lo.layer(0), lo.layer(1), hi.layer(0), hi.layer(1)
+        flat_lo = np.maximum((lo1.n + 1) * lo1.W, (lo2.n + 1) * lo2.W)
+        flat_hi = flat_lo if point else np.maximum((hi1.n + 1) * hi1.W, (hi2.n + 1) * hi2.W)
         out[FLAT] = (flat_lo, flat_hi)
     if FACET in quantities or making:
         # each layer's longest facet: the facet factor's range over n times the other extent
-        f1 = tables.Fx.bounds(lo["n1"], hi["n1"])
-        f2 = tables.Fy.bounds(lo["n2"], hi["n2"])
+        f1 = tables.Fx.bounds(lo.layer(0).n, hi.layer(0).n)
+        f2 = tables.Fy.bounds(lo.layer(1).n, hi.layer(1).n)
         facets = ((f1[0] * Ly_lo, f1[1] * Ly_hi), (f2[0] * Lx_lo, f2[1] * Lx_hi))
         facet_lo = np.maximum(facets[0][0], facets[1][0])
         facet_hi = facet_lo if point else np.maximum(facets[0][1], facets[1][1])
@@ -457,19 +455,19 @@ def box_bounds(
         )
     if MASS in quantities:
 
-        def mass(b: Arrays, g1: _Corner, g2: _Corner, td: FloatArray) -> FloatArray:
+        def mass(b: DesignPoints, g1: _Corner, g2: _Corner, td: FloatArray) -> FloatArray:
             # holes remove rho t A_h / s(alpha) per layer, most at the box's lowest alpha: the
             # corner's own pitch gives the bound on the same side as its blank.
             # The band (cut from layer 1's sheet) grows with Lx, Ly and t_d (corrugate.fabrication.
             # connectors), so its bounds are its values at those quantities' own bounds.
             band = connector_mass(c1.material.density, c1.t, lay, g1.extent, g2.extent, td)
             m1 = layer_mass(
-                c1.material.density, c1.t, g1.W, length_sum(lay, b["n1"], g2.extent), lay, g1.p
+                c1.material.density, c1.t, g1.W, length_sum(lay, b.layer(0).n, g2.extent), lay, g1.p
             )
             if same:  # the same layer twice (x + x = 2 x exactly, as evaluate does)
                 return np.asarray(2.0 * m1 + band)
             m2 = layer_mass(
-                c2.material.density, c2.t, g2.W, length_sum(lay, b["n2"], g1.extent), lay, g2.p
+                c2.material.density, c2.t, g2.W, length_sum(lay, b.layer(1).n, g1.extent), lay, g2.p
             )
             return np.asarray(m1 + m2 + band)
 
@@ -683,8 +681,8 @@ def _stiffness_bounds(
     problem: Problem,
     c1: Candidate,
     c2: Candidate,
-    lo: Arrays,
-    hi: Arrays,
+    lo: DesignPoints,
+    hi: DesignPoints,
     tables: Tables,
     geo: Bounds,
     keys: list[Quantity],
@@ -693,9 +691,9 @@ def _stiffness_bounds(
     sp1 = _layer_springs(
         problem,
         c1,
-        (lo["n1"], hi["n1"]),
-        (lo["W1"], hi["W1"]),
-        (lo["a1"], hi["a1"]),
+        (lo.layer(0).n, hi.layer(0).n),
+        (lo.layer(0).W, hi.layer(0).W),
+        (lo.layer(0).alpha, hi.layer(0).alpha),
         Ly,
         tables.Qx,
         tables,
@@ -713,9 +711,9 @@ def _stiffness_bounds(
         sp2 = _layer_springs(
             problem,
             c2,
-            (lo["n2"], hi["n2"]),
-            (lo["W2"], hi["W2"]),
-            (lo["a2"], hi["a2"]),
+            (lo.layer(1).n, hi.layer(1).n),
+            (lo.layer(1).W, hi.layer(1).W),
+            (lo.layer(1).alpha, hi.layer(1).alpha),
             Lx,
             tables.Qy,
             tables,
@@ -730,9 +728,9 @@ def _stiffness_bounds(
         eta = q.eta
         v: Interval
         if q.kind == "Pb":  # buckling along layer 1's (0) or layer 2's (90) creases
-            along, across, b, m = (sp1, sp2, "1", c1) if eta == 0.0 else (sp2, sp1, "2", c2)
-            Wb = Interval(lo["W" + b], hi["W" + b])
-            nb = Interval(lo["n" + b], hi["n" + b])
+            along, across, b, m = (sp1, sp2, 0, c1) if eta == 0.0 else (sp2, sp1, 1, c2)
+            Wb = Interval(lo.layer(b).W, hi.layer(b).W)
+            nb = Interval(lo.layer(b).n, hi.layer(b).n)
             mat = m.material
             v = (
                 buckling_scale(
