@@ -26,14 +26,16 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION
+from corrugate.solver.evaluator import Evaluator, register
 from corrugate.solver.quantity import CREASES, PART_LONG, PART_SHORT, T_OVER_W, W_MIN, Quantity
 
 if TYPE_CHECKING:
     from corrugate.geometry.layouts import Layout
+    from corrugate.solver.context import AtPoints, OverBoxes
     from corrugate.solver.points import DesignPoints
-    from corrugate.solver.problem import Candidate
+    from corrugate.solver.problem import Candidate, Problem
 
-__all__ = ["MAKING", "band_run", "making_bounds", "making_values"]
+__all__ = ["MAKING", "MAKINGS", "band_run", "making_bounds", "making_values"]
 
 FloatArray = NDArray[np.float64]
 Pair = tuple[FloatArray, FloatArray]
@@ -162,3 +164,43 @@ def making_bounds(
     n2lo, n2hi = np.asarray(lo.layer(1).n, np.float64), np.asarray(hi.layer(1).n, np.float64)
     out[CREASES] = (np.maximum(n1lo, n2lo), np.maximum(n1hi, n2hi))
     return out
+
+
+def _making_at(at: AtPoints, q: Quantity) -> FloatArray:
+    """The value of ``q`` at the points (the five quantities computed together, once)."""
+    values = at.shared(
+        "making",
+        lambda: making_values(
+            at.problem.layout, at.c1, at.c2, at.x, *at.facets, at.Lx, at.Ly, at.ev.thickness[:, 0]
+        ),
+    )
+    return values[q]
+
+
+def _making_over(over: OverBoxes, q: Quantity) -> Pair:
+    """The bounds of ``q`` over the boxes (the five computed together, once)."""
+    bounds = over.shared(
+        "making",
+        lambda: making_bounds(
+            over.problem.layout,
+            over.c1,
+            over.c2,
+            over.lo,
+            over.hi,
+            over.facets,
+            (over.Lx, over.Ly),
+            over.thickness,
+        ),
+    )
+    return bounds[q]
+
+
+def _making_reported(problem: Problem) -> frozenset[Quantity]:
+    """All five once one is asked for."""
+    return MAKING if MAKING.intersection(problem.quantities) else frozenset()
+
+
+#: The evaluator of this module's quantities.
+MAKINGS = register(
+    Evaluator(tuple(sorted(q.kind for q in MAKING)), _making_at, _making_over, _making_reported)
+)
