@@ -48,7 +48,9 @@ def test_trapezoid_without_flat_is_the_zigzag_closed_form(
     assert abs(trap.flat) < 1e-9 * c
     for membrane, name in (("plane-strain", "xia"), ("uniaxial", "refined")):
         general = plate_moduli(equivalent_plate(trap, 1.0, nu, t, membrane), t).as_dict()
-        zz = plate_moduli(equivalent_plate(ZigZag(W, alpha), 1.0, nu, t, membrane), t).as_dict()
+        zz = plate_moduli(
+            equivalent_plate(ZigZag.of_float(W, alpha), 1.0, nu, t, membrane), t
+        ).as_dict()
         closed = moduli(1.0, nu, t, W, alpha, name).as_dict()
         for key, value in closed.items():
             if (name, key) == ("refined", "Ebx"):

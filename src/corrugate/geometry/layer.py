@@ -17,6 +17,7 @@ from numpy.typing import NDArray
 from corrugate.core.errors import InputError
 from corrugate.geometry.holes import check_holes
 from corrugate.geometry.layouts import Layout, Square, facet_lengths
+from corrugate.geometry.profile import ZigZag
 from corrugate.materials.library import Material
 
 __all__ = ["Assembly", "FacetGeometry", "Layer", "crease_layer"]
@@ -45,32 +46,38 @@ def crease_layer(eta_deg: float) -> int | None:
 
 class FacetGeometry:
     """Plan geometry of a zig-zag with facet width ``W`` (mm) and interior angle ``alpha_deg``:
-    s, c, the pitch p = W s and the height h = W c (docs/theory.md section 2). A mixin for the
-    dataclasses that carry W and alpha_deg (a layer, a finite-element unit cell)."""
+    its :class:`~corrugate.geometry.profile.ZigZag` profile and, from it, s, c, the pitch p = W s
+    and the height h = W c (docs/theory.md section 2). A mixin for the dataclasses that carry W and
+    alpha_deg (a layer, a finite-element unit cell)."""
 
     __slots__ = ()
     W: float
     alpha_deg: float
 
     @property
+    def profile(self) -> ZigZag:
+        """The cross-section (:mod:`corrugate.geometry.profile`), in Python floats."""
+        return ZigZag.of_float(self.W, self.alpha_deg)
+
+    @property
     def s(self) -> float:
         """sin(alpha/2)."""
-        return math.sin(math.radians(self.alpha_deg) / 2)
+        return self.profile.s  # type: ignore[no-any-return]
 
     @property
     def c(self) -> float:
         """cos(alpha/2)."""
-        return math.cos(math.radians(self.alpha_deg) / 2)
+        return self.profile.c  # type: ignore[no-any-return]
 
     @property
     def pitch(self) -> float:
         """Plan width of one facet, p = W sin(alpha/2) (mm)."""
-        return self.W * self.s
+        return self.profile.pitch  # type: ignore[no-any-return]
 
     @property
     def height(self) -> float:
         """Corrugation height, h = W cos(alpha/2) (mm), crease line to crease line."""
-        return self.W * self.c
+        return self.profile.height  # type: ignore[no-any-return]
 
 
 @dataclass(frozen=True, slots=True)
@@ -114,12 +121,12 @@ class Layer(FacetGeometry):
     @property
     def chord_extent(self) -> float:
         """Folded length across the creases, (n + 1) p (mm)."""
-        return (self.n + 1) * self.pitch
+        return self.profile.extent(self.n)  # type: ignore[no-any-return]
 
     @property
     def flat_width(self) -> float:
         """Flat blank width across the creases, (n + 1) W (mm)."""
-        return (self.n + 1) * self.W
+        return self.profile.flat_width(self.n)  # type: ignore[no-any-return]
 
     @property
     def fold_angle_deg(self) -> float:

@@ -13,15 +13,13 @@ can design with would need its moduli in :mod:`corrugate.mechanics.moduli`'s tab
 for the solver and a pattern generator; none exists today.
 """
 
+from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
 from corrugate.mechanics.profiles.trapezoid import Trapezoid
 from corrugate.mechanics.profiles.xia import (
     PlateStiffness,
-    Profile,
-    ProfileIntegrals,
     equivalent_plate,
     plate_moduli,
 )
-from corrugate.mechanics.profiles.zigzag import ZigZag
 
 __all__ = [
     "PlateStiffness",

@@ -1,4 +1,8 @@
-"""Trapezoidal corrugation profile (Xia et al. 2012, section 4 and Table 5)."""
+"""Trapezoidal corrugation profile (Xia et al. 2012, section 4 and Table 5).
+
+A :class:`corrugate.geometry.profile.Profile` whose repeat unit is a half period: one incline and
+one flat part, of plan length c and developed length l (docs/theory.md section 3.1). No built-in
+design uses it; tests/geometry/test_profile.py registers it to show the seam."""
 
 from __future__ import annotations
 
@@ -6,7 +10,7 @@ import math
 from dataclasses import dataclass
 
 from corrugate.core.errors import InputError
-from corrugate.mechanics.profiles.xia import ProfileIntegrals
+from corrugate.geometry.profile import ProfileIntegrals
 
 __all__ = ["Trapezoid"]
 
@@ -37,6 +41,29 @@ class Trapezoid:
                 f"f <= c tan(theta) / 2 = {self.c * self.tan / 2:g} mm",
                 reason="leaves a negative flat part",
             )
+
+    @property
+    def pitch(self) -> float:
+        """Plan length of the repeat unit, the half period c (mm)."""
+        return self.c
+
+    @property
+    def height(self) -> float:
+        """Depth of the corrugation, crest to trough, 2 f (mm)."""
+        return 2 * self.f
+
+    @property
+    def developed(self) -> float:
+        """Developed length of a half period, l = 2 f / sin(theta) + flat (mm)."""
+        return self.integrals().l
+
+    def extent(self, n: float) -> float:
+        """(n + 1) c (mm): the folded extent of n + 1 half periods."""
+        return (n + 1) * self.pitch
+
+    def flat_width(self, n: float) -> float:
+        """(n + 1) l (mm): the flat blank of n + 1 half periods."""
+        return (n + 1) * self.developed
 
     @property
     def tan(self) -> float:

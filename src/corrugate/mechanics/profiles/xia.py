@@ -19,36 +19,14 @@ Units: any consistent set; with E in MPa and lengths in mm, A is in N/mm and D i
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal, Protocol
+from typing import Literal
 
+from corrugate.geometry.profile import Profile, ProfileIntegrals
 from corrugate.mechanics.moduli import Moduli
 
 __all__ = ["PlateStiffness", "Profile", "ProfileIntegrals", "equivalent_plate", "plate_moduli"]
 
 Membrane = Literal["plane-strain", "uniaxial"]
-
-
-@dataclass(frozen=True, slots=True)
-class ProfileIntegrals:
-    """Geometry a profile contributes to Xia's theory (lengths in mm).
-
-    ``c``: half period; ``l``: developed length of a half period; ``I1``: integral of
-    cos^2(theta) over the developed length of one period (mm); ``I2``: integral of z^2 over the
-    developed length of one period (mm^3), z measured from the mid-plane of the profile.
-    """
-
-    c: float
-    l: float
-    I1: float
-    I2: float
-
-
-class Profile(Protocol):
-    """A corrugation profile: reports its Xia integrals."""
-
-    def integrals(self) -> ProfileIntegrals:
-        """Half period, developed half length and the two integrals over one period."""
-        ...
 
 
 @dataclass(frozen=True, slots=True)
