@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 from corrugate.analysis.evaluate import Evaluation, LayerArrays, coupon_of, evaluate
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Circle, Rectangle
+from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.behaviours import Behaviour
 from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.offaxis import Coupon
@@ -193,11 +194,11 @@ class Corner:
 
 
 def layer_corner(b: LayerPoints) -> Corner:
-    """The layer ``b`` at a corner of the boxes (:class:`Corner`)."""
-    half = np.asarray(b.alpha, dtype=np.float64) * (np.pi / 360.0)
+    """The layer ``b`` at a corner of the boxes (:class:`Corner`), by its zig-zag profile
+    (:class:`corrugate.geometry.profile.ZigZag`)."""
     W = np.asarray(b.W, dtype=np.float64)
-    p = W * np.sin(half)
-    return Corner(W, np.cos(half), p, (np.asarray(b.n, dtype=np.float64) + 1.0) * p)
+    zz = ZigZag.of(W, np.asarray(b.alpha, dtype=np.float64))
+    return Corner(W, zz.c, zz.pitch, zz.extent(np.asarray(b.n, dtype=np.float64)))
 
 
 class OverBoxes(_Shared):

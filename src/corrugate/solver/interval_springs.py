@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.geometry.layouts import Axis, Circle, Rectangle
+from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.moduli import get_model
 from corrugate.mechanics.offaxis import finite_panel_deficit, shear_spring, shear_springs
 from corrugate.solver.interval import Interval
@@ -64,22 +65,22 @@ def layer_springs(
     Wi = Interval(W[0], W[1])
     alpha = Interval(np.radians(a[0]), np.radians(a[1]))
     # the model functions are plain arithmetic, so they accept intervals (duck typing); sin and
-    # cos of alpha/2 once, as evaluate does
+    # cos of alpha/2 once, as evaluate does: the zig-zag's profile over the box
     from_sc: Any = get_model(problem.model).from_sc
-    half = alpha * 0.5
-    sh, ch = half.sin(), half.cos()
+    zz = ZigZag.of_half(Wi, alpha * 0.5)
+    sh, ch = zz.s, zz.c
     mod = from_sc(float(m.E), float(m.nu), float(t), Wi, sh, ch)
     q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
     if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
         pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))
     else:
-        pq = Wi * sh * Interval(q_lo, q_hi) / Interval(S[0], S[1])
+        pq = zz.pitch * Interval(q_lo, q_hi) / Interval(S[0], S[1])
     Ecx, Ecy, Ebx, Eby = (Interval.of(v) for v in (mod.Ecx, mod.Ecy, mod.Ebx, mod.Eby))
     t3 = t**3
     pq_par, pq_ser = pq, pq
     if problem.layout.holes:
-        p_lo = np.asarray(W[0] * np.sin(np.radians(a[0]) / 2))
-        p_hi = np.asarray(W[1] * np.sin(np.radians(a[1]) / 2))
+        p_lo = np.asarray(ZigZag.of_half(W[0], np.radians(a[0]) / 2).pitch)
+        p_hi = np.asarray(ZigZag.of_half(W[1], np.radians(a[1]) / 2).pitch)
         Fmin = tables.Fmin_x if axis == "x" else tables.Fmin_y  # built only with holes
         pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
     K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), sh, pq_par)
@@ -95,7 +96,7 @@ def layer_springs(
         Interval.of(D_T),
         pq,
         Interval.of(V_S),
-        Wi * ch,
+        zz.height,
         Interval(d_lo, d_hi),
     )
 

@@ -67,6 +67,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.geometry.layouts import Rectangle, Square, length_sum
+from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
@@ -208,9 +209,8 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
             hi_n = np.minimum(hi_n, math.floor(c.bound * (1 + FEAS_RTOL) + 1e-9))
     # the extent (n + 1) p grows with n: the n range of each (W, alpha) from its bounds, one
     # value wider on each side, then checked exactly below with evaluate's arithmetic
-    half = a_g * (np.pi / 360.0)  # as analysis.evaluate._layer_part
-    s, cc = np.sin(half), np.cos(half)
-    p = W_g * s
+    zz = ZigZag.of(W_g, a_g)  # the zig-zag's profile, as analysis.evaluate._layer_part
+    s, cc, p = zz.s, zz.c, zz.pitch
     for c in problem.constraints:
         if c.quantity == own or (c.quantity == FACET and c.sense == "max"):
             # FACET: the other layer's facets are this layer's extent long (a rectangle)
@@ -249,7 +249,7 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
         return np.asarray(np.broadcast_to(arr, W_g.shape)[g])
 
     return _Layer(
-        n, W_g[g], a_g[g], E, (W_g * cc)[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
+        n, W_g[g], a_g[g], E, zz.height[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
     )
 
 
