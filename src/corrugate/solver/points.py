@@ -32,7 +32,7 @@ FloatArray = NDArray[np.float64]
 
 #: The design variables of one layer (fields of :class:`LayerPoints`), in the search's order.
 VARIABLES: tuple[str, ...] = ("n", "W", "alpha")
-#: The layers of a design (docs/theory.md section 2: two crossed corrugated layers).
+#: The layers of a design unless told (:attr:`~.problem.Problem.layer_count`).
 LAYERS = 2
 
 
@@ -160,9 +160,9 @@ class Coordinate:
 
 def coordinates(problem: Problem, n_fixed: tuple[int, int] | None = None) -> list[Coordinate]:
     """The coordinates the search of ``problem`` spans (n within ``n_fixed`` when given): the
-    variables of layer 1, then, unless the layers are identical, those of layer 2."""
+    variables of each layer the search spans (:attr:`~.problem.Problem.searched_layers`: layer 1
+    alone for identical layers), layer by layer."""
     n_lo, n_hi = (problem.n_lo, problem.n_hi) if n_fixed is None else n_fixed
     var = {"n": DesignVariable(float(n_lo), float(n_hi), 1.0), "W": problem.W}
     var["alpha"] = problem.alpha
-    stored = 1 if problem.identical else LAYERS
-    return [Coordinate(i, v, var[v]) for i in range(stored) for v in VARIABLES]
+    return [Coordinate(i, v, var[v]) for i in range(problem.searched_layers) for v in VARIABLES]
