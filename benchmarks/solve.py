@@ -322,6 +322,7 @@ def chassis_exhaustive(path: Path) -> tuple[float, dict[str, float]]:
        ``evaluate`` and the fabrication sizes), in chunks; the lightest feasible pair.
 
     The layer filters keep every design within a relative 1e-9 of a bound; step 3 decides."""
+    from corrugate.solver.points import DesignPoints, LayerPoints
     from corrugate.solver.problem import FEAS_RTOL
     from corrugate.solver.quantities import Tables, point_values
     from corrugate.solver.quantity import LX, LY, T_OVER_W, THICKNESS, W_MIN
@@ -363,7 +364,8 @@ def chassis_exhaustive(path: Path) -> tuple[float, dict[str, float]]:
     for k in range(0, len(i), chunk):
         a_, b_ = i[k : k + chunk], j[k : k + chunk]
         x = {"n1": n[a_], "W1": W[a_], "a1": a[a_], "n2": n[b_], "W2": W[b_], "a2": a[b_]}
-        vals = point_values(problem, cand, cand, x, tables)
+        pts = DesignPoints.of(LayerPoints(n[a_], W[a_], a[a_]), LayerPoints(n[b_], W[b_], a[b_]))
+        vals = point_values(problem, cand, cand, pts, tables)
         ok = np.ones(len(a_), dtype=bool)
         for c in problem.constraints:
             ok &= c.satisfied(vals[c.quantity], rtol=FEAS_RTOL)

@@ -229,6 +229,7 @@ def test_a_hole_never_stiffens_and_mass_drops_by_rho_t_area_over_s() -> None:
 
 def test_solver_bounds_hold_with_holes() -> None:
     """Box bounds of mass, K and D contain the exact values at points sampled in each box."""
+    from corrugate.solver.points import DesignPoints, LayerPoints
     from corrugate.solver.problem import Problem
     from corrugate.solver.quantities import Tables, box_bounds, point_values
     from corrugate.solver.quantity import Quantity
@@ -267,16 +268,12 @@ def test_solver_bounds_hold_with_holes() -> None:
         nh = nl + int(rng.integers(0, 2))
         Wl, al = rng.uniform(3, 10), rng.uniform(50, 130)
         Wh, ah = Wl + rng.choice([1e-3, 0.3]), al + rng.choice([1e-3, 3.0])
-        lo = {k: np.array([v]) for k, v in zip(("n1", "W1", "a1"), (nl, Wl, al), strict=True)}
-        hi = {k: np.array([v]) for k, v in zip(("n1", "W1", "a1"), (nh, Wh, ah), strict=True)}
-        for d, src in ((lo, "1"), (hi, "1")):
-            d.update({k.replace(src, "2"): v for k, v in list(d.items())})
+        lo = DesignPoints.of(LayerPoints(*(np.array([v], dtype=float) for v in (nl, Wl, al))))
+        hi = DesignPoints.of(LayerPoints(*(np.array([v], dtype=float) for v in (nh, Wh, ah))))
         b = box_bounds(prob, c1, c2, lo, hi, tables, keys)
         n = rng.integers(nl, nh + 1, 50).astype(float)
         W, a = rng.uniform(Wl, Wh, 50), rng.uniform(al, ah, 50)
-        v = point_values(
-            prob, c1, c2, {"n1": n, "W1": W, "a1": a, "n2": n, "W2": W, "a2": a}, tables
-        )
+        v = point_values(prob, c1, c2, DesignPoints.of(LayerPoints(n, W, a)), tables)
         for k in keys:
             assert np.all(v[k] >= b[k][0][0] * (1 - 1e-12)), k
             assert np.all(v[k] <= b[k][1][0] * (1 + 1e-12)), k

@@ -30,6 +30,7 @@ from corrugate.mechanics.behaviours import (
 )
 from corrugate.mechanics.offaxis import frame_rule
 from corrugate.solver import Problem, solve
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import Quantity
 from corrugate.spec.reference import json_schema, reference_markdown
@@ -168,20 +169,19 @@ def test_solver_bounds_hold_under_the_registered_support(half: Behaviour) -> Non
     for _ in range(20):
         nl = int(rng.integers(2, 18))
         Wl, al = rng.uniform(6, 12), rng.uniform(50, 100)
-        lo = {"n1": nl, "W1": Wl, "a1": al}
-        hi = {"n1": nl + 2, "W1": Wl + 1.0, "a1": al + 5.0}
-        blo = {k: np.array([float(v)]) for k, v in lo.items()}
-        bhi = {k: np.array([float(v)]) for k, v in hi.items()}
-        for b in (blo, bhi):
-            b.update(n2=b["n1"], W2=b["W1"], a2=b["a1"])
+        blo = DesignPoints.of(LayerPoints(*(np.array([float(v)]) for v in (nl, Wl, al))))
+        bhi = DesignPoints.of(
+            LayerPoints(*(np.array([float(v)]) for v in (nl + 2, Wl + 1.0, al + 5.0)))
+        )
         bounds = box_bounds(prob, c, c, blo, bhi, tables, keys)
         N = 50
-        x = {
-            "n1": rng.integers(nl, nl + 3, N).astype(float),
-            "W1": rng.uniform(Wl, Wl + 1.0, N),
-            "a1": rng.uniform(al, al + 5.0, N),
-        }
-        x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+        x = DesignPoints.of(
+            LayerPoints(
+                rng.integers(nl, nl + 3, N).astype(float),
+                rng.uniform(Wl, Wl + 1.0, N),
+                rng.uniform(al, al + 5.0, N),
+            )
+        )
         vals = point_values(prob, c, c, x, tables)
         for q in keys:
             assert np.all(vals[q] >= bounds[q][0][0] * (1 - 1e-12)), q.key

@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 
 from corrugate import Assembly, Layer, analyze, get_material
 from corrugate.solver import Problem, solve
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import MASS, Quantity
 from corrugate.spec.schema import SpecError, parse_spec
@@ -59,22 +60,18 @@ def _problem(
     return Problem.from_spec(parse_spec(with_units(d)))
 
 
-def _grid() -> tuple[np.ndarray, dict[str, np.ndarray]]:
+def _grid() -> tuple[np.ndarray, DesignPoints]:
     """The whole grid of :func:`_problem` (n 7-13, W 6-14 step 1, alpha 40-115 step 5) as rows
     (n, W, alpha) and as the point arrays of identical layers."""
     grid = np.array(
         [(n, W, a) for n in range(7, 14) for W in range(6, 15) for a in range(40, 116, 5)],
         dtype=float,
     )
-    x = {"n1": grid[:, 0], "W1": grid[:, 1], "a1": grid[:, 2]}
-    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
-    return grid, x
+    return grid, DesignPoints.of(LayerPoints(grid[:, 0], grid[:, 1], grid[:, 2]))
 
 
-def _point(n: float, W: float, a: float) -> dict[str, np.ndarray]:
-    x = {"n1": np.array([n]), "W1": np.array([W]), "a1": np.array([a])}
-    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
-    return x
+def _point(n: float, W: float, a: float) -> DesignPoints:
+    return DesignPoints.of(LayerPoints(np.array([n]), np.array([W]), np.array([a])))
 
 
 def test_three_point_deflection_is_the_hand_formula() -> None:
@@ -304,14 +301,12 @@ def test_the_chassis_example_certifies_its_deflection() -> None:
     assert sol.status == "optimal" and sol.certified
     [c] = [c for c in p.constraints if c.load is not None]
     l1, l2 = sol.assembly.layer1, sol.assembly.layer2
-    x = {
-        "n1": np.array([float(l1.n)]),
-        "W1": np.array([l1.W]),
-        "a1": np.array([l1.alpha_deg]),
-        "n2": np.array([float(l2.n)]),
-        "W2": np.array([l2.W]),
-        "a2": np.array([l2.alpha_deg]),
-    }
+    x = DesignPoints.of(
+        *(
+            LayerPoints(np.array([float(la.n)]), np.array([la.W]), np.array([la.alpha_deg]))
+            for la in (l1, l2)
+        )
+    )
     cand1 = next(cd for cd in p.candidates if cd.t == l1.t)
     k = point_values(p, cand1, cand1, x, Tables(p))[c.quantity][0]
     assert c.deflection(k) <= 1.0 + 1e-9

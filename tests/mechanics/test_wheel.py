@@ -23,6 +23,7 @@ from corrugate.mechanics.wheel import (
     wheel_factor,
 )
 from corrugate.solver import Problem
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import Quantity
 from corrugate.spec.schema import SpecError, parse_spec
@@ -157,8 +158,7 @@ def test_the_wheel_bound_is_the_factor_times_the_models_k() -> None:
     p = _problem(inplane_stiffness=[{"min": 1, "eta": e, "test": "wheel"} for e in (0, 45, 90)])
     cand = p.candidates[0]
     W, n, a = 8.5, 8, 132.0
-    x = {k: np.array([v]) for k, v in (("n1", n), ("W1", W), ("a1", a))}
-    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
+    x = DesignPoints.of(LayerPoints(np.array([float(n)]), np.array([W]), np.array([a])))
     values = point_values(p, cand, cand, x, Tables(p))
     disc = Assembly.identical(
         Layer(W=W, n=n, alpha_deg=a, material=PP, t=0.3),
@@ -169,8 +169,9 @@ def test_the_wheel_bound_is_the_factor_times_the_models_k() -> None:
         q = Quantity.load_case("K", st.eta_deg, "wheel", "free")
         want = c[0.0 if st.eta_deg != 45.0 else 45.0] * st.K
         assert values[q][0] == pytest.approx(want, rel=1e-9), st.eta_deg
-    lo = {k: v - (0.5 if k[0] == "W" else 2.0 if k[0] == "a" else 0) for k, v in x.items()}
-    hi = {k: v + (0.5 if k[0] == "W" else 2.0 if k[0] == "a" else 1) for k, v in x.items()}
+    one = x.layer(0)
+    lo = DesignPoints.of(LayerPoints(one.n, one.W - 0.5, one.alpha - 2.0))
+    hi = DesignPoints.of(LayerPoints(one.n + 1, one.W + 0.5, one.alpha + 2.0))
     qs = {cn.quantity for cn in p.constraints if cn.quantity.test == "wheel"}
     b = box_bounds(p, cand, cand, lo, hi, Tables(p), qs)
     for q in qs:

@@ -23,6 +23,7 @@ import pytest
 
 import corrugate.solver.bnb as bnb
 from corrugate.solver import Problem, solve
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.progress import reporting
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.solve import GAP_RTOL, RUNNER_UP_GAP_RTOL, optimize, pairs
@@ -98,14 +99,13 @@ def test_archive_holds_every_design_of_every_relaxation(case: str, tmp_path: Pat
         for v in np.meshgrid(ns, problem.W.values(), problem.alpha.values(), indexing="ij")
     )
     if problem.identical:
-        x = {"n1": n, "W1": W, "a1": a, "n2": n, "W2": W, "a2": a}
-        pts = np.stack([n, W, a], axis=1)
+        x = DesignPoints.of(LayerPoints(n, W, a))
     else:  # every pair of layer designs
         i, j = (
             v.reshape(-1) for v in np.meshgrid(np.arange(len(n)), np.arange(len(n)), indexing="ij")
         )
-        x = {"n1": n[i], "W1": W[i], "a1": a[i], "n2": n[j], "W2": W[j], "a2": a[j]}
-        pts = np.stack([x[k] for k in ("n1", "W1", "a1", "n2", "W2", "a2")], axis=1)
+        x = DesignPoints.of(LayerPoints(n[i], W[i], a[i]), LayerPoints(n[j], W[j], a[j]))
+    pts = x.columns()  # the search's coordinates
     c1 = problem.candidates[0]
     vals = point_values(problem, c1, c1, x, tables)
     broken = np.stack([~c.satisfied(vals[c.quantity]) for c in problem.constraints], axis=1)

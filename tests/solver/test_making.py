@@ -24,6 +24,7 @@ from corrugate.fabrication.build import build_pattern
 from corrugate.fabrication.sheets import plan_sheets
 from corrugate.solver import Problem, solve
 from corrugate.solver.making import MAKING
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import machine_area
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import PART_LONG, PART_SHORT, T_OVER_W, W_MIN
@@ -159,17 +160,14 @@ def test_box_bounds_contain_the_making_values(n: int, W: float, a: float, shape:
     cand = p.candidates[0]
     tables = Tables(p)
 
-    def point(n1: float, W1: float, a1: float, n2: float, W2: float, a2: float) -> Any:
-        return {
-            k: np.array([v])
-            for k, v in zip(
-                ("n1", "W1", "a1", "n2", "W2", "a2"), (n1, W1, a1, n2, W2, a2), strict=True
-            )
-        }
+    def point(*layers: tuple[float, float, float]) -> Any:
+        return DesignPoints.of(
+            *(LayerPoints(*(np.array([v], dtype=float) for v in layer)) for layer in layers)
+        )
 
     same = layers == "identical"  # layer 2 is layer 1
-    lo = point(n, W, a, *((n, W, a) if same else (n + 1, W + 0.5, a - 10)))
-    hi = point(n + 5, W + 3, a + 10, *((n + 5, W + 3, a + 10) if same else (n + 8, W + 4, a)))
+    lo = point((n, W, a), *(() if same else ((n + 1, W + 0.5, a - 10),)))
+    hi = point((n + 5, W + 3, a + 10), *(() if same else ((n + 8, W + 4, a),)))
     qs = set(MAKING)
     b = box_bounds(p, cand, cand, lo, hi, tables, qs)
     rng = np.random.default_rng(n)
@@ -184,7 +182,7 @@ def test_box_bounds_contain_the_making_values(n: int, W: float, a: float, shape:
             float(rng.uniform(W + 0.5, W + 4)),
             float(rng.uniform(a - 10, a)),
         )
-        x = point(*first, *(first if same else second))
+        x = point(first, *(() if same else (second,)))
         v = point_values(p, cand, cand, x, tables)
         for q in qs:
             assert b[q][0][0] <= v[q][0] * (1 + 1e-12), q

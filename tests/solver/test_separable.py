@@ -27,6 +27,7 @@ from hypothesis import strategies as st
 from corrugate.solver import Problem, solve
 from corrugate.solver import separable as sep
 from corrugate.solver.bnb import branch_and_bound
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Constraint
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import (
@@ -93,7 +94,7 @@ def _problem(
     return Problem.from_spec(Spec.model_validate(tomllib.loads("\n".join(lines))))
 
 
-def _grid(problem: Problem) -> list[tuple[dict[str, np.ndarray], dict[Quantity, np.ndarray]]]:
+def _grid(problem: Problem) -> list[tuple[DesignPoints, dict[Quantity, np.ndarray]]]:
     """Every pair of layer designs of each sheet pair with the values of every quantity."""
     ns = np.arange(problem.n_lo, problem.n_hi + 1, dtype=np.float64)
     n, W, a = (
@@ -101,7 +102,7 @@ def _grid(problem: Problem) -> list[tuple[dict[str, np.ndarray], dict[Quantity, 
         for v in np.meshgrid(ns, problem.W.values(), problem.alpha.values(), indexing="ij")
     )
     i, j = (v.reshape(-1) for v in np.meshgrid(np.arange(len(n)), np.arange(len(n)), indexing="ij"))
-    x = {"n1": n[i], "W1": W[i], "a1": a[i], "n2": n[j], "W2": W[j], "a2": a[j]}
+    x = DesignPoints.of(LayerPoints(n[i], W[i], a[i]), LayerPoints(n[j], W[j], a[j]))
     tables = Tables(problem)
     return [(x, point_values(problem, c1, c2, x, tables)) for c1, c2 in pairs(problem)]
 
@@ -269,7 +270,7 @@ def test_bounds_left_to_the_exact_evaluation_that_bind(
     problem, grid = _binding_case(((35.0, 50.0), (50.0, 75.0)) if wide else None)
     first = optimize(problem)
     assert first.point is not None and first.candidates is not None
-    x = {k: np.array([v]) for k, v in first.point.items()}
+    x = first.point.arrays()
     at = float(point_values(problem, *first.candidates, x, Tables(problem))[quantity][0])
     bound = at * (1 - 1e-6) if sense == "max" else at * (1 + 1e-6)
     extra = Constraint("extra", quantity, sense, bound)  # type: ignore[arg-type]
@@ -341,7 +342,9 @@ def test_the_formulas_are_point_values(kind: str, eta: float, support: str) -> N
     L1, L2 = sep._layer(problem, c, 1), sep._layer(problem, c, 2)
     assert L1 is not None and L2 is not None and len(L1) > 10 and len(L2) > 10
     i, j = (v.reshape(-1) for v in np.meshgrid(np.arange(len(L1)), np.arange(len(L2))))
-    x = {"n1": L1.n[i], "W1": L1.W[i], "a1": L1.a[i], "n2": L2.n[j], "W2": L2.W[j], "a2": L2.a[j]}
+    x = DesignPoints.of(
+        LayerPoints(L1.n[i], L1.W[i], L1.a[i]), LayerPoints(L2.n[j], L2.W[j], L2.a[j])
+    )
     vals = point_values(problem, c, c, x, Tables(problem))
     q = problem.constraints[-1].quantity
     u, v, f, g = sep._terms(q, L1, L2, c.t, c.t)
@@ -388,7 +391,10 @@ def test_problems_without_the_structure_are_left_to_the_branch_and_bound(tmp_pat
     from corrugate.geometry.layouts import make_layout
 
     assert not sep.applies(replace(base, layout=make_layout("square")))
-    assert sep.search(off, *base.candidates * 2, None, lambda x: (x["n1"], x["n1"] > 0)) is None
+    assert (
+        sep.search(off, *base.candidates * 2, None, lambda x: (x.layer(0).n, x.layer(0).n > 0))
+        is None
+    )
 
 
 def test_the_chassis_spec_is_the_branch_and_bounds_optimum() -> None:

@@ -26,6 +26,7 @@ from corrugate.geometry.layouts import facet_lengths
 from corrugate.mechanics.moduli import get_model, moduli
 from corrugate.solver import Problem, solve
 from corrugate.solver.interval import Interval
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import LX, LY, MASS
 from corrugate.spec.schema import load_spec, parse_spec
@@ -695,8 +696,14 @@ def test_box_bounds_contain_every_sampled_design(
     else:
         lo.update(n2=lo["n1"], W2=lo["W1"], a2=lo["a1"])
         hi.update(n2=hi["n1"], W2=hi["W1"], a2=hi["a1"])
-    blo = {k: np.array([float(v)]) for k, v in lo.items()}
-    bhi = {k: np.array([float(v)]) for k, v in hi.items()}
+    stored = (1, 2) if layers == "independent" else (1,)
+
+    def box(b: dict[str, float]) -> DesignPoints:
+        return DesignPoints.of(
+            *(LayerPoints(*(np.array([float(b[k + str(i)])]) for k in "nWa")) for i in stored)
+        )
+
+    blo, bhi = box(lo), box(hi)
     quantities = {c.quantity for c in problem.constraints} | {MASS, LX, LY}
     bounds = box_bounds(problem, cand, cand, blo, bhi, tables, quantities)
     N = 300
@@ -705,9 +712,8 @@ def test_box_bounds_contain_every_sampled_design(
         x[f"n{i}"] = rng.integers(lo[f"n{i}"], hi[f"n{i}"] + 1, N).astype(float)
         x[f"W{i}"] = rng.uniform(lo[f"W{i}"], hi[f"W{i}"], N)
         x[f"a{i}"] = rng.uniform(lo[f"a{i}"], hi[f"a{i}"], N)
-    if layers == "identical":
-        x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
-    vals = point_values(problem, cand, cand, x, tables)
+    pts = DesignPoints.of(*(LayerPoints(*(x[k + str(i)] for k in "nWa")) for i in stored))
+    vals = point_values(problem, cand, cand, pts, tables)
     for q in sorted(quantities, key=lambda q: q.key):
         b_lo, b_hi = bounds[q][0][0], bounds[q][1][0]
         v = vals[q]

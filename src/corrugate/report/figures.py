@@ -22,6 +22,7 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.plotting import new_figure
 from corrugate.mechanics.behaviours import supports
 from corrugate.solver.making import MAKING
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import MASS
@@ -73,15 +74,17 @@ def _axis(lo: float, hi: float, step: float | None) -> FloatArray:
 
 def _points(
     problem: Problem, a: Analysis, n1: FloatArray, W1: FloatArray, a1: FloatArray
-) -> dict[str, FloatArray]:
-    l2 = a.assembly.layer2
+) -> DesignPoints:
+    """Layer 1 at the points (n1, W1, a1), layer 2 at the analysed design's own (or layer 1's
+    for identical layers)."""
+    one = LayerPoints(n1, W1, a1)
     if problem.identical:
-        n2, W2, a2 = n1, W1, a1
-    else:
-        n2 = np.full_like(W1, float(l2.n))
-        W2 = np.full_like(W1, l2.W)
-        a2 = np.full_like(W1, l2.alpha_deg)
-    return {"n1": n1, "W1": W1, "a1": a1, "n2": n2, "W2": W2, "a2": a2}
+        return DesignPoints.of(one)
+    l2 = a.assembly.layer2
+    two = LayerPoints(
+        np.full_like(W1, float(l2.n)), np.full_like(W1, l2.W), np.full_like(W1, l2.alpha_deg)
+    )
+    return DesignPoints.of(one, two)
 
 
 def _candidates(a: Analysis) -> tuple[Candidate, Candidate]:
@@ -188,7 +191,7 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
             at = np.flatnonzero(keep)
             if not at.size:
                 break
-            sub = x if at.size == n1.size else {k: v[at] for k, v in x.items()}
+            sub = x if at.size == n1.size else x.take(at)
             screened = box_bounds(problem, c1, c2, sub, sub, tables, screen)
             ok = np.ones(at.size, dtype=bool)
             for c in problem.constraints:
@@ -199,7 +202,7 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
         passed = np.flatnonzero(keep)
         for first in range(0, passed.size, BATCH_POINTS):
             at = passed[first : first + BATCH_POINTS]
-            values = point_values(problem, c1, c2, {k: v[at] for k, v in x.items()}, tables)
+            values = point_values(problem, c1, c2, x.take(at), tables)
             ok = np.ones(at.size, dtype=bool)
             for c in problem.constraints:
                 ok &= c.satisfied(values[c.quantity])

@@ -52,9 +52,10 @@ from numpy.typing import NDArray
 from corrugate.solver import separable
 from corrugate.solver.budget import current_budget
 from corrugate.solver.making import MAKING
+from corrugate.solver.points import VARIABLES, Coordinate, DesignPoints, LayerPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, DesignVariable, Problem
 from corrugate.solver.progress import report
-from corrugate.solver.quantities import DIMS, Tables, _corner, box_bounds, point_values
+from corrugate.solver.quantities import Tables, box_bounds, layer_corner, point_values
 from corrugate.solver.quantity import LX, LY, Quantity
 
 __all__ = ["GAP_RTOL", "Archive", "BnBResult", "branch_and_bound"]
@@ -88,7 +89,7 @@ class BnBResult:
     """Outcome for one candidate pair: the best point found (or None), its objective value, the
     proven bound on the optimum (``bound``), whether it is certified, and search statistics."""
 
-    point: dict[str, float] | None
+    point: DesignPoints | None
     value: float
     bound: float
     certified: bool
@@ -107,18 +108,11 @@ class BnBResult:
         return abs(self.value - self.bound) / max(abs(self.value), 1e-300)
 
 
-@dataclass(frozen=True)
-class _Dim:
-    name: str
-    var: DesignVariable  # n is a gridded variable with step 1
+_Dim = Coordinate  # one coordinate of the search (n is a gridded variable with step 1)
 
 
 def _dims(problem: Problem, n_fixed: tuple[int, int] | None) -> list[_Dim]:
-    n_lo, n_hi = (problem.n_lo, problem.n_hi) if n_fixed is None else n_fixed
-    n_var = DesignVariable(float(n_lo), float(n_hi), 1.0)
-    layer = [("n", n_var), ("W", problem.W), ("a", problem.alpha)]
-    layers = (1,) if problem.identical else (1, 2)
-    return [_Dim(f"{k}{i}", v) for i in layers for k, v in layer]
+    return coordinates(problem, n_fixed)
 
 
 def _snap(v: FloatArray, var: DesignVariable, up: bool) -> FloatArray:
@@ -219,7 +213,7 @@ def _enumerate(
     cons = problem.constraints
     per_layer = [[i for i, c in enumerate(cons) if c.quantity == q] for q in (LX, LY)]
     nbox = len(lo)
-    if len(dims) != 6 or not any(per_layer):
+    if len({d.layer for d in dims}) != 2 or not any(per_layer):
         every = _grid_points(lo, counts, dims)
         owner = np.repeat(np.arange(nbox), counts.prod(axis=1).astype(np.int64))
         return every, owner, []
@@ -227,12 +221,12 @@ def _enumerate(
     sizes: list[NDArray[np.int64]] = []
     pts: list[FloatArray] = []
     dropped: list[tuple[NDArray[np.int64], NDArray[np.bool_]]] = []
+    per = len(VARIABLES)
     for layer, idx in enumerate(per_layer):
-        cols = slice(3 * layer, 3 * layer + 3)
+        cols = slice(per * layer, per * layer + per)
         g = _grid_points(lo[:, cols], counts[:, cols], dims[cols])
         own = np.repeat(np.arange(nbox), counts[:, cols].prod(axis=1).astype(np.int64))
-        i = str(layer + 1)
-        ext = _corner({"n" + i: g[:, 0], "W" + i: g[:, 1], "a" + i: g[:, 2]}, layer + 1).extent
+        ext = layer_corner(LayerPoints(*(g[:, j] for j in range(per)))).extent
         broken = np.zeros((len(g), len(cons)), dtype=bool)
         for k in idx:
             broken[:, k] = ~cons[k].satisfied(ext, rtol=rtol)
@@ -260,12 +254,6 @@ def _thresholds(best: FloatArray, tol: float) -> FloatArray:
     """:func:`_threshold` of each incumbent (one per slot)."""
     with np.errstate(invalid="ignore"):
         return np.where(np.isfinite(best), best - tol * np.abs(best), best)
-
-
-def _full(x: dict[str, FloatArray], identical: bool) -> dict[str, FloatArray]:
-    if identical:
-        return {**x, "n2": x["n1"], "W2": x["W1"], "a2": x["a1"]}
-    return x
 
 
 #: Rows the archive of a search keeps at most (about 110 bytes each for 6 coordinates): past
@@ -400,8 +388,8 @@ def _cheap_bounds(
     problem: Problem,
     c1: Candidate,
     c2: Candidate,
-    lo: dict[str, FloatArray],
-    hi: dict[str, FloatArray],
+    lo: DesignPoints,
+    hi: DesignPoints,
     tables: Tables,
     cheap: set[Quantity],
     rtol: float,
@@ -417,14 +405,13 @@ def _cheap_bounds(
     first = cheap - then
     if not then or not first:
         bnd = box_bounds(problem, c1, c2, lo, hi, tables, cheap)
-        return bnd, _broken(cons, bnd, cheap, len(lo["n1"]), rtol)
+        return bnd, _broken(cons, bnd, cheap, len(lo), rtol)
     bnd = box_bounds(problem, c1, c2, lo, hi, tables, first)
-    broken = _broken(cons, bnd, first, len(lo["n1"]), rtol)
+    broken = _broken(cons, bnd, first, len(lo), rtol)
     alive = ~broken.any(axis=1)
     if alive.any():
-        names = ("n1", "W1", "a1") if problem.identical else DIMS
-        slo = _full({k: lo[k][alive] for k in names}, problem.identical)
-        shi = slo if hi is lo else _full({k: hi[k][alive] for k in names}, problem.identical)
+        slo = lo.take(alive)
+        shi = slo if hi is lo else hi.take(alive)
         more = box_bounds(problem, c1, c2, slo, shi, tables, then)
         broken[alive] |= _broken(cons, more, then, int(alive.sum()), rtol)
     return bnd, broken
@@ -448,9 +435,9 @@ def _by_layer(
     cons = problem.constraints
     needed = {c.quantity for c in cons} | {problem.objective.quantity}
 
-    def exact(x: dict[str, FloatArray]) -> tuple[FloatArray, NDArray[np.bool_]]:
+    def exact(x: DesignPoints) -> tuple[FloatArray, NDArray[np.bool_]]:
         vals = point_values(problem, c1, c2, x, tables)
-        ok = ~_broken(cons, vals, needed, len(x["n1"]), FEAS_RTOL).any(axis=1)
+        ok = ~_broken(cons, vals, needed, len(x), FEAS_RTOL).any(axis=1)
         return vals[problem.objective.quantity], np.asarray(ok, dtype=bool)
 
     r = separable.search(problem, c1, c2, incumbent, exact)
@@ -511,13 +498,13 @@ def branch_and_bound(
     rec = _Recorder(len(cons)) if record else None
 
     # relative widths: n counts as n + 1 (the number of facets), W and alpha as themselves
-    offset = np.array([1.0 if d.name.startswith("n") else 0.0 for d in dims])
+    offset = np.array([1.0 if d.variable == "n" else 0.0 for d in dims])
     steps = np.array([d.var.step if d.var.step is not None else math.nan for d in dims])
     # one incumbent per slot: per n1 value (per_n), else one
     n_base = per_n[0] if per_n is not None else 0
     slots = per_n[1] - per_n[0] + 1 if per_n is not None else 1
     best_val = np.full(slots, math.inf if incumbent is None else sign * incumbent)
-    best_pt: list[dict[str, float] | None] = [None] * slots
+    best_pt: list[DesignPoints | None] = [None] * slots
 
     def slot(lo: FloatArray) -> NDArray[np.int64]:
         if per_n is None:
@@ -584,8 +571,8 @@ def branch_and_bound(
             counts = lo[:, :0]
             enum = np.zeros(len(lo), dtype=bool)
         # cheap bounds first (extents, thickness, blank, facet, mass: corner values), for all
-        xlo = _full({d.name: lo[:, i] for i, d in enumerate(dims)}, problem.identical)
-        xhi = _full({d.name: hi[:, i] for i, d in enumerate(dims)}, problem.identical)
+        xlo = DesignPoints.from_columns(lo)
+        xhi = DesignPoints.from_columns(hi)
         bnd, broken = _cheap_bounds(problem, c1, c2, xlo, xhi, tables, cheap, feas_rtol, obj_key)
         if obj_key in cheap:
             o_lo, o_hi = bnd[obj_key]
@@ -597,10 +584,7 @@ def branch_and_bound(
         # has all its points evaluated exactly anyway
         sub = ~broken.any(axis=1) & ~enum
         if costly and sub.any():
-            slo = {k: v[sub] for k, v in xlo.items()}
-            shi = {k: v[sub] for k, v in xhi.items()}
-            if problem.identical:
-                slo, shi = _full(slo, True), _full(shi, True)
+            slo, shi = xlo.take(sub), xhi.take(sub)
             sb = box_bounds(problem, c1, c2, slo, shi, tables, costly)
             broken[sub] |= _broken(cons, sb, costly, int(sub.sum()), feas_rtol)
             if obj_key in costly:
@@ -631,7 +615,7 @@ def branch_and_bound(
             # each point is a box of its own: the same cheap bounds (values, there) drop the
             # points that break a cheap constraint or cannot beat the incumbent, before the
             # full evaluation
-            e = _full({d.name: every[:, i] for i, d in enumerate(dims)}, problem.identical)
+            e = DesignPoints.from_columns(every)
             eb, e_broken = _cheap_bounds(problem, c1, c2, e, e, tables, cheap, feas_rtol, obj_key)
             ok = ~e_broken.any(axis=1)
             if obj_key in cheap:
@@ -653,7 +637,7 @@ def branch_and_bound(
         mid = np.clip(mid, lo, hi)
         pts = np.concatenate([every, lo, hi, mid])
         if len(pts):
-            x = _full({d.name: pts[:, i] for i, d in enumerate(dims)}, problem.identical)
+            x = DesignPoints.from_columns(pts)
             vals = point_values(problem, c1, c2, x, tables)
             p_broken = _broken(cons, vals, needed, len(pts), feas_rtol)
             # continuous: exact feasibility (margins >= 0); grids: FEAS_RTOL
@@ -665,7 +649,7 @@ def branch_and_bound(
                 k = int(np.argmin(fs))
                 if fs[k] < best_val[s_]:
                     best_val[s_] = float(fs[k])
-                    best_pt[s_] = {name: float(v[k]) for name, v in x.items()}
+                    best_pt[s_] = x.point(k)
         if rec is not None and len(e_lo):  # the enumerated boxes, once per bit set
             n_ok = len(every)
             mask, kept = rec.masks(e_all_broken)

@@ -502,17 +502,17 @@ def _limits(problem: Problem, opt: Optimum) -> str:
     """Which design variables sit on their bounds at ``opt`` (what to widen)."""
     assert opt.point is not None
     x = opt.point
+    layers = [x.layer(i) for i in range(x.count)]
     at = []
-    for var, key, unit in ((problem.W, "W", "mm"), (problem.alpha, "a", "deg")):
-        for i in ("1", "2"):
-            v = x[f"{key}{i}"]
-            name = "W" if key == "W" else "alpha"
+    for var, name, unit in ((problem.W, "W", "mm"), (problem.alpha, "alpha", "deg")):
+        for layer in layers:
+            v = getattr(layer, name)
             if math.isclose(v, var.lo, rel_tol=1e-9):
                 at.append(f"{name} at its min {var.lo:g} {unit}")
             elif math.isclose(v, var.top, rel_tol=1e-9):
                 at.append(f"{name} at its max {var.top:g} {unit}")
-    for i in ("1", "2"):
-        n = round(x[f"n{i}"])
+    for layer in layers:
+        n = round(layer.n)
         if n == problem.n_lo:
             at.append(f"n at its min {n}")
         elif n == problem.n_hi:

@@ -20,23 +20,24 @@ min(perimeter, segment_max).
 
 from __future__ import annotations
 
-from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION
+from corrugate.solver.evaluator import Evaluator, register
 from corrugate.solver.quantity import CREASES, PART_LONG, PART_SHORT, T_OVER_W, W_MIN, Quantity
 
 if TYPE_CHECKING:
     from corrugate.geometry.layouts import Layout
-    from corrugate.solver.problem import Candidate
+    from corrugate.solver.context import AtPoints, OverBoxes
+    from corrugate.solver.points import DesignPoints
+    from corrugate.solver.problem import Candidate, Problem
 
-__all__ = ["MAKING", "band_run", "making_bounds", "making_values"]
+__all__ = ["MAKING", "MAKINGS", "band_run", "making_bounds", "making_values"]
 
 FloatArray = NDArray[np.float64]
-Arrays = Mapping[str, Any]
 Pair = tuple[FloatArray, FloatArray]
 
 #: The quantities of this module.
@@ -92,19 +93,20 @@ def making_values(
     layout: Layout,
     c1: Candidate,
     c2: Candidate,
-    x: Arrays,
+    x: DesignPoints,
     facet1: Any,
     facet2: Any,
     Lx: Any,
     Ly: Any,
     td: Any,
 ) -> dict[Quantity, FloatArray]:
-    """The quantities of this module at the points ``x`` (arrays n1, W1, n2, W2): ``facet1`` and
+    """The quantities of this module at the points ``x``: ``facet1`` and
     ``facet2`` the layers' longest facets (mm), ``Lx``, ``Ly`` the folded extents and ``td`` the
     folded thickness (mm)."""
     opts = DEFAULT_FABRICATION
-    n1, W1 = np.asarray(x["n1"], np.float64), np.asarray(x["W1"], np.float64)
-    n2, W2 = np.asarray(x["n2"], np.float64), np.asarray(x["W2"], np.float64)
+    x1, x2 = x.layer(0), x.layer(1)
+    n1, W1 = np.asarray(x1.n, np.float64), np.asarray(x1.W, np.float64)
+    n2, W2 = np.asarray(x2.n, np.float64), np.asarray(x2.W, np.float64)
     band = (band_run(layout, Lx, Ly) + opts.overlap, np.asarray(td) + 2.0 * opts.tab_depth)
     short, long = _parts(((n1 + 1) * W1, facet1, (n2 + 1) * W2, facet2), band)
     return {
@@ -120,8 +122,8 @@ def making_bounds(
     layout: Layout,
     c1: Candidate,
     c2: Candidate,
-    lo: Arrays,
-    hi: Arrays,
+    lo: DesignPoints,
+    hi: DesignPoints,
     facets: tuple[Pair, Pair],
     extents: tuple[Pair, Pair],
     td: Pair,
@@ -144,20 +146,61 @@ def making_bounds(
     out: dict[Quantity, Pair] = {}
     sides = []
     for b, run, t_d, k in ((lo, run_lo, td[0], 0), (hi, run_hi, td[1], 1)):
-        n1, W1 = np.asarray(b["n1"], np.float64), np.asarray(b["W1"], np.float64)
-        n2, W2 = np.asarray(b["n2"], np.float64), np.asarray(b["W2"], np.float64)
+        b1, b2 = b.layer(0), b.layer(1)
+        n1, W1 = np.asarray(b1.n, np.float64), np.asarray(b1.W, np.float64)
+        n2, W2 = np.asarray(b2.n, np.float64), np.asarray(b2.W, np.float64)
         band = (run + opts.overlap, np.asarray(t_d) + 2.0 * opts.tab_depth)
         sides.append(_parts(((n1 + 1) * W1, facets[0][k], (n2 + 1) * W2, facets[1][k]), band))
     out[PART_SHORT] = (sides[0][0], sides[1][0])
     out[PART_LONG] = (sides[0][1], sides[1][1])
-    W1lo, W1hi = np.asarray(lo["W1"], np.float64), np.asarray(hi["W1"], np.float64)
-    W2lo, W2hi = np.asarray(lo["W2"], np.float64), np.asarray(hi["W2"], np.float64)
+    W1lo, W1hi = np.asarray(lo.layer(0).W, np.float64), np.asarray(hi.layer(0).W, np.float64)
+    W2lo, W2hi = np.asarray(lo.layer(1).W, np.float64), np.asarray(hi.layer(1).W, np.float64)
     out[W_MIN] = (np.minimum(W1lo, W2lo), np.minimum(W1hi, W2hi))
     out[T_OVER_W] = (
         np.maximum(c1.t / W1hi, c2.t / W2hi),
         np.maximum(c1.t / W1lo, c2.t / W2lo),
     )
-    n1lo, n1hi = np.asarray(lo["n1"], np.float64), np.asarray(hi["n1"], np.float64)
-    n2lo, n2hi = np.asarray(lo["n2"], np.float64), np.asarray(hi["n2"], np.float64)
+    n1lo, n1hi = np.asarray(lo.layer(0).n, np.float64), np.asarray(hi.layer(0).n, np.float64)
+    n2lo, n2hi = np.asarray(lo.layer(1).n, np.float64), np.asarray(hi.layer(1).n, np.float64)
     out[CREASES] = (np.maximum(n1lo, n2lo), np.maximum(n1hi, n2hi))
     return out
+
+
+def _making_at(at: AtPoints, q: Quantity) -> FloatArray:
+    """The value of ``q`` at the points (the five quantities computed together, once)."""
+    values = at.shared(
+        "making",
+        lambda: making_values(
+            at.problem.layout, at.c1, at.c2, at.x, *at.facets, at.Lx, at.Ly, at.ev.thickness[:, 0]
+        ),
+    )
+    return values[q]
+
+
+def _making_over(over: OverBoxes, q: Quantity) -> Pair:
+    """The bounds of ``q`` over the boxes (the five computed together, once)."""
+    bounds = over.shared(
+        "making",
+        lambda: making_bounds(
+            over.problem.layout,
+            over.c1,
+            over.c2,
+            over.lo,
+            over.hi,
+            over.facets,
+            (over.Lx, over.Ly),
+            over.thickness,
+        ),
+    )
+    return bounds[q]
+
+
+def _making_reported(problem: Problem) -> frozenset[Quantity]:
+    """All five once one is asked for."""
+    return MAKING if MAKING.intersection(problem.quantities) else frozenset()
+
+
+#: The evaluator of this module's quantities.
+MAKINGS = register(
+    Evaluator(tuple(sorted(q.kind for q in MAKING)), _making_at, _making_over, _making_reported)
+)

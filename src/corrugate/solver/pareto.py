@@ -22,8 +22,6 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
-import numpy as np
-
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
@@ -98,11 +96,10 @@ def _point(
 ) -> ParetoPoint:
     assert opt.point is not None
     assert opt.candidates is not None
-    x = {k: np.array([v]) for k, v in opt.point.items()}
     vals = point_values(
         replace(problem, constraints=(Constraint("pareto", key, "min", 0.0),)),
         *opt.candidates,
-        x,
+        opt.point.arrays(),
         tables,
     )
     a = assembly_of(problem, opt)

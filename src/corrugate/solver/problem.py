@@ -174,6 +174,16 @@ class Problem:
         return tuple(sorted({q.eta for q in self.quantities if q.eta is not None}))
 
     @property
+    def layer_count(self) -> int:
+        """The layers of a design (docs/theory.md section 2: two crossed corrugated layers)."""
+        return 2
+
+    @property
+    def searched_layers(self) -> int:
+        """The layers whose variables the search spans: one for identical layers."""
+        return 1 if self.identical else self.layer_count
+
+    @property
     def gridded(self) -> bool:
         """Whether every variable is discrete (then the optimum is certified with zero gap)."""
         return self.W.gridded and self.alpha.gridded

@@ -60,6 +60,7 @@ __all__ = [
     "T_OVER_W",
     "W_MIN",
     "Quantity",
+    "declare_kind",
 ]
 
 #: Quantity kind of each stiffness a spec may bound (docs/theory.md 3.3).
@@ -89,6 +90,12 @@ _KINDS: dict[str, tuple[str, str]] = {
     "k": ("load over deflection P/delta", "N/mm"),
     "Pmax": ("load capacity at the safety factor", "N"),
 }
+
+
+def declare_kind(kind: str, label: str, unit: str) -> None:
+    """Name a new kind (its readable ``label`` and internal ``unit``), for a kind registered
+    with the solver's evaluators (:func:`corrugate.solver.evaluator.register`)."""
+    _KINDS[kind] = (label, unit)
 
 
 @dataclass(frozen=True, slots=True)

@@ -67,9 +67,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.geometry.layouts import Rectangle, Square, length_sum
+from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantity import (
     CREASES,
@@ -90,8 +92,8 @@ __all__ = ["MAX_LAYER_DESIGNS", "MAX_PAIRS", "SLACK", "SeparableResult", "applie
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
-#: Exact values of pairs: (mass in g, feasible) at the points (arrays n1, W1, a1, n2, W2, a2).
-Exact = Callable[[dict[str, FloatArray]], tuple[FloatArray, NDArray[np.bool_]]]
+#: Exact values of pairs: (mass in g, feasible) at the points (both layers' arrays).
+Exact = Callable[[DesignPoints], tuple[FloatArray, NDArray[np.bool_]]]
 
 #: Relative slack beyond FEAS_RTOL with which the formulas judge a pair (rounding: far above the
 #: few units in the last place by which they may differ from ``evaluate``).
@@ -116,7 +118,7 @@ class SeparableResult:
     """The optimum over one sheet pair: its point (None: no design beats the incumbent, or none
     exists), mass (g), and how many pairs of layer designs were scored and evaluated exactly."""
 
-    point: dict[str, float] | None
+    point: DesignPoints | None
     value: float
     layer_designs: tuple[int, int]
     scored: int
@@ -207,9 +209,8 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
             hi_n = np.minimum(hi_n, math.floor(c.bound * (1 + FEAS_RTOL) + 1e-9))
     # the extent (n + 1) p grows with n: the n range of each (W, alpha) from its bounds, one
     # value wider on each side, then checked exactly below with evaluate's arithmetic
-    half = a_g * (np.pi / 360.0)  # as analysis.evaluate._layer_part
-    s, cc = np.sin(half), np.cos(half)
-    p = W_g * s
+    zz = ZigZag.of(W_g, a_g)  # the zig-zag's profile, as analysis.evaluate._layer_part
+    s, cc, p = zz.s, zz.c, zz.pitch
     for c in problem.constraints:
         if c.quantity == own or (c.quantity == FACET and c.sense == "max"):
             # FACET: the other layer's facets are this layer's extent long (a rectangle)
@@ -248,7 +249,7 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
         return np.asarray(np.broadcast_to(arr, W_g.shape)[g])
 
     return _Layer(
-        n, W_g[g], a_g[g], E, (W_g * cc)[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
+        n, W_g[g], a_g[g], E, zz.height[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
     )
 
 
@@ -308,7 +309,7 @@ def search(
     """The least-mass design over sheets (c1, c2), certified (module docstring), lighter than
     ``incumbent`` (g) if given; None when the problem lacks the structure (:func:`applies`) or
     its layer lists or pairs are too many. ``exact(x)`` returns the exact values and feasibility of the pairs
-    ``x`` (arrays n1, W1, a1, n2, W2, a2): ``(mass, feasible)``."""
+    ``x`` (:class:`~.points.DesignPoints`): ``(mass, feasible)``."""
     if not applies(problem):
         return None
     L1 = _layer(problem, c1, 1)
@@ -426,14 +427,10 @@ def search(
     if best_at < 0:
         return SeparableResult(None, math.nan, sizes, scored, evaluated)
     one, two = int(ci[best_at]), int(cj[best_at])
-    point = {
-        "n1": float(L1.n[one]),
-        "W1": float(L1.W[one]),
-        "a1": float(L1.a[one]),
-        "n2": float(L2.n[two]),
-        "W2": float(L2.W[two]),
-        "a2": float(L2.a[two]),
-    }
+    point = DesignPoints.of(
+        LayerPoints(float(L1.n[one]), float(L1.W[one]), float(L1.a[one])),
+        LayerPoints(float(L2.n[two]), float(L2.W[two]), float(L2.a[two])),
+    )
     return SeparableResult(point, best, sizes, scored, evaluated)
 
 
@@ -458,14 +455,10 @@ def _lightest(
             take, remaining = remaining[part[:batch]], remaining[part[batch:]]
         else:
             take, remaining = remaining, remaining[:0]
-        x = {
-            "n1": L1.n[ci[take]],
-            "W1": L1.W[ci[take]],
-            "a1": L1.a[ci[take]],
-            "n2": L2.n[cj[take]],
-            "W2": L2.W[cj[take]],
-            "a2": L2.a[cj[take]],
-        }
+        x = DesignPoints.of(
+            LayerPoints(L1.n[ci[take]], L1.W[ci[take]], L1.a[ci[take]]),
+            LayerPoints(L2.n[cj[take]], L2.W[cj[take]], L2.a[cj[take]]),
+        )
         mass, feasible = exact(x)
         evaluated += len(take)
         if incumbent is not None:

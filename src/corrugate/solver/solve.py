@@ -36,7 +36,8 @@ from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
 from corrugate.solver.bnb import GAP_RTOL, Archive, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, DesignVariable, Problem
+from corrugate.solver.points import DesignPoints, coordinates
+from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
 
@@ -71,7 +72,7 @@ PROBE_FRACTIONS = (1e-6, 1e-4, 1e-3, 1e-2, 3e-2, 1e-1)
 class Optimum:
     """The best design over all sheet pairs, with its certificate."""
 
-    point: dict[str, float] | None
+    point: DesignPoints | None
     candidates: tuple[Candidate, Candidate] | None
     value: float
     certified: bool
@@ -427,10 +428,10 @@ def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
     """The :class:`~corrugate.geometry.layer.Assembly` of an optimum's point and sheets."""
     assert opt.point is not None
     assert opt.candidates is not None
-    x = opt.point
+    x1, x2 = opt.point.layer(0), opt.point.layer(1)
     c1, c2 = opt.candidates
-    l1 = Layer(x["W1"], round(x["n1"]), x["a1"], c1.material, c1.t)
-    l2 = Layer(x["W2"], round(x["n2"]), x["a2"], c2.material, c2.t)
+    l1 = Layer(x1.W, round(x1.n), x1.alpha, c1.material, c1.t)
+    l2 = Layer(x2.W, round(x2.n), x2.alpha, c2.material, c2.t)
     return Assembly(l1, l2, problem.layout)
 
 
@@ -622,8 +623,7 @@ def _diagnose(
 def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[Quantity, float]:
     assert opt.point is not None
     assert opt.candidates is not None
-    x = {k: np.array([v]) for k, v in opt.point.items()}
-    vals = point_values(problem, *opt.candidates, x, tables)
+    vals = point_values(problem, *opt.candidates, opt.point.arrays(), tables)
     return {k: float(v[0]) for k, v in vals.items()}
 
 
@@ -652,20 +652,14 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, flo
     return {n: vals[q] for n, q in asked.items()}
 
 
-def _probe_points(problem: Problem, point: dict[str, float]) -> dict[str, FloatArray]:
+def _probe_points(problem: Problem, point: DesignPoints) -> DesignPoints:
     """Designs near ``point`` (the search's coordinates): every move of one coordinate, and of
     two together, by :data:`PROBE_STEPS` grid steps (n; W and alpha on a grid) or
     :data:`PROBE_FRACTIONS` of the range (continuous W, alpha), either way, inside the bounds;
     grid values computed as the search computes them (lo + step k)."""
-    layers = ("1",) if problem.identical else ("1", "2")
-    n_var = DesignVariable(float(problem.n_lo), float(problem.n_hi), 1.0)
-    dims = [
-        (k + i, v)
-        for i in layers
-        for k, v in (("n", n_var), ("W", problem.W), ("a", problem.alpha))
-    ]
+    dims = [(d, d.var) for d in coordinates(problem)]
     moves: list[FloatArray] = []  # per coordinate: the offsets of its index (grid) or value
-    for _name, var in dims:
+    for _coord, var in dims:
         if var.step is None:
             span = var.hi - var.lo
             m = np.array([f * span for f in PROBE_FRACTIONS])
@@ -681,20 +675,18 @@ def _probe_points(problem: Problem, point: dict[str, float]) -> dict[str, FloatA
             r[:, i], r[:, j] = a.ravel(), b.ravel()
             rows.append(r)
     d = np.concatenate(rows)
-    x: dict[str, FloatArray] = {}
+    x: list[FloatArray] = []
     ok = np.ones(len(d), dtype=bool)
-    for i, (name, var) in enumerate(dims):
+    for i, (coord, var) in enumerate(dims):
+        at = getattr(point.layer(coord.layer), coord.variable)
         if var.step is None:
-            v = point[name] + d[:, i]
+            v = at + d[:, i]
         else:
-            k = np.round((point[name] - var.lo) / var.step) + d[:, i]
+            k = np.round((at - var.lo) / var.step) + d[:, i]
             v = var.lo + var.step * k
         ok &= (v >= var.lo) & (v <= var.top)
-        x[name] = v
-    x = {k: v[ok] for k, v in x.items()}
-    if problem.identical:
-        x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
-    return x
+        x.append(v)
+    return DesignPoints.from_columns(np.stack(x, axis=1)[ok])
 
 
 def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> set[str]:
@@ -709,7 +701,7 @@ def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> se
     if not problem.constraints:
         return set()
     x = _probe_points(problem, opt.point)
-    if not len(x["n1"]):
+    if not len(x):
         return set()
     vals = point_values(problem, *opt.candidates, x, tables)
     rtol = FEAS_RTOL if problem.gridded else 0.0
@@ -827,7 +819,7 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     of the optimum's n, when both its layers have it, is the certified optimum itself (the best
     design of the whole problem is the best with that n)."""
     assert opt.point is not None
-    n_star = round(opt.point["n1"])
+    n_star = round(opt.point.layer(0).n)
     a, b = (
         max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
         min(problem.n_hi, n_star + RUNNER_UP_SPREAD),
@@ -853,7 +845,7 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
             ):
                 best[n] = (rn, pair)
     out = []
-    own = opt.certified and round(opt.point["n2"]) == n_star
+    own = opt.certified and round(opt.point.layer(1).n) == n_star
     for n in range(a, b + 1):
         if n == n_star and own:
             found = opt

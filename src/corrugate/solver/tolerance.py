@@ -13,11 +13,12 @@ size constraints are checked on Lx (layer 1), as in the solver, and Ly is report
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from corrugate.geometry.layer import Assembly
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import LX, LY, MASS, THICKNESS, Quantity
@@ -99,31 +100,29 @@ def monte_carlo(
     N = samples
     c1, c2 = (Candidate(layer.material, layer.t) for layer in a.layers)
     same_sheet = c1 == c2
-    x: dict[str, np.ndarray] = {}
-    for i, layer in ((1, a.layer1), (2, a.layer2)):
-        x[f"n{i}"] = np.full(N, float(layer.n))
-        x[f"W{i}"] = np.maximum(layer.W + tol.W * rng.standard_normal(N), 1e-6)
-        x[f"a{i}"] = np.clip(layer.alpha_deg + tol.alpha * rng.standard_normal(N), 0.1, 179.9)
+    drawn: list[LayerPoints] = []
+    for layer in a.layers:
+        n = np.full(N, float(layer.n))
+        W = np.maximum(layer.W + tol.W * rng.standard_normal(N), 1e-6)
+        alpha = np.clip(layer.alpha_deg + tol.alpha * rng.standard_normal(N), 0.1, 179.9)
+        drawn.append(LayerPoints(n, W, alpha))
     t_err = rng.standard_normal((2, N)) * tol.t_rel
     E_err = rng.standard_normal((2, N)) * tol.E_rel
     if same_sheet:
         t_err[1], E_err[1] = t_err[0], E_err[0]
-    for i, layer in ((1, a.layer1), (2, a.layer2)):
-        x[f"t{i}"] = np.maximum(layer.t * (1 + t_err[i - 1]), 1e-9)
-        x[f"E{i}"] = np.maximum(layer.material.E * (1 + E_err[i - 1]), 1e-9)
+    for i, layer in enumerate(a.layers):
+        t = np.maximum(layer.t * (1 + t_err[i]), 1e-9)
+        E = np.maximum(layer.material.E * (1 + E_err[i]), 1e-9)
+        drawn[i] = replace(drawn[i], E=E, t=t)
+    x = DesignPoints.of(*drawn)
     tables = Tables(problem)
     vals = point_values(problem, c1, c2, x, tables)
-    nominal_x = {
-        k: np.array([v])
-        for k, v in (
-            ("n1", a.layer1.n),
-            ("W1", a.layer1.W),
-            ("a1", a.layer1.alpha_deg),
-            ("n2", a.layer2.n),
-            ("W2", a.layer2.W),
-            ("a2", a.layer2.alpha_deg),
+    nominal_x = DesignPoints.of(
+        *(
+            LayerPoints(np.array([layer.n]), np.array([layer.W]), np.array([layer.alpha_deg]))
+            for layer in a.layers
         )
-    }
+    )
     nominal = point_values(problem, c1, c2, nominal_x, tables)
     keys = [MASS, LX, LY, THICKNESS]
     keys += sorted({c.quantity for c in problem.constraints} - set(keys), key=lambda q: q.key)
