@@ -28,9 +28,14 @@ case: three-point, four-point, cantilever, platens; :mod:`corrugate.mechanics.lo
 ``form`` (:class:`TestForm`) turns the support's pure-bending D or in-plane K into what that test
 measures.
 
-The built-in entries live one per module in :mod:`corrugate.mechanics.supports` and are
-registered there, each by one line; they are loaded on the first look-up. Adding a support
-condition or a load case is a module defining its :class:`Behaviour` and one ``register`` line.
+The built-in supports live one per module in :mod:`corrugate.mechanics.supports` and are
+registered there, each by one line, then the built-in load cases
+(:data:`corrugate.mechanics.load_cases.BUILT_IN`); they are loaded on the first look-up. Adding a
+support condition is a module defining its :class:`Behaviour` and one ``register`` line; adding a
+load case is its entry in :mod:`corrugate.mechanics.load_cases` and its place in ``BUILT_IN``
+(or, outside the package, one :func:`register` call). The spec's test choices
+(:func:`deflection_tests`, :func:`load_cases`), its reference, the report's figures and the web
+page's test menus read these entries.
 """
 
 from __future__ import annotations
