@@ -62,7 +62,6 @@ CLAMPED_ENDS = replace(
         LOCAL,
         1.0 / 8.0,
         loads=(0.5,),
-        clamped=True,
         shape=_fixed_fixed_shape,
     ),
     label=" with clamped ends",
@@ -266,9 +265,9 @@ def test_unregistering_gives_the_reference_back() -> None:
 
 
 def test_the_report_figure_draws_and_titles_it(clamped_ends: Behaviour) -> None:
-    """The load-case figure titles the toy's panel with its name and span, draws its clamp (a
-    hatched patch at the root, no rollers), one load arrow at mid-span and its deflected shape,
-    deepest at mid-span."""
+    """The load-case figure titles the toy's panel with its name and span and draws its own
+    sketch: supports at both ends (not a cantilever's clamp), one load arrow at mid-span and
+    its deflected shape, deepest at mid-span and flat at the clamped ends."""
     from corrugate.report.figures import load_case_figure
 
     p = Problem.from_spec(
@@ -279,11 +278,14 @@ def test_the_report_figure_draws_and_titles_it(clamped_ends: Behaviour) -> None:
     [ax] = fig.axes
     title = ax.get_title()
     assert title.startswith(f"clamped-ends, span {sol.assembly.Ly:.4g} mm\n")
-    assert len(ax.collections) == 1  # the clamp's hatched fill
-    assert not [ln for ln in ax.lines if ln.get_marker() == "^"]  # no rollers
+    assert not ax.collections  # no cantilever's clamp
+    ends = [ln.get_xdata()[0] for ln in ax.lines if ln.get_marker() == "^"]
+    assert ends == [0.0, 1.0]
     [shape] = [ln for ln in ax.lines if ln.get_label() == "deflected (not to scale)"]
     xs, ys = shape.get_data()
     assert xs[int(np.argmin(ys))] == pytest.approx(0.5)
+    # zero slope at a clamped end: the first step is second order in x (Roark 1e)
+    assert abs(ys[1] - ys[0]) < 0.01 * abs(ys[50] - ys[0])
     arrows = [a.xy[0] for a in ax.texts]
     assert arrows == [0.5]
 

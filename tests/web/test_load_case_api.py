@@ -180,13 +180,14 @@ def test_load_cases_are_the_registry_and_documented() -> None:
         for b in load_cases()
         if b.form is not None
     ]
-    # the page's list of load cases before its script runs is the registry's (the script
-    # rewrites it from this answer)
+    # the page's list of load cases before its script rewrites it from this answer names
+    # registered tests only, in the registry's order (a new test needs no edit of the page)
     page = c.get("/").text
     shown = re.search(r'id="d-load-case-names">([^<]*)<', page)
     assert shown is not None
     labels = [x["label"] for x in r.json() if x["deflection"]]
-    assert " ".join(shown.group(1).split()) == ", ".join(labels)
+    static = " ".join(shown.group(1).split()).split(", ")
+    assert static == [label for label in labels if label in static] and len(static) >= 4
     spec = c.get("/openapi.json").json()
     answer = spec["paths"]["/api/load-cases"]["get"]["responses"]["200"]["content"]
     ref = answer["application/json"]["schema"]["items"]["$ref"]

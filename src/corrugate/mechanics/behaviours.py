@@ -108,8 +108,9 @@ class TestForm:
     moment: float = 0.0  # the largest bending moment is moment x P x Ls (N mm)
     factor: Callable[[float], float] | None = None
     #: The report's sketch of a bending test: where its loads act (fractions of the span from
-    #: the root), whether the root is clamped (else the panel rests on rollers at both ends) and
-    #: its Euler-Bernoulli deflected shape w(x), x in [0, 1] of the span (any scale).
+    #: the root), whether it is a cantilever (clamped at the root, the other end free: its span
+    #: is the free length; else the panel rests on rollers at both ends) and its
+    #: Euler-Bernoulli deflected shape w(x), x in [0, 1] of the span (any scale).
     loads: tuple[float, ...] = ()
     clamped: bool = False
     shape: Callable[[Any], Any] | None = None
