@@ -104,19 +104,30 @@ def _spec(**constraints: Any) -> dict[str, Any]:
     return with_units(d)
 
 
-def _grid() -> tuple[np.ndarray, dict[str, np.ndarray]]:
+def _points(n: np.ndarray, W: np.ndarray, a: np.ndarray) -> Any:
+    """Identical layers at the points (n, W, a) as the solver's point_values reads them: typed
+    design points (corrugate.solver.points) where the solver has them, else its flat keys."""
+    try:
+        from corrugate.solver.points import (  # type: ignore[import-not-found, unused-ignore]
+            DesignPoints,
+            LayerPoints,
+        )
+    except ImportError:
+        return {"n1": n, "W1": W, "a1": a, "n2": n, "W2": W, "a2": a}
+    return DesignPoints.of(LayerPoints(n, W, a))
+
+
+def _grid() -> tuple[np.ndarray, Any]:
     """The whole grid of :data:`SPEC` (n 7-13, W 6-14 step 1, alpha 40-115 step 5) as rows and
-    as the point arrays of identical layers."""
+    as the points of identical layers."""
     grid = np.array(
         [(n, W, a) for n in range(7, 14) for W in range(6, 15) for a in range(40, 116, 5)],
         dtype=float,
     )
-    x = {"n1": grid[:, 0], "W1": grid[:, 1], "a1": grid[:, 2]}
-    x.update(n2=x["n1"], W2=x["W1"], a2=x["a1"])
-    return grid, x
+    return grid, _points(grid[:, 0], grid[:, 1], grid[:, 2])
 
 
-def _by_hand(x: dict[str, np.ndarray]) -> np.ndarray:
+def _by_hand(x: Any) -> np.ndarray:
     """P / delta (N/mm) of the toy at eta = 0 over the panel's length Ly along eta, from the
     three-point value and EI the solver gives at the same points (module docstring)."""
     probe = Problem.from_spec(
@@ -160,8 +171,7 @@ def test_the_spec_takes_the_registered_load_case_and_the_solver_certifies_it(
             ok &= other.satisfied(vals[other.quantity])
     assert sol.mass == pytest.approx(float(np.min(vals[MASS][ok])), rel=1e-9)
     layer = sol.assembly.layer1
-    at = {"n1": np.array([layer.n]), "W1": np.array([layer.W]), "a1": np.array([layer.alpha_deg])}
-    at.update(n2=at["n1"], W2=at["W1"], a2=at["a1"])
+    at = _points(np.array([float(layer.n)]), np.array([layer.W]), np.array([layer.alpha_deg]))
     [report] = [r for r in sol.constraints if r.load is not None]
     assert report.value == pytest.approx(1.0 / float(_by_hand(at)[0]), rel=1e-9)
     assert report.value <= most * (1 + 1e-12)
