@@ -81,7 +81,11 @@ DEFAULT_SUPPORT: Final[Support] = "free"
 
 LoadCaseName = Literal["three-point", "four-point", "cantilever", "platens"]
 #: The tests a deflection is stated in: simply supported with the load at mid-span or at the
-#: quarter points, a cantilever loaded at its free end, compression between rigid platens.
+#: quarter points, a cantilever loaded at its free end, compression between rigid platens. The
+#: command line's ``analyze --test`` choices (declared without numpy); the spec, its reference,
+#: the report and the page read the registry itself
+#: (:func:`corrugate.mechanics.behaviours.deflection_tests`, which ``tests/test_names.py``
+#: checks these are).
 LOAD_CASES: tuple[LoadCaseName, ...] = get_args(LoadCaseName)
 #: The tests only a stiffness bound names (no deflection, load or strength): the wheel test of a
 #: circle's K (docs/load_cases.md 9), registered after the load cases.

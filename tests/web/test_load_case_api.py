@@ -5,6 +5,7 @@ TOML path of the field (the spec parser's and ``Problem.from_spec``'s own checks
 from __future__ import annotations
 
 import copy
+import re
 from typing import Any
 
 import pytest
@@ -154,3 +155,42 @@ def test_analyze_bad_load_cases_get_422_naming_the_field(
     assert body["field"] == field, body
     assert field in body["detail"]
     alive(client)
+
+
+def test_load_cases_are_the_registry_and_documented() -> None:
+    """``GET /api/load-cases`` (the page's test menus) is every load case of the registry of
+    behaviours in its order, each field the entry's; the OpenAPI document describes every
+    field. No lifespan: the route needs no worker."""
+    from corrugate.mechanics.behaviours import load_cases
+    from corrugate.web import create_app
+
+    c = TestClient(create_app())
+    r = c.get("/api/load-cases")
+    assert r.status_code == 200 and r.headers["cache-control"] == "no-store"
+    assert r.json() == [
+        {
+            "name": b.name,
+            "label": b.choice or b.name,
+            "kind": b.form.kind,
+            "own": b.form.kind == "inplane" and b.form.factor is None,
+            "deflection": not b.stiffness_only,
+            "layouts": list(b.layouts),
+            "text": b.text,
+        }
+        for b in load_cases()
+        if b.form is not None
+    ]
+    # the page's list of load cases before its script rewrites it from this answer names
+    # registered tests only, in the registry's order (a new test needs no edit of the page)
+    page = c.get("/").text
+    shown = re.search(r'id="d-load-case-names">([^<]*)<', page)
+    assert shown is not None
+    labels = [x["label"] for x in r.json() if x["deflection"]]
+    static = " ".join(shown.group(1).split()).split(", ")
+    assert static == [label for label in labels if label in static] and len(static) >= 4
+    spec = c.get("/openapi.json").json()
+    answer = spec["paths"]["/api/load-cases"]["get"]["responses"]["200"]["content"]
+    ref = answer["application/json"]["schema"]["items"]["$ref"]
+    schema = spec["components"]["schemas"][ref.rsplit("/", 1)[-1]]
+    assert set(schema["properties"]) == set(r.json()[0])
+    assert all(p.get("description") for p in schema["properties"].values())

@@ -86,11 +86,13 @@ def load_case_of(
     P = positive("load", load, "N", "load")
     if span is None:
         return LoadCase(test, P)
-    if test == "platens":
+    from corrugate.mechanics.behaviours import get_load_case
+
+    if get_load_case(test).form.kind == "inplane":  # type: ignore[union-attr]
         raise InputError(
             flag("span"),
             span,
-            "no span for platens (the panel's length along eta is compressed)",
+            f"no span for {test} (the panel's length along eta is compressed)",
             reason="does not apply",
         )
     return LoadCase(test, P, positive("span", span, "mm", "length"))
@@ -104,20 +106,22 @@ def load_case_rows(
     :func:`corrugate.mechanics.load_cases.load_stiffness` (docs/load_cases.md, sections 1-3):
     the support's D (bending tests, EI = D L over the panel's length L along eta, the layers'
     shear spring V and depth h at eta) or K (platens). :class:`InputError` naming the span
-    where it is longer than the panel, and the test for a layout without straight edges."""
+    where it is longer than the panel, and the test for a layout it does not apply to (its
+    registry entry's ``layouts``: the built-ins need straight edges)."""
     from corrugate.mechanics.behaviours import get_load_case
     from corrugate.mechanics.load_cases import load_stiffness, shear_and_depth
     from corrugate.mechanics.offaxis import _cs
 
     layout = r.assembly.layout
-    if layout.name not in ("square", "rectangle"):
+    entry = get_load_case(case.test)
+    if entry.layouts and layout.name not in entry.layouts:
         raise InputError(
             flag("test"),
             f"{case.test} on layout {layout.name}",
-            "a square or rectangle layout",
+            f"a {' or '.join(entry.layouts)} layout",
             reason="has no straight edges to support or load",
         )
-    form = get_load_case(case.test).form
+    form = entry.form
     assert form is not None
     rows = []
     for st in r.stiffness:

@@ -16,16 +16,26 @@ A :class:`Behaviour` is one entry that carries everything the layers above need 
   internal unit), ``text`` (its meaning in the spec reference), ``curve`` (its legend in the
   report's polar figure) and ``off_axis`` (the model warning off the crease directions);
 * ``uses_coupon``: whether ``model`` reads the layout off the crease directions as a coupon
-  (:class:`~corrugate.mechanics.offaxis.Coupon`; the free support does).
+  (:class:`~corrugate.mechanics.offaxis.Coupon`; the free support does);
+* for a load case, how the spec, its reference and the web page offer it: ``choice`` (its words
+  in a list of choices, its name when empty: ``between platens``), ``note`` (its remark in the
+  spec reference's lists of tests: ``in-plane compression``), ``layouts`` (the plan outlines it
+  applies to; empty: every one) and ``stiffness_only`` (only a stiffness bound names it, never a
+  deflection or strength bound: the wheel test, docs/load_cases.md 9).
 
 ``role`` says which slot of a quantity it fills: a ``support`` condition, or a ``test`` (a load
 case: three-point, four-point, cantilever, platens; :mod:`corrugate.mechanics.load_cases`), whose
 ``form`` (:class:`TestForm`) turns the support's pure-bending D or in-plane K into what that test
 measures.
 
-The built-in entries live one per module in :mod:`corrugate.mechanics.supports` and are
-registered there, each by one line; they are loaded on the first look-up. Adding a support
-condition or a load case is a module defining its :class:`Behaviour` and one ``register`` line.
+The built-in supports live one per module in :mod:`corrugate.mechanics.supports` and are
+registered there, each by one line, then the built-in load cases
+(:data:`corrugate.mechanics.load_cases.BUILT_IN`); they are loaded on the first look-up. Adding a
+support condition is a module defining its :class:`Behaviour` and one ``register`` line; adding a
+load case is its entry in :mod:`corrugate.mechanics.load_cases` and its place in ``BUILT_IN``
+(or, outside the package, one :func:`register` call). The spec's test choices
+(:func:`deflection_tests`, :func:`load_cases`), its reference, the report's figures and the web
+page's test menus read these entries.
 """
 
 from __future__ import annotations
@@ -47,10 +57,13 @@ __all__ = [
     "Role",
     "TestForm",
     "check_support",
+    "deflection_tests",
     "either",
     "get_load_case",
     "get_support",
+    "listed",
     "load_cases",
+    "own_test",
     "register",
     "support_names",
     "supports",
@@ -94,6 +107,19 @@ class TestForm:
     c: float = 0.0
     moment: float = 0.0  # the largest bending moment is moment x P x Ls (N mm)
     factor: Callable[[float], float] | None = None
+    #: The report's sketch of a bending test: where its loads act (fractions of the span from
+    #: the root), whether it is a cantilever (clamped at the root, the other end free: its span
+    #: is the free length; else the panel rests on rollers at both ends) and its
+    #: Euler-Bernoulli deflected shape w(x), x in [0, 1] of the span (any scale).
+    loads: tuple[float, ...] = ()
+    clamped: bool = False
+    shape: Callable[[Any], Any] | None = None
+
+    @property
+    def own(self) -> bool:
+        """Whether the test measures the support's own K (an in-plane test without a factor:
+        platens), the meaning a K bound without a test has."""
+        return self.kind == "inplane" and self.factor is None
 
 
 @dataclass(frozen=True, eq=False)
@@ -113,10 +139,18 @@ class Behaviour:
     uses_coupon: bool = False
     role: Role = "support"
     form: TestForm | None = None
+    choice: str = ""
+    note: str = ""
+    layouts: tuple[str, ...] = ()
+    stiffness_only: bool = False
 
     def unit(self, kind: str) -> str:
         """Internal unit of ``kind`` under this behaviour."""
         return self.units[kind]
+
+    def in_list(self) -> str:
+        """Its words in a list of choices: ``choice``, else its name."""
+        return self.choice or self.name
 
 
 _REGISTRY: dict[Role, dict[str, Behaviour]] = {"support": {}, "test": {}}
@@ -206,6 +240,19 @@ def load_cases() -> tuple[Behaviour, ...]:
     return tuple(_entries("test").values())
 
 
+def deflection_tests() -> tuple[Behaviour, ...]:
+    """The load cases a deflection or strength bound may name (every one but the stiffness-only
+    tests), in registration order (the built-ins: three-point, four-point, cantilever,
+    platens)."""
+    return tuple(b for b in _entries("test").values() if not b.stiffness_only)
+
+
+def own_test() -> Behaviour:
+    """The load case a K bound without a test is measured in: the first in-plane test whose
+    value is the support's own K (:attr:`TestForm.own`; the built-in one: platens)."""
+    return next(b for b in _entries("test").values() if b.form is not None and b.form.own)
+
+
 def get_load_case(name: str) -> Behaviour:
     """The load case ``name``, else an error naming the ones registered."""
     return _get("test", name, "test")
@@ -213,7 +260,11 @@ def get_load_case(name: str) -> Behaviour:
 
 def either(names: tuple[str, ...] | list[str]) -> str:
     """``'a' or 'b'``, ``'a', 'b' or 'c'``: the names quoted, as pydantic words a choice."""
-    quoted = [repr(n) for n in names]
-    if len(quoted) < 2:
-        return "".join(quoted)
-    return ", ".join(quoted[:-1]) + " or " + quoted[-1]
+    return listed([repr(n) for n in names])
+
+
+def listed(items: list[str]) -> str:
+    """``a or b``, ``a, b or c``: the items joined as a sentence offers a choice."""
+    if len(items) < 2:
+        return "".join(items)
+    return ", ".join(items[:-1]) + " or " + items[-1]

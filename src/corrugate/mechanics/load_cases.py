@@ -37,8 +37,10 @@ import numpy as np
 
 from corrugate.mechanics.behaviours import Behaviour, TestForm
 from corrugate.mechanics.wheel import wheel_factor
+from corrugate.names import RECTANGULAR_LAYOUTS
 
 __all__ = [
+    "BUILT_IN",
     "CANTILEVER",
     "DEFAULT_SAFETY_FACTOR",
     "FOUR_POINT",
@@ -82,8 +84,17 @@ def _warning(angles: str, layout: str) -> str:
 
 
 def _entry(
-    name: str, form: TestForm, fixture: str, label: str, suffix: str, text: str
+    name: str,
+    form: TestForm,
+    fixture: str,
+    label: str,
+    suffix: str,
+    text: str,
+    **offered: Any,
 ) -> Behaviour:
+    """A load case's entry; ``offered`` are its ``choice``, ``note``, ``layouts`` (default: the
+    rectangular outlines, whose straight edges the test supports, clamps or loads) and
+    ``stiffness_only`` (:class:`~corrugate.mechanics.behaviours.Behaviour`)."""
     units = _BENDING_UNITS if form.kind == "bending" else {"K": "N/mm", "k": "N/mm", "Pmax": "N"}
     return Behaviour(
         name=name,
@@ -98,12 +109,35 @@ def _entry(
         off_axis=_warning,
         role="test",
         form=form,
+        **{"layouts": RECTANGULAR_LAYOUTS, **offered},
     )
+
+
+# The deflected shapes of the report's sketches (Euler-Bernoulli, x the fraction of the span,
+# any scale; u the distance from the nearer support of a symmetric test).
+
+
+def _mid_span_shape(x: Any) -> Any:
+    """A simply supported beam under a mid-span load: w ~ u (3 - 4 u^2)."""
+    u = np.minimum(x, 1 - x)
+    return u * (3 - 4 * u**2)
+
+
+def _quarter_points_shape(x: Any) -> Any:
+    """A simply supported beam under equal loads at the quarter points (a = 1/4):
+    w ~ u (3a - 3a^2 - u^2) outside the loads, a (3u - 3u^2 - a^2) between them."""
+    u, a = np.minimum(x, 1 - x), 0.25
+    return np.where(u <= a, u * (3 * a - 3 * a**2 - u**2), a * (3 * u - 3 * u**2 - a**2))
+
+
+def _tip_load_shape(x: Any) -> Any:
+    """A cantilever clamped at x = 0 under a tip load: w ~ x^2 (3 - x) / 2 (1 at the tip)."""
+    return x**2 * (3 - x) / 2
 
 
 THREE_POINT = _entry(
     "three-point",
-    TestForm("bending", 1.0 / 48.0, 0.25, LOCAL, 0.25),
+    TestForm("bending", 1.0 / 48.0, 0.25, LOCAL, 0.25, loads=(0.5,), shape=_mid_span_shape),
     "bending",
     " in three-point bending",
     "3pt",
@@ -111,7 +145,9 @@ THREE_POINT = _entry(
 )
 FOUR_POINT = _entry(
     "four-point",
-    TestForm("bending", 1.0 / 96.0, 0.125, LOCAL, 0.125),
+    TestForm(
+        "bending", 1.0 / 96.0, 0.125, LOCAL, 0.125, loads=(0.25, 0.75), shape=_quarter_points_shape
+    ),
     "bending4",
     " in four-point bending",
     "4pt",
@@ -119,7 +155,16 @@ FOUR_POINT = _entry(
 )
 CANTILEVER = _entry(
     "cantilever",
-    TestForm("bending", 1.0 / 3.0, 1.0, LOCAL_CLAMPED, 1.0),
+    TestForm(
+        "bending",
+        1.0 / 3.0,
+        1.0,
+        LOCAL_CLAMPED,
+        1.0,
+        loads=(1.0,),
+        clamped=True,
+        shape=_tip_load_shape,
+    ),
     "cantilever",
     " as a cantilever",
     "cant",
@@ -132,6 +177,8 @@ PLATENS = _entry(
     " between platens",
     "plat",
     "compressed between rigid platens along eta (the shortening)",
+    choice="between platens",
+    note="in-plane compression",
 )
 WHEEL = _entry(
     "wheel",
@@ -141,7 +188,16 @@ WHEEL = _entry(
     "whl",
     "a disc's radial stiffness between a rigid ground patch under its rim (+-15 deg, no slip) "
     "and an axle pinned through its central hole, the load along eta (docs/load_cases.md 9)",
+    note="its radial stiffness between a ground patch and an axle through its central hole: "
+    "c(eta) K, eta a multiple of 45 deg; section 9",
+    layouts=("circle",),
+    stiffness_only=True,
 )
+
+#: The built-in load cases, in the order every list shows them (registered in this order by
+#: :mod:`corrugate.mechanics.supports`): a new built-in test is its entry here and its place in
+#: this tuple.
+BUILT_IN: tuple[Behaviour, ...] = (THREE_POINT, FOUR_POINT, CANTILEVER, PLATENS, WHEEL)
 
 
 def shear_and_depth(springs: tuple[Any, Any], c2: float, s2: float) -> tuple[Any, Any]:

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.plotting import new_figure
-from corrugate.mechanics.behaviours import supports
+from corrugate.mechanics.behaviours import get_load_case, own_test, supports
 from corrugate.solver.making import MAKING
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Candidate, Problem
@@ -281,7 +281,8 @@ def load_case_figure(
     ``load``): the test's supports (rollers for three- and four-point bending, a clamp for a
     cantilever, platens for compression), the load, and the deflected shape of an Euler-Bernoulli
     beam (shape only, exaggerated), titled with the certified deflection (mm) under the load (N)
-    and its bound (docs/load_cases.md). ``extents`` (Lx, Ly in mm) give the span of a report
+    and its bound (docs/load_cases.md). Each test's sketch is its registry entry's
+    (:class:`~corrugate.mechanics.behaviours.TestForm`: ``clamped``, ``loads``, ``shape``). ``extents`` (Lx, Ly in mm) give the span of a report
     without one of its own (Ly along eta = 0, Lx otherwise). None when no report is a
     deflection bound."""
     cases = [r for r in reports if r.load is not None]
@@ -291,38 +292,37 @@ def load_case_figure(
     axes = fig.subplots(1, len(cases), squeeze=False)[0]
     for ax, r in zip(axes, cases, strict=True):
         q = r.quantity
-        test = q.test or "platens"
+        case = get_load_case(q.test) if q.test else own_test()  # a K bound: the own test's
+        form = case.form
+        assert form is not None
         span = q.span or (extents[1] if (q.eta or 0.0) % 180 == 0 else extents[0])
         x = np.linspace(0.0, 1.0, 101)
         amp = 0.12
         ax.plot([0, 1], [0, 0], color="0.75", lw=6, solid_capstyle="butt")  # the panel
-        if test == "platens":
+        if form.kind == "inplane":  # pressed between platens
             for xp in (-0.03, 1.03):
                 ax.plot([xp, xp], [-0.2, 0.2], color="k", lw=4)
             ax.annotate("", xy=(0.97, 0), xytext=(1.25, 0), arrowprops={"arrowstyle": "-|>"})
             ax.annotate("", xy=(0.03, 0), xytext=(-0.25, 0), arrowprops={"arrowstyle": "-|>"})
         else:
-            if test == "cantilever":
-                w = x**2 * (3 - x) / 2  # tip load, clamped at x = 0 (shape, max 1 at the tip)
+            if form.clamped:  # the root clamped at x = 0
                 ax.fill_between([-0.06, 0], -0.25, 0.25, color="0.3", hatch="///")
-                loads = [1.0]
-            elif test == "four-point":
-                u, a = np.minimum(x, 1 - x), 0.25  # loads at the quarter points
-                w = np.where(u <= a, u * (3 * a - 3 * a**2 - u**2), a * (3 * u - 3 * u**2 - a**2))
-                loads = [0.25, 0.75]
-            else:
-                u = np.minimum(x, 1 - x)
-                w = u * (3 - 4 * u**2)  # mid-span load
-                loads = [0.5]
-            if test != "cantilever":
+            else:  # rollers at both ends
                 for xs in (0.0, 1.0):
                     ax.plot([xs], [-0.05], marker="^", color="k", ms=10)
-            ax.plot(
-                x, -amp * w / np.max(w), color="tab:red", lw=1.5, label="deflected (not to scale)"
-            )
-            for xl in loads:
+            if form.shape is not None:
+                w = form.shape(x)
+                ax.plot(
+                    x,
+                    -amp * w / np.max(w),
+                    color="tab:red",
+                    lw=1.5,
+                    label="deflected (not to scale)",
+                )
+            for xl in form.loads:
                 ax.annotate("", xy=(xl, 0.04), xytext=(xl, 0.3), arrowprops={"arrowstyle": "-|>"})
-        span_text = f", span {span:.4g} mm" if test != "platens" else ""
+        test = case.name
+        span_text = f", span {span:.4g} mm" if form.kind == "bending" else ""
         ax.set_title(
             f"{test}{span_text}\n{r.value:.3g} mm under {r.load:g} N (at most {r.bound:.3g} mm)",
             fontsize=9,

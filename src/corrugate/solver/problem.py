@@ -24,6 +24,7 @@ from corrugate.core.limits import check_items
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.materials.library import Material, get_material, inline_material
+from corrugate.mechanics.behaviours import get_load_case, listed, load_cases
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.mechanics.moduli import get_model
 from corrugate.mechanics.wheel import WHEEL_DIRECTIONS, wheel_direction
@@ -42,7 +43,7 @@ from corrugate.solver.quantity import (
     W_MIN,
     Quantity,
 )
-from corrugate.spec.schema import STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
+from corrugate.spec.schema import PURE, STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
 __all__ = [
     "FEAS_RTOL",
@@ -240,20 +241,14 @@ class Problem:
                 if q.test == "wheel":
                     _check_wheel(where, layout, b.eta, q.support, b.support is None)
                 elif q.test is not None:
-                    _check_load_case_layout(where, layout)
+                    _check_load_case_layout(where, layout, q.test)
                 cons.append(Constraint(f"{where}.min", q, "min", b.min))
         for i, d in enumerate(c.deflection):
             where = f"constraints.deflection[{i}]"
             support = d.support or spec.support
-            _check_load_case_layout(where, layout)
-            if d.test == "platens":
-                if d.span is not None:
-                    raise SpecError(
-                        f"{where}.span",
-                        f"{d.span:g} mm",
-                        "no span for platens (the panel's length along eta is compressed)",
-                        reason="does not apply",
-                    )
+            _check_load_case_layout(where, layout, d.test)
+            _check_no_span(where, d.test, d.span)
+            if get_load_case(d.test).form.own:  # type: ignore[union-attr]
                 q = Quantity.stiffness("K", d.eta, support)
             else:
                 q = Quantity.load_case("k", d.eta, d.test, support, d.span)
@@ -264,20 +259,14 @@ class Problem:
             cons.append(Constraint(f"{where}.max", q, "min", d.load / d.max, load=d.load))
         for i, g in enumerate(c.strength):
             where = f"constraints.strength[{i}]"
-            _check_load_case_layout(where, layout)
+            _check_load_case_layout(where, layout, g.test)
             if crease_layer(g.eta) is None:
                 raise SpecError(
                     f"{where}.eta",
                     f"{g.eta:g} deg",
                     "0 or 90 deg (stresses are modelled along a layer's creases)",
                 )
-            if g.test == "platens" and g.span is not None:
-                raise SpecError(
-                    f"{where}.span",
-                    f"{g.span:g} mm",
-                    "no span for platens (the panel's length along eta is compressed)",
-                    reason="does not apply",
-                )
+            _check_no_span(where, g.test, g.span)
             for cand in cands:
                 if cand.material.yield_strength is None:
                     raise SpecError(
@@ -288,7 +277,7 @@ class Problem:
                     )
             eta = 0.0 if crease_layer(g.eta) == 0 else 90.0
             q = Quantity.load_case("Pmax", eta, g.test, g.support or spec.support, g.span)
-            if g.span is not None and g.test != "platens":
+            if g.span is not None:  # a bending test's (_check_no_span)
                 cons.append(Constraint(f"{where}.span", Quantity("length", eta), "min", g.span))
             cons.append(Constraint(f"{where}.load", q, "min", g.load))
         for i, bk in enumerate(c.buckling_load):
@@ -340,20 +329,38 @@ class Problem:
 def _stiffness_quantity(
     where: str, kind: str, eta: float, support: str, test: str | None
 ) -> Quantity:
-    """The quantity a stiffness bound names: ``test`` None, ``pure`` (EI, D) and ``platens``
-    (K) are the support's own stiffness; a bending test on K or platens on EI or D is refused."""
+    """The quantity a stiffness bound names: ``test`` None, ``pure`` (EI, D) and the in-plane
+    test of the support's own K (K: ``platens``, :attr:`TestForm.own`) are the support's own
+    stiffness; a bending test on K or an in-plane test on EI or D is refused."""
     q = Quantity.stiffness(kind, eta, support)
-    if test is None or (test == "pure" and q.kind != "K") or (test == "platens" and q.kind == "K"):
+    if test is None:
         return q
-    inplane = test in ("platens", "wheel")
-    if inplane != (q.kind == "K") or test == "pure":
-        allowed = (
-            "'platens' or 'wheel' (a circle)"
-            if q.kind == "K"
-            else "'pure', 'three-point', 'four-point' or 'cantilever'"
+    inplane = q.kind == "K"
+    form = None if test == PURE else get_load_case(test).form
+    if (form is None and not inplane) or (form is not None and form.own and inplane):
+        return q
+    if form is None or (form.kind == "inplane") != inplane:
+        allowed = listed(
+            ([] if inplane else [repr(PURE)])
+            + [
+                repr(b.name) + (f" (a {b.layouts[0]})" if len(b.layouts) == 1 else "")
+                for b in load_cases()
+                if b.form is not None and (b.form.kind == "inplane") == inplane
+            ]
         )
         raise SpecError(f"{where}.test", repr(test), allowed, reason=f"is not a test of {kind}")
     return Quantity.load_case(q.kind, eta, test, support)
+
+
+def _check_no_span(where: str, test: str, span: float | None) -> None:
+    """An in-plane test compresses the panel's whole length along eta: it takes no span."""
+    if span is not None and get_load_case(test).form.kind == "inplane":  # type: ignore[union-attr]
+        raise SpecError(
+            f"{where}.span",
+            f"{span:g} mm",
+            f"no span for {test} (the panel's length along eta is compressed)",
+            reason="does not apply",
+        )
 
 
 def _check_wheel(
@@ -397,13 +404,15 @@ def _joint(joint: str, layout: Layout) -> str:
     return joint
 
 
-def _check_load_case_layout(where: str, layout: Layout) -> None:
-    """Load cases need straight edges to support, clamp or load: a square or a rectangle."""
-    if layout.name not in ("square", "rectangle"):
+def _check_load_case_layout(where: str, layout: Layout, test: str) -> None:
+    """A load case applies to its layouts (:attr:`Behaviour.layouts`): the built-in tests need
+    straight edges to support, clamp or load, a square or a rectangle."""
+    layouts = get_load_case(test).layouts
+    if layouts and layout.name not in layouts:
         raise SpecError(
             f"{where}.test",
             f"layout {layout.name}",
-            "a square or rectangle layout",
+            f"a {' or '.join(layouts)} layout",
             reason="has no straight edges to support or load",
         )
 

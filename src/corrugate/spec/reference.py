@@ -23,8 +23,17 @@ from pydantic import BaseModel
 
 from corrugate.core.limits import MAX_COUNTS
 from corrugate.core.parameters import PARAMETERS
-from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, either, supports
-from corrugate.spec.schema import PLAIN_UNITS, Spec
+from corrugate.mechanics.behaviours import (
+    DEFAULT_SUPPORT,
+    Behaviour,
+    deflection_tests,
+    either,
+    listed,
+    load_cases,
+    own_test,
+    supports,
+)
+from corrugate.spec.schema import PLAIN_UNITS, PURE, Spec
 
 __all__ = ["KEYS", "KeyDoc", "json_schema", "plain_number", "reference_markdown", "spec_keys"]
 
@@ -106,48 +115,18 @@ _STATIC: dict[str, KeyDoc] = {
     ),
     "constraints.buckling_load[].min": KeyDoc("N", "Least buckling load (plate lower bound)."),
     "constraints.buckling_load[].eta": KeyDoc("deg", "Load direction: 0 or 90 deg (required)."),
-    **{
-        f"constraints.{k}[].test": KeyDoc(
-            "",
-            "The test the bound is for (`corrugate docs load_cases`): "
-            + (
-                "'platens' (the default: K between rigid platens) or, for a circle, 'wheel' "
-                "(its radial stiffness between a ground patch and an axle through its central "
-                "hole: c(eta) K, eta a multiple of 45 deg; section 9)."
-                if k == "inplane_stiffness"
-                else "'pure' (the default: the panel's own pure-bending rigidity, EI = D x "
-                "span), 'three-point', 'four-point' or 'cantilever' (what that test reads, "
-                "shear of the facets included)."
-            ),
-        )
-        for k in _STIFF
-    },
     "constraints.deflection": KeyDoc(
         "mm", "Load cases: at most max of deflection under load (array of tables)."
     ),
-    "constraints.deflection[].test": KeyDoc(
-        "", "'three-point', 'four-point', 'cantilever' or 'platens' (in-plane compression)."
-    ),
     "constraints.deflection[].load": KeyDoc("N", "The load P (> 0)."),
     "constraints.deflection[].max": KeyDoc("mm", "Largest deflection allowed under the load."),
-    "constraints.deflection[].span": KeyDoc(
-        "mm",
-        "Support spacing (cantilever: free length); default the panel's length along eta; "
-        "the panel must be at least this long. Not for platens.",
-    ),
     "constraints.deflection[].eta": KeyDoc("deg", "Direction of the span, from layer 1's creases."),
     "constraints.strength": KeyDoc(
         "N",
         "Loads the panel must hold: peak facet stress x safety_factor <= yield strength "
         "(array of tables; `corrugate docs load_cases`, section 6).",
     ),
-    "constraints.strength[].test": KeyDoc(
-        "", "'three-point', 'four-point', 'cantilever' or 'platens' (in-plane compression)."
-    ),
     "constraints.strength[].load": KeyDoc("N", "The load P (> 0) to hold."),
-    "constraints.strength[].span": KeyDoc(
-        "mm", "Support spacing (cantilever: free length); default the panel's length along eta."
-    ),
     "constraints.strength[].eta": KeyDoc(
         "deg", "Load direction: 0 or 90 deg (along a layer's creases)."
     ),
@@ -246,10 +225,10 @@ def _support_docs() -> dict[str, KeyDoc]:
     each = [
         f"'{b.name}' ({'default; ' if b.name == DEFAULT_SUPPORT else ''}{b.text})" for b in entries
     ]
-    listed = each[0] if len(each) < 2 else ", ".join(each[:-1]) + " or " + each[-1]
+    offered = listed(each)
     docs = {
         "support": KeyDoc(
-            "", f"Support condition of every stiffness bound unless it says otherwise: {listed}."
+            "", f"Support condition of every stiffness bound unless it says otherwise: {offered}."
         ),
         "objective.support": KeyDoc("", f"{names} for the maximised stiffness."),
     }
@@ -260,12 +239,68 @@ def _support_docs() -> dict[str, KeyDoc]:
     return docs
 
 
+def _offered(b: Behaviour) -> str:
+    """A load case in the reference's lists of tests: its name quoted, then its note."""
+    return repr(b.name) + (f" ({b.note})" if b.note else "")
+
+
+def _load_case_docs() -> dict[str, KeyDoc]:
+    """The ``test`` and ``span`` keys, from the load cases registered now
+    (:mod:`corrugate.mechanics.behaviours`: each one's name, its note and its layouts; the
+    in-plane test of the support's own K is the default of a K bound, as ``pure`` of EI and D)."""
+    cases = load_cases()
+    bending = [b for b in cases if b.form is not None and b.form.kind == "bending"]
+    inplane = [b for b in cases if b.form is not None and b.form.kind == "inplane"]
+    own = own_test()
+    others = [b for b in inplane if b is not own]
+    # 'a' or, for a circle, 'b': a test of one layout names it after the conjunction
+    inplane_text = f"'{own.name}' (the default: K between rigid platens)"
+    for i, b in enumerate(others):
+        last = i == len(others) - 1
+        where = f"for a {b.layouts[0]}, " if len(b.layouts) == 1 else ""
+        inplane_text += (" or" if last else ",") + (", " if where and last else " ")
+        inplane_text += where + _offered(b)
+    docs = {
+        "constraints.inplane_stiffness[].test": inplane_text,
+        **{
+            f"constraints.{k}[].test": f"'{PURE}' (the default: the panel's own pure-bending "
+            "rigidity, EI = D x span), "
+            + listed([_offered(b) for b in bending])
+            + " (what that test reads, shear of the facets included)"
+            for k in ("flexural_rigidity", "bending_stiffness")
+        },
+    }
+    out = {
+        k: KeyDoc("", f"The test the bound is for (`corrugate docs load_cases`): {text}.")
+        for k, text in docs.items()
+    }
+    loaded = deflection_tests()
+    tests = KeyDoc("", listed([_offered(b) for b in loaded]) + ".")
+    clamped = ", ".join(f"{b.name}: free length" for b in loaded if b.form and b.form.clamped)
+    spacing = (
+        f"Support spacing{f' ({clamped})' if clamped else ''}; default the panel's length along eta"
+    )
+    spanless = [b.name for b in loaded if b.form is not None and b.form.kind == "inplane"]
+    out |= {
+        "constraints.deflection[].test": tests,
+        "constraints.deflection[].span": KeyDoc(
+            "mm",
+            f"{spacing}; the panel must be at least this long."
+            + (f" Not for {' or '.join(spanless)}." if spanless else ""),
+        ),
+        "constraints.strength[].test": tests,
+        "constraints.strength[].span": KeyDoc("mm", f"{spacing}."),
+    }
+    return out
+
+
 class _Keys(Mapping[str, KeyDoc]):
-    """:data:`_STATIC` and the ``support`` keys, the latter made from the registry at each
-    look-up (so a support condition registered after import is in the reference)."""
+    """:data:`_STATIC`, the ``support`` keys and the load cases' ``test`` and ``span`` keys,
+    the latter two made from the registry at each look-up (so a support condition or a load
+    case registered after import is in the reference)."""
 
     def _all(self) -> dict[str, KeyDoc]:
-        return _STATIC | _support_docs()
+        return _STATIC | _support_docs() | _load_case_docs()
 
     def __getitem__(self, key: str) -> KeyDoc:
         return self._all()[key]

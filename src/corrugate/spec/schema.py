@@ -66,7 +66,7 @@ from corrugate.core.limits import (
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
 from corrugate.materials.library import G_PER_CM3
-from corrugate.mechanics.behaviours import either, support_names
+from corrugate.mechanics.behaviours import deflection_tests, either, load_cases, support_names
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.names import (
     DEFAULT_HOLE_SHAPE,
@@ -515,36 +515,59 @@ def _stiffness_validator(kind: StiffnessName) -> Callable[[Any], float]:
     return _quantity(STIFFNESS_KINDS[kind], lo=0.0, hi=LIMITS["stiffness"].hi, hi_open=False)
 
 
-def _support(value: Any) -> Any:
-    """A pydantic before-validator: ``value`` if it names a registered support condition
-    (:func:`corrugate.mechanics.behaviours.support_names`), else the error a choice gives."""
-    names = support_names()
-    if not (isinstance(value, str) and value in names):
-        raise PydanticCustomError(
-            "literal_error", "Input should be {expected}", {"expected": either(names)}
-        )
-    return value
+class _Choice:
+    """A name one of ``names()`` (the registry's when the value is read or the schema made): a
+    pydantic before-validator giving the error a ``Literal`` gives, and the JSON Schema of an
+    ``enum``."""
 
+    def __init__(self, names: Callable[[], tuple[str, ...]]) -> None:
+        self.names = names
 
-class _SupportNames:
-    """The JSON Schema of a support value: one of the names registered when the schema is made."""
+    def __call__(self, value: Any) -> Any:
+        names = self.names()
+        if not (isinstance(value, str) and value in names):
+            raise PydanticCustomError(
+                "literal_error", "Input should be {expected}", {"expected": either(names)}
+            )
+        return value
 
     def __get_pydantic_json_schema__(
         self, core_schema: CoreSchema, handler: GetJsonSchemaHandler
     ) -> JsonSchemaValue:
-        return {"enum": list(support_names()), "type": "string"}
+        return {"enum": list(self.names()), "type": "string"}
 
 
-#: A support condition, by name (``free``, ``frame`` or any other registered one).
-Support = Annotated[str, BeforeValidator(_support), _SupportNames()]
+#: A support condition, by name (``free``, ``frame`` or any other registered one:
+#: :func:`corrugate.mechanics.behaviours.support_names`).
+_SUPPORTS = _Choice(support_names)
+Support = Annotated[str, BeforeValidator(_SUPPORTS), _SUPPORTS]
 
 
-#: The tests a stiffness bound may name (docs/load_cases.md): ``pure`` bending (EI and D: the
-#: default, the panel's own rigidity) and ``platens`` (K: the default) keep the meaning a bound
-#: without ``test`` has; ``wheel`` (K of a circle) is a disc's radial stiffness (section 9).
-StiffnessTest = Literal["pure", "three-point", "four-point", "cantilever", "platens", "wheel"]
-#: The load cases a deflection bound may name.
-DeflectionTest = Literal["three-point", "four-point", "cantilever", "platens"]
+#: What a stiffness bound's ``test = "pure"`` names: pure bending, the panel's own rigidity (EI
+#: and D: the default; not a registered load case).
+PURE = "pure"
+
+
+def _stiffness_tests() -> tuple[str, ...]:
+    """The tests a stiffness bound may name (docs/load_cases.md): ``pure`` and every registered
+    load case (:func:`corrugate.mechanics.behaviours.load_cases`). ``pure`` (EI and D) and the
+    in-plane test of the support's own K (``platens``) keep the meaning a bound without
+    ``test`` has; ``wheel`` (K of a circle) is a disc's radial stiffness (section 9)."""
+    return (PURE, *(b.name for b in load_cases()))
+
+
+def _deflection_tests() -> tuple[str, ...]:
+    """The load cases a deflection or strength bound may name
+    (:func:`corrugate.mechanics.behaviours.deflection_tests`)."""
+    return tuple(b.name for b in deflection_tests())
+
+
+_STIFFNESS_TESTS = _Choice(_stiffness_tests)
+_DEFLECTION_TESTS = _Choice(_deflection_tests)
+#: A test a stiffness bound may name, by name.
+StiffnessTest = Annotated[str, BeforeValidator(_STIFFNESS_TESTS), _STIFFNESS_TESTS]
+#: A load case a deflection or strength bound may name, by name.
+DeflectionTest = Annotated[str, BeforeValidator(_DEFLECTION_TESTS), _DEFLECTION_TESTS]
 
 
 class StiffnessSpec(_Strict):

@@ -9,6 +9,8 @@ Endpoints (all JSON unless said otherwise):
 * ``GET /api/formats``: every kind of file the app writes (the writers registry,
   :mod:`corrugate.export.writers`): name, file-name pattern, media type, extra, description and
   its place in the page's downloads;
+* ``GET /api/load-cases``: every load case a requirement may name (the registry of behaviours,
+  :mod:`corrugate.mechanics.behaviours`): name, label, kind, layouts, ...; the page's test menus;
 * ``POST /api/analyze``: the options of ``corrugate analyze`` -> ``Analysis.to_dict()`` (the CLI's
   ``--json`` object);
 * ``POST /api/mesh``: the same options -> the folded assembly as ``assembly.glb`` and
@@ -103,6 +105,7 @@ from corrugate.web.schemas import (
     FieldError,
     FormatInfo,
     JobBody,
+    LoadCaseInfo,
     ModelInfo,
     ModelsBody,
     OutputBody,
@@ -111,6 +114,7 @@ from corrugate.web.schemas import (
     ResultFile,
     VerifyBody,
     format_list,
+    load_case_list,
 )
 from corrugate.web.store import ZIP_NAME, ResultStore, StoredFile, file_response, zip_response
 from corrugate.web.workers import (
@@ -923,6 +927,14 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
         ``media_type``, the ``extra`` it needs, a ``description`` and its place in the page's
         list of downloads (``order``, ascending)."""
         return format_list()
+
+    @app.get("/api/load-cases", summary="The load cases a requirement may name")
+    async def load_case_endpoint() -> list[LoadCaseInfo]:
+        """Every load case of the registry of behaviours (docs/load_cases.md), in the order the
+        spec lists them: its ``name`` (a spec's ``test``), ``label`` in the page's lists, its
+        ``kind``, whether it is the support's ``own`` K, whether a ``deflection`` bound may name
+        it, the ``layouts`` it applies to and its ``text``."""
+        return load_case_list()
 
     @app.post(
         "/api/analyze",

@@ -7,12 +7,13 @@ the same message on both. Only the sizes of things (string lengths, list lengths
 
 from __future__ import annotations
 
-from typing import Annotated, Any
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, StrictFloat, StrictInt, StringConstraints
 
 from corrugate.core.parameters import PARAMETERS
 from corrugate.export.writers import WRITERS
+from corrugate.mechanics.behaviours import load_cases
 from corrugate.names import DEFAULT_HOLE_SHAPE, DEFAULT_MACHINE, HOLE_SHAPES
 
 __all__ = [
@@ -24,6 +25,7 @@ __all__ = [
     "FieldError",
     "FormatInfo",
     "HoleBody",
+    "LoadCaseInfo",
     "ModelInfo",
     "ModelsBody",
     "OutputBody",
@@ -31,6 +33,7 @@ __all__ = [
     "ResultBody",
     "ResultFile",
     "format_list",
+    "load_case_list",
 ]
 
 MAX_ETAS = 181
@@ -284,6 +287,45 @@ def format_list() -> list[FormatInfo]:
             order=w.order,
         )
         for w in WRITERS
+    ]
+
+
+class LoadCaseInfo(BaseModel):
+    """One load case a requirement may name (an entry of the registry of behaviours with role
+    ``test``, :mod:`corrugate.mechanics.behaviours`; docs/load_cases.md)."""
+
+    name: str = Field(description="The spec's value of `test`, e.g. 'three-point'.")
+    label: str = Field(description="Its words in a list of choices, e.g. 'between platens'.")
+    kind: Literal["bending", "inplane"] = Field(
+        description="'bending' (EI and D bounds may name it; it takes a span) or 'inplane' (K "
+        "bounds may name it; no span)."
+    )
+    own: bool = Field(
+        description="Whether it measures the support's own K: the test of a K bound that "
+        "names none."
+    )
+    deflection: bool = Field(
+        description="Whether a deflection or strength bound may name it (false: a stiffness "
+        "bound only)."
+    )
+    layouts: list[str] = Field(description="The layouts it applies to (empty: every one).")
+    text: str = Field(description="What the test is.")
+
+
+def load_case_list() -> list[LoadCaseInfo]:
+    """Every registered load case, in the order the spec's lists show them."""
+    return [
+        LoadCaseInfo(
+            name=b.name,
+            label=b.in_list(),
+            kind=b.form.kind,
+            own=b.form.own,
+            deflection=not b.stiffness_only,
+            layouts=list(b.layouts),
+            text=b.text,
+        )
+        for b in load_cases()
+        if b.form is not None
     ]
 
 

@@ -5,10 +5,12 @@
 * :mod:`.frame`: a rigid frame on all four edges (the paper's cos^2 rule).
 
 The load cases (role ``test``: three-point, four-point, cantilever, platens, wheel) are defined in
-:mod:`corrugate.mechanics.load_cases` and registered here too, after the supports.
+:mod:`corrugate.mechanics.load_cases` and registered here too, after the supports, in the order
+of its :data:`~corrugate.mechanics.load_cases.BUILT_IN`.
 
-A new support condition (or load case) is a module beside these defining its
-:class:`~corrugate.mechanics.behaviours.Behaviour`, and its ``register`` line here.
+A new support condition is a module beside these defining its
+:class:`~corrugate.mechanics.behaviours.Behaviour`, and its ``register`` line here; a new built-in
+load case is its entry in :mod:`corrugate.mechanics.load_cases` and its place in ``BUILT_IN``.
 """
 
 from corrugate.mechanics import load_cases
@@ -19,8 +21,5 @@ __all__ = ["frame", "free"]
 
 register(free.FREE)
 register(frame.FRAME)
-register(load_cases.THREE_POINT)
-register(load_cases.FOUR_POINT)
-register(load_cases.CANTILEVER)
-register(load_cases.PLATENS)
-register(load_cases.WHEEL)
+for _case in load_cases.BUILT_IN:
+    register(_case)

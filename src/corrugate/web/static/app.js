@@ -75,6 +75,7 @@ async function loadMaterials() {
       select2.appendChild(new Option(m.id, m.id));
       designSelect.appendChild(new Option(label, m.id, false, m.id === 'dura-lar'));
     }
+    await loadCasesLoaded;  // the design form's test menus too
     designForm.dataset.ready = 'true';
   } catch (err) {
     $('error-material').textContent = `could not load the material library: ${err.message}`;
@@ -496,21 +497,44 @@ function syncDesignVisibility() {
 
 // ---- requirement rows: any number of EI, D, K, buckling and load-case bounds --------------
 
-// The tests a row of each kind may name (docs/load_cases.md): value '' is the spec's default
-// (pure bending for EI and D, between platens for K; a circle's K may name the wheel test).
-const BENDING_TESTS = [['', 'pure bending'], ['three-point', 'three-point test'],
-  ['four-point', 'four-point test'], ['cantilever', 'cantilever test']];
-const ROW_TESTS = {
-  flexural_rigidity: BENDING_TESTS,
-  bending_stiffness: BENDING_TESTS,
-  inplane_stiffness: [['', 'between platens'], ['wheel', 'wheel test (a circle)']],
-  buckling_load: [],
-  deflection: [['three-point', 'three-point'], ['four-point', 'four-point'],
-    ['cantilever', 'cantilever'], ['platens', 'between platens']],
-};
+// The tests a row of each kind may name (docs/load_cases.md), made from the registry of load
+// cases (GET /api/load-cases, read once): value '' is the spec's default (pure bending for EI and
+// D, the support's own K between platens for K); a bending test for EI and D, an in-plane one
+// for K (a test of one layout says which: 'wheel test (a circle)'), any but a stiffness-only one
+// for a load case. null until read: the page's own first option stays.
+let ROW_TESTS = null;
+// The in-plane tests, which take no span (platens compress the whole panel).
+const SPANLESS = new Set();
+
+function rowTests(cases) {
+  const asStiffness = (c) => [c.name, `${c.label} test${c.layouts.length === 1 ? ` (a ${c.layouts[0]})` : ''}`];
+  const bending = [['', 'pure bending'], ...cases.filter((c) => c.kind === 'bending').map(asStiffness)];
+  const own = cases.find((c) => c.own);
+  const inplane = [['', own ? own.label : ''],
+    ...cases.filter((c) => c.kind === 'inplane' && !c.own).map(asStiffness)];
+  for (const c of cases) if (c.kind === 'inplane') SPANLESS.add(c.name);
+  return {
+    flexural_rigidity: bending,
+    bending_stiffness: bending,
+    inplane_stiffness: inplane,
+    buckling_load: [],
+    deflection: cases.filter((c) => c.deflection).map((c) => [c.name, c.label]),
+  };
+}
+
+const loadCasesLoaded = fetch('/api/load-cases')
+  .then((response) => (response.ok ? response.json() : []))
+  .catch(() => [])
+  .then((cases) => {
+    ROW_TESTS = rowTests(cases);
+    const names = ROW_TESTS.deflection.map(([, label]) => label);
+    if (names.length) $('d-load-case-names').textContent = names.join(', ');
+    renumberRequirements();
+  });
 
 // The test choices of a row for its kind (kept when the kind changes to one with the same list).
 function syncRowTests(row) {
+  if (ROW_TESTS === null) return;
   const kind = row.querySelector('.req-kind').value;
   const select = row.querySelector('.req-test');
   const tests = ROW_TESTS[kind] || [];
@@ -544,7 +568,7 @@ function renumberRequirements() {
     const span = row.querySelector('.req-span');
     support.hidden = kind === 'buckling_load';  // a buckling bound has no support condition
     load.hidden = !deflection;
-    span.hidden = !deflection || test.value === 'platens';  // platens compress the whole panel
+    span.hidden = !deflection || SPANLESS.has(test.value);  // platens compress the whole panel
     if (min.dataset.placeholder === undefined) min.dataset.placeholder = min.placeholder;
     min.placeholder = deflection ? 'at most, mm' : min.dataset.placeholder;
     const fields = [[min, deflection ? 'max' : 'min'], [row.querySelector('.req-eta'), 'eta'],
@@ -691,7 +715,7 @@ function fillDesign(spec) {
   }
   for (const d of c.deflection || []) {
     fill({ kind: 'deflection', min: d.max ?? '', eta: d.eta ?? '0 deg', support: d.support || '',
-      test: d.test || 'three-point', load: d.load ?? '', span: d.span ?? '' });
+      test: d.test || (ROW_TESTS.deflection[0] || [''])[0], load: d.load ?? '', span: d.span ?? '' });
   }
   const o = spec.objective || {};
   $('d-objective').value = o.maximize ? `maximize:${o.maximize}` : 'minimize:mass';
@@ -1301,7 +1325,7 @@ $('d-cutter').addEventListener('change', syncDesignVisibility);
 $('d-objective').addEventListener('change', syncDesignVisibility);
 syncVisibility();
 syncDesignVisibility();
-loadMaterials().then(() => {
+Promise.all([loadMaterials(), loadCasesLoaded]).then(() => {
   syncVisibility();
   const shared = specFromURL();
   if (shared) fillDesign(shared);
