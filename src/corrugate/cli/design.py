@@ -20,7 +20,7 @@ from corrugate.cli import options as o
 from corrugate.cli.console import fmt, make_console
 from corrugate.core.errors import InputError
 from corrugate.core.limits import abnormal_reason, check, check_count, is_normal, require_finite
-from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_PAPER, PAPER_NAMES, STIFFNESS_NAMES
+from corrugate.names import PAPER_NAMES, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
     from collections.abc import Callable
@@ -192,7 +192,20 @@ def _print_failure(sol: Solution, robust: object, console: Console) -> None:
         console.print(f"{sol.problem.name}: the robust target is not met")
 
 
+#: ``design``'s output options: the table's but the sheet layout's (spacing, margin, tabs).
+_DESIGN_OUTPUT = tuple(n for n in o.OUTPUT if n not in ("spacing", "margin", "tab_depth"))
+
+
+@o.table_options(
+    "spec",
+    "as_json",
+    "out",
+    *_DESIGN_OUTPUT,
+    # not given: the spec's [fabrication] machine (or the default); given, it overrides it
+    defaults={"cutter": None},
+)
 def design_cmd(
+    table: o.TableValues,
     spec: Annotated[
         Path,
         typer.Argument(
@@ -210,15 +223,6 @@ def design_cmd(
             help="Folder for design.json and, for a design, every cut file.",
         ),
     ] = None,
-    cutter: o.DesignMachine = None,
-    labels: o.Labels = None,
-    fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
-    mountain: o.Mountain = None,
-    valley: o.Valley = None,
-    marks: o.Marks = None,
-    cut: o.Cut = None,
-    gap: o.Gap = None,
-    paper: o.Paper = DEFAULT_PAPER,
     budget: o.SolverBudget = None,
     verify: Annotated[
         str | None,
@@ -276,9 +280,7 @@ def design_cmd(
 
     seconds = None if budget is None else check("budget", budget, "--budget")
     fe = _fe_options(verify, refine, verify_meshes, verify_shifts, verify_max_mesh)
-    request = _request(
-        spec, out, cutter, labels, fold_style, mountain, valley, marks, cut, gap, paper, seconds, fe
-    )
+    request = _request(spec, out, table, seconds, fe)
     fe_quiet = quiet or (as_json and not sys.stderr.isatty())
     events = None if request.fe is None else Events(progress=_fe_progress(fe_quiet))
     answer = run(request, events)
@@ -319,22 +321,16 @@ def design_cmd(
 def _request(
     spec: Path,
     out: Path | None,
-    cutter: str | None,
-    labels: bool | None,
-    fold_style: str,
-    mountain: str | None,
-    valley: str | None,
-    marks: str | None,
-    cut: str | None,
-    gap: str | None,
-    paper: str,
+    table: o.TableValues,
     budget: float | None,
     fe: FeOptions | None,
 ) -> DesignRequest:
-    """``corrugate design``'s arguments read into one request (``budget``, CPU seconds, and
-    ``fe`` already checked), in the command's order of checks (each error one line naming the
-    option or the spec's key, exit 2): the output folder, the paper and the machine before the
-    spec is read; CalculiX and the layout's FE fixtures before solving."""
+    """``corrugate design``'s arguments (its output options in ``table``) read into one request
+    (``budget``, CPU seconds, and ``fe`` already checked), in the command's order of checks (each
+    error one line naming the option or the spec's key, exit 2): the output folder, the paper
+    and the machine before the spec is read; CalculiX and the layout's FE fixtures before
+    solving."""
+    cutter, paper = table["cutter"], table["paper"]
     from corrugate.core.parameters import PARAMETERS
     from corrugate.solver import Problem
     from corrugate.spec.schema import load_spec_text
@@ -353,7 +349,9 @@ def _request(
     if cutter is not None:  # checked before the spec is read, and before solving
         resolve_machine(cutter, PARAMETERS["cutter"].flag)
     loaded, spec_text = load_spec_text(spec)
-    made = made_for(loaded, cutter, mountain=mountain, valley=valley, marks=marks)
+    made = made_for(
+        loaded, cutter, mountain=table["mountain"], valley=table["valley"], marks=table["marks"]
+    )
     parsed = made.spec
     if fe is not None:
         from corrugate.fea.ccx import find_ccx
@@ -365,10 +363,10 @@ def _request(
     if out is not None:
         options = output_options(
             made.cutter,
-            fold_style,
-            cut,
-            gap,
-            labels=labels,
+            table["fold_style"],
+            table["cut"],
+            table["gap"],
+            labels=table["labels"],
             paper=paper,
             mountain=made.mountain,
             valley=made.valley,
