@@ -346,8 +346,9 @@ def _request(
         from corrugate.export.pdf import check_paper  # (export) only for its message: not --json's
 
         check_paper(paper)
-    if cutter is not None:  # checked before the spec is read, and before solving
-        resolve_machine(cutter, PARAMETERS["cutter"].flag)
+    given = None  # --machine, checked before the spec is read, and before solving
+    if cutter is not None:
+        given = resolve_machine(cutter, PARAMETERS["cutter"].flag)
     loaded, spec_text = load_spec_text(spec)
     made = made_for(
         loaded, cutter, mountain=table["mountain"], valley=table["valley"], marks=table["marks"]
@@ -359,10 +360,12 @@ def _request(
 
         check_layout(parsed.layout.shape)  # an unknown layout name has no FE fixtures
         find_ccx()  # one clear line when CalculiX is missing, before solving
+    # the machine given, else the spec's (a checked name) or the default: looked up once
+    machine = given if given is not None else resolve_machine(made.cutter)
     output = None
     if out is not None:
         options = output_options(
-            made.cutter,
+            machine,
             table["fold_style"],
             table["cut"],
             table["gap"],
@@ -374,7 +377,6 @@ def _request(
         )
         output = Output(out, options)
     problem = Problem.from_spec(parsed)
-    machine = resolve_machine(made.cutter)
     return DesignRequest(parsed, spec_text, problem, machine, budget, output, fe)
 
 

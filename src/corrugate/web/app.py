@@ -83,6 +83,7 @@ from corrugate.analysis.evaluate import Analysis
 from corrugate.core.errors import InputError
 from corrugate.core.limits import LIMITS
 from corrugate.core.units import ureg
+from corrugate.export.machines import Machine
 from corrugate.export.plan import OutputOptions
 from corrugate.materials.library import library
 from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
@@ -388,14 +389,17 @@ async def files_answer(
 _NAMES = Names(machine="cutter", cut="cut", gap="gap")
 
 
-def _output_options(body: OutputBody, made: MadeFor | None = None) -> OutputOptions:
+def _output_options(
+    body: OutputBody, made: MadeFor | None = None, machine: Machine | None = None
+) -> OutputOptions:
     """The output options of a design or pattern request, as ``corrugate design --cutter ...
     --fold-style ... --cut ... --gap ... --paper ...`` reads them
     (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs), for the
     machine and fold operations a design's spec is made for (:func:`corrugate.workflow.made_for`;
-    None: the request's cutter, the machine's operations); errors name the request's field."""
+    None: the request's cutter, the machine's operations; ``machine``: its profile, when resolved);
+    errors name the request's field."""
     return output_options(
-        body.cutter if made is None else made.cutter,
+        machine if machine is not None else body.cutter if made is None else made.cutter,
         body.fold_style,
         body.cut,
         body.gap,
@@ -474,18 +478,20 @@ def _prepare_design(
         # the request's cutter, when given, is the spec's machine (as design --machine is);
         # else the files are for the spec's [fabrication] machine
         given = body.cutter if "cutter" in body.model_fields_set else None
-        if given is not None:
-            resolve_machine(given)  # an unknown machine names the request's cutter
+        # an unknown machine names the request's cutter; the machine is looked up once
+        machine = None if given is None else resolve_machine(given)
         made = made_for(spec, given)
         spec = made.spec
         problem = Problem.from_spec(spec)
-        options = _output_options(body, made)
+        if machine is None:
+            machine = resolve_machine(made.cutter)  # the spec's (a checked name) or the default
+        options = _output_options(body, made, machine)
     _check_spec_size(spec, settings)
     return DesignRequest(
         spec,
         json.dumps(_spec_data(body), indent=2),
         problem,
-        resolve_machine(made.cutter),
+        machine,
         settings.design_budget_s if budget_s is None else budget_s,
         None if folder is None else Output(folder, options, record_infeasible=False),
         strict_json=True,

@@ -43,6 +43,7 @@ from corrugate.names import (
 
 if TYPE_CHECKING:
     from corrugate.analysis.evaluate import Analysis
+    from corrugate.export.machines import Machine
     from corrugate.export.plan import CutPlan, OutputOptions
     from corrugate.spec.schema import Spec
     from corrugate.workflow.solve import DesignRun
@@ -102,7 +103,7 @@ def made_for(
 
 
 def output_options(
-    cutter: str = DEFAULT_MACHINE,
+    cutter: str | Machine = DEFAULT_MACHINE,
     fold_style: str = DEFAULT_FOLD_STYLE,
     cut: str | float | None = None,
     gap: str | float | None = None,
@@ -119,7 +120,8 @@ def output_options(
 ) -> OutputOptions:
     """Output options from user strings (plain numbers in mm, or with units: ``'0.04 in'``).
 
-    ``cutter`` is the machine (``cameo4-12x12``, ``maker-12x24``, ``laser:WxH``, ...), ``labels``
+    ``cutter`` is the machine (``cameo4-12x12``, ``maker-12x24``, ``laser:WxH``, ...; or its
+    profile, :class:`~corrugate.export.machines.Machine`, when already resolved), ``labels``
     the ``--labels/--no-labels`` flag (``None`` when not given), ``paper`` is ``mat``, ``a4`` or
     ``letter`` (see :class:`~corrugate.export.plan.OutputOptions`). ``fold_style`` (``machine``:
     the machine's default) and ``mountain``, ``valley``, ``marks`` (``cut-score``, ``perforate``,
@@ -146,7 +148,7 @@ def output_options(
         return None if value is None else parse_quantity(value, "mm", field)
 
     try:
-        get_machine(cutter)  # an unknown machine is an error before anything else
+        machine = get_machine(cutter)  # an unknown machine is an error before anything else
         cut_mm, gap_mm = length(cut, "cut"), length(gap, "gap")
         if fold_style.strip().lower() == StyleKind.PERFORATED:
             for field, value in (("cut", cut_mm), ("gap", gap_mm)):
@@ -170,9 +172,9 @@ def output_options(
             cut_mm,
             gap_mm,
         )
-        choice.resolve(cutter)  # an unknown or impossible operation: an error before solving
+        choice.resolve(machine)  # an unknown or impossible operation: an error before solving
         return OutputOptions(
-            cutter=cutter,
+            machine=machine,
             style=style,
             operations=None if choice == FoldChoice() else choice,
             spacing=spacing_mm,
@@ -205,7 +207,6 @@ def write_design_files(
 
     from corrugate.core.fileio import staged
     from corrugate.export.files import plan_job
-    from corrugate.export.machines import get_machine
     from corrugate.export.plan import OutputOptions, cut_plan
     from corrugate.export.writers import WRITERS, write_job
 
@@ -226,7 +227,7 @@ def write_design_files(
         }
         for p in pattern.parts
     ]
-    machine = get_machine(plan.cutter)
+    machine = opts.machine
     record["sheets"] = {
         "cutter": plan.cutter.name,
         "machine": machine.family.value,
