@@ -282,7 +282,7 @@ def design_cmd(
     fe = _fe_options(verify, refine, verify_meshes, verify_shifts, verify_max_mesh)
     request = _request(spec, out, table, seconds, fe)
     fe_quiet = quiet or (as_json and not sys.stderr.isatty())
-    events = None if request.fe is None else Events(progress=_fe_progress(fe_quiet))
+    events = Events(fe_progress=lambda: _fe_progress(fe_quiet))
     answer = run(request, events)
     sol, robust, checked = answer.solution, answer.robust, answer.fe
     stopped = sol.status == "not-certified"

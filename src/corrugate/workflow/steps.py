@@ -41,18 +41,23 @@ def _no_line(line: str) -> None:
     pass
 
 
+def _no_lines() -> Callable[[str], None]:
+    return _no_line
+
+
 def _no_check(analysis: Analysis) -> None:
     pass
 
 
 @dataclass(frozen=True)
 class Events:
-    """What a boundary hears of a run: ``progress``, the FE step's lines; ``solved``, called once
-    the search is over (the web job's last search event); ``writing``, called with the answer's
-    analysis before its files are written (the web app's own size bound and its ``writing files``
-    stage)."""
+    """What a boundary hears of a run: ``fe_progress``, called when the FE step starts, makes
+    what hears its lines (the command line's ``CalculiX run N (s): ...``, seconds from then);
+    ``solved``, called once the search is over (the web job's last search event); ``writing``,
+    called with the answer's analysis before its files are written (the web app's own size bound
+    and its ``writing files`` stage)."""
 
-    progress: Callable[[str], None] = _no_line
+    fe_progress: Callable[[], Callable[[str], None]] = _no_lines
     solved: Callable[[], None] = _nothing
     writing: Callable[[Analysis], None] = _no_check
 
@@ -121,8 +126,9 @@ def run(request: DesignRequest, events: Events | None = None) -> Run:
     checked: FeCheck | None = None
     sol = design.solution
     if request.fe is not None and sol.certified and sol.assembly is not None:
+        progress = ev.fe_progress()
         checked = check_fe(
-            design, request.spec, request.problem, request.fe, request.budget, ev.progress
+            design, request.spec, request.problem, request.fe, request.budget, progress
         )
         design = checked.run
     if request.strict_json:
