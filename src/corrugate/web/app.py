@@ -87,7 +87,7 @@ from corrugate.export.machines import Machine
 from corrugate.export.plan import OutputOptions
 from corrugate.materials.library import library
 from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
-from corrugate.solver import Problem, Solution
+from corrugate.solver import Problem
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
 from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck
@@ -135,7 +135,6 @@ from corrugate.workflow import (
     output_options,
     resolve_machine,
     run,
-    solve_spec,
 )
 
 __all__ = [
@@ -150,7 +149,6 @@ __all__ = [
     "create_app",
     "design_answer",
     "design_job",
-    "design_payload",
     "fea_info",
     "mesh_job",
     "pattern_job",
@@ -437,13 +435,6 @@ def _check_design_size(analysis: Analysis, settings: WebSettings) -> None:
 def _spec_data(body: DesignBody) -> dict[str, Any]:
     """The spec part of a design request: the keys the client sent, minus the output options."""
     return body.model_dump(exclude_unset=True, exclude=set(OUTPUT_OPTIONS))
-
-
-def design_payload(spec: Spec, problem: Problem) -> tuple[Solution, dict[str, Any]]:
-    """The solution of ``problem`` and the object ``corrugate design --json`` prints for it
-    (:func:`corrugate.workflow.solve_spec`, the CLI's own steps, robust specs included)."""
-    run = solve_spec(spec, problem)
-    return run.solution, run.payload
 
 
 def _result_body(files: list[StoredFile]) -> ResultBody:
