@@ -191,14 +191,16 @@ def test_stiffness_names_are_the_spec_kinds_and_their_symbols_the_solver_keys() 
 
 
 def test_fold_styles_are_the_machine_default_and_the_line_styles() -> None:
+    from corrugate.export.machines import get_machine
     from corrugate.export.operations import FoldOp, default_operations, style_operations
     from corrugate.fabrication.linestyle import StyleKind
 
     assert ("machine", *(k.value for k in StyleKind)) == names.FOLD_STYLES
     assert names.DEFAULT_FOLD_STYLE == "machine"
     for machine in names.MACHINE_NAMES:
-        assert style_operations(names.DEFAULT_FOLD_STYLE, machine, "dura-lar") == (
-            default_operations(machine, "dura-lar")
+        m = get_machine(machine)
+        assert style_operations(names.DEFAULT_FOLD_STYLE, m, "dura-lar") == (
+            default_operations(m, "dura-lar")
         )
     assert tuple(op.value for op in FoldOp) == names.FOLD_OP_NAMES
 

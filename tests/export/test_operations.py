@@ -214,21 +214,21 @@ def test_an_operation_the_machine_cannot_do_is_exit_2(
 
 
 def test_fold_operations_is_the_one_entry_point() -> None:
-    assert fold_operations("cameo4-12x12", "dura-lar") == default_operations(
-        "cameo4-12x12", "dura-lar"
+    assert fold_operations(get_machine("cameo4-12x12"), "dura-lar") == default_operations(
+        get_machine("cameo4-12x12"), "dura-lar"
     )
-    card = fold_operations("cameo4-12x12", "cardstock")
+    card = fold_operations(get_machine("cameo4-12x12"), "cardstock")
     assert card.valley is FoldOp.SCORE  # card folds on a pressed line
     assert (card.cut, card.gap) == GUIDANCE["cardstock"].perforation
-    assert fold_operations("laser:100x100", "cardstock").valley is FoldOp.CUT_SCORE
-    assert fold_operations("maker-12x12", "dura-lar").valley is FoldOp.SCORE
-    assert fold_operations("maker-12x12", style="scored").mountain is FoldOp.SCORE
+    assert fold_operations(get_machine("laser:100x100"), "cardstock").valley is FoldOp.CUT_SCORE
+    assert fold_operations(get_machine("maker-12x12"), "dura-lar").valley is FoldOp.SCORE
+    assert fold_operations(get_machine("maker-12x12"), style="scored").mountain is FoldOp.SCORE
     with pytest.raises(InputError, match="valley"):
-        fold_operations("maker-12x12", valley="cut-score")
+        fold_operations(get_machine("maker-12x12"), valley="cut-score")
     with pytest.raises(UnknownNameError):
-        fold_operations("maker-12x12", marks="staple")
+        fold_operations(get_machine("maker-12x12"), marks="staple")
     with pytest.raises(InputError, match="cut"):
-        fold_operations("cameo4-12x12", cut=0.01)
+        fold_operations(get_machine("cameo4-12x12"), cut=0.01)
 
 
 # -- the guidance table --------------------------------------------------------------------------

@@ -19,6 +19,7 @@ from corrugate.cli import main
 from corrugate.core.extras import EXTRAS
 from corrugate.core.fileio import MANIFEST
 from corrugate.export.files import FORMATS, write_files
+from corrugate.export.machines import get_machine
 from corrugate.export.plan import OutputOptions, cut_plan
 from corrugate.export.writers import WRITERS, Writer, get_writer, writer_for
 from corrugate.geometry.layer import Assembly, Layer
@@ -164,7 +165,7 @@ def test_every_file_is_what_its_media_type_says(every_file: Path) -> None:
 
 def test_write_files_writes_the_entries_of_each_format(tmp_path: Path) -> None:
     layer = Layer(8.0, 8, 84.0, get_material("dura-lar"))
-    cut = cut_plan(Assembly.identical(layer), OutputOptions(cutter="laser:600x400"))
+    cut = cut_plan(Assembly.identical(layer), OutputOptions(machine=get_machine("laser:600x400")))
     n = len(cut.plan.sheets)
     for fmt in FORMATS:
         out = tmp_path / fmt
@@ -183,6 +184,7 @@ from pathlib import Path
 for m in ("ezdxf", "matplotlib", "HersheyFonts"):
     sys.modules[m] = None
 from corrugate.export.files import plan_job
+from corrugate.export.machines import get_machine
 from corrugate.export.plan import OutputOptions, cut_plan
 from corrugate.export.writers import WRITERS, write_job
 from corrugate.report import report_html
@@ -190,7 +192,7 @@ from corrugate.workflow import design
 result = design(sys.argv[1])
 sol = result.solution
 a = sol.analysis
-cut = cut_plan(a.assembly, OutputOptions(cutter="laser:600x400", labels=False, paper="a4"))
+cut = cut_plan(a.assembly, OutputOptions(machine=get_machine("laser:600x400"), labels=False, paper="a4"))
 root = Path(tempfile.mkdtemp())
 outcome = {}
 for w in WRITERS:

@@ -29,6 +29,7 @@ from corrugate.solver.problem import Constraint
 from corrugate.solver.quantity import Quantity
 from corrugate.solver.solve import Solution
 from corrugate.spec.schema import parse_spec_text
+from corrugate.workflow import DesignRun
 
 if TYPE_CHECKING:
     from conftest import CliRun
@@ -66,20 +67,20 @@ def _problem(model: str = "refined") -> Problem:
     return Problem.from_spec(parse_spec_text(SPEC.replace("MODEL", model)))
 
 
-def _solve(p: Problem) -> tuple[Solution, dict[str, Any]]:
+def _solve(p: Problem) -> DesignRun:
     sol = solve(p)
-    return sol, sol.to_dict()
+    return DesignRun(sol, sol.to_dict(), None)
 
 
 def _fake_fe(ratio: Callable[[int], float]) -> tuple[Callable[..., Verification], list[Any]]:
     """A stand-in FE: the EI row's FE is ``ratio(k)`` x the model value for the k-th design
-    verified, judged against the bound the payload gives it (the spec's)."""
+    verified, judged against the bound its constraints' entries give it (the spec's)."""
     seen: list[Any] = []
 
-    def verify(sol: Solution, payload: dict[str, Any]) -> Verification:
+    def verify(sol: Solution, constraints: list[dict[str, Any]]) -> Verification:
         k = len(seen)
-        seen.append(payload)
-        [c] = [c for c in payload["constraints"] if c["name"] == NAME]
+        seen.append(constraints)
+        [c] = [c for c in constraints if c["name"] == NAME]
         fe = ratio(k) * c["value"]
         row = Row(
             NAME,
@@ -128,8 +129,7 @@ def test_an_fe_below_the_model_tightens_the_bound_and_the_answer_holds() -> None
     assert ans.solution.mass >= first.solution.mass  # a tighter bound cannot be lighter
     # every verification judged against the spec's bound, never the corrected one
     assert all(
-        next(c for c in pl["constraints"] if c["name"] == NAME)["bound"] == pytest.approx(B)
-        for pl in seen
+        next(c for c in rows if c["name"] == NAME)["bound"] == pytest.approx(B) for rows in seen
     )
     out = answer_payload(r, p)
     [c] = [c for c in out["constraints"] if c["name"] == NAME]
@@ -157,8 +157,8 @@ def test_a_conservative_model_is_loosened_only_with_loosen() -> None:
     assert len(kept.attempts) == 1 and kept.chosen == 0
 
     # an FE within LOOSEN_ABOVE of the bound loosens nothing: one solve
-    def just_above(sol: Solution, payload: dict[str, Any]) -> Verification:
-        [c] = [c for c in payload["constraints"] if c["name"] == NAME]
+    def just_above(sol: Solution, constraints: list[dict[str, Any]]) -> Verification:
+        [c] = [c for c in constraints if c["name"] == NAME]
         fe = 0.5 * (1 + LOOSEN_ABOVE) * c["bound"]
         row = Row(NAME, "EI@0", "min", c["unit"], c["bound"], c["value"], {4: fe}, fe, holds=True)
         return Verification((row,), (4,))

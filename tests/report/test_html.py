@@ -31,6 +31,7 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     """Non-default cutter, fold style and tab depth: the report beside the files shows their sheets
     (the same parts at the same places, the fold maps themselves), not a plan rebuilt with
     defaults."""
+    from corrugate.export.machines import get_machine
     from corrugate.export.plan import CutPlan, OutputOptions
     from corrugate.fabrication.linestyle import line_style
     from corrugate.geometry.fabrication_options import FabricationOptions
@@ -39,7 +40,7 @@ def test_report_draws_the_sheet_plan_the_files_are_written_from(
     assert solution.analysis is not None
     spec_text = BLIMP.read_text()
     options = OutputOptions(
-        cutter="laser:130x80",
+        machine=get_machine("laser:130x80"),
         style=line_style("perforated", cut=1.5, gap=1.0),
         fabrication=FabricationOptions(tab_depth=7.0),
     )
@@ -92,6 +93,7 @@ def test_each_figure_is_drawn_once(
 
     from corrugate import workflow
     from corrugate.export import pdf
+    from corrugate.export.machines import get_machine
     from corrugate.export.plan import OutputOptions
     from corrugate.fabrication import instructions
 
@@ -111,7 +113,7 @@ def test_each_figure_is_drawn_once(
     monkeypatch.setattr(instructions, "instructions_figure", count_assembly)
     spec_text = BLIMP.read_text()
     out = tmp_path / "out"
-    options = OutputOptions(cutter="laser:130x80")
+    options = OutputOptions(machine=get_machine("laser:130x80"))
     workflow.write_design_files(
         solution.analysis, out, options, report=lambda cut: report_html(solution, spec_text, cut)
     )

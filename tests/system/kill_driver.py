@@ -158,7 +158,7 @@ def main() -> None:
         elif (out / USER_FILE).read_text() != "mine":
             changed.append(f"{when}: the user's file")
 
-    import corrugate.workflow as dr  # the commands import solve_spec from it at run time
+    import corrugate.workflow.steps as dr  # the one run of a request solves through it
     from corrugate.core.fileio import JOURNAL, MANIFEST, recover
 
     real = dr.solve_spec

@@ -399,7 +399,7 @@ def test_api_fuzz(monkeypatch: pytest.MonkeyPatch) -> None:
     def stub(*_: Any) -> Any:
         raise _ReachedError("solver reached")
 
-    monkeypatch.setattr(webapp, "design_payload", stub)
+    monkeypatch.setattr(webapp, "run", stub)  # the one run of a design request
     statuses: dict[int, int] = {}
     with TestClient(create_app(WebSettings()), raise_server_exceptions=False) as client:
 

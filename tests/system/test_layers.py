@@ -16,7 +16,7 @@ import pytest
 SRC = Path(__file__).resolve().parents[2] / "src"
 PACKAGE = SRC / "corrugate"
 
-#: The layers, lowest first: the top-level modules ``names`` and ``workflow`` and every folder.
+#: The layers, lowest first: the top-level module ``names`` and every folder.
 ORDER = (
     "names",
     "core",
@@ -37,7 +37,7 @@ ORDER = (
 )
 
 #: What the top-level package holds besides its layer folders and ``data/``.
-TOP_LEVEL = {"__init__.py", "__main__.py", "names.py", "workflow.py", "py.typed"}
+TOP_LEVEL = {"__init__.py", "__main__.py", "names.py", "py.typed"}
 
 
 def _module_name(path: Path, src: Path) -> tuple[str, bool]:
@@ -125,7 +125,7 @@ def test_no_module_imports_a_layer_above_it() -> None:
 def test_every_folder_is_a_layer_and_the_top_level_holds_only_the_api() -> None:
     folders = {p.name for p in PACKAGE.iterdir() if p.is_dir() and p.name != "__pycache__"}
     assert folders - {"data"} <= set(ORDER), folders - set(ORDER)
-    assert set(ORDER) - {"names", "workflow", "__main__"} <= folders
+    assert set(ORDER) - {"names", "__main__"} <= folders
     files = {p.name for p in PACKAGE.iterdir() if p.is_file()}
     assert files == TOP_LEVEL, files ^ TOP_LEVEL
     # every layer folder is a package with a docstring saying what it holds

@@ -17,7 +17,6 @@ from corrugate.cli import options as o
 from corrugate.cli.console import fmt as _fmt
 from corrugate.cli.console import make_console
 from corrugate.core.parameters import PARAMETERS
-from corrugate.names import DEFAULT_LAYOUT, DEFAULT_MODEL, DEFAULT_SUPPORT
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -136,24 +135,9 @@ def _print_comparison(
     console.print(t)
 
 
+@o.table_options(*o.DESIGN[:-1], "eta", "support", *o.LOAD_CASE)
 def analyze_cmd(
-    W: o.W,
-    n: o.N,
-    alpha: o.Alpha,
-    material: o.Material = None,
-    thickness: o.Thickness = None,
-    E: o.YoungsModulus = None,
-    nu: o.Nu = None,
-    density: o.Density = None,
-    W2: o.W2 = None,
-    n2: o.N2 = None,
-    alpha2: o.Alpha2 = None,
-    material2: o.Material2 = None,
-    thickness2: o.Thickness2 = None,
-    layout: o.Layout = DEFAULT_LAYOUT,
-    vertices: o.Vertices = None,
-    holes: o.Holes = None,
-    model: o.Model = DEFAULT_MODEL,
+    table: o.TableValues,
     eta: Annotated[
         list[str] | None,
         Opt(
@@ -161,10 +145,6 @@ def analyze_cmd(
             help="Direction (deg from layer 1's creases); repeat for several. Default 0 and 90.",
         ),
     ] = None,
-    support: o.SupportOpt = DEFAULT_SUPPORT,
-    test: o.TestOpt = None,
-    load: o.LoadOpt = None,
-    span: o.SpanOpt = None,
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object.")] = False,
     compare_models: Annotated[
         bool, Opt(help="Show the three model variants side by side.")
@@ -183,11 +163,12 @@ def analyze_cmd(
     from corrugate.mechanics.moduli import MODELS, get_model
     from corrugate.spec.inputs import assembly_from_namespace, parse_etas
 
-    assembly = assembly_from_namespace(locals())
+    assembly = assembly_from_namespace(table)
     etas = parse_etas(eta)
+    model = table["model"]
     get_model(model)
-    support = check_support(support, PARAMETERS["support"].flag)
-    case = load_case_of(test, load, span)
+    support = check_support(table["support"], PARAMETERS["support"].flag)
+    case = load_case_of(table["test"], table["load"], table["span"])
     models = list(MODELS) if compare_models else [model]
     results = [analyze(assembly, m, etas, support=support) for m in models]
     cases = [None if case is None else load_case_rows(r, case) for r in results]

@@ -11,9 +11,8 @@ from __future__ import annotations
 import json
 import math
 import sys
-from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import TYPE_CHECKING, Annotated
 
 import typer
 
@@ -21,19 +20,16 @@ from corrugate.cli import options as o
 from corrugate.cli.console import fmt, make_console
 from corrugate.core.errors import InputError
 from corrugate.core.limits import abnormal_reason, check, check_count, is_normal, require_finite
-from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_PAPER, PAPER_NAMES, STIFFNESS_NAMES
+from corrugate.names import PAPER_NAMES, STIFFNESS_NAMES
 
 if TYPE_CHECKING:
     from collections.abc import Callable
 
     from rich.console import Console
 
-    from corrugate.fea.refine import Refined
-    from corrugate.fea.verify import Verification
-    from corrugate.solver import Problem, Solution
+    from corrugate.solver import Solution
     from corrugate.solver.pareto import ParetoFront
-    from corrugate.spec.schema import Spec
-    from corrugate.workflow import DesignRun
+    from corrugate.workflow import DesignRequest, FeCheck, FeOptions
 
 #: ``--refine``'s cap on re-solves (:data:`corrugate.fea.refine.MAX_RESOLVES`, repeated here so
 #: that ``corrugate --help`` does not import the FE; tests/cli check they agree).
@@ -196,7 +192,20 @@ def _print_failure(sol: Solution, robust: object, console: Console) -> None:
         console.print(f"{sol.problem.name}: the robust target is not met")
 
 
+#: ``design``'s output options: the table's but the sheet layout's (spacing, margin, tabs).
+_DESIGN_OUTPUT = tuple(n for n in o.OUTPUT if n not in ("spacing", "margin", "tab_depth"))
+
+
+@o.table_options(
+    "spec",
+    "as_json",
+    "out",
+    *_DESIGN_OUTPUT,
+    # not given: the spec's [fabrication] machine (or the default); given, it overrides it
+    defaults={"cutter": None},
+)
 def design_cmd(
+    table: o.TableValues,
     spec: Annotated[
         Path,
         typer.Argument(
@@ -214,15 +223,6 @@ def design_cmd(
             help="Folder for design.json and, for a design, every cut file.",
         ),
     ] = None,
-    cutter: o.DesignMachine = None,
-    labels: o.Labels = None,
-    fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
-    mountain: o.Mountain = None,
-    valley: o.Valley = None,
-    marks: o.Marks = None,
-    cut: o.Cut = None,
-    gap: o.Gap = None,
-    paper: o.Paper = DEFAULT_PAPER,
     budget: o.SolverBudget = None,
     verify: Annotated[
         str | None,
@@ -276,72 +276,19 @@ def design_cmd(
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     (--verify fe [--refine]: its FE verification, docs/fea.md section 6)
     """
-    from corrugate.solver import Problem
-    from corrugate.spec.schema import load_spec_text
-    from corrugate.workflow import made_for, output_options, solve_spec, write_design
+    from corrugate.workflow import Events, run
 
     seconds = None if budget is None else check("budget", budget, "--budget")
     fe = _fe_options(verify, refine, verify_meshes, verify_shifts, verify_max_mesh)
-    if out is not None and out.exists() and not out.is_dir():
-        raise InputError("--out", str(out), "a directory", reason="is a file")
-    if out is not None:  # the root, a system folder, home, the working folder: before solving
-        from corrugate.core.fileio import check_output_folder
-
-        check_output_folder(out)
-    if paper.strip().lower() not in PAPER_NAMES:  # checked with or without --out; the writers
-        from corrugate.export.pdf import check_paper  # (export) only for its message: not --json's
-
-        check_paper(paper)
-    if cutter is not None:  # checked before the spec is read, and before solving
-        from corrugate.core.parameters import PARAMETERS
-        from corrugate.export.machines import get_machine
-
-        try:
-            get_machine(cutter)
-        except InputError as exc:
-            flag = PARAMETERS["cutter"].flag
-            raise InputError(flag, exc.value, exc.allowed, reason=exc.reason) from None
-    loaded, spec_text = load_spec_text(spec)
-    made = made_for(loaded, cutter, mountain=mountain, valley=valley, marks=marks)
-    parsed = made.spec
-    if fe is not None:
-        from corrugate.fea.ccx import find_ccx
-        from corrugate.fea.verify import check_layout
-
-        check_layout(parsed.layout.shape)  # an unknown layout name has no FE fixtures
-        find_ccx()  # one clear line when CalculiX is missing, before solving
-    options = (
-        output_options(
-            made.cutter,
-            fold_style,
-            cut,
-            gap,
-            labels=labels,
-            paper=paper,
-            mountain=made.mountain,
-            valley=made.valley,
-            marks=made.marks,
-        )
-        if out is not None
-        else None
-    )
-    problem = Problem.from_spec(parsed)
-    run = solve_spec(parsed, problem, budget=seconds)
-    checked: FeCheck | None = None
-    if fe is not None and run.solution.certified and run.solution.assembly is not None:
-        progress = _fe_progress(quiet or (as_json and not sys.stderr.isatty()))
-        checked = _fe_check(run, parsed, problem, fe, seconds, progress)
-        run = checked.run
-    sol, robust = run.solution, run.robust
-    written: list[Path] = []
-    if out is not None and options is not None:
-        written = write_design(run, out, options, spec_text)
-        if checked is not None:
-            written.append(_write_verify(out, checked))
+    request = _request(spec, out, table, seconds, fe)
+    fe_quiet = quiet or (as_json and not sys.stderr.isatty())
+    events = Events(fe_progress=lambda: _fe_progress(fe_quiet))
+    answer = run(request, events)
+    sol, robust, checked = answer.solution, answer.robust, answer.fe
     stopped = sol.status == "not-certified"
     failed = sol.status == "infeasible" or (robust is not None and not robust.met)
     if as_json:
-        typer.echo(json.dumps(run.payload, indent=2))
+        typer.echo(json.dumps(answer.payload, indent=2))
     elif quiet:
         if failed:
             _print_failure(sol, robust, make_console(stderr=True))
@@ -351,14 +298,14 @@ def design_cmd(
         if checked is not None:
             _print_fe(checked, console)
         if robust is not None:
-            rd = robust.as_dict(problem)
+            rd = robust.as_dict(request.problem)
             met = "met" if robust.met else "NOT met"
             console.print(
                 f"[bold]robust[/bold]: P(spec holds) = {rd['probability_met']} (target "
                 f"{robust.target:g}, {met}) after {robust.rounds} round(s) of margin inflation; "
                 "bounds above are the tightened ones; not certified as the lightest robust design"
             )
-        for path in written:
+        for path in answer.files:
             console.print(f"wrote {path}")
     if stopped:  # exit 4 (before 1: a robust target cannot be judged on an unfinished search)
         typer.echo(not_certified_line(sol), err=True)
@@ -371,35 +318,66 @@ def design_cmd(
         raise typer.Exit(1)
 
 
-@dataclass(frozen=True)
-class FeOptions:
-    """``design --verify fe``'s options, checked: mesh series, coupon shifts, ``--refine``."""
+def _request(
+    spec: Path,
+    out: Path | None,
+    table: o.TableValues,
+    budget: float | None,
+    fe: FeOptions | None,
+) -> DesignRequest:
+    """``corrugate design``'s arguments (its output options in ``table``) read into one request
+    (``budget``, CPU seconds, and ``fe`` already checked), in the command's order of checks (each
+    error one line naming the option or the spec's key, exit 2): the output folder, the paper
+    and the machine before the spec is read; CalculiX and the layout's FE fixtures before
+    solving."""
+    cutter, paper = table["cutter"], table["paper"]
+    from corrugate.core.parameters import PARAMETERS
+    from corrugate.solver import Problem
+    from corrugate.spec.schema import load_spec_text
+    from corrugate.workflow import DesignRequest, Output, made_for, output_options, resolve_machine
 
-    meshes: tuple[int, ...]
-    shifts: tuple[float, ...]
-    refine: bool
-    max_mesh: int = 16
+    if out is not None and out.exists() and not out.is_dir():
+        raise InputError("--out", str(out), "a directory", reason="is a file")
+    if out is not None:  # the root, a system folder, home, the working folder: before solving
+        from corrugate.core.fileio import check_output_folder
 
+        check_output_folder(out)
+    if paper.strip().lower() not in PAPER_NAMES:  # checked with or without --out; the writers
+        from corrugate.export.pdf import check_paper  # (export) only for its message: not --json's
 
-@dataclass(frozen=True)
-class FeCheck:
-    """The answer after ``--verify fe`` (``run``, with ``verification`` and, with ``--refine``,
-    ``refine`` in its payload), the verification of its design and the loop (None without
-    ``--refine``)."""
+        check_paper(paper)
+    given = None  # --machine, checked before the spec is read, and before solving
+    if cutter is not None:
+        given = resolve_machine(cutter, PARAMETERS["cutter"].flag)
+    loaded, spec_text = load_spec_text(spec)
+    made = made_for(
+        loaded, cutter, mountain=table["mountain"], valley=table["valley"], marks=table["marks"]
+    )
+    parsed = made.spec
+    if fe is not None:
+        from corrugate.fea.ccx import find_ccx
+        from corrugate.fea.verify import check_layout
 
-    run: DesignRun
-    verification: Verification
-    refined: Refined | None
-
-    @property
-    def holds(self) -> bool:
-        return self.verification.holds
-
-    @property
-    def statement(self) -> str:
-        from corrugate.fea.refine import statement
-
-        return statement(self.verification)
+        check_layout(parsed.layout.shape)  # an unknown layout name has no FE fixtures
+        find_ccx()  # one clear line when CalculiX is missing, before solving
+    # the machine given, else the spec's (a checked name) or the default: looked up once
+    machine = given if given is not None else resolve_machine(made.cutter)
+    output = None
+    if out is not None:
+        options = output_options(
+            machine,
+            table["fold_style"],
+            table["cut"],
+            table["gap"],
+            labels=table["labels"],
+            paper=paper,
+            mountain=made.mountain,
+            valley=made.valley,
+            marks=made.marks,
+        )
+        output = Output(out, options)
+    problem = Problem.from_spec(parsed)
+    return DesignRequest(parsed, spec_text, problem, machine, budget, output, fe)
 
 
 def _fe_options(
@@ -426,6 +404,7 @@ def _fe_options(
     if verify != "fe":
         raise InputError("--verify", repr(verify), "fe (the FE twin of every behavioural bound)")
     from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts
+    from corrugate.workflow import FeOptions
 
     try:
         m = parse_meshes(meshes)
@@ -442,70 +421,6 @@ def _fe_progress(quiet: bool) -> Callable[[str], None]:
     from corrugate.cli.validate import progress_lines
 
     return progress_lines(quiet)
-
-
-def _fe_check(
-    run: DesignRun,
-    spec: Spec,
-    problem: Problem,
-    fe: FeOptions,
-    seconds: float | None,
-    progress: Callable[[str], None],
-) -> FeCheck:
-    """Verify the answer's design in FE and, with ``--refine``, run the correction loop
-    (:func:`corrugate.fea.refine.refine`, every re-solve with the same ``--budget``)."""
-    from corrugate.fea.refine import answer_payload, refine, statement
-    from corrugate.fea.verify import verify_design
-    from corrugate.workflow import DesignRun, solve_spec
-
-    def verify(sol: Solution, payload: dict[str, Any]) -> Verification:
-        assert sol.assembly is not None
-        return verify_design(
-            sol.assembly,
-            payload["constraints"],
-            problem.joint,
-            fe.meshes,
-            shifts=fe.shifts,
-            progress=progress,
-            max_mesh=fe.max_mesh,
-        )
-
-    if not fe.refine:
-        v = verify(run.solution, run.payload)
-        payload = {
-            **run.payload,
-            "verification": {"method": "fe", **v.as_json(), "statement": statement(v)},
-        }
-        return FeCheck(DesignRun(run.solution, payload, run.robust), v, None)
-
-    runs: dict[int, DesignRun] = {}
-
-    def solve(p: Problem) -> tuple[Solution, dict[str, Any]]:
-        r = solve_spec(spec, p, budget=seconds)
-        runs[id(r.solution)] = r
-        return r.solution, r.payload
-
-    runs[id(run.solution)] = run
-    refined = refine(problem, solve, verify, progress=progress, first=(run.solution, run.payload))
-    answer = refined.answer
-    assert answer.verification is not None
-    chosen = runs[id(answer.solution)]
-    payload = answer_payload(refined, problem)
-    return FeCheck(DesignRun(answer.solution, payload, chosen.robust), answer.verification, refined)
-
-
-def _write_verify(out: Path, checked: FeCheck) -> Path:
-    """``out/verify.json`` (the set ``corrugate verify`` writes) of the answer's design."""
-    from corrugate.cli.verify import VERIFY_KIND, VERIFY_NAME
-    from corrugate.core.fileio import write_set
-    from corrugate.export.record import design_label
-
-    sol = checked.run.solution
-    assert sol.assembly is not None
-    data = {"design": design_label(sol.assembly), **checked.verification.as_json()}
-    text = json.dumps(data, indent=2, allow_nan=False)
-    write_set(out, {VERIFY_NAME: text + "\n"}, field="--out", kind=VERIFY_KIND)
-    return out / VERIFY_NAME
 
 
 def _print_fe(checked: FeCheck, console: Console) -> None:

@@ -1,20 +1,30 @@
 """The command-line options that describe a design and its files, made from the one table of
-parameters (:data:`corrugate.core.parameters.PARAMETERS`: flags, metavar, help text), for every
-command that takes them (``analyze``, ``pattern``, ``validate``, ``design``): typer reads each
-``Annotated`` alias below as the option it declares; the commands' signatures give the defaults
-(the constants of :mod:`corrugate.names`). :func:`corrugate.spec.inputs.assembly_from_namespace`
-turns their values into an :class:`~corrugate.geometry.layer.Assembly`.
+parameters (:data:`corrugate.core.parameters.PARAMETERS`: flags, metavar, help text, default),
+for every command that takes them (``analyze``, ``pattern``, ``validate``, ``design``).
+
+:func:`table_options` is the one declaration: a command names the table's parameters it takes
+(in the order ``--help`` lists them, its own options among them) and gets their values as one
+:class:`TableValues` argument; typer reads the options it declares from the table (type,
+default, flags, metavar, help text, shell completion).
+:func:`corrugate.spec.inputs.assembly_from_namespace` turns the values into an
+:class:`~corrugate.geometry.layer.Assembly`. :func:`option` is one entry's typer option.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import inspect
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass
 from typing import Annotated, Any
 
 import typer
 
-from corrugate.core.parameters import PARAMETERS, choices_metavar
-from corrugate.names import FOLD_STYLES as FOLD_STYLE_NAMES
+from corrugate.core.parameters import (
+    DESIGN_PARAMETERS,
+    LOAD_CASE_PARAMETERS,
+    OUTPUT_PARAMETERS,
+    PARAMETERS,
+)
 from corrugate.names import (
     LASER_PREFIX,
     LAYOUT_SHAPES,
@@ -26,52 +36,15 @@ from corrugate.names import (
 
 __all__ = [
     "ANGLE",
-    "DEFAULT_MARGIN",
-    "DEFAULT_SPACING",
-    "DEFAULT_TAB_DEPTH",
-    "FOLD_STYLES",
-    "LAYOUTS",
+    "DESIGN",
     "LENGTH",
-    "MODEL_CHOICES",
-    "N2",
-    "W2",
-    "Alpha",
-    "Alpha2",
-    "Cut",
-    "Density",
-    "FoldStyle",
-    "Gap",
-    "Holes",
-    "Labels",
-    "Layout",
-    "LoadOpt",
-    "Machine",
-    "Margin",
-    "Marks",
-    "Material",
-    "Material2",
-    "Model",
-    "Mountain",
-    "N",
-    "Nu",
-    "OptionalAlpha",
-    "OptionalN",
-    "OptionalW",
-    "Paper",
+    "LOAD_CASE",
+    "OUTPUT",
     "Quiet",
     "SolverBudget",
-    "Spacing",
-    "SpanOpt",
-    "SupportOpt",
-    "TabDepth",
-    "TestOpt",
-    "Thickness",
-    "Thickness2",
-    "Valley",
-    "Vertices",
-    "W",
-    "YoungsModulus",
+    "TableValues",
     "option",
+    "table_options",
 ]
 
 Opt = typer.Option
@@ -136,63 +109,6 @@ def option(name: str, **overrides: Any) -> Any:
     return Opt(*p.flags, **(kwargs | overrides))
 
 
-W = Annotated[str, option("W")]
-N = Annotated[str, option("n")]
-Alpha = Annotated[str, option("alpha")]
-#: ``validate`` takes the design from ``--design`` instead, so W, n and alpha may be left out.
-OptionalW = Annotated[str | None, option("W")]
-OptionalN = Annotated[str | None, option("n")]
-OptionalAlpha = Annotated[str | None, option("alpha")]
-Material = Annotated[str | None, option("material")]
-Thickness = Annotated[str | None, option("thickness")]
-YoungsModulus = Annotated[str | None, option("E")]
-Nu = Annotated[str | None, option("nu")]
-Density = Annotated[str | None, option("density")]
-W2 = Annotated[str | None, option("W2")]
-N2 = Annotated[str | None, option("n2")]
-Alpha2 = Annotated[str | None, option("alpha2")]
-Material2 = Annotated[str | None, option("material2")]
-Thickness2 = Annotated[str | None, option("thickness2")]
-Layout = Annotated[str, option("layout")]
-Vertices = Annotated[str | None, option("vertices")]
-Holes = Annotated[str | None, option("holes")]
-Model = Annotated[str, option("model")]
-SupportOpt = Annotated[str, option("support")]
-#: ``analyze``'s load case (docs/load_cases.md).
-TestOpt = Annotated[str | None, option("test")]
-LoadOpt = Annotated[str | None, option("load")]
-SpanOpt = Annotated[str | None, option("span")]
-
-Machine = Annotated[str, option("cutter")]
-#: ``design``'s machine: given, it overrides the spec's ``[fabrication] machine``; not given,
-#: the spec's or the default.
-DesignMachine = Annotated[str | None, option("cutter")]
-Labels = Annotated[bool | None, option("labels")]
-FoldStyle = Annotated[str, option("fold_style")]
-Mountain = Annotated[str | None, option("mountain")]
-Valley = Annotated[str | None, option("valley")]
-Marks = Annotated[str | None, option("marks")]
-Cut = Annotated[str | None, option("cut")]
-Gap = Annotated[str | None, option("gap")]
-Spacing = Annotated[str, option("spacing")]
-Margin = Annotated[str, option("margin")]
-TabDepth = Annotated[str, option("tab_depth")]
-#: Output option of ``pattern`` and ``design``: the 1:1 tiles of the sheets for office paper.
-Paper = Annotated[str, option("paper")]
-
-
-def _text_default(name: str) -> str:
-    """The default of the parameter ``name`` as the command line takes it (a string)."""
-    default = PARAMETERS[name].default
-    assert default is not None, name
-    return default
-
-
-#: The defaults of the length options as ``--help`` shows them (plain numbers in mm).
-DEFAULT_SPACING = _text_default("spacing")
-DEFAULT_MARGIN = _text_default("margin")
-DEFAULT_TAB_DEPTH = _text_default("tab_depth")
-
 #: ``--quiet`` of the commands that print (design, analyze, pattern, validate, pareto, tolerance).
 Quiet = Annotated[
     bool,
@@ -219,6 +135,99 @@ SolverBudget = Annotated[
 #: Metavars shown in ``--help`` for options read as a quantity with an optional unit.
 LENGTH = "LENGTH"  # '8', '8mm', '0.3 in'
 ANGLE = "ANGLE"  # '84', '84deg', '1.47 rad'
-LAYOUTS = choices_metavar(LAYOUT_SHAPES)
-MODEL_CHOICES = choices_metavar(MODEL_NAMES)
-FOLD_STYLES = choices_metavar(FOLD_STYLE_NAMES)
+
+
+#: The names of the table's design, output and load-case parameters, in the table's order.
+DESIGN = tuple(p.name for p in DESIGN_PARAMETERS)
+OUTPUT = tuple(p.name for p in OUTPUT_PARAMETERS)
+LOAD_CASE = tuple(p.name for p in LOAD_CASE_PARAMETERS)
+
+#: The name of the parameter of a command that receives its :class:`TableValues`.
+TABLE = "table"
+
+
+@dataclass(frozen=True)
+class TableValues(Mapping[str, Any]):
+    """The values of a command's options made by :func:`table_options`, by parameter name (the
+    strings typed, None for an option not given, a flag's True, False or None)."""
+
+    by_name: Mapping[str, Any]
+
+    def __getitem__(self, name: str) -> Any:
+        return self.by_name[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.by_name)
+
+    def __len__(self) -> int:
+        return len(self.by_name)
+
+
+def _table_parameter(
+    name: str, optional: bool, default: Any, overrides: Mapping[str, Any]
+) -> inspect.Parameter:
+    """The typer parameter of the table's entry ``name``: a flag is ``bool | None`` (None: not
+    given); a required entry a required ``str`` unless ``optional``; any other a ``str`` with
+    the table's default, or ``str | None`` when it has none (or ``default`` is None)."""
+    p = PARAMETERS[name]
+    opt = option(name, **overrides)
+    if p.kind == "flag":
+        kind: Any = bool | None
+        value: Any = None
+    elif p.required and not optional:
+        kind, value = str, inspect.Parameter.empty
+    else:
+        value = p.default if default is ... else default
+        kind = str if value is not None else str | None
+    return inspect.Parameter(
+        name, inspect.Parameter.KEYWORD_ONLY, default=value, annotation=Annotated[kind, opt]
+    )
+
+
+def table_options(
+    *order: str,
+    optional: tuple[str, ...] = (),
+    defaults: Mapping[str, str | None] | None = None,
+    overrides: Mapping[str, Mapping[str, Any]] | None = None,
+) -> Callable[[Callable[..., None]], Callable[..., None]]:
+    """Give a command the options of the table's parameters named in ``order``: the command's
+    parameter ``table`` (a :class:`TableValues`) is replaced, in its signature, by those options,
+    in that order; a name in ``order`` that is one of the command's own parameters places that
+    parameter there instead (``--help`` lists the options in this order). ``optional``: required
+    entries the command may go without (``validate --design``); ``defaults``: another default
+    than the table's (``design --machine``: None, the spec's); ``overrides``: keyword arguments
+    of :func:`option` for one entry (a command that takes some of its choices only)."""
+    chosen = defaults or {}
+    changed = overrides or {}
+
+    def decorate(command: Callable[..., None]) -> Callable[..., None]:
+        own = inspect.signature(command, eval_str=True).parameters
+        table_names = [n for n in order if n not in own]
+        unknown = [n for n in table_names if n not in PARAMETERS]
+        if unknown or TABLE not in own:
+            raise TypeError(f"{command.__name__}: no parameter {TABLE!r}, or unknown {unknown}")
+        made = {
+            n: _table_parameter(n, n in optional, chosen.get(n, ...), changed.get(n, {}))
+            for n in table_names
+        }
+        params: list[inspect.Parameter] = []
+        for name, param in own.items():
+            if name == TABLE:
+                params += [made[n] if n in made else own[n] for n in order]
+            elif name not in order:
+                params.append(param)
+        # typer reads keyword parameters in signature order: required ones may follow defaults
+        params = [q.replace(kind=inspect.Parameter.KEYWORD_ONLY) for q in params]
+
+        def run(**kwargs: Any) -> None:
+            table = TableValues({n: kwargs.pop(n) for n in table_names})
+            command(**kwargs, **{TABLE: table})
+
+        for attr in ("__module__", "__name__", "__qualname__", "__doc__"):
+            setattr(run, attr, getattr(command, attr))
+        # typer reads this signature (inspect.signature) and these annotations (get_type_hints)
+        run.__signature__ = inspect.Signature(params, return_annotation=None)  # type: ignore[attr-defined]
+        run.__annotations__ = {q.name: q.annotation for q in params}
+        return run
+
+    return decorate

@@ -10,54 +10,18 @@ import typer
 from corrugate.cli import options as o
 from corrugate.cli.console import make_console
 from corrugate.core.parameters import PARAMETERS
-from corrugate.names import (
-    DEFAULT_FOLD_STYLE,
-    DEFAULT_LAYOUT,
-    DEFAULT_MACHINE,
-    DEFAULT_MODEL,
-    DEFAULT_PAPER,
-    DEFAULT_SUPPORT,
-)
 
 __all__ = ["COMMANDS", "pattern_cmd"]
 
 Opt = typer.Option
 
 
+@o.table_options("W", "n", "alpha", "out", *o.DESIGN[3:], *o.OUTPUT)
 def pattern_cmd(
-    W: o.W,
-    n: o.N,
-    alpha: o.Alpha,
+    table: o.TableValues,
     out: Annotated[
         str, Opt("--out", metavar="DIR", help="Folder for the files (created if missing).")
     ],
-    material: o.Material = None,
-    thickness: o.Thickness = None,
-    E: o.YoungsModulus = None,
-    nu: o.Nu = None,
-    density: o.Density = None,
-    W2: o.W2 = None,
-    n2: o.N2 = None,
-    alpha2: o.Alpha2 = None,
-    material2: o.Material2 = None,
-    thickness2: o.Thickness2 = None,
-    layout: o.Layout = DEFAULT_LAYOUT,
-    vertices: o.Vertices = None,
-    holes: o.Holes = None,
-    model: o.Model = DEFAULT_MODEL,
-    support: o.SupportOpt = DEFAULT_SUPPORT,
-    cutter: o.Machine = DEFAULT_MACHINE,
-    labels: o.Labels = None,
-    fold_style: o.FoldStyle = DEFAULT_FOLD_STYLE,
-    mountain: o.Mountain = None,
-    valley: o.Valley = None,
-    marks: o.Marks = None,
-    cut: o.Cut = None,
-    gap: o.Gap = None,
-    spacing: o.Spacing = o.DEFAULT_SPACING,
-    margin: o.Margin = o.DEFAULT_MARGIN,
-    tab_depth: o.TabDepth = o.DEFAULT_TAB_DEPTH,
-    paper: o.Paper = DEFAULT_PAPER,
     as_json: Annotated[bool, Opt("--json", help="Print design.json's summary as JSON.")] = False,
     quiet: o.Quiet = False,
 ) -> None:
@@ -69,28 +33,16 @@ def pattern_cmd(
     from corrugate.spec.inputs import assembly_from_namespace
     from corrugate.workflow import output_options, write_design_files
 
-    assembly = assembly_from_namespace(locals())
+    assembly = assembly_from_namespace(table)
+    model = table["model"]
     get_model(model)
-    opts = output_options(
-        cutter,
-        fold_style,
-        cut,
-        gap,
-        spacing,
-        margin,
-        tab_depth,
-        labels,
-        paper,
-        mountain=mountain,
-        valley=valley,
-        marks=marks,
-    )
+    opts = output_options(**{k: table[k] for k in o.OUTPUT})  # the table's names are its keywords
     result = analyze(
         assembly,
         model,
         (0.0, 90.0),
         opts.fabrication,
-        check_support(support, PARAMETERS["support"].flag),
+        check_support(table["support"], PARAMETERS["support"].flag),
     )
     paths = write_design_files(result, out, opts)
     if as_json:

@@ -27,8 +27,8 @@ from corrugate.cli import options as o
 from corrugate.cli.console import make_console
 from corrugate.core.errors import InputError
 from corrugate.core.parameters import PARAMETERS, choices_metavar
-from corrugate.names import DEFAULT_LAYOUT, DEFAULT_SUPPORT, RECTANGULAR_LAYOUTS
 from corrugate.names import MODEL_NAMES as MODELS
+from corrugate.names import RECTANGULAR_LAYOUTS
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -156,29 +156,24 @@ def _model_cells(r: CaseResult, key: str) -> list[str]:
     return cells
 
 
+@o.table_options(
+    *o.DESIGN[:14],  # W ... thickness2, layout: no vertices, holes, model
+    "design",
+    "eta",
+    "fixture",
+    "series",
+    "support",
+    optional=("W", "n", "alpha"),  # validate takes the design from --design instead
+    overrides={
+        "layout": {
+            "metavar": choices_metavar(RECTANGULAR_LAYOUTS),
+            "help": " | ".join(RECTANGULAR_LAYOUTS) + " (the FE tests need straight loaded edges).",
+            "autocompletion": None,
+        }
+    },
+)
 def validate_cmd(
-    W: o.OptionalW = None,
-    n: o.OptionalN = None,
-    alpha: o.OptionalAlpha = None,
-    material: o.Material = None,
-    thickness: o.Thickness = None,
-    E: o.YoungsModulus = None,
-    nu: o.Nu = None,
-    density: o.Density = None,
-    W2: o.W2 = None,
-    n2: o.N2 = None,
-    alpha2: o.Alpha2 = None,
-    material2: o.Material2 = None,
-    thickness2: o.Thickness2 = None,
-    layout: Annotated[
-        str,
-        o.option(
-            "layout",
-            metavar=choices_metavar(RECTANGULAR_LAYOUTS),
-            help=" | ".join(RECTANGULAR_LAYOUTS) + " (the FE tests need straight loaded edges).",
-            autocompletion=None,
-        ),
-    ] = DEFAULT_LAYOUT,
+    table: o.TableValues,
     design: Annotated[
         Path | None,
         Opt(help="A design.json (or its folder) from `corrugate design/pattern --out`."),
@@ -214,7 +209,6 @@ def validate_cmd(
             "the one before) and extrapolate, e.g. 2,4,8 (default: --mesh alone).",
         ),
     ] = None,
-    support: o.SupportOpt = DEFAULT_SUPPORT,
     mesh: Annotated[int, Opt(help="Shell elements across each facet (even).")] = 4,
     cell_mesh: Annotated[
         str,
@@ -311,7 +305,7 @@ def validate_cmd(
                 reason="conflicts with --fixture",
             )
         _run_fixture(
-            fixture, series, mesh, design, locals(), eta, workdir, keep, timeout, quiet, as_json
+            fixture, series, mesh, design, table, eta, workdir, keep, timeout, quiet, as_json
         )
         return
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
@@ -332,7 +326,7 @@ def validate_cmd(
             quiet,
         )
         return
-    assembly = _assembly(design, locals())
+    assembly = _assembly(design, table)
     etas = _etas(assembly, eta, connectors)
     band = (" +connectors" + (" (flanges)" if bond == "flanges" else "")) if connectors else ""
     case = Case(
@@ -348,7 +342,7 @@ def validate_cmd(
         connectors=connectors,
         buckling=buckling,
         bond=bond_,
-        support=check_support(support, PARAMETERS["support"].flag),
+        support=check_support(table["support"], PARAMETERS["support"].flag),
     )
     result = run_case(case, progress_lines(quiet or (as_json and not sys.stderr.isatty())))
     if as_json:

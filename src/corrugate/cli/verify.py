@@ -34,17 +34,11 @@ if TYPE_CHECKING:
 
 __all__ = [
     "COMMANDS",
-    "VERIFY_KIND",
-    "VERIFY_NAME",
     "print_table",
     "verify_cmd",
 ]
 
 Opt = typer.Option
-
-#: The file verify writes into the design's folder, and its set kind in the folder's manifest.
-VERIFY_NAME = "verify.json"
-VERIFY_KIND = "verify"
 
 
 def _writable(folder: Path) -> bool:
@@ -153,7 +147,7 @@ def verify_cmd(
     Example: corrugate verify out/gripper --mesh 2,4,8
     """
     from corrugate.core.fileio import write_set
-    from corrugate.export.record import design_label, read_design
+    from corrugate.export.record import VERIFY_KIND, VERIFY_NAME, design_label, read_design
     from corrugate.fea.ccx import find_ccx
     from corrugate.fea.series import check_sweep_options
     from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts, verify_design

@@ -81,7 +81,7 @@ class CutPath:
     part: str
 
 
-def resolve_operations(sheet: Sheet, machine: str | Machine, ops: Operations) -> FoldOperations:
+def resolve_operations(sheet: Sheet, machine: Machine, ops: Operations) -> FoldOperations:
     """The fold operations of ``sheet``'s cut file: ``ops`` itself, the operations a line style
     stands for, or (None) the machine's default for the material of the sheet's first part."""
     if isinstance(ops, FoldOperations):
@@ -121,7 +121,7 @@ def cut_paths(
     operations: Operations = None,
     *,
     labels: bool = False,
-    machine: str | Machine | None = None,
+    machine: Machine | None = None,
     legend: bool = True,
     margin: float = DEFAULT_MARGIN_MM,
     spacing: float = DEFAULT_SPACING_MM,
@@ -133,7 +133,7 @@ def cut_paths(
     Raises :class:`~corrugate.fabrication.linestyle.PerforationError` if a perforation does not fit a
     crease.
     """
-    m = get_machine() if machine is None else get_machine(machine)
+    m = get_machine() if machine is None else machine
     ops = resolve_operations(sheet, m, operations)
     check_operations((p.part for p in sheet.placements), ops)
     paths: list[CutPath] = []
@@ -172,7 +172,7 @@ def cut_paths(
 
 def cut_svg_document(
     sheet: Sheet,
-    machine: str | Machine,
+    machine: Machine,
     operations: Operations = None,
     *,
     labels: bool = False,
@@ -180,7 +180,7 @@ def cut_svg_document(
     spacing: float = DEFAULT_SPACING_MM,
 ) -> str:
     """The SVG text of ``sheet``'s cut file for ``machine`` (see the module docstring)."""
-    m = get_machine(machine)
+    m = machine
     paths = cut_paths(sheet, operations, labels=labels, machine=m, margin=margin, spacing=spacing)
     W, H = sheet.width, sheet.height
     ET.register_namespace("inkscape", INKSCAPE_NS)
@@ -217,7 +217,7 @@ def cut_svg_document(
 
 def cut_dxf_document(
     sheet: Sheet,
-    machine: str | Machine,
+    machine: Machine,
     operations: Operations = None,
     *,
     labels: bool = False,
@@ -228,7 +228,7 @@ def cut_dxf_document(
     from ezdxf import units
     from ezdxf.filemanagement import new
 
-    m = get_machine(machine)
+    m = machine
     paths = cut_paths(sheet, operations, labels=labels, machine=m, margin=margin, spacing=spacing)
     doc = new("R2010", units=units.MM)
     doc.header["$MEASUREMENT"] = 1
@@ -260,14 +260,14 @@ def cut_dxf_document(
 def write_cut_files(
     sheet: Sheet,
     out_stem: str | os.PathLike[str],
-    machine: str | Machine,
+    machine: Machine,
     operations: Operations = None,
     *,
     labels: bool = False,
 ) -> list[Path]:
     """Write ``sheet``'s cut files for ``machine`` as ``out_stem`` + ``.svg`` / ``.dxf`` (the
     formats the machine reads), all or nothing; returns the paths written."""
-    m = get_machine(machine)
+    m = machine
     stem = Path(out_stem)
     svg = cut_svg_document(sheet, m, operations, labels=labels) if "svg" in m.formats else None
     dxf = cut_dxf_document(sheet, m, operations, labels=labels) if "dxf" in m.formats else None

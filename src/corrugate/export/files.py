@@ -85,7 +85,7 @@ def plan_job(
     out_dir: str | os.PathLike[str],
     style: LineStyle | None = None,
     *,
-    machine: str | Machine | None = None,
+    machine: Machine | None = None,
     operations: FoldOperations | None = None,
     labels: bool | None = None,
     marks: bool = True,
@@ -97,7 +97,7 @@ def plan_job(
     :func:`write_files`); raises :class:`~corrugate.core.errors.InputError` subclasses for a bad
     paper, machine, fold-line style or fold operation."""
     tiles = check_paper(paper)
-    m = get_machine(plan.cutter if machine is None else machine)
+    m = get_machine(plan.cutter) if machine is None else machine
     parts = [p.part for p in plan.placements]
     line = SOLID if style is None else style
     check_style(parts, line)
@@ -128,7 +128,7 @@ def write_files(
     out_dir: str | os.PathLike[str],
     style: LineStyle | None = None,
     *,
-    machine: str | Machine | None = None,
+    machine: Machine | None = None,
     operations: FoldOperations | None = None,
     formats: Iterable[str] = FORMATS,
     labels: bool | None = None,

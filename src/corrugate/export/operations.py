@@ -45,7 +45,7 @@ from enum import StrEnum
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.export.guidance import get_guidance
-from corrugate.export.machines import Family, Machine, get_machine
+from corrugate.export.machines import Family, Machine
 from corrugate.fabrication.linestyle import (
     LineStyle,
     PerforationError,
@@ -156,11 +156,11 @@ def _substitute(op: FoldOp, machine: Machine) -> FoldOp:
     return _SUBSTITUTE[machine.family].get(op, op)
 
 
-def default_operations(machine: str | Machine, material_id: str = "") -> FoldOperations:
+def default_operations(machine: Machine, material_id: str = "") -> FoldOperations:
     """The default of ``machine`` for a sheet of ``material_id``: mountains perforated with the
     material's cut and gap, valleys by the material's operation (or the machine's nearest), marks
     drawn with the pen (module docstring)."""
-    m = get_machine(machine)
+    m = machine
     g = get_guidance(material_id)
     cut, gap = g.perforation
     valley = _substitute(FoldOp(g.valley), m)
@@ -168,11 +168,11 @@ def default_operations(machine: str | Machine, material_id: str = "") -> FoldOpe
 
 
 def style_operations(
-    style: str | LineStyle, machine: str | Machine, material_id: str = ""
+    style: str | LineStyle, machine: Machine, material_id: str = ""
 ) -> FoldOperations:
     """The operations ``--fold-style`` stands for (``machine``, ``solid``, ``scored`` or
     ``perforated``; a :class:`LineStyle` keeps its cut and gap)."""
-    m = get_machine(machine)
+    m = machine
     base = default_operations(m, material_id)
     if isinstance(style, LineStyle):
         kind = style.kind
@@ -208,7 +208,7 @@ def _op(name: str, field: str, machine: Machine) -> FoldOp:
 
 
 def fold_operations(
-    machine: str | Machine,
+    machine: Machine,
     material_id: str = "",
     *,
     style: str | None = None,
@@ -227,7 +227,7 @@ def fold_operations(
     :class:`~corrugate.core.errors.InputError` naming the field (``mountain``, ``valley``,
     ``marks``, ``cut``, ``gap``) for an operation the machine cannot do or a bad perforation.
     """
-    m = get_machine(machine)
+    m = machine
     base = style_operations(style or "machine", m, material_id)
     ops = {
         "mountain": base.mountain if mountain is None else _op(mountain, "mountain", m),
@@ -260,7 +260,7 @@ class FoldChoice:
     cut: float | None = None
     gap: float | None = None
 
-    def resolve(self, machine: str | Machine, material_id: str = "") -> FoldOperations:
+    def resolve(self, machine: Machine, material_id: str = "") -> FoldOperations:
         """The operations for ``machine`` and a sheet of ``material_id``."""
         return fold_operations(
             machine,

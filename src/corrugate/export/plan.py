@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from corrugate.export.machines import Machine, get_machine
 from corrugate.export.operations import FoldChoice, FoldOperations, check_operations
 from corrugate.export.pdf import check_paper
 from corrugate.fabrication.build import build_pattern
@@ -16,16 +17,16 @@ from corrugate.fabrication.model import Pattern
 from corrugate.fabrication.sheets import SheetPlan, plan_sheets
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION, FabricationOptions
 from corrugate.geometry.layer import Assembly
-from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_PAPER, DEFAULT_SPACING_MM
+from corrugate.names import DEFAULT_MARGIN_MM, DEFAULT_PAPER, DEFAULT_SPACING_MM
 
 __all__ = ["CutPlan", "Drawings", "OutputOptions", "cut_plan"]
 
 
 @dataclass(frozen=True, slots=True)
 class OutputOptions:
-    """Where and how to cut: the machine (``cutter``: a name of
-    :data:`corrugate.fabrication.sheets.CUTTERS` or ``laser:WxH`` in mm; its profile is
-    :func:`corrugate.export.machines.get_machine`), fold-line ``style`` (the fold map and the
+    """Where and how to cut: the ``machine`` (its profile, :func:`corrugate.export.machines.get_machine`
+    of a name of :data:`corrugate.fabrication.sheets.CUTTERS` or ``laser:WxH`` in mm; default
+    :data:`~corrugate.names.DEFAULT_MACHINE`), fold-line ``style`` (the fold map and the
     PDF), the cut files' fold ``operations`` (None: the machine's default for the material,
     :func:`corrugate.export.operations.default_operations`), spacing and margin on the sheet
     (mm), connector sizes, and ``labels`` (``None``: on the fold map and the PDF, not in the cut
@@ -33,7 +34,7 @@ class OutputOptions:
     and ``paper``: ``mat`` (``pattern.pdf`` only) or ``a4`` / ``letter`` (also the 1:1 tiles,
     ``pattern-a4.pdf`` / ``pattern-letter.pdf``)."""
 
-    cutter: str = DEFAULT_MACHINE
+    machine: Machine = field(default_factory=get_machine)
     style: LineStyle = SOLID
     operations: FoldOperations | FoldChoice | None = None
     spacing: float = DEFAULT_SPACING_MM
@@ -41,6 +42,11 @@ class OutputOptions:
     fabrication: FabricationOptions = field(default_factory=lambda: DEFAULT_FABRICATION)
     labels: bool | None = None
     paper: str = DEFAULT_PAPER
+
+    @property
+    def cutter(self) -> str:
+        """The machine's name (``cameo4-12x12``, ``laser:600x400``, ...)."""
+        return self.machine.name
 
 
 @dataclass(slots=True)
@@ -73,10 +79,10 @@ def cut_plan(assembly: Assembly, options: OutputOptions | None = None) -> CutPla
     opts = options or OutputOptions()
     check_paper(opts.paper)
     pattern = build_pattern(assembly, opts.fabrication)
-    plan = plan_sheets(pattern, opts.cutter, spacing=opts.spacing, margin=opts.margin)
+    plan = plan_sheets(pattern, opts.machine.cutter, spacing=opts.spacing, margin=opts.margin)
     check_style(pattern.parts, opts.style)
     ops = opts.operations
     if not isinstance(ops, FoldOperations):
-        ops = (ops or FoldChoice()).resolve(opts.cutter, pattern.material_id)
+        ops = (ops or FoldChoice()).resolve(opts.machine, pattern.material_id)
     check_operations(pattern.parts, ops)
     return CutPlan(pattern, plan, opts.style, ops)

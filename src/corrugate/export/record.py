@@ -31,6 +31,8 @@ if TYPE_CHECKING:
 
 __all__ = [
     "RECORD_NAME",
+    "VERIFY_KIND",
+    "VERIFY_NAME",
     "DesignRecord",
     "LayerRecord",
     "design_label",
@@ -42,6 +44,10 @@ __all__ = [
 
 #: The record's file name in an output folder.
 RECORD_NAME = "design.json"
+#: The file ``corrugate verify`` and ``design --verify fe --out`` write into a design's folder,
+#: and its set kind in the folder's manifest (:mod:`corrugate.core.fileio`).
+VERIFY_NAME = "verify.json"
+VERIFY_KIND = "verify"
 
 _LAYER_FIELDS = ("W_mm", "n", "alpha_deg", "material", "t_mm")
 

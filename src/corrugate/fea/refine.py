@@ -28,7 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, Generic, Protocol, TypeVar
 
 from corrugate.fea.verify import Row, Verification
 from corrugate.solver.problem import Constraint, Problem
@@ -39,6 +39,7 @@ __all__ = [
     "MAX_RESOLVES",
     "Attempt",
     "Refined",
+    "Solved",
     "answer_payload",
     "corrected_bound",
     "next_bounds",
@@ -53,22 +54,43 @@ MAX_RESOLVES = 4
 #: With ``loosen``, a bound is loosened when its FE exceeds it by more than this factor.
 LOOSEN_ABOVE = 1.05
 
-#: Solves a problem: its solution and the JSON object ``design --json`` prints for it.
-SolveFn = Callable[[Problem], tuple[Solution, dict[str, Any]]]
-#: Verifies a solved design in FE (its solution and payload).
-VerifyFn = Callable[[Solution, dict[str, Any]], Verification]
+
+class Solved(Protocol):
+    """What a solve of the loop returns: its ``solution`` and the JSON object ``design --json``
+    prints for it (``payload``), e.g. :class:`corrugate.workflow.solve.DesignRun`."""
+
+    @property
+    def solution(self) -> Solution: ...
+
+    @property
+    def payload(self) -> dict[str, Any]: ...
+
+
+R = TypeVar("R", bound=Solved)
+
+#: Verifies a solved design in FE: its solution and its constraints' entries (the payload's
+#: ``constraints``, each with the spec's bound, :func:`spec_constraints`).
+VerifyFn = Callable[[Solution, list[dict[str, Any]]], Verification]
 
 
 @dataclass(frozen=True)
-class Attempt:
+class Attempt(Generic[R]):
     """One solve of the loop: the model ``bounds`` of the behavioural constraints it was solved
-    under (name -> bound, in the solver's units), its ``solution`` and ``payload``, and the FE
-    ``verification`` of its design (None without a certified design)."""
+    under (name -> bound, in the solver's units), what the solve returned (``run``: its
+    ``solution`` and ``payload``), and the FE ``verification`` of its design (None without a
+    certified design)."""
 
     bounds: dict[str, float]
-    solution: Solution
-    payload: dict[str, Any]
+    run: R
     verification: Verification | None
+
+    @property
+    def solution(self) -> Solution:
+        return self.run.solution
+
+    @property
+    def payload(self) -> dict[str, Any]:
+        return self.run.payload
 
     @property
     def verified(self) -> bool:
@@ -104,11 +126,11 @@ class Attempt:
 
 
 @dataclass(frozen=True)
-class Refined:
+class Refined(Generic[R]):
     """Every attempt of the loop, the index of the chosen one (the best verified; None when no
     attempt verifies) and why the loop ``stopped``."""
 
-    attempts: tuple[Attempt, ...]
+    attempts: tuple[Attempt[R], ...]
     chosen: int | None
     stopped: str
 
@@ -118,7 +140,7 @@ class Refined:
         return len(self.attempts) - 1
 
     @property
-    def answer(self) -> Attempt:
+    def answer(self) -> Attempt[R]:
         """The chosen attempt, or the first one when none verifies."""
         return self.attempts[0 if self.chosen is None else self.chosen]
 
@@ -184,42 +206,42 @@ def _better(a: Solution, b: Solution) -> bool:
 
 def refine(
     spec: Problem,
-    solve: SolveFn,
+    solve: Callable[[Problem], R],
     verify: VerifyFn,
     *,
     loosen: bool = True,
     cap: int = MAX_RESOLVES,
     progress: Callable[[str], None] = lambda line: None,
-    first: tuple[Solution, dict[str, Any]] | None = None,
-) -> Refined:
+    first: R | None = None,
+) -> Refined[R]:
     """The loop of the module docstring on the problem ``spec`` (its bounds are the spec's):
-    ``solve`` solves a problem, ``verify`` runs the FE twins of a solved design (given its
-    constraints with the spec's bounds, :func:`spec_constraints`); ``first``: the
-    spec's own solution and payload when already solved. At most ``cap`` re-solves."""
+    ``solve`` solves a problem (its solution and payload, :class:`Solved`), ``verify`` runs the
+    FE twins of a solved design (given its constraints with the spec's bounds,
+    :func:`spec_constraints`); ``first``: the spec's own solve when already solved. At most
+    ``cap`` re-solves."""
     bounds: dict[str, float] = {}
-    attempts: list[Attempt] = []
+    attempts: list[Attempt[R]] = []
     tried: list[dict[str, float]] = []
     problem = spec
     stopped = f"the cap of {cap} re-solves"
     cached: dict[tuple[Any, ...], Verification] = {}
     for k in range(cap + 1):
         if k == 0 and first is not None:
-            sol, payload = first
+            run = first
         else:
             progress(
                 f"refine: re-solve {k} of at most {cap} under the corrected bounds "
                 + ", ".join(f"{n} {b:.5g}" for n, b in bounds.items())
             )
-            sol, payload = solve(problem)
+            run = solve(problem)
+        sol, payload = run.solution, run.payload
         verification: Verification | None = None
         if sol.certified and sol.assembly is not None:
             key = _design_key(payload)
             if key not in cached:
                 progress(f"refine: FE verification of design {k + 1} ({_design_text(payload)})")
-                checked = {
-                    **payload,
-                    "constraints": spec_constraints(payload.get("constraints", []), spec, bounds),
-                }  # the FE is judged against the spec's bounds, never the corrected ones
+                # the FE is judged against the spec's bounds, never the corrected ones
+                checked = spec_constraints(payload.get("constraints", []), spec, bounds)
                 cached[key] = verify(sol, checked)
             verification = cached[key]
             progress(f"refine: design {k + 1}: {_verdict(verification)}")
@@ -231,7 +253,7 @@ def refine(
                 if c.name == r.name
             }
             bounds = dict(spec_bounds)
-        attempts.append(Attempt(dict(bounds), sol, payload, verification))
+        attempts.append(Attempt(dict(bounds), run, verification))
         tried.append(dict(bounds))
         if verification is None:
             stopped = (
@@ -334,7 +356,7 @@ def spec_constraints(
     return rows
 
 
-def answer_payload(refined: Refined, spec: Problem) -> dict[str, Any]:
+def answer_payload(refined: Refined[Any], spec: Problem) -> dict[str, Any]:
     """The JSON object of ``design --verify fe --refine``: the chosen attempt's payload (its
     ``certificate``: certified under the model, for the corrected bounds), with each corrected
     constraint's ``bound`` the spec's again and its ``model_bound`` the one solved under (margin

@@ -59,9 +59,9 @@ import logging
 import math
 import re
 import threading
-from collections.abc import AsyncIterator, Callable, Iterator
-from contextlib import asynccontextmanager, contextmanager
-from dataclasses import dataclass, replace
+from collections.abc import AsyncIterator, Callable
+from contextlib import asynccontextmanager
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -85,11 +85,11 @@ from corrugate.analysis.evaluate import Analysis
 from corrugate.core.errors import InputError
 from corrugate.core.limits import LIMITS
 from corrugate.core.units import ureg
-from corrugate.export.machines import get_machine
+from corrugate.export.machines import Machine
 from corrugate.export.plan import OutputOptions
 from corrugate.materials.library import library
 from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
-from corrugate.solver import Problem, Solution
+from corrugate.solver import Problem
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
 from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck
@@ -127,7 +127,19 @@ from corrugate.web.workers import (
     send_progress,
     wants_progress,
 )
-from corrugate.workflow import MadeFor, made_for, output_options, solve_spec, write_design
+from corrugate.workflow import (
+    DesignRequest,
+    Events,
+    MadeFor,
+    Names,
+    Output,
+    json_safe,
+    made_for,
+    output_errors,
+    output_options,
+    resolve_machine,
+    run,
+)
 
 __all__ = [
     "FE_MEMORY_BYTES",
@@ -141,7 +153,6 @@ __all__ = [
     "create_app",
     "design_answer",
     "design_job",
-    "design_payload",
     "fea_info",
     "mesh_job",
     "pattern_job",
@@ -357,7 +368,7 @@ def pattern_job(body: PatternBody, settings: WebSettings, folder: Path) -> list[
         options = _output_options(body)
     analysis = analyze(req.assembly, req.model, (0.0, 90.0), options.fabrication, req.support)
 
-    with _output_errors(body.cutter):
+    with output_errors(_NAMES, body.cutter):
         return list(write_design_files(analysis, folder, options))
 
 
@@ -375,30 +386,22 @@ async def files_answer(
         return store.publish(result_id, paths)
 
 
-@contextmanager
-def _output_errors(cutter: str) -> Iterator[None]:
-    """The writers' errors about the output options, renamed to the request's fields."""
-    from corrugate.fabrication.linestyle import PerforationError
-    from corrugate.fabrication.sheets import PartTooLargeError
-
-    try:
-        yield
-    except PartTooLargeError as exc:
-        raise exc.renamed(
-            "cutter", repr(cutter), f"is too small for {exc.field} ({exc.value})"
-        ) from None
-    except PerforationError as exc:
-        raise exc.renamed("cut" if exc.field.endswith("cut") else "gap") from None
+#: The request's fields the files step's errors name (a part too large for the machine, a
+#: perforation the fold lines cannot take): :func:`corrugate.workflow.steps.output_errors`.
+_NAMES = Names(machine="cutter", cut="cut", gap="gap")
 
 
-def _output_options(body: OutputBody, made: MadeFor | None = None) -> OutputOptions:
+def _output_options(
+    body: OutputBody, made: MadeFor | None = None, machine: Machine | None = None
+) -> OutputOptions:
     """The output options of a design or pattern request, as ``corrugate design --cutter ...
     --fold-style ... --cut ... --gap ... --paper ...`` reads them
     (:func:`corrugate.workflow.output_options`, default spacing, margin and tabs), for the
     machine and fold operations a design's spec is made for (:func:`corrugate.workflow.made_for`;
-    None: the request's cutter, the machine's operations); errors name the request's field."""
+    None: the request's cutter, the machine's operations; ``machine``: its profile, when resolved);
+    errors name the request's field."""
     return output_options(
-        body.cutter if made is None else made.cutter,
+        machine if machine is not None else body.cutter if made is None else made.cutter,
         body.fold_style,
         body.cut,
         body.gap,
@@ -433,27 +436,9 @@ def _check_design_size(analysis: Analysis, settings: WebSettings) -> None:
             )
 
 
-def _json_safe(obj: Any) -> Any:
-    """``obj`` with every non-finite float replaced by None (JSON has no NaN or infinity)."""
-    if isinstance(obj, float):
-        return obj if math.isfinite(obj) else None
-    if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [_json_safe(v) for v in obj]
-    return obj
-
-
 def _spec_data(body: DesignBody) -> dict[str, Any]:
     """The spec part of a design request: the keys the client sent, minus the output options."""
     return body.model_dump(exclude_unset=True, exclude=set(OUTPUT_OPTIONS))
-
-
-def design_payload(spec: Spec, problem: Problem) -> tuple[Solution, dict[str, Any]]:
-    """The solution of ``problem`` and the object ``corrugate design --json`` prints for it
-    (:func:`corrugate.workflow.solve_spec`, the CLI's own steps, robust specs included)."""
-    run = solve_spec(spec, problem)
-    return run.solution, run.payload
 
 
 def _result_body(files: list[StoredFile]) -> ResultBody:
@@ -466,20 +451,17 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
     )
 
 
-@dataclass(frozen=True, slots=True)
-class _Prepared:
-    """A design request read: its spec (made for the machine asked for), problem, output
-    options and cutter."""
-
-    spec: Spec
-    problem: Problem
-    options: OutputOptions
-    cutter: str
-
-
-def _prepare_design(body: DesignBody, settings: WebSettings) -> _Prepared:
-    """Read a design request as the CLI reads a spec and its options; errors name the request's
-    fields (the spec's by their TOML path)."""
+def _prepare_design(
+    body: DesignBody,
+    settings: WebSettings,
+    folder: Path | None = None,
+    budget_s: float | None = None,
+) -> DesignRequest:
+    """Read a design request as the CLI reads a spec and its options, into the one request of a
+    run (:class:`~corrugate.workflow.request.DesignRequest`: its files into ``folder``, an
+    infeasible spec leaving none; its solver within ``budget_s`` CPU seconds, None:
+    ``settings.design_budget_s``); errors name the request's fields (the spec's by their TOML
+    path)."""
     with _PARSE_LOCK:  # pint parses the spec's quantities, inline materials and the options
         try:
             spec = parse_spec(_spec_data(body))
@@ -491,14 +473,25 @@ def _prepare_design(body: DesignBody, settings: WebSettings) -> _Prepared:
         # the request's cutter, when given, is the spec's machine (as design --machine is);
         # else the files are for the spec's [fabrication] machine
         given = body.cutter if "cutter" in body.model_fields_set else None
-        if given is not None:
-            get_machine(given)  # an unknown machine names the request's cutter
+        # an unknown machine names the request's cutter; the machine is looked up once
+        machine = None if given is None else resolve_machine(given)
         made = made_for(spec, given)
-        spec, cutter = made.spec, made.cutter
+        spec = made.spec
         problem = Problem.from_spec(spec)
-        options = _output_options(body, made)
+        if machine is None:
+            machine = resolve_machine(made.cutter)  # the spec's (a checked name) or the default
+        options = _output_options(body, made, machine)
     _check_spec_size(spec, settings)
-    return _Prepared(spec, problem, options, cutter)
+    return DesignRequest(
+        spec,
+        json.dumps(_spec_data(body), indent=2),
+        problem,
+        machine,
+        settings.design_budget_s if budget_s is None else budget_s,
+        None if folder is None else Output(folder, options, record_infeasible=False),
+        strict_json=True,
+        names=_NAMES,
+    )
 
 
 def check_design_job(body: DesignBody, settings: WebSettings) -> None:
@@ -536,18 +529,18 @@ def _design(
     budget_s: float | None,
     solved: Callable[[], None] = _nothing,
 ) -> tuple[Any, list[Path]]:
-    p = _prepare_design(body, settings)
-    budget = settings.design_budget_s if budget_s is None else budget_s
-    run = solve_spec(p.spec, p.problem, budget=budget)
-    solved()  # the search's last progress event, before the files' stage
-    run = replace(run, payload=_json_safe(run.payload))
-    if run.solution.analysis is None:
-        return run.payload, []
-    _check_design_size(run.solution.analysis, settings)
-    send_progress({"stage": "writing files"})
-    spec_text = json.dumps(_spec_data(body), indent=2)
-    with _output_errors(p.cutter):
-        return run.payload, write_design(run, folder, p.options, spec_text)
+    """The run of a design request (:func:`corrugate.workflow.steps.run`, the steps of
+    ``corrugate design``): ``solved`` is called once the search is over (the search's last
+    progress event, before the files' stage)."""
+
+    def writing(analysis: Analysis) -> None:
+        _check_design_size(analysis, settings)
+        send_progress({"stage": "writing files"})
+
+    answer = run(
+        _prepare_design(body, settings, folder, budget_s), Events(solved=solved, writing=writing)
+    )
+    return answer.payload, list(answer.files)
 
 
 async def design_answer(
@@ -596,7 +589,7 @@ def verify_job(
             timeout=timeout_s,
             max_mesh=max(meshes),
         )
-    payload: dict[str, Any] = _json_safe(
+    payload: dict[str, Any] = json_safe(
         {"design": design_label(assembly), "runs": count, **result.as_json()}
     )
     return payload

@@ -1,8 +1,7 @@
-"""Spec -> answer -> files: the one chain behind ``corrugate design``, ``corrugate pattern``,
-``POST /api/design`` and the notebook's two calls.
+"""A design's files: the output options a user types (:func:`output_options`), the machine and
+fold operations a spec is made for (:func:`made_for`), and every file of an analysed design
+written all or nothing into one folder (:func:`write_design_files`, :func:`write_design`).
 
-* :func:`solve_spec`: the certified design of a spec (robust specs included) and the JSON object
-  ``corrugate design --json`` prints (:class:`DesignRun`);
 * :func:`output_options`: the output options (machine, fold-line style, spacing, paper, ...) from
   the strings a user types (plain numbers in mm), for the command line and the web app alike;
 * :func:`write_design_files`: every file a maker needs of an analysed design, written all or
@@ -18,21 +17,14 @@
   has settled its journal, the earlier set or the new one whole, never a mix. The parts and their sheet plan are made once
   (:func:`corrugate.export.plan.cut_plan`); the report gets that very plan, and its sheet figures
   are the fold maps ``sheet-N.svg`` written beside it;
-* :func:`write_design`: the files of a solved spec (``design.json`` only when it is infeasible);
-* :func:`design` and :func:`write_files`: the two calls of a notebook::
+* :func:`write_design`: the files of a solved spec (``design.json`` only when it is infeasible).
 
-    import corrugate
-    result = corrugate.design("examples/blimp_gripper.toml")   # a path, a dict or TOML text
-    result                                                      # five lines; HTML in Jupyter
-    corrugate.write_files(result, "out/gripper", cutter="maker-12x12")
-
-The heavy modules (the solver, the writers, the report) are imported when a function runs, so
-the command line starts without them.
+The writers and the report are imported when a function runs, so the command line starts
+without them.
 """
 
 from __future__ import annotations
 
-import json
 import threading
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -51,83 +43,22 @@ from corrugate.names import (
 
 if TYPE_CHECKING:
     from corrugate.analysis.evaluate import Analysis
+    from corrugate.export.machines import Machine
     from corrugate.export.plan import CutPlan, OutputOptions
-    from corrugate.solver.problem import Problem
-    from corrugate.solver.robust import RobustResult
-    from corrugate.solver.solve import Solution
     from corrugate.spec.schema import Spec
+    from corrugate.workflow.solve import DesignRun
 
 __all__ = [
-    "DesignResult",
-    "DesignRun",
     "MadeFor",
-    "design",
     "made_for",
     "output_options",
-    "solve_spec",
     "write_design",
     "write_design_files",
-    "write_files",
 ]
 
 #: matplotlib's pyplot (the assembly figure, the report's plots) keeps global state and is not
 #: thread-safe: one design's files are written at a time in one process.
 _FILES_LOCK = threading.Lock()
-
-
-_ROBUST_WARNING = {
-    "code": "robust-not-certified",
-    "message": (
-        "robust design: certified optimum of the spec with tightened bounds; its probability of "
-        "meeting the spec is a Monte Carlo estimate and its optimality is not proven"
-    ),
-}
-
-
-@dataclass(frozen=True)
-class DesignRun:
-    """The solution, the JSON object ``corrugate design --json`` prints, and the robust search
-    (None for a plain spec)."""
-
-    solution: Solution
-    payload: dict[str, Any]
-    robust: RobustResult | None
-
-
-def solve_spec(
-    spec: Spec, problem: Problem | None = None, *, budget: float | None = None
-) -> DesignRun:
-    """The solution of ``spec`` (its ``problem`` may be given when already built) and the JSON
-    object ``corrugate design --json`` prints for it. A plain spec is solved
-    (:func:`corrugate.solver.solve`); a spec with a ``[robust]`` table by
-    :func:`corrugate.solver.robust.robust_solve`, whose answer is labelled ``certified: false``
-    (its probability is a Monte Carlo estimate and its optimality is not proven).
-
-    ``budget``: CPU seconds for the whole solve, explanation included (checked against
-    ``LIMITS["budget"]``; None: the default 60 s, :mod:`corrugate.solver.budget`); when it runs
-    out the solution's status is ``not-certified`` (``corrugate design``: exit code 4)."""
-    from corrugate.solver.budget import Budget, budget_scope
-    from corrugate.solver.problem import Problem
-    from corrugate.solver.solve import solve
-
-    chosen = Budget() if budget is None else Budget(seconds=budget)
-    problem = problem if problem is not None else Problem.from_spec(spec)
-    if spec.robust is None:
-        sol = solve(problem, budget=chosen)
-        return DesignRun(sol, sol.to_dict(), None)
-    from corrugate.solver.robust import robust_solve  # a robust spec only: Monte Carlo's modules
-    from corrugate.solver.tolerance import Tolerances
-
-    r = spec.robust
-    tol = Tolerances(W=r.W, alpha=r.alpha, t_rel=r.t, E_rel=r.E)
-    with budget_scope(chosen):
-        robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
-    sol = robust.solution
-    payload = sol.to_dict()
-    payload["certified"] = False  # the robust optimum itself is not proven (see robust.py)
-    payload["robust"] = robust.as_dict(problem)
-    payload["warnings"] = [*sol.warnings, dict(_ROBUST_WARNING)]
-    return DesignRun(sol, payload, robust)
 
 
 @dataclass(frozen=True, slots=True)
@@ -172,7 +103,7 @@ def made_for(
 
 
 def output_options(
-    cutter: str = DEFAULT_MACHINE,
+    cutter: str | Machine = DEFAULT_MACHINE,
     fold_style: str = DEFAULT_FOLD_STYLE,
     cut: str | float | None = None,
     gap: str | float | None = None,
@@ -189,7 +120,8 @@ def output_options(
 ) -> OutputOptions:
     """Output options from user strings (plain numbers in mm, or with units: ``'0.04 in'``).
 
-    ``cutter`` is the machine (``cameo4-12x12``, ``maker-12x24``, ``laser:WxH``, ...), ``labels``
+    ``cutter`` is the machine (``cameo4-12x12``, ``maker-12x24``, ``laser:WxH``, ...; or its
+    profile, :class:`~corrugate.export.machines.Machine`, when already resolved), ``labels``
     the ``--labels/--no-labels`` flag (``None`` when not given), ``paper`` is ``mat``, ``a4`` or
     ``letter`` (see :class:`~corrugate.export.plan.OutputOptions`). ``fold_style`` (``machine``:
     the machine's default) and ``mountain``, ``valley``, ``marks`` (``cut-score``, ``perforate``,
@@ -216,7 +148,7 @@ def output_options(
         return None if value is None else parse_quantity(value, "mm", field)
 
     try:
-        get_machine(cutter)  # an unknown machine is an error before anything else
+        machine = get_machine(cutter)  # an unknown machine is an error before anything else
         cut_mm, gap_mm = length(cut, "cut"), length(gap, "gap")
         if fold_style.strip().lower() == StyleKind.PERFORATED:
             for field, value in (("cut", cut_mm), ("gap", gap_mm)):
@@ -240,9 +172,9 @@ def output_options(
             cut_mm,
             gap_mm,
         )
-        choice.resolve(cutter)  # an unknown or impossible operation: an error before solving
+        choice.resolve(machine)  # an unknown or impossible operation: an error before solving
         return OutputOptions(
-            cutter=cutter,
+            machine=machine,
             style=style,
             operations=None if choice == FoldChoice() else choice,
             spacing=spacing_mm,
@@ -275,7 +207,6 @@ def write_design_files(
 
     from corrugate.core.fileio import staged
     from corrugate.export.files import plan_job
-    from corrugate.export.machines import get_machine
     from corrugate.export.plan import OutputOptions, cut_plan
     from corrugate.export.writers import WRITERS, write_job
 
@@ -296,7 +227,7 @@ def write_design_files(
         }
         for p in pattern.parts
     ]
-    machine = get_machine(plan.cutter)
+    machine = opts.machine
     record["sheets"] = {
         "cutter": plan.cutter.name,
         "machine": machine.family.value,
@@ -378,89 +309,3 @@ def write_design(
 
     with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
         return write_design_files(analysis, out, options, extra=run.payload, report=report)
-
-
-@dataclass(frozen=True)
-class DesignResult:
-    """The answer to a spec: the certified ``solution`` (:class:`~corrugate.solver.Solution`), the
-    JSON object of ``corrugate design --json`` (``payload``), the ``spec`` and its ``text``."""
-
-    run: DesignRun
-    spec: Spec
-    text: str
-
-    @property
-    def solution(self) -> Solution:
-        return self.run.solution
-
-    @property
-    def payload(self) -> dict[str, Any]:
-        return self.run.payload
-
-    def __repr__(self) -> str:
-        """Five lines at most: the solution's (:func:`corrugate.solver.display.solution_repr`)."""
-        from corrugate.solver.display import solution_repr
-
-        return solution_repr(self.run.solution)
-
-    def _repr_html_(self) -> str:
-        from corrugate.solver.display import solution_html
-
-        return solution_html(self.run.solution)
-
-
-def _read(spec: str | Path | Mapping[str, Any]) -> tuple[Spec, str]:
-    from corrugate.spec.schema import load_spec_text, parse_spec, parse_spec_text
-
-    if isinstance(spec, Mapping):
-        return parse_spec(spec), json.dumps(spec, indent=2, default=str)
-    if isinstance(spec, Path) or ("\n" not in spec and spec.strip().endswith(".toml")):
-        return load_spec_text(spec)
-    return parse_spec_text(spec), spec
-
-
-def design(spec: str | Path | Mapping[str, Any], *, budget: float | None = None) -> DesignResult:
-    """The certified lightest design that meets ``spec``: a path to a TOML file, the TOML text
-    itself, or a dict with the keys of the file (docs/spec.md), within ``budget`` CPU seconds
-    (None: the default 60 s; see :func:`solve_spec`). Bad input raises a
-    :class:`~corrugate.core.errors.InputError` naming the key."""
-    if not isinstance(spec, str | Path | Mapping):
-        raise InputError("spec", type(spec).__name__, "a path, TOML text or a dict")
-    parsed, text = _read(spec)
-    return DesignResult(solve_spec(parsed, budget=budget), parsed, text)
-
-
-def write_files(
-    result: DesignResult,
-    out: str | Path,
-    *,
-    cutter: str | None = None,
-    fold_style: str = DEFAULT_FOLD_STYLE,
-    cut: str | float | None = None,
-    gap: str | float | None = None,
-    labels: bool | None = None,
-    paper: str = DEFAULT_PAPER,
-    mountain: str | None = None,
-    valley: str | None = None,
-    marks: str | None = None,
-) -> list[Path]:
-    """Every file of ``result`` into the folder ``out`` (as ``corrugate design --out``: cut files
-    for ``cutter``, fold map, FOLD, GLB/STL, assembly steps, report, ``design.json``), committed as
-    one set; returns the paths. ``cutter``, ``mountain``, ``valley`` and ``marks`` default to the
-    spec's ``[fabrication]`` (the machine the design was solved for, :func:`made_for`), as on the
-    command line; a ``cutter`` given here is checked but the design is not re-solved for it (its
-    parts may not fit: then an error naming the part). Other options as the command line's
-    (lengths in mm or with units)."""
-    made = made_for(result.spec, mountain=mountain, valley=valley, marks=marks)
-    options = output_options(
-        made.cutter if cutter is None else cutter,
-        fold_style,
-        cut,
-        gap,
-        labels=labels,
-        paper=paper,
-        mountain=made.mountain,
-        valley=made.valley,
-        marks=made.marks,
-    )
-    return write_design(result.run, out, options, result.text)
