@@ -104,7 +104,7 @@ def _entry(
 THREE_POINT = _entry(
     "three-point",
     TestForm("bending", 1.0 / 48.0, 0.25, LOCAL, 0.25),
-    "bending",
+    "three-point",
     " in three-point bending",
     "3pt",
     "simply supported over the span, the load at mid-span (the deflection under the load)",
@@ -112,7 +112,7 @@ THREE_POINT = _entry(
 FOUR_POINT = _entry(
     "four-point",
     TestForm("bending", 1.0 / 96.0, 0.125, LOCAL, 0.125),
-    "bending4",
+    "four-point",
     " in four-point bending",
     "4pt",
     "simply supported over the span, half the load at each quarter point (the deflection there)",
@@ -128,7 +128,7 @@ CANTILEVER = _entry(
 PLATENS = _entry(
     "platens",
     TestForm("inplane"),
-    "compression",
+    "platens",
     " between platens",
     "plat",
     "compressed between rigid platens along eta (the shortening)",
