@@ -10,7 +10,13 @@ import pytest
 from corrugate import Assembly, Layer, get_material
 from corrugate.core.errors import InputError
 from corrugate.fea.assembly import AssemblyMesh, assembly_deck
-from corrugate.fea.fixtures import fixture_names, fixtures, get_fixture, register_fixture
+from corrugate.fea.fixtures import (
+    fixture_names,
+    fixtures,
+    get_fixture,
+    register_fixture,
+    unregister_fixture,
+)
 from corrugate.fea.fixtures.three_point import THREE_POINT
 from corrugate.fea.steps import STATIC, LinearBuckling
 from corrugate.mechanics.behaviours import load_cases, supports
@@ -82,8 +88,6 @@ def test_a_fixture_registered_by_its_name_is_run_by_the_deck_writer() -> None:
     without any other change, and a taken name is refused."""
     from dataclasses import replace
 
-    import corrugate.fea.fixtures as registry
-
     toy = register_fixture(replace(THREE_POINT, name="toy-three-point"))
     try:
         deck, _ = assembly_deck(SMALL, "toy-three-point", AssemblyMesh(2))
@@ -93,7 +97,7 @@ def test_a_fixture_registered_by_its_name_is_run_by_the_deck_writer() -> None:
         with pytest.raises(InputError, match="taken"):
             register_fixture(toy)
     finally:
-        registry._REGISTRY.pop("toy-three-point")
+        unregister_fixture("toy-three-point")
 
 
 def test_outline_fixtures_are_not_coupon_fixtures() -> None:
@@ -102,3 +106,31 @@ def test_outline_fixtures_are_not_coupon_fixtures() -> None:
     assert fixture_names("outline") == ("wheel", "corners", "clamped-corners")
     with pytest.raises(InputError, match="platens"):
         assembly_deck(SMALL, "wheel", AssemblyMesh(2))
+
+
+def test_a_new_load_case_reaches_verify_and_strength_through_the_registries() -> None:
+    """The seam of a new load case on the FE side: a load case registered in the behaviours
+    (role ``test``, naming its fixture) and its fixture registered in the FE registry are what
+    ``verify`` twins (its fixture, with the test's own Euler coefficient) and what strength's
+    bench moment reads (its form's ``moment``), with no table to extend. The toy is the
+    three-point test under another name, so its moment and coefficient must be three-point's
+    (statics: P Ls / 4; EI = P Ls^3 / (48 delta))."""
+    from dataclasses import replace
+
+    from corrugate.fea.verify import Twin, twin_of
+    from corrugate.mechanics.behaviours import register, unregister
+    from corrugate.mechanics.load_cases import THREE_POINT as THREE_POINT_CASE
+    from corrugate.mechanics.strength import bending_moment
+    from corrugate.solver.quantity import Quantity
+
+    register(replace(THREE_POINT_CASE, name="toy-bend", fixture="toy-bend", suffix="toy"))
+    register_fixture(replace(THREE_POINT, name="toy-bend"))
+    try:
+        t = twin_of(Quantity("EI", 0.0, None, "toy-bend"), SMALL)
+        assert isinstance(t, Twin) and t.test == "toy-bend" and t.read == "EI"
+        assert t.a == pytest.approx(1 / 48)
+        assert t.label == "3-point bending" and t.step is STATIC
+        assert bending_moment("toy-bend", 2.0, 100.0) == pytest.approx(2.0 * 100.0 / 4)
+    finally:
+        unregister("toy-bend", "test")
+        unregister_fixture("toy-bend")

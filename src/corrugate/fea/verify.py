@@ -326,9 +326,10 @@ def twin_of(
         # pure bending: the gauge between the load lines of the four-point fixture
         pure = get_load_case("four-point").fixture
         return Twin(pure, eta, "pure-" + q.kind, note=note)
-    case = get_load_case(test)
-    if test == "platens":
-        return Twin(case.fixture, eta, "K" if q.kind == "K" else "k", load=load, note=note)
+    case = get_load_case(test)  # its own fixture, when it is a coupon's (module docstring)
+    fx = get_fixture(case.fixture) if case.fixture in fixture_names("coupon") else None
+    if fx is not None and fx.measures == "K":  # an in-plane test: K, or P / delta
+        return Twin(fx.name, eta, "K" if q.kind == "K" else "k", load=load, note=note)
     if not principal and q.kind != "D":
         return (
             f"no FE twin yet ({q.kind} of a bending test off the crease directions: "
@@ -336,9 +337,9 @@ def twin_of(
         )
     form = case.form
     assert form is not None
-    if case.fixture not in fixture_names("coupon") or get_fixture(case.fixture).measures != "D":
+    if fx is None or fx.measures != "D":
         return f"no FE twin yet (test {test})"
-    return Twin(case.fixture, eta, q.kind, a=form.a, load=load, note=note, span=span)
+    return Twin(fx.name, eta, q.kind, a=form.a, load=load, note=note, span=span)
 
 
 #: What a polygon's FE twin is (docs/fea.md 2.8), added to its rows.
