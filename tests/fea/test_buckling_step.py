@@ -64,8 +64,9 @@ def test_three_point_buckling_is_the_displacement_driven_eigenproblem(
     three-point deck with its ``*STATIC`` card replaced by ``*BUCKLE`` (the mid-span line driven
     by its prescribed displacement delta): its first factor times the static run's force at
     delta is the buckling load. LinearBuckling ties the mid-span nodes to a reference node loaded
-    by 1 N instead; both describe a rigid line load on a linear structure, so they agree to the
-    eigensolver's accuracy (1e-6 asked). The design is the shipped chassis example's
+    by 1 N instead: a dead load, free to move in the mode, which can only lower the first
+    buckling load (next test); where the first mode leaves the load line still, as here, the two
+    agree to the eigensolver's accuracy (1e-6 asked). The design is the shipped chassis example's
     (polypropylene 0.25 mm, W 16 n 6 alpha 90 / W 5 n 27 alpha 120, three-point over 120 mm
     along eta = 0), whose 2-per-facet value the review measured: 1.581 N."""
     pp = get_material("polypropylene")
@@ -78,3 +79,37 @@ def test_three_point_buckling_is_the_displacement_driven_eigenproblem(
     factor = run_ccx(driven, tmp_path, job="driven").buckling_factors[0]
     assert tied.value() == pytest.approx(factor * static.force, rel=1e-5)
     assert tied.value() == pytest.approx(1.581, abs=5e-4)
+
+
+@pytest.mark.fea
+def test_wheel_under_a_dead_load_buckles_no_later_than_under_a_held_patch(
+    ccx: str, tmp_path: Path
+) -> None:
+    """LinearBuckling loads the fixture by a force (the patch tied to a reference node loaded
+    by 1 N: a dead load, the patch free to move in the mode); the displacement-driven
+    ``*BUCKLE`` deck holds the patch in the mode (a testing machine's head). The prestress of
+    the two is the same up to its scale (the static run's), and the dead-load problem has every
+    mode of the held one and more (the patch's own motion), so its first buckling load is at or
+    below the held one's (Rayleigh quotient over a larger space). Here the drive acts in the
+    patch's own axes (a ``*TRANSFORM``), at eta = 0 and 30 deg: tied equations read in global
+    axes would make the reference node's load 1 / sin 30 = 2 times the radial force at 30 deg
+    and break the upper bound (the lower one, half the held load, only guards the scale). A Dura-Lar disc, W 8,
+    n 12, alpha 90, with a 6 mm axle hole (tests/geometry/test_holes.py), 2 per facet: 11.97
+    against 14.87 N at 0 deg, 5.088 against 5.108 N at 30 deg."""
+    from corrugate.fea.outline import outline_deck, outline_shells, solve_outline
+    from corrugate.geometry.holes import Hole, hole_rings
+    from corrugate.geometry.layouts import make_layout
+
+    axle = (Hole("circle", (0.0, 0.0), diameter=6.0),)
+    layer = Layer(8.0, 12, 90.0, get_material("dura-lar"))
+    a = Assembly.identical(layer, make_layout("circle", holes=axle))
+    mesh = AssemblyMesh(2)
+    ring, holes = a.layout.plan_outline(a.Lx, a.Ly), hole_rings(a.layout.holes, a.Lx, a.Ly)
+    for eta in (0.0, 30.0):
+        dead = solve_outline(a, "wheel", mesh, eta, step=LinearBuckling())
+        static = solve_outline(a, "wheel", mesh, eta)
+        deck = outline_deck(outline_shells(a, mesh), "wheel", ring, holes, eta)[0]
+        driven = deck.replace("*STATIC", "*BUCKLE\n3,1.e-6")
+        held = run_ccx(driven, tmp_path, job=f"held{eta:g}").buckling_factors[0] * static.force
+        assert dead.step == "buckle" and dead.value == dead.buckling_factors[0]
+        assert 0.5 * held < dead.value <= held * (1 + 1e-5), eta

@@ -104,7 +104,9 @@ class OutlineFixture:
 class OutlineResult:
     """One run of an outline fixture: ``value`` is K (N/mm) of the wheel or P / delta (N/mm) of
     the corner-supported plate; ``force`` (N) at ``displacement`` (mm), each layer's force,
-    the mesh's size."""
+    the mesh's size. A buckling step (``step`` ``buckle``) gives the fixture's load (N) at each
+    buckling mode in ``buckling_factors``, lowest first, and ``value`` the first (force,
+    displacement and the layers' forces are then NaN)."""
 
     test: OutlineTest
     eta_deg: float
@@ -115,6 +117,8 @@ class OutlineResult:
     layer_forces: tuple[float, ...]
     nodes: int
     elements: int
+    step: str = "static"
+    buckling_factors: tuple[float, ...] = ()
 
 
 def plate_shell(
@@ -217,16 +221,27 @@ def solve_shells(
     eta_deg: float = 0.0,
     fixture: OutlineFixture | None = None,
     *,
+    step: Step = STATIC,
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
 ) -> tuple[float, float, float, tuple[float, ...]]:
     """Run ``test`` on ``shells`` in CalculiX: (force / delta (N/mm), force (N), delta (mm),
-    each shell's force); the force is the reactions' resultant along the load."""
+    each shell's force); the force is the reactions' resultant along the load. As a
+    :class:`~corrugate.fea.steps.LinearBuckling` step: (the first buckling load (N), NaN, NaN,
+    every buckling load (N), lowest first)."""
     fx_test = get_fixture(test, ("outline",), "test")
-    deck, sets, (ex, ey), delta = outline_deck(shells, fx_test, outline, holes, eta_deg, fixture)
+    deck, sets, (ex, ey), delta = outline_deck(
+        shells, fx_test, outline, holes, eta_deg, fixture, step=step
+    )
+    buckling = isinstance(step, LinearBuckling)
+    job = fx_test.name if not buckling else f"{fx_test.name}-{step.name}"
     with work_dir(folder, keep) as wd:
-        run = run_ccx(deck, wd, job=fx_test.name, timeout=timeout)
+        run = run_ccx(deck, wd, job=job, timeout=timeout)
+    if buckling:
+        if not run.buckling_factors:
+            raise SolverError("ccx printed no buckling factor")
+        return run.buckling_factors[0], math.nan, math.nan, run.buckling_factors
     forces: list[float] = []
     for name in sets:
         blocks = run.find("forces", name)
@@ -245,11 +260,13 @@ def solve_outline(
     eta_deg: float = 0.0,
     fixture: OutlineFixture | None = None,
     *,
+    step: Step = STATIC,
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
 ) -> OutlineResult:
-    """Run the outline fixture ``test`` on both layers of ``assembly`` (module docstring)."""
+    """Run the outline fixture ``test`` on both layers of ``assembly`` (module docstring) as
+    ``step`` (static, or linear buckling: :class:`OutlineResult`)."""
     from corrugate.geometry.holes import hole_rings
 
     mesh = mesh or AssemblyMesh()
@@ -268,10 +285,12 @@ def solve_outline(
         hole_rings(a.layout.holes, a.Lx, a.Ly),
         eta_deg,
         fixture,
+        step=step,
         folder=folder,
         keep=keep,
         timeout=timeout,
     )
+    buckling = isinstance(step, LinearBuckling)
     return OutlineResult(
         test,
         eta_deg,
@@ -279,7 +298,9 @@ def solve_outline(
         k,
         P,
         delta,
-        forces,
+        (math.nan, math.nan) if buckling else forces,
         sum(len(sh.ids) for sh in shells),
         sum(len(sh.elements) + len(sh.triangles) for sh in shells),
+        step.name,
+        forces if buckling else (),
     )

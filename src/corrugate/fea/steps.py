@@ -13,7 +13,11 @@ the step decides how they are driven:
   is loaded by 1 N in the drive's direction: ccx's buckling factors (the ``.dat`` file's
   ``BUCKLING FACTOR`` table, :func:`corrugate.fea.ccx.parse_buckling`) are then the loads (N)
   at which the fixture's load buckles the part, lowest first. ``modes`` factors are asked for at
-  a relative ``accuracy`` (ccx's default is 1e-2).
+  a relative ``accuracy`` (ccx's default is 1e-2). The load is a dead load: the drives are free
+  to move in a mode (a weight on the part), so the first load is at or below that of a
+  ``*BUCKLE`` step whose drives stay prescribed (a testing machine's head held in the mode);
+  the two agree where the first mode leaves the drives still (tests/fea/test_buckling_step.py:
+  the chassis example in three-point, 1.581 N both ways; a wheel's patch, 11.97 against 14.87 N).
 
 Any fixture can be run with either step: a deck is mesh + fixture + step.
 """
