@@ -80,9 +80,9 @@ def assembly() -> None:
     print("|---" * 12 + "|")
     for along in (2, 4, 8, 16):
         t0 = time.perf_counter()
-        c = solve_assembly(a, "compression", AssemblyMesh(along), 0.0)
-        b = solve_assembly(a, "bending", AssemblyMesh(along), 0.0)
-        p = solve_assembly(a, "bending4", AssemblyMesh(along), 0.0)
+        c = solve_assembly(a, "platens", AssemblyMesh(along), 0.0)
+        b = solve_assembly(a, "three-point", AssemblyMesh(along), 0.0)
+        p = solve_assembly(a, "four-point", AssemblyMesh(along), 0.0)
         dt = time.perf_counter() - t0
         kl, dl, pl = c.layer_values, b.layer_values, p.layer_values
         print(
@@ -130,7 +130,7 @@ def pure(alongs: list[int]) -> None:
     values: list[float] = []
     for along in alongs:
         t0 = time.perf_counter()
-        r = solve_assembly(a, "bending4", AssemblyMesh(along), 0.0, timeout=3600.0)
+        r = solve_assembly(a, "four-point", AssemblyMesh(along), 0.0, timeout=3600.0)
         dt = time.perf_counter() - t0
         v = r.value()
         ext = ""

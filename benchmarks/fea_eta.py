@@ -20,7 +20,7 @@ DESIGNS = {
     ),
     "W 10, n 7, alpha 90": Layer(W=10.0, n=7, alpha_deg=90.0, material=get_material("dura-lar")),
 }
-TESTS = ("compression", "bending", "bending4")
+TESTS = ("platens", "three-point", "four-point")
 
 
 def table(along: int = 4) -> None:

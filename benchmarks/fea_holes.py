@@ -17,7 +17,8 @@ import time
 import numpy as np
 
 from corrugate.analysis.evaluate import analyze
-from corrugate.fea.assembly import AssemblyMesh, _cut_holes, solve_assembly
+from corrugate.fea.assembly import AssemblyMesh, solve_assembly
+from corrugate.fea.cuts import cut_holes
 from corrugate.fea.shells import Shell, layer_shell
 from corrugate.geometry.holes import Hole
 from corrugate.geometry.layer import Assembly, Layer
@@ -44,7 +45,7 @@ def main(along: int, diameters: list[float]) -> None:
         a = Assembly.identical(layer, make_layout("square", holes=holes))
         model = analyze(a, "refined", (0.0,)).to_dict()["stiffness"][0]["K_N_per_mm"]
         t0 = time.time()
-        r = solve_assembly(a, "compression", AssemblyMesh(along), 0.0)
+        r = solve_assembly(a, "platens", AssemblyMesh(along), 0.0)
         line = (
             f"d={d:g} mm along={along}: model K={model:.2f} N/mm  FE K={r.K:.2f} N/mm "
             f"(layers {r.layer_values[0]:.2f} + {r.layer_values[1]:.2f}), nodes {r.nodes}, "
@@ -52,7 +53,7 @@ def main(along: int, diameters: list[float]) -> None:
         )
         if d:
             sh = layer_shell(a.layer1, a.Ly, along, 1, 0, 0.0, 2, None)
-            removed = plan_area(sh) - plan_area(_cut_holes(sh, a))
+            removed = plan_area(sh) - plan_area(cut_holes(sh, a))
             line += f"; hole area {removed:.2f} mm^2 (pi r^2 {math.pi * d * d / 4:.2f})"
         print(line, flush=True)
 

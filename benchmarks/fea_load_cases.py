@@ -80,6 +80,7 @@ from fea_offaxis import CSV as OFFAXIS_CSV  # type: ignore[import-not-found]
 from fea_offaxis import ETAS
 from fea_offaxis import designs as offaxis_designs
 from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
+from stored_names import FIXTURE_OF  # type: ignore[import-not-found]
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
 CSV = OUT / "load_cases_fe.csv"
@@ -215,13 +216,12 @@ def run(phases: tuple[str, ...] = PHASES, minutes: float = float("inf")) -> None
             mesh = AssemblyMesh(along)
             try:
                 if along == 16:
-                    nodes = assembly_deck(a, test, mesh, eta)[1].nodes  # type: ignore[arg-type]
+                    nodes = assembly_deck(a, FIXTURE_OF[test], mesh, eta)[1].nodes
                     if nodes > MAX_NODES_16:
                         print("skip", *key, f"{nodes} nodes > {MAX_NODES_16}", flush=True)
                         continue
                 t0 = time.perf_counter()
-                fe_test = "bending4" if test == LOAD_POINTS else test
-                r = solve_assembly(a, fe_test, mesh, eta, shift=shift)  # type: ignore[arg-type]
+                r = solve_assembly(a, FIXTURE_OF[test], mesh, eta, shift=shift)
             except InputError as exc:
                 print("skip", *key, exc, flush=True)
                 continue

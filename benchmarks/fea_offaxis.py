@@ -18,6 +18,7 @@ from pathlib import Path
 
 from corrugate import Assembly, Layer, get_material, make_layout
 from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
+from stored_names import FIXTURE_OF  # type: ignore[import-not-found]
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
 CSV = OUT / "off_axis_fe.csv"
@@ -73,7 +74,7 @@ def run(
                         if key in done:
                             continue
                         t0 = time.perf_counter()
-                        r = solve_assembly(a, test, AssemblyMesh(along), eta)  # type: ignore[arg-type]
+                        r = solve_assembly(a, FIXTURE_OF[test], AssemblyMesh(along), eta)
                         s = time.perf_counter() - t0
                         write((*key[:3], along, r.nodes, f"{r.value():.8g}", f"{s:.1f}"))
                         print(*key, f"{r.value():.5g}", f"{s:.0f} s", flush=True)

@@ -1,7 +1,7 @@
 """Peak facet stress in 3-point bending at eta = 0: shell FE against corrugate.mechanics.strength
 (docs/theory.md 9, docs/validation/strength.md).
 
-    python benchmarks/fea_stress.py [--meshes 2 4 8] [--test compression]
+    python benchmarks/fea_stress.py [--meshes 2 4 8] [--test platens]
 
 For each design (Dura-Lar 0.125 mm, square, identical layers) and mesh (elements per facet) it
 runs the 3-point fixture of corrugate.fea.assembly with ccx writing nodal stresses, and reports:
@@ -15,7 +15,7 @@ runs the 3-point fixture of corrugate.fea.assembly with ccx writing nodal stress
 * the absolute FE peak (anywhere, the load line included) against the model at M = P L / 4;
 * the von Mises peak in the window, and where the window peak sits (y / L, height z / t_layer).
 
-``--test compression``: the platen fixture instead (eta = 0), the FE peaks in the middle half of
+``--test platens``: the platen fixture instead (eta = 0), the FE peaks in the middle half of
 the span against the membrane stress of layer 1 and the crease bending of layer 2.
 
 Prints Markdown tables. Needs ccx; runs one ccx job at a time. About 2 minutes per design at
@@ -52,7 +52,7 @@ def run(name: str, W: float, n: int, alpha: float, along: int) -> dict[str, floa
     layer = Layer(W=W, n=n, alpha_deg=alpha, material=get_material("dura-lar"))
     a = Assembly.identical(layer)
     t0 = time.perf_counter()
-    r = solve_assembly(a, "bending", AssemblyMesh(along), 0.0, stresses=True)
+    r = solve_assembly(a, "three-point", AssemblyMesh(along), 0.0, stresses=True)
     seconds = time.perf_counter() - t0
     f = r.stresses
     assert f is not None
@@ -115,7 +115,7 @@ def run_compression(name: str, W: float, n: int, alpha: float, along: int) -> di
     layer = Layer(W=W, n=n, alpha_deg=alpha, material=get_material("dura-lar"))
     a = Assembly.identical(layer)
     t0 = time.perf_counter()
-    r = solve_assembly(a, "compression", AssemblyMesh(along), 0.0, stresses=True)
+    r = solve_assembly(a, "platens", AssemblyMesh(along), 0.0, stresses=True)
     seconds = time.perf_counter() - t0
     f = r.stresses
     assert f is not None
@@ -183,9 +183,9 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--meshes", type=int, nargs="+", default=[2, 4, 8])
     ap.add_argument("--designs", type=int, nargs="+", default=list(range(len(DESIGNS))))
-    ap.add_argument("--test", choices=("bending", "compression"), default="bending")
+    ap.add_argument("--test", choices=("three-point", "platens"), default="three-point")
     args = ap.parse_args()
-    if args.test == "compression":
+    if args.test == "platens":
         main_compression(args)
         return
     rows: list[tuple[str, dict[str, float]]] = []

@@ -26,6 +26,7 @@ from corrugate.core.errors import InputError
 from corrugate.fea.assembly import AssemblyMesh, assembly_deck, solve_assembly, specimen
 from corrugate.fea.ccx import CCX_ENV, SolverNotFoundError, find_ccx, parse_dat
 from corrugate.fea.series import dask_executor, run_sweep, write_table
+from corrugate.fea.steps import LinearBuckling
 from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
 from corrugate.fea.validation import Case, Refinement, run_case
 from corrugate.geometry.layouts import Circle, Rectangle
@@ -33,6 +34,7 @@ from corrugate.geometry.layouts import Circle, Rectangle
 if TYPE_CHECKING:
     from conftest import CliRun
 
+BUCKLE = LinearBuckling()
 REFERENCE = Path(__file__).resolve().parents[2] / "docs" / "data" / "unitcell_fe.csv"
 
 
@@ -139,7 +141,7 @@ def test_assembly_compression_matches_closed_forms(ccx: str, small_assembly: Ass
     """K(0) = K_S1 + K_C2. K_S1 (facets stretched along their creases, free to contract) is exact
     membrane theory, and K_C2 is below 0.5 % of the total, so even a 30 % error of the coarse
     shell model on the chordwise layer moves K by < 0.2 %: bound 1 %."""
-    fe = solve_assembly(small_assembly, "compression", AssemblyMesh(2), eta_deg=0.0)
+    fe = solve_assembly(small_assembly, "platens", AssemblyMesh(2), eta_deg=0.0)
     cf = analyze(small_assembly, "refined", [0.0]).stiffness[0]
     assert pytest.approx(cf.K, rel=0.01) == fe.K
     springs = analyze(small_assembly, "refined", [0.0]).springs
@@ -155,7 +157,7 @@ def test_assembly_bending_matches_closed_forms(ccx: str, small_assembly: Assembl
     deep zig-zag) and 1 + 1 % (coarse-mesh stiffening). The paper's and Xia's spanwise bending
     (1 / (1 - nu^2) larger) must be further from the FE than the refined one."""
     a = small_assembly
-    fe = solve_assembly(a, "bending", AssemblyMesh(2), eta_deg=0.0)
+    fe = solve_assembly(a, "three-point", AssemblyMesh(2), eta_deg=0.0)
     assert fe.D is not None
     assert pytest.approx(fe.D * a.Ly) == fe.EI
     cf = {m: analyze(a, m, [0.0]).stiffness[0] for m in ("paper", "xia", "refined")}
@@ -178,7 +180,7 @@ def test_assembly_pure_bending_matches_refined(ccx: str, small_assembly: Assembl
     one facet width of a span several W long), plus a coarse mesh: bound 3 %, which Xia's and the
     paper's forms miss by far."""
     a = small_assembly
-    fe = solve_assembly(a, "bending4", AssemblyMesh(2), eta_deg=0.0)
+    fe = solve_assembly(a, "four-point", AssemblyMesh(2), eta_deg=0.0)
     cf = {m: analyze(a, m, [0.0]).stiffness[0].D for m in ("paper", "xia", "refined")}
     assert fe.value() == pytest.approx(cf["refined"], rel=0.03)
     assert abs(fe.value() / cf["xia"] - 1) > 0.1
@@ -331,7 +333,7 @@ def test_assembly_eta_90_mirrors_eta_0_for_identical_layers(
 ) -> None:
     """Identical layers on a square: loading along x is the mirror image of loading along y, so
     the two directions (different node sets, boundary conditions on the other axis) must agree."""
-    for test in ("compression", "bending"):
+    for test in ("platens", "three-point"):
         r0 = solve_assembly(small_assembly, test, AssemblyMesh(2), eta_deg=0.0)
         r90 = solve_assembly(small_assembly, test, AssemblyMesh(2), eta_deg=90.0)
         assert r90.value() == pytest.approx(r0.value(), rel=1e-6)
@@ -344,9 +346,9 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
     with pytest.raises(InputError, match="integer >= 1"):
         UnitCellMesh(0, 2)
     with pytest.raises(InputError, match="0 or 90 deg for the structured mesh"):
-        assembly_deck(small_assembly, "compression", AssemblyMesh(2), 45.0, mesher="structured")
+        assembly_deck(small_assembly, "platens", AssemblyMesh(2), 45.0, mesher="structured")
     with pytest.raises(InputError, match="0 or 90 deg with connectors"):
-        assembly_deck(small_assembly, "compression", AssemblyMesh(2), 45.0, connectors=True)
+        assembly_deck(small_assembly, "platens", AssemblyMesh(2), 45.0, connectors=True)
     # a rectangle off-axis is the coupon of its proportions, turned to the nearer crease direction
     rect = Assembly(small_assembly.layer1, replace(small_assembly.layer2, n=5), Rectangle())
     assert specimen(rect, 30.0) == (rect.Lx, rect.Ly)
@@ -354,10 +356,10 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
     assert specimen(rect, 0.0) == (rect.Lx, rect.Ly) and specimen(rect, 90.0) == (rect.Ly, rect.Lx)
     circle = replace(small_assembly, layout=Circle())
     with pytest.raises(InputError, match="no straight loaded edges"):
-        assembly_deck(circle, "compression", AssemblyMesh(2))
+        assembly_deck(circle, "platens", AssemblyMesh(2))
     odd = Assembly.identical(Layer(W=5.0, n=4, alpha_deg=120.0, material=get_material("dura-lar")))
     with pytest.raises(InputError, match="divisible by 4"):
-        assembly_deck(odd, "bending4", AssemblyMesh(2))
+        assembly_deck(odd, "four-point", AssemblyMesh(2))
 
 
 @pytest.mark.fea
@@ -440,13 +442,13 @@ def test_connector_band_stiffens_as_its_walls_predict(ccx: str) -> None:
     mesh = AssemblyMesh(2)
     E, nu = layer.material.E, layer.material.nu
     hand = 2 * E * layer.t * a.thickness / a.Ly
-    for test, eta in (("compression", 0.0), ("compression", 90.0), ("bending", 0.0)):
+    for test, eta in (("platens", 0.0), ("platens", 90.0), ("three-point", 0.0)):
         bare = solve_assembly(a, test, mesh, eta, match_layers=True)
         band = solve_assembly(a, test, mesh, eta, connectors=True)
         assert band.nodes > bare.nodes
         assert band.value() >= bare.value()
         assert band.band_value is not None and band.band_value > 0
-        if test == "compression":
+        if test == "platens":
             gain = band.value() - bare.value()
             assert 0.99 * hand <= gain <= hand / (1 - nu**2)
 
@@ -455,7 +457,7 @@ def test_connector_band_shares_every_layer_edge_node(small_assembly: Assembly) -
     """Read back the deck: every layer node on the outline is a node of a band element (the tie),
     every band node lies on the outline between z = 0 and t_d, and no band element is degenerate
     (each S8R's corner quadrilateral has a positive area)."""
-    deck, info = assembly_deck(small_assembly, "compression", AssemblyMesh(2), connectors=True)
+    deck, info = assembly_deck(small_assembly, "platens", AssemblyMesh(2), connectors=True)
     assert len(info.sets) == 3
     xyz: dict[int, tuple[float, ...]] = {}
     sets: dict[str, list[list[int]]] = {}
@@ -500,7 +502,7 @@ def test_gmsh_mesher_matches_the_structured_mesh_at_eta_0(
     creases, exact on both (1e-4); the 3-point and 4-point D converge to the same value, and at 2
     elements per facet the two meshes differ by a fraction of their own discretisation error
     (about 1 % here, test_assembly_bending_matches_closed_forms): bound 2 %."""
-    for test, rel in (("compression", 1e-4), ("bending", 0.02), ("bending4", 0.02)):
+    for test, rel in (("platens", 1e-4), ("three-point", 0.02), ("four-point", 0.02)):
         s = solve_assembly(small_assembly, test, AssemblyMesh(2), 0.0, mesher="structured")
         g = solve_assembly(small_assembly, test, AssemblyMesh(2), 0.0, mesher="gmsh")
         assert g.value() == pytest.approx(s.value(), rel=rel), test
@@ -560,8 +562,8 @@ def test_oblique_coupon_lies_between_plate_bounds_and_below_the_cos2_rule(
     b = _plate_bounds(small_assembly, 45.0)
     cf = analyze(small_assembly, "refined", [45.0], support="frame").stiffness[0]
     free = analyze(small_assembly, "refined", [45.0]).stiffness[0]  # support "free"
-    K = solve_assembly(small_assembly, "compression", AssemblyMesh(2), 45.0).value()
-    D = solve_assembly(small_assembly, "bending", AssemblyMesh(2), 45.0).value()
+    K = solve_assembly(small_assembly, "platens", AssemblyMesh(2), 45.0).value()
+    D = solve_assembly(small_assembly, "three-point", AssemblyMesh(2), 45.0).value()
     assert b["K_reuss"] < K < b["K_voigt"]
     assert K < cf.K / 10
     assert D < b["D_voigt"] < cf.D
@@ -588,7 +590,7 @@ def test_oblique_coupons_at_eta_and_90_minus_eta_agree_for_identical_layers(
     the layers' roles swapped (layer heights aside, which do not matter for unconnected layers),
     meshed differently by gmsh: the values agree to the discretisation error (bound 3 %), and
     each layer's share swaps."""
-    for test in ("compression", "bending"):
+    for test in ("platens", "three-point"):
         a = solve_assembly(small_assembly, test, AssemblyMesh(2), 30.0)
         b = solve_assembly(small_assembly, test, AssemblyMesh(2), 60.0)
         assert a.value() == pytest.approx(b.value(), rel=0.03), test
@@ -624,7 +626,7 @@ def test_frame_is_what_the_cos2_rule_describes(ccx: str, small_assembly: Assembl
 
     f = solve_frame(small_assembly, AssemblyMesh(2))
     assert f.Kxy == pytest.approx(f.Kyx, rel=1e-5)
-    free = solve_assembly(small_assembly, "compression", AssemblyMesh(2), 0.0).value()
+    free = solve_assembly(small_assembly, "platens", AssemblyMesh(2), 0.0).value()
     assert f.Kyy >= free * (1 - 1e-9)
     etas = [0.0, 20.0, 45.0, 70.0, 90.0]
     rule = analyze(small_assembly, "refined", etas, support="frame").stiffness
@@ -665,9 +667,9 @@ def test_first_buckling_load_lies_between_the_plate_bounds(
     from corrugate.analysis.evaluate import facet_buckling_load
 
     b = facet_buckling_load(small_assembly, 0.0)
-    P0 = solve_assembly(small_assembly, "buckling", AssemblyMesh(2), 0.0).value()
+    P0 = solve_assembly(small_assembly, "platens", AssemblyMesh(2), 0.0, step=BUCKLE).value()
     assert b.low < P0 < b.high
-    P90 = solve_assembly(small_assembly, "buckling", AssemblyMesh(2), 90.0).value()
+    P90 = solve_assembly(small_assembly, "platens", AssemblyMesh(2), 90.0, step=BUCKLE).value()
     assert pytest.approx(P0, rel=1e-6) == P90
 
 
@@ -703,7 +705,7 @@ def test_first_buckling_mode_is_the_end_facets(
     from corrugate.fea.ccx import run_ccx
 
     a = small_assembly
-    deck, _ = assembly_deck(a, "buckling", AssemblyMesh(2), 0.0)
+    deck, _ = assembly_deck(a, "platens", AssemblyMesh(2), 0.0, step=BUCKLE)
     run = run_ccx(deck.replace("*END STEP", "*NODE FILE\nU\n*END STEP"), tmp_path, job="b")
     xyz, blocks = _frd_modes(tmp_path / "b.frd")
     assert len(blocks) == 1 + len(run.buckling_factors)  # the prestress state, then the modes
@@ -740,7 +742,7 @@ def test_flange_band_is_glued_only_on_its_flanges(ccx: str) -> None:
     layer = Layer(W=5.0, n=3, alpha_deg=120.0, material=get_material("dura-lar"), t=0.1)
     a = Assembly.identical(layer)
     mesh = AssemblyMesh(2)
-    deck, _ = assembly_deck(a, "compression", mesh, connectors=True, bond="flanges")
+    deck, _ = assembly_deck(a, "platens", mesh, connectors=True, bond="flanges")
     nodes: dict[int, tuple[float, ...]] = {}
     sets: dict[str, list[list[int]]] = {}
     block = None
@@ -769,8 +771,8 @@ def test_flange_band_is_glued_only_on_its_flanges(ccx: str) -> None:
 
     E, nu, t = layer.material.E, layer.material.nu, layer.t
     g = DEFAULT_FABRICATION.tab_depth
-    bare = solve_assembly(a, "compression", mesh, 0.0, match_layers=True).value()
-    band = solve_assembly(a, "compression", mesh, 0.0, connectors=True, bond="flanges").value()
+    bare = solve_assembly(a, "platens", mesh, 0.0, match_layers=True).value()
+    band = solve_assembly(a, "platens", mesh, 0.0, connectors=True, bond="flanges").value()
     low = 2 * E * t * a.thickness / a.Ly
     high = 2 * E * t * (a.thickness + 2 * 1.5 * g) / (a.Ly * (1 - nu**2))
     assert bare <= band and 0.99 * low <= band - bare <= high
@@ -814,8 +816,7 @@ def test_a_rectangle_coupon_scales_with_its_proportions_as_the_model_does(
     rect = Assembly(small_assembly.layer1, replace(small_assembly.layer2, n=15), Rectangle())
     assert rect.Ly == pytest.approx(2 * rect.Lx)
     fe = [
-        solve_assembly(a, "compression", AssemblyMesh(2), 15.0).value()
-        for a in (small_assembly, rect)
+        solve_assembly(a, "platens", AssemblyMesh(2), 15.0).value() for a in (small_assembly, rect)
     ]
     model = [analyze(a, "refined", [15.0]).stiffness[0].K for a in (small_assembly, rect)]
     assert model[1] / model[0] == pytest.approx(fe[1] / fe[0], rel=0.15)

@@ -65,7 +65,7 @@ def test_cantilever_is_stiffer_than_3_point_and_agrees_across_meshers_and_mirror
     a = Assembly.identical(_layer(120.0))
     mesh = AssemblyMesh(2)
     cant = solve_assembly(a, "cantilever", mesh, 0.0)
-    three = solve_assembly(a, "bending", mesh, 0.0)
+    three = solve_assembly(a, "three-point", mesh, 0.0)
     assert cant.EI is not None and three.EI is not None
     assert cant.EI > three.EI
     # the same force per deflection on the same span: delta ratio = (k_3pt / k_cant)
@@ -85,12 +85,12 @@ def test_coupon_shift_moves_the_creases_and_bad_shifts_are_refused() -> None:
     pytest.importorskip("gmsh")
     a = Assembly.identical(_layer(120.0))
     mesh = AssemblyMesh(2)
-    assert assembly_deck(a, "bending", mesh, 30.0, shift=0.0) == assembly_deck(
-        a, "bending", mesh, 30.0
+    assert assembly_deck(a, "three-point", mesh, 30.0, shift=0.0) == assembly_deck(
+        a, "three-point", mesh, 30.0
     )
     assert (
-        assembly_deck(a, "bending", mesh, 30.0, shift=0.5)[0]
-        != assembly_deck(a, "bending", mesh, 30.0)[0]
+        assembly_deck(a, "three-point", mesh, 30.0, shift=0.5)[0]
+        != assembly_deck(a, "three-point", mesh, 30.0)[0]
     )
     eta = 30.0
     e = math.radians(eta)
@@ -111,8 +111,8 @@ def test_coupon_shift_moves_the_creases_and_bad_shifts_are_refused() -> None:
     assert moved == pytest.approx(0.5 * p, abs=1e-6)
     for bad in (1.0, -0.1, math.nan, math.inf, True, "0.5"):
         with pytest.raises(InputError, match="shift"):
-            assembly_deck(a, "bending", mesh, 30.0, shift=bad)  # type: ignore[arg-type]
+            assembly_deck(a, "three-point", mesh, 30.0, shift=bad)  # type: ignore[arg-type]
         with pytest.raises(InputError, match="shift"):
             oblique_shells(a, 30.0, 2, (), shift=bad)  # type: ignore[arg-type]
     with pytest.raises(InputError, match="structured mesh"):
-        assembly_deck(a, "bending", mesh, 0.0, shift=0.25)
+        assembly_deck(a, "three-point", mesh, 0.0, shift=0.25)

@@ -105,7 +105,7 @@ def test_a_square_polygon_writes_the_square_deck() -> None:
     """A polygon of 4 vertices on its box is the square: the same decks, line for line."""
     sq = Assembly.identical(_layer(), Square())
     poly = Assembly.identical(_layer(), Polygon(((0, 0), (2, 0), (2, 2), (0, 2))))
-    for test in ("compression", "bending", "bending4", "cantilever"):
+    for test in ("platens", "three-point", "four-point", "cantilever"):
         for eta in (0.0, 90.0):
             d_sq = assembly_deck(sq, test, AssemblyMesh(4), eta)[0]  # type: ignore[arg-type]
             d_po = assembly_deck(poly, test, AssemblyMesh(4), eta)[0]  # type: ignore[arg-type]
@@ -119,13 +119,13 @@ def test_a_square_polygon_reproduces_the_square_and_a_hexagon_is_cut(ccx: str) -
     on its flat edges less than the box's K (the strips outside the edges carry nothing)."""
     sq = Assembly.identical(_layer(), Square())
     poly = Assembly.identical(_layer(), Polygon(((0, 0), (1, 0), (1, 1), (0, 1))))
-    for test in ("compression", "bending"):
+    for test in ("platens", "three-point"):
         a = solve_assembly(sq, test, AssemblyMesh(2))  # type: ignore[arg-type]
         b = solve_assembly(poly, test, AssemblyMesh(2))  # type: ignore[arg-type]
         assert b.value() == pytest.approx(a.value(), rel=1e-6)
     hexagon = Polygon(((0.25, 0), (0.75, 0), (1, 0.5), (0.75, 1), (0.25, 1), (0, 0.5)))
-    h = solve_assembly(Assembly.identical(_layer(), hexagon), "compression", AssemblyMesh(2))
-    box = solve_assembly(sq, "compression", AssemblyMesh(2))
+    h = solve_assembly(Assembly.identical(_layer(), hexagon), "platens", AssemblyMesh(2))
+    box = solve_assembly(sq, "platens", AssemblyMesh(2))
     assert h.elements < box.elements
     assert 0 < h.value() < box.value()
 
@@ -257,7 +257,7 @@ def test_verify_on_a_polygon_runs_the_cut_fixture(ccx: str, cli: CliRun, tmp_pat
     assert code == 1, err  # K30 has no twin
     rows = {r["name"]: r for r in json.loads(out)["constraints"]}
     a = Assembly.identical(_layer(), Polygon(tuple((x, y) for x, y in hexagon)))
-    direct = solve_assembly(a, "compression", AssemblyMesh(2)).value()
+    direct = solve_assembly(a, "platens", AssemblyMesh(2)).value()
     assert rows["K0"]["fe_series"]["2"] == pytest.approx(direct, rel=1e-12)
     assert "polygon cut from its box" in rows["K0"]["note"]
     assert rows["K30"]["fe"] is None and "off the crease directions" in rows["K30"]["note"]

@@ -244,7 +244,7 @@ def test_refine_on_the_paper_model_against_separate_fe_runs(
     plain = json.loads(out)
     m0 = next(c["value"] for c in plain["constraints"] if c["name"] == NAME)
     a0 = read_record(tmp_path / "plain").assembly()
-    fe0 = solve_assembly(a0, "bending4", AssemblyMesh(4), 0.0).EI  # the finest of 2 / 4
+    fe0 = solve_assembly(a0, "four-point", AssemblyMesh(4), 0.0).EI  # the finest of 2 / 4
     assert fe0 is not None and fe0 < B  # the paper model's design misses the bound in FE
 
     folder = tmp_path / "refined"
@@ -274,7 +274,7 @@ def test_refine_on_the_paper_model_against_separate_fe_runs(
     assert row["bound"] == pytest.approx(B) and row["fe"] >= B
     # the returned design, rebuilt from its design.json and run again on its own
     a = read_record(folder).assembly()
-    fe = solve_assembly(a, "bending4", AssemblyMesh(4), 0.0).EI
+    fe = solve_assembly(a, "four-point", AssemblyMesh(4), 0.0).EI
     assert fe is not None and fe >= B and fe == pytest.approx(row["fe"], rel=1e-9)
     assert result["mass_g"] >= plain["mass_g"]
     [c] = [c for c in result["constraints"] if c["name"] == NAME]

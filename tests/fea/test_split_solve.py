@@ -13,6 +13,7 @@ from corrugate import Assembly, Layer, get_material
 from corrugate.core.errors import InputError
 from corrugate.fea.assembly import AssemblyMesh, _decks, solve_assembly
 from corrugate.fea.shells import oblique_shells
+from corrugate.fea.steps import LinearBuckling
 
 
 @pytest.fixture(scope="module")
@@ -36,7 +37,7 @@ def test_split_decks_hold_one_layer_each_with_its_own_fixtures(small: Assembly) 
     """Read back: the split decks' nodes add up to the one deck's, and each names the sets,
     elements and material of its own layer only (no node or set shared: the system is
     block-diagonal, so the split is the same solve)."""
-    for test, eta in (("bending", 0.0), ("compression", 30.0)):
+    for test, eta in (("three-point", 0.0), ("platens", 30.0)):
         ((whole, info),) = _decks(small, test, AssemblyMesh(2), eta)
         parts = _decks(small, test, AssemblyMesh(2), eta, split=True)
         assert len(parts) == 2
@@ -61,12 +62,12 @@ def test_split_solve_equals_the_one_run_direct_solve(ccx: str, small: Assembly) 
     for the structured mesh (3-point, 4-point, cantilever, frame) and a gmsh coupon (compression
     and 3-point at 30 deg)."""
     cases = [
-        ("bending", 0.0, AssemblyMesh(2)),
-        ("bending4", 0.0, AssemblyMesh(4)),
+        ("three-point", 0.0, AssemblyMesh(2)),
+        ("four-point", 0.0, AssemblyMesh(4)),
         ("cantilever", 0.0, AssemblyMesh(2)),
         ("frame", 0.0, AssemblyMesh(2)),
-        ("compression", 30.0, AssemblyMesh(2)),
-        ("bending", 30.0, AssemblyMesh(2)),
+        ("platens", 30.0, AssemblyMesh(2)),
+        ("three-point", 30.0, AssemblyMesh(2)),
     ]
     for test, eta, mesh in cases:
         one = solve_assembly(small, test, mesh, eta, split=False)  # type: ignore[arg-type]
@@ -82,11 +83,11 @@ def test_split_solve_equals_the_one_run_direct_solve(ccx: str, small: Assembly) 
 def test_split_is_refused_where_the_parts_are_coupled(small: Assembly) -> None:
     """The band joins the layers and the buckling platen ties them: no split there (one line)."""
     with pytest.raises(InputError, match="split"):
-        solve_assembly(small, "compression", AssemblyMesh(2), connectors=True, split=True)
+        solve_assembly(small, "platens", AssemblyMesh(2), connectors=True, split=True)
     with pytest.raises(InputError, match="split"):
-        solve_assembly(small, "buckling", AssemblyMesh(2), split=True)
+        solve_assembly(small, "platens", AssemblyMesh(2), split=True, step=LinearBuckling())
     with pytest.raises(InputError, match="split"):
-        solve_assembly(small, "bending", AssemblyMesh(2), stresses=True, split=True)
+        solve_assembly(small, "three-point", AssemblyMesh(2), stresses=True, split=True)
 
 
 @pytest.mark.parametrize("bad", [0.5, 9.0, math.nan, True])
@@ -129,7 +130,7 @@ def test_aspect_keeps_the_membrane_stiffness_along_the_creases(ccx: str, small: 
     """K(0) is membrane stretching of layer 1 along its creases, a field that S8R elements of any
     aspect represent exactly (K_S = E t (n + 1) W L_y / L, plus K_C2 below 0.5 %): elements 4 times
     longer along the creases give K within 0.1 % of square elements, on a quarter of the nodes."""
-    square = solve_assembly(small, "compression", AssemblyMesh(2), 0.0)
-    long = solve_assembly(small, "compression", AssemblyMesh(2, 4.0), 0.0)
+    square = solve_assembly(small, "platens", AssemblyMesh(2), 0.0)
+    long = solve_assembly(small, "platens", AssemblyMesh(2, 4.0), 0.0)
     assert long.value() == pytest.approx(square.value(), rel=1e-3)
     assert long.nodes < 0.4 * square.nodes

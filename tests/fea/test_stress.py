@@ -54,8 +54,8 @@ def test_parse_frd_without_stresses_is_an_error() -> None:
 
 def test_stress_output_only_adds_lines_to_the_deck() -> None:
     a = Assembly.identical(Layer(W=8.0, n=8, alpha_deg=84.0, material=get_material("dura-lar")))
-    plain, _ = assembly_deck(a, "bending", AssemblyMesh(2))
-    with_s, _ = assembly_deck(a, "bending", AssemblyMesh(2), stresses=True)
+    plain, _ = assembly_deck(a, "three-point", AssemblyMesh(2))
+    with_s, _ = assembly_deck(a, "three-point", AssemblyMesh(2), stresses=True)
     assert with_s.replace("*EL FILE\nS\n", "") == plain
 
 
@@ -67,8 +67,8 @@ def test_three_point_window_stress_matches_the_beam_model(ccx: str) -> None:
     at 2-8 elements per facet)."""
     layer = Layer(W=8.0, n=8, alpha_deg=84.0, material=get_material("dura-lar"))
     a = Assembly.identical(layer)
-    r0 = solve_assembly(a, "bending", AssemblyMesh(2))
-    r = solve_assembly(a, "bending", AssemblyMesh(2), stresses=True)
+    r0 = solve_assembly(a, "three-point", AssemblyMesh(2))
+    r = solve_assembly(a, "three-point", AssemblyMesh(2), stresses=True)
     assert r.force == pytest.approx(r0.force, rel=1e-9) and r0.stresses is None
     f = r.stresses
     assert f is not None

@@ -18,17 +18,17 @@ A = Assembly.identical(
 @pytest.mark.parametrize(
     ("key", "test", "read", "a"),
     [
-        ("K@0", "compression", "K", 0.0),
-        ("Kplat@90", "compression", "K", 0.0),
+        ("K@0", "platens", "K", 0.0),
+        ("Kplat@90", "platens", "K", 0.0),
         ("Kframe@45", "frame", "K", 0.0),
-        ("EI@0", "bending4", "pure-EI", 0.0),
-        ("D@90", "bending4", "pure-D", 0.0),
-        ("D@30", "bending4", "pure-D", 0.0),
-        ("EI3pt@0", "bending", "EI", THREE_POINT.form.a),  # type: ignore[union-attr]
-        ("k4pt@0", "bending4", "k", FOUR_POINT.form.a),  # type: ignore[union-attr]
+        ("EI@0", "four-point", "pure-EI", 0.0),
+        ("D@90", "four-point", "pure-D", 0.0),
+        ("D@30", "four-point", "pure-D", 0.0),
+        ("EI3pt@0", "three-point", "EI", THREE_POINT.form.a),  # type: ignore[union-attr]
+        ("k4pt@0", "four-point", "k", FOUR_POINT.form.a),  # type: ignore[union-attr]
         ("Dcant@90", "cantilever", "D", CANTILEVER.form.a),  # type: ignore[union-attr]
-        ("D3pt@30", "bending", "D", THREE_POINT.form.a),  # type: ignore[union-attr]
-        ("Pb@0", "buckling", "Pb", 0.0),
+        ("D3pt@30", "three-point", "D", THREE_POINT.form.a),  # type: ignore[union-attr]
+        ("Pb@0", "platens", "Pb", 0.0),
     ],
 )
 def test_each_constraint_has_the_fixture_of_its_test(
@@ -37,6 +37,8 @@ def test_each_constraint_has_the_fixture_of_its_test(
     t = twin_of(Quantity.parse(key), A)
     assert isinstance(t, Twin), t
     assert (t.test, t.read, t.a) == (test, read, a)
+    # the buckling load is the platens run as a linear buckling step, every other a static one
+    assert t.step.name == ("buckle" if key.startswith("Pb") else "static")
     assert t.eta == Quantity.parse(key).eta
     coupon = t.test != "frame" and t.eta not in (0.0, 90.0)  # the frame: the whole panel
     assert t.shifted == coupon  # a coupon off the creases runs at several positions
@@ -72,7 +74,7 @@ def test_a_span_equal_to_the_panel_length_has_its_twin_and_the_band_joint_only_o
 
 def test_a_three_point_span_shorter_than_the_panel_is_its_twin_span() -> None:
     t = twin_of(Quantity.parse("k3pt@0/L=15"), A, load=1.0)
-    assert isinstance(t, Twin) and t.test == "bending" and t.span == 15.0
+    assert isinstance(t, Twin) and t.test == "three-point" and t.span == 15.0
     assert not t.shifted
 
 
@@ -86,7 +88,7 @@ def test_the_three_point_deck_supports_a_shorter_span_inside_the_panel() -> None
     from corrugate.fea.assembly import AssemblyMesh, assembly_deck
 
     L, s = A.Ly, 15.0
-    deck, info = assembly_deck(A, "bending", AssemblyMesh(2), 0.0, span=s)
+    deck, info = assembly_deck(A, "three-point", AssemblyMesh(2), 0.0, span=s)
     assert info.span == s
     lines = deck.splitlines()
     nodes: dict[int, tuple[float, ...]] = {}
@@ -110,7 +112,7 @@ def test_the_three_point_deck_supports_a_shorter_span_inside_the_panel() -> None
         assert near.max() < 1e-7 and ys.min() < L / 2 < ys.max()  # both lines, nothing else
         mid = np.array([nodes[n][info.axis] for n in members(f"MID{k}")])
         assert np.allclose(mid, L / 2, atol=1e-7)
-    for test, span in (("bending", L + 1.0), ("bending", 0.0), ("compression", 10.0)):
+    for test, span in (("three-point", L + 1.0), ("three-point", 0.0), ("platens", 10.0)):
         with pytest.raises(InputError, match="span"):
             assembly_deck(A, test, AssemblyMesh(2), 0.0, span=span)  # type: ignore[arg-type]
 

@@ -557,14 +557,14 @@ def test_assembly_fe_with_a_central_hole_lies_between_the_model_and_no_hole(ccx:
     layer = Layer(8.0, 8, 84.0, DURALAR)
     plain = Assembly.identical(layer, make_layout("square"))
     holed = Assembly.identical(layer, make_layout("square", holes=(AXLE,)))
-    _, info0 = assembly_deck(plain, "compression", AssemblyMesh(4))
-    _, info1 = assembly_deck(holed, "compression", AssemblyMesh(4))
+    _, info0 = assembly_deck(plain, "platens", AssemblyMesh(4))
+    _, info1 = assembly_deck(holed, "platens", AssemblyMesh(4))
     assert info1.elements < info0.elements and info1.nodes < info0.nodes
     model = [
         analyze(x, "refined", (0.0,)).to_dict()["stiffness"][0]["K_N_per_mm"]
         for x in (plain, holed)
     ]
-    fe = [solve_assembly(x, "compression", AssemblyMesh(4)).K for x in (plain, holed)]
+    fe = [solve_assembly(x, "platens", AssemblyMesh(4)).K for x in (plain, holed)]
     assert fe[0] == pytest.approx(model[0], rel=0.01)
     assert model[1] < fe[1] < fe[0]  # type: ignore[operator]
 

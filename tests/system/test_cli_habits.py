@@ -248,10 +248,11 @@ def test_validate_prints_a_line_per_calculix_run_on_stderr(ccx: str, cli: CliRun
     code, out, err = cli(FE_SMALL)
     assert code == 0
     runs = [line for line in err.splitlines() if line.startswith("CalculiX run ")]
-    # compression, 3-point and 4-point bending of the assembly, then the unit cell
+    # the platens, 3-point and 4-point bending of the assembly (each fixture's own label, as
+    # verify prints it), then the unit cell
     assert len(runs) == 4, err
-    assert "in-plane compression" in runs[0] and "3-point bending" in runs[1]
-    assert "4-point (pure) bending" in runs[2] and "unit cell of layer 1" in runs[3]
+    assert "compression between platens" in runs[0] and "3-point bending" in runs[1]
+    assert "4-point bending" in runs[2] and "unit cell of layer 1" in runs[3]
     assert "D4(0) N mm" in out and "D4: the bending stiffness from a 4-point" in out
     code, quiet_out, quiet_err = cli([*FE_SMALL, "--quiet"])
     assert (code, quiet_out, quiet_err) == (0, "", "")

@@ -2,10 +2,13 @@
 
 * :mod:`~corrugate.fea.ccx`: find and run ccx, parse its output;
 * :mod:`~corrugate.fea.unitcell`: periodic solid unit cell giving the four equivalent moduli;
-* :mod:`~corrugate.fea.assembly`: the whole two-layer assembly as shells: compression, 3-point
-  bending, the 4-point (pure bending) diagnostic, linear buckling and the frame test, meshed by
+* :mod:`~corrugate.fea.assembly`: the whole two-layer assembly as shells, meshed by
   :mod:`~corrugate.fea.shells` (layers; coupons along any eta through
-  :mod:`~corrugate.fea.planmesh`, gmsh) and :mod:`~corrugate.fea.connector_band` (the connector band);
+  :mod:`~corrugate.fea.planmesh`, gmsh) and :mod:`~corrugate.fea.connector_band` (the connector
+  band), cut by :mod:`~corrugate.fea.cuts`; a deck is the mesh (:mod:`~corrugate.fea.deck`), one
+  fixture of :mod:`~corrugate.fea.fixtures` (named as the spec names the tests: platens,
+  three-point, four-point, cantilever, frame; wheel and corners for outlines) and one step of
+  :mod:`~corrugate.fea.steps` (static, or linear buckling of any fixture);
 * :mod:`~corrugate.fea.frame`: the panel in a rigid frame, the paper's cos^2 rule's own fixture;
 * :mod:`~corrugate.fea.outline`: circles and polygons: the wheel between a ground patch and its
   hub, a plate bolted or clamped at its corners (docs/fea.md 2.8);

@@ -4,8 +4,8 @@ The rule K(eta) = K_y cos^2(eta) + K_x sin^2(eta) (docs/theory.md 3.3; eta from 
 y axis) is the stiffness of two orthogonal springs whose common end moves along eta. On the panel
 that is a rigid frame of four frictionless platens, one on each edge: the platen pair across y
 moves by delta cos(eta), the pair across x by delta sin(eta), and the force along eta is
-F = F_y cos(eta) + F_x sin(eta). The structure is linear, so two FE runs of the ``frame`` test of
-:mod:`corrugate.fea.assembly` (one pair moving, the other held) give the 2 x 2 platen stiffness
+F = F_y cos(eta) + F_x sin(eta). The structure is linear, so two FE runs of the ``frame`` fixture
+(:mod:`corrugate.fea.fixtures.frame`; one pair moving, the other held) give the 2 x 2 platen stiffness
 
     [F_x, F_y] = [[K_xx, K_xy], [K_yx, K_yy]] [d_x, d_y]
 
@@ -55,7 +55,7 @@ def solve_frame(
     keep: bool = False,
     timeout: float = 600.0,
 ) -> FrameStiffness:
-    """Run the two ``frame`` load cases (y pair moving at eta = 0, x pair at eta = 90)."""
+    """Run the ``frame`` fixture twice (y pair moving at eta = 0, x pair at eta = 90)."""
     along_y, along_x = (
         solve_assembly(assembly, "frame", mesh, eta, folder=folder, keep=keep, timeout=timeout)
         for eta in (0.0, 90.0)

@@ -11,11 +11,14 @@ the tests the users of such outlines run:
   each facet, elements about as long along the creases), less every element whose centroid (in
   plan) lies outside the outline and every element whose centroid lies in a hole: a staircase
   outline that converges to the true one as the mesh is refined, as the holes of the assembly
-  (:func:`corrugate.fea.assembly._cut_holes`). For a square or rectangle, or a polygon that is
+  (:mod:`corrugate.fea.cuts`). For a square or rectangle, or a polygon that is
   its box, nothing is cut: the mesh is the assembly's. The layers are not connected to each
   other; each is loaded by the same rigid fixture and the force is the sum of their reactions
   (the parallel-spring reading of the closed forms, as in the assembly).
-* **Wheel** (``wheel``, radial stiffness K(eta), N/mm). The hub: a rigid axle pinned through the
+The fixtures are entries of :mod:`corrugate.fea.fixtures` (kind ``outline``), each in its module
+there; a deck is the mesh, the fixture and a step (:mod:`corrugate.fea.steps`):
+
+* **Wheel** (``wheel``, radial stiffness K(eta), N/mm; :mod:`corrugate.fea.fixtures.wheel`). The hub: a rigid axle pinned through the
   hole that contains the layout's centre, i.e. every node on that hole's (staircase) edge held
   in its three translations, rotations free; without such a hole, every node within
   ``hub_radius`` of the centre (a hub bonded to the disc). The ground: a rigid flat patch under
@@ -25,7 +28,8 @@ the tests the users of such outlines run:
   by delta along e towards the hub and does not slip (the displacement across e is 0, the
   out-of-plane one free). K = (the patch's reaction along e) / delta: the wheel's radial
   stiffness between the ground and the axle, load along eta.
-* **Corners** (``corners``: bolted, ``clamped-corners``: clamped; P / delta, N/mm). Every node
+* **Corners** (``corners``: bolted, ``clamped-corners``: clamped; P / delta, N/mm;
+  :mod:`corrugate.fea.fixtures.corners`). Every node
   within ``bolt_radius`` of a vertex of the outline (the nearest node when none is) held in its
   three translations (bolted: a pin through each corner) or in its translations and rotations
   (clamped); a rigid load pad at the outline's centroid, every node within ``load_radius`` (the
@@ -36,17 +40,20 @@ the tests the users of such outlines run:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.core.errors import InputError
-from corrugate.fea.assembly import AssemblyMesh, _cut_holes, _fmt_set, _inside_ring
+from corrugate.fea.assembly import AssemblyMesh
 from corrugate.fea.ccx import SolverError, run_ccx, work_dir
-from corrugate.fea.shells import Shell, layer_shell, quad8_elements, section_lines
+from corrugate.fea.cuts import cut_holes, cut_outline
+from corrugate.fea.deck import mesh_lines
+from corrugate.fea.fixtures import Fixture, OutlinePart, fixtures, get_fixture
+from corrugate.fea.shells import Shell, layer_shell, quad8_elements
+from corrugate.fea.steps import STATIC, BoundaryItem, LinearBuckling, Step
 from corrugate.geometry.layer import Assembly
 
 __all__ = [
@@ -63,16 +70,12 @@ __all__ = [
     "solve_shells",
 ]
 
-OutlineTest = Literal["wheel", "corners", "clamped-corners"]
-OUTLINE_TESTS: tuple[OutlineTest, ...] = ("wheel", "corners", "clamped-corners")
+#: The name of an outline fixture (:func:`corrugate.fea.fixtures.fixtures` of kind ``outline``).
+OutlineTest = str
+#: The outline fixtures registered, and what each measures (for progress lines and tables).
+OUTLINE_TESTS: tuple[str, ...] = tuple(f.name for f in fixtures("outline"))
+OUTLINE_NAMES: dict[str, str] = {f.name: f.label for f in fixtures("outline")}
 FloatArray = NDArray[np.float64]
-
-#: What each fixture measures, for progress lines and tables.
-OUTLINE_NAMES: dict[str, str] = {
-    "wheel": "the wheel between a ground patch and its hub",
-    "corners": "the plate bolted at its corners, loaded at its centre",
-    "clamped-corners": "the plate clamped at its corners, loaded at its centre",
-}
 
 
 @dataclass(frozen=True, slots=True)
@@ -101,7 +104,9 @@ class OutlineFixture:
 class OutlineResult:
     """One run of an outline fixture: ``value`` is K (N/mm) of the wheel or P / delta (N/mm) of
     the corner-supported plate; ``force`` (N) at ``displacement`` (mm), each layer's force,
-    the mesh's size."""
+    the mesh's size. A buckling step (``step`` ``buckle``) gives the fixture's load (N) at each
+    buckling mode in ``buckling_factors``, lowest first, and ``value`` the first (force,
+    displacement and the layers' forces are then NaN)."""
 
     test: OutlineTest
     eta_deg: float
@@ -112,6 +117,8 @@ class OutlineResult:
     layer_forces: tuple[float, ...]
     nodes: int
     elements: int
+    step: str = "static"
+    buckling_factors: tuple[float, ...] = ()
 
 
 def plate_shell(
@@ -139,26 +146,6 @@ def plate_shell(
     return Shell(np.asarray(order, dtype=np.int64), np.asarray(coords), elements, t, E, nu)
 
 
-def cut_outline(sh: Shell, outline: FloatArray) -> Shell:
-    """The shell less every element whose centroid (in plan) lies outside the closed polygon
-    ``outline`` (k x 2, mm), and less the nodes no element uses (a staircase outline)."""
-    index = {int(n): i for i, n in enumerate(sh.ids)}
-
-    def keep(elems: list[list[int]], corners: int) -> list[list[int]]:
-        if not elems:
-            return elems
-        xy = np.array([sh.xyz[[index[n] for n in e[:corners]], :2].mean(axis=0) for e in elems])
-        inside = _inside_ring(xy, np.asarray(outline, dtype=np.float64))
-        return [e for e, ok in zip(elems, inside, strict=True) if ok]
-
-    elements = keep(sh.elements, 4)
-    triangles = keep(sh.triangles, 3)
-    if not elements and not triangles:
-        raise SolverError("the outline leaves no element of the mesh")
-    used = np.isin(sh.ids, np.array([n for e in elements + triangles for n in e], dtype=np.int64))
-    return replace(sh, ids=sh.ids[used], xyz=sh.xyz[used], elements=elements, triangles=triangles)
-
-
 def outline_shells(assembly: Assembly, mesh: AssemblyMesh) -> list[Shell]:
     """Both layers of ``assembly`` on the structured mesh of its box, cut to its outline and
     its holes (module docstring)."""
@@ -171,187 +158,122 @@ def outline_shells(assembly: Assembly, mesh: AssemblyMesh) -> list[Shell]:
         ring = a.layout.plan_outline(a.Lx, a.Ly)
         shells = [cut_outline(sh, ring) for sh in shells]
     if a.layout.holes:
-        shells = [_cut_holes(sh, a) for sh in shells]
+        shells = [cut_holes(sh, a) for sh in shells]
     return shells
-
-
-def _rim(sh: Shell) -> NDArray[np.int64]:
-    """The nodes on the edge of the mesh (on an element edge that only one element has)."""
-    count: dict[tuple[int, int], list[int]] = {}
-    for elems, k in ((sh.elements, 4), (sh.triangles, 3)):
-        for e in elems:
-            for i in range(k):
-                a, b = e[i], e[(i + 1) % k]
-                key = (min(a, b), max(a, b))
-                count.setdefault(key, []).append(e[k + i])
-    nodes: set[int] = set()
-    for (a, b), mids in count.items():
-        if len(mids) == 1:
-            nodes.update((a, b, mids[0]))
-    return np.array(sorted(nodes), dtype=np.int64)
-
-
-def _near(sh: Shell, point: tuple[float, float], radius: float) -> list[int]:
-    """Nodes within ``radius`` (mm, in plan) of ``point``; the nearest ones when none is."""
-    d = np.hypot(sh.xyz[:, 0] - point[0], sh.xyz[:, 1] - point[1])
-    r = max(radius, float(d.min()) * (1 + 1e-9))
-    return [int(n) for n in sh.ids[d <= r]]
-
-
-def _centroid(ring: FloatArray) -> tuple[float, float]:
-    x, y = ring[:, 0], ring[:, 1]
-    x1, y1 = np.roll(x, -1), np.roll(y, -1)
-    cross = x * y1 - x1 * y
-    A = cross.sum() / 2
-    return float(((x + x1) * cross).sum() / (6 * A)), float(((y + y1) * cross).sum() / (6 * A))
 
 
 def outline_deck(
     shells: list[Shell],
-    test: OutlineTest,
+    test: str | Fixture,
     outline: FloatArray,
     holes: list[FloatArray],
     eta_deg: float = 0.0,
     fixture: OutlineFixture | None = None,
     delta: float | None = None,
+    *,
+    step: Step = STATIC,
 ) -> tuple[str, tuple[str, ...], tuple[float, float], float]:
-    """CalculiX deck of ``test`` on ``shells`` (mm, N) whose plan is the polygon ``outline``
-    with the hole polygons ``holes`` (module docstring); returns the deck, the node sets whose
-    reactions make the load (one per shell), the load's unit vector (x, y components; (0, 0)
-    for an out-of-plane load) and delta (mm)."""
-    if test not in OUTLINE_TESTS:
-        raise InputError("test", test, " or ".join(OUTLINE_TESTS))
+    """CalculiX deck of the outline fixture ``test`` on ``shells`` (mm, N) whose plan is the
+    polygon ``outline`` with the hole polygons ``holes`` (module docstring), run as ``step``;
+    returns the deck, the node sets whose reactions make the load (one per shell), the load's
+    unit vector (x, y components; (0, 0) for an out-of-plane load) and delta (mm)."""
+    fx_test = get_fixture(test, ("outline",), "test")
     fx = fixture or OutlineFixture()
     ring = np.asarray(outline, dtype=np.float64)
     span = float(np.max(ring.max(axis=0) - ring.min(axis=0)))
     if delta is None:
         delta = 1e-3 * span
-    lines = ["*HEADING", f"corrugate outline fixture {test} at eta = {eta_deg:g} deg", "*NODE"]
-    for sh in shells:
-        for nid, (x, y, z) in zip(sh.ids, sh.xyz, strict=True):
-            lines.append(f"{nid},{x:.10g},{y:.10g},{z:.10g}")
-    e_no = 1
-    for k, sh in enumerate(shells, start=1):
-        for etype, elems in (("S8R", sh.elements), ("S6", sh.triangles)):
-            if not elems:
-                continue
-            lines.append(f"*ELEMENT,TYPE={etype},ELSET=L{k}")
-            for el in elems:
-                lines.append(f"{e_no}," + ",".join(map(str, el)))
-                e_no += 1
-    lines += section_lines(list(enumerate(shells, start=1)))
-    bc: list[str] = []
+    heading = f"corrugate outline fixture {fx_test.name} at eta = {eta_deg:g} deg"
+    if isinstance(step, LinearBuckling):
+        heading += f" ({step.name})"
+    lines, _ = mesh_lines(list(enumerate(shells, start=1)), heading)
+    bc: list[BoundaryItem] = []
     sets: list[str] = []
-    direction: tuple[float, float] = (0.0, 0.0)
-    if test == "wheel":
-        e = math.radians(eta_deg)
-        ex, ey = math.sin(e), math.cos(e)
-        direction = (ex, ey)
-        cx, cy = (ring.min(axis=0) + ring.max(axis=0)) / 2  # the box's centre: the axle
-        hub_ring = next(
-            (h for h in holes if _inside_ring(np.array([[cx, cy]]), h)[0]),
-            None,
-        )
-        cos_patch = math.cos(math.radians(fx.patch_deg))
-        for k, sh in enumerate(shells, start=1):
-            rim = _rim(sh)
-            index = {int(n): i for i, n in enumerate(sh.ids)}
-            xy = sh.xyz[[index[int(n)] for n in rim], :2] - np.array([cx, cy])
-            r = np.hypot(xy[:, 0], xy[:, 1])
-            if hub_ring is not None:
-                reach = float(np.max(np.hypot(hub_ring[:, 0] - cx, hub_ring[:, 1] - cy)))
-                size = _element_size(sh)
-                hub = [int(n) for n, ri in zip(rim, r, strict=True) if ri <= reach + 1.5 * size]
-            else:
-                hub = _near(sh, (cx, cy), fx.hub_radius)
-            outer = r > 0.5 * float(r.max())
-            s = -(xy[:, 0] * ex + xy[:, 1] * ey)  # distance towards the ground
-            in_patch = outer & (s >= cos_patch * r - 1e-9 * span)
-            patch = [int(n) for n in rim[in_patch]]
-            if not hub or not patch:
-                raise SolverError("the wheel fixture found no hub or no ground patch node")
-            lines += _fmt_set(f"HUB{k}", hub) + _fmt_set(f"PATCH{k}", patch)
-            # local axes of the patch: x along e (towards the hub), y across it
-            lines += [
-                f"*TRANSFORM,NSET=PATCH{k},TYPE=R",
-                f"{ex:.15g},{ey:.15g},0,{-ey:.15g},{ex:.15g},0",
-            ]
-            bc += [f"HUB{k},1,3,0", f"PATCH{k},1,1,{delta:.12g}", f"PATCH{k},2,2,0"]
-            sets.append(f"PATCH{k}")
+    for k, sh in enumerate(shells, start=1):
+        b = fx_test.boundary(OutlinePart(k, sh, ring, holes, eta_deg, fx, span))
+        lines += b.sets
+        bc += b.bc
+        sets.append(b.load_set)
+    direction = _direction(fx_test, eta_deg)
+    if isinstance(step, LinearBuckling):
+        ref = max(int(sh.ids.max()) for sh in shells) + 1
+        cx, cy = (ring.min(axis=0) + ring.max(axis=0)) / 2
+        lines += step.lines(bc, ref, (float(cx), float(cy), 0.0))
     else:
-        centre = _centroid(ring)
-        dofs = 6 if test == "clamped-corners" else 3
-        for k, sh in enumerate(shells, start=1):
-            support: list[int] = []
-            for vx, vy in ring:
-                support += _near(sh, (float(vx), float(vy)), fx.bolt_radius)
-            pad = _near(sh, centre, fx.load_radius)
-            lines += _fmt_set(f"BOLT{k}", sorted(set(support))) + _fmt_set(f"PAD{k}", pad)
-            bc += [f"BOLT{k},1,{dofs},0", f"PAD{k},3,3,{-delta:.12g}"]
-            sets.append(f"PAD{k}")
-    lines += ["*STEP", "*STATIC", "*BOUNDARY", *bc]
-    for name in sets:
-        lines += [f"*NODE PRINT,NSET={name},GLOBAL=YES", "RF"]
-    lines.append("*END STEP")
+        lines += step.lines(bc, delta, sets, [], global_axes=True)
     return "\n".join(lines) + "\n", tuple(sets), direction, delta
 
 
-def _element_size(sh: Shell) -> float:
-    """The longest corner-to-corner edge (plan, mm) of the shell's first element."""
-    index = {int(n): i for i, n in enumerate(sh.ids)}
-    el = sh.elements[0] if sh.elements else sh.triangles[0]
-    k = 4 if sh.elements else 3
-    p = sh.xyz[[index[n] for n in el[:k]], :2]
-    return float(np.max(np.hypot(*(np.roll(p, -1, axis=0) - p).T)))
+def _direction(fixture: Fixture, eta_deg: float) -> tuple[float, float]:
+    """The in-plane unit vector of the load (x, y) of a fixture that measures K along eta, (0, 0)
+    for one loaded out of plane."""
+    if fixture.measures != "K":
+        return (0.0, 0.0)
+    e = math.radians(eta_deg)
+    return (math.sin(e), math.cos(e))
 
 
 def solve_shells(
     shells: list[Shell],
-    test: OutlineTest,
+    test: str | Fixture,
     outline: FloatArray,
     holes: list[FloatArray],
     eta_deg: float = 0.0,
     fixture: OutlineFixture | None = None,
     *,
+    step: Step = STATIC,
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
 ) -> tuple[float, float, float, tuple[float, ...]]:
     """Run ``test`` on ``shells`` in CalculiX: (force / delta (N/mm), force (N), delta (mm),
-    each shell's force); the force is the reactions' resultant along the load."""
-    deck, sets, (ex, ey), delta = outline_deck(shells, test, outline, holes, eta_deg, fixture)
+    each shell's force); the force is the reactions' resultant along the load. As a
+    :class:`~corrugate.fea.steps.LinearBuckling` step: (the first buckling load (N), NaN, NaN,
+    every buckling load (N), lowest first)."""
+    fx_test = get_fixture(test, ("outline",), "test")
+    deck, sets, (ex, ey), delta = outline_deck(
+        shells, fx_test, outline, holes, eta_deg, fixture, step=step
+    )
+    buckling = isinstance(step, LinearBuckling)
+    job = fx_test.name if not buckling else f"{fx_test.name}-{step.name}"
     with work_dir(folder, keep) as wd:
-        run = run_ccx(deck, wd, job=test, timeout=timeout)
+        run = run_ccx(deck, wd, job=job, timeout=timeout)
+    if buckling:
+        if not run.buckling_factors:
+            raise SolverError("ccx printed no buckling factor")
+        return run.buckling_factors[0], math.nan, math.nan, run.buckling_factors
     forces: list[float] = []
     for name in sets:
         blocks = run.find("forces", name)
         if not blocks:
             raise SolverError(f"ccx printed no reaction forces for {name}")
         fx_, fy_, fz_ = blocks[-1].total()
-        forces.append(fx_ * ex + fy_ * ey if test == "wheel" else -fz_)
+        forces.append(fx_ * ex + fy_ * ey if fx_test.measures == "K" else -fz_)
     P = sum(forces)
     return P / delta, P, delta, tuple(forces)
 
 
 def solve_outline(
     assembly: Assembly,
-    test: OutlineTest,
+    test: str,
     mesh: AssemblyMesh | None = None,
     eta_deg: float = 0.0,
     fixture: OutlineFixture | None = None,
     *,
+    step: Step = STATIC,
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
 ) -> OutlineResult:
-    """Run the outline fixture ``test`` on both layers of ``assembly`` (module docstring)."""
+    """Run the outline fixture ``test`` on both layers of ``assembly`` (module docstring) as
+    ``step`` (static, or linear buckling: :class:`OutlineResult`)."""
     from corrugate.geometry.holes import hole_rings
 
     mesh = mesh or AssemblyMesh()
     a = assembly
     if test not in OUTLINE_TESTS:
         raise InputError("fixture", test, " or ".join(OUTLINE_TESTS))
-    if test != "wheel" and a.layout.name == "circle":
+    if get_fixture(test).measures != "K" and a.layout.name == "circle":
         raise InputError(
             "fixture", test, "wheel for a circle", reason="needs corners, which a circle has not"
         )
@@ -363,10 +285,12 @@ def solve_outline(
         hole_rings(a.layout.holes, a.Lx, a.Ly),
         eta_deg,
         fixture,
+        step=step,
         folder=folder,
         keep=keep,
         timeout=timeout,
     )
+    buckling = isinstance(step, LinearBuckling)
     return OutlineResult(
         test,
         eta_deg,
@@ -374,7 +298,9 @@ def solve_outline(
         k,
         P,
         delta,
-        forces,
+        (math.nan, math.nan) if buckling else forces,
         sum(len(sh.ids) for sh in shells),
         sum(len(sh.elements) + len(sh.triangles) for sh in shells),
+        step.name,
+        forces if buckling else (),
     )

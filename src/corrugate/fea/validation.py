@@ -2,8 +2,9 @@
 
 A :class:`Case` is one design (two layers, identical or not, on a square or a rectangle) with
 the FE settings; :func:`run_case` runs the periodic unit cell of each distinct layer
-(:mod:`~corrugate.fea.unitcell`) and the assembly under in-plane compression and 3-point bending
-(:mod:`~corrugate.fea.assembly`) at each eta, optionally refining the meshes until the results
+(:mod:`~corrugate.fea.unitcell`) and the assembly in the fixtures of :mod:`corrugate.fea.fixtures`
+(``platens``, ``three-point``; ``four-point`` and a linear buckling run of ``platens`` on request;
+the fixture of every support condition that has its own, e.g. ``frame``) at each eta, optionally refining the meshes until the results
 change by less than a tolerance, and puts the closed forms of every model variant beside them
 (:func:`corrugate.analysis.evaluate.analyze`, never reimplemented here).
 
@@ -19,19 +20,20 @@ from pathlib import Path
 from typing import Protocol, TypeVar
 
 from corrugate.analysis.evaluate import analyze
-from corrugate.core.errors import CorrugateError, UnknownNameError
+from corrugate.core.errors import CorrugateError
 from corrugate.fea.assembly import (
     AssemblyMesh,
     AssemblyResult,
     Bond,
-    LoadTest,
     principal_axis,
     solve_assembly,
 )
+from corrugate.fea.fixtures import get_fixture
 from corrugate.fea.frame import solve_frame
+from corrugate.fea.steps import STATIC, LinearBuckling, Step
 from corrugate.fea.unitcell import UnitCell, UnitCellMesh, solve_unit_cell
 from corrugate.geometry.layer import Assembly
-from corrugate.mechanics.behaviours import Behaviour, supports
+from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, Behaviour, get_support, supports
 from corrugate.mechanics.moduli import MODELS
 
 
@@ -139,9 +141,10 @@ class CaseResult:
 
 def fixture_supports() -> tuple[Behaviour, ...]:
     """The registered support conditions that have an FE fixture of their own (their entry's
-    ``fixture`` is not the free ``coupon`` every case runs), e.g. ``frame``
-    (:mod:`corrugate.mechanics.behaviours`)."""
-    return tuple(b for b in supports() if b.fixture != "coupon")
+    ``fixture`` is not the default support's, the free coupon between platens that every case
+    runs), e.g. ``frame`` (:mod:`corrugate.mechanics.behaviours`)."""
+    free = get_support(DEFAULT_SUPPORT).fixture
+    return tuple(b for b in supports() if b.fixture != free)
 
 
 def fixture_key(support: Behaviour) -> str:
@@ -180,20 +183,21 @@ def closed_forms(
     return out
 
 
-def _frame(case: Case, mesh: AssemblyMesh) -> Callable[[float], float]:
-    """K(eta) (N/mm) of the panel in a rigid frame (:func:`corrugate.fea.frame.solve_frame`)."""
-    frame = solve_frame(
-        case.assembly, mesh, folder=case.folder, keep=case.keep, timeout=case.timeout
-    )
-    return frame.K
+def _support_run(case: Case, mesh: AssemblyMesh, name: str) -> Callable[[float], float]:
+    """K(eta) (N/mm) in the fixture ``name`` of a support condition: the frame's two runs
+    combined (:func:`corrugate.fea.frame.solve_frame`), or one run of a coupon fixture at each
+    eta."""
+    fixture = get_fixture(name, ("coupon", "frame"))
+    a, folder, keep, timeout = case.assembly, case.folder, case.keep, case.timeout
+    if fixture.kind == "frame":
+        return solve_frame(a, mesh, folder=folder, keep=keep, timeout=timeout).K
 
+    def K(eta: float) -> float:
+        r = solve_assembly(a, fixture, mesh, eta, folder=folder, keep=keep, timeout=timeout)
+        assert r.K is not None
+        return r.K
 
-#: The FE fixtures a support condition's entry may name besides the free ``coupon`` (which every
-#: case runs: compression and bending): what a progress line calls it, and the run, which gives
-#: K (N/mm) at any eta (deg).
-_FIXTURES: dict[str, tuple[str, Callable[[Case, AssemblyMesh], Callable[[float], float]]]] = {
-    "frame": ("assembly in a rigid frame", _frame),
-}
+    return K
 
 
 def _layers_to_run(a: Assembly) -> list[int]:
@@ -232,28 +236,21 @@ def _assembly_values(
         runs: dict[str, Callable[[float], float]] = {}
         for sup in fixture_supports():
             if sup.fixture not in runs:
-                if sup.fixture not in _FIXTURES:
-                    raise UnknownNameError("fixture", sup.fixture, list(_FIXTURES))
-                what, fixture = _FIXTURES[sup.fixture]
-                progress(f"{what}, mesh {mesh.label()}")
-                runs[sup.fixture] = fixture(case, mesh)
+                progress(f"{get_fixture(sup.fixture).label}, mesh {mesh.label()}")
+                runs[sup.fixture] = _support_run(case, mesh, sup.fixture)
             for eta in case.eta_deg:
                 out[f"{fixture_key(sup)}@{eta:g}"] = runs[sup.fixture](eta)
 
-    names = {
-        "compression": "in-plane compression",
-        "bending": "3-point bending",
-        "bending4": "4-point (pure) bending",
-        "buckling": "buckling in compression",
-    }
-
-    def run(test: LoadTest, eta: float) -> AssemblyResult:
-        progress(f"assembly, {names.get(test, test)} along eta = {eta:g} deg, mesh {mesh.label()}")
+    def run(name: str, eta: float, step: Step = STATIC) -> AssemblyResult:
+        fixture = get_fixture(name)
+        what = step.describe(fixture.label, fixture.loading)
+        progress(f"assembly, {what} along eta = {eta:g} deg, mesh {mesh.label()}")
         return solve_assembly(
             case.assembly,
-            test,
+            fixture,
             mesh,
             eta,
+            step=step,
             connectors=case.connectors,
             bond=case.bond,
             folder=case.folder,
@@ -264,15 +261,15 @@ def _assembly_values(
     for eta in case.eta_deg:
         e = f"{eta:g}"
         principal = principal_axis(eta) is not None
-        out[f"K_N_per_mm@{e}"] = run("compression", eta).value()
-        b = run("bending", eta)
+        out[f"K_N_per_mm@{e}"] = run("platens", eta).value()
+        b = run("three-point", eta)
         out[f"D_Nmm@{e}"] = b.value()
         if principal:
             out[f"EI_Nmm2@{e}"] = b.value() * b.span
         if case.buckling and principal:
-            out[f"Pcr_N@{e}"] = run("buckling", eta).value()
+            out[f"Pcr_N@{e}"] = run("platens", eta, LinearBuckling()).value()
         if case.pure_bending:
-            out[f"D4_Nmm@{e}"] = run("bending4", eta).value()
+            out[f"D4_Nmm@{e}"] = run("four-point", eta).value()
     return out
 
 

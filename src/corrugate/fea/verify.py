@@ -6,16 +6,22 @@ P / delta or deflection, a buckling load) is checked in the FE fixture of the te
 (:mod:`corrugate.fea.assembly`, the runs ``corrugate validate`` makes; the same function, the
 same arguments, so the same numbers):
 
+The twin is the fixture the quantity's behaviour names (:attr:`corrugate.mechanics.behaviours.
+Behaviour.fixture`: the load case's, else the support condition's), looked up in
+:mod:`corrugate.fea.fixtures`:
+
 =========================================  =========================================================
 constraint                                 FE twin
 =========================================  =========================================================
-K, free sides (no test, or ``platens``)    ``compression``: K between platens
-K in a frame                               :func:`corrugate.fea.frame.solve_frame`: K_frame(eta)
-D, EI, no test (pure bending)              ``bending4``: the pure-bending gauge between load lines
-D, EI, P / delta, ``three-point``          ``bending``: P / delta under the load
-D, EI, P / delta, ``four-point``           ``bending4``: P / delta at the load points
+K, free sides (no test, or ``platens``)    ``platens``: K between platens
+K in a frame                               ``frame``: K_frame(eta) of two runs
+                                           (:func:`corrugate.fea.frame.solve_frame`)
+D, EI, no test (pure bending)              ``four-point``: the pure-bending gauge between load lines
+D, EI, P / delta, ``three-point``          ``three-point``: P / delta under the load
+D, EI, P / delta, ``four-point``           ``four-point``: P / delta at the load points
 D, EI, P / delta, ``cantilever``           ``cantilever``: P / delta at the tip
-Pb (buckling, eta 0 or 90)                 ``buckling``: the first buckling load
+Pb (buckling, eta 0 or 90)                 ``platens`` as a linear buckling run: the first
+                                           buckling load
 circle: K, ``test = "wheel"``              ``wheel`` (:mod:`corrugate.fea.outline`): the
                                            model's test (docs/load_cases.md 9)
 circle: K, free sides (no test, platens)   ``wheel``: not the model's test, the row says so
@@ -54,22 +60,17 @@ from corrugate.fea.assembly import (
     AssemblyMesh,
     AssemblyResult,
     Bond,
-    LoadTest,
     principal_axis,
     solve_assembly,
 )
 from corrugate.fea.extrapolate import extend_reason, extrapolate
+from corrugate.fea.fixtures import Fixture, fixture_names, get_fixture
 from corrugate.fea.frame import FrameStiffness, solve_frame
-from corrugate.fea.outline import (
-    OUTLINE_NAMES,
-    OUTLINE_TESTS,
-    OutlineResult,
-    OutlineTest,
-    solve_outline,
-)
+from corrugate.fea.outline import OutlineResult, solve_outline
 from corrugate.fea.shells import check_shift, specimen
+from corrugate.fea.steps import STATIC, LinearBuckling, Step
 from corrugate.geometry.layer import Assembly
-from corrugate.mechanics.behaviours import get_load_case
+from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support
 from corrugate.solver.quantity import Quantity
 
 __all__ = [
@@ -113,50 +114,47 @@ BEHAVIOURAL_KINDS = ("K", "D", "EI", "k", "Pb", "Pmax")
 Progress = Callable[[str], None]
 _T = TypeVar("_T")
 
-_NAMES: dict[str, str] = {
-    "compression": "compression between platens",
-    "frame": "the panel in a rigid frame (2 runs)",
-    "bending": "3-point bending",
-    "bending4": "4-point bending",
-    "cantilever": "cantilever",
-    "buckling": "buckling in compression",
-    **OUTLINE_NAMES,
-}
-
 
 @dataclass(frozen=True, slots=True)
 class Twin:
-    """The FE fixture of one constraint: the ``test`` run at ``eta`` (deg), and how its result
+    """The FE fixture of one constraint: the fixture ``test`` (a name of
+    :mod:`corrugate.fea.fixtures`) run as ``step`` at ``eta`` (deg), and how its result
     is read (``read``: ``K``, ``D``, ``EI``, ``k`` (P / delta, N/mm), ``pure-D``, ``pure-EI``
     (the 4-point gauge), ``Pb``), with the test's ``a`` coefficient for a bending test's
     apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
     row should add; ``span`` (mm): 3-point bending over supports that far apart, inside a longer
     panel (None: the panel's length, supported at its ends)."""
 
-    test: LoadTest | OutlineTest
+    test: str
     eta: float
     read: str
     a: float = 0.0
     load: float | None = None
     note: str = ""
     span: float | None = None
+    step: Step = STATIC
+
+    @property
+    def fixture(self) -> Fixture:
+        return get_fixture(self.test)
 
     @property
     def shifted(self) -> bool:
         """Whether the twin runs on the gmsh coupon cut along eta (off the crease directions),
-        whose FE value depends on where it is cut (module docstring); an outline fixture (the
-        wheel) holds the whole part, which has no cut to shift."""
-        return (
-            self.test != "frame"
-            and self.test not in OUTLINE_TESTS
-            and principal_axis(self.eta) is None
-        )
+        whose FE value depends on where it is cut (module docstring); the frame and an outline
+        fixture (the wheel) hold the whole part, which has no cut to shift."""
+        return self.fixture.kind == "coupon" and principal_axis(self.eta) is None
+
+    @property
+    def label(self) -> str:
+        """What a progress line and the row call the fixture run."""
+        return self.step.describe(self.fixture.label, self.fixture.loading)
 
     def value(
         self, r: AssemblyResult | OutlineResult | None, frame: FrameStiffness | None
     ) -> float:
         """The constraint's quantity (in its unit) from the fixture's result."""
-        if self.test == "frame":
+        if self.fixture.kind == "frame":
             assert frame is not None
             return frame.K(self.eta)
         assert r is not None
@@ -296,7 +294,7 @@ def twin_of(
     if q.kind == "Pb":
         if not principal:
             return "no FE twin yet (buckling off the crease directions)"
-        return Twin("buckling", eta, "Pb")
+        return Twin(get_load_case("platens").fixture, eta, "Pb", step=LinearBuckling())
     if q.support not in (None, "free", "frame"):
         return f"no FE twin yet (support {q.support})"
     if connectors and (not principal or q.support == "frame"):
@@ -306,7 +304,7 @@ def twin_of(
     if q.span is not None:
         length = specimen(assembly, eta)[1]
         if abs(q.span - length) > 1e-9 * max(1.0, length):
-            three = test is not None and get_load_case(test).fixture == "bending"
+            three = test is not None and get_fixture(get_load_case(test).fixture).takes_span
             if not (three and principal and q.span < length and q.support in (None, "free")):
                 return (
                     f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its "
@@ -318,34 +316,30 @@ def twin_of(
         if q.kind == "K" or (q.kind == "k" and test == "platens"):
             if load is not None:
                 return "no FE twin yet (a deflection in a frame)"
-            return Twin("frame", eta, "K")
+            return Twin(get_support(q.support).fixture, eta, "K")
         return "no FE twin yet (bending in a frame)"
     if test is None:
-        if q.kind == "K":
-            return Twin("compression", eta, "K", note=note)
+        if q.kind == "K":  # the support's own fixture: the free coupon between platens
+            return Twin(get_support(q.support or DEFAULT_SUPPORT).fixture, eta, "K", note=note)
         if q.kind == "EI" and not principal:
             return "no FE twin yet (EI off the crease directions: the coupon has its own span)"
-        return Twin("bending4", eta, "pure-" + q.kind, note=note)
-    fixture = get_load_case(test).fixture
-    if test == "platens":
-        return Twin("compression", eta, "K" if q.kind == "K" else "k", load=load, note=note)
+        # pure bending: the gauge between the load lines of the four-point fixture
+        pure = get_load_case("four-point").fixture
+        return Twin(pure, eta, "pure-" + q.kind, note=note)
+    case = get_load_case(test)  # its own fixture, when it is a coupon's (module docstring)
+    fx = get_fixture(case.fixture) if case.fixture in fixture_names("coupon") else None
+    if fx is not None and fx.measures == "K":  # an in-plane test: K, or P / delta
+        return Twin(fx.name, eta, "K" if q.kind == "K" else "k", load=load, note=note)
     if not principal and q.kind != "D":
         return (
             f"no FE twin yet ({q.kind} of a bending test off the crease directions: "
             "the coupon has its own span)"
         )
-    form = get_load_case(test).form
+    form = case.form
     assert form is not None
-    fe_test: LoadTest
-    if fixture == "bending":
-        fe_test = "bending"
-    elif fixture == "bending4":
-        fe_test = "bending4"
-    elif fixture == "cantilever":
-        fe_test = "cantilever"
-    else:
+    if fx is None or fx.measures != "D":
         return f"no FE twin yet (test {test})"
-    return Twin(fe_test, eta, q.kind, a=form.a, load=load, note=note, span=span)
+    return Twin(fx.name, eta, q.kind, a=form.a, load=load, note=note, span=span)
 
 
 #: What a polygon's FE twin is (docs/fea.md 2.8), added to its rows.
@@ -464,47 +458,45 @@ def verify_design(
     for sh in shifts:
         check_shift(sh)
     runs: dict[
-        tuple[str, float, int, float, float | None],
+        tuple[str, str, float, int, float, float | None],
         AssemblyResult | OutlineResult | FrameStiffness | CorrugateError,
     ] = {}
 
     def run(
-        test: LoadTest | OutlineTest,
-        eta: float,
-        along: int,
-        shift: float,
-        span: float | None,
-        why: str = "",
+        twin: Twin, along: int, shift: float, why: str = ""
     ) -> AssemblyResult | OutlineResult | FrameStiffness:
-        key = (test, 0.0 if test == "frame" else eta, along, shift, span)
+        fixture, eta, span = twin.fixture, twin.eta, twin.span
+        whole = fixture.kind == "frame"  # K_frame(eta) of two runs, at 0 and 90 deg
+        key = (fixture.name, twin.step.name, 0.0 if whole else eta, along, shift, span)
         if key not in runs:
             mesh = AssemblyMesh(along)
-            where = "" if test == "frame" else f" along eta = {eta:g} deg"
+            where = "" if whole else f" along eta = {eta:g} deg"
             at = f", coupon shifted {shift:g} pitch" if shift else ""
             at += f", span {span:g} mm" if span is not None else ""
             why = f" ({why})" if why else ""
-            progress(f"assembly, {_NAMES[test]}{where}{at}, mesh {mesh.label()}{why}")
+            progress(f"assembly, {twin.label}{where}{at}, mesh {mesh.label()}{why}")
             try:
-                if test in OUTLINE_TESTS:
+                if fixture.kind == "outline":
                     runs[key] = solve_outline(
                         assembly,
-                        test,
+                        fixture.name,
                         mesh,
                         eta,
                         folder=folder,
                         keep=keep,
                         timeout=timeout,
                     )
-                elif test == "frame":
+                elif whole:
                     runs[key] = solve_frame(
                         assembly, mesh, folder=folder, keep=keep, timeout=timeout
                     )
                 else:
                     runs[key] = solve_assembly(
                         assembly,
-                        test,  # type: ignore[arg-type]
+                        fixture,
                         mesh,
                         eta,
+                        step=twin.step,
                         connectors=connectors,
                         bond=bond,
                         shift=shift,
@@ -527,7 +519,7 @@ def verify_design(
         failures: list[str] = []
         for along in which:
             try:
-                r = run(twin.test, twin.eta, along, shift, twin.span, why)
+                r = run(twin, along, shift, why)
             except CorrugateError as exc:
                 series[along] = None
                 failures.append(f"{along}/facet not run: {_short(exc)}")
@@ -663,8 +655,8 @@ def verify_design(
                 holds=bool(holds),
                 note="; ".join(notes),
                 shift=shift if twin.shifted else None,
-                test=_NAMES[twin.test]
-                + ("" if twin.test == "frame" else f" along eta = {twin.eta:g} deg"),
+                test=twin.label
+                + ("" if twin.fixture.kind == "frame" else f" along eta = {twin.eta:g} deg"),
                 by_shift={f[1]: f[0] for f in found} if twin.shifted else {},
                 extended="; ".join(extended),
             )

@@ -9,8 +9,10 @@ A :class:`Behaviour` is one entry that carries everything the layers above need 
 * ``bounds``: the same quantity over boxes of designs for the branch and bound, from springs that
   are :class:`~corrugate.solver.interval.Interval` values (plain arithmetic evaluated on
   intervals bounds itself, so it is usually ``model`` again);
-* ``fixture``: the finite-element fixture ``corrugate validate`` checks it against (``coupon``:
-  the free coupon of :mod:`corrugate.fea.assembly`; ``frame``: :mod:`corrugate.fea.frame`);
+* ``fixture``: the name of its finite-element fixture in :mod:`corrugate.fea.fixtures`, which
+  ``corrugate verify`` and ``validate`` run (the spec's names: ``platens``, the free support's
+  and the platens test's; ``frame``; ``three-point``, ``four-point``, ``cantilever``,
+  ``wheel``);
 * ``label`` (added to a quantity's readable name: ``in-plane stiffness K in a frame``), ``suffix``
   (added to its kind in quantity keys: ``Kframe@45``), ``units`` (each kind it gives, with its
   internal unit), ``text`` (its meaning in the spec reference), ``curve`` (its legend in the

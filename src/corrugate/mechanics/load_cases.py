@@ -138,7 +138,7 @@ def _tip_load_shape(x: Any) -> Any:
 THREE_POINT = _entry(
     "three-point",
     TestForm("bending", 1.0 / 48.0, 0.25, LOCAL, 0.25, loads=(0.5,), shape=_mid_span_shape),
-    "bending",
+    "three-point",
     " in three-point bending",
     "3pt",
     "simply supported over the span, the load at mid-span (the deflection under the load)",
@@ -148,7 +148,7 @@ FOUR_POINT = _entry(
     TestForm(
         "bending", 1.0 / 96.0, 0.125, LOCAL, 0.125, loads=(0.25, 0.75), shape=_quarter_points_shape
     ),
-    "bending4",
+    "four-point",
     " in four-point bending",
     "4pt",
     "simply supported over the span, half the load at each quarter point (the deflection there)",
@@ -173,7 +173,7 @@ CANTILEVER = _entry(
 PLATENS = _entry(
     "platens",
     TestForm("inplane"),
-    "compression",
+    "platens",
     " between platens",
     "plat",
     "compressed between rigid platens along eta (the shortening)",

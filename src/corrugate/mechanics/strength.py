@@ -33,7 +33,7 @@ deg): the layers act in parallel (same deflection, docs/theory.md 3.3), so a mom
 is shared in proportion to their stiffnesses: in bending EI_S of the layer whose creases run
 along eta and EI_C of the other (:func:`peak_stress_bending`); in compression K_S and K_C
 (:func:`peak_stress_compression`). The moments of the bench tests for a load P over a span Ls:
-:func:`bending_moment`. The margin: :func:`stress_margin`.
+:func:`bending_moment` (read from each load case's form). The margin: :func:`stress_margin`.
 
 Against the shell FE in 3-point bending (docs/validation/strength.md, three designs, 2/4/8
 elements per facet), between 1/8 and 3/8 of the span the peak of the layer bent along its creases
@@ -61,7 +61,6 @@ from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.moduli import MODELS
 
 __all__ = [
-    "BENDING_TESTS",
     "LayerSection",
     "PeakStress",
     "assembly_sections",
@@ -82,15 +81,6 @@ __all__ = [
 
 #: The moduli variant the strength formulas use (Xia 2012 with Ye et al.'s spanwise bending).
 _REFINED = MODELS["refined"]
-
-#: Peak bending moment (N mm) of each bench test per unit load P (N) and span Ls (mm): M = k P Ls.
-BENDING_TESTS: dict[str, float] = {
-    "three-point": 1.0 / 4.0,  # P at mid-span: reactions P/2, M(Ls/2) = (P/2)(Ls/2)
-    "four-point": 1.0 / 8.0,  # P/2 at Ls/4 and 3Ls/4: M = (P/2)(Ls/4) between the loads
-    "cantilever": 1.0,  # P at the free end: M = P Ls at the clamp
-}
-#: Other names of the same tests (the FE load cases of :mod:`corrugate.fea.assembly`).
-_TEST_ALIASES = {"bending": "three-point", "bending4": "four-point", "3-point": "three-point"}
 
 
 def _zigzag(W: ArrayLike, alpha_deg: ArrayLike) -> ZigZag:
@@ -469,16 +459,19 @@ def _assemble(
 
 
 def bending_moment(test: str, P: ArrayLike, span: ArrayLike) -> Any:
-    """Peak bending moment (N mm) of a bench test with the load P (N) over the span Ls (mm):
-    three-point (P at mid-span) M = P Ls / 4, four-point (P/2 at each quarter point) M = P Ls / 8
-    between the loads, cantilever (P at the free end) M = P Ls at the clamp
-    (:data:`BENDING_TESTS`; ``bending`` and ``bending4``, the FE's names, are accepted too)."""
-    key = _TEST_ALIASES.get(test.strip().lower(), test.strip().lower())
-    if key not in BENDING_TESTS:
-        raise InputError("test", test, ", ".join(BENDING_TESTS))
-    return _out(
-        BENDING_TESTS[key] * np.asarray(P, dtype=np.float64) * np.asarray(span, dtype=np.float64)
-    )
+    """Peak bending moment (N mm) of a bench test with the load P (N) over the span Ls (mm),
+    M = moment x P x Ls with the ``moment`` of the load case's form in the registry of
+    behaviours (:mod:`corrugate.mechanics.load_cases`, docs/load_cases.md 6): three-point (P at
+    mid-span) M = P Ls / 4, four-point (P/2 at each quarter point) M = P Ls / 8 between the
+    loads, cantilever (P at the free end) M = P Ls at the clamp. ``test`` is a bending load
+    case's name (the spec's, as every FE fixture is named)."""
+    from corrugate.mechanics.behaviours import load_cases
+
+    bending = {b.name: b.form for b in load_cases() if b.form and b.form.kind == "bending"}
+    form = bending.get(test.strip().lower())
+    if form is None:
+        raise InputError("test", test, ", ".join(bending))
+    return _out(form.moment * np.asarray(P, dtype=np.float64) * np.asarray(span, dtype=np.float64))
 
 
 def stress_margin(sigma: ArrayLike, allowable: ArrayLike, safety_factor: ArrayLike = 1.0) -> Any:

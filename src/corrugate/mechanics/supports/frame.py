@@ -2,7 +2,8 @@
 
 Its model is the cos^2 rule of :func:`corrugate.mechanics.offaxis.frame_rule` (docs/theory.md
 3.3; the project's frame FE agrees within 0.2 %, docs/fea.md 2.5), its bound the same arithmetic
-on interval springs, and its FE fixture the panel in a rigid frame (:mod:`corrugate.fea.frame`).
+on interval springs, and its FE fixture ``frame``, the panel in a rigid frame (:mod:`corrugate.fea.fixtures.frame`,
+two runs combined by :mod:`corrugate.fea.frame`).
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 Its model is the free-panel lower bound of :func:`corrugate.mechanics.offaxis.free_panel`
 (docs/offaxis.md), which reads a layout other than a square as a coupon of its proportions; the
 same plain arithmetic on interval springs is the solver's bound. Its FE fixture is the free
-coupon of :mod:`corrugate.fea.assembly` (compression and 3-point bending, free sides).
+coupon between platens (``platens``, :mod:`corrugate.fea.fixtures.platens`: free sides).
 """
 
 from __future__ import annotations
@@ -44,7 +44,7 @@ FREE = Behaviour(
     name="free",
     model=free_panel,
     bounds=free_panel,  # plain arithmetic: on interval springs it bounds itself
-    fixture="coupon",
+    fixture="platens",
     label="",
     suffix="",
     units=STIFFNESS_UNITS,
