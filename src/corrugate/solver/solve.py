@@ -79,7 +79,7 @@ class Optimum:
     boxes: int
     iterations: int
     #: ``record``: each sheet pair's closed boxes (:func:`pairs` order; an entry is None when
-    #: its archive outgrew :data:`~.bnb.ARCHIVE_ROWS`), None otherwise
+    #: its archive outgrew :data:`~.archive.ARCHIVE_ROWS`), None otherwise
     archives: tuple[Archive | None, ...] | None = None
 
     def tree(self) -> tuple[Archive, ...] | None:
