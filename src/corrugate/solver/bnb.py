@@ -13,9 +13,9 @@ inherited from their parent, so the search is best-first when there are many):
    box with at most :data:`ENUMERATE` points (the box is then closed), else its lower corner,
    its upper corner and its centre, snapped to the grid; keep the best feasible one;
 4. cut the boxes still open in two along their relatively widest coordinate (and, while there
-   are few boxes, into :data:`MULTI_PARTS` along every coordinate when that makes at most
-   :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate nearly as wide as the widest),
-   cutting grid coordinates between two grid values. All boxes of an iteration go through numpy
+   are few boxes, into :data:`~.boxes.MULTI_PARTS` along every coordinate when that makes at
+   most :data:`~.boxes.MULTI_SPLIT_CHILDREN` boxes, else along every coordinate nearly as wide
+   as the widest), cutting grid coordinates between two grid values (:mod:`.boxes`). All boxes of an iteration go through numpy
    together: the cost of an iteration is mostly fixed, so few iterations of many boxes are
    cheapest.
 
@@ -39,6 +39,15 @@ whose independent layers decompose (:mod:`.separable`: a rectangle, gridded, lea
 along the creases) is made layer by layer instead, with the same certificate (gap 0 on the grid,
 the same feasibility rule); the explanation, which reopens this search's archive, still runs the
 branch and bound.
+
+Reading the code. :func:`branch_and_bound` builds a :class:`_Search` (the open boxes, the
+incumbent, the counts) and calls its :meth:`~_Search.step` (one iteration: 1-4 above) until it
+returns False, then reads :meth:`~_Search.result`. The options are parts given to the search,
+not flags inside its loop: the incumbent (one, or one per n for ``per_n``: :class:`_PerN`), the
+recorder of the closed boxes (``record``: :class:`~.archive.Recorder`, else
+:class:`~.archive.NoRecorder`), the pace (``stop_below``: :class:`_StopBelow`, else
+:class:`_Pace`), the first boxes (``start``: :meth:`~_Search.start`) and the coordinates
+(``n_fixed``: :func:`_dims`). The boxes are rows of flat arrays (:mod:`.boxes`).
 """
 
 from __future__ import annotations
@@ -51,6 +60,7 @@ from numpy.typing import NDArray
 
 from corrugate.solver import separable
 from corrugate.solver.archive import ARCHIVE_DEPTH, Archive, NoRecorder, Recorder
+from corrugate.solver.boxes import grid_points, snap, split, widths
 from corrugate.solver.budget import current_budget
 from corrugate.solver.making import MAKING
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, DesignVariable, Problem
@@ -74,11 +84,6 @@ BATCH = 20_000
 FIRST_BATCH = 64
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
-#: Parts per coordinate in such a split.
-MULTI_PARTS = 8
-#: Such a split cuts every coordinate when that makes at most this many boxes (grid
-#: coordinates may give fewer), else only the coordinates at least half as wide as the widest.
-MULTI_SPLIT_CHILDREN = 4096
 #: Grid boxes with at most this many points are enumerated (each point evaluated exactly) and
 #: closed, instead of being bounded and split further: a point costs far less than a box.
 ENUMERATE = 512
@@ -122,89 +127,6 @@ def _dims(problem: Problem, n_fixed: tuple[int, int] | None) -> list[_Dim]:
     return [_Dim(f"{k}{i}", v) for i in layers for k, v in layer]
 
 
-def _snap(v: FloatArray, var: DesignVariable, up: bool) -> FloatArray:
-    """Grid value at or below (above if ``up``) v; v itself for a continuous variable."""
-    if var.step is None:
-        return v
-    k = (v - var.lo) / var.step
-    k = np.ceil(k - 1e-9) if up else np.floor(k + 1e-9)
-    return np.asarray(var.lo + var.step * k)
-
-
-def _split(
-    lo: FloatArray,
-    hi: FloatArray,
-    width: FloatArray,
-    dims: list[_Dim],
-    multi: bool,
-    tag: FloatArray,
-) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Cut each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
-    counted as n + 1, so every coordinate is judged by how much it changes across the box) into
-    two, and (``multi``) into :data:`MULTI_PARTS` along every coordinate if that makes at most
-    :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate at least half as wide as the
-    widest (so few boxes become many in few iterations: the per-iteration cost is mostly fixed;
-    the case study then takes 2 iterations instead of 3).
-    Grid coordinates are cut between two grid values, into at most as many parts as values."""
-    widest = width.max(axis=1, keepdims=True)
-    if multi:
-        split = width > 0  # every coordinate, while the children stay few
-        if int((float(MULTI_PARTS) ** split.sum(axis=1)).sum()) > MULTI_SPLIT_CHILDREN:
-            split &= width >= 0.5 * widest
-        if int((float(MULTI_PARTS) ** split.sum(axis=1)).sum()) > BATCH:
-            multi = False  # still too many children for one batch: halve along the widest
-    if not multi:
-        split = np.zeros(width.shape, dtype=bool)
-        split[np.arange(len(width)), np.argmax(width, axis=1)] = True
-    parts = MULTI_PARTS if multi else 2
-    for i, d in enumerate(dims):
-        sel = split[:, i]
-        if not sel.any():
-            continue
-        a, b = lo[sel, i], hi[sel, i]
-        j = np.arange(parts + 1, dtype=np.float64)[:, None]  # cut j of parts + 1 (0 and end)
-        if d.var.step is None:
-            edges = a + (b - a) * (j / parts)
-            edges[-1] = b
-            starts, ends = edges[:-1], edges[1:]
-            valid = np.ones(starts.shape, dtype=bool)
-        else:
-            k_lo = np.round((a - d.var.lo) / d.var.step)
-            k_hi = np.round((b - d.var.lo) / d.var.step)
-            count = k_hi - k_lo + 1  # grid values in the box (>= 2 here)
-            first = k_lo + np.ceil(j * count / parts)  # first grid index of each part
-            starts = d.var.lo + d.var.step * first[:-1]
-            ends = d.var.lo + d.var.step * (first[1:] - 1)
-            valid = first[1:] > first[:-1]  # a part holds at least one grid value
-        # rows: the boxes not cut here, then part by part each cut box's valid parts (no copies
-        # of whole boxes per part: one gather, then this coordinate's new edges)
-        keep = valid.reshape(-1)
-        src = np.concatenate([np.flatnonzero(~sel), np.tile(np.flatnonzero(sel), parts)[keep]])
-        first_child = len(lo) - len(a)
-        lo, hi = lo[src], hi[src]
-        lo[first_child:, i] = starts.reshape(-1)[keep]
-        hi[first_child:, i] = ends.reshape(-1)[keep]
-        split, tag = split[src], tag[src]
-    return lo, hi, tag
-
-
-def _grid_points(lo: FloatArray, counts: FloatArray, dims: list[_Dim]) -> FloatArray:
-    """Every grid point of each box (lower corners ``lo``, ``counts`` grid values per
-    coordinate), as rows; values lo + step k exactly as :func:`_split` and :func:`_snap` make."""
-    per_box = counts.prod(axis=1).astype(np.int64)
-    r = np.arange(int(per_box.sum())) - np.repeat(np.cumsum(per_box) - per_box, per_box)
-    out = np.empty((len(r), len(dims)))
-    for i in range(len(dims) - 1, -1, -1):  # mixed radix, last coordinate fastest
-        var = dims[i].var
-        assert var.step is not None
-        # per box, then repeated for its points (cheaper than indexing by each point's box)
-        c = np.repeat(counts[:, i].astype(np.int64), per_box)
-        k0 = np.repeat(np.round((lo[:, i] - var.lo) / var.step), per_box)
-        out[:, i] = var.lo + var.step * (k0 + r % c)
-        r = r // c
-    return out
-
-
 def _enumerate(
     problem: Problem,
     pair: tuple[Candidate, Candidate],
@@ -214,7 +136,7 @@ def _enumerate(
     dims: list[_Dim],
     rtol: float,
 ) -> tuple[FloatArray, NDArray[np.int64], list[tuple[NDArray[np.int64], NDArray[np.bool_]]]]:
-    """The grid points of each box (:func:`_grid_points`, same order) with the box each lies
+    """The grid points of each box (:func:`~.boxes.grid_points`, same order) with the box each lies
     in, less those that break a bound of one layer alone, which are found per layer.
 
     With independent layers the extents decompose: Lx is layer 1's own extent and Ly layer
@@ -227,7 +149,7 @@ def _enumerate(
     per_layer = [[i for i, c in enumerate(cons) if c.quantity == q] for q in (LX, LY)]
     nbox = len(lo)
     if len(dims) != 6 or not any(per_layer):
-        every = _grid_points(lo, counts, dims)
+        every = grid_points(lo, counts, [d.var for d in dims])
         owner = np.repeat(np.arange(nbox), counts.prod(axis=1).astype(np.int64))
         return every, owner, []
     kept: list[NDArray[np.int64]] = []
@@ -236,7 +158,7 @@ def _enumerate(
     dropped: list[tuple[NDArray[np.int64], NDArray[np.bool_]]] = []
     for layer, q in enumerate((LX, LY)):
         cols = slice(3 * layer, 3 * layer + 3)
-        g = _grid_points(lo[:, cols], counts[:, cols], dims[cols])
+        g = grid_points(lo[:, cols], counts[:, cols], [d.var for d in dims[cols]])
         own = np.repeat(np.arange(nbox), counts[:, cols].prod(axis=1).astype(np.int64))
         # the layer as both layers of an assembly: Lx and Ly are then its extent, at its points
         x = _full({"n1": g[:, 0], "W1": g[:, 1], "a1": g[:, 2]}, True)
@@ -506,11 +428,6 @@ class _Grid:
     points: FloatArray  # the grid points still to evaluate (``ok``), as rows
 
 
-def _widths(lo: FloatArray, hi: FloatArray, offset: FloatArray) -> FloatArray:
-    """Relative widths (hi - lo) / lo of boxes, with n counted as n + 1 (``offset``)."""
-    return np.asarray((hi - lo) / np.maximum(lo + offset, 1e-300))
-
-
 class _Search:
     """The state of one branch and bound (module docstring): the open boxes (``q_lo``, ``q_hi``
     and ``q_bound``, a lower bound of sign * objective over each), the incumbent, the counts;
@@ -536,7 +453,8 @@ class _Search:
         self.needed = {c.quantity for c in self.cons} | {self.obj}
         self.costly = {q for q in self.needed if q.directional}  # stiffness, buckling: intervals
         self.cheap = self.needed - self.costly
-        self.exact = all(d.var.gridded for d in dims)
+        self.vars = [d.var for d in dims]
+        self.exact = all(v.gridded for v in self.vars)
         self.feas_rtol = FEAS_RTOL if self.exact else 0.0
         # relative widths: n counts as n + 1 (the number of facets), W and alpha as themselves
         self.offset = np.array([1.0 if d.name.startswith("n") else 0.0 for d in dims])
@@ -558,9 +476,9 @@ class _Search:
             np.array([-math.inf]),
         )
         lo, hi, bound = self.best.cut(*root)
-        width = _widths(lo, hi, self.offset)
+        width = widths(lo, hi, self.offset)
         if np.any(width > 0):
-            lo, hi, bound = _split(lo, hi, width, self.dims, True, bound)
+            lo, hi, bound = split(lo, hi, width, self.vars, True, bound, BATCH)
         self.q_lo, self.q_hi, self.q_bound = lo, hi, bound
 
     def running(self) -> bool:
@@ -604,7 +522,7 @@ class _Search:
             lo, hi, bound = lo[~enum], hi[~enum], bound[~enum]
         # candidate points of the others: lower corner, upper corner, centre (snapped to the grid)
         mid = np.stack(
-            [_snap(0.5 * (lo[:, i] + hi[:, i]), d.var, up=False) for i, d in enumerate(self.dims)],
+            [snap(0.5 * (lo[:, i] + hi[:, i]), v, up=False) for i, v in enumerate(self.vars)],
             axis=1,
         )
         mid = np.clip(mid, lo, hi)
@@ -729,14 +647,14 @@ class _Search:
         keep = bound < self.best.limit(lo)
         self.log.closed(lo, hi, bound, ~keep)  # their points meet the constraints or not
         lo, hi, bound = lo[keep], hi[keep], bound[keep]
-        width = _widths(lo, hi, self.offset)
+        width = widths(lo, hi, self.offset)
         point = np.all(width <= 0, axis=1)
         self.log.closed(lo, hi, bound, point)  # evaluated, kept whatever it broke
         lo, hi, bound = lo[~point], hi[~point], bound[~point]
         if not len(lo):
             return
         multi = len(lo) + len(self.q_lo) < MULTI_SPLIT_BELOW
-        lo, hi, bound = _split(lo, hi, width[~point], self.dims, multi, bound)
+        lo, hi, bound = split(lo, hi, width[~point], self.vars, multi, bound, BATCH)
         self.q_lo = np.concatenate([self.q_lo, lo])
         self.q_hi = np.concatenate([self.q_hi, hi])
         self.q_bound = np.concatenate([self.q_bound, bound])
