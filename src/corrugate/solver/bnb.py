@@ -499,25 +499,18 @@ class _Search:
         if not self.running():
             return False
         self.it += 1
-        waiting = self.q_bound < self.best.limit(self.q_lo)
-        self.log.closed(self.q_lo, self.q_hi, self.q_bound, ~waiting)
-        self.q_lo, self.q_hi = self.q_lo[waiting], self.q_hi[waiting]
-        self.q_bound = self.q_bound[waiting]
+        self._close_overtaken()
         report(self.it, _gap(self.best.value, self.q_bound), _best_of(self.best.value, self.sign))
         if not len(self.q_lo):
             return False
         lo, hi, parent = self._take(self.pace.batch(self.it))
         counts, enum = self._grid_counts(lo, hi)
         bound, broken = self._bound(lo, hi, parent, enum)
-        keep = np.asarray(~broken.any(axis=1))
-        self.log.infeasible(lo, hi, bound, broken, ~keep)
-        better = bound < self.best.limit(lo)
-        self.log.closed(lo, hi, bound, keep & ~better)
-        keep &= better
+        keep = self._prune(lo, hi, bound, broken)
         lo, hi, bound, counts, enum = lo[keep], hi[keep], bound[keep], counts[keep], enum[keep]
         if not len(lo):
             return True
-        grid = self._enumerate(lo, hi, bound, counts, enum) if enum.any() else None
+        grid = self._grid(lo, hi, bound, counts, enum) if enum.any() else None
         if grid is not None:
             lo, hi, bound = lo[~enum], hi[~enum], bound[~enum]
         # candidate points of the others: lower corner, upper corner, centre (snapped to the grid)
@@ -539,6 +532,24 @@ class _Search:
             )
         self._queue(lo, hi, bound)
         return True
+
+    def _close_overtaken(self) -> None:
+        """Close the open boxes whose bound the incumbent has reached since they were queued."""
+        waiting = self.q_bound < self.best.limit(self.q_lo)
+        self.log.closed(self.q_lo, self.q_hi, self.q_bound, ~waiting)
+        self.q_lo, self.q_hi = self.q_lo[waiting], self.q_hi[waiting]
+        self.q_bound = self.q_bound[waiting]
+
+    def _prune(
+        self, lo: FloatArray, hi: FloatArray, bound: FloatArray, broken: NDArray[np.bool_]
+    ) -> NDArray[np.bool_]:
+        """Which boxes stay: those with no constraint shown broken (``broken``: boxes x
+        constraints) whose ``bound`` is below the incumbent's threshold; the others close."""
+        keep = np.asarray(~broken.any(axis=1))
+        self.log.infeasible(lo, hi, bound, broken, ~keep)
+        better = bound < self.best.limit(lo)
+        self.log.closed(lo, hi, bound, keep & ~better)
+        return keep & better
 
     def _take(self, batch: int) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Up to ``batch`` open boxes, those with the lowest bounds (best-first), off the queue;
@@ -594,7 +605,7 @@ class _Search:
                 bound[sub] = np.maximum(_lower(sb[self.obj], self.sign), parent[sub])
         return bound, broken
 
-    def _enumerate(
+    def _grid(
         self,
         lo: FloatArray,
         hi: FloatArray,
