@@ -59,7 +59,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.solver import separable
-from corrugate.solver.archive import ARCHIVE_DEPTH, Archive, NoRecorder, Recorder
+from corrugate.solver.archive import Archive, NoRecorder, Recorder
 from corrugate.solver.boxes import grid_points, snap, split, widths
 from corrugate.solver.budget import current_budget
 from corrugate.solver.making import MAKING
@@ -68,7 +68,7 @@ from corrugate.solver.progress import report
 from corrugate.solver.quantities import DIMS, Tables, box_bounds, point_values
 from corrugate.solver.quantity import LX, LY, Quantity
 
-__all__ = ["ARCHIVE_DEPTH", "GAP_RTOL", "Archive", "BnBResult", "branch_and_bound"]
+__all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound"]
 
 FloatArray = NDArray[np.float64]
 
