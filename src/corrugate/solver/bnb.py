@@ -707,7 +707,7 @@ def branch_and_bound(
     for pruning; the result then holds a point only if it beats it. ``n_fixed``: restrict n
     (n1 for independent layers) to a range. ``start``: the open boxes (lo, hi, lower bound of
     sign * objective) to search instead of the whole domain (boxes reopened from an
-    :class:`Archive`; their union must hold every design the answer is about). ``record``: keep
+    :class:`~.archive.Archive`; their union must hold every design the answer is about). ``record``: keep
     the closed boxes in ``BnBResult.archive`` (None if the search was not certified or the
     archive outgrew :data:`~.archive.ARCHIVE_ROWS`). ``per_n`` = (a, b): the best design for
     each n in a..b with n fixed as ``n_fixed=(n, n)`` fixes it (every layer's n), one incumbent
