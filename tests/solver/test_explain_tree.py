@@ -1,5 +1,5 @@
 """The explanation from the search's own tree (issue 24, item 1): the archive of closed boxes
-(:class:`corrugate.solver.bnb.Archive`) and what is built from it, checked against independent
+(:class:`corrugate.solver.archive.Archive`) and what is built from it, checked against independent
 second methods.
 
 * The archive's promise, on the whole grid of a spec (every design evaluated, no search): every
@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import corrugate.solver.bnb as bnb
+import corrugate.solver.archive as archive
 from corrugate.solver import Problem, solve
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.progress import reporting
@@ -233,7 +233,7 @@ def test_diagnosis_from_the_tree_equals_the_cold_re_solves(
 ) -> None:
     problem = _problem(path)
     warm = solve(problem)
-    monkeypatch.setattr(bnb, "ARCHIVE_ROWS", 0)  # no archive: every relaxation from scratch
+    monkeypatch.setattr(archive, "ARCHIVE_ROWS", 0)  # no archive: every relaxation from scratch
     cold = solve(problem)
     assert warm.status == cold.status == "infeasible"
     assert warm.diagnosis  # something to compare
@@ -243,7 +243,7 @@ def test_diagnosis_from_the_tree_equals_the_cold_re_solves(
 
 def test_an_archive_past_its_row_limit_is_dropped(monkeypatch: pytest.MonkeyPatch) -> None:
     problem = _problem(EXAMPLES / "blimp_gripper.toml")
-    monkeypatch.setattr(bnb, "ARCHIVE_ROWS", 10)
+    monkeypatch.setattr(archive, "ARCHIVE_ROWS", 10)
     opt = optimize(problem, record=True)
     assert opt.certified and opt.archives == (None,) and opt.tree() is None
     monkeypatch.undo()

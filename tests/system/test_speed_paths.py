@@ -28,6 +28,7 @@ from corrugate.analysis.sweep import FIELDS, sweep
 from corrugate.geometry.layouts import Circle, Rectangle, Square
 from corrugate.solver import Problem, solve
 from corrugate.solver import bnb as bnb_module
+from corrugate.solver import boxes as boxes_module
 from corrugate.solver.interval import Interval
 from corrugate.spec.schema import load_spec
 from data_files import PAPER_CASE_STUDY
@@ -192,7 +193,7 @@ def test_kway_splits_and_enumeration_equal_plain_halving(
 ) -> None:
     problem = Problem.from_spec(load_spec(EXAMPLES / f"{name}.toml"))
     fast = solve(problem, explain=False)
-    monkeypatch.setattr(bnb_module, "MULTI_PARTS", 2)
+    monkeypatch.setattr(boxes_module, "MULTI_PARTS", 2)
     monkeypatch.setattr(bnb_module, "ENUMERATE", 0)
     ref = solve(problem, explain=False)
     assert fast.certified and ref.certified

@@ -13,9 +13,9 @@ inherited from their parent, so the search is best-first when there are many):
    box with at most :data:`ENUMERATE` points (the box is then closed), else its lower corner,
    its upper corner and its centre, snapped to the grid; keep the best feasible one;
 4. cut the boxes still open in two along their relatively widest coordinate (and, while there
-   are few boxes, into :data:`MULTI_PARTS` along every coordinate when that makes at most
-   :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate nearly as wide as the widest),
-   cutting grid coordinates between two grid values. All boxes of an iteration go through numpy
+   are few boxes, into :data:`~.boxes.MULTI_PARTS` along every coordinate when that makes at
+   most :data:`~.boxes.MULTI_SPLIT_CHILDREN` boxes, else along every coordinate nearly as wide
+   as the widest), cutting grid coordinates between two grid values (:mod:`.boxes`). All boxes of an iteration go through numpy
    together: the cost of an iteration is mostly fixed, so few iterations of many boxes are
    cheapest.
 
@@ -39,6 +39,15 @@ whose independent layers decompose (:mod:`.separable`: a rectangle, gridded, lea
 along the creases) is made layer by layer instead, with the same certificate (gap 0 on the grid,
 the same feasibility rule); the explanation, which reopens this search's archive, still runs the
 branch and bound.
+
+Reading the code. :func:`branch_and_bound` builds a :class:`_Search` (the open boxes, the
+incumbent, the counts) and calls its :meth:`~_Search.step` (one iteration: 1-4 above) until it
+returns False, then reads :meth:`~_Search.result`. The options are parts given to the search,
+not flags inside its loop: the incumbent (one, or one per n for ``per_n``: :class:`_PerN`), the
+recorder of the closed boxes (``record``: :class:`~.archive.Recorder`, else
+:class:`~.archive.NoRecorder`), the pace (``stop_below``: :class:`_StopBelow`, else
+:class:`_Pace`), the first boxes (``start``: :meth:`~_Search.start`) and the coordinates
+(``n_fixed``: :func:`_dims`). The boxes are rows of flat arrays (:mod:`.boxes`).
 """
 
 from __future__ import annotations
@@ -50,15 +59,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.solver import separable
+from corrugate.solver.archive import Archive, NoRecorder, Recorder
+from corrugate.solver.boxes import grid_points, snap, split, widths
 from corrugate.solver.budget import current_budget
 from corrugate.solver.making import MAKING
 from corrugate.solver.points import VARIABLES, Coordinate, DesignPoints, LayerPoints, coordinates
-from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, DesignVariable, Problem
+from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.progress import report
 from corrugate.solver.quantities import Tables, box_bounds, layer_corner, point_values
 from corrugate.solver.quantity import LX, LY, Quantity
 
-__all__ = ["GAP_RTOL", "Archive", "BnBResult", "branch_and_bound"]
+__all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound"]
 
 FloatArray = NDArray[np.float64]
 
@@ -74,11 +85,6 @@ BATCH = 20_000
 FIRST_BATCH = 64
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
-#: Parts per coordinate in such a split.
-MULTI_PARTS = 8
-#: Such a split cuts every coordinate when that makes at most this many boxes (grid
-#: coordinates may give fewer), else only the coordinates at least half as wide as the widest.
-MULTI_SPLIT_CHILDREN = 4096
 #: Grid boxes with at most this many points are enumerated (each point evaluated exactly) and
 #: closed, instead of being bounded and split further: a point costs far less than a box.
 ENUMERATE = 512
@@ -115,93 +121,10 @@ def _dims(problem: Problem, n_fixed: tuple[int, int] | None) -> list[_Dim]:
     return coordinates(problem, n_fixed)
 
 
-def _snap(v: FloatArray, var: DesignVariable, up: bool) -> FloatArray:
-    """Grid value at or below (above if ``up``) v; v itself for a continuous variable."""
-    if var.step is None:
-        return v
-    k = (v - var.lo) / var.step
-    k = np.ceil(k - 1e-9) if up else np.floor(k + 1e-9)
-    return np.asarray(var.lo + var.step * k)
-
-
-def _split(
-    lo: FloatArray,
-    hi: FloatArray,
-    width: FloatArray,
-    dims: list[_Dim],
-    multi: bool,
-    tag: FloatArray,
-) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Cut each box along its relatively widest coordinate (``width``: (hi - lo) / lo, with n
-    counted as n + 1, so every coordinate is judged by how much it changes across the box) into
-    two, and (``multi``) into :data:`MULTI_PARTS` along every coordinate if that makes at most
-    :data:`MULTI_SPLIT_CHILDREN` boxes, else along every coordinate at least half as wide as the
-    widest (so few boxes become many in few iterations: the per-iteration cost is mostly fixed;
-    the case study then takes 2 iterations instead of 3).
-    Grid coordinates are cut between two grid values, into at most as many parts as values."""
-    widest = width.max(axis=1, keepdims=True)
-    if multi:
-        split = width > 0  # every coordinate, while the children stay few
-        if int((float(MULTI_PARTS) ** split.sum(axis=1)).sum()) > MULTI_SPLIT_CHILDREN:
-            split &= width >= 0.5 * widest
-        if int((float(MULTI_PARTS) ** split.sum(axis=1)).sum()) > BATCH:
-            multi = False  # still too many children for one batch: halve along the widest
-    if not multi:
-        split = np.zeros(width.shape, dtype=bool)
-        split[np.arange(len(width)), np.argmax(width, axis=1)] = True
-    parts = MULTI_PARTS if multi else 2
-    for i, d in enumerate(dims):
-        sel = split[:, i]
-        if not sel.any():
-            continue
-        a, b = lo[sel, i], hi[sel, i]
-        j = np.arange(parts + 1, dtype=np.float64)[:, None]  # cut j of parts + 1 (0 and end)
-        if d.var.step is None:
-            edges = a + (b - a) * (j / parts)
-            edges[-1] = b
-            starts, ends = edges[:-1], edges[1:]
-            valid = np.ones(starts.shape, dtype=bool)
-        else:
-            k_lo = np.round((a - d.var.lo) / d.var.step)
-            k_hi = np.round((b - d.var.lo) / d.var.step)
-            count = k_hi - k_lo + 1  # grid values in the box (>= 2 here)
-            first = k_lo + np.ceil(j * count / parts)  # first grid index of each part
-            starts = d.var.lo + d.var.step * first[:-1]
-            ends = d.var.lo + d.var.step * (first[1:] - 1)
-            valid = first[1:] > first[:-1]  # a part holds at least one grid value
-        # rows: the boxes not cut here, then part by part each cut box's valid parts (no copies
-        # of whole boxes per part: one gather, then this coordinate's new edges)
-        keep = valid.reshape(-1)
-        src = np.concatenate([np.flatnonzero(~sel), np.tile(np.flatnonzero(sel), parts)[keep]])
-        first_child = len(lo) - len(a)
-        lo, hi = lo[src], hi[src]
-        lo[first_child:, i] = starts.reshape(-1)[keep]
-        hi[first_child:, i] = ends.reshape(-1)[keep]
-        split, tag = split[src], tag[src]
-    return lo, hi, tag
-
-
-def _grid_points(lo: FloatArray, counts: FloatArray, dims: list[_Dim]) -> FloatArray:
-    """Every grid point of each box (lower corners ``lo``, ``counts`` grid values per
-    coordinate), as rows; values lo + step k exactly as :func:`_split` and :func:`_snap` make."""
-    per_box = counts.prod(axis=1).astype(np.int64)
-    r = np.arange(int(per_box.sum())) - np.repeat(np.cumsum(per_box) - per_box, per_box)
-    out = np.empty((len(r), len(dims)))
-    for i in range(len(dims) - 1, -1, -1):  # mixed radix, last coordinate fastest
-        var = dims[i].var
-        assert var.step is not None
-        # per box, then repeated for its points (cheaper than indexing by each point's box)
-        c = np.repeat(counts[:, i].astype(np.int64), per_box)
-        k0 = np.repeat(np.round((lo[:, i] - var.lo) / var.step), per_box)
-        out[:, i] = var.lo + var.step * (k0 + r % c)
-        r = r // c
-    return out
-
-
 def _enumerate(
     problem: Problem, lo: FloatArray, counts: FloatArray, dims: list[_Dim], rtol: float
 ) -> tuple[FloatArray, NDArray[np.int64], list[tuple[NDArray[np.int64], NDArray[np.bool_]]]]:
-    """The grid points of each box (:func:`_grid_points`, same order) with the box each lies
+    """The grid points of each box (:func:`~.boxes.grid_points`, same order) with the box each lies
     in, less those that break a bound of one layer alone, which are found per layer.
 
     With independent layers the extents decompose: Lx is layer 1's own (n1 + 1) W1 sin(a1/2)
@@ -214,7 +137,7 @@ def _enumerate(
     per_layer = [[i for i, c in enumerate(cons) if c.quantity == q] for q in (LX, LY)]
     nbox = len(lo)
     if len({d.layer for d in dims}) != 2 or not any(per_layer):
-        every = _grid_points(lo, counts, dims)
+        every = grid_points(lo, counts, [d.var for d in dims])
         owner = np.repeat(np.arange(nbox), counts.prod(axis=1).astype(np.int64))
         return every, owner, []
     kept: list[NDArray[np.int64]] = []
@@ -224,7 +147,7 @@ def _enumerate(
     per = len(VARIABLES)
     for layer, idx in enumerate(per_layer):
         cols = slice(per * layer, per * layer + per)
-        g = _grid_points(lo[:, cols], counts[:, cols], dims[cols])
+        g = grid_points(lo[:, cols], counts[:, cols], [d.var for d in dims[cols]])
         own = np.repeat(np.arange(nbox), counts[:, cols].prod(axis=1).astype(np.int64))
         ext = layer_corner(LayerPoints(*(g[:, j] for j in range(per)))).extent
         broken = np.zeros((len(g), len(cons)), dtype=bool)
@@ -245,124 +168,11 @@ def _enumerate(
     return np.concatenate([pts[0][i1], pts[1][i2]], axis=1), box, dropped
 
 
-def _threshold(best: float, tol: float) -> float:
-    """Boxes whose bound is below this may still hold a better design."""
-    return best if not math.isfinite(best) else best - tol * abs(best)
-
-
 def _thresholds(best: FloatArray, tol: float) -> FloatArray:
-    """:func:`_threshold` of each incumbent (one per slot)."""
+    """Per incumbent (sign * objective ``best``, one per slot), the bound below which a box may
+    still hold a better design: ``tol`` (relative) below it, itself when not finite."""
     with np.errstate(invalid="ignore"):
         return np.where(np.isfinite(best), best - tol * np.abs(best), best)
-
-
-#: Rows the archive of a search keeps at most (about 110 bytes each for 6 coordinates): past
-#: it the archive is dropped and the explanation re-solves instead.
-ARCHIVE_ROWS = 1_000_000
-#: The archive keeps boxes shown to break at most this many constraints (what the explanation
-#: relaxes at once: one for the binding checks, two for the diagnosis' partners and pairs).
-ARCHIVE_DEPTH = 2
-
-
-@dataclass(frozen=True)
-class Archive:
-    """The closed boxes of a finished search, in flat arrays, for the explanation to reopen.
-
-    Row k is a box ``lo[k] <= x <= hi[k]`` (the search's coordinates, :func:`_dims`) with
-    ``bound[k]`` a lower bound of sign * objective over it (-inf when none was computed) and
-    ``mask[k]`` a bit set of constraints (bit i: ``problem.constraints[i]``) each shown to be
-    broken by every design of the box, or, for a box whose points were each evaluated, by some
-    of its points. The boxes of a search cover its whole domain; the archive holds all of them
-    except those shown to break more than :data:`ARCHIVE_DEPTH` constraints. So the designs
-    that meet every constraint but those of a set R lie in the rows with ``mask`` inside R
-    (:meth:`reopen`), and those better than the incumbent in the rows whose bound is below it.
-    The mask of a box may miss constraints that were not bounded on it (a smaller mask reopens
-    more, never less).
-    """
-
-    lo: FloatArray
-    hi: FloatArray
-    bound: FloatArray
-    mask: NDArray[np.uint64]
-
-    def reopen(
-        self, relaxed: int = 0, below: float = math.inf
-    ) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """The boxes (lo, hi, bound) that may hold a design meeting every constraint outside the
-        bit set ``relaxed`` with sign * objective below ``below``."""
-        sel = (self.mask & ~np.uint64(relaxed)) == 0
-        if math.isfinite(below):
-            sel &= self.bound < below
-        return self.lo[sel], self.hi[sel], self.bound[sel]
-
-
-class _Recorder:
-    """Collects the closed boxes of a search into an :class:`Archive` (chunks of flat arrays)."""
-
-    def __init__(self, ncons: int) -> None:
-        self.ok = ncons <= 63
-        self.bits = np.uint64(1) << np.arange(max(ncons, 1), dtype=np.uint64)
-        self.parts: list[tuple[FloatArray, FloatArray, FloatArray, NDArray[np.uint64]]] = []
-        self.rows = 0
-
-    def masks(self, broken: NDArray[np.bool_]) -> tuple[NDArray[np.uint64], NDArray[np.bool_]]:
-        """Bit sets of the rows of ``broken`` (boxes x constraints), and which rows to keep."""
-        if not broken.shape[1]:
-            return np.zeros(len(broken), dtype=np.uint64), np.ones(len(broken), dtype=bool)
-        mask = np.bitwise_or.reduce(np.where(broken, self.bits, np.uint64(0)), axis=1)
-        return mask, broken.sum(axis=1) <= ARCHIVE_DEPTH
-
-    def add(
-        self,
-        lo: FloatArray,
-        hi: FloatArray,
-        bound: FloatArray,
-        mask: NDArray[np.uint64] | None = None,
-    ) -> None:
-        if not self.ok or not len(lo):
-            return
-        if mask is None:
-            mask = np.zeros(len(lo), dtype=np.uint64)
-        self.rows += len(lo)
-        if self.rows > ARCHIVE_ROWS:  # memory bounded: no archive (the explanation re-solves)
-            self.ok = False
-            self.parts = []
-            return
-        self.parts.append((lo, hi, np.broadcast_to(bound, (len(lo),)).copy(), mask))
-
-    def add_points(
-        self,
-        lo: FloatArray,
-        hi: FloatArray,
-        bound: FloatArray,
-        owner: NDArray[np.int64],
-        mask: NDArray[np.uint64],
-        value: FloatArray,
-    ) -> None:
-        """Enumerated boxes (lo, hi, bound) from their points: point k lies in box ``owner[k]``,
-        breaks the constraints of ``mask[k]`` and has sign * objective >= ``value[k]``. One row
-        per box and bit set, bounded by the least value of its points."""
-        if not self.ok or not len(owner):
-            return
-        masks, m_id = np.unique(mask, return_inverse=True)  # few distinct bit sets
-        key = owner.astype(np.int64) * len(masks) + m_id.reshape(-1)
-        # a dense (box, bit set) table instead of sorting the keys: the same rows, in key order
-        table = np.full(len(lo) * len(masks), np.inf)
-        np.minimum.at(table, key, value)
-        seen = np.zeros(len(table), dtype=bool)
-        seen[key] = True
-        groups = np.flatnonzero(seen)
-        least = table[groups]
-        b = groups // len(masks)
-        self.add(lo[b], hi[b], np.maximum(bound[b], least), masks[groups % len(masks)])
-
-    def archive(self, ndim: int) -> Archive | None:
-        if not self.ok:
-            return None
-        if not self.parts:
-            e = np.empty((0, ndim))
-            return Archive(e, e, np.empty(0), np.empty(0, dtype=np.uint64))
-        return Archive(*(np.concatenate(c) for c in zip(*self.parts, strict=True)))
 
 
 def _broken(
@@ -451,6 +261,406 @@ def _by_layer(
     return BnBResult(r.point, r.value, r.value, True, r.scored, 1)
 
 
+def _lower(bounds: tuple[FloatArray, FloatArray], sign: float) -> FloatArray:
+    """A lower bound of sign * objective from the objective's (lower, upper) bounds."""
+    return np.asarray(sign * (bounds[1] if sign < 0 else bounds[0]))
+
+
+class _Incumbent:
+    """The best design found so far and the threshold a box's bound must be below to stay open.
+
+    ``value`` is sign * objective of the best point (inf: none yet, or the ``incumbent`` given
+    to :func:`branch_and_bound`); the threshold lies ``tol`` (relative) below it. One slot:
+    :class:`_PerN` keeps one per n."""
+
+    def __init__(self, first: float, tol: float, slots: int = 1) -> None:
+        self.value = np.full(slots, first)
+        self.point: list[DesignPoints | None] = [None] * slots
+        self.tol = tol
+
+    def slot(self, rows: FloatArray) -> NDArray[np.int64]:
+        """The incumbent each box (or point) of ``rows`` is judged against."""
+        return np.zeros(len(rows), dtype=np.int64)
+
+    def limit(self, rows: FloatArray) -> FloatArray:
+        """Per row, the bound below which its box may still hold a better design."""
+        return _thresholds(self.value, self.tol)[self.slot(rows)]
+
+    def cut(
+        self, lo: FloatArray, hi: FloatArray, bound: FloatArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """The first open boxes as this incumbent needs them (here: as they are)."""
+        return lo, hi, bound
+
+    def offer(self, pts: FloatArray, f: FloatArray, x: DesignPoints) -> None:
+        """Points ``pts`` with sign * objective ``f`` (inf where infeasible) and their
+        coordinates ``x``: the best replaces the incumbent if it is better."""
+        k = int(np.argmin(f))
+        if f[k] < self.value[0]:
+            self.value[0] = float(f[k])
+            self.point[0] = x.point(k)
+
+    def results(
+        self, open_: NDArray[np.bool_], q_lo: FloatArray, q_bound: FloatArray, sign: float
+    ) -> list[tuple[DesignPoints | None, float, float, bool]]:
+        """Per slot: (point, objective value, proven bound on the optimum, certified), the bound
+        being the best open box's when some is left open (``open_``: of the queue q_lo)."""
+        q_slot = self.slot(q_lo)
+        out = []
+        for s in range(len(self.value)):
+            sel = open_ & (q_slot == s)
+            best, point = float(self.value[s]), self.point[s]
+            if sel.any():  # stopped early: the bound is the best open box's
+                bound, cert = float(np.min(q_bound[sel])), False
+            else:  # closed: the incumbent, less the gap proved (0 on grids)
+                cert = True
+                bound = best - self.tol * abs(best) if point is not None else math.inf
+            value = sign * best if point is not None else math.nan
+            out.append((point, value, sign * min(bound, best), cert))
+        return out
+
+    def result(self, common: BnBResult, slots: list[BnBResult]) -> BnBResult:
+        """The search's result from its ``common`` fields (certified, archive, counts) and the
+        results of the slots."""
+        return replace(slots[0], certified=common.certified, archive=common.archive)
+
+
+class _PerN(_Incumbent):
+    """One incumbent per n in a..b (``per_n``): the best design with each n, n fixed as
+    ``n_fixed=(n, n)`` fixes it (every layer's n); the result's ``by_n``."""
+
+    def __init__(self, first: float, tol: float, per_n: tuple[int, int]) -> None:
+        super().__init__(first, tol, per_n[1] - per_n[0] + 1)
+        self.a, self.b = per_n
+
+    def slot(self, rows: FloatArray) -> NDArray[np.int64]:
+        return np.asarray(np.round(rows[:, 0]) - self.a, dtype=np.int64)
+
+    def cut(
+        self, lo: FloatArray, hi: FloatArray, bound: FloatArray
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Every box cut to single n values in a..b (n1 = n2 = n, as n_fixed)."""
+        a0, b0 = np.maximum(lo[:, 0], self.a), np.minimum(hi[:, 0], self.b)
+        count = np.maximum(b0 - a0 + 1, 0).astype(np.int64)
+        src = np.repeat(np.arange(len(lo)), count)
+        k = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
+        lo, hi, bound = lo[src], hi[src], bound[src]
+        lo[:, 0] = hi[:, 0] = a0[src] + k
+        if lo.shape[1] > 3:  # layer 2's n too
+            both = (lo[:, 3] <= lo[:, 0]) & (lo[:, 0] <= hi[:, 3])
+            lo, hi, bound = lo[both], hi[both], bound[both]
+            lo[:, 3] = hi[:, 3] = lo[:, 0]
+        return lo, hi, bound
+
+    def offer(self, pts: FloatArray, f: FloatArray, x: DesignPoints) -> None:
+        p_slot = self.slot(pts)
+        for s in range(len(self.value)):
+            fs = np.where(p_slot == s, f, np.inf)
+            k = int(np.argmin(fs))
+            if fs[k] < self.value[s]:
+                self.value[s] = float(fs[k])
+                self.point[s] = x.point(k)
+
+    def result(self, common: BnBResult, slots: list[BnBResult]) -> BnBResult:
+        """No point of its own and no archive; the slots' results by n (``by_n``)."""
+        by_n = {self.a + i: r for i, r in enumerate(slots)}
+        return replace(common, archive=None, by_n=by_n)
+
+
+@dataclass(frozen=True)
+class _Pace:
+    """How a search takes its boxes: :data:`BATCH` per iteration, to the end."""
+
+    def batch(self, iteration: int) -> int:
+        """Boxes bounded in iteration ``iteration`` (from 1) at most."""
+        return BATCH
+
+    def reached(self, best: float) -> bool:
+        """Whether the search may stop at its incumbent (sign * objective ``best``)."""
+        return False
+
+
+@dataclass(frozen=True)
+class _StopBelow(_Pace):
+    """A search that stops at its first design with sign * objective below ``goal``
+    (``stop_below``): its boxes best-first in batches growing from :data:`FIRST_BATCH`
+    fourfold (it often ends in the first few)."""
+
+    goal: float
+
+    def batch(self, iteration: int) -> int:
+        return min(BATCH, FIRST_BATCH * int(4 ** (iteration - 1)))
+
+    def reached(self, best: float) -> bool:
+        return best < self.goal
+
+
+@dataclass(frozen=True)
+class _Grid:
+    """The boxes of one iteration enumerated point by point: the boxes (lo, hi, bound) and, per
+    grid point, its box (``owner``), its cheap constraints shown broken, a lower bound of its
+    sign * objective and whether it is still to be evaluated exactly (``ok``)."""
+
+    lo: FloatArray
+    hi: FloatArray
+    bound: FloatArray
+    owner: NDArray[np.int64]
+    broken: NDArray[np.bool_]
+    point_bound: FloatArray
+    ok: NDArray[np.bool_]
+    points: FloatArray  # the grid points still to evaluate (``ok``), as rows
+
+
+class _Search:
+    """The state of one branch and bound (module docstring): the open boxes (``q_lo``, ``q_hi``
+    and ``q_bound``, a lower bound of sign * objective over each), the incumbent, the counts;
+    :meth:`step` makes one iteration and :meth:`result` reads the answer. The modes are the
+    parts it is given: the incumbent (one, or :class:`_PerN`), the recorder of the archive
+    (:class:`~.archive.Recorder` or :class:`~.archive.NoRecorder`) and the pace (to the end, or
+    :class:`_StopBelow`); the first boxes (warm starts) and the coordinates (``n_fixed``) come
+    from :func:`branch_and_bound`."""
+
+    def __init__(
+        self,
+        problem: Problem,
+        pair: tuple[Candidate, Candidate],
+        tables: Tables,
+        dims: list[_Dim],
+        parts: tuple[_Incumbent, NoRecorder, _Pace],
+    ) -> None:
+        self.problem, (self.c1, self.c2), self.tables, self.dims = problem, pair, tables, dims
+        self.best, self.log, self.pace = parts
+        self.sign = -1.0 if problem.objective.sense == "max" else 1.0  # minimise sign * objective
+        self.obj = problem.objective.quantity
+        self.cons = problem.constraints
+        self.needed = {c.quantity for c in self.cons} | {self.obj}
+        self.costly = {q for q in self.needed if q.directional}  # stiffness, buckling: intervals
+        self.cheap = self.needed - self.costly
+        self.vars = [d.var for d in dims]
+        self.exact = all(v.gridded for v in self.vars)
+        self.feas_rtol = FEAS_RTOL if self.exact else 0.0
+        # relative widths: n counts as n + 1 (the number of facets), W and alpha as themselves
+        self.offset = np.array([1.0 if d.variable == "n" else 0.0 for d in dims])
+        self.steps = np.array([d.var.step if d.var.step is not None else math.nan for d in dims])
+        self.q_lo = self.q_hi = self.q_bound = np.empty(0)
+        self.boxes = self.it = 0
+        self.budget = current_budget()
+
+    def start(self, start: tuple[FloatArray, FloatArray, FloatArray] | None) -> None:
+        """The first open boxes: ``start`` (a warm start), else the whole domain cut at once
+        (bounding the root alone prunes nothing); as the incumbent needs them (:meth:`_PerN.cut`)."""
+        if start is not None:
+            lo, hi, bound = (np.array(a, dtype=np.float64) for a in start)
+            self.q_lo, self.q_hi, self.q_bound = self.best.cut(lo, hi, bound)
+            return
+        root = (
+            np.array([[d.var.lo for d in self.dims]]),
+            np.array([[d.var.top for d in self.dims]]),
+            np.array([-math.inf]),
+        )
+        lo, hi, bound = self.best.cut(*root)
+        width = widths(lo, hi, self.offset)
+        if np.any(width > 0):
+            lo, hi, bound = split(lo, hi, width, self.vars, True, bound, BATCH)
+        self.q_lo, self.q_hi, self.q_bound = lo, hi, bound
+
+    def running(self) -> bool:
+        """Whether another iteration is due: boxes open, within the limits and the budget, the
+        goal (:class:`_StopBelow`) not reached."""
+        return (
+            bool(len(self.q_lo))
+            and self.it < MAX_ITERATIONS
+            and self.boxes < MAX_BOXES
+            and len(self.q_lo) < MAX_OPEN
+            and not (self.budget is not None and self.budget.exhausted)
+            and not self.pace.reached(float(self.best.value[0]))
+        )
+
+    def step(self) -> bool:
+        """One iteration (module docstring, 1-4) on the open boxes with the lowest bounds; False
+        (nothing done) when the search is over."""
+        if not self.running():
+            return False
+        self.it += 1
+        self._close_overtaken()
+        report(self.it, _gap(self.best.value, self.q_bound), _best_of(self.best.value, self.sign))
+        if not len(self.q_lo):
+            return False
+        lo, hi, parent = self._take(self.pace.batch(self.it))
+        counts, enum = self._grid_counts(lo, hi)
+        bound, broken = self._bound(lo, hi, parent, enum)
+        keep = self._prune(lo, hi, bound, broken)
+        lo, hi, bound, counts, enum = lo[keep], hi[keep], bound[keep], counts[keep], enum[keep]
+        if not len(lo):
+            return True
+        grid = self._grid(lo, hi, bound, counts, enum) if enum.any() else None
+        if grid is not None:
+            lo, hi, bound = lo[~enum], hi[~enum], bound[~enum]
+        # candidate points of the others: lower corner, upper corner, centre (snapped to the grid)
+        mid = np.stack(
+            [snap(0.5 * (lo[:, i] + hi[:, i]), v, up=False) for i, v in enumerate(self.vars)],
+            axis=1,
+        )
+        mid = np.clip(mid, lo, hi)
+        pts = np.concatenate([lo[:0] if grid is None else grid.points, lo, hi, mid])
+        p_broken, p_value = self._evaluate(pts)
+        if grid is not None:  # the enumerated boxes, once per bit set
+            n_ok = len(grid.points)
+            self.log.enumerated(
+                grid.lo,
+                grid.hi,
+                grid.bound,
+                (grid.owner, grid.broken, grid.point_bound, grid.ok),
+                (p_broken[:n_ok], p_value[:n_ok]),
+            )
+        self._queue(lo, hi, bound)
+        return True
+
+    def _close_overtaken(self) -> None:
+        """Close the open boxes whose bound the incumbent has reached since they were queued."""
+        waiting = self.q_bound < self.best.limit(self.q_lo)
+        self.log.closed(self.q_lo, self.q_hi, self.q_bound, ~waiting)
+        self.q_lo, self.q_hi = self.q_lo[waiting], self.q_hi[waiting]
+        self.q_bound = self.q_bound[waiting]
+
+    def _prune(
+        self, lo: FloatArray, hi: FloatArray, bound: FloatArray, broken: NDArray[np.bool_]
+    ) -> NDArray[np.bool_]:
+        """Which boxes stay: those with no constraint shown broken (``broken``: boxes x
+        constraints) whose ``bound`` is below the incumbent's threshold; the others close."""
+        keep = np.asarray(~broken.any(axis=1))
+        self.log.infeasible(lo, hi, bound, broken, ~keep)
+        better = bound < self.best.limit(lo)
+        self.log.closed(lo, hi, bound, keep & ~better)
+        return keep & better
+
+    def _take(self, batch: int) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """Up to ``batch`` open boxes, those with the lowest bounds (best-first), off the queue;
+        counted and charged to the budget."""
+        if len(self.q_lo) > batch:
+            take = np.zeros(len(self.q_lo), dtype=bool)
+            take[np.argpartition(self.q_bound, batch)[:batch]] = True
+            lo, hi, parent = self.q_lo[take], self.q_hi[take], self.q_bound[take]
+            self.q_lo, self.q_hi = self.q_lo[~take], self.q_hi[~take]
+            self.q_bound = self.q_bound[~take]
+        else:
+            lo, hi, parent = self.q_lo, self.q_hi, self.q_bound
+            self.q_lo, self.q_hi, self.q_bound = self.q_lo[:0], self.q_hi[:0], self.q_bound[:0]
+        self.boxes += len(lo)
+        if self.budget is not None:
+            self.budget.charge(len(lo))
+        return lo, hi, parent
+
+    def _grid_counts(self, lo: FloatArray, hi: FloatArray) -> tuple[FloatArray, NDArray[np.bool_]]:
+        """Grid values per coordinate of each box, and which boxes (at most :data:`ENUMERATE`
+        grid points) have every point evaluated and close (none with continuous variables)."""
+        if self.exact:
+            counts = np.round((hi - lo) / self.steps) + 1
+            return counts, counts.prod(axis=1) <= ENUMERATE
+        return lo[:, :0], np.zeros(len(lo), dtype=bool)
+
+    def _bound(
+        self, lo: FloatArray, hi: FloatArray, parent: FloatArray, enum: NDArray[np.bool_]
+    ) -> tuple[FloatArray, NDArray[np.bool_]]:
+        """A lower bound of sign * objective over each box (at least its parent's) and the
+        constraints shown broken in it: the cheap bounds (extents, thickness, blank, facet,
+        mass: corner values) for all, the interval (stiffness) bounds only for the boxes that
+        will be split (an enumerated box has all its points evaluated exactly anyway)."""
+        problem, c1, c2, tables = self.problem, self.c1, self.c2, self.tables
+        xlo = DesignPoints.from_columns(lo)
+        xhi = DesignPoints.from_columns(hi)
+        bnd, broken = _cheap_bounds(
+            problem, c1, c2, xlo, xhi, tables, self.cheap, self.feas_rtol, self.obj
+        )
+        if self.obj in self.cheap:
+            bound = np.maximum(_lower(bnd[self.obj], self.sign), parent)
+        else:  # bounded below with the stiffness, for the boxes that get it
+            bound = parent.copy()
+        sub = ~broken.any(axis=1) & ~enum
+        if self.costly and sub.any():
+            slo, shi = xlo.take(sub), xhi.take(sub)
+            sb = box_bounds(problem, c1, c2, slo, shi, tables, self.costly)
+            broken[sub] |= _broken(self.cons, sb, self.costly, int(sub.sum()), self.feas_rtol)
+            if self.obj in self.costly:
+                bound[sub] = np.maximum(_lower(sb[self.obj], self.sign), parent[sub])
+        return bound, broken
+
+    def _grid(
+        self,
+        lo: FloatArray,
+        hi: FloatArray,
+        bound: FloatArray,
+        counts: FloatArray,
+        enum: NDArray[np.bool_],
+    ) -> _Grid:
+        """The grid points of the boxes ``enum`` (:func:`_enumerate`), less those a cheap bound
+        (at a point, its value) shows broken or no better than the incumbent, which need no full
+        evaluation; the pairs one layer's bound dropped go to the archive."""
+        every, owner, dropped = _enumerate(
+            self.problem, lo[enum], counts[enum], self.dims, self.feas_rtol
+        )
+        e_lo, e_hi, e_bound = lo[enum], hi[enum], bound[enum]
+        self.log.dropped(e_lo, e_hi, e_bound, dropped)
+        e = DesignPoints.from_columns(every)
+        eb, e_broken = _cheap_bounds(
+            self.problem, self.c1, self.c2, e, e, self.tables, self.cheap, self.feas_rtol, self.obj
+        )
+        ok = np.asarray(~e_broken.any(axis=1))
+        if self.obj in self.cheap:
+            point_bound = _lower(eb[self.obj], self.sign)
+            ok &= point_bound < self.best.limit(every)
+        else:  # a lower bound of its objective: its box's (the exact one once evaluated)
+            point_bound = e_bound[owner]
+        return _Grid(e_lo, e_hi, e_bound, owner, e_broken, point_bound, ok, every[ok])
+
+    def _evaluate(self, pts: FloatArray) -> tuple[NDArray[np.bool_], FloatArray]:
+        """Exact values at the points ``pts`` (rows): the constraints each breaks and its sign *
+        objective; the best feasible one is offered to the incumbent. Continuous variables:
+        exact feasibility (margins >= 0); grids: :data:`~.problem.FEAS_RTOL`."""
+        if not len(pts):
+            return np.zeros((0, len(self.cons)), dtype=bool), np.empty(0)
+        x = DesignPoints.from_columns(pts)
+        vals = point_values(self.problem, self.c1, self.c2, x, self.tables)
+        p_broken = _broken(self.cons, vals, self.needed, len(pts), self.feas_rtol)
+        value = self.sign * vals[self.obj]
+        self.best.offer(pts, np.where(~p_broken.any(axis=1), value, np.inf), x)
+        return p_broken, value
+
+    def _queue(self, lo: FloatArray, hi: FloatArray, bound: FloatArray) -> None:
+        """Close the boxes the incumbent leaves behind and the single grid points (evaluated);
+        split the rest and queue the parts with their bound."""
+        keep = bound < self.best.limit(lo)
+        self.log.closed(lo, hi, bound, ~keep)  # their points meet the constraints or not
+        lo, hi, bound = lo[keep], hi[keep], bound[keep]
+        width = widths(lo, hi, self.offset)
+        point = np.all(width <= 0, axis=1)
+        self.log.closed(lo, hi, bound, point)  # evaluated, kept whatever it broke
+        lo, hi, bound = lo[~point], hi[~point], bound[~point]
+        if not len(lo):
+            return
+        multi = len(lo) + len(self.q_lo) < MULTI_SPLIT_BELOW
+        lo, hi, bound = split(lo, hi, width[~point], self.vars, multi, bound, BATCH)
+        self.q_lo = np.concatenate([self.q_lo, lo])
+        self.q_hi = np.concatenate([self.q_hi, hi])
+        self.q_bound = np.concatenate([self.q_bound, bound])
+
+    def result(self) -> BnBResult:
+        """The answer: certified when no box is left open (stopped or not); the boxes still
+        open that the incumbent has caught up with are closed first."""
+        open_ = self.q_bound < self.best.limit(self.q_lo)
+        self.log.closed(self.q_lo, self.q_hi, self.q_bound, ~open_)
+        certified = not open_.any()
+        archive = self.log.archive(len(self.dims)) if certified else None
+        common = BnBResult(None, math.nan, math.nan, certified, self.boxes, self.it, archive)
+        slots = [
+            BnBResult(point, value, bound, cert, self.boxes, self.it)
+            for point, value, bound, cert in self.best.results(
+                open_, self.q_lo, self.q_bound, self.sign
+            )
+        ]
+        return self.best.result(common, slots)
+
+
 def branch_and_bound(
     problem: Problem,
     c1: Candidate,
@@ -471,11 +681,11 @@ def branch_and_bound(
     for pruning; the result then holds a point only if it beats it. ``n_fixed``: restrict n
     (n1 for independent layers) to a range. ``start``: the open boxes (lo, hi, lower bound of
     sign * objective) to search instead of the whole domain (boxes reopened from an
-    :class:`Archive`; their union must hold every design the answer is about). ``record``: keep
+    :class:`~.archive.Archive`; their union must hold every design the answer is about). ``record``: keep
     the closed boxes in ``BnBResult.archive`` (None if the search was not certified or the
-    archive outgrew :data:`ARCHIVE_ROWS`). ``per_n`` = (a, b): the best design for each n in
-    a..b with n fixed as ``n_fixed=(n, n)`` fixes it (every layer's n), one incumbent per n
-    (``BnBResult.by_n``), the start boxes cut to single n values first.
+    archive outgrew :data:`~.archive.ARCHIVE_ROWS`). ``per_n`` = (a, b): the best design for
+    each n in a..b with n fixed as ``n_fixed=(n, n)`` fixes it (every layer's n), one incumbent
+    per n (``BnBResult.by_n``), the start boxes cut to single n values first.
     ``stop_below``: stop (uncertified unless nothing is left open) as soon as a design with
     objective strictly better than this value is found (enough to show that one exists).
     """
@@ -484,223 +694,18 @@ def branch_and_bound(
         by_layer = _by_layer(problem, c1, c2, incumbent, tables)
         if by_layer is not None:
             return by_layer
-    maximize = problem.objective.sense == "max"
-    sign = -1.0 if maximize else 1.0  # minimise sign * objective
-    obj_key = problem.objective.quantity
+    sign = -1.0 if problem.objective.sense == "max" else 1.0  # minimise sign * objective
     dims = _dims(problem, n_fixed)
-    cons = problem.constraints
-    needed = {c.quantity for c in cons} | {obj_key}
-    costly = {q for q in needed if q.directional}  # stiffness and buckling: interval arithmetic
-    cheap = needed - costly
-    exact = all(d.var.gridded for d in dims)
-    tol = 0.0 if exact else gap_rtol
-    feas_rtol = FEAS_RTOL if exact else 0.0
-    rec = _Recorder(len(cons)) if record else None
-
-    # relative widths: n counts as n + 1 (the number of facets), W and alpha as themselves
-    offset = np.array([1.0 if d.variable == "n" else 0.0 for d in dims])
-    steps = np.array([d.var.step if d.var.step is not None else math.nan for d in dims])
-    # one incumbent per slot: per n1 value (per_n), else one
-    n_base = per_n[0] if per_n is not None else 0
-    slots = per_n[1] - per_n[0] + 1 if per_n is not None else 1
-    best_val = np.full(slots, math.inf if incumbent is None else sign * incumbent)
-    best_pt: list[DesignPoints | None] = [None] * slots
-
-    def slot(lo: FloatArray) -> NDArray[np.int64]:
-        if per_n is None:
-            return np.zeros(len(lo), dtype=np.int64)
-        return np.asarray(np.round(lo[:, 0]) - n_base, dtype=np.int64)
-
-    if start is None:
-        q_lo = np.array([[d.var.lo for d in dims]])
-        q_hi = np.array([[d.var.top for d in dims]])
-        q_bound = np.array([-math.inf])
-    else:
-        q_lo, q_hi, q_bound = (np.array(a, dtype=np.float64) for a in start)
-    if per_n is not None:  # every box cut to single n values in a..b (n1 = n2 = n, as n_fixed)
-        a0, b0 = np.maximum(q_lo[:, 0], per_n[0]), np.minimum(q_hi[:, 0], per_n[1])
-        count = np.maximum(b0 - a0 + 1, 0).astype(np.int64)
-        src = np.repeat(np.arange(len(q_lo)), count)
-        k = np.arange(int(count.sum())) - np.repeat(np.cumsum(count) - count, count)
-        q_lo, q_hi, q_bound = q_lo[src], q_hi[src], q_bound[src]
-        q_lo[:, 0] = q_hi[:, 0] = a0[src] + k
-        if len(dims) > 3:  # layer 2's n too
-            both = (q_lo[:, 3] <= q_lo[:, 0]) & (q_lo[:, 0] <= q_hi[:, 3])
-            q_lo, q_hi, q_bound = q_lo[both], q_hi[both], q_bound[both]
-            q_lo[:, 3] = q_hi[:, 3] = q_lo[:, 0]
-    boxes = 0
-    it = 0
-    width = (q_hi - q_lo) / np.maximum(q_lo + offset, 1e-300)
-    if start is None and np.any(width > 0):  # bounding the root alone prunes nothing: cut it
-        q_lo, q_hi, q_bound = _split(q_lo, q_hi, width, dims, True, q_bound)
-    budget = current_budget()
-    goal = -math.inf if stop_below is None else sign * stop_below
-    while len(q_lo) and it < MAX_ITERATIONS and boxes < MAX_BOXES and len(q_lo) < MAX_OPEN:
-        if budget is not None and budget.exhausted:
-            break
-        if best_val[0] < goal:
-            break
-        it += 1
-        thr = _thresholds(best_val, tol)
-        waiting = q_bound < thr[slot(q_lo)]
-        if rec is not None:
-            rec.add(q_lo[~waiting], q_hi[~waiting], q_bound[~waiting])
-        q_lo, q_hi, q_bound = q_lo[waiting], q_hi[waiting], q_bound[waiting]
-        report(it, _gap(best_val, q_bound), _best_of(best_val, sign))
-        if not len(q_lo):
-            break
-        # a search that stops at its first better design takes its boxes best-first in batches
-        # growing from FIRST_BATCH fourfold (it often ends in the first few)
-        batch = BATCH if stop_below is None else min(BATCH, FIRST_BATCH * 4 ** (it - 1))
-        if len(q_lo) > batch:  # best-first: the boxes with the lowest bounds go first
-            take = np.zeros(len(q_lo), dtype=bool)
-            take[np.argpartition(q_bound, batch)[:batch]] = True
-            lo, hi, parent = q_lo[take], q_hi[take], q_bound[take]
-            q_lo, q_hi, q_bound = q_lo[~take], q_hi[~take], q_bound[~take]
-        else:
-            lo, hi, parent = q_lo, q_hi, q_bound
-            q_lo, q_hi, q_bound = q_lo[:0], q_hi[:0], q_bound[:0]
-        boxes += len(lo)
-        if budget is not None:
-            budget.charge(len(lo))
-        # on grids, a box of at most ENUMERATE grid points has every point evaluated and closes
-        if exact:
-            counts = np.round((hi - lo) / steps) + 1
-            enum = counts.prod(axis=1) <= ENUMERATE
-        else:
-            counts = lo[:, :0]
-            enum = np.zeros(len(lo), dtype=bool)
-        # cheap bounds first (extents, thickness, blank, facet, mass: corner values), for all
-        xlo = DesignPoints.from_columns(lo)
-        xhi = DesignPoints.from_columns(hi)
-        bnd, broken = _cheap_bounds(problem, c1, c2, xlo, xhi, tables, cheap, feas_rtol, obj_key)
-        if obj_key in cheap:
-            o_lo, o_hi = bnd[obj_key]
-            obj_bound = sign * (o_hi if maximize else o_lo)  # lower bound of sign * objective
-            obj_bound = np.maximum(obj_bound, parent)  # a box's bound is at least its parent's
-        else:  # bounded below with the stiffness, for the boxes that get it
-            obj_bound = parent.copy()
-        # interval (stiffness) bounds only for the boxes that will be split: an enumerated box
-        # has all its points evaluated exactly anyway
-        sub = ~broken.any(axis=1) & ~enum
-        if costly and sub.any():
-            slo, shi = xlo.take(sub), xhi.take(sub)
-            sb = box_bounds(problem, c1, c2, slo, shi, tables, costly)
-            broken[sub] |= _broken(cons, sb, costly, int(sub.sum()), feas_rtol)
-            if obj_key in costly:
-                o_lo, o_hi = sb[obj_key]
-                obj_bound[sub] = np.maximum(sign * (o_hi if maximize else o_lo), parent[sub])
-        keep = ~broken.any(axis=1)
-        if rec is not None and not keep.all():
-            mask, kept = rec.masks(broken[~keep])
-            rec.add(lo[~keep][kept], hi[~keep][kept], obj_bound[~keep][kept], mask[kept])
-        better = obj_bound < _thresholds(best_val, tol)[slot(lo)]
-        if rec is not None:
-            gone = keep & ~better
-            rec.add(lo[gone], hi[gone], obj_bound[gone])
-        keep &= better
-        lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
-        counts, enum = counts[keep], enum[keep]
-        if not len(lo):
-            continue
-        e_lo = lo[:0]
-        if enum.any():
-            every, owner, dropped = _enumerate(problem, lo[enum], counts[enum], dims, feas_rtol)
-            e_lo, e_hi, e_bound = lo[enum], hi[enum], obj_bound[enum]
-            if rec is not None:  # the pairs dropped by one layer's bound: rows of its bits
-                for own, why in dropped:
-                    mask, kept = rec.masks(why)
-                    rec.add_points(e_lo, e_hi, e_bound, own[kept], mask[kept], e_bound[own[kept]])
-            lo, hi, obj_bound = lo[~enum], hi[~enum], obj_bound[~enum]
-            # each point is a box of its own: the same cheap bounds (values, there) drop the
-            # points that break a cheap constraint or cannot beat the incumbent, before the
-            # full evaluation
-            e = DesignPoints.from_columns(every)
-            eb, e_broken = _cheap_bounds(problem, c1, c2, e, e, tables, cheap, feas_rtol, obj_key)
-            ok = ~e_broken.any(axis=1)
-            if obj_key in cheap:
-                o_lo, o_hi = eb[obj_key]
-                ok &= sign * (o_hi if maximize else o_lo) < _thresholds(best_val, tol)[slot(every)]
-            # what each point's bound says, for the archive: its broken cheap bounds and a lower
-            # bound of its objective (replaced by the exact ones for the points evaluated)
-            e_all_broken = e_broken
-            e_pb = sign * (o_hi if maximize else o_lo) if obj_key in cheap else e_bound[owner]
-            e_ok = ok
-            every = every[ok]
-        else:
-            every = lo[:0]
-        # candidate points of the others: lower corner, upper corner, centre (snapped to the grid)
-        mid = np.stack(
-            [_snap(0.5 * (lo[:, i] + hi[:, i]), d.var, up=False) for i, d in enumerate(dims)],
-            axis=1,
-        )
-        mid = np.clip(mid, lo, hi)
-        pts = np.concatenate([every, lo, hi, mid])
-        if len(pts):
-            x = DesignPoints.from_columns(pts)
-            vals = point_values(problem, c1, c2, x, tables)
-            p_broken = _broken(cons, vals, needed, len(pts), feas_rtol)
-            # continuous: exact feasibility (margins >= 0); grids: FEAS_RTOL
-            ok = ~p_broken.any(axis=1)
-            f = np.where(ok, sign * vals[obj_key], np.inf)
-            p_slot = slot(pts)
-            for s_ in range(slots) if slots > 1 else (0,):
-                fs = np.where(p_slot == s_, f, np.inf) if slots > 1 else f
-                k = int(np.argmin(fs))
-                if fs[k] < best_val[s_]:
-                    best_val[s_] = float(fs[k])
-                    best_pt[s_] = x.point(k)
-        if rec is not None and len(e_lo):  # the enumerated boxes, once per bit set
-            n_ok = len(every)
-            mask, kept = rec.masks(e_all_broken)
-            e_pb = np.array(e_pb, dtype=np.float64)
-            if n_ok:  # the points evaluated: every constraint, and their objective
-                full, full_kept = rec.masks(p_broken[:n_ok])
-                mask[e_ok], kept[e_ok] = full, full_kept
-                e_pb[e_ok] = sign * vals[obj_key][:n_ok]
-            rec.add_points(e_lo, e_hi, e_bound, owner[kept], mask[kept], e_pb[kept])
-        keep = obj_bound < _thresholds(best_val, tol)[slot(lo)]
-        if rec is not None:  # closed by the incumbent (their points meet the constraints or not)
-            rec.add(lo[~keep], hi[~keep], obj_bound[~keep])
-        lo, hi, obj_bound = lo[keep], hi[keep], obj_bound[keep]
-        # close single grid points; split the rest and queue the halves with their bound
-        width = (hi - lo) / np.maximum(lo + offset, 1e-300)
-        point = np.all(width <= 0, axis=1)
-        if rec is not None:  # a single point, evaluated above (kept whatever it broke)
-            rec.add(lo[point], hi[point], obj_bound[point])
-        lo, hi, obj_bound = lo[~point], hi[~point], obj_bound[~point]
-        if not len(lo):
-            continue
-        multi = len(lo) + len(q_lo) < MULTI_SPLIT_BELOW
-        lo, hi, obj_bound = _split(lo, hi, width[~point], dims, multi, obj_bound)
-        q_lo = np.concatenate([q_lo, lo])
-        q_hi = np.concatenate([q_hi, hi])
-        q_bound = np.concatenate([q_bound, obj_bound])
-    thr = _thresholds(best_val, tol)
-    q_slot = slot(q_lo)
-    q_open = q_bound < thr[q_slot]
-    if rec is not None:
-        rec.add(q_lo[~q_open], q_hi[~q_open], q_bound[~q_open])
-    certified = not q_open.any()  # stopped or not, nothing is left open
-    archive = rec.archive(len(dims)) if rec is not None and certified else None
-    results = []
-    for s_ in range(slots):
-        sel = q_open & (q_slot == s_)
-        bv = float(best_val[s_])
-        if sel.any():  # stopped early: the bound is the best open box's
-            global_bound = float(np.min(q_bound[sel]))
-            cert = False
-        else:
-            cert = True
-            global_bound = bv if best_pt[s_] is not None else math.inf
-            if best_pt[s_] is not None and not exact:
-                global_bound = bv - gap_rtol * abs(bv)
-        value = sign * bv if best_pt[s_] is not None else math.nan
-        results.append(BnBResult(best_pt[s_], value, sign * min(global_bound, bv), cert, boxes, it))
-    if per_n is None:
-        return replace(results[0], certified=certified, archive=archive)
-    r0 = BnBResult(None, math.nan, math.nan, certified, boxes, it)
-    return replace(r0, by_n={n_base + i: r for i, r in enumerate(results)})
+    tol = 0.0 if all(d.var.gridded for d in dims) else gap_rtol
+    first = math.inf if incumbent is None else sign * incumbent
+    best = _Incumbent(first, tol) if per_n is None else _PerN(first, tol, per_n)
+    log = Recorder(len(problem.constraints)) if record else NoRecorder()
+    pace = _Pace() if stop_below is None else _StopBelow(sign * stop_below)
+    search = _Search(problem, (c1, c2), tables, dims, (best, log, pace))
+    search.start(start)
+    while search.step():
+        pass
+    return search.result()
 
 
 def _gap(best: FloatArray, bounds: FloatArray) -> float:

@@ -5,7 +5,7 @@ re-solves of variants of it (each one the branch and bound of :mod:`.bnb`, so ev
 best a design in the variable bounds reaches, not an estimate). A variant that only drops
 constraints (one, a partner, a pair, the off-axis set of at most two) is searched warm, from the
 boxes of the infeasible solve's tree that break nothing but the dropped constraints
-(:class:`~.bnb.Archive`): every design of the variant lies in them.
+(:class:`~.archive.Archive`): every design of the variant lies in them.
 
 * **identical layers on a rectangle or polygon**: both layers fold to the same extent, Lx = Ly (a
   square bounding box). When ``layers = "independent"`` makes the spec feasible, that is the
@@ -38,7 +38,7 @@ from dataclasses import replace
 import numpy as np
 
 from corrugate.names import DEFAULT_MARGIN_MM
-from corrugate.solver.bnb import ARCHIVE_DEPTH, Archive
+from corrugate.solver.archive import ARCHIVE_DEPTH, Archive
 from corrugate.solver.budget import budget_spent, current_budget
 from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.quantities import Tables

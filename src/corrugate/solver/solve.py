@@ -8,7 +8,7 @@ then, unless ``explain=False``, builds the explanation:
 * every constraint with its value, bound, margin (>= 0 when met, in the quantity's unit), whether
   it is *active* (margin within 1e-6 of the bound) and whether it is *binding*: dropping it alone
   lets the solver find a strictly better design (certified: re-searched from the boxes of the
-  solve's own tree that this constraint alone closed below the optimum, :class:`~.bnb.Archive`,
+  solve's own tree that this constraint alone closed below the optimum, :class:`~.archive.Archive`,
   stopping at the first better design; from the whole domain when there is no archive);
 * runner-ups: the certified best design for each n near the optimum's n (one search per sheet
   pair, one incumbent per n, from the tree's boxes that may hold a feasible design);
@@ -34,7 +34,8 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.analysis.warnings import wheel_warnings
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
-from corrugate.solver.bnb import GAP_RTOL, Archive, BnBResult, branch_and_bound
+from corrugate.solver.archive import Archive
+from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
@@ -80,7 +81,7 @@ class Optimum:
     boxes: int
     iterations: int
     #: ``record``: each sheet pair's closed boxes (:func:`pairs` order; an entry is None when
-    #: its archive outgrew :data:`~.bnb.ARCHIVE_ROWS`), None otherwise
+    #: its archive outgrew :data:`~.archive.ARCHIVE_ROWS`), None otherwise
     archives: tuple[Archive | None, ...] | None = None
 
     def tree(self) -> tuple[Archive, ...] | None:
@@ -867,5 +868,5 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
 
 
 def constraint_bits(problem: Problem, name: str) -> int:
-    """The bit set of :class:`~.bnb.Archive` masks of the constraints called ``name``."""
+    """The bit set of :class:`~.archive.Archive` masks of the constraints called ``name``."""
     return sum(1 << i for i, c in enumerate(problem.constraints) if c.name == name)
