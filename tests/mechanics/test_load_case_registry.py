@@ -38,6 +38,7 @@ from corrugate.mechanics.behaviours import TestForm as Form
 from corrugate.mechanics.load_cases import LOCAL, THREE_POINT
 from corrugate.names import RECTANGULAR_LAYOUTS
 from corrugate.solver import Problem, solve
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import LY, MASS, Quantity
 from corrugate.spec.reference import json_schema, reference_markdown
@@ -104,16 +105,8 @@ def _spec(**constraints: Any) -> dict[str, Any]:
     return with_units(d)
 
 
-def _points(n: np.ndarray, W: np.ndarray, a: np.ndarray) -> Any:
-    """Identical layers at the points (n, W, a) as the solver's point_values reads them: typed
-    design points (corrugate.solver.points) where the solver has them, else its flat keys."""
-    try:
-        from corrugate.solver.points import (  # type: ignore[import-not-found, unused-ignore]
-            DesignPoints,
-            LayerPoints,
-        )
-    except ImportError:
-        return {"n1": n, "W1": W, "a1": a, "n2": n, "W2": W, "a2": a}
+def _points(n: np.ndarray, W: np.ndarray, a: np.ndarray) -> DesignPoints:
+    """Identical layers at the points (n, W, a), as the solver's point_values reads them."""
     return DesignPoints.of(LayerPoints(n, W, a))
 
 
