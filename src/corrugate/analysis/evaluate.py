@@ -29,13 +29,14 @@ from corrugate.geometry.layouts import (
     layer_inverse_sums,
     length_sum,
 )
-from corrugate.geometry.profile import ZigZag
+from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.mechanics.behaviours import check_support, get_support
 from corrugate.mechanics.buckling import BucklingEstimate, buckling_bounds
 from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from corrugate.mechanics.moduli import DEFAULT_MODEL, Moduli, ModuliModel, get_model
 from corrugate.mechanics.offaxis import Coupon, assembly_directional
+from corrugate.mechanics.profiles import profile_moduli
 from corrugate.mechanics.springs import LayerSprings, layer_springs
 from corrugate.names import DEFAULT_SUPPORT
 
@@ -58,7 +59,9 @@ FloatArray = NDArray[np.float64]
 class LayerArrays:
     """Parameters of one layer as arrays that broadcast together (internal units).
 
-    E (MPa), nu, t (mm), W (mm), n (creases), alpha_deg (deg), density (g/mm^3).
+    E (MPa), nu, t (mm), W (mm), n (creases), alpha_deg (deg), density (g/mm^3), and the
+    profile they are folded to (:class:`~corrugate.geometry.profile.ProfileKind`, the zig-zag
+    unless told).
     """
 
     E: ArrayLike
@@ -68,16 +71,20 @@ class LayerArrays:
     n: ArrayLike
     alpha_deg: ArrayLike
     density: ArrayLike
+    profile_kind: ProfileKind = ZIGZAG
 
     @classmethod
     def of(cls, layer: Layer) -> LayerArrays:
         m = layer.material
-        return cls(m.E, m.nu, layer.t, layer.W, layer.n, layer.alpha_deg, m.density)
+        return cls(
+            m.E, m.nu, layer.t, layer.W, layer.n, layer.alpha_deg, m.density, layer.profile_kind
+        )
 
-    def profile(self) -> ZigZag:
-        """The layers' cross-section (:class:`corrugate.geometry.profile.ZigZag`) over the arrays:
-        s, c, pitch p = W s and height h = W c, extent (n + 1) p, flat width (n + 1) W (mm)."""
-        return ZigZag.of(
+    def profile(self) -> Any:
+        """The layers' cross-section (:class:`corrugate.geometry.profile.Profile` of their
+        profile kind; :class:`~corrugate.geometry.profile.ZigZag` by default) over the arrays:
+        pitch, height, developed width, extent (n + 1) pitch, flat width (n + 1) developed (mm)."""
+        return self.profile_kind.of(
             np.asarray(self.W, dtype=np.float64), np.asarray(self.alpha_deg, dtype=np.float64)
         )
 
@@ -155,7 +162,7 @@ def identical_layers(layer1: LayerArrays, layer2: LayerArrays, layout: Layout) -
         return False
     if layer1 is layer2:
         return True
-    return all(
+    return layer1.profile_kind == layer2.profile_kind and all(
         _same_field(getattr(layer1, f), getattr(layer2, f))
         for f in ("alpha_deg", "W", "n", "t", "E", "nu", "density")
     )
@@ -163,12 +170,11 @@ def identical_layers(layer1: LayerArrays, layer2: LayerArrays, layout: Layout) -
 
 @dataclass(frozen=True, slots=True)
 class _LayerPart:
-    """One layer's share of :func:`evaluate`, from its cross-section
-    (:class:`corrugate.geometry.profile.ZigZag`): s = sin(alpha/2), c = cos(alpha/2), pitch p and
-    height h (mm), chord extent (n + 1) p (mm) and moduli (MPa)."""
+    """One layer's share of :func:`evaluate`, from its cross-section ``z``
+    (:class:`corrugate.geometry.profile.Profile`; the zig-zag's s = sin(alpha/2), c =
+    cos(alpha/2)): pitch p and height h (mm), chord extent (n + 1) p (mm) and moduli (MPa)."""
 
-    s: FloatArray
-    c: FloatArray
+    z: Any
     p: FloatArray
     h: FloatArray
     extent: FloatArray
@@ -176,13 +182,14 @@ class _LayerPart:
 
 
 def _layer_part(layer: LayerArrays, model: ModuliModel) -> _LayerPart:
-    """Trigonometry once per layer (the profile's s, c of alpha/2), then the geometry and the
-    moduli."""
+    """Trigonometry once per layer (the profile's sin and cos of alpha/2), then the geometry and
+    the moduli (:func:`corrugate.mechanics.profiles.profile_moduli`: the zig-zag's closed forms,
+    another profile's Xia general theory)."""
     z = layer.profile()
     # scalars as Python floats: the nu polynomials of the moduli cost nothing then
-    m = model.of_profile(_num(layer.E), _num(layer.nu), _num(layer.t), z)
+    m = profile_moduli(z, _num(layer.E), _num(layer.nu), _num(layer.t), model.name)
     # n as float64: (n + 1) is exact, and float * float avoids a cast loop
-    return _LayerPart(z.s, z.c, z.pitch, z.height, z.extent(np.asarray(layer.n, np.float64)), m)
+    return _LayerPart(z, z.pitch, z.height, z.extent(np.asarray(layer.n, np.float64)), m)
 
 
 def _on_creases(eta_deg: ArrayLike) -> Any:
@@ -243,10 +250,10 @@ def evaluate(
         q1,
         layer1.E,
         layer1.nu,
-        g1.s,
+        g1.z.plan_ratio,
         qs1,
-        cos_half=g1.c,
-        W=layer1.W,
+        web2=g1.z.web2,
+        height=g1.h,
         n=layer1.n,
     )
     if same:
@@ -260,10 +267,10 @@ def evaluate(
             q2,
             layer2.E,
             layer2.nu,
-            g2.s,
+            g2.z.plan_ratio,
             qs2,
-            cos_half=g2.c,
-            W=layer2.W,
+            web2=g2.z.web2,
+            height=g2.h,
             n=layer2.n,
         )
     coupon = None
@@ -282,7 +289,7 @@ def evaluate(
         )
     D = directional("D", (s1, s2), eta_deg, support, coupon)
     mass = layer_mass(
-        layer1.density, layer1.t, layer1.W, length_sum(layout, layer1.n, Ly), layout, g1.p
+        layer1.density, layer1.t, g1.z.developed, length_sum(layout, layer1.n, Ly), layout, g1.p
     )
     if same:  # x + x == 2 x exactly
         thickness = np.asarray(2.0 * g1.h)
@@ -290,7 +297,7 @@ def evaluate(
     else:
         thickness = np.asarray(g1.h + g2.h)
         mass = mass + layer_mass(
-            layer2.density, layer2.t, layer2.W, length_sum(layout, layer2.n, Lx), layout, g2.p
+            layer2.density, layer2.t, g2.z.developed, length_sum(layout, layer2.n, Lx), layout, g2.p
         )
     m_conn = connector_mass(layer1.density, layer1.t, layout, Lx, Ly, thickness, fabrication)
     K = directional("K", (s1, s2), eta_deg, support, coupon)

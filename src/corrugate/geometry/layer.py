@@ -1,7 +1,8 @@
 """Layers and assemblies: the design parameters and the folded geometry they imply.
 
-A :class:`Layer` is one zig-zag sheet: facet width W (mm), n creases (n + 1 facets), interior fold
-angle alpha (deg), material and thickness t (mm). An :class:`Assembly` is two layers stacked
+A :class:`Layer` is one folded sheet: facet width W (mm), n creases (n + 1 facets), interior fold
+angle alpha (deg), material and thickness t (mm), folded to a registered profile
+(:class:`~corrugate.geometry.profile.ProfileKind`, the zig-zag unless another is named). An :class:`Assembly` is two layers stacked
 orthogonally on a :mod:`layout <corrugate.geometry.layouts>`; the two layers may differ in every parameter.
 """
 
@@ -10,6 +11,7 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -17,7 +19,7 @@ from numpy.typing import NDArray
 from corrugate.core.errors import InputError
 from corrugate.geometry.holes import check_holes
 from corrugate.geometry.layouts import Layout, Square, facet_lengths
-from corrugate.geometry.profile import ZigZag
+from corrugate.geometry.profile import ZIGZAG, ProfileKind, ZigZag
 from corrugate.materials.library import Material
 
 __all__ = ["Assembly", "FacetGeometry", "Layer", "crease_layer"]
@@ -86,7 +88,9 @@ class Layer(FacetGeometry):
 
     ``W``: flat facet width (mm, > 0); ``n``: number of creases (integer >= 1); ``alpha_deg``:
     interior angle between adjacent facets (0 < alpha < 180 deg, 180 = flat); ``t``: sheet
-    thickness (mm, > 0; defaults to the material's default thickness).
+    thickness (mm, > 0; defaults to the material's default thickness); ``profile_kind``: the
+    profile it is folded to (:class:`~corrugate.geometry.profile.ProfileKind`: a registered
+    designable profile's name and fixed parameters; the zig-zag by default).
     """
 
     W: float
@@ -94,6 +98,13 @@ class Layer(FacetGeometry):
     alpha_deg: float
     material: Material
     t: float = field(default=_DEFAULT_T)
+    profile_kind: ProfileKind = ZIGZAG
+
+    @property
+    def profile(self) -> Any:
+        """The cross-section (:mod:`corrugate.geometry.profile`) of the layer's profile kind, in
+        Python floats."""
+        return self.profile_kind.of_float(self.W, self.alpha_deg)
 
     def __post_init__(self) -> None:
         from corrugate.core.limits import check, check_count
@@ -125,7 +136,7 @@ class Layer(FacetGeometry):
 
     @property
     def flat_width(self) -> float:
-        """Flat blank width across the creases, (n + 1) W (mm)."""
+        """Flat blank width across the creases, (n + 1) developed ((n + 1) W for the zig-zag; mm)."""
         return self.profile.flat_width(self.n)  # type: ignore[no-any-return]
 
     @property

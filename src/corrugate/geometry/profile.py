@@ -42,8 +42,10 @@ from corrugate.core.errors import InputError, UnknownNameError
 
 __all__ = [
     "DEFAULT_PROFILE",
+    "ZIGZAG",
     "Profile",
     "ProfileIntegrals",
+    "ProfileKind",
     "ZigZag",
     "get_profile",
     "profile_names",
@@ -96,6 +98,20 @@ class Profile(Protocol):
     @property
     def developed(self) -> Any:
         """Flat length of sheet one repeat unit takes across the creases (mm)."""
+        ...
+
+    @property
+    def plan_ratio(self) -> Any:
+        """pitch / developed: the in-plane shear A66 = G t pitch/developed and the twisting
+        D66 = G t^3 / 12 x developed/pitch per unit width (Xia et al. 2012, c/l and l/c;
+        sin(alpha/2) for the zig-zag)."""
+        ...
+
+    @property
+    def web2(self) -> Any:
+        """The mean of (dz/ds)^2 over the developed length of a repeat unit: the share of the
+        sheet's shear stiffness G t that carries a shear load across the depth, per developed
+        length (cos^2(alpha/2) for the zig-zag; docs/load_cases.md section 2)."""
         ...
 
     def extent(self, n: Any) -> Any:
@@ -158,6 +174,16 @@ class ZigZag:
         """W (mm): a facet is flat."""
         return self.W
 
+    @property
+    def plan_ratio(self) -> Any:
+        """p / W = s = sin(alpha/2)."""
+        return self.s
+
+    @property
+    def web2(self) -> Any:
+        """c^2 = cos^2(alpha/2): every facet is a web of slope cos(alpha/2)."""
+        return self.c * self.c
+
     def extent(self, n: Any) -> Any:
         """(n + 1) p (mm), the folded extent of n creases."""
         return (n + 1) * self.pitch
@@ -219,3 +245,57 @@ def get_profile(name: str = DEFAULT_PROFILE) -> type[Any]:
 def profile_names() -> tuple[str, ...]:
     """The registered profiles' names, the default first."""
     return tuple(_PROFILES)
+
+
+@dataclass(frozen=True, slots=True)
+class ProfileKind:
+    """Which profile a layer is folded to: a registered profile's ``name`` and its fixed
+    ``params`` (e.g. a flat fraction), beside the layer's design variables W (mm) and alpha (deg).
+
+    A *designable* profile class (one a layer, ``analyze`` and the solver can carry) has the
+    zig-zag's three constructors with the extra parameters last: ``of(W, alpha_deg, *params)``
+    (floats, arrays, intervals), ``of_half(W, alpha/2 in rad, *params)`` and
+    ``of_float(W, alpha_deg, *params)`` (Python floats). The solver bounds its sizes and mass by
+    their values at a box's corners, so its pitch must grow with W and alpha, its height grow
+    with W and fall with alpha, and developed / pitch fall with alpha, as the zig-zag's do
+    (docs/theory.md section 5); its moduli and springs are bounded by interval arithmetic of
+    the same code (:func:`corrugate.mechanics.profiles.profile_moduli`).
+    """
+
+    name: str = DEFAULT_PROFILE
+    params: tuple[float, ...] = ()
+
+    def __post_init__(self) -> None:
+        kind = get_profile(self.name)
+        missing = [m for m in ("of", "of_half", "of_float") if not hasattr(kind, m)]
+        if missing:
+            raise InputError(
+                "profile",
+                repr(self.name),
+                "a designable profile (with of, of_half and of_float)",
+                reason=f"has no {', '.join(missing)}",
+            )
+        object.__setattr__(self, "name", self.name.strip().lower())
+        object.__setattr__(self, "params", tuple(float(v) for v in self.params))
+
+    @property
+    def is_default(self) -> bool:
+        """Whether this is the default profile (the zig-zag) with no parameters."""
+        return self.name == DEFAULT_PROFILE and not self.params
+
+    def of(self, W: Any, alpha_deg: Any) -> Any:
+        """The profile at facet width ``W`` (mm) and fold angle ``alpha_deg`` (deg); floats,
+        arrays or intervals."""
+        return get_profile(self.name).of(W, alpha_deg, *self.params)
+
+    def of_half(self, W: Any, half: Any) -> Any:
+        """The profile from the half angle ``half`` = alpha/2 (rad)."""
+        return get_profile(self.name).of_half(W, half, *self.params)
+
+    def of_float(self, W: float, alpha_deg: float) -> Any:
+        """The profile of one layer in Python floats."""
+        return get_profile(self.name).of_float(W, alpha_deg, *self.params)
+
+
+#: The zig-zag, every layer's profile unless another is named.
+ZIGZAG: Final[ProfileKind] = ProfileKind()

@@ -5,7 +5,9 @@ Facet j of a layer is a flat strip of width W and area W L_j (see :mod:`corrugat
 layer weighs rho t W sum_j L_j; the band's area is :func:`corrugate.geometry.connectors.connector_area`.
 Every mass the package reports, the optimiser's included, comes from this module, and equals
 rho t times the area of the polygons in the cut files. A layout's holes (:mod:`corrugate.geometry.holes`)
-are cut from both layers' blanks: each removes rho t A_h / sin(alpha/2) from a layer.
+are cut from both layers' blanks: each removes rho t A_h / sin(alpha/2) from a layer. Another
+profile's layer (:class:`corrugate.geometry.profile.Profile`) is the same with W its developed
+width per repeat unit and sin(alpha/2) its pitch / developed.
 """
 
 from __future__ import annotations
@@ -33,6 +35,8 @@ def layer_mass(
     pitch: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
     """Mass (g) of a layer's flat blank: density (g/mm^3) x t (mm) x W (mm) x sum_j L_j (mm),
+    with ``W`` the profile's developed width of one repeat unit (the facet width W for the
+    zig-zag; :attr:`corrugate.geometry.profile.Profile.developed`),
     less the layout's holes when ``layout`` and the layer's ``pitch`` (mm) are given: each hole of
     plan area A_h is cut from the blank stretched by W / p = 1 / sin(alpha/2) across the creases,
     so it removes density x t x A_h W / p (:mod:`corrugate.geometry.holes`)."""
@@ -81,11 +85,22 @@ class MassBreakdown:
 def assembly_mass(a: Assembly, opts: FabricationOptions = DEFAULT_FABRICATION) -> MassBreakdown:
     """Mass (g) of the assembly's cut parts: both layers and the connector band."""
     l1, l2 = a.layer1, a.layer2
+    z1, z2 = l1.profile, l2.profile  # developed = W for the zig-zag
     m1 = layer_mass(
-        l1.material.density, l1.t, l1.W, length_sum(a.layout, l1.n, a.Ly), a.layout, l1.pitch
+        l1.material.density,
+        l1.t,
+        z1.developed,
+        length_sum(a.layout, l1.n, a.Ly),
+        a.layout,
+        z1.pitch,
     )
     m2 = layer_mass(
-        l2.material.density, l2.t, l2.W, length_sum(a.layout, l2.n, a.Lx), a.layout, l2.pitch
+        l2.material.density,
+        l2.t,
+        z2.developed,
+        length_sum(a.layout, l2.n, a.Lx),
+        a.layout,
+        z2.pitch,
     )
     mc = connector_mass(l1.material.density, l1.t, a.layout, a.Lx, a.Ly, a.thickness, opts)
     return MassBreakdown(float(m1), float(m2), float(mc))

@@ -94,10 +94,11 @@ FloatArray = NDArray[np.float64]
 def shear_springs(E: Any, nu: Any, t: Any, s: Any, pq: Any) -> tuple[Any, Any]:
     """In-plane shear spring K_T (N/mm) and twisting spring D_T (N mm) of a layer.
 
-    ``E`` MPa, ``nu``, ``t`` mm, ``s`` = sin(alpha/2), ``pq`` = p sum_j 1/L_j (the factor that
+    ``E`` MPa, ``nu``, ``t`` mm, ``s`` = sin(alpha/2) (any profile's pitch / developed,
+    :attr:`corrugate.geometry.profile.Profile.plan_ratio`), ``pq`` = p sum_j 1/L_j (the factor that
     turns a plate stiffness per unit width into the layer's spanwise spring, K_S = Ecy t pq).
     A66 = G t s and D66 = G t^3 / (12 s) are Xia et al. (2012) for a zig-zag of developed
-    width W = p / s; G = E / (2 (1 + nu))."""
+    width W = p / s (c/l and l/c of any profile); G = E / (2 (1 + nu))."""
     G = E / (2.0 * (1.0 + nu))
     return (G * t) * s * pq, (G * (t * t * t / 12.0)) / s * pq
 
@@ -135,13 +136,15 @@ def finite_panel_factor(n: Any, eta_deg: float = 15.0) -> Any:
     return 1.0 - finite_panel_weight(eta_deg) * finite_panel_deficit(n)
 
 
-def shear_spring(E: Any, nu: Any, t: Any, s: Any, c: Any, pq: Any) -> Any:
+def shear_spring(E: Any, nu: Any, t: Any, ratio: Any, web2: Any, pq: Any) -> Any:
     """Transverse shear spring V_S (N/mm) of a layer bent along its creases: S / L, with S = G t
     W c^2 (n + 1) the shear stiffness (N) of its n + 1 facets acting as webs (docs/load_cases.md,
     section 2) and L their length; in terms of the layer's geometry factor pq = p sum_j 1/L_j,
-    V_S = G t c^2 pq / s. ``E`` MPa, ``nu``, ``t`` mm, ``s``, ``c`` = sin, cos(alpha/2)."""
+    V_S = G t c^2 pq / s. ``E`` MPa, ``nu``, ``t`` mm; the profile's ``ratio`` = pitch / developed
+    (s = sin(alpha/2) for the zig-zag) and ``web2``, the mean (dz/ds)^2 over its developed length
+    (c^2 = cos^2(alpha/2); :class:`corrugate.geometry.profile.Profile`)."""
     G = E / (2.0 * (1.0 + nu))
-    return (G * t) * (c * c) * pq / s
+    return (G * t) * web2 * pq / ratio
 
 
 #: Angles are rounded to this many decimals of a degree before the crease directions are

@@ -38,7 +38,7 @@ class LayerSprings:
     K_T: FloatArray  # in-plane shear (free-panel model, corrugate.mechanics.offaxis)
     D_T: FloatArray  # twisting (free-panel model, corrugate.mechanics.offaxis)
     V_S: FloatArray  # transverse shear along the creases, per facet length (N/mm; load cases)
-    h: FloatArray  # depth W cos(alpha/2) of the zig-zag (mm; load cases)
+    h: FloatArray  # depth of the profile, W cos(alpha/2) for the zig-zag (mm; load cases)
     deficit: FloatArray  # finite-panel deficit of off-axis in-plane K (mechanics.offaxis)
 
 
@@ -58,23 +58,26 @@ def layer_springs(
     sin_half: ArrayLike,
     inv_length_sum_series: ArrayLike | None = None,
     *,
-    cos_half: ArrayLike = 0.0,
-    W: ArrayLike = 0.0,
+    web2: ArrayLike = 0.0,
+    height: ArrayLike = 0.0,
     n: ArrayLike = 0.0,
 ) -> LayerSprings:
     """Springs of a layer from its moduli (MPa), t (mm), pitch p (mm), q = sum_j 1/L_j (1/mm),
     and, for the shear and twisting springs of the free-panel model
-    (:func:`corrugate.mechanics.offaxis.shear_springs`), the sheet's E (MPa), nu and sin(alpha/2).
+    (:func:`corrugate.mechanics.offaxis.shear_springs`), the sheet's E (MPa), nu and the profile's
+    ``sin_half`` = pitch / developed (sin(alpha/2) for the zig-zag,
+    :attr:`corrugate.geometry.profile.Profile.plan_ratio`).
 
     With holes (:mod:`corrugate.geometry.holes`) the parallel sums (K_S, D_S, and the shear springs K_T,
     D_T) take ``inv_length_sum`` over the facets no hole touches and the series sums (K_C, D_C)
     ``inv_length_sum_series``, with the blocked lengths removed; without it both use
     ``inv_length_sum``.
 
-    For the load cases (:mod:`corrugate.mechanics.load_cases`), ``cos_half`` = cos(alpha/2), ``W``
-    (mm) and ``n`` give the transverse shear spring V_S (:func:`corrugate.mechanics.load_cases.
-    shear_spring`, on the parallel sum), the depth h = W cos(alpha/2) (mm) and the finite-panel
-    deficit of :func:`corrugate.mechanics.offaxis.finite_panel_deficit`."""
+    For the load cases (:mod:`corrugate.mechanics.load_cases`), the profile's ``web2`` (its mean
+    (dz/ds)^2, cos^2(alpha/2) for the zig-zag), ``height`` (mm, W cos(alpha/2) for the zig-zag)
+    and ``n`` give the transverse shear spring V_S (:func:`corrugate.mechanics.offaxis.
+    shear_spring`, on the parallel sum), the depth h (mm) and the finite-panel deficit of
+    :func:`corrugate.mechanics.offaxis.finite_panel_deficit`."""
     t_ = _num(t)
     p = np.asarray(pitch, dtype=np.float64)
     pq = p * np.asarray(inv_length_sum, dtype=np.float64)
@@ -83,8 +86,8 @@ def layer_springs(
     pqs = pq if series is None or series is inv_length_sum else p * np.asarray(series, np.float64)
     K_T, D_T = shear_springs(_num(E), _num(nu), t_, np.asarray(sin_half, dtype=np.float64), pq)
     t3_12 = t_ * t_ * t_ / 12.0
-    c = np.asarray(cos_half, dtype=np.float64)
-    V_S = shear_spring(_num(E), _num(nu), t_, np.asarray(sin_half, dtype=np.float64), c, pq)
+    web = np.asarray(web2, dtype=np.float64)
+    V_S = shear_spring(_num(E), _num(nu), t_, np.asarray(sin_half, dtype=np.float64), web, pq)
     with np.errstate(divide="ignore"):
         return LayerSprings(
             K_C=m.Ecx * t_ / pqs,
@@ -94,6 +97,6 @@ def layer_springs(
             K_T=K_T,
             D_T=D_T,
             V_S=V_S,
-            h=np.asarray(W, dtype=np.float64) * c,
+            h=np.asarray(height, dtype=np.float64),
             deficit=finite_panel_deficit(np.asarray(n, dtype=np.float64)),
         )

@@ -149,7 +149,7 @@ def _enumerate(
         cols = slice(per * layer, per * layer + per)
         g = grid_points(lo[:, cols], counts[:, cols], [d.var for d in dims[cols]])
         own = np.repeat(np.arange(nbox), counts[:, cols].prod(axis=1).astype(np.int64))
-        ext = layer_corner(LayerPoints(*(g[:, j] for j in range(per)))).extent
+        ext = layer_corner(LayerPoints(*(g[:, j] for j in range(per))), problem.profile_kind).extent
         broken = np.zeros((len(g), len(cons)), dtype=bool)
         for k in idx:
             broken[:, k] = ~cons[k].satisfied(ext, rtol=rtol)

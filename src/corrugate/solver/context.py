@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 from corrugate.analysis.evaluate import Evaluation, LayerArrays, coupon_of, evaluate
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Circle, Rectangle
-from corrugate.geometry.profile import ZigZag
+from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.mechanics.behaviours import Behaviour
 from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.offaxis import Coupon
@@ -43,15 +43,15 @@ FloatArray = NDArray[np.float64]
 T = TypeVar("T")
 
 
-def _layers(cand: Candidate, x: LayerPoints) -> LayerArrays:
-    """The layer ``x`` at the points, as columns; ``x`` may override E (MPa) and t (mm) per
-    point (used by the tolerance analysis)."""
+def _layers(cand: Candidate, x: LayerPoints, kind: ProfileKind = ZIGZAG) -> LayerArrays:
+    """The layer ``x`` at the points, as columns, folded to ``kind``; ``x`` may override E (MPa)
+    and t (mm) per point (used by the tolerance analysis)."""
     m = cand.material
     E = x.E[:, None] if x.E is not None else m.E
     t = x.t[:, None] if x.t is not None else cand.t
     n = np.asarray(x.n)[:, None]
     W, alpha = np.asarray(x.W)[:, None], np.asarray(x.alpha)[:, None]
-    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), alpha, m.density)
+    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), alpha, m.density, kind)
 
 
 def same_layers(c1: Candidate, c2: Candidate, x: DesignPoints) -> bool:
@@ -120,8 +120,11 @@ class AtPoints(_Shared):
     def layers(self) -> tuple[LayerArrays, LayerArrays]:
         """The two layers at the points (the same object for identical layers:
         :func:`corrugate.analysis.evaluate.identical_layers` then computes one)."""
-        l1 = _layers(self.c1, self.x.layer(0))
-        l2 = l1 if same_layers(self.c1, self.c2, self.x) else _layers(self.c2, self.x.layer(1))
+        kind = self.problem.profile_kind
+        l1 = _layers(self.c1, self.x.layer(0), kind)
+        l2 = (
+            l1 if same_layers(self.c1, self.c2, self.x) else _layers(self.c2, self.x.layer(1), kind)
+        )
         return l1, l2
 
     @property
@@ -184,21 +187,24 @@ class AtPoints(_Shared):
 @dataclass(frozen=True, slots=True)
 class Corner:
     """One layer at one corner of the boxes, computed as :func:`corrugate.analysis.evaluate.evaluate`
-    does (sin and cos of alpha/2 once): W (mm), cos(alpha/2), pitch W sin(alpha/2) and chord
-    extent (n + 1) p (mm)."""
+    does (sin and cos of alpha/2 once): W (mm), cos(alpha/2), pitch (W sin(alpha/2) for the
+    zig-zag), chord extent (n + 1) p and the developed width of a repeat unit (W for the
+    zig-zag) (mm)."""
 
     W: FloatArray
     c: FloatArray
     p: FloatArray
     extent: FloatArray
+    developed: FloatArray
 
 
-def layer_corner(b: LayerPoints) -> Corner:
-    """The layer ``b`` at a corner of the boxes (:class:`Corner`), by its zig-zag profile
-    (:class:`corrugate.geometry.profile.ZigZag`)."""
+def layer_corner(b: LayerPoints, kind: ProfileKind = ZIGZAG) -> Corner:
+    """The layer ``b`` at a corner of the boxes (:class:`Corner`), by its profile ``kind``
+    (:class:`corrugate.geometry.profile.ProfileKind`; the zig-zag,
+    :class:`corrugate.geometry.profile.ZigZag`, by default)."""
     W = np.asarray(b.W, dtype=np.float64)
-    zz = ZigZag.of(W, np.asarray(b.alpha, dtype=np.float64))
-    return Corner(W, zz.c, zz.pitch, zz.extent(np.asarray(b.n, dtype=np.float64)))
+    zz = kind.of(W, np.asarray(b.alpha, dtype=np.float64))
+    return Corner(W, zz.c, zz.pitch, zz.extent(np.asarray(b.n, dtype=np.float64)), zz.developed)
 
 
 class OverBoxes(_Shared):
@@ -240,10 +246,11 @@ class OverBoxes(_Shared):
         """Layer 1 at the low and the high corner, then layer 2 (the same objects for points
         or the same layer)."""
         lo, hi, point, same = self.lo, self.hi, self.point, self.same
-        g1_lo = layer_corner(lo.layer(0))
-        g1_hi = g1_lo if point else layer_corner(hi.layer(0))
-        g2_lo = g1_lo if same else layer_corner(lo.layer(1))
-        g2_hi = g1_hi if same else (g2_lo if point else layer_corner(hi.layer(1)))
+        k = self.problem.profile_kind
+        g1_lo = layer_corner(lo.layer(0), k)
+        g1_hi = g1_lo if point else layer_corner(hi.layer(0), k)
+        g2_lo = g1_lo if same else layer_corner(lo.layer(1), k)
+        g2_hi = g1_hi if same else (g2_lo if point else layer_corner(hi.layer(1), k))
         return g1_lo, g1_hi, g2_lo, g2_hi
 
     @property
@@ -259,8 +266,11 @@ class OverBoxes(_Shared):
     @cached_property
     def thickness(self) -> Pair:
         """Bounds of t_d = W1 c1 + W2 c2 (mm): it grows with W and falls with alpha, so W low
-        with alpha high, and back."""
+        with alpha high, and back (another profile's heights at those mixed corners:
+        :class:`~corrugate.geometry.profile.ProfileKind` asks the same of them)."""
         g1_lo, g1_hi, g2_lo, g2_hi = self.corners
+        if not self.problem.profile_kind.is_default:
+            return self._mixed_heights()
         if self.same:
             td_lo = 2.0 * (g1_lo.W * g1_hi.c)
             td_hi = td_lo if self.point else 2.0 * (g1_hi.W * g1_lo.c)
@@ -268,6 +278,23 @@ class OverBoxes(_Shared):
             td_lo = g1_lo.W * g1_hi.c + g2_lo.W * g2_hi.c
             td_hi = td_lo if self.point else g1_hi.W * g1_lo.c + g2_hi.W * g2_lo.c
         return td_lo, td_hi
+
+    def _mixed_heights(self) -> Pair:
+        """Bounds of t_d (mm) from the heights of the profile at (W low, alpha high) and
+        (W high, alpha low) of each layer."""
+        kind, lo, hi = self.problem.profile_kind, self.lo, self.hi
+
+        def height(W: Any, alpha: Any) -> FloatArray:
+            return np.asarray(
+                kind.of(np.asarray(W, np.float64), np.asarray(alpha, np.float64)).height
+            )
+
+        sides = []
+        for a, b in ((lo, hi), (hi, lo)):
+            h1 = height(a.layer(0).W, b.layer(0).alpha)
+            h2 = h1 if self.same else height(a.layer(1).W, b.layer(1).alpha)
+            sides.append(h1 + h2)
+        return sides[0], sides[1]
 
     @cached_property
     def facets(self) -> tuple[Pair, Pair]:

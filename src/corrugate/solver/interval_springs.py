@@ -2,7 +2,9 @@
 
 The bounds of every stiffness over a box of designs (docs/theory.md 3.2-3.3) start from each
 layer's springs K_C, K_S, D_C, D_S (N/mm, N mm) and its shear and twisting springs, computed by
-the moduli variant's own function (:mod:`corrugate.mechanics.moduli`) in
+the moduli variant's own function (:mod:`corrugate.mechanics.moduli`; another profile than the
+zig-zag: Xia's general theory, :func:`corrugate.mechanics.profiles.profile_moduli`, of the
+problem's :class:`~corrugate.geometry.profile.ProfileKind`) in
 :class:`~.interval.Interval` arithmetic over the box's W (mm) and alpha (deg), with the layout's
 facet-length sums bounded over its n (:class:`~.tables.Tables`; with holes by
 :func:`_hole_pq_bounds`). :func:`span_bounds` bounds the panel's length along a direction (mm).
@@ -11,15 +13,13 @@ facet-length sums bounded over its n (:class:`~.tables.Tables`; with holes by
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.geometry.layouts import Axis, Circle, Rectangle
-from corrugate.geometry.profile import ZigZag
-from corrugate.mechanics.moduli import get_model
 from corrugate.mechanics.offaxis import finite_panel_deficit, shear_spring, shear_springs
+from corrugate.mechanics.profiles import profile_moduli
 from corrugate.solver.interval import Interval
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.tables import RangeTable, Tables
@@ -65,11 +65,11 @@ def layer_springs(
     Wi = Interval(W[0], W[1])
     alpha = Interval(np.radians(a[0]), np.radians(a[1]))
     # the model functions are plain arithmetic, so they accept intervals (duck typing); sin and
-    # cos of alpha/2 once, as evaluate does: the zig-zag's profile over the box
-    from_sc: Any = get_model(problem.model).from_sc
-    zz = ZigZag.of_half(Wi, alpha * 0.5)
-    sh, ch = zz.s, zz.c
-    mod = from_sc(float(m.E), float(m.nu), float(t), Wi, sh, ch)
+    # cos of alpha/2 once, as evaluate does: the layer's profile over the box (the zig-zag's
+    # closed forms, another profile's Xia general theory, corrugate.mechanics.profiles)
+    kind = problem.profile_kind
+    zz = kind.of_half(Wi, alpha * 0.5)
+    mod = profile_moduli(zz, float(m.E), float(m.nu), float(t), problem.model)
     q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
     if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
         pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))
@@ -79,13 +79,14 @@ def layer_springs(
     t3 = t**3
     pq_par, pq_ser = pq, pq
     if problem.layout.holes:
-        p_lo = np.asarray(ZigZag.of_half(W[0], np.radians(a[0]) / 2).pitch)
-        p_hi = np.asarray(ZigZag.of_half(W[1], np.radians(a[1]) / 2).pitch)
+        p_lo = np.asarray(kind.of_half(W[0], np.radians(a[0]) / 2).pitch)
+        p_hi = np.asarray(kind.of_half(W[1], np.radians(a[1]) / 2).pitch)
         Fmin = tables.Fmin_x if axis == "x" else tables.Fmin_y  # built only with holes
         pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
-    K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), sh, pq_par)
+    ratio = zz.plan_ratio  # pitch / developed: s = sin(alpha/2) for the zig-zag
+    K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), ratio, pq_par)
     # c^2 / s falls as alpha grows: one interval each (c and s are monotone on the box)
-    V_S = shear_spring(float(m.E), float(m.nu), float(t), sh, ch, pq_par)
+    V_S = shear_spring(float(m.E), float(m.nu), float(t), ratio, zz.web2, pq_par)
     d_lo, d_hi = finite_panel_deficit(n[1]), finite_panel_deficit(n[0])  # falls with n
     return Springs(
         Ecx * t / pq_ser,

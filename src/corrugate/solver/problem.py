@@ -23,6 +23,7 @@ from corrugate.core.errors import InputError
 from corrugate.core.limits import check_items
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
+from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.materials.library import Material, get_material, inline_material
 from corrugate.mechanics.behaviours import get_load_case, listed, load_cases
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
@@ -163,6 +164,9 @@ class Problem:
     support: str = "free"  # the spec's global support condition (reports, tables)
     safety_factor: float = DEFAULT_SAFETY_FACTOR  # of the strength bounds (Pmax quantities)
     joint: str = "none"  # how the layers are joined (mechanics.load_cases.JOINTS)
+    # the profile both layers are folded to (geometry.profile; the zig-zag unless the Python API
+    # names another designable profile)
+    profile_kind: ProfileKind = ZIGZAG
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:

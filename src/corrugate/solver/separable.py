@@ -141,6 +141,7 @@ def applies(problem: Problem) -> bool:
     lay = problem.layout
     if (
         problem.identical
+        or not problem.profile_kind.is_default  # its formulas are the zig-zag's
         or not problem.gridded
         or type(lay) is not Rectangle
         or isinstance(lay, Square)

@@ -114,12 +114,22 @@ def _mass_over(over: OverBoxes, q: Quantity) -> Pair:
         # connectors), so its bounds are its values at those quantities' own bounds.
         band = connector_mass(c1.material.density, c1.t, lay, g1.extent, g2.extent, td)
         m1 = layer_mass(
-            c1.material.density, c1.t, g1.W, length_sum(lay, b.layer(0).n, g2.extent), lay, g1.p
+            c1.material.density,
+            c1.t,
+            g1.developed,
+            length_sum(lay, b.layer(0).n, g2.extent),
+            lay,
+            g1.p,
         )
         if over.same:  # the same layer twice (x + x = 2 x exactly, as evaluate does)
             return np.asarray(2.0 * m1 + band)
         m2 = layer_mass(
-            c2.material.density, c2.t, g2.W, length_sum(lay, b.layer(1).n, g1.extent), lay, g2.p
+            c2.material.density,
+            c2.t,
+            g2.developed,
+            length_sum(lay, b.layer(1).n, g1.extent),
+            lay,
+            g2.p,
         )
         return np.asarray(m1 + m2 + band)
 

@@ -431,8 +431,8 @@ def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
     assert opt.candidates is not None
     x1, x2 = opt.point.layer(0), opt.point.layer(1)
     c1, c2 = opt.candidates
-    l1 = Layer(x1.W, round(x1.n), x1.alpha, c1.material, c1.t)
-    l2 = Layer(x2.W, round(x2.n), x2.alpha, c2.material, c2.t)
+    l1 = Layer(x1.W, round(x1.n), x1.alpha, c1.material, c1.t, problem.profile_kind)
+    l2 = Layer(x2.W, round(x2.n), x2.alpha, c2.material, c2.t, problem.profile_kind)
     return Assembly(l1, l2, problem.layout)
 
 

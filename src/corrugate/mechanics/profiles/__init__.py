@@ -14,29 +14,33 @@ theory reproduces the ``xia`` variant's four moduli and the ``refined`` variant'
 (its Ebx keeps Xia's closed form) (tests/mechanics/test_profiles.py,
 tests/geometry/test_profile.py).
 
-A designable new profile would still need a layer that carries it (:class:`corrugate.geometry.layer.Layer`
-is the zig-zag's W and alpha), its interval bounds in the solver, its pattern generator and its FE
-mesh (docs/architecture.md section 3).
+A designable profile (one with the zig-zag's constructors from W and alpha, such as
+:class:`FlatCrest`) is carried by a layer (:class:`corrugate.geometry.layer.Layer`'s
+``profile_kind``), analysed and designed by the solver through this seam; its pattern generator
+and FE mesh are not (fabrication and the FE refuse it; docs/architecture.md section 3).
 """
 
 from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
-from corrugate.mechanics.profiles.trapezoid import Trapezoid
+from corrugate.mechanics.profiles.trapezoid import FlatCrest, Trapezoid
 from corrugate.mechanics.profiles.xia import (
     MEMBRANES,
     PlateStiffness,
     equivalent_plate,
+    general_moduli,
     plate_moduli,
     profile_moduli,
 )
 
 __all__ = [
     "MEMBRANES",
+    "FlatCrest",
     "PlateStiffness",
     "Profile",
     "ProfileIntegrals",
     "Trapezoid",
     "ZigZag",
     "equivalent_plate",
+    "general_moduli",
     "plate_moduli",
     "profile_moduli",
 ]

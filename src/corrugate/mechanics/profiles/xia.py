@@ -19,7 +19,7 @@ Units: any consistent set; with E in MPa and lengths in mm, A is in N/mm and D i
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal
 
 from corrugate.core.errors import InputError
 from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
@@ -31,6 +31,7 @@ __all__ = [
     "Profile",
     "ProfileIntegrals",
     "equivalent_plate",
+    "general_moduli",
     "plate_moduli",
     "profile_moduli",
 ]
@@ -97,11 +98,42 @@ def plate_moduli(plate: PlateStiffness, t: float) -> Moduli:
     )
 
 
-def profile_moduli(profile: Profile, E: float, nu: float, t: float, model: str) -> Moduli:
+def general_moduli(
+    profile: Profile, E: Any, nu: Any, t: Any, membrane: Membrane = "plane-strain"
+) -> Moduli:
+    """:func:`plate_moduli` of :func:`equivalent_plate`, reduced by hand so that floats, arrays
+    and the solver's intervals (:mod:`corrugate.solver.interval`) alike give it without the
+    cancellations of the determinants: with r = l / c, A12 = nu A11, A22 = nu^2 A11 + r E t and
+    D12 = nu D11, A11 A22 - A12^2 = A11 r E t and D11 D22 - D12^2 = D11 (D22 - nu^2 D11), so
+
+        Ecx = A11 r E / A22,  Ecy = r E,  Ebx = 12 D11 (D22 - nu^2 D11) / (t^3 D22),
+        Eby = 12 (D22 - nu^2 D11) / t^3   (MPa, for E in MPa and t in mm).
+
+    In interval arithmetic each is a sound enclosure (the repeated A11, D11, D22 make it wider
+    than the exact range over a box, never narrower), and it closes on the value as the box
+    shrinks."""
+    g = profile.integrals()
+    k = 1 - nu * nu
+    A = E * t / k
+    D = E * (t * t * t) / (12 * k)
+    Am = A if membrane == "plane-strain" else E * t
+    r = g.l / g.c
+    A11 = 2 * g.c / (g.I1 / A + g.I2 / D)
+    A22 = nu * nu * A11 + r * (E * t)
+    D11 = D / r
+    D22 = (g.I2 * Am + g.I1 * D) / (2 * g.c)
+    rest = D22 - nu * nu * D11
+    t3 = t * t * t
+    return Moduli(A11 * r * E / A22, r * E, 12 * D11 * rest / (t3 * D22), 12 * rest / t3)
+
+
+def profile_moduli(profile: Profile, E: Any, nu: Any, t: Any, model: str) -> Moduli:
     """The four moduli (MPa) of a sheet (E MPa, nu, t mm) folded to ``profile``, in the variant
     ``model``: the zig-zag's closed forms (:meth:`corrugate.mechanics.moduli.ModuliModel.of_profile`,
     the numbers ``analyze`` prints), any other profile's from Xia's general theory with the
-    variant's membrane (:data:`MEMBRANES`; docs/theory.md section 3.1). The refined closed form
+    variant's membrane (:data:`MEMBRANES`; :func:`general_moduli`, docs/theory.md section 3.1);
+    floats, arrays or intervals (the solver bounds a layer's moduli over boxes with it,
+    :mod:`corrugate.solver.interval_springs`). The refined closed form
     keeps Xia's Ebx, so for the zig-zag the general theory's uniaxial Ebx is a little lower."""
     variant = get_model(model)
     if isinstance(profile, ZigZag):
@@ -113,4 +145,4 @@ def profile_moduli(profile: Profile, E: float, nu: float, t: float, model: str) 
             f"one of {', '.join(MEMBRANES)} for a {type(profile).__name__} profile",
             reason="has closed forms for the zig-zag only",
         )
-    return plate_moduli(equivalent_plate(profile, E, nu, t, MEMBRANES[variant.name]), t)
+    return general_moduli(profile, E, nu, t, MEMBRANES[variant.name])
