@@ -201,3 +201,16 @@ def test_a_profile_without_constructors_from_W_and_alpha_is_refused() -> None:
             ProfileKind("xia-trapezoid")
     finally:
         unregister_profile("xia-trapezoid")
+
+
+def test_fabrication_and_fe_refuse_another_profile_in_one_line(kind: ProfileKind) -> None:
+    from corrugate.fabrication.build import build_pattern
+    from corrugate.fea.shells import layer_shell
+
+    layer = Layer(6.0, 9, 75.0, get_material("dura-lar"), 0.125, kind)
+    a = Assembly.identical(layer)
+    with pytest.raises(InputError, match=r"^profile = flat-crest has no fold pattern yet"):
+        build_pattern(a)
+    with pytest.raises(InputError, match=r"^profile = flat-crest has no FE mesh yet"):
+        layer_shell(layer, a.Ly, 2, 1, 0, 0.0)
+    build_pattern(Assembly.identical(replace(layer, profile_kind=ProfileKind())))  # the zig-zag

@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 
 from corrugate.fabrication.layers import crease_role
 from corrugate.fabrication.model import Part, Role
-from corrugate.geometry.layer import Assembly, Layer
+from corrugate.geometry.layer import Assembly, Layer, require_zigzag
 
 __all__ = [
     "MESH_GROUPS",
@@ -47,6 +47,7 @@ Point = tuple[float, float]
 
 def fold_points(layer: Layer, uv: FloatArray) -> FloatArray:
     """Folded (x, y, z) (mm) of flat points ``uv`` (shape (k, 2)) of ``layer``'s blank."""
+    require_zigzag(layer, "folded geometry")
     u, v = uv[:, 0], uv[:, 1]
     j = np.clip(np.floor(u / layer.W + 1e-9), 0, layer.n).astype(int)
     w = u - j * layer.W

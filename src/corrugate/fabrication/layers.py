@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.fabrication.model import Line, Part, Role
-from corrugate.geometry.layer import Layer
+from corrugate.geometry.layer import Layer, require_zigzag
 
 __all__ = ["crease_role", "layer_part", "line_intervals"]
 
@@ -51,6 +51,7 @@ def layer_part(
     own (chord, span) coordinates, mm), with the plan ``holes`` (same coordinates) cut out:
     stretched like the outline, each becomes an inner cut ring of the part, and no crease is
     drawn across it."""
+    require_zigzag(layer, "fold pattern")
     flat = np.column_stack([plan[:, 0] / layer.s, plan[:, 1]])
     origin = flat.min(axis=0)
     flat = flat - origin

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.core.errors import InputError
-from corrugate.geometry.layer import Assembly, Layer, crease_layer
+from corrugate.geometry.layer import Assembly, Layer, crease_layer, require_zigzag
 
 __all__ = [
     "Shell",
@@ -97,6 +97,7 @@ def layer_shell(
     """S8R mesh of a layer whose chord runs along ``chord_axis`` (0 = x, 1 = y); the number of
     elements along the creases is ``nel_s`` if given, else a multiple of ``multiple`` giving
     elements about ``aspect`` times as long as they are wide (W / ``along``)."""
+    require_zigzag(layer, "FE mesh")
     nf = layer.n + 1
     p, h = layer.pitch, layer.height
     nel_c = along * nf
@@ -196,6 +197,8 @@ def oblique_shells(
 
     check_shift(shift)
     a = assembly
+    for layer in a.layers:
+        require_zigzag(layer, "FE mesh")
     A, B = specimen(a, eta_deg)
     e = math.radians(eta_deg)
     ce, se = math.cos(e), math.sin(e)

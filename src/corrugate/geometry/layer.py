@@ -22,7 +22,7 @@ from corrugate.geometry.layouts import Layout, Square, facet_lengths
 from corrugate.geometry.profile import ZIGZAG, ProfileKind, ZigZag
 from corrugate.materials.library import Material
 
-__all__ = ["Assembly", "FacetGeometry", "Layer", "crease_layer"]
+__all__ = ["Assembly", "FacetGeometry", "Layer", "crease_layer", "require_zigzag"]
 
 #: Relative tolerance to which Lx and Ly must agree for a square or circular layout.
 EQUAL_SIDES_RTOL = 1e-6
@@ -143,6 +143,14 @@ class Layer(FacetGeometry):
     def fold_angle_deg(self) -> float:
         """Dihedral fold angle used by origami tools, 180 deg - alpha."""
         return 180.0 - self.alpha_deg
+
+
+def require_zigzag(layer: Layer, what: str) -> None:
+    """An :class:`InputError` in one line (``profile = flat-crest has no fold pattern yet``)
+    when ``layer`` is folded to another profile than the zig-zag: the flat pattern and the FE
+    meshes are the zig-zag's (``what``: what the caller would make)."""
+    if layer.profile_kind != ZIGZAG:
+        raise InputError("profile", layer.profile_kind.name, "zig-zag", reason=f"has no {what} yet")
 
 
 @dataclass(frozen=True, slots=True)

@@ -26,7 +26,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION
+from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.solver.evaluator import Evaluator, register
+from corrugate.solver.points import blank_width
 from corrugate.solver.quantity import CREASES, PART_LONG, PART_SHORT, T_OVER_W, W_MIN, Quantity
 
 if TYPE_CHECKING:
@@ -99,16 +101,19 @@ def making_values(
     Lx: Any,
     Ly: Any,
     td: Any,
+    kind: ProfileKind = ZIGZAG,
 ) -> dict[Quantity, FloatArray]:
     """The quantities of this module at the points ``x``: ``facet1`` and
     ``facet2`` the layers' longest facets (mm), ``Lx``, ``Ly`` the folded extents and ``td`` the
-    folded thickness (mm)."""
+    folded thickness (mm); the blanks are those of the profile ``kind``
+    (:func:`~.points.blank_width`)."""
     opts = DEFAULT_FABRICATION
     x1, x2 = x.layer(0), x.layer(1)
     n1, W1 = np.asarray(x1.n, np.float64), np.asarray(x1.W, np.float64)
     n2, W2 = np.asarray(x2.n, np.float64), np.asarray(x2.W, np.float64)
     band = (band_run(layout, Lx, Ly) + opts.overlap, np.asarray(td) + 2.0 * opts.tab_depth)
-    short, long = _parts(((n1 + 1) * W1, facet1, (n2 + 1) * W2, facet2), band)
+    blanks = blank_width(x1, kind), blank_width(x2, kind)
+    short, long = _parts((blanks[0], facet1, blanks[1], facet2), band)
     return {
         PART_SHORT: short,
         PART_LONG: long,
@@ -127,6 +132,7 @@ def making_bounds(
     facets: tuple[Pair, Pair],
     extents: tuple[Pair, Pair],
     td: Pair,
+    kind: ProfileKind = ZIGZAG,
 ) -> dict[Quantity, Pair]:
     """Bounds of the quantities of this module over the boxes [lo, hi]: ``facets`` the (low,
     high) bounds of each layer's longest facet, ``extents`` those of Lx and Ly, ``td`` of the
@@ -147,10 +153,9 @@ def making_bounds(
     sides = []
     for b, run, t_d, k in ((lo, run_lo, td[0], 0), (hi, run_hi, td[1], 1)):
         b1, b2 = b.layer(0), b.layer(1)
-        n1, W1 = np.asarray(b1.n, np.float64), np.asarray(b1.W, np.float64)
-        n2, W2 = np.asarray(b2.n, np.float64), np.asarray(b2.W, np.float64)
         band = (run + opts.overlap, np.asarray(t_d) + 2.0 * opts.tab_depth)
-        sides.append(_parts(((n1 + 1) * W1, facets[0][k], (n2 + 1) * W2, facets[1][k]), band))
+        blanks = blank_width(b1, kind), blank_width(b2, kind)
+        sides.append(_parts((blanks[0], facets[0][k], blanks[1], facets[1][k]), band))
     out[PART_SHORT] = (sides[0][0], sides[1][0])
     out[PART_LONG] = (sides[0][1], sides[1][1])
     W1lo, W1hi = np.asarray(lo.layer(0).W, np.float64), np.asarray(hi.layer(0).W, np.float64)
@@ -171,7 +176,15 @@ def _making_at(at: AtPoints, q: Quantity) -> FloatArray:
     values = at.shared(
         "making",
         lambda: making_values(
-            at.problem.layout, at.c1, at.c2, at.x, *at.facets, at.Lx, at.Ly, at.ev.thickness[:, 0]
+            at.problem.layout,
+            at.c1,
+            at.c2,
+            at.x,
+            *at.facets,
+            at.Lx,
+            at.Ly,
+            at.ev.thickness[:, 0],
+            at.problem.profile_kind,
         ),
     )
     return values[q]
@@ -190,6 +203,7 @@ def _making_over(over: OverBoxes, q: Quantity) -> Pair:
             over.facets,
             (over.Lx, over.Ly),
             over.thickness,
+            over.problem.profile_kind,
         ),
     )
     return bounds[q]

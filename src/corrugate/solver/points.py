@@ -24,9 +24,18 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.solver.problem import DesignVariable, Problem
 
-__all__ = ["LAYERS", "VARIABLES", "Coordinate", "DesignPoints", "LayerPoints", "coordinates"]
+__all__ = [
+    "LAYERS",
+    "VARIABLES",
+    "Coordinate",
+    "DesignPoints",
+    "LayerPoints",
+    "blank_width",
+    "coordinates",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -59,6 +68,18 @@ class LayerPoints:
     def overrides(self) -> bool:
         """Whether E or t is given per point."""
         return self.E is not None or self.t is not None
+
+
+def blank_width(b: LayerPoints, kind: ProfileKind = ZIGZAG) -> FloatArray:
+    """The flat blank across the creases of the layer ``b`` folded to ``kind`` (mm): (n + 1) W
+    for the zig-zag, (n + 1) developed for another profile
+    (:meth:`corrugate.geometry.profile.Profile.flat_width`). It grows with n and W (and does not
+    fall with alpha: :class:`~corrugate.geometry.profile.ProfileKind`), so a box's corners
+    bound it."""
+    n, W = np.asarray(b.n, np.float64), np.asarray(b.W, np.float64)
+    if kind.is_default:
+        return np.asarray((n + 1) * W)
+    return np.asarray(kind.of(W, np.asarray(b.alpha, np.float64)).flat_width(n))
 
 
 @dataclass(frozen=True, slots=True)

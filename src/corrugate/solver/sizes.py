@@ -26,11 +26,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.geometry.layouts import length_sum
+from corrugate.geometry.profile import ProfileKind
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.solver.context import AtPoints, Corner, OverBoxes
 from corrugate.solver.evaluator import Evaluator, Pair, register
-from corrugate.solver.points import DesignPoints
-from corrugate.solver.problem import Candidate
+from corrugate.solver.points import DesignPoints, blank_width
 from corrugate.solver.quantity import FACET, FLAT, LX, LY, MASS, THICKNESS, Quantity
 
 __all__ = ["EXTENT_X", "EXTENT_Y", "FACETS", "FLATS", "MASSES", "THICKNESSES"]
@@ -74,13 +74,28 @@ THICKNESSES = register(
 )
 
 
-def _flat(x: DesignPoints, c1: Candidate, c2: Candidate) -> FloatArray:
-    """The longest flat blank (n + 1) W of the layers (mm)."""
+def _flat(x: DesignPoints, kind: ProfileKind) -> FloatArray:
+    """The longest flat blank of the layers (mm): (n + 1) W for the zig-zag
+    (:func:`~.points.blank_width`); it grows with every variable, so a box's corners bound it."""
     one, two = x.layer(0), x.layer(1)
-    return np.asarray(np.maximum((one.n + 1) * one.W, (two.n + 1) * two.W))
+    if kind.is_default:
+        return np.asarray(np.maximum((one.n + 1) * one.W, (two.n + 1) * two.W))
+    return np.asarray(np.maximum(blank_width(one, kind), blank_width(two, kind)))
 
 
-FLATS = register(Evaluator.monotone("flat", _flat, reported=lambda problem: _always(FLAT)))
+def _flat_over(over: OverBoxes, q: Quantity) -> Pair:
+    low = _flat(over.lo, over.problem.profile_kind)
+    return low, low if over.point else _flat(over.hi, over.problem.profile_kind)
+
+
+FLATS = register(
+    Evaluator(
+        ("flat",),
+        lambda at, q: _flat(at.x, at.problem.profile_kind),
+        _flat_over,
+        lambda problem: _always(FLAT),
+    )
+)
 
 
 def _facet_at(at: AtPoints, q: Quantity) -> FloatArray:
