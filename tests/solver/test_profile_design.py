@@ -214,3 +214,22 @@ def test_fabrication_and_fe_refuse_another_profile_in_one_line(kind: ProfileKind
     with pytest.raises(InputError, match=r"^profile = flat-crest has no FE mesh yet"):
         layer_shell(layer, a.Ly, 2, 1, 0, 0.0)
     build_pattern(Assembly.identical(replace(layer, profile_kind=ProfileKind())))  # the zig-zag
+
+
+def test_no_flat_part_is_the_zig_zag_through_the_general_theory() -> None:
+    # limit case: flat = 0 is the zig-zag, whose Xia closed forms (model xia) the general theory
+    # reproduces (Xia 2012; tests/mechanics/test_profiles.py), so the whole analysis agrees
+    register_profile("flat-crest-0", FlatCrest)
+    try:
+        mat = get_material("dura-lar")
+        flat0 = Layer(6.0, 9, 75.0, mat, 0.125, ProfileKind("flat-crest-0", (0.0,)))
+        zig = replace(flat0, profile_kind=ProfileKind())
+        etas = [0.0, 30.0, 90.0]
+        a = analyze(Assembly.identical(flat0), model="xia", eta_deg=etas)
+        b = analyze(Assembly.identical(zig), model="xia", eta_deg=etas)
+        for sa, sb in zip(a.stiffness, b.stiffness, strict=True):
+            assert pytest.approx(sb.EI, rel=1e-9) == sa.EI
+            assert pytest.approx(sb.K, rel=1e-9) == sa.K
+        assert a.mass.total == pytest.approx(b.mass.total, rel=1e-12)
+    finally:
+        unregister_profile("flat-crest-0")

@@ -15,7 +15,10 @@ are written once, here, with ``+ - * /`` and ``np.sin``/``np.cos`` only, so the 
 Python floats, NumPy arrays and the solver's intervals (:mod:`corrugate.solver.interval`: it has
 ``sin``, ``cos`` and ``__array_ufunc__``; this module does not import it). The layer
 (:class:`corrugate.geometry.layer.Layer`), the moduli, the strength formulas, the vectorised
-evaluator and the warnings build their zig-zag here.
+evaluator and the warnings build their zig-zag here; a layer, ``analyze`` and the solver build
+their profile through :class:`ProfileKind` (the zig-zag unless another designable profile is
+named), and ask it for pitch, height, developed width, :attr:`Profile.plan_ratio` and
+:attr:`Profile.web2` (the springs) and its integrals (the moduli of another profile).
 
 The half angle: alpha (deg) x pi/360, radians(alpha) / 2 and 0.5 radians(alpha) are the same
 double for every normal alpha (pi/360 and pi/180 round to doubles a factor 2 apart, and halving
@@ -26,7 +29,9 @@ Profiles are registered by name (:func:`register_profile`, :func:`get_profile`);
 the default and the only built-in one. The trapezoid of Xia's Table 5
 (:class:`corrugate.mechanics.profiles.Trapezoid`) implements the same protocol; the tests register
 it and get Table 5's plate through the registry (tests/geometry/test_profile.py,
-tests/mechanics/test_profiles.py). A profile's moduli: :func:`corrugate.mechanics.profiles.profile_moduli`.
+tests/mechanics/test_profiles.py); the designable trapezoid
+(:class:`corrugate.mechanics.profiles.FlatCrest`) is registered by tests/solver/test_profile_design.py,
+which analyses and designs with it. A profile's moduli: :func:`corrugate.mechanics.profiles.profile_moduli`.
 """
 
 from __future__ import annotations
