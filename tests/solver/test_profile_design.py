@@ -233,3 +233,11 @@ def test_no_flat_part_is_the_zig_zag_through_the_general_theory() -> None:
         assert a.mass.total == pytest.approx(b.mass.total, rel=1e-12)
     finally:
         unregister_profile("flat-crest-0")
+
+
+def test_the_zig_zags_strength_closed_forms_refuse_another_profile(kind: ProfileKind) -> None:
+    from corrugate.mechanics.strength import assembly_sections
+
+    layer = Layer(6.0, 9, 75.0, get_material("dura-lar"), 0.125, kind)
+    with pytest.raises(InputError, match=r"^profile = flat-crest has no strength closed forms"):
+        assembly_sections(Assembly.identical(layer))

@@ -57,6 +57,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from corrugate.core.errors import InputError
+from corrugate.geometry.layer import require_zigzag
 from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.moduli import MODELS
 
@@ -258,7 +259,10 @@ class LayerSection:
 
     @classmethod
     def from_layer(cls, layer: Any) -> LayerSection:
-        """From a :class:`corrugate.geometry.layer.Layer`."""
+        """From a :class:`corrugate.geometry.layer.Layer` folded to the zig-zag (these closed
+        forms are its; another profile's layer is refused in one line,
+        :func:`corrugate.geometry.layer.require_zigzag`)."""
+        require_zigzag(layer, "strength closed forms")
         m = layer.material
         return cls(
             float(m.E),
