@@ -29,7 +29,7 @@ deflection = [{{ test = "three-point", load = "10 N", max = "1 mm", span = "100 
 
 
 @pytest.mark.parametrize(
-    "material,duration,words",
+    ("material", "duration", "words"),
     [
         ("polycarbonate", '"-1 week"', "is out of range: allowed > 0 h"),
         ("dura-lar", '"1 week"', "needs creep data, which dura-lar has not"),

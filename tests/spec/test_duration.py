@@ -33,7 +33,7 @@ def problem(d: dict[str, Any]) -> Problem:
     return Problem.from_spec(parse_spec(d))
 
 
-@pytest.mark.parametrize("text,hours", [("1 week", 168.0), ("2 day", 48.0), ("90 min", 1.5)])
+@pytest.mark.parametrize(("text", "hours"), [("1 week", 168.0), ("2 day", 48.0), ("90 min", 1.5)])
 def test_a_duration_is_read_in_hours(text: str, hours: float) -> None:
     q = problem(held(text)).constraints[-1].quantity
     assert q.duration == pytest.approx(hours)

@@ -28,7 +28,7 @@ def client() -> Iterator[TestClient]:
 
 
 @pytest.mark.parametrize(
-    "material,duration,words",
+    ("material", "duration", "words"),
     [
         ("polycarbonate", "-1 h", "is out of range: allowed > 0 h"),
         ("dura-lar", "1 week", "needs creep data, which dura-lar has not"),
