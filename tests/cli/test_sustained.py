@@ -61,3 +61,15 @@ def test_a_week_prints_the_creep_modulus_and_its_source(tmp_path: Path, cli: Cli
     # E_c(168 h) = 2200 - 300 log10(168) / 3 = 1977 MPa (docs/load_cases.md section 10)
     assert "the load held 1 week: polycarbonate at its creep modulus E_c = 1977 MPa" in text
     assert "Makrolon" in text
+
+
+def test_materials_lists_the_creep_tables(cli: CliRun) -> None:
+    import json
+
+    code, out, _ = cli(["materials", "--json"])
+    assert code == 0
+    creep = {m["id"]: m["creep"] for m in json.loads(out)}
+    assert creep["dura-lar"] is None
+    assert creep["polycarbonate"]["hours"] == [1.0, 1000.0]
+    assert creep["polycarbonate"]["E_MPa"] == [2200.0, 1900.0]  # Makrolon 2858 datasheet
+    assert creep["polypropylene"]["estimate"] is True
