@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 
     from corrugate.analysis.evaluate import Analysis
     from corrugate.analysis.load_case import LoadCase
+    from corrugate.materials.library import Material
 
 __all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
 
@@ -213,7 +214,16 @@ def materials_cmd(
         typer.echo(json.dumps([m.as_dict() for m in lib.values()], indent=2))
         return
     t = Table(title="material library (src/corrugate/data/materials.toml)", title_justify="left")
-    for col in ("id", "E GPa", "nu", "rho g/cm^3", "yield MPa", "t mm (default)", "sold in mm"):
+    for col in (
+        "id",
+        "E GPa",
+        "nu",
+        "rho g/cm^3",
+        "yield MPa",
+        "t mm (default)",
+        "sold in mm",
+        "creep E_c GPa @ h",
+    ):
         t.add_column(col)
     for m in lib.values():
         sold = f"{min(m.thicknesses):g}-{max(m.thicknesses):g}" if m.thicknesses else "-"
@@ -225,10 +235,22 @@ def materials_cmd(
             _fmt(m.yield_strength),
             _fmt(m.default_thickness),
             sold,
+            _creep(m),
         )
     console = make_console()
     console.print(t)
     console.print("Names, every thickness and the sources: `corrugate materials --json`.")
+
+
+def _creep(m: Material) -> str:
+    """A material's creep moduli (GPa) at their durations (h), ``est.`` for an estimate
+    (docs/load_cases.md section 10), ``-`` without creep data."""
+    if m.creep is None:
+        return "-"
+    text = " ".join(
+        f"{e / 1000:g}@{h:g}" for h, e in zip(m.creep.hours, m.creep.moduli, strict=True)
+    )
+    return text + (" est." if m.creep.estimate else "")
 
 
 #: The commands of this module, by name (registered by :mod:`corrugate.cli`).

@@ -277,6 +277,11 @@ def twin_of(
 ) -> Twin | str:
     """The FE twin of the constraint on ``q`` (module docstring), or why it has none yet (one
     phrase). ``load`` (N): a deflection bound's load (its value is then a deflection, mm)."""
+    if q.duration is not None:  # the decks carry the sheet's short-term E
+        return (
+            f"no FE twin yet (a load held {q.duration:g} h: the FE runs at the short-term E, "
+            "the model at the creep modulus, `corrugate docs load_cases` section 10)"
+        )
     connectors, _ = _joint(joint)
     eta = q.eta if q.eta is not None else 0.0
     principal = principal_axis(eta) is not None

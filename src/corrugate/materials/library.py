@@ -16,9 +16,11 @@ from typing import Any
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.units import parse_quantity
+from corrugate.materials.creep import CreepTable
 
 __all__ = [
     "Material",
+    "creep_materials",
     "get_material",
     "inline_material",
     "library",
@@ -36,7 +38,8 @@ class Material:
 
     Attributes are in internal units: ``E`` in MPa, ``density`` in g/mm^3, thicknesses in mm,
     ``yield_strength`` in MPa (None when not known: an inline material defined by E, nu and
-    density only).
+    density only), ``creep`` its creep moduli under a sustained load (None: no creep data, so
+    no sustained load case; docs/load_cases.md section 10).
     """
 
     id: str
@@ -49,6 +52,7 @@ class Material:
     category: str = "custom"
     source: str = "defined by the user"
     yield_strength: float | None = None
+    creep: CreepTable | None = None
 
     def __repr__(self) -> str:
         """One short line (the source text is in :meth:`as_dict`)."""
@@ -75,7 +79,29 @@ class Material:
             "yield_strength_MPa": self.yield_strength,
             "category": self.category,
             "source": self.source,
+            "creep": None
+            if self.creep is None
+            else {
+                "hours": list(self.creep.hours),
+                "E_MPa": list(self.creep.moduli),
+                "source": self.creep.source,
+                "estimate": self.creep.estimate,
+            },
         }
+
+    def creep_modulus(self, hours: float, field: str = "duration") -> float:
+        """The creep modulus E_c (MPa) after ``hours`` of sustained load
+        (:meth:`corrugate.materials.creep.CreepTable.modulus`); :class:`InputError` naming
+        ``field`` when the material has no creep data or the duration is beyond its table."""
+        if self.creep is None:
+            raise InputError(
+                field,
+                f"{hours:g} h",
+                "no duration (a short-term load) for a material without creep data; "
+                "library materials with creep data: " + ", ".join(creep_materials()),
+                reason=f"needs creep data, which {self.id} has not",
+            )
+        return self.creep.modulus(hours, field)
 
 
 def validate_elastic(E: float, nu: float, density: float, *, prefix: str = "") -> None:
@@ -100,6 +126,30 @@ def validate_strength(strength: float, E: float, field: str = "yield_strength") 
         raise InputError(field, f"{strength!r} MPa", allowed, reason=reason)
     if not 0.0 < strength < E:
         raise InputError(field, f"{strength:g} MPa", allowed)
+
+
+def _creep(where: str, E: float, entry: dict[str, Any] | None) -> CreepTable | None:
+    """The ``creep`` table of a library entry: ``moduli`` (duration -> modulus, quantities
+    with units), ``source`` and ``estimate``; each modulus at most E (MPa)."""
+    if entry is None:
+        return None
+    pairs = sorted(
+        (parse_quantity(h, "h", where + "creep.moduli"), parse_quantity(m, "MPa", where + "creep"))
+        for h, m in entry["moduli"].items()
+    )
+    for hours, modulus in pairs:
+        if not 0 < modulus <= E:
+            raise InputError(
+                where + "creep.moduli",
+                f"{modulus:g} MPa at {hours:g} h",
+                f"0 < E_c <= E = {E:g} MPa",
+            )
+    return CreepTable(
+        tuple(h for h, _ in pairs),
+        tuple(m for _, m in pairs),
+        str(entry["source"]),
+        bool(entry.get("estimate", False)),
+    )
 
 
 def _from_entry(key: str, entry: dict[str, Any]) -> Material:
@@ -131,6 +181,7 @@ def _from_entry(key: str, entry: dict[str, Any]) -> Material:
         category=str(entry.get("category", "")),
         source=str(entry.get("source", "")),
         yield_strength=strength,
+        creep=_creep(where, E, entry.get("creep")),
     )
 
 
@@ -146,6 +197,11 @@ def library() -> dict[str, Material]:
         text = resources.files("corrugate").joinpath("data/materials.toml").read_text("utf-8")
     data = tomllib.loads(text)
     return {key: _from_entry(key, entry) for key, entry in data.items()}
+
+
+def creep_materials() -> list[str]:
+    """The ids of the library materials with creep data."""
+    return [key for key, m in library().items() if m.creep is not None]
 
 
 def get_material(material_id: str) -> Material:

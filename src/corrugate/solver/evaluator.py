@@ -12,7 +12,10 @@ evaluator reads. ``reported`` says which quantities of its kinds
 :func:`~.quantities.point_values` gives for a problem (by default those the problem asks for).
 
 :func:`~.quantities.point_values` and :func:`~.quantities.box_bounds` are loops over this
-registry. A new kind is its evaluator and one :func:`register` call (with its readable name and
+registry. A quantity under a sustained load (``Quantity.duration`` set) is served by the one
+evaluator of :func:`register_sustained` (:mod:`~.sustained`: its quantity without the duration
+on sheets whose E is their creep modulus), whatever its kind. A new kind is its evaluator and
+one :func:`register` call (with its readable name and
 unit, which :class:`~.quantity.Quantity` then reports); docs/architecture.md section 3.
 """
 
@@ -31,7 +34,15 @@ if TYPE_CHECKING:
     from corrugate.solver.points import DesignPoints
     from corrugate.solver.problem import Candidate, Problem
 
-__all__ = ["Evaluator", "Pair", "evaluator_of", "evaluators", "register", "unregister"]
+__all__ = [
+    "Evaluator",
+    "Pair",
+    "evaluator_of",
+    "evaluators",
+    "register",
+    "register_sustained",
+    "unregister",
+]
 
 FloatArray = NDArray[np.float64]
 #: Lower and upper bounds over boxes (arrays over the boxes).
@@ -94,6 +105,8 @@ class Evaluator:
 
 
 _REGISTRY: dict[tuple[str, bool], Evaluator] = {}
+#: The registry's key of the evaluator of every quantity under a sustained load.
+_SUSTAINED = ("sustained", False)
 
 
 def register(evaluator: Evaluator) -> Evaluator:
@@ -106,6 +119,12 @@ def register(evaluator: Evaluator) -> Evaluator:
     return evaluator
 
 
+def register_sustained(evaluator: Evaluator) -> Evaluator:
+    """Make ``evaluator`` the one of every quantity with a ``duration`` (module docstring)."""
+    _REGISTRY[_SUSTAINED] = evaluator
+    return evaluator
+
+
 def unregister(evaluator: Evaluator) -> None:
     """Remove ``evaluator`` (a test's toy kind)."""
     for kind in evaluator.kinds:
@@ -114,7 +133,10 @@ def unregister(evaluator: Evaluator) -> None:
 
 
 def evaluator_of(q: Quantity) -> Evaluator:
-    """The evaluator of ``q``: its load case's kind's (``q.test`` set), else its kind's."""
+    """The evaluator of ``q``: the sustained one (``q.duration`` set), else its load case's
+    kind's (``q.test`` set), else its kind's."""
+    if q.duration is not None:
+        return _REGISTRY[_SUSTAINED]
     try:
         return _REGISTRY[(q.kind, q.test is not None)]
     except KeyError:

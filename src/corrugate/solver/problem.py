@@ -246,6 +246,7 @@ class Problem:
                     _check_wheel(where, layout, b.eta, q.support, b.support is None)
                 elif q.test is not None:
                     _check_load_case_layout(where, layout, q.test)
+                q = _sustained(where, q, b.duration, cands)
                 cons.append(Constraint(f"{where}.min", q, "min", b.min))
         for i, d in enumerate(c.deflection):
             where = f"constraints.deflection[{i}]"
@@ -260,6 +261,7 @@ class Problem:
                     cons.append(
                         Constraint(f"{where}.span", Quantity("length", d.eta), "min", d.span)
                     )
+            q = _sustained(where, q, d.duration, cands)
             cons.append(Constraint(f"{where}.max", q, "min", d.load / d.max, load=d.load))
         for i, g in enumerate(c.strength):
             where = f"constraints.strength[{i}]"
@@ -299,11 +301,9 @@ class Problem:
                     reason="has buckling bounds only for long straight end facets",
                 )
             eta = 0.0 if crease_layer(bk.eta) == 0 else 90.0
-            cons.append(
-                Constraint(
-                    f"constraints.buckling_load[{i}].min", Quantity("Pb", eta), "min", bk.min
-                )
-            )
+            where = f"constraints.buckling_load[{i}]"
+            q = _sustained(where, Quantity("Pb", eta), bk.duration, cands)
+            cons.append(Constraint(f"{where}.min", q, "min", bk.min))
         if c.mass is not None:
             cons.append(Constraint("constraints.mass.max", MASS, "max", c.mass.max))
         o = spec.objective
@@ -328,6 +328,20 @@ class Problem:
             safety_factor=spec.safety_factor,
             joint=_joint(spec.joint, layout),
         )
+
+
+def _sustained(where: str, q: Quantity, duration: float | None, cands: list[Candidate]) -> Quantity:
+    """``q`` under a load held for ``duration`` (hours; None: ``q`` itself, short-term): every
+    candidate sheet must have a creep modulus then (creep data, the duration within its table;
+    docs/load_cases.md section 10), else a :class:`SpecError` at ``where.duration``."""
+    if duration is None:
+        return q
+    for cand in cands:
+        try:
+            cand.material.creep_modulus(duration, f"{where}.duration")
+        except InputError as exc:
+            raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
+    return replace(q, duration=duration)
 
 
 def _stiffness_quantity(

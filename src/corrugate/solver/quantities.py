@@ -26,7 +26,12 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from corrugate.solver import making, sizes, stiffness  # noqa: F401  (they register the kinds)
+from corrugate.solver import (  # noqa: F401  (they register the kinds)
+    making,
+    sizes,
+    stiffness,
+    sustained,
+)
 from corrugate.solver.context import AtPoints, OverBoxes, layer_corner
 from corrugate.solver.evaluator import evaluators
 from corrugate.solver.points import DesignPoints
@@ -72,7 +77,7 @@ def box_bounds(
     return {q: over.bounds(q) for q in sorted(quantities, key=_order)}
 
 
-def _order(q: Quantity) -> tuple[bool, str, float, str, str]:
+def _order(q: Quantity) -> tuple[bool, str, float, str, str, float]:
     """A fixed order: the quantities without a direction, then the others (the layout's coupon
     is made at the first stiffness that reads it, :meth:`~.context.OverBoxes.coupon`)."""
-    return (q.directional, q.kind, q.eta or 0.0, q.support or "", q.test or "")
+    return (q.directional, q.kind, q.eta or 0.0, q.support or "", q.test or "", q.duration or 0.0)

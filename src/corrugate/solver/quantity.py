@@ -32,7 +32,7 @@ design --json`` and design.json): the kind, the support's key suffix (none for `
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from corrugate.core.errors import InputError
 from corrugate.mechanics.behaviours import (
@@ -108,6 +108,7 @@ class Quantity:
     support: str | None = None
     test: str | None = None
     span: float | None = None
+    duration: float | None = None  # hours of sustained load; None: short-term
     # the hash, once (the solver looks quantities up in dicts and sets in every iteration)
     _hash: int = field(default=0, init=False, repr=False, compare=False)
 
@@ -116,8 +117,12 @@ class Quantity:
             object.__setattr__(self, "eta", float(f"{self.eta:.12g}"))
         if self.span is not None:
             object.__setattr__(self, "span", float(f"{self.span:.12g}"))
+        if self.duration is not None:
+            object.__setattr__(self, "duration", float(f"{self.duration:.12g}"))
         object.__setattr__(
-            self, "_hash", hash((self.kind, self.eta, self.support, self.test, self.span))
+            self,
+            "_hash",
+            hash((self.kind, self.eta, self.support, self.test, self.span, self.duration)),
         )
 
     def __hash__(self) -> int:
@@ -152,6 +157,21 @@ class Quantity:
     def parse(cls, key: str) -> Quantity:
         """The quantity whose :attr:`key` is ``key`` (e.g. ``Kframe@45``), over the behaviours
         registered now."""
+        key, held, hours_text = key.partition("/t=")
+        duration = None
+        if held:
+            try:
+                duration = float(hours_text.removesuffix("h"))
+            except ValueError:
+                raise InputError(
+                    "quantity", repr(key), "a quantity key such as k3pt@0/L=120/t=168h"
+                ) from None
+            if not hours_text.endswith("h"):
+                raise InputError("quantity", repr(key), "a quantity key such as EI@0/t=168h")
+            base = cls.parse(key)
+            if base.eta is None:
+                raise InputError("quantity", repr(key), "a directional quantity such as EI@0")
+            return replace(base, duration=duration)
         key, slash, span_text = key.partition("/L=")
         span = None
         if slash:
@@ -195,6 +215,8 @@ class Quantity:
         if self.test is not None:
             head += get_load_case(self.test).suffix
         tail = "" if self.span is None else f"/L={self.span:.12g}"
+        if self.duration is not None:
+            tail += f"/t={self.duration:.12g}h"
         return f"{head}@{self.eta:.12g}{tail}"
 
     @property
@@ -216,6 +238,8 @@ class Quantity:
             text += get_load_case(self.test).label
         if self.span is not None:
             text += f" over {self.span:.12g} mm"
+        if self.duration is not None:
+            text += f" held {self.duration:.12g} h"
         return text if self.eta is None else f"{text}({self.eta:.12g} deg)"
 
     @property

@@ -240,7 +240,11 @@ class Solution:
         parts = []
         for c in self.constraints:
             q = c.quantity
-            if q.eta is None or q.kind in ("Pb", "length"):
+            if q.eta is None or q.kind == "length" or (q.kind == "Pb" and q.duration is None):
+                continue
+            sustained = self._sustained(q)
+            if q.kind == "Pb":
+                parts.append(f"buckling load Pb({q.eta:g} deg){sustained}")
                 continue
             where = f"{q.support} sides" if q.support == "free" else f"support {q.support}"
             test = (
@@ -258,7 +262,7 @@ class Solution:
                     )
                 parts.append(
                     f"deflection {c.value:.4g} mm <= {c.bound:.4g} mm under {c.load:g} N"
-                    f"{test}{span} at {q.eta:g} deg, {where}{held}"
+                    f"{test}{span} at {q.eta:g} deg, {where}{sustained}{held}"
                 )
             elif q.kind == "Pmax":
                 parts.append(
@@ -266,8 +270,30 @@ class Solution:
                     f"at safety factor {p.safety_factor:g}), {where}"
                 )
             else:
-                parts.append(f"{q.kind}({q.eta:g} deg){test}, {where}")
+                parts.append(f"{q.kind}({q.eta:g} deg){test}, {where}{sustained}")
         return head + (": " + "; ".join(parts) if parts else "")
+
+    def _sustained(self, q: Quantity) -> str:
+        """For a quantity under a sustained load, the words of the certificate: how long, the
+        creep modulus it used of each sheet's E and its source (docs/load_cases.md section
+        10); "" for a short-term one."""
+        if q.duration is None:
+            return ""
+        from corrugate.materials.creep import duration_text
+
+        mats = (
+            [c.material for c in self.problem.candidates]
+            if self.assembly is None
+            else [layer.material for layer in self.assembly.layers]
+        )
+        said = []
+        for m in dict.fromkeys(mats):
+            assert m.creep is not None  # Problem.from_spec refuses a sustained load without
+            said.append(
+                f"{m.id} at its creep modulus E_c = {m.creep_modulus(q.duration):.4g} MPa "
+                f"(short-term E = {m.E:.4g} MPa; {m.creep.source})"
+            )
+        return f", the load held {duration_text(q.duration)}: " + "; ".join(said)
 
     @property
     def hint(self) -> str | None:

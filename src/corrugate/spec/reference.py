@@ -53,6 +53,15 @@ _STIFF = {
     "inplane_stiffness": ("N/mm", "K(eta), the in-plane compressive stiffness"),
 }
 
+#: What a bound's ``duration`` means (docs/load_cases.md section 10).
+_DURATION = (
+    "How long the load is held, with its unit ('1 week', '168 h'; > 0); default: none, a "
+    "short-term load at the material's E. A sustained load reads the material's creep modulus "
+    "E_c(t) instead (`corrugate materials`: its creep table, interpolated in log time, refused "
+    "beyond its last duration or for a material without creep data; `corrugate docs "
+    "load_cases`, section 10)."
+)
+
 #: The keys of a spec whose meaning does not depend on the registry of behaviours.
 _STATIC: dict[str, KeyDoc] = {
     "name": KeyDoc("", "Name of the design; names the files and the report."),
@@ -109,6 +118,10 @@ _STATIC: dict[str, KeyDoc] = {
     **{
         f"constraints.{k}[].eta": KeyDoc("deg", "Direction eta, from layer 1's creases.")
         for k in _STIFF
+    },
+    **{
+        f"constraints.{k}[].duration": KeyDoc("h", _DURATION)
+        for k in (*_STIFF, "buckling_load", "deflection")
     },
     "constraints.buckling_load": KeyDoc(
         "N", "Lower bounds on the compressive buckling load (array of tables)."

@@ -150,6 +150,7 @@ _UNIT_EXAMPLES: dict[str, tuple[str, ...]] = {
     "g": ("g",),
     "MPa": ("MPa", "GPa"),
     "g/cm^3": ("g/cm^3", "kg/m^3"),
+    "h": ("h", "day", "week"),
 }
 
 
@@ -250,6 +251,9 @@ MassQ = Annotated[
 ]
 Modulus = Annotated[float, BeforeValidator(_limited("E", "MPa"))]
 Poisson = Annotated[float, BeforeValidator(_limited("nu", "dimensionless", shown=""))]
+#: How long a load is held (hours; > 0, with its unit: "1 week", "168 h"): a sustained load
+#: case, read at the material's creep modulus (docs/load_cases.md section 10).
+Duration = Annotated[float, BeforeValidator(_quantity("h", lo=0.0))]
 Density = Annotated[
     float, BeforeValidator(_limited("density", "g/cm^3", scale=G_PER_CM3, shown="g/cm^3"))
 ]
@@ -574,12 +578,14 @@ class StiffnessSpec(_Strict):
     """A lower bound ``min`` on a stiffness at direction ``eta`` (deg from layer 1's creases),
     under ``support`` (``free`` sides, a rigid ``frame`` or another registered support
     condition; default: the spec's ``support``), as measured in ``test`` (default: ``pure``
-    bending for EI and D, ``platens`` for K; docs/load_cases.md)."""
+    bending for EI and D, ``platens`` for K; docs/load_cases.md), under a load held for
+    ``duration`` (hours; None: short-term; docs/load_cases.md section 10)."""
 
     min: float
     eta: Direction = 0.0
     support: Support | None = None
     test: StiffnessTest | None = None
+    duration: Duration | None = None
 
 
 class RigiditySpec(StiffnessSpec):
@@ -596,17 +602,20 @@ class InPlaneSpec(StiffnessSpec):
 
 class BucklingSpec(_Strict):
     """A lower bound ``min`` (N) on the in-plane compressive load at which the panel buckles
-    along ``eta`` (0 or 90 deg, required): the plate lower bound of :mod:`corrugate.mechanics.buckling`."""
+    along ``eta`` (0 or 90 deg, required): the plate lower bound of :mod:`corrugate.mechanics.buckling`,
+    under a load held for ``duration`` (hours; None: short-term)."""
 
     min: Annotated[float, BeforeValidator(_quantity("N", lo=0.0))]
     eta: Direction
+    duration: Duration | None = None
 
 
 class DeflectionSpec(_Strict):
     """At most ``max`` (mm) of deflection under ``load`` (N) in the load case ``test``
     (docs/load_cases.md): supported over ``span`` (mm; cantilever: its free length; default and
     platens: the panel's length along ``eta``), along ``eta`` (deg), under ``support`` (default:
-    the spec's)."""
+    the spec's), the load held for ``duration`` (hours; None: short-term; docs/load_cases.md
+    section 10)."""
 
     test: DeflectionTest
     load: Annotated[float, BeforeValidator(_quantity("N", lo=0.0, hi=LIMITS["load"].hi))]
@@ -614,6 +623,7 @@ class DeflectionSpec(_Strict):
     span: Length | None = None
     eta: Direction = 0.0
     support: Support | None = None
+    duration: Duration | None = None
 
 
 class StrengthSpec(_Strict):
