@@ -44,6 +44,7 @@ _RHO = (-3, 1, 0, 0)  # density
 _EI = (3, 1, -2, 0)  # force * length^2 (flexural rigidity)
 _D = (2, 1, -2, 0)  # force * length (bending stiffness)
 _K = (0, 1, -2, 0)  # force / length (in-plane stiffness)
+_T = (0, 0, 1, 0)  # time (a sustained load's duration)
 _INCH = 0.0254
 _LBF = 4.4482216152605
 _TABLE: dict[str, tuple[float, tuple[int, int, int, int]]] = {
@@ -91,6 +92,15 @@ _TABLE: dict[str, tuple[float, tuple[int, int, int, int]]] = {
     "N/m": (1.0, _K),
     "kN/m": (1e3, _K),
     "mN/mm": (1.0, _K),
+    "s": (1.0, _T),
+    "min": (60.0, _T),
+    "minute": (60.0, _T),
+    "h": (3600.0, _T),
+    "hr": (3600.0, _T),
+    "hour": (3600.0, _T),
+    "day": (86400.0, _T),
+    "week": (7 * 86400.0, _T),
+    "year": (365.25 * 86400.0, _T),
     "dimensionless": (1.0, _ONE),
     "percent": (1e-2, _ONE),
 }
