@@ -53,7 +53,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from corrugate.core.errors import CorrugateError, InputError
 from corrugate.fea.assembly import (
@@ -73,11 +73,15 @@ from corrugate.geometry.layer import Assembly
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support
 from corrugate.solver.quantity import Quantity
 
+if TYPE_CHECKING:
+    from corrugate.solver.solve import ConstraintReport
+
 __all__ = [
     "BEHAVIOURAL_KINDS",
     "DEFAULT_MAX_MESH",
     "DEFAULT_MESHES",
     "DEFAULT_SHIFTS",
+    "Checked",
     "Row",
     "Twin",
     "Verification",
@@ -398,19 +402,62 @@ def _polygon_refusal(q: Quantity, principal: bool, connectors: bool) -> str:
     return ""
 
 
+@dataclass(frozen=True, slots=True)
+class Checked:
+    """One behavioural constraint as its FE twin checks it: ``name``, ``quantity`` (as its key
+    reads back, the way design.json states it, so that a run and ``corrugate verify`` of its
+    folder check the same twin), ``sense`` (min or max), ``unit``, the ``bound`` and the model's
+    ``value`` in that unit, and a deflection bound's ``load`` (N; None otherwise)."""
+
+    name: str
+    quantity: Quantity
+    sense: str
+    unit: str
+    bound: float
+    value: float
+    load: float | None
+
+    @classmethod
+    def of(cls, c: ConstraintReport | Mapping[str, Any]) -> Checked | None:
+        """``c`` (a solution's :class:`~corrugate.solver.solve.ConstraintReport`, or an entry
+        of design.json's ``constraints``) as checked, None when it is not behavioural; an entry
+        that cannot be read is an error naming it."""
+        q = _behavioural(c.get("quantity") if isinstance(c, Mapping) else c.quantity.key)
+        if q is None:
+            return None
+        if not isinstance(c, Mapping):
+            deflection = q.kind == "k" and c.unit == "mm"
+            if c.sense not in ("min", "max"):
+                raise InputError(f"constraints[{c.name}].sense", repr(c.sense), "min or max")
+            if deflection and c.load is None:
+                raise InputError(f"constraints[{c.name}].load_N", "None", "a number")
+            load = c.load if deflection else None
+            return cls(c.name, q, c.sense, c.unit, float(c.bound), float(c.value), load)
+        name = str(c.get("name", q.key))
+        sense = str(c.get("sense", "min"))
+        if sense not in ("min", "max"):
+            raise InputError(f"constraints[{name}].sense", repr(sense), "min or max")
+        unit = str(c.get("unit", ""))
+        bound, value = _number(c, "bound"), _number(c, "value")
+        deflection = q.kind == "k" and c.get("unit") == "mm"  # a deflection bound, under load_N
+        return cls(name, q, sense, unit, bound, value, _number(c, "load_N") if deflection else None)
+
+
 def behavioural(
     constraints: Sequence[Mapping[str, Any]],
 ) -> list[tuple[Mapping[str, Any], Quantity]]:
     """The behavioural constraints of a design.json's ``constraints`` with their quantities."""
-    out: list[tuple[Mapping[str, Any], Quantity]] = []
-    for c in constraints:
-        key = c.get("quantity")
-        if not isinstance(key, str) or "@" not in key:
-            continue
-        q = Quantity.parse(key)
-        if q.kind in BEHAVIOURAL_KINDS:
-            out.append((c, q))
-    return out
+    found = ((c, _behavioural(c.get("quantity"))) for c in constraints)
+    return [(c, q) for c, q in found if q is not None]
+
+
+def _behavioural(key: object) -> Quantity | None:
+    """The quantity of a constraint's key when it is behavioural (a direction and a kind of
+    :data:`BEHAVIOURAL_KINDS`), else None."""
+    if not isinstance(key, str) or "@" not in key:
+        return None
+    q = Quantity.parse(key)
+    return q if q.kind in BEHAVIOURAL_KINDS else None
 
 
 def _number(c: Mapping[str, Any], name: str) -> float:
@@ -424,7 +471,7 @@ def _number(c: Mapping[str, Any], name: str) -> float:
 
 def verify_design(
     assembly: Assembly,
-    constraints: Sequence[Mapping[str, Any]],
+    constraints: Sequence[ConstraintReport | Mapping[str, Any]],
     joint: str = "none",
     meshes: Sequence[int] = DEFAULT_MESHES,
     *,
@@ -436,7 +483,8 @@ def verify_design(
     timeout: float = 900.0,
     max_mesh: int = DEFAULT_MAX_MESH,
 ) -> Verification:
-    """Run the FE twin of every behavioural constraint (module docstring) on the mesh series
+    """Run the FE twin of every behavioural constraint (module docstring; ``constraints``: a
+    solution's reports or design.json's entries, :class:`Checked`) on the mesh series
     ``meshes`` (elements per facet) and compare its estimate with the bound; off the crease
     directions at every coupon position of ``shifts`` (fractions of each layer's pitch), each
     position's series extrapolated on its own and the worst estimate counting; with ``screen``
@@ -531,22 +579,12 @@ def verify_design(
         return series, failures
 
     planned: list[tuple[Row, Twin | str]] = []  # every entry read before any run: bad input first
-    for c, q in behavioural(constraints):
-        name = str(c.get("name", q.key))
-        sense = str(c.get("sense", "min"))
-        if sense not in ("min", "max"):
-            raise InputError(f"constraints[{name}].sense", repr(sense), "min or max")
-        base = Row(
-            name,
-            q.key,
-            sense,
-            str(c.get("unit", "")),
-            _number(c, "bound"),
-            _number(c, "value"),
-        )
-        deflection = q.kind == "k" and c.get("unit") == "mm"  # a deflection bound, under load_N
-        load = _number(c, "load_N") if deflection else None
-        planned.append((base, twin_of(q, assembly, joint, load)))
+    for entry in constraints:
+        c = Checked.of(entry)
+        if c is None:
+            continue
+        base = Row(c.name, c.quantity.key, c.sense, c.unit, c.bound, c.value)
+        planned.append((base, twin_of(c.quantity, assembly, joint, c.load)))
     rows: list[Row] = []
     for base, twin in planned:
         sense = base.sense
