@@ -190,7 +190,7 @@ def _support_run(case: Case, mesh: AssemblyMesh, name: str) -> Callable[[float],
     fixture = get_fixture(name, ("coupon", "frame"))
     a, folder, keep, timeout = case.assembly, case.folder, case.keep, case.timeout
     if fixture.kind == "frame":
-        return solve_frame(a, mesh, folder=folder, keep=keep, timeout=timeout).K
+        return solve_frame(a, mesh, fixture=fixture, folder=folder, keep=keep, timeout=timeout).K
 
     def K(eta: float) -> float:
         r = solve_assembly(a, fixture, mesh, eta, folder=folder, keep=keep, timeout=timeout)
