@@ -134,3 +134,40 @@ def test_a_new_load_case_reaches_verify_and_strength_through_the_registries() ->
     finally:
         unregister("toy-bend", "test")
         unregister_fixture("toy-bend")
+
+
+@pytest.mark.parametrize("kind", ["frame", "coupon"])
+def test_a_new_support_with_its_own_fixture_gets_its_verify_twin(kind: str) -> None:
+    """The seam of a new support condition on the FE side, as a load case's: a support
+    registered in the behaviours naming its own fixture, and that fixture registered in the FE
+    registry, are what ``verify`` twins its K with (no support named in ``verify``). The toy is
+    the frame under another name: held by its own fixture, its bending and a deflection have no
+    twin, as the frame's (the words its label gives); a toy of kind ``coupon`` (the platens'
+    supports under another name) is run on the coupon, shifted off the creases as every
+    coupon is."""
+    from dataclasses import replace
+
+    from corrugate.fea.fixtures.frame import FRAME as FRAME_FIXTURE
+    from corrugate.fea.fixtures.platens import PLATENS
+    from corrugate.fea.verify import Twin, twin_of
+    from corrugate.mechanics.behaviours import register, unregister
+    from corrugate.mechanics.supports.frame import FRAME
+    from corrugate.solver.quantity import Quantity
+
+    base = FRAME_FIXTURE if kind == "frame" else PLATENS
+    register(replace(FRAME, name="toy-held", fixture="toy-held", suffix="toyh", label=" toy-held"))
+    register_fixture(replace(base, name="toy-held"))
+    try:
+        for eta in (0.0, 45.0):
+            t = twin_of(Quantity("K", eta, "toy-held"), SMALL)
+            assert isinstance(t, Twin) and t.test == "toy-held" and t.read == "K"
+            assert t.fixture.kind == kind and t.shifted == (kind == "coupon" and eta == 45.0)
+        bend = twin_of(Quantity("EI", 0.0, "toy-held"), SMALL)
+        assert bend == "no FE twin yet (bending toy-held)"
+        deflection = twin_of(Quantity("K", 0.0, "toy-held"), SMALL, load=2.0)
+        assert deflection == "no FE twin yet (a deflection toy-held)"
+        # the frame's own twins keep their words
+        assert twin_of(Quantity("EI", 0.0, "frame"), SMALL) == "no FE twin yet (bending in a frame)"
+    finally:
+        unregister("toy-held")
+        unregister_fixture("toy-held")

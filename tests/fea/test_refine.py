@@ -27,7 +27,7 @@ from corrugate.fea.verify import Row, Verification
 from corrugate.solver import Problem, solve
 from corrugate.solver.problem import Constraint
 from corrugate.solver.quantity import Quantity
-from corrugate.solver.solve import Solution
+from corrugate.solver.solve import ConstraintReport, Solution
 from corrugate.spec.schema import parse_spec_text
 from corrugate.workflow import DesignRun
 
@@ -74,25 +74,15 @@ def _solve(p: Problem) -> DesignRun:
 
 def _fake_fe(ratio: Callable[[int], float]) -> tuple[Callable[..., Verification], list[Any]]:
     """A stand-in FE: the EI row's FE is ``ratio(k)`` x the model value for the k-th design
-    verified, judged against the bound its constraints' entries give it (the spec's)."""
+    verified, judged against the bound its constraint reports give it (the spec's)."""
     seen: list[Any] = []
 
-    def verify(sol: Solution, constraints: list[dict[str, Any]]) -> Verification:
+    def verify(sol: Solution, reports: tuple[ConstraintReport, ...]) -> Verification:
         k = len(seen)
-        seen.append(constraints)
-        [c] = [c for c in constraints if c["name"] == NAME]
-        fe = ratio(k) * c["value"]
-        row = Row(
-            NAME,
-            "EI@0",
-            "min",
-            c["unit"],
-            c["bound"],
-            c["value"],
-            {4: fe},
-            fe,
-            holds=fe >= c["bound"],
-        )
+        seen.append(reports)
+        [c] = [c for c in reports if c.name == NAME]
+        fe = ratio(k) * c.value
+        row = Row(NAME, "EI@0", "min", c.unit, c.bound, c.value, {4: fe}, fe, holds=fe >= c.bound)
         return Verification((row,), (4,))
 
     return verify, seen
@@ -128,9 +118,7 @@ def test_an_fe_below_the_model_tightens_the_bound_and_the_answer_holds() -> None
     assert ans.solution.mass is not None and first.solution.mass is not None
     assert ans.solution.mass >= first.solution.mass  # a tighter bound cannot be lighter
     # every verification judged against the spec's bound, never the corrected one
-    assert all(
-        next(c for c in rows if c["name"] == NAME)["bound"] == pytest.approx(B) for rows in seen
-    )
+    assert all(next(c for c in rows if c.name == NAME).bound == pytest.approx(B) for rows in seen)
     out = answer_payload(r, p)
     [c] = [c for c in out["constraints"] if c["name"] == NAME]
     assert c["bound"] == pytest.approx(B) and c["model_bound"] == pytest.approx(B / 0.8)
@@ -157,10 +145,10 @@ def test_a_conservative_model_is_loosened_only_with_loosen() -> None:
     assert len(kept.attempts) == 1 and kept.chosen == 0
 
     # an FE within LOOSEN_ABOVE of the bound loosens nothing: one solve
-    def just_above(sol: Solution, constraints: list[dict[str, Any]]) -> Verification:
-        [c] = [c for c in constraints if c["name"] == NAME]
-        fe = 0.5 * (1 + LOOSEN_ABOVE) * c["bound"]
-        row = Row(NAME, "EI@0", "min", c["unit"], c["bound"], c["value"], {4: fe}, fe, holds=True)
+    def just_above(sol: Solution, reports: tuple[ConstraintReport, ...]) -> Verification:
+        [c] = [c for c in reports if c.name == NAME]
+        fe = 0.5 * (1 + LOOSEN_ABOVE) * c.bound
+        row = Row(NAME, "EI@0", "min", c.unit, c.bound, c.value, {4: fe}, fe, holds=True)
         return Verification((row,), (4,))
 
     near = refine(p, _solve, just_above)

@@ -197,3 +197,48 @@ def test_a_series_whose_verdict_could_flip_runs_on_to_16_per_facet(
     assert max(a for a, _ in calls) == 8
     assert capped.holds and capped.rows[0].fe == pytest.approx(1.0498, abs=1e-4)
     assert capped.rows[0].extended == ""
+
+
+def test_a_solutions_reports_are_checked_as_its_design_json_entries() -> None:
+    """``verify`` of a run reads the solution's constraint reports, ``corrugate verify`` of its
+    folder design.json's entries: both give the same checked constraints (name, quantity,
+    sense, unit, bound, model value and a deflection's load), and only the behavioural ones
+    (EI, a deflection's P / delta; not the sizes)."""
+    import json
+
+    from corrugate.fea.verify import Checked
+    from corrugate.solver import Problem, solve
+    from corrugate.spec.schema import parse_spec_text
+
+    spec = parse_spec_text(
+        """
+name = "checked"
+[material]
+name = "dura-lar"
+thickness = "0.125 mm"
+[variables]
+W = { min = "4 mm", max = "8 mm", step = "1 mm" }
+n = { min = 3, max = 6 }
+alpha = { min = "60 deg", max = "120 deg", step = "2 deg" }
+[constraints]
+side = { min = "20 mm", max = "30 mm" }
+flexural_rigidity = [{ min = "5 mN*m^2", eta = "0 deg" }]
+[[constraints.deflection]]
+test = "three-point"
+load = "2 N"
+max = "0.5 mm"
+eta = "0 deg"
+[objective]
+minimize = "mass"
+"""
+    )
+    sol = solve(Problem.from_spec(spec))
+    entries = json.loads(json.dumps(sol.to_dict()))["constraints"]  # as design.json holds them
+    typed = [c for c in map(Checked.of, sol.constraints) if c is not None]
+    read = [c for c in map(Checked.of, entries) if c is not None]
+    assert typed == read
+    assert [(c.quantity.key, c.unit, c.load) for c in typed] == [
+        ("EI@0", "N*mm^2", None),
+        ("k3pt@0", "mm", 2.0),  # a deflection: its bound in mm under its load
+    ]
+    assert typed[1].bound == pytest.approx(0.5)

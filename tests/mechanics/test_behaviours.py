@@ -284,3 +284,30 @@ def test_a_test_entry_without_a_form_is_refused() -> None:
     )
     with pytest.raises(InputError):
         register(toy)
+
+
+@pytest.mark.parametrize("layout", ["square", "rectangle"])
+def test_a_support_flagged_crease_rule_is_the_rule_along_the_creases(layout: str) -> None:
+    """``crease_rule`` (what the layer-by-layer search of independent layers relies on) holds
+    for each support that says so: its K and D at eta 0 and 90 deg are the frame's rule written
+    out by hand from the layers' springs (docs/theory.md 3.3), on a square and on a rectangle
+    (which free sides read as a coupon); a toy support without the flag is not searched that
+    way."""
+    from corrugate.solver.separable import _stiffness
+
+    flagged = [b for b in (get_support(n) for n in support_names()) if b.crease_rule]
+    assert {b.name for b in flagged} == {"free", "frame"}
+    one = Layer(W=8, n=8, alpha_deg=84, material=DL)
+    two = Layer(W=6, n=11, alpha_deg=70, material=DL)
+    a = Assembly.identical(one) if layout == "square" else Assembly(one, two, make_layout(layout))
+    for b in flagged:
+        r = analyze(a, "refined", [0.0, 90.0], support=b.name)
+        for s in r.stiffness:
+            K, D = _rule_by_hand(r.springs, s.eta_deg)
+            assert pytest.approx(K, rel=1e-12) == s.K and pytest.approx(D, rel=1e-12) == s.D
+        assert _stiffness(Quantity("K", 0.0, b.name))
+    register(HALF)  # half the rule: not the rule, and not flagged
+    try:
+        assert not HALF.crease_rule and not _stiffness(Quantity("K", 0.0, "half"))
+    finally:
+        unregister("half")

@@ -22,6 +22,7 @@ from corrugate.export.machines import get_machine
 from corrugate.fabrication.sheets import PartTooLargeError
 from corrugate.fea.verify import Row, Verification
 from corrugate.solver.problem import Problem
+from corrugate.solver.solve import ConstraintReport
 from corrugate.spec.schema import parse_spec_text
 from corrugate.workflow import (
     DesignRequest,
@@ -126,18 +127,19 @@ def test_the_web_design_job_reads_one_request_and_calls_the_run(
     assert json.loads((folder / "design.json").read_text())["design"] == payload["design"]
 
 
-def _stand_in_fe(ratio: float) -> tuple[Any, list[list[dict[str, Any]]]]:
+def _stand_in_fe(ratio: float) -> tuple[Any, list[list[ConstraintReport]]]:
     """``verify_design`` with the EI row's FE ``ratio`` x the model value, judged against the
-    bound its constraint entries give it (the spec's)."""
-    seen: list[list[dict[str, Any]]] = []
+    bound its constraint reports give it (the spec's)."""
+    seen: list[list[ConstraintReport]] = []
 
     def verify_design(assembly: Any, constraints: Any, *args: Any, **kwargs: Any) -> Verification:
         rows = list(constraints)
+        assert all(isinstance(c, ConstraintReport) for c in rows)  # typed values, not JSON
         seen.append(rows)
-        [c] = [c for c in rows if c["name"] == NAME]
-        fe = ratio * c["value"]
-        holds = fe >= c["bound"]
-        row = Row(NAME, "EI@0", "min", c["unit"], c["bound"], c["value"], {4: fe}, fe, holds=holds)
+        [c] = [c for c in rows if c.name == NAME]
+        fe = ratio * c.value
+        holds = fe >= c.bound
+        row = Row(NAME, "EI@0", "min", c.unit, c.bound, c.value, {4: fe}, fe, holds=holds)
         return Verification((row,), (2, 4))
 
     return verify_design, seen
@@ -171,9 +173,7 @@ def test_the_refine_loop_runs_inside_the_run_typed(
     assert c["bound"] == pytest.approx(B) and c["model_bound"] == pytest.approx(B / 0.8)
     assert 0.8 * c["value"] >= B  # the stand-in FE of the answer meets the spec's bound
     # every FE check judged against the spec's bound, never the corrected one
-    assert all(
-        next(r for r in rows if r["name"] == NAME)["bound"] == pytest.approx(B) for rows in seen
-    )
+    assert all(next(r for r in rows if r.name == NAME).bound == pytest.approx(B) for rows in seen)
     assert answer.payload["refine"]["verified"] is True and answer.fe.holds
     assert out / "verify.json" in answer.files and out / "design.json" in answer.files
     written = json.loads((out / "verify.json").read_text())

@@ -34,9 +34,12 @@ Opt = typer.Option
 def _print_load_case(case: LoadCase, rows: list[dict[str, float]], console: Console) -> None:
     from rich.table import Table
 
+    from corrugate.mechanics.behaviours import get_load_case
+
+    form = get_load_case(case.test).form
     over = (
-        ""
-        if case.test == "platens"
+        ""  # an in-plane test has no span: the panel's length along eta is compressed
+        if form is not None and form.kind == "inplane"
         else (f" over {case.span:g} mm" if case.span is not None else " over the panel's length")
     )
     t = Table(

@@ -442,15 +442,12 @@ def _print_fe(checked: FeCheck, console: Console) -> None:
         )
         for col in ("attempt", "design", "mass g", "model bounds", "FE holds"):
             t.add_column(col, justify="left" if col in ("design", "model bounds") else "right")
-        spec_bounds = r.attempts[0].bounds
         for i, a in enumerate(r.attempts):
-            js = a.as_json(spec_bounds)
             design = (
                 "; ".join(
                     dict.fromkeys(
-                        f"{x['material']} {x['t_mm']:g} W {x['W_mm']:g} n {x['n']} "
-                        f"a {x['alpha_deg']:g}"
-                        for x in js["layers"]
+                        f"{x.material.id} {x.t:g} W {x.W:g} n {x.n} a {x.alpha_deg:g}"
+                        for x in a.layers
                     )
                 )
                 or a.solution.status

@@ -22,9 +22,13 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 from corrugate.geometry.layer import Assembly
+
+if TYPE_CHECKING:
+    from corrugate.fea.fixtures import Fixture
 
 __all__ = ["FrameStiffness", "solve_frame"]
 
@@ -51,13 +55,15 @@ def solve_frame(
     assembly: Assembly,
     mesh: AssemblyMesh | None = None,
     *,
+    fixture: str | Fixture = "frame",
     folder: Path | None = None,
     keep: bool = False,
     timeout: float = 600.0,
 ) -> FrameStiffness:
-    """Run the ``frame`` fixture twice (y pair moving at eta = 0, x pair at eta = 90)."""
+    """Run the ``frame`` fixture (or another of kind ``frame``, a support's own, named by its
+    behaviour) twice (y pair moving at eta = 0, x pair at eta = 90)."""
     along_y, along_x = (
-        solve_assembly(assembly, "frame", mesh, eta, folder=folder, keep=keep, timeout=timeout)
+        solve_assembly(assembly, fixture, mesh, eta, folder=folder, keep=keep, timeout=timeout)
         for eta in (0.0, 90.0)
     )
     assert along_y.side_force is not None and along_x.side_force is not None

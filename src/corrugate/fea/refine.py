@@ -26,13 +26,14 @@ spec's own certified design) with its failed verification.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, replace
 from typing import Any, Generic, Protocol, TypeVar
 
 from corrugate.fea.verify import Row, Verification
+from corrugate.geometry.layer import Layer
 from corrugate.solver.problem import Constraint, Problem
-from corrugate.solver.solve import Solution
+from corrugate.solver.solve import ConstraintReport, Solution
 
 __all__ = [
     "LOOSEN_ABOVE",
@@ -44,7 +45,7 @@ __all__ = [
     "corrected_bound",
     "next_bounds",
     "refine",
-    "spec_constraints",
+    "spec_reports",
     "statement",
     "with_bounds",
 ]
@@ -56,8 +57,9 @@ LOOSEN_ABOVE = 1.05
 
 
 class Solved(Protocol):
-    """What a solve of the loop returns: its ``solution`` and the JSON object ``design --json``
-    prints for it (``payload``), e.g. :class:`corrugate.workflow.solve.DesignRun`."""
+    """What a solve of the loop returns: its ``solution``, and the JSON object ``design --json``
+    prints for it (``payload``), which :func:`answer_payload` starts the answer's JSON from, e.g.
+    :class:`corrugate.workflow.solve.DesignRun`. The loop itself reads the solution only."""
 
     @property
     def solution(self) -> Solution: ...
@@ -68,17 +70,17 @@ class Solved(Protocol):
 
 R = TypeVar("R", bound=Solved)
 
-#: Verifies a solved design in FE: its solution and its constraints' entries (the payload's
-#: ``constraints``, each with the spec's bound, :func:`spec_constraints`).
-VerifyFn = Callable[[Solution, list[dict[str, Any]]], Verification]
+#: Verifies a solved design in FE: its solution and its constraint reports, each with the spec's
+#: bound (:func:`spec_reports`).
+VerifyFn = Callable[[Solution, tuple[ConstraintReport, ...]], Verification]
 
 
 @dataclass(frozen=True)
 class Attempt(Generic[R]):
     """One solve of the loop: the model ``bounds`` of the behavioural constraints it was solved
     under (name -> bound, in the solver's units), what the solve returned (``run``: its
-    ``solution`` and ``payload``), and the FE ``verification`` of its design (None without a
-    certified design)."""
+    ``solution``), and the FE ``verification`` of its design (None without a certified
+    design)."""
 
     bounds: dict[str, float]
     run: R
@@ -89,8 +91,12 @@ class Attempt(Generic[R]):
         return self.run.solution
 
     @property
-    def payload(self) -> dict[str, Any]:
-        return self.run.payload
+    def layers(self) -> tuple[Layer, ...]:
+        """The layers of its design (none without a design: the JSON's ``design`` is null)."""
+        sol = self.solution
+        if sol.assembly is None or sol.analysis is None:
+            return ()
+        return tuple(sol.assembly.layers)
 
     @property
     def verified(self) -> bool:
@@ -101,28 +107,6 @@ class Attempt(Generic[R]):
             and self.verification is not None
             and self.verification.holds
         )
-
-    def as_json(self, spec_bounds: dict[str, float]) -> dict[str, Any]:
-        """The attempt as ``refine.attempts[]`` of the answer's JSON."""
-        sol = self.solution
-        design = self.payload.get("design")
-        layers = design.get("layers", []) if isinstance(design, dict) else []
-        v = self.verification
-        return {
-            "status": sol.status,
-            "certified": sol.certified,
-            "mass_g": sol.mass,
-            "objective": None if math.isnan(sol.objective) else sol.objective,
-            "layers": [
-                {k: lay.get(k) for k in ("material", "t_mm", "W_mm", "n", "alpha_deg")}
-                for lay in layers
-            ],
-            "model_bounds": {
-                k: {"spec": spec_bounds[k], "model": b} for k, b in self.bounds.items()
-            },
-            "fe_holds": None if v is None else v.holds,
-            "fe": None if v is None else {r.name: r.as_json()["fe"] for r in v.rows},
-        }
 
 
 @dataclass(frozen=True)
@@ -215,16 +199,15 @@ def refine(
     first: R | None = None,
 ) -> Refined[R]:
     """The loop of the module docstring on the problem ``spec`` (its bounds are the spec's):
-    ``solve`` solves a problem (its solution and payload, :class:`Solved`), ``verify`` runs the
-    FE twins of a solved design (given its constraints with the spec's bounds,
-    :func:`spec_constraints`); ``first``: the spec's own solve when already solved. At most
+    ``solve`` solves a problem (its solution, :class:`Solved`), ``verify`` runs the FE twins of
+    a solved design (given its constraint reports with the spec's bounds, :func:`spec_reports`); ``first``: the spec's own solve when already solved. At most
     ``cap`` re-solves."""
     bounds: dict[str, float] = {}
     attempts: list[Attempt[R]] = []
     tried: list[dict[str, float]] = []
     problem = spec
     stopped = f"the cap of {cap} re-solves"
-    cached: dict[tuple[Any, ...], Verification] = {}
+    cached: dict[tuple[tuple[str, float, float, int, float], ...], Verification] = {}
     for k in range(cap + 1):
         if k == 0 and first is not None:
             run = first
@@ -234,14 +217,14 @@ def refine(
                 + ", ".join(f"{n} {b:.5g}" for n, b in bounds.items())
             )
             run = solve(problem)
-        sol, payload = run.solution, run.payload
+        sol = run.solution
         verification: Verification | None = None
         if sol.certified and sol.assembly is not None:
-            key = _design_key(payload)
+            key = _design_key(sol.assembly.layers)
             if key not in cached:
-                progress(f"refine: FE verification of design {k + 1} ({_design_text(payload)})")
+                progress(f"refine: FE verification of design {k + 1} ({_design_text(sol)})")
                 # the FE is judged against the spec's bounds, never the corrected ones
-                checked = spec_constraints(payload.get("constraints", []), spec, bounds)
+                checked = spec_reports(sol.constraints, spec, bounds)
                 cached[key] = verify(sol, checked)
             verification = cached[key]
             progress(f"refine: design {k + 1}: {_verdict(verification)}")
@@ -280,24 +263,22 @@ def refine(
     return Refined(tuple(attempts), chosen, stopped)
 
 
-def _design_key(payload: dict[str, Any]) -> tuple[Any, ...]:
-    design = payload.get("design") or {}
-    return tuple(
-        tuple(sorted((k, str(v)) for k, v in lay.items())) for lay in design.get("layers", [])
-    )
+def _design_key(layers: Sequence[Layer]) -> tuple[tuple[str, float, float, int, float], ...]:
+    """A design by its layers' values (material, t, W, n, alpha), so that a design solved again
+    is verified once."""
+    return tuple((lay.material.id, lay.t, lay.W, lay.n, lay.alpha_deg) for lay in layers)
 
 
-def _design_text(payload: dict[str, Any]) -> str:
-    design = payload.get("design") or {}
-    parts = []
-    for lay in design.get("layers", []):
-        parts.append(
-            f"{lay.get('material')} {lay.get('t_mm'):g} mm W {lay.get('W_mm'):g} n {lay.get('n')} "
-            f"alpha {lay.get('alpha_deg'):g}"
-        )
-    mass = payload.get("mass_g")
+def _design_text(sol: Solution) -> str:
+    """The design of ``sol`` in one phrase: each distinct layer, then its mass."""
+    layers = sol.assembly.layers if sol.assembly is not None else ()
+    parts = [
+        f"{lay.material.id} {lay.t:g} mm W {lay.W:g} n {lay.n} alpha {lay.alpha_deg:g}"
+        for lay in layers
+    ]
+    mass = sol.mass
     head = "; ".join(dict.fromkeys(parts))  # identical layers once
-    return head + (f", {mass:.4g} g" if isinstance(mass, int | float) else "")
+    return head + (f", {mass:.4g} g" if mass is not None else "")
 
 
 def statement(v: Verification) -> str:
@@ -332,28 +313,49 @@ def statement(v: Verification) -> str:
     )
 
 
-def spec_constraints(
-    constraints: list[dict[str, Any]], spec: Problem, names: Iterable[str]
-) -> list[dict[str, Any]]:
-    """A payload's ``constraints`` entries with the spec's bound again for each name in
-    ``names`` (solved under a corrected bound): ``model_bound`` keeps the bound solved under,
-    ``margin`` and ``relative_margin`` are against the spec's bound (negative where the model
-    value is below it). A deflection entry's bounds are deflections (mm): the spec's is load /
-    (its P / delta bound)."""
+def spec_reports(
+    reports: Iterable[ConstraintReport], spec: Problem, names: Iterable[str]
+) -> tuple[ConstraintReport, ...]:
+    """A solution's constraint ``reports`` with the spec's bound again for each name in
+    ``names`` (solved under a corrected bound), their ``margin`` against it (negative where the
+    model value is below it); the others as they are. A deflection report's bounds are
+    deflections (mm): the spec's is load / (its P / delta bound)."""
     wanted = set(names)
     by_name = {c.name: c for c in spec.constraints}
-    rows = []
-    for entry in constraints:
-        c = dict(entry)
-        con = by_name.get(str(c.get("name")))
+    out = []
+    for r in reports:
+        con = by_name.get(r.name)
         if con is not None and con.name in wanted:
-            c["model_bound"] = c["bound"]
-            c["bound"] = con.bound if con.load is None else con.load / con.bound
-            value, bound = c["value"], c["bound"]
-            c["margin"] = value - bound if c.get("sense") == "min" else bound - value
-            c["relative_margin"] = c["margin"] / abs(bound) if bound else None
-        rows.append(c)
-    return rows
+            bound = con.bound if con.load is None else con.load / con.bound
+            margin = r.value - bound if r.sense == "min" else bound - r.value
+            r = replace(r, bound=bound, margin=margin)
+        out.append(r)
+    return tuple(out)
+
+
+def _attempt_json(a: Attempt[Any], spec_bounds: dict[str, float]) -> dict[str, Any]:
+    """The attempt ``a`` as ``refine.attempts[]`` of the answer's JSON."""
+    sol = a.solution
+    v = a.verification
+    return {
+        "status": sol.status,
+        "certified": sol.certified,
+        "mass_g": sol.mass,
+        "objective": None if math.isnan(sol.objective) else sol.objective,
+        "layers": [
+            {
+                "material": lay.material.id,
+                "t_mm": lay.t,
+                "W_mm": lay.W,
+                "n": lay.n,
+                "alpha_deg": lay.alpha_deg,
+            }
+            for lay in a.layers
+        ],
+        "model_bounds": {k: {"spec": spec_bounds[k], "model": b} for k, b in a.bounds.items()},
+        "fe_holds": None if v is None else v.holds,
+        "fe": None if v is None else {r.name: r.as_json()["fe"] for r in v.rows},
+    }
 
 
 def answer_payload(refined: Refined[Any], spec: Problem) -> dict[str, Any]:
@@ -363,13 +365,20 @@ def answer_payload(refined: Refined[Any], spec: Problem) -> dict[str, Any]:
     against the spec's bound), ``verification`` (the FE table and statement of that design) and
     ``refine`` (every attempt, the number of re-solves, the cap, why the loop stopped)."""
     a = refined.answer
-    out = dict(a.payload)
+    sol = a.solution
+    out = dict(a.run.payload)
     spec_bounds = refined.attempts[0].bounds
     corrected = {k: b for k, b in a.bounds.items() if not math.isclose(b, spec_bounds[k])}
     if corrected:
-        out["constraints"] = spec_constraints(out.get("constraints", []), spec, corrected)
+        # a corrected report's model_bound: the bound it was solved under
+        out["constraints"] = [
+            r.as_dict() if r is solved else {**r.as_dict(), "model_bound": solved.bound}
+            for r, solved in zip(
+                spec_reports(sol.constraints, spec, corrected), sol.constraints, strict=True
+            )
+        ]
         out["certificate"] = (
-            str(out.get("certificate", ""))
+            sol.certificate
             + "; for the model bounds corrected by FE: "
             + ", ".join(f"{k} {spec_bounds[k]:.5g} -> {b:.5g}" for k, b in corrected.items())
         )
@@ -383,7 +392,7 @@ def answer_payload(refined: Refined[Any], spec: Problem) -> dict[str, Any]:
         "stopped": refined.stopped,
         "chosen": refined.chosen,
         "verified": refined.chosen is not None,
-        "attempts": [t.as_json(spec_bounds) for t in refined.attempts],
+        "attempts": [_attempt_json(t, spec_bounds) for t in refined.attempts],
     }
     return out
 

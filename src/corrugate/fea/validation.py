@@ -99,7 +99,7 @@ class Case:
     connectors: bool = False
     buckling: bool = False
     bond: Bond = "edges"
-    support: str = "free"
+    support: str = DEFAULT_SUPPORT
 
 
 @dataclass(frozen=True, slots=True)
@@ -153,7 +153,7 @@ def fixture_key(support: Behaviour) -> str:
 
 
 def closed_forms(
-    assembly: Assembly, eta_deg: Sequence[float], support: str = "free"
+    assembly: Assembly, eta_deg: Sequence[float], support: str = DEFAULT_SUPPORT
 ) -> dict[str, dict[str, float]]:
     """The closed forms of every model variant in the keys of :class:`CaseResult`: K and D under
     ``support`` (the FE coupon has free sides), and K under each support condition with a
@@ -190,7 +190,7 @@ def _support_run(case: Case, mesh: AssemblyMesh, name: str) -> Callable[[float],
     fixture = get_fixture(name, ("coupon", "frame"))
     a, folder, keep, timeout = case.assembly, case.folder, case.keep, case.timeout
     if fixture.kind == "frame":
-        return solve_frame(a, mesh, folder=folder, keep=keep, timeout=timeout).K
+        return solve_frame(a, mesh, fixture=fixture, folder=folder, keep=keep, timeout=timeout).K
 
     def K(eta: float) -> float:
         r = solve_assembly(a, fixture, mesh, eta, folder=folder, keep=keep, timeout=timeout)

@@ -14,8 +14,9 @@ Behaviour.fixture`: the load case's, else the support condition's), looked up in
 constraint                                 FE twin
 =========================================  =========================================================
 K, free sides (no test, or ``platens``)    ``platens``: K between platens
-K in a frame                               ``frame``: K_frame(eta) of two runs
-                                           (:func:`corrugate.fea.frame.solve_frame`)
+K in a frame (a support with a fixture    the support's fixture: ``frame``, K_frame(eta) of two
+of its own, not the free coupon's)         runs (:func:`corrugate.fea.frame.solve_frame`); no
+                                           twin for its bending or a deflection
 D, EI, no test (pure bending)              ``four-point``: the pure-bending gauge between load lines
 D, EI, P / delta, ``three-point``          ``three-point``: P / delta under the load
 D, EI, P / delta, ``four-point``           ``four-point``: P / delta at the load points
@@ -53,7 +54,7 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 from corrugate.core.errors import CorrugateError, InputError
 from corrugate.fea.assembly import (
@@ -70,14 +71,24 @@ from corrugate.fea.outline import OutlineResult, solve_outline
 from corrugate.fea.shells import check_shift, specimen
 from corrugate.fea.steps import STATIC, LinearBuckling, Step
 from corrugate.geometry.layer import Assembly
-from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support
+from corrugate.mechanics.behaviours import (
+    DEFAULT_SUPPORT,
+    Behaviour,
+    get_load_case,
+    get_support,
+    own_test,
+)
 from corrugate.solver.quantity import Quantity
+
+if TYPE_CHECKING:
+    from corrugate.solver.solve import ConstraintReport
 
 __all__ = [
     "BEHAVIOURAL_KINDS",
     "DEFAULT_MAX_MESH",
     "DEFAULT_MESHES",
     "DEFAULT_SHIFTS",
+    "Checked",
     "Row",
     "Twin",
     "Verification",
@@ -299,33 +310,38 @@ def twin_of(
     if q.kind == "Pb":
         if not principal:
             return "no FE twin yet (buckling off the crease directions)"
-        return Twin(get_load_case("platens").fixture, eta, "Pb", step=LinearBuckling())
-    if q.support not in (None, "free", "frame"):
+        # compression between platens (the own in-plane test's fixture) as a buckling run
+        return Twin(own_test().fixture, eta, "Pb", step=LinearBuckling())
+    support = get_support(q.support or DEFAULT_SUPPORT)
+    if support.fixture not in fixture_names():
         return f"no FE twin yet (support {q.support})"
-    if connectors and (not principal or q.support == "frame"):
-        return "no FE twin yet (the band joint off the crease directions or in a frame)"
+    held = _held(q)
+    if connectors and (not principal or held is not None):
+        return f"no FE twin yet (the band joint off the crease directions or{support.label})"
     test = q.test
     span: float | None = None  # 3-point bending over a span shorter than the panel
     if q.span is not None:
         length = specimen(assembly, eta)[1]
         if abs(q.span - length) > 1e-9 * max(1.0, length):
             three = test is not None and get_fixture(get_load_case(test).fixture).takes_span
-            if not (three and principal and q.span < length and q.support in (None, "free")):
+            if not (three and principal and q.span < length and held is None):
                 return (
                     f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its "
                     f"ends, {length:.6g} mm apart, or 3-point along a crease direction over a "
                     "shorter span)"
                 )
             span = q.span
-    if q.support == "frame":
-        if q.kind == "K" or (q.kind == "k" and test == "platens"):
+    if held is not None:  # only its own K, in its own fixture (the frame's two runs)
+        if get_fixture(held.fixture).measures == "K" and (
+            q.kind == "K" or (q.kind == "k" and test == own_test().name)
+        ):
             if load is not None:
-                return "no FE twin yet (a deflection in a frame)"
-            return Twin(get_support(q.support).fixture, eta, "K")
-        return "no FE twin yet (bending in a frame)"
+                return f"no FE twin yet (a deflection{held.label})"
+            return Twin(held.fixture, eta, "K")
+        return f"no FE twin yet (bending{held.label})"
     if test is None:
         if q.kind == "K":  # the support's own fixture: the free coupon between platens
-            return Twin(get_support(q.support or DEFAULT_SUPPORT).fixture, eta, "K", note=note)
+            return Twin(support.fixture, eta, "K", note=note)
         if q.kind == "EI" and not principal:
             return "no FE twin yet (EI off the crease directions: the coupon has its own span)"
         # pure bending: the gauge between the load lines of the four-point fixture
@@ -374,14 +390,15 @@ def _circle_twin(q: Quantity, eta: float, connectors: bool, load: float | None) 
     own statement, any other K is not."""
     if connectors:
         return "no FE twin yet (the band joint on a circle)"
-    if q.support == "frame":
-        return "no FE twin yet (a circle in a frame)"
+    held = _held(q)
+    if held is not None:
+        return f"no FE twin yet (a circle{held.label})"
     if q.test == "wheel":
         if q.kind not in ("K", "k"):
             return f"no FE twin yet ({q.kind} in the wheel test)"
         return Twin("wheel", eta, "K" if q.kind == "K" else "k", load=load, note=WHEEL_TEST_NOTE)
-    if q.kind == "K" or (q.kind == "k" and q.test == "platens"):
-        if q.support not in (None, "free"):
+    if q.kind == "K" or (q.kind == "k" and q.test == own_test().name):
+        if q.support not in (None, DEFAULT_SUPPORT):
             return f"no FE twin yet (support {q.support})"
         return Twin("wheel", eta, "K", load=load, note=WHEEL_NOTE)
     if q.kind in ("D", "EI"):
@@ -398,24 +415,76 @@ def _polygon_refusal(q: Quantity, principal: bool, connectors: bool) -> str:
         return "no FE twin yet (a polygon off the crease directions: no coupon of its own)"
     if connectors:
         return "no FE twin yet (the band joint on a polygon)"
-    if q.support == "frame":
-        return "no FE twin yet (a polygon in a frame)"
+    held = _held(q)
+    if held is not None:
+        return f"no FE twin yet (a polygon{held.label})"
     return ""
+
+
+def _held(q: Quantity) -> Behaviour | None:
+    """The support condition of ``q`` when it holds the panel in a fixture of its own instead
+    of the free coupon the tests run on (its fixture is not the own in-plane test's,
+    :func:`~corrugate.mechanics.behaviours.own_test`: the frame's), else None (free sides)."""
+    support = get_support(q.support or DEFAULT_SUPPORT)
+    return None if support.fixture == own_test().fixture else support
+
+
+@dataclass(frozen=True, slots=True)
+class Checked:
+    """One behavioural constraint as its FE twin checks it: ``name``, ``quantity`` (as its key
+    reads back, the way design.json states it, so that a run and ``corrugate verify`` of its
+    folder check the same twin), ``sense`` (min or max), ``unit``, the ``bound`` and the model's
+    ``value`` in that unit, and a deflection bound's ``load`` (N; None otherwise)."""
+
+    name: str
+    quantity: Quantity
+    sense: str
+    unit: str
+    bound: float
+    value: float
+    load: float | None
+
+    @classmethod
+    def of(cls, c: ConstraintReport | Mapping[str, Any]) -> Checked | None:
+        """``c`` (a solution's :class:`~corrugate.solver.solve.ConstraintReport`, or an entry
+        of design.json's ``constraints``) as checked, None when it is not behavioural; an entry
+        that cannot be read is an error naming it."""
+        q = _behavioural(c.get("quantity") if isinstance(c, Mapping) else c.quantity.key)
+        if q is None:
+            return None
+        if not isinstance(c, Mapping):
+            deflection = q.kind == "k" and c.unit == "mm"
+            if c.sense not in ("min", "max"):
+                raise InputError(f"constraints[{c.name}].sense", repr(c.sense), "min or max")
+            if deflection and c.load is None:
+                raise InputError(f"constraints[{c.name}].load_N", "None", "a number")
+            load = c.load if deflection else None
+            return cls(c.name, q, c.sense, c.unit, float(c.bound), float(c.value), load)
+        name = str(c.get("name", q.key))
+        sense = str(c.get("sense", "min"))
+        if sense not in ("min", "max"):
+            raise InputError(f"constraints[{name}].sense", repr(sense), "min or max")
+        unit = str(c.get("unit", ""))
+        bound, value = _number(c, "bound"), _number(c, "value")
+        deflection = q.kind == "k" and c.get("unit") == "mm"  # a deflection bound, under load_N
+        return cls(name, q, sense, unit, bound, value, _number(c, "load_N") if deflection else None)
 
 
 def behavioural(
     constraints: Sequence[Mapping[str, Any]],
 ) -> list[tuple[Mapping[str, Any], Quantity]]:
     """The behavioural constraints of a design.json's ``constraints`` with their quantities."""
-    out: list[tuple[Mapping[str, Any], Quantity]] = []
-    for c in constraints:
-        key = c.get("quantity")
-        if not isinstance(key, str) or "@" not in key:
-            continue
-        q = Quantity.parse(key)
-        if q.kind in BEHAVIOURAL_KINDS:
-            out.append((c, q))
-    return out
+    found = ((c, _behavioural(c.get("quantity"))) for c in constraints)
+    return [(c, q) for c, q in found if q is not None]
+
+
+def _behavioural(key: object) -> Quantity | None:
+    """The quantity of a constraint's key when it is behavioural (a direction and a kind of
+    :data:`BEHAVIOURAL_KINDS`), else None."""
+    if not isinstance(key, str) or "@" not in key:
+        return None
+    q = Quantity.parse(key)
+    return q if q.kind in BEHAVIOURAL_KINDS else None
 
 
 def _number(c: Mapping[str, Any], name: str) -> float:
@@ -429,7 +498,7 @@ def _number(c: Mapping[str, Any], name: str) -> float:
 
 def verify_design(
     assembly: Assembly,
-    constraints: Sequence[Mapping[str, Any]],
+    constraints: Sequence[ConstraintReport | Mapping[str, Any]],
     joint: str = "none",
     meshes: Sequence[int] = DEFAULT_MESHES,
     *,
@@ -441,7 +510,8 @@ def verify_design(
     timeout: float = 900.0,
     max_mesh: int = DEFAULT_MAX_MESH,
 ) -> Verification:
-    """Run the FE twin of every behavioural constraint (module docstring) on the mesh series
+    """Run the FE twin of every behavioural constraint (module docstring; ``constraints``: a
+    solution's reports or design.json's entries, :class:`Checked`) on the mesh series
     ``meshes`` (elements per facet) and compare its estimate with the bound; off the crease
     directions at every coupon position of ``shifts`` (fractions of each layer's pitch), each
     position's series extrapolated on its own and the worst estimate counting; with ``screen``
@@ -493,7 +563,7 @@ def verify_design(
                     )
                 elif whole:
                     runs[key] = solve_frame(
-                        assembly, mesh, folder=folder, keep=keep, timeout=timeout
+                        assembly, mesh, fixture=fixture, folder=folder, keep=keep, timeout=timeout
                     )
                 else:
                     runs[key] = solve_assembly(
@@ -536,22 +606,12 @@ def verify_design(
         return series, failures
 
     planned: list[tuple[Row, Twin | str]] = []  # every entry read before any run: bad input first
-    for c, q in behavioural(constraints):
-        name = str(c.get("name", q.key))
-        sense = str(c.get("sense", "min"))
-        if sense not in ("min", "max"):
-            raise InputError(f"constraints[{name}].sense", repr(sense), "min or max")
-        base = Row(
-            name,
-            q.key,
-            sense,
-            str(c.get("unit", "")),
-            _number(c, "bound"),
-            _number(c, "value"),
-        )
-        deflection = q.kind == "k" and c.get("unit") == "mm"  # a deflection bound, under load_N
-        load = _number(c, "load_N") if deflection else None
-        planned.append((base, twin_of(q, assembly, joint, load)))
+    for entry in constraints:
+        c = Checked.of(entry)
+        if c is None:
+            continue
+        base = Row(c.name, c.quantity.key, c.sense, c.unit, c.bound, c.value)
+        planned.append((base, twin_of(c.quantity, assembly, joint, c.load)))
     rows: list[Row] = []
     for base, twin in planned:
         sense = base.sense

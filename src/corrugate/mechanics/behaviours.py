@@ -19,6 +19,9 @@ A :class:`Behaviour` is one entry that carries everything the layers above need 
   report's polar figure) and ``off_axis`` (the model warning off the crease directions);
 * ``uses_coupon``: whether ``model`` reads the layout off the crease directions as a coupon
   (:class:`~corrugate.mechanics.offaxis.Coupon`; the free support does);
+* ``crease_rule``: whether its K and D along the crease directions (eta 0 or 90 deg) are the
+  paper's rule of the layers' springs (docs/theory.md 3.3; free sides and the frame), the terms
+  the layer-by-layer search of independent layers sums (:mod:`corrugate.solver.separable`);
 * for a load case, how the spec, its reference and the web page offer it: ``choice`` (its words
   in a list of choices, its name when empty: ``between platens``), ``note`` (its remark in the
   spec reference's lists of tests: ``in-plane compression``), ``layouts`` (the plan outlines it
@@ -139,6 +142,7 @@ class Behaviour:
     curve: str
     off_axis: Callable[[str, str], str]
     uses_coupon: bool = False
+    crease_rule: bool = False
     role: Role = "support"
     form: TestForm | None = None
     choice: str = ""

@@ -161,7 +161,7 @@ class Problem:
     n_hi: int
     constraints: tuple[Constraint, ...]
     objective: Objective = field(default_factory=Objective)
-    support: str = "free"  # the spec's global support condition (reports, tables)
+    support: str = DEFAULT_SUPPORT  # the spec's global support condition (reports, tables)
     safety_factor: float = DEFAULT_SAFETY_FACTOR  # of the strength bounds (Pmax quantities)
     joint: str = "none"  # how the layers are joined (mechanics.load_cases.JOINTS)
     # the profile both layers are folded to (geometry.profile; the zig-zag unless the Python API

@@ -68,7 +68,7 @@ from numpy.typing import NDArray
 
 from corrugate.geometry.layouts import Rectangle, Square, length_sum
 from corrugate.geometry.profile import ZigZag
-from corrugate.mechanics.behaviours import DEFAULT_SUPPORT
+from corrugate.mechanics.behaviours import get_support
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
 from corrugate.solver.points import DesignPoints, LayerPoints
@@ -106,8 +106,6 @@ MAX_PAIRS = 4_000_000
 CHUNK_PAIRS = 1_000_000
 #: Pairs evaluated exactly in the first batch (then fourfold each batch).
 FIRST_EXACT = 16
-#: The supports whose K and D along the creases are the paper's rule (docs/theory.md 3.3).
-_RULE_SUPPORTS = (DEFAULT_SUPPORT, "frame")
 #: Quantities that are one layer's own, or that the pair stage leaves to the exact evaluation.
 _LAYER_KINDS = {LX, LY, W_MIN, T_OVER_W, CREASES, FLAT, FACET}
 _EXACT_ONLY = {PART_SHORT, PART_LONG}
@@ -130,7 +128,8 @@ def _stiffness(q: Quantity) -> bool:
     return (
         q.kind in ("EI", "D", "K")
         and q.eta in (0.0, 90.0)
-        and q.support in _RULE_SUPPORTS
+        and q.support is not None
+        and get_support(q.support).crease_rule  # the paper's rule there (docs/theory.md 3.3)
         and q.test is None
         and q.span is None
     )

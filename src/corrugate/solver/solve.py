@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.analysis.warnings import wheel_warnings
 from corrugate.geometry.layer import Assembly, Layer
-from corrugate.mechanics.behaviours import get_load_case
+from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
@@ -130,7 +130,7 @@ class ConstraintReport:
                 {}
                 if self.load is None
                 else {
-                    "test": self.quantity.test or "platens",
+                    "test": self.quantity.test or own_test().name,
                     "load_N": self.load,
                     "stiffness_N_per_mm": self.stiffness,
                     "load_capacity_N": self.capacity,
@@ -250,7 +250,7 @@ class Solution:
             test = (
                 get_load_case(q.test).label
                 if q.test is not None
-                else (" between platens" if q.kind == "K" else " in pure bending")
+                else (own_test().label if q.kind == "K" else " in pure bending")
             )
             span = "" if q.span is None else f" over {q.span:g} mm"
             if c.load is not None:
@@ -667,7 +667,7 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, flo
         if c.load is None or q.eta is None or q.eta % 90 != 0:
             continue
         asked[c.name] = Quantity.load_case(
-            "Pmax", q.eta, q.test or "platens", q.support or problem.support, q.span
+            "Pmax", q.eta, q.test or own_test().name, q.support or problem.support, q.span
         )
     if not asked:
         return {}

@@ -20,7 +20,7 @@ if TYPE_CHECKING:
     from corrugate.fea.refine import Refined
     from corrugate.fea.verify import Verification
     from corrugate.solver.problem import Problem
-    from corrugate.solver.solve import Solution
+    from corrugate.solver.solve import ConstraintReport, Solution
     from corrugate.spec.schema import Spec
     from corrugate.workflow.request import FeOptions
 
@@ -65,11 +65,11 @@ def check_fe(
     from corrugate.fea.refine import answer_payload, refine, statement
     from corrugate.fea.verify import verify_design
 
-    def verify(sol: Solution, constraints: list[dict[str, object]]) -> Verification:
+    def verify(sol: Solution, reports: tuple[ConstraintReport, ...]) -> Verification:
         assert sol.assembly is not None
         return verify_design(
             sol.assembly,
-            constraints,
+            reports,
             problem.joint,
             fe.meshes,
             shifts=fe.shifts,
@@ -78,7 +78,7 @@ def check_fe(
         )
 
     if not fe.refine:
-        v = verify(run.solution, [c.as_dict() for c in run.solution.constraints])
+        v = verify(run.solution, run.solution.constraints)
         payload = {
             **run.payload,
             "verification": {"method": "fe", **v.as_json(), "statement": statement(v)},

@@ -67,8 +67,10 @@ def solve_spec(
     with budget_scope(chosen):
         robust = robust_solve(problem, tol, r.probability, r.samples, r.seed)
     sol = robust.solution
-    payload = sol.to_dict()
-    payload["certified"] = False  # the robust optimum itself is not proven (see robust.py)
-    payload["robust"] = robust.as_dict(problem)
-    payload["warnings"] = [*sol.warnings, dict(_ROBUST_WARNING)]
+    payload = {
+        **sol.to_dict(),
+        "certified": False,  # the robust optimum itself is not proven (see robust.py)
+        "robust": robust.as_dict(problem),
+        "warnings": [*sol.warnings, dict(_ROBUST_WARNING)],
+    }
     return DesignRun(sol, payload, robust)

@@ -35,4 +35,5 @@ FRAME = Behaviour(
     text="a rigid frame: the paper's cos^2 rule",
     curve="rigid frame (cos^2 rule)",
     off_axis=off_axis_warning,
+    crease_rule=True,  # along the creases: the paper's rule (docs/theory.md 3.3)
 )

@@ -51,5 +51,6 @@ FREE = Behaviour(
     text="free sides, as a bench test or a part held at two edges",
     curve="free sides (lower bound)",
     off_axis=off_axis_warning,
+    crease_rule=True,  # along the creases: the paper's rule (docs/theory.md 3.3)
     uses_coupon=True,
 )
