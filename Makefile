@@ -56,11 +56,12 @@ test: $(VENV)/.installed-dev system-deps lint typecheck
 	$(BIN)/python -m pytest -q
 
 # The edit-test loop: the same venv, no system packages, lint or type check, and only the tests
-# marked neither fea (CalculiX), browser (Chromium) nor slow: under a minute. exec: pytest runs as
-# make's child, as in `make test`, not under /bin/sh (the completion test detects the shell it runs
-# under from its parent processes, and sh has no completion).
+# marked neither fea (CalculiX), browser (Chromium) nor slow: under a minute (43 s wall and CPU
+# on a 2-core machine at load average 2, `/usr/bin/time make test-fast`; docs/architecture.md, 4).
+# Bytecode is cached even where PYTHONDONTWRITEBYTECODE is set: pytest rewrites and compiles every
+# test module, and each test's subprocess compiles the package, again on every run without it.
 test-fast: $(VENV)/.installed-dev
-	exec $(BIN)/python -m pytest -q -m "not fea and not browser and not slow"
+	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q -m "not fea and not browser and not slow"
 
 clean:
 	rm -rf $(VENV) out .pytest_cache .mypy_cache .ruff_cache .hypothesis

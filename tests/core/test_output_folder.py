@@ -300,6 +300,7 @@ def _killed_at(step: int, action: Callable[[], object]) -> bool:
     return os.waitstatus_to_exitcode(status) == 9
 
 
+@pytest.mark.slow
 def test_a_kill_at_every_step_of_a_commit_settles_to_the_old_or_the_new_set(
     tmp_path: Path,
 ) -> None:

@@ -121,6 +121,7 @@ def test_two_holes_are_refused_exactly_when_their_true_gap_is_under_the_ligament
     assert refused > 20 and kept > 20  # both sides of the ligament were drawn
 
 
+@pytest.mark.slow
 def test_a_hole_near_the_outline_is_refused_exactly_when_its_true_ligament_is_too_small() -> None:
     """Circular and square holes at random places in a square and in a circle outline, many
     near the edge: check_holes (whose shortcut passes a hole whose enclosing circle is a ligament

@@ -189,6 +189,7 @@ def test_box_bounds_contain_the_making_values(n: int, W: float, a: float, shape:
             assert v[q][0] <= b[q][1][0] * (1 + 1e-12), q
 
 
+@pytest.mark.slow
 def test_design_writes_for_the_specs_machine_and_machine_overrides_it(
     tmp_path: Path, cli: CliRun
 ) -> None:
@@ -229,6 +230,7 @@ def test_the_spec_copy_is_not_changed_by_a_machine_override() -> None:
     assert spec.model_dump() == before
 
 
+@pytest.mark.slow
 def test_the_specs_fold_operations_reach_the_cut_file(tmp_path: Path, cli: CliRun) -> None:
     """`[fabrication] mountain = "pen"` draws the mountains on the Silhouette's pen layer instead
     of perforating them (read back with ezdxf); `--mountain` overrides the spec."""

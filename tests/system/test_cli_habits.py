@@ -44,7 +44,13 @@ def test_root_help_offers_completion_and_documents_the_exit_codes(cli: CliRun) -
         assert text in flat, text
 
 
-def test_show_completion_prints_a_bash_script(capsys: pytest.CaptureFixture[str]) -> None:
+def test_show_completion_prints_a_bash_script(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The shell is given, not detected: by default Typer reads it from the parent processes
+    # (shellingham), so the test would depend on how pytest was launched (under sh: "Shell sh
+    # not supported"). With detection off, --show-completion takes the shell as its value.
+    monkeypatch.setenv("_TYPER_COMPLETE_TEST_DISABLE_SHELL_DETECTION", "1")
     with pytest.raises(SystemExit) as info:  # as the console script `corrugate` runs it
         app(args=["--show-completion", "bash"], prog_name="corrugate")
     assert info.value.code in (0, None)

@@ -293,11 +293,22 @@ for r in run_sweep(_cases(["slow", "slow"]), jobs=2, folder=Path({work!r}), run=
 """
 
 
+def _default_sigint() -> None:
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 @pytest.mark.parametrize("sig", [signal.SIGTERM, signal.SIGINT])
 def test_work_folders_are_removed_on_sigterm_and_sigint(tmp_path: Path, sig: int) -> None:
     work = tmp_path / "work"
     code = SIGTERM_SCRIPT.format(tests=str(ROOT / "tests" / "system"), work=str(work))
-    proc = subprocess.Popen([sys.executable, "-c", code], env=_env(), start_new_session=True)
+    # SIGINT back to its default in the child: a background job (`cmd &` in a script, nohup)
+    # starts pytest with SIGINT ignored, the child would inherit that and never see the signal
+    proc = subprocess.Popen(
+        [sys.executable, "-c", code],
+        env=_env(),
+        start_new_session=True,
+        preexec_fn=_default_sigint,
+    )
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline:  # both workers made their work folders
         if work.is_dir() and len(list(work.glob("*/w-*"))) >= 2:

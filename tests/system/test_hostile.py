@@ -581,11 +581,11 @@ def test_the_thin_ligament_wheel_is_answered_within_its_budget(tmp_path: Path) -
         )
 
 
-@pytest.mark.slow
 def _no_constant(name: str) -> None:
     raise AssertionError(f"{name} is not JSON")
 
 
+@pytest.mark.slow
 def test_a_spec_over_a_tiny_budget_ends_with_exit_4_and_its_line() -> None:
     """The wheel (continuous alpha, a hole, three sheets) needs more than 0.01 s of CPU time
     (the case study no longer does: its search ends after two iterations): design stops at the
