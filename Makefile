@@ -52,8 +52,10 @@ lint: $(VENV)/.installed-dev
 typecheck: $(VENV)/.installed-dev
 	$(BIN)/mypy
 
+# Bytecode is cached here too (see test-fast): the suite's many CLI subprocesses each compile the
+# package again without it.
 test: $(VENV)/.installed-dev system-deps lint typecheck
-	$(BIN)/python -m pytest -q
+	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q
 
 # The edit-test loop: the same venv, no system packages, lint or type check, and only the tests
 # marked neither fea (CalculiX), browser (Chromium) nor slow: under a minute (43 s wall and CPU
