@@ -35,12 +35,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from corrugate.mechanics.behaviours import TestForm
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
+from corrugate.mechanics.load_cases import stress_per_load, wall_capacity
 
 __all__ = [
     "K_BENDING_CLAMPED",
@@ -48,7 +50,9 @@ __all__ = [
     "K_EDGE_BENDING",
     "K_SHEAR_LONG",
     "MODES",
+    "Capacity",
     "bending_buckling_modes",
+    "capacity_modes",
     "describe",
     "first_failure",
     "holds_words",
@@ -155,6 +159,93 @@ def platen_buckling_modes(
     along eta, free on one edge (k = 0.425, :mod:`corrugate.mechanics.buckling`), with the
     other layer's share K_C / K_S. Key ``end-facet-buckling``."""
     return {"end-facet-buckling": K_SIMPLE_FREE * buckling_scale(E, nu, t, W, n, K_S, K_C)}
+
+
+def capacity_modes(
+    form: TestForm,
+    springs: tuple[Any, Any],
+    E: tuple[Any, Any],
+    t: tuple[Any, Any],
+    nu: Any,
+    W: Any,
+    n: Any,
+    layers: Any,
+    whole: Any,
+    length: Any,
+    width: Any,
+    span: Any | None,
+    allowable: tuple[float, float],
+    band: tuple[Any, Any, Any, float] | None,
+    free_edges: bool,
+) -> dict[str, Any]:
+    """Every failure mode's load (N, without the safety factor) of the load case ``form`` along
+    a crease direction (module docstring; docs/load_cases.md 10), pairs ordered (the layer along
+    eta, the other): the layers' ``springs``, moduli ``E`` (MPa) and thicknesses ``t`` (mm);
+    ``nu``, ``W`` (mm) and ``n`` of the layer along eta; ``layers`` the layers' own D (N mm,
+    bending) or K (N/mm, platens) and ``whole`` the panel's with the band's walls; the panel's
+    ``length`` along eta and ``width`` across it (mm), the test's ``span`` (mm; None: the
+    length); the yield strengths ``allowable`` (MPa; +inf: no yield mode); ``band``: (E, t,
+    depth, yield strength) of the band's walls of a bonded joint (None: no band);
+    ``free_edges``: the outermost facets' outer edges are free (joint ``none``)."""
+    per = stress_per_load(form, springs, 0, layers, E, t, length, width, span)
+    modes: dict[str, Any] = {
+        "yield": allowable[0] / per[0],
+        "yield-across": allowable[1] / per[1],
+    }
+    if band is not None:  # the walls, at the whole panel's curvature or strain
+        Eb, tb, depth, yb = band
+        modes["band-yield"] = wall_capacity(form, whole, Eb, tb, depth, length, span, yb, 1.0)
+    a, c = springs
+    if form.kind == "inplane":
+        modes.update(platen_buckling_modes(E[0], nu, t[0], W, n, a.K_S, c.K_C))
+    else:
+        modes.update(
+            bending_buckling_modes(
+                form, E[0], nu, t[0], W, n, a.h, layers, length, span, free_edges
+            )
+        )
+    return modes
+
+
+@dataclass(frozen=True)
+class Capacity:
+    """A load case's capacity at one design (docs/load_cases.md 10): the ``load`` (N) it holds
+    at the ``safety_factor``, its first failure ``mode`` (a name of :data:`MODES`) and that mode
+    in ``words`` (``facet buckling in layer 1 at mid-span``), every mode's failure load
+    ``modes`` (N, without the safety factor)."""
+
+    load: float
+    safety_factor: float
+    mode: str
+    words: str
+    modes: dict[str, float] = field(default_factory=dict)
+
+    @classmethod
+    def of(
+        cls, modes: Mapping[str, float], safety_factor: float, form: TestForm, along: int
+    ) -> Capacity:
+        """From every mode's failure load (N); ``along``: the layer (1 or 2) along eta."""
+        mode, load = first_failure(modes)
+        return cls(
+            load / safety_factor,
+            safety_factor,
+            mode,
+            describe(mode, form, along),
+            {k: float(v) for k, v in modes.items()},
+        )
+
+    @property
+    def sentence(self) -> str:
+        """``holds 10.2 N at safety factor 2 (first failure: ...)`` (:func:`holds_words`)."""
+        return holds_words(self.load, self.safety_factor, self.words)
+
+    def as_dict(self) -> dict[str, object]:
+        """The keys ``design.json`` and ``--json`` carry."""
+        return {
+            "first_failure": self.words,
+            "first_failure_mode": self.mode,
+            "failure_loads_N": dict(self.modes),
+        }
 
 
 def first_failure(modes: Mapping[str, float]) -> tuple[str, float]:

@@ -34,7 +34,7 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.analysis.warnings import wheel_warnings
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
-from corrugate.mechanics.capacity import holds_words
+from corrugate.mechanics.capacity import Capacity
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
@@ -255,7 +255,7 @@ class Solution:
             if c.load is not None:
                 held = ""
                 if c.capacity is not None:
-                    held = f": {holds_words(c.capacity.load, p.safety_factor, c.capacity.words)}"
+                    held = f": {c.capacity.sentence}"
                 parts.append(
                     f"deflection {c.value:.4g} mm <= {c.bound:.4g} mm under {c.load:g} N"
                     f"{test}{span} at {q.eta:g} deg, {where}{held}"
@@ -629,26 +629,6 @@ def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[Quantity,
     return {k: float(v[0]) for k, v in vals.items()}
 
 
-@dataclass(frozen=True, slots=True)
-class Capacity:
-    """A load case's capacity at a design (docs/load_cases.md 10): ``load`` (N) it holds at the
-    problem's safety factor, its first failure ``mode`` (a name of
-    :data:`corrugate.mechanics.capacity.MODES`) and ``words`` (e.g. ``facet buckling in layer 1
-    at mid-span``), every mode's failure load ``modes`` (N, without the safety factor)."""
-
-    load: float
-    mode: str
-    words: str
-    modes: dict[str, float]
-
-    def as_dict(self) -> dict[str, object]:
-        return {
-            "first_failure": self.words,
-            "first_failure_mode": self.mode,
-            "failure_loads_N": dict(self.modes),
-        }
-
-
 def _capacity_quantity(problem: Problem, c: Constraint) -> Quantity | None:
     """The ``Pmax`` quantity of a constraint: its own (a strength bound or a deflection's
     ``holds`` bound) or its deflection's load case along the creases (None otherwise)."""
@@ -665,7 +645,6 @@ def _capacity_quantity(problem: Problem, c: Constraint) -> Quantity | None:
 def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, Capacity]:
     """The capacity (:class:`Capacity`) of each deflection and strength bound's load case where
     it is modelled (along the creases): what every answer reports (docs/load_cases.md 10)."""
-    from corrugate.mechanics.capacity import describe, first_failure
     from corrugate.solver.context import AtPoints
     from corrugate.solver.stiffness import capacity_modes_at
 
@@ -679,11 +658,8 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, Cap
         form = get_load_case(q.test).form
         assert form is not None
         modes = {k: float(v[0]) for k, v in capacity_modes_at(at, q).items()}
-        mode, load = first_failure(modes)
         along = 1 if q.eta % 180 == 0 else 2
-        out[c.name] = Capacity(
-            load / problem.safety_factor, mode, describe(mode, form, along), modes
-        )
+        out[c.name] = Capacity.of(modes, problem.safety_factor, form, along)
     return out
 
 

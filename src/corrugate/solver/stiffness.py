@@ -37,13 +37,11 @@ from numpy.typing import NDArray
 from corrugate.geometry.layer import crease_layer
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support, supports
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
-from corrugate.mechanics.capacity import bending_buckling_modes, platen_buckling_modes
+from corrugate.mechanics.capacity import capacity_modes
 from corrugate.mechanics.load_cases import (
     apparent,
     load_stiffness,
     shear_and_depth,
-    stress_per_load,
-    wall_capacity,
     walls_stiffness,
 )
 from corrugate.mechanics.offaxis import _cs
@@ -204,17 +202,11 @@ def _allowables(c1: Candidate, c2: Candidate, along: int) -> tuple[float, float]
     return (y1, y2) if along == 0 else (y2, y1)
 
 
-def _yield_modes(per: tuple[Any, Any], allowable: tuple[float, float]) -> dict[str, Any]:
-    """The loads (N) at which each layer's peak stress reaches its yield strength."""
-    return {"yield": allowable[0] / per[0], "yield-across": allowable[1] / per[1]}
-
-
 def capacity_modes_at(at: AtPoints, q: Quantity) -> dict[str, FloatArray]:
     """Every failure mode's load (N, no safety factor) of the load case of the ``Pmax``
-    quantity ``q`` at the points (:mod:`corrugate.mechanics.capacity`; docs/load_cases.md 10):
-    the capacity is their least divided by the safety factor."""
+    quantity ``q`` at the points (:func:`corrugate.mechanics.capacity.capacity_modes`;
+    docs/load_cases.md 10): the capacity is their least divided by the safety factor."""
     assert q.eta is not None and q.test is not None
-    c1, c2 = at.c1, at.c2
     e = q.eta
     form = get_load_case(q.test).form
     assert form is not None
@@ -222,65 +214,32 @@ def capacity_modes_at(at: AtPoints, q: Quantity) -> dict[str, FloatArray]:
     span = at.value(Quantity("length", e))
     band = None if at.walls is None or crease_layer(e) is None else at.walls(span)
     layers = base if band is None else base - band[2 if form.kind == "inplane" else 0]
-    ev = at.ev
-    Lx, Ly = at.Lx, at.Ly
     l1, l2 = at.layers
     along = 0 if crease_layer(e) == 0 else 1
-    extents = (Lx, Ly) if along == 0 else (Ly, Lx)
-    E = (np.asarray(l1.E, dtype=np.float64), np.asarray(l2.E, dtype=np.float64))
-    t = (np.asarray(l1.t, dtype=np.float64), np.asarray(l2.t, dtype=np.float64))
-    lay_E = (column(E[along]), column(E[1 - along]))
-    lay_t = (column(t[along]), column(t[1 - along]))
-    sp = ev.springs if along == 0 else ev.springs[::-1]
-    per = stress_per_load(
+    extents = (at.Lx, at.Ly) if along == 0 else (at.Ly, at.Lx)
+    lay = (l1, l2) if along == 0 else (l2, l1)
+    sp = at.ev.springs if along == 0 else at.ev.springs[::-1]
+    y1 = _allowables(at.c1, at.c1, 0)[0]
+    modes = capacity_modes(
         form,
         (Columns(sp[0]), Columns(sp[1])),
-        0,
+        (column(np.asarray(lay[0].E)), column(np.asarray(lay[1].E))),
+        (column(np.asarray(lay[0].t)), column(np.asarray(lay[1].t))),
+        float(np.asarray(lay[0].nu)),
+        column(np.asarray(lay[0].W, np.float64)),
+        column(np.asarray(lay[0].n, np.float64)),
         layers,  # the layers' own D or K: their curvature or strain from above
-        lay_E,
-        lay_t,
+        base,
         extents[1],
         extents[0],
         q.span,
+        _allowables(at.c1, at.c2, along),
+        None
+        if band is None
+        else (column(np.asarray(l1.E)), column(np.asarray(l1.t)), at.ev.thickness[:, 0], y1),
+        at.problem.joint == "none",
     )
-    modes = _yield_modes(per, _allowables(c1, c2, along))
-    if band is not None:  # the walls, at the whole panel's curvature or strain
-        modes["band-yield"] = wall_capacity(
-            form,
-            base,
-            column(np.asarray(l1.E)),
-            column(np.asarray(l1.t)),
-            ev.thickness[:, 0],
-            span,
-            q.span,
-            _allowables(c1, c1, 0)[0],
-            1.0,
-        )
-    lay = at.layers[along]
-    W, n = column(np.asarray(lay.W, np.float64)), column(np.asarray(lay.n, np.float64))
-    nu = float(np.asarray(lay.nu))
-    if form.kind == "inplane":
-        K_S, K_C = Columns(sp[0]).K_S, Columns(sp[1]).K_C
-        modes.update(platen_buckling_modes(lay_E[0], nu, lay_t[0], W, n, K_S, K_C))
-    else:
-        modes.update(
-            bending_buckling_modes(
-                form,
-                lay_E[0],
-                nu,
-                lay_t[0],
-                W,
-                n,
-                Columns(sp[0]).h,
-                layers,
-                extents[1],
-                q.span,
-                at.problem.joint == "none",
-            )
-        )
-    return {
-        k: np.broadcast_to(np.asarray(v, dtype=np.float64), span.shape) for k, v in modes.items()
-    }
+    return {k: np.broadcast_to(np.asarray(v, np.float64), span.shape) for k, v in modes.items()}
 
 
 def _load_case_at(at: AtPoints, q: Quantity) -> FloatArray:
@@ -309,57 +268,32 @@ def _modes_over(over: OverBoxes, q: Quantity, base: Any, whole: Any, band: Any) 
     assert q.eta is not None and q.test is not None
     form = get_load_case(q.test).form
     assert form is not None
-    springs = over.springs
     c1, c2 = over.c1, over.c2
-    length = over.span(q.eta)
     along = 0 if crease_layer(q.eta) == 0 else 1
-    width = Interval(*(over.Lx if along == 0 else over.Ly))
-    sp = springs if along == 0 else springs[::-1]
-    E = (float(c1.material.E), float(c2.material.E))
-    t = (float(c1.t), float(c2.t))
-    per = stress_per_load(
-        form,
-        (sp[0], sp[1]),
-        0,
-        base,
-        (E[along], E[1 - along]),
-        (t[along], t[1 - along]),
-        length,
-        width,
-        q.span,
-    )
-    modes = list(
-        _yield_modes(
-            (Interval.of(per[0]), Interval.of(per[1])), _allowables(c1, c2, along)
-        ).values()
-    )
+    sp = over.springs if along == 0 else over.springs[::-1]
+    cand = (c1, c2) if along == 0 else (c2, c1)
+    walls = None
     if band is not None:
         _, depth = over.walls(q.eta)
-        modes.append(
-            wall_capacity(
-                form,
-                whole,
-                float(c1.material.E),
-                float(c1.t),
-                depth,
-                length,
-                q.span,
-                _allowables(c1, c1, 0)[0],
-                1.0,
-            )
-        )
-    cand = (c1, c2)[along]
-    mat = cand.material
-    Wb = Interval(over.lo.layer(along).W, over.hi.layer(along).W)
-    nb = Interval(over.lo.layer(along).n, over.hi.layer(along).n)
-    Ea, nu, ta = np.float64(mat.E), np.float64(mat.nu), np.float64(cand.t)
-    if form.kind == "inplane":
-        extra = platen_buckling_modes(Ea, nu, ta, Wb, nb, sp[0].K_S, sp[1].K_C)
-    else:
-        extra = bending_buckling_modes(
-            form, Ea, nu, ta, Wb, nb, sp[0].h, base, length, q.span, over.problem.joint == "none"
-        )
-    return modes + list(extra.values())
+        walls = (float(c1.material.E), float(c1.t), depth, _allowables(c1, c1, 0)[0])
+    modes = capacity_modes(
+        form,
+        (sp[0], sp[1]),
+        (float(cand[0].material.E), float(cand[1].material.E)),
+        (float(cand[0].t), float(cand[1].t)),
+        float(cand[0].material.nu),
+        Interval(over.lo.layer(along).W, over.hi.layer(along).W),
+        Interval(over.lo.layer(along).n, over.hi.layer(along).n),
+        base,
+        whole,
+        over.span(q.eta),
+        Interval(*(over.Lx if along == 0 else over.Ly)),
+        q.span,
+        _allowables(c1, c2, along),
+        walls,
+        over.problem.joint == "none",
+    )
+    return list(modes.values())
 
 
 def _load_case_over(over: OverBoxes, q: Quantity) -> Pair:
