@@ -118,13 +118,19 @@ _STATIC: dict[str, KeyDoc] = {
     "constraints.deflection": KeyDoc(
         "mm", "Load cases: at most max of deflection under load (array of tables)."
     ),
-    "constraints.deflection[].load": KeyDoc("N", "The load P (> 0)."),
+    "constraints.deflection[].load": KeyDoc(
+        "N",
+        "The load P (> 0); along a layer's creases the panel must also hold it at the safety "
+        "factor (its capacity, `corrugate docs load_cases`, section 10).",
+    ),
     "constraints.deflection[].max": KeyDoc("mm", "Largest deflection allowed under the load."),
     "constraints.deflection[].eta": KeyDoc("deg", "Direction of the span, from layer 1's creases."),
     "constraints.strength": KeyDoc(
         "N",
-        "Loads the panel must hold: peak facet stress x safety_factor <= yield strength "
-        "(array of tables; `corrugate docs load_cases`, section 6).",
+        "Loads the panel must hold at the safety factor: its capacity, the least failure load "
+        "of every mode (yield, facet buckling in bending and shear, a free outermost facet, "
+        "the end facets between platens) / safety_factor >= load (array of tables; "
+        "`corrugate docs load_cases`, sections 6 and 10).",
     ),
     "constraints.strength[].load": KeyDoc("N", "The load P (> 0) to hold."),
     "constraints.strength[].eta": KeyDoc(
@@ -139,8 +145,9 @@ _STATIC: dict[str, KeyDoc] = {
     ),
     "safety_factor": KeyDoc(
         "",
-        "Factor on the peak stress of every strength bound, 1-100 (default 2: datasheet yield "
-        "values are typical, not minimum, and polymer films creep under a sustained load).",
+        "Factor on the failure load of every strength bound and load case, 1-100 (default 2: "
+        "datasheet yield values are typical, not minimum, and polymer films creep under a "
+        "sustained load).",
     ),
     "fabrication": KeyDoc(
         "",
