@@ -173,7 +173,8 @@ def analyze_cmd(
     support = check_support(table["support"], PARAMETERS["support"].flag)
     case = load_case_of(table["test"], table["load"], table["span"])
     models = list(MODELS) if compare_models else [model]
-    results = [analyze(assembly, m, etas, support=support) for m in models]
+    joint = table["joint"]
+    results = [analyze(assembly, m, etas, support=support, joint=joint) for m in models]
     cases = [None if case is None else load_case_rows(r, case) for r in results]
     if as_json:
         dicts = []
