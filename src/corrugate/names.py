@@ -32,6 +32,7 @@ __all__ = [
     "FOLD_OP_NAMES",
     "FOLD_STYLES",
     "HOLE_SHAPES",
+    "JOINTS",
     "LASER",
     "LASER_PREFIX",
     "LAYOUT_SHAPES",
@@ -50,6 +51,7 @@ __all__ = [
     "FoldOpName",
     "FoldStyle",
     "HoleShape",
+    "JointName",
     "LayoutShape",
     "LoadCaseName",
     "MachineName",
@@ -91,6 +93,10 @@ LOAD_CASES: tuple[LoadCaseName, ...] = get_args(LoadCaseName)
 #: circle's K (docs/load_cases.md 9), registered after the load cases.
 StiffnessOnlyTest = Literal["wheel"]
 STIFFNESS_ONLY_TESTS: tuple[StiffnessOnlyTest, ...] = get_args(StiffnessOnlyTest)
+JointName = Literal["none", "band-edges", "band-flanges"]
+#: How the layers are joined (docs/load_cases.md 7): the connector band left out, or bonded
+#: along the edges or by its flanges (:data:`corrugate.mechanics.load_cases.JOINTS`).
+JOINTS: tuple[JointName, ...] = get_args(JointName)
 
 # -- plan outlines (corrugate.geometry.layouts) and inner cut-outs (corrugate.geometry.holes) --
 

@@ -299,3 +299,39 @@ def test_bad_load_case_one_line_exit_2(
     assert len(lines) == 1, err
     assert lines[0].startswith(f"corrugate: error: {option} "), lines[0]
     assert words in lines[0], lines[0]
+
+
+def test_analyze_states_the_capacity_in_the_design_answers_words(cli: CliRun) -> None:
+    """`analyze --test --load --joint` on the chassis example's certified design states the
+    capacity and first failure in the same words as `design`'s certificate, and its --json the
+    same capacity as design.json's row (two paths: the Analysis's springs, the solver's points;
+    docs/load_cases.md 10)."""
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    code, out, _ = cli(["design", str(root / "examples" / "chassis_plate.toml"), "--json"])
+    assert code == 0
+    answer = json.loads(out)
+    [row] = [c for c in answer["constraints"] if c["name"] == "constraints.deflection[0].max"]
+    l1, l2 = answer["design"]["layers"]
+    args = [
+        "analyze",
+        *("--W", str(l1["W_mm"]), "--n", str(l1["n"]), "--alpha", str(l1["alpha_deg"])),
+        *("--W2", str(l2["W_mm"]), "--n2", str(l2["n"]), "--alpha2", str(l2["alpha_deg"])),
+        *("--material", "polypropylene", "--thickness", "0.25mm", "--layout", "rectangle"),
+        *("--eta", "0", "--test", "three-point", "--load", "10N", "--span", "120mm"),
+        *("--joint", "band-edges"),
+    ]
+    code, text, _ = cli(args)
+    assert code == 0
+    said = next(line for line in text.splitlines() if line.startswith("at 0 deg: holds"))
+    assert said.removeprefix("at 0 deg: ") in answer["certificate"]
+    code, out, _ = cli([*args, "--json"])
+    [direction] = json.loads(out)["load_case"]["directions"]
+    assert direction["load_capacity_N"] == pytest.approx(row["load_capacity_N"], rel=1e-9)
+    assert direction["first_failure"] == row["first_failure"]
+    # with the edges free (the default joint) the outermost facet fails first, far lower
+    code, out, _ = cli([*args[:-2], "--json"])
+    [free] = json.loads(out)["load_case"]["directions"]
+    assert free["first_failure_mode"] == "edge-facet-buckling"
+    assert free["load_capacity_N"] < 0.1 * row["load_capacity_N"]

@@ -58,7 +58,7 @@ def test_a_week_prints_the_creep_modulus_and_its_source(tmp_path: Path, cli: Cli
     code, out, _ = cli(["design", str(spec)])
     assert code == 0
     text = " ".join(out.split())
-    # E_c(168 h) = 2200 - 300 log10(168) / 3 = 1977 MPa (docs/load_cases.md section 10)
+    # E_c(168 h) = 2200 - 300 log10(168) / 3 = 1977 MPa (docs/load_cases.md section 11)
     assert "the load held 1 week: polycarbonate at its creep modulus E_c = 1977 MPa" in text
     assert "Makrolon" in text
 

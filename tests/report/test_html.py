@@ -258,7 +258,8 @@ def test_report_opens_in_chromium(report: Path) -> None:
 def test_a_load_case_has_its_figure_and_its_deflection(tmp_path: Path) -> None:
     """A spec with a deflection bound (examples/chassis_plate.toml) gets a 'Load cases' section
     with one figure, titled with the certified deflection under the load, and the report's
-    constraint table shows the deflection (mm), not P / delta; a spec without one has none."""
+    constraint table shows the deflection (mm), not P / delta, and says what the part holds;
+    a spec without one has none."""
     spec = ROOT / "examples" / "chassis_plate.toml"
     sol = solve(Problem.from_spec(load_spec(spec)))
     text = report_html(sol, spec.read_text())
@@ -268,5 +269,11 @@ def test_a_load_case_has_its_figure_and_its_deflection(tmp_path: Path) -> None:
     [c] = [c for c in sol.constraints if c.load is not None]
     assert c.unit == "mm" and c.value <= c.bound == pytest.approx(1.0)
     assert "constraints.deflection[0].max" in text
+    # what it holds and its first failure (docs/load_cases.md 10): the least of the modes the
+    # answer lists, over the safety factor, in the answer's words
+    assert c.capacity is not None
+    assert c.capacity.load == pytest.approx(min(c.capacity.modes.values()) / 2.0)
+    assert f"(three-point, 10 N): {c.capacity.sentence}." in text
+    assert "(first failure: facet buckling in layer 1 at mid-span)" in text
     blimp = report_html(solve(Problem.from_spec(load_spec(BLIMP))), BLIMP.read_text())
     assert "<h2>Load cases</h2>" not in blimp

@@ -1,6 +1,6 @@
 """Quantities under a sustained load (``corrugate.solver.sustained``): the creep modulus in
 place of E, checked against a second method, the model evaluated with E replaced (an inline
-sheet of modulus E_c(t)), and against the linearity in E of docs/load_cases.md section 10."""
+sheet of modulus E_c(t)), and against the linearity in E of docs/load_cases.md section 11."""
 
 from __future__ import annotations
 

@@ -1,5 +1,5 @@
 """A load held for a ``duration`` in a spec: what is refused, in one line naming the TOML path
-(docs/load_cases.md section 10)."""
+(docs/load_cases.md section 11)."""
 
 from __future__ import annotations
 

@@ -9,7 +9,7 @@ along eta (:func:`corrugate.analysis.load_case.load_case_rows`).
 from __future__ import annotations
 
 import json
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -31,7 +31,7 @@ __all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
 Opt = typer.Option
 
 
-def _print_load_case(case: LoadCase, rows: list[dict[str, float]], console: Console) -> None:
+def _print_load_case(case: LoadCase, rows: list[dict[str, Any]], console: Console) -> None:
     from rich.table import Table
 
     from corrugate.mechanics.behaviours import get_load_case
@@ -56,6 +56,9 @@ def _print_load_case(case: LoadCase, rows: list[dict[str, float]], console: Cons
             _fmt(row["stiffness_N_per_mm"], 5),
         )
     console.print(t)
+    for row in rows:  # the capacity along the creases (docs/load_cases.md 10)
+        if "holds" in row:
+            console.print(f"at {row['eta_deg']:g} deg: {row['holds']}", highlight=False)
 
 
 def _print_analysis(r: Analysis, console: Console) -> None:
@@ -174,7 +177,8 @@ def analyze_cmd(
     support = check_support(table["support"], PARAMETERS["support"].flag)
     case = load_case_of(table["test"], table["load"], table["span"])
     models = list(MODELS) if compare_models else [model]
-    results = [analyze(assembly, m, etas, support=support) for m in models]
+    joint = table["joint"]
+    results = [analyze(assembly, m, etas, support=support, joint=joint) for m in models]
     cases = [None if case is None else load_case_rows(r, case) for r in results]
     if as_json:
         dicts = []
@@ -247,7 +251,7 @@ def materials_cmd(
 
 def _creep(m: Material) -> str:
     """A material's creep moduli (GPa) at their durations (h), ``est.`` for an estimate
-    (docs/load_cases.md section 10), ``-`` without creep data."""
+    (docs/load_cases.md section 11), ``-`` without creep data."""
     if m.creep is None:
         return "-"
     text = " ".join(

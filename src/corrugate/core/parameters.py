@@ -34,6 +34,7 @@ from corrugate.names import (
     DEFAULT_TAB_DEPTH_MM,
     FOLD_OP_NAMES,
     FOLD_STYLES,
+    JOINTS,
     LASER,
     LAYOUT_SHAPES,
     LOAD_CASES,
@@ -414,6 +415,18 @@ LOAD_CASE_PARAMETERS: tuple[Parameter, ...] = (
         "The test's support spacing (cantilever: its free length; mm); default and at most the "
         "panel's length along eta; none between platens.",
         "length",
+    ),
+    Parameter(
+        "joint",
+        ("--joint",),
+        choices_metavar(JOINTS),
+        "",
+        "none",
+        "name",
+        "How the layers are joined: none (default: the band left out, the outermost facets' "
+        "edges free) | band-edges | band-flanges (the band bonded: its walls counted, the edges "
+        "held); docs/load_cases.md 7 and 10.",
+        choices=JOINTS,
     ),
 )
 

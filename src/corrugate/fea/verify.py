@@ -291,7 +291,7 @@ def twin_of(
     if q.duration is not None:  # the decks carry the sheet's short-term E
         return (
             f"no FE twin yet (a load held {q.duration:g} h: the FE runs at the short-term E, "
-            "the model at the creep modulus, `corrugate docs load_cases` section 10)"
+            "the model at the creep modulus, `corrugate docs load_cases` section 11)"
         )
     connectors, _ = _joint(joint)
     eta = q.eta if q.eta is not None else 0.0

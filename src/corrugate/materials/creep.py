@@ -1,7 +1,7 @@
 """Creep moduli of a sheet under a sustained load: a table per material, read in log time.
 
 A polymer held under a constant load keeps deforming: its strain at time t is the stress over
-the *creep modulus* E_c(t) (tensile creep, ISO 899-1; docs/load_cases.md section 10), which
+the *creep modulus* E_c(t) (tensile creep, ISO 899-1; docs/load_cases.md section 11), which
 falls below the short-term modulus E of a tensile test as t grows. A :class:`CreepTable` holds
 E_c (MPa) at a few durations (hours, ascending) at room temperature (about 23 C), with where
 they come from (``source``, one line printed with an answer) and whether they are an estimate

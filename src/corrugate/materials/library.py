@@ -39,7 +39,7 @@ class Material:
     Attributes are in internal units: ``E`` in MPa, ``density`` in g/mm^3, thicknesses in mm,
     ``yield_strength`` in MPa (None when not known: an inline material defined by E, nu and
     density only), ``creep`` its creep moduli under a sustained load (None: no creep data, so
-    no sustained load case; docs/load_cases.md section 10).
+    no sustained load case; docs/load_cases.md section 11).
     """
 
     id: str

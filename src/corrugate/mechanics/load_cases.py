@@ -37,6 +37,7 @@ import numpy as np
 
 from corrugate.mechanics.behaviours import Behaviour, TestForm
 from corrugate.mechanics.wheel import wheel_factor
+from corrugate.names import JOINTS as NAMED_JOINTS
 from corrugate.names import RECTANGULAR_LAYOUTS
 
 __all__ = [
@@ -313,7 +314,7 @@ def load_capacity(
 #: band (the paper's assumption; a lower bound); ``band-edges`` and ``band-flanges`` add the
 #: band's two walls along the span as beams beside the layers (the same model for both: their
 #: glue flanges are left out, which only lowers it).
-JOINTS: tuple[str, ...] = ("none", "band-edges", "band-flanges")
+JOINTS: tuple[str, ...] = NAMED_JOINTS
 
 
 def band_walls(E: Any, nu: Any, t: Any, depth: Any, length: Any) -> tuple[Any, Any, Any]:

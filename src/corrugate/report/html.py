@@ -193,6 +193,12 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
             ["bind" if c.binding else "" for c in sol.constraints],
         )
     )
+    for c in sol.constraints:  # the load each load case holds (docs/load_cases.md 10)
+        if c.load is not None and c.capacity is not None:
+            parts.append(
+                f"<p>{html.escape(c.name.rsplit('.', 1)[0])} ({c.quantity.test or 'platens'}, "
+                f"{c.load:g} N): {html.escape(c.capacity.sentence)}.</p>"
+            )
     cases = load_case_figure(sol.constraints, (asm.Lx, asm.Ly))
     if cases is not None:
         parts.append("<h2>Load cases</h2>")

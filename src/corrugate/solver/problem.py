@@ -48,6 +48,7 @@ from corrugate.spec.schema import PURE, STIFFNESS_KINDS, MaterialSpec, Spec, Spe
 
 __all__ = [
     "FEAS_RTOL",
+    "HOLDS",
     "Candidate",
     "Constraint",
     "DesignVariable",
@@ -100,6 +101,11 @@ class Candidate:
     @property
     def label(self) -> str:
         return f"{self.material.id} {self.t:g} mm"
+
+
+#: The suffix of the bound a deflection bound under a load brings with it: the part holds that
+#: load at the safety factor (its capacity, docs/load_cases.md 10.6).
+HOLDS = ".load (held at the safety factor)"
 
 
 @dataclass(frozen=True, slots=True)
@@ -263,6 +269,12 @@ class Problem:
                     )
             q = _sustained(where, q, d.duration, cands)
             cons.append(Constraint(f"{where}.max", q, "min", d.load / d.max, load=d.load))
+            if crease_layer(d.eta) is not None and not get_load_case(d.test).stiffness_only:
+                # a linear deflection past the first failure is no certificate: the part must
+                # hold the load at the safety factor (docs/load_cases.md 10.6)
+                eta = 0.0 if crease_layer(d.eta) == 0 else 90.0
+                held = Quantity.load_case("Pmax", eta, d.test, support, d.span)
+                cons.append(Constraint(f"{where}{HOLDS}", held, "min", d.load))
         for i, g in enumerate(c.strength):
             where = f"constraints.strength[{i}]"
             _check_load_case_layout(where, layout, g.test)
@@ -333,7 +345,7 @@ class Problem:
 def _sustained(where: str, q: Quantity, duration: float | None, cands: list[Candidate]) -> Quantity:
     """``q`` under a load held for ``duration`` (hours; None: ``q`` itself, short-term): every
     candidate sheet must have a creep modulus then (creep data, the duration within its table;
-    docs/load_cases.md section 10), else a :class:`SpecError` at ``where.duration``."""
+    docs/load_cases.md section 11), else a :class:`SpecError` at ``where.duration``."""
     if duration is None:
         return q
     for cand in cands:

@@ -7,7 +7,7 @@ own evaluator on candidate sheets whose Young's modulus E is replaced by the mat
 modulus E_c(t) (:meth:`corrugate.materials.library.Material.creep_modulus`: its table read in
 log time; a per-point E of the tolerance analysis scaled by E_c(t) / E). Every stiffness,
 load-case and buckling model of the solver is linear in E at fixed nu (docs/load_cases.md
-section 10), so on a sheet of one material the value is the short-term one times E_c(t) / E; the
+section 11), so on a sheet of one material the value is the short-term one times E_c(t) / E; the
 substitution also covers two layers of different materials, and the bounds over boxes stay
 rigorous because they are the short-term evaluator's own bounds of the substituted problem.
 ``Problem.from_spec`` refuses a duration on a material without creep data or beyond its table,

@@ -274,10 +274,13 @@ class AnalysisRequest:
     model: str
     eta_deg: tuple[float, ...]
     support: str = DEFAULT_SUPPORT
+    joint: str = "none"
 
     def run(self) -> Analysis:
         """Analyse it (:func:`corrugate.analysis.evaluate.analyze`)."""
-        return analyze(self.assembly, self.model, self.eta_deg, support=self.support)
+        return analyze(
+            self.assembly, self.model, self.eta_deg, support=self.support, joint=self.joint
+        )
 
 
 def analysis_request(
@@ -285,10 +288,12 @@ def analysis_request(
     model: str = DEFAULT_MODEL,
     eta: Sequence[object] | None = None,
     support: str = DEFAULT_SUPPORT,
+    joint: str = "none",
     **options: object,
 ) -> AnalysisRequest:
     """Validate the options of ``corrugate analyze`` (as keywords, see
-    :func:`assembly_from_options`) into an :class:`AnalysisRequest`."""
+    :func:`assembly_from_options`) into an :class:`AnalysisRequest`; ``joint``: how its layers
+    are joined (:data:`corrugate.names.JOINTS`)."""
     assembly = assembly_from_options(**options)  # type: ignore[arg-type]
     etas = parse_etas(eta)
-    return AnalysisRequest(assembly, get_model(model).name, etas, check_support(support))
+    return AnalysisRequest(assembly, get_model(model).name, etas, check_support(support), joint)

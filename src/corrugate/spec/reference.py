@@ -53,13 +53,13 @@ _STIFF = {
     "inplane_stiffness": ("N/mm", "K(eta), the in-plane compressive stiffness"),
 }
 
-#: What a bound's ``duration`` means (docs/load_cases.md section 10).
+#: What a bound's ``duration`` means (docs/load_cases.md section 11).
 _DURATION = (
     "How long the load is held, with its unit ('1 week', '168 h'; > 0); default: none, a "
     "short-term load at the material's E. A sustained load reads the material's creep modulus "
     "E_c(t) instead (`corrugate materials`: its creep table, interpolated in log time, refused "
     "beyond its last duration or for a material without creep data; `corrugate docs "
-    "load_cases`, section 10)."
+    "load_cases`, section 11)."
 )
 
 #: The keys of a spec whose meaning does not depend on the registry of behaviours.
@@ -131,13 +131,19 @@ _STATIC: dict[str, KeyDoc] = {
     "constraints.deflection": KeyDoc(
         "mm", "Load cases: at most max of deflection under load (array of tables)."
     ),
-    "constraints.deflection[].load": KeyDoc("N", "The load P (> 0)."),
+    "constraints.deflection[].load": KeyDoc(
+        "N",
+        "The load P (> 0); along a layer's creases the panel must also hold it at the safety "
+        "factor (its capacity, `corrugate docs load_cases`, section 10).",
+    ),
     "constraints.deflection[].max": KeyDoc("mm", "Largest deflection allowed under the load."),
     "constraints.deflection[].eta": KeyDoc("deg", "Direction of the span, from layer 1's creases."),
     "constraints.strength": KeyDoc(
         "N",
-        "Loads the panel must hold: peak facet stress x safety_factor <= yield strength "
-        "(array of tables; `corrugate docs load_cases`, section 6).",
+        "Loads the panel must hold at the safety factor: its capacity, the least failure load "
+        "of every mode (yield, facet buckling in bending and shear, a free outermost facet, "
+        "the end facets between platens) / safety_factor >= load (array of tables; "
+        "`corrugate docs load_cases`, sections 6 and 10).",
     ),
     "constraints.strength[].load": KeyDoc("N", "The load P (> 0) to hold."),
     "constraints.strength[].eta": KeyDoc(
@@ -152,8 +158,9 @@ _STATIC: dict[str, KeyDoc] = {
     ),
     "safety_factor": KeyDoc(
         "",
-        "Factor on the peak stress of every strength bound, 1-100 (default 2: datasheet yield "
-        "values are typical, not minimum, and polymer films creep under a sustained load).",
+        "Factor on the failure load of every strength bound and load case, 1-100 (default 2: "
+        "datasheet yield values are typical, not minimum, and polymer films creep under a "
+        "sustained load).",
     ),
     "fabrication": KeyDoc(
         "",

@@ -252,7 +252,7 @@ MassQ = Annotated[
 Modulus = Annotated[float, BeforeValidator(_limited("E", "MPa"))]
 Poisson = Annotated[float, BeforeValidator(_limited("nu", "dimensionless", shown=""))]
 #: How long a load is held (hours; > 0, with its unit: "1 week", "168 h"): a sustained load
-#: case, read at the material's creep modulus (docs/load_cases.md section 10).
+#: case, read at the material's creep modulus (docs/load_cases.md section 11).
 Duration = Annotated[float, BeforeValidator(_quantity("h", lo=0.0))]
 Density = Annotated[
     float, BeforeValidator(_limited("density", "g/cm^3", scale=G_PER_CM3, shown="g/cm^3"))
@@ -579,7 +579,7 @@ class StiffnessSpec(_Strict):
     under ``support`` (``free`` sides, a rigid ``frame`` or another registered support
     condition; default: the spec's ``support``), as measured in ``test`` (default: ``pure``
     bending for EI and D, ``platens`` for K; docs/load_cases.md), under a load held for
-    ``duration`` (hours; None: short-term; docs/load_cases.md section 10)."""
+    ``duration`` (hours; None: short-term; docs/load_cases.md section 11)."""
 
     min: float
     eta: Direction = 0.0
@@ -615,7 +615,7 @@ class DeflectionSpec(_Strict):
     (docs/load_cases.md): supported over ``span`` (mm; cantilever: its free length; default and
     platens: the panel's length along ``eta``), along ``eta`` (deg), under ``support`` (default:
     the spec's), the load held for ``duration`` (hours; None: short-term; docs/load_cases.md
-    section 10)."""
+    section 11)."""
 
     test: DeflectionTest
     load: Annotated[float, BeforeValidator(_quantity("N", lo=0.0, hi=LIMITS["load"].hi))]

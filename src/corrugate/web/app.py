@@ -288,7 +288,9 @@ def _parse(body: AnalyzeBody, settings: WebSettings) -> AnalysisRequest:
         exclude={"model", "eta", "support", *OUTPUT_OPTIONS, *LOAD_CASE_KEYS}, exclude_none=True
     )
     with _PARSE_LOCK:
-        req = analysis_request(model=body.model, eta=body.eta, support=body.support, **options)
+        req = analysis_request(
+            model=body.model, eta=body.eta, support=body.support, joint=body.joint, **options
+        )
     _check_size(req, settings)
     return req
 

@@ -128,10 +128,12 @@ class AnalyzeBody(BaseModel):
     test: Text | None = parameter("test")
     load: Value | None = parameter("load")
     span: Value | None = parameter("span")
+    joint: Text = parameter("joint")
 
 
-#: The keys of a request that state a load case (``corrugate analyze --test --load --span``).
-LOAD_CASE_KEYS = ("test", "load", "span")
+#: The keys of a request that state a load case (``corrugate analyze --test --load --span``)
+#: and how its layers are joined (``--joint``).
+LOAD_CASE_KEYS = ("test", "load", "span", "joint")
 
 #: The keys of a design request that are output options, not spec keys.
 OUTPUT_OPTIONS = ("cutter", "fold_style", "cut", "gap", "paper")

@@ -836,7 +836,10 @@ function showDesign(d) {
       // a load case: the deflection (mm) under its load, and the test's P / delta
       const loadCase = c.load_N === undefined ? ''
         : ` (${c.test}, ${fmt(c.load_N)} N; P/\u03b4 = ${fmt(c.stiffness_N_per_mm, 4)} N/mm)`;
-      breakable(cell(row, ''), `${c.name}${loadCase}`).className = 'text';
+      // its capacity at the safety factor and first failure (docs/load_cases.md 10)
+      const held = c.first_failure === undefined || c.load_capacity_N === undefined ? ''
+        : `; holds ${fmt(c.load_capacity_N, 3)} N (first failure: ${c.first_failure})`;
+      breakable(cell(row, ''), `${c.name}${loadCase}${held}`).className = 'text';
       cell(row, fmt(c.value, 5), 'value');
       cell(row, `${c.sense === 'min' ? '\u2265' : '\u2264'} ${fmt(c.bound, 5)}`, 'bound');
       cell(row, fmt(c.margin, 3), 'margin');
