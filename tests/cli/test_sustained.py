@@ -13,6 +13,7 @@ if TYPE_CHECKING:
 
 SPEC = """
 name = "held"
+joint = "band-edges"  # the band bonded along the edges: free outermost facets buckle first
 [material]
 name = "{material}"
 thickness = "0.25 mm"
