@@ -213,6 +213,7 @@ def test_a_solutions_reports_are_checked_as_its_design_json_entries() -> None:
     spec = parse_spec_text(
         """
 name = "checked"
+joint = "band-edges"  # free outermost facets cannot hold 2 N at the safety factor
 [material]
 name = "dura-lar"
 thickness = "0.125 mm"
@@ -240,5 +241,6 @@ minimize = "mass"
     assert [(c.quantity.key, c.unit, c.load) for c in typed] == [
         ("EI@0", "N*mm^2", None),
         ("k3pt@0", "mm", 2.0),  # a deflection: its bound in mm under its load
+        ("Pmax3pt@0", "N", None),  # and that load held at the safety factor (its capacity)
     ]
     assert typed[1].bound == pytest.approx(0.5)

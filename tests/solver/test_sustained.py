@@ -23,6 +23,7 @@ from corrugate.spec.schema import parse_spec
 WEEK = 168.0
 SPEC: dict[str, Any] = {
     "name": "held",
+    "joint": "band-edges",  # free outermost facets cannot hold 10 N at the safety factor
     "material": {"name": "polycarbonate", "thickness": "0.25 mm"},
     "layout": {"shape": "square"},
     "variables": {
@@ -80,6 +81,7 @@ def test_keys_gain_the_duration_and_short_term_keys_stay() -> None:
         "K@0",
         "length@0",
         "k3pt@0/L=100",
+        "Pmax3pt@0/L=100",  # the deflection's load held at the safety factor
         "Pb@0",
     ]
     assert [c.quantity.key for c in held.constraints if c.quantity.directional] == [
@@ -87,6 +89,7 @@ def test_keys_gain_the_duration_and_short_term_keys_stay() -> None:
         "K@0/t=168h",
         "length@0",
         "k3pt@0/L=100/t=168h",
+        "Pmax3pt@0/L=100/t=168h",  # held as long: its buckling at the creep modulus
         "Pb@0/t=168h",
     ]
     for c in held.constraints:
@@ -104,6 +107,7 @@ def test_a_sustained_quantity_is_the_model_with_e_replaced() -> None:
         "E": f"{Ec!r} MPa",
         "nu": pc.nu,
         "density": f"{pc.density_g_cm3!r} g/cm^3",
+        "yield_strength": f"{pc.yield_strength!r} MPa",
         "thickness": "0.25 mm",
     }
     held = Problem.from_spec(parse_spec(spec("1 week")))
@@ -117,7 +121,8 @@ def test_a_sustained_quantity_is_the_model_with_e_replaced() -> None:
             continue
         assert q == replace(q0, duration=WEEK)
         np.testing.assert_allclose(vh[q], vr[q0], rtol=1e-12)  # E replaced
-        np.testing.assert_allclose(vh[q], r * vs[q0], rtol=1e-9)  # linear in E
+        if q.kind != "Pmax":  # a capacity's yield mode is a stress: not linear in E
+            np.testing.assert_allclose(vh[q], r * vs[q0], rtol=1e-9)  # linear in E
 
 
 def test_box_bounds_of_a_sustained_quantity_hold_every_point_inside() -> None:
@@ -150,8 +155,8 @@ def test_a_sustained_answer_differs_by_the_creep_modulus_and_prints_its_source()
         "deflection": [
             {
                 "test": "three-point",
-                "load": "10 N",
-                "max": "1 mm",
+                "load": "2 N",  # light enough that the deflection binds, not the capacity
+                "max": "0.1 mm",
                 "span": "100 mm",
                 "duration": "1 week",
             }
@@ -162,7 +167,9 @@ def test_a_sustained_answer_differs_by_the_creep_modulus_and_prints_its_source()
     assert sol.certified and sol.assembly is not None
     pc = get_material("polycarbonate")
     Ec = pc.creep_modulus(WEEK)
-    (con,) = [c for c in sol.constraints if c.quantity.duration is not None]
+    (con,) = [
+        c for c in sol.constraints if c.quantity.duration is not None and c.quantity.kind == "k"
+    ]
     lay = sol.assembly.layers[0]
     x = DesignPoints.of(
         LayerPoints(np.array([lay.n]), np.array([lay.W]), np.array([lay.alpha_deg]))
@@ -172,11 +179,11 @@ def test_a_sustained_answer_differs_by_the_creep_modulus_and_prints_its_source()
     k_short = at.value(replace(con.quantity, duration=None))
     k_held = at.value(con.quantity)
     assert k_held[0] == pytest.approx(k_short[0] * Ec / pc.E, rel=1e-9)
-    assert con.value == pytest.approx(10.0 / k_held[0], rel=1e-9)  # the deflection, mm
+    assert con.value == pytest.approx(2.0 / k_held[0], rel=1e-9)  # the deflection, mm
     # the short-term answer's design sags past the bound when held: the answers differ
     short = solve(Problem.from_spec(parse_spec(spec_without_duration(d))))
     (con0,) = [c for c in short.constraints if c.name == con.name]
-    assert con0.value * pc.E / Ec > 1.0 >= con.value - 1e-9
+    assert con0.value * pc.E / Ec > 0.1 >= con.value - 1e-9
     assert sol.objective > short.objective  # heavier: the price of a week under load
     text = sol.certificate
     assert "the load held 1 week" in text and f"E_c = {Ec:.4g} MPa" in text

@@ -35,9 +35,14 @@ def problem(d: dict[str, Any]) -> Problem:
 
 @pytest.mark.parametrize(("text", "hours"), [("1 week", 168.0), ("2 day", 48.0), ("90 min", 1.5)])
 def test_a_duration_is_read_in_hours(text: str, hours: float) -> None:
-    q = problem(held(text)).constraints[-1].quantity
+    cons = {c.name: c.quantity for c in problem(held(text)).constraints}
+    q = cons["constraints.deflection[0].max"]
     assert q.duration == pytest.approx(hours)
     assert q.key == f"k3pt@0/t={hours:.12g}h"
+    # the load must be held as long: the capacity bound it adds carries the same duration
+    held_q = cons["constraints.deflection[0].load (held at the safety factor)"]
+    assert held_q.duration == pytest.approx(hours)
+    assert held_q.key == f"Pmax3pt@0/t={hours:.12g}h"
 
 
 @pytest.mark.parametrize("bad", ["-1 h", "0 h", "-2 weeks"])

@@ -274,6 +274,8 @@ class Problem:
                 # hold the load at the safety factor (docs/load_cases.md 10.6)
                 eta = 0.0 if crease_layer(d.eta) == 0 else 90.0
                 held = Quantity.load_case("Pmax", eta, d.test, support, d.span)
+                # held for the deflection's duration: buckling at the creep modulus (section 11)
+                held = _sustained(where, held, d.duration, cands)
                 cons.append(Constraint(f"{where}{HOLDS}", held, "min", d.load))
         for i, g in enumerate(c.strength):
             where = f"constraints.strength[{i}]"
