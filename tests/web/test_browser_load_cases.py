@@ -59,6 +59,7 @@ def test_the_chassis_plate_as_a_load_case_row(browser: Any, live_server: str) ->
     page.select_option("#d-model", "refined")
     page.select_option("#d-layout", "rectangle")
     page.select_option("#d-layering", "independent")
+    page.select_option("#d-joint", "band-edges")  # the example bonds the band along the edges
     page.fill("#d-side_x-min", "78 mm")
     page.fill("#d-side_x-max", "82 mm")
     page.fill("#d-side_y-min", "120 mm")

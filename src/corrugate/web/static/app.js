@@ -690,6 +690,7 @@ function fillDesign(spec) {
   // a spec that names no model is solved with refined (the form's own default is the case
   // study's paper)
   $('d-model').value = 'refined';
+  $('d-joint').value = '';  // a spec that names no joint leaves the layers' edges free
   walk(spec, '');
   if (spec.layout && spec.layout.holes) {
     const mm = (x) => String(x).replace(/^(.*\S)\s*mm$/, '$1');  // the field's own unit
