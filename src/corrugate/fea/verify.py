@@ -83,6 +83,7 @@ __all__ = [
     "Verification",
     "behavioural",
     "check_layout",
+    "joint_options",
     "parse_max_mesh",
     "parse_meshes",
     "parse_shifts",
@@ -261,7 +262,7 @@ class Verification:
         }
 
 
-def _joint(joint: str) -> tuple[bool, Bond]:
+def joint_options(joint: str) -> tuple[bool, Bond]:
     """``connectors`` and ``bond`` of the FE for the design's joint (docs/load_cases.md 7)."""
     if joint in ("none", ""):
         return False, "edges"
@@ -277,7 +278,7 @@ def twin_of(
 ) -> Twin | str:
     """The FE twin of the constraint on ``q`` (module docstring), or why it has none yet (one
     phrase). ``load`` (N): a deflection bound's load (its value is then a deflection, mm)."""
-    connectors, _ = _joint(joint)
+    connectors, _ = joint_options(joint)
     eta = q.eta if q.eta is not None else 0.0
     principal = principal_axis(eta) is not None
     note = ""
@@ -452,7 +453,7 @@ def verify_design(
     from its three finest meshes; the worst position is then chosen again among those that ran
     the finest requested mesh (positions screened out stay out), and so on. The row's
     ``extended`` says so and why."""
-    connectors, bond = _joint(joint)
+    connectors, bond = joint_options(joint)
     if not shifts:
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
     for sh in shifts:

@@ -1,0 +1,224 @@
+"""FE first buckling of the capacity validation set, for docs/validation/capacity.md (issue 34).
+
+    python benchmarks/fea_capacity.py run [--minutes M] [--max-along A]   # -> capacity_fe.csv
+    python benchmarks/fea_capacity.py table                               # Markdown summary
+
+Writes ``docs/validation/capacity_fe.csv``, one row per (design, step, along): the design's load
+case run as a linear buckling analysis (``*BUCKLE``, docs/fea.md 2) on the mesh of ``along``
+elements per facet, ``load_N`` the lowest positive buckling factor times the load (N: the
+fixture's load at which the part buckles), ``second_N`` the next one, ``where`` the first mode's
+largest displacement (:func:`corrugate.fea.modes.mode_location`: the part, and its position as
+fractions of the span and of the width from the panel's corner), ``nodes`` the model's nodes and
+``seconds`` the wall-clock time. Two ways of loading, the ``step`` column:
+
+* ``dead``: :class:`corrugate.fea.steps.LinearBuckling`, the load lines (or platen) tied to a
+  reference node loaded by 1 N: a dead load, free to move in the mode (a weight, a finger);
+* ``held``: the static deck with ``*STATIC`` replaced by ``*BUCKLE`` (issue 34's review): the
+  load lines held at their prescribed travel in the mode (a testing machine's head); the factor
+  times the static run's force at that travel is the load.
+
+The dead load's first buckling load is at or below the held one's (its eigenproblem has every
+mode of the held one and the load line's own motion: tests/fea/test_buckling_step.py); the
+capacity table takes the dead load's, the conservative one, and shows both. Where they differ the
+first mode moves the load line: the crests under it give way (crippling under the load line),
+which a held head hides.
+
+Designs (:func:`designs`): the stubby panel of issue 34, the chassis example's design with and
+without the bonded band, and six more spread over alpha 40-150 deg, t/W 0.006-0.05, L/h 4-30,
+Dura-Lar, polycarbonate and polypropylene, in three-point, four-point, cantilever and platens.
+All at eta = 0 (layer 1's creases along the span), the span the panel's length except the
+chassis's 120 mm without the band (its example's span; with the band the FE supports the panel at
+its ends, 121.2 mm apart: the band is modelled on the structured mesh only, and a shorter span
+needs gmsh's).
+
+Resumable (``resumable_csv.py``): the keys already in the CSV are skipped, each new row is
+appended as its case returns. The meshes run in the order 2, 4, 8 per facet over all designs, so
+a stopped run leaves whole coarse series; ``--max-along`` stops at that mesh. ``--minutes M``
+starts no new case after M minutes. Needs ccx.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import sys
+import tempfile
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+from corrugate import Assembly, Layer, get_material
+from corrugate.geometry.layouts import Rectangle
+from resumable_csv import appender, done_keys  # type: ignore[import-not-found]
+
+OUT = Path(__file__).resolve().parents[1] / "docs" / "validation"
+CSV = OUT / "capacity_fe.csv"
+FIELDS = ("design", "test", "step", "along", "nodes", "load_N", "second_N", "where", "seconds")
+KEY = ("design", "test", "step", "along")
+ALONGS = (2, 4, 8)
+STEPS = ("dead", "held")
+
+
+@dataclass(frozen=True, slots=True)
+class Case:
+    """One row of the validation set: the assembly, its load case (a fixture name), the span
+    (mm; None: the panel's length) and whether the band joins the layers (joint band-edges)."""
+
+    assembly: Assembly
+    test: str
+    span: float | None = None
+    band: bool = False
+
+
+def _identical(W: float, n: int, alpha: float, material: str, t: float) -> Assembly:
+    return Assembly.identical(Layer(W, n, alpha, get_material(material), t))
+
+
+def designs() -> dict[str, Case]:
+    """The validation set (module docstring), by the name the CSV gives it."""
+    pp = get_material("polypropylene")
+    chassis = Assembly(Layer(16.0, 6, 90.0, pp, 0.25), Layer(5.0, 27, 120.0, pp, 0.25), Rectangle())
+    return {
+        "stubby: dura-lar 0.075, W 12 n 10 a 40": Case(
+            _identical(12.0, 10, 40.0, "dura-lar", 0.075), "three-point"
+        ),
+        "chassis, joint none: pp 0.25, W 16 n 6 a 90 / W 5 n 27 a 120": Case(
+            chassis, "three-point", span=120.0
+        ),
+        "chassis, joint band-edges: pp 0.25, W 16 n 6 a 90 / W 5 n 27 a 120": Case(
+            chassis, "three-point", band=True
+        ),
+        "case study: dura-lar 0.125, W 8 n 8 a 84": Case(
+            _identical(8.0, 8, 84.0, "dura-lar", 0.125), "platens"
+        ),
+        "pc 0.25, W 10 n 13 a 120": Case(
+            _identical(10.0, 13, 120.0, "polycarbonate", 0.25), "four-point"
+        ),
+        "pp 0.3, W 6 n 5 a 150": Case(
+            _identical(6.0, 5, 150.0, "polypropylene", 0.3), "cantilever"
+        ),
+        "dura-lar 0.125, W 10 n 7 a 60": Case(
+            _identical(10.0, 7, 60.0, "dura-lar", 0.125), "cantilever"
+        ),
+        "pp 0.5, W 10 n 5 a 100": Case(_identical(10.0, 5, 100.0, "polypropylene", 0.5), "platens"),
+        "pc 0.175, W 7 n 12 a 130": Case(
+            _identical(7.0, 12, 130.0, "polycarbonate", 0.175), "three-point"
+        ),
+    }
+
+
+def ranges(case: Case) -> tuple[float, float, float]:
+    """(alpha deg, t / W, L / h) of layer 1 (the layer along the span), L the span."""
+    layer = case.assembly.layer1
+    length = case.span if case.span is not None else case.assembly.Ly
+    return layer.alpha_deg, layer.t / layer.W, length / layer.height
+
+
+def jobs(ds: dict[str, Case], max_along: int) -> Iterator[tuple[str, str, int]]:
+    """(design, step, along): every design at 2, then at 4, then at 8 per facet."""
+    for along in ALONGS:
+        if along > max_along:
+            return
+        for name in ds:
+            for step in STEPS:
+                yield name, step, along
+
+
+def solve(case: Case, step: str, along: int) -> tuple[int, float, float, str]:
+    """One buckling run: (nodes, first load N, second load N, where the first mode is)."""
+    from corrugate.fea.assembly import AssemblyMesh, assembly_deck, solve_assembly
+    from corrugate.fea.ccx import run_ccx
+    from corrugate.fea.modes import mode_location, parse_frd_mode, with_mode_output
+    from corrugate.fea.steps import LinearBuckling
+
+    a, mesh = case.assembly, AssemblyMesh(along)
+    kw = {"connectors": case.band, "span": case.span}
+    scale = 1.0
+    if step == "dead":
+        deck, info = assembly_deck(a, case.test, mesh, 0.0, step=LinearBuckling(), **kw)
+    else:
+        static = solve_assembly(a, case.test, mesh, 0.0, split=False, **kw)
+        deck, info = assembly_deck(a, case.test, mesh, 0.0, **kw)
+        deck = deck.replace("*STATIC", "*BUCKLE\n3,1.e-6")
+        scale = static.force
+    with tempfile.TemporaryDirectory(prefix="capfe-") as d:
+        run = run_ccx(with_mode_output(deck), Path(d), job="b", timeout=1800.0)
+        shape = parse_frd_mode((Path(d) / "b.frd").read_text())
+    f = [x * scale for x in run.buckling_factors if x > 0]
+    where = mode_location(shape, 1, a.Lx, a.Ly)
+    second = f[1] if len(f) > 1 else math.nan
+    return info.nodes, f[0], second, where
+
+
+def run(minutes: float = math.inf, max_along: int = 8) -> None:
+    """Run the cases not yet in the CSV, one ccx at a time; no new case after ``minutes``."""
+    from corrugate.core.errors import CorrugateError
+
+    ds = designs()
+    done = done_keys(CSV, KEY)
+    start = time.perf_counter()
+    pre = ["python benchmarks/fea_capacity.py run (docstring: what each column is)"]
+    with appender(CSV, FIELDS, pre) as write:
+        for name, step, along in jobs(ds, max_along):
+            case = ds[name]
+            key = (name, case.test, step, str(along))
+            if key in done:
+                continue
+            if time.perf_counter() - start > 60 * minutes:
+                print(f"stopped: {minutes:g} minutes", flush=True)
+                return
+            t0 = time.perf_counter()
+            try:
+                nodes, first, second, where = solve(case, step, along)
+            except CorrugateError as exc:
+                print("failed", *key, exc, flush=True)
+                continue
+            s = time.perf_counter() - t0
+            write((*key, nodes, f"{first:.7g}", f"{second:.7g}", where, f"{s:.1f}"))
+            print(*key, nodes, f"{first:.5g}", where, f"{s:.0f} s", flush=True)
+
+
+def table() -> None:
+    """A Markdown table of the CSV: each design's series per step and its extrapolation
+    (:func:`corrugate.fea.extrapolate.extrapolate`)."""
+    from corrugate.fea.extrapolate import extrapolate
+
+    ds = designs()
+    with CSV.open() as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    print(
+        "| design | test | alpha | t/W | L/h | step | FE series 2/4/8 (N) | estimate (N) | "
+        "first mode |"
+    )
+    print("|---" * 9 + "|")
+    for name, case in ds.items():
+        alpha, tw, lh = ranges(case)
+        for step in STEPS:
+            mine = {int(r["along"]): r for r in rows if r["design"] == name and r["step"] == step}
+            if not mine:
+                continue
+            series = {k: float(r["load_N"]) for k, r in mine.items()}
+            e = extrapolate(series)
+            text = " / ".join(f"{series[k]:.4g}" for k in sorted(series))
+            where = mine[max(mine)]["where"]
+            est = "-" if e.value is None else f"{e.value:.4g} ({e.how})"
+            print(
+                f"| {name} | {case.test} | {alpha:g} | {tw:.4f} | {lh:.1f} | {step} | {text} | "
+                f"{est} | {where} |"
+            )
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    if args[:1] == ["run"]:
+        minutes, max_along = math.inf, 8
+        if "--minutes" in args:
+            minutes = float(args[args.index("--minutes") + 1])
+        if "--max-along" in args:
+            max_along = int(args[args.index("--max-along") + 1])
+        run(minutes, max_along)
+    elif args[:1] == ["table"]:
+        table()
+    else:
+        sys.exit(__doc__)
