@@ -1,8 +1,10 @@
 """Buckling mode shapes of a ``*BUCKLE`` run and where the first one lies (docs/fea.md section 2).
 
 A buckling step (:class:`corrugate.fea.steps.LinearBuckling`) asked for ``*NODE FILE`` / ``U``
-writes one ``DISP`` block per mode to the ``.frd`` file: the mode's displacement (normalised by
-ccx, so only its shape counts) at every node, in the expanded 20-node bricks of the shells (new
+writes ``DISP`` blocks to the ``.frd`` file, each after a ``100CL`` line whose value is the
+block's buckling factor: first the base state (the static solution under the reference load,
+factor 0), then one block per mode (factor 1, 2, ...: the mode's displacement, normalised by ccx,
+so only its shape counts) at every node, in the expanded 20-node bricks of the shells (new
 node numbers on the shells' surfaces and mid-surfaces, as for the stresses,
 :class:`corrugate.fea.ccx.FrdStresses`). :func:`parse_frd_mode` reads mode k's block with the
 node coordinates (mm) and the material (part) of each node; :func:`mode_location` says where the
@@ -58,14 +60,18 @@ def _floats(line: str, count: int) -> list[float]:
 
 
 def parse_frd_mode(text: str, mode: int = 1) -> ModeShape:
-    """The ``mode``-th ``DISP`` block (1: the first mode) of an ASCII ``.frd`` file with the
-    node coordinates and materials; :class:`SolverError` when the file has fewer blocks."""
+    """The ``DISP`` block of buckling mode ``mode`` (1: the first; the base state, whose
+    ``100CL`` factor is 0, is not a mode) of an ASCII ``.frd`` file with the node coordinates
+    and materials; :class:`SolverError` when the file has fewer modes."""
     coords: dict[int, tuple[float, ...]] = {}
     material: dict[int, int] = {}
     disp: dict[int, tuple[float, ...]] = {}
-    state, current, seen = "", 0, 0
+    state, current, seen, factor = "", 0, 0, 0.0
     for line in text.splitlines():
         head = line[:6]
+        if line.startswith("  100CL"):
+            factor = float(line[12:24])
+            continue
         if head == "    2C":
             state = "nodes"
             continue
@@ -73,7 +79,7 @@ def parse_frd_mode(text: str, mode: int = 1) -> ModeShape:
             state = "elements"
             continue
         if line.startswith(" -4"):
-            if line.split()[1] == "DISP":
+            if line.split()[1] == "DISP" and factor != 0.0:
                 seen += 1
                 state = "disp" if seen == mode else "other"
             else:
@@ -112,5 +118,7 @@ def mode_location(shape: ModeShape, span_axis: int, width: float, length: float)
     m = int(shape.material[i])
     part = PARTS[m - 1] if 1 <= m <= len(PARTS) else f"part {m}"
     x = shape.xyz[i]
-    along, across = x[span_axis] / length, x[1 - span_axis] / width
+    # clipped to [0, 1]: the expanded shells' surface nodes lie up to t / 2 outside the panel
+    along = min(max(float(x[span_axis]) / length, 0.0), 1.0)
+    across = min(max(float(x[1 - span_axis]) / width, 0.0), 1.0)
     return f"{part} at {along:.2f} of the span, {across:.2f} of the width"
