@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.parameters import PARAMETERS
@@ -21,8 +21,16 @@ from corrugate.names import LOAD_CASES
 
 if TYPE_CHECKING:
     from corrugate.analysis.evaluate import Analysis
+    from corrugate.mechanics.capacity import Capacity
 
-__all__ = ["LoadCase", "cli_flag", "load_case_dict", "load_case_of", "load_case_rows"]
+__all__ = [
+    "LoadCase",
+    "cli_flag",
+    "load_case_capacity",
+    "load_case_dict",
+    "load_case_of",
+    "load_case_rows",
+]
 
 
 def cli_flag(name: str) -> str:
@@ -100,7 +108,7 @@ def load_case_of(
 
 def load_case_rows(
     r: Analysis, case: LoadCase, flag: Callable[[str], str] = cli_flag
-) -> list[dict[str, float]]:
+) -> list[dict[str, Any]]:
     """For each direction of ``r``: the span Ls (mm; platens: the length compressed), the
     deflection (mm) of ``case`` under its load and the test's P / delta (N/mm), by
     :func:`corrugate.mechanics.load_cases.load_stiffness` (docs/load_cases.md, sections 1-3):
@@ -140,18 +148,81 @@ def load_case_rows(
             Ls = st.span if case.span is None else case.span
         if not (math.isfinite(k) and k > 0):
             raise InputError("body", f"P/delta = {k}", "a positive stiffness", reason="is not")
-        rows.append(
-            {
-                "eta_deg": st.eta_deg,
-                "span_mm": Ls,
-                "deflection_mm": case.load / k,
-                "stiffness_N_per_mm": k,
-            }
-        )
+        row: dict[str, Any] = {
+            "eta_deg": st.eta_deg,
+            "span_mm": Ls,
+            "deflection_mm": case.load / k,
+            "stiffness_N_per_mm": k,
+        }
+        cap = load_case_capacity(r, case, st.eta_deg)
+        if cap is not None:
+            row.update(
+                {"load_capacity_N": cap.load, "safety_factor": cap.safety_factor, **cap.as_dict()}
+            )
+            row["holds"] = cap.sentence
+        rows.append(row)
     return rows
 
 
-def load_case_dict(case: LoadCase, rows: list[dict[str, float]]) -> dict[str, object]:
+def load_case_capacity(
+    r: Analysis, case: LoadCase, eta_deg: float, safety_factor: float | None = None
+) -> Capacity | None:
+    """The capacity of the load case ``case`` at ``eta_deg`` (0 or 90 deg: along a layer's
+    creases; None elsewhere, and for a test without a capacity, the wheel): every failure mode's
+    load (:func:`corrugate.mechanics.capacity.capacity_modes`, the formulas the solver bounds),
+    their least over the ``safety_factor`` (default
+    :data:`corrugate.mechanics.load_cases.DEFAULT_SAFETY_FACTOR`, the spec's), named
+    (docs/load_cases.md 10)."""
+    from corrugate.geometry.layer import crease_layer
+    from corrugate.mechanics.behaviours import get_load_case
+    from corrugate.mechanics.capacity import Capacity, capacity_modes
+    from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR, band_walls
+
+    entry = get_load_case(case.test)
+    form = entry.form
+    along = crease_layer(eta_deg)
+    if form is None or along is None or entry.stiffness_only:
+        return None
+    st = next(s for s in r.stiffness if s.eta_deg == eta_deg)
+    a = r.assembly
+    lay = (a.layer1, a.layer2) if along == 0 else (a.layer2, a.layer1)
+    sp = r.springs if along == 0 else r.springs[::-1]
+    whole = st.K if form.kind == "inplane" else st.D
+    layers, band = whole, None
+    if r.joint != "none":
+        l1 = a.layer1
+        depth = float(a.thickness)
+        walls = band_walls(l1.material.E, l1.material.nu, l1.t, depth, st.span)
+        layers = whole - walls[2 if form.kind == "inplane" else 0]
+        band = (l1.material.E, l1.t, depth, _yield(l1))
+    modes = capacity_modes(
+        form,
+        (sp[0], sp[1]),
+        (lay[0].material.E, lay[1].material.E),
+        (lay[0].t, lay[1].t),
+        lay[0].material.nu,
+        lay[0].W,
+        lay[0].n,
+        layers,
+        whole,
+        st.span,
+        a.Lx if along == 0 else a.Ly,
+        case.span,
+        (_yield(lay[0]), _yield(lay[1])),
+        band,
+        r.joint == "none",
+    )
+    sf = DEFAULT_SAFETY_FACTOR if safety_factor is None else safety_factor
+    return Capacity.of({k: float(v) for k, v in modes.items()}, sf, form, along + 1)
+
+
+def _yield(layer: Any) -> float:
+    """A layer's yield strength (MPa), +inf without one (no yield mode)."""
+    y = layer.material.yield_strength
+    return math.inf if y is None else float(y)
+
+
+def load_case_dict(case: LoadCase, rows: list[dict[str, Any]]) -> dict[str, object]:
     """The ``load_case`` object of ``analyze --json``."""
     return {
         "test": case.test,

@@ -9,7 +9,7 @@ along eta (:func:`corrugate.analysis.load_case.load_case_rows`).
 from __future__ import annotations
 
 import json
-from typing import TYPE_CHECKING, Annotated
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
@@ -30,7 +30,7 @@ __all__ = ["COMMANDS", "analyze_cmd", "materials_cmd"]
 Opt = typer.Option
 
 
-def _print_load_case(case: LoadCase, rows: list[dict[str, float]], console: Console) -> None:
+def _print_load_case(case: LoadCase, rows: list[dict[str, Any]], console: Console) -> None:
     from rich.table import Table
 
     over = (
@@ -52,6 +52,9 @@ def _print_load_case(case: LoadCase, rows: list[dict[str, float]], console: Cons
             _fmt(row["stiffness_N_per_mm"], 5),
         )
     console.print(t)
+    for row in rows:  # the capacity along the creases (docs/load_cases.md 10)
+        if "holds" in row:
+            console.print(f"at {row['eta_deg']:g} deg: {row['holds']}", highlight=False)
 
 
 def _print_analysis(r: Analysis, console: Console) -> None:

@@ -47,6 +47,7 @@ from corrugate.spec.schema import PURE, STIFFNESS_KINDS, MaterialSpec, Spec, Spe
 
 __all__ = [
     "FEAS_RTOL",
+    "HOLDS",
     "Candidate",
     "Constraint",
     "DesignVariable",
@@ -99,6 +100,11 @@ class Candidate:
     @property
     def label(self) -> str:
         return f"{self.material.id} {self.t:g} mm"
+
+
+#: The suffix of the bound a deflection bound under a load brings with it: the part holds that
+#: load at the safety factor (its capacity, docs/load_cases.md 10.6).
+HOLDS = ".load (held at the safety factor)"
 
 
 @dataclass(frozen=True, slots=True)
@@ -257,6 +263,12 @@ class Problem:
                         Constraint(f"{where}.span", Quantity("length", d.eta), "min", d.span)
                     )
             cons.append(Constraint(f"{where}.max", q, "min", d.load / d.max, load=d.load))
+            if crease_layer(d.eta) is not None and not get_load_case(d.test).stiffness_only:
+                # a linear deflection past the first failure is no certificate: the part must
+                # hold the load at the safety factor (docs/load_cases.md 10.6)
+                eta = 0.0 if crease_layer(d.eta) == 0 else 90.0
+                held = Quantity.load_case("Pmax", eta, d.test, support, d.span)
+                cons.append(Constraint(f"{where}{HOLDS}", held, "min", d.load))
         for i, g in enumerate(c.strength):
             where = f"constraints.strength[{i}]"
             _check_load_case_layout(where, layout, g.test)

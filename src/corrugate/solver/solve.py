@@ -34,11 +34,12 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.analysis.warnings import wheel_warnings
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case
+from corrugate.mechanics.capacity import Capacity
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.points import DesignPoints, coordinates
-from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
+from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
 
@@ -112,9 +113,10 @@ class ConstraintReport:
     binding: bool | None
     load: float | None = None
     stiffness: float | None = None
-    capacity: float | None = None  # N: the load case's load capacity at the safety factor
+    capacity: Capacity | None = None  # the load case's capacity at the safety factor
 
     def as_dict(self) -> dict[str, object]:
+        held = None if self.capacity is None else self.capacity.load
         return {
             "name": self.name,
             "quantity": self.quantity.key,
@@ -133,12 +135,11 @@ class ConstraintReport:
                     "test": self.quantity.test or "platens",
                     "load_N": self.load,
                     "stiffness_N_per_mm": self.stiffness,
-                    "load_capacity_N": self.capacity,
-                    "stress_margin": None
-                    if self.capacity is None
-                    else self.capacity / self.load - 1.0,
+                    "load_capacity_N": held,
+                    "stress_margin": None if held is None else held / self.load - 1.0,
                 }
             ),
+            **({} if self.capacity is None else self.capacity.as_dict()),
         }
 
 
@@ -249,21 +250,21 @@ class Solution:
                 else (" between platens" if q.kind == "K" else " in pure bending")
             )
             span = "" if q.span is None else f" over {q.span:g} mm"
+            if c.name.endswith(HOLDS):  # said by its deflection bound
+                continue
             if c.load is not None:
                 held = ""
                 if c.capacity is not None:
-                    held = (
-                        f" (holds {c.capacity:.3g} N at safety factor {p.safety_factor:g}: "
-                        f"stress margin {100 * (c.capacity / c.load - 1):.0f} %)"
-                    )
+                    held = f": {c.capacity.sentence}"
                 parts.append(
                     f"deflection {c.value:.4g} mm <= {c.bound:.4g} mm under {c.load:g} N"
                     f"{test}{span} at {q.eta:g} deg, {where}{held}"
                 )
             elif q.kind == "Pmax":
+                first = "" if c.capacity is None else f"; first failure: {c.capacity.words}"
                 parts.append(
                     f"holds {c.bound:g} N{test}{span} at {q.eta:g} deg (capacity {c.value:.4g} N "
-                    f"at safety factor {p.safety_factor:g}), {where}"
+                    f"at safety factor {p.safety_factor:g}{first}), {where}"
                 )
             else:
                 parts.append(f"{q.kind}({q.eta:g} deg){test}, {where}")
@@ -628,29 +629,38 @@ def _values_at(problem: Problem, opt: Optimum, tables: Tables) -> dict[Quantity,
     return {k: float(v[0]) for k, v in vals.items()}
 
 
-def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, float]:
-    """The load capacity (N, at the problem's safety factor) of each deflection bound's load
-    case where it is modelled (along the creases, every material with a yield strength):
-    the stress margin every answer reports (docs/load_cases.md, section 6)."""
-    assert opt.candidates is not None
-    if any(c.material.yield_strength is None for c in opt.candidates):
-        return {}
-    asked = {}
-    for c in problem.constraints:
-        q = c.quantity
-        if c.load is None or q.eta is None or q.eta % 90 != 0:
-            continue
-        asked[c.name] = Quantity.load_case(
-            "Pmax", q.eta, q.test or "platens", q.support or problem.support, q.span
-        )
-    if not asked:
-        return {}
-    probe = replace(
-        problem,
-        constraints=tuple(Constraint(n, q, "min", 0.0) for n, q in asked.items()),
+def _capacity_quantity(problem: Problem, c: Constraint) -> Quantity | None:
+    """The ``Pmax`` quantity of a constraint: its own (a strength bound or a deflection's
+    ``holds`` bound) or its deflection's load case along the creases (None otherwise)."""
+    q = c.quantity
+    if q.kind == "Pmax":
+        return q
+    if c.load is None or q.eta is None or q.eta % 90 != 0:
+        return None
+    return Quantity.load_case(
+        "Pmax", q.eta, q.test or "platens", q.support or problem.support, q.span
     )
-    vals = _values_at(probe, opt, tables)
-    return {n: vals[q] for n, q in asked.items()}
+
+
+def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, Capacity]:
+    """The capacity (:class:`Capacity`) of each deflection and strength bound's load case where
+    it is modelled (along the creases): what every answer reports (docs/load_cases.md 10)."""
+    from corrugate.solver.context import AtPoints
+    from corrugate.solver.stiffness import capacity_modes_at
+
+    assert opt.candidates is not None and opt.point is not None
+    at = AtPoints(problem, *opt.candidates, opt.point.arrays(), tables)
+    out = {}
+    for c in problem.constraints:
+        q = _capacity_quantity(problem, c)
+        if q is None or q.test is None or q.eta is None:
+            continue
+        form = get_load_case(q.test).form
+        assert form is not None
+        modes = {k: float(v[0]) for k, v in capacity_modes_at(at, q).items()}
+        along = 1 if q.eta % 180 == 0 else 2
+        out[c.name] = Capacity.of(modes, problem.safety_factor, form, along)
+    return out
 
 
 def _probe_points(problem: Problem, point: DesignPoints) -> DesignPoints:
@@ -805,7 +815,16 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
             continue
         out.append(
             ConstraintReport(
-                c.name, c.quantity, c.sense, v, c.bound, margin, c.unit, active, binding
+                c.name,
+                c.quantity,
+                c.sense,
+                v,
+                c.bound,
+                margin,
+                c.unit,
+                active,
+                binding,
+                capacity=capacity.get(c.name),
             )
         )
     return out

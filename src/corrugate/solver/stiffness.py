@@ -27,6 +27,7 @@ value as the box shrinks, which is what makes branch and bound terminate.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from typing import Any
 
@@ -36,13 +37,11 @@ from numpy.typing import NDArray
 from corrugate.geometry.layer import crease_layer
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support, supports
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
+from corrugate.mechanics.capacity import capacity_modes
 from corrugate.mechanics.load_cases import (
     apparent,
-    load_capacity,
     load_stiffness,
     shear_and_depth,
-    stress_per_load,
-    wall_capacity,
     walls_stiffness,
 )
 from corrugate.mechanics.offaxis import _cs
@@ -52,7 +51,7 @@ from corrugate.solver.interval import Interval
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import STIFFNESS, Quantity
 
-__all__ = ["BUCKLING", "LENGTH", "LOAD_CASES", "STIFFNESSES"]
+__all__ = ["BUCKLING", "LENGTH", "LOAD_CASES", "STIFFNESSES", "capacity_modes_at"]
 
 FloatArray = NDArray[np.float64]
 
@@ -193,16 +192,21 @@ BUCKLING = register(Evaluator(("Pb",), _buckling_at, _buckling_over, _buckling_r
 
 
 def _allowables(c1: Candidate, c2: Candidate, along: int) -> tuple[float, float]:
-    """The yield strengths (MPa) of (the layer along eta, the other) (Problem.from_spec refuses
-    a strength bound on a material without one)."""
-    y1, y2 = c1.material.yield_strength, c2.material.yield_strength
-    assert y1 is not None and y2 is not None
+    """The yield strengths (MPa) of (the layer along eta, the other); +inf for a material
+    without one (its yield is then not a mode; Problem.from_spec refuses a strength bound on
+    it)."""
+    y1, y2 = (
+        math.inf if c.material.yield_strength is None else float(c.material.yield_strength)
+        for c in (c1, c2)
+    )
     return (y1, y2) if along == 0 else (y2, y1)
 
 
-def _load_case_at(at: AtPoints, q: Quantity) -> FloatArray:
+def capacity_modes_at(at: AtPoints, q: Quantity) -> dict[str, FloatArray]:
+    """Every failure mode's load (N, no safety factor) of the load case of the ``Pmax``
+    quantity ``q`` at the points (:func:`corrugate.mechanics.capacity.capacity_modes`;
+    docs/load_cases.md 10): the capacity is their least divided by the safety factor."""
     assert q.eta is not None and q.test is not None
-    problem, c1, c2 = at.problem, at.c1, at.c2
     e = q.eta
     form = get_load_case(q.test).form
     assert form is not None
@@ -210,105 +214,109 @@ def _load_case_at(at: AtPoints, q: Quantity) -> FloatArray:
     span = at.value(Quantity("length", e))
     band = None if at.walls is None or crease_layer(e) is None else at.walls(span)
     layers = base if band is None else base - band[2 if form.kind == "inplane" else 0]
-    ev = at.ev
-    Lx, Ly = at.Lx, at.Ly
+    l1, l2 = at.layers
+    along = 0 if crease_layer(e) == 0 else 1
+    extents = (at.Lx, at.Ly) if along == 0 else (at.Ly, at.Lx)
+    lay = (l1, l2) if along == 0 else (l2, l1)
+    sp = at.ev.springs if along == 0 else at.ev.springs[::-1]
+    y1 = _allowables(at.c1, at.c1, 0)[0]
+    modes = capacity_modes(
+        form,
+        (Columns(sp[0]), Columns(sp[1])),
+        (column(np.asarray(lay[0].E)), column(np.asarray(lay[1].E))),
+        (column(np.asarray(lay[0].t)), column(np.asarray(lay[1].t))),
+        float(np.asarray(lay[0].nu)),
+        column(np.asarray(lay[0].W, np.float64)),
+        column(np.asarray(lay[0].n, np.float64)),
+        layers,  # the layers' own D or K: their curvature or strain from above
+        base,
+        extents[1],
+        extents[0],
+        q.span,
+        _allowables(at.c1, at.c2, along),
+        None
+        if band is None
+        else (column(np.asarray(l1.E)), column(np.asarray(l1.t)), at.ev.thickness[:, 0], y1),
+        at.problem.joint == "none",
+    )
+    return {k: np.broadcast_to(np.asarray(v, np.float64), span.shape) for k, v in modes.items()}
+
+
+def _load_case_at(at: AtPoints, q: Quantity) -> FloatArray:
+    assert q.eta is not None and q.test is not None
+    e = q.eta
+    form = get_load_case(q.test).form
+    assert form is not None
     if q.kind == "Pmax":
-        l1, l2 = at.layers
-        along = 0 if crease_layer(e) == 0 else 1
-        extents = (Lx, Ly) if along == 0 else (Ly, Lx)
-        E = (np.asarray(l1.E, dtype=np.float64), np.asarray(l2.E, dtype=np.float64))
-        t = (np.asarray(l1.t, dtype=np.float64), np.asarray(l2.t, dtype=np.float64))
-        lay_E = (column(E[along]), column(E[1 - along]))
-        lay_t = (column(t[along]), column(t[1 - along]))
-        sp = ev.springs if along == 0 else ev.springs[::-1]
-        per = stress_per_load(
-            form,
-            (Columns(sp[0]), Columns(sp[1])),
-            0,
-            layers,  # the layers' own D or K: their curvature or strain from above
-            lay_E,
-            lay_t,
-            extents[1],
-            extents[0],
-            q.span,
-        )
-        cap = load_capacity(per, _allowables(c1, c2, along), problem.safety_factor)
-        if band is not None:  # the walls, at the whole panel's curvature or strain
-            cap = np.minimum(
-                cap,
-                wall_capacity(
-                    form,
-                    base,
-                    column(np.asarray(l1.E)),
-                    column(np.asarray(l1.t)),
-                    ev.thickness[:, 0],
-                    span,
-                    q.span,
-                    _allowables(c1, c1, 0)[0],
-                    problem.safety_factor,
-                ),
-            )
-        return np.asarray(cap)
+        modes = capacity_modes_at(at, q)
+        return np.asarray(np.minimum.reduce(list(modes.values())) / at.problem.safety_factor)
+    base = at.value(Quantity("K" if form.kind == "inplane" else "D", e, q.support))
+    span = at.value(Quantity("length", e))
+    band = None if at.walls is None or crease_layer(e) is None else at.walls(span)
+    layers = base if band is None else base - band[2 if form.kind == "inplane" else 0]
     cos2, sin2 = _cs(e)
-    V, h = shear_and_depth(ev.springs, cos2, sin2)
+    V, h = shear_and_depth(at.ev.springs, cos2, sin2)
     k = load_stiffness(form, layers, np.asarray(V)[:, 0], np.asarray(h)[:, 0], span, q.span, e)
     if band is not None:  # the walls beside the layers (parallel beams)
         k = k + walls_stiffness(form, band, span, q.span)
     return np.asarray(apparent(form, q.kind, k, span))
 
 
+def _modes_over(over: OverBoxes, q: Quantity, base: Any, whole: Any, band: Any) -> list[Any]:
+    """Bounds of every failure mode's load (N, no safety factor) over the boxes: the formulas
+    of :func:`capacity_modes_at` on the interval springs and the boxes' W and n."""
+    assert q.eta is not None and q.test is not None
+    form = get_load_case(q.test).form
+    assert form is not None
+    c1, c2 = over.c1, over.c2
+    along = 0 if crease_layer(q.eta) == 0 else 1
+    sp = over.springs if along == 0 else over.springs[::-1]
+    cand = (c1, c2) if along == 0 else (c2, c1)
+    walls = None
+    if band is not None:
+        _, depth = over.walls(q.eta)
+        walls = (float(c1.material.E), float(c1.t), depth, _allowables(c1, c1, 0)[0])
+    modes = capacity_modes(
+        form,
+        (sp[0], sp[1]),
+        (float(cand[0].material.E), float(cand[1].material.E)),
+        (float(cand[0].t), float(cand[1].t)),
+        float(cand[0].material.nu),
+        Interval(over.lo.layer(along).W, over.hi.layer(along).W),
+        Interval(over.lo.layer(along).n, over.hi.layer(along).n),
+        base,
+        whole,
+        over.span(q.eta),
+        Interval(*(over.Lx if along == 0 else over.Ly)),
+        q.span,
+        _allowables(c1, c2, along),
+        walls,
+        over.problem.joint == "none",
+    )
+    return list(modes.values())
+
+
 def _load_case_over(over: OverBoxes, q: Quantity) -> Pair:
     """The formula of :mod:`corrugate.mechanics.load_cases` on the interval springs, the
     support's D or K bounds (with the layout's coupon off the creases) and the panel length's
-    bounds."""
+    bounds; a capacity: the least of the modes' bounds (:func:`_modes_over`) over the safety
+    factor."""
     assert q.eta is not None and q.test is not None
     support = get_support(q.support or DEFAULT_SUPPORT)
     coupon = over.coupon(support, q.eta)
-    band, depth = over.walls(q.eta)
+    band, _ = over.walls(q.eta)
     springs = over.springs
-    c1, c2 = over.c1, over.c2
-    problem = over.problem
     form = get_load_case(q.test).form
     assert form is not None
     base = support.bounds("K" if form.kind == "inplane" else "D", springs, q.eta, coupon)
     length = over.span(q.eta)
     whole = base if band is None else base + band[2 if form.kind == "inplane" else 0]
     if q.kind == "Pmax":
-        along = 0 if crease_layer(q.eta) == 0 else 1
-        width = Interval(*(over.Lx if along == 0 else over.Ly))
-        sp = springs if along == 0 else springs[::-1]
-        E = (float(c1.material.E), float(c2.material.E))
-        t = (float(c1.t), float(c2.t))
-        per = stress_per_load(
-            form,
-            (sp[0], sp[1]),
-            0,
-            base,
-            (E[along], E[1 - along]),
-            (t[along], t[1 - along]),
-            length,
-            width,
-            q.span,
-        )
-        cap: Any = load_capacity(
-            (Interval.of(per[0]), Interval.of(per[1])),
-            _allowables(c1, c2, along),
-            problem.safety_factor,
-        )
-        if band is not None:
-            wall = wall_capacity(
-                form,
-                whole,
-                float(c1.material.E),
-                float(c1.t),
-                depth,
-                length,
-                q.span,
-                _allowables(c1, c1, 0)[0],
-                problem.safety_factor,
-            )
-            cap = Interval.of(cap).minimum(Interval.of(wall))
-        return _clamped(Interval.of(cap))
+        modes = _modes_over(over, q, base, whole, band)
+        cap = Interval.of(modes[0])
+        for m in modes[1:]:
+            cap = cap.minimum(Interval.of(m))
+        return _clamped(cap / over.problem.safety_factor)
     cos2, sin2 = _cs(q.eta)
     V, h = shear_and_depth(springs, cos2, sin2)
     k = load_stiffness(form, base, V, h, length, q.span, q.eta)
