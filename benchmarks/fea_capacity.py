@@ -190,6 +190,21 @@ def run(minutes: float = math.inf, max_along: int = 8) -> None:
             print(*key, nodes, f"{first:.5g}", where, f"{s:.0f} s", flush=True)
 
 
+def model(case: Case) -> tuple[float, str] | None:
+    """The model's first-failure load (N, the least mode at safety factor 1: no factor) and its
+    words (:func:`corrugate.analysis.load_case.load_case_capacity`, the formulas the solver
+    bounds, docs/load_cases.md), for the design's joint; None where the model states none."""
+    from corrugate.analysis.evaluate import analyze
+    from corrugate.analysis.load_case import LoadCase, load_case_capacity
+
+    joint = "band-edges" if case.band else "none"
+    r = analyze(case.assembly, "refined", eta_deg=[0.0], joint=joint)
+    cap = load_case_capacity(r, LoadCase(case.test, 1.0, span=case.span), 0.0, safety_factor=1.0)
+    if cap is None:
+        return None
+    return float(cap.load), str(cap.words)
+
+
 def table() -> None:
     """A Markdown table of the CSV: each design's series per step and its extrapolation
     (:func:`corrugate.fea.extrapolate.extrapolate`)."""
