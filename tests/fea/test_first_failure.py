@@ -48,8 +48,9 @@ def test_one_pair_of_rows_per_fixture_extrapolated_as_the_constraints_are(
     d1 = 2, d2 = 0.5, p = log2(4) = 2, Richardson 7.5 - 0.5 / (2^2 - 1) = 7.3333 N; a static run
     at 2 N whose peak |principal stress| is 49 MPa in layer 1 (Dura-Lar, yield 98 MPa): 4 N at
     every mesh. Two constraints in 3-point bending share one pair of rows (the larger load
-    counts); a buckling bound (already a buckling run) and a bound off the crease directions
-    (its coupon's value depends on the cut) add none."""
+    counts), and a load capacity (Pmax) of the same load case joins them with its model
+    first-failure load; a buckling bound (already a buckling run) and a bound off the crease
+    directions (its coupon's value depends on the cut) add none."""
     buckling = {2: 10.0, 4: 8.0, 8: 7.5}
     calls: list[tuple[str, int, bool]] = []
 
@@ -70,18 +71,30 @@ def test_one_pair_of_rows_per_fixture_extrapolated_as_the_constraints_are(
         {"name": "d2", "quantity": "k3pt@0", "unit": "mm", "load_N": 5.0},
         {"name": "pb", "quantity": "Pb@0"},
         {"name": "k15", "quantity": "K@15"},
+        {
+            "name": "cap",
+            "quantity": "Pmax3pt@0",
+            "load_N": 5.0,
+            "failure_loads_N": {"yield": 9.0, "facet-buckling": 8.0},
+        },
     ]
     rows = first_failures(A, constraints)
     assert [(r.mode, r.constraints, r.load) for r in rows] == [
-        ("buckling", ("d1", "d2"), 5.0),
-        ("yield", ("d1", "d2"), 5.0),
+        ("buckling", ("d1", "d2", "cap"), 5.0),
+        ("yield", ("d1", "d2", "cap"), 5.0),
     ]
+    # the load capacity's model first failure, 8 N (its least mode, no safety factor), is
+    # above the FE's buckling estimate 7.33 N and above its yield load 4 N
+    assert [(r.model, r.model_holds) for r in rows] == [(8.0, False), (8.0, False)]
+    assert rows[0].as_json()["model_first_failure_N"] == 8.0
     buckle, yld = rows
     assert buckle.fe == pytest.approx(7.5 - 0.5 / 3, rel=1e-12) and buckle.order == 2.0
     assert buckle.holds is True and "3-point" in buckle.test
     assert get_material("dura-lar").yield_strength == 98.0
     assert yld.fe_series == {2: 4.0, 4: 4.0, 8: 4.0} and yld.holds is False
     assert len(calls) == 6 and all(test == "three-point" for test, _, _ in calls)
+    plain = first_failures(A, constraints[:2])
+    assert plain[0].model is None and plain[0].model_holds is None
 
 
 @pytest.mark.fea

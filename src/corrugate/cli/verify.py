@@ -98,7 +98,8 @@ def print_table(v: Verification, label: str, console: Console) -> None:
 
 def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
     """The first-failure rows (:mod:`corrugate.fea.first_failure`): each load case's first
-    buckling and first yield load in FE, beside the load its constraints are certified under."""
+    buckling and first yield load in FE, beside the load its constraints are certified under
+    and the model's first-failure load of a load capacity (no safety factor)."""
     from rich.markup import escape
     from rich.table import Table
 
@@ -108,16 +109,19 @@ def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
         title="first failure in FE (evidence beside the constraints, not part of their verdict)",
         title_justify="left",
     )
-    for col in ("load case", "constraints", "load", "FE first failure", "load <= FE"):
-        t.add_column(col, justify="right" if col in ("load", "load <= FE") else "left")
+    cols = ("load case", "constraints", "load", "FE first failure", "load <= FE", "model <= FE")
+    for col in cols:
+        t.add_column(col, justify="left" if col in cols[:2] or col == cols[3] else "right")
+    yes_no = {None: "-", True: "yes", False: "[red]NO[/red]"}
     for r in rows:
-        ok = {None: "-", True: "yes", False: "[red]NO[/red]"}[r.holds]
+        model = "-" if r.model is None else f"{r.model:.4g} N: {yes_no[r.model_holds]}"
         t.add_row(
             escape(r.test),
             escape(", ".join(r.constraints)),
             "-" if r.load is None else f"{r.load:.5g} N",
             escape(r.sentence + (f"; {r.note}" if r.note else "")),
-            ok,
+            yes_no[r.holds],
+            model,
         )
     console.print(t)
 

@@ -21,9 +21,13 @@ constraint rows are (:func:`corrugate.fea.extrapolate.extrapolate`):
   is, as its estimate says.
 
 A row also names the load its constraints are certified under (the largest ``load_N`` among
-them, None for a stiffness bound) and whether that load is at or below the FE estimate. The rows
-are evidence beside the constraint rows, not part of their verdict (``holds``): the capacity
-bound of issue 34 certifies them.
+them, None for a stiffness bound) and whether that load is at or below the FE estimate, and,
+where the design carries a load capacity (a ``Pmax`` constraint: a strength bound, or the one a
+deflection bound under a load brings; docs/load_cases.md), the model's first-failure load (its
+least ``failure_loads_N``: the capacity times the safety factor) and whether it is at or below the
+FE's (issue 34: "a certified capacity holds when X times the safety factor is at or below the
+FE's first failure"). The rows are evidence beside the constraint rows, not part of their
+verdict (``holds``).
 """
 
 from __future__ import annotations
@@ -43,6 +47,7 @@ from corrugate.fea.outline import solve_outline
 from corrugate.fea.steps import LinearBuckling
 from corrugate.fea.verify import Twin, behavioural, joint_options, twin_of
 from corrugate.geometry.layer import Assembly
+from corrugate.solver.quantity import Quantity
 
 __all__ = ["FailureRow", "first_failures", "yield_load"]
 
@@ -56,7 +61,8 @@ class FailureRow:
     ``mode`` (``buckling`` or ``yield``), the ``constraints`` run in it, the ``load`` (N) they
     are certified under (None: no load stated), the FE series (elements per facet -> load N at
     the first failure, None where the run failed), the estimate ``fe`` (N), its ``order`` and
-    ``how``, and a ``note`` (failed runs, why there is no value)."""
+    ``how``, a ``note`` (failed runs, why there is no value) and the ``model``'s first-failure
+    load (N, no safety factor; None without a load capacity among the constraints)."""
 
     test: str
     mode: str
@@ -67,6 +73,15 @@ class FailureRow:
     order: float | None = None
     how: str = ""
     note: str = ""
+    model: float | None = None
+
+    @property
+    def model_holds(self) -> bool | None:
+        """Whether the model's first-failure load is at or below the FE estimate (None: no
+        model value or no estimate)."""
+        if self.model is None or self.fe is None:
+            return None
+        return self.model <= self.fe
 
     @property
     def holds(self) -> bool | None:
@@ -99,6 +114,8 @@ class FailureRow:
             "holds": self.holds,
             "statement": self.sentence,
             "note": self.note or None,
+            "model_first_failure_N": _finite(self.model),
+            "model_holds": self.model_holds,
         }
 
 
@@ -147,25 +164,34 @@ def first_failures(
     directions (a coupon cut along eta, whose value depends on where it is cut), in a frame,
     without an FE twin, or already a buckling bound, add no row."""
     connectors, bond = joint_options(joint)
-    groups: dict[tuple[str, float, float | None], tuple[Twin, list[str], list[float]]] = {}
+    groups: dict[
+        tuple[str, float, float | None], tuple[Twin, list[str], list[float], list[float]]
+    ] = {}
     for c, q in behavioural(constraints):
-        load = c.get("load_N")
-        load = float(load) if isinstance(load, int | float) and not isinstance(load, bool) else None
+        load = _number(c.get("load_N"))
+        model: float | None = None
+        if q.kind == "Pmax":  # a load capacity: its load case's fixture (as a P / delta's)
+            failure = c.get("failure_loads_N")
+            found = [_number(v) for v in failure.values()] if isinstance(failure, dict) else []
+            model = min((v for v in found if v is not None), default=None)
+            q = Quantity.load_case("k", q.eta or 0.0, q.test or "platens", **_support(q))
         twin = twin_of(q, assembly, joint, load)
         if isinstance(twin, str) or twin.read == "Pb" or twin.shifted:
             continue
         if twin.fixture.kind not in ("coupon", "outline"):
             continue
         key = (twin.test, twin.eta, twin.span)
-        _, names, loads = groups.setdefault(key, (twin, [], []))
+        _, names, loads, models = groups.setdefault(key, (twin, [], [], []))
         names.append(str(c.get("name", q.key)))
         if load is not None:
             loads.append(load)
+        if model is not None:
+            models.append(model)
     parts = 3 if connectors else 2
     strengths = [assembly.layer1.material.yield_strength, assembly.layer2.material.yield_strength]
     strengths += [assembly.layer1.material.yield_strength] if connectors else []  # the band's
     rows: list[FailureRow] = []
-    for twin, names, loads in groups.values():
+    for twin, names, loads, models in groups.values():
         outline = twin.fixture.kind == "outline"
         where = f" along eta = {twin.eta:g} deg" + (
             f", span {twin.span:g} mm" if twin.span is not None else ""
@@ -246,6 +272,21 @@ def first_failures(
                     e.order,
                     e.how,
                     "; ".join(note),
+                    min(models) if models else None,
                 )
             )
     return tuple(rows)
+
+
+def _number(v: object) -> float | None:
+    """``v`` as a float when it is a number (not a bool), else None."""
+    return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
+
+
+def _support(q: Quantity) -> dict[str, Any]:
+    """The support and span of a load capacity's quantity, as :meth:`Quantity.load_case` takes
+    them."""
+    out: dict[str, Any] = {"span": q.span}
+    if q.support is not None:
+        out["support"] = q.support
+    return out
