@@ -95,6 +95,17 @@ def test_one_pair_of_rows_per_fixture_extrapolated_as_the_constraints_are(
     assert len(calls) == 6 and all(test == "three-point" for test, _, _ in calls)
     plain = first_failures(A, constraints[:2])
     assert plain[0].model is None and plain[0].model_holds is None
+    # verify's row of the load capacity already ran the buckling series (over its safety
+    # factor, 8 / 4 = 2 here): read back times 2, not run again; the yield runs still run
+    from corrugate.fea.verify import Row
+
+    capacity = {**constraints[-1], "value": 4.0}
+    calls.clear()
+    done = Row("cap", "Pmax3pt@0", "min", "N", 5.0, 4.0, {2: 5.0, 4: 4.0, 8: 3.75})
+    again = first_failures(A, [*constraints[:-1], capacity], done=(done,))
+    assert again[0].fe_series == {2: 10.0, 4: 8.0, 8: 7.5}
+    assert again[0].fe == pytest.approx(buckle.fe, rel=1e-12)
+    assert [stress for _, _, stress in calls] == [True, True, True]
 
 
 @pytest.mark.fea

@@ -232,7 +232,14 @@ def verify_cmd(
         from corrugate.fea.first_failure import first_failures
 
         failures = first_failures(
-            assembly, constraints, joint, meshes, progress=progress, folder=workdir, timeout=timeout
+            assembly,
+            constraints,
+            joint,
+            meshes,
+            progress=progress,
+            folder=workdir,
+            timeout=timeout,
+            done=result.rows,
         )
     found = {**result.as_json(), "first_failure": [r.as_json() for r in failures]}
     data = {"design": design_label(assembly), **found}

@@ -46,7 +46,7 @@ from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 from corrugate.fea.extrapolate import extrapolate
 from corrugate.fea.outline import solve_outline
 from corrugate.fea.steps import LinearBuckling
-from corrugate.fea.verify import Twin, behavioural, joint_options, twin_of
+from corrugate.fea.verify import Row, Twin, behavioural, joint_options, safety_factor, twin_of
 from corrugate.geometry.layer import Assembly
 from corrugate.solver.quantity import Quantity
 
@@ -158,16 +158,22 @@ def first_failures(
     progress: Callable[[str], None] = lambda line: None,
     folder: Path | None = None,
     timeout: float = 900.0,
+    done: Sequence[Row] = (),
 ) -> tuple[FailureRow, ...]:
     """The failure rows (module docstring) of every load-case fixture the behavioural
     ``constraints`` of a design.json run in, on the mesh series ``meshes``: buckling first, then
     yield, per fixture in the order its first constraint comes. Constraints off the crease
     directions (a coupon cut along eta, whose value depends on where it is cut), in a frame,
-    without an FE twin, or already a buckling bound, add no row."""
+    without an FE twin, or already a buckling bound, add no row. ``done``: the constraint rows
+    of :func:`corrugate.fea.verify.verify_design` on the same meshes; a load capacity's row there
+    already holds its fixture's buckling series over the safety factor, which is read back
+    (times the factor) instead of running it again."""
     connectors, bond = joint_options(joint)
     groups: dict[
         tuple[str, float, float | None], tuple[Twin, list[str], list[float], list[float]]
     ] = {}
+    ran: dict[tuple[str, float, float | None], dict[int, float | None]] = {}
+    rows_by_name = {r.name: r for r in done}
     for c, q in behavioural(constraints):
         load = _number(c.get("load_N"))
         model: float | None = None
@@ -175,7 +181,16 @@ def first_failures(
             failure = c.get("failure_loads_N")
             found = [_number(v) for v in failure.values()] if isinstance(failure, dict) else []
             model = min((v for v in found if v is not None), default=None)
+            sf = safety_factor(c)
+            row = rows_by_name.get(str(c.get("name", q.key)))
             q = Quantity.load_case("k", q.eta or 0.0, q.test or "platens", **_support(q))
+            cap = twin_of(q, assembly, joint, load)
+            theirs = {} if row is None else row.fe_series
+            complete = set(theirs) == set(meshes) and None not in theirs.values()
+            if sf and complete and isinstance(cap, Twin) and not cap.shifted:
+                ran[(cap.test, cap.eta, cap.span)] = {
+                    k: None if v is None else v * sf for k, v in theirs.items()
+                }
         twin = twin_of(q, assembly, joint, load)
         if isinstance(twin, str) or twin.read == "Pb" or twin.shifted:
             continue
@@ -206,7 +221,10 @@ def first_failures(
                 continue
             series: dict[int, float | None] = {}
             failures: list[str] = []
-            for along in meshes:
+            reused = ran.get((twin.test, twin.eta, twin.span)) if mode == "buckling" else None
+            if reused is not None:
+                series = dict(reused)
+            for along in () if reused is not None else meshes:
                 mesh = AssemblyMesh(along)
                 name = label if mode == "buckling" else f"{static_label}, stresses"
                 progress(f"assembly, {name}, mesh {mesh.label()} (first failure)")
