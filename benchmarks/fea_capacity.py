@@ -1,6 +1,6 @@
 """FE first buckling of the capacity validation set, for docs/validation/capacity.md (issue 34).
 
-    python benchmarks/fea_capacity.py run [--minutes M] [--max-along A] [--only-along A]
+    python benchmarks/fea_capacity.py run [--minutes M] [--max-along A] [--only-along A] [--design TEXT]
     python benchmarks/fea_capacity.py table                               # Markdown summary
 
 Writes ``docs/validation/capacity_fe.csv``, one row per (design, step, along): the design's load
@@ -173,9 +173,11 @@ def solve(case: Case, step: str, along: int) -> tuple[int, float, float, str]:
     return info.nodes, f[0], second, where
 
 
-def run(minutes: float = math.inf, max_along: int = 16, only: int | None = None) -> None:
+def run(
+    minutes: float = math.inf, max_along: int = 16, only: int | None = None, design: str = ""
+) -> None:
     """Run the cases not yet in the CSV, one ccx at a time; no new case after ``minutes``;
-    ``only``: the cases of that mesh only."""
+    ``only``: the cases of that mesh only; ``design``: of the designs whose name holds it."""
     from corrugate.core.errors import CorrugateError
 
     ds = designs()
@@ -184,7 +186,7 @@ def run(minutes: float = math.inf, max_along: int = 16, only: int | None = None)
     pre = ["python benchmarks/fea_capacity.py run (docstring: what each column is)"]
     with appender(CSV, FIELDS, pre) as write:
         for name, step, along in jobs(ds, max_along):
-            if only is not None and along != only:
+            if (only is not None and along != only) or design not in name:
                 continue
             case = ds[name]
             key = (name, case.test, step, str(along))
@@ -286,7 +288,8 @@ if __name__ == "__main__":
             max_along = int(args[args.index("--max-along") + 1])
         if "--only-along" in args:
             only = int(args[args.index("--only-along") + 1])
-        run(minutes, max_along, only)
+        design = args[args.index("--design") + 1] if "--design" in args else ""
+        run(minutes, max_along, only, design)
     elif args[:1] == ["table"]:
         table()
     else:
