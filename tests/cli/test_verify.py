@@ -174,3 +174,33 @@ def test_an_extended_series_says_at_which_meshes() -> None:
     text = out.getvalue()
     assert "1.03 (at 2 / 4 / 8 / 16)" in text and why in text
     assert text.count("(at ") == 1
+
+
+def test_the_first_failure_table_states_each_load_case_against_its_load() -> None:
+    """The rows below the constraints' table: the load case, its constraints, the load they are
+    certified under and the FE first failure in words; a load above the FE estimate says NO,
+    a stiffness bound (no load) says neither; no rows, no table."""
+    from io import StringIO
+
+    from rich.console import Console
+
+    from corrugate.cli.verify import print_failures
+    from corrugate.fea.first_failure import FailureRow
+
+    rows = (
+        FailureRow(
+            "buckling in 3-point bending", "buckling", ("d",), 10.0, {2: 1.58}, 1.58, model=0.51
+        ),
+        FailureRow("3-point bending", "yield", ("k",), None, {2: 40.0, 4: 30.0}, 30.0),
+    )
+    buf = StringIO()
+    print_failures(rows, Console(file=buf, width=300, no_color=True))
+    text = buf.getvalue()
+    assert "first buckling at 1.58 N (series 1.58)" in text
+    assert "first yield at 30 N (series 40 / 30)" in text
+    lines = [ln for ln in text.splitlines() if "first " in ln and "N (series" in ln]
+    cells = [[c.strip() for c in ln.strip(" │").split("│")] for ln in lines]
+    assert cells[0][-2:] == ["NO", "0.51 N: yes"] and cells[1][-2:] == ["-", "-"]
+    empty = StringIO()
+    print_failures((), Console(file=empty))
+    assert empty.getvalue() == ""

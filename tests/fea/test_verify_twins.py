@@ -29,6 +29,8 @@ A = Assembly.identical(
         ("Dcant@90", "cantilever", "D", CANTILEVER.form.a),  # type: ignore[union-attr]
         ("D3pt@30", "three-point", "D", THREE_POINT.form.a),  # type: ignore[union-attr]
         ("Pb@0", "platens", "Pb", 0.0),
+        ("Pmax3pt@0", "three-point", "Pmax", 0.0),
+        ("Pmaxcant@90", "cantilever", "Pmax", 0.0),
     ],
 )
 def test_each_constraint_has_the_fixture_of_its_test(
@@ -38,7 +40,7 @@ def test_each_constraint_has_the_fixture_of_its_test(
     assert isinstance(t, Twin), t
     assert (t.test, t.read, t.a) == (test, read, a)
     # the buckling load is the platens run as a linear buckling step, every other a static one
-    assert t.step.name == ("buckle" if key.startswith("Pb") else "static")
+    assert t.step.name == ("buckle" if key.startswith(("Pb", "Pmax")) else "static")
     assert t.eta == Quantity.parse(key).eta
     coupon = t.test != "frame" and t.eta not in (0.0, 90.0)  # the frame: the whole panel
     assert t.shifted == coupon  # a coupon off the creases runs at several positions
@@ -52,7 +54,8 @@ def test_each_constraint_has_the_fixture_of_its_test(
         ("EIframe@0", "bending in a frame"),
         ("EI@45", "EI off the crease directions"),
         ("k3pt@45", "off the crease directions"),
-        ("Pmax3pt@0", "strength"),
+        ("Pmax3pt@30", "a load capacity off the crease directions"),
+        ("Pmax3pt@0/L=25", "span 25 mm"),
         ("Pb@45", "buckling off the crease directions"),
     ],
 )
@@ -244,3 +247,46 @@ minimize = "mass"
         ("Pmax3pt@0", "N", None),  # and that load held at the safety factor (its capacity)
     ]
     assert typed[1].bound == pytest.approx(0.5)
+
+
+def test_a_load_capacity_is_the_first_buckling_load_over_its_safety_factor(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A load capacity (Pmax: a deflection's load held at the safety factor) in design.json
+    carries the capacity at the safety factor (``value``) and the model's failure loads
+    (``failure_loads_N``): the safety factor is their least over the value, 1.2 / 0.6 = 2 here.
+    Its FE twin is the three-point fixture as a linear buckling run (a stand-in for CalculiX:
+    3 / 2.5 / 2.4 N at 2 / 4 / 8 per facet, by hand d1 = 0.5, d2 = 0.1, p = log2 5, Richardson
+    2.4 - 0.1 / 4 = 2.375 N) over that factor, 1.1875 N, against the bound 1 N: it holds; at a
+    bound of 1.3 N it does not. Without failure loads there is no factor and no twin."""
+    from types import SimpleNamespace
+    from typing import Any
+
+    from corrugate.fea import verify
+
+    loads = {2: 3.0, 4: 2.5, 8: 2.4}
+    steps: list[str] = []
+
+    def fake(assembly: Any, test: str, mesh: Any, eta: float, **kw: Any) -> Any:
+        steps.append(kw["step"].name)
+        return SimpleNamespace(value=lambda: loads[mesh.along])
+
+    monkeypatch.setattr(verify, "solve_assembly", fake)
+    c = {
+        "name": "cap",
+        "quantity": "Pmax3pt@0",
+        "sense": "min",
+        "bound": 1.0,
+        "value": 0.6,
+        "unit": "N",
+        "failure_loads_N": {"yield": 5.0, "edge-facet-buckling": 1.2},
+    }
+    assert verify.safety_factor(c) == pytest.approx(2.0)
+    [row] = verify.verify_design(A, [c]).rows
+    assert row.fe == pytest.approx(2.375 / 2.0, rel=1e-12) and row.holds
+    assert row.fe_series == {2: 1.5, 4: 1.25, 8: 1.2} and set(steps) == {"buckle"}
+    assert "over the safety factor 2" in row.note and "buckling" in row.test
+    [tight] = verify.verify_design(A, [{**c, "bound": 1.3}]).rows
+    assert not tight.holds
+    [none] = verify.verify_design(A, [{k: v for k, v in c.items() if k != "failure_loads_N"}]).rows
+    assert not none.holds and "safety factor" in none.note and not none.fe_series

@@ -2,7 +2,9 @@
 
 Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). Reads ``DIR/design.json`` (written by
 ``corrugate design SPEC --out DIR``), runs each constraint's FE twin on a mesh series and
-extrapolates it (:mod:`corrugate.fea.verify`), prints the table, and writes ``DIR/verify.json``
+extrapolates it (:mod:`corrugate.fea.verify`), prints the table, then each load case's first
+buckling and first yield load in FE (:mod:`corrugate.fea.first_failure`; ``--no-first-failure``
+skips them), and writes ``DIR/verify.json`` (its ``first_failure`` list beside ``constraints``)
 as the folder's set of kind ``verify``. The FE subpackage is imported only when the command
 runs. Exit codes: 0 every constraint holds in FE, 1 one does not (or has no FE twin yet), 2 bad
 input (a missing or malformed design.json, a folder that cannot be written, no ccx).
@@ -30,10 +32,12 @@ from corrugate.core.errors import InputError
 if TYPE_CHECKING:
     from rich.console import Console
 
+    from corrugate.fea.first_failure import FailureRow
     from corrugate.fea.verify import Verification
 
 __all__ = [
     "COMMANDS",
+    "print_failures",
     "print_table",
     "verify_cmd",
 ]
@@ -92,6 +96,36 @@ def print_table(v: Verification, label: str, console: Console) -> None:
     )
 
 
+def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
+    """The first-failure rows (:mod:`corrugate.fea.first_failure`): each load case's first
+    buckling and first yield load in FE, beside the load its constraints are certified under
+    and the model's first-failure load of a load capacity (no safety factor)."""
+    from rich.markup import escape
+    from rich.table import Table
+
+    if not rows:
+        return
+    t = Table(
+        title="first failure in FE (evidence beside the constraints, not part of their verdict)",
+        title_justify="left",
+    )
+    cols = ("load case", "constraints", "load", "FE first failure", "load <= FE", "model <= FE")
+    for col in cols:
+        t.add_column(col, justify="left" if col in cols[:2] or col == cols[3] else "right")
+    yes_no = {None: "-", True: "yes", False: "[red]NO[/red]"}
+    for r in rows:
+        model = "-" if r.model is None else f"{r.model:.4g} N: {yes_no[r.model_holds]}"
+        t.add_row(
+            escape(r.test),
+            escape(", ".join(r.constraints)),
+            "-" if r.load is None else f"{r.load:.5g} N",
+            escape(r.sentence + (f"; {r.note}" if r.note else "")),
+            yes_no[r.holds],
+            model,
+        )
+    console.print(t)
+
+
 def verify_cmd(
     folder: Annotated[
         Path,
@@ -129,8 +163,20 @@ def verify_cmd(
             "per facet (0: 16; a 16-per-facet run may take minutes and up to ~8 GB).",
         ),
     ] = 0,
+    first_failure: Annotated[
+        bool,
+        Opt(
+            "--first-failure/--no-first-failure",
+            help="Also run each load case's fixture as a linear buckling analysis and with "
+            "stresses: the load at the first buckling and at the first yield, on the same mesh "
+            "series (evidence beside the constraints, not part of the verdict).",
+        ),
+    ] = True,
     as_json: Annotated[
-        bool, Opt("--json", help='Print {"holds", "constraints": [...]} as JSON.')
+        bool,
+        Opt(
+            "--json", help='Print {"holds", "constraints": [...], "first_failure": [...]} as JSON.'
+        ),
     ] = False,
     quiet: o.Quiet = False,
 ) -> None:
@@ -143,6 +189,11 @@ def verify_cmd(
     twin yet, 2 for bad input. Every layout: a circle's K runs in the wheel fixture (a ground
     patch against the hub), a polygon's constraints along its creases in the rectangle's
     fixtures on its cut outline (`corrugate docs fea`, 2.8); a row says how its test differs.
+
+    Below them, each load case's first failure in FE: its fixture as a linear buckling
+    analysis (a dead load) and its static run's peak stress against the yield strength, the
+    loads (N) on the same mesh series (--no-first-failure: not run); they do not change the exit
+    code.
 
     Example: corrugate verify out/gripper --mesh 2,4,8
     """
@@ -176,14 +227,30 @@ def verify_cmd(
         timeout=timeout,
         max_mesh=cap,
     )
-    data = {"design": design_label(assembly), **result.as_json()}
+    failures: tuple[FailureRow, ...] = ()
+    if first_failure:
+        from corrugate.fea.first_failure import first_failures
+
+        failures = first_failures(
+            assembly,
+            constraints,
+            joint,
+            meshes,
+            progress=progress,
+            folder=workdir,
+            timeout=timeout,
+            done=result.rows,
+        )
+    found = {**result.as_json(), "first_failure": [r.as_json() for r in failures]}
+    data = {"design": design_label(assembly), **found}
     text = json.dumps(data, indent=2, allow_nan=False)
     write_set(folder, {VERIFY_NAME: text + "\n"}, field="DIR", kind=VERIFY_KIND)
     if as_json:
-        typer.echo(json.dumps(result.as_json(), indent=2, allow_nan=False))
+        typer.echo(json.dumps(found, indent=2, allow_nan=False))
     elif not quiet:
         console = make_console()
         print_table(result, design_label(assembly), console)
+        print_failures(failures, console)
         console.print(f"wrote {folder / VERIFY_NAME}")
     if not result.holds:
         if quiet:

@@ -23,6 +23,8 @@ D, EI, P / delta, ``four-point``           ``four-point``: P / delta at the load
 D, EI, P / delta, ``cantilever``           ``cantilever``: P / delta at the tip
 Pb (buckling, eta 0 or 90)                 ``platens`` as a linear buckling run: the first
                                            buckling load
+Pmax (a load capacity, eta 0 or 90)        its test's fixture as a linear buckling run: the
+                                           first buckling load over the safety factor
 circle: K, ``test = "wheel"``              ``wheel`` (:mod:`corrugate.fea.outline`): the
                                            model's test (docs/load_cases.md 9)
 circle: K, free sides (no test, platens)   ``wheel``: not the model's test, the row says so
@@ -36,8 +38,8 @@ delta). Each twin runs on a mesh series (elements per facet, default 2 / 4 / 8) 
 extrapolated (:mod:`corrugate.fea.extrapolate`). What has no FE twin yet says so in its row and
 does not hold: a span other than the panel's length (the fixtures support the panel at its
 ends), D or EI in a frame, EI or a bending test's P / delta off the crease directions (the
-coupon has its own span), load capacities (strength), and the band joint off the crease
-directions or in a frame.
+coupon has its own span), load capacities off the crease directions, and the band joint off
+the crease directions or in a frame.
 
 Off the crease directions the coupon (:func:`corrugate.fea.shells.oblique_shells`) holds a
 whole number of facets, and which ones depends on where it is cut: its FE value depends on the
@@ -94,9 +96,11 @@ __all__ = [
     "Verification",
     "behavioural",
     "check_layout",
+    "joint_options",
     "parse_max_mesh",
     "parse_meshes",
     "parse_shifts",
+    "safety_factor",
     "twin_of",
     "verify_design",
 ]
@@ -134,7 +138,8 @@ class Twin:
     (the 4-point gauge), ``Pb``), with the test's ``a`` coefficient for a bending test's
     apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
     row should add; ``span`` (mm): 3-point bending over supports that far apart, inside a longer
-    panel (None: the panel's length, supported at its ends)."""
+    panel (None: the panel's length, supported at its ends); ``scale`` multiplies a load
+    capacity's FE load (``Pmax``: 1 / the safety factor)."""
 
     test: str
     eta: float
@@ -144,6 +149,7 @@ class Twin:
     note: str = ""
     span: float | None = None
     step: Step = STATIC
+    scale: float = 1.0
 
     @property
     def fixture(self) -> Fixture:
@@ -173,6 +179,8 @@ class Twin:
             return r.value if self.load is None else self.load / r.value
         if self.read == "Pb":
             return r.value()
+        if self.read == "Pmax":  # the first buckling load at the safety factor
+            return r.value() * self.scale
         if self.read == "K":
             assert r.K is not None
             return r.K
@@ -272,7 +280,7 @@ class Verification:
         }
 
 
-def _joint(joint: str) -> tuple[bool, Bond]:
+def joint_options(joint: str) -> tuple[bool, Bond]:
     """``connectors`` and ``bond`` of the FE for the design's joint (docs/load_cases.md 7)."""
     if joint in ("none", ""):
         return False, "edges"
@@ -293,7 +301,7 @@ def twin_of(
             f"no FE twin yet (a load held {q.duration:g} h: the FE runs at the short-term E, "
             "the model at the creep modulus, `corrugate docs load_cases` section 11)"
         )
-    connectors, _ = _joint(joint)
+    connectors, _ = joint_options(joint)
     eta = q.eta if q.eta is not None else 0.0
     principal = principal_axis(eta) is not None
     note = ""
@@ -306,7 +314,7 @@ def twin_of(
             return why
         note = POLYGON_NOTE
     if q.kind == "Pmax":
-        return "no FE twin yet (strength: load capacity)"
+        return _capacity_twin(q, assembly, eta, principal, note)
     if q.kind == "Pb":
         if not principal:
             return "no FE twin yet (buckling off the crease directions)"
@@ -361,6 +369,60 @@ def twin_of(
     if fx is None or fx.measures != "D":
         return f"no FE twin yet (test {test})"
     return Twin(fx.name, eta, q.kind, a=form.a, load=load, note=note, span=span)
+
+
+def _capacity_twin(
+    q: Quantity, assembly: Assembly, eta: float, principal: bool, note: str
+) -> Twin | str:
+    """A load capacity's twin (``Pmax``: the load case's load held at the safety factor): its
+    load case's fixture run as a linear buckling analysis, the first buckling load (a dead
+    load) over the safety factor (:attr:`Twin.scale`, set from the constraint by
+    :func:`verify_design`), or why it has none."""
+    if not principal:
+        return "no FE twin yet (a load capacity off the crease directions)"
+    if q.support not in (None, "free"):
+        return f"no FE twin yet (a load capacity, support {q.support})"
+    fixture = get_load_case(q.test or "platens").fixture
+    if fixture not in fixture_names("coupon"):
+        return f"no FE twin yet (a load capacity in test {q.test})"
+    fx = get_fixture(fixture)
+    span: float | None = None
+    if q.span is not None:
+        length = specimen(assembly, eta)[1]
+        if abs(q.span - length) > 1e-9 * max(1.0, length):
+            if not (fx.takes_span and q.span < length):
+                return (
+                    f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its "
+                    f"ends, {length:.6g} mm apart, or 3-point over a shorter span)"
+                )
+            span = q.span
+    what = CAPACITY_NOTE
+    return Twin(
+        fx.name,
+        eta,
+        "Pmax",
+        note="; ".join(x for x in (what, note) if x),
+        span=span,
+        step=LinearBuckling(),
+    )
+
+
+#: What a load capacity's FE twin is; verify_design adds the safety factor.
+CAPACITY_NOTE = "FE: the first buckling load (a dead load) over the safety factor"
+
+
+def safety_factor(c: Mapping[str, Any]) -> float | None:
+    """The safety factor of a load capacity's constraint in design.json: its least
+    ``failure_loads_N`` (the model's first failure, N) over its ``value`` (the capacity at the
+    safety factor, N); None when either is missing."""
+    loads = c.get("failure_loads_N")
+    value = c.get("value")
+    if not isinstance(loads, Mapping) or isinstance(value, bool):
+        return None
+    if not isinstance(value, int | float) or value <= 0:
+        return None
+    found = [float(v) for v in loads.values() if isinstance(v, int | float)]
+    return min(found) / float(value) if found else None
 
 
 #: What a polygon's FE twin is (docs/fea.md 2.8), added to its rows.
@@ -527,7 +589,7 @@ def verify_design(
     from its three finest meshes; the worst position is then chosen again among those that ran
     the finest requested mesh (positions screened out stay out), and so on. The row's
     ``extended`` says so and why."""
-    connectors, bond = _joint(joint)
+    connectors, bond = joint_options(joint)
     if not shifts:
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
     for sh in shifts:
@@ -611,7 +673,19 @@ def verify_design(
         if c is None:
             continue
         base = Row(c.name, c.quantity.key, c.sense, c.unit, c.bound, c.value)
-        planned.append((base, twin_of(c.quantity, assembly, joint, c.load)))
+        twin = twin_of(c.quantity, assembly, joint, c.load)
+        if c.quantity.kind == "Pmax" and isinstance(twin, Twin):
+            sf = safety_factor(entry if isinstance(entry, Mapping) else entry.as_dict())
+            twin = (
+                replace(
+                    twin,
+                    scale=1.0 / sf,
+                    note=twin.note.replace(CAPACITY_NOTE, f"{CAPACITY_NOTE} {sf:g}"),
+                )
+                if sf
+                else "no FE twin yet (no failure_loads_N to read the safety factor from)"
+            )
+        planned.append((base, twin))
     rows: list[Row] = []
     for base, twin in planned:
         sense = base.sense

@@ -1,0 +1,311 @@
+"""The FE twin of a design's first failure under each of its load cases: the rows ``corrugate
+verify`` adds below the constraints' (issue 34; docs/fea.md sections 2 and 6).
+
+Every load-case fixture a behavioural constraint of the design runs in (its twin,
+:func:`corrugate.fea.verify.twin_of`: three-point, four-point, cantilever, platens along a crease
+direction, the wheel) gives two statements, each on the mesh series and extrapolated as the
+constraint rows are (:func:`corrugate.fea.extrapolate.extrapolate`):
+
+* **buckling**: the fixture run as a linear buckling analysis
+  (:class:`corrugate.fea.steps.LinearBuckling`): the lowest positive buckling factor is the load
+  (N) at which the part first buckles. The load is a dead load (a weight, a finger: the load
+  line free to move in the mode). The static deck with ``*STATIC`` replaced by ``*BUCKLE`` (a
+  testing machine's held head) gives the same load where the two decks agree and differs
+  elsewhere, either way (docs/validation/capacity.md: 1.07 against 4.76 N for issue 34's stubby
+  panel, 0.80 against 0.66 N for a cantilever); verify runs the dead load only.
+* **yield**: the static run with nodal stresses (coupon fixtures; the wheel's deck writes none):
+  the load (N) at which the largest |principal stress| over the shells' nodes (both surfaces, the
+  load and support lines included) reaches the yield strength of its part's material
+  (:attr:`corrugate.materials.library.Material.yield_strength`), P_y = sigma_y x P / sigma_max
+  of the linear run at force P. At the load and support lines the shell stresses concentrate and
+  grow as the mesh refines, so this series may not converge: the finest value is then what there
+  is, as its estimate says.
+
+A row also names the load its constraints are certified under (the largest ``load_N`` among
+them, None for a stiffness bound) and whether that load is at or below the FE estimate, and,
+where the design carries a load capacity (a ``Pmax`` constraint: a strength bound, or the one a
+deflection bound under a load brings; docs/load_cases.md), the model's first-failure load (its
+least ``failure_loads_N``: the capacity times the safety factor) and whether it is at or below the
+FE's (issue 34: "a certified capacity holds when X times the safety factor is at or below the
+FE's first failure"). The rows are evidence beside the constraint rows, not part of their
+verdict (``holds``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from corrugate.core.errors import CorrugateError
+from corrugate.fea.assembly import AssemblyMesh, solve_assembly
+from corrugate.fea.extrapolate import extrapolate
+from corrugate.fea.outline import solve_outline
+from corrugate.fea.steps import LinearBuckling
+from corrugate.fea.verify import Row, Twin, behavioural, joint_options, safety_factor, twin_of
+from corrugate.geometry.layer import Assembly
+from corrugate.solver.quantity import Quantity
+
+__all__ = ["FailureRow", "first_failures", "yield_load"]
+
+#: The failure modes of a row, in the order they are listed.
+MODES = ("buckling", "yield")
+
+
+@dataclass(frozen=True, slots=True)
+class FailureRow:
+    """One failure mode of one load-case fixture: ``test`` (the fixture run and where),
+    ``mode`` (``buckling`` or ``yield``), the ``constraints`` run in it, the ``load`` (N) they
+    are certified under (None: no load stated), the FE series (elements per facet -> load N at
+    the first failure, None where the run failed), the estimate ``fe`` (N), its ``order`` and
+    ``how``, a ``note`` (failed runs, why there is no value) and the ``model``'s first-failure
+    load (N, no safety factor; None without a load capacity among the constraints)."""
+
+    test: str
+    mode: str
+    constraints: tuple[str, ...]
+    load: float | None
+    fe_series: dict[int, float | None] = field(default_factory=dict)
+    fe: float | None = None
+    order: float | None = None
+    how: str = ""
+    note: str = ""
+    model: float | None = None
+
+    @property
+    def model_holds(self) -> bool | None:
+        """Whether the model's first-failure load is at or below the FE estimate (None: no
+        model value or no estimate)."""
+        if self.model is None or self.fe is None:
+            return None
+        return self.model <= self.fe
+
+    @property
+    def holds(self) -> bool | None:
+        """Whether the certified load is at or below the FE estimate (None: no load or no
+        estimate)."""
+        if self.load is None or self.fe is None:
+            return None
+        return self.load <= self.fe
+
+    @property
+    def sentence(self) -> str:
+        """The row in words: "first buckling at X N (series a / b / c, estimate e)"."""
+        series = " / ".join("-" if v is None else f"{v:.4g}" for v in self.fe_series.values())
+        first = "first buckling" if self.mode == "buckling" else "first yield"
+        at = "-" if self.fe is None else f"{self.fe:.4g}"
+        how = f", {self.how}" if self.how else ""
+        return f"{first} at {at} N (series {series}{how})"
+
+    def as_json(self) -> dict[str, Any]:
+        """The row as verify.json writes it (no NaN: null where unknown)."""
+        return {
+            "test": self.test,
+            "mode": self.mode,
+            "constraints": list(self.constraints),
+            "load_N": self.load,
+            "fe_series": {str(k): _finite(v) for k, v in self.fe_series.items()},
+            "fe": _finite(self.fe),
+            "order": _finite(self.order),
+            "estimate": self.how or None,
+            "holds": self.holds,
+            "statement": self.sentence,
+            "note": self.note or None,
+            "model_first_failure_N": _finite(self.model),
+            "model_holds": self.model_holds,
+        }
+
+
+def _finite(v: float | None) -> float | None:
+    return v if v is not None and math.isfinite(v) else None
+
+
+def yield_load(
+    force: float, peak: Sequence[float], strengths: Sequence[float | None]
+) -> float | None:
+    """The load (N) at which a linear static run at ``force`` (N) first reaches yield: the least
+    over the parts of sigma_y,k x force / sigma_max,k (``peak``: each part's largest |principal
+    stress|, MPa; ``strengths``: its material's yield strength, MPa, None when unknown); None
+    when no part has both."""
+    loads = [
+        s * abs(force) / p
+        for p, s in zip(peak, strengths, strict=True)
+        if s is not None and p > 0 and math.isfinite(p)
+    ]
+    return min(loads) if loads else None
+
+
+def _peak_by_part(r: Any, parts: int) -> list[float]:
+    """The largest |principal stress| (MPa) of each part (material 1, 2, 3) of a static run."""
+    f = r.stresses
+    amax = np.max(np.abs(f.principal()), axis=1)
+    return [
+        float(np.max(amax[f.material == k])) if np.any(f.material == k) else math.nan
+        for k in range(1, parts + 1)
+    ]
+
+
+def first_failures(
+    assembly: Assembly,
+    constraints: Sequence[Mapping[str, Any]],
+    joint: str = "none",
+    meshes: Sequence[int] = (2, 4, 8),
+    *,
+    progress: Callable[[str], None] = lambda line: None,
+    folder: Path | None = None,
+    timeout: float = 900.0,
+    done: Sequence[Row] = (),
+) -> tuple[FailureRow, ...]:
+    """The failure rows (module docstring) of every load-case fixture the behavioural
+    ``constraints`` of a design.json run in, on the mesh series ``meshes``: buckling first, then
+    yield, per fixture in the order its first constraint comes. Constraints off the crease
+    directions (a coupon cut along eta, whose value depends on where it is cut), in a frame,
+    without an FE twin, or already a buckling bound, add no row. ``done``: the constraint rows
+    of :func:`corrugate.fea.verify.verify_design` on the same meshes; a load capacity's row there
+    already holds its fixture's buckling series over the safety factor, which is read back
+    (times the factor) instead of running it again."""
+    connectors, bond = joint_options(joint)
+    groups: dict[
+        tuple[str, float, float | None], tuple[Twin, list[str], list[float], list[float]]
+    ] = {}
+    ran: dict[tuple[str, float, float | None], dict[int, float | None]] = {}
+    rows_by_name = {r.name: r for r in done}
+    for c, q in behavioural(constraints):
+        load = _number(c.get("load_N"))
+        model: float | None = None
+        if q.kind == "Pmax":  # a load capacity: its load case's fixture (as a P / delta's)
+            failure = c.get("failure_loads_N")
+            found = [_number(v) for v in failure.values()] if isinstance(failure, dict) else []
+            model = min((v for v in found if v is not None), default=None)
+            sf = safety_factor(c)
+            row = rows_by_name.get(str(c.get("name", q.key)))
+            q = Quantity.load_case("k", q.eta or 0.0, q.test or "platens", **_support(q))
+            cap = twin_of(q, assembly, joint, load)
+            theirs = {} if row is None else row.fe_series
+            complete = set(theirs) == set(meshes) and None not in theirs.values()
+            if sf and complete and isinstance(cap, Twin) and not cap.shifted:
+                ran[(cap.test, cap.eta, cap.span)] = {
+                    k: None if v is None else v * sf for k, v in theirs.items()
+                }
+        twin = twin_of(q, assembly, joint, load)
+        if isinstance(twin, str) or twin.read == "Pb" or twin.shifted:
+            continue
+        if twin.fixture.kind not in ("coupon", "outline"):
+            continue
+        key = (twin.test, twin.eta, twin.span)
+        _, names, loads, models = groups.setdefault(key, (twin, [], [], []))
+        names.append(str(c.get("name", q.key)))
+        if load is not None:
+            loads.append(load)
+        if model is not None:
+            models.append(model)
+    parts = 3 if connectors else 2
+    strengths = [assembly.layer1.material.yield_strength, assembly.layer2.material.yield_strength]
+    strengths += [assembly.layer1.material.yield_strength] if connectors else []  # the band's
+    rows: list[FailureRow] = []
+    for twin, names, loads, models in groups.values():
+        outline = twin.fixture.kind == "outline"
+        where = f" along eta = {twin.eta:g} deg" + (
+            f", span {twin.span:g} mm" if twin.span is not None else ""
+        )
+        buckle = LinearBuckling()
+        label = buckle.describe(twin.fixture.label, twin.fixture.loading) + where
+        static_label = twin.fixture.label + where
+        load = max(loads) if loads else None
+        for mode in MODES:
+            if mode == "yield" and outline:
+                continue
+            series: dict[int, float | None] = {}
+            failures: list[str] = []
+            reused = ran.get((twin.test, twin.eta, twin.span)) if mode == "buckling" else None
+            if reused is not None:
+                series = dict(reused)
+            for along in () if reused is not None else meshes:
+                mesh = AssemblyMesh(along)
+                name = label if mode == "buckling" else f"{static_label}, stresses"
+                progress(f"assembly, {name}, mesh {mesh.label()} (first failure)")
+                try:
+                    if mode == "buckling" and outline:
+                        o = solve_outline(
+                            assembly,
+                            twin.test,
+                            mesh,
+                            twin.eta,
+                            step=buckle,
+                            folder=folder,
+                            timeout=timeout,
+                        )
+                        series[along] = o.value
+                    elif mode == "buckling":
+                        r = solve_assembly(
+                            assembly,
+                            twin.test,
+                            mesh,
+                            twin.eta,
+                            step=buckle,
+                            connectors=connectors,
+                            bond=bond,
+                            span=twin.span,
+                            folder=folder,
+                            timeout=timeout,
+                        )
+                        series[along] = r.value()
+                    else:
+                        r = solve_assembly(
+                            assembly,
+                            twin.test,
+                            mesh,
+                            twin.eta,
+                            stresses=True,
+                            connectors=connectors,
+                            bond=bond,
+                            span=twin.span,
+                            folder=folder,
+                            timeout=timeout,
+                        )
+                        series[along] = yield_load(r.force, _peak_by_part(r, parts), strengths)
+                except CorrugateError as exc:
+                    series[along] = None
+                    failures.append(f"{along}/facet not run: {exc}")
+            known = {k: v for k, v in series.items() if v is not None}
+            e = extrapolate(known)
+            note = list(failures)
+            if mode == "yield" and not known and not failures:
+                note.append("no yield strength for the sheet's material")
+            if mode == "buckling":
+                note.insert(0, "a dead load (the load line free to move in the mode)")
+            else:
+                note.insert(0, "largest |principal stress| anywhere, the load lines included")
+            rows.append(
+                FailureRow(
+                    label if mode == "buckling" else static_label,
+                    mode,
+                    tuple(names),
+                    load,
+                    series,
+                    e.value,
+                    e.order,
+                    e.how,
+                    "; ".join(note),
+                    min(models) if models else None,
+                )
+            )
+    return tuple(rows)
+
+
+def _number(v: object) -> float | None:
+    """``v`` as a float when it is a number (not a bool), else None."""
+    return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
+
+
+def _support(q: Quantity) -> dict[str, Any]:
+    """The support and span of a load capacity's quantity, as :meth:`Quantity.load_case` takes
+    them."""
+    out: dict[str, Any] = {"span": q.span}
+    if q.support is not None:
+        out["support"] = q.support
+    return out
