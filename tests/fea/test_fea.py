@@ -349,6 +349,14 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
         assembly_deck(small_assembly, "platens", AssemblyMesh(2), 45.0, mesher="structured")
     with pytest.raises(InputError, match="0 or 90 deg with connectors"):
         assembly_deck(small_assembly, "platens", AssemblyMesh(2), 45.0, connectors=True)
+    # the band's supports are the panel's ends: a shorter span is refused naming the span
+    length = specimen(small_assembly, 0.0)[1]
+    with pytest.raises(
+        InputError, match=r"^span = .* allowed the panel's length, .* mm, with conn"
+    ):
+        assembly_deck(
+            small_assembly, "three-point", AssemblyMesh(2), 0.0, connectors=True, span=0.9 * length
+        )
     # a rectangle off-axis is the coupon of its proportions, turned to the nearer crease direction
     rect = Assembly(small_assembly.layer1, replace(small_assembly.layer2, n=5), Rectangle())
     assert specimen(rect, 30.0) == (rect.Lx, rect.Ly)

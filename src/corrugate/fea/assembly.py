@@ -330,6 +330,13 @@ def _decks(
             "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
         )
     if use_gmsh:
+        if connectors and short:  # the band is modelled on the structured mesh only
+            raise InputError(
+                "span",
+                f"{span:g} mm",
+                f"the panel's length, {L_load:g} mm, with connectors (the band is modelled on "
+                "the structured mesh only, whose supports are the panel's ends)",
+            )
         if connectors:
             raise InputError(
                 "eta",
