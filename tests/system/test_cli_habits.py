@@ -67,7 +67,12 @@ def test_show_completion_prints_a_bash_script(
         (
             "corrugate docs validation/",
             2,
-            {"validation/load_cases", "validation/off_axis", "validation/strength"},
+            {
+                "validation/capacity",
+                "validation/load_cases",
+                "validation/off_axis",
+                "validation/strength",
+            },
         ),
         ("corrugate analyze --model", 3, {"paper", "xia", "refined"}),
         ("corrugate analyze --material dura", 3, {"dura-lar"}),
