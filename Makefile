@@ -58,8 +58,8 @@ test: $(VENV)/.installed-dev system-deps lint typecheck
 	PYTHONDONTWRITEBYTECODE= $(BIN)/python -m pytest -q
 
 # The edit-test loop: the same venv, no system packages, lint or type check, and only the tests
-# marked neither fea (CalculiX), browser (Chromium) nor slow: under a minute (43 s wall and CPU
-# on a 2-core machine at load average 2, `/usr/bin/time make test-fast`; docs/architecture.md, 4).
+# marked neither fea (CalculiX), browser (Chromium) nor slow: under a minute (38-40 s wall and CPU
+# on a 2-core machine at load average 0.5-0.8, `/usr/bin/time make test-fast`; docs/architecture.md, 4).
 # Bytecode is cached even where PYTHONDONTWRITEBYTECODE is set: pytest rewrites and compiles every
 # test module, and each test's subprocess compiles the package, again on every run without it.
 test-fast: $(VENV)/.installed-dev
