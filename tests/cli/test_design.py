@@ -205,7 +205,14 @@ def test_infeasible_spec_exits_1_with_a_diagnosis(tmp_path: Path, cli: CliRun) -
 
 @pytest.mark.parametrize(
     "name",
-    ["blimp_gripper_continuous.toml", "wheel_circle.toml", "rectangle_independent.toml"],
+    # every shipped example but the one that shows a diagnosis and the robust one (a Monte Carlo
+    # answer, not certified); an example that turns infeasible, as chassis_battery_week did when
+    # capacity bounds came, fails here
+    sorted(
+        p.name
+        for p in EXAMPLES.glob("*.toml")
+        if p.name not in ("infeasible.toml", "blimp_gripper_robust.toml")
+    ),
 )
 @pytest.mark.slow
 def test_every_example_solves_certified(name: str, cli: CliRun) -> None:
