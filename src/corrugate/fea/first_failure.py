@@ -48,6 +48,7 @@ from corrugate.fea.outline import solve_outline
 from corrugate.fea.steps import LinearBuckling
 from corrugate.fea.verify import Row, Twin, behavioural, joint_options, safety_factor, twin_of
 from corrugate.geometry.layer import Assembly
+from corrugate.mechanics.behaviours import own_test
 from corrugate.solver.quantity import Quantity
 
 __all__ = ["FailureRow", "first_failures", "yield_load"]
@@ -183,7 +184,7 @@ def first_failures(
             model = min((v for v in found if v is not None), default=None)
             sf = safety_factor(c)
             row = rows_by_name.get(str(c.get("name", q.key)))
-            q = Quantity.load_case("k", q.eta or 0.0, q.test or "platens", **_support(q))
+            q = Quantity.load_case("k", q.eta or 0.0, q.test or own_test().name, **_support(q))
             cap = twin_of(q, assembly, joint, load)
             theirs = {} if row is None else row.fe_series
             complete = set(theirs) == set(meshes) and None not in theirs.values()
@@ -240,34 +241,27 @@ def first_failures(
                             timeout=timeout,
                         )
                         series[along] = o.value
-                    elif mode == "buckling":
+                    else:  # the coupon: as a buckling run, or static with its stresses
+                        how: dict[str, Any] = (
+                            {"step": buckle} if mode == "buckling" else {"stresses": True}
+                        )
                         r = solve_assembly(
                             assembly,
                             twin.test,
                             mesh,
                             twin.eta,
-                            step=buckle,
                             connectors=connectors,
                             bond=bond,
                             span=twin.span,
                             folder=folder,
                             timeout=timeout,
+                            **how,
                         )
-                        series[along] = r.value()
-                    else:
-                        r = solve_assembly(
-                            assembly,
-                            twin.test,
-                            mesh,
-                            twin.eta,
-                            stresses=True,
-                            connectors=connectors,
-                            bond=bond,
-                            span=twin.span,
-                            folder=folder,
-                            timeout=timeout,
+                        series[along] = (
+                            r.value()
+                            if mode == "buckling"
+                            else yield_load(r.force, _peak_by_part(r, parts), strengths)
                         )
-                        series[along] = yield_load(r.force, _peak_by_part(r, parts), strengths)
                 except CorrugateError as exc:
                     series[along] = None
                     failures.append(f"{along}/facet not run: {exc}")

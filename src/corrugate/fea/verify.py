@@ -380,9 +380,9 @@ def _capacity_twin(
     :func:`verify_design`), or why it has none."""
     if not principal:
         return "no FE twin yet (a load capacity off the crease directions)"
-    if q.support not in (None, "free"):
+    if q.support not in (None, DEFAULT_SUPPORT):
         return f"no FE twin yet (a load capacity, support {q.support})"
-    fixture = get_load_case(q.test or "platens").fixture
+    fixture = (get_load_case(q.test) if q.test else own_test()).fixture
     if fixture not in fixture_names("coupon"):
         return f"no FE twin yet (a load capacity in test {q.test})"
     fx = get_fixture(fixture)
