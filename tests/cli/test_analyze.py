@@ -111,6 +111,18 @@ def test_table_output_and_independent_layers(cli: CliRun) -> None:
     assert "Lx = 48.18 mm" in out and "stiffness" in out
 
 
+def test_the_buckling_lines_are_the_directions_asked_for(cli: CliRun) -> None:
+    """`--eta 0` states compression along 0 deg only (issue 36: it also printed 90 deg); without
+    --eta both crease directions."""
+    code, out, _ = cli([*BASE, "--eta", "0"])
+    assert code == 0
+    assert "compression along 0 deg" in out and "compression along 90 deg" not in out
+    code, out, _ = cli([*BASE, "--eta", "90"])
+    assert "compression along 90 deg" in out and "compression along 0 deg" not in out
+    code, out, _ = cli(BASE)
+    assert "compression along 0 deg" in out and "compression along 90 deg" in out
+
+
 @pytest.mark.parametrize(
     ("extra", "field", "allowed"),
     [

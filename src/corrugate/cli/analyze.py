@@ -100,7 +100,8 @@ def _print_analysis(r: Analysis, console: Console) -> None:
     for d in r.stiffness:
         s.add_row(_fmt(d.eta_deg), _fmt(d.K, 5), _fmt(d.D, 5), _fmt(d.EI, 5), f"{d.EI / 1000:.2f}")
     console.print(s)
-    for b in r.buckling:
+    asked = {d.eta_deg for d in r.stiffness}
+    for b in (b for b in r.buckling if b.eta_deg in asked):  # the directions the user asked for
         lo, hi = b.travel()
         console.print(
             f"compression along {b.eta_deg:g} deg: K holds until the end facets buckle, at "
