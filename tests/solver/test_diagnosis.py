@@ -226,3 +226,20 @@ def test_a_small_edit_is_the_hint_before_a_frame() -> None:
     assert side.relative is not None and side.relative < 0.01
     hint = best_hint(sol.diagnosis)
     assert hint.startswith('the smallest single change is constraints.side.max = "')
+
+
+def test_the_reach_of_a_bound_reads_in_its_own_direction() -> None:
+    """A pair diagnosis says how far each bound can go: a `max` bound (side.max <= 10 mm) "at
+    least" its smallest value, a `min` bound "at most" its largest, a deflection bound (stored as
+    P / delta >= load / max) "at least" its smallest deflection (issue 36 item 5: a side.max read
+    "reaches at most 18.19 mm")."""
+    from corrugate.solver.diagnosis import _reach, _value
+    from corrugate.solver.problem import Constraint
+    from corrugate.solver.quantity import LX
+
+    side = Constraint("constraints.side.max", LX, "max", 10.0)
+    assert _reach(side) == "at least"
+    assert _reach(Constraint("constraints.side.min", LX, "min", 10.0)) == "at most"
+    deflection = Constraint("constraints.deflection[0].max", LX, "min", 5.0, load=10.0)
+    assert _reach(deflection) == "at least"
+    assert _value(deflection, 4.0) == "2.5 mm"  # the deflection 10 N / 4 N/mm, not P / delta

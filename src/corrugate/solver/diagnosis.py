@@ -169,6 +169,13 @@ def _meets(c: Constraint, value: float) -> bool:
     return bool(c.satisfied(value))  # type: ignore[arg-type]
 
 
+def _reach(c: Constraint) -> str:
+    """How far a bound's value as the spec reads it (:func:`_value`) can be pushed: a ``min``
+    bound (>=) at most its largest value, a ``max`` bound (<=) at least its smallest one; a
+    deflection bound (P / delta >= load / max) at least its smallest deflection."""
+    return "at most" if c.sense == "min" and c.load is None else "at least"
+
+
 def _asked(c: Constraint) -> str:
     """What ``c`` asks, e.g. ``flexural rigidity EI(45 deg) >= 80 mN*m^2``."""
     if c.load is not None:
@@ -545,11 +552,13 @@ def _pairs(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
         together = []
         if ta.point is not None:
             together.append(
-                f"{_key(a)} {_value(a, ta.value)} with {_key(b)} at {_value(b, rb.value)}"
+                f"{_key(a)} {_reach(a)} {_value(a, ta.value)} with {_key(b)} at "
+                f"{_value(b, rb.value)}"
             )
         if tb.point is not None:
             together.append(
-                f"{_key(b)} {_value(b, tb.value)} with {_key(a)} at {_value(a, ra.value)}"
+                f"{_key(b)} {_reach(b)} {_value(b, tb.value)} with {_key(a)} at "
+                f"{_value(a, ra.value)}"
             )
         hint = None
         if ta.point is not None:
@@ -557,9 +566,9 @@ def _pairs(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
         text = (
             f"{a.name} and {b.name} bind only together: neither alone can be met with the other "
             f"constraints held, both dropped a design exists; {_key(a)} asks {_asked(a)} and reaches "
-            f"at most {_value(a, ra.value)} with {_key(b)} dropped; {_key(b)} asks {_asked(b)} and "
-            f"reaches at most {_value(b, rb.value)} with {_key(a)} dropped"
-            + (f"; together at most {' or '.join(together)}" if together else "")
+            f"{_reach(a)} {_value(a, ra.value)} with {_key(b)} dropped; {_key(b)} asks {_asked(b)} "
+            f"and reaches {_reach(b)} {_value(b, rb.value)} with {_key(a)} dropped"
+            + (f"; together {' or '.join(together)}" if together else "")
             + (f"; hint: {hint}" if hint else "")
         )
         out.append(
