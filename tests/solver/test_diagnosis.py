@@ -243,3 +243,17 @@ def test_the_reach_of_a_bound_reads_in_its_own_direction() -> None:
     deflection = Constraint("constraints.deflection[0].max", LX, "min", 5.0, load=10.0)
     assert _reach(deflection) == "at least"
     assert _value(deflection, 4.0) == "2.5 mm"  # the deflection 10 N / 4 N/mm, not P / delta
+
+
+def test_a_hint_for_a_plain_number_is_a_toml_number() -> None:
+    """A unitless key's hint is a bare number that TOML reads as one (issue 36 item 5: the hint
+    was `fabrication.max_t_over_W = "0.08334 "`, a quoted string with a trailing space); a key
+    with a unit stays a quoted quantity; both round towards the safe side."""
+    import tomllib
+
+    from corrugate.solver.diagnosis import _rounded
+
+    plain = tomllib.loads(f"x = {_rounded(0.0833412, '', down=True)}")["x"]
+    assert plain == 0.08334 and isinstance(plain, float)
+    assert tomllib.loads(f"x = {_rounded(0.0833412, '', down=False)}")["x"] == 0.08335
+    assert tomllib.loads(f"x = {_rounded(12.3456, 'mm', down=False)}")["x"] == "12.35 mm"

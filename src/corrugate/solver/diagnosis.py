@@ -65,13 +65,14 @@ def shown(value: float, unit: str) -> str:
 
 def _rounded(value: float, unit: str, down: bool) -> str:
     """``value`` rounded to 4 significant digits towards ``down`` (a lower bound rounded down
-    still holds), as a quoted spec value with its unit."""
+    still holds), as a quoted spec value with its unit, or a bare TOML number without one
+    (``fabrication.max_t_over_W = 0.08334``)."""
     v = value / 1000 if unit == "N*mm^2" else value
     text_unit = "mN*m^2" if unit == "N*mm^2" else unit
     if v != 0 and math.isfinite(v):
         step = 10.0 ** (math.floor(math.log10(abs(v))) - 3)
         v = (math.floor(v / step) if down else math.ceil(v / step)) * step
-    return f'"{v:.4g} {text_unit}"'
+    return f'"{v:.4g} {text_unit}"' if text_unit else f"{v:.4g}"  # a plain number unquoted
 
 
 def _key(c: Constraint) -> str:
