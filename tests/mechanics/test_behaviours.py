@@ -240,8 +240,8 @@ def test_quantity_keys_read_back(half: Behaviour) -> None:
     ]
     assert [q.key for q in qs] == ["EI@0", "Kframe@45", "Dhalf@30", "Pb@90", "mass"]
     assert [Quantity.parse(q.key) for q in qs] == qs
-    assert qs[1].description == "in-plane stiffness K in a frame(45 deg)"
-    assert qs[2].description == "bending stiffness D at half the frame(30 deg)"
+    assert qs[1].description == "in-plane stiffness K(45 deg) in a frame"
+    assert qs[2].description == "bending stiffness D(30 deg) at half the frame"
     assert [q.unit for q in qs] == ["N*mm^2", "N/mm", "N*mm", "N", "g"]
     with pytest.raises(InputError):
         register(replace(HALF, name="other"))  # the suffix 'half' is taken

@@ -155,7 +155,7 @@ def test_the_spec_takes_the_registered_load_case_and_the_solver_certifies_it(
     )
     [c] = [c for c in p.constraints if c.load is not None]
     assert c.quantity.key == "kcc@0" and c.quantity.test == "clamped-ends"
-    assert c.quantity.description.endswith(" with clamped ends(0 deg)")
+    assert c.quantity.description.endswith("(0 deg) with clamped ends")
     sol = solve(p)
     assert sol.status == "optimal" and sol.certified
     cand = p.candidates[0]

@@ -229,9 +229,11 @@ class Quantity:
 
     @property
     def description(self) -> str:
-        """A readable name, e.g. ``flexural rigidity EI(0 deg)``, ``in-plane stiffness K in a
-        frame(45 deg)``, ``mass``."""
+        """A readable name, e.g. ``flexural rigidity EI(0 deg)``, ``in-plane stiffness K(45 deg)
+        in a frame``, ``P/delta(90 deg) in cantilever over 150 mm``, ``mass``."""
         text = _KINDS[self.kind][0] if self.kind in _KINDS else self.kind
+        if self.eta is not None:  # the direction on the symbol: EI(0 deg) in a frame over ...
+            text += f"({self.eta:.12g} deg)"
         if self.support is not None:
             text += get_support(self.support).label
         if self.test is not None:
@@ -240,7 +242,7 @@ class Quantity:
             text += f" over {self.span:.12g} mm"
         if self.duration is not None:
             text += f" held {self.duration:.12g} h"
-        return text if self.eta is None else f"{text}({self.eta:.12g} deg)"
+        return text
 
     @property
     def directional(self) -> bool:
