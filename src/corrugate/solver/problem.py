@@ -25,7 +25,7 @@ from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.materials.library import Material, get_material, inline_material
-from corrugate.mechanics.behaviours import get_load_case, listed, load_cases
+from corrugate.mechanics.behaviours import Behaviour, get_load_case, listed, load_cases
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.mechanics.moduli import get_model
 from corrugate.mechanics.wheel import WHEEL_DIRECTIONS, wheel_direction
@@ -436,15 +436,26 @@ def _joint(joint: str, layout: Layout) -> str:
     return joint
 
 
+def _inplane(b: Behaviour) -> bool:
+    return b.form is not None and b.form.kind == "inplane"
+
+
 def _check_load_case_layout(where: str, layout: Layout, test: str) -> None:
     """A load case applies to its layouts (:attr:`Behaviour.layouts`): the built-in tests need
     straight edges to support, clamp or load, a square or a rectangle."""
     layouts = get_load_case(test).layouts
     if layouts and layout.name not in layouts:
+        own = [b for b in load_cases() if layout.name in b.layouts]  # the tests it does take
+        instead = "".join(
+            f"; a {layout.name} takes "
+            + ("an [[constraints.inplane_stiffness]] bound with " if _inplane(b) else "")
+            + f'test = "{b.name}": {b.text}'
+            for b in own
+        )
         raise SpecError(
             f"{where}.test",
             f"layout {layout.name}",
-            f"a {' or '.join(layouts)} layout",
+            f"a {' or '.join(layouts)} layout{instead}",
             reason="has no straight edges to support or load",
         )
 
