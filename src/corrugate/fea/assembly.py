@@ -101,7 +101,7 @@ from corrugate.fea.shells import (
     principal_axis,
     specimen,
 )
-from corrugate.fea.steps import STATIC, BoundaryItem, LinearBuckling, Nonlinear, Step
+from corrugate.fea.steps import STATIC, AnyStep, BoundaryItem, LinearBuckling, Nonlinear, Step
 from corrugate.geometry.layer import Assembly
 
 __all__ = [
@@ -202,7 +202,7 @@ def _deck_text(
     a: Assembly,
     parts: list[tuple[int, Shell]],
     fixture: Fixture,
-    step: Step,
+    step: AnyStep,
     mesh: AssemblyMesh,
     eta_deg: float,
     delta: float,
@@ -287,7 +287,7 @@ def _decks(
     eta_deg: float = 0.0,
     delta: float | None = None,
     *,
-    step: Step = STATIC,
+    step: AnyStep = STATIC,
     connectors: bool = False,
     match_layers: bool | None = None,
     mesher: Mesher = "auto",
@@ -428,7 +428,7 @@ def assembly_deck(
     eta_deg: float = 0.0,
     delta: float | None = None,
     *,
-    step: Step = STATIC,
+    step: AnyStep = STATIC,
     connectors: bool = False,
     match_layers: bool | None = None,
     mesher: Mesher = "auto",

@@ -26,7 +26,8 @@ What :func:`ramp` runs, on one shell mesh of the assembly (:mod:`corrugate.fea.a
 
 The curve is the load P (N) against the load point's travel delta (mm, along the load), and the
 mode's amplitude w (mm): the displacement of the mode's largest node projected on the mode's
-direction there (how much the imperfection grew). :func:`knee` finds the first increment whose
+direction there, less that of the linear response (P times the base state's): how much the
+imperfection grew beyond what the linear run predicts. :func:`knee` finds the first increment whose
 tangent stiffness dP / d delta falls below ``fraction`` (0.5) of the initial one (the first
 increment's); its load (the load at the start of that increment) is the FE's first failure this
 curve shows. :func:`peak` is the largest load when the curve comes down after it, or the last load
@@ -53,6 +54,7 @@ from corrugate.fea.assembly import AssemblyMesh, assembly_deck
 from corrugate.fea.ccx import SolverError, parse_dat, run_ccx, work_dir
 from corrugate.fea.connector_band import Bond
 from corrugate.fea.deck import node_set
+from corrugate.fea.fixtures import get_fixture
 from corrugate.fea.steps import LinearBuckling, Nonlinear
 from corrugate.geometry.layer import Assembly
 
@@ -232,7 +234,7 @@ class NonlinearResult:
         pk = f", peak {p:.4g} N" if p is not None else ""
         end = "reached" if self.ended == "target" else "stopped converging"
         return (
-            f"{self.case.test}, {self.mesh.label()}: {fell}{pk}; linear buckling "
+            f"{get_fixture(self.case.test).loading}, {self.mesh.label()}: {fell}{pk}; linear buckling "
             f"{self.buckling_load:.4g} N; ramp to {self.target:.4g} N {end}; imperfection "
             f"{self.amplitude:.3g} mm"
         )
@@ -241,17 +243,18 @@ class NonlinearResult:
 def nonlinear_case(
     assembly: Assembly, constraints: Sequence[Mapping[str, Any]], joint: str = "none"
 ) -> NonlinearCase | None:
-    """The fixture of the first behavioural constraint of a design.json with a coupon twin along
-    a crease direction (as :func:`corrugate.fea.first_failure.first_failures` groups them), the
-    constraints run in it and the model's least first-failure load among its load capacities;
-    None when no constraint has one."""
+    """The fixture a design.json's nonlinear ramp runs in: that of its first load capacity (a
+    ``Pmax`` constraint: what the certified capacity rests on), else of its first behavioural
+    constraint, among those with a coupon twin along a crease direction (as
+    :func:`corrugate.fea.first_failure.first_failures` groups them); the constraints run in it
+    and the model's least first-failure load among its load capacities; None when no constraint
+    has such a twin."""
     from corrugate.fea.verify import behavioural, safety_factor, twin_of
     from corrugate.mechanics.behaviours import own_test
     from corrugate.solver.quantity import Quantity
 
-    chosen: tuple[str, float, float | None] | None = None
-    names: list[str] = []
-    models: list[tuple[float, float | None]] = []
+    twins: list[tuple[tuple[str, float, float | None], str, float | None, float | None]] = []
+    capacities: list[tuple[str, float, float | None]] = []
     for c, q in behavioural(constraints):
         load = _number(c.get("load_N"))
         model: float | None = None
@@ -269,13 +272,13 @@ def nonlinear_case(
         if twin.fixture.kind != "coupon":
             continue
         key = (twin.test, twin.eta, twin.span)
-        if chosen is None:
-            chosen = key
-        if key != chosen:
-            continue
-        names.append(str(c.get("name", q.key)))
+        twins.append((key, str(c.get("name", q.key)), model, safety_factor(c)))
         if model is not None:
-            models.append((model, safety_factor(c)))
+            capacities.append(key)
+    # the first load capacity's fixture (what the certificate rests on), else the first one's
+    chosen = capacities[0] if capacities else (twins[0][0] if twins else None)
+    names = [name for key, name, _, _ in twins if key == chosen]
+    models = [(m, sf) for key, _, m, sf in twins if key == chosen and m is not None]
     if chosen is None:
         return None
     least = min(models, default=None)
@@ -377,7 +380,7 @@ def ramp(
     head, sep, tail = buckle.rpartition("*STEP")
     buckle = head + "\n".join(printed) + "\n" + sep + tail
     buckle = buckle.replace("*END STEP", "*NODE PRINT,NSET=NLMODE\nU\n*END STEP")
-    label = f"{case.test} along eta = {case.eta:g} deg"
+    label = f"{get_fixture(case.test).loading} along eta = {case.eta:g} deg"
     progress(f"assembly, buckling in {label}, mesh {mesh.label()} (nonlinear ramp's mode)")
     t0 = time.perf_counter()
     with work_dir(folder) as wd:
@@ -399,6 +402,9 @@ def ramp(
     amp = layer.W / 200.0 if amplitude is None else amplitude
     scale = amp / norms[top]
     direction = shape[top] / norms[top]
+    # the mode's node under 1 N in the linear base state, along the mode: subtracted, so that the
+    # amplitude is the growth of the mode beyond the linear response
+    linear = float(np.dot(np.asarray(base.rows[top][:3]), direction))
     mode_at = ("layer 1", "layer 2", "the band")[where - 1] if 1 <= where <= 3 else f"part {where}"
     predicted = max(p_cr, case.model or 0.0)
     goal = TARGET_FACTOR * predicted if target is None else target
@@ -429,7 +435,8 @@ def ramp(
             continue
         loads.append(b.time * goal)
         travels.append(sign * b.rows[ref][dof - 1])
-        amps.append(float(np.dot(np.asarray(b.rows[top][:3]), direction)))
+        moved = float(np.dot(np.asarray(b.rows[top][:3]), direction))
+        amps.append(moved - b.time * goal * linear)
     if not loads:
         raise SolverError("the nonlinear ramp converged at no increment")
     if ended == "target" and loads[-1] < goal * (1 - 1e-6):

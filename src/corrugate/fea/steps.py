@@ -34,7 +34,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["STATIC", "Drive", "LinearBuckling", "Nonlinear", "Static", "Step"]
+__all__ = ["STATIC", "AnyStep", "Drive", "LinearBuckling", "Nonlinear", "Static", "Step"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -210,5 +210,10 @@ class Nonlinear:
 #: The static step every fixture runs unless told otherwise.
 STATIC = Static()
 
-#: Any step.
-Step = Static | LinearBuckling | Nonlinear
+#: The steps every fixture runs (:func:`corrugate.fea.assembly.solve_assembly`,
+#: :func:`corrugate.fea.outline.solve_outline`).
+Step = Static | LinearBuckling
+
+#: Any step of an assembly deck (:func:`corrugate.fea.assembly.assembly_deck`), the nonlinear
+#: ramp's included (run by :func:`corrugate.fea.nonlinear.ramp`).
+AnyStep = Static | LinearBuckling | Nonlinear
