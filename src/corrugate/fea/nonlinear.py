@@ -22,7 +22,7 @@ What :func:`ramp` runs, on one shell mesh of the assembly (:mod:`corrugate.fea.a
    times the predicted failure load"), in increments of 1/20 of it. Where ccx cannot converge an
    increment even cut to its minimum (1e-3 of the ramp), the curve ends at the last converged
    load (``ended`` = ``"not converged"``): a limit point of the dead load, or a numerical end, not
-   a crash.
+   a crash; a ramp that runs out of its time-out ends there too (``"timed out"``).
 
 The curve is the load P (N) against the load point's travel delta (mm, along the load), and the
 mode's amplitude w (mm): the displacement of the mode's largest node projected on the mode's
@@ -78,6 +78,8 @@ KNEE_FRACTION = 0.5
 TARGET_FACTOR = 1.5
 #: How the default imperfection amplitude is chosen (module docstring).
 AMPLITUDE_RULE = "W / 200 of the facet where the mode is largest (EN 1993-1-5 Annex C, b / 200)"
+#: Words of ccx's log when it gives up an increment (the curve then ends, module docstring).
+_STALLED = ("increment size smaller", "too many cutbacks")
 #: The increment of the ramp (a fraction of it; ccx cuts it where one does not converge).
 INCREMENT = 0.05
 
@@ -134,7 +136,7 @@ class NonlinearResult:
     ``buckling_load`` (N, dead), the initial stiffness ``k0`` (N/mm, the linear static run's),
     the imperfection ``amplitude`` (mm) and where the mode is largest (``mode_at``), the ramp's
     ``target`` (N), the curve (``loads`` N, ``travels`` mm, ``mode_amplitudes`` mm), how it
-    ``ended`` (``"target"`` or ``"not converged"``), the knee and peak indices, the ``fraction``
+    ``ended`` (``"target"``, ``"not converged"`` or ``"timed out"``), the knee's tangent ``fraction``
     and the ccx wall time ``seconds`` of the two runs."""
 
     case: NonlinearCase
@@ -232,7 +234,7 @@ class NonlinearResult:
             else f"no knee up to {self.end_load:.4g} N"
         )
         pk = f", peak {p:.4g} N" if p is not None else ""
-        end = "reached" if self.ended == "target" else "stopped converging"
+        end = {"target": "reached", "timed out": "timed out"}.get(self.ended, "stopped converging")
         return (
             f"{get_fixture(self.case.test).loading}, {self.mesh.label()}: {fell}{pk}; linear buckling "
             f"{self.buckling_load:.4g} N; ramp to {self.target:.4g} N {end}; imperfection "
@@ -423,11 +425,13 @@ def ramp(
         except SolverError as exc:
             dat = wd / "nl-ramp.dat"
             log = (wd / "nl-ramp.log").read_text() if (wd / "nl-ramp.log").exists() else ""
-            if not dat.exists() or "increment size smaller" not in log.lower():
+            timed_out = "timed out" in str(exc)
+            stalled = any(w in log.lower() for w in _STALLED)
+            if not dat.exists() or not (stalled or timed_out):
                 raise
             found = tuple(parse_dat(dat.read_text()))
-            ended = "not converged"
-            note = f"ccx: {exc}".split(": ", 2)[-1][:200]
+            ended = "timed out" if timed_out and not stalled else "not converged"
+            note = str(exc).split(": ", 1)[-1][:200]
     seconds = time.perf_counter() - t0
     loads, travels, amps = [], [], []
     for b in found:

@@ -62,7 +62,9 @@ def nonlinear_png(r: NonlinearResult) -> bytes:
     left.set_ylabel("load P (N)")
     right.set_xlabel("mode at its largest node, beyond the linear response (mm)")
     left.legend(fontsize=7, loc="lower right")
-    end = "to its target" if r.ended == "target" else "until ccx stopped converging"
+    end = {"target": "to its target", "timed out": "until its time-out"}.get(
+        r.ended, "until ccx stopped converging"
+    )
     fig.suptitle(
         f"{get_fixture(c.test).loading} along eta = {c.eta:g} deg, {r.mesh.label()}: NLGEOM ramp "
         f"{end}, "
