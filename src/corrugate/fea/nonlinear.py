@@ -136,8 +136,8 @@ class NonlinearResult:
     ``buckling_load`` (N, dead), the initial stiffness ``k0`` (N/mm, the linear static run's),
     the imperfection ``amplitude`` (mm) and where the mode is largest (``mode_at``), the ramp's
     ``target`` (N), the curve (``loads`` N, ``travels`` mm, ``mode_amplitudes`` mm), how it
-    ``ended`` (``"target"``, ``"not converged"`` or ``"timed out"``), the knee's tangent ``fraction``
-    and the ccx wall time ``seconds`` of the two runs."""
+    ``ended`` (``"target"``, ``"not converged"`` or ``"timed out"``), the knee's tangent
+    ``fraction`` and the ccx wall time ``seconds`` of the two runs."""
 
     case: NonlinearCase
     mesh: AssemblyMesh
@@ -236,8 +236,8 @@ class NonlinearResult:
         pk = f", peak {p:.4g} N" if p is not None else ""
         end = {"target": "reached", "timed out": "timed out"}.get(self.ended, "stopped converging")
         return (
-            f"{get_fixture(self.case.test).loading}, {self.mesh.label()}: {fell}{pk}; linear buckling "
-            f"{self.buckling_load:.4g} N; ramp to {self.target:.4g} N {end}; imperfection "
+            f"{get_fixture(self.case.test).loading}, {self.mesh.label()}: {fell}{pk}; "
+            f"linear buckling {self.buckling_load:.4g} N; ramp to {self.target:.4g} N {end}; imperfection "
             f"{self.amplitude:.3g} mm"
         )
 
