@@ -8,8 +8,9 @@ skips them), with ``--nonlinear`` a geometrically nonlinear ramp of the first lo
 (:mod:`corrugate.fea.nonlinear`), and writes ``DIR/verify.json`` (its ``first_failure`` list
 beside ``constraints``, and its ``nonlinear`` block) and ``DIR/nonlinear.png`` (with
 ``--nonlinear``) as the folder's set of kind ``verify``. The FE subpackage is imported only
-when the command runs. Exit codes: 0 every constraint holds in FE, 1 one does not (or has no FE twin yet), 2 bad
-input (a missing or malformed design.json, a folder that cannot be written, no ccx).
+when the command runs. Exit codes: 0 every constraint holds in FE, 1 one does not (or has no FE
+twin yet), 2 bad input (a missing or malformed design.json, a folder that cannot be written, no
+ccx).
 
 Example::
 

@@ -237,8 +237,8 @@ class NonlinearResult:
         end = {"target": "reached", "timed out": "timed out"}.get(self.ended, "stopped converging")
         return (
             f"{get_fixture(self.case.test).loading}, {self.mesh.label()}: {fell}{pk}; "
-            f"linear buckling {self.buckling_load:.4g} N; ramp to {self.target:.4g} N {end}; imperfection "
-            f"{self.amplitude:.3g} mm"
+            f"linear buckling {self.buckling_load:.4g} N; ramp to {self.target:.4g} N {end}; "
+            f"imperfection {self.amplitude:.3g} mm"
         )
 
 

@@ -5,7 +5,8 @@ Left: the load P (N) against the load point's travel (mm), the initial stiffness
 and the peak marked. Right: P against the mode's amplitude at its largest node beyond the linear
 response (mm, the imperfection's growth). On both, horizontal lines at the linear buckling load
 (FE, dead load) and at the model's first-failure load (its capacity times the safety factor),
-and, when the design has a safety factor, at the capacity itself. Needs matplotlib (the ``fea`` extra).
+and, when the design has a safety factor, at the capacity itself. Needs matplotlib (the ``fea``
+extra).
 """
 
 from __future__ import annotations
