@@ -4,10 +4,13 @@ Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). Reads ``DIR/design.js
 ``corrugate design SPEC --out DIR``), runs each constraint's FE twin on a mesh series and
 extrapolates it (:mod:`corrugate.fea.verify`), prints the table, then each load case's first
 buckling and first yield load in FE (:mod:`corrugate.fea.first_failure`; ``--no-first-failure``
-skips them), and writes ``DIR/verify.json`` (its ``first_failure`` list beside ``constraints``)
-as the folder's set of kind ``verify``. The FE subpackage is imported only when the command
-runs. Exit codes: 0 every constraint holds in FE, 1 one does not (or has no FE twin yet), 2 bad
-input (a missing or malformed design.json, a folder that cannot be written, no ccx).
+skips them), with ``--nonlinear`` a geometrically nonlinear ramp of the first load case
+(:mod:`corrugate.fea.nonlinear`), and writes ``DIR/verify.json`` (its ``first_failure`` list
+beside ``constraints``, and its ``nonlinear`` block) and ``DIR/nonlinear.png`` (with
+``--nonlinear``) as the folder's set of kind ``verify``. The FE subpackage is imported only
+when the command runs. Exit codes: 0 every constraint holds in FE, 1 one does not (or has no FE
+twin yet), 2 bad input (a missing or malformed design.json, a folder that cannot be written, no
+ccx).
 
 Example::
 
@@ -32,17 +35,24 @@ from corrugate.core.errors import InputError
 if TYPE_CHECKING:
     from rich.console import Console
 
+    from corrugate.fea.assembly import AssemblyMesh
     from corrugate.fea.first_failure import FailureRow
+    from corrugate.fea.nonlinear import NonlinearResult
     from corrugate.fea.verify import Verification
 
 __all__ = [
     "COMMANDS",
+    "NONLINEAR_PNG",
     "print_failures",
+    "print_nonlinear",
     "print_table",
     "verify_cmd",
 ]
 
 Opt = typer.Option
+
+#: The figure of ``--nonlinear``, beside verify.json.
+NONLINEAR_PNG = "nonlinear.png"
 
 
 def _writable(folder: Path) -> bool:
@@ -52,6 +62,16 @@ def _writable(folder: Path) -> bool:
 
 def _fmt(v: float | None) -> str:
     return "-" if v is None else f"{v:.5g}"
+
+
+def _nonlinear_mesh(n: int) -> AssemblyMesh:
+    """``--nonlinear-mesh N``: the ramp's mesh (an even count >= 2)."""
+    from corrugate.fea.assembly import AssemblyMesh
+
+    try:
+        return AssemblyMesh(n)
+    except InputError as exc:
+        raise exc.renamed("--nonlinear-mesh") from None
 
 
 def print_table(v: Verification, label: str, console: Console) -> None:
@@ -126,6 +146,25 @@ def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
     console.print(t)
 
 
+def print_nonlinear(r: NonlinearResult | str, console: Console) -> None:
+    """The nonlinear ramp (:mod:`corrugate.fea.nonlinear`) in a few lines, or why it did not
+    run."""
+    from rich.markup import escape
+
+    if isinstance(r, str):
+        console.print(escape(f"nonlinear ramp: {r}"))
+        return
+    console.print(escape(f"nonlinear ramp (NLGEOM, first mode as imperfection): {r.sentence}"))
+    m = r.case.model
+    if m is not None:
+        verdict = {None: "-", True: "yes", False: "[red]NO[/red]"}[r.model_holds]
+        at = r.knee_load if r.knee_load is not None else r.end_load
+        console.print(
+            f"model's first failure {m:.4g} N <= FE's {escape(r.compared_with)} ({at:.4g} N): "
+            f"{verdict}"
+        )
+
+
 def verify_cmd(
     folder: Annotated[
         Path,
@@ -172,6 +211,25 @@ def verify_cmd(
             "series (evidence beside the constraints, not part of the verdict).",
         ),
     ] = True,
+    nonlinear: Annotated[
+        bool,
+        Opt(
+            "--nonlinear",
+            help="Also run the first load case as a geometrically nonlinear ramp (NLGEOM) to "
+            "1.5 x its predicted failure load, its first buckling mode (a buckling run first) as "
+            "an imperfection of W/200: the load-deflection curve and where the stiffness falls, "
+            "in verify.json and nonlinear.png. Costs one buckling run and 20 or more nonlinear "
+            "increments, each a few linear solves: minutes at 4 per facet.",
+        ),
+    ] = False,
+    nonlinear_mesh: Annotated[
+        int,
+        Opt(
+            "--nonlinear-mesh",
+            metavar="N",
+            help="Shell elements across each facet of the nonlinear ramp's mesh (even).",
+        ),
+    ] = 4,
     as_json: Annotated[
         bool,
         Opt(
@@ -193,7 +251,8 @@ def verify_cmd(
     Below them, each load case's first failure in FE: its fixture as a linear buckling
     analysis (a dead load) and its static run's peak stress against the yield strength, the
     loads (N) on the same mesh series (--no-first-failure: not run); they do not change the exit
-    code.
+    code. --nonlinear: the first load case's nonlinear ramp (curve, knee, peak) in verify.json
+    and DIR/nonlinear.png; it does not change the exit code either.
 
     Example: corrugate verify out/gripper --mesh 2,4,8
     """
@@ -206,6 +265,7 @@ def verify_cmd(
     meshes = parse_meshes(mesh)
     positions = parse_shifts(shifts)
     cap = parse_max_mesh(max_mesh)
+    nl_mesh = _nonlinear_mesh(nonlinear_mesh) if nonlinear else None
     check_sweep_options(None, timeout, workdir)
     assembly, constraints, joint = read_design(folder)
     if not _writable(folder):
@@ -242,16 +302,40 @@ def verify_cmd(
             done=result.rows,
         )
     found = {**result.as_json(), "first_failure": [r.as_json() for r in failures]}
+    files: dict[str, str | bytes] = {}
+    ramp: NonlinearResult | str | None = None
+    if nl_mesh is not None:
+        from corrugate.fea.nonlinear import run_for_design
+        from corrugate.fea.nonlinear_plot import nonlinear_png
+
+        ramp = run_for_design(
+            assembly,
+            constraints,
+            joint,
+            nl_mesh,
+            progress=progress,
+            folder=workdir,
+            timeout=timeout,
+        )
+        if isinstance(ramp, str):
+            found["nonlinear"] = {"note": ramp}
+        else:
+            found["nonlinear"] = ramp.as_json()
+            files[NONLINEAR_PNG] = nonlinear_png(ramp)
     data = {"design": design_label(assembly), **found}
     text = json.dumps(data, indent=2, allow_nan=False)
-    write_set(folder, {VERIFY_NAME: text + "\n"}, field="DIR", kind=VERIFY_KIND)
+    files = {VERIFY_NAME: text + "\n", **files}
+    write_set(folder, files, field="DIR", kind=VERIFY_KIND)
     if as_json:
         typer.echo(json.dumps(found, indent=2, allow_nan=False))
     elif not quiet:
         console = make_console()
         print_table(result, design_label(assembly), console)
         print_failures(failures, console)
-        console.print(f"wrote {folder / VERIFY_NAME}")
+        if ramp is not None:
+            print_nonlinear(ramp, console)
+        for name in files:
+            console.print(f"wrote {folder / name}")
     if not result.holds:
         if quiet:
             failing = [r.name for r in result.rows if not r.holds]

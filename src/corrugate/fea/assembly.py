@@ -101,7 +101,7 @@ from corrugate.fea.shells import (
     principal_axis,
     specimen,
 )
-from corrugate.fea.steps import STATIC, BoundaryItem, LinearBuckling, Step
+from corrugate.fea.steps import STATIC, AnyStep, BoundaryItem, LinearBuckling, Nonlinear, Step
 from corrugate.geometry.layer import Assembly
 
 __all__ = [
@@ -202,7 +202,7 @@ def _deck_text(
     a: Assembly,
     parts: list[tuple[int, Shell]],
     fixture: Fixture,
-    step: Step,
+    step: AnyStep,
     mesh: AssemblyMesh,
     eta_deg: float,
     delta: float,
@@ -232,7 +232,7 @@ def _deck_text(
         load_sets.append(b.load_set)
         gauges += b.gauges
         sides += b.sides
-    if isinstance(step, LinearBuckling):
+    if isinstance(step, LinearBuckling | Nonlinear):  # drives tied to a reference node
         ref = max(int(sh.ids.max()) for _, sh in parts) + 1
         where = [0.0, 0.0, 0.0]
         where[axis] = L_load  # on the moving platen
@@ -287,7 +287,7 @@ def _decks(
     eta_deg: float = 0.0,
     delta: float | None = None,
     *,
-    step: Step = STATIC,
+    step: AnyStep = STATIC,
     connectors: bool = False,
     match_layers: bool | None = None,
     mesher: Mesher = "auto",
@@ -428,7 +428,7 @@ def assembly_deck(
     eta_deg: float = 0.0,
     delta: float | None = None,
     *,
-    step: Step = STATIC,
+    step: AnyStep = STATIC,
     connectors: bool = False,
     match_layers: bool | None = None,
     mesher: Mesher = "auto",
@@ -507,6 +507,10 @@ def solve_assembly(
     ``span``: 3-point bending over supports that far apart (:func:`assembly_deck`)."""
     mesh = mesh or AssemblyMesh()
     fixture = get_fixture(test, _KINDS, "test")
+    if isinstance(step, Nonlinear):
+        raise InputError(
+            "step", step.name, "static or buckle (a nonlinear ramp: corrugate.fea.nonlinear.ramp)"
+        )
     buckling = isinstance(step, LinearBuckling)
     separable = not connectors and not step.ties_parts
     if split is None:

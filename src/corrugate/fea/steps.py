@@ -19,14 +19,22 @@ the step decides how they are driven:
   the two agree where the first mode leaves the drives still (tests/fea/test_buckling_step.py:
   the chassis example in three-point, 1.581 N both ways; a wheel's patch, 11.97 against 14.87 N).
 
-Any fixture can be run with either step: a deck is mesh + fixture + step.
+* :class:`Nonlinear`: a geometrically nonlinear ``*STATIC`` step (``NLGEOM``), the drives tied
+  to a reference node as for :class:`LinearBuckling` and that node loaded by a force ramped
+  linearly from 0 to ``load`` (N) over the step's time 0-1, in increments of ``increment`` of it
+  (ccx cuts them when an increment does not converge, down to ``min_increment``); the reference
+  node's displacement (and that of the ``watch`` nodes) is printed to the ``.dat`` file at every
+  increment, so the load-deflection curve is (time x ``load``, the reference node's travel).
+  :mod:`corrugate.fea.nonlinear` runs it on a mesh perturbed by the first buckling mode.
+
+Any fixture can be run with any step: a deck is mesh + fixture + step.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["STATIC", "Drive", "LinearBuckling", "Static", "Step"]
+__all__ = ["STATIC", "AnyStep", "Drive", "LinearBuckling", "Nonlinear", "Static", "Step"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -124,24 +132,88 @@ class LinearBuckling:
         """The reference node ``reference`` (at ``where``, mm; it carries no element), the
         equations that tie every driven node to it, and the step cards: the supports of
         ``boundary`` and 1 N on the reference node in the drives' direction."""
-        drives = [b for b in boundary if isinstance(b, Drive)]
-        if not drives:
-            raise ValueError("a buckling step needs a fixture that drives a load")
-        dof, sign = drives[0].dof, drives[0].sign
-        out = ["*NODE", f"{reference},{where[0]:.10g},{where[1]:.10g},{where[2]:.10g}"]
-        out.append("*EQUATION")
-        for d in drives:  # u_dof(node) = u_dof(reference)
-            for node in d.nodes:
-                out += ["2", f"{node},{d.dof},1.,{reference},{dof},-1."]
-        load = "-1." if sign < 0 else "1."
+        out, dof, load = _tie(boundary, reference, where)
         out += ["*STEP", "*BUCKLE", f"{self.modes},{_fortran(self.accuracy)}", "*BOUNDARY"]
         out += [b for b in boundary if isinstance(b, str)]
         out += ["*CLOAD", f"{reference},{dof},{load}", "*END STEP"]
         return out
 
 
+def _tie(
+    boundary: list[BoundaryItem], reference: int, where: tuple[float, float, float]
+) -> tuple[list[str], int, str]:
+    """The reference node (at ``where``, mm) and the equations that tie every driven node of
+    ``boundary`` to it; its driven degree of freedom and the sign of the load on it ("-1." or
+    "1.": towards the part)."""
+    drives = [b for b in boundary if isinstance(b, Drive)]
+    if not drives:
+        raise ValueError("a step with a reference node needs a fixture that drives a load")
+    dof, sign = drives[0].dof, drives[0].sign
+    out = ["*NODE", f"{reference},{where[0]:.10g},{where[1]:.10g},{where[2]:.10g}"]
+    out.append("*EQUATION")
+    for d in drives:  # u_dof(node) = u_dof(reference)
+        for node in d.nodes:
+            out += ["2", f"{node},{d.dof},1.,{reference},{dof},-1."]
+    return out, dof, "-1." if sign < 0 else "1."
+
+
+@dataclass(frozen=True, slots=True)
+class Nonlinear:
+    """A geometrically nonlinear static step (``*STEP,NLGEOM`` and ``*STATIC``): the drives tied
+    to a reference node (as :class:`LinearBuckling`) loaded by a force ramped from 0 to ``load``
+    (N); increments of ``increment`` of the ramp (also the largest allowed), cut by ccx down to
+    ``min_increment`` where one does not converge; ``watch``: shell nodes whose displacement is
+    printed at every increment beside the reference node's (module docstring)."""
+
+    load: float
+    increment: float = 0.05
+    min_increment: float = 1e-3
+    watch: tuple[int, ...] = ()
+    name: str = "nonlinear"
+
+    #: The node set whose displacements the step prints: the reference node and ``watch``.
+    PRINTED = "NLPRINT"
+
+    def describe(self, label: str, loading: str) -> str:
+        """What a progress line calls the fixture under this step."""
+        return f"nonlinear ramp in {loading}"
+
+    @property
+    def ties_parts(self) -> bool:
+        """The reference node ties the drives of every part: they are solved together."""
+        return True
+
+    def lines(
+        self,
+        boundary: list[BoundaryItem],
+        reference: int,
+        where: tuple[float, float, float],
+    ) -> list[str]:
+        """The reference node, its equations and the step cards: the supports of ``boundary``,
+        ``load`` N on the reference node in the drives' direction (ramped over the step), the
+        displacements of the reference node and ``watch`` printed at every increment."""
+        out, dof, sign = _tie(boundary, reference, where)
+        inc = _fortran(self.increment)
+        out += [f"*NSET,NSET={self.PRINTED}", ",".join(map(str, (reference, *self.watch)))]
+        out += [
+            "*STEP,NLGEOM,INC=10000",
+            "*STATIC",
+            f"{inc},1.,{_fortran(self.min_increment)},{inc}",
+        ]
+        out += ["*BOUNDARY", *(b for b in boundary if isinstance(b, str))]
+        force = float(sign) * abs(self.load)
+        out += ["*CLOAD", f"{reference},{dof},{force:.10g}"]
+        out += [f"*NODE PRINT,NSET={self.PRINTED}", "U", "*END STEP"]
+        return out
+
+
 #: The static step every fixture runs unless told otherwise.
 STATIC = Static()
 
-#: Either step.
+#: The steps every fixture runs (:func:`corrugate.fea.assembly.solve_assembly`,
+#: :func:`corrugate.fea.outline.solve_outline`).
 Step = Static | LinearBuckling
+
+#: Any step of an assembly deck (:func:`corrugate.fea.assembly.assembly_deck`), the nonlinear
+#: ramp's included (run by :func:`corrugate.fea.nonlinear.ramp`).
+AnyStep = Static | LinearBuckling | Nonlinear
