@@ -148,8 +148,8 @@ def write_files(
     (default: the plan's cutter). ``labels``: ``None`` or ``True`` writes labels everywhere (in the cut files as the LABEL
     operation: the part's name drawn by the pen or engraved, so that the cut parts carry the names
     the assembly steps use), ``False`` nowhere.
-    ``marks=False`` leaves assembly marks out of the fold map (Origami Simulator reads them as
-    undriven creases). With ``staging``, the files join that output step (committed with it)
+    ``marks=False`` leaves assembly marks out of the fold map (Origami Simulator does not import
+    them either way: they sit in ``<defs>``, :mod:`corrugate.export.svg`). With ``staging``, the files join that output step (committed with it)
     instead of being committed here. ``paper`` is ``mat`` (``pdf_name`` only) or ``a4``/``letter``:
     then ``pattern-a4.pdf``/``pattern-letter.pdf`` (the tiles) is written besides ``pdf_name``
     (None: ``pattern.pdf``). ``sheet_figures``: the sheets' :func:`~corrugate.export.pdf.sheet_figure`

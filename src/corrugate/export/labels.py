@@ -6,8 +6,11 @@ it: the cut edges, the creases, the marks and the slits (a coarse "pole of inacc
 concave parts, parts with holes and the strips between creases get their label on bare material).
 The text runs along x or along y, whichever allows the larger letters, sized so that its box, 0.6
 em per character long by 1.2 em tall (:attr:`LabelSpot.length`, :attr:`LabelSpot.height`), fits
-the free runs from the anchor; the box is then checked against every line and shrunk until it
-touches none. Writers fit the text into that box: the SVG fold map with ``textLength``, the cut
+the free runs from the anchor (the anchor first moved to the middle of its free runs along x and
+along y); the box, grown on every side by a gap of :data:`GAP_MM` plus a quarter of the text height
+(:func:`label_gap`: a pen's or a scoring wheel's line and the glyphs' overshoot), is then checked
+against every line and shrunk until it touches none, so no line runs through or along a label
+(issue 36: a crease drawn on the "L" of "L1"). Writers fit the text into that box: the SVG fold map with ``textLength``, the cut
 files with single-stroke glyphs scaled into it (:func:`label_strokes`).
 """
 
@@ -24,13 +27,17 @@ from corrugate.fabrication.model import Line, Point
 from corrugate.fabrication.sheets import PlacedPart
 
 __all__ = [
+    "GAP_MM",
     "MAX_TEXT_MM",
     "MIN_TEXT_MM",
+    "READABLE_TEXT_MM",
     "LabelSpot",
+    "label_gap",
     "label_spot",
     "label_strokes",
     "label_text",
     "plain_text",
+    "readable_label",
 ]
 
 #: Largest label text height (mm).
@@ -38,7 +45,17 @@ MAX_TEXT_MM = 4.0
 #: Smallest text height (mm) worth printing: a label that would be smaller is replaced by the
 #: part's name where writers offer that (the fold map).
 MIN_TEXT_MM = 1.2
+#: Smallest text height (mm) a printed label is written at in full (the PDF's and the fold map's
+#: "name: label"); below it the part carries its name only and the sheet's key the full label.
+READABLE_TEXT_MM = 2.0
+#: The least gap (mm) between a label's box and any line (plus a quarter of the text height).
+GAP_MM = 0.5
 _GRID = 25
+
+
+def label_gap(size: float) -> float:
+    """The clear gap (mm) kept between a label of text height ``size`` (mm) and every line."""
+    return GAP_MM + 0.25 * size
 
 
 @dataclass(frozen=True, slots=True)
@@ -83,9 +100,11 @@ def _segments(rings: list[tuple[Point, ...]]) -> NDArray[np.float64]:
     return np.vstack(segs)
 
 
-def _box_clear(spot: LabelSpot, segs: NDArray[np.float64]) -> bool:
-    """Whether the (axis-aligned) box of ``spot`` meets none of ``segs`` (Liang-Barsky clip)."""
+def _box_clear(spot: LabelSpot, segs: NDArray[np.float64], gap: float = 0.0) -> bool:
+    """Whether the (axis-aligned) box of ``spot``, grown by ``gap`` on every side, meets none of
+    ``segs`` (Liang-Barsky clip)."""
     (x0, y0), _, (x1, y1), _ = spot.corners()
+    x0, y0, x1, y1 = x0 - gap, y0 - gap, x1 + gap, y1 + gap
     ax, ay, bx, by = segs.T
     dx, dy = bx - ax, by - ay
     t0 = np.zeros(len(segs))
@@ -180,6 +199,17 @@ def _anchor(
     near = pts[dist >= 0.95 * dist.max()]  # of the nearly best, the one nearest the middle
     centre = (lo + hi) / 2
     best = near[int(np.argmin(np.hypot(*(near - centre).T)))]
+    # to the middle of its free runs (the grid's point may sit off the middle of a strip)
+    # (kept only where it is at least as far from every line as the grid's point)
+    for axis in ((1.0, 0.0), (0.0, 1.0)):
+        ahead, back = _run(best, axis, segs), _run(best, (-axis[0], -axis[1]), segs)
+        moved = best + (ahead - back) / 2 * np.asarray(axis)
+        if (
+            ahead > 0
+            and back > 0
+            and _distance(moved[None], segs)[0] >= _distance(best[None], segs)[0]
+        ):
+            best = moved
     rx = min(_run(best, (1.0, 0.0), segs), _run(best, (-1.0, 0.0), segs))
     ry = min(_run(best, (0.0, 1.0), segs), _run(best, (0.0, -1.0), segs))
     return _Anchor(*box, (float(best[0]), float(best[1])), rx, ry, segs)
@@ -197,19 +227,31 @@ def label_spot(placed: PlacedPart, text: str | None = None) -> LabelSpot:
         return LabelSpot(float(c[0]), float(c[1]), 1.0, 0.0, 0.6 * chars)
     rx, ry = found.rx, found.ry
 
-    def fit(along: float, across: float) -> float:
+    def fit(along: float, across: float) -> float:  # the runs less the gap of a MAX_TEXT_MM text
+        along, across = (max(r - label_gap(MAX_TEXT_MM), 0.5 * r) for r in (along, across))
         return min(MAX_TEXT_MM, 0.9 * 2 * along / (0.6 * chars), 0.9 * 2 * across / 1.2)
 
     horizontal, vertical = fit(rx, ry), fit(ry, rx)
     rotation, size = (90.0, vertical) if vertical > horizontal * 1.05 else (0.0, horizontal)
     x, y = found.best
     spot = LabelSpot(x, y, size, rotation, 0.6 * chars * size)
-    for _ in range(40):  # a slanted edge may still cut a corner of the box: shrink until clear
-        if _box_clear(spot, segs):
+    for _ in range(40):  # a slanted edge or the gap may still cut the box: shrink until clear
+        if _box_clear(spot, segs, label_gap(size)):
             break
         size *= 0.85
         spot = LabelSpot(x, y, size, rotation, 0.6 * chars * size)
     return spot
+
+
+def readable_label(placed: PlacedPart, text: str, short: str) -> tuple[str, LabelSpot, bool]:
+    """The label a printed sheet writes on ``placed`` (the fold map, the PDF): ``text`` where it
+    fits clear of every line at :data:`READABLE_TEXT_MM` or more, else ``short`` (the part's name)
+    at the size that fits; returns the text written, its spot and whether it was shortened (the
+    sheet's key then gives ``text``)."""
+    spot = label_spot(placed, text)
+    if spot.size >= READABLE_TEXT_MM or text == short:
+        return text, spot, False
+    return short, label_spot(placed, short), True
 
 
 #: Characters outside the stroke font's printable ASCII, written as the font can draw them.

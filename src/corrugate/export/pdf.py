@@ -36,8 +36,8 @@ from typing import TYPE_CHECKING
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.fileio import staged
 from corrugate.core.plotting import pdf_pages
-from corrugate.export.labels import label_spot
-from corrugate.export.legend import fold_map_legend, legend_spot, row_length
+from corrugate.export.labels import label_text, readable_label
+from corrugate.export.legend import LegendRow, fold_map_legend, legend_spot, row_length
 from corrugate.export.svg import ANNOTATION, BOUNDARY, COLOURS
 from corrugate.fabrication.linestyle import (
     SOLID,
@@ -160,17 +160,24 @@ def sheet_figure(
     ax.set_ylim(0.0, H)
     ax.set_axis_off()
     _draw_sheet(ax, plan, number, style, labels=labels)
-    _draw_legend(ax, plan, number, operations)
+    _draw_legend(ax, plan, number, operations, labels=labels)
     return fig
 
 
-def _draw_legend(ax: Axes, plan: SheetPlan, number: int, operations: object | None) -> None:
+def _draw_legend(
+    ax: Axes, plan: SheetPlan, number: int, operations: object | None, *, labels: bool = True
+) -> None:
     """The fold map's legend (:func:`~corrugate.export.legend.fold_map_legend`: for people, not
     the cutter; each colour's meaning and what the cut file does with it) in the free box of sheet
     ``number`` that :func:`~corrugate.export.legend.legend_spot` finds, each row in its kind's
     colour; none when no box takes it (the page is the sheet: there is no strip to add)."""
     sheet = plan.sheets[number - 1]
     rows = fold_map_legend(operations)
+    for placement in sheet.placements:  # the full label of a part that carries its name only
+        placed = place(placement)
+        full = label_text(placed)
+        if labels and placement.part.label and readable_label(placed, full, placement.part.name)[2]:
+            rows.append(LegendRow(full, ANNOTATION))
     key = legend_spot(sheet, rows, plan.margin, plan.spacing)
     if key is None:
         return
@@ -215,11 +222,11 @@ def _draw_sheet(ax: Axes, plan: SheetPlan, number: int, style: LineStyle, *, lab
             else:
                 segs.setdefault(colour, []).append((ln.a, ln.b))
         if labels and part.label:
-            spot = label_spot(placed)
+            text, spot, _ = readable_label(placed, label_text(placed), part.name)
             ax.text(
                 spot.x,
                 spot.y,
-                part.label,
+                text,
                 fontsize=spot.size * _PT,
                 rotation=spot.rotation,
                 ha="center",

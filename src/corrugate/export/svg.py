@@ -17,7 +17,7 @@ outline and hole edges      ``#000000``  1 (Origami Simulator "boundary": free e
 cut lines inside a part     ``#00ff00``  1 (Origami Simulator "cut": slits, e.g. slots)
 mountain crease             ``#ff0000``  fold angle / 180 (dihedral, 0 flat .. 1 folded flat)
 valley crease               ``#0000ff``  fold angle / 180
-mark (assembly guide)       ``#ff00ff``  1 (Origami Simulator reads it as "undriven")
+mark (assembly guide)       ``#ff00ff``  1 (in ``<defs>``: Origami Simulator skips it)
 ==========================  ===========  ===============================================
 
 Holes are drawn as boundary, not cut: their edges are free edges of the sheet, exactly FOLD's
@@ -31,9 +31,18 @@ dashes; no file of corrugate uses ``stroke-dasharray``, which cutters ignore).
 Part labels are ``<text>`` elements in a ``<g id="labels">`` group (grey fill, no stroke), placed
 clear of every line (:mod:`.labels`) and squeezed into their box with ``textLength``; with
 ``fold_order`` each label starts with the part's step number in the folding order and the part's
-group carries ``data-fold-order``; a label that would be smaller than ``MIN_TEXT_MM`` (1.2 mm) is
-the part's name only. ``labels=False`` leaves them out, ``marks=False`` leaves the marks
-out (Origami Simulator would otherwise treat them as free hinges).
+group carries ``data-fold-order``; a label that would be smaller than ``READABLE_TEXT_MM`` (2 mm)
+is the part's name only (:func:`~corrugate.export.labels.readable_label`), and the legend gives the
+full label in a row of its own. ``labels=False`` leaves them out, ``marks=False`` leaves the
+marks out.
+
+The band's marks are drawn in a group Origami Simulator does not import: a ``<g id="band-marks">``
+inside ``<defs>``, shown where it is by one ``<use href="#band-marks">`` (every SVG viewer draws it;
+Origami Simulator's SVG import deletes every child of ``<defs>`` but styles and reads no ``<use>``,
+js/pattern.js of amandaghassaei/OrigamiSimulator). A magenta line it did read was an "undriven"
+crease ending inside a face, which kept the folded sheet from reaching its fold angles (issue 36:
+16-17 deg off, edges strained 3-5 %); ``benchmarks/origami_simulator.py`` folds the fold map in
+the app and checks every crease's angle and the edges' strain.
 
 The colours are the palette's (:mod:`corrugate.fabrication.palette`), the same in every file. The
 legend (:func:`corrugate.export.legend.fold_map_legend`: "FOLD MAP: for people, not the cutter",
@@ -52,9 +61,10 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from corrugate.core.fileio import staged
-from corrugate.export.labels import MIN_TEXT_MM, label_spot, label_text
+from corrugate.export.labels import LabelSpot, label_text, readable_label
 from corrugate.export.legend import (
     LEGEND_TEXT_MM,
+    LegendRow,
     fold_map_legend,
     legend_size,
     legend_spot,
@@ -83,7 +93,7 @@ __all__ = [
 SVG_NS = "http://www.w3.org/2000/svg"
 #: Stroke colour of outlines and holes (Origami Simulator "boundary"; the palette's ``cut``).
 BOUNDARY = LINES["cut"].hex
-#: Stroke colour of each line role (Origami Simulator: cut, mountain, valley, undriven), from the
+#: Stroke colour of each line role (Origami Simulator: cut, mountain, valley; marks in <defs>), from the
 #: palette (:mod:`corrugate.fabrication.palette`).
 COLOURS: dict[Role, str] = {
     Role.CUT: LINES["slit"].hex,
@@ -159,7 +169,19 @@ def svg_document(
     def num(mm: float) -> str:  # a length in mm, in user units
         return svg_number(mm / u)
 
-    rows = fold_map_legend(operations) if legend else []
+    written: dict[int, tuple[str, LabelSpot]] = {}  # each part's label: its text and spot
+    key_rows: list[LegendRow] = []  # the full labels of the parts that carry their name only
+    if labels:
+        for j, placement in enumerate(sheet.placements):
+            placed = place(placement)
+            step = None if fold_order is None else fold_order.get(placement.part.name)
+            prefix = "" if step is None else f"{step}. "
+            full = label_text(placed)
+            text, spot, short = readable_label(placed, prefix + full, prefix + placement.part.name)
+            written[j] = (text, spot)
+            if short:
+                key_rows.append(LegendRow(full, ANNOTATION))
+    rows = [*fold_map_legend(operations), *key_rows] if legend else []
     key = legend_spot(sheet, rows, margin, spacing) if rows else None
     extra = 0.0
     if rows and key is None:  # no room on the sheet: a strip below it (no machine reads this)
@@ -174,6 +196,7 @@ def svg_document(
         ET.SubElement(root, "title").text = title
     common = {"fill": "none", "stroke-width": num(STROKE_MM), "stroke-linecap": "butt"}
     text_group = ET.Element("g", {"id": "labels"})
+    mark_group: ET.Element | None = None
     for j, placement in enumerate(sheet.placements):
         placed = place(placement)
         part = placement.part
@@ -210,6 +233,13 @@ def svg_document(
         for ln in placed.lines:
             if ln.role is Role.MARK and not marks:
                 continue
+            parent = g
+            if ln.role is Role.MARK:  # in <defs>, out of Origami Simulator's reach (docstring)
+                if mark_group is None:
+                    mark_group = ET.SubElement(
+                        ET.SubElement(root, "defs"), "g", {"id": "band-marks"}
+                    )
+                parent = mark_group
             attrs = {
                 "x1": num(ln.a[0]),
                 "y1": num(H - ln.a[1]),
@@ -228,14 +258,11 @@ def svg_document(
             else:
                 attrs["class"] = ln.role.value
                 attrs["opacity"] = "1"
-            ET.SubElement(g, "line", attrs)
+            if ln.role is Role.MARK:
+                attrs["data-part"] = part.name
+            ET.SubElement(parent, "line", attrs)
         if labels:
-            prefix = "" if step is None else f"{step}. "
-            text = prefix + label_text(placed)
-            spot = label_spot(placed, text)
-            if spot.size < MIN_TEXT_MM:  # too small to read: the part's name only
-                text = prefix + part.name
-                spot = label_spot(placed, text)
+            text, spot = written[j]
             x, y = num(spot.x), num(H - spot.y)
             t_attrs = {
                 "x": x,
@@ -253,6 +280,8 @@ def svg_document(
             if spot.rotation:
                 t_attrs["transform"] = f"rotate({svg_number(-spot.rotation)} {x} {y})"
             ET.SubElement(text_group, "text", t_attrs).text = text
+    if mark_group is not None:  # drawn where it is defined
+        ET.SubElement(root, "use", {"href": "#band-marks", "class": "mark"})
     if labels:
         root.append(text_group)
     if key is not None:

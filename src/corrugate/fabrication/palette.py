@@ -15,12 +15,15 @@ kind        colour       ACI    meaning
                                 it with the outlines, so it is drawn there in ``cut``'s colour
 ``mountain`` ``#ff0000``  1      mountain crease (Origami Simulator's mountain)
 ``valley``  ``#0000ff``  5      valley crease (Origami Simulator's valley)
-``mark``    ``#ff00ff``  6      the band's angle marks (Origami Simulator "undriven")
+``mark``    ``#ff00ff``  6      the band's angle marks (in the fold map inside ``<defs>``, which
+                                Origami Simulator does not import: a magenta line it reads is an
+                                "undriven" crease)
 ``note``    ``#808080``  8      labels and legends: for a pen, or for people
 ==========  ===========  =====  =================================================================
 
 The crease colours are those Origami Simulator reads from an SVG (red mountain, blue valley, black
-boundary, green cut, magenta undriven), so the fold map stays an Origami Simulator input; every
+boundary, green cut), so the fold map stays an Origami Simulator input (its marks out of the app's
+reach, :mod:`corrugate.export.svg`); every
 other file uses the same colour for the same kind of line, so red always means mountain and blue
 always valley. A cut file gives each kind exactly one machine operation (its DXF layer or SVG
 group is named for both, e.g. ``MOUNTAIN-PERFORATE``), so a colour is also one setting in

@@ -31,6 +31,11 @@ Endpoints (all JSON unless said otherwise):
   (server-sent events), ``DELETE /api/jobs/{id}`` (cancel: the worker killed and replaced, no
   result folder left); ``GET /api/fea``: whether CalculiX is installed
   (:mod:`corrugate.web.jobs`);
+* ``POST /api/spec/toml``: the body of ``/api/design`` -> the spec file ``corrugate design`` reads
+  (``text/plain``, TOML: the request's ``cutter`` as ``[fabrication] machine``, the other output
+  options as a comment naming the CLI's options), 422 naming a bad key;
+  ``POST /api/spec/parse``: ``{"toml": <a spec file's text>}`` -> its keys as JSON, the form's
+  ``cutter`` from ``[fabrication] machine`` (422 naming the key or the TOML error, as the CLI);
 * ``GET /api/results/{id}/{name}``: a file the app made (looked up, never a path);
   ``GET /api/results/{id}/all.zip``: all of them in one zip archive.
 
@@ -89,9 +94,11 @@ from corrugate.export.machines import Machine
 from corrugate.export.plan import OutputOptions
 from corrugate.materials.library import library
 from corrugate.mechanics.moduli import DEFAULT_MODEL, MODELS
+from corrugate.names import DEFAULT_FOLD_STYLE, DEFAULT_PAPER
 from corrugate.solver import Problem
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
+from corrugate.spec.toml_text import read_spec_toml, spec_toml
 from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck
 from corrugate.web.jobs import Job, JobTable, solver_progress, sse
 from corrugate.web.schemas import (
@@ -112,6 +119,7 @@ from corrugate.web.schemas import (
     PatternBody,
     ResultBody,
     ResultFile,
+    SpecFileBody,
     VerifyBody,
     format_list,
     load_case_list,
@@ -494,6 +502,53 @@ def _prepare_design(
         strict_json=True,
         names=_NAMES,
     )
+
+
+def spec_file_job(body: DesignBody, settings: WebSettings) -> str:
+    """The spec file of a design request (``POST /api/spec/toml``): its spec keys as TOML
+    (:func:`corrugate.spec.toml_text.spec_toml`), the request's ``cutter`` as ``[fabrication]
+    machine`` (what ``corrugate design`` reads of a machine) and its other output options, which
+    a spec does not hold, in a comment as the CLI's options. The request is read first as
+    :func:`design_job` reads it: a bad value raises its error naming the field, nothing is made.
+    A job: runs in a worker process."""
+    _prepare_design(body, settings)
+    data = _spec_data(body)
+    if "cutter" in body.model_fields_set:
+        fab = data.get("fabrication")
+        data["fabrication"] = {**(fab if isinstance(fab, dict) else {}), "machine": body.cutter}
+    options = []
+    if body.fold_style != DEFAULT_FOLD_STYLE:
+        options.append(f"--fold-style {body.fold_style}")
+    for key in ("cut", "gap"):
+        value = getattr(body, key)
+        if value is not None and body.fold_style == "perforated":
+            options.append(f"--{key} '{value}'")
+    if body.paper != DEFAULT_PAPER:
+        options.append(f"--paper {body.paper}")
+    comments = ["a spec saved by the corrugate web page: corrugate design FILE.toml"]
+    if options:
+        comments.append(
+            "the page's output options: corrugate design FILE.toml " + " ".join(options)
+        )
+    with _PARSE_LOCK:
+        return spec_toml(data, comments)
+
+
+def spec_parse_job(body: SpecFileBody) -> dict[str, Any]:
+    """A spec file read into the page's form (``POST /api/spec/parse``): the file checked as
+    ``corrugate design`` checks it (a bad value raises its error naming the key), then its keys as
+    written, with ``[fabrication] machine`` as the form's ``cutter`` (the machine's checked
+    name). A job: runs in a worker process."""
+    with _PARSE_LOCK:
+        spec, data = read_spec_toml(body.toml, body.name)
+    machine = spec.fabrication.machine
+    fab = data.get("fabrication")
+    if machine not in (None, "none") and isinstance(fab, dict):
+        fab.pop("machine", None)
+        if not fab:
+            del data["fabrication"]
+        data["cutter"] = machine
+    return data
 
 
 def check_design_job(body: DesignBody, settings: WebSettings) -> None:
@@ -973,6 +1028,30 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
         infeasible: ``design.diagnosis`` says why). A bad spec value gets 422 naming its TOML path,
         e.g. ``constraints.side.min``."""
         return await design_answer(body, cfg, store, runner)
+
+    @app.post(
+        "/api/spec/toml",
+        summary="The spec file of a design request",
+        response_class=Response,
+        responses={200: {"content": {"text/plain": {}}}, **error_responses},
+    )
+    async def spec_file_endpoint(body: DesignBody) -> Response:
+        """The TOML file ``corrugate design FILE.toml`` reads for the body of ``/api/design``
+        (the same spec, the same answer): the request's ``cutter`` as ``[fabrication] machine``,
+        its other output options in a comment. A bad value gets 422 naming its TOML path."""
+        text = await runner.run(spec_file_job, body, cfg)
+        return Response(
+            text,
+            media_type="text/plain; charset=utf-8",
+            headers={"Content-Disposition": 'attachment; filename="spec.toml"'},
+        )
+
+    @app.post("/api/spec/parse", summary="A spec file's keys", responses=error_responses)
+    async def spec_parse_endpoint(body: SpecFileBody) -> JSONResponse:
+        """The keys of a spec file (TOML, as ``corrugate design`` reads it) as JSON, for the
+        page's form; ``[fabrication] machine`` becomes the form's ``cutter``. A bad file gets 422
+        naming the key, or the TOML error."""
+        return JSONResponse(await runner.run(spec_parse_job, body))
 
     @app.get(
         "/api/results/{result_id}/" + ZIP_NAME,

@@ -205,6 +205,19 @@ class DesignBody(OutputBody):
     robust: Any = Field(None, description="Tolerances for a robust design. " + _SPEC_KEY)
 
 
+class SpecFileBody(BaseModel):
+    """A spec file's text, as ``corrugate design FILE.toml`` reads it (the page's "Load a spec")."""
+
+    model_config = ConfigDict(extra="forbid")
+
+    toml: Annotated[str, StringConstraints(max_length=200_000)] = Field(
+        description="The TOML text of a spec file (the keys of examples/blimp_gripper.toml)."
+    )
+    name: Annotated[str, StringConstraints(max_length=200)] = Field(
+        "the file", description="The file's name, which errors name."
+    )
+
+
 class FieldError(BaseModel):
     """One problem with one field."""
 

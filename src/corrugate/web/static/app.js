@@ -131,6 +131,8 @@ function clearErrors() {
 // The name a user sees for a form control: its field's label, and its own aria-label when the
 // label is shared (a min/max pair: "Side L (side max)").
 function fieldName(input) {
+  const sub = input.closest('label.sub');  // a requirement row's value: its own full name
+  if (sub) return (input.getAttribute('aria-label') || '').trim() || sub.textContent.trim();
   const field = input.closest('.field');
   const label = field ? field.querySelector('label') : null;
   const text = label ? label.textContent.trim() : '';
@@ -559,6 +561,15 @@ function renumberRequirements() {
     const kind = row.querySelector('.req-kind').value;
     const deflection = kind === 'deflection';
     const min = row.querySelector('.req-min');
+    // a row switched to a quantity of another unit keeps no value of the old one (an EI of
+    // "80 mN*m^2" is no deflection in mm); a load case's load and span go with it
+    const was = row.dataset.kind;
+    if (was !== undefined && was !== kind) {
+      if (REQUIREMENT_UNITS[was] !== REQUIREMENT_UNITS[kind]) min.value = '';
+      if (was === 'deflection') for (const c of ['.req-load', '.req-span']) row.querySelector(c).value = '';
+    }
+    row.dataset.kind = kind;
+    row.querySelector('.req-min-text').textContent = deflection ? 'at most (mm)' : `at least (${REQUIREMENT_UNITS[kind]})`;
     const used = min.value.trim() !== '';
     const k = used ? (counts[kind] = (counts[kind] ?? -1) + 1) : null;
     const base = used ? `constraints.${kind}[${k}]` : null;
@@ -603,6 +614,7 @@ function addRequirement(values = {}) {
 }
 
 function setRequirement(row, { kind, min = '', eta = '0 deg', support = '', test = '', load = '', span = '' }) {
+  row.dataset.kind = kind;  // set, not switched: its values are the ones given
   row.querySelector('.req-kind').value = kind;
   syncRowTests(row);
   const select = row.querySelector('.req-test');
@@ -691,6 +703,11 @@ function fillDesign(spec) {
   // study's paper)
   $('d-model').value = 'refined';
   $('d-joint').value = '';  // a spec that names no joint leaves the layers' edges free
+  for (const el of designForm.querySelectorAll('select[data-path^="fabrication."]')) el.value = '';  // the machine's
+  // what a spec file cannot say is the CLI's default (a shared link's body names them all)
+  $('d-cutter').value = 'cameo4-12x12';
+  $('d-fold-style').value = 'machine';
+  $('d-paper').value = 'mat';
   walk(spec, '');
   if (spec.layout && spec.layout.holes) {
     const mm = (x) => String(x).replace(/^(.*\S)\s*mm$/, '$1');  // the field's own unit
@@ -916,7 +933,12 @@ function showRunnerUps(d) {
   }
   if (!runners.length) {
     const row = body.insertRow();
-    const td = cell(row, 'none (a single n)');
+    const n = (lastDesignSpec && lastDesignSpec.variables && lastDesignSpec.variables.n) || {};
+    const single = n.min !== undefined && String(n.min) === String(n.max);
+    const partial = (d.warnings || []).some((w) => w.code === 'explanation-partial');
+    const td = cell(row, single ? 'none (a single n)'
+      : partial ? 'none: the time budget ran out before the other n were searched'
+        : 'none: no other n near the answer\'s meets every requirement');
     td.colSpan = layer2 ? 6 : 5;
     td.className = 'text muted';
   }
@@ -1100,6 +1122,63 @@ function jobErrorText(state) {
 }
 
 let designJob = null;  // the id of the design job running, if any
+let lastDesignSpec = null;  // the spec of the answer shown (its n range names empty runner-ups)
+
+// Save the form as the spec file the CLI reads (the server writes the TOML: POST /api/spec/toml,
+// the same checks as a design; a bad value is shown on its field and nothing is saved).
+async function saveSpec() {
+  clearDesignErrors();
+  const body = designBody();
+  $('d-status').textContent = '';
+  try {
+    const response = await fetch('/api/spec/toml', {
+      method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify(body),
+    });
+    if (!response.ok) {
+      showDesignErrors(await response.json().catch(() => ({})), response.status);
+      return;
+    }
+    const text = await response.text();
+    const link = document.createElement('a');
+    link.href = URL.createObjectURL(new Blob([text], { type: 'text/plain' }));
+    const name = String(body.name || 'design').replace(/[^A-Za-z0-9._-]+/g, '_');
+    link.download = `${name}.toml`;
+    document.body.appendChild(link);
+    link.click();
+    link.remove();
+    setTimeout(() => URL.revokeObjectURL(link.href), 10000);
+    $('d-status').textContent = `saved ${link.download} (corrugate design ${link.download})`;
+  } catch (err) {
+    $('d-error-body').textContent = `request failed: ${err.message}`;
+  }
+}
+
+// Load a spec file into the form (read by the server as the CLI reads it: POST /api/spec/parse;
+// a bad file gets the CLI's one line naming the key, and the form is left as it was).
+async function loadSpec(event) {
+  const file = event.target.files && event.target.files[0];
+  event.target.value = '';  // the same file may be loaded again
+  if (!file) return;
+  clearDesignErrors();
+  try {
+    const answer = await postJSON('/api/spec/parse', { toml: await file.text(), name: file.name });
+    if (!answer.ok) {
+      const p = answer.payload || {};
+      $('d-error-body').textContent = `${file.name}: ${p.detail || `HTTP ${answer.status}`}`;
+      return;
+    }
+    await loadCasesLoaded;  // the rows' test menus first
+    fillDesign(answer.payload);
+    // the keys of the file the form has no field for (saving the form would leave them out)
+    const paths = (obj, prefix = '') => Object.entries(obj).flatMap(([k, v]) => (
+      v && typeof v === 'object' && !Array.isArray(v) ? paths(v, `${prefix}${k}.`) : [`${prefix}${k}`]));
+    const kept = new Set(paths(designBody()));
+    const lost = paths(answer.payload).filter((p) => !kept.has(p));
+    $('d-status').textContent = `loaded ${file.name}${lost.length ? `; not in the form (left out): ${lost.join(', ')}` : ''}`;
+  } catch (err) {
+    $('d-error-body').textContent = `request failed: ${err.message}`;
+  }
+}
 
 async function submitDesign(event) {
   event.preventDefault();
@@ -1116,6 +1195,7 @@ async function submitDesign(event) {
   delete designForm.dataset.job;
   try {
     const body = designBody();
+    lastDesignSpec = body;
     history.replaceState(null, '', `#design?spec=${encodeURIComponent(JSON.stringify(body))}`);
     const answer = await postJSON('/api/jobs/design', body);
     if (mine !== designGeneration) return;
@@ -1320,6 +1400,8 @@ form.addEventListener('submit', submit);
 $('material').addEventListener('change', syncVisibility);
 $('layout').addEventListener('change', syncVisibility);
 designForm.addEventListener('submit', submitDesign);
+$('d-save').addEventListener('click', saveSpec);
+$('d-load').addEventListener('change', loadSpec);
 $('make-cut-files').addEventListener('click', makeCutFiles);
 $('explode').addEventListener('click', (event) => toggleExploded(event.currentTarget, () => viewer));
 $('d-explode').addEventListener('click', (event) => toggleExploded(event.currentTarget, () => designViewer));
