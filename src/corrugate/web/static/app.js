@@ -795,7 +795,10 @@ function bulletList(list, items, empty) {
 
 function showDesign(d) {
   const found = d.design !== null;
-  const cert = d.certified ? 'certified' : 'not certified';
+  const extrapolated = (d.extrapolated || []).length > 0;
+  const cert = extrapolated
+    ? `extrapolated, not certified: outside the validated range (${d.extrapolated.join('; ')})`
+    : (d.certified ? 'certified' : 'not certified');
   $('d-verdict').textContent = `${d.name}: ${d.status} (${cert}), model ${d.model}`;
   $('d-verdict').dataset.status = d.status;
   $('d-found').hidden = !found;
