@@ -159,8 +159,9 @@ _STATIC: dict[str, KeyDoc] = {
     "trust": KeyDoc(
         "",
         "Where the answer may lie: 'certified' (default: only inside the range of designs each "
-        "model the constraints use was validated over against FE, `corrugate docs validation/"
-        "ranges`; each range is a constraint, named validity.MODEL.VARIABLE.END when it binds) "
+        "model the constraints use was validated over against FE, "
+        "`corrugate docs validation/ranges`; each range is a constraint, named "
+        "validity.MODEL.VARIABLE.END when it binds) "
         "or 'extrapolate' (the ranges dropped: an answer outside one is marked extrapolated, "
         "not certified, and names the ranges it leaves).",
     ),
