@@ -41,6 +41,7 @@ def _named(p: Problem, key: str) -> str:
     return name
 
 
+@pytest.mark.slow
 def test_the_arm_link_has_no_certified_design_below_the_cantilever_range() -> None:
     """The issue's arm link, its deflection bound read as the cantilever's rigidity
     (tests/data/arm_link_stiffness.toml). By default the cantilever's range is a constraint,
@@ -61,6 +62,7 @@ def test_the_arm_link_has_no_certified_design_below_the_cantilever_range() -> No
     assert min(layer.n + 1 for layer in without.assembly.layers) < 7
 
 
+@pytest.mark.slow
 def test_extrapolate_gives_the_old_answer_marked_extrapolated() -> None:
     """trust = "extrapolate": the ranges are dropped and the answer is the one the issue
     reported (layer 2 at n 2, W 25 mm: 3 facets), marked extrapolated, not certified, naming
@@ -221,3 +223,51 @@ def test_an_unknown_trust_is_one_line_naming_it(cli: CliRun, tmp_path: Path) -> 
     code, _out, err = cli(["design", str(spec), "--json"])
     assert code == 2
     assert "trust" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+def test_the_diagnosis_names_a_binding_range_and_hints_extrapolate() -> None:
+    """At most 5 creases (6 facets) with a pure-bending bound: only the springs' range (7 facets,
+    docs/validation/ranges.md) stands between the spec and a design; the diagnosis names it,
+    reaches 6 facets at best, and its hint is trust = "extrapolate"."""
+    d = _spec(flexural_rigidity=[{"min": "10 mN*m^2", "eta": 0}])
+    d["variables"]["n"] = {"min": 2, "max": 5}
+    p = Problem.from_spec(parse_spec(d))
+    sol = solve(p)
+    assert sol.status == "infeasible" and sol.certified
+    (diag,) = [x for x in sol.diagnosis if x.names[0].startswith("validity.springs.facets.min")]
+    assert diag.reachable == 6 and diag.bound == 7
+    assert diag.hint is not None and diag.hint.startswith('trust = "extrapolate"')
+    assert "is validated for >= 7 facets per layer" in diag.message
+
+
+@pytest.mark.slow
+def test_a_binding_range_is_named_in_the_answer() -> None:
+    """examples/rectangle_independent.toml allows n from 4: its answer before issue 35 had a
+    layer of 5 facets (layer 2 W 10, n 4); now the springs' range holds layer 2 at n 6 and the
+    answer's constraint table shows the range binding (relaxing it alone finds a lighter
+    design: the old one)."""
+    sol = solve(_problem(ROOT / "examples" / "rectangle_independent.toml"))
+    assert sol.certified and sol.assembly is not None
+    assert min(layer.n for layer in sol.assembly.layers) == 6
+    (row,) = [c for c in sol.constraints if c.name.startswith("validity.springs.facets.min")]
+    assert row.binding is True and row.value == 7
+
+
+@pytest.mark.slow
+def test_an_extrapolated_answer_is_marked_everywhere(cli: CliRun, tmp_path: Path) -> None:
+    """The arm link (stiffness form) with trust = "extrapolate": the CLI's text says
+    EXTRAPOLATED, not certified (exit 0: an answer); --json, design.json and report.html carry
+    the ranges it leaves."""
+    spec = tmp_path / "arm.toml"
+    spec.write_text('trust = "extrapolate"\n' + ARM_EI.read_text())
+    code, out, _ = cli(["design", str(spec)])
+    assert code == 0
+    assert "EXTRAPOLATED, not certified" in out and "extrapolated, not certified" in out
+    code, out, _ = cli(["design", str(spec), "--json", "--out", str(tmp_path / "o")])
+    assert code == 0
+    answer = json.loads(out)
+    assert answer["certified"] is False and answer["trust"] == "extrapolate"
+    assert answer["extrapolated"][0].startswith(FACETS)
+    record = json.loads((tmp_path / "o" / "design.json").read_text())
+    assert record["extrapolated"] == answer["extrapolated"] and record["certified"] is False
+    assert "EXTRAPOLATED, not certified" in (tmp_path / "o" / "report.html").read_text()
