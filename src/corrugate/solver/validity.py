@@ -42,7 +42,14 @@ if TYPE_CHECKING:
     from corrugate.solver.context import AtPoints, OverBoxes
     from corrugate.solver.problem import Candidate, Constraint, DesignVariable
 
-__all__ = ["VALIDITY", "models_of", "outside_ranges", "validity_constraints"]
+__all__ = [
+    "LAYER_KINDS",
+    "VALIDITY",
+    "layer_limits",
+    "models_of",
+    "outside_ranges",
+    "validity_constraints",
+]
 
 FloatArray = NDArray[np.float64]
 Pair = tuple[FloatArray, FloatArray]
@@ -62,6 +69,42 @@ _KINDS: dict[tuple[str, End], tuple[str, str, str]] = {
 }
 #: The quantities of this module.
 VALIDITY: frozenset[Quantity] = frozenset(Quantity(k) for k, _, _ in _KINDS.values())
+
+
+#: The kinds that bound every layer on its own (the least of the layers >= a bound: each layer
+#: >= it; the most <= a bound: each <= it), with the sense that makes them so, and the layer's
+#: variable: what the layer-by-layer search (:mod:`.separable`) filters each layer's list by.
+LAYER_KINDS: dict[str, tuple[str, str]] = {
+    "facets_least": ("min", "facets"),
+    "facets_most": ("max", "facets"),
+    "alpha_least": ("min", "alpha"),
+    "alpha_most": ("max", "alpha"),
+    "W_least": ("min", "W"),
+    "W_most": ("max", "W"),
+    "tw_least": ("min", "t_over_W"),
+    "tw_most": ("max", "t_over_W"),
+}
+
+
+def layer_limits(constraints: Sequence[Constraint]) -> dict[str, tuple[float, float]]:
+    """Each layer's own limits (variable -> (lo, hi); ``facets`` is n + 1) of the range
+    constraints among ``constraints`` of :data:`LAYER_KINDS` (module docstring), to the solver's
+    feasibility tolerance (:data:`~.problem.FEAS_RTOL`)."""
+    from corrugate.solver.problem import FEAS_RTOL
+
+    out: dict[str, tuple[float, float]] = {}
+    for c in constraints:
+        entry = LAYER_KINDS.get(c.quantity.kind)
+        if entry is None or entry[0] != c.sense:
+            continue
+        lo, hi = out.get(entry[1], (-math.inf, math.inf))
+        tol = FEAS_RTOL * abs(c.bound)
+        if c.sense == "min":
+            lo = max(lo, c.bound - tol)
+        else:
+            hi = min(hi, c.bound + tol)
+        out[entry[1]] = (lo, hi)
+    return out
 
 
 def _hub_diameter(layout: Layout, diameter: Any) -> float:
