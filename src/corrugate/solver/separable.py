@@ -216,8 +216,10 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
             keep &= (value >= limits[variable][0]) & (value <= limits[variable][1])
     if "facets" in limits:
         f_lo, f_hi = limits["facets"]
-        lo_n = np.maximum(lo_n, math.ceil(f_lo - 1e-9) - 1.0)
-        hi_n = np.minimum(hi_n, math.floor(f_hi + 1e-9) - 1.0)
+        if math.isfinite(f_lo):
+            lo_n = np.maximum(lo_n, math.ceil(f_lo - 1e-9) - 1.0)
+        if math.isfinite(f_hi):
+            hi_n = np.minimum(hi_n, math.floor(f_hi + 1e-9) - 1.0)
     # the extent (n + 1) p grows with n: the n range of each (W, alpha) from its bounds, one
     # value wider on each side, then checked exactly below with evaluate's arithmetic
     zz = ZigZag.of(W_g, a_g)  # the zig-zag's profile, as analysis.evaluate._layer_part
