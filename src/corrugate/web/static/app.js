@@ -855,7 +855,8 @@ function showDesign(d) {
   } else {
     $('d-summary').textContent = 'No design meets every requirement:';
   }
-  bulletList($('d-warnings'), d.warnings.map((w) => `${w.code}: ${w.message}`), 'none');
+  bulletList($('d-warnings'), d.warnings.map((w) => `${w.code}: ${w.message}`)
+    .concat((d.notes || []).map((w) => `note (${w.code}): ${w.message}`)), 'none');
   $('design-results').hidden = false;
 }
 
