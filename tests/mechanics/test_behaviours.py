@@ -130,8 +130,14 @@ def test_solver_certifies_a_bound_under_the_registered_support(half: Behaviour) 
     assert rep.quantity.key == "Khalf@45" and rep.unit == "N/mm"
     assert rep.binding
     d = sol.to_dict()
-    spec_rows = [c for c in d["constraints"] if not c["name"].startswith("fabrication.")]
+    spec_rows = [
+        c for c in d["constraints"] if not c["name"].startswith(("fabrication.", "validity."))
+    ]
     assert [c["quantity"] for c in spec_rows] == ["Lx", "Lx", "Khalf@45"]
+    # a stiffness bound brings the springs' validated range (docs/validation/ranges.md)
+    assert [c["quantity"] for c in d["constraints"] if c["name"].startswith("validity.")] == [
+        "facets_least"
+    ]
 
     Ws, ns, As = np.arange(6.0, 14.5, 1.0), np.arange(2, 21), np.arange(50.0, 110.5, 2.0)
     n, W, A = (g.ravel() for g in np.meshgrid(ns, Ws, As, indexing="ij"))

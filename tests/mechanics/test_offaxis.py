@@ -161,6 +161,9 @@ def test_certified_answer_with_off_axis_and_buckling_constraints(d: dict[str, An
     # squares fit any mat
     width = W
     ok &= (width >= 3.0 * (1 - rtol)) & (0.125 / width <= 0.05 * (1 + rtol))
+    # the springs' and the off-axis factors' validated range: 7 or more facets per layer
+    # (docs/validation/ranges.md)
+    ok &= n + 1 >= 7
     assert sol.certified
     if not ok.any():
         assert sol.status == "infeasible"

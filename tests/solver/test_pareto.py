@@ -53,6 +53,8 @@ def _brute_front(W_step: float, a_step: float) -> list[tuple[float, float]]:
     ev = evaluate(layer, layer, make_layout("square"), "refined", 0.0)
     ok = (ev.Lx >= 40 * (1 - 1e-9)) & (ev.Lx <= 60 * (1 + 1e-9))
     ok &= (ev.thickness >= 8 * (1 - 1e-9)) & (ev.thickness <= 14 * (1 + 1e-9))
+    # the springs' validated range: 7 or more facets (docs/validation/ranges.md)
+    ok &= n + 1 >= 7
     EI, mass = ev.EI[ok], ev.mass[ok]
     order = np.lexsort((mass, -EI))  # stiffest first, lightest first among equals
     front: list[tuple[float, float]] = []

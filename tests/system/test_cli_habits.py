@@ -71,6 +71,7 @@ def test_show_completion_prints_a_bash_script(
                 "validation/capacity",
                 "validation/load_cases",
                 "validation/off_axis",
+                "validation/ranges",
                 "validation/strength",
             },
         ),

@@ -49,7 +49,7 @@ shape = "square"
 
 [variables]
 W = { min = "4 mm", max = "8 mm", step = "1 mm" }
-n = { min = 3, max = 6 }
+n = { min = 6, max = 9 }  # from 7 facets: the springs' validated range (docs/validation/ranges.md)
 alpha = { min = "60 deg", max = "120 deg", step = "1 deg" }
 
 [constraints]

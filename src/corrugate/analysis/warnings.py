@@ -1,15 +1,18 @@
 """Warnings attached to every result: where the model is being used outside its evidence.
 
-* outside the range the paper validated on the bench (n 7-13, W 8-14 mm, alpha 40-115 deg;
-  Liu, Yan and Mehta, section 'Model Validation');
+* fewer facets than the homogenised spring model was validated for against FE
+  (``data/validity.toml``, docs/validation/ranges.md; the solver makes that range a
+  constraint, :mod:`corrugate.solver.validity`, so only ``analyze`` and an extrapolated answer
+  show it);
 * thick sheets: the closed forms assume zero-thickness creases; periodic unit-cell FE
   (``reference/unitcell_fe.csv``) puts the resulting error in Ecx and Ebx at about t/W at
   alpha = 90 deg, growing as (90 deg / alpha)^2 for sharper folds (9 % at t/W = 0.02, 45 deg);
-* very few facets: the spring model homogenises the corrugation, which needs several periods;
 * a thickness the material is not sold in (the library lists what is sold);
 * short panels: D is a pure-bending stiffness; a panel loaded as a short beam also shears. The
-  shell FE of docs/fea.md (section 3) measured the 3-point D below the pure-bending D by
-  1.1-2.0 times the Timoshenko estimate 2 (1 + nu) (W / L)^2, L = (n + 1) W sin(alpha/2);
+  shell FE of docs/fea.md (section 3) measured the 3-point shear compliance at 1.1-2.0 times
+  the Timoshenko estimate e = 2 (1 + nu) (W / L)^2 of the bending compliance,
+  L = (n + 1) W sin(alpha/2), so the test reads D / (1 + k e), k e / (1 + k e) less
+  (:func:`shear_share`: between 0 and 100 %);
 * directions other than along the creases (eta not a multiple of 90 deg): each support
   condition's own text (:mod:`corrugate.mechanics.supports`): with ``support = "free"`` K(eta) and
   D(eta) are the free-panel model of :mod:`corrugate.mechanics.offaxis` (lower bounds of the
@@ -17,8 +20,12 @@
   ``"frame"`` the paper's cos^2 rule, which holds only for a panel held in a rigid frame
   (docs/fea.md 2.5);
 * the ``paper`` model, which has known errors (docs/theory.md 3.1);
-* a bound in the wheel test (:func:`wheel_warnings`) on a disc outside the range of designs
-  whose FE sweep gives the test's factor (:data:`corrugate.mechanics.wheel.VALIDATED_WHEEL`).
+* a wheel-test design outside the FE sweep that gives the test's factor (:func:`wheel_warnings`;
+  the solver makes that range a constraint).
+
+A repeated code is one warning (:func:`group_warnings`), and each says what to do. The range
+the paper tested on the bench (n 7-13, W 8-14 mm, alpha 40-115 deg; Liu, Yan and Mehta, section
+'Model Validation') is information, not a warning (:func:`bench_notes`).
 """
 
 from __future__ import annotations
@@ -30,17 +37,20 @@ from dataclasses import dataclass
 from corrugate.geometry.layer import Assembly, Layer, crease_layer
 from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.behaviours import get_support, support_names
+from corrugate.mechanics.validity import model_range
 from corrugate.names import DEFAULT_LAYOUT, DEFAULT_SUPPORT
 
 __all__ = [
     "CREASE_ERROR_LIMIT",
-    "MIN_FACETS",
     "SHEAR_LIMIT",
     "VALIDATED",
     "ModelWarning",
+    "bench_notes",
     "crease_error_estimate",
     "design_warnings",
+    "group_warnings",
     "shear_estimate",
+    "shear_share",
     "wheel_warnings",
 ]
 
@@ -48,10 +58,10 @@ __all__ = [
 VALIDATED = {"n": (7, 13), "W": (8.0, 14.0), "alpha": (40.0, 115.0)}
 #: Estimated crease-thickness error above which a sheet counts as thick.
 CREASE_ERROR_LIMIT = 0.05
-#: Fewest facets (n + 1) for which the homogenised spring model is trusted.
-MIN_FACETS = 6
 #: Timoshenko shear estimate above which a short-panel warning is given.
 SHEAR_LIMIT = 0.05
+#: The shell FE's 3-point shear compliance over the Timoshenko estimate (docs/fea.md 3).
+SHEAR_FACTORS = (1.1, 2.0)
 
 
 def shear_estimate(nu: float, n: int, alpha_deg: float) -> float:
@@ -78,26 +88,53 @@ def crease_error_estimate(t: float, W: float, alpha_deg: float) -> float:
     return (t / W) * (90.0 / alpha_deg) ** 2
 
 
-def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
+def bench_notes(a: Assembly) -> list[ModelWarning]:
+    """Information, not a warning: the parameters of ``a``'s layers outside the range the paper
+    tested on the bench (:data:`VALIDATED`), one note per layer (both layers once when they are
+    identical). The models are validated against FE over wider ranges, which the solver
+    enforces (docs/validation/ranges.md)."""
     out: list[ModelWarning] = []
-    checks = (("n", layer.n, ""), ("W", layer.W, " mm"), ("alpha", layer.alpha_deg, " deg"))
-    for name, value, unit in checks:
-        lo, hi = VALIDATED[name]
-        if not lo <= value <= hi:
+    layers = (
+        [("both layers", a.layer1)]
+        if a.layer2 == a.layer1
+        else list(zip(("layer 1", "layer 2"), a.layers, strict=True))
+    )
+    for label, layer in layers:
+        checks = (("n", layer.n, ""), ("W", layer.W, " mm"), ("alpha", layer.alpha_deg, " deg"))
+        said = []
+        for name, value, unit in checks:
+            lo, hi = VALIDATED[name]
+            if not lo <= value <= hi:
+                said.append(f"{name} = {value:g}{unit} ({lo:g}-{hi:g}{unit})")
+        if said:
             out.append(
                 ModelWarning(
-                    "outside-validated-range",
-                    f"{label}: {name} = {value:g}{unit} is outside the range the paper validated "
-                    f"experimentally ({lo:g}-{hi:g}{unit})",
+                    "paper-bench-range",
+                    f"{label}: {', '.join(said)} outside the range the paper tested on the "
+                    "bench; the models are validated against FE over the ranges of "
+                    "`corrugate docs validation/ranges`",
                 )
             )
+    return out
+
+
+def shear_share(shear: float, factor: float) -> float:
+    """The fraction (0-1) by which a 3-point test reads D below the pure-bending D when the shear
+    compliance is ``factor`` times the Timoshenko estimate ``shear`` of the bending compliance:
+    D_3pt = D / (1 + factor shear), so 1 - D_3pt / D = factor shear / (1 + factor shear)."""
+    return factor * shear / (1.0 + factor * shear)
+
+
+def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
+    out: list[ModelWarning] = []
     err = crease_error_estimate(layer.t, layer.W, layer.alpha_deg)
     if err > CREASE_ERROR_LIMIT:
         out.append(
             ModelWarning(
                 "thick-sheet",
                 f"{label}: t/W = {layer.t / layer.W:.3g} at alpha = {layer.alpha_deg:g} deg is a thick "
-                f"sheet; the thin-sheet formulas may be off by about {100 * err:.0f} % in Ecx and Ebx",
+                f"sheet; the thin-sheet formulas may be off by about {100 * err:.0f} % in Ecx and Ebx: "
+                "choose a thinner sheet or wider facets (fabrication.max_t_over_W)",
             )
         )
     sold = layer.material.thicknesses
@@ -106,28 +143,44 @@ def _layer_warnings(label: str, layer: Layer) -> list[ModelWarning]:
             ModelWarning(
                 "unusual-thickness",
                 f"{label}: t = {layer.t:g} mm is not a thickness {layer.material.id} is sold in "
-                f"({', '.join(f'{x:g}' for x in sold)} mm)",
+                f"({', '.join(f'{x:g}' for x in sold)} mm): choose one of those or check the "
+                "supplier",
             )
         )
     shear = shear_estimate(layer.material.nu, layer.n, layer.alpha_deg)
     if shear > SHEAR_LIMIT:
+        lo, hi = (100 * shear_share(shear, k) for k in SHEAR_FACTORS)
         out.append(
             ModelWarning(
                 "short-panel-shear",
                 f"{label}: a short panel (L/W = {(layer.n + 1) * layer.s:.3g}); D is a pure-bending "
-                f"stiffness, and a 3-point bending test may measure about {100 * 1.1 * shear:.0f}-"
-                f"{100 * 2.0 * shear:.0f} % less, from shear (finite elements: `corrugate docs fea`, section 3)",
+                f"stiffness, and a 3-point bending test may measure about {lo:.0f}-{hi:.0f} % "
+                "less, from shear (finite elements: `corrugate docs fea`, section 3): bound the "
+                'test itself (test = "three-point" or a [[constraints.deflection]]) if the part '
+                "is loaded so",
             )
         )
-    if layer.n + 1 < MIN_FACETS:
+    springs = model_range("springs")
+    lo_facets = springs.ranges["facets"][0]
+    if layer.n + 1 < lo_facets:
         out.append(
             ModelWarning(
-                "few-facets",
-                f"{label}: only {layer.n + 1} facets; the homogenised spring model needs at least "
-                f"{MIN_FACETS} to be trusted",
+                "outside-model-range",
+                f"{label}: {layer.n + 1} facets; {springs.sentence('facets', 'min')} "
+                "(`corrugate docs validation/ranges`): the solver certifies only inside it; "
+                "check this design with corrugate verify",
             )
         )
     return out
+
+
+def group_warnings(warnings: Sequence[ModelWarning]) -> list[ModelWarning]:
+    """One warning per code: the messages of a repeated code joined by '; ', in first-seen
+    order."""
+    by_code: dict[str, list[str]] = {}
+    for w in warnings:
+        by_code.setdefault(w.code, []).append(w.message)
+    return [ModelWarning(code, "; ".join(dict.fromkeys(msgs))) for code, msgs in by_code.items()]
 
 
 def _off_axis(
@@ -177,7 +230,7 @@ def design_warnings(
                 "Ecy and Ebx slightly off); use 'refined' for design",
             )
         )
-    return out + _off_axis(eta_deg, support, a.layout.name)
+    return group_warnings(out + _off_axis(eta_deg, support, a.layout.name))
 
 
 def wheel_warnings(a: Assembly) -> list[ModelWarning]:

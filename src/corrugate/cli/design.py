@@ -43,6 +43,8 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
 
     p = sol.problem
     cert = "certified" if sol.certified else "NOT certified"
+    if sol.extrapolated:
+        cert = "EXTRAPOLATED, not certified"
     if tightened:
         cert += " for the tightened bounds below"
     if sol.assembly is None and sol.status == "not-certified":
@@ -65,9 +67,9 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
     assert sol.assembly is not None
     assert sol.analysis is not None
     gap = "exact (every variable on its grid)" if p.gridded else f"gap <= {sol.gap:.1e}"
-    if not sol.certified and not tightened:
+    if not sol.certified and not tightened and not sol.extrapolated:
         gap = f"proven gap {_gap_text(sol.gap)}"
-    head = "optimal" if sol.certified else "best design found so far"
+    head = "optimal" if sol.certified or sol.extrapolated else "best design found so far"
     console.print(
         f"[bold]{p.name}[/bold]: {head}, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
     )
@@ -134,6 +136,8 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         console.print(u)
     for w in sol.warnings:
         console.print(f"[yellow]warning[/yellow] ({w['code']}): {w['message']}")
+    for w in sol.notes:
+        console.print(f"note ({w['code']}): {w['message']}", markup=False)
 
 
 def relax_hint(sol: Solution) -> str | None:

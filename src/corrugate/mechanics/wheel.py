@@ -28,6 +28,7 @@ from collections.abc import Mapping
 from types import MappingProxyType
 
 from corrugate.core.errors import InputError
+from corrugate.mechanics.validity import model_range
 
 __all__ = [
     "VALIDATED_WHEEL",
@@ -51,16 +52,18 @@ WHEEL_FACTOR: Mapping[float, float] = MappingProxyType(
 )
 #: The directions the factor holds at (deg): the sweep's and their mirror images.
 WHEEL_DIRECTIONS = "a multiple of 45 deg"
-#: The range of designs the sweep covers (both layers alike): creases n, interior angle alpha
+#: The range of designs the sweep covers (both layers alike; ``data/validity.toml``'s
+#: ``[wheel]``, :mod:`corrugate.mechanics.validity`): creases n, interior angle alpha
 #: (deg), facet width W (mm), sheet thickness over facet width t / W, and the axle hole's
 #: diameter over the disc's.
+_WHEEL = model_range("wheel").ranges
 VALIDATED_WHEEL: Mapping[str, tuple[float, float]] = MappingProxyType(
     {
-        "n": (6.0, 13.0),
-        "alpha": (60.0, 150.0),
-        "W": (5.0, 20.0),
-        "t/W": (0.00625, 0.05),
-        "hole/diameter": (0.042857, 0.25829),
+        "n": (_WHEEL["facets"][0] - 1, _WHEEL["facets"][1] - 1),
+        "alpha": _WHEEL["alpha"],
+        "W": _WHEEL["W"],
+        "t/W": _WHEEL["t_over_W"],
+        "hole/diameter": _WHEEL["hub"],
     }
 )
 

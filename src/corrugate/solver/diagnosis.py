@@ -192,6 +192,11 @@ def _value(c: Constraint, v: float) -> str:
 
 def _edit(c: Constraint, v: float) -> str:
     """The spec edit that lets ``c`` accept the value ``v`` of its quantity."""
+    if c.name.startswith("validity."):  # a validated range: no spec key moves it
+        return (
+            'trust = "extrapolate" (an answer outside the validated range, marked '
+            "extrapolated, not certified; FE that widens the range would certify it)"
+        )
     if c.quantity.kind in ("part_short", "part_long"):  # a machine's side, not a number
         side = "shorter" if c.quantity.kind == "part_short" else "longer"
         bed = math.ceil(v + 2 * DEFAULT_MARGIN_MM)
@@ -495,7 +500,9 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
             f"; no design in the variable bounds reaches it even alone (best {_value(c, a)}): "
             + _limits(problem, alone)
         )
-    if c.load is not None:
+    if c.name.startswith("validity."):
+        hint = f"{_edit(c, r)}, to reach {_value(c, r)} instead of {shown(c.bound, c.unit)}"
+    elif c.load is not None:
         hint = f"{_edit(c, r)} instead of {c.load / c.bound:.4g} mm"
     else:
         hint = f"{_edit(c, r)} instead of {shown(c.bound, c.unit)}"

@@ -173,6 +173,10 @@ class Problem:
     # the profile both layers are folded to (geometry.profile; the zig-zag unless the Python API
     # names another designable profile)
     profile_kind: ProfileKind = ZIGZAG
+    # "certified": the validated ranges are constraints; "extrapolate": they are ``ranges``,
+    # checked on the answer only (corrugate.solver.validity)
+    trust: str = "certified"
+    ranges: tuple[Constraint, ...] = ()
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -320,6 +324,14 @@ class Problem:
             cons.append(Constraint(f"{where}.min", q, "min", bk.min))
         if c.mass is not None:
             cons.append(Constraint("constraints.mass.max", MASS, "max", c.mass.max))
+        from corrugate.solver.validity import validity_constraints
+
+        v_n = (v.n.min, v.n.max)
+        W_var = DesignVariable(v.W.min, v.W.max, v.W.step)
+        a_var = DesignVariable(v.alpha.min, v.alpha.max, v.alpha.step)
+        ranges = validity_constraints(cons, W_var, a_var, v_n, cands, spec.fabrication.max_t_over_W)
+        if spec.trust == "certified":
+            cons.extend(ranges)
         o = spec.objective
         objective = (
             Objective()
@@ -341,6 +353,8 @@ class Problem:
             support=spec.support,
             safety_factor=spec.safety_factor,
             joint=_joint(spec.joint, layout),
+            trust=spec.trust,
+            ranges=tuple(ranges),
         )
 
 

@@ -31,6 +31,7 @@ from corrugate.solver import (  # noqa: F401  (they register the kinds)
     sizes,
     stiffness,
     sustained,
+    validity,
 )
 from corrugate.solver.context import AtPoints, OverBoxes, layer_corner
 from corrugate.solver.evaluator import evaluators

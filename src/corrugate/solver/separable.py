@@ -87,6 +87,7 @@ from corrugate.solver.quantity import (
     W_MIN,
     Quantity,
 )
+from corrugate.solver.validity import LAYER_KINDS, layer_limits
 
 __all__ = ["MAX_LAYER_DESIGNS", "MAX_PAIRS", "SLACK", "SeparableResult", "applies", "search"]
 
@@ -156,6 +157,8 @@ def applies(problem: Problem) -> bool:
             continue
         if _stiffness(q) and c.sense == "min":
             continue
+        if LAYER_KINDS.get(q.kind, ("",))[0] == c.sense:  # a validated range, layer by layer
+            continue
         return False
     return True
 
@@ -207,6 +210,16 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
             keep &= _ok(c, t / W_g, FEAS_RTOL)
         elif q == CREASES and c.sense == "max":
             hi_n = np.minimum(hi_n, math.floor(c.bound * (1 + FEAS_RTOL) + 1e-9))
+    limits = layer_limits(problem.constraints)  # the validated ranges (.validity)
+    for variable, value in (("W", W_g), ("alpha", a_g), ("t_over_W", t / W_g)):
+        if variable in limits:
+            keep &= (value >= limits[variable][0]) & (value <= limits[variable][1])
+    if "facets" in limits:
+        f_lo, f_hi = limits["facets"]
+        if math.isfinite(f_lo):
+            lo_n = np.maximum(lo_n, math.ceil(f_lo - 1e-9) - 1.0)
+        if math.isfinite(f_hi):
+            hi_n = np.minimum(hi_n, math.floor(f_hi + 1e-9) - 1.0)
     # the extent (n + 1) p grows with n: the n range of each (W, alpha) from its bounds, one
     # value wider on each side, then checked exactly below with evaluate's arithmetic
     zz = ZigZag.of(W_g, a_g)  # the zig-zag's profile, as analysis.evaluate._layer_part

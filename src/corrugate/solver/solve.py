@@ -31,7 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.analysis.evaluate import Analysis, analyze
-from corrugate.analysis.warnings import wheel_warnings
+from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
@@ -42,6 +42,7 @@ from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
+from corrugate.solver.validity import outside_ranges
 
 __all__ = [
     "ConstraintReport",
@@ -211,6 +212,11 @@ class Solution:
     warnings: tuple[dict[str, str], ...] = ()
     diagnosis: tuple[Diagnosis, ...] = ()
     stats: dict[str, object] = field(default_factory=dict)
+    #: with ``trust = "extrapolate"``: the validated ranges the design lies outside
+    #: (:func:`~.validity.outside_ranges`); then it is extrapolated, not certified
+    extrapolated: tuple[str, ...] = ()
+    #: information that is no warning (the paper's bench range: docs/validation/ranges.md)
+    notes: tuple[dict[str, str], ...] = ()
 
     def __repr__(self) -> str:
         """Five lines at most (:func:`corrugate.solver.display.solution_repr`)."""
@@ -236,6 +242,11 @@ class Solution:
         120 mm, free sides``."""
         p = self.problem
         head = f"{'certified' if self.certified else 'not certified'} under the {p.model} model"
+        if self.extrapolated:
+            head = (
+                f"extrapolated, not certified: optimal under the {p.model} model outside the "
+                f"range it was validated over ({'; '.join(self.extrapolated)})"
+            )
         if p.joint != "none":
             head += f", the layers joined by the connector band ({p.joint}: its walls counted)"
         parts = []
@@ -339,6 +350,9 @@ class Solution:
             "constraints": [c.as_dict() for c in self.constraints],
             "runner_ups": [r.as_dict() for r in self.runner_ups],
             "warnings": list(self.warnings),
+            "notes": list(self.notes),
+            "trust": p.trust,
+            "extrapolated": list(self.extrapolated),
             "diagnosis": [d.as_dict() for d in self.diagnosis],
             "hint": self.hint,
             "solver": {
@@ -529,8 +543,9 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     etas = sorted(set(problem.etas) | {0.0, 90.0})
     analysis = analyze(assembly, problem.model, etas, support=problem.support, joint=problem.joint)
     warnings = [w.as_dict() for w in analysis.warnings]
-    if any(c.quantity.test == "wheel" for c in problem.constraints):
-        warnings += [w.as_dict() for w in wheel_warnings(assembly)]
+    notes = tuple(w.as_dict() for w in bench_notes(assembly))
+    # the validated ranges are constraints (or, extrapolated, named in the certificate)
+    outside = outside_ranges(problem.ranges, assembly) if problem.trust == "extrapolate" else ()
     if not opt.certified:
         warnings.append(
             {
@@ -578,7 +593,7 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     return Solution(
         problem,
         "optimal" if opt.certified else "not-certified",
-        opt.certified,
+        opt.certified and not outside,
         opt.gap,
         opt.value,
         assembly,
@@ -587,6 +602,8 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
         runner_ups,
         tuple(warnings),
         stats=stats,
+        extrapolated=outside,
+        notes=notes,
     )
 
 

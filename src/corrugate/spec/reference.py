@@ -156,6 +156,15 @@ _STATIC: dict[str, KeyDoc] = {
         "walls add to bending and in-plane stiffness along the creases; `corrugate docs "
         "load_cases`, section 7).",
     ),
+    "trust": KeyDoc(
+        "",
+        "Where the answer may lie: 'certified' (default: only inside the range of designs each "
+        "model the constraints use was validated over against FE, "
+        "`corrugate docs validation/ranges`; each range is a constraint, named "
+        "validity.MODEL.VARIABLE.END when it binds) "
+        "or 'extrapolate' (the ranges dropped: an answer outside one is marked extrapolated, "
+        "not certified, and names the ranges it leaves).",
+    ),
     "safety_factor": KeyDoc(
         "",
         "Factor on the failure load of every strength bound and load case, 1-100 (default 2: "

@@ -798,6 +798,9 @@ class Spec(_Strict):
     safety_factor: SafetyFactor = DEFAULT_SAFETY_FACTOR
     joint: Literal["none", "band-edges", "band-flanges"] = "none"
     fabrication: FabricationSpec = FabricationSpec()
+    # where the answer may lie: inside every validated range of the models it uses (default) or
+    # anywhere, marked extrapolated (docs/spec.md; corrugate.solver.validity)
+    trust: Literal["certified", "extrapolate"] = "certified"
 
 
 def with_machine(spec: Spec, machine: str | None) -> Spec:

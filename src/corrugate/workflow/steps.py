@@ -125,7 +125,7 @@ def run(request: DesignRequest, events: Events | None = None) -> Run:
     ev.solved()
     checked: FeCheck | None = None
     sol = design.solution
-    if request.fe is not None and sol.certified and sol.assembly is not None:
+    if request.fe is not None and (sol.certified or sol.extrapolated) and sol.assembly is not None:
         progress = ev.fe_progress()
         checked = check_fe(
             design, request.spec, request.problem, request.fe, request.budget, progress

@@ -812,7 +812,10 @@ function bulletList(list, items, empty) {
 
 function showDesign(d) {
   const found = d.design !== null;
-  const cert = d.certified ? 'certified' : 'not certified';
+  const extrapolated = (d.extrapolated || []).length > 0;
+  const cert = extrapolated
+    ? `extrapolated, not certified: outside the validated range (${d.extrapolated.join('; ')})`
+    : (d.certified ? 'certified' : 'not certified');
   $('d-verdict').textContent = `${d.name}: ${d.status} (${cert}), model ${d.model}`;
   $('d-verdict').dataset.status = d.status;
   $('d-found').hidden = !found;
@@ -869,7 +872,8 @@ function showDesign(d) {
   } else {
     $('d-summary').textContent = 'No design meets every requirement:';
   }
-  bulletList($('d-warnings'), d.warnings.map((w) => `${w.code}: ${w.message}`), 'none');
+  bulletList($('d-warnings'), d.warnings.map((w) => `${w.code}: ${w.message}`)
+    .concat((d.notes || []).map((w) => `note (${w.code}): ${w.message}`)), 'none');
   $('design-results').hidden = false;
 }
 

@@ -1,0 +1,141 @@
+"""The validated ranges (corrugate.mechanics.validity, data/validity.toml) are the ranges of the
+validation tables they cite: each is recomputed here from docs/validation/*.csv (the designs'
+parameters read from the tables' design names and columns), and the shipped docs page that lists
+them (docs/validation/ranges.md) shows the same numbers."""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from pathlib import Path
+
+import pytest
+
+from corrugate.mechanics.validity import VARIABLES, model_range, model_ranges
+from corrugate.mechanics.wheel import VALIDATED_WHEEL
+
+ROOT = Path(__file__).resolve().parents[2]
+VALIDATION = ROOT / "docs" / "validation"
+
+Layer = tuple[float, int, float, float]  # W mm, n, alpha deg, t mm
+
+
+def _rows(name: str) -> list[dict[str, str]]:
+    lines = [x for x in (VALIDATION / name).read_text().splitlines() if not x.startswith("#")]
+    return list(csv.DictReader(lines))
+
+
+def _layers(design: str) -> list[Layer]:
+    """The two layers of a design of load_cases_fe.csv from its name: 'W 10, n 10, alpha 40'
+    (identical layers), 'layer 1 W 8, n 8, alpha 84; layer 2 W 10, n 6, alpha 86.9833'; a
+    layer without its alpha takes layer 1's (the rectangle 48.2 x 96.4: 18 x 8 sin 42 deg =
+    96.4); Dura-Lar 0.125 mm unless the name says 'polypropylene 0.25' (docs/validation/
+    load_cases.md)."""
+    t = 0.25 if "polypropylene 0.25" in design else 0.125
+    tail = design.split(":", 1)[1] if ":" in design else design
+    out: list[Layer] = []
+    for m in re.finditer(r"W (\d+(?:\.\d+)?), n (\d+)(?:, alpha (\d+(?:\.\d+)?))?", tail):
+        alpha = float(m[3]) if m[3] else out[0][2]
+        out.append((float(m[1]), int(m[2]), alpha, t))
+    assert out, design
+    return out * 2 if len(out) == 1 else out
+
+
+def _sweep_layers() -> list[Layer]:
+    """The ten designs of sweep_paper.csv ('W=8 n=11 alpha=90'; Dura-Lar 0.125 mm, identical
+    layers)."""
+    out = []
+    for case in {r["case"] for r in _rows("sweep_paper.csv")}:
+        m = re.fullmatch(r"W=(\S+) n=(\d+) alpha=(\S+)", case)
+        assert m, case
+        out += [(float(m[1]), int(m[2]), float(m[3]), 0.125)] * 2
+    return out
+
+
+def _ranges(layers: list[Layer]) -> dict[str, tuple[float, float]]:
+    def span(values: list[float]) -> tuple[float, float]:
+        return min(values), max(values)
+
+    return {
+        "facets": span([n + 1.0 for _, n, _, _ in layers]),
+        "W": span([W for W, _, _, _ in layers]),
+        "alpha": span([a for _, _, a, _ in layers]),
+        "t_over_W": span([t / W for W, _, _, t in layers]),
+    }
+
+
+def _load_case_layers(test: str, off_axis: bool | None = None) -> list[Layer]:
+    designs = {
+        r["design"]
+        for r in _rows("load_cases_fe.csv")
+        if r["test"] == test and (off_axis is None or (float(r["eta_deg"]) % 90 != 0) == off_axis)
+    }
+    assert designs
+    return [layer for d in sorted(designs) for layer in _layers(d)]
+
+
+def _check(name: str, layers: list[Layer]) -> None:
+    stated = model_range(name).ranges
+    for variable, (lo, hi) in _ranges(layers).items():
+        assert stated[variable] == pytest.approx((lo, hi), rel=1e-12), (name, variable)
+
+
+def test_the_springs_range_is_the_load_case_and_sweep_designs() -> None:
+    """Six designs of load_cases_fe.csv (compression and bending rows) and ten of the sweep."""
+    layers = _load_case_layers("compression") + _load_case_layers("bending") + _sweep_layers()
+    _check("springs", layers)
+    assert len({d for d in _load_case_layers("compression")}) >= 6
+
+
+def test_the_bending_tests_ranges_are_their_rows() -> None:
+    """The three-point local term: the bending rows and the sweep's three-point designs; the
+    four-point: the bending4 rows and the sweep's (same designs)."""
+    _check("three-point", _load_case_layers("bending") + _sweep_layers())
+    _check("four-point", _load_case_layers("bending4") + _sweep_layers())
+
+
+def test_the_cantilever_range_is_its_rows() -> None:
+    """The cantilever's c = 2.5 was fitted on the six designs' cantilever rows only: t/W from
+    0.125 / 12 = 0.0104 (W 12, n 13, alpha 115) to 0.25 / 5 = 0.05 (the chassis plate's layer 2),
+    at least 7 facets (n 6: the chassis plate's layer 1 and the layered design's layer 2)."""
+    _check("cantilever", _load_case_layers("cantilever"))
+    assert model_range("cantilever").ranges["facets"][0] == 7
+    assert model_range("cantilever").ranges["t_over_W"][0] == pytest.approx(0.125 / 12)
+
+
+def test_the_off_axis_range_is_the_rows_off_the_creases() -> None:
+    layers = _load_case_layers("compression", True) + _load_case_layers("bending", True)
+    _check("off-axis", layers)
+
+
+def test_the_wheel_range_is_the_wheel_sweep() -> None:
+    """wheel_fe.csv's designs (the runs that did not fail): n, W, alpha, t / W and hole /
+    diameter (the hub ratio to 5 significant digits, as VALIDATED_WHEEL always was)."""
+    rows = [r for r in _rows("wheel_fe.csv") if r["K_FE"] != "failed"]
+    stated = model_range("wheel").ranges
+    ns = [int(r["n"]) for r in rows]
+    assert stated["facets"] == (min(ns) + 1.0, max(ns) + 1.0)
+    for variable, column in (("W", "W_mm"), ("alpha", "alpha_deg")):
+        values = [float(r[column]) for r in rows]
+        assert stated[variable] == pytest.approx((min(values), max(values)), rel=1e-12)
+    tw = [float(r["t_mm"]) / float(r["W_mm"]) for r in rows]
+    assert stated["t_over_W"] == pytest.approx((min(tw), max(tw)), rel=1e-12)
+    hub = [float(r["hole_mm"]) / float(r["diameter_mm"]) for r in rows]
+    lo, hi = stated["hub"]
+    assert math.isclose(lo, min(hub), rel_tol=1e-4) and math.isclose(hi, max(hub), rel_tol=1e-4)
+    assert VALIDATED_WHEEL["n"] == (min(ns), max(ns))
+    assert VALIDATED_WHEEL["hole/diameter"] == stated["hub"]
+
+
+def test_every_enforced_end_is_a_stated_range_and_the_docs_page_lists_them() -> None:
+    """Each model's enforced ends name a variable it states; docs/validation/ranges.md has a row
+    per model with its ranges, as the data file gives them."""
+    page = (VALIDATION / "ranges.md").read_text()
+    for m in model_ranges().values():
+        assert m.enforce and m.source and m.label
+        for variable, _end in m.enforce:
+            assert variable in m.ranges and variable in VARIABLES
+        assert f"| `{m.name}` |" in page, m.name
+        for variable, (lo, hi) in m.ranges.items():
+            assert f"{variable} {lo:.4g}-{hi:.4g}" in page, (m.name, variable)
