@@ -99,7 +99,9 @@ def test_zigzag_through_the_seam_gives_the_moduli(
         if name == "paper" and nu <= 1 - math.sqrt(2):
             continue  # outside the printed formulas' range (ModuliModel.nu_min)
         seam = profile_moduli(profile, 1.0, nu, t, name).as_dict()
-        assert seam == moduli(1.0, nu, t, W, alpha, name).as_dict(), name
+        direct = moduli(1.0, nu, t, W, alpha, name).as_dict()
+        # the same closed forms; the profile's own h and W may round the last bit differently
+        assert seam == pytest.approx(direct, rel=1e-12), name
     general = plate_moduli(equivalent_plate(profile, 1.0, nu, t), t).as_dict()
     for key, value in profile_moduli(profile, 1.0, nu, t, "xia").as_dict().items():
         assert general[key] == pytest.approx(value, rel=1e-7), key
