@@ -7,6 +7,10 @@ constraints (one, a partner, a pair, the off-axis set of at most two) is searche
 boxes of the infeasible solve's tree that break nothing but the dropped constraints
 (:class:`~.archive.Archive`): every design of the variant lies in them.
 
+* **the orientation trap** (first, :mod:`.orientation`): a rectangle or polygon whose spec has a
+  design once every eta is turned by 90 deg (or side_x and side_y are swapped), e.g. a 150 mm
+  cantilever span at the default eta = 0 (along y) on a part whose 150 mm side is side_x; the
+  hint is the edit of each eta (or the swap).
 * **identical layers on a rectangle or polygon**: both layers fold to the same extent, Lx = Ly (a
   square bounding box). When ``layers = "independent"`` makes the spec feasible, that is the
   hint, with the lightest design it allows; when the side_x and side_y ranges do not overlap,
@@ -40,7 +44,9 @@ import numpy as np
 from corrugate.names import DEFAULT_MARGIN_MM
 from corrugate.solver.archive import ARCHIVE_DEPTH, Archive
 from corrugate.solver.budget import budget_spent, current_budget
+from corrugate.solver.orientation import orientation
 from corrugate.solver.problem import Constraint, Problem
+from corrugate.solver.progress import DIAGNOSIS, stage
 from corrugate.solver.quantities import Tables
 from corrugate.solver.quantity import STIFFNESS, Quantity
 from corrugate.solver.solve import Diagnosis, Optimum, Start, constraint_bits, optimize
@@ -234,18 +240,22 @@ def diagnose(
     relaxed problem is searched (warm) instead of from its whole domain."""
     tree = _Tree(problem, archives)
     out: list[Diagnosis] = []
+    stage(DIAGNOSIS, "orientation")
+    out += orientation(problem)  # first: a quarter turn off is the fix, whatever else is short
     out += _layers(problem)
     out += _free_off_axis(problem, tables, tree)
     singles: list[Diagnosis] = []
     for c in problem.constraints:
         if budget_spent():
             return [*out, *singles, _partial(problem)]
+        stage(DIAGNOSIS, c.name)
         d = _single(problem, c, tables, tree)
         if d is not None:
             singles.append(d)
     out += singles
     if singles:
         return out
+    stage(DIAGNOSIS, "pairs of constraints")
     pairs = _pairs(problem, tables, tree)
     out += pairs
     if budget_spent():
@@ -285,7 +295,7 @@ def _partial(problem: Problem) -> Diagnosis:
 def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:
     """The one hint to act on: the smallest relative edit of one bound when it is at most
     :data:`SMALL_EDIT` of the bound, else a structural change that restores feasibility
-    (independent layers, a frame), else the smallest single edit, else the pair of edits, else
+    (directions turned by 90 deg or the sides swapped, independent layers, a frame), else the smallest single edit, else the pair of edits, else
     why no hint exists."""
     singles = [d for d in diagnosis if d.kind == "single" and d.hint]
     best = min(
@@ -299,7 +309,7 @@ def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:
     if best is not None and single and best.relative is not None and best.relative <= SMALL_EDIT:
         return single
     for d in diagnosis:
-        if d.kind in ("layers", "support") and d.hint:
+        if d.kind in ("orientation", "layers", "support") and d.hint:
             return d.hint
     if single:
         return single
