@@ -81,6 +81,42 @@ def _rounded(value: float, unit: str, down: bool) -> str:
     return f'"{v:.4g} {text_unit}"' if text_unit else f"{v:.4g}"  # a plain number unquoted
 
 
+def _in_written(c: Constraint, value: float, unit: str) -> tuple[float, str] | None:
+    """``value`` (internal ``unit``) in the unit the spec wrote ``c``'s bound in
+    (:attr:`~.problem.Constraint.written`: ``1e8`` N*mm^2 -> ``(100, "N*m^2")`` when the spec
+    wrote ``"100 N*m^2"``); None when it wrote a plain number or another dimension."""
+    if not c.written or not unit or not math.isfinite(value):
+        return None
+    from corrugate.core.errors import CorrugateError
+    from corrugate.core.units import parse_quantity
+
+    try:
+        factor = parse_quantity(f"1 {c.written}", unit, c.name)
+    except CorrugateError:
+        return None
+    return (value / factor, c.written) if factor > 0 and math.isfinite(factor) else None
+
+
+def _shown(c: Constraint, value: float, unit: str | None = None) -> str:
+    """``value`` of ``c``'s quantity (or of ``unit``, e.g. a deflection in mm) as the spec wrote
+    its bound: in its unit (:func:`_in_written`), else as :func:`shown` writes it."""
+    u = c.unit if unit is None else unit
+    w = _in_written(c, value, u)
+    return shown(value, u) if w is None else f"{w[0]:.4g} {w[1]}"
+
+
+def _rounded_for(c: Constraint, value: float, unit: str, down: bool) -> str:
+    """:func:`_rounded` in the unit the spec wrote ``c``'s bound in, when it wrote one."""
+    w = _in_written(c, value, unit)
+    if w is None:
+        return _rounded(value, unit, down)
+    v, text_unit = w
+    if v != 0 and math.isfinite(v):
+        step = 10.0 ** (math.floor(math.log10(abs(v))) - 3)
+        v = (math.floor(v / step) if down else math.ceil(v / step)) * step
+    return f'"{v:.4g} {text_unit}"'
+
+
 def _key(c: Constraint) -> str:
     """The spec key of ``c`` (``constraints.sheet_max (flat blank)`` -> ``constraints.sheet_max``)."""
     return c.name.split(" ")[0]
@@ -186,14 +222,17 @@ def _reach(c: Constraint) -> str:
 def _asked(c: Constraint) -> str:
     """What ``c`` asks, e.g. ``flexural rigidity EI(45 deg) >= 80 mN*m^2``."""
     if c.load is not None:
-        return f"a deflection <= {c.load / c.bound:.4g} mm under {c.load:g} N ({c.quantity.description})"
+        return (
+            f"a deflection <= {_shown(c, c.load / c.bound, 'mm')} under {c.load:g} N "
+            f"({c.quantity.description})"
+        )
     need = ">=" if c.sense == "min" else "<="
-    return f"{c.quantity.description} {need} {shown(c.bound, c.unit)}"
+    return f"{c.quantity.description} {need} {_shown(c, c.bound)}"
 
 
 def _value(c: Constraint, v: float) -> str:
     """A value of ``c``'s quantity as the spec reads it (a deflection bound: the deflection)."""
-    return f"{c.load / v:.4g} mm" if c.load is not None else shown(v, c.unit)
+    return _shown(c, c.load / v, "mm") if c.load is not None else _shown(c, v)
 
 
 def _edit(c: Constraint, v: float) -> str:
@@ -202,12 +241,12 @@ def _edit(c: Constraint, v: float) -> str:
         side = "shorter" if c.quantity.kind == "part_short" else "longer"
         bed = math.ceil(v + 2 * DEFAULT_MARGIN_MM)
         return (
-            f"fabrication.machine = a cutter whose {side} side is at least {bed} mm (the parts "
-            f'need {v:.4g} mm, plus 5 mm margins), e.g. "laser:{bed}x{bed}"'
+            f'fabrication.machine = "laser:{bed}x{bed}" (or any cutter whose {side} side is at '
+            f"least {bed} mm: the parts need {v:.4g} mm, plus 5 mm margins)"
         )
     if c.load is not None:  # P/delta >= v: a deflection of load / v, rounded up
-        return f"{_key(c)} = {_rounded(c.load / v, 'mm', down=False)}"
-    return f"{_key(c)} = {_rounded(v, c.unit, down=c.sense == 'min')}"
+        return f"{_key(c)} = {_rounded_for(c, c.load / v, 'mm', down=False)}"
+    return f"{_key(c)} = {_rounded_for(c, v, c.unit, down=c.sense == 'min')}"
 
 
 def _pct(c: Constraint, v: float) -> float:
@@ -431,7 +470,8 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
     keys = ", ".join(_key(c) for c in off)
     if fixed.point is not None:
         o = problem.objective
-        hint = f'support = "frame" on {keys} (the panel held in a rigid frame on all four edges)'
+        # one edit per bound, each at its own table's key (pasted into the spec as it reads)
+        hint = " and ".join(f'{_key(c).rpartition(".")[0]}.support = "frame"' for c in off)
         frame_text = (
             f'what would carry it: a rigid frame (support = "frame" on {keys}: then the spec '
             f"is feasible, best {shown(fixed.value, o.quantity.unit)})"
@@ -443,7 +483,7 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         eta, v = max(along, key=lambda item: item[1] if c0.sense == "min" else -item[1])
         frame_text += (
             f"; a load case along the creases (eta = {eta:g} deg, where the same constraints "
-            f"allow {c0.quantity.kind} up to {shown(v, c0.unit)})"
+            f"allow {c0.quantity.kind} up to {_shown(c0, v)})"
         )
     frame_text += "; or a face sheet bonded to one side (not modelled by corrugate)"
     message = f"{why}; {frame_text}" + (f"; hint: {hint}" if hint else "")
@@ -506,9 +546,9 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
             + _limits(problem, alone)
         )
     if c.load is not None:
-        hint = f"{_edit(c, r)} instead of {c.load / c.bound:.4g} mm"
+        hint = f"{_edit(c, r)} instead of {_shown(c, c.load / c.bound, 'mm')}"
     else:
-        hint = f"{_edit(c, r)} instead of {shown(c.bound, c.unit)}"
+        hint = f"{_edit(c, r)} instead of {_shown(c, c.bound)}"
     hint += f" ({pct:.3g} %)"
     text += f"; relaxing it alone makes the spec feasible: hint: {hint}"
     return Diagnosis(
