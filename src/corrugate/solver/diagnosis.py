@@ -29,6 +29,9 @@ boxes of the infeasible solve's tree that break nothing but the dropped constrai
 * **two constraints** when no single one is to blame: each one's best with the other dropped,
   and together (the other relaxed to its own best), and the pair of edits that restores
   feasibility.
+* **a thicker or stiffer sheet** (:mod:`.sheet_hint`) when a behavioural bound is short by more
+  than :data:`SMALL_EDIT`, or no edit of one or two bounds helps: the first library sheet with
+  which the spec has a design.
 * otherwise, why no hint exists.
 """
 
@@ -292,6 +295,7 @@ def diagnose(
         if d is not None:
             singles.append(d)
     out += singles
+    out += _sheets(problem, singles)
     if singles:
         return out
     stage(DIAGNOSIS, "pairs of constraints")
@@ -299,6 +303,8 @@ def diagnose(
     out += pairs
     if budget_spent():
         return [*out, _partial(problem)]
+    if not pairs and not any(d.hint for d in out):
+        out += _sheets(problem, [], everything=True)
     if not pairs and not any(d.hint for d in out):
         names = tuple(c.name for c in problem.constraints)
         out.append(
@@ -314,6 +320,39 @@ def diagnose(
             )
         )
     return out
+
+
+def _sheets(
+    problem: Problem, singles: list[Diagnosis], everything: bool = False
+) -> list[Diagnosis]:
+    """A thicker or stiffer sheet (:mod:`.sheet_hint`) when a behavioural bound is short by more
+    than :data:`SMALL_EDIT` (``everything``: when no edit of one or two bounds helps, for every
+    behavioural bound)."""
+    from corrugate.solver.sheet_hint import stiffer_sheet
+
+    far = {
+        n for d in singles if d.relative is not None and d.relative > SMALL_EDIT for n in d.names
+    }
+    short = [
+        c
+        for c in problem.constraints
+        if (everything or c.name in far)
+        and c.quantity.eta is not None
+        and c.quantity.kind != "length"
+    ]
+    if not short or budget_spent():
+        return []
+    # how far the shortest falls short (a min bound over its reach; 1 when unknown)
+    need = max(
+        (
+            d.bound / d.reachable
+            for d in singles
+            if d.names[0] in far and d.bound and d.reachable and d.bound > d.reachable > 0
+        ),
+        default=1.0,
+    )
+    stage(DIAGNOSIS, "a thicker or stiffer sheet")
+    return stiffer_sheet(problem, short, need)
 
 
 def _partial(problem: Problem) -> Diagnosis:
@@ -334,7 +373,8 @@ def _partial(problem: Problem) -> Diagnosis:
 def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:
     """The one hint to act on: the smallest relative edit of one bound when it is at most
     :data:`SMALL_EDIT` of the bound, else a structural change that restores feasibility
-    (directions turned by 90 deg or the sides swapped, independent layers, a frame), else the smallest single edit, else the pair of edits, else
+    (directions turned by 90 deg or the sides swapped, independent layers, a frame, a thicker
+    or stiffer sheet), else the smallest single edit, else the pair of edits, else
     why no hint exists."""
     singles = [d for d in diagnosis if d.kind == "single" and d.hint]
     best = min(
@@ -348,7 +388,7 @@ def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:
     if best is not None and single and best.relative is not None and best.relative <= SMALL_EDIT:
         return single
     for d in diagnosis:
-        if d.kind in ("orientation", "layers", "support") and d.hint:
+        if d.kind in ("orientation", "layers", "support", "sheet") and d.hint:
             return d.hint
     if single:
         return single
