@@ -80,6 +80,11 @@ CASES: dict[str, tuple[str, str]] = {
         BLIMP.read_text() + '\n[fabrication]\nmachine = "laser:60x60"\n',
         'fabrication.machine = "laser:',
     ),
+    "cutter-30x30": (  # both sides of the bed short: one edit of the key, not two
+        (ROOT / "tests" / "data" / "paper_case_study.toml").read_text()
+        + '\n[fabrication]\nmachine = "laser:30x30"\n',
+        'fabrication.machine = "laser:76x76"',
+    ),
     "facet-ratio": (
         BLIMP.read_text() + "\n[fabrication]\nmax_t_over_W = 0.005\n",
         "constraints.thickness.max = ",
@@ -116,6 +121,8 @@ def _paste(raw: dict[str, Any], hint: str) -> dict[str, Any]:
     """``raw`` with every ``key = value`` of ``hint`` set at its key (the value read as TOML)."""
     edits = list(EDIT.finditer(hint))
     assert edits, f"no 'key = value' edit in the hint {hint!r}"
+    keys = [m.group("key") for m in edits]
+    assert len(keys) == len(set(keys)), f"a key edited twice in the hint {hint!r}"
     out = copy.deepcopy(raw)
     for m in edits:
         value = tomllib.loads(f"v = {m.group('value')}")["v"]  # valid TOML for its key

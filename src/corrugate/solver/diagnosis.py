@@ -252,6 +252,19 @@ def _edit(c: Constraint, v: float) -> str:
     return f"{_key(c)} = {_rounded_for(c, v, c.unit, down=c.sense == 'min')}"
 
 
+def _machine_pair(a: Constraint, va: float, b: Constraint, vb: float) -> str:
+    """The one edit of ``fabrication.machine`` that gives the parts both sides they need (the
+    shorter and the longer side of a pair of machine bounds reaching ``va`` and ``vb``)."""
+    short, long_ = (va, vb) if a.quantity.kind == "part_short" else (vb, va)
+    need = (math.ceil(short + 2 * DEFAULT_MARGIN_MM), math.ceil(long_ + 2 * DEFAULT_MARGIN_MM))
+    bed = max(need)
+    return (
+        f'fabrication.machine = "laser:{bed}x{bed}" (or any cutter whose shorter side is at '
+        f"least {need[0]} mm and longer side at least {need[1]} mm: the parts need "
+        f"{short:.4g} x {long_:.4g} mm, plus 5 mm margins)"
+    )
+
+
 def _pct(c: Constraint, v: float) -> float:
     return 100 * abs(c.bound - v) / abs(c.bound) if c.bound else math.inf
 
@@ -654,6 +667,8 @@ def _pairs(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
         hint = None
         if ta.point is not None:
             hint = f"{_edit(a, ta.value)} and {_edit(b, rb.value)}"
+            if {a.quantity.kind, b.quantity.kind} == {"part_short", "part_long"}:
+                hint = _machine_pair(a, ta.value, b, rb.value)  # one key: one edit
         text = (
             f"{a.name} and {b.name} bind only together: neither alone can be met with the other "
             f"constraints held, both dropped a design exists; {_key(a)} asks {_asked(a)} and reaches "
