@@ -464,4 +464,5 @@ def test_a_cutter_too_small_for_every_design_is_an_infeasible_answer(client: Tes
     d = r.json()["design"]
     assert d["status"] == "infeasible" and d["certified"]
     text = " ".join(x["message"] for x in d["diagnosis"])
-    assert "fabrication.machine (laser:30x30" in text and "a cutter whose" in text
+    assert "fabrication.machine (laser:30x30" in text and "any cutter whose" in text
+    assert 'fabrication.machine = "laser:' in text  # the hint is a TOML edit at its key

@@ -132,6 +132,11 @@ def test_a_design_job_streams_progress_and_ends_with_the_answer_of_post_design(
     assert {k for k, _ in progress} == {"progress"}
     solving = check_monotone([e for _, e in progress])
     assert len(solving) >= 2  # the first iteration's event and the search's last (flushed)
+    # each event names the solve's step (corrugate.solver.progress.stage), in the solve's order
+    steps = list(dict.fromkeys(e["step"] for e in solving))
+    assert steps[0] == "searching"
+    order = ["searching", "explaining: binding checks", "explaining: runner-ups"]
+    assert [order.index(step) for step in steps] == sorted(order.index(step) for step in steps)
     assert solving[-1]["budget_s"] == settings.job_budget_s
     assert progress[0][1]["stage"] == "reading" and progress[-1][1]["stage"] == "writing files"
     # the answer is POST /api/design's (the synchronous API keeps working) ...

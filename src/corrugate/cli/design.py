@@ -140,6 +140,10 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         console.print(f"note ({w['code']}): {w['message']}", markup=False)
 
 
+def _nothing() -> None:
+    pass
+
+
 def relax_hint(sol: Solution) -> str | None:
     """For an infeasible spec: the ``hint:`` line (:func:`corrugate.solver.diagnosis.best_hint`:
     a structural change that restores feasibility, else the smallest relative edit of one bound,
@@ -280,14 +284,20 @@ def design_cmd(
     Example: corrugate design examples/blimp_gripper.toml --out out/blimp_gripper
     (--verify fe [--refine]: its FE verification, docs/fea.md section 6)
     """
+    from corrugate.cli.progress import show_progress, solve_progress
     from corrugate.workflow import Events, run
 
     seconds = None if budget is None else check("budget", budget, "--budget")
     fe = _fe_options(verify, refine, verify_meshes, verify_shifts, verify_max_mesh)
     request = _request(spec, out, table, seconds, fe)
     fe_quiet = quiet or (as_json and not sys.stderr.isatty())
-    events = Events(fe_progress=lambda: _fe_progress(fe_quiet))
-    answer = run(request, events)
+    unit = request.problem.objective.quantity.unit
+    with solve_progress(show_progress(quiet, as_json), unit) as shown:
+        events = Events(
+            fe_progress=lambda: _fe_progress(fe_quiet),
+            solved=_nothing if shown is None else shown.stop,
+        )
+        answer = run(request, events)
     sol, robust, checked = answer.solution, answer.robust, answer.fe
     stopped = sol.status == "not-certified"
     failed = sol.status == "infeasible" or (robust is not None and not robust.met)
@@ -670,6 +680,7 @@ def tolerance_cmd(
     """
     from rich.table import Table
 
+    from corrugate.cli.progress import show_progress, solve_progress
     from corrugate.core.units import parse_quantity
     from corrugate.solver import Problem, solve
     from corrugate.solver.tolerance import Tolerances, monte_carlo
@@ -685,7 +696,8 @@ def tolerance_cmd(
         E_rel=_relative(E_tol, "--E-tol"),
     )
     problem = Problem.from_spec(load_spec(spec))
-    sol = solve(problem, explain=False, budget=seconds)
+    with solve_progress(show_progress(quiet, as_json), problem.objective.quantity.unit):
+        sol = solve(problem, explain=False, budget=seconds)
     if sol.status == "not-certified":  # no Monte Carlo of a design that may not be the optimum
         typer.echo(not_certified_line(sol), err=True)
         raise typer.Exit(4)

@@ -19,6 +19,7 @@ from corrugate.report.figures import (
     mass_by_n_figure,
     polar_figure,
 )
+from corrugate.report.orientation import ORIENTATION_ALT, orientation_svg
 from corrugate.solver.solve import Solution
 
 if TYPE_CHECKING:
@@ -62,6 +63,17 @@ def _img_svg(svg: str, alt: str) -> str:
     """An image of an SVG text (a fold map ``sheet-N.svg`` beside the report, byte for byte)."""
     src = "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")
     return f'<img src="{src}" alt="{html.escape(alt)}">'
+
+
+def _directions(aspect: float = 1.6, creases: tuple[int, int] = (7, 4)) -> str:
+    """The panel's directions (x, y, eta, each layer's creases; :mod:`.orientation`) drawn
+    ``aspect`` = Lx / Ly wide with ``creases`` crease lines per layer (at most 24 drawn)."""
+    svg = orientation_svg(aspect, creases)
+    return (
+        "<h2>Directions</h2><p>eta is measured from layer 1's creases, which run along y: "
+        "eta = 0 deg runs along y (Ly, side_y), eta = 90 deg along x (Lx, side_x).</p>"
+        + _img_svg(svg, ORIENTATION_ALT)
+    )
 
 
 def _table(head: list[str], rows: list[list[str]], classes: list[str] | None = None) -> str:
@@ -126,6 +138,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
         parts.append(f"<p><b>No design meets the spec</b> (status {html.escape(sol.status)}).</p>")
         for d in sol.diagnosis:
             parts.append(f"<p>{html.escape(d.message)}</p>")
+        parts.append(_directions())
         parts.append(f"<h2>Spec</h2><pre>{html.escape(spec_text)}</pre></body></html>")
         return "".join(parts)
     asm = a.assembly
@@ -171,6 +184,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     )
     side = f"L = {asm.Lx:.2f} mm" if asm.layout.equal_sides else f"{asm.Lx:.2f} x {asm.Ly:.2f} mm"
     parts.append(f"<p>Folded size {side}, thickness t_d = {asm.thickness:.2f} mm.</p>")
+    parts.append(_directions(asm.Lx / asm.Ly, (asm.layer1.n, asm.layers[-1].n)))
     if asm.layout.holes:
         parts.append(
             f"<p>{html.escape(holes_text(asm.layout.holes))}. Model: facets a hole touches carry "

@@ -7,6 +7,10 @@ constraints (one, a partner, a pair, the off-axis set of at most two) is searche
 boxes of the infeasible solve's tree that break nothing but the dropped constraints
 (:class:`~.archive.Archive`): every design of the variant lies in them.
 
+* **the orientation trap** (first, :mod:`.orientation`): a rectangle or polygon whose spec has a
+  design once every eta is turned by 90 deg (or side_x and side_y are swapped), e.g. a 150 mm
+  cantilever span at the default eta = 0 (along y) on a part whose 150 mm side is side_x; the
+  hint is the edit of each eta (or the swap).
 * **identical layers on a rectangle or polygon**: both layers fold to the same extent, Lx = Ly (a
   square bounding box). When ``layers = "independent"`` makes the spec feasible, that is the
   hint, with the lightest design it allows; when the side_x and side_y ranges do not overlap,
@@ -25,6 +29,9 @@ boxes of the infeasible solve's tree that break nothing but the dropped constrai
 * **two constraints** when no single one is to blame: each one's best with the other dropped,
   and together (the other relaxed to its own best), and the pair of edits that restores
   feasibility.
+* **a thicker or stiffer sheet** (:mod:`.sheet_hint`) when a behavioural bound is short by more
+  than :data:`SMALL_EDIT`, or no edit of one or two bounds helps: the first library sheet with
+  which the spec has a design.
 * otherwise, why no hint exists.
 """
 
@@ -40,7 +47,9 @@ import numpy as np
 from corrugate.names import DEFAULT_MARGIN_MM
 from corrugate.solver.archive import ARCHIVE_DEPTH, Archive
 from corrugate.solver.budget import budget_spent, current_budget
+from corrugate.solver.orientation import orientation
 from corrugate.solver.problem import Constraint, Problem
+from corrugate.solver.progress import DIAGNOSIS, stage
 from corrugate.solver.quantities import Tables
 from corrugate.solver.quantity import STIFFNESS, Quantity
 from corrugate.solver.solve import Diagnosis, Optimum, Start, constraint_bits, optimize
@@ -73,6 +82,42 @@ def _rounded(value: float, unit: str, down: bool) -> str:
         step = 10.0 ** (math.floor(math.log10(abs(v))) - 3)
         v = (math.floor(v / step) if down else math.ceil(v / step)) * step
     return f'"{v:.4g} {text_unit}"' if text_unit else f"{v:.4g}"  # a plain number unquoted
+
+
+def _in_written(c: Constraint, value: float, unit: str) -> tuple[float, str] | None:
+    """``value`` (internal ``unit``) in the unit the spec wrote ``c``'s bound in
+    (:attr:`~.problem.Constraint.written`: ``1e8`` N*mm^2 -> ``(100, "N*m^2")`` when the spec
+    wrote ``"100 N*m^2"``); None when it wrote a plain number or another dimension."""
+    if not c.written or not unit or not math.isfinite(value):
+        return None
+    from corrugate.core.errors import CorrugateError
+    from corrugate.core.units import parse_quantity
+
+    try:
+        factor = parse_quantity(f"1 {c.written}", unit, c.name)
+    except CorrugateError:
+        return None
+    return (value / factor, c.written) if factor > 0 and math.isfinite(factor) else None
+
+
+def _shown(c: Constraint, value: float, unit: str | None = None) -> str:
+    """``value`` of ``c``'s quantity (or of ``unit``, e.g. a deflection in mm) as the spec wrote
+    its bound: in its unit (:func:`_in_written`), else as :func:`shown` writes it."""
+    u = c.unit if unit is None else unit
+    w = _in_written(c, value, u)
+    return shown(value, u) if w is None else f"{w[0]:.4g} {w[1]}"
+
+
+def _rounded_for(c: Constraint, value: float, unit: str, down: bool) -> str:
+    """:func:`_rounded` in the unit the spec wrote ``c``'s bound in, when it wrote one."""
+    w = _in_written(c, value, unit)
+    if w is None:
+        return _rounded(value, unit, down)
+    v, text_unit = w
+    if v != 0 and math.isfinite(v):
+        step = 10.0 ** (math.floor(math.log10(abs(v))) - 3)
+        v = (math.floor(v / step) if down else math.ceil(v / step)) * step
+    return f'"{v:.4g} {text_unit}"'
 
 
 def _key(c: Constraint) -> str:
@@ -180,14 +225,17 @@ def _reach(c: Constraint) -> str:
 def _asked(c: Constraint) -> str:
     """What ``c`` asks, e.g. ``flexural rigidity EI(45 deg) >= 80 mN*m^2``."""
     if c.load is not None:
-        return f"a deflection <= {c.load / c.bound:.4g} mm under {c.load:g} N ({c.quantity.description})"
+        return (
+            f"a deflection <= {_shown(c, c.load / c.bound, 'mm')} under {c.load:g} N "
+            f"({c.quantity.description})"
+        )
     need = ">=" if c.sense == "min" else "<="
-    return f"{c.quantity.description} {need} {shown(c.bound, c.unit)}"
+    return f"{c.quantity.description} {need} {_shown(c, c.bound)}"
 
 
 def _value(c: Constraint, v: float) -> str:
     """A value of ``c``'s quantity as the spec reads it (a deflection bound: the deflection)."""
-    return f"{c.load / v:.4g} mm" if c.load is not None else shown(v, c.unit)
+    return _shown(c, c.load / v, "mm") if c.load is not None else _shown(c, v)
 
 
 def _edit(c: Constraint, v: float) -> str:
@@ -201,12 +249,25 @@ def _edit(c: Constraint, v: float) -> str:
         side = "shorter" if c.quantity.kind == "part_short" else "longer"
         bed = math.ceil(v + 2 * DEFAULT_MARGIN_MM)
         return (
-            f"fabrication.machine = a cutter whose {side} side is at least {bed} mm (the parts "
-            f'need {v:.4g} mm, plus 5 mm margins), e.g. "laser:{bed}x{bed}"'
+            f'fabrication.machine = "laser:{bed}x{bed}" (or any cutter whose {side} side is at '
+            f"least {bed} mm: the parts need {v:.4g} mm, plus 5 mm margins)"
         )
     if c.load is not None:  # P/delta >= v: a deflection of load / v, rounded up
-        return f"{_key(c)} = {_rounded(c.load / v, 'mm', down=False)}"
-    return f"{_key(c)} = {_rounded(v, c.unit, down=c.sense == 'min')}"
+        return f"{_key(c)} = {_rounded_for(c, c.load / v, 'mm', down=False)}"
+    return f"{_key(c)} = {_rounded_for(c, v, c.unit, down=c.sense == 'min')}"
+
+
+def _machine_pair(a: Constraint, va: float, b: Constraint, vb: float) -> str:
+    """The one edit of ``fabrication.machine`` that gives the parts both sides they need (the
+    shorter and the longer side of a pair of machine bounds reaching ``va`` and ``vb``)."""
+    short, long_ = (va, vb) if a.quantity.kind == "part_short" else (vb, va)
+    need = (math.ceil(short + 2 * DEFAULT_MARGIN_MM), math.ceil(long_ + 2 * DEFAULT_MARGIN_MM))
+    bed = max(need)
+    return (
+        f'fabrication.machine = "laser:{bed}x{bed}" (or any cutter whose shorter side is at '
+        f"least {need[0]} mm and longer side at least {need[1]} mm: the parts need "
+        f"{short:.4g} x {long_:.4g} mm, plus 5 mm margins)"
+    )
 
 
 def _pct(c: Constraint, v: float) -> float:
@@ -239,22 +300,29 @@ def diagnose(
     relaxed problem is searched (warm) instead of from its whole domain."""
     tree = _Tree(problem, archives)
     out: list[Diagnosis] = []
+    stage(DIAGNOSIS, "orientation")
+    out += orientation(problem)  # first: a quarter turn off is the fix, whatever else is short
     out += _layers(problem)
     out += _free_off_axis(problem, tables, tree)
     singles: list[Diagnosis] = []
     for c in problem.constraints:
         if budget_spent():
             return [*out, *singles, _partial(problem)]
+        stage(DIAGNOSIS, c.name)
         d = _single(problem, c, tables, tree)
         if d is not None:
             singles.append(d)
     out += singles
+    out += _sheets(problem, singles)
     if singles:
         return out
+    stage(DIAGNOSIS, "pairs of constraints")
     pairs = _pairs(problem, tables, tree)
     out += pairs
     if budget_spent():
         return [*out, _partial(problem)]
+    if not pairs and not any(d.hint for d in out):
+        out += _sheets(problem, [], everything=True)
     if not pairs and not any(d.hint for d in out):
         names = tuple(c.name for c in problem.constraints)
         out.append(
@@ -270,6 +338,39 @@ def diagnose(
             )
         )
     return out
+
+
+def _sheets(
+    problem: Problem, singles: list[Diagnosis], everything: bool = False
+) -> list[Diagnosis]:
+    """A thicker or stiffer sheet (:mod:`.sheet_hint`) when a behavioural bound is short by more
+    than :data:`SMALL_EDIT` (``everything``: when no edit of one or two bounds helps, for every
+    behavioural bound)."""
+    from corrugate.solver.sheet_hint import stiffer_sheet
+
+    far = {
+        n for d in singles if d.relative is not None and d.relative > SMALL_EDIT for n in d.names
+    }
+    short = [
+        c
+        for c in problem.constraints
+        if (everything or c.name in far)
+        and c.quantity.eta is not None
+        and c.quantity.kind != "length"
+    ]
+    if not short or budget_spent():
+        return []
+    # how far the shortest falls short (a min bound over its reach; 1 when unknown)
+    need = max(
+        (
+            d.bound / d.reachable
+            for d in singles
+            if d.names[0] in far and d.bound and d.reachable and d.bound > d.reachable > 0
+        ),
+        default=1.0,
+    )
+    stage(DIAGNOSIS, "a thicker or stiffer sheet")
+    return stiffer_sheet(problem, short, need)
 
 
 def _partial(problem: Problem) -> Diagnosis:
@@ -290,7 +391,8 @@ def _partial(problem: Problem) -> Diagnosis:
 def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:
     """The one hint to act on: the smallest relative edit of one bound when it is at most
     :data:`SMALL_EDIT` of the bound, else a structural change that restores feasibility
-    (independent layers, a frame), else the smallest single edit, else the pair of edits, else
+    (directions turned by 90 deg or the sides swapped, independent layers, a frame, a thicker
+    or stiffer sheet), else the smallest single edit, else the pair of edits, else
     why no hint exists."""
     singles = [d for d in diagnosis if d.kind == "single" and d.hint]
     best = min(
@@ -304,7 +406,7 @@ def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:
     if best is not None and single and best.relative is not None and best.relative <= SMALL_EDIT:
         return single
     for d in diagnosis:
-        if d.kind in ("layers", "support") and d.hint:
+        if d.kind in ("orientation", "layers", "support", "sheet") and d.hint:
             return d.hint
     if single:
         return single
@@ -426,7 +528,8 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
     keys = ", ".join(_key(c) for c in off)
     if fixed.point is not None:
         o = problem.objective
-        hint = f'support = "frame" on {keys} (the panel held in a rigid frame on all four edges)'
+        # one edit per bound, each at its own table's key (pasted into the spec as it reads)
+        hint = " and ".join(f'{_key(c).rpartition(".")[0]}.support = "frame"' for c in off)
         frame_text = (
             f'what would carry it: a rigid frame (support = "frame" on {keys}: then the spec '
             f"is feasible, best {shown(fixed.value, o.quantity.unit)})"
@@ -438,7 +541,7 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         eta, v = max(along, key=lambda item: item[1] if c0.sense == "min" else -item[1])
         frame_text += (
             f"; a load case along the creases (eta = {eta:g} deg, where the same constraints "
-            f"allow {c0.quantity.kind} up to {shown(v, c0.unit)})"
+            f"allow {c0.quantity.kind} up to {_shown(c0, v)})"
         )
     frame_text += "; or a face sheet bonded to one side (not modelled by corrugate)"
     message = f"{why}; {frame_text}" + (f"; hint: {hint}" if hint else "")
@@ -501,11 +604,11 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
             + _limits(problem, alone)
         )
     if c.name.startswith("validity."):
-        hint = f"{_edit(c, r)}, to reach {_value(c, r)} instead of {shown(c.bound, c.unit)}"
+        hint = f"{_edit(c, r)}, to reach {_value(c, r)} instead of {_shown(c, c.bound)}"
     elif c.load is not None:
-        hint = f"{_edit(c, r)} instead of {c.load / c.bound:.4g} mm"
+        hint = f"{_edit(c, r)} instead of {_shown(c, c.load / c.bound, 'mm')}"
     else:
-        hint = f"{_edit(c, r)} instead of {shown(c.bound, c.unit)}"
+        hint = f"{_edit(c, r)} instead of {_shown(c, c.bound)}"
     hint += f" ({pct:.3g} %)"
     text += f"; relaxing it alone makes the spec feasible: hint: {hint}"
     return Diagnosis(
@@ -571,6 +674,8 @@ def _pairs(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
         hint = None
         if ta.point is not None:
             hint = f"{_edit(a, ta.value)} and {_edit(b, rb.value)}"
+            if {a.quantity.kind, b.quantity.kind} == {"part_short", "part_long"}:
+                hint = _machine_pair(a, ta.value, b, rb.value)  # one key: one edit
         text = (
             f"{a.name} and {b.name} bind only together: neither alone can be met with the other "
             f"constraints held, both dropped a design exists; {_key(a)} asks {_asked(a)} and reaches "

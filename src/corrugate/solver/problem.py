@@ -122,6 +122,9 @@ class Constraint:
     sense: Sense
     bound: float
     load: float | None = None  # N: a deflection bound's load (the quantity is P / delta)
+    # the unit the spec wrote the bound in ("N*m^2"; None: a plain number), what the diagnosis
+    # answers in (corrugate.spec.written)
+    written: str | None = None
 
     @property
     def unit(self) -> str:
@@ -338,6 +341,7 @@ class Problem:
             if o.maximize is None
             else Objective(Quantity.stiffness(o.maximize, o.eta, o.support or spec.support), "max")
         )
+        cons = [replace(c, written=spec.unit_written(c.name.split(" ")[0])) for c in cons]
         return cls(
             name=spec.name,
             model=spec.model,

@@ -40,6 +40,7 @@ from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
+from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
 from corrugate.solver.validity import outside_ranges
@@ -165,7 +166,9 @@ class RunnerUp:
 @dataclass(frozen=True, slots=True)
 class Diagnosis:
     """Why no design exists (:mod:`corrugate.solver.diagnosis`): constraint ``names`` cannot all
-    hold. ``kind``: ``layers`` (identical layers force Lx = Ly), ``support`` (off-axis bounds on a
+    hold. ``kind``: ``orientation`` (the directions are a quarter turn off:
+    :mod:`corrugate.solver.orientation`), ``layers`` (identical layers force Lx = Ly),
+    ``support`` (off-axis bounds on a
     free panel), ``single`` (relaxing the one named constraint restores feasibility), ``pair``
     (both named must be relaxed) or ``none`` (no hint exists). ``reachable`` is the best value of
     the first one's quantity that the other constraints allow (a pair: with the other dropped),
@@ -504,6 +507,7 @@ def solve(
 def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     t0 = time.perf_counter()
     tables = Tables(problem)
+    stage(SEARCHING)
     opt = optimize(problem, tables=tables, record=explain)
     t_opt = time.perf_counter() - t0
     stats: dict[str, object] = {
@@ -576,7 +580,9 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     reports: tuple[ConstraintReport, ...] = ()
     runner_ups: tuple[RunnerUp, ...] = ()
     if explain:
+        stage(BINDING)
         reports = tuple(_constraint_reports(problem, opt, tables))
+        stage(RUNNER_UPS)
         runner_ups = tuple(_runner_ups(problem, opt, tables))
         if opt.certified and budget.stopped is not None:
             warnings.append(
@@ -662,6 +668,7 @@ def _diagnose(
     :func:`optimize`)."""
     from corrugate.solver.diagnosis import diagnose
 
+    stage(DIAGNOSIS)
     return diagnose(problem, tables, tree)
 
 

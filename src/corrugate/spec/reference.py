@@ -486,6 +486,14 @@ def reference_markdown() -> str:
         "Python: `corrugate.design(spec, budget=10)`, `corrugate.workflow.solve_spec(spec, "
         "budget=10)`, `corrugate.solver.solve(problem, budget=10)`.",
         "",
+        "Progress. A solve of `design` or `tolerance` that runs over a second shows on stderr "
+        "what it is doing (searching; explaining: binding checks, runner-ups, the diagnosis and "
+        "the constraint it is on), for how long, the iterations, the proven gap and the best "
+        "value found: on a terminal one status line, refreshed in place and removed at the end; "
+        "otherwise a line `corrugate: searching: 12 s, ...` at each stage and every 5 s. Nothing "
+        "with `--quiet`, nor with `--json` unless stderr is a terminal; stdout carries only the "
+        "answer.",
+        "",
         f"Counts. A spec has at most {MAX_COUNTS['holes']} `layout.holes`, "
         f"{MAX_COUNTS['vertices']} vertices in `layout.vertices` and in each polygon hole, "
         f"{MAX_COUNTS['bounds']} behavioural bounds (`flexural_rigidity`, `bending_stiffness`, "

@@ -45,7 +45,14 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, GetJsonSchemaHandler, ValidationError
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    GetJsonSchemaHandler,
+    PrivateAttr,
+    ValidationError,
+)
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import CoreSchema, PydanticCustomError
 
@@ -801,6 +808,14 @@ class Spec(_Strict):
     # where the answer may lie: inside every validated range of the models it uses (default) or
     # anywhere, marked extrapolated (docs/spec.md; corrugate.solver.validity)
     trust: Literal["certified", "extrapolate"] = "certified"
+    # the unit text each quantity was written in, by spec path (spec.written: the diagnosis
+    # answers in it); set by parse_spec, not a key of the spec
+    _written: dict[str, str] = PrivateAttr(default_factory=dict)
+
+    def unit_written(self, path: str) -> str | None:
+        """The unit the spec wrote the quantity at ``path`` in (``constraints.side.max`` ->
+        ``mm``), None for a plain number or a key not given (:mod:`corrugate.spec.written`)."""
+        return self._written.get(path)
 
 
 def with_machine(spec: Spec, machine: str | None) -> Spec:
@@ -1092,6 +1107,9 @@ def parse_spec(data: Mapping[str, Any]) -> Spec:
             "spec", "(nested data)", f"at most {MAX_DEPTH} levels", reason="is nested too deeply"
         ) from None
     _check(spec, data)
+    from corrugate.spec.written import written_units
+
+    spec._written.update(written_units(data))
     return spec
 
 

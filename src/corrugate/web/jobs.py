@@ -211,7 +211,9 @@ class _SolverEvents:
     event per ``interval_s`` seconds: ``iterations`` (every branch-and-bound iteration of the job
     so far, all runs: the search and its explanation's re-solves), ``runs`` (branch-and-bound runs
     started), the current run's relative ``gap`` (null while no feasible point is known) and
-    ``best`` objective value, and the budget's ``cpu_s`` spent of ``budget_s``. An iteration
+    ``best`` objective value, the budget's ``cpu_s`` spent of ``budget_s`` and the solve's
+    ``step`` (:func:`corrugate.solver.progress.stage`: ``searching``, ``explaining: runner-ups``,
+    ...; the event's ``stage`` stays ``solving``). An iteration
     held back by the throttle is sent by :meth:`flush` (when the search is over), so the last
     event shows where the search ended, not where it was up to ``interval_s`` before."""
 
@@ -221,6 +223,11 @@ class _SolverEvents:
         self.runs = 0
         self.next_t = 0.0
         self.pending: dict[str, Any] | None = None
+        self.step = "searching"
+
+    def on_stage(self, step: str) -> None:
+        """The solve entered the stage ``step`` (shown with the next iteration's event)."""
+        self.step = step
 
     def flush(self) -> None:
         """Send the last iteration's event if the throttle held it back."""
@@ -237,6 +244,7 @@ class _SolverEvents:
         budget = current_budget()
         self.pending = {
             "stage": "solving",
+            "step": self.step,
             "iterations": self.iterations,
             "runs": self.runs,
             "gap": gap if math.isfinite(gap) else None,
@@ -258,5 +266,5 @@ def solver_progress(interval_s: float = PROGRESS_INTERVAL_S) -> Iterator[_Solver
     from corrugate.solver.progress import reporting
 
     events = _SolverEvents(interval_s)
-    with reporting(events):
+    with reporting(events, events.on_stage):
         yield events

@@ -1112,7 +1112,7 @@ function designProgress(e, job) {
     const gap = e.gap === null ? '' : `, gap ${fmt(100 * e.gap, 3)} %`;
     const text = `branch and bound: ${e.iterations} iterations in ${e.runs} `
       + `${e.runs === 1 ? 'run' : 'runs'}${gap}, ${best}; ${seconds(e.cpu_s)} of the solver's `
-      + `${seconds(e.budget_s)} CPU budget (${limit})`;
+      + `${seconds(e.budget_s)} CPU budget (${limit})${e.step ? `; now ${e.step}` : ''}`;
     return [text, e.budget_s ? Math.min(1, e.cpu_s / e.budget_s) : 0];
   }
   if (e.stage === 'writing files') return ['writing the files...', 1];
