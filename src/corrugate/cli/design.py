@@ -312,10 +312,10 @@ def design_cmd(
         raise typer.Exit(4)
     if failed:
         raise typer.Exit(1)
-    if checked is not None and not checked.holds:
+    if checked is not None and checked.verification.verdict != "holds":
         if quiet:
             typer.echo(f"corrugate: {checked.statement}", err=True)
-        raise typer.Exit(1)
+        raise typer.Exit(checked.verification.exit_code)
 
 
 def _request(
