@@ -3,7 +3,9 @@
 Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). Exit codes: 0 success, 1 the spec is
 infeasible (the diagnosis says why) or a robust target is missed, 2 a user error (one line naming
 the spec field, e.g. ``constraints.side.min``), 4 not certified within the work budget
-(``--budget``; one line on stderr: the best design found so far and the proven gap).
+(``--budget``; one line on stderr: the best design found so far and the proven gap); with
+``--verify fe`` also verify's verdicts (:data:`corrugate.fea.verify.EXIT_CODES`): 1 a bound fails
+in FE, 5 a series is not converged, 6 a bound has no FE twin (not checked).
 """
 
 from __future__ import annotations
