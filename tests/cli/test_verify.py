@@ -275,6 +275,29 @@ def test_the_help_states_the_verdicts_exit_codes() -> None:
 
     text = " ".join(HELP.split())
     assert EXIT_CODES == {"fails": 1, "not converged": 5, "not checked": 6, "holds": 0}
-    assert "5 (verify, design --verify fe) no constraint fails in FE but one is not converged" in text
+    assert (
+        "5 (verify, design --verify fe) no constraint fails in FE but one is not converged" in text
+    )
     assert "6 (verify, design --verify fe) every constraint with an FE twin holds" in text
     assert "(not checked)" in text
+
+
+def test_an_old_design_json_of_an_inline_material_is_one_line(
+    cli: CliRun, square: Path, tmp_path: Path
+) -> None:
+    """A design.json written before issue 35 (no material_properties) still verifies where it
+    names a library material; where it names an inline one, exit 2 with one line naming
+    layers[0].material and how to write it again (no CalculiX needed: it stops before)."""
+    import shutil
+
+    folder = tmp_path / "old"
+    shutil.copytree(square, folder)
+    record = json.loads((folder / "design.json").read_text())
+    assert all("material_properties" in lay for lay in record["layers"])
+    for lay in record["layers"]:
+        del lay["material_properties"]
+        lay["material"] = "PET (generic)"
+    (folder / "design.json").write_text(json.dumps(record))
+    code, _, err = cli(["verify", str(folder)])
+    assert code == 2
+    _one_error_line(err, "layers[0].material", "PET (generic)", "corrugate design SPEC --out DIR")

@@ -188,5 +188,5 @@ def test_short_broken_and_empty_series_are_open() -> None:
         {2: 3.0, 4: math.nan, 8: 2.4, 16: 2.39},
     ):
         assert judge(s, 1.0, "min").verdict == "open", s
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="sense must be min or max"):
         judge({2: 1.0}, 1.0, "less")

@@ -178,9 +178,9 @@ def test_verify_by_fe_runs_calculix_and_shows_verifys_table(
     shutil.copy(stored.path, folder / "design.json")
     code, out, _ = cli(["verify", str(folder), "--mesh", "2,4", "--max-mesh", "4", "--json", "-q"])
     expected = json.loads(out)
-    assert code == {"holds": 0, "fails": 1, "not converged": 5, "not checked": 6}[
-        expected["verdict"]
-    ]
+    assert (
+        code == {"holds": 0, "fails": 1, "not converged": 5, "not checked": 6}[expected["verdict"]]
+    )
     rows = page.locator("#d-verify-table tbody tr")
     assert rows.count() == len(expected["constraints"]) >= 1
     for i, c in enumerate(expected["constraints"]):
@@ -198,13 +198,16 @@ def test_verify_by_fe_runs_calculix_and_shows_verifys_table(
         else:
             assert float(fe.split()[0]) == pytest.approx(c["fe"], rel=1e-4)  # 5 digits shown
     status = page.text_content("#d-verify-status") or ""
-    assert status == {
-        "holds": "every constraint holds in FE",
-        "fails": "not every constraint holds in FE",
-        "not converged": "no constraint fails, but not every FE series converged: "
-        "not shown to hold",
-        "not checked": "every constraint with an FE twin holds; the others are not checked by FE",
-    }[expected["verdict"]]
+    assert (
+        status
+        == {
+            "holds": "every constraint holds in FE",
+            "fails": "not every constraint holds in FE",
+            "not converged": "no constraint fails, but not every FE series converged: "
+            "not shown to hold",
+            "not checked": "every constraint with an FE twin holds; the others are not checked by FE",
+        }[expected["verdict"]]
+    )
     caption = page.text_content("#d-verify-caption") or ""
     assert f"mesh series 2 / 4 elements per facet, {len(log)} CalculiX" in caption
     w.screenshot("web-verify.png")

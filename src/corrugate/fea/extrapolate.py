@@ -195,7 +195,7 @@ def judge(series: Series, bound: float, sense: str) -> Judgement:
     if not finite:
         return Judgement("open", None, None, "no FE value", "no FE value")
     if sense not in ("min", "max"):
-        raise ValueError(f"sense must be min or max, not {sense!r}")
+        raise ValueError(f"sense must be min or max, not {sense!r}")  # a caller's bug
     sign = 1.0 if sense == "min" else -1.0
     chain = _chain(finite)
     vs = [finite[a] for a in chain]
@@ -246,13 +246,12 @@ def judge(series: Series, bound: float, sense: str) -> Judgement:
                 )
             why = f"{pair} differ by {u:.3g} > {MARGIN_SHARE:g} x the margin {m:.3g}"
     if len(steps) >= 2 and margin(finest) < 0 and all(sign * d > tiny for d in steps[-2:]):
-        toward = "softens" if sense == "min" else "stiffens"
         return Judgement(
             "fails",
             estimate,
             order,
-            f"fails: the finest value {_fmt(finest)} is past the bound and the series {toward} "
-            "as the mesh refines",
+            f"fails: the finest value {_fmt(finest)} is past the bound and the series moves "
+            "away from it as the mesh refines",
         )
     how = "not converged: " + (
         f"Richardson {_fmt(estimate)} (p = {order:.2f})"
