@@ -232,7 +232,8 @@ def design_cmd(
             "--verify",
             metavar="fe",
             help="fe: check every behavioural bound of the answer by its FE twin (CalculiX; "
-            "as `corrugate verify`) and add the table to the answer; exit 1 when one does not hold.",
+            "as `corrugate verify`) and add the table to the answer; exit 1 when one fails, 5 when "
+            "one is not converged, 6 when one has no FE twin.",
         ),
     ] = None,
     refine: Annotated[
@@ -266,9 +267,9 @@ def design_cmd(
         typer.Option(
             "--verify-max-mesh",
             metavar="N",
-            help="With --verify fe: extend a series whose verdict could still flip by doubling "
-            "its finest mesh, up to N elements per facet (0: 16; a 16-per-facet run may take "
-            "minutes and up to ~8 GB).",
+            help="With --verify fe: refine a series not yet shown asymptotic against its bound "
+            "by doubling its finest mesh, up to N elements per facet (0: 16; a 16-per-facet run "
+            "may take minutes and up to ~8 GB); still open there: not converged (exit 5).",
         ),
     ] = 0,
     quiet: o.Quiet = False,

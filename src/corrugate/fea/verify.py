@@ -34,9 +34,11 @@ polygon at eta 0 or 90                     the rows above on the polygon cut fro
 
 A bending test's D and EI are read as the test's own formula reads P / delta over the panel's
 length (:func:`corrugate.mechanics.load_cases.apparent`), a deflection bound as load / (P /
-delta). Each twin runs on a mesh series (elements per facet, default 2 / 4 / 8) and is
-extrapolated (:mod:`corrugate.fea.extrapolate`). What has no FE twin yet says so in its row and
-does not hold: a span other than the panel's length (the fixtures support the panel at its
+delta). Each twin runs on a mesh series (elements per facet, default 2 / 4 / 8), refined
+until it is shown asymptotic against its bound or ``max_mesh`` is reached
+(:func:`corrugate.fea.extrapolate.judge`); each row's verdict is one of :data:`VERDICTS`
+(holds, fails, not converged, not checked; docs/fea.md 6). What has no FE twin yet says so in
+its row and is not checked: a span other than the panel's length (the fixtures support the panel at its
 ends), D or EI in a frame, EI or a bending test's P / delta off the crease directions (the
 coupon has its own span), load capacities off the crease directions, and the band joint off
 the crease directions or in a frame.
@@ -109,8 +111,8 @@ __all__ = [
 
 #: The mesh series unless asked for another (elements per facet).
 DEFAULT_MESHES: tuple[int, ...] = (2, 4, 8)
-#: The finest mesh a series is extended to (elements per facet) when its verdict could still flip
-#: (:func:`corrugate.fea.extrapolate.extend_reason`; docs/fea.md 2.9: with one ccx run per layer a
+#: The finest mesh a series is extended to (elements per facet) while it is not shown asymptotic
+#: (:func:`corrugate.fea.extrapolate.judge`; docs/fea.md 2.9: with one ccx run per layer a
 #: 16-per-facet run of the off-axis coupons fits in 7.5 GiB).
 DEFAULT_MAX_MESH = 16
 #: What a run on that mesh costs, said on stderr before it (docs/fea.md 2.9: the largest coupon of
@@ -623,12 +625,14 @@ def verify_design(
     (a solver error, a mesh the fixture refuses) leaves None in the series and its message in
     the row's note; runs shared by constraints (the same test, eta, shift and mesh) run once.
 
-    When the verdict could still flip within the extrapolation's own error
-    (:func:`corrugate.fea.extrapolate.extend_reason`), the series of the worst position is extended
-    by doubling its finest mesh, up to ``max_mesh`` elements per facet, and extrapolated again
-    from its three finest meshes; the worst position is then chosen again among those that ran
-    the finest requested mesh (positions screened out stay out), and so on. The row's
-    ``extended`` says so and why."""
+    Each position that ran the finest requested mesh is judged by
+    :func:`corrugate.fea.extrapolate.judge` (a series counts only when shown asymptotic against
+    the bound); while one is open, the open position with the worst estimate has its series
+    extended by doubling its finest mesh, up to ``max_mesh`` elements per facet, and is judged
+    again (positions screened out stay out); a position that fails ends the row. The row fails
+    when a position fails, holds when every judged position holds and no run failed, and is
+    "not converged" otherwise; a constraint without a twin is "not checked". The row's
+    ``extended`` says what was run on and why."""
     connectors, bond = joint_options(joint)
     if not shifts:
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
