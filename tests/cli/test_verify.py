@@ -204,3 +204,100 @@ def test_the_first_failure_table_states_each_load_case_against_its_load() -> Non
     empty = StringIO()
     print_failures((), Console(file=empty))
     assert empty.getvalue() == ""
+
+
+@pytest.mark.parametrize(
+    ("case", "code", "verdict"),
+    [
+        ("holds", 0, "every constraint holds in FE"),
+        ("fails", 1, "not every constraint holds in FE (exit 1)"),
+        ("turns", 5, "not every FE series converged: not shown to hold (exit 5)"),
+        ("no-twin", 6, "the others are not checked by FE"),
+    ],
+)
+def test_each_verdict_has_its_exit_code(
+    cli: CliRun,
+    square: Path,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    case: str,
+    code: int,
+    verdict: str,
+) -> None:
+    """docs/fea.md 6: verify exits with its worst row's verdict: 0 holds, 1 fails, 5 not
+    converged, 6 not checked. A stand-in for CalculiX gives EI(0) (pure bending) per mesh:
+    'holds' and 'fails' the exact series 2e5 (1 + 1 / mesh), whose extrapolations are 2e5 at
+    2 / 4 / 8 / 16, against a minimum of 1e5 (holds) or 3e5 (fails from 2 / 4 / 8: below it and
+    softening); 'turns' a series that never settles (refined to 16 and left not converged);
+    'no-twin' adds EI(30), which has no FE twin, beside the EI(0) that holds."""
+    import shutil
+    from types import SimpleNamespace
+
+    from corrugate.fea import verify
+
+    stub = tmp_path / "ccx"
+    stub.write_text("#!/bin/sh\nexit 1\n")
+    stub.chmod(0o755)
+    monkeypatch.setenv("CORRUGATE_CCX", str(stub))
+    turning = {2: 2.0e5, 4: 1.8e5, 8: 1.9e5, 16: 1.85e5}
+    alongs: list[int] = []
+
+    def fake(assembly, test, mesh, eta, **kw):  # type: ignore[no-untyped-def]
+        alongs.append(mesh.along)
+        ei = turning[mesh.along] if case == "turns" else 2.0e5 * (1 + 1 / mesh.along)
+        return SimpleNamespace(EI=ei)
+
+    monkeypatch.setattr(verify, "solve_assembly", fake)
+    folder = tmp_path / case
+    shutil.copytree(square, folder)
+    record = json.loads((folder / "design.json").read_text())
+    ei = {"name": "ei0", "quantity": "EI@0", "sense": "min", "unit": "N*mm^2", "value": 2e5}
+    rows = [{**ei, "bound": 3e5 if case == "fails" else 1e5}]
+    if case == "no-twin":
+        rows.append({**ei, "name": "ei30", "quantity": "EI@30", "bound": 1e5})
+    record["constraints"] = rows
+    (folder / "design.json").write_text(json.dumps(record))
+    got, out, _ = cli(["verify", str(folder), "--no-first-failure"])
+    assert got == code, out
+    assert verdict in " ".join(out.split())
+    got, out, _ = cli(["verify", str(folder), "--no-first-failure", "--json"])
+    result = json.loads(out)
+    assert got == code
+    names = {0: "holds", 1: "fails", 5: "not converged", 6: "not checked"}
+    assert result["verdict"] == names[code] and result["holds"] == (code == 0)
+    assert max(alongs) == (8 if case == "fails" else 16)
+
+
+def test_the_help_states_the_verdicts_exit_codes() -> None:
+    """``corrugate --help``'s exit codes (written without importing the FE) name verify's."""
+    from corrugate.cli import EXIT_CODES as HELP
+    from corrugate.fea.verify import EXIT_CODES
+
+    text = " ".join(HELP.split())
+    assert EXIT_CODES == {"fails": 1, "not converged": 5, "not checked": 6, "holds": 0}
+    assert (
+        "5 (verify, design --verify fe) no constraint fails in FE but one is not converged" in text
+    )
+    assert "6 (verify, design --verify fe) every constraint with an FE twin holds" in text
+    assert "(not checked)" in text
+
+
+def test_an_old_design_json_of_an_inline_material_is_one_line(
+    cli: CliRun, square: Path, tmp_path: Path
+) -> None:
+    """A design.json written before issue 35 (no material_properties) still verifies where it
+    names a library material; where it names an inline one, exit 2 with one line naming
+    layers[0].material and how to write it again (no CalculiX needed: it stops before)."""
+    import shutil
+
+    folder = tmp_path / "old"
+    shutil.copytree(square, folder)
+    record = json.loads((folder / "design.json").read_text())
+    assert all("material_properties" in lay for lay in record["layers"])
+    for lay in record["layers"]:
+        del lay["material_properties"]
+        lay["material"] = "PET (generic)"
+    (folder / "design.json").write_text(json.dumps(record))
+    code, _, err = cli(["verify", str(folder)])
+    assert code == 2
+    _one_error_line(err, "layers[0].material", "PET (generic)", "corrugate design SPEC --out DIR")

@@ -27,11 +27,13 @@ def test_the_files_record_reads_back_typed(tmp_path: Path) -> None:
     assert read_record(tmp_path / "design.json") == record
     assert record.shape == "rectangle"
     assert record.holes == (hole,)
+    stored = DURALAR.as_dict()  # every property of the material, JSON's way
     assert record.layers == (
-        LayerRecord(8.0, 8, 84.0, "dura-lar", DURALAR.default_thickness),
-        LayerRecord(7.0, 9, 90.0, "dura-lar", 0.1),
+        LayerRecord(8.0, 8, 84.0, "dura-lar", DURALAR.default_thickness, stored),
+        LayerRecord(7.0, 9, 90.0, "dura-lar", 0.1, stored),
     )
     assert record.assembly() == a
+    assert record.layers[0].material_of(0) == DURALAR  # the library's, creep table and all
     assert record.content["files"] == [p.name for p in written]
     assert json.loads((tmp_path / "design.json").read_text()) == record.content
 
@@ -73,3 +75,66 @@ def test_output_options_read_user_strings_and_name_the_callers_fields() -> None:
         output_options(fold_style="dotted", names={"fold-line style": "fold_style"})
     with pytest.raises(InputError, match=r"^cutter = 'plotter' is unknown"):
         output_options("plotter")
+
+
+#: An inline material (no library id): issue 35's arm link's PET, with a yield strength.
+PET = {
+    "E": "4 GPa",
+    "nu": 0.38,
+    "density": "1.38 g/cm^3",
+    "thickness": "0.25 mm",
+    "yield_strength": "55 MPa",
+}
+
+
+@pytest.mark.slow
+def test_an_inline_materials_design_reads_back_with_every_property(tmp_path: Path) -> None:
+    """design.json of a design of an inline material stores E, nu, density, its thickness and
+    yield strength (and creep table: none), and reads back to the same layers; a design.json
+    written before the properties were stored reads back where it names a library material and
+    is one line naming the field where it does not."""
+    from dataclasses import replace
+
+    from corrugate.materials.library import inline_material
+
+    pet = replace(
+        inline_material(PET["E"], PET["nu"], PET["density"], name="PET (generic)"),
+        yield_strength=55.0,
+    )
+    a = Assembly.identical(Layer(6.0, 5, 90.0, pet, t=0.25))
+    write_design_files(analyze(a, "refined", (0.0,)), tmp_path / "inline")
+    record = read_record(tmp_path / "inline")
+    props = record.layers[0].material_properties
+    assert props is not None
+    assert (props["E_MPa"], props["nu"], props["density_g_cm3"]) == (4000.0, 0.38, 1.38)
+    assert props["yield_strength_MPa"] == 55.0 and props["creep"] is None
+    back = record.assembly()
+    assert back == a and back.layers[0].material == pet
+
+    old = dict(record.content)  # as written before issue 35: no material_properties
+    old["layers"] = [
+        {k: v for k, v in lay.items() if k != "material_properties"} for lay in old["layers"]
+    ]
+    write_record(old, tmp_path / "old-inline")
+    with pytest.raises(InputError, match=r"layers\[0\]\.material = 'PET \(generic\)'"):
+        read_record(tmp_path / "old-inline").assembly()
+    library = dict(old)
+    library["layers"] = [{**lay, "material": "dura-lar", "t_mm": 0.125} for lay in old["layers"]]
+    write_record(library, tmp_path / "old-library")
+    assert read_record(tmp_path / "old-library").assembly().layers[0].material == DURALAR
+
+
+def test_stored_material_properties_are_checked_as_a_specs() -> None:
+    """A stored property out of range or missing is one error naming its key."""
+    from corrugate.materials.library import material_from_dict
+
+    good = DURALAR.as_dict()
+    assert material_from_dict(good) == DURALAR
+    for key, value, word in (
+        ("nu", 0.7, "nu"),
+        ("E_MPa", None, "E_MPa"),
+        ("yield_strength_MPa", 1e6, "yield_strength_MPa"),
+        ("creep", {"hours": [1.0], "E_MPa": [1e6]}, "creep"),
+    ):
+        with pytest.raises(InputError, match=rf"m\.{word}"):
+            material_from_dict({**good, key: value}, "m")

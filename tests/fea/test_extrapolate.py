@@ -1,5 +1,6 @@
 """Richardson extrapolation of mesh series (corrugate.fea.extrapolate): hand-made series of known
-order and limit, and the series it must not extrapolate."""
+order and limit, and the series it must not extrapolate; when a series counts for verify's
+verdict (``judge``): issue 35's three constructed series and hand-checked Richardson cases."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import math
 
 import pytest
 
-from corrugate.fea.extrapolate import extend_reason, extrapolate, observed_order, richardson
+from corrugate.fea.extrapolate import MARGIN_SHARE, extrapolate, judge, observed_order, richardson
 
 
 def _series(
@@ -70,49 +71,122 @@ def test_short_series_and_missing_values() -> None:
     assert extrapolate({}).value is None
 
 
-# --- when a series is extended (extend_reason) -------------------------------------------------
+# --- when a series counts for verify's verdict (judge) ----------------------------------------
 
 
-def test_the_k45_before_series_must_go_on() -> None:
-    """docs/fea.md 6: K(45) of the W 9, n 8, alpha 94 design, 2 / 4 / 8 per facet, bound 1 N/mm.
-    By hand: d1 = 0.761, d2 = 0.195, p = log2(3.903) = 1.964, estimate 1.117 - 0.195 / 2.901 =
-    1.0498: 0.0498 from the bound, less than its correction 1.117 - 1.0498 = 0.0672."""
-    s = {2: 2.073, 4: 1.312, 8: 1.117}
-    why = extend_reason(s, 1.0)
-    assert why is not None and "Richardson correction" in why
-    assert "0.0498" in why and "0.0672" in why
+def test_issue_35_the_slow_softening_series_is_not_a_pass_until_refined() -> None:
+    """100 / 90 / 82.42 (steps 10 and 7.58, p = log2(10 / 7.58) = 0.40) against a minimum of 70:
+    not "holds" from three meshes. Its geometric continuation (each step 0.758 of the one
+    before, 82.42 - 7.58 x 0.758 = 76.675 at 16) ends at 100 - 10 / (1 - 0.758) = 58.68, below
+    the bound: with that fourth mesh both extrapolations give 58.68 and the row fails."""
+    s = {2: 100.0, 4: 90.0, 8: 82.42}
+    j = judge(s, 70.0, "min")
+    assert j.verdict == "open" and "four meshes" in j.why
+    assert j.order == pytest.approx(math.log2(10 / 7.58))
+    assert j.value == pytest.approx(100 - 10 / (1 - 0.758), abs=1e-9)  # not the finest 82.42
+    more = {**s, 16: 82.42 - 7.58 * 0.758}
+    done = judge(more, 70.0, "min")
+    assert done.verdict == "fails"
+    assert done.value == pytest.approx(58.6777, abs=1e-4)
+    assert done.how.startswith("converged")
 
 
-def test_the_k15_after_series_is_settled() -> None:
-    """K(15) of the relaxed design, 125.14 / 92.52 / 84.73 N/mm, bound 75: estimate 82.29 (p =
-    2.07, by hand 84.73 - 7.79 / 3.19), 7.3 above the bound, its correction only 2.4."""
-    assert extend_reason({2: 125.14, 4: 92.52, 8: 84.73}, 75.0) is None
+def test_issue_35_a_series_that_is_not_monotone_is_not_a_pass() -> None:
+    """100 / 92 / 94 against a minimum of 90: every value meets the bound, but the series turns
+    (steps -8, +2): no order, no estimate to trust, open; a fourth mesh that keeps turning
+    leaves it open (verify then says not converged)."""
+    s = {2: 100.0, 4: 92.0, 8: 94.0}
+    j = judge(s, 90.0, "min")
+    assert j.verdict == "open" and j.value == 94.0 and j.order is None
+    turning = judge({**s, 16: 93.0}, 90.0, "min")
+    assert turning.verdict == "open" and "not monotone" in turning.why
 
 
-def test_the_rule_on_an_exact_series_of_order_2() -> None:
-    """v = 100 + 40 / a^2: 110, 102.5, 100.625 at 2 / 4 / 8, estimate 100 exactly, correction
-    0.625: a bound 0.5 from the estimate may flip (extend), one 1.0 away may not; a converged
-    series far from its bound is never extended, above or below it."""
-    s = _series(100.0, 40.0, 2.0)
-    assert extend_reason(s, 100.5) is not None
-    assert extend_reason(s, 99.5) is not None
-    assert extend_reason(s, 101.0) is None
-    assert extend_reason(s, 99.0) is None
-    assert extend_reason(_series(100.0, 1e-3, 2.0), 80.0) is None
-    assert extend_reason(_series(100.0, -1e-3, 2.0), 120.0) is None
+def test_issue_35_the_k15_series_is_not_converged_at_2_4_8_nor_at_16() -> None:
+    """docs/fea.md 2.9: the certified K(15) design, 126.24 / 93.20 / 85.22 N/mm at 2 / 4 / 8,
+    bound 75 (model 75.30). From 2 / 4 / 8 alone: open (one extrapolation, 82.68, cannot be
+    checked against another). With 81.60 at 16: the extrapolations from 2 / 4 / 8 and 4 / 8 / 16
+    are by hand d = 33.035, 7.982, 3.622; p1 = log2(33.035 / 7.982) = 2.049, R1 = 85.220 -
+    7.982 / (2^p1 - 1) = 82.676; p2 = log2(7.982 / 3.622) = 1.140, R2 = 81.598 - 3.622 /
+    (2^p2 - 1) = 78.590. They differ by 4.09, more than a quarter of the margin 78.59 - 75 =
+    3.59: still open, so at the default cap of 16 per facet the row is not converged."""
+    s = {2: 126.23668, 4: 93.202237, 8: 85.219855}
+    j = judge(s, 75.0, "min")
+    assert j.verdict == "open"
+    assert j.value == pytest.approx(82.676, abs=1e-3)
+    j16 = judge({**s, 16: 81.597965}, 75.0, "min")
+    assert j16.verdict == "open"
+    assert j16.value == pytest.approx(78.590, abs=1e-3)
+    assert j16.order == pytest.approx(1.140, abs=1e-3)
+    assert "82.676" in j16.why and "78.59" in j16.why and "differ by 4.09" in j16.why
+    # the same two estimates decide a bound four disagreements (16.4) below 78.59, not one above
+    assert judge({**s, 16: 81.597965}, 62.0, "min").verdict == "holds"
+    assert judge({**s, 16: 81.597965}, 63.0, "min").verdict == "open"
 
 
-def test_without_an_extrapolation_the_last_step_is_the_scale() -> None:
-    """Not asymptotic (non-monotone: 87682 / 86940 / 87213, the refined gripper's EI(0)) or two
-    meshes only: the finest value stands, and it may flip when the bound is within the last
-    step (273 here; 306 for 85559 / 85866 at 4 / 8); one mesh: nothing to go on."""
-    s = {2: 87682.0, 4: 86940.0, 8: 87213.0}
-    assert not extrapolate(s).asymptotic
-    why = extend_reason(s, 87000.0)
-    assert why is not None and why.startswith("not asymptotic")
-    assert extend_reason(s, 80000.0) is None
-    two = {4: 85559.0, 8: 85866.0}
-    assert extend_reason(two, 86000.0) is not None
-    assert extend_reason(two, 80000.0) is None
-    assert extend_reason({8: 1.0}, 1.0) is None
-    assert extend_reason({2: 2.0, 4: math.nan, 8: 1.1}, 1.0) is not None  # a failed run skipped
+@pytest.mark.parametrize("p", [0.4, 1.0, 2.0])
+@pytest.mark.parametrize("A", [30.0, -30.0])
+def test_an_exact_series_c_plus_A_h_p_converges_to_c(p: float, A: float) -> None:
+    """v = c + A h^p with h = 1 / along on 2 / 4 / 8 / 16: both extrapolations are c exactly
+    (Richardson is exact for one power term, whatever p), so the row is decided by c against the
+    bound, even an inch from it; from three meshes it is open."""
+    c = 50.0
+    s = _series(c, A, p, (2, 4, 8, 16))
+    assert judge(s, c - 0.01, "min").verdict == "holds"
+    assert judge(s, c + 0.01, "min").verdict == "fails"
+    assert judge(s, c + 0.01, "max").verdict == "holds"
+    j = judge(s, c - 1.0, "min")
+    assert j.value == pytest.approx(c, abs=1e-9) and j.order == pytest.approx(p)
+    assert judge({k: s[k] for k in (2, 4, 8)}, c - 1.0, "min").verdict == "open"
+
+
+def test_the_margin_share_by_hand() -> None:
+    """116 / 108 / 104 / 101 at 2 / 4 / 8 / 16: steps 8, 4, 3. By hand R1 = 104 - 4 / (2 - 1) =
+    100 (p = 1); R2 = 101 - 3 / (4/3 - 1) = 92 (2^p = 4/3). They differ by 8: a minimum of 60
+    (margin 32 = 8 / 0.25) is decided, holds; one of 61 (margin 31) is open."""
+    assert MARGIN_SHARE == 0.25
+    s = {2: 116.0, 4: 108.0, 8: 104.0, 16: 101.0}
+    j = judge(s, 60.0, "min")
+    assert j.verdict == "holds" and j.value == pytest.approx(92.0, abs=1e-12)
+    assert j.order == pytest.approx(math.log2(4 / 3))
+    assert judge(s, 61.0, "min").verdict == "open"
+    # a maximum far above: decided too (92 + 32 = 124)
+    assert judge(s, 124.0, "max").verdict == "holds"
+    assert judge(s, 123.0, "max").verdict == "open"
+
+
+def test_a_series_past_its_bound_and_moving_away_fails_early() -> None:
+    """A softening series already below its minimum only goes further below (fails from three
+    meshes); a stiffening one below its minimum may still cross (open). A deflection growing
+    past its maximum fails; one growing below it is open."""
+    assert judge({2: 12.0, 4: 10.0, 8: 9.5}, 10.0, "min").verdict == "fails"
+    assert judge({2: 8.0, 4: 9.0, 8: 9.5}, 10.0, "min").verdict == "open"
+    assert judge({2: 0.40, 4: 0.45, 8: 0.47}, 0.46, "max").verdict == "fails"
+    assert judge({2: 0.40, 4: 0.45, 8: 0.47}, 0.50, "max").verdict == "open"
+    # past the bound but turning: open
+    assert judge({2: 9.0, 4: 8.0, 8: 8.5}, 10.0, "min").verdict == "open"
+
+
+def test_a_mesh_independent_series_is_decided_by_its_last_two_steps() -> None:
+    """K of the layer loaded along its creases is exact at any mesh (docs/fea.md 2.2): the last
+    two steps vanish (to round-off), the finest value decides, from three meshes; two meshes
+    are not enough."""
+    s = {2: 477.3, 4: 477.3 * (1 + 1e-12), 8: 477.3}
+    assert judge(s, 477.0, "min").verdict == "holds"
+    assert judge(s, 478.0, "min").verdict == "fails"
+    assert judge({4: 477.3, 8: 477.3}, 477.0, "min").verdict == "open"
+
+
+def test_short_broken_and_empty_series_are_open() -> None:
+    """One or two meshes, meshes that do not double, NaN entries (a failed run, skipped) and an
+    empty series: open, never holds."""
+    assert judge({}, 1.0, "min").value is None
+    for s in (
+        {8: 2.0},
+        {4: 2.1, 8: 2.0},
+        {2: 3.0, 6: 2.5, 8: 2.4},
+        {2: 3.0, 4: math.nan, 8: 2.4, 16: 2.39},
+    ):
+        assert judge(s, 1.0, "min").verdict == "open", s
+    with pytest.raises(ValueError, match="sense must be min or max"):
+        judge({2: 1.0}, 1.0, "less")

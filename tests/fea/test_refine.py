@@ -217,10 +217,14 @@ def test_no_ccx_is_one_line_exit_2(
 def test_refine_on_the_paper_model_against_separate_fe_runs(
     ccx: str, cli: CliRun, tmp_path: Path
 ) -> None:
-    """The paper model's EI is above the FE (docs/fea.md 6): the spec's own design misses EI(0)
-    >= 20 mN m^2 in the 4-point gauge; --refine tightens the bound by model / FE at that design
-    (checked against a separate solve_assembly run) and returns a design whose FE, run again
-    separately, meets the bound."""
+    """The paper model's EI is above the FE at 4 per facet (docs/fea.md 6): on verify's series
+    4 (n = 4: the 4-point fixture refuses 2 per facet) the spec's own design reads EI(0) below
+    20 mN m^2. One mesh shows no asymptote (issue 35): the row is not converged, and its
+    estimate misses the bound, so --refine tightens the bound by model / FE at that design
+    (checked against a separate solve_assembly run), never loosens by an unconverged ratio, and
+    returns no verified design: the answer is the spec's own design, exit 5 (not converged). The
+    next attempt's FE is a separate run's on its own design."""
+    from corrugate import Assembly, Layer, get_material
     from corrugate.export.record import read_record
     from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 
@@ -233,7 +237,7 @@ def test_refine_on_the_paper_model_against_separate_fe_runs(
     m0 = next(c["value"] for c in plain["constraints"] if c["name"] == NAME)
     a0 = read_record(tmp_path / "plain").assembly()
     fe0 = solve_assembly(a0, "four-point", AssemblyMesh(4), 0.0).EI  # the finest of 2 / 4
-    assert fe0 is not None and fe0 < B  # the paper model's design misses the bound in FE
+    assert fe0 is not None and fe0 < B  # below the bound at 4 per facet
 
     folder = tmp_path / "refined"
     args = [
@@ -250,23 +254,25 @@ def test_refine_on_the_paper_model_against_separate_fe_runs(
     code, out, err = cli([*args, "--json", "--out", str(folder)])
     result = json.loads(out)
     ref = result["refine"]
-    assert ref["attempts"][0]["fe_holds"] is False
+    first = ref["attempts"][0]
+    assert first["fe_holds"] is False and first["fe_verdict"] == "not converged"
+    assert first["fe"][NAME] == pytest.approx(fe0, rel=1e-9)
     corrected = ref["attempts"][1]["model_bounds"][NAME]
     assert corrected["spec"] == pytest.approx(B)
     assert corrected["model"] == pytest.approx(B * m0 / fe0, rel=1e-6)
-    assert code == (0 if ref["verified"] else 1)
-    assert ref["verified"], ref
+    assert all(t["fe_verdict"] == "not converged" for t in ref["attempts"])
+    assert not ref["verified"] and ref["chosen"] is None and code == 5
     v = result["verification"]
-    assert v["holds"] is True and v["meshes"] == [2, 4]
-    [row] = v["constraints"]
-    assert row["bound"] == pytest.approx(B) and row["fe"] >= B
-    # the returned design, rebuilt from its design.json and run again on its own
-    a = read_record(folder).assembly()
-    fe = solve_assembly(a, "four-point", AssemblyMesh(4), 0.0).EI
-    assert fe is not None and fe >= B and fe == pytest.approx(row["fe"], rel=1e-9)
-    assert result["mass_g"] >= plain["mass_g"]
-    [c] = [c for c in result["constraints"] if c["name"] == NAME]
-    assert c["bound"] == pytest.approx(B) and c["model_bound"] == pytest.approx(corrected["model"])
+    assert v["verdict"] == "not converged" and v["holds"] is False
+    assert result["mass_g"] == pytest.approx(plain["mass_g"])  # the spec's own design
+    # the next attempt's FE: a separate run on its own layers
+    second = ref["attempts"][1]
+    [lay, _] = second["layers"]
+    layer = Layer(
+        lay["W_mm"], lay["n"], lay["alpha_deg"], get_material(lay["material"]), t=lay["t_mm"]
+    )
+    fe1 = solve_assembly(Assembly.identical(layer), "four-point", AssemblyMesh(4), 0.0).EI
+    assert fe1 == pytest.approx(second["fe"][NAME], rel=1e-9)
     written = json.loads((folder / "verify.json").read_text())
-    assert written["holds"] is True
+    assert written["verdict"] == "not converged"
     assert err == ""  # --json: no progress lines unless stderr is a terminal

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 from corrugate import Assembly, Layer, get_material
@@ -133,40 +135,48 @@ def test_only_behavioural_constraints_are_checked() -> None:
 def test_a_failed_run_at_any_coupon_position_leaves_the_row_unproven(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """Off the crease directions a position whose finest run fails (e.g. a ccx time-out) could
-    hide the worst value: the row does not hold and names the failure, though every value that
-    was computed meets the bound (a stand-in for CalculiX: K = 10 / mesh N/mm)."""
+    """Off the crease directions a position whose run fails (e.g. a ccx time-out) could hide the
+    worst value: the row is not converged (not "holds") and names the failure, though every
+    value that was computed meets the bound (a stand-in for CalculiX: K = 2 + 8 / mesh^2 N/mm,
+    an exact series of order 2 whose limit 2 is above the bound 1); without the failure the
+    same series holds at 2 / 4 / 8 / 16 (both extrapolations exactly 2)."""
     from types import SimpleNamespace
 
     from corrugate.fea import verify
     from corrugate.fea.ccx import SolverError
 
+    fail = [True]
+
     def fake(assembly, test, mesh, eta, *, shift=0.0, **kw):  # type: ignore[no-untyped-def]
-        if shift == 0.0 and mesh.along == 4:
+        if fail[0] and shift == 0.0 and mesh.along == 4:
             raise SolverError("ccx timed out after 900 s")
-        return SimpleNamespace(K=10.0 / mesh.along)
+        return SimpleNamespace(K=2.0 + 8.0 / mesh.along**2)
 
     monkeypatch.setattr(verify, "solve_assembly", fake)
     c = [{"name": "k", "quantity": "K@15", "sense": "min", "bound": 1.0, "value": 3.0}]
     for screen in (True, False):
-        v = verify.verify_design(A, c, meshes=(2, 4), shifts=(0.0, 0.5), screen=screen)
+        v = verify.verify_design(A, c, meshes=(2, 4, 8, 16), shifts=(0.0, 0.5), screen=screen)
         [row] = v.rows
-        assert not row.holds and not v.holds
+        assert not row.holds and row.verdict == "not converged" and v.exit_code == 5
         assert "shift 0: 4/facet not run: ccx timed out" in row.note
         assert "not proven" in row.note
-    ok = verify.verify_design(A, c, meshes=(2,), shifts=(0.0, 0.5))
-    assert ok.holds and ok.rows[0].fe == pytest.approx(5.0)
+    fail[0] = False
+    ok = verify.verify_design(A, c, meshes=(2, 4, 8, 16), shifts=(0.0, 0.5))
+    assert ok.holds and ok.verdict == "holds" and ok.exit_code == 0
+    assert ok.rows[0].fe == pytest.approx(2.0, rel=1e-12)
 
 
-def test_a_series_whose_verdict_could_flip_runs_on_to_16_per_facet(
+def test_the_k45_series_runs_on_to_16_per_facet_and_is_not_converged_there(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """A stand-in for CalculiX returning the K(45) series of docs/fea.md 6 (2.073 / 1.312 /
-    1.117 / 1.035 N/mm at 2 / 4 / 8 / 16 per facet; the coupon at shift 0.5 0.1 stiffer): from 2 /
-    4 / 8 the estimate 1.0498 is within its correction of the bound 1, so the worst position
-    (shift 0) runs at 16 and the row's estimate is Richardson's from 4 / 8 / 16, by hand d1 =
-    0.195, d2 = 0.082, p = log2(d1 / d2), 1.035 - d2 / (2^p - 1) = 0.9755: below the bound."""
-    import math
+    1.117 / 1.035 N/mm at 2 / 4 / 8 / 16 per facet; the coupon at shift 0.5 0.1 stiffer, screened
+    out at 4 per facet, more than 5 % above). From 2 / 4 / 8 the series is one extrapolation
+    short, so the worst position (shift 0) runs at 16; by hand d = 0.761, 0.195, 0.082: R1 =
+    1.117 - 0.195 / (0.761 / 0.195 - 1) = 1.0498, R2 = 1.035 - 0.082 / (0.195 / 0.082 - 1) =
+    0.9755. They differ by 0.074, three times the margin 0.0245: at the cap of 16 the row is
+    "not converged" (exit 5), not "holds" and not "fails"; capped at 8 it is not converged
+    without running on."""
     from types import SimpleNamespace
 
     from corrugate.fea import verify
@@ -184,22 +194,83 @@ def test_a_series_whose_verdict_could_flip_runs_on_to_16_per_facet(
     v = verify.verify_design(A, c, shifts=(0.0, 0.5), progress=lines.append)
     [row] = v.rows
     assert (16, 0.0) in calls and (16, 0.5) not in calls
-    d1, d2 = 1.312 - 1.117, 1.117 - 1.035
-    p = math.log2(d1 / d2)
-    assert row.fe == pytest.approx(1.035 - d2 / (2**p - 1), rel=1e-12)
+    d2, d3 = 1.312 - 1.117, 1.117 - 1.035
+    assert row.fe == pytest.approx(1.035 - d3 / (d2 / d3 - 1), rel=1e-12)
     assert row.fe == pytest.approx(0.9755, abs=1e-4)
     assert row.fe_series[16] == pytest.approx(1.035) and row.shift == 0.0
-    assert not row.holds and not v.holds
+    assert row.verdict == "not converged" and v.verdict == "not converged"
+    assert not row.holds and v.exit_code == 5
     assert "extended to 16 per facet at shift 0" in row.extended
-    assert "Richardson correction" in row.extended and row.extended in row.note
-    assert row.as_json()["extended"] == row.extended
+    assert "four meshes" in row.extended and row.extended in row.note
+    assert "not converged at shift 0 at 16 per facet" in row.note and "1.0498" in row.note
+    assert row.as_json()["verdict"] == "not converged"
+    assert v.as_json()["verdict"] == "not converged"
     assert any("extending" in x and "~8 GB" in x for x in lines)
-    # the cap: up to 8 per facet nothing runs past the requested series, and 2 / 4 / 8 holds
     calls.clear()
     capped = verify.verify_design(A, c, shifts=(0.0, 0.5), max_mesh=8)
     assert max(a for a, _ in calls) == 8
-    assert capped.holds and capped.rows[0].fe == pytest.approx(1.0498, abs=1e-4)
-    assert capped.rows[0].extended == ""
+    assert capped.verdict == "not converged" and capped.rows[0].extended == ""
+    assert capped.rows[0].fe == pytest.approx(1.0498, abs=1e-4)  # its best estimate, not 1.117
+
+
+def test_a_series_is_refined_until_it_settles_and_every_position_counts(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Two coupon positions, both exact series c + A / mesh (order 1; 2 / 4 / 8 are one
+    extrapolation short): each position runs on to 16 and holds or fails by its own limit c.
+    Limits 1.2 and 1.5 against a minimum of 1: holds (exit 0), the worst (1.2, shift 0.5)
+    counts. Limits 0.8 and 1.5: shift 0 reads 1.1 / 0.95 / 0.875, already below the bound and
+    softening, so it fails from 2 / 4 / 8 (exit 1; its estimate the exact limit 0.8) and no
+    position runs on."""
+    from types import SimpleNamespace
+
+    from corrugate.fea import verify
+
+    limits = {0.0: 1.5, 0.5: 1.2}
+    calls: list[tuple[int, float]] = []
+
+    def fake(assembly, test, mesh, eta, *, shift=0.0, **kw):  # type: ignore[no-untyped-def]
+        calls.append((mesh.along, shift))
+        return SimpleNamespace(K=limits[shift] + 0.6 / mesh.along)
+
+    monkeypatch.setattr(verify, "solve_assembly", fake)
+    c = [{"name": "k", "quantity": "K@30", "sense": "min", "bound": 1.0, "value": 1.1}]
+    v = verify.verify_design(A, c, shifts=(0.0, 0.5), screen=False)
+    [row] = v.rows
+    assert {(16, 0.0), (16, 0.5)} <= set(calls)
+    assert row.verdict == "holds" and v.exit_code == 0
+    assert row.shift == 0.5 and row.fe == pytest.approx(1.2, rel=1e-12)
+    limits[0.0] = 0.8
+    calls.clear()
+    v = verify.verify_design(A, c, shifts=(0.0, 0.5), screen=False)
+    [row] = v.rows
+    assert row.verdict == "fails" and v.exit_code == 1
+    assert row.shift == 0.0 and row.fe == pytest.approx(0.8, rel=1e-12)
+    assert max(a for a, _ in calls) == 8 and "moves away" in row.how
+
+
+def test_a_constraint_without_a_twin_is_not_checked_not_failed() -> None:
+    """A constraint with no FE twin (EI off the crease directions) is its own verdict, "not
+    checked" (exit 6 when nothing worse), never "fails"; a design whose every row has no twin
+    is not checked; a row's verdict sets its holds."""
+    from corrugate.fea import verify
+    from corrugate.fea.verify import Row, Verification
+
+    c = [{"name": "ei", "quantity": "EI@30", "sense": "min", "bound": 1.0, "value": 2.0}]
+    v = verify.verify_design(A, c)
+    [row] = v.rows
+    assert row.verdict == "not checked" and not row.holds and "no FE twin" in row.note
+    assert v.verdict == "not checked" and v.exit_code == 6 and v.no_failure
+    held = Row("a", "EI@0", "min", "", 1.0, 2.0, {2: 2.0}, 2.0, holds=True)
+    failed = Row("b", "EI@0", "min", "", 1.0, 2.0, {2: 0.5}, 0.5)
+    open_ = replace(failed, verdict="not converged")
+    assert failed.verdict == "fails" and held.verdict == "holds" and not open_.holds
+    assert Verification((held, row), (2,)).exit_code == 6
+    assert Verification((held, row, open_), (2,)).exit_code == 5
+    assert Verification((open_, failed, row), (2,)).exit_code == 1
+    assert Verification((held,), (2,)).exit_code == 0 and Verification((), (2,)).exit_code == 0
+    with pytest.raises(ValueError, match="verdict must be one of"):
+        Row("c", "EI@0", "min", "", 1.0, 2.0, verdict="maybe")
 
 
 def test_a_solutions_reports_are_checked_as_its_design_json_entries() -> None:
@@ -256,15 +327,16 @@ def test_a_load_capacity_is_the_first_buckling_load_over_its_safety_factor(
     carries the capacity at the safety factor (``value``) and the model's failure loads
     (``failure_loads_N``): the safety factor is their least over the value, 1.2 / 0.6 = 2 here.
     Its FE twin is the three-point fixture as a linear buckling run (a stand-in for CalculiX:
-    3 / 2.5 / 2.4 N at 2 / 4 / 8 per facet, by hand d1 = 0.5, d2 = 0.1, p = log2 5, Richardson
-    2.4 - 0.1 / 4 = 2.375 N) over that factor, 1.1875 N, against the bound 1 N: it holds; at a
-    bound of 1.3 N it does not. Without failure loads there is no factor and no twin."""
+    3 / 2.5 / 2.4 / 2.38 N at 2 / 4 / 8 / 16 per facet, 2.375 + 0.625 (2 / mesh)^p with p =
+    log2 5: both extrapolations 2.375 N) over that factor, 1.1875 N, against the bound 1 N: it
+    holds; at a bound of 1.3 N it fails. Without failure loads there is no factor and no twin:
+    not checked."""
     from types import SimpleNamespace
     from typing import Any
 
     from corrugate.fea import verify
 
-    loads = {2: 3.0, 4: 2.5, 8: 2.4}
+    loads = {2: 3.0, 4: 2.5, 8: 2.4, 16: 2.38}
     steps: list[str] = []
 
     def fake(assembly: Any, test: str, mesh: Any, eta: float, **kw: Any) -> Any:
@@ -284,9 +356,9 @@ def test_a_load_capacity_is_the_first_buckling_load_over_its_safety_factor(
     assert verify.safety_factor(c) == pytest.approx(2.0)
     [row] = verify.verify_design(A, [c]).rows
     assert row.fe == pytest.approx(2.375 / 2.0, rel=1e-12) and row.holds
-    assert row.fe_series == {2: 1.5, 4: 1.25, 8: 1.2} and set(steps) == {"buckle"}
+    assert row.fe_series == {2: 1.5, 4: 1.25, 8: 1.2, 16: 1.19} and set(steps) == {"buckle"}
     assert "over the safety factor 2" in row.note and "buckling" in row.test
     [tight] = verify.verify_design(A, [{**c, "bound": 1.3}]).rows
-    assert not tight.holds
+    assert not tight.holds and tight.verdict == "fails"
     [none] = verify.verify_design(A, [{k: v for k, v in c.items() if k != "failure_loads_N"}]).rows
-    assert not none.holds and "safety factor" in none.note and not none.fe_series
+    assert none.verdict == "not checked" and "safety factor" in none.note and not none.fe_series

@@ -57,7 +57,10 @@ EXIT_CODES = (
     "the field, the value and what is allowed); 3 a bug (one line; please report it); 4 not "
     "certified within the work budget (design, pareto and tolerance --budget, default 60 s of "
     "CPU time: one line with the best design found so far and "
-    "the proven gap); 130 interrupted (Ctrl-C: one line; an --out folder "
+    "the proven gap); 5 (verify, design --verify fe) no constraint fails in FE but one is not "
+    "converged (its mesh series not shown asymptotic up to --max-mesh); 6 (verify, design "
+    "--verify fe) every constraint with an FE twin holds, one has none (not checked); 130 "
+    "interrupted (Ctrl-C: one line; an --out folder "
     "keeps its earlier set or has the new one whole)."
 )
 

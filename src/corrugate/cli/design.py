@@ -3,7 +3,9 @@
 Registered by :mod:`corrugate.cli` (see :data:`COMMANDS`). Exit codes: 0 success, 1 the spec is
 infeasible (the diagnosis says why) or a robust target is missed, 2 a user error (one line naming
 the spec field, e.g. ``constraints.side.min``), 4 not certified within the work budget
-(``--budget``; one line on stderr: the best design found so far and the proven gap).
+(``--budget``; one line on stderr: the best design found so far and the proven gap); with
+``--verify fe`` also verify's verdicts (:data:`corrugate.fea.verify.EXIT_CODES`): 1 a bound fails
+in FE, 5 a series is not converged, 6 a bound has no FE twin (not checked).
 """
 
 from __future__ import annotations
@@ -238,7 +240,8 @@ def design_cmd(
             "--verify",
             metavar="fe",
             help="fe: check every behavioural bound of the answer by its FE twin (CalculiX; "
-            "as `corrugate verify`) and add the table to the answer; exit 1 when one does not hold.",
+            "as `corrugate verify`) and add the table to the answer; exit 1 when one fails, 5 when "
+            "one is not converged, 6 when one has no FE twin.",
         ),
     ] = None,
     refine: Annotated[
@@ -272,9 +275,9 @@ def design_cmd(
         typer.Option(
             "--verify-max-mesh",
             metavar="N",
-            help="With --verify fe: extend a series whose verdict could still flip by doubling "
-            "its finest mesh, up to N elements per facet (0: 16; a 16-per-facet run may take "
-            "minutes and up to ~8 GB).",
+            help="With --verify fe: refine a series not yet shown asymptotic against its bound "
+            "by doubling its finest mesh, up to N elements per facet (0: 16; a 16-per-facet run "
+            "may take minutes and up to ~8 GB); still open there: not converged (exit 5).",
         ),
     ] = 0,
     quiet: o.Quiet = False,
@@ -326,10 +329,10 @@ def design_cmd(
         raise typer.Exit(4)
     if failed:
         raise typer.Exit(1)
-    if checked is not None and not checked.holds:
+    if checked is not None and checked.verification.verdict != "holds":
         if quiet:
             typer.echo(f"corrugate: {checked.statement}", err=True)
-        raise typer.Exit(1)
+        raise typer.Exit(checked.verification.exit_code)
 
 
 def _request(

@@ -8,8 +8,10 @@ skips them), with ``--nonlinear`` a geometrically nonlinear ramp of the first lo
 (:mod:`corrugate.fea.nonlinear`), and writes ``DIR/verify.json`` (its ``first_failure`` list
 beside ``constraints``, and its ``nonlinear`` block) and ``DIR/nonlinear.png`` (with
 ``--nonlinear``) as the folder's set of kind ``verify``. The FE subpackage is imported only
-when the command runs. Exit codes: 0 every constraint holds in FE, 1 one does not (or has no FE
-twin yet), 2 bad input (a missing or malformed design.json, a folder that cannot be written, no
+when the command runs. Exit codes (:data:`corrugate.fea.verify.EXIT_CODES`, the worst row's
+verdict): 0 every constraint holds in FE, 1 one does not, 5 one is not converged (its mesh
+series was not shown asymptotic up to --max-mesh, or a run failed), 6 one has no FE twin (not
+checked), 2 bad input (a missing or malformed design.json, a folder that cannot be written, no
 ccx).
 
 Example::
@@ -46,6 +48,7 @@ __all__ = [
     "print_failures",
     "print_nonlinear",
     "print_table",
+    "summary",
     "verify_cmd",
 ]
 
@@ -106,13 +109,40 @@ def print_table(v: Verification, label: str, console: Console) -> None:
             f"{r.model:.5g}",
             series,
             est,
-            "yes" if r.holds else "[red]NO[/red]",
+            _VERDICT_CELL[r.verdict],
         )
     console.print(t)
     if not v.rows:
         console.print("no behavioural constraint: nothing for the FE to check")
-    console.print(
-        "every constraint holds in FE" if v.holds else "[red]not every constraint holds in FE[/red]"
+    console.print(summary(v))
+
+
+#: The holds column of each verdict (corrugate.fea.verify.VERDICTS).
+_VERDICT_CELL = {
+    "holds": "yes",
+    "fails": "[red]NO[/red]",
+    "not converged": "[yellow]not converged[/yellow]",
+    "not checked": "not checked",
+}
+
+
+def summary(v: Verification) -> str:
+    """The line under the table: the design's verdict and its exit code (docs/fea.md 6)."""
+    from corrugate.fea.verify import EXIT_CODES
+
+    code = EXIT_CODES[v.verdict]
+    if v.verdict == "holds":
+        return "every constraint holds in FE"
+    if v.verdict == "fails":
+        return f"[red]not every constraint holds in FE[/red] (exit {code})"
+    if v.verdict == "not converged":
+        return (
+            "[yellow]no constraint fails, but not every FE series converged: not shown to hold"
+            f"[/yellow] (exit {code})"
+        )
+    return (
+        "every constraint with an FE twin holds; the others are not checked by FE "
+        f"(only the model's certificate covers them; exit {code})"
     )
 
 
@@ -197,9 +227,9 @@ def verify_cmd(
         Opt(
             "--max-mesh",
             metavar="N",
-            help="Extend a series whose verdict could still flip (estimate within its own "
-            "Richardson correction of the bound) by doubling its finest mesh, up to N elements "
-            "per facet (0: 16; a 16-per-facet run may take minutes and up to ~8 GB).",
+            help="Refine a series not yet shown asymptotic against its bound by doubling its "
+            "finest mesh, up to N elements per facet (0: 16; a 16-per-facet run may take minutes "
+            "and up to ~8 GB); a series still open there is 'not converged' (exit 5).",
         ),
     ] = 0,
     first_failure: Annotated[
@@ -243,8 +273,10 @@ def verify_cmd(
     Each stiffness, load-case and buckling bound of DIR/design.json runs in the FE fixture of
     its test (the runs of `corrugate validate`), at each mesh, Richardson-extrapolated; off the
     crease directions at each coupon position of --shifts, the worst counting; writes
-    DIR/verify.json. Exit 0 when every constraint holds in FE, 1 when one does not or has no FE
-    twin yet, 2 for bad input. Every layout: a circle's K runs in the wheel fixture (a ground
+    DIR/verify.json. A series counts only when shown asymptotic (four meshes, two successive
+    extrapolations agreeing within a quarter of the bound's margin); otherwise it is refined up
+    to --max-mesh. Exit 0 when every constraint holds in FE, 1 when one fails, 5 when one is not
+    converged, 6 when one has no FE twin (not checked), 2 for bad input (the worst counts). Every layout: a circle's K runs in the wheel fixture (a ground
     patch against the hub), a polygon's constraints along its creases in the rectangle's
     fixtures on its cut outline (`corrugate docs fea`, 2.8); a row says how its test differs.
 
@@ -336,11 +368,11 @@ def verify_cmd(
             print_nonlinear(ramp, console)
         for name in files:
             console.print(f"wrote {folder / name}")
-    if not result.holds:
+    if result.verdict != "holds":
         if quiet:
-            failing = [r.name for r in result.rows if not r.holds]
-            make_console(stderr=True).print("does not hold in FE: " + ", ".join(failing))
-        raise typer.Exit(1)
+            others = [f"{r.name} ({r.verdict})" for r in result.rows if not r.holds]
+            make_console(stderr=True).print(f"FE verdict {result.verdict}: " + ", ".join(others))
+        raise typer.Exit(result.exit_code)
 
 
 #: The commands of this module, by name (registered by :mod:`corrugate.cli`).

@@ -7,7 +7,9 @@
 
 The file is one JSON object. Its keys (every length in mm, mass in g, stiffness as the keys say):
 the analysis of the design (``corrugate analyze --json``: ``model``, ``layout``, ``layers``,
-``stiffness``, ...), the cut parts (``cut_parts``), the sheets (``sheets``), the fold-line style
+``stiffness``, ...; each layer with ``material_properties``, every property of its material:
+E, nu, density, thicknesses, yield strength, creep table, so that a design of an inline
+material can be read back), the cut parts (``cut_parts``), the sheets (``sheets``), the fold-line style
 (``fold_style``), the answer of ``corrugate design --json`` when the design came from a spec, and
 ``files``, the names of the files written beside it. An infeasible spec's record holds only the
 design answer (no ``layers``).
@@ -55,13 +57,38 @@ _LAYER_FIELDS = ("W_mm", "n", "alpha_deg", "material", "t_mm")
 @dataclass(frozen=True, slots=True)
 class LayerRecord:
     """One layer as design.json stores it: facet width ``W_mm`` (mm), crease count ``n``, fold
-    angle ``alpha_deg`` (deg), library ``material`` id and sheet thickness ``t_mm`` (mm)."""
+    angle ``alpha_deg`` (deg), ``material`` id, sheet thickness ``t_mm`` (mm) and
+    ``material_properties``, every property of the material the design used
+    (:meth:`corrugate.materials.library.Material.as_dict`; None in a design.json written before
+    it was stored, which then names a library material)."""
 
     W_mm: float
     n: int
     alpha_deg: float
     material: str
     t_mm: float
+    material_properties: Mapping[str, Any] | None = None
+
+    def material_of(self, i: int) -> Any:
+        """The :class:`~corrugate.materials.library.Material` of layer ``i``: from its stored
+        properties, else the library's material of its id; an :class:`InputError` naming the
+        field otherwise."""
+        from corrugate.materials.library import get_material, library, material_from_dict
+
+        if self.material_properties is not None:
+            return material_from_dict(
+                dict(self.material_properties), f"layers[{i}].material_properties"
+            )
+        if self.material.strip().lower() not in library():
+            raise InputError(
+                f"layers[{i}].material",
+                repr(self.material),
+                "a library material id, or the layer's material_properties (this design.json "
+                "was written before they were stored: write the design again with `corrugate "
+                "design SPEC --out DIR`, or use --W, --n, --alpha, --E, --nu)",
+                reason="is not in the library",
+            )
+        return get_material(self.material)
 
 
 @dataclass(frozen=True, slots=True)
@@ -89,7 +116,6 @@ class DesignRecord:
         naming the field."""
         from corrugate.geometry.layer import Assembly, Layer
         from corrugate.geometry.layouts import Rectangle, Square, make_layout
-        from corrugate.materials.library import get_material, library
 
         if any_layout and self.shape in ("circle", "polygon"):
             pass
@@ -107,21 +133,14 @@ class DesignRecord:
             )
         built: list[Layer] = []
         for i, entry in enumerate(self.layers):
-            if entry.material.strip().lower() not in library():
-                raise InputError(
-                    f"layers[{i}].material",
-                    repr(entry.material),
-                    "a library material id (design.json does not store E and nu of an inline "
-                    "material; use --W, --n, --alpha, --E, --nu instead)",
-                    reason="is not in the library",
-                )
+            material = entry.material_of(i)
             try:
                 built.append(
                     Layer(
                         W=entry.W_mm,
                         n=entry.n,
                         alpha_deg=entry.alpha_deg,
-                        material=get_material(entry.material),
+                        material=material,
                         t=entry.t_mm,
                     )
                 )
@@ -161,6 +180,14 @@ def _layer(i: int, entry: Mapping[str, Any]) -> LayerRecord:
     for key in _LAYER_FIELDS:
         if key not in entry:
             raise InputError(f"layers[{i}].{key}", None, "a value", reason="is missing")
+    props = entry.get("material_properties")
+    if props is not None and not isinstance(props, Mapping):
+        raise InputError(
+            f"layers[{i}].material_properties",
+            repr(props)[:40],
+            "an object of material properties",
+            reason="is malformed",
+        )
     try:
         return LayerRecord(
             W_mm=float(entry["W_mm"]),
@@ -168,6 +195,7 @@ def _layer(i: int, entry: Mapping[str, Any]) -> LayerRecord:
             alpha_deg=float(entry["alpha_deg"]),
             material=str(entry["material"]),
             t_mm=float(entry["t_mm"]),
+            material_properties=props,
         )
     except (TypeError, ValueError):
         raise InputError(

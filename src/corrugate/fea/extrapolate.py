@@ -9,22 +9,31 @@ v(h/4) - d2 / (2^p - 1). The estimate is trusted only when the series looks asym
 is "not asymptotic" and the finest value is all there is.
 
 :func:`richardson` is the step the benchmarks' tables use (``benchmarks/offaxis_table.py``);
-:func:`extrapolate` is what ``corrugate verify`` reports: the estimate, the observed order and
-how it was found.
+:func:`extrapolate` is what ``corrugate validate`` and verify's first-failure rows report: the
+estimate, the observed order and how it was found. :func:`judge` is what ``corrugate verify``
+decides a constraint by: a series counts only when it is shown asymptotic (four meshes, two
+successive extrapolations that agree within a share of the bound's margin); otherwise it is
+refined further, and left "not converged" at the finest mesh allowed (docs/fea.md 6).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Literal
 
 __all__ = [
+    "MARGIN_SHARE",
     "MAX_ORDER",
     "MIN_ORDER",
+    "ROUND_OFF",
     "Extrapolation",
-    "extend_reason",
+    "Judgement",
+    "Outcome",
     "extrapolate",
+    "judge",
     "observed_order",
     "richardson",
 ]
@@ -110,41 +119,143 @@ def extrapolate(series: Series) -> Extrapolation:
     return Extrapolation(finest, p, False, f"{why}, the finest value")
 
 
-def extend_reason(series: Series, bound: float) -> str | None:
-    """Why the verdict "estimate against ``bound``" of a mesh series could still flip on a finer
-    mesh (a phrase for the table), or None when it cannot within the series' own error scale.
+#: A series counts (:func:`judge`) when its two successive Richardson extrapolations differ by at
+#: most this share of the bound's margin |estimate - bound|: the bound then lies at least four
+#: disagreements away from the estimate (docs/fea.md 6, "The series and the extrapolation").
+MARGIN_SHARE = 0.25
+#: Steps smaller than this fraction of the series' largest |value| are round-off: zero.
+ROUND_OFF = 1e-9
 
-    The error of a Richardson estimate is of the order of its own correction |v_finest -
-    estimate| (the part of the answer the extrapolation supplies: were the observed order off,
-    that part is what moves; docs/fea.md 2.9 and 6: the K(15) series 126.24 / 93.20 / 85.22 /
-    81.60 N/mm extrapolates to 82.68 from 2 / 4 / 8 and 78.59 from 4 / 8 / 16: it moved by 4.09,
-    1.6 times the 2 / 4 / 8 correction of 2.54). So, with ``est`` the estimate of
-    :func:`extrapolate`:
+#: What a mesh series says of its bound: ``holds``, ``fails``, or ``open`` (not settled yet:
+#: refine further; a row left open at the finest mesh allowed is "not converged").
+Outcome = Literal["holds", "fails", "open"]
 
-    - asymptotic: extend when |est - bound| <= |v_finest - est|;
-    - not asymptotic, or fewer than three meshes (the estimate is the finest value): extend when
-      |v_finest - bound| <= |v_finest - v_previous|, the last step (the next step of a
-      converging series is smaller than the last one, so a bound farther than that cannot be
-      crossed).
 
-    A single mesh or no finite value: None (nothing to scale the error by)."""
-    finite = {k: v for k, v in series.items() if math.isfinite(v)}
-    if len(finite) < 2:
+@dataclass(frozen=True, slots=True)
+class Judgement:
+    """What :func:`judge` reads from a mesh series against a bound: the ``verdict``, the
+    ``value`` it rests on (the second extrapolation of a converged series; otherwise the
+    Richardson estimate of the three finest meshes when they are monotone with shrinking steps,
+    else the finest value; None without a value), the observed ``order`` p of the three finest
+    meshes, ``how`` (one phrase for the table) and, when ``open``, ``why`` (what the series has
+    not shown yet)."""
+
+    verdict: Outcome
+    value: float | None
+    order: float | None
+    how: str
+    why: str = ""
+
+
+def _chain(series: Series) -> list[int]:
+    """The meshes of ``series`` that end at its finest, each twice the one before (the longest
+    such run), coarsest first."""
+    alongs = sorted(series)
+    chain = [alongs[-1]]
+    while chain[0] % 2 == 0 and chain[0] // 2 in series:
+        chain.insert(0, chain[0] // 2)
+    return chain
+
+
+def _limit(v: tuple[float, float, float]) -> tuple[float, float] | None:
+    """Richardson's limit and the observed order of three values on meshes h, h/2, h/4 when
+    their steps have one sign and shrink (any order p > 0), else None."""
+    d1, d2 = v[0] - v[1], v[1] - v[2]
+    if d1 * d2 <= 0 or abs(d2) >= abs(d1):
         return None
-    alongs = sorted(finite)
-    finest, previous = finite[alongs[-1]], finite[alongs[-2]]
-    e = extrapolate(finite)
-    assert e.value is not None
-    if e.asymptotic:
-        gap, correction = abs(e.value - bound), abs(finest - e.value)
-        if gap <= correction:
-            return (
-                f"|estimate - bound| = {gap:.3g} <= the Richardson correction "
-                f"|finest - estimate| = {correction:.3g}"
+    p = math.log2(d1 / d2)
+    return v[2] - d2 / (2**p - 1), p
+
+
+def _fmt(x: float) -> str:
+    return f"{x:.5g}"
+
+
+def judge(series: Series, bound: float, sense: str) -> Judgement:
+    """Whether a mesh series (elements per facet -> value) shows that its limit meets ``bound``
+    (``sense`` ``min``: at or above it; ``max``: at or below), docs/fea.md 6.
+
+    A series counts only when it is shown asymptotic: on its four finest meshes, each twice as
+    fine as the one before (k, 2k, 4k, 8k), it is monotone with shrinking steps and its two
+    successive Richardson extrapolations, R1 from k, 2k, 4k and R2 from 2k, 4k, 8k (each at its
+    own observed order p = log2(d1 / d2)), differ by at most :data:`MARGIN_SHARE` of the margin
+    |R2 - bound|. Then R2 decides: ``holds`` or ``fails``. Two more cases are settled:
+
+    - the last two steps vanish (to :data:`ROUND_OFF`, a mesh-independent quantity): the
+      finest value decides;
+    - ``fails`` early: the finest value is already past the bound and the last two steps move
+      away from it (a series that softens under a minimum, stiffens under a maximum): refining
+      only takes it further.
+
+    Anything else is ``open``: refine further. Neither the finest value of a series that is
+    still moving nor a remaining error of at most the last step is ever assumed: the K(15)
+    series 126.24 / 93.20 / 85.22 extrapolates to 82.68 at p = 2.05 and 4 / 8 / 16 (81.60)
+    gives 78.59 (docs/fea.md 2.9)."""
+    finite = {k: float(v) for k, v in series.items() if math.isfinite(v)}
+    if not finite:
+        return Judgement("open", None, None, "no FE value", "no FE value")
+    if sense not in ("min", "max"):
+        raise ValueError(f"sense must be min or max, not {sense!r}")  # a caller's bug
+    sign = 1.0 if sense == "min" else -1.0
+    chain = _chain(finite)
+    vs = [finite[a] for a in chain]
+    finest = vs[-1]
+    tiny = ROUND_OFF * max(abs(v) for v in vs)
+    steps = [a - b for a, b in itertools.pairwise(vs)]
+    three = _limit((vs[-3], vs[-2], vs[-1])) if len(vs) >= 3 else None
+    order = None if three is None else three[1]
+    estimate = finest if three is None else three[0]
+
+    def margin(x: float) -> float:
+        return sign * (x - bound)
+
+    def decided(x: float) -> Outcome:
+        return "holds" if margin(x) >= 0 else "fails"
+
+    if len(steps) >= 2 and all(abs(d) <= tiny for d in steps[-2:]):
+        return Judgement(
+            decided(finest),
+            finest,
+            None,
+            f"converged: the last two steps vanish (at {' / '.join(map(str, chain[-3:]))})",
+        )
+    why = (
+        f"two successive extrapolations need four meshes each twice as fine as the one before "
+        f"(k, 2k, 4k, 8k); the series has {len(vs)}"
+    )
+    if len(vs) >= 4:
+        first = _limit((vs[-4], vs[-3], vs[-2]))
+        at1 = " / ".join(map(str, chain[-4:-1]))
+        at2 = " / ".join(map(str, chain[-3:]))
+        if first is None or three is None:
+            why = f"not monotone with shrinking steps over {' / '.join(map(str, chain[-4:]))}"
+        else:
+            r1, r2 = first[0], three[0]
+            u, m = abs(r2 - r1), abs(r2 - bound)
+            pair = (
+                f"extrapolations {_fmt(r1)} ({at1}, p = {first[1]:.2f}) and {_fmt(r2)} "
+                f"({at2}, p = {three[1]:.2f})"
             )
-        return None
-    gap, step = abs(finest - bound), abs(finest - previous)
-    if gap <= step:
-        why = "not asymptotic" if len(alongs) >= 3 else "no observed order"
-        return f"{why} and |finest - bound| = {gap:.3g} <= the last step {step:.3g}"
-    return None
+            if u <= MARGIN_SHARE * m:
+                return Judgement(
+                    decided(r2),
+                    r2,
+                    three[1],
+                    f"converged: {pair} differ by {u:.3g} <= {MARGIN_SHARE:g} x the margin "
+                    f"|estimate - bound| = {m:.3g}",
+                )
+            why = f"{pair} differ by {u:.3g} > {MARGIN_SHARE:g} x the margin {m:.3g}"
+    if len(steps) >= 2 and margin(finest) < 0 and all(sign * d > tiny for d in steps[-2:]):
+        return Judgement(
+            "fails",
+            estimate,
+            order,
+            f"fails: the finest value {_fmt(finest)} is past the bound and the series moves "
+            "away from it as the mesh refines",
+        )
+    how = "not converged: " + (
+        f"Richardson {_fmt(estimate)} (p = {order:.2f})"
+        if three is not None and order is not None
+        else f"the finest value {_fmt(finest)}"
+    )
+    return Judgement("open", estimate, order, how, why)

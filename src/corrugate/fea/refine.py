@@ -100,12 +100,13 @@ class Attempt(Generic[R]):
 
     @property
     def verified(self) -> bool:
-        """A certified design whose every constraint holds in FE."""
+        """A certified design whose every constraint with an FE twin holds in FE (a converged
+        series; a constraint without a twin, "not checked", rests on the certificate)."""
         return (
             self.solution.certified
             and self.solution.assembly is not None
             and self.verification is not None
-            and self.verification.holds
+            and self.verification.no_failure
         )
 
 
@@ -140,10 +141,13 @@ def corrected_bound(c: Constraint, row: Row) -> float | None:
     return c.bound * ratio
 
 
-def _beyond(row: Row, factor: float) -> bool:
-    """Whether the row's FE meets its bound with more than ``factor`` to spare."""
+def _beyond(row: Row, factor: float, missed: bool = False) -> bool:
+    """Whether the row's FE meets its bound with more than ``factor`` to spare (``missed``:
+    whether it misses the bound)."""
     if row.fe is None:
         return False
+    if missed:
+        return row.fe < row.bound if row.sense == "min" else row.fe > row.bound
     return row.fe > factor * row.bound if row.sense == "min" else row.fe * factor < row.bound
 
 
@@ -151,15 +155,21 @@ def next_bounds(
     spec: Problem, current: dict[str, float], v: Verification, *, loosen: bool
 ) -> dict[str, float]:
     """The model bounds of the next solve: for each row of ``v`` (the last design's FE), the
-    corrected bound (:func:`corrected_bound`) where the FE misses the spec's bound, or exceeds
-    it by more than :data:`LOOSEN_ABOVE` with ``loosen``; elsewhere the ``current`` bound."""
+    corrected bound (:func:`corrected_bound`) where the FE fails the spec's bound, or where its
+    series did not converge and its estimate misses the bound (tightened only: an unconverged
+    ratio never loosens), or, with ``loosen``, where a converged FE exceeds it by more than
+    :data:`LOOSEN_ABOVE`; elsewhere the ``current`` bound."""
     by_name = {c.name: c for c in spec.constraints}
     out = dict(current)
     for row in v.rows:
         c = by_name.get(row.name)
         if c is None or row.fe is None:
             continue
-        if row.holds and not (loosen and _beyond(row, LOOSEN_ABOVE)):
+        if row.verdict == "holds" and not (loosen and _beyond(row, LOOSEN_ABOVE)):
+            continue
+        if row.verdict == "not converged" and not _beyond(row, 1.0, missed=True):
+            continue
+        if row.verdict == "not checked":
             continue
         b = corrected_bound(c, row)
         if b is not None:
@@ -287,7 +297,12 @@ def statement(v: Verification) -> str:
     (CalculiX; mesh series 2 / 4 / 8 elements per facet, extrapolated): constraints.x.min in
     3-point bending along eta = 45 deg: FE 61.2 >= 50 N mm (worst of 4 coupon positions: shift
     0.5 pitch)``."""
-    head = "verified by FE" if v.holds else "NOT verified by FE"
+    head = {
+        "holds": "verified by FE",
+        "not checked": "verified by FE where it has a twin (the rest not checked)",
+        "not converged": "NOT verified by FE (a series did not converge)",
+        "fails": "NOT verified by FE",
+    }[v.verdict]
     series = " / ".join(map(str, v.meshes))
     parts = []
     for r in v.rows:
@@ -295,7 +310,7 @@ def statement(v: Verification) -> str:
         if r.fe is None:
             parts.append(f"{r.name}: {r.note or 'no FE value'}")
             continue
-        verdict = "" if r.holds else " (does not hold)"
+        verdict = {"holds": "", "fails": " (does not hold)"}.get(r.verdict, f" ({r.verdict})")
         where = (
             f" (worst of {len(r.by_shift)} coupon positions: shift {r.shift:g} pitch)"
             if r.shift is not None
@@ -354,6 +369,7 @@ def _attempt_json(a: Attempt[Any], spec_bounds: dict[str, float]) -> dict[str, A
         ],
         "model_bounds": {k: {"spec": spec_bounds[k], "model": b} for k, b in a.bounds.items()},
         "fe_holds": None if v is None else v.holds,
+        "fe_verdict": None if v is None else v.verdict,
         "fe": None if v is None else {r.name: r.as_json()["fe"] for r in v.rows},
     }
 
@@ -405,4 +421,5 @@ def _verdict(v: Verification) -> str:
         + ("" if r.shift is None else f" (worst shift {r.shift:g})")
         for r in v.rows
     ]
-    return ("holds in FE: " if v.holds else "does not hold in FE: ") + "; ".join(parts)
+    head = {"holds": "holds in FE", "fails": "does not hold in FE"}.get(v.verdict, v.verdict)
+    return f"{head}: " + "; ".join(parts)

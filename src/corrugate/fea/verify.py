@@ -34,9 +34,11 @@ polygon at eta 0 or 90                     the rows above on the polygon cut fro
 
 A bending test's D and EI are read as the test's own formula reads P / delta over the panel's
 length (:func:`corrugate.mechanics.load_cases.apparent`), a deflection bound as load / (P /
-delta). Each twin runs on a mesh series (elements per facet, default 2 / 4 / 8) and is
-extrapolated (:mod:`corrugate.fea.extrapolate`). What has no FE twin yet says so in its row and
-does not hold: a span other than the panel's length (the fixtures support the panel at its
+delta). Each twin runs on a mesh series (elements per facet, default 2 / 4 / 8), refined
+until it is shown asymptotic against its bound or ``max_mesh`` is reached
+(:func:`corrugate.fea.extrapolate.judge`); each row's verdict is one of :data:`VERDICTS`
+(holds, fails, not converged, not checked; docs/fea.md 6). What has no FE twin yet says so in
+its row and is not checked: a span other than the panel's length (the fixtures support the panel at its
 ends), D or EI in a frame, EI or a bending test's P / delta off the crease directions (the
 coupon has its own span), load capacities off the crease directions, and the band joint off
 the crease directions or in a frame.
@@ -66,7 +68,7 @@ from corrugate.fea.assembly import (
     principal_axis,
     solve_assembly,
 )
-from corrugate.fea.extrapolate import extend_reason, extrapolate
+from corrugate.fea.extrapolate import Judgement, judge
 from corrugate.fea.fixtures import Fixture, fixture_names, get_fixture
 from corrugate.fea.frame import FrameStiffness, solve_frame
 from corrugate.fea.outline import OutlineResult, solve_outline
@@ -90,6 +92,8 @@ __all__ = [
     "DEFAULT_MAX_MESH",
     "DEFAULT_MESHES",
     "DEFAULT_SHIFTS",
+    "EXIT_CODES",
+    "VERDICTS",
     "Checked",
     "Row",
     "Twin",
@@ -107,8 +111,8 @@ __all__ = [
 
 #: The mesh series unless asked for another (elements per facet).
 DEFAULT_MESHES: tuple[int, ...] = (2, 4, 8)
-#: The finest mesh a series is extended to (elements per facet) when its verdict could still flip
-#: (:func:`corrugate.fea.extrapolate.extend_reason`; docs/fea.md 2.9: with one ccx run per layer a
+#: The finest mesh a series is extended to (elements per facet) while it is not shown asymptotic
+#: (:func:`corrugate.fea.extrapolate.judge`; docs/fea.md 2.9: with one ccx run per layer a
 #: 16-per-facet run of the off-axis coupons fits in 7.5 GiB).
 DEFAULT_MAX_MESH = 16
 #: What a run on that mesh costs, said on stderr before it (docs/fea.md 2.9: the largest coupon of
@@ -122,6 +126,12 @@ DEFAULT_SHIFTS: tuple[float, ...] = (0.0, 0.25, 0.5, 0.75)
 #: study design the four positions' values at 4 per facet were within 0.22 %, and the worst
 #: extrapolated position was not the worst at 4 per facet, 0.65 % apart).
 SCREEN_WITHIN = 0.05
+#: A row's verdict, and what ``corrugate verify`` exits with when it is the worst of a design's
+#: (this order, the first the worst; docs/fea.md 6): ``fails`` 1, the FE shows the bound missed;
+#: ``not converged`` 5, its series was not shown asymptotic up to the finest mesh allowed (or a
+#: run failed); ``not checked`` 6, the constraint has no FE twin; ``holds`` 0.
+VERDICTS: tuple[str, ...] = ("fails", "not converged", "not checked", "holds")
+EXIT_CODES: dict[str, int] = {"fails": 1, "not converged": 5, "not checked": 6, "holds": 0}
 #: The quantity kinds a behavioural constraint bounds.
 BEHAVIOURAL_KINDS = ("K", "D", "EI", "k", "Pb", "Pmax")
 
@@ -208,8 +218,9 @@ class Row:
     failed runs); off the crease directions ``shift`` is the coupon position whose value counts
     (the worst) and ``by_shift`` each position's estimate (empty along the creases); ``test``
     names the FE fixture; ``extended`` says to which mesh the series was run on past the
-    requested ones and why (:func:`corrugate.fea.extrapolate.extend_reason`), "" when it was
-    not."""
+    requested ones and why (:func:`corrugate.fea.extrapolate.judge`), "" when it was not;
+    ``verdict`` one of :data:`VERDICTS` (given "": ``holds`` when ``holds``, else ``fails`` with
+    an FE series and ``not checked`` without; given, it sets ``holds``)."""
 
     name: str
     quantity: str
@@ -227,6 +238,15 @@ class Row:
     by_shift: dict[float, float | None] = field(default_factory=dict)
     test: str = ""
     extended: str = ""
+    verdict: str = ""
+
+    def __post_init__(self) -> None:
+        if not self.verdict:
+            v = "holds" if self.holds else ("fails" if self.fe_series else "not checked")
+            object.__setattr__(self, "verdict", v)
+        elif self.verdict not in VERDICTS:
+            raise ValueError(f"verdict must be one of {VERDICTS}, not {self.verdict!r}")
+        object.__setattr__(self, "holds", self.verdict == "holds")
 
     @property
     def has_twin(self) -> bool:
@@ -246,6 +266,7 @@ class Row:
             "order": _finite(self.order),
             "estimate": self.how or None,
             "holds": self.holds,
+            "verdict": self.verdict,
             "note": self.note or None,
             "test": self.test or None,
             "shift": self.shift,
@@ -261,7 +282,8 @@ def _finite(v: float | None) -> float | None:
 @dataclass(frozen=True, slots=True)
 class Verification:
     """Every row of a design, the mesh series they ran on and the coupon positions (``shifts``)
-    of the rows off the crease directions; ``holds`` when every row does."""
+    of the rows off the crease directions; ``holds`` when every row does; ``verdict`` the worst
+    row's (:data:`VERDICTS`; ``holds`` without a row) and ``exit_code`` its code."""
 
     rows: tuple[Row, ...]
     meshes: tuple[int, ...]
@@ -271,9 +293,24 @@ class Verification:
     def holds(self) -> bool:
         return all(r.holds for r in self.rows)
 
+    @property
+    def verdict(self) -> str:
+        found = {r.verdict for r in self.rows}
+        return next((v for v in VERDICTS if v in found), "holds")
+
+    @property
+    def exit_code(self) -> int:
+        return EXIT_CODES[self.verdict]
+
+    @property
+    def no_failure(self) -> bool:
+        """Whether every row the FE could check holds (the rows without a twin aside)."""
+        return self.verdict in ("holds", "not checked")
+
     def as_json(self) -> dict[str, Any]:
         return {
             "holds": self.holds,
+            "verdict": self.verdict,
             "meshes": list(self.meshes),
             "shifts": list(self.shifts),
             "constraints": [r.as_json() for r in self.rows],
@@ -558,6 +595,11 @@ def _number(c: Mapping[str, Any], name: str) -> float:
     return float(v)
 
 
+#: One coupon position of a row: its estimate (None: no value), shift, series, the judgement of
+#: its series (None: screened out before the finest mesh) and its failed runs.
+_Found = tuple[float | None, float, dict[int, float | None], Judgement | None, list[str]]
+
+
 def verify_design(
     assembly: Assembly,
     constraints: Sequence[ConstraintReport | Mapping[str, Any]],
@@ -583,12 +625,14 @@ def verify_design(
     (a solver error, a mesh the fixture refuses) leaves None in the series and its message in
     the row's note; runs shared by constraints (the same test, eta, shift and mesh) run once.
 
-    When the verdict could still flip within the extrapolation's own error
-    (:func:`corrugate.fea.extrapolate.extend_reason`), the series of the worst position is extended
-    by doubling its finest mesh, up to ``max_mesh`` elements per facet, and extrapolated again
-    from its three finest meshes; the worst position is then chosen again among those that ran
-    the finest requested mesh (positions screened out stay out), and so on. The row's
-    ``extended`` says so and why."""
+    Each position that ran the finest requested mesh is judged by
+    :func:`corrugate.fea.extrapolate.judge` (a series counts only when shown asymptotic against
+    the bound); while one is open, the open position with the worst estimate has its series
+    extended by doubling its finest mesh, up to ``max_mesh`` elements per facet, and is judged
+    again (positions screened out stay out); a position that fails ends the row. The row fails
+    when a position fails, holds when every judged position holds and no run failed, and is
+    "not converged" otherwise; a constraint without a twin is "not checked". The row's
+    ``extended`` says what was run on and why."""
     connectors, bond = joint_options(joint)
     if not shifts:
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
@@ -690,13 +734,19 @@ def verify_design(
     for base, twin in planned:
         sense = base.sense
         if isinstance(twin, str):
-            rows.append(replace(base, note=twin))
+            rows.append(replace(base, note=twin, verdict="not checked"))
             continue
         positions = tuple(shifts) if twin.shifted else (0.0,)
         sign = 1.0 if sense == "min" else -1.0
         screened = screen and len(positions) > 1 and len(meshes) > 1
-        # (estimate or None, shift, series, extrapolation, failures) per position
-        found: list[tuple[float | None, float, dict[int, float | None], Any, list[str]]] = []
+
+        def judged(
+            series: dict[int, float | None], bound: float = base.bound, sense: str = sense
+        ) -> Judgement:
+            return judge({k: v for k, v in series.items() if v is not None}, bound, sense)
+
+        # (estimate or None, shift, series, judgement or None, failures) per position
+        found: list[_Found] = []
         if screened:  # every position on the coarser meshes, the finest near the worst only
             coarse, last = tuple(meshes[:-1]), meshes[-2]
             pre = {sh: series_at(twin, sh, coarse) for sh in positions}
@@ -714,54 +764,79 @@ def verify_design(
                 if sh in picks:
                     fine, fine_failures = series_at(twin, sh, (meshes[-1],))
                     series, failures = {**series, **fine}, failures + fine_failures
-                    e = extrapolate({k: v for k, v in series.items() if v is not None})
-                    found.append((e.value, sh, series, e, failures))
+                    j = judged(series)
+                    found.append((j.value, sh, series, j, failures))
                 else:
                     found.append((at_last[sh], sh, series, None, failures))
         else:
             for sh in positions:
                 series, failures = series_at(twin, sh, tuple(meshes))
-                e = extrapolate({k: v for k, v in series.items() if v is not None})
-                found.append((e.value, sh, series, e, failures))
+                j = judged(series)
+                found.append((j.value, sh, series, j, failures))
 
+        # Refine every position that ran the finest requested mesh while its series is open
+        # (not shown asymptotic against the bound), the worst first, up to max_mesh; a position
+        # shown to fail ends the row, a run that fails leaves it open (docs/fea.md 6).
         extended: list[str] = []
-        unsettled = False  # an extension's run failed: the verdict that could flip is open
-        while not unsettled:  # extend the worst position's series while its verdict could flip
-            i = _worst(found, sign)
-            value, sh, series, e, failures = found[i]
-            done = {k: v for k, v in series.items() if v is not None}
-            reason = extend_reason(done, base.bound) if value is not None else None
-            finer = 2 * max(series)
-            if reason is None or finer > max_mesh:
+        unsettled = False  # an extension's run failed: its series stays open
+        while not unsettled:
+            if any(_outcome(f) == "fails" for f in found):
                 break
-            why = f"extending {base.name}'s series: {reason}"
+            pending = [
+                i
+                for i, f in enumerate(found)
+                if _outcome(f) == "open" and f[0] is not None and 2 * max(f[2]) <= max_mesh
+            ]
+            if not pending:
+                break
+            i = min(pending, key=lambda k: sign * (found[k][0] or 0.0))
+            _, sh, series, before, failures = found[i]
+            assert before is not None
+            finer = 2 * max(series)
+            why = f"extending {base.name}'s series: {before.why}"
             if finer >= DEFAULT_MAX_MESH:
                 why += f"; {FINE_COST}"
             more, more_failures = series_at(twin, sh, (finer,), why)
             series = {**series, **more}
-            e = extrapolate({k: v for k, v in series.items() if v is not None})
-            found[i] = (e.value, sh, series, e, failures + more_failures)
+            after = judged(series)
+            found[i] = (after.value, sh, series, after, failures + more_failures)
             unsettled = bool(more_failures)
             extended.append(
                 f"extended to {finer} per facet"
-                f"{f' at shift {sh:g}' if twin.shifted else ''} ({reason})"
+                f"{f' at shift {sh:g}' if twin.shifted else ''} ({before.why})"
             )
-        value, shift, series, e, failures = found[_worst(found, sign)]
+        outcomes = {_outcome(f) for f in found} - {""}
         known = [f for f in found if f[0] is not None]
         complete = len(known) == len(found)
         if twin.shifted:  # a run that failed at any position could hide the worst one
+            complete = complete and not any(f[4] for f in found)
+        if "fails" in outcomes:
+            verdict = "fails"
+            counted = [f for f in found if _outcome(f) == "fails"]
+        elif outcomes == {"holds"} and complete and not unsettled:
+            verdict = "holds"
+            counted = list(found)
+        else:
+            verdict = "not converged"
+            counted = [f for f in found if _outcome(f) == "open"] or list(found)
+        _, shift, series, judgement, failures = counted[_worst(counted, sign)]
+        if twin.shifted:
             failures = [f"shift {f[1]:g}: {x}" for f in found for x in f[4]]
-            complete = complete and not failures
-        holds = (
-            complete
-            and not unsettled
-            and value is not None
-            and (value >= base.bound if sense == "min" else value <= base.bound)
-        )
         notes = [n for n in (twin.note, *failures) if n]
         notes += extended
         if unsettled:
-            notes.append("the run extending the series failed: not proven")
+            notes.append("the run extending the series failed")
+        if verdict == "not converged":
+            if judgement is not None and judgement.verdict == "open":
+                at = f" at shift {shift:g}" if twin.shifted else ""
+                notes.append(
+                    f"not converged{at} at {max(series)} per facet (the finest allowed is "
+                    f"{max_mesh}, --max-mesh): {judgement.why}"
+                )
+            elif not complete:
+                notes.append("not converged: a run failed or gave no FE value")
+            else:
+                notes.append("not converged")
         if twin.shifted:
             each = ", ".join(f"{f[1]:g}: {_fmt_value(f[0])}" for f in found)
             if screened:
@@ -788,19 +863,24 @@ def verify_design(
             replace(
                 base,
                 fe_series=series,
-                fe=e.value,
-                order=e.order,
-                how=e.how,
-                holds=bool(holds),
+                fe=None if judgement is None else judgement.value,
+                order=None if judgement is None else judgement.order,
+                how="" if judgement is None else judgement.how,
                 note="; ".join(notes),
                 shift=shift if twin.shifted else None,
                 test=twin.label
                 + ("" if twin.fixture.kind == "frame" else f" along eta = {twin.eta:g} deg"),
                 by_shift={f[1]: f[0] for f in found} if twin.shifted else {},
                 extended="; ".join(extended),
+                verdict=verdict,
             )
         )
     return Verification(tuple(rows), tuple(meshes), tuple(shifts))
+
+
+def _outcome(f: _Found) -> str:
+    """The judgement of one coupon position's series ("" when it was screened out)."""
+    return "" if f[3] is None else f[3].verdict
 
 
 def _worst(found: Sequence[tuple[float | None, float, Any, Any, Any]], sign: float) -> int:

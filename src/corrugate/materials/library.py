@@ -24,6 +24,7 @@ __all__ = [
     "get_material",
     "inline_material",
     "library",
+    "material_from_dict",
     "validate_elastic",
     "validate_strength",
 ]
@@ -102,6 +103,66 @@ class Material:
                 reason=f"needs creep data, which {self.id} has not",
             )
         return self.creep.modulus(hours, field)
+
+
+def material_from_dict(d: Any, field: str = "material") -> Material:
+    """The material :meth:`Material.as_dict` wrote (design.json's ``material_properties``),
+    every property checked as a spec's would be; :class:`InputError` naming ``field``'s key
+    that is missing or out of range."""
+    if not isinstance(d, dict):
+        raise InputError(field, repr(d)[:40], "an object of material properties")
+
+    def number(key: str, optional: bool = False) -> float | None:
+        v = d.get(key)
+        if v is None and optional:
+            return None
+        if isinstance(v, bool) or not isinstance(v, int | float):
+            raise InputError(f"{field}.{key}", repr(v), "a number", reason="is not one")
+        return float(v)
+
+    E, nu, rho = number("E_MPa"), number("nu"), number("density_g_cm3")
+    assert E is not None and nu is not None and rho is not None
+    validate_elastic(E, nu, rho * G_PER_CM3, prefix=f"{field}.")
+    strength = number("yield_strength_MPa", optional=True)
+    if strength is not None:
+        validate_strength(strength, E, f"{field}.yield_strength_MPa")
+    raw_ts = d.get("thicknesses_mm") or []
+    if not isinstance(raw_ts, list) or not all(
+        isinstance(t, int | float) and not isinstance(t, bool) and t > 0 for t in raw_ts
+    ):
+        raise InputError(f"{field}.thicknesses_mm", repr(raw_ts)[:40], "a list of thicknesses > 0")
+    default = number("default_thickness_mm", optional=True)
+    creep = d.get("creep")
+    table: CreepTable | None = None
+    if creep is not None:
+        try:
+            table = CreepTable(
+                tuple(float(h) for h in creep["hours"]),
+                tuple(float(m) for m in creep["E_MPa"]),
+                str(creep.get("source", "")),
+                bool(creep.get("estimate", False)),
+            )
+        except (TypeError, ValueError, KeyError, AttributeError):
+            raise InputError(
+                f"{field}.creep",
+                repr(creep)[:40],
+                "hours and E_MPa: positive ascending durations, one modulus > 0 each",
+            ) from None
+        if any(m > E for m in table.moduli):
+            raise InputError(f"{field}.creep.E_MPa", repr(list(table.moduli)), f"<= E = {E:g} MPa")
+    return Material(
+        id=str(d.get("id", "custom")),
+        name=str(d.get("name", d.get("id", "custom"))),
+        E=E,
+        nu=nu,
+        density=rho * G_PER_CM3,
+        thicknesses=tuple(float(t) for t in raw_ts),
+        default_thickness=default,
+        category=str(d.get("category", "custom")),
+        source=str(d.get("source", "defined by the user")),
+        yield_strength=strength,
+        creep=table,
+    )
 
 
 def validate_elastic(E: float, nu: float, density: float, *, prefix: str = "") -> None:

@@ -623,7 +623,8 @@ def verify_job(
     :func:`corrugate.web.workers.memory_cap`). A job: runs in a worker process
     and sends one progress event per CalculiX run (``{"stage": "fe", "run": k, "line": ...}``,
     the line ``corrugate verify`` prints on stderr). Constraints without an FE twin come back as
-    verify's own rows (``holds`` false, ``note`` saying why)."""
+    verify's own rows (``verdict`` "not checked", ``note`` saying why); the series stop at the
+    server's mesh cap, so a row not shown asymptotic within it is "not converged"."""
     from corrugate.export.record import design_label, read_design
     from corrugate.fea.verify import verify_design
 

@@ -216,6 +216,12 @@ def write_design_files(
     cut = cut_plan(a, opts)
     pattern, plan = cut.pattern, cut.plan
     record: dict[str, Any] = dict(analysis.to_dict())
+    # every property of each layer's material, so that the record reads back without the
+    # library (an inline material; export.record reads them)
+    record["layers"] = [
+        {**entry, "material_properties": layer.material.as_dict()}
+        for entry, layer in zip(record["layers"], a.layers, strict=True)
+    ]
     record["cut_parts"] = [
         {
             "name": p.name,

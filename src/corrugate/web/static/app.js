@@ -1308,14 +1308,21 @@ function showVerification(v) {
     cell(row, series, 'fe_series');
     const notes = [c.estimate ? `(${c.estimate})` : '', c.note || ''].filter(Boolean).join('; ');
     cell(row, `${fmt(c.fe, 5)}${notes ? ` ${notes}` : ''}`, 'fe').className = 'text';
-    const holds = cell(row, c.holds ? 'yes' : 'NO', 'holds');
+    const verdict = c.verdict || (c.holds ? 'holds' : 'fails');
+    const holds = cell(row, { holds: 'yes', fails: 'NO' }[verdict] || verdict, 'holds');
     holds.dataset.holds = String(c.holds);
+    holds.dataset.verdict = verdict;
   }
   $('d-verify-caption').textContent = `${v.design}: mesh series ${v.meshes.join(' / ')} elements `
     + `per facet, ${v.runs} CalculiX ${v.runs === 1 ? 'run' : 'runs'}`;
   $('d-verify-table').hidden = false;
   $('d-verify-status').textContent = v.constraints.length
-    ? (v.holds ? 'every constraint holds in FE' : 'not every constraint holds in FE')
+    ? ({
+      holds: 'every constraint holds in FE',
+      fails: 'not every constraint holds in FE',
+      'not converged': 'no constraint fails, but not every FE series converged: not shown to hold',
+      'not checked': 'every constraint with an FE twin holds; the others are not checked by FE',
+    }[v.verdict || (v.holds ? 'holds' : 'fails')])
     : 'no behavioural constraint: nothing for the FE to check';
 }
 
