@@ -81,6 +81,11 @@ def designs() -> dict[str, Case]:
     """The validation set (module docstring), by the name the CSV gives it."""
     pp = get_material("polypropylene")
     chassis = Assembly(Layer(16.0, 6, 90.0, pp, 0.25), Layer(5.0, 27, 120.0, pp, 0.25), Rectangle())
+    # examples/chassis_plate.toml solved over the panel's length under the capacity model of
+    # commit 801451e (docs/validation/capacity.md)
+    resolved = Assembly(
+        Layer(12.0, 9, 85.0, pp, 0.25), Layer(10.0, 13, 120.0, pp, 0.25), Rectangle()
+    )
     return {
         "stubby: dura-lar 0.075, W 12 n 10 a 40": Case(
             _identical(12.0, 10, 40.0, "dura-lar", 0.075), "three-point"
@@ -106,6 +111,12 @@ def designs() -> dict[str, Case]:
         "pp 0.5, W 10 n 5 a 100": Case(_identical(10.0, 5, 100.0, "polypropylene", 0.5), "platens"),
         "pc 0.175, W 7 n 12 a 130": Case(
             _identical(7.0, 12, 130.0, "polycarbonate", 0.175), "three-point"
+        ),
+        "chassis re-solved, joint band-edges: pp 0.25, W 12 n 9 a 85 / W 10 n 13 a 120": Case(
+            resolved, "three-point", band=True
+        ),
+        "blimp cantilever, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
+            _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True
         ),
     }
 

@@ -55,7 +55,7 @@ def test_the_chassis_plate_as_a_load_case_row(browser: Any, live_server: str) ->
     page = open_design_tab(w, live_server + "/")
     page.fill("#d-name", "chassis-plate")
     page.select_option("#d-material", "polypropylene")
-    page.fill("#d-thickness", "0.25 mm")
+    page.fill("#d-thickness", "0.3 mm")
     page.select_option("#d-model", "refined")
     page.select_option("#d-layout", "rectangle")
     page.select_option("#d-layering", "independent")
