@@ -86,6 +86,9 @@ def designs() -> dict[str, Case]:
     resolved = Assembly(
         Layer(12.0, 9, 85.0, pp, 0.25), Layer(10.0, 13, 120.0, pp, 0.25), Rectangle()
     )
+    # examples/chassis_plate.toml's answer in 0.3 mm sheet (issue 34's band-wall modes), over
+    # the panel's length (its own 120 mm span cannot be meshed with the band)
+    example = Assembly(Layer(11.0, 10, 85.0, pp, 0.3), Layer(7.0, 19, 120.0, pp, 0.3), Rectangle())
     return {
         "stubby: dura-lar 0.075, W 12 n 10 a 40": Case(
             _identical(12.0, 10, 40.0, "dura-lar", 0.075), "three-point"
@@ -114,6 +117,9 @@ def designs() -> dict[str, Case]:
         ),
         "chassis re-solved, joint band-edges: pp 0.25, W 12 n 9 a 85 / W 10 n 13 a 120": Case(
             resolved, "three-point", band=True
+        ),
+        "chassis example 0.3, joint band-edges: pp 0.3, W 11 n 10 a 85 / W 7 n 19 a 120": Case(
+            example, "three-point", band=True
         ),
         "blimp cantilever, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
             _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True

@@ -441,3 +441,22 @@ def test_a_deflection_bound_brings_its_load_held_named_and_reported() -> None:
     least = min(loads.values())
     assert row["load_capacity_N"] == pytest.approx(least / 2.0, rel=1e-12)
     assert f"(first failure: {row['first_failure']})" in sol.certificate
+
+
+def test_a_bearing_is_part_of_the_capacitys_key_and_reads_back() -> None:
+    """The Pmax quantity of a load case with a bearing width keys it after ``/b=`` (mm), after
+    a sustained load's hours, and :meth:`Quantity.parse` reads every part back; the spec's
+    bearing reaches the held bound's quantity."""
+    from dataclasses import replace
+
+    q = replace(Quantity.load_case("Pmax", 0.0, "three-point", span=120.0), bearing=5.0)
+    assert q.key == "Pmax3pt@0/L=120/b=5mm"
+    assert Quantity.parse(q.key) == q
+    held = replace(q, duration=168.0)
+    assert held.key == "Pmax3pt@0/L=120/t=168h/b=5mm" and Quantity.parse(held.key) == held
+    p = _problem(
+        "band-edges",
+        deflection=[{"test": "three-point", "load": 1.0, "max": 5.0, "bearing": 5.0}],
+    )
+    [c] = [c for c in p.constraints if c.name.endswith(HOLDS)]
+    assert c.quantity.bearing == 5.0
