@@ -277,7 +277,8 @@ def wall_buckling_modes(
     the walls held along both long edges), ``bearing`` the load lines' width s_s (mm).
 
     ``band-wall-buckling``: the walls share the panel's curvature kappa = M / (D L), their edges
-    at E kappa t_d / 2 (psi = -1 about mid-height), critical at k = 23.9 (both long edges held:
+    at E kappa t_d / 2 (psi = -1 about their own mid-height: no composite action with the layers,
+    as the model's D; not a bound, checked by FE, docs/load_cases.md 10.5), critical at k = 23.9 (both long edges held:
     layer 1's edge crease and the other layer's zig-zag edge; hinged, the least restraint) over
     t_d, or, sagging with a free strip of height b on top, k = 0.57 - 0.21 psi + 0.07 psi^2 over
     b, psi = 1 - 2 b / t_d (EN 1993-1-5 Table 4.2); with the whole largest shear V in the two
