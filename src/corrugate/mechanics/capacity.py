@@ -287,7 +287,7 @@ def wall_buckling_modes(
     most half of a load line on its edge (the layers take the rest), holding
     :func:`crippling_load` with k_F = 6 and h_w = t_d, reduced by EN 1993-1-5 7.2's interaction
     F / F_R + 0.8 P / P_sigma <= 1.4 under the largest moment (three- and four-point); a
-    cantilever's tip load rests on the end wall across the span (type (c) there, no moment)."""
+    cantilever's tip load is at the walls' ends (k_F of an end, type (c); no moment there)."""
     E, nu, t, td = band.E, band.nu, band.t, band.depth
     Ls = length if span is None else span
     sigma = E * (form.moment * Ls) * td / (2.0 * whole * length)  # MPa per N at the wall's edge
