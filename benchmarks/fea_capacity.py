@@ -26,7 +26,10 @@ shows both and takes the lower one, the conservative one, saying which.
 
 Designs (:func:`designs`): the stubby panel of issue 34, the chassis example's design with and
 without the bonded band, and six more spread over alpha 40-150 deg, t/W 0.006-0.05, L/h 4-30,
-Dura-Lar, polycarbonate and polypropylene, in three-point, four-point, cantilever and platens.
+Dura-Lar, polycarbonate and polypropylene, in three-point, four-point, cantilever and platens;
+and with the band bonded along the edges, over the panel's length, the chassis example as it
+answered before the band's walls could buckle in the model, its answer since (0.3 mm) and the
+blimp gripper's cantilever (docs/validation/capacity.md).
 All at eta = 0 (layer 1's creases along the span), the span the panel's length except the
 chassis's 120 mm without the band (its example's span; with the band the FE supports the panel at
 its ends, 121.2 mm apart: the band is modelled on the structured mesh only, and a shorter span
