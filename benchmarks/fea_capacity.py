@@ -26,7 +26,10 @@ shows both and takes the lower one, the conservative one, saying which.
 
 Designs (:func:`designs`): the stubby panel of issue 34, the chassis example's design with and
 without the bonded band, and six more spread over alpha 40-150 deg, t/W 0.006-0.05, L/h 4-30,
-Dura-Lar, polycarbonate and polypropylene, in three-point, four-point, cantilever and platens.
+Dura-Lar, polycarbonate and polypropylene, in three-point, four-point, cantilever and platens;
+and with the band bonded along the edges, over the panel's length, the chassis example as it
+answered before the band's walls could buckle in the model, its answer since (0.3 mm) and the
+blimp gripper's cantilever (docs/validation/capacity.md).
 All at eta = 0 (layer 1's creases along the span), the span the panel's length except the
 chassis's 120 mm without the band (its example's span; with the band the FE supports the panel at
 its ends, 121.2 mm apart: the band is modelled on the structured mesh only, and a shorter span
@@ -81,6 +84,14 @@ def designs() -> dict[str, Case]:
     """The validation set (module docstring), by the name the CSV gives it."""
     pp = get_material("polypropylene")
     chassis = Assembly(Layer(16.0, 6, 90.0, pp, 0.25), Layer(5.0, 27, 120.0, pp, 0.25), Rectangle())
+    # examples/chassis_plate.toml solved over the panel's length under the capacity model of
+    # commit 801451e (docs/validation/capacity.md)
+    resolved = Assembly(
+        Layer(12.0, 9, 85.0, pp, 0.25), Layer(10.0, 13, 120.0, pp, 0.25), Rectangle()
+    )
+    # examples/chassis_plate.toml's answer in 0.3 mm sheet (issue 34's band-wall modes), over
+    # the panel's length (its own 120 mm span cannot be meshed with the band)
+    example = Assembly(Layer(11.0, 10, 85.0, pp, 0.3), Layer(7.0, 19, 120.0, pp, 0.3), Rectangle())
     return {
         "stubby: dura-lar 0.075, W 12 n 10 a 40": Case(
             _identical(12.0, 10, 40.0, "dura-lar", 0.075), "three-point"
@@ -106,6 +117,15 @@ def designs() -> dict[str, Case]:
         "pp 0.5, W 10 n 5 a 100": Case(_identical(10.0, 5, 100.0, "polypropylene", 0.5), "platens"),
         "pc 0.175, W 7 n 12 a 130": Case(
             _identical(7.0, 12, 130.0, "polycarbonate", 0.175), "three-point"
+        ),
+        "chassis re-solved, joint band-edges: pp 0.25, W 12 n 9 a 85 / W 10 n 13 a 120": Case(
+            resolved, "three-point", band=True
+        ),
+        "chassis example 0.3, joint band-edges: pp 0.3, W 11 n 10 a 85 / W 7 n 19 a 120": Case(
+            example, "three-point", band=True
+        ),
+        "blimp cantilever, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
+            _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True
         ),
     }
 

@@ -330,7 +330,7 @@ def test_analyze_states_the_capacity_in_the_design_answers_words(cli: CliRun) ->
         "analyze",
         *("--W", str(l1["W_mm"]), "--n", str(l1["n"]), "--alpha", str(l1["alpha_deg"])),
         *("--W2", str(l2["W_mm"]), "--n2", str(l2["n"]), "--alpha2", str(l2["alpha_deg"])),
-        *("--material", "polypropylene", "--thickness", "0.25mm", "--layout", "rectangle"),
+        *("--material", "polypropylene", "--thickness", "0.3mm", "--layout", "rectangle"),
         *("--eta", "0", "--test", "three-point", "--load", "10N", "--span", "120mm"),
         *("--joint", "band-edges"),
     ]

@@ -6,6 +6,7 @@ from __future__ import annotations
 import base64
 import os
 import xml.etree.ElementTree as ET
+from html import escape
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -275,7 +276,8 @@ def test_a_load_case_has_its_figure_and_its_deflection(tmp_path: Path) -> None:
     # answer lists, over the safety factor, in the answer's words
     assert c.capacity is not None
     assert c.capacity.load == pytest.approx(min(c.capacity.modes.values()) / 2.0)
-    assert f"(three-point, 10 N): {c.capacity.sentence}." in text
-    assert "(first failure: facet buckling in layer 1 at mid-span)" in text
+    assert escape(f"(three-point, 10 N): {c.capacity.sentence}.") in text
+    # the band's walls (docs/load_cases.md 10.5) fail first on this design
+    assert escape("(first failure: buckling of the connector band's walls at mid-span)") in text
     blimp = report_html(solve(Problem.from_spec(load_spec(BLIMP))), BLIMP.read_text())
     assert "<h2>Load cases</h2>" not in blimp

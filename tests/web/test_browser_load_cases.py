@@ -55,7 +55,7 @@ def test_the_chassis_plate_as_a_load_case_row(browser: Any, live_server: str) ->
     page = open_design_tab(w, live_server + "/")
     page.fill("#d-name", "chassis-plate")
     page.select_option("#d-material", "polypropylene")
-    page.fill("#d-thickness", "0.25 mm")
+    page.fill("#d-thickness", "0.3 mm")
     page.select_option("#d-model", "refined")
     page.select_option("#d-layout", "rectangle")
     page.select_option("#d-layering", "independent")
@@ -82,9 +82,14 @@ def test_the_chassis_plate_as_a_load_case_row(browser: Any, live_server: str) ->
     assert page.locator("#d-req-rows .req").count() == 1
     row = set_load_case(page, 0, "platens", "10 N", "1 mm", "", "0 deg")
     assert row.locator(".req-span").is_hidden()  # platens compress the panel's whole length
+    assert row.locator(".req-bearing").is_hidden()  # and load no line
     assert row.locator(".req-load").is_visible()
     row = set_load_case(page, 0, "three-point", "10", "1", "120 mm", "0 deg")
     assert row.locator(".req-span").is_visible()
+    assert row.locator(".req-bearing").is_visible()  # left empty: the default 10 mm
+    assert row.locator(".req-bearing").get_attribute("data-path") == (
+        "constraints.deflection[0].bearing"
+    )
     assert narrow_controls(page) == []
     page.set_viewport_size({"width": 420, "height": 900})  # a phone: the form is one column
     assert narrow_controls(page) == []

@@ -40,12 +40,14 @@ def cli_flag(name: str) -> str:
 
 @dataclass(frozen=True, slots=True)
 class LoadCase:
-    """A load case of ``analyze``: the test's name, the load (N) and the span (mm; None: the
-    panel's length along each eta, and always None between platens)."""
+    """A load case of ``analyze``: the test's name, the load (N), the span (mm; None: the
+    panel's length along each eta, and always None between platens) and the load and support
+    lines' bearing width (mm; None: :data:`corrugate.mechanics.capacity.DEFAULT_BEARING`)."""
 
     test: str
     load: float
     span: float | None = None
+    bearing: float | None = None
 
 
 def load_case_of(
@@ -175,7 +177,7 @@ def load_case_capacity(
     (docs/load_cases.md 10)."""
     from corrugate.geometry.layer import crease_layer
     from corrugate.mechanics.behaviours import get_load_case
-    from corrugate.mechanics.capacity import Capacity, capacity_modes
+    from corrugate.mechanics.capacity import Band, Capacity, capacity_modes
     from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR, band_walls
 
     entry = get_load_case(case.test)
@@ -194,7 +196,7 @@ def load_case_capacity(
         depth = float(a.thickness)
         walls = band_walls(l1.material.E, l1.material.nu, l1.t, depth, st.span)
         layers = whole - walls[2 if form.kind == "inplane" else 0]
-        band = (l1.material.E, l1.t, depth, _yield(l1))
+        band = Band(l1.material.E, l1.material.nu, l1.t, depth, _yield(l1))
     modes = capacity_modes(
         form,
         (sp[0], sp[1]),
@@ -211,9 +213,11 @@ def load_case_capacity(
         (_yield(lay[0]), _yield(lay[1])),
         band,
         r.joint == "none",
+        along,
+        case.bearing,
     )
     sf = DEFAULT_SAFETY_FACTOR if safety_factor is None else safety_factor
-    return Capacity.of({k: float(v) for k, v in modes.items()}, sf, form, along + 1)
+    return Capacity.of({k: float(v) for k, v in modes.items()}, sf, form, along + 1, case.bearing)
 
 
 def _yield(layer: Any) -> float:

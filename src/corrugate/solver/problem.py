@@ -283,6 +283,7 @@ class Problem:
                 held = Quantity.load_case("Pmax", eta, d.test, support, d.span)
                 # held for the deflection's duration: buckling at the creep modulus (section 11)
                 held = _sustained(where, held, d.duration, cands)
+                held = replace(held, bearing=_bearing(where, spec, d.test, eta, d.span, d.bearing))
                 cons.append(Constraint(f"{where}{HOLDS}", held, "min", d.load))
         for i, g in enumerate(c.strength):
             where = f"constraints.strength[{i}]"
@@ -304,6 +305,7 @@ class Problem:
                     )
             eta = 0.0 if crease_layer(g.eta) == 0 else 90.0
             q = Quantity.load_case("Pmax", eta, g.test, g.support or spec.support, g.span)
+            q = replace(q, bearing=_bearing(where, spec, g.test, eta, g.span, g.bearing))
             if g.span is not None:  # a bending test's (_check_no_span)
                 cons.append(Constraint(f"{where}.span", Quantity("length", eta), "min", g.span))
             cons.append(Constraint(f"{where}.load", q, "min", g.load))
@@ -400,6 +402,36 @@ def _stiffness_quantity(
         )
         raise SpecError(f"{where}.test", repr(test), allowed, reason=f"is not a test of {kind}")
     return Quantity.load_case(q.kind, eta, test, support)
+
+
+def _bearing(
+    where: str, spec: Spec, test: str, eta: float, span: float | None, bearing: float | None
+) -> float | None:
+    """A load case's ``bearing`` width (mm; docs/load_cases.md 10.5), checked: a bending test's
+    (platens load no line), at most the span and at most the longest panel the size
+    constraints allow along ``eta`` (0: side_y or side, 90: side_x or side), else a
+    :class:`SpecError` at ``where.bearing``. None: the default."""
+    if bearing is None:
+        return None
+    if get_load_case(test).form.kind == "inplane":  # type: ignore[union-attr]
+        raise SpecError(
+            f"{where}.bearing",
+            f"{bearing:g} mm",
+            f"no bearing for {test} (the platens load the panel's whole ends)",
+            reason="does not apply",
+        )
+    c = spec.constraints
+    sizes = [c.side, c.side_y if eta == 0.0 else c.side_x, c.diameter]
+    longest = min((r.max for r in sizes if r is not None and r.max is not None), default=None)
+    for limit, what in ((span, "the span"), (longest, "the panel's longest length")):
+        if limit is not None and bearing > limit:
+            raise SpecError(
+                f"{where}.bearing",
+                f"{bearing:g} mm",
+                f"> 0 mm and at most {what}, {limit:g} mm",
+                reason="is out of range",
+            )
+    return bearing
 
 
 def _check_no_span(where: str, test: str, span: float | None) -> None:

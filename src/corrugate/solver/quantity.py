@@ -26,7 +26,9 @@ A :class:`Quantity` is a ``kind`` with, for what depends on a direction, ``eta``
 Its :attr:`~Quantity.key` is the text the answer shows (``constraints[].quantity`` of ``corrugate
 design --json`` and design.json): the kind, the support's key suffix (none for ``free``,
 ``frame`` for a frame) and the load case's, then ``@`` and eta, and a load case's span after
-``/L=``, e.g. ``EI@0``, ``Kframe@45``, ``Pb@90``, ``EI3pt@0``, ``k3pt@0/L=120``;
+``/L=``, the hours of a sustained load after ``/t=`` and a load capacity's bearing width (mm)
+after ``/b=``, e.g. ``EI@0``, ``Kframe@45``, ``Pb@90``, ``EI3pt@0``, ``k3pt@0/L=120``,
+``Pmax3pt@0/b=5mm``;
 :meth:`Quantity.parse` reads one back.
 """
 
@@ -109,6 +111,7 @@ class Quantity:
     test: str | None = None
     span: float | None = None
     duration: float | None = None  # hours of sustained load; None: short-term
+    bearing: float | None = None  # mm, a load case's load and support lines; None: the default
     # the hash, once (the solver looks quantities up in dicts and sets in every iteration)
     _hash: int = field(default=0, init=False, repr=False, compare=False)
 
@@ -119,10 +122,22 @@ class Quantity:
             object.__setattr__(self, "span", float(f"{self.span:.12g}"))
         if self.duration is not None:
             object.__setattr__(self, "duration", float(f"{self.duration:.12g}"))
+        if self.bearing is not None:
+            object.__setattr__(self, "bearing", float(f"{self.bearing:.12g}"))
         object.__setattr__(
             self,
             "_hash",
-            hash((self.kind, self.eta, self.support, self.test, self.span, self.duration)),
+            hash(
+                (
+                    self.kind,
+                    self.eta,
+                    self.support,
+                    self.test,
+                    self.span,
+                    self.duration,
+                    self.bearing,
+                )
+            ),
         )
 
     def __hash__(self) -> int:
@@ -157,6 +172,15 @@ class Quantity:
     def parse(cls, key: str) -> Quantity:
         """The quantity whose :attr:`key` is ``key`` (e.g. ``Kframe@45``), over the behaviours
         registered now."""
+        key, on, bearing_text = key.partition("/b=")
+        if on:
+            try:
+                bearing = float(bearing_text.removesuffix("mm"))
+            except ValueError:
+                raise InputError(
+                    "quantity", repr(key), "a quantity key such as Pmax3pt@0/b=10mm"
+                ) from None
+            return replace(cls.parse(key), bearing=bearing)
         key, held, hours_text = key.partition("/t=")
         duration = None
         if held:
@@ -217,6 +241,8 @@ class Quantity:
         tail = "" if self.span is None else f"/L={self.span:.12g}"
         if self.duration is not None:
             tail += f"/t={self.duration:.12g}h"
+        if self.bearing is not None:
+            tail += f"/b={self.bearing:.12g}mm"
         return f"{head}@{self.eta:.12g}{tail}"
 
     @property

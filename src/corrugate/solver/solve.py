@@ -687,6 +687,10 @@ def _capacity_quantity(problem: Problem, c: Constraint) -> Quantity | None:
         return q
     if c.load is None or q.eta is None or q.eta % 90 != 0:
         return None
+    held = c.name.removesuffix(".max") + HOLDS  # its own held bound (with its bearing)
+    for other in problem.constraints:
+        if other.name == held:
+            return other.quantity
     return Quantity.load_case(
         "Pmax", q.eta, q.test or own_test().name, q.support or problem.support, q.span
     )
@@ -709,7 +713,7 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, Cap
         assert form is not None
         modes = {k: float(v[0]) for k, v in capacity_modes_at(at, q).items()}
         along = 1 if q.eta % 180 == 0 else 2
-        out[c.name] = Capacity.of(modes, problem.safety_factor, form, along)
+        out[c.name] = Capacity.of(modes, problem.safety_factor, form, along, q.bearing)
     return out
 
 

@@ -37,7 +37,7 @@ from numpy.typing import NDArray
 from corrugate.geometry.layer import crease_layer
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support, supports
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
-from corrugate.mechanics.capacity import capacity_modes
+from corrugate.mechanics.capacity import Band, capacity_modes
 from corrugate.mechanics.load_cases import (
     apparent,
     load_stiffness,
@@ -236,8 +236,16 @@ def capacity_modes_at(at: AtPoints, q: Quantity) -> dict[str, FloatArray]:
         _allowables(at.c1, at.c2, along),
         None
         if band is None
-        else (column(np.asarray(l1.E)), column(np.asarray(l1.t)), at.ev.thickness[:, 0], y1),
+        else Band(
+            column(np.asarray(l1.E)),
+            float(at.c1.material.nu),
+            column(np.asarray(l1.t)),
+            at.ev.thickness[:, 0],
+            y1,
+        ),
         at.problem.joint == "none",
+        along,
+        q.bearing,
     )
     return {k: np.broadcast_to(np.asarray(v, np.float64), span.shape) for k, v in modes.items()}
 
@@ -275,7 +283,8 @@ def _modes_over(over: OverBoxes, q: Quantity, base: Any, whole: Any, band: Any) 
     walls = None
     if band is not None:
         _, depth = over.walls(q.eta)
-        walls = (float(c1.material.E), float(c1.t), depth, _allowables(c1, c1, 0)[0])
+        m1 = c1.material
+        walls = Band(float(m1.E), float(m1.nu), float(c1.t), depth, _allowables(c1, c1, 0)[0])
     modes = capacity_modes(
         form,
         (sp[0], sp[1]),
@@ -292,6 +301,8 @@ def _modes_over(over: OverBoxes, q: Quantity, base: Any, whole: Any, band: Any) 
         _allowables(c1, c2, along),
         walls,
         over.problem.joint == "none",
+        along,
+        q.bearing,
     )
     return list(modes.values())
 

@@ -142,7 +142,8 @@ _STATIC: dict[str, KeyDoc] = {
         "N",
         "Loads the panel must hold at the safety factor: its capacity, the least failure load "
         "of every mode (yield, facet buckling in bending and shear, a free outermost facet, "
-        "the end facets between platens) / safety_factor >= load (array of tables; "
+        "the end facets between platens, crippling under the load lines, the band's walls) / "
+        "safety_factor >= load (array of tables; "
         "`corrugate docs load_cases`, sections 6 and 10).",
     ),
     "constraints.strength[].load": KeyDoc("N", "The load P (> 0) to hold."),
@@ -319,6 +320,17 @@ def _load_case_docs() -> dict[str, KeyDoc]:
         ),
         "constraints.strength[].test": tests,
         "constraints.strength[].span": KeyDoc("mm", f"{spacing}."),
+        **{
+            f"constraints.{k}[].bearing": KeyDoc(
+                "mm",
+                "Width of the load and support lines (a roller's contact, a pad, a fingertip; "
+                "> 0, at most the span and the panel's length): the crippling of the facets "
+                "and of the band's walls under them depends on it; default 10 mm (a fingertip "
+                "or small pad; `corrugate docs load_cases`, section 10.5)."
+                + (f" Not for {' or '.join(spanless)}." if spanless else ""),
+            )
+            for k in ("deflection", "strength")
+        },
     }
     return out
 

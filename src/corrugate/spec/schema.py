@@ -622,7 +622,8 @@ class DeflectionSpec(_Strict):
     (docs/load_cases.md): supported over ``span`` (mm; cantilever: its free length; default and
     platens: the panel's length along ``eta``), along ``eta`` (deg), under ``support`` (default:
     the spec's), the load held for ``duration`` (hours; None: short-term; docs/load_cases.md
-    section 11)."""
+    section 11), the load and support lines ``bearing`` mm wide (None: 10 mm,
+    :data:`corrugate.mechanics.capacity.DEFAULT_BEARING`; docs/load_cases.md 10.5)."""
 
     test: DeflectionTest
     load: Annotated[float, BeforeValidator(_quantity("N", lo=0.0, hi=LIMITS["load"].hi))]
@@ -631,18 +632,21 @@ class DeflectionSpec(_Strict):
     eta: Direction = 0.0
     support: Support | None = None
     duration: Duration | None = None
+    bearing: Length | None = None
 
 
 class StrengthSpec(_Strict):
     """The panel holds ``load`` (N) in the load case ``test`` (over ``span`` mm, along ``eta`` 0
     or 90 deg, under ``support``) with every facet's peak stress times the spec's
-    ``safety_factor`` at or below its material's yield strength (docs/load_cases.md, section 6)."""
+    ``safety_factor`` at or below its material's yield strength (docs/load_cases.md, section 6),
+    its load and support lines ``bearing`` mm wide (None: 10 mm; section 10.5)."""
 
     test: DeflectionTest
     load: Annotated[float, BeforeValidator(_quantity("N", lo=0.0, hi=LIMITS["load"].hi))]
     span: Length | None = None
     eta: Direction = 0.0
     support: Support | None = None
+    bearing: Length | None = None
 
 
 class MassBound(_Strict):

@@ -552,7 +552,7 @@ function syncRowTests(row) {
 // Give each row's inputs the spec path of their place: the k-th row of a kind is
 // constraints.<kind>[k]; field errors from the server then land on the right row. A load-case
 // row is constraints.deflection[k]: its value is the most deflection (`max`), with `load`,
-// `test` and `span` (none between platens).
+// `test`, `span` and `bearing` (the width of its load lines; neither between platens).
 function renumberRequirements() {
   const counts = {};
   const rows = [...$('d-req-rows').querySelectorAll('.req')];
@@ -566,7 +566,7 @@ function renumberRequirements() {
     const was = row.dataset.kind;
     if (was !== undefined && was !== kind) {
       if (REQUIREMENT_UNITS[was] !== REQUIREMENT_UNITS[kind]) min.value = '';
-      if (was === 'deflection') for (const c of ['.req-load', '.req-span']) row.querySelector(c).value = '';
+      if (was === 'deflection') for (const c of ['.req-load', '.req-span', '.req-bearing']) row.querySelector(c).value = '';
     }
     row.dataset.kind = kind;
     row.querySelector('.req-min-text').textContent = deflection ? 'at most (mm)' : `at least (${REQUIREMENT_UNITS[kind]})`;
@@ -577,13 +577,15 @@ function renumberRequirements() {
     const test = row.querySelector('.req-test');
     const load = row.querySelector('.req-load');
     const span = row.querySelector('.req-span');
+    const bearing = row.querySelector('.req-bearing');
     support.hidden = kind === 'buckling_load';  // a buckling bound has no support condition
     load.hidden = !deflection;
     span.hidden = !deflection || SPANLESS.has(test.value);  // platens compress the whole panel
+    bearing.hidden = span.hidden;  // no load line between platens
     if (min.dataset.placeholder === undefined) min.dataset.placeholder = min.placeholder;
     min.placeholder = deflection ? 'at most, mm' : min.dataset.placeholder;
     const fields = [[min, deflection ? 'max' : 'min'], [row.querySelector('.req-eta'), 'eta'],
-      [support, 'support'], [test, 'test'], [load, 'load'], [span, 'span']];
+      [support, 'support'], [test, 'test'], [load, 'load'], [span, 'span'], [bearing, 'bearing']];
     for (const [el, key] of fields) {
       if (base && !el.hidden) el.dataset.path = `${base}.${key}`;
       else delete el.dataset.path;
@@ -596,12 +598,13 @@ function renumberRequirements() {
     test.setAttribute('aria-label', `requirement ${n}: test`);
     load.setAttribute('aria-label', `requirement ${n}: load (N)`);
     span.setAttribute('aria-label', `requirement ${n}: span (mm; default: the panel's length along eta)`);
+    bearing.setAttribute('aria-label', `requirement ${n}: bearing width of the load lines (mm; default 10 mm)`);
     row.querySelector('.req-remove').setAttribute('aria-label', `remove requirement ${n}`);
   });
 }
 
 // A new row (a copy of the first, emptied); ``values`` sets its fields: kind, min (the most
-// deflection of a load case), eta, support, test, load, span.
+// deflection of a load case), eta, support, test, load, span, bearing.
 function addRequirement(values = {}) {
   const rows = $('d-req-rows');
   const row = rows.querySelector('.req').cloneNode(true);
@@ -613,7 +616,7 @@ function addRequirement(values = {}) {
   return row;
 }
 
-function setRequirement(row, { kind, min = '', eta = '0 deg', support = '', test = '', load = '', span = '' }) {
+function setRequirement(row, { kind, min = '', eta = '0 deg', support = '', test = '', load = '', span = '', bearing = '' }) {
   row.dataset.kind = kind;  // set, not switched: its values are the ones given
   row.querySelector('.req-kind').value = kind;
   syncRowTests(row);
@@ -624,6 +627,7 @@ function setRequirement(row, { kind, min = '', eta = '0 deg', support = '', test
   row.querySelector('.req-support').value = support;
   row.querySelector('.req-load').value = String(load);
   row.querySelector('.req-span').value = String(span);
+  row.querySelector('.req-bearing').value = String(bearing);
   renumberRequirements();
 }
 
@@ -733,7 +737,7 @@ function fillDesign(spec) {
   }
   for (const d of c.deflection || []) {
     fill({ kind: 'deflection', min: d.max ?? '', eta: d.eta ?? '0 deg', support: d.support || '',
-      test: d.test || (ROW_TESTS.deflection[0] || [''])[0], load: d.load ?? '', span: d.span ?? '' });
+      test: d.test || (ROW_TESTS.deflection[0] || [''])[0], load: d.load ?? '', span: d.span ?? '', bearing: d.bearing ?? '' });
   }
   const o = spec.objective || {};
   $('d-objective').value = o.maximize ? `maximize:${o.maximize}` : 'minimize:mass';
