@@ -482,7 +482,9 @@ def reference_markdown() -> str:
         "",
         "Exit codes of `corrugate design`: 0 an answer, 1 no design meets the spec (infeasible), "
         "2 bad input (one line naming the key, the value and what is allowed), "
-        "4 not certified within the work budget, 130 interrupted (Ctrl-C).",
+        "4 not certified within the work budget, 130 interrupted (Ctrl-C); with `--verify fe` "
+        "also 1 a bound fails in FE, 5 a mesh series is not converged, 6 a bound has no FE twin "
+        "(not checked) (docs/fea.md 6).",
         "",
         "Work budget. `design`, `pareto` and `tolerance` take `--budget SECONDS` (default 60; 0.01 to 86400): "
         "CPU seconds of the process (user + system; on an idle machine about wall seconds) for "
