@@ -347,3 +347,14 @@ def test_analyze_states_the_capacity_in_the_design_answers_words(cli: CliRun) ->
     [free] = json.loads(out)["load_case"]["directions"]
     assert free["first_failure_mode"] == "edge-facet-buckling"
     assert free["load_capacity_N"] < 0.1 * row["load_capacity_N"]
+
+
+def test_a_warning_s_spec_table_is_printed_not_read_as_markup(cli: CliRun) -> None:
+    """The short-panel warning names `[[constraints.deflection]]`; rich read it as a style tag and
+    printed "or a []" (found running issue 34's stubby panel)."""
+    code, out, _ = cli(
+        ["analyze", "--W", "12", "--n", "10", "--alpha", "40", "--material", "dura-lar"]
+        + ["--thickness", "0.075", "--eta", "0", "--test", "three-point", "--load", "1N"]
+    )
+    assert code == 0
+    assert "short-panel-shear" in out and "[[constraints.deflection]]" in " ".join(out.split())

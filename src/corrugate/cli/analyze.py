@@ -107,8 +107,10 @@ def _print_analysis(r: Analysis, console: Console) -> None:
             f"compression along {b.eta_deg:g} deg: K holds until the end facets buckle, at "
             f"{b.low:.3g}-{b.high:.3g} N (platen travel {lo:.2g}-{hi:.2g} mm)"
         )
+    from rich.markup import escape  # a message's [[table]] is text, not markup
+
     for w in r.warnings:
-        console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
+        console.print(f"[yellow]warning[/yellow] ({w.code}): {escape(w.message)}")
 
 
 def _print_comparison(
@@ -200,9 +202,11 @@ def analyze_cmd(
     console = make_console()
     if compare_models:
         _print_comparison(results, console, case)
+        from rich.markup import escape  # a message's [[table]] is text, not markup
+
         for w in results[0].warnings:
             if w.code != "paper-model":
-                console.print(f"[yellow]warning[/yellow] ({w.code}): {w.message}")
+                console.print(f"[yellow]warning[/yellow] ({w.code}): {escape(w.message)}")
     else:
         _print_analysis(results[0], console)
         if case is not None and cases[0] is not None:

@@ -136,8 +136,10 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
                 fmt(ru.objective, 6) + mark,
             )
         console.print(u)
+    from rich.markup import escape  # a message's [[table]] is text, not markup
+
     for w in sol.warnings:
-        console.print(f"[yellow]warning[/yellow] ({w['code']}): {w['message']}")
+        console.print(f"[yellow]warning[/yellow] ({w['code']}): {escape(w['message'])}")
     for w in sol.notes:
         console.print(f"note ({w['code']}): {w['message']}", markup=False)
 
