@@ -130,6 +130,8 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
         return "".join(parts)
     asm = a.assembly
     cert = "certified optimal" if sol.certified else "NOT certified"
+    if not p.tolerances.nominal:  # docs/tolerances.md
+        cert += f" {p.tolerances.sentence}"
     parts.append(
         f"<p><b>{cert}</b> (gap {sol.gap:.1e}); model <code>{html.escape(p.model)}</code>, layout "
         f"{html.escape(asm.layout.name)}, mass <b>{a.mass.total:.4f} g</b> (layers "

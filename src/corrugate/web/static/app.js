@@ -795,7 +795,8 @@ function bulletList(list, items, empty) {
 
 function showDesign(d) {
   const found = d.design !== null;
-  const cert = d.certified ? 'certified' : 'not certified';
+  let cert = d.certified ? 'certified' : 'not certified';
+  if (d.tolerances && !d.tolerances.nominal) cert += ` ${d.tolerances.covers}`;
   $('d-verdict').textContent = `${d.name}: ${d.status} (${cert}), model ${d.model}`;
   $('d-verdict').dataset.status = d.status;
   $('d-found').hidden = !found;
