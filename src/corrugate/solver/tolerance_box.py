@@ -65,25 +65,60 @@ def sheet(c: Candidate, tol: WorstCase, pieces: int = 1, rows: int = 1) -> Candi
     return replace(c, material=replace(m, E=E), t=t)  # type: ignore[arg-type]
 
 
-def _widen(lay: LayerPoints, tol: WorstCase, up: bool) -> LayerPoints:
-    s = 1.0 if up else -1.0
-    W = np.asarray(lay.W, np.float64) + s * tol.W
-    a = np.asarray(lay.alpha, np.float64) + s * tol.alpha
-    W = np.maximum(W, 1e-6)  # a facet width stays positive (W >= min_facet >> dW in practice)
-    a = np.clip(a, _ALPHA_MIN, _ALPHA_MAX)
-    return LayerPoints(np.asarray(lay.n, np.float64), W, a)
+#: The least half-width of a continuous W or alpha, relative to its range: with a zero
+#: tolerance on a continuous variable the search's boxes could never close (the upper bound
+#: over a box is the inner box's, module docstring), so it covers that much more.
+_TINY = 1e-9
+
+
+def half_widths(problem: Problem) -> tuple[float, float]:
+    """The half-widths of W (mm) and alpha (deg) the bounds use: the tolerances', at least
+    :data:`_TINY` of a continuous variable's range."""
+    tol = problem.tolerances
+    dW, da = tol.W, tol.alpha
+    if not dW and not problem.W.gridded:
+        dW = _TINY * (problem.W.hi - problem.W.lo)
+    if not da and not problem.alpha.gridded:
+        da = _TINY * (problem.alpha.hi - problem.alpha.lo)
+    return dW, da
+
+
+def _clip(W: FloatArray, a: FloatArray) -> tuple[FloatArray, FloatArray]:
+    # a facet width stays positive (W >= min_facet >> dW in practice), 0 < alpha < 180
+    return np.maximum(W, 1e-6), np.clip(a, _ALPHA_MIN, _ALPHA_MAX)
 
 
 def widened(
-    problem: Problem, lo: DesignPoints, hi: DesignPoints
+    problem: Problem, lo: DesignPoints, hi: DesignPoints, inner: bool = False
 ) -> tuple[DesignPoints, DesignPoints]:
     """The boxes [lo, hi] widened by the tolerances of ``problem``, every layer stored (so
-    identical layers vary independently)."""
-    tol = problem.tolerances
+    identical layers vary independently); ``inner``: the boxes every tolerance box of a point
+    of [lo, hi] contains, [hi - d, lo + d] (n one value, widths at most 2 d)."""
+    dW, da = half_widths(problem)
     count = lo.count
-    lows = [_widen(lo.layer(i), tol, False) for i in range(count)]
-    highs = [_widen(hi.layer(i), tol, True) for i in range(count)]
+    lows, highs = [], []
+    for i in range(count):
+        a, b = lo.layer(i), hi.layer(i)
+        aW, bW = np.asarray(a.W, np.float64), np.asarray(b.W, np.float64)
+        aa, ba = np.asarray(a.alpha, np.float64), np.asarray(b.alpha, np.float64)
+        n = np.asarray(a.n, np.float64)
+        low = _clip(bW - dW, ba - da) if inner else _clip(aW - dW, aa - da)
+        high = _clip(aW + dW, aa + da) if inner else _clip(bW + dW, ba + da)
+        lows.append(LayerPoints(n, *low))
+        highs.append(LayerPoints(n if inner else np.asarray(b.n, np.float64), *high))
     return DesignPoints(tuple(lows), count), DesignPoints(tuple(highs), count)
+
+
+def _inner_rows(problem: Problem, lo: DesignPoints, hi: DesignPoints) -> NDArray[np.intp]:
+    """The boxes whose inner box exists: n one value and W, alpha at most 2 d wide."""
+    dW, da = half_widths(problem)
+    ok = np.ones(len(lo), dtype=bool)
+    for i in range(lo.count):
+        a, b = lo.layer(i), hi.layer(i)
+        ok &= np.asarray(a.n) == np.asarray(b.n)
+        ok &= np.asarray(b.W, np.float64) - np.asarray(a.W, np.float64) <= 2 * dW
+        ok &= np.asarray(b.alpha, np.float64) - np.asarray(a.alpha, np.float64) <= 2 * da
+    return np.flatnonzero(ok)
 
 
 #: The pieces the thickness interval is cut into at points (their worst case is the least of
@@ -92,10 +127,46 @@ def widened(
 T_PIECES = 8
 
 
+class _Pieces:
+    """The bounds over the boxes [lo, hi] on the sheets' E and t intervals, t cut in
+    ``pieces``: the least lower and the greatest upper bound of the pieces."""
+
+    def __init__(
+        self,
+        problem: Problem,
+        c1: Candidate,
+        c2: Candidate,
+        lo: DesignPoints,
+        hi: DesignPoints,
+        tables: Tables,
+        pieces: int,
+    ) -> None:
+        tol = problem.tolerances
+        k = len(lo)
+        self.pieces, self.rows = pieces, k
+        if pieces > 1:  # every box once per piece of t, piece by piece
+            rep = np.tile(np.arange(k), pieces)
+            lo, hi = lo.take(rep), hi.take(rep)
+        s1 = sheet(c1, tol, pieces, k)
+        s2 = s1 if c2 == c1 else sheet(c2, tol, pieces, k)
+        free = replace(problem, identical=False) if problem.identical else problem
+        self.over = OverBoxes(free, s1, s2, lo, hi, tables)
+
+    def bounds(self, q: Quantity) -> tuple[FloatArray, FloatArray]:
+        low, high = self.over.bounds(q)
+        size = self.pieces * self.rows
+        shape = (self.pieces, self.rows)
+        low = np.broadcast_to(np.asarray(low, np.float64), (size,)).reshape(shape)
+        high = np.broadcast_to(np.asarray(high, np.float64), (size,)).reshape(shape)
+        return low.min(axis=0), high.max(axis=0)
+
+
 class ToleranceBounds:
-    """The bounds over the boxes [lo, hi] (``lo is hi``: points) widened by the tolerances
-    (module docstring): :meth:`bounds` of a quantity, the least and the greatest over the
-    thickness's pieces."""
+    """The certified value's bounds over the boxes [lo, hi] (``lo is hi``: its value at
+    points), module docstring: below, the bound over the boxes widened by the tolerances (t
+    whole); above, the least of that box's upper bound and, where the inner box exists, the
+    inner box's lower bound (t in pieces), which every point's certified value is at most and
+    which closes on it as the box shrinks."""
 
     def __init__(
         self,
@@ -106,28 +177,28 @@ class ToleranceBounds:
         hi: DesignPoints,
         tables: Tables,
     ) -> None:
-        tol = problem.tolerances
-        k = len(lo)
-        # the pieces at points only: a box's bounds need not be tight, only enclose (the one
-        # interval of t contains every piece, so its lower bound is at most theirs)
-        self.pieces = T_PIECES if tol.t and lo is hi else 1
-        self.rows = k
+        self.point = lo is hi
+        pieces = T_PIECES if problem.tolerances.t else 1
         wlo, whi = widened(problem, lo, hi)
-        if self.pieces > 1:  # every box once per piece of t, piece by piece
-            rep = np.tile(np.arange(k), self.pieces)
-            wlo, whi = wlo.take(rep), whi.take(rep)
-        s1 = sheet(c1, tol, self.pieces, k)
-        s2 = s1 if c2 == c1 else sheet(c2, tol, self.pieces, k)
-        free = replace(problem, identical=False) if problem.identical else problem
-        self.over = OverBoxes(free, s1, s2, wlo, whi, tables)
+        self.outer = _Pieces(problem, c1, c2, wlo, whi, tables, pieces if self.point else 1)
+        self.inner: _Pieces | None = None
+        self.sel = np.zeros(0, dtype=np.intp)
+        if not self.point:
+            self.sel = _inner_rows(problem, lo, hi)
+            if self.sel.size:
+                ilo, ihi = widened(problem, lo.take(self.sel), hi.take(self.sel), inner=True)
+                self.inner = _Pieces(problem, c1, c2, ilo, ihi, tables, pieces)
 
     def bounds(self, q: Quantity) -> tuple[FloatArray, FloatArray]:
-        """Lower and upper bounds of ``q`` over the widened boxes (arrays over the boxes)."""
-        low, high = self.over.bounds(q)
-        shape = (self.pieces, self.rows)
-        low = np.broadcast_to(np.asarray(low, np.float64), (self.pieces * self.rows,))
-        high = np.broadcast_to(np.asarray(high, np.float64), (self.pieces * self.rows,))
-        return low.reshape(shape).min(axis=0), high.reshape(shape).max(axis=0)
+        """Lower and upper bounds of ``q``'s certified value over the boxes (arrays over the
+        boxes; at points both its value)."""
+        low, high = self.outer.bounds(q)
+        if self.point:
+            return low, low
+        if self.inner is not None:
+            high = high.copy()
+            high[self.sel] = np.minimum(high[self.sel], self.inner.bounds(q)[0])
+        return low, high
 
 
 def tolerance_boxes(
