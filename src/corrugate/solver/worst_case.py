@@ -54,7 +54,7 @@ class WorstCase:
     def sentence(self) -> str:
         """What the certificate covers, in words for the answer."""
         if self.nominal:
-            return "for the nominal part (tolerances = 'none')"
+            return "for the nominal part"
         return f"for every part within {self.words}"
 
     def as_dict(self) -> dict[str, object]:

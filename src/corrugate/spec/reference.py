@@ -544,6 +544,9 @@ def json_schema() -> dict[str, Any]:
                 describe(defs[ref].get("properties", {}), f"{path}[]." if many else f"{path}.")
 
     describe(schema["properties"], "")
+    tol = schema["properties"].get("tolerances", {})
+    if "$ref" in tol:  # a table, or "none" (the nominal certificate)
+        tol["anyOf"] = [{"$ref": tol.pop("$ref")}, {"type": "string", "enum": ["none"]}]
     schema = _widen(schema, docs, "")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "corrugate design spec"
