@@ -15,10 +15,14 @@ n exact, and sheets whose E and t are the intervals [E (1 - dE), E (1 + dE)] and
 as :class:`~.interval.Interval` values), so G(x) <= q(x') for every x' in T(x): a design with
 G(x) >= bound meets the bound at every corner of its tolerance box (and everywhere inside).
 
-Over a search box B the bounds of G are those of q over B widened by the tolerances: the interval
-enclosure over B + T contains every T(x) of x in B (inclusion isotonicity), so its lower bound is
-at most every G(x) and its upper bound at least every q(x) >= G(x). At a point box they are G(x)
-itself. The sizes, the mass and the making stay nominal (docs/tolerances.md says why).
+Over a search box B the lower bound of G is that of q over B widened by the tolerances (the
+enclosure over B + T contains every T(x) of x in B: inclusion isotonicity). Its upper bound is
+the least of that enclosure's upper bound and, when B is at most 2 d wide in every W and alpha
+and holds one n, the lower bound over the inner box [hi - d, lo + d], which every T(x) of x in B
+contains, so it is at least every G(x) and closes on G as B shrinks (without it, boxes near a
+bound would never close on a continuous variable). At a point box both are G(x) itself. The
+thickness's interval is cut into :data:`T_PIECES` pieces at points and inner boxes. The sizes,
+the mass and the making stay nominal (docs/tolerances.md says why).
 """
 
 from __future__ import annotations
