@@ -29,6 +29,7 @@ def _spec(W_step: float | None, a_step: float | None) -> dict[str, Any]:
     if a_step is not None:
         A["step"] = a_step
     return {
+        "tolerances": "none",  # the nominal model (tolerances: tests/solver/test_tolerance_box.py)
         "model": "refined",
         "material": {"name": "dura-lar", "thickness": "0.125 mm"},
         "variables": {"W": W, "n": {"min": 3, "max": 20}, "alpha": A},

@@ -143,6 +143,7 @@ def _problem(kind: ProfileKind, bound: float) -> Problem:
     spec = parse_spec(
         {
             "name": "flat-crest",
+            "tolerances": "none",  # the nominal model (tolerances: tests/solver/test_tolerance_box.py)
             "material": {"name": "dura-lar", "thickness": "0.125 mm"},
             "layout": {"shape": "square"},
             "variables": {

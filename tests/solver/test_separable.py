@@ -40,6 +40,7 @@ from corrugate.solver.quantity import (
     Quantity,
 )
 from corrugate.solver.solve import optimize, pairs
+from corrugate.solver.worst_case import NOMINAL, WorstCase
 from corrugate.spec.schema import Spec, load_spec
 
 
@@ -59,6 +60,7 @@ def _problem(
     """A small independent-layer rectangle spec; ``stiffness``: (kind, eta, support) bounds,
     each with min 1 (set later from the grid's values)."""
     lines = [
+        'tolerances = "none"  # the separable search of the nominal model',
         'name = "separable"',
         f'model = "{model}"',
         'layers = "independent"',
@@ -379,6 +381,8 @@ def test_problems_without_the_structure_are_left_to_the_branch_and_bound(tmp_pat
     assert sep.applies(base)
     assert not sep.applies(replace(base, identical=True))
     assert not sep.applies(replace(base, joint="band-edges"))
+    # its formulas are the nominal model's: a certificate over tolerances is the search's
+    assert not sep.applies(replace(base, tolerances=WorstCase(3.0, 0.1, 0.05, 0.1)))
     off = _problem(stiffness=(("inplane_stiffness", 45.0, "free"),))
     assert not sep.applies(off)
     pb = replace(
@@ -403,7 +407,8 @@ def test_the_chassis_spec_is_the_branch_and_bounds_optimum() -> None:
     from pathlib import Path
 
     spec = Path(__file__).resolve().parents[2] / "benchmarks" / "specs" / "chassis_independent.toml"
-    problem = Problem.from_spec(load_spec(spec))
+    # the nominal model: the layer-by-layer search is not taken under tolerances
+    problem = replace(Problem.from_spec(load_spec(spec)), tolerances=NOMINAL)
     assert sep.applies(problem)
     fast = optimize(problem)
     ref = optimize(problem, record=True)

@@ -40,8 +40,14 @@ PENTAGON = [[0, 0], [1, 0], [1, 0.6], [0.5, 1], [0, 0.6]]  # not symmetric under
 Arr = NDArray[np.float64]
 
 
+def _nominal(d: dict[str, Any]) -> dict[str, Any]:
+    """``d`` with ``tolerances = "none"``: these tests check the solver against exhaustive
+    evaluations of the nominal model (tolerances: tests/solver/test_tolerance_box.py)."""
+    return {"tolerances": "none", **d}
+
+
 def _solve(d: dict[str, Any], explain: bool = False) -> Any:
-    return solve(Problem.from_spec(parse_spec(with_units(d))), explain=explain)
+    return solve(Problem.from_spec(parse_spec(_nominal(with_units(d)))), explain=explain)
 
 
 # -- the paper's case study ------------------------------------------------------------------
@@ -689,7 +695,7 @@ def test_box_bounds_contain_every_sampled_design(
         ],
     )
     d["layers"] = layers
-    problem = Problem.from_spec(parse_spec(with_units(d)))
+    problem = Problem.from_spec(parse_spec(_nominal(with_units(d))))
     cand = problem.candidates[0]
     tables = Tables(problem)
     rng = np.random.default_rng(seed)

@@ -23,6 +23,7 @@ from corrugate.spec.schema import parse_spec
 WEEK = 168.0
 SPEC: dict[str, Any] = {
     "name": "held",
+    "tolerances": "none",  # the nominal model (tolerances: tests/solver/test_tolerance_box.py)
     "joint": "band-edges",  # free outermost facets cannot hold 10 N at the safety factor
     "material": {"name": "polycarbonate", "thickness": "0.25 mm"},
     "layout": {"shape": "square"},

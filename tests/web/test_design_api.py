@@ -267,6 +267,11 @@ def _with(path: str, value: Any) -> dict[str, Any]:
         ({**_with("fold_style", "perforated"), "cut": "1 MPa", "gap": 1}, "cut", "wrong dimension"),
         (_with("paper", "a3"), "paper", "is unknown"),
         (_with("paper", 4), "paper", "wrong type"),
+        (_with("tolerances", {"alpha": "-3 deg"}), "tolerances.alpha", "out of range"),
+        (_with("tolerances", {"t": "nan"}), "tolerances.t", "out of range"),
+        (_with("tolerances", {"W": "1 N"}), "tolerances.W", "wrong dimension"),
+        (_with("tolerances", {"fold": 3}), "tolerances.fold", "not a known key"),
+        (_with("tolerances", "some"), "tolerances", "is not a table or 'none'"),
     ],
 )
 def test_bad_specs_get_422_naming_the_path(

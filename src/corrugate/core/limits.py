@@ -111,6 +111,14 @@ LIMITS: dict[str, Limit] = {
         Limit("points", 2, 10_000, "", "points on a Pareto front"),
         Limit("W_tol", 0.0, 1_000.0, "mm", "one-sigma error of W: up to 1 m"),
         Limit("alpha_tol", 0.0, 90.0, "deg", "one-sigma error of alpha: up to 90 deg"),
+        Limit("W_worst", 0.0, 5.0, "mm", "worst-case error of W ([tolerances]): up to 5 mm"),
+        Limit(
+            "alpha_worst",
+            0.0,
+            30.0,
+            "deg",
+            "worst-case error of alpha ([tolerances]): up to 30 deg",
+        ),
         Limit("seed", 0, 2**63 - 1, "", "random seed (numpy takes a non-negative integer)"),
         Limit(
             "perforation",

@@ -143,6 +143,8 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
         return "".join(parts)
     asm = a.assembly
     cert = "certified optimal" if sol.certified else "NOT certified"
+    if not p.tolerances.nominal:  # docs/tolerances.md
+        cert += f" {p.tolerances.sentence}"
     if sol.extrapolated:
         cert = (
             "EXTRAPOLATED, not certified (outside the validated range: "

@@ -30,7 +30,7 @@ from corrugate.mechanics.behaviours import Behaviour
 from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.offaxis import Coupon
 from corrugate.solver.evaluator import Pair, evaluator_of
-from corrugate.solver.interval import Interval
+from corrugate.solver.interval import Interval, number
 from corrugate.solver.interval_springs import Springs, layer_springs, span_bounds
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Candidate, Problem
@@ -355,4 +355,7 @@ class OverBoxes(_Shared):
             return None, None
         depth = Interval(*self.thickness)
         m = self.c1.material
-        return band_walls(float(m.E), float(m.nu), float(self.c1.t), depth, self.span(eta)), depth
+        return (
+            band_walls(number(m.E), float(m.nu), number(self.c1.t), depth, self.span(eta)),
+            depth,
+        )

@@ -20,7 +20,7 @@ from typing import Any, ClassVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Interval"]
+__all__ = ["Interval", "number"]
 
 FloatArray = NDArray[np.float64]
 _INF = np.inf
@@ -267,3 +267,9 @@ class Interval:
         if name == "min":
             return x.minimum(y)
         return x / y
+
+
+def number(x: Any) -> Any:
+    """``x`` as a float, or ``x`` itself when it is an :class:`Interval` (a sheet's E or t over
+    its worst-case tolerances, :mod:`corrugate.solver.tolerance_box`)."""
+    return x if isinstance(x, Interval) else float(x)

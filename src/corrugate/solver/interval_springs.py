@@ -20,7 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from corrugate.geometry.layouts import Axis, Circle, Rectangle
 from corrugate.mechanics.offaxis import finite_panel_deficit, shear_spring, shear_springs
 from corrugate.mechanics.profiles import profile_moduli
-from corrugate.solver.interval import Interval
+from corrugate.solver.interval import Interval, number
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.tables import RangeTable, Tables
 
@@ -69,7 +69,7 @@ def layer_springs(
     # closed forms, another profile's Xia general theory, corrugate.mechanics.profiles)
     kind = problem.profile_kind
     zz = kind.of_half(Wi, alpha * 0.5)
-    mod = profile_moduli(zz, float(m.E), float(m.nu), float(t), problem.model)
+    mod = profile_moduli(zz, number(m.E), float(m.nu), number(t), problem.model)
     q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
     if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
         pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))
@@ -84,9 +84,9 @@ def layer_springs(
         Fmin = tables.Fmin_x if axis == "x" else tables.Fmin_y  # built only with holes
         pq_par, pq_ser = _hole_pq_bounds(problem, n, (p_lo, p_hi), S, (q_lo, q_hi), Fmin, pq, axis)
     ratio = zz.plan_ratio  # pitch / developed: s = sin(alpha/2) for the zig-zag
-    K_T, D_T = shear_springs(float(m.E), float(m.nu), float(t), ratio, pq_par)
+    K_T, D_T = shear_springs(number(m.E), float(m.nu), number(t), ratio, pq_par)
     # c^2 / s falls as alpha grows: one interval each (c and s are monotone on the box)
-    V_S = shear_spring(float(m.E), float(m.nu), float(t), ratio, zz.web2, pq_par)
+    V_S = shear_spring(number(m.E), float(m.nu), number(t), ratio, zz.web2, pq_par)
     d_lo, d_hi = finite_panel_deficit(n[1]), finite_panel_deficit(n[0])  # falls with n
     return Springs(
         Ecx * t / pq_ser,

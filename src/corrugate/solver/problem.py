@@ -44,6 +44,7 @@ from corrugate.solver.quantity import (
     W_MIN,
     Quantity,
 )
+from corrugate.solver.worst_case import NOMINAL, WorstCase
 from corrugate.spec.schema import PURE, STIFFNESS_KINDS, MaterialSpec, Spec, SpecError
 
 __all__ = [
@@ -180,6 +181,9 @@ class Problem:
     # checked on the answer only (corrugate.solver.validity)
     trust: str = "certified"
     ranges: tuple[Constraint, ...] = ()
+    # the worst-case tolerances its certificate covers (solver.worst_case, docs/tolerances.md;
+    # nominal unless the spec's [tolerances], whose defaults are not nominal, says otherwise)
+    tolerances: WorstCase = NOMINAL
 
     @property
     def quantities(self) -> tuple[Quantity, ...]:
@@ -361,7 +365,17 @@ class Problem:
             joint=_joint(spec.joint, layout),
             trust=spec.trust,
             ranges=tuple(ranges),
+            tolerances=_tolerances(spec),
         )
+
+
+def _tolerances(spec: Spec) -> WorstCase:
+    """The worst-case tolerances of ``spec`` (docs/tolerances.md): its ``[tolerances]``, whose
+    defaults apply unless it has a ``[robust]`` table (the probabilistic alternative) and no
+    ``[tolerances]`` of its own (then nominal)."""
+    if spec.robust is not None and "tolerances" not in spec.model_fields_set:
+        return NOMINAL
+    return WorstCase.of(spec.tolerances)
 
 
 def _sustained(where: str, q: Quantity, duration: float | None, cands: list[Candidate]) -> Quantity:

@@ -31,6 +31,7 @@ from corrugate.solver import (  # noqa: F401  (they register the kinds)
     sizes,
     stiffness,
     sustained,
+    tolerance_box,
     validity,
 )
 from corrugate.solver.context import AtPoints, OverBoxes, layer_corner
@@ -60,7 +61,13 @@ def point_values(
     """Exact values of the quantities :func:`reported` for ``problem`` at the points ``x``
     (arrays over the points) on sheets (c1, c2), each by its evaluator."""
     at = AtPoints(problem, c1, c2, x, tables)
-    return {q: at.value(q) for q in reported(problem)}
+    out = {q: at.value(q) for q in reported(problem)}
+    covered = [q for q in problem.quantities if tolerance_box.covered(problem, q)]
+    if covered:  # their worst case over the tolerance box (docs/tolerances.md)
+        tol = tolerance_box.tolerance_boxes(problem, c1, c2, x, x, tables)
+        for q in covered:
+            out[q] = np.asarray(tol.bounds(q)[0])
+    return out
 
 
 def box_bounds(
@@ -75,7 +82,17 @@ def box_bounds(
     """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi] (``lo is hi``:
     the values at points, each computed once), each by its evaluator, in a fixed order."""
     over = OverBoxes(problem, c1, c2, lo, hi, tables)
-    return {q: over.bounds(q) for q in sorted(quantities, key=_order)}
+    tol: tolerance_box.ToleranceBounds | None = None
+    out: Bounds = {}
+    for q in sorted(quantities, key=_order):
+        if not tolerance_box.covered(problem, q):
+            out[q] = over.bounds(q)
+            continue
+        if tol is None:  # the boxes widened by the tolerances (docs/tolerances.md)
+            tol = tolerance_box.tolerance_boxes(problem, c1, c2, lo, hi, tables)
+        low, high = tol.bounds(q)
+        out[q] = (low, low) if over.point else (low, high)
+    return out
 
 
 def _order(q: Quantity) -> tuple[bool, str, float, str, str, float]:

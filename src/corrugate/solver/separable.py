@@ -149,6 +149,7 @@ def applies(problem: Problem) -> bool:
         or problem.joint != "none"
         or problem.objective.quantity != MASS
         or problem.objective.sense != "min"
+        or not problem.tolerances.nominal  # its formulas are the nominal point model's
     ):
         return False
     for c in problem.constraints:

@@ -244,7 +244,10 @@ class Solution:
         bending, free sides; deflection 0.94 mm <= 1 mm under 10 N in three-point bending over
         120 mm, free sides``."""
         p = self.problem
-        head = f"{'certified' if self.certified else 'not certified'} under the {p.model} model"
+        head = "certified" if self.certified else "not certified"
+        if not p.tolerances.nominal:  # every directional bound over the tolerance box
+            head += f" {p.tolerances.sentence}"
+        head += f" under the {p.model} model"
         if self.extrapolated:
             head = (
                 f"extrapolated, not certified: optimal under the {p.model} model outside the "
@@ -339,6 +342,7 @@ class Solution:
             "status": self.status,
             "certified": self.certified,
             "certificate": self.certificate,
+            "tolerances": p.tolerances.as_dict(),
             "gap": self.gap if math.isfinite(self.gap) else None,  # JSON: null, unbounded
             "model": p.model,
             "objective": {

@@ -47,7 +47,7 @@ from corrugate.mechanics.load_cases import (
 from corrugate.mechanics.offaxis import _cs
 from corrugate.solver.context import AtPoints, Columns, OverBoxes, column
 from corrugate.solver.evaluator import Evaluator, Pair, register
-from corrugate.solver.interval import Interval
+from corrugate.solver.interval import Interval, number
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import STIFFNESS, Quantity
 
@@ -163,6 +163,11 @@ def _buckling_at(at: AtPoints, q: Quantity) -> FloatArray:
     )[:, 0]
 
 
+def _f64(x: Any) -> Any:
+    """A sheet's E or t as a float64, or its :class:`~.interval.Interval` over the tolerances."""
+    return x if isinstance(x, Interval) else np.float64(x)
+
+
 def _buckling_over(over: OverBoxes, q: Quantity) -> Pair:
     sp1, sp2 = over.springs
     along, across, b, m = (sp1, sp2, 0, over.c1) if q.eta == 0.0 else (sp2, sp1, 1, over.c2)
@@ -170,9 +175,7 @@ def _buckling_over(over: OverBoxes, q: Quantity) -> Pair:
     nb = Interval(over.lo.layer(b).n, over.hi.layer(b).n)
     mat = m.material
     v = (
-        buckling_scale(
-            np.float64(mat.E), np.float64(mat.nu), np.float64(m.t), Wb, nb, along.K_S, across.K_C
-        )
+        buckling_scale(_f64(mat.E), np.float64(mat.nu), _f64(m.t), Wb, nb, along.K_S, across.K_C)
         * K_SIMPLE_FREE
     )
     return _clamped(v)
@@ -284,12 +287,12 @@ def _modes_over(over: OverBoxes, q: Quantity, base: Any, whole: Any, band: Any) 
     if band is not None:
         _, depth = over.walls(q.eta)
         m1 = c1.material
-        walls = Band(float(m1.E), float(m1.nu), float(c1.t), depth, _allowables(c1, c1, 0)[0])
+        walls = Band(number(m1.E), float(m1.nu), number(c1.t), depth, _allowables(c1, c1, 0)[0])
     modes = capacity_modes(
         form,
         (sp[0], sp[1]),
-        (float(cand[0].material.E), float(cand[1].material.E)),
-        (float(cand[0].t), float(cand[1].t)),
+        (number(cand[0].material.E), number(cand[1].material.E)),
+        (number(cand[0].t), number(cand[1].t)),
         float(cand[0].material.nu),
         Interval(over.lo.layer(along).W, over.hi.layer(along).W),
         Interval(over.lo.layer(along).n, over.hi.layer(along).n),

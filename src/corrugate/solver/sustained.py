@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 
 from corrugate.solver.context import AtPoints, OverBoxes
 from corrugate.solver.evaluator import Evaluator, Pair, register_sustained
+from corrugate.solver.interval import Interval
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import Quantity
@@ -40,9 +41,13 @@ def short_term(q: Quantity) -> Quantity:
 
 
 def held(c: Candidate, hours: float) -> Candidate:
-    """The sheet ``c`` with its E (MPa) replaced by its creep modulus after ``hours``."""
+    """The sheet ``c`` with its E (MPa) replaced by its creep modulus after ``hours`` (an
+    interval of the same relative width when E is one: a sheet over worst-case tolerances)."""
     m = c.material
-    return replace(c, material=replace(m, E=m.creep_modulus(hours)))
+    Ec: Any = m.creep_modulus(hours)
+    if isinstance(m.E, Interval):  # E over worst-case tolerances (tolerance_box): E_c likewise
+        Ec = Interval(Ec * m.E.lo / m.E.mid, Ec * m.E.hi / m.E.mid)
+    return replace(c, material=replace(m, E=Ec))
 
 
 def _ratio(c: Candidate, hours: float) -> float:

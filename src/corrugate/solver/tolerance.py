@@ -22,6 +22,7 @@ from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import LX, LY, MASS, THICKNESS, Quantity
+from corrugate.solver.worst_case import NOMINAL
 
 __all__ = ["QuantityStats", "ToleranceReport", "Tolerances", "monte_carlo"]
 
@@ -96,6 +97,9 @@ def monte_carlo(
     """Sample ``samples`` perturbed copies of ``design`` (see the module docstring) and check
     them against ``problem``'s constraints."""
     a = design
+    # each sample is one part, evaluated at its own point: its nominal values (a certificate's
+    # worst case over the tolerance box is not this, solver.tolerance_box)
+    problem = replace(problem, tolerances=NOMINAL)
     rng = np.random.default_rng(seed)
     N = samples
     c1, c2 = (Candidate(layer.material, layer.t) for layer in a.layers)

@@ -223,6 +223,24 @@ _STATIC: dict[str, KeyDoc] = {
     "robust.E": KeyDoc("", "Relative one-sigma tolerance of E (default 10 %)."),
     "robust.samples": KeyDoc("", "Monte Carlo samples (default 4000)."),
     "robust.seed": KeyDoc("", "Seed of the random samples (default 0)."),
+    "tolerances": KeyDoc(
+        "",
+        "Worst-case half-widths the certificate covers (a table; docs/tolerances.md), or "
+        "'none' for the nominal certificate (the paper's reproduction). Default: the table's "
+        "defaults; a spec with [robust] and no [tolerances] is nominal.",
+    ),
+    "tolerances.alpha": KeyDoc(
+        "deg", "Fold angle, each layer (default 3 deg: hand folding, a stated assumption)."
+    ),
+    "tolerances.W": KeyDoc(
+        "mm", "Facet width, each layer (default 0.1 mm: a hobby cutter, a stated assumption)."
+    ),
+    "tolerances.t": KeyDoc(
+        "", "Relative sheet thickness (default 5 %: a datasheet's, a stated assumption)."
+    ),
+    "tolerances.E": KeyDoc(
+        "", "Relative Young's modulus (default 10 %: a datasheet's, a stated assumption)."
+    ),
 }
 for _r in ("side", "diameter", "side_x", "side_y", "thickness"):
     _STATIC[f"constraints.{_r}.min"] = KeyDoc("mm", "Least value.")
@@ -434,6 +452,8 @@ _NUMBERS = {
     "robust.E",
     "robust.samples",
     "robust.seed",
+    "tolerances.t",
+    "tolerances.E",
     "material.nu",
     "materials[].nu",
 }
@@ -555,6 +575,9 @@ def json_schema() -> dict[str, Any]:
                 describe(defs[ref].get("properties", {}), f"{path}[]." if many else f"{path}.")
 
     describe(schema["properties"], "")
+    tol = schema["properties"].get("tolerances", {})
+    if "$ref" in tol:  # a table, or "none" (the nominal certificate)
+        tol["anyOf"] = [{"$ref": tol.pop("$ref")}, {"type": "string", "enum": ["none"]}]
     schema = _widen(schema, docs, "")
     schema["$schema"] = "https://json-schema.org/draft/2020-12/schema"
     schema["title"] = "corrugate design spec"

@@ -87,6 +87,7 @@ from corrugate.names import (
 )
 
 __all__ = [
+    "NO_TOLERANCES",
     "PLAIN_UNITS",
     "STIFFNESS_KINDS",
     "ConstraintsSpec",
@@ -100,6 +101,7 @@ __all__ = [
     "Spec",
     "SpecError",
     "StiffnessSpec",
+    "TolerancesSpec",
     "Variable",
     "VariablesSpec",
     "load_spec",
@@ -731,6 +733,49 @@ class RobustSpec(_Strict):
     seed: Annotated[int, BeforeValidator(_counter("seed", "seed"))] = 0
 
 
+class TolerancesSpec(_Strict):
+    """Worst-case half-widths the certificate covers (docs/tolerances.md): every part whose fold
+    angles are within +-``alpha`` (deg) and facet widths within +-``W`` (mm) of the design's,
+    on a sheet whose thickness and Young's modulus are within +-``t`` and +-``E`` (relative) of
+    the nominal ones, meets every behavioural bound. The defaults describe hand folding on a
+    hobby cutter with a datasheet's sheet (each a stated assumption, docs/tolerances.md);
+    ``tolerances = "none"`` (all zero) is the nominal certificate of the paper's reproduction."""
+
+    alpha: Annotated[float, BeforeValidator(_limited("alpha_worst", "deg"))] = 3.0
+    W: Annotated[float, BeforeValidator(_limited("W_worst", "mm"))] = 0.1
+    t: Fraction = 0.05
+    E: Fraction = 0.10
+
+    @property
+    def nominal(self) -> bool:
+        """Whether every half-width is 0 (the nominal certificate)."""
+        return not (self.alpha or self.W or self.t or self.E)
+
+
+#: ``tolerances = "none"``: the nominal certificate (every half-width 0).
+NO_TOLERANCES = TolerancesSpec(alpha=0.0, W=0.0, t=0.0, E=0.0)
+
+
+def _tolerances(value: Any) -> Any:
+    """``"none"`` (any case) as :data:`NO_TOLERANCES`; a table as itself (validated by
+    :class:`TolerancesSpec`); anything else refused in one line."""
+    if isinstance(value, str) and value.strip().lower() == "none":
+        return NO_TOLERANCES
+    if not isinstance(value, Mapping | TolerancesSpec):
+        raise PydanticCustomError(
+            "quantity",
+            "{reason}",
+            {
+                "reason": "is not a table or 'none'",
+                "allowed": "a table { alpha, W, t, E } or 'none'",
+            },
+        )
+    return value
+
+
+Tolerances = Annotated[TolerancesSpec, BeforeValidator(_tolerances)]
+
+
 SafetyFactor = Annotated[
     float, BeforeValidator(_quantity("dimensionless", lo=1.0, lo_open=False, hi=100.0, shown=""))
 ]
@@ -806,6 +851,7 @@ class Spec(_Strict):
     constraints: ConstraintsSpec = ConstraintsSpec()
     objective: ObjectiveSpec = ObjectiveSpec()
     robust: RobustSpec | None = None
+    tolerances: Tolerances = TolerancesSpec()
     safety_factor: SafetyFactor = DEFAULT_SAFETY_FACTOR
     joint: Literal["none", "band-edges", "band-flanges"] = "none"
     fabrication: FabricationSpec = FabricationSpec()

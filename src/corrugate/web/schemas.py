@@ -203,6 +203,11 @@ class DesignBody(OutputBody):
     )
     objective: Any = Field(None, description="{minimize = 'mass'} or {maximize, eta}.")
     robust: Any = Field(None, description="Tolerances for a robust design. " + _SPEC_KEY)
+    tolerances: Any = Field(
+        None,
+        description="Worst-case tolerances the certificate covers ({alpha, W, t, E}) or 'none'. "
+        + _SPEC_KEY,
+    )
 
 
 class SpecFileBody(BaseModel):

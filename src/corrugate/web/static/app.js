@@ -817,9 +817,10 @@ function bulletList(list, items, empty) {
 function showDesign(d) {
   const found = d.design !== null;
   const extrapolated = (d.extrapolated || []).length > 0;
-  const cert = extrapolated
+  let cert = extrapolated
     ? `extrapolated, not certified: outside the validated range (${d.extrapolated.join('; ')})`
     : (d.certified ? 'certified' : 'not certified');
+  if (!extrapolated && d.tolerances && !d.tolerances.nominal) cert += ` ${d.tolerances.covers}`;
   $('d-verdict').textContent = `${d.name}: ${d.status} (${cert}), model ${d.model}`;
   $('d-verdict').dataset.status = d.status;
   $('d-found').hidden = !found;

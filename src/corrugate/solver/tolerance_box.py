@@ -1,0 +1,219 @@
+"""Bounds of the directional quantities over the worst-case tolerance box (docs/tolerances.md).
+
+With a problem's :class:`~.worst_case.WorstCase` tolerances (fold angle +-da deg, facet width
++-dW mm, thickness and Young's modulus +-dt, +-dE relative), the value the solver certifies of
+a directional quantity q (a stiffness, a load case's P / delta or capacity, a buckling load, the
+panel's length: every such constraint is a lower bound, ``Problem.from_spec``) at a design x is
+
+    G(x) = the lower bound of q over the tolerance box T(x),
+
+T(x) the designs with each layer's W in [W - dW, W + dW] and alpha in [alpha - da, alpha + da]
+(each layer on its own: identical layers are bounded as two independent layers of one sheet),
+n exact, and sheets whose E and t are the intervals [E (1 - dE), E (1 + dE)] and
+[t (1 - dt), t (1 + dt)]. It is computed by the quantity's own bounds over boxes
+(:class:`~.context.OverBoxes`, the interval arithmetic of :mod:`~.interval_springs` with E and t
+as :class:`~.interval.Interval` values), so G(x) <= q(x') for every x' in T(x): a design with
+G(x) >= bound meets the bound at every corner of its tolerance box (and everywhere inside).
+
+Over a search box B the lower bound of G is that of q over B widened by the tolerances (the
+enclosure over B + T contains every T(x) of x in B: inclusion isotonicity). Its upper bound is
+the least of that enclosure's upper bound and, when B is at most 2 d wide in every W and alpha
+and holds one n, the lower bound over the inner box [hi - d, lo + d], which every T(x) of x in B
+contains, so it is at least every G(x) and closes on G as B shrinks (without it, boxes near a
+bound would never close on a continuous variable). At a point box both are G(x) itself. The
+thickness's interval is cut into :data:`T_PIECES` pieces at points and inner boxes. The sizes,
+the mass and the making stay nominal (docs/tolerances.md says why).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from corrugate.solver.context import OverBoxes
+from corrugate.solver.interval import Interval
+from corrugate.solver.points import DesignPoints, LayerPoints
+from corrugate.solver.problem import Candidate, Problem
+from corrugate.solver.quantity import Quantity
+from corrugate.solver.tables import Tables
+from corrugate.solver.worst_case import WorstCase
+
+__all__ = ["T_PIECES", "ToleranceBounds", "covered", "sheet", "tolerance_boxes", "widened"]
+
+FloatArray = NDArray[np.float64]
+
+#: The fold angles a widened box stays within (deg): the zig-zag's 0 < alpha < 180.
+_ALPHA_MIN, _ALPHA_MAX = 1e-3, 180.0 - 1e-3
+
+
+def covered(problem: Problem, q: Quantity) -> bool:
+    """Whether ``q`` is bounded over the tolerance box (a directional quantity under
+    tolerances that are not nominal)."""
+    return q.eta is not None and not problem.tolerances.nominal
+
+
+def sheet(c: Candidate, tol: WorstCase, pieces: int = 1, rows: int = 1) -> Candidate:
+    """The sheet ``c`` with E (MPa) and t (mm) as intervals over the tolerances (floats when a
+    half-width is 0); with ``pieces`` > 1, t's interval cut into that many equal pieces, each
+    repeated for ``rows`` boxes (an array of ``pieces * rows`` intervals, piece by piece)."""
+    m = c.material
+    E = Interval(m.E * (1 - tol.E), m.E * (1 + tol.E)) if tol.E else m.E
+    t: object = c.t
+    if tol.t:
+        edges = np.linspace(c.t * (1 - tol.t), c.t * (1 + tol.t), pieces + 1)
+        t = Interval(np.repeat(edges[:-1], rows), np.repeat(edges[1:], rows))
+        if pieces == 1 and rows == 1:
+            t = Interval(float(edges[0]), float(edges[1]))
+    return replace(c, material=replace(m, E=E), t=t)  # type: ignore[arg-type]
+
+
+#: The least half-width of a continuous W or alpha, relative to its range: with a zero
+#: tolerance on a continuous variable the search's boxes could never close (the upper bound
+#: over a box is the inner box's, module docstring), so it covers that much more.
+_TINY = 1e-9
+
+
+def half_widths(problem: Problem) -> tuple[float, float]:
+    """The half-widths of W (mm) and alpha (deg) the bounds use: the tolerances', at least
+    :data:`_TINY` of a continuous variable's range."""
+    tol = problem.tolerances
+    dW, da = tol.W, tol.alpha
+    if not dW and not problem.W.gridded:
+        dW = _TINY * (problem.W.hi - problem.W.lo)
+    if not da and not problem.alpha.gridded:
+        da = _TINY * (problem.alpha.hi - problem.alpha.lo)
+    return dW, da
+
+
+def _clip(W: FloatArray, a: FloatArray) -> tuple[FloatArray, FloatArray]:
+    # a facet width stays positive (W >= min_facet >> dW in practice), 0 < alpha < 180
+    return np.maximum(W, 1e-6), np.clip(a, _ALPHA_MIN, _ALPHA_MAX)
+
+
+def widened(
+    problem: Problem, lo: DesignPoints, hi: DesignPoints, inner: bool = False
+) -> tuple[DesignPoints, DesignPoints]:
+    """The boxes [lo, hi] widened by the tolerances of ``problem``, every layer stored (so
+    identical layers vary independently); ``inner``: the boxes every tolerance box of a point
+    of [lo, hi] contains, [hi - d, lo + d] (n one value, widths at most 2 d)."""
+    dW, da = half_widths(problem)
+    count = lo.count
+    lows, highs = [], []
+    for i in range(count):
+        a, b = lo.layer(i), hi.layer(i)
+        aW, bW = np.asarray(a.W, np.float64), np.asarray(b.W, np.float64)
+        aa, ba = np.asarray(a.alpha, np.float64), np.asarray(b.alpha, np.float64)
+        n = np.asarray(a.n, np.float64)
+        low = _clip(bW - dW, ba - da) if inner else _clip(aW - dW, aa - da)
+        high = _clip(aW + dW, aa + da) if inner else _clip(bW + dW, ba + da)
+        lows.append(LayerPoints(n, *low))
+        highs.append(LayerPoints(n if inner else np.asarray(b.n, np.float64), *high))
+    return DesignPoints(tuple(lows), count), DesignPoints(tuple(highs), count)
+
+
+def _inner_rows(problem: Problem, lo: DesignPoints, hi: DesignPoints) -> NDArray[np.intp]:
+    """The boxes whose inner box exists: n one value and W, alpha at most 2 d wide."""
+    dW, da = half_widths(problem)
+    ok = np.ones(len(lo), dtype=bool)
+    for i in range(lo.count):
+        a, b = lo.layer(i), hi.layer(i)
+        ok &= np.asarray(a.n) == np.asarray(b.n)
+        ok &= np.asarray(b.W, np.float64) - np.asarray(a.W, np.float64) <= 2 * dW
+        ok &= np.asarray(b.alpha, np.float64) - np.asarray(a.alpha, np.float64) <= 2 * da
+    return np.flatnonzero(ok)
+
+
+#: The pieces the thickness interval is cut into at points (their worst case is the least of
+#: the pieces'): t appears in many terms of the springs (t and t^3), so one interval
+#: over-reaches (docs/tolerances.md gives the measured effect); boxes take it whole.
+T_PIECES = 8
+
+
+class _Pieces:
+    """The bounds over the boxes [lo, hi] on the sheets' E and t intervals, t cut in
+    ``pieces``: the least lower and the greatest upper bound of the pieces."""
+
+    def __init__(
+        self,
+        problem: Problem,
+        c1: Candidate,
+        c2: Candidate,
+        lo: DesignPoints,
+        hi: DesignPoints,
+        tables: Tables,
+        pieces: int,
+    ) -> None:
+        tol = problem.tolerances
+        k = len(lo)
+        self.pieces, self.rows = pieces, k
+        if pieces > 1:  # every box once per piece of t, piece by piece
+            rep = np.tile(np.arange(k), pieces)
+            lo, hi = lo.take(rep), hi.take(rep)
+        s1 = sheet(c1, tol, pieces, k)
+        s2 = s1 if c2 == c1 else sheet(c2, tol, pieces, k)
+        free = replace(problem, identical=False) if problem.identical else problem
+        self.over = OverBoxes(free, s1, s2, lo, hi, tables)
+
+    def bounds(self, q: Quantity) -> tuple[FloatArray, FloatArray]:
+        low, high = self.over.bounds(q)
+        size = self.pieces * self.rows
+        shape = (self.pieces, self.rows)
+        low = np.broadcast_to(np.asarray(low, np.float64), (size,)).reshape(shape)
+        high = np.broadcast_to(np.asarray(high, np.float64), (size,)).reshape(shape)
+        return low.min(axis=0), high.max(axis=0)
+
+
+class ToleranceBounds:
+    """The certified value's bounds over the boxes [lo, hi] (``lo is hi``: its value at
+    points), module docstring: below, the bound over the boxes widened by the tolerances (t
+    whole); above, the least of that box's upper bound and, where the inner box exists, the
+    inner box's lower bound (t in pieces), which every point's certified value is at most and
+    which closes on it as the box shrinks."""
+
+    def __init__(
+        self,
+        problem: Problem,
+        c1: Candidate,
+        c2: Candidate,
+        lo: DesignPoints,
+        hi: DesignPoints,
+        tables: Tables,
+    ) -> None:
+        self.point = lo is hi
+        pieces = T_PIECES if problem.tolerances.t else 1
+        wlo, whi = widened(problem, lo, hi)
+        self.outer = _Pieces(problem, c1, c2, wlo, whi, tables, pieces if self.point else 1)
+        self.inner: _Pieces | None = None
+        self.sel = np.zeros(0, dtype=np.intp)
+        if not self.point:
+            self.sel = _inner_rows(problem, lo, hi)
+            if self.sel.size:
+                ilo, ihi = widened(problem, lo.take(self.sel), hi.take(self.sel), inner=True)
+                self.inner = _Pieces(problem, c1, c2, ilo, ihi, tables, pieces)
+
+    def bounds(self, q: Quantity) -> tuple[FloatArray, FloatArray]:
+        """Lower and upper bounds of ``q``'s certified value over the boxes (arrays over the
+        boxes; at points both its value)."""
+        low, high = self.outer.bounds(q)
+        if self.point:
+            return low, low
+        if self.inner is not None:
+            high = high.copy()
+            high[self.sel] = np.minimum(high[self.sel], self.inner.bounds(q)[0])
+        return low, high
+
+
+def tolerance_boxes(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    lo: DesignPoints,
+    hi: DesignPoints,
+    tables: Tables,
+) -> ToleranceBounds:
+    """The boxes [lo, hi] (``lo is hi``: points) widened by the tolerances, on sheets whose E
+    and t are intervals (one object per distinct sheet), with identical layers bounded as
+    independent ones (module docstring)."""
+    return ToleranceBounds(problem, c1, c2, lo, hi, tables)
