@@ -92,7 +92,7 @@ from corrugate.fea.ccx import FrdStresses, SolverError, parse_frd_stresses, run_
 from corrugate.fea.connector_band import Bond, band_shell
 from corrugate.fea.cuts import cut_holes, cut_outline
 from corrugate.fea.deck import DeckInfo, mesh_lines
-from corrugate.fea.fixtures import Fixture, Part, get_fixture
+from corrugate.fea.fixtures import Fixture, Part, fixtures, get_fixture
 from corrugate.fea.shells import (
     Shell,
     check_shift,
@@ -101,6 +101,7 @@ from corrugate.fea.shells import (
     principal_axis,
     specimen,
 )
+from corrugate.fea.stations import on_stations
 from corrugate.fea.steps import STATIC, BoundaryItem, LinearBuckling, Step
 from corrugate.geometry.layer import Assembly
 
@@ -305,13 +306,16 @@ def _decks(
     # the specimen's length along eta (the span); refuses what the FE cannot model
     L_load = specimen(assembly, eta_deg)[1]
     short = span is not None and abs(span - L_load) > 1e-9 * L_load
-    if span is not None and (
-        not fixture.takes_span or not math.isfinite(span) or not 0 < span <= L_load * (1 + 1e-9)
-    ):
+    if span is not None and not fixture.takes_span:
         raise InputError(
             "span",
             f"{span:g} mm",
-            f"0 < span <= {L_load:.6g} mm (the specimen's length) for 3-point bending",
+            f"none for {fixture.label} (its fixture acts on the specimen's ends); a span for "
+            + ", ".join(f.label for f in fixtures("coupon") if f.takes_span),
+        )
+    if span is not None and (not math.isfinite(span) or not 0 < span <= L_load * (1 + 1e-9)):
+        raise InputError(
+            "span", f"{span:g} mm", f"0 < span <= {L_load:.6g} mm (the specimen's length)"
         )
     if mesher not in ("auto", "structured", "gmsh"):
         raise InputError("mesher", mesher, "auto, structured or gmsh")
@@ -322,20 +326,18 @@ def _decks(
     Lx, Ly = a.Lx, a.Ly
     tol = 1e-7 * max(Lx, Ly)
     principal = principal_axis(eta_deg)
-    use_gmsh = mesher == "gmsh" or (mesher == "auto" and (principal is None or short))
-    if short and not use_gmsh:
-        raise InputError("mesher", mesher, "auto or gmsh for a span shorter than the specimen")
+    use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
     if use_gmsh and fixture.structured_only:
         raise InputError(
             "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
         )
     if use_gmsh:
-        if connectors and short:  # the band is modelled on the structured mesh only
+        if connectors and principal is not None:
             raise InputError(
-                "span",
-                f"{span:g} mm",
-                f"the panel's length, {L_load:g} mm, with connectors (the band is modelled on "
-                "the structured mesh only, whose supports are the panel's ends)",
+                "mesher",
+                mesher,
+                "auto or structured with connectors (the band is modelled on the structured "
+                "mesh only)",
             )
         if connectors:
             raise InputError(
@@ -376,6 +378,10 @@ def _decks(
         )
         if connectors:
             shells.append(band_shell(a, mesh.along, shells, tol, bond))
+        if short:  # node lines at the fixture's stations inside the panel
+            shells = on_stations(
+                a, shells, axis, fixture.stations(L_load, span), tol, connectors, mesh.along
+            )
     if a.layout.name == "polygon":  # cut to the outline (docs/fea.md 2.8)
         if use_gmsh or connectors:
             raise InputError(
