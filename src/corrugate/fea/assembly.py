@@ -217,7 +217,7 @@ def _deck_text(
 ) -> tuple[str, DeckInfo]:
     """The deck of :func:`assembly_deck` for the parts ``parts`` (part number k, 1-based, and its
     shell): all of them, or one layer alone when the parts are not connected; ``span``: the
-    3-point supports' spacing when shorter than the specimen (None: at its ends). The mesh
+    fixture's span when shorter than the specimen (None: at its ends). The mesh
     (:func:`corrugate.fea.deck.mesh_lines`), then the fixture on each part, then the step."""
     heading = f"corrugate OADLC assembly, {fixture.name} ({step.name}) at eta = {eta_deg:g} deg"
     lines, elements = mesh_lines(parts, heading + " (S8R shells)")
@@ -456,10 +456,13 @@ def assembly_deck(
     same.
     ``shift`` moves the zig-zags of a gmsh-meshed coupon by that fraction of each layer's pitch
     (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0.
-    ``span`` (mm, 3-point bending only; default the specimen's length): line supports at
-    (L - span) / 2 and (L + span) / 2 of the specimen's length L, symmetric about the load line,
-    the panel overhanging them; a span shorter than L is meshed by gmsh with the support lines
-    as element edges."""
+    ``span`` (mm; three-point, four-point and cantilever bending; default the specimen's
+    length L): line supports at (L - span) / 2 and (L + span) / 2, symmetric about mid-span, the
+    panel overhanging them (four-point: its load and gauge lines at their fractions of the
+    span); the cantilever's clamp holds the panel up to L - span, the free end at L. Along a
+    crease direction the structured mesh moves its nearest node lines onto these stations
+    (:mod:`corrugate.fea.stations`; the band too), off them the gmsh coupon has them as
+    element edges (docs/fea.md 2.1)."""
     return _decks(
         assembly,
         test,
@@ -510,7 +513,7 @@ def solve_assembly(
     step, whose reference node ties the layers) and no ``stresses`` are asked for; True where
     that is not possible is refused (:class:`InputError`).
 
-    ``span``: 3-point bending over supports that far apart (:func:`assembly_deck`)."""
+    ``span``: bending over supports (a free length) that far apart (:func:`assembly_deck`)."""
     mesh = mesh or AssemblyMesh()
     fixture = get_fixture(test, _KINDS, "test")
     buckling = isinstance(step, LinearBuckling)

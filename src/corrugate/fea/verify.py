@@ -138,8 +138,8 @@ class Twin:
     is read (``read``: ``K``, ``D``, ``EI``, ``k`` (P / delta, N/mm), ``pure-D``, ``pure-EI``
     (the 4-point gauge), ``Pb``), with the test's ``a`` coefficient for a bending test's
     apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
-    row should add; ``span`` (mm): 3-point bending over supports that far apart, inside a longer
-    panel (None: the panel's length, supported at its ends); ``scale`` multiplies a load
+    row should add; ``span`` (mm): a bending test over supports (a cantilever's free length) that
+    far apart, inside a longer panel (None: the panel's length, supported at its ends); ``scale`` multiplies a load
     capacity's FE load (``Pmax``: 1 / the safety factor)."""
 
     test: str
