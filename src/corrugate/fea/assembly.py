@@ -59,7 +59,10 @@ Model (every choice stated; docs/theory.md section 6):
   (EI = P span^3 / (48 delta), D = EI / span), ``four-point`` (the pure-bending gauge between the
   load lines, EI = P span^3 / (1024 Delta)), ``cantilever`` (EI = P span^3 / (3 delta)) and
   ``frame`` (platens on all four edges; :mod:`corrugate.fea.frame` makes K_frame(eta) of two
-  runs). The bending values are apparent stiffnesses, as a bench test measures them.
+  runs). The bending values are apparent stiffnesses, as a bench test measures them. A span
+  shorter than the specimen (three-point, four-point, cantilever) puts the supports (the clamp's
+  edge) inside it, the ends overhanging (held in the clamp); the structured mesh moves its
+  nearest node lines onto those stations (:mod:`corrugate.fea.stations`), the band's with them.
 * **Buckling** (any fixture with :class:`~corrugate.fea.steps.LinearBuckling`): the fixture's
   driven nodes tied (``*EQUATION``) to one reference node loaded by 1 N, and a ``*BUCKLE`` step
   (linear eigenvalue buckling about the unloaded state, 3 modes, relative accuracy 1e-6; ccx's
