@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -72,9 +73,11 @@ def test_three_point_buckling_is_the_displacement_driven_eigenproblem(
     pp = get_material("polypropylene")
     a = Assembly(Layer(16.0, 6, 90.0, pp, 0.25), Layer(5.0, 27, 120.0, pp, 0.25), Rectangle())
     mesh = AssemblyMesh(2)
-    tied = solve_assembly(a, "three-point", mesh, 0.0, span=120.0, step=LinearBuckling())
-    static = solve_assembly(a, "three-point", mesh, 0.0, span=120.0, split=False)
-    deck, _ = assembly_deck(a, "three-point", mesh, 0.0, span=120.0)
+    # the review's deck: the gmsh mesh with the support lines as element edges
+    gm: dict[str, Any] = {"span": 120.0, "mesher": "gmsh"}
+    tied = solve_assembly(a, "three-point", mesh, 0.0, step=LinearBuckling(), **gm)
+    static = solve_assembly(a, "three-point", mesh, 0.0, split=False, **gm)
+    deck, _ = assembly_deck(a, "three-point", mesh, 0.0, **gm)
     driven = deck.replace("*STATIC", "*BUCKLE\n3,1.e-6")
     factor = run_ccx(driven, tmp_path, job="driven").buckling_factors[0]
     assert tied.value() == pytest.approx(factor * static.force, rel=1e-5)

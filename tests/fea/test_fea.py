@@ -349,14 +349,17 @@ def test_mesh_and_direction_inputs_are_checked(small_assembly: Assembly) -> None
         assembly_deck(small_assembly, "platens", AssemblyMesh(2), 45.0, mesher="structured")
     with pytest.raises(InputError, match="0 or 90 deg with connectors"):
         assembly_deck(small_assembly, "platens", AssemblyMesh(2), 45.0, connectors=True)
-    # the band's supports are the panel's ends: a shorter span is refused naming the span
+    # the band is modelled on the structured mesh only: gmsh with the band is refused, naming it
     length = specimen(small_assembly, 0.0)[1]
-    with pytest.raises(
-        InputError, match=r"^span = .* allowed the panel's length, .* mm, with conn"
-    ):
+    with pytest.raises(InputError, match=r"^mesher = gmsh .* auto or structured with conn"):
         assembly_deck(
-            small_assembly, "three-point", AssemblyMesh(2), 0.0, connectors=True, span=0.9 * length
+            small_assembly, "three-point", AssemblyMesh(2), 0.0, connectors=True, mesher="gmsh"
         )
+    # a span on a fixture that takes none, and one longer than the panel, name the span
+    with pytest.raises(InputError, match=r"^span = 10 mm .* none for compression"):
+        assembly_deck(small_assembly, "platens", AssemblyMesh(2), 0.0, span=10.0)
+    with pytest.raises(InputError, match=r"^span = .* 0 < span <= .* \(the specimen's length\)"):
+        assembly_deck(small_assembly, "cantilever", AssemblyMesh(2), 0.0, span=length + 1)
     # a rectangle off-axis is the coupon of its proportions, turned to the nearer crease direction
     rect = Assembly(small_assembly.layer1, replace(small_assembly.layer2, n=5), Rectangle())
     assert specimen(rect, 30.0) == (rect.Lx, rect.Ly)

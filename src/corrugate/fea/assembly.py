@@ -59,7 +59,10 @@ Model (every choice stated; docs/theory.md section 6):
   (EI = P span^3 / (48 delta), D = EI / span), ``four-point`` (the pure-bending gauge between the
   load lines, EI = P span^3 / (1024 Delta)), ``cantilever`` (EI = P span^3 / (3 delta)) and
   ``frame`` (platens on all four edges; :mod:`corrugate.fea.frame` makes K_frame(eta) of two
-  runs). The bending values are apparent stiffnesses, as a bench test measures them.
+  runs). The bending values are apparent stiffnesses, as a bench test measures them. A span
+  shorter than the specimen (three-point, four-point, cantilever) puts the supports (the clamp's
+  edge) inside it, the ends overhanging (held in the clamp); the structured mesh moves its
+  nearest node lines onto those stations (:mod:`corrugate.fea.stations`), the band's with them.
 * **Buckling** (any fixture with :class:`~corrugate.fea.steps.LinearBuckling`): the fixture's
   driven nodes tied (``*EQUATION``) to one reference node loaded by 1 N, and a ``*BUCKLE`` step
   (linear eigenvalue buckling about the unloaded state, 3 modes, relative accuracy 1e-6; ccx's
@@ -92,7 +95,7 @@ from corrugate.fea.ccx import FrdStresses, SolverError, parse_frd_stresses, run_
 from corrugate.fea.connector_band import Bond, band_shell
 from corrugate.fea.cuts import cut_holes, cut_outline
 from corrugate.fea.deck import DeckInfo, mesh_lines
-from corrugate.fea.fixtures import Fixture, Part, get_fixture
+from corrugate.fea.fixtures import Fixture, Part, fixtures, get_fixture
 from corrugate.fea.shells import (
     Shell,
     check_shift,
@@ -101,6 +104,7 @@ from corrugate.fea.shells import (
     principal_axis,
     specimen,
 )
+from corrugate.fea.stations import on_stations
 from corrugate.fea.steps import STATIC, AnyStep, BoundaryItem, LinearBuckling, Nonlinear, Step
 from corrugate.geometry.layer import Assembly
 
@@ -216,7 +220,7 @@ def _deck_text(
 ) -> tuple[str, DeckInfo]:
     """The deck of :func:`assembly_deck` for the parts ``parts`` (part number k, 1-based, and its
     shell): all of them, or one layer alone when the parts are not connected; ``span``: the
-    3-point supports' spacing when shorter than the specimen (None: at its ends). The mesh
+    fixture's span when shorter than the specimen (None: at its ends). The mesh
     (:func:`corrugate.fea.deck.mesh_lines`), then the fixture on each part, then the step."""
     heading = f"corrugate OADLC assembly, {fixture.name} ({step.name}) at eta = {eta_deg:g} deg"
     lines, elements = mesh_lines(parts, heading + " (S8R shells)")
@@ -305,13 +309,16 @@ def _decks(
     # the specimen's length along eta (the span); refuses what the FE cannot model
     L_load = specimen(assembly, eta_deg)[1]
     short = span is not None and abs(span - L_load) > 1e-9 * L_load
-    if span is not None and (
-        not fixture.takes_span or not math.isfinite(span) or not 0 < span <= L_load * (1 + 1e-9)
-    ):
+    if span is not None and not fixture.takes_span:
         raise InputError(
             "span",
             f"{span:g} mm",
-            f"0 < span <= {L_load:.6g} mm (the specimen's length) for 3-point bending",
+            f"none for {fixture.label} (its fixture acts on the specimen's ends); a span for "
+            + ", ".join(f.label for f in fixtures("coupon") if f.takes_span),
+        )
+    if span is not None and (not math.isfinite(span) or not 0 < span <= L_load * (1 + 1e-9)):
+        raise InputError(
+            "span", f"{span:g} mm", f"0 < span <= {L_load:.6g} mm (the specimen's length)"
         )
     if mesher not in ("auto", "structured", "gmsh"):
         raise InputError("mesher", mesher, "auto, structured or gmsh")
@@ -322,20 +329,18 @@ def _decks(
     Lx, Ly = a.Lx, a.Ly
     tol = 1e-7 * max(Lx, Ly)
     principal = principal_axis(eta_deg)
-    use_gmsh = mesher == "gmsh" or (mesher == "auto" and (principal is None or short))
-    if short and not use_gmsh:
-        raise InputError("mesher", mesher, "auto or gmsh for a span shorter than the specimen")
+    use_gmsh = mesher == "gmsh" or (mesher == "auto" and principal is None)
     if use_gmsh and fixture.structured_only:
         raise InputError(
             "eta", f"{eta_deg:g} deg", "0 or 90 deg for the frame test (the layout's own edges)"
         )
     if use_gmsh:
-        if connectors and short:  # the band is modelled on the structured mesh only
+        if connectors and principal is not None:
             raise InputError(
-                "span",
-                f"{span:g} mm",
-                f"the panel's length, {L_load:g} mm, with connectors (the band is modelled on "
-                "the structured mesh only, whose supports are the panel's ends)",
+                "mesher",
+                mesher,
+                "auto or structured with connectors (the band is modelled on the structured "
+                "mesh only)",
             )
         if connectors:
             raise InputError(
@@ -376,6 +381,10 @@ def _decks(
         )
         if connectors:
             shells.append(band_shell(a, mesh.along, shells, tol, bond))
+        if short:  # node lines at the fixture's stations inside the panel
+            shells = on_stations(
+                a, shells, axis, fixture.stations(L_load, span), tol, connectors, mesh.along
+            )
     if a.layout.name == "polygon":  # cut to the outline (docs/fea.md 2.8)
         if use_gmsh or connectors:
             raise InputError(
@@ -450,10 +459,13 @@ def assembly_deck(
     same.
     ``shift`` moves the zig-zags of a gmsh-meshed coupon by that fraction of each layer's pitch
     (:func:`corrugate.fea.shells.oblique_shells`); the structured mesh takes only 0.
-    ``span`` (mm, 3-point bending only; default the specimen's length): line supports at
-    (L - span) / 2 and (L + span) / 2 of the specimen's length L, symmetric about the load line,
-    the panel overhanging them; a span shorter than L is meshed by gmsh with the support lines
-    as element edges."""
+    ``span`` (mm; three-point, four-point and cantilever bending; default the specimen's
+    length L): line supports at (L - span) / 2 and (L + span) / 2, symmetric about mid-span, the
+    panel overhanging them (four-point: its load and gauge lines at their fractions of the
+    span); the cantilever's clamp holds the panel up to L - span, the free end at L. Along a
+    crease direction the structured mesh moves its nearest node lines onto these stations
+    (:mod:`corrugate.fea.stations`; the band too), off them the gmsh coupon has them as
+    element edges (docs/fea.md 2.1)."""
     return _decks(
         assembly,
         test,
@@ -504,7 +516,7 @@ def solve_assembly(
     step, whose reference node ties the layers) and no ``stresses`` are asked for; True where
     that is not possible is refused (:class:`InputError`).
 
-    ``span``: 3-point bending over supports that far apart (:func:`assembly_deck`)."""
+    ``span``: bending over supports (a free length) that far apart (:func:`assembly_deck`)."""
     mesh = mesh or AssemblyMesh()
     fixture = get_fixture(test, _KINDS, "test")
     if isinstance(step, Nonlinear):

@@ -37,9 +37,10 @@ length (:func:`corrugate.mechanics.load_cases.apparent`), a deflection bound as 
 delta). Each twin runs on a mesh series (elements per facet, default 2 / 4 / 8), refined
 until it is shown asymptotic against its bound or ``max_mesh`` is reached
 (:func:`corrugate.fea.extrapolate.judge`); each row's verdict is one of :data:`VERDICTS`
-(holds, fails, not converged, not checked; docs/fea.md 6). What has no FE twin yet says so in
-its row and is not checked: a span other than the panel's length (the fixtures support the panel at its
-ends), D or EI in a frame, EI or a bending test's P / delta off the crease directions (the
+(holds, fails, not converged, not checked; docs/fea.md 6). A span shorter than the panel along a
+crease direction runs with the supports (the clamp) inside the panel, the ends overhanging
+(:func:`corrugate.fea.assembly.assembly_deck`). What has no FE twin yet says so in its row and
+is not checked: a span longer than the panel or off the crease directions, D or EI in a frame, EI or a bending test's P / delta off the crease directions (the
 coupon has its own span), load capacities off the crease directions, and the band joint off
 the crease directions or in a frame.
 
@@ -69,7 +70,7 @@ from corrugate.fea.assembly import (
     solve_assembly,
 )
 from corrugate.fea.extrapolate import Judgement, judge
-from corrugate.fea.fixtures import Fixture, fixture_names, get_fixture
+from corrugate.fea.fixtures import Fixture, fixture_names, fixtures, get_fixture
 from corrugate.fea.frame import FrameStiffness, solve_frame
 from corrugate.fea.outline import OutlineResult, solve_outline
 from corrugate.fea.shells import check_shift, specimen
@@ -147,8 +148,8 @@ class Twin:
     is read (``read``: ``K``, ``D``, ``EI``, ``k`` (P / delta, N/mm), ``pure-D``, ``pure-EI``
     (the 4-point gauge), ``Pb``), with the test's ``a`` coefficient for a bending test's
     apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
-    row should add; ``span`` (mm): 3-point bending over supports that far apart, inside a longer
-    panel (None: the panel's length, supported at its ends); ``scale`` multiplies a load
+    row should add; ``span`` (mm): a bending test over supports (a cantilever's free length) that
+    far apart, inside a longer panel (None: the panel's length, supported at its ends); ``scale`` multiplies a load
     capacity's FE load (``Pmax``: 1 / the safety factor)."""
 
     test: str
@@ -364,17 +365,13 @@ def twin_of(
     if connectors and (not principal or held is not None):
         return f"no FE twin yet (the band joint off the crease directions or{support.label})"
     test = q.test
-    span: float | None = None  # 3-point bending over a span shorter than the panel
+    span: float | None = None  # a bending test over a span shorter than the panel
     if q.span is not None:
         length = specimen(assembly, eta)[1]
         if abs(q.span - length) > 1e-9 * max(1.0, length):
-            three = test is not None and get_fixture(get_load_case(test).fixture).takes_span
-            if not (three and principal and q.span < length and held is None):
-                return (
-                    f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its "
-                    f"ends, {length:.6g} mm apart, or 3-point along a crease direction over a "
-                    "shorter span)"
-                )
+            takes = test is not None and get_fixture(get_load_case(test).fixture).takes_span
+            if not (takes and principal and q.span < length and held is None):
+                return f"no FE twin yet (span {q.span:.6g} mm: {_span_why(length)})"
             span = q.span
     if held is not None:  # only its own K, in its own fixture (the frame's two runs)
         if get_fixture(held.fixture).measures == "K" and (
@@ -408,6 +405,12 @@ def twin_of(
     return Twin(fx.name, eta, q.kind, a=form.a, load=load, note=note, span=span)
 
 
+def _span_why(length: float) -> str:
+    """Why a span has no FE twin: what the fixtures take."""
+    takes = ", ".join(f.label for f in fixtures("coupon") if f.takes_span)
+    return f"the FE takes a span up to the panel's length, {length:.6g} mm, in {takes} along a crease direction"
+
+
 def _capacity_twin(
     q: Quantity, assembly: Assembly, eta: float, principal: bool, note: str
 ) -> Twin | str:
@@ -428,10 +431,7 @@ def _capacity_twin(
         length = specimen(assembly, eta)[1]
         if abs(q.span - length) > 1e-9 * max(1.0, length):
             if not (fx.takes_span and q.span < length):
-                return (
-                    f"no FE twin yet (span {q.span:.6g} mm: the FE supports the panel at its "
-                    f"ends, {length:.6g} mm apart, or 3-point over a shorter span)"
-                )
+                return f"no FE twin yet (span {q.span:.6g} mm: {_span_why(length)})"
             span = q.span
     what = CAPACITY_NOTE
     return Twin(
