@@ -353,9 +353,7 @@ def test_a_warning_s_spec_table_is_printed_not_read_as_markup(cli: CliRun) -> No
     """The short-panel warning names `[[constraints.deflection]]`; rich read it as a style tag and
     printed "or a []" (found running issue 34's stubby panel)."""
     stubby = ["--W", "12", "--n", "10", "--alpha", "40", "--material", "dura-lar"]
-    code, out, _ = cli(
-        ["analyze", *stubby, "--thickness", "0.075", "--eta", "0", "--test", "three-point"]
-        + ["--load", "1N"]
-    )
+    case = ["--thickness", "0.075", "--eta", "0", "--test", "three-point", "--load", "1N"]
+    code, out, _ = cli(["analyze", *stubby, *case])
     assert code == 0
     assert "short-panel-shear" in out and "[[constraints.deflection]]" in " ".join(out.split())
