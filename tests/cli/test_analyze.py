@@ -6,6 +6,7 @@ import json
 import math
 import subprocess
 import sys
+from pathlib import Path
 from typing import TYPE_CHECKING
 
 import pytest
@@ -313,15 +314,19 @@ def test_bad_load_case_one_line_exit_2(
     assert words in lines[0], lines[0]
 
 
-def test_analyze_states_the_capacity_in_the_design_answers_words(cli: CliRun) -> None:
-    """`analyze --test --load --joint` on the chassis example's certified design states the
-    capacity and first failure in the same words as `design`'s certificate, and its --json the
-    same capacity as design.json's row (two paths: the Analysis's springs, the solver's points;
-    docs/load_cases.md 10)."""
-    from pathlib import Path
-
+def test_analyze_states_the_capacity_in_the_design_answers_words(
+    cli: CliRun, tmp_path: Path
+) -> None:
+    """`analyze --test --load --joint` on the chassis example's nominal certified design
+    (`tolerances = "none"`: analyze evaluates one part) states the capacity and first failure in
+    the same words as `design`'s certificate, and its --json the same capacity as design.json's
+    row (two paths: the Analysis's springs, the solver's points; docs/load_cases.md 10)."""
     root = Path(__file__).resolve().parents[2]
-    code, out, _ = cli(["design", str(root / "examples" / "chassis_plate.toml"), "--json"])
+    spec = tmp_path / "nominal.toml"
+    spec.write_text(
+        'tolerances = "none"\n' + (root / "examples" / "chassis_plate.toml").read_text()
+    )
+    code, out, _ = cli(["design", str(spec), "--json"])
     assert code == 0
     answer = json.loads(out)
     [row] = [c for c in answer["constraints"] if c["name"] == "constraints.deflection[0].max"]
@@ -330,7 +335,8 @@ def test_analyze_states_the_capacity_in_the_design_answers_words(cli: CliRun) ->
         "analyze",
         *("--W", str(l1["W_mm"]), "--n", str(l1["n"]), "--alpha", str(l1["alpha_deg"])),
         *("--W2", str(l2["W_mm"]), "--n2", str(l2["n"]), "--alpha2", str(l2["alpha_deg"])),
-        *("--material", "polypropylene", "--thickness", "0.3mm", "--layout", "rectangle"),
+        *("--material", "polypropylene", "--thickness", f"{l1['t_mm']}mm"),
+        *("--layout", "rectangle"),
         *("--eta", "0", "--test", "three-point", "--load", "10N", "--span", "120mm"),
         *("--joint", "band-edges"),
     ]
