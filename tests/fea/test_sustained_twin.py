@@ -9,15 +9,13 @@ from corrugate.solver import Problem, solve
 from corrugate.spec.schema import parse_spec
 
 SPEC = {
-    "joint": "band-edges",  # free outermost facets cannot hold 10 N at the safety factor
+    "joint": "band-edges",  # bonded as the shipped chassis examples (docs/load_cases.md 10)
     "material": {"name": "polycarbonate", "thickness": "0.25 mm"},
     "layout": {"shape": "square"},
     "variables": {"W": {"min": "8 mm", "max": "20 mm", "step": "1 mm"}, "n": {"min": 2, "max": 20}},
     "constraints": {
         "side": {"min": "100 mm", "max": "120 mm"},
-        "deflection": [
-            {"test": "three-point", "load": "10 N", "max": "1 mm", "duration": "1 week"}
-        ],
+        "deflection": [{"test": "three-point", "load": "2 N", "max": "1 mm", "duration": "1 week"}],
         "inplane_stiffness": [{"min": "1 N/mm", "eta": "0 deg"}],
     },
 }

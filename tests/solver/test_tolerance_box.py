@@ -33,6 +33,7 @@ ALPHA150 = ROOT / "tests" / "data" / "tolerances_alpha150.toml"
 #: brings), a buckling load, the span's length.
 _SPEC = {
     "name": "corners",
+    "tolerances": {},  # the defaults (opt-in: docs/tolerances.md)
     "layers": "independent",
     "material": {"name": "dura-lar", "thickness": "0.125 mm", "yield_strength": "50 MPa"},
     "layout": {"shape": "rectangle"},

@@ -184,6 +184,8 @@ SPEC_KEYS: dict[str, list[tuple[str, Callable[[dict[str, Any], Any], None]]]] = 
     "seed": [("robust.seed", lambda d, v: d.__setitem__("robust", {"seed": v}))],
     "W_tol": [("robust.W", lambda d, v: d.__setitem__("robust", {"W": v}))],
     "alpha_tol": [("robust.alpha", lambda d, v: d.__setitem__("robust", {"alpha": v}))],
+    "W_worst": [("tolerances.W", lambda d, v: d.__setitem__("tolerances", {"W": v}))],
+    "alpha_worst": [("tolerances.alpha", lambda d, v: d.__setitem__("tolerances", {"alpha": v}))],
 }
 
 

@@ -370,10 +370,10 @@ class Problem:
 
 
 def _tolerances(spec: Spec) -> WorstCase:
-    """The worst-case tolerances of ``spec`` (docs/tolerances.md): its ``[tolerances]``, whose
-    defaults apply unless it has a ``[robust]`` table (the probabilistic alternative) and no
-    ``[tolerances]`` of its own (then nominal)."""
-    if spec.robust is not None and "tolerances" not in spec.model_fields_set:
+    """The worst-case tolerances of ``spec`` (docs/tolerances.md): its ``[tolerances]`` (a table,
+    whose keys default to the stated half-widths, or ``"none"``); nominal without one (opt-in for
+    now: docs/tolerances.md says why)."""
+    if "tolerances" not in spec.model_fields_set:
         return NOMINAL
     return WorstCase.of(spec.tolerances)
 
