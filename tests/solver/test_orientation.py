@@ -91,3 +91,12 @@ def test_only_directions_turn() -> None:
             assert a.quantity == b.quantity
         else:
             assert b.quantity == replace(a.quantity, eta=(a.quantity.eta + 90) % 180)
+
+
+def test_a_bound_without_a_span_that_misses_its_side_is_not_an_orientation_mistake() -> None:
+    """The arm link's stiffness form asks EI(90 deg) along its 150 mm side, on purpose; the same
+    EI at 0 deg (along the 40 mm side) is met, but turning eta changes the requirement, and there
+    is no span that misses its side to say it was a mistake: no orientation entry (it was the
+    first line of that spec's diagnosis)."""
+    spec = DATA.parent / "arm_link_stiffness.toml"
+    assert orientation(Problem.from_spec(load_spec(spec))) == []
