@@ -371,10 +371,8 @@ class Problem:
 
 def _tolerances(spec: Spec) -> WorstCase:
     """The worst-case tolerances of ``spec`` (docs/tolerances.md): its ``[tolerances]`` (a table,
-    whose keys default to the stated half-widths, or ``"none"``); nominal without one (opt-in for
-    now: docs/tolerances.md says why)."""
-    if "tolerances" not in spec.model_fields_set:
-        return NOMINAL
+    whose keys default to the stated half-widths, or ``"none"``); nominal without one (the spec's
+    default, opt-in for now: docs/tolerances.md says why)."""
     return WorstCase.of(spec.tolerances)
 
 

@@ -851,7 +851,8 @@ class Spec(_Strict):
     constraints: ConstraintsSpec = ConstraintsSpec()
     objective: ObjectiveSpec = ObjectiveSpec()
     robust: RobustSpec | None = None
-    tolerances: Tolerances = TolerancesSpec()
+    # nominal unless the spec has a [tolerances] table (opt-in for now, docs/tolerances.md)
+    tolerances: Tolerances = NO_TOLERANCES
     safety_factor: SafetyFactor = DEFAULT_SAFETY_FACTOR
     joint: Literal["none", "band-edges", "band-flanges"] = "none"
     fabrication: FabricationSpec = FabricationSpec()
