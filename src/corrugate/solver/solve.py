@@ -700,9 +700,13 @@ def _capacity_quantity(problem: Problem, c: Constraint) -> Quantity | None:
     )
 
 
-def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, Capacity]:
+def _capacities(
+    problem: Problem, opt: Optimum, tables: Tables, vals: dict[Quantity, float]
+) -> dict[str, Capacity]:
     """The capacity (:class:`Capacity`) of each deflection and strength bound's load case where
-    it is modelled (along the creases): what every answer reports (docs/load_cases.md 10)."""
+    it is modelled (along the creases): what every answer reports (docs/load_cases.md 10). Its
+    modes are the nominal design's; under tolerances the load it holds is the certified one,
+    the capacity quantity's value in ``vals`` (over the tolerance box, docs/tolerances.md)."""
     from corrugate.solver.context import AtPoints
     from corrugate.solver.stiffness import capacity_modes_at
 
@@ -717,7 +721,14 @@ def _capacities(problem: Problem, opt: Optimum, tables: Tables) -> dict[str, Cap
         assert form is not None
         modes = {k: float(v[0]) for k, v in capacity_modes_at(at, q).items()}
         along = 1 if q.eta % 180 == 0 else 2
-        out[c.name] = Capacity.of(modes, problem.safety_factor, form, along, q.bearing)
+        cap = Capacity.of(modes, problem.safety_factor, form, along, q.bearing)
+        if not problem.tolerances.nominal and q in vals:
+            cap = replace(
+                cap,
+                load=min(cap.load, float(vals[q])),
+                words=f"{cap.words}, the nominal design's first mode",
+            )
+        out[c.name] = cap
     return out
 
 
@@ -818,17 +829,7 @@ def _negation(c: Constraint, problem: Problem) -> Constraint:
 
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
     vals = _values_at(problem, opt, tables)
-    capacity = _capacities(problem, opt, tables)
-    if not problem.tolerances.nominal:  # the load held is the certified one, over the tolerances
-        for c in problem.constraints:
-            q = _capacity_quantity(problem, c)
-            cap = capacity.get(c.name)
-            if cap is not None and q is not None and q in vals:
-                capacity[c.name] = replace(
-                    cap,
-                    load=min(cap.load, float(vals[q])),
-                    words=f"{cap.words}, the nominal design's first mode",
-                )
+    capacity = _capacities(problem, opt, tables, vals)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     tree = opt.tree()
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
