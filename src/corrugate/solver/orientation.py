@@ -4,8 +4,10 @@ A direction eta runs from layer 1's creases, which run along y (docs/spec.md, "L
 facet lengths" in the README): eta = 0 is along y, the panel's length there is its extent Ly
 (``side_y``), and eta = 90 deg is along x (Lx, ``side_x``). A user who puts the long side of a
 part on ``side_x`` and leaves a load case at the default eta = 0 asks for a span along the short
-side. :func:`orientation` recognises it: for a rectangle or a polygon whose spec bounds a
-directional quantity, it re-solves (a feasibility search within the running budget, stopped at
+side. :func:`orientation` recognises it: for a rectangle or a polygon with a load case whose span
+the side along its eta cannot hold but the other side can (a bound without such a span, e.g.
+an EI along the long side, is what the user asked for, and turning its eta would change the
+requirement, not fix a mistake), it re-solves (a feasibility search within the running budget, stopped at
 the first design found) the spec with every eta turned by 90 deg and, when that has no design,
 with side_x and side_y swapped. When one of them has a design, its entry comes first in the
 diagnosis (:func:`corrugate.solver.diagnosis.diagnose`) and its hint is the edit of each eta
@@ -135,43 +137,29 @@ def orientation(problem: Problem) -> list[Diagnosis]:
     has a design; none otherwise."""
     if problem.layout.name not in _TWO_SIDES:
         return []
-    directed = [c for c in problem.constraints if c.quantity.eta is not None]
-    if not directed:
+    spans = _spans(problem)  # the evidence of a mistake (module docstring)
+    if not spans:
         return []
+    directed = [c for c in problem.constraints if c.quantity.eta is not None]
     entries: dict[str, float] = {}
     for c in directed:
         entry = _entry(c)
         if entry is not None and c.quantity.eta is not None:
             entries.setdefault(entry, c.quantity.eta)
     names = tuple(c.name for c in directed)
-    rule = "eta runs from layer 1's creases (eta = 0 deg along y, 90 deg along x)"
-    spans = _spans(problem)
-    if not spans:  # no span that misses its side: turning eta would change the requirement
-        return []  # (the arm link's EI(90 deg) is met at 0 deg, along the 40 mm side)
     if _feasible(_turned(problem)):
         edits = [f'{e}.eta = "{_turned_eta(eta):g} deg"' for e, eta in entries.items()]
         hint = " and ".join(edits) if edits else None
         fix = f"set {hint}" if hint else "turn every eta by 90 deg"
-        if spans:
-            message = (
-                f"{'; '.join(spans)}: {fix} (or swap side_x and side_y); then the spec is feasible"
-            )
-        else:
-            message = (
-                f"{rule}; with every eta turned by 90 deg the spec is feasible: {fix} (or swap "
-                "side_x and side_y)"
-            )
+        message = (
+            f"{'; '.join(spans)}: {fix} (or swap side_x and side_y); then the spec is feasible"
+        )
     else:
         x, y = _range(problem, LX), _range(problem, LY)
         if x == y or not _feasible(_swapped(problem)):
             return []
         hint = f"constraints.side_x = {_range_toml(*y)} and constraints.side_y = {_range_toml(*x)}"
-        what = (
-            "; ".join(spans)
-            if spans
-            else f"{rule}; with side_x and side_y swapped the spec is feasible"
-        )
-        message = f"{what}: swap side_x and side_y ({hint})"
+        message = f"{'; '.join(spans)}: swap side_x and side_y ({hint})"
     return [
         Diagnosis(names, None, None, "", message + f"; hint: {hint}", kind="orientation", hint=hint)
     ]
