@@ -365,15 +365,8 @@ class Problem:
             joint=_joint(spec.joint, layout),
             trust=spec.trust,
             ranges=tuple(ranges),
-            tolerances=_tolerances(spec),
+            tolerances=WorstCase.of(spec.tolerances),  # nominal without [tolerances]
         )
-
-
-def _tolerances(spec: Spec) -> WorstCase:
-    """The worst-case tolerances of ``spec`` (docs/tolerances.md): its ``[tolerances]`` (a table,
-    whose keys default to the stated half-widths, or ``"none"``); nominal without one (the spec's
-    default, opt-in for now: docs/tolerances.md says why)."""
-    return WorstCase.of(spec.tolerances)
 
 
 def _sustained(where: str, q: Quantity, duration: float | None, cands: list[Candidate]) -> Quantity:

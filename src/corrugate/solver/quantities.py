@@ -64,7 +64,7 @@ def point_values(
     out = {q: at.value(q) for q in reported(problem)}
     covered = [q for q in problem.quantities if tolerance_box.covered(problem, q)]
     if covered:  # their worst case over the tolerance box (docs/tolerances.md)
-        tol = tolerance_box.tolerance_boxes(problem, c1, c2, x, x, tables)
+        tol = tolerance_box.ToleranceBounds(problem, c1, c2, x, x, tables)
         for q in covered:
             out[q] = np.asarray(tol.bounds(q)[0])
     return out
@@ -89,7 +89,7 @@ def box_bounds(
             out[q] = over.bounds(q)
             continue
         if tol is None:  # the boxes widened by the tolerances (docs/tolerances.md)
-            tol = tolerance_box.tolerance_boxes(problem, c1, c2, lo, hi, tables)
+            tol = tolerance_box.ToleranceBounds(problem, c1, c2, lo, hi, tables)
         low, high = tol.bounds(q)
         out[q] = (low, low) if over.point else (low, high)
     return out

@@ -40,7 +40,7 @@ from corrugate.solver.quantity import Quantity
 from corrugate.solver.tables import Tables
 from corrugate.solver.worst_case import WorstCase
 
-__all__ = ["T_PIECES", "ToleranceBounds", "covered", "sheet", "tolerance_boxes", "widened"]
+__all__ = ["T_PIECES", "ToleranceBounds", "covered", "sheet", "widened"]
 
 FloatArray = NDArray[np.float64]
 
@@ -167,7 +167,8 @@ class _Pieces:
 
 class ToleranceBounds:
     """The certified value's bounds over the boxes [lo, hi] (``lo is hi``: its value at
-    points), module docstring: below, the bound over the boxes widened by the tolerances (t
+    points) on sheets whose E and t are intervals, identical layers bounded as independent
+    ones, module docstring: below, the bound over the boxes widened by the tolerances (t
     whole); above, the least of that box's upper bound and, where the inner box exists, the
     inner box's lower bound (t in pieces), which every point's certified value is at most and
     which closes on it as the box shrinks."""
@@ -203,17 +204,3 @@ class ToleranceBounds:
             high = high.copy()
             high[self.sel] = np.minimum(high[self.sel], self.inner.bounds(q)[0])
         return low, high
-
-
-def tolerance_boxes(
-    problem: Problem,
-    c1: Candidate,
-    c2: Candidate,
-    lo: DesignPoints,
-    hi: DesignPoints,
-    tables: Tables,
-) -> ToleranceBounds:
-    """The boxes [lo, hi] (``lo is hi``: points) widened by the tolerances, on sheets whose E
-    and t are intervals (one object per distinct sheet), with identical layers bounded as
-    independent ones (module docstring)."""
-    return ToleranceBounds(problem, c1, c2, lo, hi, tables)
