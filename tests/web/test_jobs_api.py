@@ -416,7 +416,7 @@ def test_a_job_is_accepted_while_the_pool_is_busy() -> None:
         assert status == 422 and answer["field"] == "variables.n.max", answer
         assert request(base, f"/api/jobs/{first['id']}")[1]["status"] == "running"
         assert request(base, f"/api/jobs/{second['id']}")[1]["status"] == "queued"
-        assert app.state.checker.worker_pids() and not set(app.state.checker.worker_pids()) & set(
+        assert app.state.quick.worker_pids() and not set(app.state.quick.worker_pids()) & set(
             app.state.runner.worker_pids()
         )
         for job in (first, second):  # cancelled queued or running: both end, nothing kept

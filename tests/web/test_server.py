@@ -38,6 +38,7 @@ from corrugate.cli.serve import HEAD_TIMEOUT_S
 from corrugate.web import WebSettings, create_app
 from corrugate.web.guards import slow_client_protocol
 from corrugate.web.schemas import BLIMP_GRIPPER
+from corrugate.web.workers import core_count
 
 from .conftest import CASE1, direct
 from .conftest import post_json as post
@@ -51,6 +52,10 @@ EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 #: The time limit of the served app (``corrugate serve --timeout``).
 LIMIT_S = 2.0
+
+#: The worker processes of ``corrugate serve``: the quick lane's and the job pool's (one per
+#: core, at least 2).
+WORKERS = WebSettings().quick_processes + max(2, core_count())
 
 TOWER = {"W": "1 mm**9**9**9", "n": 8, "alpha": 84}
 PERFORATION_BOMB = {
@@ -153,7 +158,7 @@ def serving(tmp_path: Path, timeout_s: float) -> Iterator[tuple[subprocess.Popen
     seen: set[int] = set()
     try:
         assert wait_for(lambda: _answers(base), 120), "the server did not start"
-        assert wait_for(lambda: len(workers(server.pid)) == 2, 120), "no two workers"
+        assert wait_for(lambda: len(workers(server.pid)) == WORKERS, 120), "workers not up"
         assert post(base, "/api/analyze", CASE1)[0] == 200  # a worker is ready
         seen = set(descendants(server.pid))
         yield server, base
@@ -220,14 +225,14 @@ def test_hostile_bodies_get_4xx_in_time_and_a_design_past_the_limit_504_and_its_
 
         # A design past the limit: 504 naming it, its worker killed and replaced.
         before = workers(server.pid)
-        assert len(before) == 2
+        assert len(before) == WORKERS
         start = time.monotonic()
         status, answer = post(base, "/api/design", slow_spec())
         assert status == 504, answer
         assert f"time limit of {LIMIT_S:g} s" in answer["detail"]
         assert time.monotonic() - start < LIMIT_S + 10
-        assert wait_for(lambda: len(running(before)) == 1, 10), "the job's worker still runs"
-        assert wait_for(lambda: len(workers(server.pid)) == 2, 30), "no worker replaced it"
+        assert wait_for(lambda: len(running(before)) == WORKERS - 1, 10), "the worker still runs"
+        assert wait_for(lambda: len(workers(server.pid)) == WORKERS, 30), "no worker replaced it"
         status, answer = post(base, "/api/analyze", CASE1)
         assert status == 200 and answer == direct(CASE1)
         assert page_time(base) < 1
@@ -251,7 +256,7 @@ def test_no_worker_outlives_the_server(tmp_path: Path, how: signal.Signals) -> N
         poster.start()
         busy = workers(server.pid)
         family = set(descendants(server.pid))
-        assert len(busy) == 2 and busy <= family
+        assert len(busy) == WORKERS and busy <= family
         time.sleep(1.5)  # the design is computing
         server.send_signal(how)
         server.wait(30)

@@ -219,7 +219,13 @@ def verify_cmd(
         ),
     ] = "0,0.25,0.5,0.75",
     workdir: Annotated[
-        Path | None, Opt(metavar="DIR", help="Parent folder of the ccx work folders.")
+        Path | None,
+        Opt(
+            metavar="DIR",
+            help="Parent folder of the ccx work folders (default: the system temporary "
+            "folder); the folders there of runs that were killed (their process has ended) are "
+            "removed first.",
+        ),
     ] = None,
     timeout: Annotated[float, Opt(help="Time-out of one ccx run (s).")] = 900.0,
     max_mesh: Annotated[
@@ -305,6 +311,9 @@ def verify_cmd(
             "DIR", str(folder), "a folder verify.json can be written to", reason="is not writable"
         )
     find_ccx()  # fail early, with one clear line, when CalculiX is missing
+    from corrugate.fea.workdirs import sweep_stale
+
+    sweep_stale(workdir)  # the work folders of runs killed before their end (owner gone)
     from corrugate.cli.validate import progress_lines
 
     progress = progress_lines(quiet or (as_json and not sys.stderr.isatty()))

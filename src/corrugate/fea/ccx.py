@@ -270,10 +270,17 @@ def _die_with_parent() -> None:
 
 @contextmanager
 def work_dir(parent: Path | None = None, keep: bool = False) -> Iterator[Path]:
-    """A fresh folder for one solver run, removed afterwards unless ``keep``."""
+    """A fresh folder for one solver run in ``parent`` (None: the system temporary folder),
+    removed afterwards unless ``keep``. Its name records this process's pid
+    (``corrugate-ccx-PID-...``, :mod:`corrugate.fea.workdirs`), so that a folder left by a
+    process killed during the run is swept later; a folder to keep has no pid in its name
+    (``corrugate-ccx-...``) and is never swept."""
+    from corrugate.fea.workdirs import PREFIX, owned_prefix
+
     if parent is not None:
         parent.mkdir(parents=True, exist_ok=True)
-    path = Path(tempfile.mkdtemp(prefix="corrugate-ccx-", dir=parent))
+    prefix = PREFIX if keep else owned_prefix()
+    path = Path(tempfile.mkdtemp(prefix=prefix, dir=parent))
     try:
         yield path
     finally:

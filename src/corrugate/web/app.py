@@ -64,6 +64,7 @@ import logging
 import math
 import re
 import threading
+import time
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
 from dataclasses import dataclass
@@ -130,7 +131,9 @@ from corrugate.web.workers import (
     ComputeTimeoutError,
     Runner,
     ServerBusyError,
+    Share,
     WorkerLostError,
+    core_count,
     memory_cap,
     send_progress,
     wants_progress,
@@ -218,10 +221,16 @@ class WebSettings:
     it; its worker process is killed); ``solver_budget_s``: CPU seconds the solver of one design
     may spend, explanation included (None: :data:`SOLVER_SHARE` of ``timeout_s``, so that a
     design the solver cannot certify in time answers "not certified within the budget" with its
-    best design, rather than 504; :mod:`corrugate.solver.budget`); ``processes``: worker processes, which run every
-    computation (None: one per core, at least 2); ``worker_memory_bytes``: the address space
-    each may map beyond its imported modules (``RLIMIT_AS``; None: no cap); ``max_pending``: computations queued or running at once
-    (503 past it); ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
+    best design, rather than 504; :mod:`corrugate.solver.budget`); ``worker_memory_bytes``: the address space
+    each worker may map beyond its imported modules (``RLIMIT_AS``; None: no cap).
+
+    Two pools of worker processes run the computations. The quick lane (``quick_processes``
+    workers) runs the requests: analyses, meshes, patterns, spec files, a job's input check and
+    the synchronous ``POST /api/design``; the designs (and the job checks) may hold at most
+    ``quick_processes - 1`` of its workers at once (at least 1), so an analysis never waits
+    behind a design; ``max_pending``: requests queued or running at once in it (503 past it).
+    The job pool (``processes`` workers, None: one per core, at least 2) runs only the jobs, so a
+    job never delays a request. ``max_creases``: largest n of a layer and ``max_extent_mm``: longest
     folded extent of a layer (422 past them; the pattern's glue tabs grow with the size, so these
     bound the memory and time of one request); ``max_results``/``result_ttl_s``: stored results kept; ``results_dir``: where the private
     result root is made (default: the system temporary folder); ``allowed_hosts``: the Host
@@ -229,9 +238,14 @@ class WebSettings:
     :data:`LOOPBACK_NAMES` against DNS rebinding).
 
     Jobs (``/api/jobs``, :mod:`corrugate.web.jobs`): ``job_budget_s``: the solver's CPU seconds
-    for a design job unless the client asks for another budget (at most ``max_job_budget_s``);
-    such a job is stopped at :meth:`job_time_limit_s` wall seconds; ``max_jobs``: jobs kept (a
-    finished one for ``result_ttl_s``); ``fe_timeout_s``: wall seconds of an FE verification job
+    for a design job unless the client asks for another budget (a larger budget than
+    ``max_job_budget_s`` is refused, 422 naming ``budget`` and the range); such a job is stopped
+    at :meth:`job_time_limit_s` wall seconds; ``max_queued_jobs``: jobs waiting for a worker of
+    the job pool (past it a new job gets 503 with ``Retry-After`` at submission, never a 202:
+    :meth:`max_active_jobs` run or wait at once); ``max_jobs``: jobs kept (a finished one for
+    ``result_ttl_s``); ``fe_workdir``: the parent of the CalculiX work folders (None: the system
+    temporary folder), swept at start-up of the folders no running process owns, and of a
+    worker's when it is killed or dies (:mod:`corrugate.fea.workdirs`); ``fe_timeout_s``: wall seconds of an FE verification job
     (and of each CalculiX run in it); ``fe_max_mesh``: its finest mesh (elements per facet);
     ``fe_memory_bytes``: its address-space cap beyond the worker's start-up mapping (CalculiX
     runs as a child of the worker and inherits it; None: the worker's ``worker_memory_bytes``).
@@ -256,6 +270,20 @@ class WebSettings:
     fe_timeout_s: float = 1800.0
     fe_max_mesh: int = 8
     fe_memory_bytes: int | None = FE_MEMORY_BYTES
+    quick_processes: int = 2
+    max_queued_jobs: int = 16
+    fe_workdir: Path | None = None
+
+    @property
+    def job_processes(self) -> int:
+        """Worker processes of the job pool (``processes``, else one per core, at least 2)."""
+        return max(2, core_count()) if self.processes is None else self.processes
+
+    @property
+    def max_active_jobs(self) -> int:
+        """Jobs running or queued at once: a worker of the job pool each, and
+        ``max_queued_jobs`` waiting."""
+        return self.job_processes + self.max_queued_jobs
 
     def job_time_limit_s(self, budget_s: float) -> float:
         """Wall seconds a design job with a solver budget of ``budget_s`` CPU seconds may run
@@ -601,12 +629,18 @@ def _design(
 
 
 async def design_answer(
-    body: DesignBody, settings: WebSettings, store: ResultStore, runner: Runner
+    body: DesignBody,
+    settings: WebSettings,
+    store: ResultStore,
+    runner: Runner,
+    share: Share | None = None,
 ) -> DesignAnswer:
-    """Run :func:`design_job` on the runner (a worker process) into a new result of ``store`` and
-    publish its files (the result is discarded when the job fails, is stopped or has no files)."""
+    """Run :func:`design_job` on the runner (a worker process, within ``share`` of its workers
+    if given) into a new result of ``store`` and publish its files (the result is discarded when
+    the job fails, is stopped or has no files)."""
     with store.reserved() as (result_id, folder):
-        payload, paths = await runner.run(design_job, body, settings, folder)
+        async with share.turn() if share is not None else contextlib.nullcontext():
+            payload, paths = await runner.run(design_job, body, settings, folder)
         if not paths:
             store.discard(result_id)
             return DesignAnswer(design=payload, result=None)
@@ -614,11 +648,16 @@ async def design_answer(
 
 
 def verify_job(
-    folder: Path, meshes: tuple[int, ...], timeout_s: float, memory_bytes: int | None = None
+    folder: Path,
+    meshes: tuple[int, ...],
+    timeout_s: float,
+    memory_bytes: int | None = None,
+    workdir: Path | None = None,
 ) -> dict[str, Any]:
     """``corrugate verify --json`` of the design in ``folder`` (a stored result's folder), with
     its ``design`` label, on the mesh series ``meshes``, each CalculiX run stopped after
-    ``timeout_s`` (:func:`corrugate.fea.verify.verify_design`) and its address space capped at
+    ``timeout_s`` (:func:`corrugate.fea.verify.verify_design`), its work folders in ``workdir``
+    (None: the system temporary folder), and its address space capped at
     ``memory_bytes`` beyond the worker's start-up mapping (None: the worker's own cap;
     :func:`corrugate.web.workers.memory_cap`). A job: runs in a worker process
     and sends one progress event per CalculiX run (``{"stage": "fe", "run": k, "line": ...}``,
@@ -644,6 +683,7 @@ def verify_job(
             joint,
             meshes,
             progress=line,
+            folder=workdir,
             timeout=timeout_s,
             max_mesh=max(meshes),
         )
@@ -775,6 +815,7 @@ async def verify_job_task(
             meshes,
             settings.fe_timeout_s,
             settings.fe_memory_bytes,
+            settings.fe_workdir,
             timeout_s=settings.fe_timeout_s,
         )
         job.end("done", result)
@@ -911,7 +952,7 @@ def _add_error_handlers(app: FastAPI) -> None:
     @app.exception_handler(ServerBusyError)
     async def on_busy(_: Request, exc: ServerBusyError) -> JSONResponse:
         response = _error(503, str(exc), [])
-        response.headers["retry-after"] = "5"
+        response.headers["retry-after"] = str(exc.retry_after_s)
         return response
 
     @app.exception_handler(WorkerLostError)
@@ -954,8 +995,11 @@ def _add_pages(app: FastAPI, index_html: str) -> None:
         )
 
 
-def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore) -> None:
-    """The JSON API: library, models, analyze, mesh, design and the result downloads."""
+def _add_api(
+    app: FastAPI, cfg: WebSettings, runner: Runner, share: Share, store: ResultStore
+) -> None:
+    """The JSON API: library, models, analyze, mesh, design and the result downloads, computed
+    on ``runner`` (the quick lane), a design within ``share`` of its workers."""
     error_responses = _ERROR_RESPONSES
 
     @app.get("/api/materials", summary="The material library")
@@ -1028,7 +1072,7 @@ def _add_api(app: FastAPI, cfg: WebSettings, runner: Runner, store: ResultStore)
         ``corrugate design --out`` writes as a result (``result`` is null when the spec is
         infeasible: ``design.diagnosis`` says why). A bad spec value gets 422 naming its TOML path,
         e.g. ``constraints.side.min``."""
-        return await design_answer(body, cfg, store, runner)
+        return await design_answer(body, cfg, store, runner, share)
 
     @app.post(
         "/api/spec/toml",
@@ -1091,11 +1135,13 @@ def _add_jobs(
     cfg: WebSettings,
     runner: Runner,
     checker: Runner,
+    share: Share,
     store: ResultStore,
     jobs: JobTable,
 ) -> None:
     """The job API: designs and FE verifications that run in the background with progress on
-    ``runner``; a design's spec is read first on ``checker`` (a worker of its own)."""
+    ``runner`` (the job pool); a design's spec is read first on ``checker`` (the quick lane,
+    within ``share`` of its workers), and a job is refused (503) when the queue is full."""
     error_responses = _ERROR_RESPONSES
     not_found: dict[int | str, dict[str, Any]] = {
         404: {"model": ErrorBody, "description": "No such job (or it expired)"}
@@ -1132,7 +1178,9 @@ def _add_jobs(
                 f"{LIMITS['budget'].lo:g} <= budget <= {cfg.max_job_budget_s:g} CPU seconds in "
                 "the web app (use the CLI's --budget)",
             )
-        await checker.run(check_design_job, body, cfg)
+        jobs.check_room()  # a full queue is 503 before the spec is read
+        async with share.turn():
+            await checker.run(check_design_job, body, cfg)
         limits = {
             "budget_s": budget_s,
             "time_limit_s": cfg.job_time_limit_s(budget_s),
@@ -1158,6 +1206,7 @@ def _add_jobs(
         info = fea_info(cfg)
         if not info.available:
             return _error(503, info.message, [])
+        jobs.check_room()
         folder, meshes = await run_in_threadpool(_check_verify, body, cfg, store)
         limits = {
             "time_limit_s": cfg.fe_timeout_s,
@@ -1220,20 +1269,32 @@ def _add_jobs(
 def create_app(settings: WebSettings | None = None) -> FastAPI:
     """A new, independent application (its own worker pool and result store)."""
     cfg = settings or WebSettings()
+    from corrugate.fea.workdirs import sweep_owned, sweep_stale
+
+    def reap(pid: int) -> None:  # a job's worker ended: its CalculiX work folders go
+        sweep_owned(pid, cfg.fe_workdir)
+
+    # The job pool: the jobs only, each admitted one a slot (never refused busy once accepted).
     runner = Runner(
-        cfg.max_pending,
+        cfg.max_active_jobs,
         cfg.timeout_s,
-        processes=cfg.processes,
+        processes=cfg.job_processes,
         memory_bytes=cfg.worker_memory_bytes,
         ceiling_bytes=cfg.fe_memory_bytes,
+        reap=reap,
     )
-    # The job API reads a spec before it queues the job, in a worker process of its own (started
-    # at the first job), so that a 202 or a 422 does not wait for the pool's long jobs.
-    checker = Runner(
-        cfg.max_pending, cfg.timeout_s, processes=1, memory_bytes=cfg.worker_memory_bytes
+    # The quick lane: every request's computation, and a job's input check before it is queued,
+    # so that neither waits behind the jobs; designs hold at most all but one of its workers.
+    quick = Runner(
+        cfg.max_pending,
+        cfg.timeout_s,
+        processes=cfg.quick_processes,
+        memory_bytes=cfg.worker_memory_bytes,
     )
+    share = Share(cfg.quick_processes - 1, cfg.max_pending)
     store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
-    jobs = JobTable(cfg.max_jobs, cfg.result_ttl_s)
+    jobs = JobTable(cfg.max_jobs, cfg.result_ttl_s, max_active=cfg.max_active_jobs)
+    started = time.time()
     # Load the unit registry and the material library before the first requests race for them.
     ureg()
     library()
@@ -1241,12 +1302,17 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
 
     @asynccontextmanager
     async def lifespan(_: FastAPI) -> AsyncIterator[None]:
-        runner.start_processes()  # the workers import their modules before the first request
+        # CalculiX work folders left by a server or worker that was killed (none runs now)
+        swept = sweep_stale(cfg.fe_workdir, before=started)
+        if swept:
+            _log.info("removed %d CalculiX work folders left by ended processes", len(swept))
+        quick.start_processes()  # the workers import their modules before the first request
+        runner.start_processes()
         try:
             yield
         finally:
             jobs.close()
-            checker.shutdown()
+            quick.shutdown()
             runner.shutdown()
             store.close()
 
@@ -1268,12 +1334,12 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     app.state.settings = cfg
     app.state.store = store
     app.state.runner = runner
+    app.state.quick = quick
     app.state.jobs = jobs
     _add_error_handlers(app)
     _add_pages(app, index_html)
-    _add_api(app, cfg, runner, store)
-    app.state.checker = checker
-    _add_jobs(app, cfg, runner, checker, store, jobs)
+    _add_api(app, cfg, quick, share, store)
+    _add_jobs(app, cfg, runner, quick, share, store, jobs)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(CatchAll)
     app.add_middleware(_SecurityHeaders)

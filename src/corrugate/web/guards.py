@@ -135,6 +135,12 @@ _REQUEST_TIMEOUT = (
     b"HTTP/1.1 408 Request Timeout\r\ncontent-type: text/plain; charset=utf-8\r\n"
     b"connection: close\r\ncontent-length: %d\r\n\r\n%s" % (len(_HEAD_LATE), _HEAD_LATE)
 )
+#: The answer to a connection past the server's limit (then it is closed at once).
+_FULL = b"too many open connections; try again shortly"
+_TOO_MANY = (
+    b"HTTP/1.1 503 Service Unavailable\r\ncontent-type: text/plain; charset=utf-8\r\n"
+    b"retry-after: 1\r\nconnection: close\r\ncontent-length: %d\r\n\r\n%s" % (len(_FULL), _FULL)
+)
 
 
 class _HeadDeadline(H11Protocol):
@@ -142,12 +148,17 @@ class _HeadDeadline(H11Protocol):
     connection's start and from the end of each response: see :func:`slow_client_protocol`."""
 
     head_timeout_s = 10.0
+    max_connections: int | None = None
     _head_timer: asyncio.TimerHandle | None = None
     _head_of: object = None
     _head_bytes = False
 
     def connection_made(self, transport: asyncio.Transport) -> None:  # type: ignore[override]
         super().connection_made(transport)
+        if self.max_connections is not None and len(self.connections) > self.max_connections:
+            transport.write(_TOO_MANY)  # never accepted into the server's work: closed now
+            transport.close()
+            return
         self._arm()
 
     def data_received(self, data: bytes) -> None:
@@ -189,13 +200,22 @@ class _HeadDeadline(H11Protocol):
         self.transport.close()
 
 
-def slow_client_protocol(head_timeout_s: float) -> type[asyncio.Protocol]:
+def slow_client_protocol(
+    head_timeout_s: float, max_connections: int | None = None
+) -> type[asyncio.Protocol]:
     """uvicorn's HTTP/1.1 protocol class (``uvicorn.run(http=...)``) with a deadline for the
     request head: a connection that has not sent a complete request head within
     ``head_timeout_s`` of its start (or of the previous response) gets 408 and is closed (one
     that sent nothing is just closed). With :class:`BodySizeLimit`'s body deadline, a client that
-    trickles bytes holds a connection for a bounded time."""
-    return type("SlowClientProtocol", (_HeadDeadline,), {"head_timeout_s": head_timeout_s})
+    trickles bytes holds a connection for a bounded time. A connection accepted while
+    ``max_connections`` are open (None: no limit) gets 503 and is closed at once, so the server
+    never runs out of file descriptors: while it has none, it cannot accept, and a connection
+    waiting to be accepted is under no deadline."""
+    return type(
+        "SlowClientProtocol",
+        (_HeadDeadline,),
+        {"head_timeout_s": head_timeout_s, "max_connections": max_connections},
+    )
 
 
 def host_name(header: str) -> str:

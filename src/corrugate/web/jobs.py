@@ -11,8 +11,9 @@ one line per CalculiX run. Clients read them with ``GET /api/jobs/{id}`` (the la
 ``GET /api/jobs/{id}/events`` (all of them, as server-sent events, :func:`sse`).
 
 :class:`JobTable` keeps at most ``max_jobs`` jobs, a finished one for ``ttl_s`` seconds (then it
-is forgotten; its stored result lives as long as the result store keeps it), and cancels them
-all when the app stops. ``DELETE /api/jobs/{id}`` cancels a job: its worker is killed and
+is forgotten; its stored result lives as long as the result store keeps it), at most
+``max_active`` of them running or queued (a job past that is refused at submission, 503 with
+``Retry-After``, never accepted and failed later), and cancels them all when the app stops. ``DELETE /api/jobs/{id}`` cancels a job: its worker is killed and
 replaced (the runner's kill and replace, with the programs it started) and the result folder it
 was writing is discarded.
 """
@@ -36,6 +37,7 @@ __all__ = [
     "FINISHED",
     "MAX_EVENTS",
     "PROGRESS_INTERVAL_S",
+    "QUEUE_RETRY_AFTER_S",
     "Job",
     "JobTable",
     "solver_progress",
@@ -128,16 +130,48 @@ class Job:
         }
 
 
-class JobTable:
-    """The jobs of one app: at most ``max_jobs`` kept, a finished one for ``ttl_s`` seconds."""
+#: The ``Retry-After`` (s) of a job refused because the queue is full: a queued job waits for a
+#: running one, which takes minutes, so retrying within seconds would be refused again.
+QUEUE_RETRY_AFTER_S = 30
 
-    def __init__(self, max_jobs: int, ttl_s: float) -> None:
+
+class JobTable:
+    """The jobs of one app: at most ``max_jobs`` kept, a finished one for ``ttl_s`` seconds, and
+    at most ``max_active`` not yet ended (running or queued; None: no bound but ``max_jobs``).
+
+    A job counts as active until its task has ended, a cancelled one too (its worker is still
+    being killed): so the runner, given ``max_active`` slots, never refuses a job this table
+    accepted (:meth:`check_room`)."""
+
+    def __init__(self, max_jobs: int, ttl_s: float, max_active: int | None = None) -> None:
         self.max_jobs = max_jobs
         self.ttl_s = ttl_s
+        self.max_active = max_active
         self._jobs: dict[str, Job] = {}
 
     def __len__(self) -> int:
         return len(self._jobs)
+
+    def active(self) -> int:
+        """The jobs not yet ended: running, queued, or cancelled while their task still ends."""
+        return sum(
+            1
+            for j in self._jobs.values()
+            if not j.finished or (j.task is not None and not j.task.done())
+        )
+
+    def check_room(self) -> None:
+        """:class:`ServerBusyError` (503, ``Retry-After`` :data:`QUEUE_RETRY_AFTER_S`) when
+        ``max_active`` jobs are active: the queue is full."""
+        if self.max_active is None:
+            return
+        active = self.active()
+        if active >= self.max_active:
+            raise ServerBusyError(
+                f"the job queue is full ({active} jobs run or wait, at most {self.max_active}); "
+                f"try again in {QUEUE_RETRY_AFTER_S} s",
+                retry_after_s=QUEUE_RETRY_AFTER_S,
+            )
 
     def _expire(self) -> None:
         now = time.time()
@@ -146,9 +180,11 @@ class JobTable:
                 del self._jobs[job_id]
 
     def new(self, kind: str, limits: dict[str, Any]) -> Job:
-        """A new queued job; the oldest finished job goes to make room, and
-        :class:`ServerBusyError` (503) when every kept job is still running."""
+        """A new queued job; :class:`ServerBusyError` (503) when the queue is full
+        (:meth:`check_room`); the oldest finished job goes to make room, and
+        :class:`ServerBusyError` when every kept job is still running."""
         self._expire()
+        self.check_room()
         if len(self._jobs) >= self.max_jobs:
             done = [j for j in self._jobs.values() if j.finished]
             if not done:

@@ -20,8 +20,9 @@ import multiprocessing
 import os
 import signal
 import threading
+import time
 from collections import deque
-from collections.abc import Callable, Iterator
+from collections.abc import AsyncIterator, Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from multiprocessing.connection import Connection
@@ -33,6 +34,7 @@ __all__ = [
     "ComputeTimeoutError",
     "Runner",
     "ServerBusyError",
+    "Share",
     "WorkerLostError",
     "core_count",
     "memory_cap",
@@ -47,7 +49,40 @@ T = TypeVar("T")
 
 
 class ServerBusyError(Exception):
-    """Too many computations are in flight; try again later (HTTP 503)."""
+    """Too many computations are in flight; try again later (HTTP 503, with ``Retry-After``
+    ``retry_after_s`` seconds)."""
+
+    def __init__(self, message: str, retry_after_s: int = 5) -> None:
+        self.retry_after_s = retry_after_s
+        super().__init__(message)
+
+
+class Share:
+    """A share of a runner's workers for one kind of computation: at most ``limit`` of them
+    hold a worker at once (so the others always find one), at most ``max_waiting`` more wait
+    for their turn, in order; past that :meth:`turn` raises :class:`ServerBusyError` at once.
+    Lives on the event loop."""
+
+    def __init__(self, limit: int, max_waiting: int) -> None:
+        self.limit = max(1, limit)
+        self.max_waiting = max_waiting
+        self._turns = asyncio.Semaphore(self.limit)
+        self._waiting = 0
+
+    @contextlib.asynccontextmanager
+    async def turn(self) -> AsyncIterator[None]:
+        """The block runs while this kind holds at most ``limit`` turns."""
+        if self._turns.locked() and self._waiting >= self.max_waiting:
+            raise ServerBusyError("the server is busy with other computations; try again shortly")
+        self._waiting += 1
+        try:
+            await self._turns.acquire()
+        finally:
+            self._waiting -= 1
+        try:
+            yield
+        finally:
+            self._turns.release()
 
 
 class ComputeTimeoutError(Exception):
@@ -313,6 +348,7 @@ class Runner:
         processes: int | None = None,
         memory_bytes: int | None = WORKER_MEMORY_BYTES,
         ceiling_bytes: int | None = None,
+        reap: Callable[[int], object] | None = None,
     ) -> None:
         self.timeout_s = timeout_s
         self.processes = max(2, core_count()) if processes is None else processes
@@ -320,6 +356,8 @@ class Runner:
             raise ValueError(f"a runner needs at least one worker process, not {processes}")
         self.memory_bytes = memory_bytes
         self.ceiling_bytes = ceiling_bytes
+        self._reap = reap
+        self._reaping: list[threading.Thread] = []
         self._slots = threading.BoundedSemaphore(max_pending)
         self._lock = threading.Lock()
         self._idle: deque[_Worker] = deque()
@@ -410,9 +448,36 @@ class Runner:
         """SIGKILL ``worker`` and forget it (its parent, the forkserver, reaps it). Its pipe is
         closed by whoever holds it last: a thread may still be reading it (it reads EOF)."""
         with self._lock:
-            self._workers.pop(worker.pid, None)
+            known = self._workers.pop(worker.pid, None) is not None
             self._pids = tuple(self._workers)
         _kill_group(worker.pid)
+        if known:
+            self._reap_later(worker)
+
+    def _reap_later(self, worker: _Worker) -> None:
+        """Once ``worker`` and the programs it started have ended, call the runner's ``reap``
+        with its pid (on a thread of its own: the sweep of what the worker left)."""
+        if self._reap is None:
+            return
+        thread = threading.Thread(
+            target=self._reap_when_ended, args=(worker,), name="corrugate-web-reap", daemon=True
+        )
+        with self._lock:
+            self._reaping = [t for t in self._reaping if t.is_alive()] + [thread]
+        thread.start()
+
+    def _reap_when_ended(self, worker: _Worker) -> None:
+        """Wait (at most some seconds) until ``worker`` and its process group have ended, then
+        call ``reap`` with its pid."""
+        if self._reap is None:
+            return
+        with contextlib.suppress(Exception):
+            worker.process.join(_REAP_WAIT_S)
+        _wait_group_ended(worker.pid, _REAP_WAIT_S)
+        try:
+            self._reap(worker.pid)
+        except Exception:
+            _log.exception("could not sweep what worker %d left", worker.pid)
 
     def _fail_waiters_if_no_worker(self) -> None:
         """When no worker runs or starts (they cannot start), the jobs waiting get 503."""
@@ -451,6 +516,12 @@ class Runner:
                 loop.call_soon_threadsafe(_fail, future, "the server is shutting down")
         for worker in workers:
             worker.process.join(5)  # killed: the forkserver reports its end at once
+        for worker in workers:
+            self._reap_when_ended(worker)
+        with self._lock:
+            reaping, self._reaping = self._reaping, []
+        for thread in reaping:
+            thread.join(2 * _REAP_WAIT_S)
         self._io.shutdown(wait=False, cancel_futures=True)
         self._starter.shutdown(wait=False, cancel_futures=True)
 
@@ -608,6 +679,22 @@ def _kill_group(pid: int) -> None:
         pass
     with contextlib.suppress(ProcessLookupError, PermissionError):
         os.kill(pid, signal.SIGKILL)
+
+
+#: Longest wait for a killed worker, then for its process group, before its sweep (s).
+_REAP_WAIT_S = 5.0
+
+
+def _wait_group_ended(pid: int, seconds: float) -> None:
+    """Wait until no process of the group ``pid`` runs (a killed worker's CalculiX), at most
+    ``seconds``."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(pid, 0)
+        except (ProcessLookupError, PermissionError, OSError):
+            return
+        time.sleep(0.02)
 
 
 def _fail(future: asyncio.Future[Any], why: str) -> None:
