@@ -23,8 +23,9 @@ Endpoints (all JSON unless said otherwise):
   the certified design and every file ``corrugate design --out`` writes (cut files, FOLD, GLB,
   STL, steps, design.json, the report drawn from the very sheet plan of the cut files), or
   ``"result": null`` when the spec is infeasible;
-* ``POST /api/jobs/design``: the body of ``/api/design`` as a background job (202 once a worker
-  process of its own has read the spec; 422 naming the field before anything is queued), its
+* ``POST /api/jobs/design``: the body of ``/api/design`` as a background job (202 once the quick
+  lane has read the spec; 422 naming the field before anything is queued; 503 with
+  ``Retry-After`` when the queue is full), its
   solver under its own CPU budget (query ``budget``) and stopped at :data:`JOB_WALL_PER_CPU`
   wall seconds per budget second; ``POST /api/jobs/verify``: ``corrugate verify`` on a stored design (CalculiX);
   ``GET /api/jobs/{id}`` (state, last progress event, result), ``GET /api/jobs/{id}/events``
@@ -40,7 +41,10 @@ Endpoints (all JSON unless said otherwise):
   ``GET /api/results/{id}/all.zip``: all of them in one zip archive.
 
 Every computation of a request (its quantities parsed, analysed, meshed, its files written,
-its spec solved) runs in a worker process of :class:`~corrugate.web.workers.Runner`: the
+its spec solved) runs in a worker process of :class:`~corrugate.web.workers.Runner`: the quick
+lane's for a request (a design within a :class:`~corrugate.web.workers.Share` of all its workers
+but one, so an analysis never waits behind a design), the job pool's for a job (so a job never
+delays a request); the
 ``*_job`` functions take and return plain picklable values (a job that writes files writes them
 into a new result's folder, the server publishes them). A worker is killed at the time limit
 (504) and replaced; its address space is capped (a job that needs more memory gets 422). The
@@ -48,8 +52,8 @@ event loop only reads requests, serves the page, the library and stored files, a
 
 Errors: a bad value -> 422 ``{"detail", "field", "errors": [...]}`` naming the field as the request
 names it (a spec value by its TOML path, ``constraints.side.min``); malformed JSON -> 400; body over
-the limit -> 413; body not complete within ``body_timeout_s`` -> 408; server busy or a worker lost
--> 503; computation over the time limit -> 504 (its worker killed); more memory than a worker
+the limit -> 413; body not complete within ``body_timeout_s`` -> 408; server busy, the job
+queue full (with ``Retry-After``) or a worker lost -> 503; computation over the time limit -> 504 (its worker killed); more memory than a worker
 may use -> 422 naming the body; unknown result or file -> 404; a Host header not allowed -> 400.
 """
 

@@ -335,7 +335,10 @@ class Runner:
       :data:`WORKER_PRELOAD` before it takes a job (that start is not part of a time limit).
       Each asks Linux to kill it when its parent ends, so a server killed with SIGKILL leaves no
       worker behind; :meth:`kill_workers` (on SIGTERM or Ctrl-C) and :meth:`shutdown` (at the
-      app's end) kill them all.
+      app's end) kill them all. ``reap``, if given, is called with a worker's pid once that
+      worker and its process group have ended (killed at a time limit, a cancel or shutdown, or
+      dead of itself): what it left goes (the CalculiX work folders,
+      :func:`corrugate.fea.workdirs.sweep_owned`).
 
     Jobs are module-level functions with picklable arguments and results; their exceptions
     come back as raised (corrugate's own errors with their fields).
