@@ -340,3 +340,20 @@ def test_partial_heads_are_closed_at_the_deadline_even_past_the_open_file_limit(
             for s, _ in opened:
                 s.close()
         assert _answers(base)
+
+
+def test_serve_refuses_a_default_job_budget_past_the_cap_in_one_line(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    from corrugate.cli import main
+
+    for args, words in (
+        (["--job-budget", "700"], ("--job-budget", "700", "--max-job-budget (600 s)")),
+        (["--job-budget", "50", "--max-job-budget", "40"], ("--job-budget", "at most", "40 s")),
+        (["--max-job-budget", "0"], ("--max-job-budget",)),
+    ):
+        with pytest.raises(SystemExit) as info:
+            main(["serve", *args])
+        assert info.value.code == 2
+        lines = capsys.readouterr().err.strip().splitlines()
+        assert len(lines) == 1 and all(w in lines[0] for w in words), lines

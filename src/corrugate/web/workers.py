@@ -465,9 +465,9 @@ class Runner:
         thread = threading.Thread(
             target=self._reap_when_ended, args=(worker,), name="corrugate-web-reap", daemon=True
         )
-        with self._lock:
+        with self._lock:  # started before shutdown can see it (and join it)
+            thread.start()
             self._reaping = [t for t in self._reaping if t.is_alive()] + [thread]
-        thread.start()
 
     def _reap_when_ended(self, worker: _Worker) -> None:
         """Wait (at most some seconds) until ``worker`` and its process group have ended, then
