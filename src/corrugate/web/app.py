@@ -1171,8 +1171,9 @@ def _add_jobs(
         """The design of ``POST /api/design`` as a background job: answers 202 with the job
         (``id``, ``limits``: ``budget_s`` the solver's CPU seconds, ``budget`` in the query or
         the server's default, and ``time_limit_s`` the wall seconds after which it is stopped)
-        once the spec is read (in a worker process of its own, so not behind the jobs running);
-        a bad value is 422 at once, naming its field. Follow it with
+        once the spec is read (in the quick lane, so not behind the jobs running); a bad value
+        is 422 at once, naming its field (a budget past the server's cap too); 503 with
+        ``Retry-After`` when the job queue is full. Follow it with
         ``GET /api/jobs/{id}`` or ``/events``; ``DELETE`` cancels it."""
         budget_s = cfg.job_budget_s if budget is None else budget
         if not LIMITS["budget"].lo <= budget_s <= cfg.max_job_budget_s:
