@@ -249,3 +249,31 @@ def test_python_sessions_in_the_docs_print_what_they_show(
     result = runner.run(test, out=out.append)
     assert result.attempted > 0
     assert result.failed == 0, "".join(out)
+
+
+LINK = re.compile(r"\]\(([^)\s]+)\)")
+
+
+def test_links_of_the_readme_and_docs_reach_files_of_the_repository() -> None:
+    """The reference moved out of the README into docs/: every relative link of either (a page, an
+    image, an example) names a file that exists, and every ``corrugate docs NAME`` they cite is a
+    shipped doc."""
+    from corrugate.core.docs import CITATION, doc_names
+
+    names = set(doc_names())
+    broken, unknown = [], []
+    for path in DOCUMENTS:
+        text = path.read_text("utf-8")
+        for m in LINK.finditer(text):
+            target = m.group(1).split("#")[0]
+            external = target.startswith(("http://", "https://", "mailto:"))
+            if target and not external and not (path.parent / target).exists():
+                broken.append(f"{path.relative_to(ROOT)}: {m.group(1)}")
+        for m in CITATION.finditer(text):
+            if m.group(1) and m.group(1) not in names:
+                unknown.append(f"{path.relative_to(ROOT)}: corrugate docs {m.group(1)}")
+    assert not broken, broken
+    assert not unknown, unknown
+    readme = (ROOT / "README.md").read_text("utf-8")
+    for name in ("design", "analyze", "models", "python", "web", "validate", "cli", "development"):
+        assert f"(docs/{name}.md)" in readme, name
