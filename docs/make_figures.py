@@ -4,7 +4,7 @@
 
 They are the report's own figures (corrugate.report) and the fabrication figures of the paper's
 case 1 (W 8, n 8, alpha 84: tests/data/paper_case_study.toml, the case study under the paper's
-printed model), so the README shows exactly what `corrugate design
+printed model), so docs/design.md shows exactly what `corrugate design
 tests/data/paper_case_study.toml --out DIR` produces.
 """
 

@@ -1,6 +1,6 @@
 """The drawing of the panel's directions (:mod:`corrugate.report.orientation`, issue 36 item 2).
 
-What it must show is the convention of README "Layouts and facet lengths" ("Layer 1's creases run
+What it must show is the convention of docs/models.md "Layouts and facet lengths" ("Layer 1's creases run
 along y, layer 2's along x") and docs/spec.md (eta "from layer 1's creases"): layer 1's crease
 lines vertical (constant x), layer 2's horizontal, the eta = 0 arrow up (along y) and the eta = 90
 deg arrow to the right (along x). The lines are read back from the SVG's own coordinates. The web

@@ -2,7 +2,7 @@
 
 tests/data/diagnosis/orientation_trap.toml is the issue's case: a 150 x 40 mm part (side_x 150-160
 mm, side_y 35-40 mm) with a 150 mm cantilever span at the default eta = 0. eta runs from layer 1's
-creases, which run along y (README, "Layouts and facet lengths"), so the span runs along the 40 mm
+creases, which run along y (docs/models.md, "Layouts and facet lengths"), so the span runs along the 40 mm
 side: infeasible. The diagnosis must say so in its first entry and hint the eta edit; the hint is
 checked by solving the spec with it (a feasible design, analysed on its own). The limit cases: a
 span longer than both sides, where no quarter turn helps (no entry), and a square, where a quarter

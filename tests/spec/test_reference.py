@@ -32,7 +32,7 @@ def test_every_key_the_parser_accepts_is_in_docs_spec_md() -> None:
 
 
 def test_keys_found_by_walking_the_models_are_accepted_by_the_parser() -> None:
-    # A second source: keys written by hand from the examples and the README must all be listed.
+    # A second source: keys written by hand from the examples and docs/design.md must all be listed.
     for key in (
         "constraints.mass.max",
         "objective.maximize",

@@ -191,7 +191,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
         parts.append(
             f"<p>{html.escape(holes_text(asm.layout.holes))}. Model: facets a hole touches carry "
             "nothing in the spanwise (parallel) sums and lose the blocked length in the chordwise "
-            "(series) sums; the mass is rho t times the cut area (README, section Holes).</p>"
+            "(series) sums; the mass is rho t times the cut area (<code>corrugate docs models</code>, Holes).</p>"
         )
     parts.append("<h2>Constraints and margins</h2>")
     parts.append(

@@ -1,7 +1,7 @@
 """The panel's directions drawn: x, y, eta and each layer's creases (issue 36 item 2).
 
 A direction eta is measured from layer 1's creases, which run along y; layer 2's run along x
-(README, "Layouts and facet lengths"; docs/spec.md: ``eta``, "from layer 1's creases"). So eta =
+(docs/models.md, "Layouts and facet lengths"; docs/spec.md: ``eta``, "from layer 1's creases"). So eta =
 0 deg runs along y, where the panel's length is its extent Ly (``side_y``), and eta = 90 deg
 along x (Lx, ``side_x``): a load case's span along eta needs the panel that long
 (:mod:`corrugate.solver.orientation` names the trap). :func:`orientation_svg` draws this as a

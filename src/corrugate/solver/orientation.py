@@ -1,7 +1,7 @@
 """The orientation trap: an infeasible spec whose directions are a quarter turn off.
 
-A direction eta runs from layer 1's creases, which run along y (docs/spec.md, "Layouts and
-facet lengths" in the README): eta = 0 is along y, the panel's length there is its extent Ly
+A direction eta runs from layer 1's creases, which run along y (docs/spec.md; docs/models.md, "Layouts
+and facet lengths"): eta = 0 is along y, the panel's length there is its extent Ly
 (``side_y``), and eta = 90 deg is along x (Lx, ``side_x``). A user who puts the long side of a
 part on ``side_x`` and leaves a load case at the default eta = 0 asks for a span along the short
 side. :func:`orientation` recognises it: for a rectangle or a polygon with a load case whose span
