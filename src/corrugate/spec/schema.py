@@ -1055,6 +1055,13 @@ def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
 
 def _check_material(where: str, m: MaterialSpec) -> None:
     inline = [x is not None for x in (m.E, m.nu, m.density)]
+    if not any(inline) and "name" not in m.model_fields_set:  # neither a name nor E, nu, density
+        raise SpecError(
+            f"{where}.E",
+            None,
+            "E, nu and density for an inline material, or a library material's name",
+            reason="is missing",
+        )
     if any(inline):
         for key, given in zip(("E", "nu", "density"), inline, strict=True):
             if not given:
