@@ -140,14 +140,17 @@ def test_pages_are_office_paper_one_per_tile(
     plan = _plan(name, real_plan, multi_plan)
     reader = PdfReader(pdfs[name, paper])
     tiles = plan_tiles(plan, paper)
-    assert len(reader.pages) == len(tiles) > len(plan.sheets)  # a mat needs several pages
-    for k, (page, tile) in enumerate(zip(reader.pages, tiles, strict=True), start=1):
+    # a mat needs several pages; the last page is the key (every part's full label)
+    assert len(reader.pages) == len(tiles) + 1 and len(tiles) > len(plan.sheets)
+    count = len(reader.pages)
+    assert reader.pages[-1].extract_text().startswith("Key")
+    for k, (page, tile) in enumerate(zip(reader.pages[:-1], tiles, strict=True), start=1):
         box = page.mediabox
         assert (float(box.left), float(box.bottom)) == (0.0, 0.0)
         assert float(box.width) == pytest.approx(PAGE_PT[paper][0], abs=0.01)
         assert float(box.height) == pytest.approx(PAGE_PT[paper][1], abs=0.01)
         text = page.extract_text()
-        assert f"page {k} of {len(tiles)}" in text
+        assert f"page {k} of {count}" in text
         assert f"row {tile.row} of {tile.rows}, column {tile.column} of {tile.columns}" in text
         assert f"sheet {tile.sheet}/{len(plan.sheets)}" in text
 
@@ -162,7 +165,7 @@ def test_frame_and_check_square_are_one_to_one(
 ) -> None:
     reader = PdfReader(pdfs[name, paper])
     cw, ch = drawing_area(PAPERS[paper])
-    for page in reader.pages:
+    for page in reader.pages[:-1]:  # the tiles (the last page is the key)
         found = boxes(page_paths(reader, page))
         squares = [b for b in found if abs(b[2] - 10) < TOL_MM and abs(b[3] - 10) < TOL_MM]
         assert [b[4] for b in squares if b[4] == (0.0, 0.0, 0.0)], "no black 10 mm square"
@@ -185,7 +188,7 @@ def test_registration_marks_at_the_stated_spacing(
     reader = PdfReader(pdfs[name, paper])
     tiles = plan_tiles(plan, paper)
     cw, ch = drawing_area(PAPERS[paper])
-    found = [crosses(page_paths(reader, page)) for page in reader.pages]
+    found = [crosses(page_paths(reader, page)) for page in reader.pages[:-1]]  # not the key
     spaced = 0
     for tile, marks in zip(tiles, found, strict=True):
         sheet = plan.sheets[tile.sheet - 1]
@@ -297,7 +300,7 @@ def test_pages_with_nothing_to_cut_are_left_out(real_plan: SheetPlan, tmp_path: 
     kept = PdfReader(write_tiled_pdf(real_plan, tmp_path / "kept.pdf", "a4"))
     full = PdfReader(write_tiled_pdf(real_plan, tmp_path / "full.pdf", "a4", empty=True))
     grid = plan_tiles(real_plan, "a4", empty=True)
-    assert len(full.pages) == len(grid) == grid[0].rows * grid[0].columns
+    assert len(full.pages) - 1 == len(grid) == grid[0].rows * grid[0].columns  # and the key
     assert 0 < len(kept.pages) < len(full.pages)
     rows = {t.row for t in plan_tiles(real_plan, "a4")}
     assert 1 in rows and grid[0].rows not in rows  # the bottom of the mat is empty
@@ -316,7 +319,7 @@ def test_write_files_adds_the_tiles_beside_the_mat_pages(
     mat = PdfReader(out / "pattern.pdf").pages[0].mediabox
     assert float(mat.width) == pytest.approx(real_plan.cutter.width * PT, abs=0.01)
     letter = PdfReader(out / "pattern-letter.pdf")
-    assert len(letter.pages) == len(plan_tiles(real_plan, "letter"))
+    assert len(letter.pages) == len(plan_tiles(real_plan, "letter")) + 1  # the tiles, the key
     assert float(letter.pages[0].mediabox.width) == pytest.approx(612.0, abs=0.01)
     # the default writes the mat pages only
     default = write_files(real_plan, tmp_path / "plain", formats=("pdf",))
@@ -351,7 +354,7 @@ def test_cli_paper_option(tmp_path: Path, cli: CliRun) -> None:
     reader = PdfReader(good / "pattern-a4.pdf")
     a = Assembly.identical(Layer(8.0, 8, 84.0, get_material("dura-lar")))
     tiles = plan_tiles(cut_plan(a).plan, "a4")  # the CLI's defaults
-    assert len(reader.pages) == len(tiles) and tiles[0].rows * tiles[0].columns == 4
+    assert len(reader.pages) == len(tiles) + 1 and tiles[0].rows * tiles[0].columns == 4
     for page in reader.pages:
         assert float(page.mediabox.width) == pytest.approx(595.28, abs=0.01)
         assert float(page.mediabox.height) == pytest.approx(841.89, abs=0.01)

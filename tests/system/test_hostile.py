@@ -133,6 +133,7 @@ CLI: dict[str, list[tuple[str, Callable[[str], list[str]]]]] = {
         ("--budget", _spec_cmd("pareto", "--budget")),
         ("--budget", _spec_cmd("tolerance", "--budget")),
     ],
+    "eta": [("eta", lambda v: ["analyze", *LAYER, "--eta", v])],
     "perforation": [],  # needs tmp_path: see PATTERN
     "length": [
         ("spacing", lambda v: ["pattern", *LAYER, "--spacing", v, "--out", "/nonexistent/x"]),
@@ -178,6 +179,12 @@ SPEC_KEYS: dict[str, list[tuple[str, Callable[[dict[str, Any], Any], None]]]] = 
             lambda d, v: d["constraints"].__setitem__(
                 "deflection", [{"test": "three-point", "load": v, "max": 1}]
             ),
+        )
+    ],
+    "eta": [
+        (
+            "constraints.flexural_rigidity[0].eta",
+            lambda d, v: d["constraints"]["flexural_rigidity"][0].__setitem__("eta", v),
         )
     ],
     "samples": [("robust.samples", lambda d, v: d.__setitem__("robust", {"samples": v}))],

@@ -29,8 +29,9 @@ if TYPE_CHECKING:
 
     from rich.console import Console
 
-    from corrugate.solver import Solution
+    from corrugate.solver import Problem, Solution
     from corrugate.solver.pareto import ParetoFront
+    from corrugate.solver.robust import RobustResult
     from corrugate.workflow import DesignRequest, FeCheck, FeOptions
 
 #: ``--refine``'s cap on re-solves (:data:`corrugate.fea.refine.MAX_RESOLVES`, repeated here so
@@ -146,6 +147,44 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
 
 def _nothing() -> None:
     pass
+
+
+def robust_lines(robust: RobustResult, problem: Problem) -> list[str]:
+    """The answer's lines of a ``[robust]`` spec (:mod:`corrugate.solver.robust`): the
+    probability that the design meets the spec's own bounds (the independent check's Monte Carlo
+    estimate; the search's when the rounds ran out; none when no design meets the tightened
+    bounds) against the target, and each bound tightened, from the spec's value to the one the
+    certified design was solved for (N/mm for a deflection bound: its P/delta)."""
+    met = "met" if robust.met else "NOT met"
+    rounds = f"after {robust.rounds} round(s) of margin inflation"
+    target = f"target {robust.target:g}, {met}"
+    if robust.check is not None:
+        head = f"P(spec holds) = {robust.check.p_all:.4g} ({target}) {rounds}"
+    elif robust.solution.assembly is None:
+        head = (
+            f"no design meets the bounds tightened in round {robust.rounds} ({target}): "
+            "P(spec holds) is not estimated"
+        )
+    elif robust.search is not None:
+        head = (
+            f"P(spec holds) = {robust.search.p_all:.4g} in the last round's search ({target}) "
+            f"{rounds}, the most allowed"
+        )
+    else:  # pragma: no cover - robust_solve always searches a design it found
+        head = f"P(spec holds) is not estimated ({target}) {rounds}"
+    lines = [f"robust: {head}; not certified as the lightest robust design"]
+    tightened = [c for c in problem.constraints if robust.factors.get(c.name, 1.0) != 1.0]
+    if tightened:
+        lines.append("robust: the bounds tightened from the spec's (the certificate is for these):")
+    for c in tightened:
+        f = robust.factors[c.name]
+        op = ">=" if c.sense == "min" else "<="
+        new = c.bound * f if c.sense == "min" else c.bound / f
+        unit = f" {c.unit}" if c.unit else ""
+        lines.append(f"  {c.name}: {op} {fmt(c.bound, 5)} -> {fmt(new, 5)}{unit} (x{f:.4g})")
+    if not tightened:
+        lines.append("robust: no bound was tightened (the first round's design met the target)")
+    return lines
 
 
 def relax_hint(sol: Solution) -> str | None:
@@ -276,6 +315,7 @@ def design_cmd(
         int,
         typer.Option(
             "--verify-max-mesh",
+            parser=o.ASCII_INT,
             metavar="N",
             help="With --verify fe: refine a series not yet shown asymptotic against its bound "
             "by doubling its finest mesh, up to N elements per facet (0: 16; a 16-per-facet run "
@@ -317,13 +357,8 @@ def design_cmd(
         if checked is not None:
             _print_fe(checked, console)
         if robust is not None:
-            rd = robust.as_dict(request.problem)
-            met = "met" if robust.met else "NOT met"
-            console.print(
-                f"[bold]robust[/bold]: P(spec holds) = {rd['probability_met']} (target "
-                f"{robust.target:g}, {met}) after {robust.rounds} round(s) of margin inflation; "
-                "bounds above are the tightened ones; not certified as the lightest robust design"
-            )
+            for line in robust_lines(robust, request.problem):
+                console.print(line, markup=False)
         for path in answer.files:
             console.print(f"wrote {path}")
     if stopped:  # exit 4 (before 1: a robust target cannot be judged on an unfinished search)
@@ -541,8 +576,12 @@ def pareto_cmd(
     eta: Annotated[
         str, typer.Option(metavar=o.ANGLE, help="Direction of the stiffness (deg).")
     ] = "0",
-    points: Annotated[int, typer.Option(help="Points on a continuous front.")] = 25,
-    max_points: Annotated[int, typer.Option(help="Cap on a gridded (exact) front.")] = 500,
+    points: Annotated[
+        int, typer.Option(parser=o.ASCII_INT, help="Points on a continuous front.")
+    ] = 25,
+    max_points: Annotated[
+        int, typer.Option(parser=o.ASCII_INT, help="Cap on a gridded (exact) front.")
+    ] = 500,
     out: Annotated[
         Path | None,
         typer.Option("--out", metavar="DIR", help="Directory for pareto.csv and pareto.png."),
@@ -660,8 +699,8 @@ def tolerance_cmd(
     spec: Annotated[
         Path, typer.Argument(metavar="SPEC", help="Spec file (TOML); its optimum is analysed.")
     ],
-    samples: Annotated[int, typer.Option(help="Monte Carlo samples.")] = 10_000,
-    seed: Annotated[int, typer.Option(help="Random seed.")] = 0,
+    samples: Annotated[int, typer.Option(parser=o.ASCII_INT, help="Monte Carlo samples.")] = 10_000,
+    seed: Annotated[int, typer.Option(parser=o.ASCII_INT, help="Random seed.")] = 0,
     W_tol: Annotated[
         str, typer.Option("--W-tol", metavar=o.LENGTH, help="1-sigma error of W (mm).")
     ] = "0.1 mm",

@@ -36,6 +36,8 @@ from corrugate.names import (
 
 __all__ = [
     "ANGLE",
+    "ASCII_FLOAT",
+    "ASCII_INT",
     "DESIGN",
     "LENGTH",
     "LOAD_CASE",
@@ -48,6 +50,31 @@ __all__ = [
 ]
 
 Opt = typer.Option
+
+
+def _ascii(number: type[int] | type[float]) -> Callable[[Any], Any]:
+    """A typer ``parser`` reading an int or a float written in the digits 0-9 only: click's
+    INT and FLOAT call ``int`` and ``float``, which read full-width and other scripts' digits
+    (``int("８")`` is 8); those are refused as an invalid value of the option (exit 2), as the
+    table's options and the spec refuse them (:func:`corrugate.core.text.foreign_digits`)."""
+
+    def parse(value: Any) -> Any:
+        if isinstance(value, int | float) and not isinstance(value, bool):
+            return number(value)
+        from corrugate.core.text import foreign_digits
+
+        text = str(value)
+        if foreign_digits(text):
+            raise ValueError(f"{text!r} has digits other than 0-9: write it in 0-9")
+        return number(text)
+
+    parse.__name__ = number.__name__  # what --help shows: <int>, <float>
+    return parse
+
+
+#: The typer ``parser`` of an int and a float option (:func:`_ascii`).
+ASCII_INT = _ascii(int)
+ASCII_FLOAT = _ascii(float)
 
 
 def complete_materials(incomplete: str) -> list[str]:
@@ -125,6 +152,7 @@ SolverBudget = Annotated[
     float | None,
     Opt(
         "--budget",
+        parser=ASCII_FLOAT,
         metavar="SECONDS",
         help="Work budget: CPU seconds for the whole solve, explanation included (default 60; "
         "0.01 to 86400). When it runs out: the best design found so far, not certified, and "

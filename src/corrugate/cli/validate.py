@@ -209,7 +209,9 @@ def validate_cmd(
             "the one before) and extrapolate, e.g. 2,4,8 (default: --mesh alone).",
         ),
     ] = None,
-    mesh: Annotated[int, Opt(help="Shell elements across each facet (even).")] = 4,
+    mesh: Annotated[
+        int, Opt(parser=o.ASCII_INT, help="Shell elements across each facet (even).")
+    ] = 4,
     cell_mesh: Annotated[
         str,
         Opt(
@@ -223,6 +225,7 @@ def validate_cmd(
         float | None,
         Opt(
             metavar="FRACTION",
+            parser=o.ASCII_FLOAT,
             help="Refine the meshes until every result changes by "
             "less than this fraction (e.g. 0.01).",
         ),
@@ -260,7 +263,8 @@ def validate_cmd(
         Path, Opt(metavar="DIR", help="Folder for the sweep's table, CSV and plot.")
     ] = Path("out/validation"),
     jobs: Annotated[
-        int | None, Opt(help="Worker processes for a sweep (default: all cores).")
+        int | None,
+        Opt(parser=o.ASCII_INT, help="Worker processes for a sweep (default: all cores)."),
     ] = None,
     scheduler: Annotated[
         str | None,
@@ -273,7 +277,9 @@ def validate_cmd(
         Path | None, Opt(metavar="DIR", help="Parent folder of the ccx work folders.")
     ] = None,
     keep: Annotated[bool, Opt(help="Keep the ccx work folders.")] = False,
-    timeout: Annotated[float, Opt(help="Time-out of one ccx run (s).")] = 900.0,
+    timeout: Annotated[
+        float, Opt(parser=o.ASCII_FLOAT, help="Time-out of one ccx run (s).")
+    ] = 900.0,
     as_json: Annotated[bool, Opt("--json", help="Print one JSON object (single design).")] = False,
     quiet: o.Quiet = False,
 ) -> None:

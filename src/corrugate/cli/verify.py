@@ -227,11 +227,14 @@ def verify_cmd(
             "removed first.",
         ),
     ] = None,
-    timeout: Annotated[float, Opt(help="Time-out of one ccx run (s).")] = 900.0,
+    timeout: Annotated[
+        float, Opt(parser=o.ASCII_FLOAT, help="Time-out of one ccx run (s).")
+    ] = 900.0,
     max_mesh: Annotated[
         int,
         Opt(
             "--max-mesh",
+            parser=o.ASCII_INT,
             metavar="N",
             help="Refine a series not yet shown asymptotic against its bound by doubling its "
             "finest mesh, up to N elements per facet (0: 16; a 16-per-facet run may take minutes "
@@ -262,6 +265,7 @@ def verify_cmd(
         int,
         Opt(
             "--nonlinear-mesh",
+            parser=o.ASCII_INT,
             metavar="N",
             help="Shell elements across each facet of the nonlinear ramp's mesh (even).",
         ),

@@ -10,6 +10,7 @@ import re
 from dataclasses import dataclass
 
 from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.core.limits import LIMITS, is_normal
 from corrugate.names import LASER
 
 __all__ = ["CUTTERS", "INCH", "Cutter", "get_cutter"]
@@ -69,7 +70,9 @@ def get_cutter(name: str | Cutter) -> Cutter:
     """The cutter called ``name`` (see the module docstring), or a ``laser:WxH`` bed in mm.
 
     Raises :class:`~corrugate.core.errors.UnknownNameError` for an unknown name and
-    :class:`~corrugate.core.errors.InputError` for a laser bed that is not positive.
+    :class:`~corrugate.core.errors.InputError` for a laser bed that is not positive or longer than
+    any length a spec takes (``LIMITS["length"]``, 1 km: a 4000-digit width is refused as it was
+    written, not read as infinity).
     """
     if isinstance(name, Cutter):
         return name
@@ -86,8 +89,11 @@ def get_cutter(name: str | Cutter) -> Cutter:
                 reason="is not a laser bed size",
             )
         w, h = float(m.group(1)), float(m.group(2))
-        if w <= 0 or h <= 0:
-            raise InputError("cutter", repr(name), "a bed of positive width and height (mm)")
+        top = LIMITS["length"].hi
+        if not all(is_normal(x) and 0 < x <= top for x in (w, h)):
+            raise InputError(
+                "cutter", repr(name), f"a bed of positive width and height up to {top:g} mm"
+            )
         return Cutter(
             f"laser:{w:g}x{h:g}", w, h, f"laser bed {w:g} x {h:g} mm", "given by the user"
         )

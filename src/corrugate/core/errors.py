@@ -8,6 +8,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from corrugate.core.text import clipped, printable
+
 __all__ = [
     "CorrugateError",
     "InputError",
@@ -43,7 +45,10 @@ class InputError(CorrugateError, ValueError):
     """A user-supplied value is invalid.
 
     The message names the parameter, the value given and what is allowed, in one line, e.g.
-    ``alpha = 190 deg is out of range: allowed 0 < alpha < 180 deg``.
+    ``alpha = 190 deg is out of range: allowed 0 < alpha < 180 deg``. The field and the value are
+    shown without control characters, and a value longer than 100 characters by its first 60
+    and its length (:mod:`corrugate.core.text`): a name or a 4000-digit number from a file never
+    takes over the terminal or the line.
     """
 
     def __init__(self, field: str, value: Any, allowed: str, *, reason: str = "is out of range"):
@@ -51,7 +56,8 @@ class InputError(CorrugateError, ValueError):
         self.value = value
         self.allowed = allowed
         self.reason = reason
-        super().__init__(f"{field} = {value!s} {reason}: allowed {allowed}")
+        shown = clipped(printable(str(value)))
+        super().__init__(f"{clipped(printable(field))} = {shown} {reason}: allowed {allowed}")
 
     def renamed(self, field: str, value: Any = None, reason: str | None = None) -> InputError:
         """The same error naming ``field`` instead (the caller's name for what the library
@@ -83,7 +89,8 @@ class OutputError(CorrugateError, OSError):
         self.field = field
         self.path = path
         super().__init__(
-            f"{field} = {path!s} cannot be written ({reason}): allowed a writable folder"
+            f"{printable(field)} = {printable(str(path))} cannot be written ({reason}): "
+            "allowed a writable folder"
         )
 
     def __str__(self) -> str:
@@ -129,10 +136,10 @@ def describe(exc: BaseException) -> str:
         return str(exc)
     if isinstance(exc, OSError):
         where = exc.filename if exc.filename is not None else "a file"
-        return f"{where} cannot be used ({exc.strerror or type(exc).__name__})"
+        return f"{clipped(printable(str(where)))} cannot be used ({exc.strerror or type(exc).__name__})"
     if isinstance(exc, RecursionError):
         return "the input is nested too deeply"
     if isinstance(exc, MemoryError):
         return "the input needs more memory than is available"
-    text = str(exc).splitlines()[0][:200] if str(exc) else ""
+    text = printable(str(exc).splitlines()[0][:200]) if str(exc) else ""
     return f"internal error ({type(exc).__name__}{': ' + text if text else ''})"

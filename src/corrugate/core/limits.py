@@ -86,6 +86,14 @@ LIMITS: dict[str, Limit] = {
             "n", 1, 5000, "", "number of creases: one fold to 5000 (a 10 m sheet of 2 mm pleats)"
         ),
         Limit("alpha", 0.0, 180.0, "deg", "interior fold angle: closed to flat", True, True),
+        Limit(
+            "eta",
+            -360.0,
+            360.0,
+            "deg",
+            "a direction in the panel: one turn either way (1e300 deg names no direction "
+            "a reader can check; docs/spec.md)",
+        ),
         Limit("E", 1e-3, 1e7, "MPa", "Young's modulus: a soft foam (1 kPa) to above diamond"),
         Limit("nu", -1.0, 0.5, "", "Poisson's ratio of a stable isotropic solid", True, True),
         Limit("density", 1e-3, 30.0, "g/cm^3", "aerogel to above osmium (22.6 g/cm^3)"),

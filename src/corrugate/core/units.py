@@ -26,6 +26,7 @@ from functools import lru_cache
 from typing import Any
 
 from corrugate.core.errors import InputError
+from corrugate.core.text import foreign_digits
 from corrugate.core.unit_grammar import parse_unit
 
 __all__ = ["parse_quantity", "ureg"]
@@ -183,6 +184,13 @@ def parse_quantity(value: object, unit: str, field: str) -> float:
             field, value, f"a number or a quantity in {unit}", reason="is not a number"
         )
     text = value.strip()
+    if foreign_digits(text):  # float() reads full-width and other scripts' digits
+        raise InputError(
+            field,
+            repr(value),
+            f"a number in ASCII digits 0-9, or a quantity in {unit} such as '1 {unit}'",
+            reason="has digits other than 0-9",
+        )
     try:
         return float(text)
     except ValueError:

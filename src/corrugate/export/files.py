@@ -325,6 +325,7 @@ def pattern_tiles(job: Job) -> Commit:
             job.style,
             labels=job.labels is not False,
             title=f"corrugate pattern, 1:1 on {job.paper} pages",
+            operations=job.operations,
         )
         return [target]
 

@@ -12,6 +12,12 @@ along y); the box, grown on every side by a gap of :data:`GAP_MM` plus a quarter
 against every line and shrunk until it touches none, so no line runs through or along a label
 (issue 36: a crease drawn on the "L" of "L1"). Writers fit the text into that box: the SVG fold map with ``textLength``, the cut
 files with single-stroke glyphs scaled into it (:func:`label_strokes`).
+
+On a printed sheet (the PDF and its tiles) a label is written at :data:`READABLE_TEXT_MM` (2 mm)
+or more, turned a quarter only where the turned text is the larger; the full label falls back to
+the part's name (the page's key gives the full label), and a name that does not fit on its part
+at 2 mm either, a narrow strip's, is a callout (:func:`callout_spot`): written level at 2 mm
+beside the part, off every part, with a leader to its spot on the part.
 """
 
 from __future__ import annotations
@@ -32,6 +38,7 @@ __all__ = [
     "MIN_TEXT_MM",
     "READABLE_TEXT_MM",
     "LabelSpot",
+    "callout_spot",
     "label_gap",
     "label_spot",
     "label_strokes",
@@ -252,6 +259,41 @@ def readable_label(placed: PlacedPart, text: str, short: str) -> tuple[str, Labe
     if spot.size >= READABLE_TEXT_MM or text == short:
         return text, spot, False
     return short, label_spot(placed, short), True
+
+
+Box = tuple[float, float, float, float]
+
+
+def callout_spot(
+    placed: PlacedPart, text: str, blocked: list[Box], width: float, height: float
+) -> LabelSpot | None:
+    """Where ``text`` goes as a callout of ``placed`` on a ``width`` x ``height`` sheet: level, at
+    :data:`READABLE_TEXT_MM`, its box grown by :func:`label_gap` inside the sheet and off every box
+    (x0, y0, x1, y1) of ``blocked`` (the parts' bounds, the check square's and the callouts
+    placed before); tried above, below, right of and left of the part's bounds, the text centred
+    on its label spot, then slid along the side. None when no such place is free (the caller
+    writes the name small on the part; the key still gives it)."""
+    size = READABLE_TEXT_MM
+    length, tall = 0.6 * max(len(text), 1) * size, 1.2 * size
+    gap = label_gap(size)
+    pts = np.asarray(placed.outline, dtype=np.float64)
+    x0, y0 = pts.min(axis=0)
+    x1, y1 = pts.max(axis=0)
+    anchor = label_spot(placed, text)
+    hl, hh = length / 2 + gap, tall / 2 + gap
+    along_x = [anchor.x, (x0 + x1) / 2, x0 + hl, x1 - hl]
+    along_y = [anchor.y, (y0 + y1) / 2, y0 + hh, y1 - hh]
+    sides = [(cx, y1 + hh) for cx in along_x] + [(cx, y0 - hh) for cx in along_x]
+    sides += [(x1 + hl, cy) for cy in along_y] + [(x0 - hl, cy) for cy in along_y]
+    for cx, cy in sides:
+        box = (cx - hl, cy - hh, cx + hl, cy + hh)
+        if box[0] < 0 or box[1] < 0 or box[2] > width or box[3] > height:
+            continue
+        if all(
+            box[2] <= b[0] or b[2] <= box[0] or box[3] <= b[1] or b[3] <= box[1] for b in blocked
+        ):
+            return LabelSpot(float(cx), float(cy), size, 0.0, length)
+    return None
 
 
 #: Characters outside the stroke font's printable ASCII, written as the font can draw them.

@@ -19,6 +19,7 @@ in a strip below the sheet, which it is free to do as no machine reads it.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 from corrugate.export.machines import Machine
@@ -133,11 +134,17 @@ def cut_legend(machine: Machine, layers: list[str]) -> list[LegendRow]:
 
 
 def _free_box(
-    sheet: Sheet, w: float, h: float, margin: float, spacing: float
+    sheet: Sheet,
+    w: float,
+    h: float,
+    margin: float,
+    spacing: float,
+    blocked: Sequence[tuple[float, float, float, float]] = (),
 ) -> tuple[float, float] | None:
     """The lower-left corner of a ``w`` x ``h`` box inside the margins, ``spacing`` clear of every
-    part and of the reserved box, lowest then leftmost; None if there is none."""
-    boxes = [p.bounds for p in sheet.placements]
+    part, of the reserved box and of the boxes ``blocked``, lowest then leftmost; None if there
+    is none."""
+    boxes = [*(p.bounds for p in sheet.placements), *blocked]
     if sheet.reserved is not None:
         rx, ry, rw, rh = sheet.reserved
         boxes.append((rx, ry, rx + rw, ry + rh))
@@ -145,14 +152,18 @@ def _free_box(
 
 
 def legend_spot(
-    sheet: Sheet, rows: list[LegendRow], margin: float = 0.0, spacing: float = 0.0
+    sheet: Sheet,
+    rows: list[LegendRow],
+    margin: float = 0.0,
+    spacing: float = 0.0,
+    blocked: Sequence[tuple[float, float, float, float]] = (),
 ) -> LegendSpot | None:
-    """Where ``rows`` go on ``sheet`` (module docstring), or None when no free box takes them at
-    :data:`MIN_LEGEND_TEXT_MM`."""
+    """Where ``rows`` go on ``sheet`` (module docstring), off the boxes ``blocked`` too (the
+    PDF's callouts), or None when no free box takes them at :data:`MIN_LEGEND_TEXT_MM`."""
     size = LEGEND_TEXT_MM
     while size >= MIN_LEGEND_TEXT_MM - _EPS:
         w, h = legend_size(rows, size)
-        corner = _free_box(sheet, w, h, margin, spacing)
+        corner = _free_box(sheet, w, h, margin, spacing, blocked)
         if corner is not None:
             return LegendSpot(corner[0], corner[1], size, w, h)
         size -= 0.25

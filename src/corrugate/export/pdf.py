@@ -21,7 +21,9 @@ framed by a thin grey line. Neighbouring windows overlap by :data:`OVERLAP_MM`; 
 crosses sit on the middle line of each overlap every :data:`MARK_PITCH_MM`
 (:func:`registration_marks`), at the same sheet point on both pages. The footer holds a black
 10 mm check square, the page's sheet, row, column and number, how to join the pages, and a map of
-the grid with the page filled. All lengths are mm.
+the grid with the page filled. The last page is the key (:func:`key_figure`): the fold map's
+legend and every part's full label, as a tile shows a part by its name where the full label does
+not fit. All lengths are mm.
 """
 
 from __future__ import annotations
@@ -36,7 +38,14 @@ from typing import TYPE_CHECKING
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.fileio import staged
 from corrugate.core.plotting import pdf_pages
-from corrugate.export.labels import label_text, readable_label
+from corrugate.export.labels import (
+    READABLE_TEXT_MM,
+    LabelSpot,
+    callout_spot,
+    label_gap,
+    label_text,
+    readable_label,
+)
 from corrugate.export.legend import LegendRow, fold_map_legend, legend_spot, row_length
 from corrugate.export.svg import ANNOTATION, BOUNDARY, COLOURS
 from corrugate.fabrication.linestyle import (
@@ -58,6 +67,7 @@ if TYPE_CHECKING:
 __all__ = [
     "CHECK_SQUARE_MM",
     "FOOTER_MM",
+    "KEY_TEXT_MM",
     "LINE_MM",
     "MARK_INSET_MM",
     "MARK_PITCH_MM",
@@ -68,12 +78,16 @@ __all__ = [
     "PAPER_CHOICES",
     "REGISTRATION",
     "Paper",
+    "PrintedLabel",
     "Tile",
     "check_paper",
     "check_square_spot",
     "drawing_area",
     "get_paper",
+    "key_figure",
+    "key_rows",
     "plan_tiles",
+    "printed_labels",
     "registration_marks",
     "render_pdf",
     "render_tiled_pdf",
@@ -164,21 +178,71 @@ def sheet_figure(
     return fig
 
 
+@dataclass(frozen=True, slots=True)
+class PrintedLabel:
+    """One part's label on a printed sheet: the ``text`` written at ``spot``, the part's full
+    label when ``text`` is its name only (``full``; the key gives it), and for a callout the
+    point on the part its leader runs to (``leader``; None: written on the part)."""
+
+    text: str
+    spot: LabelSpot
+    full: str | None = None
+    leader: Point | None = None
+
+    @property
+    def box(self) -> tuple[float, float, float, float]:
+        """The text's box grown by its gap (sheet mm)."""
+        (x0, y0), _, (x1, y1), _ = self.spot.corners()
+        g = label_gap(self.spot.size)
+        return x0 - g, y0 - g, x1 + g, y1 + g
+
+
+def printed_labels(plan: SheetPlan, number: int) -> list[PrintedLabel]:
+    """The labels of sheet ``number`` as the PDF writes them (module docstring of
+    :mod:`corrugate.export.labels`): the full label on the part at 2 mm or more, else the name on
+    the part at 2 mm or more, else the name as a callout beside the part (off every part and the
+    check square), else the name at the size that fits on the part."""
+    sheet = plan.sheets[number - 1]
+    blocked = [p.bounds for p in sheet.placements]
+    corner = check_square_spot(sheet, plan.spacing)
+    if corner is not None:
+        x, y = corner
+        blocked.append((x, y - _LABEL_MM - 1.0, x + CHECK_SQUARE_MM, y + CHECK_SQUARE_MM))
+    out: list[PrintedLabel] = []
+    for placement in sheet.placements:
+        part = placement.part
+        if not part.label:
+            continue
+        placed = place(placement)
+        full = label_text(placed)
+        text, spot, short = readable_label(placed, full, part.name)
+        if spot.size >= READABLE_TEXT_MM - 1e-9:
+            out.append(PrintedLabel(text, spot, full if short else None))
+            continue
+        beside = callout_spot(placed, text, blocked, sheet.width, sheet.height)
+        if beside is None:
+            out.append(PrintedLabel(text, spot, full if short else None))
+            continue
+        label = PrintedLabel(text, beside, full if short else None, (spot.x, spot.y))
+        blocked.append(label.box)
+        out.append(label)
+    return out
+
+
 def _draw_legend(
     ax: Axes, plan: SheetPlan, number: int, operations: object | None, *, labels: bool = True
 ) -> None:
     """The fold map's legend (:func:`~corrugate.export.legend.fold_map_legend`: for people, not
     the cutter; each colour's meaning and what the cut file does with it) in the free box of sheet
-    ``number`` that :func:`~corrugate.export.legend.legend_spot` finds, each row in its kind's
-    colour; none when no box takes it (the page is the sheet: there is no strip to add)."""
+    ``number`` that :func:`~corrugate.export.legend.legend_spot` finds (off the callouts too),
+    each row in its kind's colour, then the full label of each part that carries its name only;
+    none when no box takes it (the page is the sheet: there is no strip to add)."""
     sheet = plan.sheets[number - 1]
     rows = fold_map_legend(operations)
-    for placement in sheet.placements:  # the full label of a part that carries its name only
-        placed = place(placement)
-        full = label_text(placed)
-        if labels and placement.part.label and readable_label(placed, full, placement.part.name)[2]:
-            rows.append(LegendRow(full, ANNOTATION))
-    key = legend_spot(sheet, rows, plan.margin, plan.spacing)
+    printed = printed_labels(plan, number) if labels else []
+    rows += [LegendRow(p.full, ANNOTATION) for p in printed if p.full is not None]
+    callouts = [p.box for p in printed if p.leader is not None]
+    key = legend_spot(sheet, rows, plan.margin, plan.spacing, callouts)
     if key is None:
         return
     for k, row in enumerate(rows):
@@ -221,19 +285,25 @@ def _draw_sheet(ax: Axes, plan: SheetPlan, number: int, style: LineStyle, *, lab
                 segs.setdefault(colour, []).extend(dashes(ln, style.cut, style.gap, where=where))
             else:
                 segs.setdefault(colour, []).append((ln.a, ln.b))
-        if labels and part.label:
-            text, spot, _ = readable_label(placed, label_text(placed), part.name)
-            ax.text(
-                spot.x,
-                spot.y,
-                text,
-                fontsize=spot.size * _PT,
-                rotation=spot.rotation,
-                ha="center",
-                va="center",
-                color=ANNOTATION,
-                clip_on=True,
-            )
+    for label in printed_labels(plan, number) if labels else []:
+        spot = label.spot
+        ax.text(
+            spot.x,
+            spot.y,
+            label.text,
+            fontsize=spot.size * _PT,
+            rotation=spot.rotation,
+            ha="center",
+            va="center",
+            color=ANNOTATION,
+            clip_on=True,
+        )
+        if label.leader is not None:  # a callout: a leader from its box to its spot on the part
+            x0, y0, x1, y1 = label.box
+            lx, ly = label.leader
+            ex, ey = min(max(lx, x0), x1), min(max(ly, y0), y1)
+            segs.setdefault(ANNOTATION, []).append(((ex, ey), (lx, ly)))
+            ax.plot([lx], [ly], marker="o", markersize=0.8 * _PT, color=ANNOTATION, clip_on=True)
     for colour, lines in segs.items():
         ax.add_collection(LineCollection(lines, colors=colour, linewidths=lw, capstyle="butt"))
     corner = check_square_spot(sheet, plan.spacing)
@@ -572,6 +642,69 @@ def tile_figure(
     return fig
 
 
+#: Text height (mm) of the tiled PDF's key page.
+KEY_TEXT_MM = 3.0
+
+
+def key_rows(
+    plan: SheetPlan, operations: object | None = None, *, labels: bool = True
+) -> list[LegendRow]:
+    """The rows of the tiled PDF's key page: the fold map's legend
+    (:func:`~corrugate.export.legend.fold_map_legend`), then for each sheet every labelled part's
+    full label ("L1: layer 1: W 8 mm, ..."): a tile shows a part by its name where the full label
+    does not fit (:func:`printed_labels`), and a page shows only its window of the sheet."""
+    rows = fold_map_legend(operations)
+    for number, sheet in enumerate(plan.sheets, start=1):
+        parts = [label_text(place(p)) for p in sheet.placements if p.part.label] if labels else []
+        if parts:
+            rows.append(
+                LegendRow(f"sheet {number}/{len(plan.sheets)}: the parts' labels", "#000000")
+            )
+            rows += [LegendRow(f"  {text}", ANNOTATION) for text in parts]
+    return rows
+
+
+def key_figure(
+    plan: SheetPlan,
+    paper: Paper,
+    operations: object | None = None,
+    *,
+    labels: bool = True,
+    page: tuple[int, int] = (1, 1),
+) -> Figure:
+    """The tiled PDF's key page on ``paper``: :func:`key_rows` from the top left at
+    :data:`KEY_TEXT_MM`, shrunk to fit the page's height but never below 2 mm, each row in its
+    kind's colour, and ``page`` (number, count) at the foot."""
+    from matplotlib.figure import Figure
+
+    pw, ph = paper.width, paper.height
+    fig = Figure(figsize=(pw / 25.4, ph / 25.4))
+    ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))
+    ax.set_xlim(0.0, pw)
+    ax.set_ylim(0.0, ph)
+    ax.set_axis_off()
+    rows = key_rows(plan, operations, labels=labels)
+    top, bottom = ph - PAGE_MARGIN_MM, FOOTER_MM
+    size = max(min(KEY_TEXT_MM, (top - bottom - 8.0) / (1.6 * max(len(rows), 1))), 2.0)
+    ax.text(PAGE_MARGIN_MM, top, "Key", fontsize=1.4 * KEY_TEXT_MM * _PT, ha="left", va="top")
+    y = top - 2.4 * KEY_TEXT_MM
+    for row in rows:
+        ax.text(
+            PAGE_MARGIN_MM, y, row.text, fontsize=size * _PT, ha="left", va="top", color=row.colour
+        )
+        y -= 1.6 * size
+    number, count = page
+    ax.text(
+        PAGE_MARGIN_MM,
+        FOOTER_MM / 2,
+        f"page {number} of {count}: the key of the tiles (print any scale)",
+        fontsize=2.5 * _PT,
+        ha="left",
+        va="center",
+    )
+    return fig
+
+
 def render_tiled_pdf(
     plan: SheetPlan,
     path: Path,
@@ -582,9 +715,12 @@ def render_tiled_pdf(
     title: str = "",
     overlap: float = OVERLAP_MM,
     empty: bool = False,
+    operations: object | None = None,
 ) -> None:
     """Draw ``plan`` as 1:1 tile pages of ``paper`` into a PDF at ``path`` directly (no staging:
-    use :func:`write_tiled_pdf`); pages with nothing to cut are left out unless ``empty``."""
+    use :func:`write_tiled_pdf`); pages with nothing to cut are left out unless ``empty``; the
+    last page is the key (:func:`key_figure`; ``operations``: the cut files' fold operations,
+    which it names)."""
     PdfPages = pdf_pages()
 
     pp = paper if isinstance(paper, Paper) else get_paper(paper)
@@ -594,6 +730,7 @@ def render_tiled_pdf(
     for t in tiles:
         printed.setdefault(t.sheet, set()).add((t.row, t.column))
     metadata = {"Title": title, "Creator": "corrugate", "CreationDate": None}
+    count = len(tiles) + 1
     with PdfPages(path, metadata=metadata) as pdf:
         for k, tile in enumerate(tiles, start=1):
             fig = tile_figure(
@@ -602,11 +739,12 @@ def render_tiled_pdf(
                 pp,
                 style,
                 labels=labels,
-                page=(k, len(tiles)),
+                page=(k, count),
                 overlap=overlap,
                 printed=printed[tile.sheet],
             )
             pdf.savefig(fig)
+        pdf.savefig(key_figure(plan, pp, operations, labels=labels, page=(count, count)))
 
 
 def write_tiled_pdf(
@@ -619,10 +757,11 @@ def write_tiled_pdf(
     title: str = "corrugate pattern, tiled",
     overlap: float = OVERLAP_MM,
     empty: bool = False,
+    operations: object | None = None,
 ) -> Path:
     """Write ``plan`` as 1:1 tile pages of ``paper`` (``a4`` or ``letter``) to a PDF at ``path``
     (all or nothing); see :func:`sheet_tiles` and :func:`tile_figure`. Pages whose window holds
-    no part are left out unless ``empty``."""
+    no part are left out unless ``empty``; the last page is the key (:func:`key_figure`)."""
     pp = paper if isinstance(paper, Paper) else get_paper(paper)
     check_style((p.part for p in plan.placements), style)
     target = Path(path)
@@ -636,5 +775,6 @@ def write_tiled_pdf(
             title=title,
             overlap=overlap,
             empty=empty,
+            operations=operations,
         )
     return target

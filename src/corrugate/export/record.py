@@ -25,6 +25,7 @@ from typing import TYPE_CHECKING, Any
 
 from corrugate.core.errors import InputError
 from corrugate.core.fileio import Staging, write_set
+from corrugate.core.text import printable
 from corrugate.geometry.holes import Hole
 from corrugate.names import DEFAULT_LAYOUT, RECTANGULAR_LAYOUTS
 
@@ -269,7 +270,8 @@ def read_record(path: str | Path) -> DesignRecord:
 
 def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
     """The assembly, the constraints and the joint of ``folder/design.json``; an InputError
-    naming the file when it is missing, not JSON, or not a design record."""
+    naming the file when it is missing, not JSON, or not a design record. The constraints' text
+    values come without control characters (names a hand-edited file may hold)."""
     from corrugate.fea.verify import check_layout
 
     if not folder.is_dir():
@@ -297,6 +299,11 @@ def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
             "a list of constraint objects",
             reason="is malformed",
         )
+    # names are printed (verify's table, its errors): no control character from a hand-edited
+    # file reaches the terminal (corrugate.core.text.printable)
+    constraints = [
+        {k: printable(v) if isinstance(v, str) else v for k, v in c.items()} for c in constraints
+    ]
     joint = data.get("joint", "none")
     if not isinstance(joint, str):
         raise InputError(

@@ -62,6 +62,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from corrugate.core.errors import CorrugateError, InputError
+from corrugate.core.text import foreign_digits
 from corrugate.fea.assembly import (
     AssemblyMesh,
     AssemblyResult,
@@ -908,6 +909,8 @@ def _comma_values(
 ) -> tuple[_T, ...]:
     """The values of option ``name`` given as ``text``, separated by commas, each read by
     ``convert``; one line naming the option and what it allows when one cannot be read."""
+    if foreign_digits(text):  # int("８") and float("０.５") read them: refused, 0-9 only
+        raise InputError(name, repr(text), allowed, reason="has digits other than 0-9")
     try:
         return tuple(convert(v) for v in text.split(","))
     except ValueError:

@@ -87,11 +87,16 @@ _KINDS: dict[str, tuple[str, str]] = {
     "EI": ("flexural rigidity EI", "N*mm^2"),
     "D": ("bending stiffness D", "N*mm"),
     "K": ("in-plane stiffness K", "N/mm"),
-    "Pb": ("buckling load (lower bound)", "N"),
-    "length": ("panel length", "mm"),
+    "Pb": ("buckling load Pb", "N"),
+    "length": ("panel length L", "mm"),
     "k": ("load over deflection P/delta", "N/mm"),
-    "Pmax": ("load capacity at the safety factor", "N"),
+    "Pmax": ("load capacity Pmax", "N"),
 }
+
+#: Words a kind's description ends with, after its direction, test and span (the label ends with
+#: the symbol the direction is written on: ``load capacity Pmax(0 deg) as a cantilever over
+#: 150 mm at the safety factor``, never ``... safety factor(0 deg)``).
+_AFTER: dict[str, str] = {"Pb": " (a lower bound)", "Pmax": " at the safety factor"}
 
 
 def declare_kind(kind: str, label: str, unit: str) -> None:
@@ -256,7 +261,10 @@ class Quantity:
     @property
     def description(self) -> str:
         """A readable name, e.g. ``flexural rigidity EI(0 deg)``, ``in-plane stiffness K(45 deg)
-        in a frame``, ``P/delta(90 deg) in cantilever over 150 mm``, ``mass``."""
+        in a frame``, ``load over deflection P/delta(90 deg) as a cantilever over 150 mm``,
+        ``load capacity Pmax(0 deg) in three-point bending at the safety factor``, ``mass``:
+        the direction on the symbol the label ends with, then the support, the test, the span,
+        the duration and the kind's closing words (:data:`_AFTER`)."""
         text = _KINDS[self.kind][0] if self.kind in _KINDS else self.kind
         if self.eta is not None:  # the direction on the symbol: EI(0 deg) in a frame over ...
             text += f"({self.eta:.12g} deg)"
@@ -268,7 +276,7 @@ class Quantity:
             text += f" over {self.span:.12g} mm"
         if self.duration is not None:
             text += f" held {self.duration:.12g} h"
-        return text
+        return text + _AFTER.get(self.kind, "")
 
     @property
     def directional(self) -> bool:

@@ -11,12 +11,13 @@ web app report the same errors with the same words.
 from __future__ import annotations
 
 import json
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.errors import InputError, UnknownNameError
+from corrugate.core.limits import check
+from corrugate.core.text import foreign_digits
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, holes_from_data
 from corrugate.geometry.layer import Assembly, Layer
@@ -53,6 +54,8 @@ def parse_int(value: object, field: str, allowed: str = _N_ALLOWED) -> int:
         raise InputError(field, value, allowed, reason="is not an integer")
     if isinstance(value, int):
         return value
+    if isinstance(value, str) and foreign_digits(value):  # int("８") is 8
+        raise InputError(field, repr(value), allowed, reason="has digits other than 0-9")
     try:
         f = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
@@ -184,10 +187,7 @@ def parse_etas(eta: Sequence[object] | None) -> tuple[float, ...]:
     if not eta:
         return DEFAULT_ETAS
     etas = tuple(parse_quantity(e, "deg", "eta") for e in eta)
-    for e in etas:
-        if not math.isfinite(e):
-            raise InputError("eta", f"{e} deg", "a finite angle in deg")
-    return etas
+    return tuple(check("eta", e) for e in etas)  # -360..360 deg (docs/spec.md, "Directions")
 
 
 def assembly_from_options(

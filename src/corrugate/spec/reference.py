@@ -168,7 +168,8 @@ _STATIC: dict[str, KeyDoc] = {
     ),
     "safety_factor": KeyDoc(
         "",
-        "Factor on the failure load of every strength bound and load case, 1-100 (default 2: "
+        "Factor on the failure load of every strength bound and load case, 1 to 100, both "
+        "included (default 2: "
         "datasheet yield values are typical, not minimum, and polymer films creep under a "
         "sustained load).",
     ),
@@ -488,6 +489,11 @@ def reference_markdown() -> str:
         "80 mN m^2 the web form shows, 1000 times apart, so `flexural_rigidity = [{ min = 80 }]` "
         "is refused with `constraints.flexural_rigidity[0].min = 80 has no unit: write it with "
         'one, e.g. "80 mN*m^2" (or "80 N*mm^2")` (exit 2; HTTP 422 from `POST /api/design`).',
+        "",
+        "**Directions** (every `eta`, of a spec, `analyze --eta` and the web form): from -360 to "
+        "360 deg, both included; beyond that range an angle is refused, not reduced modulo 360 "
+        '(`eta = "1e300 deg"` names no direction anyone can check: a typo, not a turn), with one '
+        "line naming the key, the value given and the range (exit 2; HTTP 422).",
         "",
         "| key | unit | plain | default | meaning |",
         "|---|---|---|---|---|",

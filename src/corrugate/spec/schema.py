@@ -46,6 +46,7 @@ from pathlib import Path
 from typing import Annotated, Any, Literal
 
 from pydantic import (
+    AfterValidator,
     BaseModel,
     BeforeValidator,
     ConfigDict,
@@ -70,6 +71,7 @@ from corrugate.core.limits import (
     check_items,
     check_text,
 )
+from corrugate.core.text import printable
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
 from corrugate.materials.library import G_PER_CM3
@@ -254,7 +256,11 @@ Length = Annotated[
 FacetWidth = Annotated[float, BeforeValidator(_limited("W", "mm"))]
 SheetThickness = Annotated[float, BeforeValidator(_limited("thickness", "mm"))]
 FoldAngle = Annotated[float, BeforeValidator(_quantity("deg", lo=0.0, hi=180.0))]
-Direction = Annotated[float, BeforeValidator(_quantity("deg"))]
+#: A name the answer prints (the spec's, a material's): its control characters removed, so an
+#: escape sequence in a spec never reaches the terminal (corrugate.core.text.printable).
+Name = Annotated[str, AfterValidator(printable)]
+#: A direction eta: -360 to 360 deg (LIMITS["eta"]; docs/spec.md, "Directions").
+Direction = Annotated[float, BeforeValidator(_limited("eta", "deg"))]
 MassQ = Annotated[
     float, BeforeValidator(_quantity("g", lo=0.0, hi=LIMITS["mass"].hi, hi_open=False))
 ]
@@ -402,7 +408,7 @@ class MaterialSpec(_Strict):
     library sells) or nothing (the material's default thickness).
     """
 
-    name: str = "custom"
+    name: Name = "custom"
     thickness: Thicknesses = None
     E: Modulus | None = None
     nu: Poisson | None = None
@@ -776,8 +782,12 @@ def _tolerances(value: Any) -> Any:
 Tolerances = Annotated[TolerancesSpec, BeforeValidator(_tolerances)]
 
 
+#: 1 to 100, both included (the reference says 1-100; 100 was refused as "< 100" before).
 SafetyFactor = Annotated[
-    float, BeforeValidator(_quantity("dimensionless", lo=1.0, lo_open=False, hi=100.0, shown=""))
+    float,
+    BeforeValidator(
+        _quantity("dimensionless", lo=1.0, lo_open=False, hi=100.0, hi_open=False, shown="")
+    ),
 ]
 
 #: The narrowest facet anyone folds by default (mm; docs/fabrication.md, "What the solve asks of
@@ -840,7 +850,7 @@ class FabricationSpec(_Strict):
 class Spec(_Strict):
     """A validated design spec; every quantity in internal units (mm, deg, g, N)."""
 
-    name: str = "design"
+    name: Name = "design"
     model: ModelName = DEFAULT_MODEL
     support: Support = DEFAULT_SUPPORT
     layers: Literal["identical", "independent"] = "identical"
@@ -1045,6 +1055,13 @@ def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
 
 def _check_material(where: str, m: MaterialSpec) -> None:
     inline = [x is not None for x in (m.E, m.nu, m.density)]
+    if not any(inline) and "name" not in m.model_fields_set:  # neither a name nor E, nu, density
+        raise SpecError(
+            f"{where}.E",
+            None,
+            "E, nu and density for an inline material, or a library material's name",
+            reason="is missing",
+        )
     if any(inline):
         for key, given in zip(("E", "nu", "density"), inline, strict=True):
             if not given:

@@ -75,6 +75,8 @@ async function loadMaterials() {
       select2.appendChild(new Option(m.id, m.id));
       designSelect.appendChild(new Option(label, m.id, false, m.id === 'dura-lar'));
     }
+    // an inline material (the spec's [material] E, nu, density, thickness, yield_strength)
+    designSelect.appendChild(new Option('custom (E, nu, density below)', CUSTOM));
     await loadCasesLoaded;  // the design form's test menus too
     designForm.dataset.ready = 'true';
   } catch (err) {
@@ -494,6 +496,9 @@ function syncDesignVisibility() {
     el.hidden = $('d-cutter').value !== el.dataset.cutter;
   }
   $('d-objective-eta').hidden = $('d-objective').value.startsWith('minimize');
+  const custom = $('d-material').value === CUSTOM;
+  for (const el of designForm.querySelectorAll('.d-inline-material')) el.hidden = !custom;
+  $('d-more-field').hidden = custom;  // the candidates are library ids
   renumberRequirements();
 }
 
@@ -671,8 +676,10 @@ function designBody() {
   const [sense, what] = $('d-objective').value.split(':');
   body.objective = { ...(body.objective || {}), [sense]: what };
   if (sense === 'minimize') delete body.objective.eta;
+  // an inline material is named by the spec's default name, as `[material] E = ...` without one
+  if (body.material && body.material.name === CUSTOM) delete body.material.name;
   const more = $('d-more-materials').value.split(/[\s,;]+/).filter((x) => x !== '');
-  if (more.length && body.material) {
+  if (more.length && body.material && !$('d-more-field').hidden) {
     const { name, ...rest } = body.material;
     const names = [name || $('d-material').value, ...more.filter((x) => x !== name)];
     body.materials = names.map((n) => ({ name: n, ...rest }));
@@ -746,6 +753,8 @@ function fillDesign(spec) {
     $('d-more-materials').value = spec.materials.slice(1).map((m) => m.name).join(', ');
     setField('material.thickness', spec.materials[0].thickness);
   }
+  const m = spec.material || {};
+  if (['E', 'nu', 'density'].some((k) => m[k] !== undefined)) $('d-material').value = CUSTOM;  // inline
   if (typeof spec.cutter === 'string' && spec.cutter.startsWith('laser:')) {
     $('d-cutter').value = 'laser';
     $('d-laser-bed').value = spec.cutter.slice(6);
@@ -1414,6 +1423,7 @@ if (location.hash.startsWith('#design')) selectTab('design');
 
 form.addEventListener('submit', submit);
 $('material').addEventListener('change', syncVisibility);
+$('d-material').addEventListener('change', syncDesignVisibility);
 $('layout').addEventListener('change', syncVisibility);
 designForm.addEventListener('submit', submitDesign);
 $('d-save').addEventListener('click', saveSpec);
