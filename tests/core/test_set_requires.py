@@ -79,7 +79,9 @@ def test_readers_and_recover_drop_a_set_whose_required_file_changed(tmp_path: Pa
     assert recover(out) is None
     (out / "design.json").unlink()  # a required file that is gone: refused too
     with pytest.raises(StaleSetError):
-        write_set(out, {"verify.json": "x"}, kind="verify", requires={"design.json": _sha("edited")})
+        write_set(
+            out, {"verify.json": "x"}, kind="verify", requires={"design.json": _sha("edited")}
+        )
     assert not (out / "verify.json").exists()
 
 
