@@ -373,3 +373,20 @@ def test_big_integers_of_the_command_line_are_named(cli: CliRun, tmp_path: Path)
     code, _, err = cli(["verify", str(tmp_path), "--max-mesh", "65"])
     assert code == 2
     _one_error_line(err, "--max-mesh", "1 to 64")
+
+
+def test_design_verify_fe_out_names_the_design_json_it_wrote(
+    cli: CliRun, specs: tuple[Path, Path], tmp_path: Path, stub_fe: list[int]
+) -> None:
+    """``design --verify fe --out``: verify.json names the design.json committed just before it
+    (SHA-256 of the file's bytes here) and requires it; the next design drops it."""
+    out = tmp_path / "X"
+    code, _, err = cli(["design", str(specs[0]), "--out", str(out), "-q", "--verify", "fe"])
+    assert code == 0, err
+    assert stub_fe, "the FE ran"
+    digest = _sha(out / "design.json")
+    assert json.loads((out / "verify.json").read_text())["design_sha256"] == digest
+    assert read_manifest(out)["verify"]["requires"] == {"design.json": digest}
+    _design(cli, specs[1], out)
+    assert not (out / "verify.json").exists()
+    assert set(read_manifest(out)) == {"design"}
