@@ -390,3 +390,21 @@ def test_design_verify_fe_out_names_the_design_json_it_wrote(
     _design(cli, specs[1], out)
     assert not (out / "verify.json").exists()
     assert set(read_manifest(out)) == {"design"}
+
+
+def test_a_verdict_of_an_earlier_version_leaves_with_the_next_design(
+    cli: CliRun, specs: tuple[Path, Path], tmp_path: Path, stub_fe: list[int]
+) -> None:
+    """A folder verified before issue 37 (verify.json without design_sha256, its set without
+    ``requires``): design B written there removes it in its commit."""
+    out = tmp_path / "X"
+    _design(cli, specs[0], out)
+    code, _, err = cli(["verify", str(out), "--no-first-failure", "-q"])
+    assert code == 0, err
+    manifest = json.loads((out / MANIFEST).read_text())
+    del manifest["sets"]["verify"]["requires"]
+    (out / MANIFEST).write_text(json.dumps(manifest))
+    assert "verify" in read_manifest(out)
+    _design(cli, specs[1], out)
+    assert not (out / "verify.json").exists()
+    assert set(read_manifest(out)) == {"design"}

@@ -129,3 +129,19 @@ def test_a_design_commit_killed_after_its_commit_point_drops_the_verdict_on_reco
     assert (out / "design.json").read_text() == "B"
     assert not (out / "verify.json").exists()
     assert set(_sets(out)) == {"design"}
+
+
+def test_a_verdict_that_names_no_design_json_is_superseded_by_the_next_design(
+    tmp_path: Path,
+) -> None:
+    """A verify set written by an earlier version (no ``requires``) leaves with the next design
+    set that supersedes its kind, even when design.json is byte for byte the same; a kind not
+    superseded stays."""
+    out = tmp_path / "out"
+    write_set(out, {"design.json": "A"}, kind="design")
+    write_set(out, {"verify.json": "old"}, kind="verify")
+    write_set(out, {"pareto.csv": "p"}, kind="pareto")
+    write_set(out, {"design.json": "A"}, kind="design", supersedes=("verify",))
+    assert not (out / "verify.json").exists()
+    assert (out / "pareto.csv").read_text() == "p"
+    assert set(_sets(out)) == {"design", "pareto"}

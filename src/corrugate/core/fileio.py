@@ -526,13 +526,15 @@ def _begin(
     files: Mapping[str, str],
     requires: Mapping[str, str],
     temps: list[Path],
+    supersedes: tuple[str, ...] = (),
 ) -> dict[str, Any]:
     """Step 2 of a commit of ``files`` (name -> SHA-256, staged as ``.GENERATION.new.NAME``) as
     the set ``kind``: the old manifest read, the new one staged and read back, the journal
     written. The journal drops the kind's old files the new set has not, and every other set
     made of files (its ``requires``) that this commit changes or that changed since: a design's
-    verification leaves with the design it checked, in the same commit. Staged names are added
-    to ``temps``."""
+    verification leaves with the design it checked, in the same commit; so does a set of a kind
+    in ``supersedes`` that names no required files (a verification written by an earlier
+    version, which did not record its design.json). Staged names are added to ``temps``."""
     sets = _read_sets(folder)
     listed = sets.pop(kind, {}).get("files", {})
     old_files: dict[object, object] = listed if isinstance(listed, dict) else {}
@@ -541,7 +543,12 @@ def _begin(
         for name, digest in old_files.items()
         if _plain(name) and name not in files and _written_by_set(folder / str(name), digest)
     }  # a listed file is dropped only if it is still what the set wrote
-    for other_kind in [k for k, v in sets.items() if _stale(folder, v, files)]:
+    stale = [
+        k
+        for k, v in sets.items()
+        if _stale(folder, v, files) or (k in supersedes and v.get("requires") is None)
+    ]
+    for other_kind in stale:
         gone = sets.pop(other_kind)["files"]
         assert isinstance(gone, dict)
         for name, digest in gone.items():
@@ -658,12 +665,15 @@ class FolderStaging(Staging):
         field: str = "--out",
         kind: str = "files",
         requires: Mapping[str, str] | None = None,
+        supersedes: tuple[str, ...] = (),
     ) -> None:
         super().__init__()
         check_output_folder(folder, field)
         #: Files of the folder (name -> SHA-256) this set is made of: the commit is refused when
         #: they changed, and a later commit that changes them drops the set (module text).
         self.requires = dict(requires or {})
+        #: Kinds of sets this one replaces when they name no required files (module text).
+        self.supersedes = tuple(supersedes)
         given = Path(folder)
         # a symlinked folder stays a symlink: the set is written into its target
         self.folder = Path(os.path.realpath(given)) if given.is_symlink() else given
@@ -724,6 +734,7 @@ class FolderStaging(Staging):
                 files,
                 self.requires,
                 self._temps,
+                self.supersedes,
             )
             try:
                 _forward(self.folder, journal)
@@ -767,6 +778,7 @@ def staged(
     field: str = "--out",
     kind: str = "files",
     requires: Mapping[str, str] | None = None,
+    supersedes: tuple[str, ...] = (),
 ) -> Iterator[Staging]:
     """Collect temporary files; commit them all when the block ends normally, else remove them.
 
@@ -776,7 +788,9 @@ def staged(
     ``requires`` (name -> SHA-256): files of the folder the set is made of (a verification of
     ``design.json``): checked under the lock at the commit
     (:class:`~corrugate.core.errors.StaleSetError` when they changed) and kept in the manifest,
-    so that a later commit that changes them drops this set with them.
+    so that a later commit that changes them drops this set with them. ``supersedes``: kinds of
+    sets the commit drops when they name no required files (a design's set drops a verification
+    written by an earlier version, which did not record the design.json it checked).
 
     Example::
 
@@ -785,7 +799,11 @@ def staged(
             doc.saveas(st.path(out / "a.dxf"))
     """
     try:
-        st: Staging = Staging() if folder is None else FolderStaging(folder, field, kind, requires)
+        st: Staging = (
+            Staging()
+            if folder is None
+            else FolderStaging(folder, field, kind, requires, supersedes)
+        )
     except OSError as exc:
         if isinstance(exc, CorrugateError) or folder is None:
             raise
@@ -813,11 +831,12 @@ def write_set(
     field: str = "--out",
     kind: str = "files",
     requires: Mapping[str, str] | None = None,
+    supersedes: tuple[str, ...] = (),
 ) -> list[Path]:
     """Write ``files`` (name -> text or bytes) into ``folder`` as one set (see :func:`staged`;
-    ``requires``: the folder's files it is made of)."""
+    ``requires``: the folder's files it is made of; ``supersedes``: kinds it replaces)."""
     out = Path(folder)
-    with staged(out, field, kind, requires) as st:
+    with staged(out, field, kind, requires, supersedes) as st:
         for name, data in files.items():
             tmp = st.path(out / name)
             if isinstance(data, bytes):

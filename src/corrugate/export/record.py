@@ -246,7 +246,12 @@ def write_record(
     record = parse_record(content)
     target = Path(folder) / RECORD_NAME
     if staging is None:  # design.json alone, committed as the folder's design set
-        write_set(folder, {RECORD_NAME: record.to_json() + "\n"}, kind="design")
+        write_set(
+            folder,
+            {RECORD_NAME: record.to_json() + "\n"},
+            kind="design",
+            supersedes=(VERIFY_KIND,),  # a verdict that names no design.json leaves with it
+        )
         return target
     staging.path(target).write_text(record.to_json() + "\n", encoding="utf-8")
     return target
