@@ -282,7 +282,8 @@ def verify_cmd(
     DIR/verify.json. A series counts only when shown asymptotic (four meshes, two successive
     extrapolations agreeing within a quarter of the bound's margin); otherwise it is refined up
     to --max-mesh. Exit 0 when every constraint holds in FE, 1 when one fails, 5 when one is not
-    converged, 6 when one has no FE twin (not checked), 2 for bad input (the worst counts). Every layout: a circle's K runs in the wheel fixture (a ground
+    converged, 6 when one has no FE twin (not checked), 2 for bad input or a design.json that
+    changed while the FE ran (nothing written) (the worst counts). Every layout: a circle's K runs in the wheel fixture (a ground
     patch against the hub), a polygon's constraints along its creases in the rectangle's
     fixtures on its cut outline (`corrugate docs fea`, 2.8); a row says how its test differs.
 

@@ -28,7 +28,8 @@ A set may be made of other files of the folder (``requires``: their names and SH
 its manifest entry): ``verify.json`` is the verdict of one ``design.json``. Its commit is refused
 (:class:`~corrugate.core.errors.StaleSetError`) when they changed since the run read them
 (checked under the lock, before step 2); a later commit that changes them (a new design) drops
-the set in its own journal (step 5), :func:`read_manifest` does not list a set whose files are no
+the set in its own journal (step 5), as does a commit that ``supersedes`` the set's kind when the
+set names no required files (one an earlier version wrote), :func:`read_manifest` does not list a set whose files are no
 longer those, and :func:`recover` drops it (a design.json edited by hand). So a folder never pairs
 one design with another design's verdict.
 
