@@ -12,7 +12,13 @@ when the command runs. Exit codes (:data:`corrugate.fea.verify.EXIT_CODES`, the 
 verdict): 0 every constraint holds in FE, 1 one does not, 5 one is not converged (its mesh
 series was not shown asymptotic up to --max-mesh, or a run failed), 6 one has no FE twin (not
 checked), 2 bad input (a missing or malformed design.json, a folder that cannot be written, no
-ccx).
+ccx) or a design.json that changed while the FE ran (another design written into DIR: the old
+design's verdict is not written).
+
+verify.json names the design it checked by ``design_sha256``, the SHA-256 of the design.json it
+read, and is committed as a set that requires that design.json (:mod:`corrugate.core.fileio`): a
+later design written into DIR drops it in the same commit, and a folder never lists one design's
+verdict beside another design.
 
 Example::
 
@@ -286,7 +292,8 @@ def verify_cmd(
     DIR/verify.json. A series counts only when shown asymptotic (four meshes, two successive
     extrapolations agreeing within a quarter of the bound's margin); otherwise it is refined up
     to --max-mesh. Exit 0 when every constraint holds in FE, 1 when one fails, 5 when one is not
-    converged, 6 when one has no FE twin (not checked), 2 for bad input (the worst counts). Every layout: a circle's K runs in the wheel fixture (a ground
+    converged, 6 when one has no FE twin (not checked), 2 for bad input or a design.json that
+    changed while the FE ran (nothing written) (the worst counts). Every layout: a circle's K runs in the wheel fixture (a ground
     patch against the hub), a polygon's constraints along its creases in the rectangle's
     fixtures on its cut outline (`corrugate docs fea`, 2.8); a row says how its test differs.
 
@@ -299,7 +306,14 @@ def verify_cmd(
     Example: corrugate verify out/gripper --mesh 2,4,8
     """
     from corrugate.core.fileio import write_set
-    from corrugate.export.record import VERIFY_KIND, VERIFY_NAME, design_label, read_design
+    from corrugate.export.record import (
+        RECORD_NAME,
+        VERIFY_KIND,
+        VERIFY_NAME,
+        check_verify_target,
+        design_label,
+        read_design_file,
+    )
     from corrugate.fea.ccx import find_ccx
     from corrugate.fea.series import check_sweep_options
     from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts, verify_design
@@ -309,7 +323,9 @@ def verify_cmd(
     cap = parse_max_mesh(max_mesh)
     nl_mesh = _nonlinear_mesh(nonlinear_mesh) if nonlinear else None
     check_sweep_options(None, timeout, workdir)
-    assembly, constraints, joint = read_design(folder)
+    design = read_design_file(folder)  # untrusted: one line and exit 2 before any FE run
+    assembly, constraints, joint = design.assembly, design.constraints, design.joint
+    check_verify_target(folder)  # a verify.json that is a folder: refused before any FE run
     if not _writable(folder):
         raise InputError(
             "DIR", str(folder), "a folder verify.json can be written to", reason="is not writable"
@@ -367,10 +383,12 @@ def verify_cmd(
         else:
             found["nonlinear"] = ramp.as_json()
             files[NONLINEAR_PNG] = nonlinear_png(ramp)
-    data = {"design": design_label(assembly), **found}
+    data = {"design": design_label(assembly), "design_sha256": design.sha256, **found}
     text = json.dumps(data, indent=2, allow_nan=False)
     files = {VERIFY_NAME: text + "\n", **files}
-    write_set(folder, files, field="DIR", kind=VERIFY_KIND)
+    # the verdict of this design.json only: refused (exit 2, nothing written) when another
+    # design was written there while the FE ran, dropped by the next design written there
+    write_set(folder, files, field="DIR", kind=VERIFY_KIND, requires={RECORD_NAME: design.sha256})
     if as_json:
         typer.echo(json.dumps(found, indent=2, allow_nan=False))
     elif not quiet:

@@ -16,6 +16,7 @@ __all__ = [
     "MissingExtraError",
     "OutputError",
     "ResultError",
+    "StaleSetError",
     "UnknownNameError",
     "describe",
 ]
@@ -57,7 +58,7 @@ class InputError(CorrugateError, ValueError):
         self.allowed = allowed
         self.reason = reason
         shown = clipped(printable(str(value)))
-        super().__init__(f"{clipped(printable(field))} = {shown} {reason}: allowed {allowed}")
+        super().__init__(f"{clipped(printable(field), tail=True)} = {shown} {reason}: allowed {allowed}")
 
     def renamed(self, field: str, value: Any = None, reason: str | None = None) -> InputError:
         """The same error naming ``field`` instead (the caller's name for what the library
@@ -95,6 +96,20 @@ class OutputError(CorrugateError, OSError):
 
     def __str__(self) -> str:
         return str(self.args[0])
+
+
+class StaleSetError(OutputError):
+    """A set made of other files of its folder (a verification of ``design.json``) was not
+    written because those files changed while it was computed (another design was written
+    there): its result is of a design the folder no longer holds."""
+
+    def __init__(self, field: str, path: object, changed: str):
+        self.changed = changed
+        OutputError.__init__(self, field, path, "")
+        self.args = (
+            f"{field} = {path!s}: its {changed} changed while this run read it (another design "
+            f"was written there); the result of the old {changed} is not written: run again",
+        )
 
 
 class MissingExtraError(CorrugateError, ImportError):

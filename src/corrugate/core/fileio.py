@@ -24,6 +24,15 @@ processes whose working folder it is stay as they were. A commit (:class:`Folder
    the old manifest says the set wrote: a user's file is never deleted), the backups, and last
    the journal; the folder is fsynced between the steps.
 
+A set may be made of other files of the folder (``requires``: their names and SHA-256, kept in
+its manifest entry): ``verify.json`` is the verdict of one ``design.json``. Its commit is refused
+(:class:`~corrugate.core.errors.StaleSetError`) when they changed since the run read them
+(checked under the lock, before step 2); a later commit that changes them (a new design) drops
+the set in its own journal (step 5), as does a commit that ``supersedes`` the set's kind when the
+set names no required files (one an earlier version wrote), :func:`read_manifest` does not list a set whose files are no
+longer those, and :func:`recover` drops it (a design.json edited by hand). So a folder never pairs
+one design with another design's verdict.
+
 A journal whose new manifest is not in place is rolled back (the backups renamed back, the set's
 new files removed), one whose manifest is in place is rolled forward (step 5 finished): by the
 failing run itself, and after a kill by the next run that writes there or by :func:`recover`.
@@ -39,6 +48,12 @@ of bounded size, and only plain names in the folder are taken from it. A missing
 created (its mode from the umask) and removed again if the set fails before its commit.
 
 Every OS error becomes one :class:`~corrugate.core.errors.OutputError` line naming the path.
+
+Input files (:func:`read_input`, :func:`read_input_text`): every file a command reads (a spec, a
+design.json, a verify.json) is read as untrusted: a regular file only (opened non-blocking and
+checked by ``fstat`` before a byte is read: a FIFO, a device, a folder is one line at once), at
+most :data:`MAX_INPUT_BYTES` (8 MiB), decoded strictly as UTF-8; text taken from a file is
+printed through :func:`printable` (no control characters reach the terminal).
 """
 
 from __future__ import annotations
@@ -57,8 +72,9 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from corrugate.core.errors import CorrugateError, OutputError
+from corrugate.core.errors import CorrugateError, InputError, OutputError, StaleSetError
 from corrugate.core.limits import MAX_PATH_CHARS
+from corrugate.core.text import printable
 
 try:
     import fcntl
@@ -68,6 +84,7 @@ except ImportError:  # pragma: no cover - not a POSIX system: commits are not lo
 __all__ = [
     "JOURNAL",
     "MANIFEST",
+    "MAX_INPUT_BYTES",
     "MAX_MANIFEST_BYTES",
     "SYSTEM_FOLDERS",
     "SYSTEM_TREES",
@@ -75,6 +92,9 @@ __all__ = [
     "Staging",
     "atomic_write",
     "check_output_folder",
+    "decode_input",
+    "read_input",
+    "read_input_text",
     "read_manifest",
     "recover",
     "staged",
@@ -185,15 +205,17 @@ def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") ->
 
 def recover(folder: str | os.PathLike[str]) -> str | None:
     """Settle what killed runs left in ``folder`` and around it; returns what was done with a
-    half-committed set (``"rolled back"``, ``"completed"``, ``"unreadable journal removed"``) or
-    None when there was none.
+    half-committed set (``"rolled back"``, ``"completed"``, ``"unreadable journal removed"``),
+    else with sets made of files that changed (``"dropped verify (...)"``), or None when there
+    was nothing to do.
 
     Waits while a live run commits a set there (the folder's lock); a journal (:data:`JOURNAL`)
     left by a killed run is rolled back when its new manifest is not in place and completed when
     it is, so the folder then holds one complete set (see the module's text). Then the staged
     files, backups and temporary files of runs no longer alive are removed, and leftovers of an
     earlier version beside the folder (its staging folder, the old folder it swapped out) too, an
-    old folder left aside between two renames being put back. Runs still alive are left alone
+    old folder left aside between two renames being put back. A set whose required files
+    (``requires``) changed is dropped, its files with it (module text). Runs still alive are left alone
     (where the file system has no ``flock``, a journal of one: OSError EBUSY)."""
     target = Path(folder)
     _recover_beside(target)
@@ -201,6 +223,10 @@ def recover(folder: str | os.PathLike[str]) -> str | None:
         return None
     with _locked(target) as held:
         done = _settle(target, held=held)
+        if held:
+            dropped = _drop_stale(target)
+            if dropped and done is None:
+                done = "dropped " + ", ".join(dropped) + " (made of files that changed)"
         _sweep(target)
     return done
 
@@ -299,9 +325,19 @@ class Staging:
 
 
 def read_manifest(folder: str | os.PathLike[str]) -> dict[str, dict[str, object]]:
-    """The sets committed in ``folder`` (kind -> ``{"run": id, "files": {name: sha256}}``)."""
+    """The sets committed in ``folder`` (kind -> ``{"run": id, "files": {name: sha256}}``, and
+    ``"requires": {name: sha256}`` for a set made of other files of the folder, a design's
+    verification of its ``design.json``). A set whose required files are no longer those (a
+    verification of another design) is not listed: it is dropped by the next commit or by
+    :func:`recover`."""
+    sets = _read_sets(Path(folder))
+    return {k: v for k, v in sets.items() if not _stale(Path(folder), v)}
+
+
+def _read_sets(folder: Path) -> dict[str, dict[str, object]]:
+    """The manifest's sets as written (a set with malformed ``requires`` counts as stale)."""
     try:
-        data = json.loads(_read_regular(Path(folder) / MANIFEST, MAX_MANIFEST_BYTES))
+        data = json.loads(_read_regular(folder / MANIFEST, MAX_MANIFEST_BYTES))
         sets = data["sets"]
     except (OSError, ValueError, KeyError, TypeError):
         return {}
@@ -310,6 +346,25 @@ def read_manifest(folder: str | os.PathLike[str]) -> dict[str, dict[str, object]
     return {
         k: v for k, v in sets.items() if isinstance(v, dict) and isinstance(v.get("files"), dict)
     }
+
+
+def _stale(folder: Path, entry: Mapping[str, object], new: Mapping[str, str] | None = None) -> bool:
+    """Whether the set ``entry`` requires files of ``folder`` that are not (or, after a commit of
+    the files ``new``, name -> SHA-256, will not be) the ones it was made of."""
+    requires = entry.get("requires")
+    if requires is None:
+        return False
+    if not isinstance(requires, dict) or not requires:
+        return True
+    for name, digest in requires.items():
+        if not _plain(name) or not isinstance(digest, str) or _SHA256.match(digest) is None:
+            return True
+        if new is not None and name in new:
+            if new[name] != digest:
+                return True
+        elif not _written_by_set(folder / name, digest):
+            return True
+    return False
 
 
 def _read_regular(path: Path, limit: int) -> str:
@@ -465,6 +520,103 @@ def _finish(folder: Path, j: dict[str, Any]) -> None:
     _fsync_dir(folder)
 
 
+def _begin(
+    folder: Path,
+    generation: str,
+    kind: str,
+    files: Mapping[str, str],
+    requires: Mapping[str, str],
+    temps: list[Path],
+    supersedes: tuple[str, ...] = (),
+) -> dict[str, Any]:
+    """Step 2 of a commit of ``files`` (name -> SHA-256, staged as ``.GENERATION.new.NAME``) as
+    the set ``kind``: the old manifest read, the new one staged and read back, the journal
+    written. The journal drops the kind's old files the new set has not, and every other set
+    made of files (its ``requires``) that this commit changes or that changed since: a design's
+    verification leaves with the design it checked, in the same commit; so does a set of a kind
+    in ``supersedes`` that names no required files (a verification written by an earlier
+    version, which did not record its design.json). Staged names are added to ``temps``."""
+    sets = _read_sets(folder)
+    listed = sets.pop(kind, {}).get("files", {})
+    old_files: dict[object, object] = listed if isinstance(listed, dict) else {}
+    drop = {
+        str(name): str(digest)
+        for name, digest in old_files.items()
+        if _plain(name) and name not in files and _written_by_set(folder / str(name), digest)
+    }  # a listed file is dropped only if it is still what the set wrote
+    stale = [
+        k
+        for k, v in sets.items()
+        if _stale(folder, v, files) or (k in supersedes and v.get("requires") is None)
+    ]
+    for other_kind in stale:
+        gone = sets.pop(other_kind)["files"]
+        assert isinstance(gone, dict)
+        for name, digest in gone.items():
+            if _plain(name) and name not in files and _written_by_set(folder / name, digest):
+                drop[name] = digest
+    for other in sets.values():  # files of other kinds that this set overwrites leave them
+        other["files"] = {
+            k: v
+            for k, v in other["files"].items()  # type: ignore[attr-defined]
+            if k not in files
+        }
+    if kind:
+        entry: dict[str, object] = {"run": generation, "files": dict(files)}
+        if requires:
+            entry["requires"] = dict(requires)
+        sets[kind] = entry
+    staged_manifest = folder / f".{generation}.new.{MANIFEST}"
+    temps.append(staged_manifest)
+    _write_synced(staged_manifest, json.dumps({"sets": sets}, indent=1).encode("utf-8"))
+    if json.loads(_read_regular(staged_manifest, MAX_MANIFEST_BYTES)) != {"sets": sets}:
+        raise OSError(errno.EIO, "the manifest did not read back", str(staged_manifest))
+    journal = {
+        "format": 1,
+        "generation": generation,
+        "kind": kind,
+        "files": {
+            name: {
+                "staged": f".{generation}.new.{name}",
+                "sha256": digest,
+                "backup": f".{generation}.bak.{name}" if os.path.lexists(folder / name) else None,
+            }
+            for name, digest in files.items()
+        },
+        "drop": drop,
+        "manifest": {"staged": staged_manifest.name, "sha256": _sha256(staged_manifest)},
+    }
+    staged_journal = folder / f".{generation}.new.{JOURNAL}"
+    temps.append(staged_journal)
+    _write_synced(staged_journal, json.dumps(journal, indent=1).encode("utf-8"))
+    os.replace(staged_journal, folder / JOURNAL)
+    _fsync_dir(folder)
+    return journal
+
+
+def _drop_stale(folder: Path) -> list[str]:
+    """Under the folder's lock, after :func:`_settle`: the sets whose required files changed
+    since they were made (a verification whose ``design.json`` was edited or replaced by a run
+    of an earlier version) dropped from the manifest and their files removed (only those still
+    what the set wrote), as one journalled commit of no files; returns their kinds."""
+    stale = [k for k, v in _read_sets(folder).items() if _stale(folder, v)]
+    if not stale:
+        return []
+    temps: list[Path] = []
+    journal = _begin(folder, _tag(), "", {}, {}, temps)
+    try:
+        _forward(folder, journal)
+        _finish(folder, journal)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            _settle(folder, journal)
+        raise
+    finally:
+        for p in temps:
+            _unlink(p)
+    return stale
+
+
 def _backup(target: Path, backup: Path) -> None:
     """``backup``: a hard link to ``target`` (the file itself if it is a symlink), or a copy where
     the file system has no hard links."""
@@ -509,10 +661,20 @@ class FolderStaging(Staging):
     staged as a single file (:class:`Staging`)."""
 
     def __init__(
-        self, folder: str | os.PathLike[str], field: str = "--out", kind: str = "files"
+        self,
+        folder: str | os.PathLike[str],
+        field: str = "--out",
+        kind: str = "files",
+        requires: Mapping[str, str] | None = None,
+        supersedes: tuple[str, ...] = (),
     ) -> None:
         super().__init__()
         check_output_folder(folder, field)
+        #: Files of the folder (name -> SHA-256) this set is made of: the commit is refused when
+        #: they changed, and a later commit that changes them drops the set (module text).
+        self.requires = dict(requires or {})
+        #: Kinds of sets this one replaces when they name no required files (module text).
+        self.supersedes = tuple(supersedes)
         given = Path(folder)
         # a symlinked folder stays a symlink: the set is written into its target
         self.folder = Path(os.path.realpath(given)) if given.is_symlink() else given
@@ -553,14 +715,28 @@ class FolderStaging(Staging):
 
     def commit(self) -> None:
         """fsync the staged files, then commit them under the folder's lock: the journal, the
-        renames, the manifest, the old set's files dropped (see the module's text)."""
+        renames, the manifest, the old set's files dropped (see the module's text). A set made
+        of other files (``requires``) whose files changed since is refused here, before anything
+        is renamed (:class:`~corrugate.core.errors.StaleSetError`)."""
         files: dict[str, str] = {}
         for name in self._names:
             _fsync_file(self._temp("new", name))
             files[name] = _sha256(self._temp("new", name))
         with _locked(self.folder) as held:
             _settle(self.folder, held=held)  # a run killed since this one began
-            journal = self._journal(files)
+            for name, digest in self.requires.items():
+                if not _written_by_set(self.folder / name, digest):
+                    raise StaleSetError(self.field, _short(self.folder), name)
+            self._check_targets(files)
+            journal = _begin(
+                self.folder,
+                self.generation,
+                self.kind,
+                files,
+                self.requires,
+                self._temps,
+                self.supersedes,
+            )
             try:
                 _forward(self.folder, journal)
                 _finish(self.folder, journal)
@@ -572,56 +748,12 @@ class FolderStaging(Staging):
         self._created = False
         super().commit()
 
-    def _journal(self, files: dict[str, str]) -> dict[str, Any]:
-        """Step 2: the old manifest read, the new one staged and read back, the journal written
-        (a file the set writes that is a folder is refused here, before anything is renamed)."""
-        folder = self.folder
+    def _check_targets(self, files: Mapping[str, str]) -> None:
+        """A file the set writes that is a folder is refused, before anything is renamed."""
         for name in files:
-            if (folder / name).is_dir() and not (folder / name).is_symlink():
-                raise OutputError(self.field, _short(folder / name), "it is a folder, not a file")
-        sets = read_manifest(folder)
-        listed = sets.pop(self.kind, {}).get("files", {})
-        old_files: dict[object, object] = listed if isinstance(listed, dict) else {}
-        drop = {
-            name: digest
-            for name, digest in old_files.items()
-            if _plain(name) and name not in files and _written_by_set(folder / str(name), digest)
-        }  # a listed file is dropped only if it is still what the set wrote
-        for other in sets.values():  # files of other kinds that this set overwrites leave them
-            other["files"] = {
-                k: v
-                for k, v in other["files"].items()  # type: ignore[attr-defined]
-                if k not in files
-            }
-        sets[self.kind] = {"run": self.generation, "files": files}
-        staged_manifest = self._temp("new", MANIFEST)
-        self._temps.append(staged_manifest)
-        _write_synced(staged_manifest, json.dumps({"sets": sets}, indent=1).encode("utf-8"))
-        if json.loads(_read_regular(staged_manifest, MAX_MANIFEST_BYTES)) != {"sets": sets}:
-            raise OSError(errno.EIO, "the manifest did not read back", str(staged_manifest))
-        journal = {
-            "format": 1,
-            "generation": self.generation,
-            "kind": self.kind,
-            "files": {
-                name: {
-                    "staged": self._temp("new", name).name,
-                    "sha256": digest,
-                    "backup": self._temp("bak", name).name
-                    if os.path.lexists(folder / name)
-                    else None,
-                }
-                for name, digest in files.items()
-            },
-            "drop": drop,
-            "manifest": {"staged": staged_manifest.name, "sha256": _sha256(staged_manifest)},
-        }
-        staged_journal = self._temp("new", JOURNAL)
-        self._temps.append(staged_journal)
-        _write_synced(staged_journal, json.dumps(journal, indent=1).encode("utf-8"))
-        os.replace(staged_journal, folder / JOURNAL)
-        _fsync_dir(folder)
-        return journal
+            path = self.folder / name
+            if path.is_dir() and not path.is_symlink():
+                raise OutputError(self.field, _short(path), "it is a folder, not a file")
 
     def discard(self) -> None:
         for p in self._temps:
@@ -643,13 +775,23 @@ def _short(path: object) -> str:
 
 @contextmanager
 def staged(
-    folder: str | os.PathLike[str] | None = None, field: str = "--out", kind: str = "files"
+    folder: str | os.PathLike[str] | None = None,
+    field: str = "--out",
+    kind: str = "files",
+    requires: Mapping[str, str] | None = None,
+    supersedes: tuple[str, ...] = (),
 ) -> Iterator[Staging]:
     """Collect temporary files; commit them all when the block ends normally, else remove them.
 
     With ``folder``, the files put in that folder form one set (:class:`FolderStaging`), and every
     OS error is one :class:`~corrugate.core.errors.OutputError` naming ``field`` and the folder; the
     set replaces the folder's earlier set of the same ``kind`` whole (other files stay).
+    ``requires`` (name -> SHA-256): files of the folder the set is made of (a verification of
+    ``design.json``): checked under the lock at the commit
+    (:class:`~corrugate.core.errors.StaleSetError` when they changed) and kept in the manifest,
+    so that a later commit that changes them drops this set with them. ``supersedes``: kinds of
+    sets the commit drops when they name no required files (a design's set drops a verification
+    written by an earlier version, which did not record the design.json it checked).
 
     Example::
 
@@ -658,7 +800,11 @@ def staged(
             doc.saveas(st.path(out / "a.dxf"))
     """
     try:
-        st: Staging = Staging() if folder is None else FolderStaging(folder, field, kind)
+        st: Staging = (
+            Staging()
+            if folder is None
+            else FolderStaging(folder, field, kind, requires, supersedes)
+        )
     except OSError as exc:
         if isinstance(exc, CorrugateError) or folder is None:
             raise
@@ -685,10 +831,13 @@ def write_set(
     files: Mapping[str, str | bytes],
     field: str = "--out",
     kind: str = "files",
+    requires: Mapping[str, str] | None = None,
+    supersedes: tuple[str, ...] = (),
 ) -> list[Path]:
-    """Write ``files`` (name -> text or bytes) into ``folder`` as one set (see :func:`staged`)."""
+    """Write ``files`` (name -> text or bytes) into ``folder`` as one set (see :func:`staged`;
+    ``requires``: the folder's files it is made of; ``supersedes``: kinds it replaces)."""
     out = Path(folder)
-    with staged(out, field, kind) as st:
+    with staged(out, field, kind, requires, supersedes) as st:
         for name, data in files.items():
             tmp = st.path(out / name)
             if isinstance(data, bytes):
@@ -710,3 +859,83 @@ def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
         else:
             tmp.write_text(data, encoding="utf-8")
     return Path(path)
+
+
+#: The largest file a command reads as input (bytes): a design.json (about 20 kB; a few hundred
+#: kB with a 256-vertex outline and its runner-ups), a verify.json, a spec (which has its own,
+#: smaller cap, :data:`~corrugate.core.limits.MAX_SPEC_BYTES`).
+MAX_INPUT_BYTES = 8 << 20
+
+
+def read_input(path: str | os.PathLike[str], field: str, limit: int = MAX_INPUT_BYTES) -> bytes:
+    """The bytes of the input file ``path``, read as untrusted: opened non-blocking (a FIFO
+    never blocks) and checked by ``fstat`` before any byte is read: a folder, a FIFO, a device
+    (a symlink to ``/dev/zero``) or a socket is refused, so is a file above ``limit`` bytes (also
+    one that grows while it is read). Each refusal is one
+    :class:`~corrugate.core.errors.InputError` line naming ``field`` and the path."""
+    shown = printable(_short(os.fspath(path)))
+    allowed = f"a regular file of at most {limit} bytes"
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_NONBLOCK | getattr(os, "O_NOCTTY", 0))
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise InputError(field, shown, allowed, reason=f"cannot be read ({reason})") from None
+    try:
+        info = os.fstat(fd)
+        if stat.S_ISDIR(info.st_mode):
+            raise InputError(field, shown, allowed, reason="is a folder")
+        if not stat.S_ISREG(info.st_mode):
+            what = (
+                "a FIFO"
+                if stat.S_ISFIFO(info.st_mode)
+                else "a device"
+                if stat.S_ISCHR(info.st_mode) or stat.S_ISBLK(info.st_mode)
+                else "a socket"
+                if stat.S_ISSOCK(info.st_mode)
+                else "not a regular file"
+            )
+            raise InputError(field, shown, allowed, reason=f"is {what}, not a regular file")
+        if info.st_size > limit:
+            raise InputError(field, shown, allowed, reason=f"is too large ({info.st_size} bytes)")
+        os.set_blocking(fd, True)
+        chunks: list[bytes] = []
+        size = 0
+        while size <= limit:
+            chunk = os.read(fd, min(1 << 20, limit + 1 - size))
+            if not chunk:
+                break
+            chunks.append(chunk)
+            size += len(chunk)
+    except OSError as exc:
+        if isinstance(exc, CorrugateError):
+            raise
+        reason = exc.strerror or type(exc).__name__
+        raise InputError(field, shown, allowed, reason=f"cannot be read ({reason})") from None
+    finally:
+        os.close(fd)
+    if size > limit:
+        raise InputError(field, shown, allowed, reason="is too large (it grew while read)")
+    return b"".join(chunks)
+
+
+def read_input_text(path: str | os.PathLike[str], field: str, limit: int = MAX_INPUT_BYTES) -> str:
+    """The text of the input file ``path`` (:func:`read_input`), decoded strictly as UTF-8; a file
+    of another encoding (UTF-16 with its byte-order mark, Latin-1) is one
+    :class:`~corrugate.core.errors.InputError` line naming ``field`` and the path."""
+    return decode_input(read_input(path, field, limit), field, printable(_short(os.fspath(path))))
+
+
+def decode_input(raw: bytes, field: str, shown: str) -> str:
+    """``raw`` decoded strictly as UTF-8, else one
+    :class:`~corrugate.core.errors.InputError` line naming ``field`` and ``shown``."""
+
+    if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
+        raise InputError(
+            field, shown, "a UTF-8 text file", reason="is UTF-16 text: save it as UTF-8"
+        )
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(
+            field, shown, "a UTF-8 text file", reason=f"is not UTF-8 text (byte {exc.start})"
+        ) from None

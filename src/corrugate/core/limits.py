@@ -30,6 +30,7 @@ __all__ = [
     "MAX_DASHES",
     "MAX_DEPTH",
     "MAX_GRID_POINTS",
+    "MAX_INT_DIGITS",
     "MAX_NAME_CHARS",
     "MAX_PATH_CHARS",
     "MAX_SPEC_BYTES",
@@ -40,9 +41,11 @@ __all__ = [
     "check_count",
     "check_depth",
     "check_grid",
+    "check_integer",
     "check_items",
     "check_text",
     "first_non_finite",
+    "integer_shown",
     "is_normal",
     "require_finite",
 ]
@@ -192,7 +195,38 @@ MAX_DEPTH = 16
 MAX_PATH_CHARS = 4000
 
 
+#: Most digits of an integer in any input (a spec, a web body, a design.json, an option): 10**30
+#: is beyond every range of :data:`LIMITS` and within a float's; a longer one is refused by its
+#: key (:func:`check_integer`) before it reaches a float conversion.
+MAX_INT_DIGITS = 30
+
+
+def integer_shown(value: int) -> str:
+    """How an error shows a long integer: its digit count, never its (maybe 4000) digits."""
+    v = abs(int(value))
+    if v < 10**MAX_INT_DIGITS:
+        return str(value)
+    digits = len(str(v)) if v.bit_length() < 13_000 else int(v.bit_length() * 0.30103) + 1
+    return f"an integer of {digits} digits"
+
+
+def check_integer(field: str, value: int) -> int:
+    """``value`` (an integer of an input) when it has at most :data:`MAX_INT_DIGITS` digits, else
+    one :class:`InputError` line naming ``field`` and the digit count."""
+    if abs(int(value)) >= 10**MAX_INT_DIGITS:
+        raise InputError(
+            field,
+            integer_shown(value),
+            f"a number of at most {MAX_INT_DIGITS} digits",
+            reason="is too long",
+        )
+    return int(value)
+
+
 def _shown(value: object, unit: str) -> str:
+    integral = isinstance(value, numbers.Integral) and not isinstance(value, bool)
+    if integral and abs(int(value)) >= 10**MAX_INT_DIGITS:  # type: ignore[call-overload]
+        return integer_shown(int(value))  # type: ignore[call-overload]
     if isinstance(value, numbers.Real) and not isinstance(value, bool):
         return f"{float(value):g} {unit}".strip()
     return repr(value)[:60]
@@ -202,6 +236,8 @@ def check(key: str, value: float, field: str | None = None) -> float:
     """``value`` if it lies within ``LIMITS[key]``, else :class:`InputError` naming ``field``
     (default: the key)."""
     lim = LIMITS[key]
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool):
+        check_integer(field or key, int(value))
     x = float(value)
     if not lim.contains(x):
         reason = abnormal_reason(x)
@@ -217,8 +253,7 @@ def check_count(key: str, value: int, field: str | None = None) -> int:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         raise InputError(field or key, repr(value)[:60], lim.allowed, reason="is not an integer")
     if not lim.lo <= int(value) <= lim.hi:
-        shown = str(value) if abs(int(value)) < 10**30 else f"{float(value):g}"
-        raise InputError(field or key, shown, lim.allowed)
+        raise InputError(field or key, integer_shown(int(value)), lim.allowed)
     return int(value)
 
 

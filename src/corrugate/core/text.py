@@ -25,18 +25,24 @@ SHOWN_CHARS = 60
 _BIDI = frozenset("\u202a\u202b\u202c\u202d\u202e\u2066\u2067\u2068\u2069")
 
 
-def printable(text: str) -> str:
-    """``text`` without control characters (Unicode ``Cc``) and bidirectional controls."""
-    if text.isprintable():  # the common case: nothing to remove (no Cc; spaces are printable)
-        return text
-    return "".join(ch for ch in text if unicodedata.category(ch) != "Cc" and ch not in _BIDI)
+def printable(text: object, limit: int | None = None) -> str:
+    """``str(text)`` without control characters (Unicode ``Cc``) and bidirectional controls,
+    cut to ``limit`` characters with an ellipsis when ``limit`` is given."""
+    out = str(text)
+    if not out.isprintable():  # the common case is printable: nothing to remove
+        out = "".join(ch for ch in out if unicodedata.category(ch) != "Cc" and ch not in _BIDI)
+    return out if limit is None or len(out) <= limit else out[: limit - 3] + "..."
 
 
-def clipped(text: str, limit: int = CLIP_CHARS) -> str:
+def clipped(text: str, limit: int = CLIP_CHARS, *, tail: bool = False) -> str:
     """``text`` if at most ``limit`` characters long, else its first :data:`SHOWN_CHARS`
-    characters, ``...`` and its length (``'laser:99999...' (4010 characters)``)."""
+    characters, ``...`` and its length (``'laser:99999...' (4010 characters)``); with ``tail``
+    (a field: a long path whose end names the key) its first 20 and last 40 characters around
+    ``...``, so the key stays in the line."""
     if len(text) <= limit:
         return text
+    if tail:
+        return f"{text[:20]}...{text[-(SHOWN_CHARS - 20):]}"
     return f"{text[:SHOWN_CHARS]}... ({len(text)} characters)"
 
 

@@ -17,6 +17,7 @@ design answer (no ``layers``).
 
 from __future__ import annotations
 
+import hashlib
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -36,11 +37,15 @@ __all__ = [
     "RECORD_NAME",
     "VERIFY_KIND",
     "VERIFY_NAME",
+    "DesignFile",
     "DesignRecord",
     "LayerRecord",
+    "check_verify_target",
     "design_label",
+    "load_record",
     "parse_record",
     "read_design",
+    "read_design_file",
     "read_record",
     "write_record",
 ]
@@ -242,36 +247,98 @@ def write_record(
     record = parse_record(content)
     target = Path(folder) / RECORD_NAME
     if staging is None:  # design.json alone, committed as the folder's design set
-        write_set(folder, {RECORD_NAME: record.to_json() + "\n"}, kind="design")
+        write_set(
+            folder,
+            {RECORD_NAME: record.to_json() + "\n"},
+            kind="design",
+            supersedes=(VERIFY_KIND,),  # a verdict that names no design.json leaves with it
+        )
         return target
     staging.path(target).write_text(record.to_json() + "\n", encoding="utf-8")
     return target
 
 
 def read_record(path: str | Path) -> DesignRecord:
-    """The record in ``path`` (a design.json or its folder); an :class:`InputError` when it cannot
-    be read or is malformed."""
+    """The record in ``path`` (a design.json or its folder), read as untrusted input
+    (:func:`load_record`); an :class:`InputError` when it cannot be read or is malformed."""
     path = Path(path)
     file = path / RECORD_NAME if path.is_dir() else path
+    return parse_record(load_record(file)[0])
+
+
+def load_record(file: Path) -> tuple[dict[str, Any], str]:
+    """The object of the design.json ``file`` checked by its schema
+    (:func:`corrugate.export.record_schema.validate_record`) and the SHA-256 of the bytes it was
+    read from. The file is read as untrusted input (:func:`corrugate.core.fileio.read_input`: a
+    regular file of at most 8 MiB, never a FIFO or a device, strict UTF-8); an integer of more
+    digits than Python converts is named by its key. Every failure is one :class:`InputError`
+    line naming the file."""
+    from corrugate.core.fileio import decode_input, read_input
+    from corrugate.export.record_schema import validate_record
+
+    shown = printable(str(file))
+    raw = read_input(file, "design")
+    text = decode_input(raw, "design", shown)
     try:
-        data = json.loads(file.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise InputError(
-            "design", str(file), "a readable design.json", reason="cannot be read"
-        ) from exc
+        data = json.loads(text)  # a NaN is named by its key below (validate_record)
     except json.JSONDecodeError as exc:
         raise InputError(
-            "design", str(file), "a JSON file", reason=f"is not JSON ({exc.msg})"
+            "design", shown, "a JSON file", reason=f"is not JSON ({exc.msg})"
+        ) from None
+    except ValueError:  # an integer longer than int() converts (4300 digits)
+        raise _long_integer(text, shown) from None
+    except RecursionError:
+        raise InputError(
+            "design", shown, "a JSON object of bounded nesting", reason="is nested too deeply"
         ) from None
     if not isinstance(data, dict):
-        raise InputError("design", str(file), "a JSON object", reason="is not an object")
-    return parse_record(data)
+        raise InputError("design", shown, "a JSON object", reason="is not an object")
+    return validate_record(data, f"{shown}"), hashlib.sha256(raw).hexdigest()
+
+
+def _long_integer(text: str, shown: str) -> InputError:
+    """The error of a JSON integer longer than Python converts: its key when it can be found."""
+    import re
+
+    m = re.search("[0-9]{4000,}", text)
+    key = None
+    if m is not None:
+        keys = re.findall(r'"([^"\\]{1,80})"\s*:', text[max(0, m.start() - 400) : m.start()])
+        key = keys[-1] if keys else None
+    from corrugate.core.limits import MAX_INT_DIGITS
+
+    return InputError(
+        f"{shown}: {printable(key or 'a value', 80)}",
+        "an integer of more than 4000 digits",
+        f"a number of at most {MAX_INT_DIGITS} digits",
+        reason="is too long",
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class DesignFile:
+    """A design's folder as ``corrugate verify`` reads it: the ``assembly``, the
+    ``constraints`` (design.json's entries, checked by its schema), the ``joint``, and
+    ``sha256``, the SHA-256 of the design.json bytes they were read from (the verification names
+    its design by it: docs/fea.md section 6)."""
+
+    assembly: Any
+    constraints: list[dict[str, Any]]
+    joint: str
+    sha256: str
 
 
 def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
-    """The assembly, the constraints and the joint of ``folder/design.json``; an InputError
-    naming the file when it is missing, not JSON, or not a design record. The constraints' text
-    values come without control characters (names a hand-edited file may hold)."""
+    """The assembly, the constraints and the joint of ``folder/design.json``
+    (:func:`read_design_file`)."""
+    d = read_design_file(folder)
+    return d.assembly, d.constraints, d.joint
+
+
+def read_design_file(folder: Path) -> DesignFile:
+    """The design of ``folder/design.json`` (:class:`DesignFile`); an InputError naming the file
+    when it is missing, not a regular file, not JSON, or not a valid design record
+    (:func:`load_record`)."""
     from corrugate.fea.verify import check_layout
 
     if not folder.is_dir():
@@ -282,14 +349,15 @@ def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
             reason="is not a folder",
         )
     file = folder / RECORD_NAME
-    record = read_record(file)  # one line naming the file when it is missing or not JSON
-    data = json.loads(file.read_text(encoding="utf-8"))
+    data, digest = load_record(file)  # one line naming the file when it cannot be trusted
+    record = parse_record(data)
     if data.get("design", {}) is None:
+        status = data.get("status")
         raise InputError(
             "DIR",
             str(folder),
             "the folder of a design",
-            reason=f"holds no design (its design.json: status {data.get('status')})",
+            reason=f"holds no design (its design.json: status {_shown_text(status)})",
         )
     constraints = data.get("constraints")
     if not isinstance(constraints, list) or not all(isinstance(c, dict) for c in constraints):
@@ -299,20 +367,38 @@ def read_design(folder: Path) -> tuple[Any, list[dict[str, Any]], str]:
             "a list of constraint objects",
             reason="is malformed",
         )
-    # names are printed (verify's table, its errors): no control character from a hand-edited
-    # file reaches the terminal (corrugate.core.text.printable)
-    constraints = [
-        {k: printable(v) if isinstance(v, str) else v for k, v in c.items()} for c in constraints
-    ]
-    joint = data.get("joint", "none")
-    if not isinstance(joint, str):
-        raise InputError(
-            f"{file}: joint", repr(joint), "a name such as none", reason="is malformed"
-        )
+    joint = str(data.get("joint", "none"))
     if record.shape is not None:  # a missing shape: record.assembly() names it
         check_layout(record.shape)
     # every layout: a circle's and a polygon's twins are the outline fixtures (docs/fea.md 2.8)
-    return record.assembly(any_layout=True), constraints, joint
+    return DesignFile(record.assembly(any_layout=True), constraints, joint, digest)
+
+
+def _shown_text(value: object) -> str:
+    return printable(value, 60)
+
+
+def check_verify_target(folder: Path) -> None:
+    """Refuse, before any FE run, a ``folder/verify.json`` that could not be replaced by a file:
+    a folder, a FIFO, a device (a symlink to a regular file, or none, is fine)."""
+    import os
+    import stat
+
+    target = folder / VERIFY_NAME
+    try:
+        mode = os.lstat(target).st_mode
+    except FileNotFoundError:
+        return
+    except OSError as exc:
+        raise InputError(
+            "DIR", str(target), "a file verify.json can replace", reason=f"cannot be read ({exc})"
+        ) from None
+    if stat.S_ISREG(mode) or stat.S_ISLNK(mode):
+        return
+    what = "a folder" if stat.S_ISDIR(mode) else "not a regular file"
+    raise InputError(
+        "DIR", str(target), "a file verify.json can replace (remove it)", reason=f"is {what}"
+    )
 
 
 def design_label(a: Assembly) -> str:

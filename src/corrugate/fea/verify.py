@@ -929,9 +929,15 @@ def parse_meshes(text: str) -> tuple[int, ...]:
 
 def parse_max_mesh(n: int, name: str = "--max-mesh") -> int:
     """``--max-mesh N``: the finest mesh a series may be extended to (elements per facet); 0 is
-    the default cap (:data:`corrugate.fea.verify.DEFAULT_MAX_MESH`)."""
-    if n < 0:
-        raise InputError(name, str(n), "0 (the default, 16) or elements per facet >= 1")
+    the default cap (:data:`corrugate.fea.verify.DEFAULT_MAX_MESH`), at most ``LIMITS["mesh"]``'s
+    top (64: a number of 400 digits is refused by its name, not run)."""
+    from corrugate.core.limits import LIMITS, integer_shown
+
+    top = int(LIMITS["mesh"].hi)
+    if not 0 <= n <= top:
+        raise InputError(
+            name, integer_shown(n), f"0 (the default, 16) or elements per facet 1 to {top}"
+        )
     return n or DEFAULT_MAX_MESH
 
 

@@ -68,6 +68,7 @@ from corrugate.core.limits import (
     abnormal_reason,
     check_depth,
     check_grid,
+    check_integer,
     check_items,
     check_text,
 )
@@ -1088,12 +1089,16 @@ def _check_material(where: str, m: MaterialSpec) -> None:
 
 
 def _check_raw(data: Mapping[str, Any]) -> None:
-    """Limits on the raw data before pydantic sees it: nesting depth and text lengths."""
+    """Limits on the raw data before pydantic sees it: nesting depth, text lengths and integers
+    of at most :data:`~corrugate.core.limits.MAX_INT_DIGITS` digits (a JSON or TOML integer of
+    400 digits is named by its key, never converted to a float)."""
     check_depth(data, "spec")
     stack: list[tuple[Any, str]] = [(data, "")]
     while stack:
         obj, path = stack.pop()
-        if isinstance(obj, str):
+        if isinstance(obj, int) and not isinstance(obj, bool):
+            check_integer(path or "spec", obj)
+        elif isinstance(obj, str):
             limit = MAX_NAME_CHARS if path.rsplit(".", 1)[-1] == "name" else MAX_TEXT_CHARS
             check_text(path or "spec", obj, limit)
         elif isinstance(obj, Mapping):
@@ -1198,12 +1203,15 @@ def load_spec_text(path: str | Path) -> tuple[Spec, str]:
     p = Path(path)
     stdin = str(path) == "-"
     shown = "<stdin>" if stdin else str(p) if len(str(p)) <= 200 else str(p)[:200] + "..."
+    from corrugate.core.fileio import decode_input, read_input
+
     try:
         if stdin:
             raw = sys.stdin.buffer.read(MAX_SPEC_BYTES + 1)
-        else:
-            with p.open("rb") as fh:
-                raw = fh.read(MAX_SPEC_BYTES + 1)
+        else:  # a regular file only, never a FIFO or a device (read as untrusted input)
+            raw = read_input(p, "spec", MAX_SPEC_BYTES)
+    except InputError as exc:
+        raise SpecError(exc.field, shown, exc.allowed, reason=exc.reason) from None
     except (OSError, ValueError) as exc:
         reason = getattr(exc, "strerror", None) or type(exc).__name__
         raise SpecError(
@@ -1214,14 +1222,9 @@ def load_spec_text(path: str | Path) -> tuple[Spec, str]:
             "spec", shown, f"a file of at most {MAX_SPEC_BYTES} bytes", reason="is too large"
         )
     try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise SpecError(
-            "spec",
-            shown,
-            "a UTF-8 text file",
-            reason=f"is not UTF-8 text (byte {exc.start})",
-        ) from None
+        text = decode_input(raw, "spec", shown)
+    except InputError as exc:
+        raise SpecError(exc.field, shown, exc.allowed, reason=exc.reason) from None
     return parse_spec_text(text, shown), text
 
 

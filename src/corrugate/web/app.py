@@ -76,7 +76,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from fastapi import FastAPI, Request
+from fastapi import Depends, FastAPI, Request
 from fastapi.exceptions import RequestValidationError
 from fastapi.openapi.docs import get_swagger_ui_html
 from fastapi.responses import (
@@ -104,7 +104,7 @@ from corrugate.solver import Problem
 from corrugate.spec.inputs import AnalysisRequest, analysis_request
 from corrugate.spec.schema import Spec, SpecError, parse_spec
 from corrugate.spec.toml_text import read_spec_toml, spec_toml
-from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck
+from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck, long_integers
 from corrugate.web.jobs import Job, JobTable, solver_progress, sse
 from corrugate.web.schemas import (
     LOAD_CASE_KEYS,
@@ -1335,6 +1335,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
         docs_url=None,
         redoc_url=None,
         lifespan=lifespan,
+        dependencies=[Depends(long_integers)],  # 10**400 named by its key, before pydantic
     )
     app.state.settings = cfg
     app.state.store = store

@@ -6,6 +6,8 @@
 * :func:`slow_client_protocol` is uvicorn's HTTP/1.1 protocol with a deadline for each request
   head: a connection that has not sent a complete head within it gets 408 and is closed, so
   clients that trickle bytes cannot hold the server's connections.
+* :func:`long_integers` (a dependency of every route) answers 422 naming the key to a JSON body
+  holding an integer of more than 30 digits, before pydantic converts it to a float.
 * :class:`HostCheck` answers 400 to a Host header that is not this server's (DNS rebinding).
 * :class:`CatchAll` is the innermost middleware: an exception no handler took (a bug, or an input
   that still got past the limits of :mod:`corrugate.core.limits`) becomes one clean JSON error, 422
@@ -20,17 +22,23 @@ from __future__ import annotations
 import asyncio
 import json
 import logging
+import re
 import time
 from collections.abc import Awaitable, Callable, MutableMapping
 from typing import Any, TypeVar
 
+from starlette.requests import Request
 from uvicorn.protocols.http.h11_impl import H11Protocol
+
+from corrugate.core.errors import InputError
+from corrugate.core.limits import MAX_INT_DIGITS, check_integer
 
 __all__ = [
     "BodySizeLimit",
     "CatchAll",
     "HostCheck",
     "host_name",
+    "long_integers",
     "slow_client_protocol",
 ]
 
@@ -287,3 +295,44 @@ class CatchAll:
             status = 503 if server_side else 422
             field = getattr(exc, "field", None)
             await BodySizeLimit._reject(send, status, describe(exc), field=field)
+
+
+#: A run of more digits than an integer of any input may have (a fast screen of a body's bytes).
+_LONG_DIGITS = re.compile(rb"[0-9]{%d,}" % (MAX_INT_DIGITS + 1))
+
+
+async def long_integers(request: Request) -> None:
+    """A dependency of every route, run before the body is validated: a JSON body holding an
+    integer of more than :data:`~corrugate.core.limits.MAX_INT_DIGITS` digits (``10**400`` as
+    ``deflection.max``, where a float conversion would overflow) is one
+    :class:`~corrugate.core.errors.InputError` naming its key (``constraints.side.min``, ``W``,
+    ``eta[0]``), answered 422. Bodies without such a run of digits cost one regular-expression
+    scan."""
+    if request.method not in ("POST", "PUT", "PATCH"):
+        return
+    body = await request.body()  # cached: the route reads the same bytes
+    if _LONG_DIGITS.search(body) is None:
+        return
+    try:
+        data = json.loads(body)
+    except ValueError:  # malformed (the route says so), or an integer beyond int()'s 4300 digits
+        m = _LONG_DIGITS.search(body)
+        assert m is not None
+        keys = re.findall(rb'"([^"\\]{1,80})"\s*:', body[max(0, m.start() - 400) : m.start()])
+        if not keys or len(m.group(0)) <= 4300:
+            return
+        raise InputError(
+            keys[-1].decode("utf-8", "replace"),
+            "an integer of more than 4300 digits",
+            f"a number of at most {MAX_INT_DIGITS} digits",
+            reason="is too long",
+        ) from None
+    stack: list[tuple[Any, str]] = [(data, "")]
+    while stack:
+        obj, path = stack.pop()
+        if isinstance(obj, int) and not isinstance(obj, bool):
+            check_integer(path or "body", obj)
+        elif isinstance(obj, dict):
+            stack.extend((v, f"{path}.{k}" if path else str(k)) for k, v in obj.items())
+        elif isinstance(obj, list):
+            stack.extend((v, f"{path}[{i}]") for i, v in enumerate(obj))

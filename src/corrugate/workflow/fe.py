@@ -97,13 +97,31 @@ def check_fe(
 
 
 def write_verify(out: Path, checked: FeCheck) -> Path:
-    """``out/verify.json`` (the set ``corrugate verify`` writes) of the answer's design."""
-    from corrugate.core.fileio import write_set
-    from corrugate.export.record import VERIFY_KIND, VERIFY_NAME, design_label
+    """``out/verify.json`` (the set ``corrugate verify`` writes) of the answer's design, named by
+    the SHA-256 of the design.json just committed there (the design set's manifest entry) and
+    committed as a set that requires it (:mod:`corrugate.core.fileio`): refused
+    (:class:`~corrugate.core.errors.StaleSetError`) if another design was written there since."""
+    from corrugate.core.errors import StaleSetError
+    from corrugate.core.fileio import read_manifest, write_set
+    from corrugate.export.record import RECORD_NAME, VERIFY_KIND, VERIFY_NAME, design_label
 
     sol = checked.run.solution
     assert sol.assembly is not None
-    data = {"design": design_label(sol.assembly), **checked.verification.as_json()}
+    listed = read_manifest(out).get("design", {}).get("files", {})
+    digest = listed.get(RECORD_NAME) if isinstance(listed, dict) else None
+    if not isinstance(digest, str):
+        raise StaleSetError("--out", str(out), RECORD_NAME)
+    data = {
+        "design": design_label(sol.assembly),
+        "design_sha256": digest,
+        **checked.verification.as_json(),
+    }
     text = json.dumps(data, indent=2, allow_nan=False)
-    write_set(out, {VERIFY_NAME: text + "\n"}, field="--out", kind=VERIFY_KIND)
+    write_set(
+        out,
+        {VERIFY_NAME: text + "\n"},
+        field="--out",
+        kind=VERIFY_KIND,
+        requires={RECORD_NAME: digest},
+    )
     return out / VERIFY_NAME

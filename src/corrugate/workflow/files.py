@@ -208,6 +208,7 @@ def write_design_files(
     from corrugate.core.fileio import staged
     from corrugate.export.files import plan_job
     from corrugate.export.plan import OutputOptions, cut_plan
+    from corrugate.export.record import VERIFY_KIND
     from corrugate.export.writers import WRITERS, write_job
 
     opts = options or OutputOptions()
@@ -257,7 +258,9 @@ def write_design_files(
         # written after the fold maps and the assembly steps, from what they drew (Drawings)
         return report(cut) if callable(report) else report
 
-    with staged(out, kind="design") as st:  # one set: the old files or the new ones (fileio)
+    # one set: the old files or the new ones (fileio); a verification of another design.json,
+    # or one that did not record which (an earlier version's), leaves in the same commit
+    with staged(out, kind="design", supersedes=(VERIFY_KIND,)) as st:
         job = replace(
             plan_job(
                 plan,
