@@ -58,7 +58,9 @@ class InputError(CorrugateError, ValueError):
         self.allowed = allowed
         self.reason = reason
         shown = clipped(printable(str(value)))
-        super().__init__(f"{clipped(printable(field), tail=True)} = {shown} {reason}: allowed {allowed}")
+        super().__init__(
+            f"{clipped(printable(field), tail=True)} = {shown} {reason}: allowed {allowed}"
+        )
 
     def renamed(self, field: str, value: Any = None, reason: str | None = None) -> InputError:
         """The same error naming ``field`` instead (the caller's name for what the library

@@ -42,7 +42,7 @@ def clipped(text: str, limit: int = CLIP_CHARS, *, tail: bool = False) -> str:
     if len(text) <= limit:
         return text
     if tail:
-        return f"{text[:20]}...{text[-(SHOWN_CHARS - 20):]}"
+        return f"{text[:20]}...{text[-(SHOWN_CHARS - 20) :]}"
     return f"{text[:SHOWN_CHARS]}... ({len(text)} characters)"
 
 
