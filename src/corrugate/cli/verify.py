@@ -163,14 +163,20 @@ def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
     for col in cols:
         t.add_column(col, justify="left" if col in cols[:2] or col == cols[3] else "right")
     yes_no = {None: "-", True: "yes", False: "[red]NO[/red]"}
+
+    def said(verdict: str | None, holds: bool | None) -> str:
+        return "not converged" if verdict == "not converged" else yes_no[holds]
+
     for r in rows:
-        model = "-" if r.model is None else f"{r.model:.4g} N: {yes_no[r.model_holds]}"
+        model = (
+            "-" if r.model is None else f"{r.model:.4g} N: {said(r.model_verdict, r.model_holds)}"
+        )
         t.add_row(
             escape(r.test),
             escape(", ".join(r.constraints)),
             "-" if r.load is None else f"{r.load:.5g} N",
             escape(r.sentence + (f"; {r.note}" if r.note else "")),
-            yes_no[r.holds],
+            said(r.verdict, r.holds),
             model,
         )
     console.print(t)
@@ -332,6 +338,7 @@ def verify_cmd(
             folder=workdir,
             timeout=timeout,
             done=result.rows,
+            max_mesh=cap,
         )
     found = {**result.as_json(), "first_failure": [r.as_json() for r in failures]}
     files: dict[str, str | bytes] = {}
