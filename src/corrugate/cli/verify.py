@@ -112,8 +112,6 @@ def print_table(v: Verification, label: str, console: Console) -> None:
             _VERDICT_CELL[r.verdict],
         )
     console.print(t)
-    if not v.rows:
-        console.print("no behavioural constraint: nothing for the FE to check")
     console.print(summary(v))
 
 
@@ -127,23 +125,13 @@ _VERDICT_CELL = {
 
 
 def summary(v: Verification) -> str:
-    """The line under the table: the design's verdict and its exit code (docs/fea.md 6)."""
-    from corrugate.fea.verify import EXIT_CODES
+    """The line under the table: the design's verdict and its exit code (docs/fea.md 6;
+    :attr:`corrugate.fea.verify.Verification.statement`, coloured)."""
+    from rich.markup import escape
 
-    code = EXIT_CODES[v.verdict]
-    if v.verdict == "holds":
-        return "every constraint holds in FE"
-    if v.verdict == "fails":
-        return f"[red]not every constraint holds in FE[/red] (exit {code})"
-    if v.verdict == "not converged":
-        return (
-            "[yellow]no constraint fails, but not every FE series converged: not shown to hold"
-            f"[/yellow] (exit {code})"
-        )
-    return (
-        "every constraint with an FE twin holds; the others are not checked by FE "
-        f"(only the model's certificate covers them; exit {code})"
-    )
+    text = escape(v.statement)
+    colour = {"fails": "red", "not converged": "yellow"}.get(v.verdict)
+    return f"[{colour}]{text}[/{colour}]" if colour and v.rows else text
 
 
 def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
