@@ -78,6 +78,20 @@ def test_issue_35_the_slow_softening_series_has_no_safe_value_under_a_minimum() 
     assert extrapolate(rising, "max").value is None
 
 
+def test_a_limit_of_the_other_sign_is_not_asymptotic() -> None:
+    """The first yield of the case study's 4-point fixture (a stress concentration at the load
+    lines): 102.635 / 55.875 / 30.230 N at 2 / 4 / 8, steps 46.76 and 25.65, p = log2(46.76 /
+    25.65) = 0.87 and by hand a Richardson limit of 30.230 - 25.65 / (2^0.87 - 1) = -0.92 N: a
+    load that cannot be. Not asymptotic: no value without a sense or against a minimum (it
+    falls), the finest value as an upper bound."""
+    s = {2: 102.6350356857923, 4: 55.875161366395155, 8: 30.2298454570541}
+    assert richardson(s) is not None and richardson(s)[0] == pytest.approx(-0.918, abs=1e-3)
+    e = extrapolate(s)
+    assert not e.asymptotic and e.value is None and "has the other sign" in e.how
+    assert extrapolate(s, "min").value is None
+    assert extrapolate(s, "max").value == pytest.approx(30.2298454570541)
+
+
 def test_issue_35_a_turning_series_has_no_value_either_side() -> None:
     """100 / 92 / 94 against a minimum of 90: every value meets the bound, but the steps turn
     (-8, +2): neither side has a bound, no value."""
