@@ -110,6 +110,12 @@ def test_one_pair_of_rows_per_fixture_extrapolated_as_the_constraints_are(
     assert again[0].fe_series == {2: 10.0, 4: 8.0, 8: 7.5}
     assert again[0].fe == pytest.approx(buckle.fe, rel=1e-12)
     assert [stress for _, _, stress in calls] == [True, True, True]
+    # its series extended past the requested meshes, the extension failed (None): still read
+    calls.clear()
+    done = Row("cap", "Pmax3pt@0", "min", "N", 5.0, 4.0, {2: 5.0, 4: 4.0, 8: 3.75, 16: None})
+    again = first_failures(A, [*constraints[:-1], capacity], done=(done,))
+    assert again[0].fe_series == {2: 10.0, 4: 8.0, 8: 7.5}
+    assert [stress for _, _, stress in calls] == [True, True, True]
 
 
 def _stand_in(
