@@ -49,9 +49,10 @@ def main() -> None:
                 f"wall {time.monotonic() - w0:.1f} s)",
                 flush=True,
             )
-    est = {s: extrapolate(series) for s, series in table.items()}
+    est = {s: extrapolate(series, "min") for s, series in table.items()}  # a minimum's side
     for s, e in est.items():
-        print(f"shift {s:g}: series {table[s]}, estimate {e.value:.6g} ({e.how})")
+        value = "-" if e.value is None else f"{e.value:.6g}"
+        print(f"shift {s:g}: series {table[s]}, estimate {value} ({e.how})")
     worst_est = min(est, key=lambda s: est[s].value or float("inf"))
     if len(meshes) >= 2:
         screen = min(shifts, key=lambda s: table[s][meshes[-2]])

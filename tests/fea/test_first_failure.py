@@ -89,9 +89,13 @@ def test_one_pair_of_rows_per_fixture_extrapolated_as_the_constraints_are(
     assert rows[0].as_json()["model_first_failure_N"] == 8.0
     buckle, yld = rows
     assert buckle.fe == pytest.approx(7.5 - 0.5 / 3, rel=1e-12) and buckle.order == 2.0
-    assert buckle.holds is True and "3-point" in buckle.test
+    # one extrapolation only (three meshes): the load of 5 N is not yet shown below it
+    assert buckle.holds is None and buckle.verdict == "not converged" and "3-point" in buckle.test
+    assert buckle.as_json()["verdict"] == "not converged"
     assert get_material("dura-lar").yield_strength == 98.0
+    # a mesh-independent yield load (the steps vanish) is converged: 4 N < 5 N fails
     assert yld.fe_series == {2: 4.0, 4: 4.0, 8: 4.0} and yld.holds is False
+    assert yld.verdict == "fails"
     assert len(calls) == 6 and all(test == "three-point" for test, _, _ in calls)
     plain = first_failures(A, constraints[:2])
     assert plain[0].model is None and plain[0].model_holds is None
@@ -106,6 +110,90 @@ def test_one_pair_of_rows_per_fixture_extrapolated_as_the_constraints_are(
     assert again[0].fe_series == {2: 10.0, 4: 8.0, 8: 7.5}
     assert again[0].fe == pytest.approx(buckle.fe, rel=1e-12)
     assert [stress for _, _, stress in calls] == [True, True, True]
+    # its series extended past the requested meshes, the extension failed (None): still read
+    calls.clear()
+    done = Row("cap", "Pmax3pt@0", "min", "N", 5.0, 4.0, {2: 5.0, 4: 4.0, 8: 3.75, 16: None})
+    again = first_failures(A, [*constraints[:-1], capacity], done=(done,))
+    assert again[0].fe_series == {2: 10.0, 4: 8.0, 8: 7.5}
+    assert [stress for _, _, stress in calls] == [True, True, True]
+
+
+def _stand_in(
+    monkeypatch: pytest.MonkeyPatch, buckling: dict[int, float]
+) -> list[tuple[int, bool]]:
+    """A stand-in for CalculiX: the buckling run gives ``buckling[mesh]``; the static run peaks
+    at 49 MPa under 2 N (yield at 4 N, Dura-Lar). Returns the runs made (mesh, buckling)."""
+    calls: list[tuple[int, bool]] = []
+
+    def fake(assembly: Any, test: str, mesh: Any, eta: float, **kw: Any) -> Any:
+        calls.append((mesh.along, kw.get("step") is not None))
+        if kw.get("step") is not None:
+            return SimpleNamespace(value=lambda: buckling[mesh.along])
+        stress = np.zeros((2, 6))
+        stress[0, 1] = -49.0
+        stresses = SimpleNamespace(
+            principal=lambda: np.sort(stress[:, :3], axis=1), material=np.array([1, 2])
+        )
+        return SimpleNamespace(force=2.0, stresses=stresses)
+
+    monkeypatch.setattr(first_failure, "solve_assembly", fake)
+    return calls
+
+
+def _capacity(load: float) -> list[dict[str, Any]]:
+    return [{"name": "d", "quantity": "k3pt@0", "unit": "mm", "load_N": load}]
+
+
+def test_issue_35_a_softening_buckling_series_is_refined_before_it_is_judged(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The issue's series 100 / 90 / 82.42 N (p = 0.40) as first buckling loads under a load of
+    70 N: every value is above the load, but from three meshes the row is not converged (not
+    "yes"); allowed to 16 per facet, the series is extended, and its geometric continuation at
+    16 (82.42 - 7.58 x 0.758 = 76.675) gives both extrapolations 100 - 10 / (1 - 0.758) = 58.68 N
+    by hand: the load of 70 N is above the FE's first buckling, NO (the rule of
+    corrugate.fea.extrapolate.judge, as verify's constraint rows)."""
+    series = {2: 100.0, 4: 90.0, 8: 82.42, 16: 82.42 - 7.58 * 0.758}
+    _stand_in(monkeypatch, series)
+    buckle, yld = first_failures(A, _capacity(70.0))
+    assert buckle.fe_series == {2: 100.0, 4: 90.0, 8: 82.42}
+    assert buckle.verdict == "not converged" and buckle.holds is None
+    assert "not converged at 8 per facet (the finest allowed is 8)" in buckle.note
+    calls = _stand_in(monkeypatch, series)
+    buckle, yld = first_failures(A, _capacity(70.0), max_mesh=16)
+    assert list(buckle.fe_series) == [2, 4, 8, 16] and (16, True) in calls
+    assert buckle.verdict == "fails" and buckle.holds is False
+    assert buckle.fe == pytest.approx(58.68, abs=0.01) and "extended to 16" in buckle.note
+    assert yld.verdict == "fails" and (16, False) not in calls  # 4 N < 70 N on vanishing steps
+
+
+def test_issue_35_a_turning_or_k15_buckling_series_is_not_a_pass(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """100 / 92 / 94 / 93 N (turning) under 90 N: every value above the load, not converged
+    even at 16. The K(15) series of docs/fea.md 2.9 as loads, 126.24 / 93.20 / 85.22 / 81.60 N:
+    its extrapolations 82.676 (2 / 4 / 8) and 78.590 (4 / 8 / 16) differ by 4.09, more than a
+    quarter of the margin 3.59 to a load of 75 N: not converged at 16; a load of 62 N (16.6
+    below, four disagreements) holds; judged on 78.590, not on the three-mesh 82.676."""
+    _stand_in(monkeypatch, {2: 100.0, 4: 92.0, 8: 94.0, 16: 93.0})
+    buckle, _ = first_failures(A, _capacity(90.0), max_mesh=16)
+    assert buckle.verdict == "not converged" and buckle.holds is None
+    assert "not monotone" in buckle.note
+    k15 = {2: 126.23668, 4: 93.202237, 8: 85.219855, 16: 81.597965}
+    _stand_in(monkeypatch, k15)
+    buckle, _ = first_failures(A, _capacity(75.0), max_mesh=16)
+    assert buckle.verdict == "not converged" and list(buckle.fe_series) == [2, 4, 8, 16]
+    assert buckle.fe == pytest.approx(78.590, abs=1e-3)
+    _stand_in(monkeypatch, k15)
+    buckle, _ = first_failures(A, _capacity(62.0), max_mesh=16)
+    assert buckle.verdict == "holds" and buckle.holds is True
+    assert buckle.fe == pytest.approx(78.590, abs=1e-3)
+    # no load and no model value: nothing to judge, no extension; the estimate on the safe side
+    calls = _stand_in(monkeypatch, {2: 100.0, 4: 90.0, 8: 82.42})
+    stiff = [{"name": "k", "quantity": "k3pt@0", "unit": "N/mm"}]
+    buckle, _ = first_failures(A, stiff, max_mesh=16)
+    assert buckle.verdict is None and buckle.fe is None and "no lower bound" in buckle.how
+    assert max(m for m, _ in calls) == 8
 
 
 @pytest.mark.fea

@@ -179,8 +179,8 @@ def test_bad_input_is_422_before_anything_is_queued(served: tuple[str, FastAPI])
     assert status in (422, 503), answer  # 503: no CalculiX on this machine
     if status == 422:
         assert answer["field"] == "result"
-        status, answer = post_json(base, "/api/jobs/verify", {"result": "nope", "mesh": "2,16"})
-        assert status == 422 and answer["field"] == "mesh" and "8" in answer["detail"]
+        status, answer = post_json(base, "/api/jobs/verify", {"result": "nope", "mesh": "2,32"})
+        assert status == 422 and answer["field"] == "mesh" and "16" in answer["detail"]
     assert len(app.state.jobs) == before
     for method, path in (("GET", ""), ("GET", "/events"), ("DELETE", "")):
         status, answer = request(base, f"/api/jobs/no-such-job{path}", method)

@@ -472,7 +472,7 @@ def _run_fixture(
     for row in rows:
         ser = " / ".join(f"{v:.5g}" for v in row["fe_series"].values())  # type: ignore[attr-defined]
         fe = row["fe"]
-        est = "-" if fe is None else f"{fe:.5g} ({row['estimate']})"
+        est = f"- ({row['estimate']})" if fe is None else f"{fe:.5g} ({row['estimate']})"
         mk, wk = row["model_K"], row["wheel_test_K"]
         cells = [ser, est]
         if wheel:

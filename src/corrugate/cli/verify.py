@@ -118,8 +118,6 @@ def print_table(v: Verification, label: str, console: Console) -> None:
             _VERDICT_CELL[r.verdict],
         )
     console.print(t)
-    if not v.rows:
-        console.print("no behavioural constraint: nothing for the FE to check")
     console.print(summary(v))
 
 
@@ -133,23 +131,13 @@ _VERDICT_CELL = {
 
 
 def summary(v: Verification) -> str:
-    """The line under the table: the design's verdict and its exit code (docs/fea.md 6)."""
-    from corrugate.fea.verify import EXIT_CODES
+    """The line under the table: the design's verdict and its exit code (docs/fea.md 6;
+    :attr:`corrugate.fea.verify.Verification.statement`, coloured)."""
+    from rich.markup import escape
 
-    code = EXIT_CODES[v.verdict]
-    if v.verdict == "holds":
-        return "every constraint holds in FE"
-    if v.verdict == "fails":
-        return f"[red]not every constraint holds in FE[/red] (exit {code})"
-    if v.verdict == "not converged":
-        return (
-            "[yellow]no constraint fails, but not every FE series converged: not shown to hold"
-            f"[/yellow] (exit {code})"
-        )
-    return (
-        "every constraint with an FE twin holds; the others are not checked by FE "
-        f"(only the model's certificate covers them; exit {code})"
-    )
+    text = escape(v.statement)
+    colour = {"fails": "red", "not converged": "yellow"}.get(v.verdict)
+    return f"[{colour}]{text}[/{colour}]" if colour and v.rows else text
 
 
 def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
@@ -169,14 +157,20 @@ def print_failures(rows: tuple[FailureRow, ...], console: Console) -> None:
     for col in cols:
         t.add_column(col, justify="left" if col in cols[:2] or col == cols[3] else "right")
     yes_no = {None: "-", True: "yes", False: "[red]NO[/red]"}
+
+    def said(verdict: str | None, holds: bool | None) -> str:
+        return "not converged" if verdict == "not converged" else yes_no[holds]
+
     for r in rows:
-        model = "-" if r.model is None else f"{r.model:.4g} N: {yes_no[r.model_holds]}"
+        model = (
+            "-" if r.model is None else f"{r.model:.4g} N: {said(r.model_verdict, r.model_holds)}"
+        )
         t.add_row(
             escape(r.test),
             escape(", ".join(r.constraints)),
             "-" if r.load is None else f"{r.load:.5g} N",
             escape(r.sentence + (f"; {r.note}" if r.note else "")),
-            yes_no[r.holds],
+            said(r.verdict, r.holds),
             model,
         )
     console.print(t)
@@ -361,6 +355,7 @@ def verify_cmd(
             folder=workdir,
             timeout=timeout,
             done=result.rows,
+            max_mesh=cap,
         )
     found = {**result.as_json(), "first_failure": [r.as_json() for r in failures]}
     files: dict[str, str | bytes] = {}

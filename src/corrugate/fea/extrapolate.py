@@ -6,12 +6,15 @@ d2 = v(h/2) - v(h/4), the observed order of convergence is p = log2(d1 / d2) and
 v(h/4) - d2 / (2^p - 1). The estimate is trusted only when the series looks asymptotic: monotone
 (the steps have one sign), the steps shrinking, and 0.5 <= p <= 4 (the S8R shells of
 :mod:`corrugate.fea.assembly` converge at p of about 1-2, docs/fea.md 2.2). Otherwise the series
-is "not asymptotic" and the finest value is all there is.
+is "not asymptotic", and its finest value is not presented as its limit: below p = 0.5 or where
+the steps turn, a series that softens as the mesh refines may end anywhere beyond it (issue 35:
+100 / 90 / 82.42, p = 0.40, continues geometrically to 58.7).
 
 :func:`richardson` is the step the benchmarks' tables use (``benchmarks/offaxis_table.py``);
-:func:`extrapolate` is what ``corrugate validate`` and verify's first-failure rows report: the
-estimate, the observed order and how it was found. :func:`judge` is what ``corrugate verify``
-decides a constraint by: a series counts only when it is shown asymptotic (four meshes, two
+:func:`extrapolate` is what ``corrugate validate --fixture`` and verify's first-failure rows
+report: the estimate, the observed order and how it was found, and, given the side a bound
+lies on, only a value that is safe on that side. :func:`judge` is what ``corrugate verify``
+decides a constraint and a first-failure row by: a series counts only when it is shown asymptotic (four meshes, two
 successive extrapolations that agree within a share of the bound's margin); otherwise it is
 refined further, and left "not converged" at the finest mesh allowed (docs/fea.md 6).
 """
@@ -85,38 +88,93 @@ def richardson(series: Series) -> tuple[float, str] | None:
 
 @dataclass(frozen=True, slots=True)
 class Extrapolation:
-    """What a mesh series says: ``value`` (the extrapolated limit when ``asymptotic``, else the
-    finest mesh's value; None for an empty series), the observed ``order`` p (None when none
-    could be read), whether the series is ``asymptotic`` (Richardson applies) and ``how``, one
-    phrase for a table."""
+    """What a mesh series says (:func:`extrapolate`): ``value`` (the extrapolated limit when
+    ``asymptotic``; else a bound on the limit on the safe side of ``sense``, the finest value of
+    one mesh, or of two without a sense; None when the series gives nothing that may be presented: an empty series,
+    or one shown not asymptotic with nothing safe to say), the observed ``order`` p (None when
+    none could be read), whether the series is ``asymptotic`` (Richardson applies), ``how``, one
+    phrase for a table, and ``finest``, the finest mesh's value (None for an empty series)."""
 
     value: float | None
     order: float | None
     asymptotic: bool
     how: str
+    finest: float | None = None
 
 
-def extrapolate(series: Series) -> Extrapolation:
+def extrapolate(series: Series, sense: str | None = None) -> Extrapolation:
     """The estimate of a mesh series (module docstring): Richardson's limit when the three finest
-    meshes are asymptotic; otherwise the finest value, saying why (one or two meshes: no order;
-    three or more: "not asymptotic", with the order read when there is one)."""
+    meshes are asymptotic (or the finest value when the last two steps vanish: a
+    mesh-independent value). Otherwise no value is presented as a limit (docs/fea.md 6, "The
+    series and when it counts"):
+
+    - with ``sense`` (``min``: the value must be at least a bound, so what is safe is a value at
+      or below the limit; ``max``: at or above it), the finest value when the series is
+      monotone and moves towards the safe side as the mesh refines (a stiffness that rises
+      under a minimum: the limit lies beyond the finest value), said to be a bound; None when it
+      moves the other way or turns (a series that softens under a minimum may go anywhere
+      below its finest value: 100 / 90 / 82.42 at p = 0.40 continues to 58.7), "not converged";
+    - without a sense, two meshes give the finest value (no order, said so); three or more
+      that are not asymptotic give None, "not converged", naming the finest value.
+
+    One mesh gives its value, said to be one mesh (no order, no direction). A Richardson limit
+    of the other sign than the finest value (a first-yield load that falls towards zero as a
+    stress concentration sharpens: 102.6 / 55.9 / 30.2 N at p = 0.87 gives -0.92 N) is no limit
+    of a positive quantity: not asymptotic."""
     finite = {k: v for k, v in series.items() if math.isfinite(v)}
     if not finite:
         return Extrapolation(None, None, False, "no FE value")
-    alongs = sorted(finite)
-    finest = finite[alongs[-1]]
-    if len(alongs) < 3:
-        what = "one mesh" if len(alongs) == 1 else "two meshes"
-        return Extrapolation(finest, None, False, f"{what}: no observed order, the finest value")
+    if sense not in (None, "min", "max"):
+        raise ValueError(f"sense must be min, max or None, not {sense!r}")  # a caller's bug
+    vs = [finite[a] for a in sorted(finite)]
+    finest = vs[-1]
+    if len(vs) == 1:
+        return Extrapolation(
+            finest, None, False, "one mesh: no observed order, the finest value", finest
+        )
+    steps = [b - a for a, b in itertools.pairwise(vs)]  # finer minus coarser
+    tiny = ROUND_OFF * max(abs(v) for v in vs)
     p = observed_order(finite)
-    r = richardson(finite)
-    if r is not None:
-        return Extrapolation(r[0], p, True, r[1])
-    if p is None:
-        why = "not asymptotic (the steps change sign or vanish, or the meshes do not double)"
+    if len(vs) >= 3:
+        r = richardson(finite)
+        if r is not None and r[0] * finest > 0:
+            return Extrapolation(r[0], p, True, r[1] + _before(finite), finest)
+        if all(abs(d) <= tiny for d in steps[-2:]):
+            return Extrapolation(finest, None, True, "converged: the last two steps vanish", finest)
+        if p is None:
+            why = "not asymptotic (the steps change sign or vanish, or the meshes do not double)"
+        elif r is not None:  # a load or stiffness whose limit would cross zero: no limit to trust
+            why = f"not asymptotic (p = {p:.2f}, but the limit {_fmt(r[0])} has the other sign)"
+        else:
+            why = f"not asymptotic (p = {p:.2f})"
     else:
-        why = f"not asymptotic (p = {p:.2f})"
-    return Extrapolation(finest, p, False, f"{why}, the finest value")
+        why = "two meshes: no observed order"
+    if sense is None:
+        if len(vs) == 2:
+            return Extrapolation(finest, None, False, f"{why}, the finest value", finest)
+        return Extrapolation(
+            None, p, False, f"not converged: {why}; the finest value {_fmt(finest)}", finest
+        )
+    sign = 1.0 if sense == "min" else -1.0
+    side = "lower" if sense == "min" else "upper"
+    moving = [d for d in steps if abs(d) > tiny]
+    if moving and all(sign * d > 0 for d in moving):
+        toward = "rises" if sense == "min" else "falls"
+        return Extrapolation(
+            finest,
+            p,
+            False,
+            f"{why}: the finest value, {'a' if sense == 'min' else 'an'} {side} bound (the series "
+            f"{toward} as the mesh refines)",
+            finest,
+        )
+    return Extrapolation(
+        None,
+        p,
+        False,
+        f"not converged: {why}; the finest value {_fmt(finest)} is no {side} bound",
+        finest,
+    )
 
 
 #: A series counts (:func:`judge`) when its two successive Richardson extrapolations differ by at
@@ -169,6 +227,19 @@ def _limit(v: tuple[float, float, float]) -> tuple[float, float] | None:
 
 def _fmt(x: float) -> str:
     return f"{x:.5g}"
+
+
+def _before(series: Series) -> str:
+    """The extrapolation from the meshes before the three finest (k, 2k, 4k of k, 2k, 4k, 8k),
+    as "; 82.679 from 2 / 4 / 8", when there is one: what the finest three's estimate moved
+    from (:func:`judge` asks the two to agree)."""
+    chain = _chain(series)
+    if len(chain) < 4:
+        return ""
+    first = _limit((series[chain[-4]], series[chain[-3]], series[chain[-2]]))
+    if first is None:
+        return ""
+    return f"; {_fmt(first[0])} from {' / '.join(map(str, chain[-4:-1]))} (p = {first[1]:.2f})"
 
 
 def judge(series: Series, bound: float, sense: str) -> Judgement:

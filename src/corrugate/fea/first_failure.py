@@ -3,8 +3,10 @@ verify`` adds below the constraints' (issue 34; docs/fea.md sections 2 and 6).
 
 Every load-case fixture a behavioural constraint of the design runs in (its twin,
 :func:`corrugate.fea.verify.twin_of`: three-point, four-point, cantilever, platens along a crease
-direction, the wheel) gives two statements, each on the mesh series and extrapolated as the
-constraint rows are (:func:`corrugate.fea.extrapolate.extrapolate`):
+direction, the wheel) gives two statements, each on the mesh series and judged as the
+constraint rows are (:func:`corrugate.fea.extrapolate.judge`, docs/fea.md 6: a load is at or
+below the FE's only on a series shown asymptotic against it, refined up to ``max_mesh``, else
+"not converged"):
 
 * **buckling**: the fixture run as a linear buckling analysis
   (:class:`corrugate.fea.steps.LinearBuckling`): the lowest positive buckling factor is the load
@@ -27,8 +29,11 @@ where the design carries a load capacity (a ``Pmax`` constraint: a strength boun
 deflection bound under a load brings; docs/load_cases.md), the model's first-failure load (its
 least ``failure_loads_N``: the capacity times the safety factor) and whether it is at or below the
 FE's (issue 34: "a certified capacity holds when X times the safety factor is at or below the
-FE's first failure"). The rows are evidence beside the constraint rows, not part of their
-verdict (``holds``).
+FE's first failure"). Each of the two comparisons has its verdict (``holds``, ``fails``, ``not
+converged``), the first decided by the certified load, else by the model's first failure; a row
+with neither shows the series' estimate on the safe side (:func:`corrugate.fea.extrapolate.
+extrapolate` with ``sense`` ``min``: a lower bound, or none). The rows are evidence beside the
+constraint rows, not part of their verdict (``holds``).
 """
 
 from __future__ import annotations
@@ -43,7 +48,7 @@ import numpy as np
 
 from corrugate.core.errors import CorrugateError
 from corrugate.fea.assembly import AssemblyMesh, solve_assembly
-from corrugate.fea.extrapolate import extrapolate
+from corrugate.fea.extrapolate import Judgement, extrapolate, judge
 from corrugate.fea.outline import solve_outline
 from corrugate.fea.steps import LinearBuckling
 from corrugate.fea.verify import Row, Twin, behavioural, joint_options, safety_factor, twin_of
@@ -63,8 +68,12 @@ class FailureRow:
     ``mode`` (``buckling`` or ``yield``), the ``constraints`` run in it, the ``load`` (N) they
     are certified under (None: no load stated), the FE series (elements per facet -> load N at
     the first failure, None where the run failed), the estimate ``fe`` (N), its ``order`` and
-    ``how``, a ``note`` (failed runs, why there is no value) and the ``model``'s first-failure
-    load (N, no safety factor; None without a load capacity among the constraints)."""
+    ``how``, a ``note`` (failed runs, why there is no value), the ``model``'s first-failure
+    load (N, no safety factor; None without a load capacity among the constraints) and the
+    ``verdict`` of the load against the FE and the ``model_verdict`` of the model's first failure
+    against it (:data:`VERDICT_WORDS`, :func:`corrugate.fea.extrapolate.judge`; None where there
+    is no load or no model value). Built without verdicts (a table made by hand), they are
+    read from ``fe`` as a plain comparison."""
 
     test: str
     mode: str
@@ -76,22 +85,22 @@ class FailureRow:
     how: str = ""
     note: str = ""
     model: float | None = None
+    verdict: str | None = None
+    model_verdict: str | None = None
 
     @property
     def model_holds(self) -> bool | None:
-        """Whether the model's first-failure load is at or below the FE estimate (None: no
-        model value or no estimate)."""
-        if self.model is None or self.fe is None:
-            return None
-        return self.model <= self.fe
+        """Whether the model's first-failure load is at or below the FE's: True on a series
+        shown asymptotic against it (``model_verdict`` ``holds``), False when it fails, None
+        when not converged or without a model value."""
+        return _holds(self.model_verdict, self.model, self.fe)
 
     @property
     def holds(self) -> bool | None:
-        """Whether the certified load is at or below the FE estimate (None: no load or no
-        estimate)."""
-        if self.load is None or self.fe is None:
-            return None
-        return self.load <= self.fe
+        """Whether the certified load is at or below the FE's first failure: True on a series
+        shown asymptotic against it (``verdict`` ``holds``), False when it fails, None when not
+        converged or without a load."""
+        return _holds(self.verdict, self.load, self.fe)
 
     @property
     def sentence(self) -> str:
@@ -114,11 +123,28 @@ class FailureRow:
             "order": _finite(self.order),
             "estimate": self.how or None,
             "holds": self.holds,
+            "verdict": self.verdict,
             "statement": self.sentence,
             "note": self.note or None,
             "model_first_failure_N": _finite(self.model),
             "model_holds": self.model_holds,
+            "model_verdict": self.model_verdict,
         }
+
+
+#: A comparison's verdict (:func:`corrugate.fea.extrapolate.judge`'s ``open`` is "not
+#: converged", as in verify's constraint rows).
+VERDICT_WORDS = {"holds": "holds", "fails": "fails", "open": "not converged"}
+
+
+def _holds(verdict: str | None, bound: float | None, fe: float | None) -> bool | None:
+    """True for ``holds``, False for ``fails``, None otherwise; without a verdict (a row made by
+    hand) the plain comparison ``bound <= fe``."""
+    if verdict is not None:
+        return {"holds": True, "fails": False}.get(verdict)
+    if bound is None or fe is None:
+        return None
+    return bound <= fe
 
 
 def _finite(v: float | None) -> float | None:
@@ -160,6 +186,7 @@ def first_failures(
     folder: Path | None = None,
     timeout: float = 900.0,
     done: Sequence[Row] = (),
+    max_mesh: int | None = None,
 ) -> tuple[FailureRow, ...]:
     """The failure rows (module docstring) of every load-case fixture the behavioural
     ``constraints`` of a design.json run in, on the mesh series ``meshes``: buckling first, then
@@ -168,7 +195,12 @@ def first_failures(
     without an FE twin, or already a buckling bound, add no row. ``done``: the constraint rows
     of :func:`corrugate.fea.verify.verify_design` on the same meshes; a load capacity's row there
     already holds its fixture's buckling series over the safety factor, which is read back
-    (times the factor) instead of running it again."""
+    (times the factor) instead of running it again. A row whose load (else model first failure)
+    is not yet shown at or below the FE's, nor shown above it
+    (:func:`corrugate.fea.extrapolate.judge`), has its series extended by doubling its finest
+    mesh up to ``max_mesh`` elements per facet (None: the finest of ``meshes``, no extension),
+    as verify's constraint rows are; still open there, it is "not converged"."""
+    cap_mesh = max(meshes) if max_mesh is None else max_mesh
     connectors, bond = joint_options(joint)
     groups: dict[
         tuple[str, float, float | None], tuple[Twin, list[str], list[float], list[float]]
@@ -187,10 +219,12 @@ def first_failures(
             q = Quantity.load_case("k", q.eta or 0.0, q.test or own_test().name, **_support(q))
             cap = twin_of(q, assembly, joint, load)
             theirs = {} if row is None else row.fe_series
-            complete = set(theirs) == set(meshes) and None not in theirs.values()
+            # its requested meshes all ran (a failed extension past them is left out: the row
+            # tries it again, where it fails as fast)
+            complete = all(theirs.get(k) is not None for k in meshes)
             if sf and complete and isinstance(cap, Twin) and not cap.shifted:
                 ran[(cap.test, cap.eta, cap.span)] = {
-                    k: None if v is None else v * sf for k, v in theirs.items()
+                    k: v * sf for k, v in theirs.items() if v is not None
                 }
         twin = twin_of(q, assembly, joint, load)
         if isinstance(twin, str) or twin.read == "Pb" or twin.shifted:
@@ -207,9 +241,9 @@ def first_failures(
     parts = 3 if connectors else 2
     strengths = [assembly.layer1.material.yield_strength, assembly.layer2.material.yield_strength]
     strengths += [assembly.layer1.material.yield_strength] if connectors else []  # the band's
+    setup = _Setup(assembly, connectors, bond, parts, strengths, folder, timeout)
     rows: list[FailureRow] = []
     for twin, names, loads, models in groups.values():
-        outline = twin.fixture.kind == "outline"
         where = f" along eta = {twin.eta:g} deg" + (
             f", span {twin.span:g} mm" if twin.span is not None else ""
         )
@@ -218,55 +252,39 @@ def first_failures(
         static_label = twin.fixture.label + where
         load = max(loads) if loads else None
         for mode in MODES:
-            if mode == "yield" and outline:
+            if mode == "yield" and twin.fixture.kind == "outline":
                 continue
             series: dict[int, float | None] = {}
             failures: list[str] = []
             reused = ran.get((twin.test, twin.eta, twin.span)) if mode == "buckling" else None
+
+            name = label if mode == "buckling" else f"{static_label}, stresses"
             if reused is not None:
                 series = dict(reused)
-            for along in () if reused is not None else meshes:
-                mesh = AssemblyMesh(along)
-                name = label if mode == "buckling" else f"{static_label}, stresses"
-                progress(f"assembly, {name}, mesh {mesh.label()} (first failure)")
-                try:
-                    if mode == "buckling" and outline:
-                        o = solve_outline(
-                            assembly,
-                            twin.test,
-                            mesh,
-                            twin.eta,
-                            step=buckle,
-                            folder=folder,
-                            timeout=timeout,
-                        )
-                        series[along] = o.value
-                    else:  # the coupon: as a buckling run, or static with its stresses
-                        how: dict[str, Any] = (
-                            {"step": buckle} if mode == "buckling" else {"stresses": True}
-                        )
-                        r = solve_assembly(
-                            assembly,
-                            twin.test,
-                            mesh,
-                            twin.eta,
-                            connectors=connectors,
-                            bond=bond,
-                            span=twin.span,
-                            folder=folder,
-                            timeout=timeout,
-                            **how,
-                        )
-                        series[along] = (
-                            r.value()
-                            if mode == "buckling"
-                            else yield_load(r.force, _peak_by_part(r, parts), strengths)
-                        )
-                except CorrugateError as exc:
-                    series[along] = None
-                    failures.append(f"{along}/facet not run: {exc}")
+            else:
+                for along in meshes:
+                    _run_into(series, failures, setup, twin, mode, along, progress, name)
+            model = min(models) if models else None
+            bound = load if load is not None else model
+            extended: list[str] = []
+            while bound is not None:  # refine an open series, as verify's constraint rows
+                j = _judged(series, bound)
+                finer = 2 * max(series)
+                failed = any(v is None for v in series.values())
+                if j.verdict != "open" or finer > cap_mesh or failed:
+                    break
+                why = f"extending the series: {j.why}"
+                _run_into(series, failures, setup, twin, mode, finer, progress, name, why)
+                extended.append(f"extended to {finer} per facet ({j.why})")
             known = {k: v for k, v in series.items() if v is not None}
-            e = extrapolate(known)
+            verdict = _verdict(series, load)
+            model_verdict = _verdict(series, model)
+            decisive = _judged(series, bound) if bound is not None else None
+            if decisive is not None:
+                fe, order, how = decisive.value, decisive.order, decisive.how
+            else:
+                e = extrapolate(known, "min")
+                fe, order, how = e.value, e.order, e.how
             note = list(failures)
             if mode == "yield" and not known and not failures:
                 note.append("no yield strength for the sheet's material")
@@ -274,6 +292,12 @@ def first_failures(
                 note.insert(0, "a dead load (the load line free to move in the mode)")
             else:
                 note.insert(0, "largest |principal stress| anywhere, the load lines included")
+            note += extended
+            if decisive is not None and decisive.verdict == "open" and known:
+                note.append(
+                    f"not converged at {max(series)} per facet (the finest allowed is "
+                    f"{cap_mesh}): {decisive.why}"
+                )
             rows.append(
                 FailureRow(
                     label if mode == "buckling" else static_label,
@@ -281,14 +305,104 @@ def first_failures(
                     tuple(names),
                     load,
                     series,
-                    e.value,
-                    e.order,
-                    e.how,
+                    fe,
+                    order,
+                    how,
                     "; ".join(note),
-                    min(models) if models else None,
+                    model,
+                    verdict,
+                    model_verdict,
                 )
             )
     return tuple(rows)
+
+
+@dataclass(frozen=True, slots=True)
+class _Setup:
+    """What every run of :func:`first_failures` shares: the design, its band, its parts' yield
+    strengths and where and how long ccx runs."""
+
+    assembly: Assembly
+    connectors: bool
+    bond: Any
+    parts: int
+    strengths: list[float | None]
+    folder: Path | None
+    timeout: float
+
+
+def _run(setup: _Setup, twin: Twin, mode: str, along: int) -> tuple[float | None, str]:
+    """One run of a first-failure row on ``along`` elements per facet: its load (N; None when
+    the run failed or gave none) and the failure's words ("" when it ran)."""
+    mesh = AssemblyMesh(along)
+    buckle = LinearBuckling()
+    try:
+        if mode == "buckling" and twin.fixture.kind == "outline":
+            o = solve_outline(
+                setup.assembly,
+                twin.test,
+                mesh,
+                twin.eta,
+                step=buckle,
+                folder=setup.folder,
+                timeout=setup.timeout,
+            )
+            return o.value, ""
+        how: dict[str, Any] = {"step": buckle} if mode == "buckling" else {"stresses": True}
+        r = solve_assembly(
+            setup.assembly,
+            twin.test,
+            mesh,
+            twin.eta,
+            connectors=setup.connectors,
+            bond=setup.bond,
+            span=twin.span,
+            folder=setup.folder,
+            timeout=setup.timeout,
+            **how,
+        )
+        if mode == "buckling":
+            return r.value(), ""
+        return yield_load(r.force, _peak_by_part(r, setup.parts), setup.strengths), ""
+    except CorrugateError as exc:
+        return None, f"{along}/facet not run: {exc}"
+
+
+def _run_into(
+    series: dict[int, float | None],
+    failures: list[str],
+    setup: _Setup,
+    twin: Twin,
+    mode: str,
+    along: int,
+    progress: Callable[[str], None],
+    name: str,
+    why: str = "",
+) -> None:
+    """:func:`_run` on ``along`` elements per facet, said on ``progress`` first, its load into
+    ``series`` and its failure into ``failures``."""
+    because = f", {why}" if why else ""
+    progress(f"assembly, {name}, mesh {AssemblyMesh(along).label()} (first failure{because})")
+    series[along], failure = _run(setup, twin, mode, along)
+    if failure:
+        failures.append(failure)
+
+
+def _judged(series: Mapping[int, float | None], bound: float) -> Judgement:
+    """:func:`corrugate.fea.extrapolate.judge` of the runs that gave a value: is the first
+    failure (N) at or above ``bound`` (N)?"""
+    return judge({k: v for k, v in series.items() if v is not None}, bound, "min")
+
+
+def _verdict(series: Mapping[int, float | None], bound: float | None) -> str | None:
+    """The words of :func:`_judged` (:data:`VERDICT_WORDS`): "not converged" also when a run of
+    the series failed; None without a bound or without any value."""
+    if bound is None or not any(v is not None for v in series.values()):
+        return None
+    j = _judged(series, bound)
+    if j.verdict != "fails" and any(v is None for v in series.values()):
+        return "not converged"
+    return VERDICT_WORDS[j.verdict]
 
 
 def _number(v: object) -> float | None:

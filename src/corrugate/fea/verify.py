@@ -91,6 +91,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "BEHAVIOURAL_KINDS",
+    "BYTES_PER_NODE",
     "DEFAULT_MAX_MESH",
     "DEFAULT_MESHES",
     "DEFAULT_SHIFTS",
@@ -121,6 +122,11 @@ DEFAULT_MAX_MESH = 16
 #: the validation tables, 518 s of ccx CPU and 7.47 GiB per layer's run; section 6: 3.1 GiB for
 #: the K(45) case-study coupon).
 FINE_COST = "a 16-per-facet run may take minutes and up to ~8 GB of memory"
+#: Bytes of CalculiX memory per node of a run, for the estimate of an extending run (its nodes:
+#: four times the run's before, twice as many elements across and along each facet): the peak
+#: RSS of ccx over the nodes of the outline meshes of docs/fea.md 2.8 and 2.9 (0.98 GB at
+#: 22 800 nodes, 4.3 GB at 90 072, 12.4 GB at 280 000: 43-48 kB a node), rounded up.
+BYTES_PER_NODE = 48_000
 #: The coupon positions off the crease directions (fractions of each layer's pitch).
 DEFAULT_SHIFTS: tuple[float, ...] = (0.0, 0.25, 0.5, 0.75)
 #: The screen of coupon positions: the finest mesh runs at every position whose value on the
@@ -134,6 +140,18 @@ SCREEN_WITHIN = 0.05
 #: run failed); ``not checked`` 6, the constraint has no FE twin; ``holds`` 0.
 VERDICTS: tuple[str, ...] = ("fails", "not converged", "not checked", "holds")
 EXIT_CODES: dict[str, int] = {"fails": 1, "not converged": 5, "not checked": 6, "holds": 0}
+#: A design's verdict in words (:attr:`Verification.statement`; ``{code}`` its exit code).
+STATEMENTS: dict[str, str] = {
+    "holds": "every constraint holds in FE",
+    "fails": "not every constraint holds in FE (exit {code})",
+    "not converged": (
+        "no constraint fails, but not every FE series converged: not shown to hold (exit {code})"
+    ),
+    "not checked": (
+        "every constraint with an FE twin holds; the others are not checked by FE (only the "
+        "model's certificate covers them; exit {code})"
+    ),
+}
 #: The quantity kinds a behavioural constraint bounds.
 BEHAVIOURAL_KINDS = ("K", "D", "EI", "k", "Pb", "Pmax")
 
@@ -309,10 +327,20 @@ class Verification:
         """Whether every row the FE could check holds (the rows without a twin aside)."""
         return self.verdict in ("holds", "not checked")
 
+    @property
+    def statement(self) -> str:
+        """The design's verdict in words, with its exit code unless it holds (docs/fea.md 6):
+        what ``corrugate verify`` prints under its table and the web page under its own."""
+        if not self.rows:
+            return "no behavioural constraint: nothing for the FE to check"
+        return STATEMENTS[self.verdict].format(code=self.exit_code)
+
     def as_json(self) -> dict[str, Any]:
         return {
             "holds": self.holds,
             "verdict": self.verdict,
+            "exit_code": self.exit_code,
+            "statement": self.statement,
             "meshes": list(self.meshes),
             "shifts": list(self.shifts),
             "constraints": [r.as_json() for r in self.rows],
@@ -614,6 +642,7 @@ def verify_design(
     keep: bool = False,
     timeout: float = 900.0,
     max_mesh: int = DEFAULT_MAX_MESH,
+    memory_bytes: int | None = None,
 ) -> Verification:
     """Run the FE twin of every behavioural constraint (module docstring; ``constraints``: a
     solution's reports or design.json's entries, :class:`Checked`) on the mesh series
@@ -633,7 +662,10 @@ def verify_design(
     again (positions screened out stay out); a position that fails ends the row. The row fails
     when a position fails, holds when every judged position holds and no run failed, and is
     "not converged" otherwise; a constraint without a twin is "not checked". The row's
-    ``extended`` says what was run on and why."""
+    ``extended`` says what was run on and why. With ``memory_bytes`` (the memory a run may
+    take, e.g. the web app's cap) an extending run whose estimate (:data:`BYTES_PER_NODE` times
+    four times the nodes of the run before) is larger is not made: the row is "not converged
+    (memory)"."""
     connectors, bond = joint_options(joint)
     if not shifts:
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
@@ -779,7 +811,8 @@ def verify_design(
         # (not shown asymptotic against the bound), the worst first, up to max_mesh; a position
         # shown to fail ends the row, a run that fails leaves it open (docs/fea.md 6).
         extended: list[str] = []
-        unsettled = False  # an extension's run failed: its series stays open
+        refused = ""  # an extension the memory does not allow
+        unsettled = False  # an extension's run failed (or was refused): its series stays open
         while not unsettled:
             if any(_outcome(f) == "fails" for f in found):
                 break
@@ -794,6 +827,16 @@ def verify_design(
             _, sh, series, before, failures = found[i]
             assert before is not None
             finer = 2 * max(series)
+            need = _memory_estimate(runs, twin, max(series), sh)
+            if memory_bytes is not None and need is not None and need > memory_bytes:
+                refused = (
+                    f"not extended to {finer} per facet: its run would take about "
+                    f"{need / 1e9:.1f} GB (4 x the nodes of the run at {max(series)} per facet x "
+                    f"{BYTES_PER_NODE // 1000} kB), more than the {memory_bytes / 1e9:.1f} GB "
+                    "allowed"
+                )
+                unsettled = True
+                break
             why = f"extending {base.name}'s series: {before.why}"
             if finer >= DEFAULT_MAX_MESH:
                 why += f"; {FINE_COST}"
@@ -825,11 +868,14 @@ def verify_design(
             failures = [f"shift {f[1]:g}: {x}" for f in found for x in f[4]]
         notes = [n for n in (twin.note, *failures) if n]
         notes += extended
-        if unsettled:
+        if refused:
+            notes.append(refused)
+        elif unsettled:
             notes.append("the run extending the series failed")
         if verdict == "not converged":
             if judgement is not None and judgement.verdict == "open":
                 at = f" at shift {shift:g}" if twin.shifted else ""
+                at += " (memory)" if refused else ""
                 notes.append(
                     f"not converged{at} at {max(series)} per facet (the finest allowed is "
                     f"{max_mesh}, --max-mesh): {judgement.why}"
@@ -877,6 +923,20 @@ def verify_design(
             )
         )
     return Verification(tuple(rows), tuple(meshes), tuple(shifts))
+
+
+def _memory_estimate(
+    runs: Mapping[tuple[Any, ...], object], twin: Twin, along: int, shift: float
+) -> float | None:
+    """The bytes a run of ``twin`` twice as fine as its run at ``along`` per facet would take:
+    four times that run's nodes times :data:`BYTES_PER_NODE` (None when it has no node count,
+    e.g. it failed)."""
+    whole = twin.fixture.kind == "frame"
+    key = (twin.fixture.name, twin.step.name, 0.0 if whole else twin.eta, along, shift, twin.span)
+    nodes = getattr(runs.get(key), "nodes", None)
+    if not isinstance(nodes, int) or nodes <= 0:
+        return None
+    return 4.0 * nodes * BYTES_PER_NODE
 
 
 def _outcome(f: _Found) -> str:

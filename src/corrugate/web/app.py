@@ -27,7 +27,8 @@ Endpoints (all JSON unless said otherwise):
   lane has read the spec; 422 naming the field before anything is queued; 503 with
   ``Retry-After`` when the queue is full), its
   solver under its own CPU budget (query ``budget``) and stopped at :data:`JOB_WALL_PER_CPU`
-  wall seconds per budget second; ``POST /api/jobs/verify``: ``corrugate verify`` on a stored design (CalculiX);
+  wall seconds per budget second; ``POST /api/jobs/verify``: ``corrugate verify`` on a stored design (CalculiX;
+  a series not shown asymptotic refined up to the server's ``fe_max_mesh``, as ``--max-mesh``);
   ``GET /api/jobs/{id}`` (state, last progress event, result), ``GET /api/jobs/{id}/events``
   (server-sent events), ``DELETE /api/jobs/{id}`` (cancel: the worker killed and replaced, no
   result folder left); ``GET /api/fea``: whether CalculiX is installed
@@ -250,7 +251,10 @@ class WebSettings:
     ``result_ttl_s``); ``fe_workdir``: the parent of the CalculiX work folders (None: the system
     temporary folder), swept at start-up of the folders no running process owns, and of a
     worker's when it is killed or dies (:mod:`corrugate.fea.workdirs`); ``fe_timeout_s``: wall seconds of an FE verification job
-    (and of each CalculiX run in it); ``fe_max_mesh``: its finest mesh (elements per facet);
+    (and of each CalculiX run in it); ``fe_max_mesh``: its finest mesh (elements per facet): the
+    finest a request may ask for, and the one a series not shown asymptotic is refined up to, as
+    ``corrugate verify --max-mesh`` (docs/fea.md 6; an extending run whose memory estimate is
+    above the job's cap or the memory available is not made: "not converged (memory)");
     ``fe_memory_bytes``: its address-space cap beyond the worker's start-up mapping (CalculiX
     runs as a child of the worker and inherits it; None: the worker's ``worker_memory_bytes``).
     """
@@ -272,7 +276,7 @@ class WebSettings:
     max_job_budget_s: float = 600.0
     max_jobs: int = 64
     fe_timeout_s: float = 1800.0
-    fe_max_mesh: int = 8
+    fe_max_mesh: int = 16
     fe_memory_bytes: int | None = FE_MEMORY_BYTES
     quick_processes: int = 2
     max_queued_jobs: int = 16
@@ -657,6 +661,7 @@ def verify_job(
     timeout_s: float,
     memory_bytes: int | None = None,
     workdir: Path | None = None,
+    max_mesh: int | None = None,
 ) -> dict[str, Any]:
     """``corrugate verify --json`` of the design in ``folder`` (a stored result's folder), with
     its ``design`` label, on the mesh series ``meshes``, each CalculiX run stopped after
@@ -666,8 +671,12 @@ def verify_job(
     :func:`corrugate.web.workers.memory_cap`). A job: runs in a worker process
     and sends one progress event per CalculiX run (``{"stage": "fe", "run": k, "line": ...}``,
     the line ``corrugate verify`` prints on stderr). Constraints without an FE twin come back as
-    verify's own rows (``verdict`` "not checked", ``note`` saying why); the series stop at the
-    server's mesh cap, so a row not shown asymptotic within it is "not converged"."""
+    verify's own rows (``verdict`` "not checked", ``note`` saying why). A series not shown
+    asymptotic is extended up to ``max_mesh`` elements per facet (None: the finest requested,
+    no extension), as ``corrugate verify --max-mesh`` does, except that an extending run whose
+    estimated memory (:data:`corrugate.fea.verify.BYTES_PER_NODE`) is above ``memory_bytes`` or
+    the memory the machine has available is not made: its row is "not converged (memory)". The
+    verdicts, ``exit_code`` and ``statement`` are the CLI's."""
     from corrugate.export.record import design_label, read_design
     from corrugate.fea.verify import verify_design
 
@@ -680,8 +689,9 @@ def verify_job(
         send_progress({"stage": "fe", "run": count, "line": f"[{count}] {text}"})
 
     send_progress({"stage": "reading"})
+    limits = [m for m in (memory_bytes, available_memory()) if m is not None]
     with memory_cap(memory_bytes):
-        result = verify_design(  # no series past the requested ones (the server's mesh cap)
+        result = verify_design(
             assembly,
             constraints,
             joint,
@@ -689,12 +699,26 @@ def verify_job(
             progress=line,
             folder=workdir,
             timeout=timeout_s,
-            max_mesh=max(meshes),
+            max_mesh=max(meshes) if max_mesh is None else max(max_mesh, max(meshes)),
+            memory_bytes=min(limits) if limits else None,
         )
     payload: dict[str, Any] = json_safe(
         {"design": design_label(assembly), "runs": count, **result.as_json()}
     )
     return payload
+
+
+def available_memory() -> int | None:
+    """Bytes of memory the machine has available now (``MemAvailable`` of /proc/meminfo: free
+    without swapping), None where it cannot be read."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as f:
+            for text in f:
+                if text.startswith("MemAvailable:"):
+                    return int(text.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
 
 
 def fea_info(settings: WebSettings) -> FeaInfo:
@@ -820,6 +844,7 @@ async def verify_job_task(
             settings.fe_timeout_s,
             settings.fe_memory_bytes,
             settings.fe_workdir,
+            settings.fe_max_mesh,
             timeout_s=settings.fe_timeout_s,
         )
         job.end("done", result)
@@ -1217,6 +1242,7 @@ def _add_jobs(
             "time_limit_s": cfg.fe_timeout_s,
             "memory_bytes": cfg.fe_memory_bytes or cfg.worker_memory_bytes,
             "meshes": list(meshes),
+            "max_mesh": cfg.fe_max_mesh,
         }
         job = jobs.new("verify", limits)
         return start(job, verify_job_task(job, folder, meshes, cfg, runner))

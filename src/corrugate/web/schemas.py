@@ -398,5 +398,8 @@ class FeaInfo(BaseModel):
     available: bool
     ccx: str | None = Field(description="The ccx executable, or null.")
     message: str
-    max_mesh: int = Field(description="Finest mesh (elements per facet) a web verification runs.")
+    max_mesh: int = Field(
+        description="Finest mesh (elements per facet) a web verification runs: a series not "
+        "shown asymptotic is refined up to it, as corrugate verify --max-mesh."
+    )
     time_limit_s: float = Field(description="Wall seconds after which a verification is stopped.")

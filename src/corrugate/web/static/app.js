@@ -1318,7 +1318,9 @@ function showVerification(v) {
     const bound = c.bound === null ? '-' : `${c.sense === 'max' ? '\u2264' : '\u2265'} ${fmt(c.bound, 5)} ${c.unit}`;
     cell(row, bound.trim(), 'bound');
     cell(row, fmt(c.model, 5), 'model');
-    const series = Object.values(c.fe_series).map((x) => fmt(x, 5)).join(' / ') || '-';
+    let series = Object.values(c.fe_series).map((x) => fmt(x, 5)).join(' / ') || '-';
+    const at = Object.keys(c.fe_series);
+    if (at.length && at.join(',') !== v.meshes.join(',')) series += ` (at ${at.join(' / ')})`;  // extended
     cell(row, series, 'fe_series');
     const notes = [c.estimate ? `(${c.estimate})` : '', c.note || ''].filter(Boolean).join('; ');
     cell(row, `${fmt(c.fe, 5)}${notes ? ` ${notes}` : ''}`, 'fe').className = 'text';
@@ -1330,14 +1332,14 @@ function showVerification(v) {
   $('d-verify-caption').textContent = `${v.design}: mesh series ${v.meshes.join(' / ')} elements `
     + `per facet, ${v.runs} CalculiX ${v.runs === 1 ? 'run' : 'runs'}`;
   $('d-verify-table').hidden = false;
-  $('d-verify-status').textContent = v.constraints.length
+  $('d-verify-status').textContent = v.statement || (v.constraints.length
     ? ({
       holds: 'every constraint holds in FE',
       fails: 'not every constraint holds in FE',
       'not converged': 'no constraint fails, but not every FE series converged: not shown to hold',
       'not checked': 'every constraint with an FE twin holds; the others are not checked by FE',
     }[v.verdict || (v.holds ? 'holds' : 'fails')])
-    : 'no behavioural constraint: nothing for the FE to check';
+    : 'no behavioural constraint: nothing for the FE to check');
 }
 
 async function verifyDesign() {
