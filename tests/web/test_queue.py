@@ -223,9 +223,9 @@ def test_a_worker_past_its_time_limit_and_at_shutdown_is_swept(tmp_path: Path) -
 
     reaped: list[int] = []
 
-    def reap(pid: int) -> None:
-        reaped.append(pid)
+    def reap(pid: int) -> None:  # runs in the runner's reaping thread: sweep, then tell
         sweep_owned(pid, tmp_path)
+        reaped.append(pid)
 
     runner = Runner(4, 60.0, processes=2, reap=reap)
     runner.start_processes()
