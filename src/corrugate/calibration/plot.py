@@ -6,7 +6,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from corrugate.calibration.fit import Fit, sag_model
+from corrugate.calibration.coupons import GRAVITY
+from corrugate.calibration.elastica import drop_ratio
+from corrugate.calibration.fit import Fit
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -16,7 +18,7 @@ __all__ = ["fit_figure"]
 
 def fit_figure(fit: Fit) -> Figure:
     """One panel per direction (sag against free length for each tip load: the readings as dots,
-    the elastica at the fitted E as a line, at the interval's ends dashed) and one for the crease
+    the elastica at the fitted E as a line, at the interval's ends dotted) and one for the crease
     strip (extension against load)."""
     from corrugate.core.plotting import new_figure
 
@@ -35,9 +37,13 @@ def fit_figure(fit: Fit) -> Figure:
                 ms=4,
                 label=f"{test.coupon}, {test.overhang:g} mm, {test.tip_g:g} g",
             )
+            lengths = np.linspace(0.5 * test.overhang, 1.25 * test.overhang, 12)
             for E, style in ((mod.E, "-"), (mod.lo, ":"), (mod.hi, ":")):
-                w = float(sag_model(test, E, m.material.density, m.t))
-                ax.plot([test.overhang - 4, test.overhang + 4], [w, w], style, color=color)
+                EI = E * test.width * m.t**3 / 12
+                q = m.material.density * test.width * m.t * GRAVITY
+                P = test.tip_g * GRAVITY
+                w = [L * drop_ratio(q * L**3 / EI, P * L**2 / EI) for L in lengths]
+                ax.plot(lengths, w, style, color=color, lw=1)
         ax.set_xlabel("free length (mm)")
         ax.set_ylabel("sag (mm)")
         ax.set_title(

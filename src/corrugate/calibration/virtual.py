@@ -12,14 +12,23 @@ the full one). Lengths in mm, E in MPa, k in N mm/(rad mm).
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
 from corrugate.calibration.coupons import GRAVITY, Kit, expected_sag
 from corrugate.calibration.crease import compliance
 from corrugate.calibration.measurements import CreaseTest, FlatTest, Measurements
+from corrugate.materials.library import Material
 
 __all__ = ["measurements_toml", "virtual_measurements"]
+
+
+@lru_cache(maxsize=64)
+def _sag(E: float, mat: Material, t: float, b: float, L: float, tip_g: float) -> float:
+    """:func:`~corrugate.calibration.coupons.expected_sag`, solved once per set-up (a study
+    draws many trials of the same kit)."""
+    return expected_sag(E, mat, t, b, L, tip_g)
 
 
 def virtual_measurements(
@@ -45,7 +54,7 @@ def virtual_measurements(
     for f in kit.flat:
         Ef = E if f.direction == "along" or E_across is None else E_across
         for L, n in ((f.overhang, 0), (f.coin_overhang, f.coins)):
-            sag = expected_sag(Ef, mat, t, f.width, L, n * f.coin_g)
+            sag = _sag(Ef, mat, t, f.width, L, n * f.coin_g)
             flat.append(
                 FlatTest(
                     f.name, f.direction, f.width, L, n * f.coin_g, read(sag), f"flat[{len(flat)}]"
