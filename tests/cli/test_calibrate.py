@@ -56,6 +56,7 @@ def test_kit_writes_cut_files_protocol_and_a_template(tmp_path: Path, cli: CliRu
     assert "flat[0].sag = 0 readings has too few repeats" in err
 
 
+@pytest.mark.slow
 def test_fit_recovers_the_sheet_and_saves_a_material_a_spec_designs_with(
     tmp_path: Path, cli: CliRun, readings: str
 ) -> None:

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from corrugate.calibration.crease import compliance
-from corrugate.calibration.elastica import drop_ratio
+from corrugate.calibration.elastica import drop_ratio, rigidity
 from corrugate.core.errors import InputError
 from corrugate.fabrication.model import Line, Part, Role
 from corrugate.materials.library import Material
@@ -49,7 +49,7 @@ TAB = 18.0
 HOLE = 4.0
 HOLE_INSET = 7.0
 #: The crease stiffness the coin counts are sized for: the sheet's bending stiffness per unit
-#: width D = E t^3 / 12 (N mm) over this length (mm), a crease as compliant as a facet of this
+#: width D = E t^3 / (12 (1 - nu^2)) (N mm) over this length (mm), a crease as compliant as a facet of this
 #: width bent by end moments (docs/calibration.md section 4).
 SIZING_LENGTH = 12.0
 #: The most coins the crease strip's bag is loaded with.
@@ -64,7 +64,7 @@ def strip_weight(material: Material, t: float, b: float) -> float:
 def expected_sag(E: float, material: Material, t: float, b: float, L: float, tip_g: float) -> float:
     """The tip's drop (mm) of a strip of free length ``L`` (mm) under its weight and ``tip_g``
     grams at its tip, for modulus ``E`` (MPa): the elastica."""
-    EI = E * b * t**3 / 12
+    EI = rigidity(E, material.nu, b, t)
     q = strip_weight(material, t, b)
     return L * drop_ratio(q * L**3 / EI, tip_g * GRAVITY * L**2 / EI)
 
@@ -192,11 +192,14 @@ def design_kit(material: Material, t: float, usable: float, coin_g: float = 5.0)
         FlatCoupon(name, d, b, L1 + CLAMP, L1, L2, n, coin_g, alone, withc)
         for name, d in (("F1", "along"), ("F2", "across"))
     )
-    k_guess = material.E * t**3 / 12 / SIZING_LENGTH
+    k_guess = rigidity(material.E, material.nu, 1.0, t) / SIZING_LENGTH
     coins = _crease_coins(material, t, coin_g, k_guess)
     rigid, soft = (
         tuple(
-            n * coin_g * GRAVITY * compliance(k, material.E, t, b, FACET, FOLD_ANGLE, CREASES)
+            n
+            * coin_g
+            * GRAVITY
+            * compliance(k, material.E, t, b, FACET, FOLD_ANGLE, CREASES, material.nu)
             for n in coins
         )
         for k in (math.inf, k_guess)
@@ -208,7 +211,7 @@ def design_kit(material: Material, t: float, usable: float, coin_g: float = 5.0)
 def _crease_coins(material: Material, t: float, coin_g: float, k: float) -> tuple[int, ...]:
     """Three coin counts n, 2n, 3n: 3n the most (up to 30) whose extension with creases of
     stiffness ``k`` stays below 50 mm and a third of the strip's chord (n at least 1)."""
-    C = compliance(k, material.E, t, STRIP_WIDTH, FACET, FOLD_ANGLE, CREASES)
+    C = compliance(k, material.E, t, STRIP_WIDTH, FACET, FOLD_ANGLE, CREASES, material.nu)
     chord = CREASES * FACET * math.sin(math.radians(FOLD_ANGLE) / 2)
     limit = min(TARGET[1], chord / 3)
     top = max((m for m in range(1, MAX_COINS + 1) if m * coin_g * GRAVITY * C <= limit), default=1)

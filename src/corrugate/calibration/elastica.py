@@ -24,7 +24,16 @@ from numpy.typing import NDArray
 
 from corrugate.core.errors import InputError
 
-__all__ = ["drop_ratio", "drop_ratios"]
+__all__ = ["drop_ratio", "drop_ratios", "rigidity"]
+
+
+def rigidity(E: float, nu: float, b: float, t: float) -> float:
+    """The bending rigidity (N mm^2) of a strip of width b and thickness t (mm) as a plate,
+    E b t^3 / (12 (1 - nu^2)) (E in MPa): a strip far wider than thick bends without its
+    anticlastic curvature, as the finite elements of a kit's strip show (docs/calibration.md
+    section 7), and the models take a facet's bending so (docs/theory.md)."""
+    return E * b * t**3 / (12 * (1 - nu * nu))
+
 
 #: The nodes of the arc length the shape is solved on (refined by solve_bvp where needed).
 _NODES = 41

@@ -33,9 +33,10 @@ from numpy.typing import NDArray
 
 from corrugate.calibration.coupons import GRAVITY
 from corrugate.calibration.crease import angle_from_length, compliance
-from corrugate.calibration.elastica import drop_ratios
+from corrugate.calibration.elastica import drop_ratios, rigidity
 from corrugate.calibration.measurements import CreaseTest, FlatTest, Measurements
 from corrugate.core.errors import InputError
+from corrugate.materials.library import Material
 
 __all__ = [
     "BOOTSTRAP",
@@ -74,7 +75,7 @@ def _table(
 
 
 def sag_model(
-    test: FlatTest, E: NDArray[np.float64] | float, material_density: float, t: float
+    test: FlatTest, E: NDArray[np.float64] | float, material_density: float, t: float, nu: float
 ) -> NDArray[np.float64]:
     """The elastica's sag (mm) of ``test``'s set-up at modulus ``E`` (MPa; an array), for a sheet
     of density (g/mm^3) and thickness ``t`` (mm); nan outside the tabulated moduli."""
@@ -82,7 +83,7 @@ def sag_model(
 
     E_ref = 1000.0
     q = material_density * test.width * t * GRAVITY
-    EI_ref = E_ref * test.width * t**3 / 12
+    EI_ref = rigidity(E_ref, nu, test.width, t)
     logE, logw = _table(q, test.tip_g * GRAVITY, test.overhang, EI_ref)
     x = np.log(np.asarray(E, dtype=np.float64) / E_ref)
     out = np.exp(CubicSpline(logE, logw)(x))
@@ -190,12 +191,16 @@ def _best(
 
 
 def _rows(
-    tests: Sequence[FlatTest], logE: NDArray[np.float64], density: float, t: float
+    tests: Sequence[FlatTest], logE: NDArray[np.float64], material: Material, t: float
 ) -> NDArray[np.float64]:
     """The model's sags (mm) on the grid ``logE``, one row per reading."""
     return np.vstack(
         [
-            np.repeat(sag_model(test, np.exp(logE), density, t)[None, :], len(test.sags), axis=0)
+            np.repeat(
+                sag_model(test, np.exp(logE), material.density, t, material.nu)[None, :],
+                len(test.sags),
+                axis=0,
+            )
             for test in tests
         ]
     )
@@ -203,19 +208,20 @@ def _rows(
 
 def fit_modulus(
     tests: Sequence[FlatTest],
-    density: float,
+    material: Material,
     t: float,
     ruler: float,
-    E_guide: float,
     rng: np.random.Generator,
     samples: int = BOOTSTRAP,
 ) -> ModulusFit:
-    """The least-squares E (MPa) of ``tests`` (one direction) and its bootstrap interval (module
-    docstring); ``E_guide`` (MPa) centres the search (E_guide / 20 .. E_guide * 20).
+    """The least-squares E (MPa) of ``tests`` (one direction) of a sheet of ``material``'s
+    density and nu, ``t`` mm thick, and its bootstrap interval (module docstring); the search
+    spans the material's E / 20 .. E * 20.
     :class:`InputError` naming the tests' field when no E in that range explains the sags."""
+    E_guide = material.E
     y = np.array([s for test in tests for s in test.sags])
     grid = np.linspace(math.log(E_guide / SPAN) + 0.05, math.log(E_guide * SPAN) - 0.05, 1201)
-    M = _rows(tests, grid, density, t)
+    M = _rows(tests, grid, material, t)
     usable = ~np.isnan(M).any(axis=0)
     if usable.sum() < 3:
         raise InputError(
@@ -233,7 +239,13 @@ def fit_modulus(
             reason="fit no modulus",
         )
     E = math.exp(logE)
-    pred = np.array([float(sag_model(test, E, density, t)) for test in tests for _ in test.sags])
+    pred = np.array(
+        [
+            float(sag_model(test, E, material.density, t, material.nu))
+            for test in tests
+            for _ in test.sags
+        ]
+    )
     res = y - pred
     rms = float(np.sqrt(np.mean(res**2)))
     limit = MISFIT * ruler + 0.1 * float(np.mean(y))
@@ -253,7 +265,7 @@ def fit_modulus(
     )
     for half, points in ((0.4, 401), (1.5, 1501)):
         fine = np.linspace(max(logE - half, grid[0]), min(logE + half, grid[-1]), points)
-        best = _best(Y, _rows(tests, fine, density, t), fine)
+        best = _best(Y, _rows(tests, fine, material, t), fine)
         if half >= 1.5 or (best.min() > fine[1] and best.max() < fine[-2]):
             break
     Es = np.exp(best)
@@ -274,6 +286,7 @@ def fit_modulus(
 
 def fit_crease(
     test: CreaseTest,
+    material: Material,
     E_samples: Sequence[float],
     E: float,
     t: float,
@@ -281,7 +294,7 @@ def fit_crease(
     rng: np.random.Generator,
 ) -> CreaseFit:
     """The crease stiffness, angle and springback of ``test`` (module docstring) at modulus ``E``
-    (MPa), the interval drawn with ``E_samples`` (the bootstrap's E, or E alone)."""
+    (MPa; nu the ``material``'s), the interval drawn with ``E_samples`` (the bootstrap's E, or E alone)."""
     lengths = np.array(test.lengths)
     angle = angle_from_length(float(lengths.mean()), test.facet, test.creases)
     if math.isnan(angle):
@@ -304,7 +317,16 @@ def fit_crease(
         e = test.facet * np.cos(np.radians(alphas) / 2) / 2
         rigid = np.array(
             [
-                compliance(math.inf, float(Ei), t, test.width, test.facet, float(a), test.creases)
+                compliance(
+                    math.inf,
+                    float(Ei),
+                    t,
+                    test.width,
+                    test.facet,
+                    float(a),
+                    test.creases,
+                    material.nu,
+                )
                 for Ei, a in zip(Es, alphas, strict=True)
             ]
         )
@@ -346,13 +368,11 @@ def fit_measurements(m: Measurements, seed: int = 0, samples: int = BOOTSTRAP) -
     for direction in ("along", "across"):
         tests = [f for f in m.flat if f.direction == direction]
         if tests:
-            moduli.append(
-                fit_modulus(tests, m.material.density, m.t, m.ruler, m.material.E, rng, samples)
-            )
+            moduli.append(fit_modulus(tests, m.material, m.t, m.ruler, rng, samples))
     crease = None
     if m.crease is not None:
         along = next((f for f in moduli if f.direction == "along"), moduli[0] if moduli else None)
         E = m.material.E if along is None else along.E
         Es = [E] * samples if along is None else list(along.samples)
-        crease = fit_crease(m.crease, Es, E, m.t, m.ruler, rng)
+        crease = fit_crease(m.crease, m.material, Es, E, m.t, m.ruler, rng)
     return Fit(m, tuple(moduli), crease)

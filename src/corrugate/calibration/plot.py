@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from corrugate.calibration.coupons import GRAVITY
-from corrugate.calibration.elastica import drop_ratio
+from corrugate.calibration.elastica import drop_ratio, rigidity
 from corrugate.calibration.fit import Fit
 
 if TYPE_CHECKING:
@@ -39,7 +39,7 @@ def fit_figure(fit: Fit) -> Figure:
             )
             lengths = np.linspace(0.5 * test.overhang, 1.25 * test.overhang, 12)
             for E, style in ((mod.E, "-"), (mod.lo, ":"), (mod.hi, ":")):
-                EI = E * test.width * m.t**3 / 12
+                EI = rigidity(E, m.material.nu, test.width, m.t)
                 q = m.material.density * test.width * m.t * GRAVITY
                 P = test.tip_g * GRAVITY
                 w = [L * drop_ratio(q * L**3 / EI, P * L**2 / EI) for L in lengths]

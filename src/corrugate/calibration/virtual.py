@@ -62,7 +62,7 @@ def virtual_measurements(
             )
     c = kit.crease
     length = c.creases * c.facet * math.sin(math.radians(angle) / 2)
-    C = compliance(k, E, t, c.width, c.facet, angle, c.creases)
+    C = compliance(k, E, t, c.width, c.facet, angle, c.creases, mat.nu)
     crease = CreaseTest(
         c.name,
         c.width,
