@@ -39,6 +39,9 @@ def test_kit_writes_cut_files_protocol_and_a_template(tmp_path: Path, cli: CliRu
     names = {p.name for p in out.iterdir()}
     assert {"cut-1.dxf", "pattern.pdf", "protocol.md", "protocol.pdf", "measurements.toml"} <= names
     assert {"setup-flat.png", "setup-coin.png", "setup-crease.png"} <= names
+    assert (out / "protocol.pdf").read_bytes()[:5] == b"%PDF-"
+    protocol = (out / "protocol.md").read_text()
+    assert "## Measurement sheet" in protocol and "![the flat strip" in protocol
     import ezdxf
 
     layers = [e.dxf.layer for e in ezdxf.readfile(out / "cut-1.dxf").modelspace()]
