@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -58,8 +58,9 @@ class Material:
     source: str = "defined by the user"
     yield_strength: float | None = None
     creep: CreepTable | None = None
-    #: Other names that find it (``pet`` for the PET films); not written to design.json.
-    aliases: tuple[str, ...] = ()
+    #: Other names that find it (``pet`` for the PET films): how it is looked up, not what it is
+    #: (not compared, not written to design.json).
+    aliases: tuple[str, ...] = field(default=(), compare=False)
 
     def __repr__(self) -> str:
         """One short line (the source text is in :meth:`as_dict`)."""
