@@ -18,6 +18,10 @@ ROOT = Path(__file__).resolve().parents[1]
 #: that docs/fea.md and the benchmarks cite).
 DATA = ROOT / "tests" / "data"
 
+#: The user's config folder (corrugate.materials.user.config_dir) during the tests: a folder of
+#: the repository that does not exist, so that no test reads the user's own materials file.
+os.environ["CORRUGATE_CONFIG_DIR"] = str(ROOT / "tests" / "data" / "no-user-config")
+
 #: Fixtures that need something outside Python, and the marker their tests must carry.
 MARKED_FIXTURES = {"ccx": "fea", "browser": "browser"}
 

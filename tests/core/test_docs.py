@@ -61,7 +61,9 @@ def test_user_facing_messages_cite_docs_by_command_not_by_repository_path() -> N
 
 def test_shipped_docs_are_the_repository_docs() -> None:
     names = doc_names()
-    assert {"fea", "offaxis", "fabrication", "spec", "theory", "notebook"} <= set(names)
+    assert {"fea", "offaxis", "fabrication", "spec", "theory", "notebook", "calibration"} <= set(
+        names
+    )
     for name in names:
         assert doc_text(name) == (ROOT / "docs" / f"{name}.md").read_text("utf-8"), name
     # every Markdown doc of the repository (but the generated validation tables) is shipped

@@ -81,25 +81,25 @@ def test_every_library_material_has_an_allowable_stress() -> None:
 
 def test_yield_strength_units_are_parsed() -> None:
     """ "100 MPa" and "0.1 GPa" are one stress; "14.5 ksi" is 100 MPa to 0.1 % (1 ksi = 6.895 MPa)."""
-    from corrugate.materials.library import _from_entry
+    from corrugate.materials.library import material_from_entry
 
     base = {"name": "x", "E": "2 GPa", "nu": 0.3, "density": "1 g/cm^3"}
-    a = _from_entry("a", {**base, "yield_strength": "100 MPa"})
-    b = _from_entry("b", {**base, "yield_strength": "0.1 GPa"})
-    c = _from_entry("c", {**base, "yield_strength": "14.5 ksi"})
+    a = material_from_entry("a", {**base, "yield_strength": "100 MPa"})
+    b = material_from_entry("b", {**base, "yield_strength": "0.1 GPa"})
+    c = material_from_entry("c", {**base, "yield_strength": "14.5 ksi"})
     assert a.yield_strength == pytest.approx(100.0)
     assert b.yield_strength == pytest.approx(100.0)
     assert c.yield_strength == pytest.approx(100.0, rel=1e-3)
-    assert _from_entry("d", base).yield_strength is None
+    assert material_from_entry("d", base).yield_strength is None
 
 
 @pytest.mark.parametrize("bad", ["0 MPa", "-5 MPa", "3 GPa", "2 mm"])
 def test_a_yield_strength_outside_zero_to_E_is_refused(bad: str) -> None:
-    from corrugate.materials.library import _from_entry
+    from corrugate.materials.library import material_from_entry
 
     base = {"name": "x", "E": "2 GPa", "nu": 0.3, "density": "1 g/cm^3"}
     with pytest.raises(InputError, match=r"yield_strength"):
-        _from_entry("x", {**base, "yield_strength": bad})
+        material_from_entry("x", {**base, "yield_strength": bad})
 
 
 def test_inline_materials_have_no_yield_strength() -> None:

@@ -30,6 +30,7 @@ ORDER = (
     "fabrication",
     "export",
     "report",
+    "calibration",
     "workflow",
     "web",
     "cli",

@@ -24,13 +24,22 @@ from typing import Annotated, Any, Literal
 import typer
 
 from corrugate import __version__
-from corrugate.cli import analyze, design, pattern, serve, spec, validate, verify
+from corrugate.cli import analyze, calibrate, design, pattern, serve, spec, validate, verify
 from corrugate.core.errors import CorrugateError, describe
 
 __all__ = ["COMMAND_MODULES", "EXIT_CODES", "GC_THRESHOLDS", "app", "main"]
 
 #: The command modules, in the order ``corrugate --help`` lists their commands.
-COMMAND_MODULES: tuple[ModuleType, ...] = (analyze, design, pattern, validate, verify, serve, spec)
+COMMAND_MODULES: tuple[ModuleType, ...] = (
+    analyze,
+    design,
+    pattern,
+    validate,
+    verify,
+    calibrate,
+    serve,
+    spec,
+)
 
 
 def _help_markup() -> Literal["rich"] | None:
@@ -106,9 +115,17 @@ def _root(
 
 def _register(target: typer.Typer, modules: tuple[ModuleType, ...]) -> None:
     for module in modules:
-        commands: dict[str, Callable[..., Any]] = module.COMMANDS
+        commands: dict[str, Callable[..., Any] | typer.Typer] = module.COMMANDS
         for name, function in commands.items():
-            target.command(name)(function)
+            _add(target, name, function)
+
+
+def _add(target: typer.Typer, name: str, function: Callable[..., Any] | typer.Typer) -> None:
+    """Register one entry of a ``COMMANDS`` table: a command, or a group of them (a Typer)."""
+    if isinstance(function, typer.Typer):
+        target.add_typer(function, name=name)
+    else:
+        target.command(name)(function)
 
 
 app = _new_app()
@@ -126,7 +143,7 @@ def _app_for(args: list[str]) -> typer.Typer:
         function = module.COMMANDS.get(args[0])
         if function is not None:
             one = _new_app()
-            one.command(args[0])(function)
+            _add(one, args[0], function)
             return one
     return app
 

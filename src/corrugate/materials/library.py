@@ -9,7 +9,8 @@ the values come from. The library is data, not code: edit the TOML file to add a
 from __future__ import annotations
 
 import tomllib
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -19,12 +20,15 @@ from corrugate.core.units import parse_quantity
 from corrugate.materials.creep import CreepTable
 
 __all__ = [
+    "AmbiguousNameError",
     "Material",
     "creep_materials",
     "get_material",
     "inline_material",
     "library",
+    "library_entries",
     "material_from_dict",
+    "material_from_entry",
     "validate_elastic",
     "validate_strength",
 ]
@@ -54,6 +58,9 @@ class Material:
     source: str = "defined by the user"
     yield_strength: float | None = None
     creep: CreepTable | None = None
+    #: Other names that find it (``pet`` for the PET films): how it is looked up, not what it is
+    #: (not compared, not written to design.json).
+    aliases: tuple[str, ...] = field(default=(), compare=False)
 
     def __repr__(self) -> str:
         """One short line (the source text is in :meth:`as_dict`)."""
@@ -213,8 +220,13 @@ def _creep(where: str, E: float, entry: dict[str, Any] | None) -> CreepTable | N
     )
 
 
-def _from_entry(key: str, entry: dict[str, Any]) -> Material:
-    where = f"materials.toml [{key}]."
+def material_from_entry(key: str, entry: dict[str, Any], file: str = "materials.toml") -> Material:
+    """The material of one table ``[key]`` of a materials file (the library's format, the
+    module's text); :class:`InputError` naming ``file [key].FIELD``."""
+    where = f"{file} [{key}]."
+    for name in ("E", "nu", "density"):
+        if name not in entry:
+            raise InputError(where + name, None, "a value", reason="is missing")
     E = parse_quantity(entry["E"], "MPa", where + "E")
     nu = float(entry["nu"])
     density = parse_quantity(entry["density"], "g/cm^3", where + "density") * G_PER_CM3
@@ -243,12 +255,14 @@ def _from_entry(key: str, entry: dict[str, Any]) -> Material:
         source=str(entry.get("source", "")),
         yield_strength=strength,
         creep=_creep(where, E, entry.get("creep")),
+        aliases=tuple(str(a).strip().lower() for a in entry.get("aliases", [])),
     )
 
 
 @lru_cache(maxsize=1)
-def library() -> dict[str, Material]:
-    """The bundled material library, keyed by id (read once from ``data/materials.toml``)."""
+def library_entries() -> dict[str, dict[str, Any]]:
+    """The bundled library's tables as written in ``data/materials.toml`` (read once): what a
+    user's materials file extends (:mod:`corrugate.materials.user`)."""
     path = Path(__file__).parents[1] / "data" / "materials.toml"
     if path.is_file():  # an installed or source tree (importlib.resources costs ~20 ms to import)
         text = path.read_text("utf-8")
@@ -256,8 +270,13 @@ def library() -> dict[str, Material]:
         from importlib import resources
 
         text = resources.files("corrugate").joinpath("data/materials.toml").read_text("utf-8")
-    data = tomllib.loads(text)
-    return {key: _from_entry(key, entry) for key, entry in data.items()}
+    return tomllib.loads(text)
+
+
+@lru_cache(maxsize=1)
+def library() -> dict[str, Material]:
+    """The bundled material library, keyed by id (read once from ``data/materials.toml``)."""
+    return {key: material_from_entry(key, entry) for key, entry in library_entries().items()}
 
 
 def creep_materials() -> list[str]:
@@ -265,13 +284,38 @@ def creep_materials() -> list[str]:
     return [key for key, m in library().items() if m.creep is not None]
 
 
-def get_material(material_id: str) -> Material:
-    """The library material ``material_id`` (case-insensitive); :class:`UnknownNameError` if absent."""
+class AmbiguousNameError(InputError):
+    """A material name that is an alias of several materials (``pet``): the message lists them."""
+
+
+def get_material(material_id: str, user: Mapping[str, Material] | None = None) -> Material:
+    """The material ``material_id`` (case-insensitive): from ``user`` (a spec's own materials,
+    :func:`corrugate.materials.user.spec_materials`; None: the user's config folder's,
+    :func:`corrugate.materials.user.user_materials`), else the library; else the one material
+    whose ``aliases`` hold the name. :class:`AmbiguousNameError` listing them when the name is an
+    alias of several (``pet``: the PET films), :class:`UnknownNameError` when nothing has it."""
+    from corrugate.materials.user import user_materials
+
+    own = user_materials() if user is None else user
     lib = library()
     key = material_id.strip().lower()
-    if key not in lib:
-        raise UnknownNameError("material", material_id, list(lib))
-    return lib[key]
+    if key in own:
+        return own[key]
+    if key in lib:
+        return lib[key]
+    every = {**lib, **own}
+    matches = sorted(k for k, m in every.items() if key in m.aliases)
+    if len(matches) == 1:
+        return every[matches[0]]
+    if matches:
+        names = ", ".join(f"{k} ({every[k].name})" for k in matches)
+        raise AmbiguousNameError(
+            "material",
+            repr(material_id),
+            f"one of {', '.join(matches)}: {names}",
+            reason=f"names {len(matches)} materials",
+        )
+    raise UnknownNameError("material", material_id, list(every))
 
 
 def inline_material(

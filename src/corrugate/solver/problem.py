@@ -226,7 +226,7 @@ class Problem:
         cands: list[Candidate] = []
         for i, m in enumerate(mats):
             where = "material" if spec.material is not None else f"materials[{i}]"
-            cands.extend(_candidates(where, m))
+            cands.extend(_candidates(where, m, spec.own_materials))
             check_items("thicknesses", "materials", len(cands), "candidate sheets")
             try:
                 get_model(spec.model).check_nu(cands[-1].material.nu)
@@ -515,7 +515,7 @@ def _check_load_case_layout(where: str, layout: Layout, test: str) -> None:
         )
 
 
-def _candidates(where: str, m: MaterialSpec) -> list[Candidate]:
+def _candidates(where: str, m: MaterialSpec, own: dict[str, Material]) -> list[Candidate]:
     if m.E is not None:
         assert m.nu is not None
         assert m.density is not None
@@ -523,7 +523,7 @@ def _candidates(where: str, m: MaterialSpec) -> list[Candidate]:
         mat = inline_material(m.E, m.nu, m.density / 1e-3, name=m.name)
         mat = replace(mat, yield_strength=m.yield_strength)
         return [Candidate(mat, float(t)) for t in ts if isinstance(t, float)]
-    mat = get_material(m.name)
+    mat = get_material(m.name, own)
     if m.yield_strength is not None:
         mat = replace(mat, yield_strength=m.yield_strength)
     if m.thickness == "all":

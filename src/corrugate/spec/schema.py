@@ -75,7 +75,7 @@ from corrugate.core.limits import (
 from corrugate.core.text import printable
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, check_holes
-from corrugate.materials.library import G_PER_CM3
+from corrugate.materials.library import G_PER_CM3, Material
 from corrugate.mechanics.behaviours import deflection_tests, either, load_cases, support_names
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.names import (
@@ -873,6 +873,14 @@ class Spec(_Strict):
     # the unit text each quantity was written in, by spec path (spec.written: the diagnosis
     # answers in it); set by parse_spec, not a key of the spec
     _written: dict[str, str] = PrivateAttr(default_factory=dict)
+    # the user's own materials the spec may name (corrugate.materials.user.spec_materials: the
+    # config folder's and those beside the spec file); set by parse_spec, not a key of the spec
+    _materials: dict[str, Material] = PrivateAttr(default_factory=dict)
+
+    @property
+    def own_materials(self) -> dict[str, Material]:
+        """The user's materials this spec may name, by id (docs/calibration.md section 6)."""
+        return self._materials
 
     def unit_written(self, path: str) -> str | None:
         """The unit the spec wrote the quantity at ``path`` in (``constraints.side.max`` ->
@@ -1043,7 +1051,7 @@ def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
         raise SpecError("materials", "[]", "at least one material", reason="is empty")
     for i, m in enumerate(mats):
         where = "material" if spec.material is not None else f"materials[{i}]"
-        _check_material(where, m)
+        _check_material(where, m, spec.own_materials)
     o = spec.objective
     if o.minimize is not None and o.maximize is not None:  # neither: minimise mass
         raise SpecError(
@@ -1054,7 +1062,7 @@ def _check(spec: Spec, raw: Mapping[str, Any]) -> None:
         )
 
 
-def _check_material(where: str, m: MaterialSpec) -> None:
+def _check_material(where: str, m: MaterialSpec, own: dict[str, Material]) -> None:
     inline = [x is not None for x in (m.E, m.nu, m.density)]
     if not any(inline) and "name" not in m.model_fields_set:  # neither a name nor E, nu, density
         raise SpecError(
@@ -1083,7 +1091,7 @@ def _check_material(where: str, m: MaterialSpec) -> None:
     from corrugate.materials.library import get_material
 
     try:
-        get_material(m.name)
+        get_material(m.name, own)
     except InputError as exc:
         raise SpecError(f"{where}.name", exc.value, exc.allowed, reason=exc.reason) from None
 
@@ -1164,8 +1172,17 @@ def _check_counts(data: Mapping[str, Any]) -> None:
     check_items("thicknesses", "materials", total, "candidate sheets (material and thickness)")
 
 
-def parse_spec(data: Mapping[str, Any]) -> Spec:
-    """Validate a spec given as a dict (as read from TOML); raise :class:`SpecError`."""
+def parse_spec(data: Mapping[str, Any], spec_dir: str | Path | None = None) -> Spec:
+    """Validate a spec given as a dict (as read from TOML); raise :class:`SpecError`. A material
+    name is looked up in the user's own materials first: the config folder's and, with
+    ``spec_dir`` (the spec file's folder), its ``corrugate-materials.toml``
+    (:func:`corrugate.materials.user.spec_materials`)."""
+    from corrugate.materials.user import spec_materials
+
+    try:
+        own = spec_materials(spec_dir)
+    except InputError as exc:
+        raise SpecError(exc.field, exc.value, exc.allowed, reason=exc.reason) from None
     try:
         _check_raw(data)
         _check_counts(data)
@@ -1179,6 +1196,7 @@ def parse_spec(data: Mapping[str, Any]) -> Spec:
         raise SpecError(
             "spec", "(nested data)", f"at most {MAX_DEPTH} levels", reason="is nested too deeply"
         ) from None
+    spec._materials.update(own)
     _check(spec, data)
     from corrugate.spec.written import written_units
 
@@ -1225,11 +1243,12 @@ def load_spec_text(path: str | Path) -> tuple[Spec, str]:
         text = decode_input(raw, "spec", shown)
     except InputError as exc:
         raise SpecError(exc.field, shown, exc.allowed, reason=exc.reason) from None
-    return parse_spec_text(text, shown), text
+    return parse_spec_text(text, shown, None if stdin else p.resolve().parent), text
 
 
-def parse_spec_text(text: str, shown: str = "<text>") -> Spec:
-    """Validate a spec given as TOML ``text`` (``shown`` names it in errors); nesting deeper than
+def parse_spec_text(text: str, shown: str = "<text>", spec_dir: str | Path | None = None) -> Spec:
+    """Validate a spec given as TOML ``text`` (``shown`` names it in errors; ``spec_dir`` its
+    folder, where its own materials file is, :func:`parse_spec`); nesting deeper than
     :data:`~corrugate.core.limits.MAX_DEPTH` is refused before the TOML parser recurses into it."""
     if _bracket_depth(text) > MAX_DEPTH:
         raise SpecError(
@@ -1252,7 +1271,7 @@ def parse_spec_text(text: str, shown: str = "<text>") -> Spec:
             f"at most {MAX_DEPTH} levels of arrays and tables",
             reason="is nested too deeply",
         ) from None
-    return parse_spec(data)
+    return parse_spec(data, spec_dir)
 
 
 def _long_integer(text: str, shown: str) -> SpecError:
