@@ -19,8 +19,12 @@ import numpy as np
 from corrugate.calibration.crease import compliance
 from corrugate.calibration.elastica import drop_ratio, rigidity
 from corrugate.core.errors import InputError
+from corrugate.core.parameters import PARAMETERS
 from corrugate.fabrication.model import Line, Part, Role
 from corrugate.materials.library import Material
+
+#: The option a kit's sheet thickness is given by (the parameter table's spelling).
+THICKNESS = PARAMETERS["thickness"].flag
 
 __all__ = [
     "GRAVITY",
@@ -157,7 +161,7 @@ def _flat_size(
         L2 = short[int(np.argmin(score))]
     except InputError:
         raise InputError(
-            "--thickness",
+            THICKNESS,
             f"{t:g} mm",
             f"a sheet stiff enough for a 30 mm strip not to hang down (E t^2 of {material.id})",
             reason="is too flexible to calibrate with this kit",
@@ -174,7 +178,9 @@ def design_kit(material: Material, t: float, usable: float, coin_g: float = 5.0)
     longest = usable - CLAMP
     if longest < 60.0:
         raise InputError(
-            "--machine", f"{usable:.0f} mm", "a cutter whose strips may be >= 100 mm long"
+            PARAMETERS["cutter"].flag,
+            f"{usable:.0f} mm",
+            "a cutter whose strips may be >= 100 mm long",
         )
     b = STRIP_WIDTH
     L1, L2, n = _flat_size(material, t, b, longest, coin_g)
@@ -182,7 +188,7 @@ def design_kit(material: Material, t: float, usable: float, coin_g: float = 5.0)
     withc = expected_sag(material.E, material, t, b, L2, n * coin_g)
     if max(alone, withc) < TARGET[0]:
         raise InputError(
-            "--thickness",
+            THICKNESS,
             f"{t:g} mm",
             f"a sheet whose {L1:.0f} mm strip sags >= {TARGET[0]:g} mm under 10 coins of "
             f"{coin_g:g} g (it sags {withc:.1f} mm): a thinner sheet or heavier coins",

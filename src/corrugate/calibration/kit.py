@@ -15,6 +15,7 @@ from pathlib import Path
 from corrugate.calibration.coupons import Kit, design_kit
 from corrugate.calibration.protocol import figures, markdown, pdf_bytes, template
 from corrugate.core.errors import InputError
+from corrugate.core.parameters import PARAMETERS
 from corrugate.fabrication.model import Part
 from corrugate.fabrication.sheets import Placement, Sheet, SheetPlan
 from corrugate.materials.library import Material
@@ -51,7 +52,7 @@ def layout(kit: Kit, cutter: object, spacing: float = 5.0, margin: float = 5.0) 
     tallest = max((p.size[1] for p in across), default=0.0)
     if y < margin - spacing or width_used > x_col + spacing or tallest > cutter.height - 2 * margin:
         raise InputError(
-            "--machine",
+            PARAMETERS["cutter"].flag,
             cutter.name,
             f"a sheet the coupons fit on: {_needs(along, across, spacing, margin)}",
             reason="is too small for the kit",

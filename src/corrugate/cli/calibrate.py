@@ -11,6 +11,7 @@ from typing import Annotated
 import typer
 
 from corrugate.cli import options as o
+from corrugate.core.parameters import PARAMETERS
 
 __all__ = ["COMMANDS", "calibrate_app", "fit_cmd", "kit_cmd"]
 
@@ -26,21 +27,12 @@ calibrate_app = typer.Typer(
 
 
 @calibrate_app.command("kit")
-@o.table_options("material", "thickness", "out", "machine", "coin")
+@o.table_options("material", "thickness", "out", "cutter", "coin")
 def kit_cmd(
     table: o.TableValues,
     out: Annotated[
         str, Opt("--out", metavar="DIR", help="Folder for the kit (created if missing).")
     ],
-    machine: Annotated[
-        str,
-        Opt(
-            "--machine",
-            metavar="MACHINE",
-            help="The cutter the coupons are cut on.",
-            autocompletion=o.complete_machines,
-        ),
-    ] = "cameo4-12x12",
     coin: Annotated[
         str, Opt("--coin", metavar="MASS", help="The mass of one of your coins (g).")
     ] = "5 g",
@@ -58,18 +50,28 @@ def kit_cmd(
 
     if table["material"] is None:
         raise InputError(
-            "--material", None, "a library material (corrugate materials)", reason="is missing"
+            PARAMETERS["material"].flag,
+            None,
+            "a library material (corrugate materials)",
+            reason="is missing",
         )
     mat = get_material(table["material"])
     given = table["thickness"]
-    t = mat.default_thickness if given is None else parse_quantity(given, "mm", "--thickness")
+    t = (
+        mat.default_thickness
+        if given is None
+        else parse_quantity(given, "mm", PARAMETERS["thickness"].flag)
+    )
     if t is None:
         raise InputError(
-            "--thickness", None, "a sheet thickness such as 0.125mm", reason="is missing"
+            PARAMETERS["thickness"].flag,
+            None,
+            "a sheet thickness such as 0.125mm",
+            reason="is missing",
         )
     if not 0.0 < t <= 5.0:
-        raise InputError("--thickness", f"{t:g} mm", "0 < thickness <= 5 mm")
-    kit, paths = write_kit(mat, t, machine, out, parse_quantity(coin, "g", "--coin"))
+        raise InputError(PARAMETERS["thickness"].flag, f"{t:g} mm", "0 < thickness <= 5 mm")
+    kit, paths = write_kit(mat, t, table["cutter"], out, parse_quantity(coin, "g", "--coin"))
     if quiet:
         return
     for f in kit.flat:
