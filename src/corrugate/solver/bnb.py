@@ -67,7 +67,7 @@ from corrugate.solver.making import MAKING
 from corrugate.solver.points import VARIABLES, Coordinate, DesignPoints, LayerPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.progress import report
-from corrugate.solver.quantities import Tables, box_bounds, layer_corner, point_values
+from corrugate.solver.quantities import Tables, box_bounds, chunk, layer_corner, point_values
 from corrugate.solver.quantity import LX, LY, Quantity
 from corrugate.solver.worst_case import NOMINAL
 
@@ -317,12 +317,6 @@ class _Incumbent:
         value = self.value.copy()
         return lambda rows: _thresholds(value, self.tol)[self.slot(rows)]
 
-    def beaten(self, rows: FloatArray, bound: FloatArray) -> NDArray[np.bool_]:
-        """Per row, whether its point may improve on the incumbent: sign * objective
-        ``bound`` (a lower bound of it) is below the incumbent's value itself (an offer must
-        be strictly better, :meth:`offer`)."""
-        return np.asarray(bound < self.value[self.slot(rows)])
-
     def cut(
         self, lo: FloatArray, hi: FloatArray, bound: FloatArray
     ) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -459,9 +453,10 @@ class _Search:
         self.cheap = self.needed - self.costly
         # under worst-case tolerances: the nominal problem, whose values screen the points
         # (:meth:`_evaluate`), the quantities it covers and the constraints it cannot screen
-        self.covered = {q for q in self.needed if tolerance_box.covered(problem, q)}
+        self.covered = frozenset(q for q in self.needed if tolerance_box.covered(problem, q))
         self.screen = replace(problem, tolerances=NOMINAL) if self.covered else None
         self.enumerate = ENUMERATE if self.screen is None else ENUMERATE_TOLERANCES
+        self.first = chunk(problem)  # points evaluated over their tolerance box first
         self.unscreened = [
             i for i, c in enumerate(self.cons) if c.quantity in self.covered and c.sense != "min"
         ]
@@ -671,7 +666,9 @@ class _Search:
         whole box), so a point whose least breaks a lower bound breaks it certified too, and
         one whose least cannot beat the incumbent (a maximised directional objective) cannot be
         better; only the others are evaluated over their tolerance boxes, which costs about 16
-        times a point of the model (docs/tolerances.md). The row of a point screened out says
+        times a point of the model (docs/tolerances.md): the most promising (least objective
+        bound) first, then those whose objective bound still reaches the best of them, so the
+        offers are those of every point evaluated. The row of a point screened out says
         what the point model shows (some of its broken constraints; a lower bound of its
         objective), which is all the archive asks of a row."""
         if not len(pts):
@@ -685,23 +682,34 @@ class _Search:
             return p_broken, value
         nominal = point_values(self.screen, self.c1, self.c2, x, self.tables)
         for corner in tolerance_box.corners(self.problem, self.c1, self.c2, x):
-            at = point_values(self.screen, self.c1, self.c2, corner, self.tables)
+            at = point_values(self.screen, self.c1, self.c2, corner, self.tables, self.covered)
             for q in self.covered:
                 nominal[q] = np.minimum(nominal[q], at[q])
         p_broken = _broken(self.cons, nominal, self.needed, len(pts), self.feas_rtol)
         p_broken[:, self.unscreened] = False  # not shown by a nominal value
         value = np.asarray(self.sign * nominal[self.obj], dtype=np.float64)
-        full = ~p_broken.any(axis=1)
-        if self.obj in self.covered:
-            if self.sign < 0:  # -certified >= -nominal: can it beat the incumbent?
-                full &= self.best.beaten(pts, value)
-            else:  # no lower bound of the certified value from the nominal one
-                value = np.full(len(pts), -np.inf)
-        if full.any():
-            sub = x.take(full)
-            vals = point_values(self.problem, self.c1, self.c2, sub, self.tables)
-            p_broken[full] = _broken(self.cons, vals, self.needed, len(sub), self.feas_rtol)
-            value[full] = self.sign * vals[self.obj]
+        if self.obj in self.covered and self.sign > 0:  # no lower bound from the point model
+            value = np.full(len(pts), -np.inf)
+        slots = self.best.slot(pts)
+        # the points that may beat the incumbent: the most promising first (at most a chunk),
+        # then those the best of them leaves in reach (a tie included: the first in order wins)
+        maybe = np.flatnonzero(~p_broken.any(axis=1) & (value < self.best.value[slots]))
+        full = np.zeros(len(pts), dtype=bool)
+        first = maybe
+        if len(maybe) > self.first:
+            first = maybe[np.argpartition(value[maybe], self.first)[: self.first]]
+        for sel in (first, None):
+            if sel is None:  # in reach of the best so far, not yet evaluated
+                star = self.best.value.copy()
+                done = np.flatnonzero(full & ~p_broken.any(axis=1))
+                np.minimum.at(star, slots[done], value[done])
+                sel = maybe[~full[maybe] & (value[maybe] <= star[slots[maybe]])]
+            if not len(sel):
+                continue
+            vals = point_values(self.problem, self.c1, self.c2, x.take(sel), self.tables)
+            p_broken[sel] = _broken(self.cons, vals, self.needed, len(sel), self.feas_rtol)
+            value[sel] = self.sign * vals[self.obj]
+            full[sel] = True
         f = np.where(full & ~p_broken.any(axis=1), value, np.inf)
         self.best.offer(pts, f, x)
         return p_broken, value

@@ -126,25 +126,39 @@ def _joined(parts: list[dict[Quantity, Any]], counts: list[int]) -> dict[Quantit
 
 
 def point_values(
-    problem: Problem, c1: Candidate, c2: Candidate, x: DesignPoints, tables: Tables
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    x: DesignPoints,
+    tables: Tables,
+    only: frozenset[Quantity] | None = None,
 ) -> dict[Quantity, FloatArray]:
-    """Exact values of the quantities :func:`reported` for ``problem`` at the points ``x``
-    (arrays over the points) on sheets (c1, c2), each by its evaluator; at most
-    :func:`chunk` points at once (module docstring)."""
+    """Exact values of the quantities :func:`reported` for ``problem`` (``only``: those of
+    them in it) at the points ``x`` (arrays over the points) on sheets (c1, c2), each by its
+    evaluator; at most :func:`chunk` points at once (module docstring)."""
     step = chunk(problem)
     if len(x) <= step or not _sliceable(x):
-        return _point_values(problem, c1, c2, x, tables)
+        return _point_values(problem, c1, c2, x, tables, only)
     cuts = _pieces(len(x), step)
-    parts = [_point_values(problem, c1, c2, x.take(s), tables) for s in cuts]
+    parts = [_point_values(problem, c1, c2, x.take(s), tables, only) for s in cuts]
     return _joined(parts, [s.stop - s.start for s in cuts])
 
 
 def _point_values(
-    problem: Problem, c1: Candidate, c2: Candidate, x: DesignPoints, tables: Tables
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    x: DesignPoints,
+    tables: Tables,
+    only: frozenset[Quantity] | None = None,
 ) -> dict[Quantity, FloatArray]:
     at = AtPoints(problem, c1, c2, x, tables)
-    out = {q: at.value(q) for q in reported(problem)}
-    covered = [q for q in problem.quantities if tolerance_box.covered(problem, q)]
+    out = {q: at.value(q) for q in reported(problem) if only is None or q in only}
+    covered = [
+        q
+        for q in problem.quantities
+        if tolerance_box.covered(problem, q) and (only is None or q in only)
+    ]
     if covered:  # their worst case over the tolerance box (docs/tolerances.md)
         tol = tolerance_box.ToleranceBounds(problem, c1, c2, x, x, tables)
         for q in covered:
