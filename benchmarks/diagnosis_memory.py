@@ -2,13 +2,14 @@
 (issue 39 item 2, issue 35 item 2; docs/tolerances.md section 5).
 
     python benchmarks/diagnosis_memory.py BEFORE_TREE AFTER_TREE [SPEC ...]
+    python benchmarks/diagnosis_memory.py one TREE SPEC     # one run
 
 Each spec is solved and explained (``corrugate design SPEC``) in a fresh process per tree, the
 trees' ``src`` first on the path, the runs of the two trees interleaved, under an address-space
 cap of 6 GB (``RLIMIT_AS``: a run that needs more stops with "needs more memory than is
 available", exit 2, instead of taking the machine down). Printed per spec and tree: the CPU
 seconds (user + system of the child, ``wait4``), its peak resident memory (``ru_maxrss``), the
-exit code and the last line of the answer. Without SPEC arguments: examples/chassis_plate.toml
+exit code and the last line of the answer (of stderr when it printed none). Without SPEC arguments: examples/chassis_plate.toml
 with the default tolerances and benchmarks/specs/independent_k45_infeasible.toml nominal
 (``tolerances = "none"``) and with the default tolerances, each written to a temporary folder
 with its tolerances stated, so either tree reads them alike.
@@ -73,25 +74,28 @@ def run(tree: Path, spec: Path) -> tuple[float, float, int, str]:
     )
     out, err = proc.communicate()
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
-    lines = [ln for ln in (out + err).splitlines() if ln.strip()]
+    lines = [ln for ln in out.splitlines() if ln.strip()] or [
+        ln for ln in err.splitlines() if ln.strip()
+    ]
     return usage.ru_utime + usage.ru_stime, usage.ru_maxrss / 1024, proc.returncode, lines[-1]
 
 
 def main(argv: list[str]) -> None:
+    if argv[0] == "one":  # one run, in this process's own child
+        c, m, rc, last = run(Path(argv[1]), Path(argv[2]))
+        print(f"{c:.1f} s CPU, {m:.0f} MB peak, exit {rc}: {last[:160]}")
+        return
     before, after = Path(argv[0]).resolve(), Path(argv[1]).resolve()
     with tempfile.TemporaryDirectory() as tmp:
         specs = [Path(s).resolve() for s in argv[2:]] or default_specs(Path(tmp))
         for spec in specs:
             for label, tree in (("before", before), ("after", after)):
                 # a fresh interpreter measures each run alone: RUSAGE_CHILDREN is cumulative
-                code = (
-                    "import sys; sys.path.insert(0, %r); import diagnosis_memory as d; "
-                    "from pathlib import Path; "
-                    "c, m, rc, last = d.run(Path(%r), Path(%r)); "
-                    "print(f'{c:.1f} s CPU, {m:.0f} MB peak, exit {rc}: {last[:160]}')"
-                ) % (str(HERE), str(tree), str(spec))
                 res = subprocess.run(
-                    [sys.executable, "-c", code], capture_output=True, text=True, check=False
+                    [sys.executable, __file__, "one", str(tree), str(spec)],
+                    capture_output=True,
+                    text=True,
+                    check=False,
                 )
                 print(f"{spec.stem:28s} {label:6s} {res.stdout.strip() or res.stderr[-300:]}")
                 sys.stdout.flush()

@@ -124,9 +124,9 @@ def _archive_equal(a: Archive | None, b: Archive | None) -> None:
 def test_runs_and_chunks_give_the_one_pass_answer_and_archive(
     small, monkeypatch: pytest.MonkeyPatch, tolerant: bool
 ) -> None:
-    """Enumerated grid points in runs of at most 8 (a box each) and evaluations in chunks of 64 points give the
-    same optimum, point and archive, row for row, as the defaults (runs of 65536 points: one
-    per iteration here)."""
+    """Enumerated grid points in runs of at most 8 (a box each) and evaluations in chunks of 64
+    points give the same optimum, point and archive, row for row, as the defaults (runs of
+    65536 points: one per iteration here)."""
     problem, _ = small
     if not tolerant:
         problem = replace(problem, tolerances=NOMINAL)
