@@ -97,7 +97,8 @@ ENUMERATE_CHUNK = 1 << 16
 ENUMERATE = 512
 #: The same under worst-case tolerances, where a point costs more than a box (its tolerance box
 #: in pieces, :meth:`_Search._evaluate`): boxes are split further and their bounds prune first
-#: (the chassis plate's capacity alone, docs/tolerances.md: 16 s of CPU at 64 or 16, 25 s at 4, not done within 20 s at 512).
+#: (the chassis plate's best capacity with no constraint, docs/tolerances.md section 5: 16.3 s
+#: of CPU at 64, 16.6 s at 16, 25.4 s at 4, not done within 20 s at 512).
 ENUMERATE_TOLERANCES = 64
 
 
