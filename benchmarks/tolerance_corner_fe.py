@@ -4,7 +4,8 @@ Assembly built by hand: two Dura-Lar layers of n creases at (W1, alpha1) and (W2
 rectangle, the sheet's t and E scaled by TF and EF.
 
 Usage: PYTHONPATH=src python benchmarks/tolerance_corner_fe.py W1 A1 W2 A2 n TF EF BOUND MESHES
-e.g. ... 3.9 152 3.9 146 15 0.95 0.9 1200 2,4,8
+[TIMEOUT]
+e.g. ... 3.9 152 3.9 146 15 0.95 0.9 1200 2,4,8 (TIMEOUT: seconds per ccx run, default 900)
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from corrugate.materials.library import get_material
 def main(argv: list[str]) -> None:
     W1, a1, W2, a2, n, tf, ef, bound = (float(v) for v in argv[:8])
     meshes = tuple(int(v) for v in argv[8].split(","))
+    timeout = float(argv[9]) if len(argv) > 9 else 900.0
     m = get_material("dura-lar")
     m = replace(m, E=m.E * ef)
     t = 0.125 * tf
@@ -36,7 +38,11 @@ def main(argv: list[str]) -> None:
     }
     t0 = time.time()
     v = verify_design(
-        a, [entry], meshes=meshes, progress=lambda s: print(f"[{time.time() - t0:7.1f} s] {s}")
+        a,
+        [entry],
+        meshes=meshes,
+        timeout=timeout,
+        progress=lambda s: print(f"[{time.time() - t0:7.1f} s] {s}"),
     )
     print(f"wall {time.time() - t0:.1f} s")
     print(v)

@@ -261,3 +261,23 @@ def test_a_hint_for_a_plain_number_is_a_toml_number() -> None:
     assert plain == 0.08334 and isinstance(plain, float)
     assert tomllib.loads(f"x = {_rounded(0.0833412, '', down=False)}")["x"] == 0.08335
     assert tomllib.loads(f"x = {_rounded(12.3456, 'mm', down=False)}")["x"] == "12.35 mm"
+
+
+def test_a_diagnosis_out_of_memory_keeps_its_entries_and_says_partial(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The rectangle with identical layers (its first entry: make them independent) with the
+    machine's memory made to run out at the first constraint's re-solve: the answer is still
+    "infeasible" (proven), the entry found before stays, and the last entry says "partial
+    diagnosis (memory cap)" instead of the error ending the run."""
+    from corrugate.solver import diagnosis
+
+    def short_of_memory(*args: object, **kw: object) -> None:
+        raise MemoryError
+
+    monkeypatch.setattr(diagnosis, "_single", short_of_memory)
+    sol = solve(Problem.from_spec(load_spec(DATA / "rectangle_identical.toml")))
+    assert sol.status == "infeasible" and sol.certified
+    assert sol.diagnosis[0].kind == "layers"
+    assert sol.diagnosis[-1].message.startswith("partial diagnosis (memory cap)")
+    assert len(sol.diagnosis) == 2

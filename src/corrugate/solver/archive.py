@@ -97,12 +97,20 @@ class NoRecorder:
         """None: no archive."""
         return None
 
+    def child(self) -> NoRecorder:
+        """A recorder whose rows :meth:`adopt` appends later (here: this one, keeping nothing)."""
+        return self
+
+    def adopt(self, other: NoRecorder) -> None:
+        """Append the rows of ``other`` (a :meth:`child`), in its order (here: nothing)."""
+
 
 class Recorder(NoRecorder):
     """Collects the closed boxes of a search into an :class:`Archive` (chunks of flat arrays),
     in the order the search closes them."""
 
     def __init__(self, ncons: int) -> None:
+        self.ncons = ncons
         self.ok = ncons <= 63
         self.bits = np.uint64(1) << np.arange(max(ncons, 1), dtype=np.uint64)
         self.parts: list[tuple[FloatArray, FloatArray, FloatArray, NDArray[np.uint64]]] = []
@@ -210,6 +218,22 @@ class Recorder(NoRecorder):
         least = table[groups]
         b = groups // len(masks)
         self.add(lo[b], hi[b], np.maximum(bound[b], least), masks[groups % len(masks)])
+
+    def child(self) -> Recorder:
+        """An empty recorder of the same constraints: the rows of a step that must come after
+        rows logged later (the enumerated grid points after the pairs dropped per layer)."""
+        return Recorder(self.ncons)
+
+    def adopt(self, other: NoRecorder) -> None:
+        """Append the rows of ``other`` (a :meth:`child`), in its order, within
+        :data:`ARCHIVE_ROWS`."""
+        if not isinstance(other, Recorder):
+            return
+        if not other.ok:
+            self.ok, self.parts = False, []
+            return
+        for lo, hi, bound, mask in other.parts:
+            self.add(lo, hi, bound, mask)
 
     def archive(self, ndim: int) -> Archive | None:
         """The rows kept, as an :class:`Archive` (None past :data:`ARCHIVE_ROWS` or with more

@@ -53,12 +53,13 @@ recorder of the closed boxes (``record``: :class:`~.archive.Recorder`, else
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
-from corrugate.solver import separable
+from corrugate.solver import separable, tolerance_box
 from corrugate.solver.archive import Archive, NoRecorder, Recorder
 from corrugate.solver.boxes import grid_points, snap, split, widths
 from corrugate.solver.budget import current_budget
@@ -66,8 +67,9 @@ from corrugate.solver.making import MAKING
 from corrugate.solver.points import VARIABLES, Coordinate, DesignPoints, LayerPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.progress import report
-from corrugate.solver.quantities import Tables, box_bounds, layer_corner, point_values
+from corrugate.solver.quantities import Tables, box_bounds, chunk, layer_corner, point_values
 from corrugate.solver.quantity import LX, LY, Quantity
+from corrugate.solver.worst_case import NOMINAL
 
 __all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound"]
 
@@ -85,9 +87,19 @@ BATCH = 20_000
 FIRST_BATCH = 64
 #: Below this many open boxes, split along several coordinates at once (fewer iterations).
 MULTI_SPLIT_BELOW = 2_000
+#: Grid points enumerated at once (:meth:`_Search._enumerated`): the boxes of an iteration
+#: that are enumerated go through in runs of at most this many points (a box has at most
+#: :data:`ENUMERATE`), about 250 bytes each before their evaluation (which itself takes at
+#: most :func:`~.quantities.chunk` points at once).
+ENUMERATE_CHUNK = 1 << 16
 #: Grid boxes with at most this many points are enumerated (each point evaluated exactly) and
 #: closed, instead of being bounded and split further: a point costs far less than a box.
 ENUMERATE = 512
+#: The same under worst-case tolerances, where a point costs more than a box (its tolerance box
+#: in pieces, :meth:`_Search._evaluate`): boxes are split further and their bounds prune first
+#: (the chassis plate's best capacity with no constraint, docs/tolerances.md section 5: 16.3 s
+#: of CPU at 64, 16.6 s at 16, 25.4 s at 4, not done within 20 s at 512).
+ENUMERATE_TOLERANCES = 64
 
 
 @dataclass(frozen=True)
@@ -166,6 +178,21 @@ def _enumerate(
     i1 = kept[0][(np.cumsum(k1) - k1)[box] + r // k2[box]]
     i2 = kept[1][(np.cumsum(k2) - k2)[box] + r % k2[box]]
     return np.concatenate([pts[0][i1], pts[1][i2]], axis=1), box, dropped
+
+
+def _runs(points: FloatArray, most: int) -> list[slice]:
+    """Consecutive runs of the rows whose ``points`` (per row) add up to at most ``most`` (a
+    row of more is a run of its own)."""
+    runs: list[slice] = []
+    start, total = 0, 0.0
+    for i, k in enumerate(points.tolist()):
+        if total and total + k > most:
+            runs.append(slice(start, i))
+            start, total = i, 0.0
+        total += k
+    if start < len(points):
+        runs.append(slice(start, len(points)))
+    return runs
 
 
 def _thresholds(best: FloatArray, tol: float) -> FloatArray:
@@ -286,6 +313,11 @@ class _Incumbent:
         """Per row, the bound below which its box may still hold a better design."""
         return _thresholds(self.value, self.tol)[self.slot(rows)]
 
+    def frozen(self) -> Callable[[FloatArray], FloatArray]:
+        """:meth:`limit` as the incumbent stands now, whatever it becomes later."""
+        value = self.value.copy()
+        return lambda rows: _thresholds(value, self.tol)[self.slot(rows)]
+
     def cut(
         self, lo: FloatArray, hi: FloatArray, bound: FloatArray
     ) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -395,22 +427,6 @@ class _StopBelow(_Pace):
         return best < self.goal
 
 
-@dataclass(frozen=True)
-class _Grid:
-    """The boxes of one iteration enumerated point by point: the boxes (lo, hi, bound) and, per
-    grid point, its box (``owner``), its cheap constraints shown broken, a lower bound of its
-    sign * objective and whether it is still to be evaluated exactly (``ok``)."""
-
-    lo: FloatArray
-    hi: FloatArray
-    bound: FloatArray
-    owner: NDArray[np.int64]
-    broken: NDArray[np.bool_]
-    point_bound: FloatArray
-    ok: NDArray[np.bool_]
-    points: FloatArray  # the grid points still to evaluate (``ok``), as rows
-
-
 class _Search:
     """The state of one branch and bound (module docstring): the open boxes (``q_lo``, ``q_hi``
     and ``q_bound``, a lower bound of sign * objective over each), the incumbent, the counts;
@@ -436,6 +452,15 @@ class _Search:
         self.needed = {c.quantity for c in self.cons} | {self.obj}
         self.costly = {q for q in self.needed if q.directional}  # stiffness, buckling: intervals
         self.cheap = self.needed - self.costly
+        # under worst-case tolerances: the nominal problem, whose values screen the points
+        # (:meth:`_evaluate`), the quantities it covers and the constraints it cannot screen
+        self.covered = frozenset(q for q in self.needed if tolerance_box.covered(problem, q))
+        self.screen = replace(problem, tolerances=NOMINAL) if self.covered else None
+        self.enumerate = ENUMERATE if self.screen is None else ENUMERATE_TOLERANCES
+        self.first = chunk(problem)  # points evaluated over their tolerance box first
+        self.unscreened = [
+            i for i, c in enumerate(self.cons) if c.quantity in self.covered and c.sense != "min"
+        ]
         self.vars = [d.var for d in dims]
         self.exact = all(v.gridded for v in self.vars)
         self.feas_rtol = FEAS_RTOL if self.exact else 0.0
@@ -493,8 +518,8 @@ class _Search:
         lo, hi, bound, counts, enum = lo[keep], hi[keep], bound[keep], counts[keep], enum[keep]
         if not len(lo):
             return True
-        grid = self._grid(lo, hi, bound, counts, enum) if enum.any() else None
-        if grid is not None:
+        if enum.any():  # every grid point of these boxes evaluated; the boxes close
+            self._enumerated(lo[enum], hi[enum], bound[enum], counts[enum])
             lo, hi, bound = lo[~enum], hi[~enum], bound[~enum]
         # candidate points of the others: lower corner, upper corner, centre (snapped to the grid)
         mid = np.stack(
@@ -502,17 +527,7 @@ class _Search:
             axis=1,
         )
         mid = np.clip(mid, lo, hi)
-        pts = np.concatenate([lo[:0] if grid is None else grid.points, lo, hi, mid])
-        p_broken, p_value = self._evaluate(pts)
-        if grid is not None:  # the enumerated boxes, once per bit set
-            n_ok = len(grid.points)
-            self.log.enumerated(
-                grid.lo,
-                grid.hi,
-                grid.bound,
-                (grid.owner, grid.broken, grid.point_bound, grid.ok),
-                (p_broken[:n_ok], p_value[:n_ok]),
-            )
+        self._evaluate(np.concatenate([lo, hi, mid]))
         self._queue(lo, hi, bound)
         return True
 
@@ -556,7 +571,7 @@ class _Search:
         grid points) have every point evaluated and close (none with continuous variables)."""
         if self.exact:
             counts = np.round((hi - lo) / self.steps) + 1
-            return counts, counts.prod(axis=1) <= ENUMERATE
+            return counts, counts.prod(axis=1) <= self.enumerate
         return lo[:, :0], np.zeros(len(lo), dtype=bool)
 
     def _bound(
@@ -565,7 +580,9 @@ class _Search:
         """A lower bound of sign * objective over each box (at least its parent's) and the
         constraints shown broken in it: the cheap bounds (extents, thickness, blank, facet,
         mass: corner values) for all, the interval (stiffness) bounds only for the boxes that
-        will be split (an enumerated box has all its points evaluated exactly anyway)."""
+        will be split (an enumerated box has all its points evaluated exactly anyway), and
+        under worst-case tolerances for the enumerated boxes too (bounding a box costs less
+        than one of its points over its tolerance box)."""
         problem, c1, c2, tables = self.problem, self.c1, self.c2, self.tables
         xlo = DesignPoints.from_columns(lo)
         xhi = DesignPoints.from_columns(hi)
@@ -576,7 +593,9 @@ class _Search:
             bound = np.maximum(_lower(bnd[self.obj], self.sign), parent)
         else:  # bounded below with the stiffness, for the boxes that get it
             bound = parent.copy()
-        sub = ~broken.any(axis=1) & ~enum
+        sub = ~broken.any(axis=1)
+        if self.screen is None:  # under tolerances a box's bounds cost less than its points'
+            sub &= ~enum
         if self.costly and sub.any():
             slo, shi = xlo.take(sub), xhi.take(sub)
             sb = box_bounds(problem, c1, c2, slo, shi, tables, self.costly)
@@ -585,45 +604,115 @@ class _Search:
                 bound[sub] = np.maximum(_lower(sb[self.obj], self.sign), parent[sub])
         return bound, broken
 
-    def _grid(
-        self,
-        lo: FloatArray,
-        hi: FloatArray,
-        bound: FloatArray,
-        counts: FloatArray,
-        enum: NDArray[np.bool_],
-    ) -> _Grid:
-        """The grid points of the boxes ``enum`` (:func:`_enumerate`), less those a cheap bound
-        (at a point, its value) shows broken or no better than the incumbent, which need no full
-        evaluation; the pairs one layer's bound dropped go to the archive."""
-        every, owner, dropped = _enumerate(
-            self.problem, lo[enum], counts[enum], self.dims, self.feas_rtol
-        )
-        e_lo, e_hi, e_bound = lo[enum], hi[enum], bound[enum]
-        self.log.dropped(e_lo, e_hi, e_bound, dropped)
-        e = DesignPoints.from_columns(every)
-        eb, e_broken = _cheap_bounds(
-            self.problem, self.c1, self.c2, e, e, self.tables, self.cheap, self.feas_rtol, self.obj
-        )
-        ok = np.asarray(~e_broken.any(axis=1))
-        if self.obj in self.cheap:
-            point_bound = _lower(eb[self.obj], self.sign)
-            ok &= point_bound < self.best.limit(every)
-        else:  # a lower bound of its objective: its box's (the exact one once evaluated)
-            point_bound = e_bound[owner]
-        return _Grid(e_lo, e_hi, e_bound, owner, e_broken, point_bound, ok, every[ok])
+    def _enumerated(
+        self, lo: FloatArray, hi: FloatArray, bound: FloatArray, counts: FloatArray
+    ) -> None:
+        """Evaluate every grid point of the boxes (lo, hi, bound) (:func:`_enumerate`), less
+        those a cheap bound (at a point, its value) shows broken or no better than the
+        incumbent as it stood when the iteration began, which need no full evaluation; the
+        boxes go to the archive (the pairs one layer's bound dropped first, then the points).
+        The boxes go through in runs of at most :data:`ENUMERATE_CHUNK` points, so the memory
+        of an iteration does not grow with its batch; the answer, the archive and the order of
+        the offers are those of one pass over all the points."""
+        limit = self.best.frozen()
+        later = self.log.child()  # the points' rows, after every dropped pair's
+        per_layer: list[list[tuple[NDArray[np.int64], NDArray[np.bool_]]]] = []
+        for run in _runs(counts.prod(axis=1), ENUMERATE_CHUNK):
+            r_lo, r_hi, r_bound = lo[run], hi[run], bound[run]
+            every, owner, dropped = _enumerate(
+                self.problem, r_lo, counts[run], self.dims, self.feas_rtol
+            )
+            per_layer.append([(own + run.start, why) for own, why in dropped])
+            e = DesignPoints.from_columns(every)
+            eb, e_broken = _cheap_bounds(
+                self.problem,
+                self.c1,
+                self.c2,
+                e,
+                e,
+                self.tables,
+                self.cheap,
+                self.feas_rtol,
+                self.obj,
+            )
+            ok = np.asarray(~e_broken.any(axis=1))
+            if self.obj in self.cheap:
+                point_bound = _lower(eb[self.obj], self.sign)
+                ok &= point_bound < limit(every)
+            else:  # a lower bound of its objective: its box's (the exact one once evaluated)
+                point_bound = r_bound[owner]
+            evaluated = self._evaluate(every[ok])
+            later.enumerated(r_lo, r_hi, r_bound, (owner, e_broken, point_bound, ok), evaluated)
+        if per_layer and per_layer[0]:
+            layers = range(len(per_layer[0]))
+            merged = [
+                (
+                    np.concatenate([p[j][0] for p in per_layer]),
+                    np.concatenate([p[j][1] for p in per_layer]),
+                )
+                for j in layers
+            ]
+            self.log.dropped(lo, hi, bound, merged)
+        self.log.adopt(later)
 
     def _evaluate(self, pts: FloatArray) -> tuple[NDArray[np.bool_], FloatArray]:
         """Exact values at the points ``pts`` (rows): the constraints each breaks and its sign *
         objective; the best feasible one is offered to the incumbent. Continuous variables:
-        exact feasibility (margins >= 0); grids: :data:`~.problem.FEAS_RTOL`."""
+        exact feasibility (margins >= 0); grids: :data:`~.problem.FEAS_RTOL`.
+
+        Under worst-case tolerances the points are first evaluated by the point model
+        (``screen``: the problem without tolerances), at the point and at four corners of its
+        tolerance box (:func:`~.tolerance_box.corners`): a point's certified value of a
+        directional quantity is at most the least of these (it is the lower bound over the
+        whole box), so a point whose least breaks a lower bound breaks it certified too, and
+        one whose least cannot beat the incumbent (a maximised directional objective) cannot be
+        better; only the others are evaluated over their tolerance boxes, which costs about 16
+        times a point of the model (docs/tolerances.md): the most promising (least objective
+        bound) first, then those whose objective bound still reaches the best of them, so the
+        offers are those of every point evaluated. The row of a point screened out says
+        what the point model shows (some of its broken constraints; a lower bound of its
+        objective), which is all the archive asks of a row."""
         if not len(pts):
             return np.zeros((0, len(self.cons)), dtype=bool), np.empty(0)
         x = DesignPoints.from_columns(pts)
-        vals = point_values(self.problem, self.c1, self.c2, x, self.tables)
-        p_broken = _broken(self.cons, vals, self.needed, len(pts), self.feas_rtol)
-        value = self.sign * vals[self.obj]
-        self.best.offer(pts, np.where(~p_broken.any(axis=1), value, np.inf), x)
+        if self.screen is None:
+            vals = point_values(self.problem, self.c1, self.c2, x, self.tables)
+            p_broken = _broken(self.cons, vals, self.needed, len(pts), self.feas_rtol)
+            value = self.sign * vals[self.obj]
+            self.best.offer(pts, np.where(~p_broken.any(axis=1), value, np.inf), x)
+            return p_broken, value
+        nominal = point_values(self.screen, self.c1, self.c2, x, self.tables)
+        for corner in tolerance_box.corners(self.problem, self.c1, self.c2, x):
+            at = point_values(self.screen, self.c1, self.c2, corner, self.tables, self.covered)
+            for q in self.covered:
+                nominal[q] = np.minimum(nominal[q], at[q])
+        p_broken = _broken(self.cons, nominal, self.needed, len(pts), self.feas_rtol)
+        p_broken[:, self.unscreened] = False  # not shown by a nominal value
+        value = np.asarray(self.sign * nominal[self.obj], dtype=np.float64)
+        if self.obj in self.covered and self.sign > 0:  # no lower bound from the point model
+            value = np.full(len(pts), -np.inf)
+        slots = self.best.slot(pts)
+        # the points that may beat the incumbent: the most promising first (at most a chunk),
+        # then those the best of them leaves in reach (a tie included: the first in order wins)
+        maybe = np.flatnonzero(~p_broken.any(axis=1) & (value < self.best.value[slots]))
+        full = np.zeros(len(pts), dtype=bool)
+        first = maybe
+        if len(maybe) > self.first:
+            first = maybe[np.argpartition(value[maybe], self.first)[: self.first]]
+        for sel in (first, None):
+            if sel is None:  # in reach of the best so far, not yet evaluated
+                star = self.best.value.copy()
+                done = np.flatnonzero(full & ~p_broken.any(axis=1))
+                np.minimum.at(star, slots[done], value[done])
+                sel = maybe[~full[maybe] & (value[maybe] <= star[slots[maybe]])]
+            if not len(sel):
+                continue
+            vals = point_values(self.problem, self.c1, self.c2, x.take(sel), self.tables)
+            p_broken[sel] = _broken(self.cons, vals, self.needed, len(sel), self.feas_rtol)
+            value[sel] = self.sign * vals[self.obj]
+            full[sel] = True
+        f = np.where(full & ~p_broken.any(axis=1), value, np.inf)
+        self.best.offer(pts, f, x)
         return p_broken, value
 
     def _queue(self, lo: FloatArray, hi: FloatArray, bound: FloatArray) -> None:

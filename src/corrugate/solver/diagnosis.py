@@ -297,9 +297,23 @@ def diagnose(
     alone restores feasibility, else the pairs that must both be relaxed; every entry with its
     numbers and a hint, or why there is none (module docstring). ``archives``: the closed boxes
     of the certified infeasible solve (:attr:`~.solve.Optimum.archives`), from which each
-    relaxed problem is searched (warm) instead of from its whole domain."""
-    tree = _Tree(problem, archives)
+    relaxed problem is searched (warm) instead of from its whole domain.
+
+    Its searches keep their memory bounded (docs/tolerances.md section 5); should one still
+    run out of memory, the entries found so far are kept and the last says the diagnosis is
+    partial (memory cap), instead of the proven infeasibility being lost to the error."""
     out: list[Diagnosis] = []
+    try:
+        return _diagnose(problem, tables, archives, out)
+    except MemoryError:
+        return [*out, _partial(problem, memory=True)]
+
+
+def _diagnose(
+    problem: Problem, tables: Tables, archives: tuple[Archive, ...] | None, out: list[Diagnosis]
+) -> list[Diagnosis]:
+    """:func:`diagnose`, its entries added to ``out`` as they are found."""
+    tree = _Tree(problem, archives)
     stage(DIAGNOSIS, "orientation")
     out += orientation(problem)  # first: a quarter turn off is the fix, whatever else is short
     out += _layers(problem)
@@ -307,12 +321,12 @@ def diagnose(
     singles: list[Diagnosis] = []
     for c in problem.constraints:
         if budget_spent():
-            return [*out, *singles, _partial(problem)]
+            return [*out, _partial(problem)]
         stage(DIAGNOSIS, c.name)
         d = _single(problem, c, tables, tree)
         if d is not None:
             singles.append(d)
-    out += singles
+            out.append(d)
     out += _sheets(problem, singles)
     if singles:
         return out
@@ -373,19 +387,24 @@ def _sheets(
     return stiffer_sheet(problem, short, need)
 
 
-def _partial(problem: Problem) -> Diagnosis:
-    """The last entry of a diagnosis cut short by the work budget."""
-    budget = current_budget()
-    what = "the work budget" if budget is None else f"the budget of {budget.label}"
-    return Diagnosis(
-        tuple(c.name for c in problem.constraints),
-        None,
-        None,
-        "",
-        f"the spec is proven infeasible, but {what} ran out during the diagnosis: the entries "
-        "above are the ones found before it did (run again with a larger --budget for the rest)",
-        kind="none",
-    )
+def _partial(problem: Problem, memory: bool = False) -> Diagnosis:
+    """The last entry of a diagnosis cut short by the work budget (``memory``: by the memory
+    available)."""
+    if memory:
+        text = (
+            "partial diagnosis (memory cap): the spec is proven infeasible, but the machine's "
+            "memory ran out during the diagnosis: the entries above are the ones found before "
+            "it did"
+        )
+    else:
+        budget = current_budget()
+        what = "the work budget" if budget is None else f"the budget of {budget.label}"
+        text = (
+            f"the spec is proven infeasible, but {what} ran out during the diagnosis: the "
+            "entries above are the ones found before it did (run again with a larger --budget "
+            "for the rest)"
+        )
+    return Diagnosis(tuple(c.name for c in problem.constraints), None, None, "", text, kind="none")
 
 
 def best_hint(diagnosis: tuple[Diagnosis, ...] | list[Diagnosis]) -> str:

@@ -19,9 +19,18 @@ problem share (:mod:`~.context`):
 
 Interval bounds converge to the exact value as the box shrinks, which is what makes branch and
 bound terminate.
+
+Memory. Both functions work on at most :func:`chunk` points or boxes at once and concatenate
+the results (every value is elementwise in the points, so the answer is the same): an
+evaluation's temporaries take about 0.5 kB per point nominally and 8.5 kB per point or box
+under the worst-case tolerances (the thickness in :data:`~.tolerance_box.T_PIECES` pieces;
+measured with ``tracemalloc`` on the chassis plate's quantities, 10^4 and 10^5 random points),
+so a search's millions of grid points stay within a few tens of MB (docs/tolerances.md).
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,7 +50,17 @@ from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import Quantity
 from corrugate.solver.tables import RangeTable, Tables
 
-__all__ = ["RangeTable", "Tables", "box_bounds", "layer_corner", "point_values", "reported"]
+__all__ = [
+    "CHUNK_ROWS",
+    "TOLERANCE_ROWS",
+    "RangeTable",
+    "Tables",
+    "box_bounds",
+    "chunk",
+    "layer_corner",
+    "point_values",
+    "reported",
+]
 
 FloatArray = NDArray[np.float64]
 Bounds = dict[Quantity, tuple[FloatArray, FloatArray]]
@@ -55,14 +74,91 @@ def reported(problem: Problem) -> list[Quantity]:
     return list(dict.fromkeys(q for e in evaluators() for q in e.quantities(problem)))
 
 
+#: Rows of arithmetic evaluated at once: a nominal point or box is one row (about 0.5 kB of
+#: temporaries, module docstring), so 2^16 rows are some 35-60 MB.
+CHUNK_ROWS = 1 << 16
+#: Rows a point or box takes under worst-case tolerances: 8.5 kB against 0.5 kB nominally
+#: (the thickness in :data:`~.tolerance_box.T_PIECES` pieces, module docstring).
+TOLERANCE_ROWS = 16
+
+
+def chunk(problem: Problem) -> int:
+    """Points or boxes :func:`point_values` and :func:`box_bounds` take at once for
+    ``problem``: :data:`CHUNK_ROWS` over the rows each takes."""
+    if any(tolerance_box.covered(problem, q) for q in problem.quantities):
+        return CHUNK_ROWS // TOLERANCE_ROWS
+    return CHUNK_ROWS
+
+
+def _sliceable(x: DesignPoints) -> bool:
+    """Whether every field of every stored layer of ``x`` is an array of one value per point
+    (so slices of the points are slices of each array)."""
+    n = len(x)
+    return all(
+        v is None or (np.ndim(v) == 1 and np.size(v) == n)
+        for lay in x.layers
+        for v in (lay.n, lay.W, lay.alpha, lay.E, lay.t)
+    )
+
+
+def _pieces(size: int, step: int) -> list[slice]:
+    return [slice(a, min(a + step, size)) for a in range(0, size, step)]
+
+
+def _joined(parts: list[dict[Quantity, Any]], counts: list[int]) -> dict[Quantity, Any]:
+    """The per-chunk dicts of arrays (or pairs of arrays) joined along the points."""
+
+    def flat(values: list[Any]) -> FloatArray:
+        return np.concatenate(
+            [
+                np.broadcast_to(np.asarray(v, np.float64), (k,))
+                for v, k in zip(values, counts, strict=True)
+            ]
+        )
+
+    out: dict[Quantity, Any] = {}
+    for q, first in parts[0].items():
+        if isinstance(first, tuple):
+            out[q] = (flat([p[q][0] for p in parts]), flat([p[q][1] for p in parts]))
+        else:
+            out[q] = flat([p[q] for p in parts])
+    return out
+
+
 def point_values(
-    problem: Problem, c1: Candidate, c2: Candidate, x: DesignPoints, tables: Tables
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    x: DesignPoints,
+    tables: Tables,
+    only: frozenset[Quantity] | None = None,
 ) -> dict[Quantity, FloatArray]:
-    """Exact values of the quantities :func:`reported` for ``problem`` at the points ``x``
-    (arrays over the points) on sheets (c1, c2), each by its evaluator."""
+    """Exact values of the quantities :func:`reported` for ``problem`` (``only``: those of
+    them in it) at the points ``x`` (arrays over the points) on sheets (c1, c2), each by its
+    evaluator; at most :func:`chunk` points at once (module docstring)."""
+    step = chunk(problem)
+    if len(x) <= step or not _sliceable(x):
+        return _point_values(problem, c1, c2, x, tables, only)
+    cuts = _pieces(len(x), step)
+    parts = [_point_values(problem, c1, c2, x.take(s), tables, only) for s in cuts]
+    return _joined(parts, [s.stop - s.start for s in cuts])
+
+
+def _point_values(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    x: DesignPoints,
+    tables: Tables,
+    only: frozenset[Quantity] | None = None,
+) -> dict[Quantity, FloatArray]:
     at = AtPoints(problem, c1, c2, x, tables)
-    out = {q: at.value(q) for q in reported(problem)}
-    covered = [q for q in problem.quantities if tolerance_box.covered(problem, q)]
+    out = {q: at.value(q) for q in reported(problem) if only is None or q in only}
+    covered = [
+        q
+        for q in problem.quantities
+        if tolerance_box.covered(problem, q) and (only is None or q in only)
+    ]
     if covered:  # their worst case over the tolerance box (docs/tolerances.md)
         tol = tolerance_box.ToleranceBounds(problem, c1, c2, x, x, tables)
         for q in covered:
@@ -80,7 +176,30 @@ def box_bounds(
     quantities: set[Quantity],
 ) -> Bounds:
     """Lower and upper bounds of the requested ``quantities`` over boxes [lo, hi] (``lo is hi``:
-    the values at points, each computed once), each by its evaluator, in a fixed order."""
+    the values at points, each computed once), each by its evaluator, in a fixed order; at
+    most :func:`chunk` boxes at once (module docstring)."""
+    step = chunk(problem)
+    if len(lo) <= step or not (_sliceable(lo) and (hi is lo or _sliceable(hi))):
+        return _box_bounds(problem, c1, c2, lo, hi, tables, quantities)
+    cuts = _pieces(len(lo), step)
+    parts = []
+    for s in cuts:
+        slo = lo.take(s)
+        parts.append(
+            _box_bounds(problem, c1, c2, slo, slo if hi is lo else hi.take(s), tables, quantities)
+        )
+    return _joined(parts, [s.stop - s.start for s in cuts])
+
+
+def _box_bounds(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    lo: DesignPoints,
+    hi: DesignPoints,
+    tables: Tables,
+    quantities: set[Quantity],
+) -> Bounds:
     over = OverBoxes(problem, c1, c2, lo, hi, tables)
     tol: tolerance_box.ToleranceBounds | None = None
     out: Bounds = {}

@@ -40,7 +40,7 @@ from corrugate.solver.quantity import Quantity
 from corrugate.solver.tables import Tables
 from corrugate.solver.worst_case import WorstCase
 
-__all__ = ["T_PIECES", "ToleranceBounds", "covered", "sheet", "widened"]
+__all__ = ["T_PIECES", "ToleranceBounds", "corners", "covered", "sheet", "widened"]
 
 FloatArray = NDArray[np.float64]
 
@@ -165,13 +165,42 @@ class _Pieces:
         return low.min(axis=0), high.max(axis=0)
 
 
+#: The shifts (of W by dW, of alpha by da) of the corners of a tolerance box that bound the
+#: certified value from above (:func:`corners`, :class:`ToleranceBounds`).
+_SHIFTS = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
+
+
+def _low(c: Candidate, tol: WorstCase) -> Candidate:
+    """The sheet ``c`` at E (1 - dE) and t (1 - dt): a corner of its tolerances."""
+    m = c.material
+    return replace(c, material=replace(m, E=m.E * (1 - tol.E)), t=c.t * (1 - tol.t))
+
+
+def _shift(problem: Problem, x: DesignPoints, sW: float, sa: float) -> DesignPoints:
+    """Every stored layer of ``x`` with W moved by ``sW`` dW and alpha by ``sa`` da (the
+    tolerances'), clipped as :func:`widened` clips."""
+    tol = problem.tolerances
+    layers = []
+    for lay in x.layers:
+        W, a = _clip(
+            np.asarray(lay.W, np.float64) + sW * tol.W,
+            np.asarray(lay.alpha, np.float64) + sa * tol.alpha,
+        )
+        layers.append(LayerPoints(np.asarray(lay.n, np.float64), W, a))
+    return x.with_layers(*layers)
+
+
 class ToleranceBounds:
     """The certified value's bounds over the boxes [lo, hi] (``lo is hi``: its value at
     points) on sheets whose E and t are intervals, identical layers bounded as independent
     ones, module docstring: below, the bound over the boxes widened by the tolerances (t
-    whole); above, the least of that box's upper bound and, where the inner box exists, the
-    inner box's lower bound (t in pieces), which every point's certified value is at most and
-    which closes on it as the box shrinks."""
+    whole); above, the least of that box's upper bound, where the inner box exists the inner
+    box's lower bound (t in pieces), which every point's certified value is at most and which
+    closes on it as the box shrinks, and the upper bounds of the quantity over the box shifted
+    to each of four corners of the tolerances (W -+ dW, alpha -+ da, the sheet at E (1 - dE)
+    and t (1 - dt)): for each x of the box that corner of T(x) lies in the shifted box, so the
+    certified value G(x), at most the quantity there, is at most the shifted box's upper bound.
+    These need no inner box, so boxes of a grid coarser than the tolerances close too."""
 
     def __init__(
         self,
@@ -188,11 +217,17 @@ class ToleranceBounds:
         self.outer = _Pieces(problem, c1, c2, wlo, whi, tables, pieces if self.point else 1)
         self.inner: _Pieces | None = None
         self.sel = np.zeros(0, dtype=np.intp)
+        self.shifted: list[OverBoxes] = []
         if not self.point:
             self.sel = _inner_rows(problem, lo, hi)
             if self.sel.size:
                 ilo, ihi = widened(problem, lo.take(self.sel), hi.take(self.sel), inner=True)
                 self.inner = _Pieces(problem, c1, c2, ilo, ihi, tables, pieces)
+            free = replace(problem, identical=False) if problem.identical else problem
+            low1, low2 = _low(c1, problem.tolerances), _low(c2, problem.tolerances)
+            for shift in _SHIFTS:
+                slo, shi = (_shift(problem, b, *shift) for b in (lo, hi))
+                self.shifted.append(OverBoxes(free, low1, low2, slo, shi, tables))
 
     def bounds(self, q: Quantity) -> tuple[FloatArray, FloatArray]:
         """Lower and upper bounds of ``q``'s certified value over the boxes (arrays over the
@@ -200,7 +235,33 @@ class ToleranceBounds:
         low, high = self.outer.bounds(q)
         if self.point:
             return low, low
+        high = np.array(high, dtype=np.float64)
         if self.inner is not None:
-            high = high.copy()
             high[self.sel] = np.minimum(high[self.sel], self.inner.bounds(q)[0])
+        for over in self.shifted:
+            high = np.minimum(high, over.bounds(q)[1])
         return low, high
+
+
+def corners(problem: Problem, c1: Candidate, c2: Candidate, x: DesignPoints) -> list[DesignPoints]:
+    """Four parts of the tolerance box T(x) of each point of ``x``: every layer's W at W -+ dW
+    and alpha at alpha -+ da (both layers alike), on its sheet at E (1 - dE) and t (1 - dt)
+    (per-point overrides, :class:`~.points.LayerPoints`), clipped as :func:`widened` clips.
+
+    Each lies in T(x), so the point model's value of a quantity there is at least the
+    certified value G(x), the lower bound over all of T(x) (module docstring): the least of
+    them is an upper bound of G(x) at the cost of four nominal evaluations, which the branch
+    and bound uses to skip the interval evaluation of points that cannot meet a bound or beat
+    its incumbent (:meth:`corrugate.solver.bnb._Search._evaluate`)."""
+    tol = problem.tolerances
+    k = len(x)
+    lows = (_low(c1, tol), _low(c2, tol))
+    out = []
+    for shift in _SHIFTS:
+        moved = _shift(problem, x, *shift)
+        layers = [
+            replace(lay, E=np.full(k, lows[i].material.E), t=np.full(k, float(lows[i].t)))
+            for i, lay in enumerate(moved.layers)
+        ]
+        out.append(moved.with_layers(*layers))
+    return out
