@@ -91,7 +91,17 @@ CHASSIS = (
     "chassis plate 79.2 x 121.2, polypropylene 0.25: layer 1 W 16, n 6, alpha 90; "
     "layer 2 W 5, n 27, alpha 120"
 )
-PHASES = ("a", "b", "c", "d", "e", "f", "g")
+#: The designs of phase ``h`` (issue 35: the local term refitted on thin, thick and polypropylene
+#: sheets): squares of identical layers, eta 0 only (eta 90 is its mirror image).
+WIDER = {
+    "thin Dura-Lar 0.05: W 10, n 7, alpha 50": ("dura-lar", 0.05, 10.0, 7, 50.0),
+    "thick polypropylene 0.5: W 10, n 7, alpha 50": ("polypropylene", 0.5, 10.0, 7, 50.0),
+    "thick polypropylene 0.5: W 10, n 7, alpha 120": ("polypropylene", 0.5, 10.0, 7, 120.0),
+    "thin Dura-Lar 0.05: W 10, n 7, alpha 110": ("dura-lar", 0.05, 10.0, 7, 110.0),
+    "polypropylene 0.25: W 10, n 9, alpha 90": ("polypropylene", 0.25, 10.0, 9, 90.0),
+    "Dura-Lar 0.075: W 12, n 9, alpha 70": ("dura-lar", 0.075, 12.0, 9, 70.0),
+}
+PHASES = ("a", "b", "c", "d", "e", "f", "g", "h", "i")
 #: The 4-point test read at its load points (the loading head's travel), from the same run as
 #: ``bending4``'s gauge value: D = (P / delta) span^2 / 96.
 LOAD_POINTS = "bending4-load"
@@ -112,6 +122,10 @@ def designs() -> dict[str, Assembly]:
         Layer(W=5.0, n=27, alpha_deg=120.0, material=pp, t=0.25),
         layout=make_layout("rectangle"),
     )
+    for name, (material, t, W, n, alpha) in WIDER.items():
+        out[name] = Assembly.identical(
+            Layer(W=W, n=n, alpha_deg=alpha, material=get_material(material), t=t)
+        )
     return out
 
 
@@ -122,7 +136,7 @@ def _mirror(a: Assembly, eta: float, along: int) -> bool:
 
 def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
     """(design, eta, test, shift, along) in the order of the phases (module docstring)."""
-    first4 = [n for n in ds if n not in (FIFTH, CHASSIS)]
+    first4 = [n for n in ds if n not in (FIFTH, CHASSIS, *WIDER)]
     ends = (0.0, 90.0)
     off = tuple(e for e in ETAS if e not in ends)
     for phase in phases:
@@ -164,9 +178,18 @@ def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
                 yield CHASSIS, 0.0, test, 0.0, 12
         elif phase == "g":
             for along in (2, 4, 8):
-                for name in ds:
+                for name in [n for n in ds if n not in WIDER]:
                     for eta in ends:
                         yield name, eta, LOAD_POINTS, 0.0, along
+        elif phase == "h":
+            for name in WIDER:
+                for along in (2, 4, 8, 16):
+                    for test in ("bending", LOAD_POINTS, "cantilever"):
+                        yield name, 0.0, test, 0.0, along
+        elif phase == "i":  # the thin sheets converge slowly: 32 per facet
+            for name in [n for n in WIDER if WIDER[n][1] / WIDER[n][2] < 0.01]:
+                for test in ("bending", LOAD_POINTS, "cantilever"):
+                    yield name, 0.0, test, 0.0, 32
 
 
 def load_point_D(r: Any) -> float:
@@ -215,7 +238,7 @@ def run(phases: tuple[str, ...] = PHASES, minutes: float = float("inf")) -> None
                 return
             mesh = AssemblyMesh(along)
             try:
-                if along == 16:
+                if along == 16 and name not in WIDER:
                     nodes = assembly_deck(a, FIXTURE_OF[test], mesh, eta)[1].nodes
                     if nodes > MAX_NODES_16:
                         print("skip", *key, f"{nodes} nodes > {MAX_NODES_16}", flush=True)
