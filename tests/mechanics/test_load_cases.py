@@ -16,6 +16,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from corrugate import Assembly, Layer, analyze, get_material
+from corrugate.mechanics.load_cases import LOCAL
 from corrugate.solver import Problem, solve
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
@@ -30,15 +31,17 @@ DL = get_material("dura-lar")
 def _hand_three_point(W: float, n: int, alpha: float, t: float = 0.125) -> tuple[float, float]:
     """(P / delta in N/mm, L in mm) of a square of identical Dura-Lar layers in three-point
     bending over its own side at eta = 0, written out from docs/load_cases.md: delta / P = L^3 /
-    (48 EI) + (L / 4 + 2 h) / S with EI = D L from analyze (the pure-bending model, checked
-    elsewhere), S = G t W c^2 (n + 1), h = W c."""
+    (48 EI) + (L / 4 + c h sqrt(0.01 W / t)) / S with EI = D L from analyze (the pure-bending
+    model, checked elsewhere), S = (5/6) G t W c_a^2 (n + 1) (the parabolic shear flow of each
+    facet), h = W c_a, c the three-point coefficient."""
     a = Assembly.identical(Layer(W=W, n=n, alpha_deg=alpha, material=DL, t=t))
     r = analyze(a, "refined", [0.0]).stiffness[0]
     c = math.cos(math.radians(alpha / 2))
     G = DL.E / (2 * (1 + DL.nu))
-    S = G * t * W * c * c * (n + 1)
+    S = 5 / 6 * G * t * W * c * c * (n + 1)
     L = r.span
-    return 1.0 / (L**3 / (48 * r.D * L) + (L / 4 + 2.0 * W * c) / S), L
+    local = LOCAL * W * c * math.sqrt(0.01 * W / t)
+    return 1.0 / (L**3 / (48 * r.D * L) + (L / 4 + local) / S), L
 
 
 def _problem(

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from corrugate.mechanics.behaviours import Behaviour, TestForm
+from corrugate.mechanics.offaxis import SHEAR_CORRECTION
 from corrugate.mechanics.wheel import wheel_factor
 from corrugate.names import JOINTS as NAMED_JOINTS
 from corrugate.names import RECTANGULAR_LAYOUTS
@@ -63,9 +64,9 @@ __all__ = [
 
 #: c of the local term c h / S on line supports and loading lines (three- and four-point;
 #: docs/load_cases.md, section 2): the FE series need at most 1.65.
-LOCAL = 2.0
+LOCAL = 1.5
 #: c of the local term with a clamped root (cantilever): the FE series need at most 2.26.
-LOCAL_CLAMPED = 2.5
+LOCAL_CLAMPED = 1.25
 
 _BENDING_UNITS = {"EI": "N*mm^2", "D": "N*mm", "k": "N/mm", "Pmax": "N"}
 
@@ -202,15 +203,16 @@ BUILT_IN: tuple[Behaviour, ...] = (THREE_POINT, FOUR_POINT, CANTILEVER, PLATENS,
 
 
 def shear_and_depth(springs: tuple[Any, Any], c2: float, s2: float) -> tuple[Any, Any]:
-    """V (N/mm) and h (mm) of the two layers' springs at a direction with cos^2 ``c2`` and sin^2
-    ``s2``: layer 1's on its creases (eta = 0), layer 2's on its own (90), V_S1 c^2 + V_S2 s^2
-    and the larger depth in between (module docstring)."""
+    """V (N/mm) and the local term's length (mm, :func:`corrugate.mechanics.offaxis.
+    local_depth`: the depth h times sqrt(0.01 W / t)) of the two layers' springs at a direction
+    with cos^2 ``c2`` and sin^2 ``s2``: layer 1's on its creases (eta = 0), layer 2's on its own
+    (90), V_S1 c^2 + V_S2 s^2 and the larger length in between (module docstring)."""
     a, b = springs
     if s2 == 0.0:
-        return a.V_S, a.h
+        return a.V_S, a.local
     if c2 == 0.0:
-        return b.V_S, b.h
-    return a.V_S * c2 + b.V_S * s2, _larger(a.h, b.h)
+        return b.V_S, b.local
+    return a.V_S * c2 + b.V_S * s2, _larger(a.local, b.local)
 
 
 def _larger(x: Any, y: Any) -> Any:
@@ -223,21 +225,24 @@ def load_stiffness(
     form: TestForm,
     stiffness: Any,
     V: Any,
-    h: Any,
+    local: Any,
     length: Any,
     span: Any | None = None,
     eta_deg: float = 0.0,
 ) -> Any:
     """P / delta (N/mm) of a load case: ``stiffness`` is the support's pure-bending D (N mm) for
     a bending test (EI = D x ``length``, the panel's length along eta in mm; S = ``V`` x length,
-    ``h`` the depth in mm, ``span`` the test's Ls in mm, the panel's length when None) or the
+    ``local`` the local term's length h sqrt(0.01 W / t) in mm (:func:`shear_and_depth`),
+    ``span`` the test's Ls in mm, the panel's length when None) or the
     in-plane K (N/mm) for an in-plane test (V, h and span not used), times the test's own
     factor at ``eta_deg`` (deg) when it has one (the wheel: docs/load_cases.md 9). Module
     docstring, docs/load_cases.md section 3."""
     if form.kind == "inplane":
         return stiffness if form.factor is None else stiffness * form.factor(eta_deg)
     Ls = length if span is None else span
-    compliance = form.a * Ls**3 / (stiffness * length) + (form.b * Ls + form.c * h) / (V * length)
+    compliance = form.a * Ls**3 / (stiffness * length) + (form.b * Ls + form.c * local) / (
+        V * length
+    )
     return 1.0 / compliance
 
 
@@ -328,7 +333,7 @@ def band_walls(E: Any, nu: Any, t: Any, depth: Any, length: Any) -> tuple[Any, A
     area = t * depth
     return (
         2.0 * E * area * depth * depth / (12.0 * length),
-        2.0 * (5.0 / 6.0) * G * area,
+        2.0 * SHEAR_CORRECTION * G * area,
         2.0 * E * area / length,
     )
 
