@@ -98,8 +98,8 @@ WIDER = {
     "thick polypropylene 0.5: W 10, n 7, alpha 50": ("polypropylene", 0.5, 10.0, 7, 50.0),
     "thick polypropylene 0.5: W 10, n 7, alpha 120": ("polypropylene", 0.5, 10.0, 7, 120.0),
     "thin Dura-Lar 0.05: W 10, n 7, alpha 110": ("dura-lar", 0.05, 10.0, 7, 110.0),
-    "polypropylene 0.25: W 10, n 9, alpha 90": ("polypropylene", 0.25, 10.0, 9, 90.0),
     "Dura-Lar 0.075: W 12, n 7, alpha 70": ("dura-lar", 0.075, 12.0, 7, 70.0),
+    "polypropylene 0.25: W 10, n 9, alpha 90": ("polypropylene", 0.25, 10.0, 9, 90.0),
 }
 PHASES = ("a", "b", "c", "d", "e", "f", "g", "h", "i")
 #: The 4-point test read at its load points (the loading head's travel), from the same run as
