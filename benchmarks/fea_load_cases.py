@@ -33,6 +33,15 @@ layers eta > 45 deg is the mirror image of 90 - eta and is run only at 2 and 4 e
 * ``g``: the 4-point test read at its load points (``bending4-load``: the loading head's travel,
   D = (P / delta) span^2 / 96, what the ``four-point`` load case certifies), every design at eta
   0 and 90, 2 / 4 / 8;
+* ``h``: the local term's wider sample (issue 35, docs/load_cases.md 2): the squares of
+  identical layers of ``WIDER`` (thin Dura-Lar 0.05 and 0.075 mm, t / W 0.005-0.00625; thick
+  polypropylene 0.5 mm, t / W 0.05; polypropylene 0.25 mm), 3-point, 4-point at its load points
+  and cantilever at eta 0 (eta 90 is its mirror image), 2 / 4 / 8 / 16 per facet: n 7 or 9, so
+  that 16 per facet stays under about 110 000 nodes and the 4-point fixture has node lines at
+  every mesh (8 or 10 facets);
+* ``i``: 32 per facet for the designs of ``WIDER`` with t / W < 0.01 (thin sheets converge
+  slowly: their 4 / 8 / 16 series are not yet asymptotic) whose model has at most
+  ``MAX_NODES_32`` nodes;
 * ``e``: 16 elements per facet at eta 0 and 90 for 3-point, 4-point and cantilever, for the
   models of at most ``MAX_NODES_16`` nodes. That leaves out the rectangle (169 930 nodes at 16
   per facet) and the fifth design (257 018): ccx's peak memory grew by about 46 kB per node in
@@ -61,6 +70,10 @@ and the rectangle; the identical squares mirror 15 and 30 deg there); of ``e`` o
 study's 4-point bending at eta 0 (90 850 nodes, 201 s, 4.2 GB peak). Peak ccx memory: 4.1-4.7 GB
 at 8 per facet, 11.3 GB for the chassis plate at 12 (218 130 nodes, 316-401 s). ``run``
 resumes from there.
+
+Phases ``h`` and ``i`` ran on 2026-12-06 on 2 cores shared with other jobs (load average 3-9):
+16 per facet took 15-90 s a case (44 000-87 000 nodes, peak child memory 1-2 GB), 32 per facet
+238-372 s (170 000 nodes, 4.2 GB).
 
 ``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
 """

@@ -15,14 +15,17 @@ measures, in the user's terms: the deflection delta (mm) of the loading head und
 
 For the bending tests (docs/load_cases.md, sections 2-3)
 
-    delta / P = a Ls^3 / EI + (b Ls + c h) / S
+    delta / P = a Ls^3 / EI + (b Ls + c h_l) / S
 
 with EI = D(eta) L the rigidity of the panel of length L along eta, S = V_S L the shear stiffness
-of the facets acting as webs (:func:`corrugate.mechanics.offaxis.shear_spring`: G t W c^2 per
-facet) and h the depth W cos(alpha/2) of the corrugation: (a, b) are the Timoshenko beam's, and
-the local term c h (c = 2 on line supports, 2.5 with a clamped root) bounds the extra compliance
-FE shows at the load and support lines (docs/load_cases.md section 2). Off the crease directions S and h are taken as V_S1 cos^2 + V_S2 sin^2
-and the larger depth (docs/load_cases.md, section 3).
+of the facets acting as webs (:func:`corrugate.mechanics.offaxis.shear_spring`: (5/6) G t W c^2
+per facet, the parabolic shear flow of each facet) and h_l = h sqrt(0.01 W / t) the local term's
+length, h the depth W cos(alpha/2) of the corrugation
+(:func:`corrugate.mechanics.offaxis.local_depth`): (a, b) are the Timoshenko beam's, and the
+local term c h_l (c = 1.5 on line supports, 1.25 with a clamped root) bounds the extra compliance
+FE shows at the load and support lines (docs/load_cases.md section 2). Off the crease directions
+S and h_l are taken as V_S1 cos^2 + V_S2 sin^2 and the larger length (docs/load_cases.md,
+section 2).
 
 Every function is plain arithmetic, so it takes arrays and
 :class:`~corrugate.solver.interval.Interval` values alike: the solver bounds the very formula a
@@ -62,10 +65,11 @@ __all__ = [
     "walls_stiffness",
 ]
 
-#: c of the local term c h / S on line supports and loading lines (three- and four-point;
-#: docs/load_cases.md, section 2): the FE series need at most 1.65.
+#: c of the local term c h sqrt(0.01 W / t) / S on line supports and loading lines (three- and
+#: four-point; docs/load_cases.md, section 2): the FE rows need at most 1.24
+#: (docs/validation/load_cases.md, "The local term").
 LOCAL = 1.5
-#: c of the local term with a clamped root (cantilever): the FE series need at most 2.26.
+#: c of the local term with a clamped root (cantilever): the FE rows need at most 1.04.
 LOCAL_CLAMPED = 1.25
 
 _BENDING_UNITS = {"EI": "N*mm^2", "D": "N*mm", "k": "N/mm", "Pmax": "N"}
