@@ -186,12 +186,19 @@ def _fe_of(series: dict[int, float], model: float) -> tuple[float, str, bool]:
     """The FE estimate of a row of the local term's sample: a series whose four finest meshes
     double is judged as `corrugate verify` judges one against the model as its bound
     (corrugate.fea.extrapolate.judge: monotone, shrinking steps, its two Richardson estimates
-    within a quarter of the margin); a shorter one (the earlier sample) by `limit()`."""
+    within a quarter of the margin); when they do not agree that closely, the lower of the two
+    (the FE of a load case converges from above: the softer estimate; the model is then below
+    both); a shorter series (the earlier sample) by `limit()`."""
     alongs = sorted(series)[-4:]
     if len(alongs) == 4 and all(b == 2 * a for a, b in itertools.pairwise(alongs)):
         j = judge(series, model, "min")
         if j.verdict != "open" and j.value is not None:
             return j.value, j.how, True
+        r1 = richardson({k: series[k] for k in alongs[:3]})
+        r2 = richardson({k: series[k] for k in alongs[1:]})
+        if r1 is not None and r2 is not None:  # the softer of the two extrapolations
+            low = min(r1[0], r2[0])
+            return low, f"{j.why}: the lower {low:.5g} taken", False
         value = j.value if j.value is not None else limit(series)[0]
         return value, f"{j.how}; {j.why}", False
     fe, how = limit(series)

@@ -51,7 +51,7 @@ def test_the_arm_link_has_no_certified_design_below_the_cantilever_range() -> No
     p = _problem(ARM_EI)
     name = _named(p, FACETS)
     assert name.endswith(
-        "(the cantilever model (local term c = 1.25) is validated for >= 7 facets per layer)"
+        "(the cantilever model (local term c = 1.5) is validated for >= 7 facets per layer)"
     )
     (c,) = [c for c in p.constraints if c.name == name]
     assert c.bound == 7 and c.sense == "min"
