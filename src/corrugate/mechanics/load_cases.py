@@ -66,10 +66,11 @@ __all__ = [
 ]
 
 #: c of the local term c h sqrt(0.01 W / t) / S on line supports and loading lines (three- and
-#: four-point; docs/load_cases.md, section 2): the FE rows need at most 1.38, and the thinnest
-#: sheet's slow series leaves room for about 1.6 (docs/validation/load_cases.md, "The local term").
+#: four-point; docs/load_cases.md, section 2): the FE rows need at most 1.38 (three-point) and
+#: 1.35 (four-point), and the thinnest sheet's slow series leaves room for about 1.6
+#: (docs/validation/load_cases.md, "The local term").
 LOCAL = 2.0
-#: c of the local term with a clamped root (cantilever): the FE rows need at most 1.04.
+#: c of the local term with a clamped root (cantilever): the FE rows need at most 0.93.
 LOCAL_CLAMPED = 1.5
 
 _BENDING_UNITS = {"EI": "N*mm^2", "D": "N*mm", "k": "N/mm", "Pmax": "N"}
