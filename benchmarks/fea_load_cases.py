@@ -72,10 +72,9 @@ at 8 per facet, 11.3 GB for the chassis plate at 12 (218 130 nodes, 316-401 s). 
 resumes from there.
 
 Phases ``h`` and ``i`` ran on 2026-12-06 on 2 cores shared with other jobs (load average 3-9):
-16 per facet took 15-165 s a case (44 000-87 000 nodes, peak child memory 1-2 GB), 32 per facet
-238-620 s (170 000-230 000 nodes, 4.2 GB and more). Not run: the thin design at alpha 110 at 32
-per facet (330 000 nodes > ``MAX_NODES_32``) and the polypropylene 0.25 mm design beyond 8 per
-facet (4 for its cantilever): stopped for time; ``run h`` resumes it.
+16 per facet took 15-263 s a case (44 000-116 000 nodes, peak child memory 1-2.7 GB), 32 per
+facet 161-620 s (170 000-235 000 nodes, 4.2-5.8 GB). Not run: the thin design at alpha 110 at 32
+per facet (330 000 nodes > ``MAX_NODES_32``).
 
 ``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
 """
