@@ -193,7 +193,7 @@ def _fe_of(series: dict[int, float], model: float) -> tuple[float, str, bool]:
     if len(alongs) == 4 and all(b == 2 * a for a, b in itertools.pairwise(alongs)):
         j = judge(series, model, "min")
         if j.verdict != "open" and j.value is not None:
-            return j.value, j.how, True
+            return j.value, j.how.replace("|estimate - bound|", "abs(estimate - bound)"), True
         r1 = richardson({k: series[k] for k in alongs[:3]})
         r2 = richardson({k: series[k] for k in alongs[1:]})
         if r1 is not None and r2 is not None:  # the softer of the two extrapolations
