@@ -33,6 +33,15 @@ layers eta > 45 deg is the mirror image of 90 - eta and is run only at 2 and 4 e
 * ``g``: the 4-point test read at its load points (``bending4-load``: the loading head's travel,
   D = (P / delta) span^2 / 96, what the ``four-point`` load case certifies), every design at eta
   0 and 90, 2 / 4 / 8;
+* ``h``: the local term's wider sample (issue 35, docs/load_cases.md 2): the squares of
+  identical layers of ``WIDER`` (thin Dura-Lar 0.05 and 0.075 mm, t / W 0.005-0.00625; thick
+  polypropylene 0.5 mm, t / W 0.05; polypropylene 0.25 mm), 3-point, 4-point at its load points
+  and cantilever at eta 0 (eta 90 is its mirror image), 2 / 4 / 8 / 16 per facet: n 7 or 9, so
+  that 16 per facet stays under about 110 000 nodes and the 4-point fixture has node lines at
+  every mesh (8 or 10 facets);
+* ``i``: 32 per facet for the designs of ``WIDER`` with t / W < 0.01 (thin sheets converge
+  slowly: their 4 / 8 / 16 series are not yet asymptotic) whose model has at most
+  ``MAX_NODES_32`` nodes;
 * ``e``: 16 elements per facet at eta 0 and 90 for 3-point, 4-point and cantilever, for the
   models of at most ``MAX_NODES_16`` nodes. That leaves out the rectangle (169 930 nodes at 16
   per facet) and the fifth design (257 018): ccx's peak memory grew by about 46 kB per node in
@@ -61,6 +70,11 @@ and the rectangle; the identical squares mirror 15 and 30 deg there); of ``e`` o
 study's 4-point bending at eta 0 (90 850 nodes, 201 s, 4.2 GB peak). Peak ccx memory: 4.1-4.7 GB
 at 8 per facet, 11.3 GB for the chassis plate at 12 (218 130 nodes, 316-401 s). ``run``
 resumes from there.
+
+Phases ``h`` and ``i`` ran on 2026-12-06 on 2 cores shared with other jobs (load average 3-9):
+16 per facet took 15-263 s a case (44 000-116 000 nodes, peak child memory 1-2.7 GB), 32 per
+facet 161-620 s (170 000-235 000 nodes, 4.2-5.8 GB). Not run: the thin design at alpha 110 at 32
+per facet (330 000 nodes > ``MAX_NODES_32``).
 
 ``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
 """
@@ -91,11 +105,23 @@ CHASSIS = (
     "chassis plate 79.2 x 121.2, polypropylene 0.25: layer 1 W 16, n 6, alpha 90; "
     "layer 2 W 5, n 27, alpha 120"
 )
-PHASES = ("a", "b", "c", "d", "e", "f", "g")
+#: The designs of phase ``h`` (issue 35: the local term refitted on thin, thick and polypropylene
+#: sheets): squares of identical layers, eta 0 only (eta 90 is its mirror image).
+WIDER = {
+    "thin Dura-Lar 0.05: W 10, n 7, alpha 50": ("dura-lar", 0.05, 10.0, 7, 50.0),
+    "thick polypropylene 0.5: W 10, n 7, alpha 50": ("polypropylene", 0.5, 10.0, 7, 50.0),
+    "thick polypropylene 0.5: W 10, n 7, alpha 120": ("polypropylene", 0.5, 10.0, 7, 120.0),
+    "thin Dura-Lar 0.05: W 10, n 7, alpha 110": ("dura-lar", 0.05, 10.0, 7, 110.0),
+    "Dura-Lar 0.075: W 12, n 7, alpha 70": ("dura-lar", 0.075, 12.0, 7, 70.0),
+    "polypropylene 0.25: W 10, n 9, alpha 90": ("polypropylene", 0.25, 10.0, 9, 90.0),
+}
+PHASES = ("a", "b", "c", "d", "e", "f", "g", "h", "i")
 #: The 4-point test read at its load points (the loading head's travel), from the same run as
 #: ``bending4``'s gauge value: D = (P / delta) span^2 / 96.
 LOAD_POINTS = "bending4-load"
 MAX_NODES_16 = 150_000
+#: Phase ``i`` runs 32 per facet only on models of at most this many nodes (about 5 GB peak).
+MAX_NODES_32 = 250_000
 Job = tuple[str, float, str, float, int]
 
 
@@ -112,6 +138,10 @@ def designs() -> dict[str, Assembly]:
         Layer(W=5.0, n=27, alpha_deg=120.0, material=pp, t=0.25),
         layout=make_layout("rectangle"),
     )
+    for name, (material, t, W, n, alpha) in WIDER.items():
+        out[name] = Assembly.identical(
+            Layer(W=W, n=n, alpha_deg=alpha, material=get_material(material), t=t)
+        )
     return out
 
 
@@ -122,7 +152,7 @@ def _mirror(a: Assembly, eta: float, along: int) -> bool:
 
 def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
     """(design, eta, test, shift, along) in the order of the phases (module docstring)."""
-    first4 = [n for n in ds if n not in (FIFTH, CHASSIS)]
+    first4 = [n for n in ds if n not in (FIFTH, CHASSIS, *WIDER)]
     ends = (0.0, 90.0)
     off = tuple(e for e in ETAS if e not in ends)
     for phase in phases:
@@ -164,9 +194,18 @@ def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
                 yield CHASSIS, 0.0, test, 0.0, 12
         elif phase == "g":
             for along in (2, 4, 8):
-                for name in ds:
+                for name in [n for n in ds if n not in WIDER]:
                     for eta in ends:
                         yield name, eta, LOAD_POINTS, 0.0, along
+        elif phase == "h":
+            for name in WIDER:
+                for along in (2, 4, 8, 16):
+                    for test in ("bending", LOAD_POINTS, "cantilever"):
+                        yield name, 0.0, test, 0.0, along
+        elif phase == "i":  # the thin sheets converge slowly: 32 per facet
+            for name in [n for n in WIDER if WIDER[n][1] / WIDER[n][2] < 0.01]:
+                for test in ("bending", LOAD_POINTS, "cantilever"):
+                    yield name, 0.0, test, 0.0, 32
 
 
 def load_point_D(r: Any) -> float:
@@ -215,10 +254,11 @@ def run(phases: tuple[str, ...] = PHASES, minutes: float = float("inf")) -> None
                 return
             mesh = AssemblyMesh(along)
             try:
-                if along == 16:
+                cap = {16: 0 if name in WIDER else MAX_NODES_16, 32: MAX_NODES_32}.get(along, 0)
+                if cap:
                     nodes = assembly_deck(a, FIXTURE_OF[test], mesh, eta)[1].nodes
-                    if nodes > MAX_NODES_16:
-                        print("skip", *key, f"{nodes} nodes > {MAX_NODES_16}", flush=True)
+                    if nodes > cap:
+                        print("skip", *key, f"{nodes} nodes > {cap}", flush=True)
                         continue
                 t0 = time.perf_counter()
                 r = solve_assembly(a, FIXTURE_OF[test], mesh, eta, shift=shift)

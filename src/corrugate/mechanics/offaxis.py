@@ -71,6 +71,8 @@ __all__ = [
     "ANGLE_DECIMALS",
     "FINITE_PANEL_BENDING",
     "FINITE_PANEL_DEFICIT",
+    "LOCAL_T_OVER_W",
+    "SHEAR_CORRECTION",
     "Coupon",
     "Support",
     "assembly_directional",
@@ -82,6 +84,7 @@ __all__ = [
     "free_bending",
     "free_inplane",
     "free_panel",
+    "local_depth",
     "on_grid",
     "shear_spring",
     "shear_springs",
@@ -136,15 +139,39 @@ def finite_panel_factor(n: Any, eta_deg: float = 15.0) -> Any:
     return 1.0 - finite_panel_weight(eta_deg) * finite_panel_deficit(n)
 
 
+#: The shear correction of a facet acting as a web (docs/load_cases.md, section 2): the shear flow
+#: of the zig-zag vanishes at every crease, so across each facet it is parabolic, and the
+#: strain energy of a parabolic flow is 6/5 that of the uniform one carrying the same force.
+SHEAR_CORRECTION = 5.0 / 6.0
+
+
 def shear_spring(E: Any, nu: Any, t: Any, ratio: Any, web2: Any, pq: Any) -> Any:
-    """Transverse shear spring V_S (N/mm) of a layer bent along its creases: S / L, with S = G t
-    W c^2 (n + 1) the shear stiffness (N) of its n + 1 facets acting as webs (docs/load_cases.md,
-    section 2) and L their length; in terms of the layer's geometry factor pq = p sum_j 1/L_j,
-    V_S = G t c^2 pq / s. ``E`` MPa, ``nu``, ``t`` mm; the profile's ``ratio`` = pitch / developed
-    (s = sin(alpha/2) for the zig-zag) and ``web2``, the mean (dz/ds)^2 over its developed length
-    (c^2 = cos^2(alpha/2); :class:`corrugate.geometry.profile.Profile`)."""
+    """Transverse shear spring V_S (N/mm) of a layer bent along its creases: S / L, with S =
+    (5/6) G t W c^2 (n + 1) the shear stiffness (N) of its n + 1 facets acting as webs, each
+    carrying a parabolic shear flow that vanishes at its creases (:data:`SHEAR_CORRECTION`,
+    docs/load_cases.md section 2), and L their length; in terms of the layer's geometry factor
+    pq = p sum_j 1/L_j, V_S = (5/6) G t c^2 pq / s. ``E`` MPa, ``nu``, ``t`` mm; the profile's
+    ``ratio`` = pitch / developed (s = sin(alpha/2) for the zig-zag) and ``web2``, the mean
+    (dz/ds)^2 over its developed length (c^2 = cos^2(alpha/2);
+    :class:`corrugate.geometry.profile.Profile`). The factor 5/6 is derived for the zig-zag;
+    another profile takes the same factor."""
     G = E / (2.0 * (1.0 + nu))
-    return (G * t) * web2 * pq / ratio
+    return SHEAR_CORRECTION * (G * t) * web2 * pq / ratio
+
+
+#: The sheet thickness over facet width at which the local term's coefficients are stated
+#: (docs/load_cases.md, section 2): the local term is c h sqrt(LOCAL_T_OVER_W / (t / W)).
+LOCAL_T_OVER_W = 0.01
+
+
+def local_depth(h: Any, W: Any, t: Any) -> Any:
+    """The length (mm) that a load case's local coefficient c multiplies: h sqrt(0.01 W / t),
+    the depth ``h`` (mm) scaled by the square root of :data:`LOCAL_T_OVER_W` over the sheet's
+    ``t`` / ``W`` (mm / mm): the thinner the sheet beside its facets, the more it deforms under
+    the load and support lines (docs/load_cases.md, section 2; docs/validation/load_cases.md,
+    "The local term"). Floats, arrays and intervals."""
+    r = (LOCAL_T_OVER_W * W) / t
+    return h * (r.sqrt() if hasattr(r, "sqrt") else np.sqrt(r))
 
 
 #: Angles are rounded to this many decimals of a degree before the crease directions are

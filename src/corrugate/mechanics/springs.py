@@ -20,7 +20,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.mechanics.moduli import Moduli
-from corrugate.mechanics.offaxis import finite_panel_deficit, shear_spring, shear_springs
+from corrugate.mechanics.offaxis import (
+    finite_panel_deficit,
+    local_depth,
+    shear_spring,
+    shear_springs,
+)
 
 __all__ = ["LayerSprings", "layer_springs"]
 
@@ -39,6 +44,7 @@ class LayerSprings:
     D_T: FloatArray  # twisting (free-panel model, corrugate.mechanics.offaxis)
     V_S: FloatArray  # transverse shear along the creases, per facet length (N/mm; load cases)
     h: FloatArray  # depth of the profile, W cos(alpha/2) for the zig-zag (mm; load cases)
+    local: FloatArray  # the local term's length h sqrt(0.01 W / t) (mm; offaxis.local_depth)
     deficit: FloatArray  # finite-panel deficit of off-axis in-plane K (mechanics.offaxis)
 
 
@@ -76,8 +82,9 @@ def layer_springs(
     For the load cases (:mod:`corrugate.mechanics.load_cases`), the profile's ``web2`` (its mean
     (dz/ds)^2, cos^2(alpha/2) for the zig-zag), ``height`` (mm, W cos(alpha/2) for the zig-zag)
     and ``n`` give the transverse shear spring V_S (:func:`corrugate.mechanics.offaxis.
-    shear_spring`, on the parallel sum), the depth h (mm) and the finite-panel deficit of
-    :func:`corrugate.mechanics.offaxis.finite_panel_deficit`."""
+    shear_spring`, on the parallel sum), the depth h (mm), the local term's length
+    (:func:`corrugate.mechanics.offaxis.local_depth`, with W = pitch / ``sin_half``) and the
+    finite-panel deficit of :func:`corrugate.mechanics.offaxis.finite_panel_deficit`."""
     t_ = _num(t)
     p = np.asarray(pitch, dtype=np.float64)
     pq = p * np.asarray(inv_length_sum, dtype=np.float64)
@@ -88,6 +95,8 @@ def layer_springs(
     t3_12 = t_ * t_ * t_ / 12.0
     web = np.asarray(web2, dtype=np.float64)
     V_S = shear_spring(_num(E), _num(nu), t_, np.asarray(sin_half, dtype=np.float64), web, pq)
+    height_ = np.asarray(height, dtype=np.float64)
+    developed = p / np.asarray(sin_half, dtype=np.float64)  # the facet's developed width W
     with np.errstate(divide="ignore"):
         return LayerSprings(
             K_C=m.Ecx * t_ / pqs,
@@ -97,6 +106,7 @@ def layer_springs(
             K_T=K_T,
             D_T=D_T,
             V_S=V_S,
-            h=np.asarray(height, dtype=np.float64),
+            h=height_,
+            local=np.asarray(local_depth(height_, developed, t_), dtype=np.float64),
             deficit=finite_panel_deficit(np.asarray(n, dtype=np.float64)),
         )

@@ -18,7 +18,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.geometry.layouts import Axis, Circle, Rectangle
-from corrugate.mechanics.offaxis import finite_panel_deficit, shear_spring, shear_springs
+from corrugate.mechanics.offaxis import (
+    finite_panel_deficit,
+    local_depth,
+    shear_spring,
+    shear_springs,
+)
 from corrugate.mechanics.profiles import profile_moduli
 from corrugate.solver.interval import Interval, number
 from corrugate.solver.problem import Candidate, Problem
@@ -43,6 +48,7 @@ class Springs:
     pq: Interval  # p sum_j 1/L_j without holes (corrugate.mechanics.offaxis.Coupon)
     V_S: Interval  # transverse shear spring (N/mm; corrugate.mechanics.load_cases)
     h: Interval  # depth W cos(alpha/2) (mm)
+    local: Interval  # the local term's length h sqrt(0.01 W / t) (mm; offaxis.local_depth)
     deficit: Interval  # finite-panel deficit (corrugate.mechanics.offaxis.finite_panel_deficit)
 
 
@@ -98,6 +104,7 @@ def layer_springs(
         pq,
         Interval.of(V_S),
         zz.height,
+        Interval.of(local_depth(zz.height, Wi, number(t))),
         Interval(d_lo, d_hi),
     )
 
