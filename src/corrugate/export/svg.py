@@ -37,9 +37,10 @@ full label in a row of its own. ``labels=False`` leaves them out, ``marks=False`
 marks out.
 
 The band's marks are drawn in a group Origami Simulator does not import: a ``<g id="band-marks">``
-inside ``<defs>``, shown where it is by one ``<use href="#band-marks">`` (every SVG viewer draws it;
-Origami Simulator's SVG import deletes every child of ``<defs>`` but styles and reads no ``<use>``,
-js/pattern.js of amandaghassaei/OrigamiSimulator). A magenta line it did read was an "undriven"
+inside ``<defs>``, shown where it is by one ``<use>`` naming it by ``href`` and ``xlink:href``
+(browsers read either; Inkscape 1.2.2 drew no marks for ``href`` alone, docs/calibration.md
+"Opened in"). Origami Simulator's SVG import deletes every child of ``<defs>`` but styles and
+reads no ``<use>`` (js/pattern.js of amandaghassaei/OrigamiSimulator). A magenta line it did read was an "undriven"
 crease ending inside a face, which kept the folded sheet from reaching its fold angles (issue 36:
 16-17 deg off, edges strained 3-5 %); ``benchmarks/origami_simulator.py`` folds the fold map in
 the app and checks every crease's angle and the edges' strain.
@@ -91,6 +92,8 @@ __all__ = [
 ]
 
 SVG_NS = "http://www.w3.org/2000/svg"
+#: The XLink namespace of SVG 1.1's ``xlink:href`` (a ``<use>``'s reference as Inkscape 1.2 reads it).
+XLINK_NS = "http://www.w3.org/1999/xlink"
 #: Stroke colour of outlines and holes (Origami Simulator "boundary"; the palette's ``cut``).
 BOUNDARY = LINES["cut"].hex
 #: Stroke colour of each line role (Origami Simulator: cut, mountain, valley; marks in <defs>), from the
@@ -280,8 +283,11 @@ def svg_document(
             if spot.rotation:
                 t_attrs["transform"] = f"rotate({svg_number(-spot.rotation)} {x} {y})"
             ET.SubElement(text_group, "text", t_attrs).text = text
-    if mark_group is not None:  # drawn where it is defined
-        ET.SubElement(root, "use", {"href": "#band-marks", "class": "mark"})
+    if mark_group is not None:  # drawn where it is defined; SVG 2's href and SVG 1.1's xlink:href
+        root.set("xmlns:xlink", XLINK_NS)  # (Inkscape 1.2 draws a <use> by xlink:href only)
+        ET.SubElement(
+            root, "use", {"href": "#band-marks", "xlink:href": "#band-marks", "class": "mark"}
+        )
     if labels:
         root.append(text_group)
     if key is not None:
