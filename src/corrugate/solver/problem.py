@@ -365,7 +365,7 @@ class Problem:
             joint=_joint(spec.joint, layout),
             trust=spec.trust,
             ranges=tuple(ranges),
-            tolerances=WorstCase.of(spec.tolerances),  # nominal without [tolerances]
+            tolerances=WorstCase.of(spec.tolerances),  # the defaults without [tolerances]
         )
 
 
