@@ -886,9 +886,12 @@ class Spec(_Strict):
         """A spec with ``[robust]`` (the probabilistic alternative) and no ``[tolerances]`` of
         its own is certified nominally under it: the worst case is not added on top
         (docs/tolerances.md)."""
-        if isinstance(data, Mapping) and data.get("robust") is not None:
-            if "tolerances" not in data:
-                return {**data, "tolerances": "none"}
+        if (
+            isinstance(data, Mapping)
+            and data.get("robust") is not None
+            and "tolerances" not in data
+        ):
+            return {**data, "tolerances": "none"}
         return data
 
     @property
