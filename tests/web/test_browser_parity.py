@@ -3,9 +3,8 @@
 At 360, 800, 1280 and 1920 px wide windows every visible input and choice is wide enough for the
 text it holds (measured with the page's own font on a canvas) and the page never scrolls
 sideways, whichever layout is chosen, with the answers on show. The design form's defaults are
-the case study ``examples/blimp_gripper.toml``: the spec it posts parses to the example's without
-its ``tolerances = "none"`` (the form states no tolerances: the defaults) and its answer is
-``corrugate design --json`` of that spec; the answer shows the
+the case study ``examples/blimp_gripper.toml``: the spec it posts parses to the example's and
+its answer is ``corrugate design examples/blimp_gripper.toml --json``; the answer shows the
 stiffness table and the runner-ups of that JSON. The tab list follows the WAI-ARIA tabs
 pattern. Every quantity the forms post carries the unit its field shows.
 """
@@ -78,27 +77,10 @@ def problems(page: Any, where: str) -> list[str]:
     return found
 
 
-#: The case study as the form posts it: the example's keys without its ``tolerances = "none"``
-#: (the form has no tolerances, so its certificate covers the default ones, docs/tolerances.md).
-CASE_STUDY_TEXT = re.sub(
-    r'(?m)^tolerances = "none".*\n', "", (EXAMPLES / "blimp_gripper.toml").read_text()
-)
-
-
-def case_study() -> dict[str, Any]:
-    """The example's spec without its ``tolerances`` line (:data:`CASE_STUDY_TEXT`)."""
-    d = example("blimp_gripper.toml")
-    d.pop("tolerances")
-    return d
-
-
 @pytest.fixture(scope="module")
-def cli_answer(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
-    """``corrugate design`` of the case study as the form posts it (:data:`CASE_STUDY_TEXT`),
-    ``--json``, run as a user runs it."""
-    path = tmp_path_factory.mktemp("case") / "blimp_gripper.toml"
-    path.write_text(CASE_STUDY_TEXT)
-    spec = str(path)
+def cli_answer() -> dict[str, Any]:
+    """``corrugate design examples/blimp_gripper.toml --json``, run as a user runs it."""
+    spec = str(EXAMPLES / "blimp_gripper.toml")
     run = subprocess.run(
         [sys.executable, "-m", "corrugate", "design", spec, "--json"],
         capture_output=True,
@@ -167,9 +149,8 @@ def test_the_design_forms_defaults_answer_as_the_cli(
 ) -> None:
     page = open_design_tab(watched, live_server + "/")
     body, answer = design(page)
-    # The form's spec is the example's (with the default tolerances: the form states none), and
-    # so is its answer: the CLI's to the last digit.
-    assert parse_spec(spec_of(body)) == parse_spec(case_study())
+    # The form's spec is the example's, and so is its answer: the CLI's to the last digit.
+    assert parse_spec(spec_of(body)) == parse_spec(example("blimp_gripper.toml"))
     assert without_timings(answer["design"]) == without_timings(cli_answer)
     mass = cli_answer["mass_g"]
     assert f"mass {float(f'{mass:.4g}'):g} g" in (page.text_content("#d-mass") or "")
