@@ -30,6 +30,7 @@ from corrugate.spec.schema import parse_spec
 def _spec(**over: Any) -> dict[str, Any]:
     d: dict[str, Any] = {
         "name": "offaxis",
+        "tolerances": "none",  # nominal: the FE checks the nominal part (docs/tolerances.md)
         "model": "refined",
         "material": {"name": "dura-lar", "thickness": "0.125 mm"},
         "layout": {"shape": "square"},

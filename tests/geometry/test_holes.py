@@ -239,6 +239,7 @@ def test_solver_bounds_hold_with_holes() -> None:
 
     spec = parse_spec(
         {
+            "tolerances": "none",  # nominal: the test checks the model, not the tolerances (docs/tolerances.md)
             "material": {"name": "dura-lar"},
             "layout": {
                 "shape": "circle",
@@ -428,6 +429,7 @@ def _contains(poly: np.ndarray, point: np.ndarray) -> bool:
 
 SPEC = """
 name = "holed-wheel"
+tolerances = "none"  # nominal: the test checks the model, not the tolerances (docs/tolerances.md)
 [material]
 name = "dura-lar"
 [layout]

@@ -126,6 +126,7 @@ def offaxis_specs(draw: Any) -> dict[str, Any]:
     side = draw(st.floats(20, 60))
     return {
         "name": "random",
+        "tolerances": "none",  # nominal: checked against the point model (docs/tolerances.md)
         "material": {"name": "dura-lar", "thickness": "0.125 mm"},
         "variables": {
             "W": {"min": W0, "max": W0 + 8, "step": 0.5},
@@ -189,6 +190,7 @@ def test_support_per_constraint_and_global() -> None:
     import copy
 
     base: dict[str, Any] = {
+        "tolerances": "none",  # nominal: checked against the point model (docs/tolerances.md)
         "material": {"name": "dura-lar", "thickness": "0.125 mm"},
         "variables": {
             "W": {"min": 6, "max": 20, "step": 1},
@@ -399,6 +401,7 @@ def test_certified_rectangle_with_an_off_axis_bound_against_exhaustive_search() 
     under analyze. The bound binds: without it the optimum is 1.197 g with K(15) = 34 N/mm."""
     d: dict[str, Any] = {
         "name": "rect-offaxis",
+        "tolerances": "none",  # nominal: checked against the point model (docs/tolerances.md)
         "layers": "independent",
         "material": {"name": "dura-lar", "thickness": "0.125 mm"},
         "layout": {"shape": "rectangle"},

@@ -234,7 +234,7 @@ def test_the_tabs_take_the_arrow_keys(watched: Watched, live_server: str) -> Non
 #: Spec keys whose values are names or counts, not quantities.
 NOT_QUANTITIES = re.compile(
     r"^(name|model|layers|support|cutter|fold_style|paper|material\.name|layout\.shape"
-    r"|objective\.(minimize|maximize)|variables\.n\.(min|max)|robust\.probability"
+    r"|objective\.(minimize|maximize)|variables\.n\.(min|max)|robust\.probability|tolerances"
     r"|constraints\.\w+\[\d+\]\.(support|test))$"
 )
 #: A number and a unit ("80 mN*m^2", "0 deg", "1.39 g/cm^3").

@@ -182,7 +182,7 @@ class Problem:
     trust: str = "certified"
     ranges: tuple[Constraint, ...] = ()
     # the worst-case tolerances its certificate covers (solver.worst_case, docs/tolerances.md;
-    # nominal unless the spec's [tolerances], whose defaults are not nominal, says otherwise)
+    # the spec's [tolerances]: its defaults unless tolerances = "none", or [robust] alone)
     tolerances: WorstCase = NOMINAL
 
     @property
@@ -365,7 +365,7 @@ class Problem:
             joint=_joint(spec.joint, layout),
             trust=spec.trust,
             ranges=tuple(ranges),
-            tolerances=WorstCase.of(spec.tolerances),  # nominal without [tolerances]
+            tolerances=WorstCase.of(spec.tolerances),  # the defaults without [tolerances]
         )
 
 

@@ -227,9 +227,8 @@ _STATIC: dict[str, KeyDoc] = {
     "tolerances": KeyDoc(
         "",
         "Worst-case half-widths the certificate covers (a table; docs/tolerances.md), or "
-        "'none' for the nominal certificate (the paper's reproduction). Default: nominal (opt-in "
-        "for now, docs/tolerances.md); a [tolerances] table, even empty, certifies every part "
-        "within its keys' defaults.",
+        "'none' for the nominal certificate (the paper's reproduction). Default: the table's "
+        "defaults; a spec with [robust] and no [tolerances] is nominal.",
     ),
     "tolerances.alpha": KeyDoc(
         "deg", "Fold angle, each layer (default 3 deg: hand folding, a stated assumption)."

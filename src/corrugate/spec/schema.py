@@ -18,6 +18,7 @@ Example (the paper's case study, ``examples/blimp_gripper.toml``)::
 
     name = "blimp-gripper"
     model = "refined"
+    tolerances = "none"  # the paper's reproduction: the nominal certificate
     [material]
     name = "dura-lar"
     thickness = "0.125 mm"
@@ -53,6 +54,7 @@ from pydantic import (
     GetJsonSchemaHandler,
     PrivateAttr,
     ValidationError,
+    model_validator,
 )
 from pydantic.json_schema import JsonSchemaValue
 from pydantic_core import CoreSchema, PydanticCustomError
@@ -862,8 +864,9 @@ class Spec(_Strict):
     constraints: ConstraintsSpec = ConstraintsSpec()
     objective: ObjectiveSpec = ObjectiveSpec()
     robust: RobustSpec | None = None
-    # nominal unless the spec has a [tolerances] table (opt-in for now, docs/tolerances.md)
-    tolerances: Tolerances = NO_TOLERANCES
+    # the stated defaults (docs/tolerances.md section 1) unless the spec says otherwise:
+    # tolerances = "none" is nominal; [robust] without [tolerances] is nominal (_robust_nominal)
+    tolerances: Tolerances = TolerancesSpec()
     safety_factor: SafetyFactor = DEFAULT_SAFETY_FACTOR
     joint: Literal["none", "band-edges", "band-flanges"] = "none"
     fabrication: FabricationSpec = FabricationSpec()
@@ -876,6 +879,20 @@ class Spec(_Strict):
     # the user's own materials the spec may name (corrugate.materials.user.spec_materials: the
     # config folder's and those beside the spec file); set by parse_spec, not a key of the spec
     _materials: dict[str, Material] = PrivateAttr(default_factory=dict)
+
+    @model_validator(mode="before")
+    @classmethod
+    def _robust_nominal(cls, data: Any) -> Any:
+        """A spec with ``[robust]`` (the probabilistic alternative) and no ``[tolerances]`` of
+        its own is certified nominally under it: the worst case is not added on top
+        (docs/tolerances.md)."""
+        if (
+            isinstance(data, Mapping)
+            and data.get("robust") is not None
+            and "tolerances" not in data
+        ):
+            return {**data, "tolerances": "none"}
+        return data
 
     @property
     def own_materials(self) -> dict[str, Material]:

@@ -714,6 +714,7 @@ function fillDesign(spec) {
   // study's paper)
   $('d-model').value = 'refined';
   $('d-joint').value = '';  // a spec that names no joint leaves the layers' edges free
+  $('d-tolerances').value = '';  // a spec without [tolerances] is certified within the defaults
   for (const el of designForm.querySelectorAll('select[data-path^="fabrication."]')) el.value = '';  // the machine's
   // what a spec file cannot say is the CLI's default (a shared link's body names them all)
   $('d-cutter').value = 'cameo4-12x12';
