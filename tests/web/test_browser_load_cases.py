@@ -60,7 +60,9 @@ def test_the_chassis_plate_as_a_load_case_row(browser: Any, live_server: str) ->
     page.select_option("#d-layout", "rectangle")
     page.select_option("#d-layering", "independent")
     page.select_option("#d-joint", "band-edges")  # the example bonds the band along the edges
-    page.select_option("#d-tolerances", "")  # the example is certified within the default tolerances
+    page.select_option(
+        "#d-tolerances", ""
+    )  # the example is certified within the default tolerances
     page.fill("#d-side_x-min", "78 mm")
     page.fill("#d-side_x-max", "82 mm")
     page.fill("#d-side_y-min", "120 mm")
