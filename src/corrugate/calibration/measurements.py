@@ -258,26 +258,15 @@ def parse_measurements(data: dict[str, Any]) -> Measurements:
 
 def load_measurements(path: str | Path) -> Measurements:
     """Read and check the measurements file ``path`` (TOML)."""
-    p = Path(path)
+    from corrugate.core.fileio import read_input_text
+
+    # a regular file only, size-capped, strict UTF-8 (read as untrusted input)
+    text = read_input_text(path, "MEASUREMENTS", MAX_BYTES)
     try:
-        with p.open("rb") as fh:
-            raw = fh.read(MAX_BYTES + 1)
-    except OSError as exc:
-        raise InputError(
-            "MEASUREMENTS",
-            str(p),
-            "a readable TOML file",
-            reason=f"cannot be read ({exc.strerror})",
-        ) from None
-    if len(raw) > MAX_BYTES:
-        raise InputError(
-            "MEASUREMENTS", str(p), f"a file of at most {MAX_BYTES} bytes", reason="is too large"
-        )
-    try:
-        data = tomllib.loads(raw.decode("utf-8"))
-    except (UnicodeDecodeError, tomllib.TOMLDecodeError) as exc:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
         msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
         raise InputError(
-            "MEASUREMENTS", str(p), "a valid TOML file", reason=f"is not valid TOML ({msg})"
+            "MEASUREMENTS", str(path), "a valid TOML file", reason=f"is not valid TOML ({msg})"
         ) from None
     return parse_measurements(data)

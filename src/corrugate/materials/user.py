@@ -90,18 +90,11 @@ def _material(key: str, entry: dict[str, Any], shown: str) -> Material:
 
 @lru_cache(maxsize=16)
 def _read(path: str, stamp: tuple[int, int]) -> dict[str, Material]:
+    from corrugate.core.fileio import read_input_text
+
     p = Path(path)
-    raw = p.read_bytes()[: MAX_BYTES + 1]
-    if len(raw) > MAX_BYTES:
-        raise InputError(
-            "materials file", path, f"a file of at most {MAX_BYTES} bytes", reason="is too large"
-        )
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError(
-            "materials file", path, "a UTF-8 text file", reason="is not UTF-8"
-        ) from None
+    # a regular file only, size-capped, strict UTF-8 (read as untrusted input)
+    text = read_input_text(p, "materials file", MAX_BYTES)
     return {k.strip().lower(): _material(k, e, p.name) for k, e in _entries(text, p.name).items()}
 
 
