@@ -176,10 +176,12 @@ def robust_lines(robust: RobustResult, problem: Problem) -> list[str]:
     tightened = [c for c in problem.constraints if robust.factors.get(c.name, 1.0) != 1.0]
     if tightened:
         lines.append("robust: the bounds tightened from the spec's (the certificate is for these):")
+    from corrugate.solver.robust import tighten
+
     for c in tightened:
         f = robust.factors[c.name]
         op = ">=" if c.sense == "min" else "<="
-        new = c.bound * f if c.sense == "min" else c.bound / f
+        new = tighten(c, f).bound
         unit = f" {c.unit}" if c.unit else ""
         lines.append(f"  {c.name}: {op} {fmt(c.bound, 5)} -> {fmt(new, 5)}{unit} (x{f:.4g})")
     if not tightened:

@@ -29,7 +29,7 @@ from corrugate.solver.problem import Constraint, Problem
 from corrugate.solver.solve import Solution, solve
 from corrugate.solver.tolerance import ToleranceReport, Tolerances, monte_carlo
 
-__all__ = ["RobustResult", "robust_solve"]
+__all__ = ["RobustResult", "robust_solve", "tighten"]
 
 #: Rounds of margin inflation before giving up.
 MAX_ROUNDS = 15
@@ -66,7 +66,7 @@ class RobustResult:
                     "name": c.name,
                     "bound": c.bound,
                     "factor": self.factors[c.name],
-                    "tightened": _tighten(c, self.factors[c.name]).bound,
+                    "tightened": tighten(c, self.factors[c.name]).bound,
                 }
                 for c in problem.constraints
             ],
@@ -78,7 +78,9 @@ class RobustResult:
         }
 
 
-def _tighten(c: Constraint, f: float) -> Constraint:
+def tighten(c: Constraint, f: float) -> Constraint:
+    """``c`` with its bound tightened by the factor ``f`` >= 1 (a minimum times f, a maximum
+    over f): the bound a round of margin inflation solves for."""
     return replace(c, bound=c.bound * f if c.sense == "min" else c.bound / f)
 
 
@@ -92,7 +94,7 @@ def robust_solve(
     search: ToleranceReport | None = None
     for rounds in range(1, MAX_ROUNDS + 1):
         tightened = replace(
-            problem, constraints=tuple(_tighten(c, factors[c.name]) for c in problem.constraints)
+            problem, constraints=tuple(tighten(c, factors[c.name]) for c in problem.constraints)
         )
         sol = solve(tightened, explain=False)
         if sol.assembly is None:
