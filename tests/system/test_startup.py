@@ -106,6 +106,55 @@ def test_analyze_needs_no_pydantic_pint_or_scipy() -> None:
     assert "504.5" in done.stdout  # K at eta 0 of the case study, docs/validation/off_axis.md
 
 
+def test_design_without_out_loads_no_writer_matplotlib_or_ezdxf() -> None:
+    """``corrugate design SPEC`` (no ``--out``) prints the answer without importing what only the
+    files need: matplotlib, ezdxf, PIL and the package's writers (issue 39; its CPU is measured by
+    benchmarks/pipeline.py). The answer is there: the case study's optimum, n 9 (the example's
+    header: W 8, n 9, alpha 78, 2.16 g)."""
+    done = _run(
+        "import sys\n"
+        "from corrugate.cli import main\n"
+        "try:\n"
+        "    main(['design', 'examples/blimp_gripper.toml'])\n"
+        "except SystemExit as exc:\n"
+        "    assert exc.code in (0, None), exc.code\n"
+        "heavy = [m for m in ('matplotlib', 'ezdxf', 'PIL', 'corrugate.export.cutfile',\n"
+        "         'corrugate.export.pdf', 'corrugate.export.writers', 'corrugate.report')\n"
+        "         if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+    assert done.returncode == 0, done.stderr
+    assert "blimp-gripper" in done.stdout and "2.16" in done.stdout
+
+
+def test_python_m_corrugate_sets_the_collector_thresholds_before_importing() -> None:
+    """``python -m corrugate`` applies the command's collector thresholds
+    (:data:`corrugate.cli.GC_THRESHOLDS`) before it imports typer, numpy or the package's
+    command line (a spy on the import system records the thresholds when typer is looked up)."""
+    done = _run(
+        "import gc, runpy, sys\n"
+        "class Spy:\n"
+        "    def find_spec(self, name, path=None, target=None):\n"
+        "        if name == 'typer':\n"
+        "            print('at typer', gc.get_threshold())\n"
+        "        return None\n"
+        "sys.meta_path.insert(0, Spy())\n"
+        "sys.argv = ['corrugate', '--version']\n"
+        "try:\n"
+        "    runpy.run_module('corrugate', run_name='__main__', alter_sys=True)\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "from corrugate.cli import GC_THRESHOLDS\n"
+        "print('wanted', GC_THRESHOLDS)\n"
+    )
+    assert done.returncode == 0, done.stderr
+    lines = done.stdout.splitlines()
+    at = next(x for x in lines if x.startswith("at typer"))
+    wanted = next(x for x in lines if x.startswith("wanted"))
+    assert at.removeprefix("at typer") == wanted.removeprefix("wanted")
+    assert at != f"at typer {(700, 10, 10)}"  # Python's default is not what it found
+
+
 def test_model_names_match_the_moduli_table() -> None:
     from corrugate.mechanics.moduli import MODELS
     from corrugate.names import DEFAULT_MODEL, MODEL_NAMES

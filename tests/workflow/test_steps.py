@@ -215,3 +215,49 @@ def test_the_files_steps_errors_take_the_boundarys_names(tmp_path: Path) -> None
         )
     assert caught.value.field == "cutter"
     assert not (tmp_path / "cli").exists() or not any((tmp_path / "cli").iterdir())
+
+
+@pytest.mark.slow
+def test_the_answer_is_told_before_the_files_are_written(tmp_path: Path) -> None:
+    """``Events.answered`` hears the final answer once, while the output folder holds no file
+    yet (issue 39: ``corrugate design`` prints it before the slow files); the run then writes
+    the whole set, ``design.json`` listing every file."""
+    from corrugate.workflow import Events
+
+    out = tmp_path / "out"
+    heard: list[tuple[Run, list[str]]] = []
+
+    def answered(answer: Run) -> None:
+        present = sorted(p.name for p in out.iterdir()) if out.exists() else []
+        heard.append((answer, present))
+
+    done = run(_request(output=Output(out, output_options())), Events(answered=answered))
+    assert len(heard) == 1
+    told, present = heard[0]
+    assert present == [] and told.files == ()  # nothing of the set on disk yet
+    assert told.solution is done.solution and told.payload == done.payload
+    record = json.loads((out / "design.json").read_text(encoding="utf-8"))
+    assert sorted(record["files"]) == sorted(p.name for p in done.files)
+    assert "report.html" in record["files"]
+
+
+def test_a_part_too_large_is_an_error_before_the_answer_is_told(tmp_path: Path) -> None:
+    """The sheet plan is made before the answer is told: a part too large for the machine (the
+    square of at least 20 mm on a 25 x 25 mm bed with 5 mm margins) stops the run with nothing
+    told and nothing written."""
+    from corrugate.workflow import Events
+
+    heard: list[Run] = []
+    options = output_options(get_machine("laser:25x25"))
+    with pytest.raises(PartTooLargeError):
+        run(_request(output=Output(tmp_path / "cli", options)), Events(answered=heard.append))
+    assert heard == []
+    assert not (tmp_path / "cli").exists() or not any((tmp_path / "cli").iterdir())
+
+
+def test_without_files_the_answer_is_told_once() -> None:
+    from corrugate.workflow import Events
+
+    heard: list[Run] = []
+    done = run(_request(), Events(answered=heard.append))
+    assert len(heard) == 1 and heard[0].solution is done.solution and done.files == ()

@@ -32,7 +32,7 @@ if TYPE_CHECKING:
     from corrugate.solver import Problem, Solution
     from corrugate.solver.pareto import ParetoFront
     from corrugate.solver.robust import RobustResult
-    from corrugate.workflow import DesignRequest, FeCheck, FeOptions
+    from corrugate.workflow import DesignRequest, FeCheck, FeOptions, Run
 
 #: ``--refine``'s cap on re-solves (:data:`corrugate.fea.refine.MAX_RESOLVES`, repeated here so
 #: that ``corrugate --help`` does not import the FE; tests/cli check they agree).
@@ -339,28 +339,37 @@ def design_cmd(
     request = _request(spec, out, table, seconds, fe)
     fe_quiet = quiet or (as_json and not sys.stderr.isatty())
     unit = request.problem.objective.quantity.unit
+    console = None if as_json or quiet else make_console()
+
+    def answered(answer: Run) -> None:
+        """The answer, printed as soon as it is final: before its files are written."""
+        sol, robust, checked = answer.solution, answer.robust, answer.fe
+        failed = sol.status == "infeasible" or (robust is not None and not robust.met)
+        if as_json:
+            typer.echo(json.dumps(answer.payload, indent=2))
+        elif quiet:
+            if failed:
+                _print_failure(sol, robust, make_console(stderr=True))
+        else:
+            assert console is not None
+            _print_solution(sol, console, tightened=robust is not None)
+            if checked is not None:
+                _print_fe(checked, console)
+            if robust is not None:
+                for line in robust_lines(robust, request.problem):
+                    console.print(line, markup=False)
+
     with solve_progress(show_progress(quiet, as_json), unit) as shown:
         events = Events(
             fe_progress=lambda: _fe_progress(fe_quiet),
             solved=_nothing if shown is None else shown.stop,
+            answered=answered,
         )
         answer = run(request, events)
     sol, robust, checked = answer.solution, answer.robust, answer.fe
     stopped = sol.status == "not-certified"
     failed = sol.status == "infeasible" or (robust is not None and not robust.met)
-    if as_json:
-        typer.echo(json.dumps(answer.payload, indent=2))
-    elif quiet:
-        if failed:
-            _print_failure(sol, robust, make_console(stderr=True))
-    else:
-        console = make_console()
-        _print_solution(sol, console, tightened=robust is not None)
-        if checked is not None:
-            _print_fe(checked, console)
-        if robust is not None:
-            for line in robust_lines(robust, request.problem):
-                console.print(line, markup=False)
+    if console is not None:
         for path in answer.files:
             console.print(f"wrote {path}")
     if stopped:  # exit 4 (before 1: a robust target cannot be judged on an unfinished search)

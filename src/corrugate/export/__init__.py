@@ -3,17 +3,45 @@ files (:mod:`.writers`), the cut plan (:mod:`.plan`), the 2D writers (SVG, DXF, 
 cut files), FOLD and meshes (:mod:`.files3d`) and ``design.json`` (:mod:`.record`).
 
 The heavy libraries (ezdxf, matplotlib) are imported inside the functions that need them, so
-importing this package costs nothing and the core of corrugate never imports them; install them
-with the ``fab`` extra.
+the core of corrugate never imports them; install them with the ``fab`` extra. The names below
+are imported on first use (PEP 562, as :mod:`corrugate` does), so importing one module of the
+package (``corrugate.export.machines``: ``corrugate design`` without ``--out`` looks its machine
+up there) does not import the writers.
 """
 
-from corrugate.core.fileio import staged
-from corrugate.export.cutfile import cut_dxf_document, cut_paths, cut_svg_document, write_cut_files
-from corrugate.export.dxf import dxf_document, write_dxf
-from corrugate.export.files import FORMATS, write_files
-from corrugate.export.machines import DEFAULT_MACHINE, OPERATIONS, Machine, get_machine
-from corrugate.export.pdf import PAPER_CHOICES, write_pdf, write_tiled_pdf
-from corrugate.export.svg import svg_document, write_svg
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
+
+if _TYPE_CHECKING:
+    from corrugate.core.fileio import staged
+    from corrugate.export.cutfile import (
+        cut_dxf_document,
+        cut_paths,
+        cut_svg_document,
+        write_cut_files,
+    )
+    from corrugate.export.dxf import dxf_document, write_dxf
+    from corrugate.export.files import FORMATS, write_files
+    from corrugate.export.machines import DEFAULT_MACHINE, OPERATIONS, Machine, get_machine
+    from corrugate.export.pdf import PAPER_CHOICES, write_pdf, write_tiled_pdf
+    from corrugate.export.svg import svg_document, write_svg
+
+#: Where each public name lives (a module of this package, or ``core.fileio``).
+_WHERE: dict[str, str] = {
+    "staged": "corrugate.core.fileio",
+    **dict.fromkeys(
+        ("cut_dxf_document", "cut_paths", "cut_svg_document", "write_cut_files"),
+        "corrugate.export.cutfile",
+    ),
+    **dict.fromkeys(("dxf_document", "write_dxf"), "corrugate.export.dxf"),
+    **dict.fromkeys(("FORMATS", "write_files"), "corrugate.export.files"),
+    **dict.fromkeys(
+        ("DEFAULT_MACHINE", "OPERATIONS", "Machine", "get_machine"), "corrugate.export.machines"
+    ),
+    **dict.fromkeys(("PAPER_CHOICES", "write_pdf", "write_tiled_pdf"), "corrugate.export.pdf"),
+    **dict.fromkeys(("svg_document", "write_svg"), "corrugate.export.svg"),
+}
 
 __all__ = [
     "DEFAULT_MACHINE",
@@ -35,3 +63,16 @@ __all__ = [
     "write_svg",
     "write_tiled_pdf",
 ]
+
+
+def __getattr__(name: str) -> _Any:
+    where = _WHERE.get(name)
+    if where is None:
+        raise AttributeError(f"module 'corrugate.export' has no attribute {name!r}")
+    value = getattr(_import_module(where), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -52,6 +52,8 @@ __all__ = [
     "MadeFor",
     "made_for",
     "output_options",
+    "prepare_design",
+    "prepare_design_files",
     "write_design",
     "write_design_files",
 ]
@@ -203,6 +205,22 @@ def write_design_files(
     there); ``report`` is the text of ``report.html`` (see :mod:`corrugate.report`), or a function
     that makes it from the :class:`CutPlan` the cut files are written from, or None.
     """
+    return prepare_design_files(analysis, out_dir, options, extra, report)()
+
+
+def prepare_design_files(
+    analysis: Analysis,
+    out_dir: str | Path,
+    options: OutputOptions | None = None,
+    extra: dict[str, Any] | None = None,
+    report: str | Callable[[CutPlan], str] | None = None,
+) -> Callable[[], list[Path]]:
+    """What :func:`write_design_files` does in two parts: this one makes the parts and their
+    sheet plan (:func:`corrugate.export.plan.cut_plan`: a part too large for the machine, or an
+    impossible perforation, is its error) and the content of ``design.json`` but the list of
+    files; the function it returns writes the files (the slow part: the figures, the PDF, the
+    cut files; issue 39) and returns their paths. ``corrugate design`` prints its answer between
+    the two."""
     from dataclasses import replace
 
     from corrugate.core.fileio import staged
@@ -258,28 +276,32 @@ def write_design_files(
         # written after the fold maps and the assembly steps, from what they drew (Drawings)
         return report(cut) if callable(report) else report
 
-    # one set: the old files or the new ones (fileio); a verification of another design.json,
-    # or one that did not record which (an earlier version's), leaves in the same commit
-    with staged(out, kind="design", supersedes=(VERIFY_KIND,)) as st:
-        job = replace(
-            plan_job(
-                plan,
-                out,
-                opts.style,
-                machine=machine,
-                operations=cut.operations,
-                labels=opts.labels,
-                paper=opts.paper,
-            ),
-            assembly=a,
-            pattern=pattern,
-            drawings=drawn,
-            report=report_text,
-            record=record,
-        )
-        # every entry of the writers registry, in its order; nothing is committed before the last
-        written = write_job(job, WRITERS, st)
-    return written
+    def write() -> list[Path]:
+        # one set: the old files or the new ones (fileio); a verification of another
+        # design.json, or one that did not record which (an earlier version's), leaves in the
+        # same commit
+        with staged(out, kind="design", supersedes=(VERIFY_KIND,)) as st:
+            job = replace(
+                plan_job(
+                    plan,
+                    out,
+                    opts.style,
+                    machine=machine,
+                    operations=cut.operations,
+                    labels=opts.labels,
+                    paper=opts.paper,
+                ),
+                assembly=a,
+                pattern=pattern,
+                drawings=drawn,
+                report=report_text,
+                record=record,
+            )
+            # every entry of the writers registry, in its order; nothing is committed before
+            # the last
+            return write_job(job, WRITERS, st)
+
+    return write
 
 
 def _layer_names(cut: CutPlan) -> dict[str, str]:
@@ -304,17 +326,31 @@ def write_design(
 
     A design gets every file of :func:`write_design_files`, with the design
     answer merged into ``design.json``; an infeasible spec gets ``design.json`` only."""
+    return prepare_design(run, out, options, spec_text)()
+
+
+def prepare_design(
+    run: DesignRun, out: str | Path, options: OutputOptions, spec_text: str
+) -> Callable[[], list[Path]]:
+    """:func:`write_design` in two parts (:func:`prepare_design_files`): the sheet plan and
+    ``design.json``'s content now, its errors (a part too large, a perforation) raised here; the
+    function returned writes the files and returns their paths."""
     from corrugate.export.record import write_record
 
     sol = run.solution
     analysis = sol.analysis
     if analysis is None:
-        return [write_record(run.payload, out)]
+        return lambda: [write_record(run.payload, out)]
 
     def report(cut: CutPlan) -> str:
         from corrugate.report import report_html
 
         return report_html(sol, spec_text, cut)
 
-    with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
-        return write_design_files(analysis, out, options, extra=run.payload, report=report)
+    write = prepare_design_files(analysis, out, options, extra=run.payload, report=report)
+
+    def locked() -> list[Path]:
+        with _FILES_LOCK:  # the report draws the very sheet plan the cut files are written from
+            return write()
+
+    return locked

@@ -6,7 +6,8 @@ The steps, in order: the certified answer of the spec within the request's budge
 (:func:`~corrugate.workflow.solve.solve_spec`); with ``fe``, its FE verification and, with
 ``refine``, the correction loop (:func:`~corrugate.workflow.fe.check_fe`, docs/fea.md section 6);
 with ``output``, every file of the answer written as one set
-(:func:`~corrugate.workflow.files.write_design`) and, after an FE check, ``verify.json``. The
+(:func:`~corrugate.workflow.files.prepare_design`: the sheet plan first, then, once the answer
+is told to :attr:`Events.answered`, the files) and, after an FE check, ``verify.json``. The
 errors of the files step are renamed here, once, to the boundary's names
 (:class:`~corrugate.workflow.request.Names`).
 """
@@ -21,7 +22,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from corrugate.workflow.fe import FeCheck, check_fe, write_verify
-from corrugate.workflow.files import write_design
+from corrugate.workflow.files import prepare_design
 from corrugate.workflow.solve import DesignRun, solve_spec
 
 if TYPE_CHECKING:
@@ -49,17 +50,26 @@ def _no_check(analysis: Analysis) -> None:
     pass
 
 
+def _no_answer(answer: Run) -> None:
+    pass
+
+
 @dataclass(frozen=True)
 class Events:
     """What a boundary hears of a run: ``fe_progress``, called when the FE step starts, makes
     what hears its lines (the command line's ``CalculiX run N (s): ...``, seconds from then);
     ``solved``, called once the search is over (the web job's last search event); ``writing``,
     called with the answer's analysis before its files are written (the web app's own size bound
-    and its ``writing files`` stage)."""
+    and its ``writing files`` stage); ``answered``, called once with the answer (the solution,
+    its FE check; no files yet) as soon as it is final, before its files are written (their
+    sheet plan made and checked first, so a part too large for the machine is still an error
+    before it), so that ``corrugate design`` prints the answer before the slow files (issue
+    39)."""
 
     fe_progress: Callable[[], Callable[[str], None]] = _no_lines
     solved: Callable[[], None] = _nothing
     writing: Callable[[Analysis], None] = _no_check
+    answered: Callable[[Run], None] = _no_answer
 
 
 @dataclass(frozen=True)
@@ -136,11 +146,16 @@ def run(request: DesignRequest, events: Events | None = None) -> Run:
     out = request.output
     analysis = design.solution.analysis
     if out is None or (analysis is None and not out.record_infeasible):
-        return Run(design, checked)
+        answer = Run(design, checked)
+        ev.answered(answer)
+        return answer
     if analysis is not None:
         ev.writing(analysis)
     with output_errors(request.names, request.machine.name):
-        files = write_design(design, out.folder, out.options, request.text)
+        write = prepare_design(design, out.folder, out.options, request.text)
+    ev.answered(Run(design, checked))
+    with output_errors(request.names, request.machine.name):
+        files = write()
     if checked is not None:
         files.append(write_verify(out.folder, checked))
     return Run(design, checked, tuple(files))
