@@ -21,15 +21,16 @@ With two or more trees the trees are interleaved too, and each command's median 
 with the ratio to the first: ``--base REF`` puts a ``git archive`` of ``REF`` (e.g. ``main``),
 unpacked under a temporary folder, first and this checkout's ``src`` second (the before and after
 of a change in one run); ``--src`` names trees by hand. The last lines put each tree's
-``design --out`` median beside the import floor measured in the same run (what importing its
-libraries costs, which no code of ours can remove). The floor is those bare imports as the
-issue wrote them, exit included: ``design`` itself skips two parts of it, the interpreter's
-collection at exit (``corrugate.cli.main`` freezes the collector's objects then) and the
-execution of fontTools' subsetter, which matplotlib's PDF backend imports but uses only for Type
-42 fonts (``corrugate.core.plotting.pdf_pages``). So "above the floor" understates
-``design``'s own work by what those cost in the floor's process: its exit collection (the floor
-with ``gc.freeze()`` as its last statement took 0.2-0.4 s less in three runs of issue 24's
-session) and the subsetter's import (0.13-0.18 s).
+``design --out`` and ``design`` medians beside the import floors measured in the same run (what
+importing their libraries costs, which no code of ours can remove). A floor is those bare
+imports, exit included: ``design`` itself skips three parts of it, the interpreter's collection
+at exit (``corrugate.cli.main`` freezes the collector's objects then), the execution of
+fontTools' subsetter, which matplotlib's PDF backend imports but uses only for Type 42 fonts
+(``corrugate.core.plotting.pdf_pages``), and the help text of matplotlib's artists' ``set``
+methods (``corrugate.core.plotting.lean_import``, 0.08 s; issue 39). So "above the floor"
+understates ``design``'s own work by what those cost in the floor's process: its exit collection
+(the floor with ``gc.freeze()`` as its last statement took 0.2-0.4 s less in three runs of issue
+24's session), the subsetter's import (0.13-0.18 s) and that help text.
 
 Bytecode: this environment sets ``PYTHONDONTWRITEBYTECODE``, which would charge every run for
 compiling the sources again; the trees and the interpreter's site-packages are compiled once with
@@ -53,6 +54,12 @@ ROOT = Path(__file__).resolve().parents[1]
 BLIMP = ROOT / "examples" / "blimp_gripper.toml"
 
 ANALYZE_LIBS = "import numpy, typer, rich.console, rich.table"
+#: The import floor of ``design`` without files (issue 39): its libraries, pydantic's model
+#: machinery and the plugin loader that building a model imports (``importlib.metadata``) included.
+ANSWER_LIBS = (
+    "import numpy, typer, rich.console, rich.table, pydantic.main, pydantic.fields, "
+    "pydantic.plugin._loader"
+)
 #: The import floor of ``design --out`` (issue 24): every library it draws and writes with.
 DESIGN_LIBS = (
     "import numpy, pydantic, typer, rich.console, rich.table, matplotlib.figure, "
@@ -86,9 +93,11 @@ COMMANDS: list[tuple[str, list[str], float | None]] = [
     # can remove: the imports `analyze` and `design --out` need, and nothing else.
     ("import numpy, typer, rich.console (analyze's libraries)", ["-c", ANALYZE_LIBS], None),
     ("import numpy, pydantic, typer, matplotlib, ezdxf (design's)", ["-c", DESIGN_LIBS], None),
+    ("import numpy, typer, rich, pydantic's models (design's answer)", ["-c", ANSWER_LIBS], None),
 ]
-#: Indices in COMMANDS of ``design --out`` and of its import floor.
+#: Indices in COMMANDS of ``design --out`` and of its import floor, of ``design`` and of its.
 DESIGN, DESIGN_FLOOR = 4, 6
+ANSWER, ANSWER_FLOOR = 3, 7
 
 
 def child_cpu(argv: list[str], env: dict[str, str]) -> float:
@@ -168,13 +177,17 @@ def run(trees: list[Path], repeats: int, tmp: Path) -> None:
                 f"{statistics.median(times[(c, t)]) / first:.2f}" for t in range(1, len(trees))
             )
             print(f"  {label:<62} {ratios}")
-    print("\ndesign --out beside its import floor (same run)")
-    for t, tree in enumerate(trees):
-        design = statistics.median(times[(DESIGN, t)])
-        floor = statistics.median(times[(DESIGN_FLOOR, t)])
-        print(
-            f"  {tree!s:<62} {design:.3f} s, floor {floor:.3f} s, {design - floor:.3f} s above it"
-        )
+    for name, (command, lower) in {
+        "design --out": (DESIGN, DESIGN_FLOOR),
+        "design": (ANSWER, ANSWER_FLOOR),
+    }.items():
+        print(f"\n{name} beside its import floor (same run)")
+        for t, tree in enumerate(trees):
+            value = statistics.median(times[(command, t)])
+            floor = statistics.median(times[(lower, t)])
+            print(
+                f"  {tree!s:<62} {value:.3f} s, floor {floor:.3f} s, {value - floor:.3f} s above it"
+            )
 
 
 if __name__ == "__main__":

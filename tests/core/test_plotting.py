@@ -99,3 +99,53 @@ def test_png_bytes_levels_keep_the_pixels() -> None:
     plain = io.BytesIO()
     fig.savefig(plain, format="png")
     assert plain.getvalue() == files[6]
+
+
+#: Draws a figure (line, legend, text, polar axes, contour labels: the report's kinds of artist)
+#: to PNG and prints its SHA-256, whether matplotlib's ``set`` help of Line2D was written, and
+#: whether Artist's method is matplotlib's own again afterwards; ``lean`` as sys.argv[1].
+_LEAN = textwrap.dedent(
+    """
+    import hashlib, inspect, sys
+    import numpy as np
+    from corrugate.core import plotting
+    plotting.lean_import(sys.argv[1] == "lean")
+    fig = plotting.new_figure((4, 3), dpi=80)
+    ax = fig.add_subplot(1, 2, 1)
+    ax.plot([0, 1, 2], [0, 1, 0.5], label="a line")
+    x, y = np.meshgrid(np.linspace(0, 1, 20), np.linspace(0, 1, 20))
+    ax.clabel(ax.contour(x, y, x + y, levels=3), fontsize=6)
+    ax.set_title("title")
+    ax.legend(loc="best")
+    fig.add_subplot(1, 2, 2, projection="polar").plot([0, 1], [1, 2])
+    print(hashlib.sha256(plotting.png_bytes(fig)).hexdigest())
+    import matplotlib.artist, matplotlib.lines
+    print("property list in help:", "linewidth" in (matplotlib.lines.Line2D.set.__doc__ or ""))
+    class Later(matplotlib.artist.Artist):
+        def set_colour_name(self, value):
+            pass
+    print("later class has its signature:", "colour_name" in str(inspect.signature(Later.set)))
+    """
+)
+
+
+@pytest.mark.slow
+def test_lean_import_draws_the_same_pixels_without_the_set_help() -> None:
+    """:func:`~corrugate.core.plotting.lean_import` (the command line's): the same PNG, byte for
+    byte, as matplotlib imported as usual; only the artists' ``set`` help is left out, and a
+    class defined after the import gets its own again (matplotlib's method put back)."""
+    runs = {
+        how: subprocess.run(
+            [sys.executable, "-c", _LEAN, how], capture_output=True, text=True, check=True
+        ).stdout.splitlines()
+        for how in ("lean", "full")
+    }
+    assert runs["lean"][0] == runs["full"][0]  # the same file
+    assert runs["full"][1:] == [
+        "property list in help: True",
+        "later class has its signature: True",
+    ]
+    assert runs["lean"][1:] == [
+        "property list in help: False",
+        "later class has its signature: True",
+    ]
