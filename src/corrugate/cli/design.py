@@ -358,6 +358,7 @@ def design_cmd(
             if robust is not None:
                 for line in robust_lines(robust, request.problem):
                     console.print(line, markup=False)
+        sys.stdout.flush()  # shown now, through a pipe too, not when the files are written
 
     with solve_progress(show_progress(quiet, as_json), unit) as shown:
         events = Events(
