@@ -71,11 +71,17 @@ class Shell:
 
 #: The width of the compliant strip along each crease, as a fraction of the facet's developed
 #: width W: half of it on each facet (:func:`crease_strip`).
-STRIP_FRACTION = 1.0 / 50.0
+STRIP_FRACTION = 1.0 / 10.0
 
 
 def crease_strip(
-    t: float, E: float, nu: float, k: float, width: float, along: tuple[float, float]
+    t: float,
+    E: float,
+    nu: float,
+    k: float,
+    width: float,
+    along: tuple[float, float],
+    W: float = 0.0,
 ) -> Strip:
     """The section of a strip ``width`` mm wide along a crease (direction ``along``) that makes
     it a rotational spring of stiffness ``k`` (N mm/(rad mm)) on a sheet of ``t`` mm, ``E`` MPa,
@@ -93,7 +99,8 @@ def crease_strip(
     it falls linearly to zero at the facet's middle, the strip's rotation is
     1 - (width / W) + (1/3) (width / W)^2 of the crease's, 0.98 at :data:`STRIP_FRACTION`."""
     D = E * t**3 / (12.0 * (1.0 - nu * nu))
-    D_s = width / (1.0 / k + width / D)
+    f = 1.0 - width / W + (width / W) ** 2 / 3.0 if W else 1.0
+    D_s = width * f / (1.0 / k + width * f / D)
     d = 12.0 * D_s / t**3
     return Strip(d / (1.0 + nu * nu * d / E), along)
 
@@ -137,14 +144,13 @@ def section_lines(parts: list[tuple[int, Shell]]) -> list[str]:
             # through the thickness (E_a, isotropic in that plane): Strip, crease_strip
             Ea, E, nu = sh.strip.E_across, sh.E, sh.nu
             ax, ay = sh.strip.along
-            G, Ga = E / (2 * (1 + nu)), Ea / (2 * (1 + nu))
+            G, Ga = E / (2 * (1 + nu)), Ea / 2
             lines += [
                 f"*ORIENTATION,NAME=OC{k},SYSTEM=RECTANGULAR",
                 f"{ay:.10g},{-ax:.10g},0,{ax:.10g},{ay:.10g},0",
                 f"*MATERIAL,NAME=MC{k}",
                 "*ELASTIC,TYPE=ENGINEERING CONSTANTS",
-                f"{Ea:.10g},{E:.10g},{Ea:.10g},{nu * Ea / E:.10g},{nu:.10g},{nu:.10g},"
-                f"{G:.10g},{Ga:.10g}",
+                f"{Ea:.10g},{E:.10g},{Ea:.10g},{nu * Ea / E:.10g},0,0,{G:.10g},{Ga:.10g}",
                 f"{G:.10g}",
                 f"*SHELL SECTION,ELSET=C{k},MATERIAL=MC{k},ORIENTATION=OC{k}",
                 f"{sh.t:.10g}",
@@ -215,7 +221,7 @@ def layer_shell(
     picked = [e for i, e in enumerate(elements) if i % nel_c in strip]
     rest = [e for i, e in enumerate(elements) if i % nel_c not in strip]
     crease = (0.0, 1.0) if chord_axis == 0 else (1.0, 0.0)  # the creases' direction
-    section = crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease)
+    section = crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W)
     return replace(shell, elements=rest, strip_elements=picked, strip=section)
 
 
@@ -321,7 +327,7 @@ def oblique_shells(
                 _rows(pm, ids, "S6", True),
                 None
                 if math.isinf(k)
-                else crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease),
+                else crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W),
             )
         )
         first = int(ids[-1]) + 1
