@@ -41,6 +41,18 @@ class Calibration:
     springback_lo: float = 0.0
     springback_hi: float = 0.0
 
+    def words(self, material_id: str) -> str:
+        """What a certificate covers of it: ``calibrated E 2738-2900 MPa, crease stiffness
+        0.0949-0.103 N*mm/(rad*mm), springback -6.9 to -5.5 deg, from my-dura-lar, 2026-12-06,
+        40 measurements`` (the crease and springback when measured)."""
+        parts = [f"calibrated E {self.E_lo:.4g}-{self.E_hi:.4g} MPa"]
+        if not math.isinf(self.k_lo):
+            hi = "inf" if math.isinf(self.k_hi) else f"{self.k_hi:.3g}"
+            parts.append(f"crease stiffness {self.k_lo:.3g}-{hi} N*mm/(rad*mm)")
+        if self.springback_lo or self.springback_hi:
+            parts.append(f"springback {self.springback_lo:+.1f} to {self.springback_hi:+.1f} deg")
+        return ", ".join(parts) + f", from {self.source(material_id)}"
+
     def source(self, material_id: str) -> str:
         """``my-dura-lar, 2026-12-06, 40 measurements``: where the intervals come from."""
         return f"{material_id}, {self.date}, {self.measurements} measurements"

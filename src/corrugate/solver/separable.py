@@ -151,6 +151,7 @@ def applies(problem: Problem) -> bool:
         or problem.objective.quantity != MASS
         or problem.objective.sense != "min"
         or not problem.tolerances.nominal  # its formulas are the nominal point model's
+        or problem.calibrated  # the same: a calibrated sheet's intervals are bounded over
     ):
         return False
     for c in problem.constraints:
