@@ -27,7 +27,13 @@ import numpy as np
 
 from corrugate.materials.library import Material
 
-__all__ = ["CreaseStripResult", "compliance", "crease_strip_compliance", "crease_strip_deck"]
+__all__ = [
+    "CreaseStripResult",
+    "compliance",
+    "crease_strip_compliance",
+    "crease_strip_deck",
+    "rigid_ends",
+]
 
 
 def compliance(
@@ -41,6 +47,21 @@ def compliance(
     return (
         hinge + (n + 1) * e * e * W / (3 * D * b) + (n + 1) * W * math.sin(half) ** 2 / (E * b * t)
     )
+
+
+def rigid_ends(E: float, nu: float, t: float, b: float, W: float, alpha_deg: float) -> float:
+    """The compliance (mm/N) the FE's rigid end zones take out of :func:`compliance`: each end
+    facet's first strip element (:data:`corrugate.fea.shells.STRIP_FRACTION` W / 2 wide, a =
+    W / 20, with the end edge's node lines) is part of the end's rigid body, so its bending,
+    int_0^a (F e (1 - 2 x / W))^2 dx / (D b) = F e^2 (W / 6) (1 - (1 - 2 a / W)^3) / (D b)
+    per end (F = 1), is not in the FE (the meshes with crease strips; rigid creases mesh no
+    strip, and their end zone is W / along wide)."""
+    from corrugate.fea.shells import STRIP_FRACTION
+
+    e = W * math.cos(math.radians(alpha_deg) / 2) / 2
+    D = E * t**3 / (12 * (1 - nu * nu))
+    a = STRIP_FRACTION * W / 2
+    return 2 * e * e * (W / 6) * (1 - (1 - 2 * a / W) ** 3) / (D * b)
 
 
 def crease_strip_deck(
