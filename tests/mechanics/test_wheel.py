@@ -284,3 +284,29 @@ def test_a_wheel_outside_the_sweep_is_not_certified() -> None:
     inside = solve(_problem(CIRCLE, inplane_stiffness=bounds))
     assert inside.certified and inside.assembly is not None
     assert wheel_warnings(inside.assembly) == []
+
+
+def test_the_wheel_bound_takes_a_compliant_crease_through_k() -> None:
+    """A crease spring (docs/offaxis.md, "Compliant creases") reaches the wheel's bound through
+    K(eta): the solver's value is c(eta) times analyze's K of the disc with the same crease,
+    and below the rigid disc's."""
+    from dataclasses import replace
+
+    p = _problem(inplane_stiffness=[{"min": 1, "eta": e, "test": "wheel"} for e in (0, 45)])
+    soft = replace(PP, crease_stiffness=0.05)
+    cand = replace(p.candidates[0], material=soft)
+    p = replace(p, candidates=(cand,))
+    W, n, a = 8.5, 8, 132.0
+    x = DesignPoints.of(LayerPoints(np.array([float(n)]), np.array([W]), np.array([a])))
+    values = point_values(p, cand, cand, x, Tables(p))
+    hole = Circle(holes=(Hole("circle", (0.0, 0.0), 6.0),))
+    for mat in (soft, PP):
+        disc = Assembly.identical(Layer(W=W, n=n, alpha_deg=a, material=mat, t=0.3), hole)
+        r = analyze(disc, "refined", [0.0, 45.0])
+        for st in r.stiffness:
+            q = Quantity.load_case("K", st.eta_deg, "wheel", "free")
+            want = wheel_factor(st.eta_deg) * st.K
+            if mat is soft:
+                assert values[q][0] == pytest.approx(want, rel=1e-9), st.eta_deg
+            else:
+                assert values[q][0] < want, st.eta_deg

@@ -32,6 +32,7 @@ from corrugate.geometry.layouts import (
 from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.mechanics.behaviours import check_support, get_support
 from corrugate.mechanics.buckling import BucklingEstimate, buckling_bounds
+from corrugate.mechanics.creases import flexibility, is_rigid
 from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.mass import MassBreakdown, assembly_mass, connector_mass, layer_mass
 from corrugate.mechanics.moduli import DEFAULT_MODEL, Moduli, ModuliModel, get_model
@@ -59,9 +60,10 @@ FloatArray = NDArray[np.float64]
 class LayerArrays:
     """Parameters of one layer as arrays that broadcast together (internal units).
 
-    E (MPa), nu, t (mm), W (mm), n (creases), alpha_deg (deg), density (g/mm^3), and the
+    E (MPa), nu, t (mm), W (mm), n (creases), alpha_deg (deg), density (g/mm^3), the
     profile they are folded to (:class:`~corrugate.geometry.profile.ProfileKind`, the zig-zag
-    unless told).
+    unless told) and the creases' flexibility 1 / k (rad/N; 0.0, the default: rigid creases,
+    :mod:`corrugate.mechanics.creases`).
     """
 
     E: ArrayLike
@@ -72,12 +74,21 @@ class LayerArrays:
     alpha_deg: ArrayLike
     density: ArrayLike
     profile_kind: ProfileKind = ZIGZAG
+    crease_flex: ArrayLike = 0.0
 
     @classmethod
     def of(cls, layer: Layer) -> LayerArrays:
         m = layer.material
         return cls(
-            m.E, m.nu, layer.t, layer.W, layer.n, layer.alpha_deg, m.density, layer.profile_kind
+            m.E,
+            m.nu,
+            layer.t,
+            layer.W,
+            layer.n,
+            layer.alpha_deg,
+            m.density,
+            layer.profile_kind,
+            flexibility(m.crease_stiffness),
         )
 
     def profile(self) -> Any:
@@ -164,7 +175,7 @@ def identical_layers(layer1: LayerArrays, layer2: LayerArrays, layout: Layout) -
         return True
     return layer1.profile_kind == layer2.profile_kind and all(
         _same_field(getattr(layer1, f), getattr(layer2, f))
-        for f in ("alpha_deg", "W", "n", "t", "E", "nu", "density")
+        for f in ("alpha_deg", "W", "n", "t", "E", "nu", "density", "crease_flex")
     )
 
 
@@ -187,7 +198,9 @@ def _layer_part(layer: LayerArrays, model: ModuliModel) -> _LayerPart:
     another profile's Xia general theory)."""
     z = layer.profile()
     # scalars as Python floats: the nu polynomials of the moduli cost nothing then
-    m = profile_moduli(z, _num(layer.E), _num(layer.nu), _num(layer.t), model.name)
+    flex = layer.crease_flex
+    flex = flex if is_rigid(flex) else _num(flex)
+    m = profile_moduli(z, _num(layer.E), _num(layer.nu), _num(layer.t), model.name, flex)
     # n as float64: (n + 1) is exact, and float * float avoids a cast loop
     return _LayerPart(z, z.pitch, z.height, z.extent(np.asarray(layer.n, np.float64)), m)
 

@@ -202,6 +202,19 @@ class AssemblyResult:
         return v
 
 
+def with_creases(assembly: Assembly, k: float | None) -> Assembly:
+    """``assembly`` with every layer's material at the crease stiffness ``k`` (N mm/(rad mm),
+    inf: rigid; None: as it is)."""
+    if k is None:
+        return assembly
+    if not (k > 0.0):
+        raise InputError("crease_stiffness", f"{k:g}", "k > 0 N*mm/(rad*mm), or inf (rigid)")
+    layers = [
+        replace(lay, material=replace(lay.material, crease_stiffness=k)) for lay in assembly.layers
+    ]
+    return replace(assembly, layer1=layers[0], layer2=layers[1])
+
+
 def _deck_text(
     a: Assembly,
     parts: list[tuple[int, Shell]],
@@ -300,6 +313,7 @@ def _decks(
     shift: float = 0.0,
     split: bool = False,
     span: float | None = None,
+    crease_stiffness: float | None = None,
 ) -> list[tuple[str, DeckInfo]]:
     """The decks of :func:`assembly_deck`: one, or with ``split`` one per layer (each layer alone
     with its own fixtures; only for parts that are not connected: no band, not a step that ties
@@ -325,7 +339,16 @@ def _decks(
     if bond not in ("edges", "flanges"):
         raise InputError("bond", bond, "edges or flanges")
     mesh = mesh or AssemblyMesh()
-    a = assembly
+    a = with_creases(assembly, crease_stiffness)
+    if not all(math.isinf(lay.material.crease_stiffness) for lay in a.layers) and (
+        connectors or a.layout.holes or a.layout.name == "polygon"
+    ):
+        raise InputError(
+            "crease_stiffness",
+            "finite",
+            "rigid creases (inf) with the connector band, holes or a polygon outline (the "
+            "crease strips are meshed on a plain square or rectangle only)",
+        )
     Lx, Ly = a.Lx, a.Ly
     tol = 1e-7 * max(Lx, Ly)
     principal = principal_axis(eta_deg)
@@ -445,6 +468,7 @@ def assembly_deck(
     stresses: bool = False,
     shift: float = 0.0,
     span: float | None = None,
+    crease_stiffness: float | None = None,
 ) -> tuple[str, DeckInfo]:
     """CalculiX deck of the fixture ``test`` (a name of :mod:`corrugate.fea.fixtures` of kind
     ``coupon`` or ``frame``: ``platens``, ``three-point``, ``four-point``, ``cantilever``,
@@ -465,7 +489,11 @@ def assembly_deck(
     span); the cantilever's clamp holds the panel up to L - span, the free end at L. Along a
     crease direction the structured mesh moves its nearest node lines onto these stations
     (:mod:`corrugate.fea.stations`; the band too), off them the gmsh coupon has them as
-    element edges (docs/fea.md 2.1)."""
+    element edges (docs/fea.md 2.1).
+    ``crease_stiffness`` (N mm/(rad mm); None: each layer's material's, inf for a library
+    sheet): a compliant strip along every crease that turns as a rotational spring of that
+    stiffness (:func:`corrugate.fea.shells.crease_strip`, docs/offaxis.md "Compliant
+    creases"); rigid creases (inf) give the mesh without strips."""
     return _decks(
         assembly,
         test,
@@ -480,6 +508,7 @@ def assembly_deck(
         stresses=stresses,
         shift=shift,
         span=span,
+        crease_stiffness=crease_stiffness,
     )[0]
 
 
@@ -501,6 +530,7 @@ def solve_assembly(
     stresses: bool = False,
     split: bool | None = None,
     span: float | None = None,
+    crease_stiffness: float | None = None,
 ) -> AssemblyResult:
     """Run the fixture ``test`` on the assembly in CalculiX as ``step`` (see the module docstring
     for the model; :func:`assembly_deck` for the fixtures); ``stresses``: also read the shells'
@@ -516,7 +546,8 @@ def solve_assembly(
     step, whose reference node ties the layers) and no ``stresses`` are asked for; True where
     that is not possible is refused (:class:`InputError`).
 
-    ``span``: bending over supports (a free length) that far apart (:func:`assembly_deck`)."""
+    ``span``: bending over supports (a free length) that far apart; ``crease_stiffness``: the
+    creases as rotational springs (:func:`assembly_deck`)."""
     mesh = mesh or AssemblyMesh()
     fixture = get_fixture(test, _KINDS, "test")
     if isinstance(step, Nonlinear):
@@ -547,6 +578,7 @@ def solve_assembly(
         shift=shift,
         split=split,
         span=span,
+        crease_stiffness=crease_stiffness,
     )
     job = fixture.name if not buckling else f"{fixture.name}-{step.name}"
     field: FrdStresses | None = None

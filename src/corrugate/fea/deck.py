@@ -1,7 +1,7 @@
 """The parts of a CalculiX deck every fixture shares: the mesh cards and named node sets.
 
 A deck is the mesh (this module: nodes, S8R / S6 elements, one material and shell section per
-part), the fixture's node sets and boundary conditions (:mod:`corrugate.fea.fixtures`) and the
+part, and one for the crease strips of compliant creases), the fixture's node sets and boundary conditions (:mod:`corrugate.fea.fixtures`) and the
 analysis step (:mod:`corrugate.fea.steps`); docs/fea.md section 2. Units: mm, N, MPa.
 """
 
@@ -47,10 +47,15 @@ def mesh_lines(parts: list[tuple[int, Shell]], heading: str) -> tuple[list[str],
             lines.append(f"{n},{x:.10g},{y:.10g},{z:.10g}")
     e_no = 1
     for k, sh in parts:
-        for etype, elems in (("S8R", sh.elements), ("S6", sh.triangles)):
+        for etype, elems, name in (
+            ("S8R", sh.elements, "L"),
+            ("S6", sh.triangles, "L"),
+            ("S8R", sh.strip_elements, "C"),  # the crease strips (shells.crease_strip)
+            ("S6", sh.strip_triangles, "C"),
+        ):
             if not elems:
                 continue
-            lines.append(f"*ELEMENT,TYPE={etype},ELSET=L{k}")
+            lines.append(f"*ELEMENT,TYPE={etype},ELSET={name}{k}")
             for e in elems:
                 lines.append(f"{e_no}," + ",".join(map(str, e)))
                 e_no += 1

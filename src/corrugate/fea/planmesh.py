@@ -22,7 +22,7 @@ import itertools
 import math
 import threading
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -69,10 +69,12 @@ class Corrugation:
 @dataclass(frozen=True, slots=True)
 class PlanMesh:
     """Nodes (N x 3, mm) and elements of a lifted layer: ``elements[type]`` lists node index rows
-    (0-based into ``xyz``) in CalculiX order, for type ``"S8R"`` and ``"S6"``."""
+    (0-based into ``xyz``) in CalculiX order, for type ``"S8R"`` and ``"S6"``; ``in_strip[type]``
+    whether each lies in a crease's strip (:func:`plan_mesh`'s ``strip``; empty without)."""
 
     xyz: FloatArray
     elements: dict[str, list[list[int]]]
+    in_strip: dict[str, list[bool]] = field(default_factory=dict)
 
 
 Point = tuple[float, float]
@@ -96,10 +98,15 @@ def _clip(poly: list[Point], normal: Point, c: float, sign: float) -> list[Point
 
 
 def _cells(
-    corrugation: Corrugation, A: float, B: float, fixture_y: Sequence[float]
+    corrugation: Corrugation,
+    A: float,
+    B: float,
+    fixture_y: Sequence[float],
+    strip: float = 0.0,
 ) -> list[list[Point]]:
     """The plan of [0, A] x [0, B] cut by the crease lines and the lines y = each of
-    ``fixture_y`` into convex cells (corners counter-clockwise), each inside one facet."""
+    ``fixture_y`` into convex cells (corners counter-clockwise), each inside one facet; with
+    ``strip`` > 0 (mm, in plan) also by the lines ``strip`` on either side of each crease."""
     p, (cx, cy) = corrugation.pitch, corrugation.chord
     corners = np.array([[0.0, 0.0], [A, 0.0], [A, B], [0.0, B]])
     u_c = corrugation.u(corners)
@@ -111,13 +118,15 @@ def _cells(
             raise SolverError(f"fixture line y = {y:g} mm does not cross the specimen")
     rect: list[Point] = [(0.0, 0.0), (A, 0.0), (A, B), (0.0, B)]
     cells: list[list[Point]] = []
+    cuts = (0.0, p) if strip <= 0.0 else (0.0, strip, p - strip, p)
     for k in range(k_lo, k_hi):
-        strip = _clip(rect, (cx, cy), k * p - corrugation.offset, 1.0)
-        strip = _clip(strip, (cx, cy), (k + 1) * p - corrugation.offset, -1.0)
-        for y0, y1 in itertools.pairwise(ys):
-            cell = _clip(_clip(strip, (0.0, 1.0), y0, 1.0), (0.0, 1.0), y1, -1.0)
-            if len(cell) >= 3:
-                cells.append(cell)
+        for u0, u1 in itertools.pairwise(cuts):
+            band = _clip(rect, (cx, cy), k * p + u0 - corrugation.offset, 1.0)
+            band = _clip(band, (cx, cy), k * p + u1 - corrugation.offset, -1.0)
+            for y0, y1 in itertools.pairwise(ys):
+                cell = _clip(_clip(band, (0.0, 1.0), y0, 1.0), (0.0, 1.0), y1, -1.0)
+                if len(cell) >= 3:
+                    cells.append(cell)
     return cells
 
 
@@ -128,6 +137,8 @@ def plan_mesh(
     along: int,
     fixture_y: Sequence[float] = (),
     aspect: float = 1.0,
+    *,
+    strip: float = 0.0,
 ) -> PlanMesh:
     """Mesh the folded layer ``corrugation`` over the plan rectangle [0, A] x [0, B] (mm) with
     about ``along`` elements across each facet's plan width, creases and the lines y = each of
@@ -142,7 +153,11 @@ def plan_mesh(
     A corrugation and its mirror image in x = A / 2 get mirror-image meshes: one whose chord
     points to -x is meshed as its mirror image (chord to +x) and mirrored back. So the two
     layers of a coupon along eta and of one along 90 - eta, mirror images of each other for
-    identical layers, are meshed alike."""
+    identical layers, are meshed alike.
+
+    ``strip`` > 0 (mm, in plan) adds the lines that far on either side of each crease as
+    element edges and marks the elements between them (``in_strip``): the compliant strips of
+    :func:`corrugate.fea.shells.crease_strip`."""
     import gmsh
 
     tol = 1e-7 * max(A, B)
@@ -153,7 +168,7 @@ def plan_mesh(
     # mirror images must reach it as the same numbers
     chord = (round(abs(cx), 12), round(cy, 12))
     offset = round(corrugation.offset + cx * A if mirrored else corrugation.offset, 9)
-    cells = _cells(replace(corrugation, chord=chord, offset=offset), A, B, fixture_y)
+    cells = _cells(replace(corrugation, chord=chord, offset=offset), A, B, fixture_y, strip)
     size = corrugation.pitch / along
     # the affine map P -> P + (1 / aspect - 1) (t . P) t, t the crease direction (unit, normal to
     # the chord), and its inverse P -> P + (aspect - 1) (t . P) t
@@ -242,4 +257,12 @@ def plan_mesh(
     xy = xy[used]
     xyz = np.column_stack([xy, corrugation.z(xy)])
     out = {name: [[remap[i] for i in r] for r in rows] for name, rows in elements.items()}
-    return PlanMesh(xyz, out)
+    if strip <= 0.0:
+        return PlanMesh(xyz, out)
+    marks: dict[str, list[bool]] = {}
+    for name, rows_ in out.items():
+        nc = 4 if name == "S8R" else 3
+        u = np.array([corrugation.u(xy[r[:nc]]).mean() for r in rows_]) if rows_ else np.zeros(0)
+        off = np.abs(u - corrugation.pitch * np.round(u / corrugation.pitch))
+        marks[name] = [bool(d < strip) for d in off]
+    return PlanMesh(xyz, out, marks)

@@ -10,7 +10,8 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -18,9 +19,15 @@ from numpy.typing import NDArray
 from corrugate.core.errors import InputError
 from corrugate.geometry.layer import Assembly, Layer, crease_layer, require_zigzag
 
+if TYPE_CHECKING:
+    from corrugate.fea.planmesh import PlanMesh
+
 __all__ = [
+    "STRIP_FRACTION",
     "Shell",
+    "Strip",
     "check_shift",
+    "crease_strip",
     "layer_shell",
     "oblique_shells",
     "principal_axis",
@@ -33,9 +40,22 @@ FloatArray = NDArray[np.float64]
 
 
 @dataclass(frozen=True, slots=True)
+class Strip:
+    """The section of the compliant strips along a layer's creases (:func:`crease_strip`): the
+    modulus ``E_across`` (MPa) across the crease, in the sheet's plane and through its
+    thickness, and the crease direction ``along`` (a unit vector in the plan's x, y), along
+    which the sheet keeps its E; its shear moduli along the crease keep the sheet's G."""
+
+    E_across: float
+    along: tuple[float, float]
+
+
+@dataclass(frozen=True, slots=True)
 class Shell:
     """Nodes (global ids, coordinates) and connectivity of one part: S8R ``elements`` and, from
-    the gmsh mesher, S6 triangles ``triangles``."""
+    the gmsh mesher, S6 triangles ``triangles``; with compliant creases, the elements of the
+    narrow strips along them (``strip_elements``, ``strip_triangles``) and their section
+    ``strip`` (:class:`Strip`)."""
 
     ids: NDArray[np.int64]
     xyz: FloatArray
@@ -44,6 +64,45 @@ class Shell:
     E: float
     nu: float
     triangles: list[list[int]] = field(default_factory=list)
+    strip_elements: list[list[int]] = field(default_factory=list)
+    strip_triangles: list[list[int]] = field(default_factory=list)
+    strip: Strip | None = None
+
+
+#: The width of the compliant strip along each crease, as a fraction of the facet's developed
+#: width W: half of it on each facet (:func:`crease_strip`).
+STRIP_FRACTION = 1.0 / 10.0
+
+
+def crease_strip(
+    t: float,
+    E: float,
+    nu: float,
+    k: float,
+    width: float,
+    along: tuple[float, float],
+    W: float = 0.0,
+) -> Strip:
+    """The section of a strip ``width`` mm wide along a crease (direction ``along``) that makes
+    it a rotational spring of stiffness ``k`` (N mm/(rad mm)) on a sheet of ``t`` mm, ``E`` MPa,
+    ``nu``: under a moment M per unit length the strip turns by M width / D_s, which is the
+    crease's M / k plus the M width / D of the sheet it replaces, so
+    D_s = width / (1 / k + width / D), D = E t^3 / (12 (1 - nu^2)) (docs/offaxis.md,
+    "Compliant creases"). The strip is orthotropic: E_a across the crease (in the facet's plane
+    and through its thickness, isotropic in that plane), the sheet's E along it, so that only
+    its bending across the crease softens (its in-plane shear and its stretching along the crease
+    are the sheet's; its stretching across is E_a t, whose compliance is below 1e-3 of the
+    crease's). Cylindrical bending gives D_s = E_a t^3 / (12 (1 - nu^2 E_a / E)), so
+    E_a = d / (1 + nu^2 d / E), d = 12 D_s / t^3 (E_a = E for k = inf). The thickness stays t:
+    CalculiX expands a shell node shared by two thicknesses to their mean, so a thinner strip
+    would not be one. The moment is taken uniform over the strip: under the chordwise pull, where
+    it falls linearly to zero at the facet's middle, the strip's rotation is
+    1 - (width / W) + (1/3) (width / W)^2 of the crease's, 0.98 at :data:`STRIP_FRACTION`."""
+    D = E * t**3 / (12.0 * (1.0 - nu * nu))
+    f = 1.0 - width / W + (width / W) ** 2 / 3.0 if W else 1.0
+    D_s = width * f / (1.0 / k + width * f / D)
+    d = 12.0 * D_s / t**3
+    return Strip(d / (1.0 + nu * nu * d / E), along)
 
 
 def quad8_elements(ids: NDArray[np.int64], n1: int, n2: int) -> list[list[int]]:
@@ -70,7 +129,7 @@ def quad8_elements(ids: NDArray[np.int64], n1: int, n2: int) -> list[list[int]]:
 
 def section_lines(parts: list[tuple[int, Shell]]) -> list[str]:
     """The CalculiX material and shell-section cards of each part k (elements in set ``Lk``):
-    its E (MPa), nu and thickness (mm)."""
+    its E (MPa), nu and thickness (mm); and of its crease strips (set ``Ck``) when it has them."""
     lines: list[str] = []
     for k, sh in parts:
         lines += [
@@ -80,6 +139,22 @@ def section_lines(parts: list[tuple[int, Shell]]) -> list[str]:
             f"*SHELL SECTION,ELSET=L{k},MATERIAL=M{k}",
             f"{sh.t:.10g}",
         ]
+        if sh.strip is not None and (sh.strip_elements or sh.strip_triangles):
+            # axis 2 along the crease (the sheet's E, nu, G), axes 1 and 3 across it and
+            # through the thickness (E_a, isotropic in that plane): Strip, crease_strip
+            Ea, E, nu = sh.strip.E_across, sh.E, sh.nu
+            ax, ay = sh.strip.along
+            G, Ga = E / (2 * (1 + nu)), Ea / 2
+            lines += [
+                f"*ORIENTATION,NAME=OC{k},SYSTEM=RECTANGULAR",
+                f"{ay:.10g},{-ax:.10g},0,{ax:.10g},{ay:.10g},0",
+                f"*MATERIAL,NAME=MC{k}",
+                "*ELASTIC,TYPE=ENGINEERING CONSTANTS",
+                f"{Ea:.10g},{E:.10g},{Ea:.10g},{nu * Ea / E:.10g},0,0,{G:.10g},{Ga:.10g}",
+                f"{G:.10g}",
+                f"*SHELL SECTION,ELSET=C{k},MATERIAL=MC{k},ORIENTATION=OC{k}",
+                f"{sh.t:.10g}",
+            ]
     return lines
 
 
@@ -100,11 +175,22 @@ def layer_shell(
     require_zigzag(layer, "FE mesh")
     nf = layer.n + 1
     p, h = layer.pitch, layer.height
-    nel_c = along * nf
+    k = layer.material.crease_stiffness
+    per = along if math.isinf(k) else along + 2  # a strip element at each end of a facet
+    nel_c = per * nf
     if nel_s is None:
         nel_s = multiple * max(1, math.ceil(span / (aspect * layer.W / along) / multiple))
     ni, nj = 2 * nel_c + 1, 2 * nel_s + 1
-    chord = np.linspace(0.0, nf * p, ni)
+    if math.isinf(k):
+        chord = np.linspace(0.0, nf * p, ni)
+    else:  # each facet: a strip, along elements, a strip (STRIP_FRACTION W / 2 wide each)
+        a = STRIP_FRACTION * p / 2
+        inner = np.linspace(a, p - a, along + 1)
+        edges = np.concatenate([[0.0], inner, [p]])
+        corners = np.concatenate([j * p + edges[:-1] for j in range(nf)] + [[nf * p]])
+        chord = np.empty(ni)
+        chord[0::2] = corners
+        chord[1::2] = 0.5 * (corners[:-1] + corners[1:])
     crease_c = np.arange(nf + 1) * p
     crease_z = np.where(np.arange(nf + 1) % 2 == 0, 0.0, h) + z0
     z_of = np.interp(chord, crease_c, crease_z)
@@ -125,9 +211,18 @@ def layer_shell(
             coords.append((xy[0], xy[1], float(z_of[i])))
     elements = quad8_elements(ids, nel_c, nel_s)
     m = layer.material
-    return Shell(
+    shell = Shell(
         np.asarray(order, dtype=np.int64), np.asarray(coords), elements, layer.t, m.E, m.nu
     )
+    if math.isinf(k):
+        return shell
+    # the strips on either side of each interior crease (not at the layer's two free edges)
+    strip = {ei for ei in range(1, nel_c - 1) if ei % per in (0, per - 1)}
+    picked = [e for i, e in enumerate(elements) if i % nel_c in strip]
+    rest = [e for i, e in enumerate(elements) if i % nel_c not in strip]
+    crease = (0.0, 1.0) if chord_axis == 0 else (1.0, 0.0)  # the creases' direction
+    section = crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W)
+    return replace(shell, elements=rest, strip_elements=picked, strip=section)
 
 
 def principal_axis(eta_deg: float) -> int | None:
@@ -213,19 +308,36 @@ def oblique_shells(
     ):
         offset = centre - (chord[0] * A / 2 + chord[1] * B / 2) - shift * layer.pitch
         corr = Corrugation(chord, offset, layer.pitch, layer.height, z0)
-        pm = plan_mesh(corr, A, B, along, fixture_y, aspect)
-        ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
         m = layer.material
+        k = m.crease_stiffness
+        half = 0.0 if math.isinf(k) else STRIP_FRACTION * layer.pitch / 2
+        pm = plan_mesh(corr, A, B, along, fixture_y, aspect, strip=half)
+        ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
+        crease = (-chord[1], chord[0])  # the creases' direction in the test frame
         shells.append(
             Shell(
                 ids,
                 pm.xyz,
-                [[int(ids[i]) for i in r] for r in pm.elements["S8R"]],
+                _rows(pm, ids, "S8R", False),
                 layer.t,
                 m.E,
                 m.nu,
-                [[int(ids[i]) for i in r] for r in pm.elements["S6"]],
+                _rows(pm, ids, "S6", False),
+                _rows(pm, ids, "S8R", True),
+                _rows(pm, ids, "S6", True),
+                None
+                if math.isinf(k)
+                else crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W),
             )
         )
         first = int(ids[-1]) + 1
     return shells
+
+
+def _rows(pm: PlanMesh, ids: NDArray[np.int64], name: str, strip: bool) -> list[list[int]]:
+    """The elements of type ``name`` of ``pm`` in (``strip``) or out of the crease strips, as
+    rows of global node ids ``ids``."""
+    mask = pm.in_strip.get(name) or [False] * len(pm.elements[name])
+    return [
+        [int(ids[i]) for i in r] for r, s in zip(pm.elements[name], mask, strict=True) if s == strip
+    ]

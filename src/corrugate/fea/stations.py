@@ -27,7 +27,7 @@ from __future__ import annotations
 import bisect
 import itertools
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import NDArray
@@ -168,7 +168,7 @@ def morph_layer(sh: Shell, axis: int, phi: StationMap, zig: Zigzag | None) -> Sh
     xyz[:, axis] = phi(sh.xyz[:, axis])
     if zig is not None:
         xyz[:, 2] = zig.z(xyz[:, axis])
-    return Shell(sh.ids, xyz, sh.elements, sh.t, sh.E, sh.nu, sh.triangles)
+    return replace(sh, xyz=xyz)
 
 
 def morph_band(
@@ -199,7 +199,7 @@ def morph_band(
         za = zhi - (zhi - z) * (zhi - d2) / (zhi - d)
     xyz[below, 2] = zb[below]
     xyz[above, 2] = za[above]
-    return Shell(sh.ids, xyz, sh.elements, sh.t, sh.E, sh.nu, sh.triangles)
+    return replace(sh, xyz=xyz)
 
 
 def on_stations(

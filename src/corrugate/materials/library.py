@@ -8,6 +8,7 @@ the values come from. The library is data, not code: edit the TOML file to add a
 
 from __future__ import annotations
 
+import math
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -17,6 +18,7 @@ from typing import Any
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.units import parse_quantity
+from corrugate.materials.calibrated import Calibration, calibration_of, parse_crease_stiffness
 from corrugate.materials.creep import CreepTable
 
 __all__ = [
@@ -44,7 +46,11 @@ class Material:
     Attributes are in internal units: ``E`` in MPa, ``density`` in g/mm^3, thicknesses in mm,
     ``yield_strength`` in MPa (None when not known: an inline material defined by E, nu and
     density only), ``creep`` its creep moduli under a sustained load (None: no creep data, so
-    no sustained load case; docs/load_cases.md section 11).
+    no sustained load case; docs/load_cases.md section 11), ``crease_stiffness`` the rotational
+    stiffness of its creases per unit crease length (N mm/(rad mm); inf, the default: rigid
+    creases, :mod:`corrugate.mechanics.creases`) and ``calibration`` the intervals measured on
+    the user's sheet (:class:`~corrugate.materials.calibrated.Calibration`; None: a datasheet's
+    values).
     """
 
     id: str
@@ -58,6 +64,8 @@ class Material:
     source: str = "defined by the user"
     yield_strength: float | None = None
     creep: CreepTable | None = None
+    crease_stiffness: float = math.inf
+    calibration: Calibration | None = None
     #: Other names that find it (``pet`` for the PET films): how it is looked up, not what it is
     #: (not compared, not written to design.json).
     aliases: tuple[str, ...] = field(default=(), compare=False)
@@ -75,7 +83,16 @@ class Material:
         return self.density / G_PER_CM3
 
     def as_dict(self) -> dict[str, Any]:
-        """A JSON-ready description with units in the keys."""
+        """A JSON-ready description with units in the keys (``crease_stiffness`` and
+        ``calibration`` only when the creases are not rigid, or the material calibrated)."""
+        out = self._as_dict()
+        if not math.isinf(self.crease_stiffness):
+            out["crease_stiffness_N_mm_per_rad_mm"] = self.crease_stiffness
+        if self.calibration is not None:
+            out["calibration"] = self.calibration.as_dict()
+        return out
+
+    def _as_dict(self) -> dict[str, Any]:
         return {
             "id": self.id,
             "name": self.name,
@@ -139,6 +156,11 @@ def material_from_dict(d: Any, field: str = "material") -> Material:
     ):
         raise InputError(f"{field}.thicknesses_mm", repr(raw_ts)[:40], "a list of thicknesses > 0")
     default = number("default_thickness_mm", optional=True)
+    k = number("crease_stiffness_N_mm_per_rad_mm", optional=True)
+    if k is not None and not k > 0:
+        raise InputError(f"{field}.crease_stiffness_N_mm_per_rad_mm", f"{k:g}", "k > 0")
+    cal = d.get("calibration")
+    calibration = None if cal is None else Calibration.from_dict(cal, f"{field}.calibration")
     creep = d.get("creep")
     table: CreepTable | None = None
     if creep is not None:
@@ -169,6 +191,8 @@ def material_from_dict(d: Any, field: str = "material") -> Material:
         source=str(d.get("source", "defined by the user")),
         yield_strength=strength,
         creep=table,
+        crease_stiffness=math.inf if k is None else k,
+        calibration=calibration,
     )
 
 
@@ -239,6 +263,17 @@ def material_from_entry(key: str, entry: dict[str, Any], file: str = "materials.
     if "yield_strength" in entry:
         strength = parse_quantity(entry["yield_strength"], "MPa", where + "yield_strength")
         validate_strength(strength, E, where + "yield_strength")
+    k = math.inf
+    if "crease_stiffness" in entry:
+        k = parse_crease_stiffness(entry["crease_stiffness"], where + "crease_stiffness")
+    calibration = None
+    cal = entry.get("calibration")
+    if cal is not None:
+        if not isinstance(cal, Mapping):
+            raise InputError(where + "calibration", repr(cal)[:40], "a table")
+        calibration, measured = calibration_of(cal, E, where + "calibration.")
+        if "crease_stiffness" not in entry:
+            k = measured
     return Material(
         id=key,
         name=str(entry.get("name", key)),
@@ -255,6 +290,8 @@ def material_from_entry(key: str, entry: dict[str, Any], file: str = "materials.
         source=str(entry.get("source", "")),
         yield_strength=strength,
         creep=_creep(where, E, entry.get("creep")),
+        crease_stiffness=k,
+        calibration=calibration,
         aliases=tuple(str(a).strip().lower() for a in entry.get("aliases", [])),
     )
 

@@ -27,6 +27,7 @@ from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Circle, Rectangle
 from corrugate.geometry.profile import ZIGZAG, ProfileKind
 from corrugate.mechanics.behaviours import Behaviour
+from corrugate.mechanics.creases import flexibility
 from corrugate.mechanics.load_cases import band_walls
 from corrugate.mechanics.offaxis import Coupon
 from corrugate.solver.evaluator import Pair, evaluator_of
@@ -51,7 +52,8 @@ def _layers(cand: Candidate, x: LayerPoints, kind: ProfileKind = ZIGZAG) -> Laye
     t = x.t[:, None] if x.t is not None else cand.t
     n = np.asarray(x.n)[:, None]
     W, alpha = np.asarray(x.W)[:, None], np.asarray(x.alpha)[:, None]
-    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), alpha, m.density, kind)
+    flex = flexibility(m.crease_stiffness)
+    return LayerArrays(E, m.nu, t, W, n.astype(np.int64), alpha, m.density, kind, flex)
 
 
 def same_layers(c1: Candidate, c2: Candidate, x: DesignPoints) -> bool:

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.geometry.layouts import Axis, Circle, Rectangle
+from corrugate.mechanics.creases import flexibility
 from corrugate.mechanics.offaxis import (
     finite_panel_deficit,
     local_depth,
@@ -75,7 +76,11 @@ def layer_springs(
     # closed forms, another profile's Xia general theory, corrugate.mechanics.profiles)
     kind = problem.profile_kind
     zz = kind.of_half(Wi, alpha * 0.5)
-    mod = profile_moduli(zz, number(m.E), float(m.nu), number(t), problem.model)
+    # the creases' flexibility 1 / k (rad/N): 0.0 for rigid creases, an interval over a
+    # calibrated k's (solver.tolerance_box.sheet)
+    k = m.crease_stiffness
+    flex = k.reciprocal() if isinstance(k, Interval) else flexibility(k)
+    mod = profile_moduli(zz, number(m.E), float(m.nu), number(t), problem.model, flex)
     q_lo, q_hi = Q.bounds(n[0], n[1])  # Q(n) = S sum_j 1/L_j
     if problem.identical:  # p q = Q(n) / (n + 1) exactly (S = (n + 1) p)
         pq = Interval(q_lo / (n[1] + 1), q_hi / (n[0] + 1))

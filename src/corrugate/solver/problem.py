@@ -186,6 +186,24 @@ class Problem:
     tolerances: WorstCase = NOMINAL
 
     @property
+    def calibrated(self) -> bool:
+        """Whether a candidate sheet is a calibrated material: its certificate bounds every
+        directional quantity over the measured intervals (:mod:`~.tolerance_box`)."""
+        return any(c.material.calibration is not None for c in self.candidates)
+
+    @property
+    def calibration_words(self) -> str:
+        """``calibrated E ... from my-dura-lar, 2026-12-06, 40 measurements`` for each calibrated
+        material of the candidates ('' for none; :meth:`corrugate.materials.calibrated.
+        Calibration.words`)."""
+        seen: dict[str, str] = {}
+        for c in self.candidates:
+            cal = c.material.calibration
+            if cal is not None and c.material.id not in seen:
+                seen[c.material.id] = cal.words(c.material.id)
+        return "; ".join(seen.values())
+
+    @property
     def quantities(self) -> tuple[Quantity, ...]:
         """The quantities of the constraints, then the objective's."""
         return (*(c.quantity for c in self.constraints), self.objective.quantity)

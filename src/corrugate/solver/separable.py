@@ -69,6 +69,7 @@ from numpy.typing import NDArray
 from corrugate.geometry.layouts import Rectangle, Square, length_sum
 from corrugate.geometry.profile import ZigZag
 from corrugate.mechanics.behaviours import get_support
+from corrugate.mechanics.creases import creased_moduli, flexibility
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
 from corrugate.solver.points import DesignPoints, LayerPoints
@@ -150,6 +151,7 @@ def applies(problem: Problem) -> bool:
         or problem.objective.quantity != MASS
         or problem.objective.sense != "min"
         or not problem.tolerances.nominal  # its formulas are the nominal point model's
+        or problem.calibrated  # the same: a calibrated sheet's intervals are bounded over
     ):
         return False
     for c in problem.constraints:
@@ -257,6 +259,8 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
     g, n, E, B = g[idx], n[idx], E[idx], B[idx]
     from_sc: Any = get_model(problem.model).from_sc  # (scalar material, arrays of the grid)
     m = from_sc(float(cand.material.E), float(cand.material.nu), float(t), W_g, s, cc)
+    # compliant creases (rigid: m itself), as evaluate's profile_moduli puts them
+    m = creased_moduli(m, flexibility(cand.material.crease_stiffness), float(t), W_g, s, cc)
 
     def per(x: object) -> FloatArray:
         arr = np.asarray(x, dtype=np.float64)

@@ -247,6 +247,8 @@ class Solution:
         head = "certified" if self.certified else "not certified"
         if not p.tolerances.nominal:  # every directional bound over the tolerance box
             head += f" {p.tolerances.sentence}"
+        if p.calibrated:  # and over the measured intervals (docs/calibration.md 9)
+            head += f" ({p.calibration_words})"
         head += f" under the {p.model} model"
         if self.extrapolated:
             head = (
@@ -343,6 +345,7 @@ class Solution:
             "certified": self.certified,
             "certificate": self.certificate,
             "tolerances": p.tolerances.as_dict(),
+            **({"calibration": p.calibration_words} if p.calibrated else {}),
             "gap": self.gap if math.isfinite(self.gap) else None,  # JSON: null, unbounded
             "model": p.model,
             "objective": {

@@ -27,11 +27,13 @@ the mass and the making stay nominal (docs/tolerances.md says why).
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import numpy as np
 from numpy.typing import NDArray
 
+from corrugate.materials.library import Material
 from corrugate.solver.context import OverBoxes
 from corrugate.solver.interval import Interval
 from corrugate.solver.points import DesignPoints, LayerPoints
@@ -50,23 +52,57 @@ _ALPHA_MIN, _ALPHA_MAX = 1e-3, 180.0 - 1e-3
 
 def covered(problem: Problem, q: Quantity) -> bool:
     """Whether ``q`` is bounded over the tolerance box (a directional quantity under
-    tolerances that are not nominal)."""
-    return q.eta is not None and not problem.tolerances.nominal
+    tolerances that are not nominal, or on a calibrated sheet)."""
+    return q.eta is not None and (not problem.tolerances.nominal or problem.calibrated)
+
+
+def _E_range(m: Material, tol: WorstCase) -> tuple[float, float]:
+    """E's interval (MPa): a calibrated material's measured one (docs/calibration.md 9), else
+    the tolerance's E (1 -+ dE)."""
+    cal = m.calibration
+    if cal is not None:
+        return cal.E_lo, cal.E_hi
+    return m.E * (1 - tol.E), m.E * (1 + tol.E)
+
+
+def _k_low(m: Material) -> float:
+    """The softest crease stiffness (N mm/(rad mm)) of a material: its calibrated interval's
+    low end, else its own."""
+    cal = m.calibration
+    return m.crease_stiffness if cal is None or math.isinf(cal.k_lo) else cal.k_lo
+
+
+def alpha_offsets(problem: Problem, c: Candidate) -> tuple[float, float]:
+    """How far below and above a design's fold angle (deg) its tolerance box reaches on the
+    sheet ``c``: -da and +da, each moved by a calibrated springback's interval (the folds take
+    alpha + springback; docs/calibration.md 9)."""
+    da = half_widths(problem)[1]
+    cal = c.material.calibration
+    if cal is None:
+        return -da, da
+    return cal.springback_lo - da, cal.springback_hi + da
 
 
 def sheet(c: Candidate, tol: WorstCase, pieces: int = 1, rows: int = 1) -> Candidate:
     """The sheet ``c`` with E (MPa) and t (mm) as intervals over the tolerances (floats when a
     half-width is 0); with ``pieces`` > 1, t's interval cut into that many equal pieces, each
-    repeated for ``rows`` boxes (an array of ``pieces * rows`` intervals, piece by piece)."""
+    repeated for ``rows`` boxes (an array of ``pieces * rows`` intervals, piece by piece). A
+    calibrated material takes its measured E interval instead of the tolerance's, and its
+    crease stiffness's interval (:mod:`corrugate.materials.calibrated`)."""
     m = c.material
-    E = Interval(m.E * (1 - tol.E), m.E * (1 + tol.E)) if tol.E else m.E
+    E_lo, E_hi = _E_range(m, tol)
+    E: object = Interval(E_lo, E_hi) if E_lo < E_hi else m.E
+    cal = m.calibration
+    k: object = m.crease_stiffness
+    if cal is not None and not math.isinf(cal.k_lo):
+        k = Interval(cal.k_lo, cal.k_hi)
     t: object = c.t
     if tol.t:
         edges = np.linspace(c.t * (1 - tol.t), c.t * (1 + tol.t), pieces + 1)
         t = Interval(np.repeat(edges[:-1], rows), np.repeat(edges[1:], rows))
         if pieces == 1 and rows == 1:
             t = Interval(float(edges[0]), float(edges[1]))
-    return replace(c, material=replace(m, E=E), t=t)  # type: ignore[arg-type]
+    return replace(c, material=replace(m, E=E, crease_stiffness=k), t=t)  # type: ignore[arg-type]
 
 
 #: The least half-width of a continuous W or alpha, relative to its range: with a zero
@@ -92,36 +128,59 @@ def _clip(W: FloatArray, a: FloatArray) -> tuple[FloatArray, FloatArray]:
     return np.maximum(W, 1e-6), np.clip(a, _ALPHA_MIN, _ALPHA_MAX)
 
 
+def _offsets(
+    problem: Problem, cands: tuple[Candidate, Candidate] | None, i: int
+) -> tuple[float, float]:
+    """:func:`alpha_offsets` of layer ``i``'s sheet (-da, +da without ``cands``)."""
+    if cands is None:
+        da = half_widths(problem)[1]
+        return -da, da
+    return alpha_offsets(problem, cands[min(i, 1)])
+
+
 def widened(
-    problem: Problem, lo: DesignPoints, hi: DesignPoints, inner: bool = False
+    problem: Problem,
+    lo: DesignPoints,
+    hi: DesignPoints,
+    inner: bool = False,
+    cands: tuple[Candidate, Candidate] | None = None,
 ) -> tuple[DesignPoints, DesignPoints]:
     """The boxes [lo, hi] widened by the tolerances of ``problem``, every layer stored (so
     identical layers vary independently); ``inner``: the boxes every tolerance box of a point
-    of [lo, hi] contains, [hi - d, lo + d] (n one value, widths at most 2 d)."""
-    dW, da = half_widths(problem)
+    of [lo, hi] contains, [hi - d, lo + d] (n one value, widths at most 2 d). ``cands``: the
+    layers' sheets, whose calibrated springback moves alpha's (:func:`alpha_offsets`)."""
+    dW = half_widths(problem)[0]
     count = lo.count
     lows, highs = [], []
     for i in range(count):
         a, b = lo.layer(i), hi.layer(i)
+        off_lo, off_hi = _offsets(problem, cands, i)
         aW, bW = np.asarray(a.W, np.float64), np.asarray(b.W, np.float64)
         aa, ba = np.asarray(a.alpha, np.float64), np.asarray(b.alpha, np.float64)
         n = np.asarray(a.n, np.float64)
-        low = _clip(bW - dW, ba - da) if inner else _clip(aW - dW, aa - da)
-        high = _clip(aW + dW, aa + da) if inner else _clip(bW + dW, ba + da)
+        low = _clip(bW - dW, ba + off_lo) if inner else _clip(aW - dW, aa + off_lo)
+        high = _clip(aW + dW, aa + off_hi) if inner else _clip(bW + dW, ba + off_hi)
         lows.append(LayerPoints(n, *low))
         highs.append(LayerPoints(n if inner else np.asarray(b.n, np.float64), *high))
     return DesignPoints(tuple(lows), count), DesignPoints(tuple(highs), count)
 
 
-def _inner_rows(problem: Problem, lo: DesignPoints, hi: DesignPoints) -> NDArray[np.intp]:
-    """The boxes whose inner box exists: n one value and W, alpha at most 2 d wide."""
-    dW, da = half_widths(problem)
+def _inner_rows(
+    problem: Problem,
+    lo: DesignPoints,
+    hi: DesignPoints,
+    cands: tuple[Candidate, Candidate] | None = None,
+) -> NDArray[np.intp]:
+    """The boxes whose inner box exists: n one value and W, alpha at most as wide as their
+    tolerance boxes (2 d, alpha's with a springback's interval)."""
+    dW = half_widths(problem)[0]
     ok = np.ones(len(lo), dtype=bool)
     for i in range(lo.count):
         a, b = lo.layer(i), hi.layer(i)
+        off_lo, off_hi = _offsets(problem, cands, i)
         ok &= np.asarray(a.n) == np.asarray(b.n)
         ok &= np.asarray(b.W, np.float64) - np.asarray(a.W, np.float64) <= 2 * dW
-        ok &= np.asarray(b.alpha, np.float64) - np.asarray(a.alpha, np.float64) <= 2 * da
+        ok &= np.asarray(b.alpha, np.float64) - np.asarray(a.alpha, np.float64) <= off_hi - off_lo
     return np.flatnonzero(ok)
 
 
@@ -171,20 +230,34 @@ _SHIFTS = ((-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0))
 
 
 def _low(c: Candidate, tol: WorstCase) -> Candidate:
-    """The sheet ``c`` at E (1 - dE) and t (1 - dt): a corner of its tolerances."""
+    """The sheet ``c`` at its lowest E (E (1 - dE), or a calibrated E's low end), t (1 - dt) and
+    its softest crease: a corner of its tolerances."""
     m = c.material
-    return replace(c, material=replace(m, E=m.E * (1 - tol.E)), t=c.t * (1 - tol.t))
+    low = replace(m, E=_E_range(m, tol)[0], crease_stiffness=_k_low(m))
+    return replace(c, material=low, t=c.t * (1 - tol.t))
 
 
-def _shift(problem: Problem, x: DesignPoints, sW: float, sa: float) -> DesignPoints:
-    """Every stored layer of ``x`` with W moved by ``sW`` dW and alpha by ``sa`` da (the
-    tolerances'), clipped as :func:`widened` clips."""
+def _shift(
+    problem: Problem,
+    x: DesignPoints,
+    sW: float,
+    sa: float,
+    cands: tuple[Candidate, Candidate] | None = None,
+) -> DesignPoints:
+    """Every stored layer of ``x`` with W moved by ``sW`` dW and alpha to the low (``sa`` < 0)
+    or high end of its tolerance box (:func:`alpha_offsets`; +-da without ``cands``), clipped
+    as :func:`widened` clips."""
     tol = problem.tolerances
     layers = []
-    for lay in x.layers:
+    for i, lay in enumerate(x.layers):
+        cal = None if cands is None else cands[min(i, 1)].material.calibration
+        if cal is None:
+            da = sa * tol.alpha
+        else:  # inside the box's alpha + springback -+ da (alpha_offsets)
+            da = cal.springback_lo - tol.alpha if sa < 0 else cal.springback_hi + tol.alpha
         W, a = _clip(
             np.asarray(lay.W, np.float64) + sW * tol.W,
-            np.asarray(lay.alpha, np.float64) + sa * tol.alpha,
+            np.asarray(lay.alpha, np.float64) + da,
         )
         layers.append(LayerPoints(np.asarray(lay.n, np.float64), W, a))
     return x.with_layers(*layers)
@@ -213,20 +286,23 @@ class ToleranceBounds:
     ) -> None:
         self.point = lo is hi
         pieces = T_PIECES if problem.tolerances.t else 1
-        wlo, whi = widened(problem, lo, hi)
+        cands = (c1, c2)
+        wlo, whi = widened(problem, lo, hi, cands=cands)
         self.outer = _Pieces(problem, c1, c2, wlo, whi, tables, pieces if self.point else 1)
         self.inner: _Pieces | None = None
         self.sel = np.zeros(0, dtype=np.intp)
         self.shifted: list[OverBoxes] = []
         if not self.point:
-            self.sel = _inner_rows(problem, lo, hi)
+            self.sel = _inner_rows(problem, lo, hi, cands)
             if self.sel.size:
-                ilo, ihi = widened(problem, lo.take(self.sel), hi.take(self.sel), inner=True)
+                ilo, ihi = widened(
+                    problem, lo.take(self.sel), hi.take(self.sel), inner=True, cands=cands
+                )
                 self.inner = _Pieces(problem, c1, c2, ilo, ihi, tables, pieces)
             free = replace(problem, identical=False) if problem.identical else problem
             low1, low2 = _low(c1, problem.tolerances), _low(c2, problem.tolerances)
             for shift in _SHIFTS:
-                slo, shi = (_shift(problem, b, *shift) for b in (lo, hi))
+                slo, shi = (_shift(problem, b, *shift, cands) for b in (lo, hi))
                 self.shifted.append(OverBoxes(free, low1, low2, slo, shi, tables))
 
     def bounds(self, q: Quantity) -> tuple[FloatArray, FloatArray]:
@@ -258,7 +334,7 @@ def corners(problem: Problem, c1: Candidate, c2: Candidate, x: DesignPoints) -> 
     lows = (_low(c1, tol), _low(c2, tol))
     out = []
     for shift in _SHIFTS:
-        moved = _shift(problem, x, *shift)
+        moved = _shift(problem, x, *shift, (c1, c2))
         layers = [
             replace(lay, E=np.full(k, lows[i].material.E), t=np.full(k, float(lows[i].t)))
             for i, lay in enumerate(moved.layers)

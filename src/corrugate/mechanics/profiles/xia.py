@@ -23,6 +23,7 @@ from typing import Any, Literal
 
 from corrugate.core.errors import InputError
 from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
+from corrugate.mechanics.creases import creased_moduli, is_rigid
 from corrugate.mechanics.moduli import Moduli, get_model
 
 __all__ = [
@@ -127,17 +128,32 @@ def general_moduli(
     return Moduli(A11 * r * E / A22, r * E, 12 * D11 * rest / (t3 * D22), 12 * rest / t3)
 
 
-def profile_moduli(profile: Profile, E: Any, nu: Any, t: Any, model: str) -> Moduli:
+def profile_moduli(
+    profile: Profile, E: Any, nu: Any, t: Any, model: str, flex: Any = 0.0
+) -> Moduli:
     """The four moduli (MPa) of a sheet (E MPa, nu, t mm) folded to ``profile``, in the variant
     ``model``: the zig-zag's closed forms (:meth:`corrugate.mechanics.moduli.ModuliModel.of_profile`,
     the numbers ``analyze`` prints), any other profile's from Xia's general theory with the
     variant's membrane (:data:`MEMBRANES`; :func:`general_moduli`, docs/theory.md section 3.1);
     floats, arrays or intervals (the solver bounds a layer's moduli over boxes with it,
     :mod:`corrugate.solver.interval_springs`). The refined closed form
-    keeps Xia's Ebx, so for the zig-zag the general theory's uniaxial Ebx is a little lower."""
+    keeps Xia's Ebx, so for the zig-zag the general theory's uniaxial Ebx is a little lower.
+
+    ``flex`` = 1 / k (rad/N) puts a compliant crease of stiffness k (N mm/(rad mm)) at every
+    crease of the zig-zag (:func:`corrugate.mechanics.creases.creased_moduli`; 0.0, rigid: the
+    moduli above unchanged); another profile takes rigid creases only."""
     variant = get_model(model)
     if isinstance(profile, ZigZag):
-        return variant.of_profile(E, nu, t, profile)
+        return creased_moduli(
+            variant.of_profile(E, nu, t, profile), flex, t, profile.W, profile.s, profile.c
+        )
+    if not is_rigid(flex):
+        raise InputError(
+            "material.crease_stiffness",
+            "finite",
+            f"rigid creases (inf) for a {type(profile).__name__} profile",
+            reason="is modelled for the zig-zag only",
+        )
     if variant.name not in MEMBRANES:
         raise InputError(
             "model",
