@@ -17,7 +17,9 @@ each a different spec: ``examples/blimp_gripper.toml`` with its flexural-rigidit
 
 For each it prints the designs per second, the median and 95th-percentile seconds of one
 request, how many cores the server (with its worker processes) kept busy meanwhile (its CPU
-seconds per wall second: what a shared, loaded machine left it) and its CPU seconds per design.
+seconds per wall second: what a shared, loaded machine left it) and its CPU seconds per design,
+of which the server's own process (the event loop: HTTP, validation, JSON) and the solver
+(search and explanation, the answers' ``solver.budget.used_cpu_seconds``).
 Designs per second = cores busy / CPU seconds per design: on a loaded machine the first is what
 the machine gave, the second what the code costs.
 
@@ -98,36 +100,40 @@ def _post(url: str, body: bytes | None) -> tuple[int, dict[str, object]]:
         return response.status, json.loads(response.read())
 
 
-def check_answer(answer: dict[str, object], status: int, base: str, files: bool) -> None:
+def check_answer(answer: dict[str, object], status: int, base: str, files: bool) -> float:
     """Fail unless the answer is a certified optimum with files (or where to make them, then
-    made when ``files``)."""
+    made when ``files``); the solver's CPU seconds (search and explanation: the answer's
+    ``solver.budget.used_cpu_seconds``)."""
     design = answer["design"]
     assert isinstance(design, dict)
     if status != 200 or design["status"] != "optimal":
         raise RuntimeError(f"unexpected answer: {status} {design['status']}")
+    solver = float(design["solver"]["budget"]["used_cpu_seconds"])
     url = answer.get("files_url")
     if isinstance(url, str):
         if files:
             code, made = _post(base + url, None)
             if code != 200 or not made.get("files"):
                 raise RuntimeError(f"unexpected files: {code} {made}")
-        return
+        return solver
     result = answer.get("result")
     if not isinstance(result, dict) or not result["files"]:
         raise RuntimeError("the design has no files")
+    return solver
 
 
-def post_design(base: str, files: bool) -> float:
-    """Post one design (a new spec); the seconds it took (its files' too with ``files``)."""
+def post_design(base: str, files: bool) -> tuple[float, float]:
+    """Post one design (a new spec); the seconds it took (its files' too with ``files``) and
+    its solver's CPU seconds."""
     start = time.perf_counter()
     status, answer = _post(f"{base}/api/design", next_body())
-    check_answer(answer, status, base, files)
-    return time.perf_counter() - start
+    solver = check_answer(answer, status, base, files)
+    return time.perf_counter() - start, solver
 
 
-def post_design_job(base: str, files: bool) -> float:
+def post_design_job(base: str, files: bool) -> tuple[float, float]:
     """Run one design (a new spec) as a job (``POST /api/jobs/design``, then its server-sent
-    events until the job ends); the seconds it took."""
+    events until the job ends); the seconds it took and its solver's CPU seconds."""
     start = time.perf_counter()
     status, job = _post(f"{base}/api/jobs/design", next_body())
     if status != 202:
@@ -146,8 +152,8 @@ def post_design_job(base: str, files: bool) -> float:
     answer = final.get("result") if final else None
     if not isinstance(answer, dict):
         raise RuntimeError(f"unexpected end of the job: {kind} {final}")
-    check_answer(answer, 200, base, files)
-    return time.perf_counter() - start
+    solver = check_answer(answer, 200, base, files)
+    return time.perf_counter() - start, solver
 
 
 def wait_until_up(base: str, server: subprocess.Popen[bytes], seconds: float = 180.0) -> None:
@@ -164,9 +170,10 @@ def wait_until_up(base: str, server: subprocess.Popen[bytes], seconds: float = 1
     raise RuntimeError("the server did not start")
 
 
-def tree_cpu_seconds(root: int) -> float | None:
+def tree_cpu_seconds(root: int) -> tuple[float, float] | None:
     """CPU seconds (user + system) used so far by process ``root`` and all its descendants (the
-    server, the forkserver and the worker processes); None where /proc is missing."""
+    server, the forkserver and the worker processes), and by ``root`` alone (the server's event
+    loop: HTTP, validation, JSON); None where /proc is missing."""
     proc = Path("/proc")
     if not proc.is_dir():
         return None
@@ -190,19 +197,23 @@ def tree_cpu_seconds(root: int) -> float | None:
             p = parent.get(p, 0)
         if p == root:
             total += ticks[pid]
-    return total / os.sysconf("SC_CLK_TCK")
+    tick = os.sysconf("SC_CLK_TCK")
+    return total / tick, ticks.get(root, 0) / tick
 
 
 @dataclass(frozen=True)
 class Measured:
     """One measurement: designs per second, median and 95th-percentile request seconds, the
-    server's CPU seconds per wall second (None without /proc) and per design."""
+    server's CPU seconds per wall second (None without /proc) and per design, of which its own
+    process (the event loop) and the solver (the answers' own count)."""
 
     rate: float
     median_s: float
     p95_s: float
     busy: float | None
     cpu_per_design_s: float | None
+    server_per_design_s: float | None
+    solver_per_design_s: float
 
 
 def percentile(values: list[float], q: float) -> float:
@@ -219,6 +230,7 @@ def throughput(
 ) -> Measured:
     """``clients`` clients sending ``per_client`` designs each (every one a new spec)."""
     times: list[float] = []
+    solver: list[float] = []
     errors: list[BaseException] = []
     lock = threading.Lock()
     send = post_design_job if jobs else post_design
@@ -226,9 +238,10 @@ def throughput(
     def client() -> None:
         try:
             for _ in range(per_client):
-                took = send(base, files)
+                took, cpu = send(base, files)
                 with lock:
                     times.append(took)
+                    solver.append(cpu)
         except BaseException as exc:  # reported below
             errors.append(exc)
 
@@ -243,13 +256,16 @@ def throughput(
     cpu1 = tree_cpu_seconds(server)
     if errors:
         raise errors[0]
-    cpu = None if cpu0 is None or cpu1 is None else cpu1 - cpu0
+    cpu = None if cpu0 is None or cpu1 is None else cpu1[0] - cpu0[0]
+    own = None if cpu0 is None or cpu1 is None else cpu1[1] - cpu0[1]
     return Measured(
         len(times) / elapsed,
         percentile(times, 0.5),
         percentile(times, 0.95),
         None if cpu is None else cpu / elapsed,
         None if cpu is None else cpu / len(times),
+        None if own is None else own / len(times),
+        sum(solver) / len(solver),
     )
 
 
@@ -327,11 +343,16 @@ def main() -> None:
                 for name, base, pid in trees:
                     m = throughput(base, n, args.requests, pid, args.jobs, args.files)
                     busy = "" if m.busy is None else f", busy on {m.busy:.2f} cores"
-                    cpu = "" if m.cpu_per_design_s is None else f", {m.cpu_per_design_s:.3f} CPU s"
+                    cpu = ""
+                    if m.cpu_per_design_s is not None and m.server_per_design_s is not None:
+                        cpu = (
+                            f"; CPU s per design {m.cpu_per_design_s:.3f} (server process "
+                            f"{m.server_per_design_s:.3f}, solver {m.solver_per_design_s:.3f})"
+                        )
                     print(
                         f"round {round_} {name:>{width}}: {n:>2} clients x {args.requests}: "
                         f"{m.rate:6.2f} designs/s, median {m.median_s:6.2f} s, "
-                        f"p95 {m.p95_s:6.2f} s{busy}{cpu} per design",
+                        f"p95 {m.p95_s:6.2f} s{busy}{cpu}",
                         flush=True,
                     )
 

@@ -364,9 +364,8 @@ def test_cancelling_a_verification_kills_its_calculix(
     runner = app.state.runner
     status, answer = post_json(base, "/api/design", spec_of("blimp_gripper.toml"), timeout=300)
     assert status == 200
-    status, job = post_json(
-        base, "/api/jobs/verify", {"result": answer["result"]["id"], "mesh": "2,4,8"}
-    )
+    result = served_files(base, answer)["result"]["id"]  # the files, made on demand
+    status, job = post_json(base, "/api/jobs/verify", {"result": result, "mesh": "2,4,8"})
     assert status == 202, job
     assert job["limits"]["meshes"] == [2, 4, 8] and job["limits"]["memory_bytes"] == 8 * 1024**3
     children: list[int] = []

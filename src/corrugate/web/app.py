@@ -72,7 +72,7 @@ import threading
 import time
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -149,7 +149,6 @@ from corrugate.workflow import (
     Events,
     MadeFor,
     Names,
-    Output,
     json_safe,
     made_for,
     output_errors,
@@ -498,28 +497,21 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
     )
 
 
-def _prepare_design(
-    body: DesignBody,
-    settings: WebSettings,
-    folder: Path | None = None,
-    budget_s: float | None = None,
-) -> DesignRequest:
-    """Read a design request as the CLI reads a spec and its options, into the one request of a
-    run (:class:`~corrugate.workflow.request.DesignRequest`: its files into ``folder``, an
-    infeasible spec leaving none; its solver within ``budget_s`` CPU seconds, None:
-    ``settings.design_budget_s``); errors name the request's fields (the spec's by their TOML
-    path)."""
-    request, options = _read_design(body, settings, budget_s)
-    if folder is None:
-        return request
-    return replace(request, output=Output(folder, options, record_infeasible=False))
+def _prepare_design(body: DesignBody, settings: WebSettings) -> DesignRequest:
+    """Read a design request as the CLI reads a spec and its options (:func:`_read_design`),
+    raising its first bad value; the request (no output folder: answers first)."""
+    return _read_design(body, settings)[0]
 
 
 def _read_design(
     body: DesignBody, settings: WebSettings, budget_s: float | None = None
 ) -> tuple[DesignRequest, OutputOptions]:
-    """The request of :func:`_prepare_design` without an output folder, and its output options
-    (for the files made later, :mod:`corrugate.web.ondemand`)."""
+    """Read a design request as the CLI reads a spec and its options, into the one request of a
+    run (:class:`~corrugate.workflow.request.DesignRequest`, without an output folder: the
+    answer comes first; its solver within ``budget_s`` CPU seconds, None:
+    ``settings.design_budget_s``) and the output options of its files, made later
+    (:mod:`corrugate.web.ondemand`); errors name the request's fields (the spec's by their TOML
+    path)."""
     with _PARSE_LOCK:  # pint parses the spec's quantities, inline materials and the options
         try:
             spec = parse_spec(_spec_data(body))
