@@ -1148,7 +1148,6 @@ function designProgress(e, job) {
       + `${seconds(e.budget_s)} CPU budget (${limit})${e.step ? `; now ${e.step}` : ''}`;
     return [text, e.budget_s ? Math.min(1, e.cpu_s / e.budget_s) : 0];
   }
-  if (e.stage === 'writing files') return ['writing the files...', 1];
   return [`reading the spec (solver budget ${seconds(job.limits.budget_s)} CPU, ${limit})`, 0];
 }
 
