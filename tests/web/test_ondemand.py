@@ -156,3 +156,22 @@ def test_concurrent_requests_for_one_design_make_its_files_once() -> None:
         assert [s for s, _ in got] == [200] * 6, got
         assert len({json.dumps(r, sort_keys=True) for _, r in got}) == 1  # one stored result
         assert app.state.store.designs.files_made == 1  # made by one run of the files job
+
+
+def test_a_robust_designs_files_keep_its_robust_answer_and_its_recipe_stays_small(
+    client: TestClient,
+) -> None:
+    """The recipe leaves out the robust search's Monte Carlo samples (about 1 MB pickled for
+    this example): the files need the solution and the answer, whose ``robust`` entry
+    design.json still carries."""
+    from corrugate.web.app import design_job
+    from corrugate.web.schemas import DesignBody
+
+    with (EXAMPLES / "blimp_gripper_robust.toml").open("rb") as f:
+        spec = tomllib.load(f)
+    _, recipe = design_job(DesignBody.model_validate(spec), WebSettings())
+    assert recipe is not None and len(recipe) < 100_000
+    answer = client.post("/api/design", json=spec).json()
+    made = client.post(answer["files_url"]).json()
+    record = client.get(f"/api/results/{made['id']}/design.json").json()
+    assert record["robust"] == answer["design"]["robust"] and record["certified"] is False

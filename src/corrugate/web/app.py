@@ -72,7 +72,7 @@ import threading
 import time
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -637,8 +637,10 @@ def _design(
     if analysis is None:
         return answer.payload, None
     _check_design_size(analysis, settings)
-    names = request.names
-    recipe = FilesRecipe(answer.design, request.text, options, request.machine.name, names)
+    # the files need the solution and the answer's JSON, not the robust search's Monte Carlo
+    # samples (some 1 MB for examples/blimp_gripper_robust.toml; 10-13 kB without, pickled)
+    run_ = replace(answer.design, robust=None)
+    recipe = FilesRecipe(run_, request.text, options, request.machine.name, request.names)
     return answer.payload, recipe_of(recipe)
 
 
