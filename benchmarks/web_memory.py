@@ -121,6 +121,9 @@ def main() -> None:
                 errors += 1
                 print(f"error: {exc}", flush=True)
                 return 0
+            files_url = answer.get("files_url")
+            if isinstance(files_url, str):  # answers first: the files made on demand
+                answer = {**answer, "result": post(base + files_url, {})}
             result = answer.get("result")
             if isinstance(result, dict):
                 url = result["files"][0]["url"]  # type: ignore[index]

@@ -47,6 +47,26 @@ def post_json(base: str, path: str, body: dict[str, Any], timeout: float = 60) -
         return exc.code, json.loads(exc.read())
 
 
+def with_files(client: TestClient, answer: dict[str, Any]) -> dict[str, Any]:
+    """A design answer with its files made: ``POST /api/design`` answers first, its files are
+    made on demand by ``POST files_url`` (docs/web.md); ``result`` is then that stored result."""
+    if answer["result"] is not None or answer["files_url"] is None:
+        return answer
+    r = client.post(answer["files_url"])
+    assert r.status_code == 200, r.text
+    return {**answer, "result": r.json()}
+
+
+def served_files(base: str, answer: dict[str, Any], timeout: float = 900) -> dict[str, Any]:
+    """:func:`with_files` for a served app (``base`` its URL); ``timeout`` only guards against a
+    hang (files asked for by many clients at once queue behind one worker on a loaded machine)."""
+    if answer["result"] is not None or answer["files_url"] is None:
+        return answer
+    status, made = post_json(base, answer["files_url"], {}, timeout=timeout)
+    assert status == 200, made
+    return {**answer, "result": made}
+
+
 def direct(body: dict[str, Any]) -> dict[str, Any]:
     """What the API must answer for a numeric ``body`` (W, n, alpha, material and optionally W2,
     n2, layout, model, eta): :func:`corrugate.analyze` called directly on the objects, through

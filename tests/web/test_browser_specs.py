@@ -53,7 +53,10 @@ def set_requirements(page: Any, rows: list[tuple[str, str, str, str]]) -> None:
 def design(page: Any, timeout_ms: float = 300_000) -> tuple[dict[str, Any], dict[str, Any]]:
     """Submit; (the body the page posted, the answer's JSON). The page runs the design as a job
     (``POST /api/jobs/design``, 202) and shows it when the job is done; the answer is the done
-    job's ``result``, as ``POST /api/design`` answers (``test_jobs_api.py`` checks that)."""
+    job's ``result``, as ``POST /api/design`` answers (``test_jobs_api.py`` checks that). The
+    answer comes first: the page then asks for its files (``POST files_url``, made once per
+    design) and is done once it shows them; the answer returned here has them as ``result``
+    (asked for again: the same stored result)."""
     with page.expect_response("**/api/jobs/design", timeout=timeout_ms) as info:
         page.click("#d-submit")
     response = info.value
@@ -64,7 +67,13 @@ def design(page: Any, timeout_ms: float = 300_000) -> tuple[dict[str, Any], dict
         "id => fetch('/api/jobs/' + id).then((r) => r.json())", response.json()["id"]
     )
     assert job["status"] == "done", job
-    return body, job["result"]
+    answer: dict[str, Any] = job["result"]
+    if answer["result"] is None and answer["files_url"] is not None:  # made after the answer
+        made = page.evaluate(
+            "url => fetch(url, {method: 'POST'}).then((r) => r.json())", answer["files_url"]
+        )
+        answer = {**answer, "result": made}
+    return body, answer
 
 
 def spec_of(body: dict[str, Any]) -> dict[str, Any]:

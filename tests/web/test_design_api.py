@@ -26,6 +26,8 @@ from corrugate.web.app import _output_options
 from corrugate.web.schemas import BLIMP_GRIPPER, DesignBody
 from corrugate.workflow import output_options, write_design_files
 
+from .conftest import with_files
+
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 
 
@@ -65,7 +67,7 @@ def blimp(client: TestClient) -> dict[str, Any]:
     r = client.post("/api/design", json=spec_of("blimp_gripper.toml"))
     assert r.status_code == 200, r.text
     assert r.headers["cache-control"] == "no-store"
-    answer: dict[str, Any] = r.json()
+    answer: dict[str, Any] = with_files(client, r.json())  # the page asks for them next
     return answer
 
 
@@ -194,7 +196,8 @@ def test_perforated_fold_lines_reach_the_files(client: TestClient) -> None:
     body = {**spec_of("blimp_gripper.toml"), "fold_style": "perforated", "cut": 1, "gap": "1 mm"}
     r = client.post("/api/design", json=body)
     assert r.status_code == 200, r.text
-    url = next(f["url"] for f in r.json()["result"]["files"] if f["name"] == "design.json")
+    made = with_files(client, r.json())["result"]
+    url = next(f["url"] for f in made["files"] if f["name"] == "design.json")
     record = client.get(url).json()
     assert record["fold_style"] == {"kind": "perforated", "cut_mm": 1.0, "gap_mm": 1.0}
 
@@ -424,7 +427,7 @@ def test_report_and_preview_show_the_plan_of_the_files(client: TestClient, tmp_p
     }
     r = client.post("/api/design", json=body)
     assert r.status_code == 200, r.text
-    files = {f["name"]: f["url"] for f in r.json()["result"]["files"]}
+    files = {f["name"]: f["url"] for f in with_files(client, r.json())["result"]["files"]}
     for name, url in files.items():
         (tmp_path / name).write_bytes(client.get(url).content)
     in_files, sizes = svg_parts(tmp_path)

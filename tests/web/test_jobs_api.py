@@ -29,7 +29,7 @@ from corrugate.web.app import JOB_WALL_PER_CPU, LOOPBACK_NAMES
 from corrugate.web.jobs import Job, JobTable
 from corrugate.web.workers import ServerBusyError
 
-from .conftest import post_json, serve, wait_for
+from .conftest import post_json, serve, served_files, wait_for
 from .test_design_api import spec_of, without_timings
 
 Event = tuple[str, dict[str, Any]]
@@ -138,15 +138,19 @@ def test_a_design_job_streams_progress_and_ends_with_the_answer_of_post_design(
     order = ["searching", "explaining: binding checks", "explaining: runner-ups"]
     assert [order.index(step) for step in steps] == sorted(order.index(step) for step in steps)
     assert solving[-1]["budget_s"] == settings.job_budget_s
-    assert progress[0][1]["stage"] == "reading" and progress[-1][1]["stage"] == "writing files"
+    # answers first: the job makes no files (they are made on demand, test_ondemand.py)
+    assert progress[0][1]["stage"] == "reading" and progress[-1][1]["stage"] == "solving"
     # the answer is POST /api/design's (the synchronous API keeps working) ...
     status, sync = post_json(base, "/api/design", spec, timeout=300)
     assert status == 200
     answer = final["result"]
     assert without_timings(answer["design"]) == without_timings(sync["design"])
     assert answer["design"]["solver"]["budget"]["cpu_seconds"] == settings.job_budget_s
-    # its files are stored and served; the job's state says the same as the stream's end
-    record = next(f for f in answer["result"]["files"] if f["name"] == "design.json")
+    # its files are made when asked for and served; the job's state says the same as the
+    # stream's end
+    assert answer["result"] is None and answer["files_url"] == sync["files_url"]  # one design
+    made = served_files(base, answer)["result"]
+    record = next(f for f in made["files"] if f["name"] == "design.json")
     with urllib.request.urlopen(base + record["url"], timeout=60) as r:
         assert json.loads(r.read())["design"] == answer["design"]["design"]
     status, state = request(base, f"/api/jobs/{job['id']}")
@@ -200,7 +204,7 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
     served: tuple[str, FastAPI],
 ) -> None:
     """The chassis plate (tens of CPU seconds) is cancelled once the solver reports: the
-    worker running it is killed and replaced, the result folder it was writing goes."""
+    worker running it is killed and replaced; no result folder is made (answers first)."""
     base, app = served
     runner, store = app.state.runner, app.state.store
     wait_for(lambda: len(runner.worker_pids()) == runner.processes, 120, "workers up")
@@ -214,7 +218,7 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
             assert kind == "progress", data
             if json.loads(data)["stage"] == "solving":
                 break
-    assert len(set(store.root.iterdir()) - folders) == 1  # the job's result folder, being made
+    assert set(store.root.iterdir()) == folders  # the job makes no files while it solves
     status, state = request(base, f"/api/jobs/{job['id']}", "DELETE")
     assert status == 200 and state["status"] == "cancelled"
     stream = events(base, job["id"])
@@ -243,9 +247,10 @@ def test_cancel_kills_the_worker_replaces_it_and_leaves_no_folder(
 def test_a_job_past_its_time_limit_fails_with_504_and_keeps_nothing() -> None:
     """The time limit of a design job is JOB_WALL_PER_CPU times its solver budget: a budget of
     0.05 s stops the case study's design at 0.2 s wall. Its variables are pinned to one design,
-    so the search certifies it well inside the budget (about 0.01 s of CPU) and the job is
-    stopped while it writes the files (seconds), never answered early by a search that ran out
-    of its budget without a design."""
+    so the search certifies it well inside the budget (about 0.01 s of CPU), and its robust
+    check's Monte Carlo of 10^6 samples takes some 2 s (1.95 s of wall measured in a worker's
+    process alone): the job is stopped in it, never answered early by a search that ran out of
+    its budget without a design."""
     settings = WebSettings(processes=1, job_budget_s=0.05, allowed_hosts=LOOPBACK_NAMES)
     assert JOB_WALL_PER_CPU == 4.0 and settings.job_time_limit_s(0.05) == pytest.approx(0.2)
     spec = spec_of("blimp_gripper.toml")
@@ -254,6 +259,7 @@ def test_a_job_past_its_time_limit_fails_with_504_and_keeps_nothing() -> None:
         "n": {"min": 9, "max": 9},
         "alpha": {"min": "78 deg", "max": "78 deg", "step": "1 deg"},
     }
+    spec["robust"] = {"W": "0.1 mm", "alpha": "1 deg", "samples": 10**6, "probability": 0.5}
     with serve(settings) as (base, app):
         status, job = post_json(base, "/api/jobs/design", spec)
         assert status == 202 and job["limits"]["time_limit_s"] == pytest.approx(0.2)
@@ -358,9 +364,8 @@ def test_cancelling_a_verification_kills_its_calculix(
     runner = app.state.runner
     status, answer = post_json(base, "/api/design", spec_of("blimp_gripper.toml"), timeout=300)
     assert status == 200
-    status, job = post_json(
-        base, "/api/jobs/verify", {"result": answer["result"]["id"], "mesh": "2,4,8"}
-    )
+    result = served_files(base, answer)["result"]["id"]  # the files, made on demand
+    status, job = post_json(base, "/api/jobs/verify", {"result": result, "mesh": "2,4,8"})
     assert status == 202, job
     assert job["limits"]["meshes"] == [2, 4, 8] and job["limits"]["memory_bytes"] == 8 * 1024**3
     children: list[int] = []

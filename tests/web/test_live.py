@@ -15,7 +15,7 @@ import pytest
 
 from data_files import PAPER_CASE_STUDY
 
-from .conftest import direct
+from .conftest import direct, served_files
 from .conftest import post_json as post
 from .test_design_api import direct_design, without_timings
 
@@ -129,7 +129,10 @@ def test_twenty_concurrent_designs_get_their_own_answers_and_files(live_server: 
         # Twenty designs with all their files share two cores: the last answer can take minutes on
         # a loaded CI machine. The timeout only guards against a hang; speed is measured in
         # benchmarks/pipeline.py, not here.
-        return post(live_server, "/api/design", spec, timeout=900)
+        status, answer = post(live_server, "/api/design", spec, timeout=900)
+        if status != 200:
+            return status, answer
+        return status, served_files(live_server, answer)  # the page asks for them next
 
     with ThreadPoolExecutor(max_workers=len(specs)) as pool:
         answers = list(pool.map(one, specs))
@@ -152,7 +155,7 @@ def test_twenty_concurrent_designs_get_their_own_answers_and_files(live_server: 
 
 def test_path_tricks_on_design_results_get_4xx(live_server: str) -> None:
     _, answer = post(live_server, "/api/design", blimp_spec(80, "tricks"), timeout=120)
-    rid = answer["result"]["id"]
+    rid = served_files(live_server, answer)["result"]["id"]
     for target in (
         f"/api/results/{rid}/../../../../../../etc/passwd",
         f"/api/results/{rid}/..%2f..%2f..%2fetc%2fpasswd",

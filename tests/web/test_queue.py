@@ -288,7 +288,9 @@ def test_no_calculix_folder_outlives_its_job(tmp_path: Path) -> None:
         before = {kept, live}
         status, answer, _ = call(base, "/api/design", blimp(), timeout=120)
         assert status == 200, answer
-        result = answer["result"]["id"]
+        status, made, _ = call(base, answer["files_url"], {}, timeout=120)  # made on demand
+        assert status == 200, made
+        result = made["id"]
         # cancelled: its worker (and CalculiX) killed, its folder swept
         job, folder = _verify(base, result, tmp, before)
         assert owner(folder) in workers(server.pid)

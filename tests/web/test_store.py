@@ -193,3 +193,49 @@ def test_body_limit_counts_chunks_and_replays_the_body() -> None:
     assert status == 413 and seen is None
     status, _, _ = run_limited(10, [b"1"], [(b"content-length", b"ten")])
     assert status == 400
+
+
+def test_a_design_id_is_a_keyed_hash_of_its_parts() -> None:
+    """The same parts give the same id in one cache and another id in a cache with another
+    secret (so ids cannot be guessed); another part, or the same bytes split differently, give
+    another id."""
+    from corrugate.web.store import DesignCache
+
+    a, b = DesignCache(), DesignCache()
+    assert a.key(b"spec", b"design") == a.key(b"spec", b"design")
+    assert len(a.key(b"spec", b"design")) == 32
+    assert a.key(b"spec", b"design") != b.key(b"spec", b"design")
+    assert a.key(b"spec", b"design") != a.key(b"spec", b"design2")
+    assert a.key(b"spe", b"cdesign") != a.key(b"spec", b"design")
+
+
+def test_the_design_cache_is_bounded_and_expires() -> None:
+    from corrugate.web.store import DesignCache
+
+    clock = Clock()
+    cache = DesignCache(max_designs=2, ttl_s=10.0, clock=clock)
+    for name in ("a", "b", "c"):
+        cache.add(name, name.encode())
+    assert len(cache) == 2 and cache.recipe("a") is None  # the oldest went
+    assert cache.recipe("c") == b"c" and cache.result_id("c") is None
+    cache.made("c", "r1")
+    assert cache.result_id("c") == "r1" and cache.files_made == 1
+    cache.add("c", b"other")  # kept already: its recipe and files stay
+    assert cache.recipe("c") == b"c" and cache.result_id("c") == "r1"
+    clock.now = 11.0
+    assert cache.recipe("c") is None and cache.recipe("b") is None
+
+
+def test_the_zip_of_a_result_is_made_once(store: ResultStore) -> None:
+    import io
+    import zipfile
+
+    rid = make(store, "abc")
+    first = store.zipped(rid)
+    assert first is not None and store.zipped(rid) is first  # the same bytes, not made again
+    archive = zipfile.ZipFile(io.BytesIO(first))
+    assert sorted(archive.namelist()) == ["assembly.glb", "sheet-1.svg"]
+    assert archive.read("sheet-1.svg") == b"abc"
+    assert store.zipped("0" * 32) is None
+    store.discard(rid)
+    assert store.zipped(rid) is None

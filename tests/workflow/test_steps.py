@@ -111,18 +111,19 @@ def test_the_web_design_job_reads_one_request_and_calls_the_run(
 
     from corrugate.web import WebSettings
     from corrugate.web.app import design_job
+    from corrugate.web.ondemand import design_files_job
     from corrugate.web.schemas import DesignBody
 
     seen = _recording(monkeypatch, "corrugate.web.app.run")
     body = DesignBody.model_validate({**tomllib.loads(SPEC), "cutter": "laser:200x200"})
     folder = tmp_path / "result"
     folder.mkdir()
-    payload, paths = design_job(body, WebSettings(), folder)  # what a worker process runs
+    payload, recipe = design_job(body, WebSettings())  # what a worker process runs
     [request] = seen
     assert request.machine.name == "laser:200x200" and request.strict_json
-    assert request.output is not None and request.output.folder == folder
-    assert request.output.options.machine is request.machine  # one look-up, one object
-    assert not request.output.record_infeasible  # the web keeps no result for an infeasible spec
+    assert request.output is None  # answers first: the files are made on demand
+    assert recipe is not None and not any(folder.iterdir())
+    paths = design_files_job(recipe, folder)  # what a worker runs when the page asks for them
     assert {p.name for p in paths} >= {"design.json", "cut-1.svg", "cut-1.dxf"}  # a laser's
     assert json.loads((folder / "design.json").read_text())["design"] == payload["design"]
 

@@ -72,7 +72,7 @@ import threading
 import time
 from collections.abc import AsyncIterator, Callable
 from contextlib import asynccontextmanager
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -107,6 +107,7 @@ from corrugate.spec.schema import Spec, SpecError, parse_spec
 from corrugate.spec.toml_text import read_spec_toml, spec_toml
 from corrugate.web.guards import BodySizeLimit, CatchAll, HostCheck, long_integers
 from corrugate.web.jobs import Job, JobTable, solver_progress, sse
+from corrugate.web.ondemand import FileMaker, FilesRecipe, recipe_of
 from corrugate.web.schemas import (
     LOAD_CASE_KEYS,
     OUTPUT_OPTIONS,
@@ -148,7 +149,6 @@ from corrugate.workflow import (
     Events,
     MadeFor,
     Names,
-    Output,
     json_safe,
     made_for,
     output_errors,
@@ -497,16 +497,20 @@ def _result_body(files: list[StoredFile]) -> ResultBody:
     )
 
 
-def _prepare_design(
-    body: DesignBody,
-    settings: WebSettings,
-    folder: Path | None = None,
-    budget_s: float | None = None,
-) -> DesignRequest:
+def _prepare_design(body: DesignBody, settings: WebSettings) -> DesignRequest:
+    """Read a design request as the CLI reads a spec and its options (:func:`_read_design`),
+    raising its first bad value; the request (no output folder: answers first)."""
+    return _read_design(body, settings)[0]
+
+
+def _read_design(
+    body: DesignBody, settings: WebSettings, budget_s: float | None = None
+) -> tuple[DesignRequest, OutputOptions]:
     """Read a design request as the CLI reads a spec and its options, into the one request of a
-    run (:class:`~corrugate.workflow.request.DesignRequest`: its files into ``folder``, an
-    infeasible spec leaving none; its solver within ``budget_s`` CPU seconds, None:
-    ``settings.design_budget_s``); errors name the request's fields (the spec's by their TOML
+    run (:class:`~corrugate.workflow.request.DesignRequest`, without an output folder: the
+    answer comes first; its solver within ``budget_s`` CPU seconds, None:
+    ``settings.design_budget_s``) and the output options of its files, made later
+    (:mod:`corrugate.web.ondemand`); errors name the request's fields (the spec's by their TOML
     path)."""
     with _PARSE_LOCK:  # pint parses the spec's quantities, inline materials and the options
         try:
@@ -528,16 +532,17 @@ def _prepare_design(
             machine = resolve_machine(made.cutter)  # the spec's (a checked name) or the default
         options = _output_options(body, made, machine)
     _check_spec_size(spec, settings)
-    return DesignRequest(
+    request = DesignRequest(
         spec,
         json.dumps(_spec_data(body), indent=2),
         problem,
         machine,
         settings.design_budget_s if budget_s is None else budget_s,
-        None if folder is None else Output(folder, options, record_infeasible=False),
+        None,
         strict_json=True,
         names=_NAMES,
     )
+    return request, options
 
 
 def spec_file_job(body: DesignBody, settings: WebSettings) -> str:
@@ -594,21 +599,22 @@ def check_design_job(body: DesignBody, settings: WebSettings) -> None:
 
 
 def design_job(
-    body: DesignBody, settings: WebSettings, folder: Path, budget_s: float | None = None
-) -> tuple[Any, list[Path]]:
+    body: DesignBody, settings: WebSettings, budget_s: float | None = None
+) -> tuple[Any, bytes | None]:
     """Solve the spec of a design request within ``budget_s`` CPU seconds (None:
-    ``settings.design_budget_s``) and write its files into ``folder`` (a new result's folder of
-    the store); returns the ``corrugate design --json`` object and the paths written (none for
-    an infeasible spec). A job: runs in a worker process (which hands its freed memory back to
-    the system after every job, :func:`~corrugate.web.workers.release_memory`); it takes and
-    returns plain, picklable values, and the store itself stays in the server. When its caller
-    wants progress (a job of ``/api/jobs``) it sends the stage it is in and the branch and
-    bound's iterations, gap and best value (:func:`corrugate.web.jobs.solver_progress`)."""
+    ``settings.design_budget_s``), answers first: returns the ``corrugate design --json`` object
+    and the recipe of its files (:class:`~corrugate.web.ondemand.FilesRecipe` as bytes; None for
+    an infeasible spec, which has no files), which the server keeps so that the files are made
+    when they are asked for (:mod:`corrugate.web.ondemand`). A job: runs in a worker process
+    (which hands its freed memory back to the system after every job,
+    :func:`~corrugate.web.workers.release_memory`); it takes and returns plain, picklable values.
+    When its caller wants progress (a job of ``/api/jobs``) it sends the stage it is in and the
+    branch and bound's iterations, gap and best value (:func:`corrugate.web.jobs.solver_progress`)."""
     if not wants_progress():
-        return _design(body, settings, folder, budget_s)
+        return _design(body, settings, budget_s)
     send_progress({"stage": "reading"})
     with solver_progress() as events:
-        return _design(body, settings, folder, budget_s, solved=events.flush)
+        return _design(body, settings, budget_s, solved=events.flush)
 
 
 def _nothing() -> None:
@@ -618,41 +624,65 @@ def _nothing() -> None:
 def _design(
     body: DesignBody,
     settings: WebSettings,
-    folder: Path,
     budget_s: float | None,
     solved: Callable[[], None] = _nothing,
-) -> tuple[Any, list[Path]]:
-    """The run of a design request (:func:`corrugate.workflow.steps.run`, the steps of
-    ``corrugate design``): ``solved`` is called once the search is over (the search's last
-    progress event, before the files' stage)."""
+) -> tuple[Any, bytes | None]:
+    """The run of a design request without its files (:func:`corrugate.workflow.steps.run`, the
+    steps of ``corrugate design``) and the recipe of its files: ``solved`` is called once the
+    search is over (the search's last progress event). An optimum past the web app's size bound
+    is refused here, as before its files were written."""
+    request, options = _read_design(body, settings, budget_s)
+    answer = run(request, Events(solved=solved))
+    analysis = answer.solution.analysis
+    if analysis is None:
+        return answer.payload, None
+    _check_design_size(analysis, settings)
+    # the files need the solution and the answer's JSON, not the robust search's Monte Carlo
+    # samples (some 1 MB for examples/blimp_gripper_robust.toml; 10-13 kB without, pickled)
+    run_ = replace(answer.design, robust=None)
+    recipe = FilesRecipe(run_, request.text, options, request.machine.name, request.names)
+    return answer.payload, recipe_of(recipe)
 
-    def writing(analysis: Analysis) -> None:
-        _check_design_size(analysis, settings)
-        send_progress({"stage": "writing files"})
 
-    answer = run(
-        _prepare_design(body, settings, folder, budget_s), Events(solved=solved, writing=writing)
+def design_id_of(body: DesignBody, payload: dict[str, Any], store: ResultStore) -> str:
+    """The design id of a request and its answer (:meth:`~corrugate.web.store.DesignCache.key`
+    of the request's spec and output options, as canonical JSON, and of the answer's design)."""
+    request = json.dumps(body.model_dump(mode="json"), sort_keys=True, separators=(",", ":"))
+    design = json.dumps(payload.get("design"), sort_keys=True, separators=(",", ":"))
+    return store.designs.key(request.encode(), design.encode())
+
+
+def answer_of(
+    body: DesignBody, payload: dict[str, Any], recipe: bytes | None, files: FileMaker
+) -> DesignAnswer:
+    """The answer of a design request: the design, and, for a design with files, its
+    ``design_id`` and ``files_url`` (its recipe kept in the store) and its files when they are
+    already made (``result``; null until they are asked for)."""
+    if recipe is None:
+        return DesignAnswer(design=payload, result=None, design_id=None, files_url=None)
+    design_id = design_id_of(body, payload, files.store)
+    files.store.designs.add(design_id, recipe)
+    made = files.stored(design_id)
+    return DesignAnswer(
+        design=payload,
+        result=None if made is None else _result_body(made),
+        design_id=design_id,
+        files_url=f"/api/designs/{design_id}/files",
     )
-    return answer.payload, list(answer.files)
 
 
 async def design_answer(
     body: DesignBody,
     settings: WebSettings,
-    store: ResultStore,
     runner: Runner,
+    files: FileMaker,
     share: Share | None = None,
 ) -> DesignAnswer:
     """Run :func:`design_job` on the runner (a worker process, within ``share`` of its workers
-    if given) into a new result of ``store`` and publish its files (the result is discarded when
-    the job fails, is stopped or has no files)."""
-    with store.reserved() as (result_id, folder):
-        async with share.turn() if share is not None else contextlib.nullcontext():
-            payload, paths = await runner.run(design_job, body, settings, folder)
-        if not paths:
-            store.discard(result_id)
-            return DesignAnswer(design=payload, result=None)
-        return DesignAnswer(design=payload, result=_result_body(store.publish(result_id, paths)))
+    if given): the answer first, its files made when asked for (:func:`answer_of`)."""
+    async with share.turn() if share is not None else contextlib.nullcontext():
+        payload, recipe = await runner.run(design_job, body, settings)
+    return answer_of(body, payload, recipe, files)
 
 
 def verify_job(
@@ -800,29 +830,22 @@ async def _run_job(
 
 
 async def design_job_task(
-    job: Job, body: DesignBody, settings: WebSettings, store: ResultStore, runner: Runner
+    job: Job, body: DesignBody, settings: WebSettings, files: FileMaker, runner: Runner
 ) -> None:
-    """The task of a design job: :func:`design_job` into a new result of ``store``, its files
-    published (the result discarded when it fails, is cancelled or has none); the job ends
-    ``done`` with the answer of ``POST /api/design``, or ``failed`` or ``cancelled``."""
+    """The task of a design job: :func:`design_job`, answers first (its files made when asked
+    for, :func:`answer_of`); the job ends ``done`` with the answer of ``POST /api/design``, or
+    ``failed`` or ``cancelled``."""
     try:
-        with store.reserved() as (result_id, folder):
-            payload, paths = await _run_job(
-                job,
-                runner,
-                design_job,
-                body,
-                settings,
-                folder,
-                job.limits["budget_s"],
-                timeout_s=job.limits["time_limit_s"],
-            )
-            if not paths:
-                store.discard(result_id)
-                answer = DesignAnswer(design=payload, result=None)
-            else:
-                files = store.publish(result_id, paths)
-                answer = DesignAnswer(design=payload, result=_result_body(files))
+        payload, recipe = await _run_job(
+            job,
+            runner,
+            design_job,
+            body,
+            settings,
+            job.limits["budget_s"],
+            timeout_s=job.limits["time_limit_s"],
+        )
+        answer = answer_of(body, payload, recipe, files)
         job.end("done", answer.model_dump())
     except asyncio.CancelledError:
         job.end("cancelled")
@@ -1025,10 +1048,16 @@ def _add_pages(app: FastAPI, index_html: str) -> None:
 
 
 def _add_api(
-    app: FastAPI, cfg: WebSettings, runner: Runner, share: Share, store: ResultStore
+    app: FastAPI,
+    cfg: WebSettings,
+    runner: Runner,
+    share: Share,
+    store: ResultStore,
+    files: FileMaker,
 ) -> None:
-    """The JSON API: library, models, analyze, mesh, design and the result downloads, computed
-    on ``runner`` (the quick lane), a design within ``share`` of its workers."""
+    """The JSON API: library, models, analyze, mesh, design, a design's files (made on demand by
+    ``files``) and the result downloads, computed on ``runner`` (the quick lane), a design and
+    its files within ``share`` of its workers."""
     error_responses = _ERROR_RESPONSES
 
     @app.get("/api/materials", summary="The material library")
@@ -1101,7 +1130,30 @@ def _add_api(
         ``corrugate design --out`` writes as a result (``result`` is null when the spec is
         infeasible: ``design.diagnosis`` says why). A bad spec value gets 422 naming its TOML path,
         e.g. ``constraints.side.min``."""
-        return await design_answer(body, cfg, store, runner, share)
+        return await design_answer(body, cfg, runner, files, share)
+
+    @app.post(
+        "/api/designs/{design_id}/files",
+        summary="Make (once) and list the files of a design",
+        responses={
+            **error_responses,
+            404: {"model": ErrorBody, "description": "No such design (or it expired)"},
+        },
+    )
+    async def design_files_endpoint(design_id: str) -> ResultBody:
+        """Every file ``corrugate design --out`` writes for a design answered by ``POST
+        /api/design`` or a design job (``design_id``, the answer's ``files_url``), kept as a
+        result: made on the first request for it, once (requests while it is made wait for it),
+        the same stored result after."""
+        made = await files.files(design_id)
+        if made is None:
+            return _error(  # type: ignore[return-value]
+                404,
+                f"no such design: {design_id[:40]!r} (its files are made for a design answered "
+                "by POST /api/design or a design job; designs are kept for a while only)",
+                [FieldError(field="design_id", message="is not the id of a design kept here")],
+            )
+        return _result_body(made)
 
     @app.post(
         "/api/spec/toml",
@@ -1165,7 +1217,7 @@ def _add_jobs(
     runner: Runner,
     checker: Runner,
     share: Share,
-    store: ResultStore,
+    files: FileMaker,
     jobs: JobTable,
 ) -> None:
     """The job API: designs and FE verifications that run in the background with progress on
@@ -1217,7 +1269,7 @@ def _add_jobs(
             "memory_bytes": cfg.worker_memory_bytes,
         }
         job = jobs.new("design", limits)
-        return start(job, design_job_task(job, body, cfg, store, runner))
+        return start(job, design_job_task(job, body, cfg, files, runner))
 
     @app.post(
         "/api/jobs/verify",
@@ -1237,7 +1289,7 @@ def _add_jobs(
         if not info.available:
             return _error(503, info.message, [])
         jobs.check_room()
-        folder, meshes = await run_in_threadpool(_check_verify, body, cfg, store)
+        folder, meshes = await run_in_threadpool(_check_verify, body, cfg, files.store)
         limits = {
             "time_limit_s": cfg.fe_timeout_s,
             "memory_bytes": cfg.fe_memory_bytes or cfg.worker_memory_bytes,
@@ -1325,6 +1377,7 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     share = Share(cfg.quick_processes - 1, cfg.max_pending)
     store = ResultStore(cfg.results_dir, max_results=cfg.max_results, ttl_s=cfg.result_ttl_s)
     jobs = JobTable(cfg.max_jobs, cfg.result_ttl_s, max_active=cfg.max_active_jobs)
+    files = FileMaker(store, quick, share)
     started = time.time()
     # Load the unit registry and the material library before the first requests race for them.
     ureg()
@@ -1370,8 +1423,9 @@ def create_app(settings: WebSettings | None = None) -> FastAPI:
     app.state.jobs = jobs
     _add_error_handlers(app)
     _add_pages(app, index_html)
-    _add_api(app, cfg, quick, share, store)
-    _add_jobs(app, cfg, runner, quick, share, store, jobs)
+    app.state.files = files
+    _add_api(app, cfg, quick, share, store, files)
+    _add_jobs(app, cfg, runner, quick, share, files, jobs)
     app.mount("/static", StaticFiles(directory=STATIC_DIR), name="static")
     app.add_middleware(CatchAll)
     app.add_middleware(_SecurityHeaders)

@@ -275,7 +275,18 @@ class DesignAnswer(BaseModel):
 
     design: dict[str, Any] = Field(description="The object `corrugate design --json` prints.")
     result: ResultBody | None = Field(
-        description="The files of the design (null when the spec is infeasible)."
+        description="The files of the design when they are already made (they are made on "
+        "demand: POST `files_url`); null until then, and when the spec is infeasible."
+    )
+    design_id: str | None = Field(
+        default=None,
+        description="The design's id (a keyed hash of the request and its design; null when "
+        "the spec is infeasible).",
+    )
+    files_url: str | None = Field(
+        default=None,
+        description="POST here to make (once per design) and list every file `corrugate design "
+        "--out` writes: `{id, files}` as `result`; null when the spec is infeasible.",
     )
 
 

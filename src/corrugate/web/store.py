@@ -8,10 +8,18 @@ in-memory table: an id or a name that was not published, whatever it contains (`
 an absolute path, percent escapes), is simply not found. Old results are evicted (oldest first past
 ``max_results``, and after ``ttl_s`` seconds); the root is made on first use and goes when the
 store is closed.
+
+A design answered first (``POST /api/design``) has its files made later, on demand, once:
+:class:`DesignCache` keeps, by a design id (a keyed hash of the request's spec and output options
+and of the design), what the worker needs to write them (an opaque recipe) and, once made, the id
+of the stored result that holds them (docs/web.md).
 """
 
 from __future__ import annotations
 
+import hashlib
+import hmac
+import secrets
 import shutil
 import tempfile
 import threading
@@ -30,6 +38,7 @@ from corrugate.export.writers import writer_for
 __all__ = [
     "UNKNOWN_MEDIA_TYPE",
     "ZIP_NAME",
+    "DesignCache",
     "ResultStore",
     "StoredFile",
     "file_response",
@@ -62,8 +71,96 @@ class _Entry:
     files: dict[str, StoredFile]
 
 
+@dataclass
+class _Design:
+    recipe: bytes
+    created: float
+    result_id: str | None = None
+
+
+class DesignCache:
+    """The designs whose files are made on demand: design id -> the recipe of its files (opaque
+    bytes a worker made, :func:`corrugate.web.app.design_files_job` reads them) and, once they
+    are made, the id of the stored result holding them.
+
+    A design id is :meth:`key` of the request's spec and output options and of the design: an
+    HMAC-SHA256 under a secret of this cache (random per server), so the same request and design
+    get the same id, and an id cannot be guessed without the request. At most ``max_designs``
+    are kept (the oldest go first), each for ``ttl_s`` seconds. ``files_made`` counts the file
+    sets made (:meth:`made`). Thread-safe."""
+
+    def __init__(
+        self,
+        *,
+        max_designs: int = 200,
+        ttl_s: float = 3600.0,
+        clock: Callable[[], float] = time.monotonic,
+    ) -> None:
+        self.max_designs = max_designs
+        self.ttl_s = ttl_s
+        self._clock = clock
+        self._secret = secrets.token_bytes(32)
+        self._lock = threading.Lock()
+        self._designs: dict[str, _Design] = {}
+        self.files_made = 0
+
+    def key(self, *parts: bytes) -> str:
+        """The design id of ``parts`` (the request's canonical JSON, the design's): 32 hex
+        digits of their HMAC-SHA256 (each part length-prefixed, so no two splits collide)."""
+        mac = hmac.new(self._secret, digestmod=hashlib.sha256)
+        for part in parts:
+            mac.update(len(part).to_bytes(8, "big"))
+            mac.update(part)
+        return mac.hexdigest()[:32]
+
+    def add(self, design_id: str, recipe: bytes) -> None:
+        """Keep ``recipe`` under ``design_id`` (a design already kept keeps its files)."""
+        with self._lock:
+            self._evict_locked()
+            if design_id in self._designs:
+                self._designs[design_id].created = self._clock()
+                return
+            self._designs[design_id] = _Design(recipe, self._clock())
+            excess = len(self._designs) - self.max_designs
+            for old in list(self._designs)[: max(0, excess)]:
+                del self._designs[old]
+
+    def recipe(self, design_id: str) -> bytes | None:
+        """The recipe of a kept design, or None."""
+        with self._lock:
+            self._evict_locked()
+            found = self._designs.get(design_id)
+            return None if found is None else found.recipe
+
+    def result_id(self, design_id: str) -> str | None:
+        """The stored result holding the design's files, once made (None before, or when the
+        design is not kept)."""
+        with self._lock:
+            found = self._designs.get(design_id)
+            return None if found is None else found.result_id
+
+    def made(self, design_id: str, result_id: str) -> None:
+        """The design's files were made into the stored result ``result_id``."""
+        with self._lock:
+            self.files_made += 1
+            found = self._designs.get(design_id)
+            if found is not None:
+                found.result_id = result_id
+
+    def __len__(self) -> int:
+        with self._lock:
+            return len(self._designs)
+
+    def _evict_locked(self) -> None:
+        now = self._clock()
+        for k in [k for k, d in self._designs.items() if now - d.created > self.ttl_s]:
+            del self._designs[k]
+
+
 class ResultStore:
-    """Per-result folders under one private temporary root, with an id -> files table.
+    """Per-result folders under one private temporary root, with an id -> files table, and the
+    designs whose files are made on demand (``designs``, a :class:`DesignCache` with the same
+    bounds).
 
     Thread-safe: several requests may create, publish and read results at once.
     """
@@ -84,6 +181,9 @@ class ResultStore:
         self._lock = threading.Lock()
         self._pending: dict[str, Path] = {}
         self._entries: dict[str, _Entry] = {}
+        self.designs = DesignCache(max_designs=max_results, ttl_s=ttl_s, clock=clock)
+        self._zips: dict[str, bytes] = {}
+        self._zipping = threading.Lock()
 
     @property
     def root(self) -> Path:
@@ -146,6 +246,7 @@ class ResultStore:
         with self._lock:
             folder = self._pending.pop(result_id, None)
             entry = self._entries.pop(result_id, None)
+            self._zips.pop(result_id, None)
         for path in (folder, entry.folder if entry else None):
             if path is not None:
                 shutil.rmtree(path, ignore_errors=True)
@@ -204,6 +305,31 @@ class ResultStore:
                 out.append((f, fh.read()))
         return out
 
+    def zipped(self, result_id: str) -> bytes | None:
+        """Every published file of a result in one zip archive (deflated, the files at its top
+        level, in publishing order), or None when there is no such result: made on the first
+        request, once, and kept with the result (the same bytes after)."""
+        import io
+        import zipfile
+
+        with self._zipping:
+            with self._lock:
+                cached = self._zips.get(result_id)
+            if cached is not None:
+                return cached
+            got = self.read_all(result_id)
+            if got is None:
+                return None
+            buffer = io.BytesIO()
+            with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
+                for found, data in got:
+                    archive.writestr(found.name, data)
+            made = buffer.getvalue()
+            with self._lock:
+                if result_id in self._entries:
+                    self._zips[result_id] = made
+            return made
+
     def files(self, result_id: str) -> list[StoredFile]:
         """Every published file of a result (empty if unknown or expired)."""
         with self._lock:
@@ -219,6 +345,7 @@ class ResultStore:
         with self._lock:
             self._entries.clear()
             self._pending.clear()
+            self._zips.clear()
             root, self._root = self._root, None
         if root is not None:
             shutil.rmtree(root, ignore_errors=True)
@@ -230,6 +357,8 @@ class ResultStore:
         if excess > 0:
             alive = [k for k in self._entries if k not in gone]  # insertion order: oldest first
             gone.extend(alive[:excess])
+        for k in gone:
+            self._zips.pop(k, None)
         return [self._entries.pop(k).folder for k in gone]
 
 
@@ -238,20 +367,13 @@ ZIP_NAME = "all.zip"
 
 
 def zip_response(store: ResultStore, result_id: str) -> Response | None:
-    """Every file of a result in one zip archive (deflated, the files at its top level), or None
-    when there is no such result."""
-    import io
-    import zipfile
-
-    got = store.read_all(result_id)
-    if got is None:
+    """Every file of a result in one zip archive (:meth:`ResultStore.zipped`: made once), or
+    None when there is no such result."""
+    made = store.zipped(result_id)
+    if made is None:
         return None
-    buffer = io.BytesIO()
-    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_DEFLATED) as archive:
-        for found, data in got:
-            archive.writestr(found.name, data)
     return Response(
-        buffer.getvalue(),
+        made,
         media_type="application/zip",
         headers={
             "content-disposition": f'attachment; filename="corrugate-{result_id[:8]}.zip"',

@@ -115,17 +115,29 @@ def core_count() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-#: What a new worker process imports before its first job (the web app, the solver, the writers),
-#: so the first computation does not pay for it.
+#: What a new worker process imports before its first job (the web app, the solver and its
+#: explanation, the writers, the report and the libraries they draw with: matplotlib's Agg and PDF
+#: backends, ezdxf), so that no computation pays for it: a design's answer, then its files made on
+#: demand (:mod:`corrugate.web.ondemand`). A module of an extra not installed is left out.
 WORKER_PRELOAD = (
     "corrugate.web.app",
     "corrugate.workflow",
     "corrugate.solver",
+    "corrugate.solver.diagnosis",
+    "corrugate.solver.orientation",
+    "corrugate.spec.written",
+    "corrugate.mechanics.supports",
     "corrugate.export.plan",
     "corrugate.export.files",
     "corrugate.export.files3d",
     "corrugate.export.record",
+    "corrugate.export.design_files",
     "corrugate.fabrication.instructions",
+    "corrugate.report",
+    "corrugate.report.figures",
+    "matplotlib.backends.backend_agg",
+    "matplotlib.backends.backend_pdf",
+    "ezdxf",
 )
 
 #: The address space one worker process may map beyond what it maps once its modules are imported
@@ -141,11 +153,16 @@ _PR_SET_PDEATHSIG = 1
 
 
 def _warm_up() -> None:
-    """Import :data:`WORKER_PRELOAD` (in a worker process, before it takes jobs)."""
+    """Import :data:`WORKER_PRELOAD` (in a worker process, before it takes jobs); a module of an
+    extra that is not installed is skipped (its computations say which extra they need)."""
     import importlib
 
     for name in WORKER_PRELOAD:
-        importlib.import_module(name)
+        try:
+            importlib.import_module(name)
+        except ModuleNotFoundError as exc:  # a package of an extra; never one of ours
+            if (exc.name or "corrugate").split(".")[0] == "corrugate":
+                raise
 
 
 def _die_with_parent() -> None:

@@ -59,8 +59,9 @@ class Events:
     """What a boundary hears of a run: ``fe_progress``, called when the FE step starts, makes
     what hears its lines (the command line's ``CalculiX run N (s): ...``, seconds from then);
     ``solved``, called once the search is over (the web job's last search event); ``writing``,
-    called with the answer's analysis before its files are written (the web app's own size bound
-    and its ``writing files`` stage); ``answered``, called once with the answer (the solution,
+    called with the answer's analysis before its files are written (a hook for a boundary's own
+    check of the part before its files; none uses it today: the web app answers first and makes
+    the files on demand, docs/web.md); ``answered``, called once with the answer (the solution,
     its FE check; no files yet) as soon as it is final, before its files are written (their
     sheet plan made and checked first, so a part too large for the machine is still an error
     before it), so that ``corrugate design`` prints the answer before the slow files (issue

@@ -1027,6 +1027,24 @@ function toggleExploded(button, getViewer) {
   if (v) v.setExploded(on);
 }
 
+// The files of a design answer: already made (answer.result), else made now by POST
+// answer.files_url (once per design on the server); null for an infeasible spec (no files).
+async function designFiles(answer, mine) {
+  if (answer.result || !answer.files_url) return answer.result;
+  $('d-files').hidden = true;  // another design's files are not this one's
+  $('d-status').textContent = 'making the files...';
+  const made = await postJSON(answer.files_url, {});
+  if (mine !== designGeneration) return null;
+  $('d-status').textContent = '';
+  if (!made.ok) {
+    const detail = made.payload && made.payload.detail;
+    if (made.status === 422 && made.payload) showDesignErrors(made.payload, 422);
+    else $('d-error-body').textContent = `the files could not be made: ${detail || made.status}`;
+    return null;
+  }
+  return made.payload;
+}
+
 async function showDesignFiles(result, mine) {
   const box = $('d-files');
   if (!result) {
@@ -1130,7 +1148,6 @@ function designProgress(e, job) {
       + `${seconds(e.budget_s)} CPU budget (${limit})${e.step ? `; now ${e.step}` : ''}`;
     return [text, e.budget_s ? Math.min(1, e.cpu_s / e.budget_s) : 0];
   }
-  if (e.stage === 'writing files') return ['writing the files...', 1];
   return [`reading the spec (solver budget ${seconds(job.limits.budget_s)} CPU, ${limit})`, 0];
 }
 
@@ -1260,12 +1277,16 @@ async function submitDesign(event) {
     }
     showDesign(state.result.design);
     $('d-status').textContent = '';
-    resetVerify(state.result.result);
+    resetVerify(null);
     // the answer arrived: take the reader (and a screen reader's focus) to it
     const heading = $('d-result-heading');
     heading.focus({ preventScroll: true });
     heading.scrollIntoView({ block: 'start' });
-    await showDesignFiles(state.result.result, mine);
+    // answers first: the files are made on demand (once per design) and then shown
+    const result = await designFiles(state.result, mine);
+    if (mine !== designGeneration) return;
+    resetVerify(result);
+    await showDesignFiles(result, mine);
     if (mine === designGeneration) designForm.dataset.state = 'done';
   } catch (err) {
     $('d-error-body').textContent = `request failed: ${err.message}`;
