@@ -89,7 +89,17 @@ from corrugate.solver.quantity import (
 )
 from corrugate.solver.validity import LAYER_KINDS, layer_limits
 
-__all__ = ["MAX_LAYER_DESIGNS", "MAX_PAIRS", "SLACK", "SeparableResult", "applies", "search"]
+__all__ = [
+    "MAX_LAYER_DESIGNS",
+    "MAX_PAIRS",
+    "SLACK",
+    "LayerDesigns",
+    "SeparableResult",
+    "applies",
+    "layer_designs",
+    "pair_floor",
+    "search",
+]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -187,6 +197,10 @@ class _Layer:
         return _Layer(*(getattr(self, f)[idx] for f in self.__dataclass_fields__))
 
 
+#: One layer's designs that meet its own constraints (step 1 of the module docstring).
+LayerDesigns = _Layer
+
+
 def _ok(c: Constraint, v: FloatArray, rtol: float) -> NDArray[np.bool_]:
     return c.satisfied(v, rtol=rtol)
 
@@ -265,6 +279,47 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
     return _Layer(
         n, W_g[g], a_g[g], E, zz.height[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
     )
+
+
+def layer_designs(problem: Problem, cand: Candidate, which: int) -> LayerDesigns | None:
+    """Step 1 of the module docstring for layer ``which`` (1 or 2) of sheet ``cand``; None if
+    the list is longer than :data:`MAX_LAYER_DESIGNS`."""
+    return _layer(problem, cand, which)
+
+
+def pair_floor(
+    problem: Problem, c1: Candidate, c2: Candidate, L1: LayerDesigns, L2: LayerDesigns
+) -> float:
+    """A lower bound (g) of the mass of every design of sheets (c1, c2) that meets the
+    constraints (inf: none does), from the layer lists alone (:func:`layer_designs`), without
+    pairing them: the least of each layer's mass bound of step 3 (its blank over the least
+    extent of the other list, the band at the least of those), and inf when a coupled bound
+    fails even at each term's largest (a stiffness (u + v) f g >= C with max u + max v, max f,
+    max g; the thickness h1 + h2 with both least). A necessary condition of :func:`search`'s
+    pairs, so never above its answer; problems of :func:`applies`."""
+    if not len(L1) or not len(L2):
+        return math.inf
+    loose = FEAS_RTOL + SLACK
+    for c in problem.constraints:
+        q = c.quantity
+        if _stiffness(q) and c.sense == "min":
+            u, v, f, g = _terms(q, L1, L2, c1.t, c2.t)
+            most = (float(u.max()) + float(v.max())) * float(f.max()) * float(g.max())
+            if most * (1 + SLACK) < c.bound * (1 - loose):
+                return math.inf
+        elif q == THICKNESS:
+            least = float(L1.h.min()) + float(L2.h.min())
+            most = float(L1.h.max()) + float(L2.h.max())
+            if c.sense == "max" and least > c.bound * (1 + loose) * (1 + SLACK):
+                return math.inf
+            if c.sense == "min" and most < c.bound * (1 - loose) * (1 - SLACK):
+                return math.inf
+    lay, m1, m2 = problem.layout, c1.material, c2.material
+    E1_min, E2_min, h2_min = float(L1.E.min()), float(L2.E.min()), float(L2.h.min())
+    low1 = layer_mass(m1.density, c1.t, L1.W, length_sum(lay, L1.n, E2_min), lay)
+    low1 = low1 + connector_mass(m1.density, c1.t, lay, L1.E, E2_min, L1.h + h2_min)
+    low2 = layer_mass(m2.density, c2.t, L2.W, length_sum(lay, L2.n, E1_min), lay)
+    return (float(np.min(low1)) + float(np.min(low2))) * (1 - SLACK)
 
 
 @dataclass(frozen=True)
