@@ -90,6 +90,7 @@ class Floors:
     relaxed: Problem
     _lists: dict[tuple[int, int], LayerDesigns | None] = field(default_factory=dict)
     _tables: Tables | None = None
+    _coarse: np.ndarray | None = None
 
     @property
     def size(self) -> int:
@@ -106,13 +107,15 @@ class Floors:
         return divmod(k, len(self.relaxed.candidates))
 
     def coarse(self, k: int) -> float:
-        """A floor of pair ``k`` from the layer lists alone (0 when a list is too long)."""
-        i, j = self._pair(k)
-        L1, L2 = self._list(i, 1), self._list(j, 2)
-        if L1 is None or L2 is None:
-            return 0.0
-        c = self.relaxed.candidates
-        return separable.pair_floor(self.relaxed, c[i], c[j], L1, L2) * (1 - RELAX)
+        """A floor of pair ``k`` from the layer lists alone (0 when a list is too long), all
+        pairs' at the first call (:func:`~.separable.pair_floors`)."""
+        if self._coarse is None:
+            n = len(self.relaxed.candidates)
+            firsts = [self._list(i, 1) for i in range(n)]
+            seconds = [self._list(i, 2) for i in range(n)]
+            got = separable.pair_floors(self.relaxed, self.relaxed.candidates, firsts, seconds)
+            self._coarse = (got * (1 - RELAX)).reshape(-1)
+        return float(self._coarse[k])
 
     def fine(self, k: int, below: float) -> float:
         """A floor of pair ``k`` at least :meth:`coarse`'s: R's optimum on it, less

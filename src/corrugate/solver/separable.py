@@ -98,6 +98,7 @@ __all__ = [
     "applies",
     "layer_designs",
     "pair_floor",
+    "pair_floors",
     "search",
 ]
 
@@ -320,6 +321,93 @@ def pair_floor(
     low1 = low1 + connector_mass(m1.density, c1.t, lay, L1.E, E2_min, L1.h + h2_min)
     low2 = layer_mass(m2.density, c2.t, L2.W, length_sum(lay, L2.n, E1_min), lay)
     return (float(np.min(low1)) + float(np.min(low2))) * (1 - SLACK)
+
+
+def pair_floors(
+    problem: Problem,
+    cands: tuple[Candidate, ...],
+    firsts: list[LayerDesigns | None],
+    seconds: list[LayerDesigns | None],
+) -> FloatArray:
+    """:func:`pair_floor` of every sheet pair (i, j) at once, as an N x N array: sheet i's
+    layer-1 list ``firsts[i]`` with sheet j's layer-2 list ``seconds[j]`` (None: a list too
+    long, floor 0), the same arithmetic broadcast over the partners' extremes."""
+    N = len(cands)
+    out = np.zeros((N, N))
+    ok1 = np.array([L is not None for L in firsts])
+    ok2 = np.array([L is not None for L in seconds])
+    empty1 = np.array([L is not None and not len(L) for L in firsts])
+    empty2 = np.array([L is not None and not len(L) for L in seconds])
+    full1 = [i for i in range(N) if ok1[i] and not empty1[i]]
+    full2 = [j for j in range(N) if ok2[j] and not empty2[j]]
+    if full1 and full2:
+        A: list[_Layer] = [L for i in full1 if (L := firsts[i]) is not None]
+        B: list[_Layer] = [L for j in full2 if (L := seconds[j]) is not None]
+        dead = np.zeros((len(A), len(B)), dtype=bool)
+        loose = FEAS_RTOL + SLACK
+        h1 = np.array([[float(L.h.min()), float(L.h.max())] for L in A])
+        h2 = np.array([[float(L.h.min()), float(L.h.max())] for L in B])
+        for c in problem.constraints:
+            q = c.quantity
+            if _stiffness(q) and c.sense == "min":
+                uf = np.array(
+                    [
+                        [float(t[0].max()), float(t[2].max())]
+                        for t in (
+                            _terms(q, L, L, cands[i].t, cands[i].t)
+                            for L, i in zip(A, full1, strict=True)
+                        )
+                    ]
+                )
+                vg = np.array(
+                    [
+                        [float(t[1].max()), float(t[3].max())]
+                        for t in (
+                            _terms(q, L, L, cands[j].t, cands[j].t)
+                            for L, j in zip(B, full2, strict=True)
+                        )
+                    ]
+                )
+                most = (uf[:, :1] + vg[None, :, 0]) * uf[:, 1:] * vg[None, :, 1]
+                dead |= most * (1 + SLACK) < c.bound * (1 - loose)
+            elif q == THICKNESS:
+                least = h1[:, :1] + h2[None, :, 0]
+                top = h1[:, 1:] + h2[None, :, 1]
+                if c.sense == "max":
+                    dead |= least > c.bound * (1 + loose) * (1 + SLACK)
+                else:
+                    dead |= top < c.bound * (1 - loose) * (1 - SLACK)
+        lay = problem.layout
+        E1_min = np.array([float(L.E.min()) for L in A])
+        E2_min = np.array([float(L.E.min()) for L in B])
+        low1 = np.empty((len(A), len(B)))
+        for r, (L, i) in enumerate(zip(A, full1, strict=True)):
+            m, t = cands[i].material, cands[i].t
+            W, n = L.W[:, None], L.n[:, None]
+            x = layer_mass(m.density, t, W, length_sum(lay, n, E2_min[None, :]), lay)
+            x = np.asarray(x) + connector_mass(
+                m.density,
+                t,
+                lay,
+                L.E[:, None],
+                E2_min[None, :],
+                L.h[:, None] + h2[None, :, 0],
+            )
+            low1[r] = x.min(axis=0)
+        low2 = np.empty((len(A), len(B)))
+        for col, (L, j) in enumerate(zip(B, full2, strict=True)):
+            m, t = cands[j].material, cands[j].t
+            W, n = L.W[:, None], L.n[:, None]
+            low2[:, col] = layer_mass(
+                m.density, t, W, length_sum(lay, n, E1_min[None, :]), lay
+            ).min(axis=0)
+        block = np.where(dead, math.inf, (low1 + low2) * (1 - SLACK))
+        out[np.ix_(full1, full2)] = block
+    out[empty1 & ok1, :] = math.inf
+    out[:, empty2 & ok2] = math.inf
+    out[~ok1, :] = 0.0
+    out[:, ~ok2] = 0.0
+    return out
 
 
 @dataclass(frozen=True)

@@ -1014,24 +1014,27 @@ def _warm_binding(
     name: str,
     bits: int,
 ) -> list[Start | None]:
-    """Per sheet pair, the boxes the binding check of constraint ``name`` searches: a searched
-    pair's boxes that this constraint alone closed below the optimum (its archive); a pair
-    pruned whole (:attr:`Optimum.pruned`), nothing when its floor without the constraint
-    (:mod:`.choices`) reaches the optimum (no design of it meeting the others is lighter), else
-    its whole domain (None)."""
+    """Per sheet pair, the boxes the binding check of constraint ``name`` searches: nothing
+    when the pair's floor (:mod:`.choices`) of the check's problem (the constraint negated,
+    :func:`_relaxed`; else of the problem without it, a relaxation of that) reaches the
+    optimum, as no design of the pair meeting the other constraints is lighter; else a searched
+    pair's boxes that this constraint alone closed below the optimum (its archive), and a pair
+    pruned whole (:attr:`Optimum.pruned`) its whole domain (None)."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     out: list[Start | None] = []
-    fl: Floors | None = None
+    # the floors of the check's own problem (the constraint negated), else of the problem
+    # without it (a relaxation of that): a pair whose floor reaches the optimum has nothing
+    fl = floors(_relaxed(problem, name, opt.certified)) or floors(problem.without(name))
     for i, a in enumerate(tree):
-        if a is not None:
-            out.append(a.reopen(bits, sign * opt.value))
-            continue
-        if fl is None:
-            fl = floors(problem.without(name))
-        floor = 0.0 if fl is None else fl.coarse(i)
-        if floor < opt.value and fl is not None:
-            floor = max(floor, fl.fine(i, opt.value))
-        out.append(_empty_start(problem) if floor >= opt.value else None)
+        floor = 0.0
+        if fl is not None:
+            floor = fl.coarse(i)
+            if floor < opt.value:
+                floor = max(floor, fl.fine(i, opt.value))
+        if floor >= opt.value:
+            out.append(_empty_start(problem))
+        else:
+            out.append(None if a is None else a.reopen(bits, sign * opt.value))
     return out
 
 
