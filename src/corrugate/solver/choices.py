@@ -1,5 +1,5 @@
 """Certified lower bounds on the lightest design of each sheet pair, to order the pairs and prune
-whole ones (issue 39 item 1; docs/design.md section 2.4).
+whole ones (docs/theory.md section 5).
 
 A problem with material choices searches every sheet pair (:func:`~.solve.pairs`). When its
 independent layers decompose (least mass, a rectangle, gridded, bounds along the creases:

@@ -1,7 +1,8 @@
 """Solve a design problem and explain the answer (docs/theory.md section 5).
 
 :func:`solve` runs the certified branch and bound (:mod:`.bnb`) over every candidate sheet pair
-(the material and thickness are a discrete variable; a shared incumbent prunes the later pairs),
+(the material and thickness are a discrete variable; a shared incumbent prunes the later pairs;
+where the pairs have certified floors, :mod:`.choices`, best-first by them, whole pairs pruned),
 then, unless ``explain=False``, builds the explanation:
 
 * the design's performance, exactly as :func:`corrugate.analysis.evaluate.analyze` reports it;
