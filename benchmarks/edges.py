@@ -4,6 +4,7 @@ independent layers and infeasible specs, certified and explained, before and aft
 Run by hand (a few minutes: the before tree's slow rows dominate)::
 
     python benchmarks/edges.py --base main [--repeats 1] [--rows NAME,NAME] [--cap-mb 6000]
+                               [--no-base] [--inproc-repeats 3]
     python benchmarks/edges.py --write DIR   # write the specs only
 
 The specs (written to a temporary folder, default tolerances on: no ``tolerances`` key):
@@ -229,6 +230,9 @@ def main() -> None:
     ap.add_argument("--cap-mb", type=int, default=6000)
     ap.add_argument("--write", default="", help="write the specs to this folder and stop")
     ap.add_argument("--no-base", action="store_true", help="this tree only")
+    ap.add_argument(
+        "--inproc-repeats", type=int, default=3, help="in-process runs of the 13-sheet row"
+    )
     args = ap.parse_args()
     if args.write:
         Path(args.write).mkdir(parents=True, exist_ok=True)
@@ -301,7 +305,7 @@ def main() -> None:
                     "   explained / certified search, whole processes (imports included): "
                     + ", ".join(f"{t} {v:.2f}x" for t, v in ratio.items())
                 )
-                reps = "21" if row == "case-study" else "3"
+                reps = "21" if row == "case-study" else str(args.inproc_repeats)
                 inproc = {}
                 for t in trees:  # imports done, warm, explain=False and True interleaved
                     got = _run([py, "-c", INPROC_CODE, str(spec), reps], envs[t], args.cap_mb)
