@@ -300,7 +300,7 @@ class _Incumbent:
     to :func:`branch_and_bound`); the threshold lies ``tol`` (relative) below it. One slot:
     :class:`_PerN` keeps one per n."""
 
-    def __init__(self, first: float, tol: float, slots: int = 1) -> None:
+    def __init__(self, first: float | FloatArray, tol: float, slots: int = 1) -> None:
         self.value = np.full(slots, first)
         self.point: list[DesignPoints | None] = [None] * slots
         self.tol = tol
@@ -361,7 +361,7 @@ class _PerN(_Incumbent):
     """One incumbent per n in a..b (``per_n``): the best design with each n, n fixed as
     ``n_fixed=(n, n)`` fixes it (every layer's n); the result's ``by_n``."""
 
-    def __init__(self, first: float, tol: float, per_n: tuple[int, int]) -> None:
+    def __init__(self, first: float | FloatArray, tol: float, per_n: tuple[int, int]) -> None:
         super().__init__(first, tol, per_n[1] - per_n[0] + 1)
         self.a, self.b = per_n
 
@@ -755,7 +755,7 @@ def branch_and_bound(
     c1: Candidate,
     c2: Candidate,
     *,
-    incumbent: float | None = None,
+    incumbent: float | FloatArray | None = None,
     n_fixed: tuple[int, int] | None = None,
     tables: Tables | None = None,
     gap_rtol: float = GAP_RTOL,
@@ -767,7 +767,8 @@ def branch_and_bound(
     """Optimise ``problem.objective`` over sheets (c1, c2), certifying the result (see module).
 
     ``incumbent``: an objective value already reached elsewhere (another sheet pair), used only
-    for pruning; the result then holds a point only if it beats it. ``n_fixed``: restrict n
+    for pruning; the result then holds a point only if it beats it (with ``per_n``, an array:
+    one per n, -inf: nothing with that n searched). ``n_fixed``: restrict n
     (n1 for independent layers) to a range. ``start``: the open boxes (lo, hi, lower bound of
     sign * objective) to search instead of the whole domain (boxes reopened from an
     :class:`~.archive.Archive`; their union must hold every design the answer is about). ``record``: keep
@@ -780,13 +781,14 @@ def branch_and_bound(
     """
     tables = tables or Tables(problem)
     if start is None and not record and per_n is None and n_fixed is None and stop_below is None:
+        assert incumbent is None or isinstance(incumbent, float | int)
         by_layer = _by_layer(problem, c1, c2, incumbent, tables)
         if by_layer is not None:
             return by_layer
     sign = -1.0 if problem.objective.sense == "max" else 1.0  # minimise sign * objective
     dims = _dims(problem, n_fixed)
     tol = 0.0 if all(d.var.gridded for d in dims) else gap_rtol
-    first = math.inf if incumbent is None else sign * incumbent
+    first: float | FloatArray = math.inf if incumbent is None else sign * incumbent
     best = _Incumbent(first, tol) if per_n is None else _PerN(first, tol, per_n)
     log = Recorder(len(problem.constraints)) if record else NoRecorder()
     pace = _Pace() if stop_below is None else _StopBelow(sign * stop_below)

@@ -90,7 +90,18 @@ from corrugate.solver.quantity import (
 )
 from corrugate.solver.validity import LAYER_KINDS, layer_limits
 
-__all__ = ["MAX_LAYER_DESIGNS", "MAX_PAIRS", "SLACK", "SeparableResult", "applies", "search"]
+__all__ = [
+    "MAX_LAYER_DESIGNS",
+    "MAX_PAIRS",
+    "SLACK",
+    "LayerDesigns",
+    "SeparableResult",
+    "applies",
+    "layer_designs",
+    "pair_floor",
+    "pair_floors",
+    "search",
+]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -189,6 +200,10 @@ class _Layer:
         return _Layer(*(getattr(self, f)[idx] for f in self.__dataclass_fields__))
 
 
+#: One layer's designs that meet its own constraints (step 1 of the module docstring).
+LayerDesigns = _Layer
+
+
 def _ok(c: Constraint, v: FloatArray, rtol: float) -> NDArray[np.bool_]:
     return c.satisfied(v, rtol=rtol)
 
@@ -269,6 +284,134 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
     return _Layer(
         n, W_g[g], a_g[g], E, zz.height[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
     )
+
+
+def layer_designs(problem: Problem, cand: Candidate, which: int) -> LayerDesigns | None:
+    """Step 1 of the module docstring for layer ``which`` (1 or 2) of sheet ``cand``; None if
+    the list is longer than :data:`MAX_LAYER_DESIGNS`."""
+    return _layer(problem, cand, which)
+
+
+def pair_floor(
+    problem: Problem, c1: Candidate, c2: Candidate, L1: LayerDesigns, L2: LayerDesigns
+) -> float:
+    """A lower bound (g) of the mass of every design of sheets (c1, c2) that meets the
+    constraints (inf: none does), from the layer lists alone (:func:`layer_designs`), without
+    pairing them: the least of each layer's mass bound of step 3 (its blank over the least
+    extent of the other list, the band at the least of those), and inf when a coupled bound
+    fails even at each term's largest (a stiffness (u + v) f g >= C with max u + max v, max f,
+    max g; the thickness h1 + h2 with both least). A necessary condition of :func:`search`'s
+    pairs, so never above its answer; problems of :func:`applies`."""
+    if not len(L1) or not len(L2):
+        return math.inf
+    loose = FEAS_RTOL + SLACK
+    for c in problem.constraints:
+        q = c.quantity
+        if _stiffness(q) and c.sense == "min":
+            u, v, f, g = _terms(q, L1, L2, c1.t, c2.t)
+            most = (float(u.max()) + float(v.max())) * float(f.max()) * float(g.max())
+            if most * (1 + SLACK) < c.bound * (1 - loose):
+                return math.inf
+        elif q == THICKNESS:
+            least = float(L1.h.min()) + float(L2.h.min())
+            most = float(L1.h.max()) + float(L2.h.max())
+            if c.sense == "max" and least > c.bound * (1 + loose) * (1 + SLACK):
+                return math.inf
+            if c.sense == "min" and most < c.bound * (1 - loose) * (1 - SLACK):
+                return math.inf
+    lay, m1, m2 = problem.layout, c1.material, c2.material
+    E1_min, E2_min, h2_min = float(L1.E.min()), float(L2.E.min()), float(L2.h.min())
+    low1 = layer_mass(m1.density, c1.t, L1.W, length_sum(lay, L1.n, E2_min), lay)
+    low1 = low1 + connector_mass(m1.density, c1.t, lay, L1.E, E2_min, L1.h + h2_min)
+    low2 = layer_mass(m2.density, c2.t, L2.W, length_sum(lay, L2.n, E1_min), lay)
+    return (float(np.min(low1)) + float(np.min(low2))) * (1 - SLACK)
+
+
+def pair_floors(
+    problem: Problem,
+    cands: tuple[Candidate, ...],
+    firsts: list[LayerDesigns | None],
+    seconds: list[LayerDesigns | None],
+) -> FloatArray:
+    """:func:`pair_floor` of every sheet pair (i, j) at once, as an N x N array: sheet i's
+    layer-1 list ``firsts[i]`` with sheet j's layer-2 list ``seconds[j]`` (None: a list too
+    long, floor 0), the same arithmetic broadcast over the partners' extremes."""
+    N = len(cands)
+    out = np.zeros((N, N))
+    ok1 = np.array([L is not None for L in firsts])
+    ok2 = np.array([L is not None for L in seconds])
+    empty1 = np.array([L is not None and not len(L) for L in firsts])
+    empty2 = np.array([L is not None and not len(L) for L in seconds])
+    full1 = [i for i in range(N) if ok1[i] and not empty1[i]]
+    full2 = [j for j in range(N) if ok2[j] and not empty2[j]]
+    if full1 and full2:
+        A: list[_Layer] = [L for i in full1 if (L := firsts[i]) is not None]
+        B: list[_Layer] = [L for j in full2 if (L := seconds[j]) is not None]
+        dead = np.zeros((len(A), len(B)), dtype=bool)
+        loose = FEAS_RTOL + SLACK
+        h1 = np.array([[float(L.h.min()), float(L.h.max())] for L in A])
+        h2 = np.array([[float(L.h.min()), float(L.h.max())] for L in B])
+        for c in problem.constraints:
+            q = c.quantity
+            if _stiffness(q) and c.sense == "min":
+                uf = np.array(
+                    [
+                        [float(t[0].max()), float(t[2].max())]
+                        for t in (
+                            _terms(q, L, L, cands[i].t, cands[i].t)
+                            for L, i in zip(A, full1, strict=True)
+                        )
+                    ]
+                )
+                vg = np.array(
+                    [
+                        [float(t[1].max()), float(t[3].max())]
+                        for t in (
+                            _terms(q, L, L, cands[j].t, cands[j].t)
+                            for L, j in zip(B, full2, strict=True)
+                        )
+                    ]
+                )
+                most = (uf[:, :1] + vg[None, :, 0]) * uf[:, 1:] * vg[None, :, 1]
+                dead |= most * (1 + SLACK) < c.bound * (1 - loose)
+            elif q == THICKNESS:
+                least = h1[:, :1] + h2[None, :, 0]
+                top = h1[:, 1:] + h2[None, :, 1]
+                if c.sense == "max":
+                    dead |= least > c.bound * (1 + loose) * (1 + SLACK)
+                else:
+                    dead |= top < c.bound * (1 - loose) * (1 - SLACK)
+        lay = problem.layout
+        E1_min = np.array([float(L.E.min()) for L in A])
+        E2_min = np.array([float(L.E.min()) for L in B])
+        low1 = np.empty((len(A), len(B)))
+        for r, (L, i) in enumerate(zip(A, full1, strict=True)):
+            m, t = cands[i].material, cands[i].t
+            W, n = L.W[:, None], L.n[:, None]
+            x = layer_mass(m.density, t, W, length_sum(lay, n, E2_min[None, :]), lay)
+            x = np.asarray(x) + connector_mass(
+                m.density,
+                t,
+                lay,
+                L.E[:, None],
+                E2_min[None, :],
+                L.h[:, None] + h2[None, :, 0],
+            )
+            low1[r] = x.min(axis=0)
+        low2 = np.empty((len(A), len(B)))
+        for col, (L, j) in enumerate(zip(B, full2, strict=True)):
+            m, t = cands[j].material, cands[j].t
+            W, n = L.W[:, None], L.n[:, None]
+            low2[:, col] = layer_mass(
+                m.density, t, W, length_sum(lay, n, E1_min[None, :]), lay
+            ).min(axis=0)
+        block = np.where(dead, math.inf, (low1 + low2) * (1 - SLACK))
+        out[np.ix_(full1, full2)] = block
+    out[empty1 & ok1, :] = math.inf
+    out[:, empty2 & ok2] = math.inf
+    out[~ok1, :] = 0.0
+    out[:, ~ok2] = 0.0
+    return out
 
 
 @dataclass(frozen=True)

@@ -1,7 +1,8 @@
 """Solve a design problem and explain the answer (docs/theory.md section 5).
 
 :func:`solve` runs the certified branch and bound (:mod:`.bnb`) over every candidate sheet pair
-(the material and thickness are a discrete variable; a shared incumbent prunes the later pairs),
+(the material and thickness are a discrete variable; a shared incumbent prunes the later pairs;
+where the pairs have certified floors, :mod:`.choices`, best-first by them, whole pairs pruned),
 then, unless ``explain=False``, builds the explanation:
 
 * the design's performance, exactly as :func:`corrugate.analysis.evaluate.analyze` reports it;
@@ -22,6 +23,7 @@ then, unless ``explain=False``, builds the explanation:
 
 from __future__ import annotations
 
+import heapq
 import math
 import time
 from collections.abc import Sequence
@@ -38,6 +40,7 @@ from corrugate.mechanics.capacity import Capacity
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
+from corrugate.solver.choices import Floors, floors
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
@@ -84,14 +87,27 @@ class Optimum:
     boxes: int
     iterations: int
     #: ``record``: each sheet pair's closed boxes (:func:`pairs` order; an entry is None when
-    #: its archive outgrew :data:`~.archive.ARCHIVE_ROWS`), None otherwise
+    #: its archive outgrew :data:`~.archive.ARCHIVE_ROWS`, or the pair was pruned whole),
+    #: None otherwise
     archives: tuple[Archive | None, ...] | None = None
+    #: the sheet pairs (:func:`pairs` order) pruned whole by a floor (:mod:`.choices`): no
+    #: design of theirs is lighter than the answer; not searched, no archive
+    pruned: frozenset[int] = frozenset()
 
     def tree(self) -> tuple[Archive, ...] | None:
         """Every pair's archive, or None when one is missing (then the explanation re-solves)."""
         if self.archives is None or any(a is None for a in self.archives):
             return None
         return tuple(a for a in self.archives if a is not None)
+
+    def trees(self) -> tuple[Archive | None, ...] | None:
+        """Every pair's archive, None for the pairs pruned whole (:attr:`pruned`); None when a
+        searched pair's is missing (then the explanation re-solves)."""
+        if self.archives is None or any(
+            a is None and i not in self.pruned for i, a in enumerate(self.archives)
+        ):
+            return None
+        return self.archives
 
 
 #: Boxes (lo, hi, lower bound of sign * objective) to start one pair's search from.
@@ -403,8 +419,9 @@ def optimize(
     incumbent: float | None = None,
     gap_rtol: float = GAP_RTOL,
     record: bool = False,
-    warm: Sequence[Start] | None = None,
+    warm: Sequence[Start | None] | None = None,
     stop_below: float | None = None,
+    prune: bool = False,
 ) -> Optimum:
     """The certified optimum of ``problem`` over every candidate sheet pair (continuous
     variables: to the relative gap ``gap_rtol``). Inside a
@@ -415,8 +432,18 @@ def optimize(
     the boxes to search instead of its whole domain (reopened from an archive of a search of a
     problem whose feasible designs include this one's: the answer is then the same).
     ``stop_below``: stop at the first design strictly better than this objective value (it
-    proves that one exists; the answer is then not certified unless the search had ended)."""
+    proves that one exists; the answer is then not certified unless the search had ended).
+    A ``warm`` entry None: that pair's whole domain.
+
+    ``prune``: when the sheet pairs have floors (:func:`~.choices.floors`: least mass,
+    independent layers that decompose), take them best-first by their floors and prune whole
+    the pairs whose floor reaches the incumbent (:func:`_by_floors`; not with ``warm``,
+    ``n_fixed`` or ``stop_below``): the same answer and certificate."""
     tables = tables or Tables(problem)
+    if prune and warm is None and n_fixed is None and stop_below is None:
+        fl = floors(problem)
+        if fl is not None:
+            return _by_floors(problem, fl, tables, incumbent, record)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best: BnBResult | None = None
     best_pair: tuple[Candidate, Candidate] | None = None
@@ -430,7 +457,8 @@ def optimize(
             certified = False
             bound = -math.inf
             break
-        if warm is not None and not len(warm[i][0]):
+        start = None if warm is None else warm[i]
+        if start is not None and not len(start[0]):
             continue  # nothing of this pair to search
         r = branch_and_bound(
             problem,
@@ -439,7 +467,7 @@ def optimize(
             n_fixed=n_fixed,
             tables=tables,
             gap_rtol=gap_rtol,
-            start=None if warm is None else warm[i],
+            start=start,
             record=record,
             stop_below=stop_below,
         )
@@ -474,6 +502,81 @@ def optimize(
     )
     gap = 0.0 if problem.gridded and certified else gap_abs / max(abs(best_val), 1e-300)
     return Optimum(best.point, best_pair, best.value, certified, gap, boxes, iterations, kept)
+
+
+def _by_floors(
+    problem: Problem,
+    fl: Floors,
+    tables: Tables,
+    incumbent: float | None,
+    record: bool,
+) -> Optimum:
+    """:func:`optimize` of a least-mass problem over its sheet pairs best-first by their floors
+    (:mod:`.choices`): a pair's coarse floor is refined before the pair is searched, and the
+    search stops when the least floor left reaches the incumbent (the pairs left are pruned
+    whole). The answer is :func:`optimize`'s: a pruned pair's branch and bound would return no
+    design (none lighter than the incumbent; :func:`optimize` keeps the first strictly lighter
+    one), the same one unless two pairs tie exactly. With ``record`` and no design found, the
+    pruned pairs are searched too (the diagnosis reopens every pair's archive)."""
+    everything = pairs(problem)
+    heap = [(fl.coarse(k), 0, k) for k in range(len(everything))]
+    heapq.heapify(heap)
+    inc = math.inf if incumbent is None else incumbent
+    best: BnBResult | None = None
+    best_pair: tuple[Candidate, Candidate] | None = None
+    certified = True
+    boxes = iterations = 0
+    archives: list[Archive | None] = [None] * len(everything)
+    uncertified: list[float] = []  # the proven bounds of the pairs not certified
+
+    def run(k: int) -> None:
+        nonlocal best, best_pair, certified, boxes, iterations, inc
+        pair = everything[k]
+        r = branch_and_bound(
+            problem,
+            *pair,
+            incumbent=None if not math.isfinite(inc) else inc,
+            tables=tables,
+            record=record,
+        )
+        archives[k] = r.archive
+        if not r.certified:
+            uncertified.append(r.bound)
+        boxes += r.boxes
+        iterations += r.iterations
+        certified &= r.certified
+        if r.point is not None and (best is None or r.value < best.value):
+            best, best_pair, inc = r, pair, r.value
+
+    bound = math.inf  # the least proven bound of the pairs not certified
+    while heap:
+        if budget_spent():  # the pairs left: nothing proven
+            certified, bound = False, -math.inf
+            break
+        floor, level, k = heapq.heappop(heap)
+        if floor >= inc:  # this pair and every pair left: no design lighter than the answer
+            heapq.heappush(heap, (floor, level, k))
+            break
+        if level == 0:
+            heapq.heappush(heap, (max(floor, fl.fine(k, inc)), 1, k))
+            continue
+        run(k)
+    pruned = frozenset(k for _, _, k in heap) if certified else frozenset()
+    if record and certified and best is None and pruned:
+        for k in sorted(pruned):  # for the diagnosis' archives: every pair searched
+            run(k)
+        pruned = frozenset()
+    kept = tuple(archives) if record and certified else None
+    if best is None or best_pair is None:
+        gap = 0.0 if certified else math.inf
+        return Optimum(None, None, math.nan, certified, gap, boxes, iterations, kept, pruned)
+    gap = 0.0
+    if not certified:
+        bound = min([bound, *uncertified])
+        gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
+    return Optimum(
+        best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned
+    )
 
 
 def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
@@ -515,7 +618,7 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     t0 = time.perf_counter()
     tables = Tables(problem)
     stage(SEARCHING)
-    opt = optimize(problem, tables=tables, record=explain)
+    opt = optimize(problem, tables=tables, record=explain, prune=True)
     t_opt = time.perf_counter() - t0
     stats: dict[str, object] = {
         "boxes": float(opt.boxes),
@@ -834,7 +937,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     vals = _values_at(problem, opt, tables)
     capacity = _capacities(problem, opt, tables, vals)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
-    tree = opt.tree()
+    tree = opt.trees()
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     witnessed = _witnesses(problem, opt, tables, tol)
     out = []
@@ -850,7 +953,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
             warm = (
                 None
                 if tree is None
-                else [a.reopen(constraint_bits(problem, c.name), sign * opt.value) for a in tree]
+                else _warm_binding(problem, opt, tree, c.name, constraint_bits(problem, c.name))
             )
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
@@ -902,6 +1005,43 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     return out
 
 
+def _empty_start(problem: Problem) -> Start:
+    """No box: a pair with nothing to search."""
+    ndim = len(coordinates(problem))
+    return np.empty((0, ndim)), np.empty((0, ndim)), np.empty(0)
+
+
+def _warm_binding(
+    problem: Problem,
+    opt: Optimum,
+    tree: tuple[Archive | None, ...],
+    name: str,
+    bits: int,
+) -> list[Start | None]:
+    """Per sheet pair, the boxes the binding check of constraint ``name`` searches: nothing
+    when the pair's floor (:mod:`.choices`) of the check's problem (the constraint negated,
+    :func:`_relaxed`; else of the problem without it, a relaxation of that) reaches the
+    optimum, as no design of the pair meeting the other constraints is lighter; else a searched
+    pair's boxes that this constraint alone closed below the optimum (its archive), and a pair
+    pruned whole (:attr:`Optimum.pruned`) its whole domain (None)."""
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    out: list[Start | None] = []
+    # the floors of the check's own problem (the constraint negated), else of the problem
+    # without it (a relaxation of that): a pair whose floor reaches the optimum has nothing
+    fl = floors(_relaxed(problem, name, opt.certified)) or floors(problem.without(name))
+    for i, a in enumerate(tree):
+        floor = 0.0
+        if fl is not None:
+            floor = fl.coarse(i)
+            if floor < opt.value:
+                floor = max(floor, fl.fine(i, opt.value))
+        if floor >= opt.value:
+            out.append(_empty_start(problem))
+        else:
+            out.append(None if a is None else a.reopen(bits, sign * opt.value))
+    return out
+
+
 def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
     """The certified best design for each n within :data:`RUNNER_UP_SPREAD` of the optimum's
     layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
@@ -916,16 +1056,19 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
         max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
         min(problem.n_hi, n_star + RUNNER_UP_SPREAD),
     )
-    tree = opt.tree()
+    tree = opt.trees()
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]] = {}
     certified = {n: True for n in range(a, b + 1)}
-    for i, pair in enumerate(pairs(problem)):
+    everything = pairs(problem)
+    for i, pair in enumerate(everything):
         if budget_spent():
             for n in certified:
                 certified[n] = False
             break
-        start = None if tree is None else tree[i].reopen()
+        if tree is not None and tree[i] is None:
+            continue  # pruned whole: below, against the runner-ups of the others
+        start = None if tree is None else tree[i].reopen()  # type: ignore[union-attr]
         r = branch_and_bound(
             problem, *pair, tables=tables, start=start, per_n=(a, b), gap_rtol=RUNNER_UP_GAP_RTOL
         )
@@ -936,6 +1079,8 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
                 n not in best or sign * rn.value < sign * best[n][0].value
             ):
                 best[n] = (rn, pair)
+    if tree is not None and opt.pruned:
+        _pruned_runner_ups(problem, opt, tables, (a, b), best, certified)
     out = []
     own = opt.certified and round(opt.point.layer(1).n) == n_star
     for n in range(a, b + 1):
@@ -956,6 +1101,62 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
             )
         )
     return out
+
+
+def _pruned_runner_ups(
+    problem: Problem,
+    opt: Optimum,
+    tables: Tables,
+    span: tuple[int, int],
+    best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]],
+    certified: dict[int, bool],
+) -> None:
+    """The runner-ups of the sheet pairs pruned whole (:attr:`Optimum.pruned`, least mass),
+    into ``best`` and ``certified``: a pair is searched only for the n whose floor with n fixed
+    (:mod:`.choices`, both layers' n, as ``per_n`` fixes it) is below the best design with that
+    n of the pairs before it, one incumbent per n (the others' best), the others' incumbent
+    -inf (nothing searched); pairs by rising floor. A pair that holds no lighter design with
+    some n would return none for it: the runner-ups are the same."""
+    a, b = span
+    everything = pairs(problem)
+    whole = floors(problem)
+    per_n: dict[int, Floors | None] = {}
+    order = sorted(opt.pruned, key=lambda k: (0.0 if whole is None else whole.coarse(k), k))
+    for k in order:
+        if budget_spent():
+            for n in certified:
+                certified[n] = False
+            return
+        target = {n: best[n][0].value if n in best else math.inf for n in range(a, b + 1)}
+        floor = 0.0 if whole is None else whole.coarse(k)
+        need = {}
+        for n, goal in target.items():
+            if floor >= goal:
+                continue
+            if n not in per_n:
+                per_n[n] = floors(replace(problem, n_lo=n, n_hi=n))
+            fn = per_n[n]
+            f = 0.0 if fn is None else fn.coarse(k)
+            if f < goal and fn is not None:
+                f = max(f, fn.fine(k, goal))
+            if f < goal:
+                need[n] = goal
+        if not need:
+            continue
+        incumbents = np.array([need.get(n, -math.inf) for n in range(a, b + 1)])
+        r = branch_and_bound(
+            problem,
+            *everything[k],
+            incumbent=incumbents,
+            tables=tables,
+            per_n=(a, b),
+            gap_rtol=RUNNER_UP_GAP_RTOL,
+        )
+        assert r.by_n is not None
+        for n, rn in r.by_n.items():
+            certified[n] &= rn.certified
+            if rn.point is not None and (n not in best or rn.value < best[n][0].value):
+                best[n] = (rn, everything[k])
 
 
 def constraint_bits(problem: Problem, name: str) -> int:

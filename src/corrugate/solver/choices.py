@@ -1,0 +1,149 @@
+"""Certified lower bounds on the lightest design of each sheet pair, to order the pairs and prune
+whole ones (docs/theory.md section 5).
+
+A problem with material choices searches every sheet pair (:func:`~.solve.pairs`). When its
+independent layers decompose (least mass, a rectangle, gridded, bounds along the creases:
+:func:`~.separable.applies`), a *relaxation* R of it does too: every design the problem P accepts
+meets R's constraints, with the same mass. R is P with
+
+* nominal tolerances, and each sheet (t, E, density rho) replaced by (t (1 - dt), E (1 - dE),
+  rho / (1 - dt)): rho t, hence every mass, unchanged (to rounding); the certified value G(x)
+  of a directional quantity is at most its value at every part of the tolerance box T(x), and
+  (W, alpha, t (1 - dt), E (1 - dE)) is one of them (:mod:`~.tolerance_box`), so a design whose
+  G meets a lower bound meets it in R (every directional constraint is a lower bound);
+* each directional lower bound relaxed by :data:`RELAX` (relative; rounding) and every lower
+  bound of t / W dropped (t (1 - dt) / W is smaller); the sizes, the making and the mass are
+  nominal in both (docs/tolerances.md).
+
+So the lightest design of R on a pair, less :data:`RELAX`, is at most P's on that pair. Two such
+floors per pair (:class:`Floors`): :meth:`Floors.coarse`, from R's layer lists alone
+(:func:`~.separable.pair_floor`: the lists are built once per sheet, not per pair), and
+:meth:`Floors.fine`, R's certified optimum on the pair (:func:`~.separable.search`, a few ms).
+:func:`~.solve.optimize` takes the pairs best-first by these floors, refining a coarse floor
+before it searches the pair, and stops when the least floor left reaches the incumbent: those
+pairs hold no design lighter than the answer (the branch and bound of each would return none), so
+the answer is the same, its certificate too, whatever the number of sheets.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from corrugate.solver import separable
+from corrugate.solver.points import DesignPoints
+from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
+from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.quantity import MASS, T_OVER_W
+from corrugate.solver.separable import LayerDesigns
+from corrugate.solver.worst_case import NOMINAL, WorstCase
+
+__all__ = ["RELAX", "Floors", "floors", "relaxation"]
+
+#: Relative relaxation of R's directional lower bounds and of its floors (rounding: far above
+#: the few units in the last place by which R's values may differ from P's).
+RELAX = 1e-9
+
+
+def _sheet(c: Candidate, tol: WorstCase) -> Candidate:
+    """The sheet of R (module docstring): t and E at their low ends, rho t unchanged."""
+    m = c.material
+    if not (tol.t or tol.E):
+        return c
+    low = replace(m, E=m.E * (1 - tol.E), density=m.density / (1 - tol.t))
+    return replace(c, material=low, t=c.t * (1 - tol.t))
+
+
+def _relaxed(c: Constraint) -> Constraint | None:
+    """A constraint of R: a directional lower bound relaxed by :data:`RELAX`, a lower bound of
+    t / W dropped (None), the others as they are."""
+    q = c.quantity
+    if c.sense == "min" and (q == T_OVER_W or q.kind == "tw_least"):
+        return None
+    if c.sense == "min" and q.eta is not None:
+        return replace(c, bound=c.bound - RELAX * abs(c.bound))
+    return c
+
+
+def relaxation(problem: Problem) -> Problem | None:
+    """R of the module docstring, None when ``problem`` is not a least-mass problem whose R the
+    layer-by-layer search takes (:func:`~.separable.applies`)."""
+    if problem.objective.quantity != MASS or problem.objective.sense != "min":
+        return None
+    if problem.identical or len(problem.candidates) < 2:
+        return None
+    if any(c.quantity.eta is not None and c.sense != "min" for c in problem.constraints):
+        return None
+    kept = tuple(r for r in (_relaxed(c) for c in problem.constraints) if r is not None)
+    sheets = tuple(_sheet(c, problem.tolerances) for c in problem.candidates)
+    relaxed = replace(problem, tolerances=NOMINAL, constraints=kept, candidates=sheets)
+    return relaxed if separable.applies(relaxed) else None
+
+
+@dataclass
+class Floors:
+    """Lower bounds (g) of each sheet pair's lightest design (pair k: (candidates[k // N],
+    candidates[k % N]), :func:`~.solve.pairs`' order), from the relaxation ``relaxed``."""
+
+    relaxed: Problem
+    _lists: dict[tuple[int, int], LayerDesigns | None] = field(default_factory=dict)
+    _tables: Tables | None = None
+    _coarse: np.ndarray | None = None
+
+    @property
+    def size(self) -> int:
+        return len(self.relaxed.candidates) ** 2
+
+    def _list(self, i: int, which: int) -> LayerDesigns | None:
+        key = (i, which)
+        if key not in self._lists:
+            cand = self.relaxed.candidates[i]
+            self._lists[key] = separable.layer_designs(self.relaxed, cand, which)
+        return self._lists[key]
+
+    def _pair(self, k: int) -> tuple[int, int]:
+        return divmod(k, len(self.relaxed.candidates))
+
+    def coarse(self, k: int) -> float:
+        """A floor of pair ``k`` from the layer lists alone (0 when a list is too long), all
+        pairs' at the first call (:func:`~.separable.pair_floors`)."""
+        if self._coarse is None:
+            n = len(self.relaxed.candidates)
+            firsts = [self._list(i, 1) for i in range(n)]
+            seconds = [self._list(i, 2) for i in range(n)]
+            got = separable.pair_floors(self.relaxed, self.relaxed.candidates, firsts, seconds)
+            self._coarse = (got * (1 - RELAX)).reshape(-1)
+        return float(self._coarse[k])
+
+    def fine(self, k: int, below: float) -> float:
+        """A floor of pair ``k`` at least :meth:`coarse`'s: R's optimum on it, less
+        :data:`RELAX`; inf when R has no design lighter than ``below`` (g) there, 0 when the
+        search declines (lists or pairs too many)."""
+        i, j = self._pair(k)
+        c1, c2 = self.relaxed.candidates[i], self.relaxed.candidates[j]
+        if self._tables is None:
+            self._tables = Tables(self.relaxed)
+        tables, relaxed = self._tables, self.relaxed
+        cons = relaxed.constraints
+
+        def exact(x: DesignPoints) -> tuple[np.ndarray, np.ndarray]:
+            vals = point_values(relaxed, c1, c2, x, tables)
+            ok = np.ones(len(x), dtype=bool)
+            for c in cons:
+                ok &= np.asarray(c.satisfied(vals[c.quantity], rtol=FEAS_RTOL), dtype=bool)
+            return vals[MASS], ok
+
+        inc = None if not math.isfinite(below) else below * (1 + RELAX)
+        r = separable.search(relaxed, c1, c2, inc, exact)
+        if r is None:
+            return 0.0
+        return math.inf if r.point is None else r.value * (1 - RELAX)
+
+
+def floors(problem: Problem) -> Floors | None:
+    """The :class:`Floors` of ``problem``'s sheet pairs, None without a relaxation
+    (:func:`relaxation`)."""
+    relaxed = relaxation(problem)
+    return None if relaxed is None else Floors(relaxed)
