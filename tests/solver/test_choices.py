@@ -24,6 +24,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from corrugate.materials.calibrated import Calibration
 from corrugate.solver import Problem, solve
 from corrugate.solver import separable as sep
 from corrugate.solver.bnb import branch_and_bound
@@ -91,6 +92,18 @@ def test_relaxation_applies_to_choices_only() -> None:
         assert math.isclose(b.material.density * b.t, rho_t, rel_tol=1e-15)
     one = replace(p, candidates=p.candidates[:1])
     assert relaxation(one) is None
+
+
+def test_no_relaxation_for_a_calibrated_sheet() -> None:
+    """A calibrated sheet's certificate takes its measured E interval (which may reach below
+    E (1 - dE)) and the springback's angle, so R would not bound it from below: no floors."""
+    p = _problem(True)
+    m = p.candidates[0].material
+    cal = Calibration(date="2026-12-06", measurements=10, coupons=("F1",), E_lo=0.8 * m.E, E_hi=m.E)
+    first = replace(p.candidates[0], material=replace(m, calibration=cal))
+    calibrated = replace(p, candidates=(first, *p.candidates[1:]))
+    assert calibrated.calibrated
+    assert relaxation(calibrated) is None
 
 
 @pytest.mark.parametrize("tolerances", [True, False])
