@@ -310,17 +310,15 @@ def test_validate_cli_without_solver_is_one_line(monkeypatch: pytest.MonkeyPatch
 
 
 @pytest.mark.fea
-def test_dask_cluster_gives_the_process_pool_numbers(ccx: str) -> None:
+def test_dask_cluster_gives_the_process_pool_numbers(ccx: str, dask_cluster: str) -> None:
     """The same cases through a local dask.distributed cluster (the `dist` extra) and through the
     default process pool give identical numbers (ccx is deterministic)."""
-    distributed = pytest.importorskip("distributed")
     cases = [_tiny_case("a"), replace(_tiny_case("b"), eta_deg=(90.0,))]
     pool = {r.case.label: r.fe for r in run_sweep(cases, jobs=2)}
-    with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-    ) as cluster:
-        ex = dask_executor(cluster.scheduler_address)
+    ex = dask_executor(dask_cluster)
+    try:
         dask = {r.case.label: r.fe for r in run_sweep(cases, ex)}
+    finally:
         ex.shutdown()
     assert pool == dask
     assert pool["a"]["K_N_per_mm@0"] > 0
