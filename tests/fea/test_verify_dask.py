@@ -1,6 +1,7 @@
 """``corrugate verify DIR`` scaled out (issue 39, item 5): the FE runs of its constraint rows and
 first-failure rows as tasks on a dask cluster of two worker processes, or in a local pool of two,
-give the verify.json of the run in one process, number for number (ccx is deterministic: the same
+give the verify.json of the run in one process, number for number, its mesh series refined in
+rounds (ccx is deterministic: the same
 decks give the same results wherever they run); a run whose worker is killed is reported in its
 row and the verification goes on."""
 
@@ -79,12 +80,16 @@ def _copy(designed: Path, to: Path) -> Path:
 def test_verify_on_a_dask_cluster_and_a_pool_equals_the_single_process_run(
     ccx: str, cli: CliRun, designed: Path, dask_cluster: str, tmp_path: Path
 ) -> None:
-    args = ["--mesh", "2,4", "--max-mesh", "4", "--json"]
+    # one requested mesh, refined to 4 per facet: the runs at 2 in one round, then each open
+    # row's extending run at 4 in the next (the rounds of fea.tasks.Tasks)
+    args = ["--mesh", "2", "--max-mesh", "4", "--json"]
     code, out, _ = cli(["verify", str(_copy(designed, tmp_path / "one")), *args])
     single: dict[str, Any] = json.loads(out)
     rows = single["constraints"]
     assert {r["quantity"] for r in rows} == {"EI@0", "k3pt@0", "Pmax3pt@0"}
-    assert all(v is not None for r in rows for v in r["fe_series"].values())
+    for r in rows:
+        assert list(r["fe_series"]) == ["2", "4"] and None not in r["fe_series"].values()
+        assert r["extended"].startswith("extended to 4 per facet")
     assert {r["mode"] for r in single["first_failure"]} == {"buckling", "yield"}
     for how, name in ((["--scheduler", dask_cluster], "dask"), (["--jobs", "2"], "pool")):
         code_there, out, _ = cli(["verify", str(_copy(designed, tmp_path / name)), *args, *how])
