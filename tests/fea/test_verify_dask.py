@@ -10,13 +10,12 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import signal
+import subprocess
+import sys
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import pytest
-
-from corrugate.fea import verify as verify_module
 
 if TYPE_CHECKING:
     from conftest import CliRun
@@ -99,38 +98,52 @@ def test_verify_on_a_dask_cluster_and_a_pool_equals_the_single_process_run(
         assert written["constraints"] == rows
 
 
-#: The real task, kept before a test replaces it.
-_REAL = verify_module._solve_caught
+#: A verification whose runs at 4 elements per facet kill their worker (SIGKILL, as the
+#: out-of-memory killer does), in a process of its own: the pool's workers are forked from it,
+#: not from pytest (which holds the session's dask cluster).
+KILLING_SCRIPT = """
+import json, os, signal, sys
+from pathlib import Path
+from corrugate.export.record import read_design_file
+from corrugate.fea import verify
 
+real = verify._solve_caught
 
-def _killed_at_4(run: Any) -> Any:
-    """A worker's task that dies (SIGKILL, as the out-of-memory killer does) on the runs at 4
-    elements per facet and runs the others."""
+def killed_at_4(run):
     if run.along == 4:
         os.kill(os.getpid(), signal.SIGKILL)
-    return _REAL(run)
+    return real(run)
+
+verify._solve_caught = killed_at_4
+d = read_design_file(Path(sys.argv[1]))
+lines = []
+v = verify.verify_design(
+    d.assembly, d.constraints, d.joint, (2, 4), max_mesh=4, jobs=2, progress=lines.append
+)
+print(json.dumps({"rows": [r.as_json() for r in v.rows], "exit": v.exit_code, "lines": lines}))
+"""
 
 
 @pytest.mark.fea
-def test_a_run_whose_worker_is_killed_is_reported_in_its_row(
-    ccx: str, designed: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    from corrugate.export.record import read_design_file
-    from corrugate.fea.verify import verify_design
-
-    d = read_design_file(designed)
-    monkeypatch.setattr(verify_module, "_solve_caught", _killed_at_4)
-    lines: list[str] = []
-    v = verify_design(
-        d.assembly, d.constraints, d.joint, (2, 4), max_mesh=4, jobs=2, progress=lines.append
+def test_a_run_whose_worker_is_killed_is_reported_in_its_row(ccx: str, designed: Path) -> None:
+    root = Path(__file__).resolve().parents[2]
+    env = {**os.environ, "PYTHONPATH": str(root / "src")}
+    done = subprocess.run(
+        [sys.executable, "-c", KILLING_SCRIPT, str(designed)],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=600,
+        check=False,
     )
-    assert len(v.rows) == 3
-    for r in v.rows:
-        assert r.fe_series[4] is None  # its worker died, twice (the pool's one retry, alone)
-        assert "4/facet not run: worker failed" in r.note
+    assert done.returncode == 0, done.stderr
+    found = json.loads(done.stdout)
+    assert len(found["rows"]) == 3
+    for r in found["rows"]:
+        assert r["fe_series"]["4"] is None  # its worker died, twice (the pool's one retry, alone)
+        assert "4/facet not run: worker failed" in r["note"]
         # the runs at 2, lost with the pool, ran again alone
-        value = r.fe_series[2]
-        assert value is not None and value > 0
-        assert r.verdict == "not converged"  # a run that failed never lets a row hold
-    assert v.exit_code == 5
-    assert any(": failed (" in line for line in lines)  # said as it finished
+        assert r["fe_series"]["2"] is not None and r["fe_series"]["2"] > 0
+        assert r["verdict"] == "not converged"  # a run that failed never lets a row hold
+    assert found["exit"] == 5
+    assert any(": failed (" in line for line in found["lines"])  # said as it finished
