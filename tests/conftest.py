@@ -5,7 +5,7 @@ CalculiX or a browser carries its marker (``fea``, ``browser``: ``make test-fast
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
 import pytest
@@ -78,3 +78,24 @@ def cli(capsys: pytest.CaptureFixture[str]) -> CliRun:
         return (0 if code is None else int(code)), out, err
 
     return run
+
+
+@pytest.fixture(scope="session")
+def dask_cluster() -> Iterator[str]:
+    """The address of a dask.distributed ``LocalCluster`` of two worker processes with one
+    thread each (the ``dist`` extra, which ``make test`` installs), shared by the session's tests;
+    without ``distributed`` a test skips, except on CI (``CI=true``), where it fails: there the
+    scale-out tests must run."""
+    try:
+        import distributed
+    except ImportError as exc:
+        if os.environ.get("CI") == "true":
+            pytest.fail(f"CI=true and dask.distributed is missing (the dist extra): {exc}")
+        pytest.skip(f"dask.distributed not installed (the dist extra): {exc}")
+    cluster = distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
+    )
+    try:
+        yield cluster.scheduler_address
+    finally:
+        cluster.close()

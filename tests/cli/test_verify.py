@@ -312,3 +312,16 @@ def test_an_old_design_json_of_an_inline_material_is_one_line(
     code, _, err = cli(["verify", str(folder)])
     assert code == 2
     _one_error_line(err, "layers[0].material", "PET (generic)", "corrugate design SPEC --out DIR")
+
+
+def test_jobs_and_scheduler_are_checked_before_any_run(cli: CliRun, square: Path) -> None:
+    """``--jobs N`` (a local pool) and ``--scheduler ADDRESS`` (a dask cluster; docs/fea.md 4.1):
+    a number of jobs outside its limits, or both options at once, is one line naming the option
+    (exit 2) before the design is read or CalculiX looked for."""
+    for jobs in ("0", "-1"):
+        code, _, err = cli(["verify", str(square), "--jobs", jobs])
+        assert code == 2, jobs
+        _one_error_line(err, "jobs")
+    code, _, err = cli(["verify", str(square), "--jobs", "2", "--scheduler", "tcp://127.0.0.1:1"])
+    assert code == 2
+    _one_error_line(err, "--jobs", "not both")

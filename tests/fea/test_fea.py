@@ -244,10 +244,12 @@ def test_validate_cli_json_agrees_with_analyze(ccx: str) -> None:
 
 
 @pytest.mark.fea
+@pytest.mark.slow
 def test_converged_only_after_a_refinement_study(ccx: str, tmp_path: Path) -> None:
-    """Regression: ``converged`` is True only when a refinement study ran and its last change fell
-    below the tolerance; a single mesh, or a study stopped at the finest mesh allowed, is not
-    converged; the sweep table says "not refined" for a single mesh."""
+    """Regression: ``converged`` is True only when a refinement study ran and showed every value
+    settled by judge's rule (:func:`corrugate.fea.validation.settled`: four meshes, each twice
+    the one before, two extrapolations agreeing); a single mesh, or a study stopped at the finest
+    mesh allowed, is not converged; the sweep table says "not refined" for a single mesh."""
     one = run_case(replace(_tiny_case("one"), pure_bending=False))
     assert (one.refined, one.converged) == (False, False)
     write_table([one], tmp_path / "t.md")
@@ -256,7 +258,10 @@ def test_converged_only_after_a_refinement_study(ccx: str, tmp_path: Path) -> No
     study = run_case(replace(_tiny_case("study"), refinement=loose, pure_bending=False))
     assert study.error is None
     assert (study.refined, study.converged) == (True, True)
-    assert len(study.history) == 4  # assembly 2 and 4 per facet, unit cell 10x1 and 20x2
+    # the rule needs four meshes: from 2 per facet, 2 / 4 / 8 / 16, the finest allowed
+    assembly = [label for label, _ in study.history if label.startswith("assembly")]
+    assert assembly == [f"assembly {k}/facet" for k in (2, 4, 8, 16)]
+    assert sum(label.startswith("unit cell") for label, _ in study.history) >= 4
     capped = replace(loose, tol=1e-9, assembly_max_along=2, cell_max_along=10)
     stopped = run_case(replace(_tiny_case("capped"), refinement=capped, pure_bending=False))
     assert (stopped.refined, stopped.converged) == (True, False)
@@ -268,14 +273,18 @@ def test_default_unit_cell_mesh_is_the_same_everywhere() -> None:
     further, grading kept."""
     import inspect
 
-    from corrugate.cli.validate import validate_cmd
+    from corrugate.cli.validate import _start_meshes, validate_cmd
 
     assert UnitCellMesh() == UnitCellMesh(80, 8, grading=0.98, grading_t=0.9)
     assert UnitCellMesh().refined() == UnitCellMesh(160, 16)
     assert Refinement().cell_mesh == UnitCellMesh()
     assert Refinement().cell_max_along >= 2 * UnitCellMesh().along
-    default = inspect.signature(validate_cmd).parameters["cell_mesh"].default
-    assert default == UnitCellMesh().label() == "80x8"
+    assert inspect.signature(validate_cmd).parameters["cell_mesh"].default is None
+    assert _start_meshes(None, None, None) == (4, UnitCellMesh().label()) == (4, "80x8")
+    # --refine starts one doubling coarser: four meshes up to the finest allowed (its rule)
+    assert _start_meshes(None, None, 0.01) == (2, "40x4")
+    assert Refinement().cell_max_along >= 8 * 40 and Refinement().assembly_max_along >= 8 * 2
+    assert _start_meshes(6, "20x2", 0.01) == (6, "20x2")
     with pytest.raises(InputError, match="grading"):
         UnitCellMesh(grading=1.0)
 
@@ -310,17 +319,15 @@ def test_validate_cli_without_solver_is_one_line(monkeypatch: pytest.MonkeyPatch
 
 
 @pytest.mark.fea
-def test_dask_cluster_gives_the_process_pool_numbers(ccx: str) -> None:
+def test_dask_cluster_gives_the_process_pool_numbers(ccx: str, dask_cluster: str) -> None:
     """The same cases through a local dask.distributed cluster (the `dist` extra) and through the
     default process pool give identical numbers (ccx is deterministic)."""
-    distributed = pytest.importorskip("distributed")
     cases = [_tiny_case("a"), replace(_tiny_case("b"), eta_deg=(90.0,))]
     pool = {r.case.label: r.fe for r in run_sweep(cases, jobs=2)}
-    with distributed.LocalCluster(
-        n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None
-    ) as cluster:
-        ex = dask_executor(cluster.scheduler_address)
+    ex = dask_executor(dask_cluster)
+    try:
         dask = {r.case.label: r.fe for r in run_sweep(cases, ex)}
+    finally:
         ex.shutdown()
     assert pool == dask
     assert pool["a"]["K_N_per_mm@0"] > 0

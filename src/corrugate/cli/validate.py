@@ -90,7 +90,7 @@ def _print_result(r: CaseResult, console: Console) -> None:
     elif not r.converged:
         console.print(
             "[yellow]warning[/yellow]: mesh refinement stopped at the finest mesh allowed "
-            "before reaching the tolerance"
+            "before every value was shown within the tolerance of its limit (not converged)"
         )
     if len(r.history) > 2:
         console.print("[bold]mesh refinement[/bold]")
@@ -210,24 +210,30 @@ def validate_cmd(
         ),
     ] = None,
     mesh: Annotated[
-        int, Opt(parser=o.ASCII_INT, help="Shell elements across each facet (even).")
-    ] = 4,
+        int | None,
+        Opt(
+            parser=o.ASCII_INT,
+            help="Shell elements across each facet (even; default 4, with --refine 2).",
+        ),
+    ] = None,
     cell_mesh: Annotated[
-        str,
+        str | None,
         Opt(
             metavar="ALONGxTHROUGH",
             help="Unit-cell mesh: elements along a facet x through t, graded towards the creases "
-            "(the default: Ecx within 0.7 % of the converged value at alpha 40-115 deg, "
-            "`corrugate docs fea`, section 1.3).",
+            "(default 80x8: Ecx within 0.7 % of the converged value at alpha 40-115 deg, "
+            "`corrugate docs fea`, section 1.3; with --refine 40x4).",
         ),
-    ] = "80x8",
+    ] = None,
     refine: Annotated[
         float | None,
         Opt(
             metavar="FRACTION",
             parser=o.ASCII_FLOAT,
-            help="Refine the meshes until every result changes by "
-            "less than this fraction (e.g. 0.01).",
+            help="Refine the meshes (doubling) until every result's finest value is shown within "
+            "this fraction (e.g. 0.01) of its FE limit: two successive Richardson extrapolations "
+            "over four meshes agreeing (`corrugate docs fea`, section 3); else not converged at "
+            "the finest mesh allowed.",
         ),
     ] = None,
     no_unit_cell: Annotated[bool, Opt("--no-unit-cell", help="Skip the unit-cell runs.")] = False,
@@ -300,6 +306,7 @@ def validate_cmd(
     from corrugate.mechanics.behaviours import check_support
 
     bond_ = _bond(bond, connectors)
+    mesh, cell_mesh = _start_meshes(mesh, cell_mesh, refine)
     refinement = _refinement(mesh, cell_mesh, refine)
     check_sweep_options(jobs, timeout, workdir)
     if fixture is not None or series is not None:
@@ -530,6 +537,19 @@ def _bond(bond: str, connectors: bool) -> Bond:
             "bond", bond, "flanges only together with --connectors", reason="needs the band"
         )
     return "flanges" if bond == "flanges" else "edges"
+
+
+def _start_meshes(mesh: int | None, cell_mesh: str | None, refine: float | None) -> tuple[int, str]:
+    """``--mesh`` and ``--cell-mesh``, or their defaults: 4 and 80x8, or one doubling coarser
+    with ``--refine`` (2 and 40x4), so that its series reach the four meshes its rule needs
+    within the finest allowed (:func:`corrugate.fea.validation.settled`: 2 / 4 / 8 / 16 per facet,
+    40 / 80 / 160 / 320 along the unit cell)."""
+    from corrugate.fea.validation import REFINE_START, Refinement
+
+    start = REFINE_START if refine is not None else Refinement()
+    if mesh is None:
+        mesh = start.assembly_mesh.along
+    return mesh, cell_mesh if cell_mesh is not None else start.cell_mesh.label()
 
 
 def _refinement(mesh: int, cell_mesh: str, refine: float | None) -> Refinement:

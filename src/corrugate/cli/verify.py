@@ -230,6 +230,24 @@ def verify_cmd(
     timeout: Annotated[
         float, Opt(parser=o.ASCII_FLOAT, help="Time-out of one ccx run (s).")
     ] = 900.0,
+    jobs: Annotated[
+        int | None,
+        Opt(
+            parser=o.ASCII_INT,
+            metavar="N",
+            help="Run the FE runs side by side in a local pool of N worker processes (default: "
+            "one after another, in this process).",
+        ),
+    ] = None,
+    scheduler: Annotated[
+        str | None,
+        Opt(
+            metavar="ADDRESS",
+            help="Run the FE runs as tasks on the dask.distributed scheduler at ADDRESS, e.g. "
+            "tcp://host:8786 (needs the `dist` extra; each worker needs corrugate and ccx; "
+            "`corrugate docs fea`, section 4).",
+        ),
+    ] = None,
     max_mesh: Annotated[
         int,
         Opt(
@@ -310,13 +328,18 @@ def verify_cmd(
     )
     from corrugate.fea.ccx import find_ccx
     from corrugate.fea.series import check_sweep_options
+    from corrugate.fea.tasks import executor_for
     from corrugate.fea.verify import parse_max_mesh, parse_meshes, parse_shifts, verify_design
 
     meshes = parse_meshes(mesh)
     positions = parse_shifts(shifts)
     cap = parse_max_mesh(max_mesh)
     nl_mesh = _nonlinear_mesh(nonlinear_mesh) if nonlinear else None
-    check_sweep_options(None, timeout, workdir)
+    check_sweep_options(jobs, timeout, workdir)
+    if jobs is not None and scheduler is not None:
+        raise InputError(
+            "--jobs", jobs, "--jobs or --scheduler, not both", reason="conflicts with --scheduler"
+        )
     design = read_design_file(folder)  # untrusted: one line and exit 2 before any FE run
     assembly, constraints, joint = design.assembly, design.constraints, design.joint
     check_verify_target(folder)  # a verify.json that is a folder: refused before any FE run
@@ -331,32 +354,41 @@ def verify_cmd(
     from corrugate.cli.validate import progress_lines
 
     progress = progress_lines(quiet or (as_json and not sys.stderr.isatty()))
-    result = verify_design(
-        assembly,
-        constraints,
-        joint,
-        meshes,
-        shifts=positions,
-        progress=progress,
-        folder=workdir,
-        timeout=timeout,
-        max_mesh=cap,
-    )
-    failures: tuple[FailureRow, ...] = ()
-    if first_failure:
-        from corrugate.fea.first_failure import first_failures
-
-        failures = first_failures(
+    executor = executor_for(scheduler, jobs)  # None: in process, or a pool of --jobs
+    try:
+        result = verify_design(
             assembly,
             constraints,
             joint,
             meshes,
+            shifts=positions,
             progress=progress,
             folder=workdir,
             timeout=timeout,
-            done=result.rows,
             max_mesh=cap,
+            executor=executor,
+            jobs=jobs,
         )
+        failures: tuple[FailureRow, ...] = ()
+        if first_failure:
+            from corrugate.fea.first_failure import first_failures
+
+            failures = first_failures(
+                assembly,
+                constraints,
+                joint,
+                meshes,
+                progress=progress,
+                folder=workdir,
+                timeout=timeout,
+                done=result.rows,
+                max_mesh=cap,
+                executor=executor,
+                jobs=jobs,
+            )
+    finally:
+        if executor is not None:
+            executor.shutdown()
     found = {**result.as_json(), "first_failure": [r.as_json() for r in failures]}
     files: dict[str, str | bytes] = {}
     ramp: NonlinearResult | str | None = None

@@ -13,7 +13,9 @@
 * :mod:`~corrugate.fea.outline`: circles and polygons: the wheel between a ground patch and its
   hub, a plate bolted or clamped at its corners (docs/fea.md 2.8);
 * :mod:`~corrugate.fea.validation`: FE beside every model variant for one design, mesh refinement;
-* :mod:`~corrugate.fea.series`: sweeps through a ``concurrent.futures`` executor, tables;
+* :mod:`~corrugate.fea.tasks`: FE runs as tasks of a ``concurrent.futures`` executor (a local
+  process pool or a dask cluster), in rounds for a verification (docs/fea.md 4);
+* :mod:`~corrugate.fea.series`: sweeps through that executor, tables;
 * :mod:`~corrugate.fea.plots`: Fig. 7-style plots (matplotlib).
 
 The core package never imports this subpackage (docs/architecture.md). See docs/fea.md.

@@ -75,15 +75,14 @@ def observed_order(series: Series) -> float | None:
 
 def richardson(series: Series) -> tuple[float, str] | None:
     """Richardson extrapolation of the three finest meshes at their observed order p =
-    log2(d1 / d2), when the series is monotone with shrinking steps and 0.5 <= p <= 4: (value,
-    ``"extrapolated (p = ...)"``); None otherwise."""
-    p = observed_order(series)
-    if p is None or not MIN_ORDER <= p <= MAX_ORDER:
-        return None
+    log2(d1 / d2) (:func:`_limit`, the one formula :func:`judge` uses too), when the series is
+    monotone with shrinking steps and 0.5 <= p <= 4: (value, ``"extrapolated (p = ...)"``); None
+    otherwise."""
     three = _finest_three(series)
-    assert three is not None
-    v2, v3 = three[1][1], three[1][2]
-    return v3 - (v2 - v3) / (2**p - 1), f"extrapolated (p = {p:.2f})"
+    found = None if three is None else _limit(three[1])
+    if found is None or not MIN_ORDER <= found[1] <= MAX_ORDER:
+        return None
+    return found[0], f"extrapolated (p = {found[1]:.2f})"
 
 
 @dataclass(frozen=True, slots=True)
@@ -216,8 +215,10 @@ def _chain(series: Series) -> list[int]:
 
 
 def _limit(v: tuple[float, float, float]) -> tuple[float, float] | None:
-    """Richardson's limit and the observed order of three values on meshes h, h/2, h/4 when
-    their steps have one sign and shrink (any order p > 0), else None."""
+    """Richardson's limit v3 - d2 / (2^p - 1) and the observed order p = log2(d1 / d2) of three
+    values on meshes h, h/2, h/4 (d1 = v1 - v2, d2 = v2 - v3) when their steps have one sign and
+    shrink (any order p > 0), else None: the one formula of :func:`richardson` (which also asks
+    0.5 <= p <= 4) and :func:`judge`."""
     d1, d2 = v[0] - v[1], v[1] - v[2]
     if d1 * d2 <= 0 or abs(d2) >= abs(d1):
         return None

@@ -39,7 +39,8 @@ constraint rows, not part of their verdict (``holds``).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Generator, Mapping, Sequence
+from concurrent.futures import Executor
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -51,6 +52,7 @@ from corrugate.fea.assembly import AssemblyMesh, solve_assembly
 from corrugate.fea.extrapolate import Judgement, extrapolate, judge
 from corrugate.fea.outline import solve_outline
 from corrugate.fea.steps import LinearBuckling
+from corrugate.fea.tasks import Request, Tasks, worker_failure
 from corrugate.fea.verify import Row, Twin, behavioural, joint_options, safety_factor, twin_of
 from corrugate.geometry.layer import Assembly
 from corrugate.mechanics.behaviours import own_test
@@ -187,6 +189,8 @@ def first_failures(
     timeout: float = 900.0,
     done: Sequence[Row] = (),
     max_mesh: int | None = None,
+    executor: Executor | None = None,
+    jobs: int | None = None,
 ) -> tuple[FailureRow, ...]:
     """The failure rows (module docstring) of every load-case fixture the behavioural
     ``constraints`` of a design.json run in, on the mesh series ``meshes``: buckling first, then
@@ -199,7 +203,9 @@ def first_failures(
     is not yet shown at or below the FE's, nor shown above it
     (:func:`corrugate.fea.extrapolate.judge`), has its series extended by doubling its finest
     mesh up to ``max_mesh`` elements per facet (None: the finest of ``meshes``, no extension),
-    as verify's constraint rows are; still open there, it is "not converged"."""
+    as verify's constraint rows are; still open there, it is "not converged". ``executor`` and
+    ``jobs``: the runs as tasks, in rounds, as :func:`corrugate.fea.verify.verify_design` runs
+    them (the same rows)."""
     cap_mesh = max(meshes) if max_mesh is None else max_mesh
     connectors, bond = joint_options(joint)
     groups: dict[
@@ -242,8 +248,36 @@ def first_failures(
     strengths = [assembly.layer1.material.yield_strength, assembly.layer2.material.yield_strength]
     strengths += [assembly.layer1.material.yield_strength] if connectors else []  # the band's
     setup = _Setup(assembly, connectors, bond, parts, strengths, folder, timeout)
-    rows: list[FailureRow] = []
-    for twin, names, loads, models in groups.values():
+    tasks: Tasks[_Task, tuple[float | None, str]] = Tasks(
+        _task, _Task.line, _lost, progress, executor=executor, jobs=jobs
+    )
+
+    def runs(
+        twin: Twin, mode: str, which: Sequence[int], name: str, why: str = ""
+    ) -> list[Request[_Task]]:
+        """The runs of ``twin`` in ``mode`` on the meshes ``which``, as a plan asks."""
+        return [
+            (
+                (twin.test, twin.eta, twin.span, mode, along),
+                _Task(setup, twin, mode, along, name, why),
+            )
+            for along in which
+        ]
+
+    def read(
+        series: dict[int, float | None], failures: list[str], requests: list[Request[_Task]]
+    ) -> None:
+        """The loads of ``requests`` (run) into ``series``, their failures into ``failures``."""
+        for key, item in requests:
+            series[item.along], failure = tasks.results[key]
+            if failure:
+                failures.append(failure)
+
+    def plan(
+        twin: Twin, names: list[str], loads: list[float], models: list[float], mode: str
+    ) -> Generator[list[Request[_Task]], None, FailureRow]:
+        """The row of ``twin`` in ``mode``: its runs asked for in rounds
+        (:class:`~corrugate.fea.tasks.Tasks`), each round's judged before the next."""
         where = f" along eta = {twin.eta:g} deg" + (
             f", span {twin.span:g} mm" if twin.span is not None else ""
         )
@@ -251,70 +285,74 @@ def first_failures(
         label = buckle.describe(twin.fixture.label, twin.fixture.loading) + where
         static_label = twin.fixture.label + where
         load = max(loads) if loads else None
-        for mode in MODES:
-            if mode == "yield" and twin.fixture.kind == "outline":
-                continue
-            series: dict[int, float | None] = {}
-            failures: list[str] = []
-            reused = ran.get((twin.test, twin.eta, twin.span)) if mode == "buckling" else None
+        series: dict[int, float | None] = {}
+        failures: list[str] = []
+        reused = ran.get((twin.test, twin.eta, twin.span)) if mode == "buckling" else None
 
-            name = label if mode == "buckling" else f"{static_label}, stresses"
-            if reused is not None:
-                series = dict(reused)
-            else:
-                for along in meshes:
-                    _run_into(series, failures, setup, twin, mode, along, progress, name)
-            model = min(models) if models else None
-            bound = load if load is not None else model
-            extended: list[str] = []
-            while bound is not None:  # refine an open series, as verify's constraint rows
-                j = _judged(series, bound)
-                finer = 2 * max(series)
-                failed = any(v is None for v in series.values())
-                if j.verdict != "open" or finer > cap_mesh or failed:
-                    break
-                why = f"extending the series: {j.why}"
-                _run_into(series, failures, setup, twin, mode, finer, progress, name, why)
-                extended.append(f"extended to {finer} per facet ({j.why})")
-            known = {k: v for k, v in series.items() if v is not None}
-            verdict = _verdict(series, load)
-            model_verdict = _verdict(series, model)
-            decisive = _judged(series, bound) if bound is not None else None
-            if decisive is not None:
-                fe, order, how = decisive.value, decisive.order, decisive.how
-            else:
-                e = extrapolate(known, "min")
-                fe, order, how = e.value, e.order, e.how
-            note = list(failures)
-            if mode == "yield" and not known and not failures:
-                note.append("no yield strength for the sheet's material")
-            if mode == "buckling":
-                note.insert(0, "a dead load (the load line free to move in the mode)")
-            else:
-                note.insert(0, "largest |principal stress| anywhere, the load lines included")
-            note += extended
-            if decisive is not None and decisive.verdict == "open" and known:
-                note.append(
-                    f"not converged at {max(series)} per facet (the finest allowed is "
-                    f"{cap_mesh}): {decisive.why}"
-                )
-            rows.append(
-                FailureRow(
-                    label if mode == "buckling" else static_label,
-                    mode,
-                    tuple(names),
-                    load,
-                    series,
-                    fe,
-                    order,
-                    how,
-                    "; ".join(note),
-                    model,
-                    verdict,
-                    model_verdict,
-                )
+        name = label if mode == "buckling" else f"{static_label}, stresses"
+        if reused is not None:
+            series = dict(reused)
+        else:
+            asked = runs(twin, mode, meshes, name)
+            yield asked
+            read(series, failures, asked)
+        model = min(models) if models else None
+        bound = load if load is not None else model
+        extended: list[str] = []
+        while bound is not None:  # refine an open series, as verify's constraint rows
+            j = _judged(series, bound)
+            finer = 2 * max(series)
+            failed = any(v is None for v in series.values())
+            if j.verdict != "open" or finer > cap_mesh or failed:
+                break
+            asked = runs(twin, mode, (finer,), name, f"extending the series: {j.why}")
+            yield asked
+            read(series, failures, asked)
+            extended.append(f"extended to {finer} per facet ({j.why})")
+        known = {k: v for k, v in series.items() if v is not None}
+        verdict = _verdict(series, load)
+        model_verdict = _verdict(series, model)
+        decisive = _judged(series, bound) if bound is not None else None
+        if decisive is not None:
+            fe, order, how = decisive.value, decisive.order, decisive.how
+        else:
+            e = extrapolate(known, "min")
+            fe, order, how = e.value, e.order, e.how
+        note = list(failures)
+        if mode == "yield" and not known and not failures:
+            note.append("no yield strength for the sheet's material")
+        if mode == "buckling":
+            note.insert(0, "a dead load (the load line free to move in the mode)")
+        else:
+            note.insert(0, "largest |principal stress| anywhere, the load lines included")
+        note += extended
+        if decisive is not None and decisive.verdict == "open" and known:
+            note.append(
+                f"not converged at {max(series)} per facet (the finest allowed is "
+                f"{cap_mesh}): {decisive.why}"
             )
-    return tuple(rows)
+        return FailureRow(
+            label if mode == "buckling" else static_label,
+            mode,
+            tuple(names),
+            load,
+            series,
+            fe,
+            order,
+            how,
+            "; ".join(note),
+            model,
+            verdict,
+            model_verdict,
+        )
+
+    plans = [
+        plan(twin, names, loads, models, mode)
+        for twin, names, loads, models in groups.values()
+        for mode in MODES
+        if not (mode == "yield" and twin.fixture.kind == "outline")
+    ]
+    return tuple(tasks.drive(plans))
 
 
 @dataclass(frozen=True, slots=True)
@@ -368,24 +406,34 @@ def _run(setup: _Setup, twin: Twin, mode: str, along: int) -> tuple[float | None
         return None, f"{along}/facet not run: {exc}"
 
 
-def _run_into(
-    series: dict[int, float | None],
-    failures: list[str],
-    setup: _Setup,
-    twin: Twin,
-    mode: str,
-    along: int,
-    progress: Callable[[str], None],
-    name: str,
-    why: str = "",
-) -> None:
-    """:func:`_run` on ``along`` elements per facet, said on ``progress`` first, its load into
-    ``series`` and its failure into ``failures``."""
-    because = f", {why}" if why else ""
-    progress(f"assembly, {name}, mesh {AssemblyMesh(along).label()} (first failure{because})")
-    series[along], failure = _run(setup, twin, mode, along)
-    if failure:
-        failures.append(failure)
+@dataclass(frozen=True, slots=True)
+class _Task:
+    """One run of a first-failure row (a task shipped to a worker whole, pickled): ``twin``'s
+    fixture in ``mode`` on ``along`` elements per facet; ``name`` and ``why`` are said on its
+    progress line."""
+
+    setup: _Setup
+    twin: Twin
+    mode: str
+    along: int
+    name: str
+    why: str = ""
+
+    def line(self) -> str:
+        """The run in words, as its progress line says it."""
+        because = f", {self.why}" if self.why else ""
+        mesh = AssemblyMesh(self.along).label()
+        return f"assembly, {self.name}, mesh {mesh} (first failure{because})"
+
+
+def _task(t: _Task) -> tuple[float | None, str]:
+    """:func:`_run` of ``t`` (a task of :class:`~corrugate.fea.tasks.Tasks`)."""
+    return _run(t.setup, t.twin, t.mode, t.along)
+
+
+def _lost(t: _Task, exc: Exception) -> tuple[float | None, str]:
+    """The result of a run lost with its worker (killed, out of memory): no load, and why."""
+    return None, f"{t.along}/facet not run: {worker_failure(exc)}"
 
 
 def _judged(series: Mapping[int, float | None], bound: float) -> Judgement:

@@ -4,10 +4,11 @@
   n = 11, alpha = 90 deg, W = 8/10/12/14 mm; W = 10 mm, alpha = 90 deg, n = 7/9/11/13; n = 11,
   W = 10 mm, alpha = 40/65/90/115 deg; Dura-Lar 0.125 mm, two identical layers on a square.
 * :func:`run_sweep`: submits every case to an executor (a local process pool by default, or a
-  dask.distributed cluster from :func:`dask_executor`) and yields results as they finish; a case
+  dask.distributed cluster from :func:`corrugate.fea.tasks.dask_executor`, re-exported here)
+  through :func:`corrugate.fea.tasks.run_tasks` and yields results as they finish; a case
   that fails is reported in its result and the others go on.
-  A worker that dies (killed, out of memory) breaks a process pool: the pool is restarted and
-  every case it took down is retried once; the rest go on. Work folders live under one private
+  A worker that dies (killed, out of memory) breaks a process pool: every case it took down is
+  retried once, alone in a pool of its own; the rest go on. Work folders live under one private
   folder per sweep, removed at the end also after SIGINT or SIGTERM (unless ``keep``).
 * :func:`write_table`, :func:`write_csv`: the table (Markdown) and the numbers (CSV) of a sweep;
   :func:`write_sweep_files`: the table, CSV and plot committed as one set.
@@ -19,27 +20,20 @@ from __future__ import annotations
 import contextlib
 import csv
 import shutil
-import signal
 import tempfile
-import threading
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
-from concurrent.futures.process import BrokenProcessPool
+from concurrent.futures import Executor
 from dataclasses import replace
 from pathlib import Path
-from types import FrameType
-from typing import Any, ParamSpec, TypeVar
 
 from corrugate.core.errors import InputError
 from corrugate.core.fileio import staged
 from corrugate.core.limits import check, check_count
+from corrugate.fea.tasks import dask_executor, run_tasks, worker_failure
 from corrugate.fea.validation import Case, CaseResult, Refinement, run_case
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.materials.library import get_material
 from corrugate.mechanics.moduli import MODELS
-
-P = ParamSpec("P")
-T = TypeVar("T")
 
 __all__ = [
     "SWEEPS",
@@ -88,41 +82,6 @@ def paper_cases(refinement: Refinement | None = None, unit_cell: bool = True) ->
 SWEEPS: dict[str, Callable[..., list[Case]]] = {"paper": paper_cases}
 
 
-class _DaskExecutor(Executor):
-    """A dask.distributed client as a ``concurrent.futures`` executor; shutdown closes it."""
-
-    def __init__(self, address: str) -> None:
-        import distributed
-
-        client_cls: Any = distributed.Client  # untyped package
-        self._client: Any = client_cls(address)
-        self._executor: Any = self._client.get_executor()
-
-    def submit(self, fn: Callable[P, T], /, *args: P.args, **kwargs: P.kwargs) -> Future[T]:
-        future: Future[T] = self._executor.submit(fn, *args, **kwargs)
-        return future
-
-    def shutdown(self, wait: bool = True, *, cancel_futures: bool = False) -> None:
-        self._executor.shutdown(wait=wait)
-        self._client.close()
-
-
-def dask_executor(address: str) -> Executor:
-    """A ``concurrent.futures`` executor on the dask.distributed scheduler at ``address``
-    (the optional ``dist`` extra); shut it down to close the connection."""
-    try:
-        import distributed  # noqa: F401
-    except ImportError:
-        raise InputError(
-            "scheduler",
-            address,
-            "a dask.distributed address, with the `dist` extra installed "
-            "(pip install 'corrugate[dist]')",
-            reason="cannot be used",
-        ) from None
-    return _DaskExecutor(address)
-
-
 def _safe_run(case: Case) -> CaseResult:
     return run_case(case)
 
@@ -140,45 +99,6 @@ def check_sweep_options(
         raise InputError("workdir", str(workdir), "a folder", reason="is a file")
 
 
-#: How often a case whose worker died (taking the pool down) is run again.
-RETRIES = 1
-
-
-@contextlib.contextmanager
-def _terminate_as_exit() -> Iterator[None]:
-    """SIGTERM raises SystemExit in the main thread while the block runs, so that its cleanup
-    runs (SIGINT already raises KeyboardInterrupt)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def on_term(signum: int, frame: FrameType | None) -> None:
-        raise SystemExit(128 + signum)
-
-    previous = signal.signal(signal.SIGTERM, on_term)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
-
-
-def _worker_init() -> None:
-    """A worker ends on SIGTERM (its parent's handler, inherited by fork, would not let it)."""
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-
-
-def _stop_pool(ex: ProcessPoolExecutor) -> None:
-    """Shut a pool down now: cancel what has not started, terminate the workers."""
-    processes = list(getattr(ex, "_processes", {}).values())
-    ex.shutdown(wait=False, cancel_futures=True)
-    for proc in processes:
-        with contextlib.suppress(Exception):
-            proc.terminate()
-    for proc in processes:
-        with contextlib.suppress(Exception):
-            proc.join(5)
-
-
 def run_sweep(
     cases: Sequence[Case],
     executor: Executor | None = None,
@@ -189,61 +109,32 @@ def run_sweep(
     run: Callable[[Case], CaseResult] = _safe_run,
 ) -> Iterator[CaseResult]:
     """Run ``cases`` through ``executor`` (default: a process pool of ``jobs`` workers) and yield
-    each result as it finishes; every case yields exactly one result.
+    each result as it finishes; every case yields exactly one result
+    (:func:`corrugate.fea.tasks.run_tasks`).
 
-    With the own pool, a worker that dies breaks the pool: a new pool takes the cases that were
-    lost with it, each retried once (:data:`RETRIES`); a case lost again yields a result with
-    ``error``. The ccx work folders go under one private folder (in ``folder`` if given),
-    removed when the sweep ends, is interrupted (SIGINT) or terminated (SIGTERM), unless
-    ``keep``. ``run`` is the function a worker runs on a case (a test may pass another)."""
+    With the own pool, a worker that dies breaks the pool: the cases lost with it are each
+    retried once, alone (:data:`corrugate.fea.tasks.RETRIES`); a case lost again yields a result
+    with ``error``. The ccx work folders go under one private folder (in
+    ``folder`` if given), removed when the sweep ends, is interrupted (SIGINT) or terminated
+    (SIGTERM), unless ``keep``. ``run`` is the function a worker runs on a case (a test may pass
+    another)."""
     if jobs is not None:
         check_count("jobs", jobs, "jobs")
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
     root = Path(tempfile.mkdtemp(prefix="corrugate-sweep-", dir=folder))
     cases = [replace(c, folder=root, keep=keep or c.keep) for c in cases]
-    own = executor is None
-    tries = dict.fromkeys(range(len(cases)), 0)
-    todo = list(range(len(cases)))
-    ex: Executor | None = executor
     try:
-        with _terminate_as_exit():
-            while todo:
-                if own:
-                    ex = ProcessPoolExecutor(max_workers=jobs, initializer=_worker_init)
-                assert ex is not None
-                futures: dict[Future[CaseResult], int] = {ex.submit(run, cases[i]): i for i in todo}
-                todo = []
-                broken = False
-                for fut in as_completed(futures):
-                    i = futures[fut]
-                    try:
-                        yield fut.result()
-                    except BrokenProcessPool as exc:
-                        broken = True
-                        tries[i] += 1
-                        if own and tries[i] <= RETRIES:
-                            todo.append(i)
-                        else:
-                            yield _failed(cases[i], exc)
-                    except Exception as exc:  # a crashed worker elsewhere: report it, go on
-                        yield _failed(cases[i], exc)
-                if own and isinstance(ex, ProcessPoolExecutor):
-                    if broken:
-                        _stop_pool(ex)
-                    else:
-                        ex.shutdown()
-                    ex = None
+        with contextlib.closing(run_tasks(run, cases, executor, jobs=jobs)) as done:
+            for i, r in done:
+                yield _failed(cases[i], r) if isinstance(r, Exception) else r
     finally:
-        if own and isinstance(ex, ProcessPoolExecutor):
-            _stop_pool(ex)
         if not keep:
             shutil.rmtree(root, ignore_errors=True)
 
 
 def _failed(case: Case, exc: BaseException) -> CaseResult:
-    msg = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-    return CaseResult(case, {}, {}, {}, (), False, f"worker failed: {msg}")
+    return CaseResult(case, {}, {}, {}, (), False, worker_failure(exc))
 
 
 def write_sweep_files(results: Sequence[CaseResult], out: Path, name: str) -> list[Path]:

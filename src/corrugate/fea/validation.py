@@ -4,8 +4,8 @@ A :class:`Case` is one design (two layers, identical or not, on a square or a re
 the FE settings; :func:`run_case` runs the periodic unit cell of each distinct layer
 (:mod:`~corrugate.fea.unitcell`) and the assembly in the fixtures of :mod:`corrugate.fea.fixtures`
 (``platens``, ``three-point``; ``four-point`` and a linear buckling run of ``platens`` on request;
-the fixture of every support condition that has its own, e.g. ``frame``) at each eta, optionally refining the meshes until the results
-change by less than a tolerance, and puts the closed forms of every model variant beside them
+the fixture of every support condition that has its own, e.g. ``frame``) at each eta, optionally refining the meshes until every result is shown within a tolerance of
+its FE limit (:func:`settled`, the rule of :func:`corrugate.fea.extrapolate.judge`), and puts the closed forms of every model variant beside them
 (:func:`corrugate.analysis.evaluate.analyze`, never reimplemented here).
 
 Failures (solver errors, time-outs) are caught and reported in :attr:`CaseResult.error`, so a
@@ -14,7 +14,7 @@ sweep goes on with the other cases.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Protocol, TypeVar
@@ -28,6 +28,7 @@ from corrugate.fea.assembly import (
     principal_axis,
     solve_assembly,
 )
+from corrugate.fea.extrapolate import Judgement, judge
 from corrugate.fea.fixtures import get_fixture
 from corrugate.fea.frame import solve_frame
 from corrugate.fea.steps import STATIC, LinearBuckling, Step
@@ -38,12 +39,16 @@ from corrugate.mechanics.moduli import MODELS
 
 
 class _Mesh(Protocol):
+    @property
+    def along(self) -> int: ...
+
     def label(self) -> str: ...
 
 
 M = TypeVar("M", bound=_Mesh)
 
 __all__ = [
+    "REFINE_START",
     "Case",
     "CaseResult",
     "Refinement",
@@ -51,6 +56,7 @@ __all__ = [
     "fixture_key",
     "fixture_supports",
     "run_case",
+    "settled",
 ]
 
 #: Quantities of a case, with their units: assembly stiffness and layer-1 moduli.
@@ -60,7 +66,8 @@ MODULI_KEYS = ("Ecx", "Ecy", "Ebx", "Eby")
 
 @dataclass(frozen=True, slots=True)
 class Refinement:
-    """Mesh refinement: start meshes, the relative-change tolerance and the finest meshes allowed.
+    """Mesh refinement: start meshes, the tolerance ``tol`` (relative: how close to its FE limit
+    each finest value must be shown, :func:`settled`) and the finest meshes allowed.
 
     ``tol`` None means one run at the start meshes. Each step doubles the elements along a facet
     (and through the thickness of the unit cell, up to ``cell_max_through``).
@@ -72,6 +79,12 @@ class Refinement:
     assembly_max_along: int = 16
     cell_max_along: int = 320
     cell_max_through: int = 16
+
+
+#: Where ``validate --refine`` starts unless told (one doubling below the defaults): its rule
+#: (:func:`settled`) needs four meshes each twice the one before, and the finest allowed are 16 per
+#: facet and 320 along the unit cell.
+REFINE_START = Refinement(AssemblyMesh(2), UnitCellMesh(40, 4))
 
 
 @dataclass(frozen=True, slots=True)
@@ -114,9 +127,10 @@ class CaseResult:
     of a 4-point test; the closed forms' D for the models) and the layer moduli
     ``"layer1.Ecx"`` ... (MPa) to numbers. ``meshes`` says which meshes produced ``fe``;
     ``history`` lists (mesh label, values) of every refinement step. ``converged`` is True only
-    after a refinement study (``refinement.tol`` set) whose last change fell below the tolerance:
-    False for a single mesh (then ``refined`` is False too: nothing was checked) and when
-    refinement stopped at the finest mesh allowed before reaching the tolerance. ``error`` holds
+    after a refinement study (``refinement.tol`` set) that showed every value's finest within
+    the tolerance of its FE limit (:func:`settled`): False for a single mesh (then ``refined``
+    is False too: nothing was checked) and when refinement stopped at the finest mesh allowed
+    before showing it. ``error`` holds
     the one-line message of a failed case (then ``fe`` is empty).
     """
 
@@ -273,8 +287,27 @@ def _assembly_values(
     return out
 
 
-def _change(new: dict[str, float], old: dict[str, float]) -> float:
-    return max(abs(new[k] / old[k] - 1) for k in new if old.get(k))
+def settled(series: Mapping[int, float], tol: float) -> Judgement:
+    """Whether the finest value of a mesh series (elements per facet -> value, each mesh twice
+    the one before) is within ``tol`` (relative) of the series' FE limit, by
+    :func:`corrugate.fea.extrapolate.judge`'s rule (docs/fea.md 6): the limit shown at or above
+    finest x (1 - tol) and at or below finest x (1 + tol), each on a series shown asymptotic (two
+    successive Richardson extrapolations, four meshes, at the observed order: no order p >= 1 is
+    assumed) or whose last two steps vanish. The judgement of the side that is not ``holds`` (the
+    first's when both hold): ``holds`` settled, ``fails`` the limit lies outside (refine
+    further), ``open`` not shown yet."""
+    finest = series[max(series)]
+    lo, hi = sorted((finest * (1 - tol), finest * (1 + tol)))
+    below, above = judge(series, lo, "min"), judge(series, hi, "max")
+    return below if below.verdict != "holds" or above.verdict == "holds" else above
+
+
+def _settled(runs: Sequence[tuple[int, dict[str, float]]], tol: float) -> bool:
+    """Whether every value of the last run is :func:`settled` on the runs' mesh series."""
+    last = runs[-1][1]
+    return all(
+        settled({along: v[k] for along, v in runs if k in v}, tol).verdict == "holds" for k in last
+    )
 
 
 def _refine(
@@ -286,24 +319,27 @@ def _refine(
     tol: float | None,
     history: list[tuple[str, dict[str, float]]],
 ) -> tuple[dict[str, float], M, bool]:
-    """Solve on ``mesh`` and, when ``tol`` is set, on ever finer meshes until no value changes by
-    ``tol`` or more (relative) between two meshes; every mesh's values go to ``history``.
+    """Solve on ``mesh`` and, when ``tol`` is set, on ever finer meshes until every value's
+    finest is shown within ``tol`` (relative) of its FE limit (:func:`settled`: the rule of
+    :func:`corrugate.fea.extrapolate.judge`, four meshes each twice the one before, at the
+    series' observed order); every mesh's values go to ``history``.
 
-    Returns the last values, their mesh, and whether the change fell below ``tol``: False when the
+    Returns the last values, their mesh, and whether they were shown settled: False when the
     next mesh would have been too fine, and False without ``tol`` (one mesh: nothing checked).
     """
     prev = values(mesh)
     history.append((f"{name} {mesh.label()}", prev))
+    runs = [(mesh.along, prev)]
     while tol is not None:
+        if _settled(runs, tol):
+            break
         nxt_mesh = finer(mesh)
         if too_fine(nxt_mesh):
             return prev, mesh, False
-        nxt = values(nxt_mesh)
-        history.append((f"{name} {nxt_mesh.label()}", nxt))
-        done = _change(nxt, prev) < tol
-        mesh, prev = nxt_mesh, nxt
-        if done:
-            break
+        prev = values(nxt_mesh)
+        mesh = nxt_mesh
+        history.append((f"{name} {mesh.label()}", prev))
+        runs.append((mesh.along, prev))
     return prev, mesh, tol is not None
 
 

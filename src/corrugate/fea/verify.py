@@ -56,7 +56,8 @@ for a maximum); the row names that shift and every shift's value (docs/fea.md 6)
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Generator, Hashable, Mapping, Sequence
+from concurrent.futures import Executor
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeVar
@@ -76,6 +77,7 @@ from corrugate.fea.frame import FrameStiffness, solve_frame
 from corrugate.fea.outline import OutlineResult, solve_outline
 from corrugate.fea.shells import check_shift, specimen
 from corrugate.fea.steps import STATIC, LinearBuckling, Step
+from corrugate.fea.tasks import Request, Tasks, worker_failure
 from corrugate.geometry.layer import Assembly
 from corrugate.mechanics.behaviours import (
     DEFAULT_SUPPORT,
@@ -629,6 +631,90 @@ def _number(c: Mapping[str, Any], name: str) -> float:
 _Found = tuple[float | None, float, dict[int, float | None], Judgement | None, list[str]]
 
 
+#: A run's result as a plan reads it: the fixture's result, or the run's error.
+_Outcome = AssemblyResult | OutlineResult | FrameStiffness | CorrugateError
+_Key = tuple[str, str, float, int, float, float | None]
+
+
+def _key(twin: Twin, along: int, shift: float) -> _Key:
+    """What makes two runs one: the fixture, the step, eta (none for the frame's two runs), the
+    mesh, the coupon position and the span."""
+    whole = twin.fixture.kind == "frame"
+    return (twin.fixture.name, twin.step.name, 0.0 if whole else twin.eta, along, shift, twin.span)
+
+
+@dataclass(frozen=True, slots=True)
+class _Run:
+    """One CalculiX run of :func:`verify_design`, a task shipped to a worker whole (pickled):
+    ``twin``'s fixture on ``along`` elements per facet at coupon position ``shift``, with the
+    design's band options, the work folder's parent, whether to keep it and the time-out (s);
+    ``why`` is said on its progress line."""
+
+    assembly: Assembly
+    twin: Twin
+    along: int
+    shift: float
+    connectors: bool
+    bond: Bond
+    folder: Path | None
+    keep: bool
+    timeout: float
+    why: str = ""
+
+    @property
+    def key(self) -> _Key:
+        return _key(self.twin, self.along, self.shift)
+
+    def line(self) -> str:
+        """The run in words, as its progress line says it."""
+        twin, eta, span = self.twin, self.twin.eta, self.twin.span
+        where = "" if twin.fixture.kind == "frame" else f" along eta = {eta:g} deg"
+        at = f", coupon shifted {self.shift:g} pitch" if self.shift else ""
+        at += f", span {span:g} mm" if span is not None else ""
+        why = f" ({self.why})" if self.why else ""
+        return f"assembly, {twin.label}{where}{at}, mesh {AssemblyMesh(self.along).label()}{why}"
+
+
+def _solve(run: _Run) -> AssemblyResult | OutlineResult | FrameStiffness:
+    """Run ``run`` in CalculiX (raises the run's :class:`CorrugateError`)."""
+    a, twin, fixture = run.assembly, run.twin, run.twin.fixture
+    mesh = AssemblyMesh(run.along)
+    folder, keep, timeout = run.folder, run.keep, run.timeout
+    if fixture.kind == "outline":
+        return solve_outline(
+            a, fixture.name, mesh, twin.eta, folder=folder, keep=keep, timeout=timeout
+        )
+    if fixture.kind == "frame":  # K_frame(eta) of two runs, at 0 and 90 deg
+        return solve_frame(a, mesh, fixture=fixture, folder=folder, keep=keep, timeout=timeout)
+    return solve_assembly(
+        a,
+        fixture,
+        mesh,
+        twin.eta,
+        step=twin.step,
+        connectors=run.connectors,
+        bond=run.bond,
+        shift=run.shift,
+        span=twin.span,
+        folder=folder,
+        keep=keep,
+        timeout=timeout,
+    )
+
+
+def _solve_caught(run: _Run) -> _Outcome:
+    """:func:`_solve`, its error returned as its result (a task of :class:`Tasks`)."""
+    try:
+        return _solve(run)
+    except CorrugateError as exc:
+        return exc
+
+
+def _lost(run: _Run, exc: Exception) -> _Outcome:
+    """The result of a run lost with its worker (killed, out of memory): its error."""
+    return CorrugateError(worker_failure(exc))
+
+
 def verify_design(
     assembly: Assembly,
     constraints: Sequence[ConstraintReport | Mapping[str, Any]],
@@ -643,6 +729,8 @@ def verify_design(
     timeout: float = 900.0,
     max_mesh: int = DEFAULT_MAX_MESH,
     memory_bytes: int | None = None,
+    executor: Executor | None = None,
+    jobs: int | None = None,
 ) -> Verification:
     """Run the FE twin of every behavioural constraint (module docstring; ``constraints``: a
     solution's reports or design.json's entries, :class:`Checked`) on the mesh series
@@ -665,80 +753,41 @@ def verify_design(
     ``extended`` says what was run on and why. With ``memory_bytes`` (the memory a run may
     take, e.g. the web app's cap) an extending run whose estimate (:data:`BYTES_PER_NODE` times
     four times the nodes of the run before) is larger is not made: the row is "not converged
-    (memory)"."""
+    (memory)".
+
+    With ``executor`` (e.g. a dask cluster, :func:`corrugate.fea.tasks.dask_executor`) or
+    ``jobs`` (a local pool of that many processes) the runs are tasks submitted in rounds
+    (:class:`corrugate.fea.tasks.Tasks`): every row's runs on the requested meshes at once, then
+    each open row's next extending run, and so on; ``progress`` is called as each finishes. The
+    rows are the same as in process (ccx is deterministic; docs/fea.md 4); a run whose worker
+    died is a failed run of its row ("worker failed: ...")."""
     connectors, bond = joint_options(joint)
     if not shifts:
         raise InputError("shifts", "none", "at least one coupon position, e.g. 0")
     for sh in shifts:
         check_shift(sh)
-    runs: dict[
-        tuple[str, str, float, int, float, float | None],
-        AssemblyResult | OutlineResult | FrameStiffness | CorrugateError,
-    ] = {}
+    tasks: Tasks[_Run, _Outcome] = Tasks(
+        _solve_caught, _Run.line, _lost, progress, executor=executor, jobs=jobs
+    )
+    runs = tasks.results
 
-    def run(
-        twin: Twin, along: int, shift: float, why: str = ""
-    ) -> AssemblyResult | OutlineResult | FrameStiffness:
-        fixture, eta, span = twin.fixture, twin.eta, twin.span
-        whole = fixture.kind == "frame"  # K_frame(eta) of two runs, at 0 and 90 deg
-        key = (fixture.name, twin.step.name, 0.0 if whole else eta, along, shift, span)
-        if key not in runs:
-            mesh = AssemblyMesh(along)
-            where = "" if whole else f" along eta = {eta:g} deg"
-            at = f", coupon shifted {shift:g} pitch" if shift else ""
-            at += f", span {span:g} mm" if span is not None else ""
-            why = f" ({why})" if why else ""
-            progress(f"assembly, {twin.label}{where}{at}, mesh {mesh.label()}{why}")
-            try:
-                if fixture.kind == "outline":
-                    runs[key] = solve_outline(
-                        assembly,
-                        fixture.name,
-                        mesh,
-                        eta,
-                        folder=folder,
-                        keep=keep,
-                        timeout=timeout,
-                    )
-                elif whole:
-                    runs[key] = solve_frame(
-                        assembly, mesh, fixture=fixture, folder=folder, keep=keep, timeout=timeout
-                    )
-                else:
-                    runs[key] = solve_assembly(
-                        assembly,
-                        fixture,
-                        mesh,
-                        eta,
-                        step=twin.step,
-                        connectors=connectors,
-                        bond=bond,
-                        shift=shift,
-                        span=span,
-                        folder=folder,
-                        keep=keep,
-                        timeout=timeout,
-                    )
-            except CorrugateError as exc:
-                runs[key] = exc
-        r = runs[key]
-        if isinstance(r, CorrugateError):
-            raise r
-        return r
+    def request(twin: Twin, shift: float, along: int, why: str = "") -> Request[_Run]:
+        """The run of ``twin`` at ``shift`` on ``along`` elements per facet, as a plan asks."""
+        r = _Run(assembly, twin, along, shift, connectors, bond, folder, keep, timeout, why)
+        return r.key, r
 
     def series_at(
-        twin: Twin, shift: float, which: tuple[int, ...], why: str = ""
+        twin: Twin, shift: float, which: tuple[int, ...]
     ) -> tuple[dict[int, float | None], list[str]]:
+        """The values of ``twin``'s runs at ``shift`` on the meshes ``which`` (run before)."""
         series: dict[int, float | None] = {}
         failures: list[str] = []
         for along in which:
-            try:
-                r = run(twin, along, shift, why)
-            except CorrugateError as exc:
+            r = runs[_key(twin, along, shift)]
+            if isinstance(r, CorrugateError):
                 series[along] = None
-                failures.append(f"{along}/facet not run: {_short(exc)}")
-                continue
-            if isinstance(r, FrameStiffness):
+                failures.append(f"{along}/facet not run: {_short(r)}")
+            elif isinstance(r, FrameStiffness):
                 series[along] = twin.value(None, r)
             else:
                 series[along] = twin.value(r, None)
@@ -763,12 +812,11 @@ def verify_design(
                 else "no FE twin yet (no failure_loads_N to read the safety factor from)"
             )
         planned.append((base, twin))
-    rows: list[Row] = []
-    for base, twin in planned:
+
+    def plan(base: Row, twin: Twin) -> Generator[list[Request[_Run]], None, Row]:
+        """The row of ``twin``: its runs asked for in rounds (:class:`~corrugate.fea.tasks.
+        Tasks`), each round's judged before the next is asked for."""
         sense = base.sense
-        if isinstance(twin, str):
-            rows.append(replace(base, note=twin, verdict="not checked"))
-            continue
         positions = tuple(shifts) if twin.shifted else (0.0,)
         sign = 1.0 if sense == "min" else -1.0
         screened = screen and len(positions) > 1 and len(meshes) > 1
@@ -782,6 +830,7 @@ def verify_design(
         found: list[_Found] = []
         if screened:  # every position on the coarser meshes, the finest near the worst only
             coarse, last = tuple(meshes[:-1]), meshes[-2]
+            yield [request(twin, sh, along) for sh in positions for along in coarse]
             pre = {sh: series_at(twin, sh, coarse) for sh in positions}
             at_last = {sh: pre[sh][0].get(last) for sh in positions}
             ranked = {sh: v for sh, v in at_last.items() if v is not None}
@@ -792,6 +841,7 @@ def verify_design(
                 ]
             else:
                 picks = list(positions)
+            yield [request(twin, sh, meshes[-1]) for sh in positions if sh in picks]
             for sh in positions:
                 series, failures = pre[sh]
                 if sh in picks:
@@ -802,6 +852,7 @@ def verify_design(
                 else:
                     found.append((at_last[sh], sh, series, None, failures))
         else:
+            yield [request(twin, sh, along) for sh in positions for along in meshes]
             for sh in positions:
                 series, failures = series_at(twin, sh, tuple(meshes))
                 j = judged(series)
@@ -840,7 +891,8 @@ def verify_design(
             why = f"extending {base.name}'s series: {before.why}"
             if finer >= DEFAULT_MAX_MESH:
                 why += f"; {FINE_COST}"
-            more, more_failures = series_at(twin, sh, (finer,), why)
+            yield [request(twin, sh, finer, why)]
+            more, more_failures = series_at(twin, sh, (finer,))
             series = {**series, **more}
             after = judged(series)
             found[i] = (after.value, sh, series, after, failures + more_failures)
@@ -906,34 +958,37 @@ def verify_design(
                 )
             if not complete:
                 notes.append("a coupon position has a failed run or no FE value: not proven")
-        rows.append(
-            replace(
-                base,
-                fe_series=series,
-                fe=None if judgement is None else judgement.value,
-                order=None if judgement is None else judgement.order,
-                how="" if judgement is None else judgement.how,
-                note="; ".join(notes),
-                shift=shift if twin.shifted else None,
-                test=twin.label
-                + ("" if twin.fixture.kind == "frame" else f" along eta = {twin.eta:g} deg"),
-                by_shift={f[1]: f[0] for f in found} if twin.shifted else {},
-                extended="; ".join(extended),
-                verdict=verdict,
-            )
+        return replace(
+            base,
+            fe_series=series,
+            fe=None if judgement is None else judgement.value,
+            order=None if judgement is None else judgement.order,
+            how="" if judgement is None else judgement.how,
+            note="; ".join(notes),
+            shift=shift if twin.shifted else None,
+            test=twin.label
+            + ("" if twin.fixture.kind == "frame" else f" along eta = {twin.eta:g} deg"),
+            by_shift={f[1]: f[0] for f in found} if twin.shifted else {},
+            extended="; ".join(extended),
+            verdict=verdict,
         )
+
+    plans = [plan(base, twin) for base, twin in planned if isinstance(twin, Twin)]
+    checked = iter(tasks.drive(plans))
+    rows = [
+        replace(base, note=twin, verdict="not checked") if isinstance(twin, str) else next(checked)
+        for base, twin in planned
+    ]
     return Verification(tuple(rows), tuple(meshes), tuple(shifts))
 
 
 def _memory_estimate(
-    runs: Mapping[tuple[Any, ...], object], twin: Twin, along: int, shift: float
+    runs: Mapping[Hashable, object], twin: Twin, along: int, shift: float
 ) -> float | None:
     """The bytes a run of ``twin`` twice as fine as its run at ``along`` per facet would take:
     four times that run's nodes times :data:`BYTES_PER_NODE` (None when it has no node count,
     e.g. it failed)."""
-    whole = twin.fixture.kind == "frame"
-    key = (twin.fixture.name, twin.step.name, 0.0 if whole else twin.eta, along, shift, twin.span)
-    nodes = getattr(runs.get(key), "nodes", None)
+    nodes = getattr(runs.get(_key(twin, along, shift)), "nodes", None)
     if not isinstance(nodes, int) or nodes <= 0:
         return None
     return 4.0 * nodes * BYTES_PER_NODE
