@@ -7,6 +7,8 @@ from __future__ import annotations
 import math
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from corrugate import Assembly, Layer, analyze, get_material, make_layout
 from corrugate.analysis.warnings import (
@@ -235,3 +237,31 @@ def test_off_axis_warning_only_between_the_crease_directions() -> None:
     assert "off-axis" not in {w.code for w in analyze(a, eta_deg=[0, 90, 180, -90]).warnings}
     warned = [w for w in analyze(a, eta_deg=[0, 30, 45.5]).warnings if w.code == "off-axis"]
     assert len(warned) == 1 and "eta = 30, 45.5 deg" in warned[0].message
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    n=st.integers(min_value=1, max_value=5000),
+    alpha=st.floats(min_value=0.5, max_value=179.5),
+    W=st.floats(min_value=1.0, max_value=100.0),
+    sheet=st.sampled_from(["dura-lar", "polypropylene", "polycarbonate"]),
+)
+def test_the_short_panel_percentages_stay_within_0_and_100_over_designs(
+    n: int, alpha: float, W: float, sheet: str
+) -> None:
+    """Issue 35 item 5 over a sweep of designs (every n the spec allows, fold angles from nearly
+    closed to nearly flat): where the short-panel warning fires, its two percentages are
+    100 k e / (1 + k e) for k = 1.1 and 2.0 (shear_share, a fraction below 1 for any e >= 0), so
+    printed they lie within 0-100 %, the smaller first, and the warning says what to do (bound
+    the test itself)."""
+    m = get_material(sheet)
+    a = Assembly.identical(Layer(W, n, alpha, m, m.thicknesses[0] if m.thicknesses else 0.2))
+    found = [w for w in design_warnings(a, "refined") if w.code == "short-panel-shear"]
+    e = shear_estimate(m.nu, n, alpha)
+    assert bool(found) == (e > SHEAR_LIMIT)
+    if found:
+        text = found[0].message.split("about ")[1].split(" %")[0]
+        lo, hi = (float(p) for p in text.split("-"))
+        assert 0 <= lo <= hi <= 100
+        assert (lo, hi) == (round(100 * shear_share(e, 1.1)), round(100 * shear_share(e, 2.0)))
+        assert "[[constraints.deflection]]" in found[0].message

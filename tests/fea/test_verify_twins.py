@@ -377,3 +377,50 @@ def test_a_load_capacity_is_the_first_buckling_load_over_its_safety_factor(
     assert not tight.holds and tight.verdict == "fails"
     [none] = verify.verify_design(A, [{k: v for k, v in c.items() if k != "failure_loads_N"}]).rows
     assert none.verdict == "not checked" and "safety factor" in none.note and not none.fe_series
+
+
+def test_a_capacity_under_tolerances_is_judged_at_its_stated_safety_factor(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Under tolerances (docs/tolerances.md) the capacity is the worst part's, below the nominal
+    first failure over the factor: the shipped chassis plate's design.json has 56.92 N nominal
+    (yield) and a capacity of 15.258 N at safety factor 2, whose quotient 3.73 verify took as the
+    factor before issue 35. design.json now states the factor; verify reads it: the stand-in's
+    2.375 N extrapolated over 2 is 1.1875 N (over the quotient 1.2 / 0.3 = 4 it would be 0.594 N,
+    below the bound of 1 N). A design.json without it (written before) still infers the
+    quotient; a factor that is not a positive number is refused by design.json's schema."""
+    from types import SimpleNamespace
+    from typing import Any
+
+    from corrugate.fea import verify
+
+    loads = {2: 3.0, 4: 2.5, 8: 2.4, 16: 2.38}
+
+    def fake(assembly: Any, test: str, mesh: Any, eta: float, **kw: Any) -> Any:
+        return SimpleNamespace(value=lambda: loads[mesh.along])
+
+    monkeypatch.setattr(verify, "solve_assembly", fake)
+    c = {
+        "name": "cap",
+        "quantity": "Pmax3pt@0",
+        "sense": "min",
+        "bound": 1.0,
+        "value": 0.3,  # the worst part's capacity at the factor: below 1.2 / 2
+        "unit": "N",
+        "failure_loads_N": {"yield": 5.0, "edge-facet-buckling": 1.2},
+        "safety_factor": 2.0,
+    }
+    assert verify.safety_factor(c) == 2.0
+    [row] = verify.verify_design(A, [c]).rows
+    assert row.fe == pytest.approx(2.375 / 2.0, rel=1e-12) and row.holds
+    assert "over the safety factor 2" in row.note
+    old = {k: v for k, v in c.items() if k != "safety_factor"}
+    assert verify.safety_factor(old) == pytest.approx(4.0)
+    from pydantic import ValidationError
+
+    from corrugate.export.record_schema import _Constraint
+
+    assert _Constraint.model_validate(c).safety_factor == 2.0
+    for bad in (-2.0, 0.0, float("nan"), "2"):
+        with pytest.raises(ValidationError, match="safety_factor"):
+            _Constraint.model_validate({**c, "safety_factor": bad})

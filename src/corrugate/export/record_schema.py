@@ -8,7 +8,7 @@ rounded or overflowed); each constraint's ``sense`` min or max, its ``bound`` an
 numbers (a behavioural bound positive), its ``quantity`` a key the registry reads
 (``kcant@banana`` is refused, so is a direction, span or duration that is not a finite number),
 its ``test`` a registered load case and the one its quantity names (``five-point`` is refused),
-its ``load_N`` and ``failure_loads_N`` positive and finite; the ``joint`` a known one. Every
+its ``load_N``, ``failure_loads_N`` and ``safety_factor`` positive and finite; the ``joint`` a known one. Every
 integer has at most :data:`~corrugate.core.limits.MAX_INT_DIGITS` digits. Text is stripped of
 control characters (:func:`corrugate.core.text.printable`: a constraint's name never sends an
 escape sequence to the terminal). The first failure is one
@@ -158,6 +158,7 @@ class _Constraint(BaseModel):
     load_N: Load | None = None
     test: Name | None = None
     failure_loads_N: Annotated[dict[str, float] | None, BeforeValidator(_loads)] = None
+    safety_factor: Positive | None = None
 
     @model_validator(mode="after")
     def _behavioural(self) -> _Constraint:

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.fea.ccx import SolverError
+from corrugate.fea.coincident import CoincidentKeys
 from corrugate.fea.shells import Shell
 from corrugate.geometry.connectors import slit_count
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION, FabricationOptions
@@ -171,8 +172,9 @@ def band_shell(
         (_wall(l2, along, h1, (0.0, h1)), 0, Lx),
     ]
 
-    def key(x: float, y: float, z: float) -> tuple[int, int, int]:
-        return (round(x / tol), round(y / tol), round(z / tol))
+    # one key per place, the same for a layer's node and the band's point on it even where a
+    # coordinate falls on a rounding tie of tol (corrugate.fea.coincident)
+    key = CoincidentKeys(tol).key
 
     def glued(z: float) -> bool:
         return bond == "edges" or abs(z) < tol or abs(z - td) < tol

@@ -480,9 +480,16 @@ CAPACITY_NOTE = "FE: the first buckling load (a dead load) over the safety facto
 
 
 def safety_factor(c: Mapping[str, Any]) -> float | None:
-    """The safety factor of a load capacity's constraint in design.json: its least
+    """The safety factor of a load capacity's constraint in design.json: its ``safety_factor``
+    (written since issue 35), else, in a design.json written before, its least
     ``failure_loads_N`` (the model's first failure, N) over its ``value`` (the capacity at the
-    safety factor, N); None when either is missing."""
+    safety factor, N); None when neither can be read. The second reading is the factor only
+    for a nominal certificate: under tolerances (docs/tolerances.md) the capacity is the worst
+    part's, below the nominal first failure over the factor (the chassis plate: 56.92 / 15.258 =
+    3.73 for a factor of 2)."""
+    sf = c.get("safety_factor")
+    if isinstance(sf, int | float) and not isinstance(sf, bool) and math.isfinite(sf) and sf > 0:
+        return float(sf)
     loads = c.get("failure_loads_N")
     value = c.get("value")
     if not isinstance(loads, Mapping) or isinstance(value, bool):

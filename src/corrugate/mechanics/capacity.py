@@ -426,6 +426,7 @@ class Capacity:
             "first_failure": self.words,
             "first_failure_mode": self.mode,
             "failure_loads_N": dict(self.modes),
+            "safety_factor": self.safety_factor,
         }
         if self.bearing is not None:
             out["bearing_mm"] = self.bearing
