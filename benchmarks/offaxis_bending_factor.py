@@ -30,7 +30,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from corrugate import Assembly
-from corrugate.fea.extrapolate import judge
+from corrugate.fea.extrapolate import judge, richardson
 from corrugate.mechanics import offaxis
 from corrugate.mechanics.offaxis import FINITE_PANEL_BENDING, finite_panel_weight
 from fea_load_cases import designs  # type: ignore[import-not-found]
@@ -94,6 +94,7 @@ class Row:
     needed: float | None  # None: not converged
     fe: float | None  # judge's estimate at the c used
     model: float  # at the c used
+    model0: float  # at c = 0: the homogenised model
     how: str
 
 
@@ -121,7 +122,8 @@ def rows() -> list[Row]:
         n = "/".join(sorted({str(x.n) for x in ls}))
         alpha = "/".join(sorted({f"{x.alpha_deg:g}" for x in ls}))
         how = j.why if j.verdict == "open" else j.how
-        out.append(Row(name, n, alpha, eta, shift, s, j.verdict, c, j.value, model, how))
+        model0 = model_at(a, eta, 0.0)
+        out.append(Row(name, n, alpha, eta, shift, s, j.verdict, c, j.value, model, model0, how))
     return out
 
 
@@ -141,30 +143,41 @@ def main() -> None:
     c_used = FINITE_PANEL_BENDING
     print(
         "| coupon | n | alpha deg | eta deg | shift | FE D 2 / 4 / 8 / 16 N mm | FE estimate N mm "
-        "| model N mm (c used) | judge | c needed | c used | margin FE / model |"
+        "| model N mm (c used) | judge | c needed | c used | margin FE / model | FE / model at c = 0 |"
     )
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     worst = -math.inf
     for r in rows():
         ser = " / ".join(f"{r.series[k]:.5g}" for k in sorted(r.series))
         if r.needed is None:
-            what, fe, margin = "excluded", "-", "-"
+            what, fe, margin, m0 = "excluded", "-", "-", "-"
         else:
             worst = max(worst, r.needed)
             what = f"{r.needed:.3f}"
             fe = f"{r.fe:.5g}" if r.fe is not None else "-"
             margin = f"{r.fe / r.model:.3f}" if r.fe is not None else "-"
+            m0 = f"{r.fe / r.model0:.3f}" if r.fe is not None else "-"
         print(
             f"| {r.design} | {r.n} | {r.alpha} | {r.eta:g} | {r.shift:g} | {ser} | {fe} | "
-            f"{r.model:.5g} | {verdict(r)} | {what} | {c_used:g} | {margin} |"
+            f"{r.model:.5g} | {verdict(r)} | {what} | {c_used:g} | {margin} | {m0} |"
         )
     print(f"\nlargest c needed over the converged coupons: {worst:.4f} (c used {c_used:g})")
     ex = excluded()
-    print(f"excluded (fewer than four meshes, not shown asymptotic): {len(ex)} series")
+    print(f"\nexcluded (fewer than four meshes, not shown asymptotic): {len(ex)} series")
+    print("for information, the c each would need at its 2 / 4 / 8 Richardson estimate")
+    print("(or its finest value when not monotone), eta below 45 deg from a crease:")
+    ds = designs()
+    info = -math.inf
     for name, eta, shift, s in ex:
-        print(
-            f"  {name} eta {eta:g} shift {shift:g}: {' / '.join(f'{s[k]:.5g}' for k in sorted(s))}"
-        )
+        if min(eta, 90 - eta) >= 45 or len(s) < 3:
+            continue
+        r = richardson(s)
+        fe = r[0] if r is not None else s[max(s)]
+        c = needed(ds[name], eta, fe)
+        info = max(info, c)
+        ser = " / ".join(f"{s[k]:.5g}" for k in sorted(s))
+        print(f"  {name} eta {eta:g} shift {shift:g}: {ser} -> {fe:.5g}, c needed {c:.3f}")
+    print(f"largest: {info:.4f}")
 
 
 if __name__ == "__main__":
