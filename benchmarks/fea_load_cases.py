@@ -42,6 +42,11 @@ layers eta > 45 deg is the mirror image of 90 - eta and is run only at 2 and 4 e
 * ``i``: 32 per facet for the designs of ``WIDER`` with t / W < 0.01 (thin sheets converge
   slowly: their 4 / 8 / 16 series are not yet asymptotic) whose model has at most
   ``MAX_NODES_32`` nodes;
+* ``j``: the off-axis bending factor on more coupons (issue 35, docs/load_cases.md 5): the three
+  small squares of ``OFFAXIS_BENDING`` (polypropylene 0.3 mm and Dura-Lar 0.125 and 0.175 mm,
+  n 6-7, alpha 40-120), 3-point bending at 15 then 30 deg, shifts 0, 0.25 and 0.5, one whole
+  2 / 4 / 8 / 16 series at a time (at most 109 000 nodes, 2.7 GB peak child memory at 16);
+  ``python benchmarks/offaxis_bending_factor.py`` judges them;
 * ``e``: 16 elements per facet at eta 0 and 90 for 3-point, 4-point and cantilever, for the
   models of at most ``MAX_NODES_16`` nodes. That leaves out the rectangle (169 930 nodes at 16
   per facet) and the fifth design (257 018): ccx's peak memory grew by about 46 kB per node in
