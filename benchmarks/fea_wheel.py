@@ -79,9 +79,6 @@ DESIGNS: tuple[tuple[str, str, float, float, int, float, float], ...] = (
     ("s-pp05-n6-a150-hole8", "polypropylene", 0.5, 10.0, 6, 150.0, 8.0),
     ("s-dl175-n6-a110-hole7.5", "dura-lar", 0.175, 5.0, 6, 110.0, 7.5),
     ("s-dl125-n6-a75-hole11", "dura-lar", 0.125, 12.0, 6, 75.0, 11.0),
-    # the smallest hubs (the example's 6 mm hole in 70-80 mm: 0.075-0.086) are resolved from 3
-    # elements per facet on this disc (elements of 3.3 mm): run at 3 / 6 / 12 / 24 per facet
-    ("s-dl125-n6-a60-hole5", "dura-lar", 0.125, 20.0, 6, 60.0, 5.0),
 )
 
 
