@@ -42,6 +42,11 @@ layers eta > 45 deg is the mirror image of 90 - eta and is run only at 2 and 4 e
 * ``i``: 32 per facet for the designs of ``WIDER`` with t / W < 0.01 (thin sheets converge
   slowly: their 4 / 8 / 16 series are not yet asymptotic) whose model has at most
   ``MAX_NODES_32`` nodes;
+* ``j``: the off-axis bending factor on more coupons (issue 35, docs/load_cases.md 5): the three
+  small squares of ``OFFAXIS_BENDING`` (polypropylene 0.3 mm and Dura-Lar 0.125 and 0.175 mm,
+  n 6-7, alpha 40-120), 3-point bending at 15 then 30 deg, shifts 0, 0.25 and 0.5, one whole
+  2 / 4 / 8 / 16 series at a time (at most 109 000 nodes, 2.7 GB peak child memory at 16);
+  ``python benchmarks/offaxis_bending_factor.py`` judges them;
 * ``e``: 16 elements per facet at eta 0 and 90 for 3-point, 4-point and cantilever, for the
   models of at most ``MAX_NODES_16`` nodes. That leaves out the rectangle (169 930 nodes at 16
   per facet) and the fifth design (257 018): ccx's peak memory grew by about 46 kB per node in
@@ -115,7 +120,15 @@ WIDER = {
     "Dura-Lar 0.075: W 12, n 7, alpha 70": ("dura-lar", 0.075, 12.0, 7, 70.0),
     "polypropylene 0.25: W 10, n 9, alpha 90": ("polypropylene", 0.25, 10.0, 9, 90.0),
 }
-PHASES = ("a", "b", "c", "d", "e", "f", "g", "h", "i")
+#: The designs of phase ``j`` (issue 35 item 3: the off-axis bending factor 0.3 / sqrt(n) on more
+#: than one coupon): small squares of identical layers (n 6-7, so that 16 per facet stays under
+#: about 110 000 nodes and 4 GB) that differ in n, alpha, W and sheet, polypropylene among them.
+OFFAXIS_BENDING = {
+    "polypropylene 0.3: W 8, n 6, alpha 120": ("polypropylene", 0.3, 8.0, 6, 120.0),
+    "Dura-Lar 0.125: W 6, n 7, alpha 60": ("dura-lar", 0.125, 6.0, 7, 60.0),
+    "Dura-Lar 0.175: W 10, n 6, alpha 40": ("dura-lar", 0.175, 10.0, 6, 40.0),
+}
+PHASES = ("a", "b", "c", "d", "e", "f", "g", "h", "i", "j")
 #: The 4-point test read at its load points (the loading head's travel), from the same run as
 #: ``bending4``'s gauge value: D = (P / delta) span^2 / 96.
 LOAD_POINTS = "bending4-load"
@@ -138,7 +151,7 @@ def designs() -> dict[str, Assembly]:
         Layer(W=5.0, n=27, alpha_deg=120.0, material=pp, t=0.25),
         layout=make_layout("rectangle"),
     )
-    for name, (material, t, W, n, alpha) in WIDER.items():
+    for name, (material, t, W, n, alpha) in (WIDER | OFFAXIS_BENDING).items():
         out[name] = Assembly.identical(
             Layer(W=W, n=n, alpha_deg=alpha, material=get_material(material), t=t)
         )
@@ -152,7 +165,7 @@ def _mirror(a: Assembly, eta: float, along: int) -> bool:
 
 def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
     """(design, eta, test, shift, along) in the order of the phases (module docstring)."""
-    first4 = [n for n in ds if n not in (FIFTH, CHASSIS, *WIDER)]
+    first4 = [n for n in ds if n not in (FIFTH, CHASSIS, *WIDER, *OFFAXIS_BENDING)]
     ends = (0.0, 90.0)
     off = tuple(e for e in ETAS if e not in ends)
     for phase in phases:
@@ -194,7 +207,7 @@ def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
                 yield CHASSIS, 0.0, test, 0.0, 12
         elif phase == "g":
             for along in (2, 4, 8):
-                for name in [n for n in ds if n not in WIDER]:
+                for name in [n for n in ds if n not in WIDER and n not in OFFAXIS_BENDING]:
                     for eta in ends:
                         yield name, eta, LOAD_POINTS, 0.0, along
         elif phase == "h":
@@ -206,6 +219,12 @@ def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
             for name in [n for n in WIDER if WIDER[n][1] / WIDER[n][2] < 0.01]:
                 for test in ("bending", LOAD_POINTS, "cantilever"):
                     yield name, 0.0, test, 0.0, 32
+        elif phase == "j":  # 3-point off the creases, every shift, one whole series at a time
+            for eta in (15.0, 30.0):
+                for name in OFFAXIS_BENDING:
+                    for shift in (0.0, 0.25, 0.5):
+                        for along in (2, 4, 8, 16):
+                            yield name, eta, "bending", shift, along
 
 
 def load_point_D(r: Any) -> float:

@@ -114,9 +114,15 @@ def test_the_off_axis_range_is_the_rows_off_the_creases() -> None:
 
 
 def test_the_wheel_range_is_the_wheel_sweep() -> None:
-    """wheel_fe.csv's designs (the runs that did not fail): n, W, alpha, t / W and hole /
-    diameter (the hub ratio to 5 significant digits, as VALIDATED_WHEEL always was)."""
-    rows = [r for r in _rows("wheel_fe.csv") if r["K_FE"] != "failed"]
+    """wheel_fe.csv's designs of the first sweep, which c(eta) comes from (the runs that did not
+    fail; not the issue-35 discs ``s-...``, whose series are not settled: docs/load_cases.md 9):
+    n, W, alpha, t / W and hole / diameter (the hub ratio to 5 significant digits, as
+    VALIDATED_WHEEL always was)."""
+    rows = [
+        r
+        for r in _rows("wheel_fe.csv")
+        if r["K_FE"] != "failed" and not r["design"].startswith("s-")
+    ]
     stated = model_range("wheel").ranges
     ns = [int(r["n"]) for r in rows]
     assert stated["facets"] == (min(ns) + 1.0, max(ns) + 1.0)
