@@ -143,6 +143,30 @@ def test_an_extension_the_memory_does_not_allow_is_not_run(
     assert alongs == [2, 4, 8] and "(memory)" in got["constraints"][0]["note"]
 
 
+def test_the_cli_does_not_make_a_run_the_machines_memory_does_not_allow(
+    cli: CliRun, design: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """``corrugate verify`` reads the memory available as the web job does: runs of 30 000
+    nodes, the 16-per-facet run estimated at 4 x 30 000 x 48 kB = 5.8 GB, with 4 GB available:
+    not run, the row not converged (memory), exit code 5 (before, the command started it and
+    CalculiX failed or the kernel killed it); with 20 GiB available it runs and the row holds."""
+    from corrugate.core import memory
+
+    folder = _with_bound(design, tmp_path, 62e3)
+    monkeypatch.setattr(memory, "available_memory", lambda: 4 * 10**9)
+    alongs = _stand_in(monkeypatch, tmp_path, K15, nodes=30_000)
+    code, out, _ = cli(["verify", str(folder), "--no-first-failure", "--json"])
+    row = json.loads(out)["constraints"][0]
+    assert code == 5 and alongs == [2, 4, 8]
+    assert "not extended to 16 per facet: its run would take about 5.8 GB" in row["note"]
+    assert "(memory)" in row["note"]
+    monkeypatch.setattr(memory, "available_memory", lambda: 20 * 1024**3)
+    alongs = _stand_in(monkeypatch, tmp_path, K15, nodes=30_000)
+    code, out, _ = cli(["verify", str(folder), "--no-first-failure", "--json"])
+    assert code == 0 and alongs == [2, 4, 8, 16]
+    assert json.loads(out)["constraints"][0]["verdict"] == "holds"
+
+
 @pytest.mark.slow
 def test_the_app_offers_16_per_facet_and_refuses_finer(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch

@@ -355,6 +355,8 @@ def verify_cmd(
 
     progress = progress_lines(quiet or (as_json and not sys.stderr.isatty()))
     executor = executor_for(scheduler, jobs)  # None: in process, or a pool of --jobs
+    from corrugate.core import memory
+
     try:
         result = verify_design(
             assembly,
@@ -368,6 +370,9 @@ def verify_cmd(
             max_mesh=cap,
             executor=executor,
             jobs=jobs,
+            # an extending run estimated above the memory available now is not made: its
+            # row is "not converged (memory)", as on the web (docs/fea.md 6)
+            memory_bytes=memory.available_memory() if executor is None else None,
         )
         failures: tuple[FailureRow, ...] = ()
         if first_failure:

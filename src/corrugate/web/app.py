@@ -95,6 +95,7 @@ from corrugate import __version__
 from corrugate.analysis.evaluate import Analysis
 from corrugate.core.errors import InputError
 from corrugate.core.limits import LIMITS
+from corrugate.core.memory import available_memory
 from corrugate.core.units import ureg
 from corrugate.export.machines import Machine
 from corrugate.export.plan import OutputOptions
@@ -736,19 +737,6 @@ def verify_job(
         {"design": design_label(assembly), "runs": count, **result.as_json()}
     )
     return payload
-
-
-def available_memory() -> int | None:
-    """Bytes of memory the machine has available now (``MemAvailable`` of /proc/meminfo: free
-    without swapping), None where it cannot be read."""
-    try:
-        with open("/proc/meminfo", encoding="ascii") as f:
-            for text in f:
-                if text.startswith("MemAvailable:"):
-                    return int(text.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
 
 
 def fea_info(settings: WebSettings) -> FeaInfo:
