@@ -5,6 +5,7 @@ CalculiX or a browser carries its marker (``fea``, ``browser``: ``make test-fast
 from __future__ import annotations
 
 import os
+import signal
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 
@@ -80,10 +81,13 @@ def cli(capsys: pytest.CaptureFixture[str]) -> CliRun:
     return run
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def dask_cluster() -> Iterator[str]:
     """The address of a dask.distributed ``LocalCluster`` of two worker processes with one
-    thread each (the ``dist`` extra, which ``make test`` installs), shared by the session's tests;
+    thread each (the ``dist`` extra, which ``make test`` installs), shared by one module's tests
+    and closed after them (a cluster left running for the rest of the session keeps its threads
+    and sockets in the test process: the run of 2026-12-07 on 06fe4b4 died of SIGPIPE, exit 141,
+    some 950 tests after the first dask module, with no traceback);
     without ``distributed`` a test skips, except on CI (``CI=true``), where it fails: there the
     scale-out tests must run."""
     try:
@@ -99,3 +103,14 @@ def dask_cluster() -> Iterator[str]:
         yield cluster.scheduler_address
     finally:
         cluster.close()
+
+
+@pytest.fixture(autouse=True)
+def _sigpipe_stays_ignored() -> Iterator[None]:
+    """Python ignores SIGPIPE (a write to a closed pipe or socket raises BrokenPipeError); a test
+    or library that sets it back to the default would let a later write kill the whole run with
+    no traceback (exit 141): the test that changed it fails, named, and the default is put back."""
+    yield
+    if signal.getsignal(signal.SIGPIPE) != signal.SIG_IGN:
+        signal.signal(signal.SIGPIPE, signal.SIG_IGN)
+        pytest.fail("SIGPIPE is no longer ignored after this test (put back to SIG_IGN)")
