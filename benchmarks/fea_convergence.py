@@ -1,6 +1,6 @@
 """Mesh-convergence study of the FE models (docs/fea.md quotes its output).
 
-    python benchmarks/fea_convergence.py unitcell   # reference/unitcell_fe.csv rows, 5-6 meshes
+    python benchmarks/fea_convergence.py unitcell   # docs/data/unitcell_fe.csv rows, 5-6 meshes
     python benchmarks/fea_convergence.py assembly   # W = 10, n = 7, alpha = 90, Dura-Lar 0.125
     python benchmarks/fea_convergence.py pure 8 16  # case study, pure bending (4-point), per facet
     python benchmarks/fea_convergence.py order M1 M2 M3 V1 V2 V3    # order p from three meshes

@@ -83,7 +83,7 @@ def test_unit_cell_matches_refined_closed_forms(ccx: str) -> None:
     * Eby: the refined form is exact for a zero-thickness crease; the solid crease adds material
       of relative size (t/W)^2: 0.5 %.
     * Ecx, Ebx: the solid (mitred) crease is stiffer than the closed forms' line crease, by about
-      t/W (2 % at t/W = 0.02, reference/unitcell_fe.csv header), and a displacement-based FE
+      t/W (2 % at t/W = 0.02, docs/data/unitcell_fe.csv header), and a displacement-based FE
       model converges from above (about 1.5 % more at 80 elements per facet): FE in [0, +4 %].
     """
     E, nu, t, W, alpha = 1000.0, 0.3, 0.2, 10.0, 90.0
@@ -117,7 +117,7 @@ def _reference_rows() -> list[dict[str, str]]:
 
 @pytest.mark.fea
 def test_unit_cell_reproduces_reference_at_half_its_mesh(ccx: str) -> None:
-    """reference/unitcell_fe.csv (an independent CalculiX model) within 1 %, at half its mesh
+    """docs/data/unitcell_fe.csv (an independent CalculiX model) within 1 %, at half its mesh
     density along the facets (the full mesh agrees within 0.01 %; see docs/fea.md)."""
     for row in _reference_rows():
         along, through = (int(v) for v in row["mesh"].split("x"))

@@ -1,4 +1,4 @@
-"""Closed-form moduli against periodic unit-cell FE (``reference/unitcell_fe.csv``).
+"""Closed-form moduli against periodic unit-cell FE (``docs/data/unitcell_fe.csv``).
 
 The FE model has solid (mitred) creases, so its Ecx and Ebx sit slightly above the zero-thickness
 crease theory; the file's header puts the gap at about t/W at alpha = 90 deg, growing for sharper folds

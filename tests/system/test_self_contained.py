@@ -14,7 +14,16 @@ TESTS = ROOT / "tests"
 #: The files the tests read from the ``reference`` fixture.
 REFERENCE_FILES = ("unitcell_fe.csv", "xia2012_table5.json")
 #: Spellings of a path outside the checkout (split so that this file does not match itself).
-OUTSIDE = ("/work/" + "shared", "shared/" + "reference", "CORRUGATE_" + "REFERENCE")
+OUTSIDE = (
+    "/work/" + "shared",
+    "shared/" + "reference",
+    "CORRUGATE_" + "REFERENCE",
+    "../" + "shared",
+    # the brief's reference folder by its files' names: the repository's copies are
+    # docs/data/unitcell_fe.csv and tests/data/xia2012_table5.json
+    "reference/" + "unitcell_fe",
+    "reference/" + "xia2012",
+)
 PARENTS = re.compile(r"Path\(__file__\)\.resolve\(\)\.parents\[(\d+)\]")
 ROOT_PARENT = re.compile(r"\b[A-Z_]*ROOT\s*(\.parent\b|/\s*[\"']\.\.[\"'])")
 
@@ -50,4 +59,24 @@ def test_no_test_reads_a_path_outside_the_repository() -> None:
         if path.name != Path(__file__).name:
             offences += [f"{rel}: {word}" for word in OUTSIDE if word in text]
         offences += [f"{rel}: {m.group(0)}" for m in ROOT_PARENT.finditer(text)]
+    assert offences == []
+
+
+def test_no_code_names_a_path_outside_the_repository() -> None:
+    """The package, the benchmarks and the docs name the repository's copies of the reference
+    data, never the folder outside the checkout it was copied from."""
+    sources = [
+        *sorted((ROOT / "src").rglob("*.py")),
+        *sorted((ROOT / "benchmarks").rglob("*.py")),
+        *sorted((ROOT / "docs").rglob("*.md")),
+        ROOT / "README.md",
+        ROOT / "Makefile",
+    ]
+    offences = [
+        f"{path.relative_to(ROOT)}: {word}"
+        for path in sources
+        if path.is_file() and not path.is_symlink()
+        for word in OUTSIDE
+        if word in path.read_text("utf-8")
+    ]
     assert offences == []

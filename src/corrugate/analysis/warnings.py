@@ -5,7 +5,7 @@
   constraint, :mod:`corrugate.solver.validity`, so only ``analyze`` and an extrapolated answer
   show it);
 * thick sheets: the closed forms assume zero-thickness creases; periodic unit-cell FE
-  (``reference/unitcell_fe.csv``) puts the resulting error in Ecx and Ebx at about t/W at
+  (``docs/data/unitcell_fe.csv``) puts the resulting error in Ecx and Ebx at about t/W at
   alpha = 90 deg, growing as (90 deg / alpha)^2 for sharper folds (9 % at t/W = 0.02, 45 deg);
 * a thickness the material is not sold in (the library lists what is sold);
 * short panels: D is a pure-bending stiffness; a panel loaded as a short beam also shears. The

@@ -7,7 +7,7 @@ Model (CalculiX, :mod:`corrugate.fea.ccx`):
   h = W cos(alpha/2), mid-surface between z = -h/2 and z = +h/2). The sheet is a **solid** of
   thickness t; the creases are **mitred**: neighbouring facets meet on the vertical bisector plane,
   so the solid is the mid-surface zig-zag shifted vertically by +-t / (2 sin(alpha/2)). The same
-  geometry as ``reference/unitcell_fe.csv``; it is stiffer than the zero-thickness crease of the
+  geometry as ``docs/data/unitcell_fe.csv``; it is stiffer than the zero-thickness crease of the
   closed forms by a margin that vanishes linearly with t/W.
 * **Elements.** 20-node hexahedra with reduced integration (C3D20R), a structured mesh of
   ``mesh.along`` elements along each facet, ``mesh.through`` through the thickness and
@@ -100,7 +100,7 @@ class UnitCellMesh:
 
     def label(self) -> str:
         """``along x through`` for the default grading (the notation of
-        ``reference/unitcell_fe.csv`` for a uniform mesh, with its grading named)."""
+        ``docs/data/unitcell_fe.csv`` for a uniform mesh, with its grading named)."""
         base = f"{self.along}x{self.through}"
         if (self.grading, self.grading_t) == (0.98, 0.9):
             return base
@@ -157,7 +157,7 @@ class UnitCellResult:
         return self.moduli.as_dict()
 
     def normalised(self) -> dict[str, float]:
-        """Moduli divided by the sheet's E (the form of ``reference/unitcell_fe.csv``)."""
+        """Moduli divided by the sheet's E (the form of ``docs/data/unitcell_fe.csv``)."""
         return {k: v / self.cell.E for k, v in self.moduli.as_dict().items()}
 
 
