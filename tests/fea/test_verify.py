@@ -12,46 +12,13 @@ from typing import TYPE_CHECKING, Any
 import pytest
 
 from corrugate.core.fileio import read_manifest
+from data_files import VERIFY_SMALL
 
 if TYPE_CHECKING:
     from conftest import CliRun
 
-#: A 20 mm square of Dura-Lar: pure-bending EI and a three-point deflection along the creases,
-#: a few seconds of CalculiX per mesh. The load is 0.3 N: since issue 34 a deflection under a
-#: load also asks that the part hold it at the safety factor, which no design of these variables
-#: does at 1 N (at most 0.435 N with the side bound). n is 7 (8 facets): inside the springs' and the
-#: three-point model's validated ranges (7 or more facets, docs/validation/ranges.md), and 2 per
-#: facet x 8 facets is divisible by 4, as the four-point fixture of EI needs at --mesh 2.
-SPEC = """
-name = "verify-small"
-model = "refined"
-tolerances = "none"  # the FE twin is the nominal part these tests compare with
-
-[material]
-name = "dura-lar"
-thickness = "0.125 mm"
-
-[layout]
-shape = "square"
-
-[variables]
-W = { min = "4 mm", max = "8 mm", step = "1 mm" }
-n = { min = 7, max = 7 }
-alpha = { min = "60 deg", max = "120 deg", step = "1 deg" }
-
-[constraints]
-side = { min = "20 mm", max = "30 mm" }
-flexural_rigidity = [{ min = "10 mN*m^2", eta = "0 deg" }]
-
-[[constraints.deflection]]
-test = "three-point"
-load = "0.3 N"
-max = "0.5 mm"
-eta = "0 deg"
-
-[objective]
-minimize = "mass"
-"""
+#: The small design (tests/data/verify_small.toml says why each of its numbers).
+SPEC = VERIFY_SMALL.read_text()
 
 
 def _strict(text: str) -> Any:

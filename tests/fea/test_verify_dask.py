@@ -17,43 +17,16 @@ from typing import TYPE_CHECKING, Any
 
 import pytest
 
+from data_files import VERIFY_SMALL
+
 if TYPE_CHECKING:
     from conftest import CliRun
 
 #: A 20 mm square of Dura-Lar with an EI bound (the four-point gauge), a three-point deflection
 #: under 0.3 N and the load capacity it brings (a buckling run): three constraint rows and two
 #: first-failure rows (three-point buckling and yield), a few seconds of CalculiX per mesh
-#: (tests/fea/test_verify.py has the same design).
-SPEC = """
-name = "verify-dask"
-model = "refined"
-tolerances = "none"
-
-[material]
-name = "dura-lar"
-thickness = "0.125 mm"
-
-[layout]
-shape = "square"
-
-[variables]
-W = { min = "4 mm", max = "8 mm", step = "1 mm" }
-n = { min = 7, max = 7 }
-alpha = { min = "60 deg", max = "120 deg", step = "1 deg" }
-
-[constraints]
-side = { min = "20 mm", max = "30 mm" }
-flexural_rigidity = [{ min = "10 mN*m^2", eta = "0 deg" }]
-
-[[constraints.deflection]]
-test = "three-point"
-load = "0.3 N"
-max = "0.5 mm"
-eta = "0 deg"
-
-[objective]
-minimize = "mass"
-"""
+#: (the design of tests/fea/test_verify.py).
+SPEC = VERIFY_SMALL.read_text()
 
 
 @pytest.fixture(scope="module")
