@@ -22,6 +22,7 @@ from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import MASS, Quantity
 from corrugate.spec.schema import SpecError, parse_spec
+from fe_rows import identical_square
 from spec_units import with_units
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -479,25 +480,6 @@ def test_a_joint_needs_straight_walls() -> None:
     assert info.value.field == "joint"
 
 
-def _identical_square(design: str) -> Assembly | None:
-    """The square of identical layers a design name of docs/validation/load_cases_fe.csv names
-    ('W 10, n 10, alpha 40', 'case study W 8, n 8, alpha 84', 'thin Dura-Lar 0.05: W 10, n 7,
-    alpha 50', 'thick polypropylene 0.5: ...'; Dura-Lar 0.125 mm unless the sheet is named before
-    the colon); None for differing layers or a rectangle."""
-    if "layer" in design or "rectangle" in design or "chassis" in design:
-        return None
-    head, _, tail = design.rpartition(":")
-    m = re.search(r"W (\d+(?:\.\d+)?), n (\d+), alpha (\d+(?:\.\d+)?)", tail)
-    assert m is not None, design
-    sheet = re.search(r"(Dura-Lar|polypropylene) (\d+(?:\.\d+)?)", head)
-    material = get_material(
-        "polypropylene" if sheet and sheet[1] == "polypropylene" else "dura-lar"
-    )
-    t = float(sheet[2]) if sheet else 0.125
-    layer = Layer(W=float(m[1]), n=int(m[2]), alpha_deg=float(m[3]), material=material, t=t)
-    return Assembly.identical(layer)
-
-
 def _fe_estimate(series: dict[int, float]) -> float:
     """A mesh series' limit, written out independently of corrugate.fea.extrapolate: Richardson's
     from the three finest meshes at their observed order p when the steps have one sign and
@@ -537,7 +519,7 @@ def test_the_local_term_bounds_every_row_of_the_fe_sample() -> None:
                 series.setdefault((r["design"], r["test"]), {})[int(r["along"])] = float(r["value"])
     checked, thin_thick, without = 0, set(), 0.0
     for (design, test), s in series.items():
-        a = _identical_square(design)
+        a = identical_square(design)
         if a is None or len(s) < 3:
             continue
         form = forms[test].form

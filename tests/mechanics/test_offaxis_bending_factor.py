@@ -12,13 +12,13 @@ benchmarks/offaxis_bending_factor.py`)."""
 from __future__ import annotations
 
 import csv
-import re
 from pathlib import Path
 
-from corrugate import Assembly, Layer, analyze, get_material
+from corrugate import Assembly, analyze
 from corrugate.fea.extrapolate import judge
 from corrugate.mechanics.load_cases import THREE_POINT, apparent, load_stiffness, shear_and_depth
 from corrugate.mechanics.offaxis import _cs
+from fe_rows import identical_square
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "docs" / "validation" / "load_cases_fe.csv"
@@ -26,25 +26,6 @@ DATA = ROOT / "docs" / "validation" / "load_cases_fe.csv"
 #: (docs/load_cases.md 5): FE 1745.2 / 1691.2 / 1651.2 / 1630.7 N mm, estimate 1609.2, against
 #: the model's 1871.6 N mm.
 KNOWN_FAILING = "Dura-Lar 0.175: W 10, n 6, alpha 40"
-
-
-def _square(design: str) -> Assembly | None:
-    """The square of identical layers a design name names ('W 10, n 10, alpha 40', 'Dura-Lar
-    0.175: W 10, n 6, alpha 40', 'polypropylene 0.3: W 8, n 6, alpha 120'; Dura-Lar 0.125 mm
-    unless the sheet is named before the colon); None for differing layers or a rectangle."""
-    if "layer" in design or "rectangle" in design or "chassis" in design:
-        return None
-    head, _, tail = design.rpartition(":")
-    m = re.search(r"W (\d+(?:\.\d+)?), n (\d+), alpha (\d+(?:\.\d+)?)", tail)
-    assert m is not None, design
-    sheet = re.search(r"(Dura-Lar|polypropylene) (\d+(?:\.\d+)?)", head)
-    material = get_material(
-        "polypropylene" if sheet and sheet[1] == "polypropylene" else "dura-lar"
-    )
-    t = float(sheet[2]) if sheet else 0.125
-    return Assembly.identical(
-        Layer(W=float(m[1]), n=int(m[2]), alpha_deg=float(m[3]), material=material, t=t)
-    )
 
 
 def _model(a: Assembly, eta: float) -> float:
@@ -70,7 +51,7 @@ def test_the_bending_factor_holds_every_settled_coupon() -> None:
     held: set[tuple[str, float]] = set()
     failing = set()
     for (design, eta, shift), s in series.items():
-        a = _square(design)
+        a = identical_square(design)
         if a is None or not {2, 4, 8, 16} <= set(s):
             continue
         j = judge(s, _model(a, eta), "min")
