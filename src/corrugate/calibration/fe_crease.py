@@ -154,7 +154,6 @@ def crease_strip_compliance(
     with work_dir(folder) as where:
         run = run_ccx(deck, where, job="zigzag")
     seconds = time.monotonic() - start
-    blocks = [blk for blk in run.blocks if blk.quantity.startswith("displacements")]
-    last = max(blocks, key=lambda blk: blk.time)
+    last = run.last("displacements")
     (row,) = last.rows.values()
     return CreaseStripResult(along, float(row[0]), seconds, nodes)

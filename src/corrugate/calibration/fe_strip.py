@@ -114,7 +114,6 @@ def strip_sag(
     with work_dir(folder) as where:
         run = run_ccx(deck, where, job="strip")
     seconds = time.monotonic() - start
-    blocks = [blk for blk in run.blocks if blk.quantity.startswith("displacements")]
-    last = max(blocks, key=lambda blk: blk.time)
+    last = run.last("displacements")
     sag = -sum(v[2] for v in last.rows.values()) / len(last.rows)
     return StripResult(nx, ny, sag, seconds)

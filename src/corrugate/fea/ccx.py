@@ -257,6 +257,13 @@ class CcxRun:
         q, s = quantity.lower(), nset.upper()
         return [b for b in self.blocks if b.quantity.lower() == q and b.nset == s]
 
+    def last(self, quantity: str) -> DatBlock:
+        """The table of ``quantity`` (its name's start, e.g. ``"displacements"``) at the latest
+        time of the run: the end of a ramp."""
+        return max(
+            (b for b in self.blocks if b.quantity.startswith(quantity)), key=lambda b: b.time
+        )
+
 
 def _die_with_parent() -> None:
     """In the ccx child (Linux): get SIGKILL when the process that started it dies, so that a
