@@ -20,6 +20,21 @@ def _run(script: str, *args: str) -> subprocess.CompletedProcess[str]:
     )
 
 
+def _command_without(argv: list[str], modules: tuple[str, ...]) -> subprocess.CompletedProcess[str]:
+    """Run ``corrugate ARGV`` in-process in a fresh interpreter (its exit 0) and assert there that
+    none of ``modules`` was imported."""
+    return _run(
+        "import sys\n"
+        "from corrugate.cli import main\n"
+        "try:\n"
+        f"    main({argv!r})\n"
+        "except SystemExit as exc:\n"
+        "    assert exc.code in (0, None), exc.code\n"
+        f"heavy = [m for m in {modules!r} if m in sys.modules]\n"
+        "assert not heavy, heavy\n"
+    )
+
+
 def test_import_corrugate_loads_nothing_heavy() -> None:
     done = _run(
         "import sys, corrugate\n"
@@ -76,31 +91,16 @@ def test_design_files_need_no_mesh_library_pyplot_or_pint(tmp_path: Path) -> Non
 def test_help_loads_neither_numpy_nor_rich_nor_pydantic() -> None:
     """``corrugate --help`` (piped, so click's plain help) needs none of the heavy libraries: they
     cost most of its CPU before (0.64 s against 0.15 s after, benchmarks/pipeline.py)."""
-    done = _run(
-        "import sys\n"
-        "from corrugate.cli import main\n"
-        "try:\n"
-        "    main(['--help'])\n"
-        "except SystemExit as exc:\n"
-        "    assert exc.code in (0, None), exc.code\n"
-        "heavy = [m for m in ('numpy', 'rich', 'pydantic', 'pint') if m in sys.modules]\n"
-        "assert not heavy, heavy\n"
-    )
+    done = _command_without(["--help"], ("numpy", "rich", "pydantic", "pint"))
     assert done.returncode == 0, done.stderr
     assert "Usage: " in done.stdout and "analyze" in done.stdout
 
 
 def test_analyze_needs_no_pydantic_pint_or_scipy() -> None:
     """``corrugate analyze`` with plain numbers builds no spec, units or solver machinery."""
-    done = _run(
-        "import sys\n"
-        "from corrugate.cli import main\n"
-        "try:\n"
-        "    main(['analyze', '--W', '8', '--n', '8', '--alpha', '84', '--material', 'dura-lar'])\n"
-        "except SystemExit as exc:\n"
-        "    assert exc.code in (0, None), exc.code\n"
-        "heavy = [m for m in ('pydantic', 'pint', 'scipy', 'matplotlib') if m in sys.modules]\n"
-        "assert not heavy, heavy\n"
+    done = _command_without(
+        ["analyze", "--W", "8", "--n", "8", "--alpha", "84", "--material", "dura-lar"],
+        ("pydantic", "pint", "scipy", "matplotlib"),
     )
     assert done.returncode == 0, done.stderr
     assert "504.5" in done.stdout  # K at eta 0 of the case study, docs/validation/off_axis.md
@@ -111,17 +111,17 @@ def test_design_without_out_loads_no_writer_matplotlib_or_ezdxf() -> None:
     files need: matplotlib, ezdxf, PIL and the package's writers (issue 39; its CPU is measured by
     benchmarks/pipeline.py). The answer is there: the case study's optimum, n 9 (the example's
     header: W 8, n 9, alpha 78, 2.16 g)."""
-    done = _run(
-        "import sys\n"
-        "from corrugate.cli import main\n"
-        "try:\n"
-        "    main(['design', 'examples/blimp_gripper.toml'])\n"
-        "except SystemExit as exc:\n"
-        "    assert exc.code in (0, None), exc.code\n"
-        "heavy = [m for m in ('matplotlib', 'ezdxf', 'PIL', 'corrugate.export.cutfile',\n"
-        "         'corrugate.export.pdf', 'corrugate.export.writers', 'corrugate.report')\n"
-        "         if m in sys.modules]\n"
-        "assert not heavy, heavy\n"
+    done = _command_without(
+        ["design", "examples/blimp_gripper.toml"],
+        (
+            "matplotlib",
+            "ezdxf",
+            "PIL",
+            "corrugate.export.cutfile",
+            "corrugate.export.pdf",
+            "corrugate.export.writers",
+            "corrugate.report",
+        ),
     )
     assert done.returncode == 0, done.stderr
     assert "blimp-gripper" in done.stdout and "2.16" in done.stdout
