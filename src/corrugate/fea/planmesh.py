@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.fea.ccx import SolverError
+from corrugate.fea.coincident import CoincidentKeys, Key
 
 __all__ = ["Corrugation", "PlanMesh", "plan_mesh"]
 
@@ -190,12 +191,13 @@ def plan_mesh(
             # the built-in kernel, fed cells that share their points and edges: deterministic
             # (OpenCASCADE's fragment gave a different mesh for a second layer in one process)
             geo = gmsh.model.geo
-            points: dict[tuple[int, int], int] = {}
+            points: dict[Key, int] = {}
+            coincident = CoincidentKeys(tol)  # a cell corner shared by two cells, one key
             lines: dict[tuple[int, int], int] = {}
             for cell in cells:
                 tags: list[int] = []
                 for x, y in cell:
-                    key = (round(x / tol), round(y / tol))
+                    key = coincident.key(x, y, 0.0)
                     if key not in points:
                         points[key] = geo.addPoint(x, y, 0.0)
                     if not tags or tags[-1] != points[key]:
