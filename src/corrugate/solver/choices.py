@@ -69,15 +69,11 @@ def _relaxed(c: Constraint) -> Constraint | None:
 
 def relaxation(problem: Problem) -> Problem | None:
     """R of the module docstring, None when ``problem`` is not a least-mass problem whose R the
-    layer-by-layer search takes (:func:`~.separable.applies`)."""
+    layer-by-layer search takes (:func:`~.separable.applies`, which also declines a calibrated
+    sheet: its measured E interval and springback angle are not bounded by R's sheet)."""
     if problem.objective.quantity != MASS or problem.objective.sense != "min":
         return None
     if problem.identical or len(problem.candidates) < 2:
-        return None
-    if problem.calibrated:
-        # a calibrated sheet's certificate takes its measured E interval and moves alpha by
-        # the springback (tolerance_box): R's sheet at E (1 - dE) and the cut angle is then no
-        # relaxation of it, so no pair is pruned
         return None
     if any(c.quantity.eta is not None and c.sense != "min" for c in problem.constraints):
         return None
