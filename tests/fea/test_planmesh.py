@@ -61,3 +61,52 @@ def test_plan_mesh_tiles_the_coupon_with_flat_elements(
     assert total == pytest.approx(side * side, rel=1e-7)
     for y in lines:
         assert np.sum(np.abs(xyz[:, 1] - y) < 1e-9) >= 3
+
+
+_BROKEN_PIPE_AFTER_MESHING = """
+import os, sys, threading
+from corrugate.fea.planmesh import Corrugation, plan_mesh
+corr = Corrugation((1.0, 0.0), 0.0, 5.0, 2.0, z0=1.0)
+if sys.argv[1] == "thread":
+    t = threading.Thread(target=plan_mesh, args=(corr, 20.0, 20.0, 2, (10.0, 5.0)))
+    t.start(); t.join()
+else:
+    plan_mesh(corr, 20.0, 20.0, 2, (10.0, 5.0))
+r, w = os.pipe()
+os.close(r)
+try:
+    os.write(w, b"x")
+except BrokenPipeError:
+    print("BrokenPipeError")
+"""
+
+
+@pytest.mark.parametrize("where", ["main", "thread"])
+def test_meshing_leaves_sigpipe_ignored_so_a_closed_pipe_raises(where: str) -> None:
+    """gmsh.initialize() sets SIGPIPE to its default in C (the first assertion shows it on the
+    bare library); after plan_mesh, from the main thread or another, a write to a closed pipe
+    raises BrokenPipeError in a fresh process instead of killing it (exit -13, the death of
+    the CI run of 2026-12-07 at 74 %)."""
+    import subprocess
+    import sys
+
+    bare = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "import gmsh; from corrugate.core.sigpipe import sigpipe_ignored as s; "
+            "a = s(); gmsh.initialize(interruptible=False); print(a, s())",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert bare.stdout.split() == ["True", "False"], bare.stderr
+    run = subprocess.run(
+        [sys.executable, "-c", _BROKEN_PIPE_AFTER_MESHING, where],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert run.returncode == 0, (run.returncode, run.stderr[-2000:])
+    assert run.stdout.strip() == "BrokenPipeError"

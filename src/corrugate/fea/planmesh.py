@@ -27,6 +27,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from numpy.typing import NDArray
 
+from corrugate.core.sigpipe import reapply_sigpipe
 from corrugate.fea.ccx import SolverError
 from corrugate.fea.coincident import CoincidentKeys, Key
 
@@ -185,6 +186,7 @@ def plan_mesh(
         ]
     with _LOCK:
         gmsh.initialize(interruptible=False)
+        reapply_sigpipe()  # gmsh sets SIGPIPE to its default in C (core.sigpipe)
         try:
             gmsh.option.setNumber("General.Terminal", 0)
             gmsh.model.add("layer")
