@@ -122,18 +122,26 @@ def test_the_chassis_plate_designs_with_progress_and_a_job_is_cancelled(
     assert page.locator("#d-layers tbody tr").count() == 2
     w.screenshot("web-design-job.png")
 
-    # the same spec with W and alpha continuous (their steps emptied), cancelled from the page
-    # once the solver reports: a search of about 4.5 s CPU (`corrugate design` of
-    # benchmarks/specs/chassis_independent.toml without its steps), where the gridded one's
-    # 0.85 s had ended before the page was checked once, on an idle machine (fresh clone of
-    # 9e4ef79: the Cancel button already hidden)
+    # the same spec with W and alpha continuous (their steps emptied: a search of about 4.5 s
+    # CPU, `corrugate design` of benchmarks/specs/chassis_independent.toml without its steps,
+    # against the gridded one's 0.85 s), cancelled from the page once the solver reports. The page
+    # clears the progress line at each submit: it had kept the first run's "branch and bound"
+    # text, so the wait below returned before the second job existed, its Cancel button not yet
+    # shown (the CI failures of 9e4ef79 and fd53f78)
     runner, store = app.state.runner, app.state.store
     wait_for(lambda: len(runner.worker_pids()) == runner.processes, 120, "workers up")
     pids = set(runner.worker_pids())
     folders = set(store.root.iterdir())
     page.fill("#d-W-step", "")
     page.fill("#d-alpha-step", "")
+    first_job = page.get_attribute("#design-form", "data-job")
     page.click("#d-submit")
+    page.wait_for_function(  # the second job exists (its id on the form), then its progress
+        "(old) => { const j = document.getElementById('design-form').dataset.job;"
+        " return Boolean(j) && j !== old; }",
+        arg=first_job,
+        timeout=300_000,
+    )
     page.wait_for_function(
         "() => document.getElementById('d-progress-text').textContent.startsWith('branch and bound')",
         timeout=300_000,

@@ -1229,6 +1229,7 @@ async function submitDesign(event) {
   $('d-status').textContent = 'designing...';
   designForm.dataset.state = 'busy';
   delete designForm.dataset.job;
+  $('d-progress-text').textContent = '';  // never the last run's progress as this run's
   try {
     const body = designBody();
     lastDesignSpec = body;
