@@ -126,7 +126,8 @@ def certified_part(
             continue
         k = cal.k_lo if not math.isinf(cal.k_lo) else lay.material.crease_stiffness
         sbs = sorted({cal.springback_lo, cal.springback_hi})
-        ends.append([(_at(lay, cal.E_lo, k, lay.alpha_deg + sb), sb) for sb in sbs])
+        E = cal.E_lo if cal.E_measured else lay.material.E  # a stated k and springback: E as is
+        ends.append([(_at(lay, E, k, lay.alpha_deg + sb), sb) for sb in sbs])
     End = tuple[Layer, float]
     combos: list[tuple[End, End]]
     if assembly.layer1 == assembly.layer2:  # one sheet folded twice: the same folds
