@@ -38,17 +38,22 @@ def _centroids(sh: Shell, elems: list[list[int]], corners: int) -> FloatArray:
 def _kept(sh: Shell, keep: Callable[[list[list[int]], int], list[list[int]]]) -> Shell:
     """``sh`` with the elements ``keep`` keeps of each kind (S8R with 4 corners, S6 with 3; the
     crease strips' too, :func:`corrugate.fea.shells.crease_strip`), less the nodes none uses."""
-    kinds = {
-        "elements": keep(sh.elements, 4),
-        "triangles": keep(sh.triangles, 3),
-        "strip_elements": keep(sh.strip_elements, 4),
-        "strip_triangles": keep(sh.strip_triangles, 3),
-    }
-    if not any(kinds.values()):
+    quads, tris = keep(sh.elements, 4), keep(sh.triangles, 3)
+    s_quads, s_tris = keep(sh.strip_elements, 4), keep(sh.strip_triangles, 3)
+    kinds = (quads, tris, s_quads, s_tris)
+    if not any(kinds):
         raise SolverError("the outline leaves no element of the mesh")
-    nodes = [n for elems in kinds.values() for e in elems for n in e]
+    nodes = [n for elems in kinds for e in elems for n in e]
     used = np.isin(sh.ids, np.array(nodes, dtype=np.int64))
-    return replace(sh, ids=sh.ids[used], xyz=sh.xyz[used], **kinds)
+    return replace(
+        sh,
+        ids=sh.ids[used],
+        xyz=sh.xyz[used],
+        elements=quads,
+        triangles=tris,
+        strip_elements=s_quads,
+        strip_triangles=s_tris,
+    )
 
 
 def cut_holes(sh: Shell, a: Assembly) -> Shell:
