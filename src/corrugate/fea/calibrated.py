@@ -91,8 +91,10 @@ def _measure(kind: str) -> str:
 
 
 def _at(layer: Layer, E: float, k: float, alpha: float) -> Layer:
+    """``layer`` at E (MPa), k and the fold angle alpha (deg), kept within 1-179 deg as the
+    certificate's box keeps it inside the zig-zag's 0-180 (:mod:`corrugate.solver.tolerance_box`)."""
     m = replace(layer.material, E=E, crease_stiffness=k)
-    return replace(layer, material=m, alpha_deg=alpha)
+    return replace(layer, material=m, alpha_deg=min(max(alpha, 1.0), 179.0))
 
 
 def _assembled(a: Assembly, layers: tuple[Layer, Layer]) -> Assembly:
