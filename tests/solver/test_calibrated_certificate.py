@@ -16,7 +16,7 @@ from corrugate.geometry.layer import Assembly, Layer
 from corrugate.solver.problem import Problem
 from corrugate.solver.solve import solve
 from corrugate.spec.examples import example_text
-from corrugate.spec.schema import load_spec
+from corrugate.spec.schema import load_spec, parse_spec_text
 
 CALIBRATION = """
 [my-sheet]
@@ -106,3 +106,46 @@ def test_a_calibrated_crease_is_certified_at_its_softest(tmp_path: Path) -> None
     soft = _ei(sol, replace(m, crease_stiffness=0.05))
     assert _certified_ei(sol) == pytest.approx(soft, rel=1e-6)
     assert soft < _ei(sol, m) < _ei(sol, replace(m, crease_stiffness=math.inf))
+
+
+INLINE = """
+E = "2700 MPa"
+nu = 0.43
+density = "1.39 g/cm^3"
+thickness = "0.125 mm"
+crease_stiffness = "0.1 N*mm/(rad*mm)"
+springback = "-4 deg"
+"""
+
+
+def _inline_problem(tolerances: str = 'tolerances = "none"') -> Problem:
+    text = example_text("blimp_gripper").replace('tolerances = "none"', tolerances, 1)
+    head, _, rest = text.partition("[material]\n")
+    _, _, tail = rest.partition("\n\n")
+    return Problem.from_spec(parse_spec_text(f"{head}[material]{INLINE}\n{tail}"))
+
+
+@pytest.mark.slow
+def test_an_inline_crease_and_springback_are_certified_as_stated() -> None:
+    """An inline [material] stating crease_stiffness 0.1 N mm/(rad mm) and springback -4 deg,
+    with tolerances "none": the certified EI(0) is the model's at alpha - 4 deg with k = 0.1
+    (nothing else moves: E is the stated 2700 MPa, exact), and the answer says so."""
+    sol = solve(_inline_problem())
+    m = sol.assembly.layer1.material
+    assert m.crease_stiffness == 0.1 and m.calibration is not None
+    assert _certified_ei(sol) == pytest.approx(_ei(sol, m, -4.0), rel=1e-6)
+    assert "crease stiffness 0.1 N*mm/(rad*mm), springback -4.0 deg, from custom, stated in " in (
+        sol.certificate
+    )
+
+
+def test_an_inline_springback_keeps_the_tolerance_on_E() -> None:
+    """Stated values are not a measured E: the default tolerances' +-10 % E stays (the sheet of
+    the tolerance box spans 2430-2970 MPa), where a calibrated entry's interval replaces it."""
+    from corrugate.solver.tolerance_box import sheet
+
+    p = _inline_problem("")
+    (c,) = p.candidates
+    assert c.material.calibration is not None and not c.material.calibration.E_measured
+    E = sheet(c, p.tolerances).material.E
+    assert (E.lo, E.hi) == (pytest.approx(2430.0), pytest.approx(2970.0))

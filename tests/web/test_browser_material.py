@@ -88,3 +88,26 @@ def test_a_custom_material_designs_saves_and_loads_as_the_cli_reads_it(
     assert "0.7" in message and message.endswith("material.nu"), message
     assert w.console_errors == [] and w.page_errors == [] and w.external == []
     assert [e for e in w2.console_errors if "status of 422" not in e] == []
+
+
+def test_a_custom_materials_crease_and_springback_are_posted_in_their_units(
+    browser: Any,  # noqa: F811
+    live_server: str,
+) -> None:
+    """The two optional fields of a custom material (docs/calibration.md 10): hidden until
+    "custom" is chosen, a plain number posted in the unit the field shows, left out when empty."""
+    w = Watched(browser, live_server)
+    page = open_design_tab(w, live_server + "/")
+    assert page.is_hidden("#d-crease") and page.is_hidden("#d-springback")
+    page.select_option("#d-material", "__custom__")
+    assert page.is_visible("#d-crease") and page.is_visible("#d-springback")
+    page.fill("#d-E", "2.1 GPa")
+    page.fill("#d-nu", "0.4")
+    page.fill("#d-density", "1.27")
+    body = page.evaluate("() => window.designBodyForTests()")
+    assert "crease_stiffness" not in body["material"] and "springback" not in body["material"]
+    page.fill("#d-crease", "0.1")
+    page.fill("#d-springback", "-4")
+    body = page.evaluate("() => window.designBodyForTests()")
+    assert body["material"]["crease_stiffness"] == "0.1 N*mm/(rad*mm)"
+    assert body["material"]["springback"] == "-4 deg"

@@ -88,6 +88,9 @@ def test_an_inline_material_gets_the_clis_answer(
         ({"yield_strength": "0 MPa"}, "material.yield_strength"),
         ({"thickness": None}, "material.thickness"),
         ({"nu": None}, "material.nu"),
+        ({"crease_stiffness": "-0.1 N*mm/(rad*mm)"}, "material.crease_stiffness"),
+        ({"crease_stiffness": "0.1"}, "material.crease_stiffness"),
+        ({"springback": "45 deg"}, "material.springback"),
     ],
 )
 def test_a_bad_inline_material_is_422_naming_the_field(
@@ -113,3 +116,13 @@ def test_an_inline_material_survives_save_and_load(api: TestClient) -> None:
     back = api.post("/api/spec/parse", json={"toml": r.text, "name": "inline.toml"})
     assert back.status_code == 200, back.text[:300]
     assert back.json()["material"] == INLINE
+
+
+def test_a_custom_crease_and_springback_reach_design_json(api: TestClient) -> None:
+    """The form's two optional fields (docs/calibration.md 9): the answer certifies with them and
+    the design's material carries them, as a spec file's [material] does."""
+    material = {**INLINE, "crease_stiffness": "0.1 N*mm/(rad*mm)", "springback": "-4 deg"}
+    r = api.post("/api/design", json=body_with(material))
+    assert r.status_code == 200, r.text[:400]
+    answer = r.json()["design"]
+    assert "crease stiffness 0.1 N*mm/(rad*mm), springback -4.0 deg" in answer["certificate"]

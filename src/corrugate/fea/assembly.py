@@ -340,14 +340,12 @@ def _decks(
         raise InputError("bond", bond, "edges or flanges")
     mesh = mesh or AssemblyMesh()
     a = with_creases(assembly, crease_stiffness)
-    if not all(math.isinf(lay.material.crease_stiffness) for lay in a.layers) and (
-        connectors or a.layout.holes or a.layout.name == "polygon"
-    ):
+    if connectors and not all(math.isinf(lay.material.crease_stiffness) for lay in a.layers):
         raise InputError(
             "crease_stiffness",
             "finite",
-            "rigid creases (inf) with the connector band, holes or a polygon outline (the "
-            "crease strips are meshed on a plain square or rectangle only)",
+            "rigid creases (inf) with the connector band (its walls are meshed on the layers' "
+            "evenly spaced edge nodes, which the crease strips move)",
         )
     Lx, Ly = a.Lx, a.Ly
     tol = 1e-7 * max(Lx, Ly)

@@ -1,8 +1,10 @@
 """Meshes cut to a plan outline and its holes: a staircase that converges to the true outline
-as the mesh is refined (docs/fea.md 2.8). Lengths in mm, in plan (x, y)."""
+as the mesh is refined (docs/fea.md 2.8), the crease strips cut as the rest. Lengths in mm, in
+plan (x, y)."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -33,9 +35,25 @@ def _centroids(sh: Shell, elems: list[list[int]], corners: int) -> FloatArray:
     return np.array([sh.xyz[[index[n] for n in e[:corners]], :2].mean(axis=0) for e in elems])
 
 
-def _keep_used(sh: Shell, elements: list[list[int]], triangles: list[list[int]]) -> Shell:
-    used = np.isin(sh.ids, np.array([n for e in elements + triangles for n in e], dtype=np.int64))
-    return replace(sh, ids=sh.ids[used], xyz=sh.xyz[used], elements=elements, triangles=triangles)
+def _kept(sh: Shell, keep: Callable[[list[list[int]], int], list[list[int]]]) -> Shell:
+    """``sh`` with the elements ``keep`` keeps of each kind (S8R with 4 corners, S6 with 3; the
+    crease strips' too, :func:`corrugate.fea.shells.crease_strip`), less the nodes none uses."""
+    quads, tris = keep(sh.elements, 4), keep(sh.triangles, 3)
+    s_quads, s_tris = keep(sh.strip_elements, 4), keep(sh.strip_triangles, 3)
+    kinds = (quads, tris, s_quads, s_tris)
+    if not any(kinds):
+        raise SolverError("the outline leaves no element of the mesh")
+    nodes = [n for elems in kinds for e in elems for n in e]
+    used = np.isin(sh.ids, np.array(nodes, dtype=np.int64))
+    return replace(
+        sh,
+        ids=sh.ids[used],
+        xyz=sh.xyz[used],
+        elements=quads,
+        triangles=tris,
+        strip_elements=s_quads,
+        strip_triangles=s_tris,
+    )
 
 
 def cut_holes(sh: Shell, a: Assembly) -> Shell:
@@ -55,7 +73,7 @@ def cut_holes(sh: Shell, a: Assembly) -> Shell:
             inside |= inside_ring(xy, ring)
         return [e for e, cut in zip(elems, inside, strict=True) if not cut]
 
-    return _keep_used(sh, keep(sh.elements, 4), keep(sh.triangles, 3))
+    return _kept(sh, keep)
 
 
 def cut_outline(sh: Shell, outline: FloatArray) -> Shell:
@@ -69,8 +87,4 @@ def cut_outline(sh: Shell, outline: FloatArray) -> Shell:
         inside = inside_ring(xy, np.asarray(outline, dtype=np.float64))
         return [e for e, ok in zip(elems, inside, strict=True) if ok]
 
-    elements = keep(sh.elements, 4)
-    triangles = keep(sh.triangles, 3)
-    if not elements and not triangles:
-        raise SolverError("the outline leaves no element of the mesh")
-    return _keep_used(sh, elements, triangles)
+    return _kept(sh, keep)

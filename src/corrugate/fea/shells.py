@@ -34,6 +34,7 @@ __all__ = [
     "quad8_elements",
     "section_lines",
     "specimen",
+    "strip_stations",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -158,6 +159,19 @@ def section_lines(parts: list[tuple[int, Shell]]) -> list[str]:
     return lines
 
 
+def strip_stations(p: float, along: int) -> FloatArray:
+    """The element edges across one facet of plan width ``p`` (mm) with crease strips: its
+    ends, the strips' inner edges at a = :data:`STRIP_FRACTION` p / 2 from each end, and every
+    node line of the rigid mesh of ``along`` elements (its corners and mid-side nodes, j p /
+    (2 along)) between them (those inside a strip left out), so that each node line a fixture
+    needs on the rigid mesh (four-point's quarter and three-eighth lines, a three-point load
+    line) is one here too: 2 ``along`` + 2 elements across a facet from 2 to 8 per facet."""
+    a = STRIP_FRACTION * p / 2
+    even = np.arange(1, 2 * along) * p / (2 * along)
+    inner = even[(even > a * (1 + 1e-9)) & (even < (p - a) * (1 - 1e-9))]
+    return np.concatenate([[0.0, a], inner, [p - a, p]])
+
+
 def layer_shell(
     layer: Layer,
     span: float,
@@ -176,17 +190,16 @@ def layer_shell(
     nf = layer.n + 1
     p, h = layer.pitch, layer.height
     k = layer.material.crease_stiffness
-    per = along if math.isinf(k) else along + 2  # a strip element at each end of a facet
+    # a strip element at each end of a facet
+    per = along if math.isinf(k) else len(strip_stations(layer.pitch, along)) - 1
     nel_c = per * nf
     if nel_s is None:
         nel_s = multiple * max(1, math.ceil(span / (aspect * layer.W / along) / multiple))
     ni, nj = 2 * nel_c + 1, 2 * nel_s + 1
     if math.isinf(k):
         chord = np.linspace(0.0, nf * p, ni)
-    else:  # each facet: a strip, along elements, a strip (STRIP_FRACTION W / 2 wide each)
-        a = STRIP_FRACTION * p / 2
-        inner = np.linspace(a, p - a, along + 1)
-        edges = np.concatenate([[0.0], inner, [p]])
+    else:  # each facet: a strip (STRIP_FRACTION W / 2 wide), along elements, a strip
+        edges = strip_stations(p, along)
         corners = np.concatenate([j * p + edges[:-1] for j in range(nf)] + [[nf * p]])
         chord = np.empty(ni)
         chord[0::2] = corners

@@ -71,6 +71,7 @@ from corrugate.fea.assembly import (
     principal_axis,
     solve_assembly,
 )
+from corrugate.fea.calibrated import certified_part
 from corrugate.fea.extrapolate import Judgement, judge
 from corrugate.fea.fixtures import Fixture, fixture_names, fixtures, get_fixture
 from corrugate.fea.frame import FrameStiffness, solve_frame
@@ -171,7 +172,8 @@ class Twin:
     apparent stiffness; ``load`` (N) turns P / delta into a deflection (mm); ``note`` is what the
     row should add; ``span`` (mm): a bending test over supports (a cantilever's free length) that
     far apart, inside a longer panel (None: the panel's length, supported at its ends); ``scale`` multiplies a load
-    capacity's FE load (``Pmax``: 1 / the safety factor)."""
+    capacity's FE load (``Pmax``: 1 / the safety factor); ``part``: the key of the part it meshes
+    (:attr:`corrugate.fea.calibrated.CertifiedPart.key`; "" the design as cut)."""
 
     test: str
     eta: float
@@ -182,6 +184,7 @@ class Twin:
     span: float | None = None
     step: Step = STATIC
     scale: float = 1.0
+    part: str = ""
 
     @property
     def fixture(self) -> Fixture:
@@ -640,14 +643,15 @@ _Found = tuple[float | None, float, dict[int, float | None], Judgement | None, l
 
 #: A run's result as a plan reads it: the fixture's result, or the run's error.
 _Outcome = AssemblyResult | OutlineResult | FrameStiffness | CorrugateError
-_Key = tuple[str, str, float, int, float, float | None]
+_Key = tuple[str, str, float, int, float, float | None, str]
 
 
 def _key(twin: Twin, along: int, shift: float) -> _Key:
     """What makes two runs one: the fixture, the step, eta (none for the frame's two runs), the
-    mesh, the coupon position and the span."""
+    mesh, the coupon position, the span and the part meshed (a calibrated sheet's worst end)."""
     whole = twin.fixture.kind == "frame"
-    return (twin.fixture.name, twin.step.name, 0.0 if whole else twin.eta, along, shift, twin.span)
+    eta = 0.0 if whole else twin.eta
+    return (twin.fixture.name, twin.step.name, eta, along, shift, twin.span, twin.part)
 
 
 @dataclass(frozen=True, slots=True)
@@ -780,7 +784,8 @@ def verify_design(
 
     def request(twin: Twin, shift: float, along: int, why: str = "") -> Request[_Run]:
         """The run of ``twin`` at ``shift`` on ``along`` elements per facet, as a plan asks."""
-        r = _Run(assembly, twin, along, shift, connectors, bond, folder, keep, timeout, why)
+        part = parts[twin.part]
+        r = _Run(part, twin, along, shift, connectors, bond, folder, keep, timeout, why)
         return r.key, r
 
     def series_at(
@@ -801,6 +806,7 @@ def verify_design(
         return series, failures
 
     planned: list[tuple[Row, Twin | str]] = []  # every entry read before any run: bad input first
+    parts: dict[str, Assembly] = {"": assembly}
     for entry in constraints:
         c = Checked.of(entry)
         if c is None:
@@ -818,6 +824,13 @@ def verify_design(
                 if sf
                 else "no FE twin yet (no failure_loads_N to read the safety factor from)"
             )
+        if isinstance(twin, Twin):  # a calibrated sheet: the part certified, at its worst end
+            q = c.quantity
+            part = certified_part(assembly, q.kind, q.eta, q.support or DEFAULT_SUPPORT)
+            if part.calibrated:
+                parts[part.key] = part.assembly
+                note = "; ".join(n for n in (part.words(), twin.note) if n)
+                twin = replace(twin, part=part.key, note=note)
         planned.append((base, twin))
 
     def plan(base: Row, twin: Twin) -> Generator[list[Request[_Run]], None, Row]:

@@ -40,21 +40,39 @@ class Calibration:
     springback: float = 0.0
     springback_lo: float = 0.0
     springback_hi: float = 0.0
+    E_measured: bool = True
+
+    @classmethod
+    def stated(cls, E: float, k: float, springback: float) -> Calibration:
+        """The crease stiffness ``k`` (N mm/(rad mm), inf: rigid) and ``springback`` (deg) a
+        spec's inline material states, without intervals and without a measured E (E keeps
+        the ``[tolerances]`` E: ``E_measured`` False; docs/calibration.md 9)."""
+        cal = cls(
+            "stated in the spec", 0, (), E, E, k, k, springback, springback, springback, False
+        )
+        cal.check("material")
+        return cal
 
     def words(self, material_id: str) -> str:
         """What a certificate covers of it: ``calibrated E 2738-2900 MPa, crease stiffness
         0.0949-0.103 N*mm/(rad*mm), springback -6.9 to -5.5 deg, from my-dura-lar, 2026-12-06,
         40 measurements`` (the crease and springback when measured)."""
-        parts = [f"calibrated E {self.E_lo:.4g}-{self.E_hi:.4g} MPa"]
+        parts = [f"calibrated E {self.E_lo:.4g}-{self.E_hi:.4g} MPa"] if self.E_measured else []
         if not math.isinf(self.k_lo):
             hi = "inf" if math.isinf(self.k_hi) else f"{self.k_hi:.3g}"
-            parts.append(f"crease stiffness {self.k_lo:.3g}-{hi} N*mm/(rad*mm)")
-        if self.springback_lo or self.springback_hi:
+            k = f"{self.k_lo:.3g}" if not self.E_measured else f"{self.k_lo:.3g}-{hi}"
+            parts.append(f"crease stiffness {k} N*mm/(rad*mm)")
+        if not self.E_measured and self.springback:  # stated: one value, no interval
+            parts.append(f"springback {self.springback:+.1f} deg")
+        elif self.springback_lo or self.springback_hi:
             parts.append(f"springback {self.springback_lo:+.1f} to {self.springback_hi:+.1f} deg")
         return ", ".join(parts) + f", from {self.source(material_id)}"
 
     def source(self, material_id: str) -> str:
-        """``my-dura-lar, 2026-12-06, 40 measurements``: where the intervals come from."""
+        """``my-dura-lar, 2026-12-06, 40 measurements``: where the intervals come from
+        (``custom, stated in the spec`` for a :meth:`stated` one)."""
+        if not self.E_measured and not self.measurements:
+            return f"{material_id}, {self.date}"
         return f"{material_id}, {self.date}, {self.measurements} measurements"
 
     def as_dict(self) -> dict[str, Any]:
@@ -71,6 +89,7 @@ class Calibration:
             "crease_stiffness_90": [fin(self.k_lo), fin(self.k_hi)],
             "springback_deg": self.springback,
             "springback_deg_90": [self.springback_lo, self.springback_hi],
+            **({} if self.E_measured else {"E_measured": False}),
         }
 
     @classmethod
@@ -89,6 +108,7 @@ class Calibration:
                 float(d["springback_deg"]),
                 float(d["springback_deg_90"][0]),
                 float(d["springback_deg_90"][1]),
+                {True: True, False: False}[d.get("E_measured", True)],
             )
         except (TypeError, ValueError, KeyError, IndexError):
             raise InputError(field, repr(d)[:40], "the calibration design.json wrote") from None

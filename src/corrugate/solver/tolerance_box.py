@@ -58,9 +58,10 @@ def covered(problem: Problem, q: Quantity) -> bool:
 
 def _E_range(m: Material, tol: WorstCase) -> tuple[float, float]:
     """E's interval (MPa): a calibrated material's measured one (docs/calibration.md 9), else
-    the tolerance's E (1 -+ dE)."""
+    (a datasheet's E, or an inline material's stated crease and springback) the tolerance's
+    E (1 -+ dE)."""
     cal = m.calibration
-    if cal is not None:
+    if cal is not None and cal.E_measured:
         return cal.E_lo, cal.E_hi
     return m.E * (1 - tol.E), m.E * (1 + tol.E)
 

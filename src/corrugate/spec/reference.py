@@ -263,6 +263,18 @@ for _m in ("material", "materials[]"):
             "MPa",
             "Allowable stress of strength bounds (tensile yield); replaces the library's value.",
         ),
+        f"{_m}.crease_stiffness": KeyDoc(
+            "N*mm/(rad*mm)",
+            "An inline material's crease rotational stiffness per unit crease length, with its "
+            "unit (> 0, or 'inf': rigid, the default); the models, the certificate and verify "
+            "take the creases as these springs (docs/calibration.md 9).",
+        ),
+        f"{_m}.springback": KeyDoc(
+            "deg",
+            "An inline material's springback, the angle a fold opens by after it is released "
+            "(-30 to 30 deg; default 0): the part is certified at alpha + springback, the cut "
+            "files keep alpha (docs/calibration.md 9).",
+        ),
     }
 
 

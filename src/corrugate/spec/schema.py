@@ -402,6 +402,43 @@ class VariablesSpec(_Strict):
 
 YieldStrength = Annotated[float, BeforeValidator(_limited("E", "MPa"))]
 
+#: The largest finite crease stiffness a spec takes (N mm/(rad mm)): far stiffer than any sheet's
+#: facets (D = E t^3 / 12 (1 - nu^2) is 0.5 N mm for 0.125 mm Dura-Lar), "inf" above it.
+CREASE_STIFFNESS_MAX = 1e6
+_CREASE_ALLOWED = f'> 0 and <= {CREASE_STIFFNESS_MAX:g} N*mm/(rad*mm), or "inf" (rigid)'
+
+
+def _crease_stiffness(value: Any) -> float:
+    """A crease's rotational stiffness per unit length (N mm/(rad mm); docs/calibration.md 4):
+    ``"0.1 N*mm/(rad*mm)"`` or ``"inf"`` (rigid); a plain number is refused for its unit."""
+    if isinstance(value, str) and value.strip().lower() in ("inf", "rigid"):
+        return math.inf
+    number = _plain_number(value)
+    if number is not None:
+        raise PydanticCustomError(
+            "unit",
+            "{number} has no unit",
+            {"number": number, "example": f'"{number} N*mm/(rad*mm)"'},
+        )
+    try:
+        k = parse_quantity(value, "N", "value")
+    except InputError as exc:
+        raise PydanticCustomError(
+            "quantity", "{reason}", {"reason": exc.reason, "allowed": _CREASE_ALLOWED}
+        ) from None
+    if not (0.0 < k <= CREASE_STIFFNESS_MAX):
+        raise PydanticCustomError(
+            "quantity", "{reason}", {"reason": "is out of range", "allowed": _CREASE_ALLOWED}
+        )
+    return k
+
+
+CreaseStiffness = Annotated[float, BeforeValidator(_crease_stiffness)]
+#: The angle a fold opens by after it is released (deg; docs/calibration.md 4): within +-30 deg.
+Springback = Annotated[
+    float, BeforeValidator(_quantity("deg", lo=-30.0, hi=30.0, lo_open=False, hi_open=False))
+]
+
 
 class MaterialSpec(_Strict):
     """A library material (``name``) or an inline one (``E``, ``nu``, ``density``, ``thickness``),
@@ -409,6 +446,12 @@ class MaterialSpec(_Strict):
 
     ``thickness``: one quantity, a list of candidate thicknesses, ``"all"`` (every thickness the
     library sells) or nothing (the material's default thickness).
+
+    An inline material may state its creases' rotational stiffness ``crease_stiffness``
+    (N mm/(rad mm), ``"inf"`` rigid, the default) and its folds' ``springback`` (deg, the angle
+    a fold opens by after it is released; 0 the default): the models take the creases as
+    springs, the certificate and ``verify`` the folds at alpha + springback (docs/calibration.md
+    9). A library or calibrated material's come from its materials file (docs/calibration.md 6).
     """
 
     name: Name = "custom"
@@ -417,6 +460,8 @@ class MaterialSpec(_Strict):
     nu: Poisson | None = None
     density: Density | None = None
     yield_strength: YieldStrength | None = None
+    crease_stiffness: CreaseStiffness | None = None
+    springback: Springback | None = None
 
 
 Coordinate = Annotated[
@@ -1105,6 +1150,15 @@ def _check_material(where: str, m: MaterialSpec, own: dict[str, Material]) -> No
                 reason="is missing",
             )
         return
+    for key in ("crease_stiffness", "springback"):
+        if getattr(m, key) is not None:
+            raise SpecError(
+                f"{where}.{key}",
+                f"{getattr(m, key):g}",
+                "only with an inline material (E, nu, density); a library or calibrated "
+                "material's comes from a materials file (`corrugate docs calibration`, section 6)",
+                reason=f"does not apply to name = {m.name!r}",
+            )
     from corrugate.materials.library import get_material
 
     try:

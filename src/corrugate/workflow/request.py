@@ -13,6 +13,7 @@ the boundary names the errors the run may raise (:class:`Names`).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -90,6 +91,21 @@ class DesignRequest:
     fe: FeOptions | None = None
     strict_json: bool = False
     names: Names = field(default_factory=Names)
+
+    def __post_init__(self) -> None:
+        """Refuse, before the search, an FE verification the FE cannot make: the connector band
+        with compliant creases (its walls are meshed on the layers' rigid-crease edge nodes;
+        docs/calibration.md 10)."""
+        p = self.problem
+        soft = [c.material.id for c in p.candidates if c.material.crease_stiffness < math.inf]
+        if self.fe is not None and p.joint != "none" and soft:
+            raise InputError(
+                "joint",
+                p.joint,
+                "joint = 'none' with --verify fe, or rigid creases (the FE meshes the connector "
+                "band with rigid creases only; `corrugate docs calibration`, section 10)",
+                reason=f"cannot be verified in FE with the compliant creases of {soft[0]}",
+            )
 
 
 def resolve_machine(name: str, field_name: str | None = None) -> Machine:
