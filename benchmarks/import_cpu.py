@@ -34,7 +34,7 @@ ROOT = Path(__file__).resolve().parents[1]
 #: Runs in the child: the command under the CPU-charging finder; prints one JSON line.
 _CHILD = r"""
 import contextlib, gc, importlib.abc, io, json, sys, time
-gc.set_threshold(100_000, 20, 100)  # python -m corrugate's thresholds (corrugate/__main__.py)
+gc.set_threshold(500_000, 20, 100)  # python -m corrugate's thresholds (corrugate/__main__.py)
 start = time.process_time()
 stack, seen = [], {}
 
