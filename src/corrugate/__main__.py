@@ -11,7 +11,7 @@ corrugate.export'`` with and without them; issue 39).
 
 import gc
 
-gc.set_threshold(100_000, 20, 100)
+gc.set_threshold(500_000, 20, 100)
 
 from corrugate.cli import main  # noqa: E402  (after the thresholds: its imports are the point)
 

@@ -126,6 +126,17 @@ _LEAN = textwrap.dedent(
             pass
     print("later class has its signature:", "colour_name" in str(inspect.signature(Later.set)))
     print("kwdoc is matplotlib's:", matplotlib.artist.kwdoc.__module__ == "matplotlib.artist")
+    import matplotlib.axes
+    print("data note in help:", "data[s]" in (matplotlib.axes.Axes.scatter.__doc__ or ""))
+    from matplotlib import _docstring
+    _docstring.interpd.register(later_name="filled")
+    @_docstring.interpd
+    def later():
+        \"\"\"%(later_name)s\"\"\"
+    @_docstring.Substitution(word="filled")
+    def later_too():
+        \"\"\"%(word)s\"\"\"
+    print("later docstrings:", later.__doc__, later_too.__doc__)
     """
 )
 
@@ -133,9 +144,10 @@ _LEAN = textwrap.dedent(
 @pytest.mark.slow
 def test_lean_import_draws_the_same_pixels_without_the_set_help() -> None:
     """:func:`~corrugate.core.plotting.lean_import` (the command line's): the same PNG, byte for
-    byte, as matplotlib imported as usual; only the artists' ``set`` help is left out, and a
-    class defined after the import gets its own again (matplotlib's method and ``kwdoc`` put
-    back)."""
+    byte, as matplotlib imported as usual; only the artists' ``set`` help and the docstrings'
+    filled-in fields and data notes are left out (``Axes.scatter``'s note on ``data``), and a
+    class defined after the import gets its own again, a docstring decorated after it is filled
+    in (matplotlib's method, ``kwdoc`` and docstring decorators put back)."""
     runs = {
         how: subprocess.run(
             [sys.executable, "-c", _LEAN, how], capture_output=True, text=True, check=True
@@ -144,5 +156,16 @@ def test_lean_import_draws_the_same_pixels_without_the_set_help() -> None:
     }
     assert runs["lean"][0] == runs["full"][0]  # the same file
     back = ["later class has its signature: True", "kwdoc is matplotlib's: True"]
-    assert runs["full"][1:] == ["property list in help: True", *back]
-    assert runs["lean"][1:] == ["property list in help: False", *back]
+    later = "later docstrings: filled filled"
+    assert runs["full"][1:] == [
+        "property list in help: True",
+        *back,
+        "data note in help: True",
+        later,
+    ]
+    assert runs["lean"][1:] == [
+        "property list in help: False",
+        *back,
+        "data note in help: False",
+        later,
+    ]

@@ -149,12 +149,16 @@ def _app_for(args: list[str]) -> typer.Typer:
 
 
 #: The cyclic garbage collector's thresholds in a command's process (:func:`gc.set_threshold`):
-#: the youngest generation is collected after 100 000 allocations, not 700. Python's default
-#: makes a ``design --out`` run collect 350 times, 3 of them full passes over the million objects
-#: the libraries keep alive for the whole run, 0.25 s of CPU freeing almost nothing; with these,
-#: 2 young collections, 0.07 s (``gc.callbacks`` timing on the case study; issue 24). Cycles
-#: are still collected; the memory they hold until then is a few MB.
-GC_THRESHOLDS = (100_000, 20, 100)
+#: the youngest generation is collected once 500 000 objects it tracks were made (net of those
+#: freed), not 700. Python's default makes a ``design --out`` run collect 350 times, 3 of them
+#: full passes over the objects the libraries keep alive for the whole run, 0.25 s of CPU
+#: freeing almost nothing; at 100 000 (issue 24) 2 young collections were left, 0.06 s freeing
+#: about 10 000 objects (``gc.callbacks`` timing; 0.060-0.069 s on the case study,
+#: wheel_circle, chassis_plate, rectangle_independent and blimp_gripper_robust); at 500 000 none
+#: (those runs end with about 250 000 objects tracked; on the case study 1.205 s of CPU against
+#: 1.269 s and a peak RSS of 136.3 MB against 134.3 MB, medians of 9 interleaved runs; issue
+#: 39). Cycles are still collected; the memory they hold until then is some MB.
+GC_THRESHOLDS = (500_000, 20, 100)
 
 
 def _freeze_at_exit() -> None:

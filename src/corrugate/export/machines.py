@@ -44,8 +44,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import StrEnum
 
+from corrugate.core.cutters import Cutter, get_cutter
 from corrugate.fabrication.palette import LINES
-from corrugate.fabrication.sheets import Cutter, get_cutter
 from corrugate.names import DEFAULT_MACHINE, LASER_PREFIX, CutFormat
 
 __all__ = [
@@ -184,7 +184,7 @@ def get_machine(name: str | Cutter | Machine = DEFAULT_MACHINE) -> Machine:
 
     Raises :class:`~corrugate.core.errors.UnknownNameError` for an unknown name and
     :class:`~corrugate.core.errors.InputError` for a bad laser bed (see
-    :func:`corrugate.fabrication.sheets.get_cutter`).
+    :func:`corrugate.core.cutters.get_cutter`).
     """
     if isinstance(name, Machine):
         return name
