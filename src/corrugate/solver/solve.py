@@ -942,9 +942,11 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     tree = opt.trees()
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     witnessed = _witnesses(problem, opt, tables, tol)
-    shared = None
+    shared, idle = None, frozenset[str]()
     if tree is not None:
-        shared = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
+        got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
+        if got is not None:
+            shared, idle = got
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -955,7 +957,9 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         elif not budget_spent():
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
-            binding = _binding(problem, opt, tree, c.name, tables, tol, shared)
+            binding = _binding(
+                problem, opt, tree, c.name, tables, tol, shared if c.name in idle else None
+            )
         active = abs(margin) <= ACTIVE_RTOL * abs(c.bound)
         if c.load is not None:  # a deflection bound: delta = P / (P / delta) <= P / bound
             delta, most = c.load / v, c.load / c.bound
@@ -1054,7 +1058,7 @@ def _binding(
     whole, skipped likewise. The floors, which cost more than a search of a few boxes, are
     computed only once the optimum's pair has been searched to its end without a better
     design. ``shared``: floors of a relaxation of the check's problem too (the problem without
-    several constraints, this one among them), asked first."""
+    several constraints, this one among them: :func:`_untouched`), asked first."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     check = _relaxed(problem, name, opt.certified)
     goal = opt.value - sign * tol
@@ -1113,12 +1117,12 @@ def _binding(
 
 def _untouched(
     problem: Problem, opt: Optimum, tree: tuple[Archive | None, ...], names: set[str]
-) -> _PairFloors | None:
-    """The floors (:class:`_PairFloors`) of ``problem`` without every constraint of ``names``
-    whose binding check has nothing to search in the searched pairs (their archives reopen no
-    box below the optimum), only its pairs pruned whole: one floor per pair answers each of
-    these checks (each check's problem is a subset of this relaxation's), None when fewer than
-    two such constraints or no pair is pruned whole."""
+) -> tuple[_PairFloors, frozenset[str]] | None:
+    """The constraints of ``names`` whose binding check has nothing to search in the searched
+    pairs (their archives reopen no box below the optimum), only the pairs pruned whole, and
+    the floors (:class:`_PairFloors`) of ``problem`` without all of them: one floor per pair
+    answers each of these checks (each one's problem is a subset of this relaxation's), not
+    the others'. None when fewer than two such constraints or no pair is pruned whole."""
     if not opt.pruned:
         return None
     sign = -1.0 if problem.objective.sense == "max" else 1.0
@@ -1132,7 +1136,7 @@ def _untouched(
     rest = problem
     for name in idle:
         rest = rest.without(name)
-    return _PairFloors((rest,), opt.value)
+    return _PairFloors((rest,), opt.value), frozenset(idle)
 
 
 def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
