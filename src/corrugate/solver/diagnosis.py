@@ -140,28 +140,36 @@ class _Tree:
     def __init__(self, problem: Problem, archives: tuple[Archive, ...] | None) -> None:
         self.problem = problem
         self.archives = archives
-        #: the searches of :meth:`best`, by what they search (one search asked twice: the
-        #: off-axis bound's best with the other constraints held, and its single's)
+        #: the searches of :meth:`best` kept for a second asker, by what they search (the
+        #: off-axis bound's best with the other constraints held, asked again by its single)
         self.memo: dict[tuple[object, ...], Optimum] = {}
 
     def best(
-        self, problem: Problem, c: Constraint, tables: Tables, dropped: tuple[Constraint, ...]
+        self,
+        problem: Problem,
+        c: Constraint,
+        tables: Tables,
+        dropped: tuple[Constraint, ...],
+        keep: bool = False,
     ) -> Optimum:
         """:func:`_best` of ``c``'s quantity under ``problem`` (this tree's problem less the
         constraints ``dropped``), warm from the boxes that break nothing but ``dropped``,
-        recorded on a grid (for :meth:`partner`); each search made once."""
+        recorded on a grid (for :meth:`partner`); ``keep``: kept for the next asker of the
+        same search, which takes it (its archives are not held longer: the memory of the
+        diagnosis stays that of one search at a time, and this one)."""
         key = (
             tuple((d.name, d.quantity, d.sense, d.bound) for d in problem.constraints),
             c.quantity,
             c.sense,
             tuple(d.name for d in dropped),
         )
-        if key not in self.memo:
+        found = self.memo.pop(key, None)
+        if found is None:
             warm = self.warm(*dropped) if len(dropped) <= ARCHIVE_DEPTH else None
-            self.memo[key] = _best(
-                problem, c.quantity, c.sense, tables, warm, record=self.problem.gridded
-            )
-        return self.memo[key]
+            found = _best(problem, c.quantity, c.sense, tables, warm, record=self.problem.gridded)
+        if keep:
+            self.memo[key] = found
+        return found
 
     def partner(self, c: Constraint, d: Constraint, best: Optimum) -> list[Start] | None:
         """Per pair, the boxes that may hold a design meeting every constraint but ``c`` and
@@ -565,7 +573,7 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
     reach: list[tuple[Constraint, float | None]] = []
     warm = tree.warm(*off) if len(off) <= ARCHIVE_DEPTH else None
     for c in off:
-        best = tree.best(base, c, tables, tuple(off))
+        best = tree.best(base, c, tables, tuple(off), keep=len(off) == 1)
         reach.append((c, None if best.point is None else best.value))
     short = [(c, r) for c, r in reach if r is None or not _meets(c, r)]
     framed = replace(
