@@ -178,6 +178,64 @@ def test_binding_and_runner_ups_equal_independent_re_solves(path: Path) -> None:
         assert got[n_star].objective == pytest.approx(sol.objective, rel=1e-12)
 
 
+def _sheet_choices(tmp: Path) -> Problem:
+    """examples/rectangle_independent.toml on a small grid (per layer n 4-14, W 4-12 mm, alpha
+    50-140 deg step 10) with six candidate sheets (dura-lar 0.05, 0.075, 0.125 mm; mylar 0.023,
+    0.05, 0.075 mm: 36 sheet pairs) and nominal tolerances, so that a plain search of each
+    relaxed problem goes layer by layer (:mod:`corrugate.solver.separable`)."""
+    text = (EXAMPLES / "rectangle_independent.toml").read_text("utf-8")
+    head, rest = text.split("[variables]", 1)
+    grid = (
+        '[variables]\nW = { min = "4 mm", max = "12 mm", step = "1 mm" }\n'
+        'n = { min = 4, max = 14 }\nalpha = { min = "50 deg", max = "140 deg", step = "10 deg" }\n'
+    )
+    text = head + grid + rest.split("\n\n", 1)[1]
+    sheet = '[material]\nname = "dura-lar"\nthickness = "0.125 mm"\n'
+    assert sheet in text
+    text = text.replace(
+        sheet,
+        '[[materials]]\nname = "dura-lar"\nthickness = ["0.05 mm", "0.075 mm", "0.125 mm"]\n\n'
+        '[[materials]]\nname = "mylar"\nthickness = ["0.023 mm", "0.05 mm", "0.075 mm"]\n',
+    )
+    text = text.replace('layers = "independent"\n', 'layers = "independent"\ntolerances = "none"\n')
+    path = tmp / "sheet_choices.toml"
+    path.write_text(text, "utf-8")
+    return _problem(path)
+
+
+@pytest.mark.slow
+def test_binding_with_sheet_choices_equals_plain_re_solves(tmp_path: Path) -> None:
+    """Material choices, most sheet pairs pruned whole by their floors (:mod:`.choices`): each
+    constraint's binding flag (its check searched from the archive, the optimum's pair first,
+    the pruned pairs ruled out by the floors of its own check or, for the checks with nothing
+    to reopen, of one shared relaxation) equals a second method's: the plain certified solve
+    of the spec without the constraint, the optimum as incumbent (layer by layer, no archive,
+    no negation). The spec has binding constraints, constraints that do not bind, and
+    constraints whose checks share the floors."""
+    from corrugate.solver.solve import _untouched
+
+    problem = _sheet_choices(tmp_path)
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables, record=True, prune=True)
+    assert opt.certified and len(opt.pruned) >= 20  # most of the 36 pairs never searched
+    tree = opt.trees()
+    assert tree is not None
+    shared = _untouched(problem, opt, tree, {c.name for c in problem.constraints})
+    assert shared is not None and len(shared[1]) >= 2  # checks answered by shared floors
+    sol = solve(problem)
+    assert sol.objective == opt.value
+    flags = []
+    for report in sol.constraints:
+        plain = optimize(
+            problem.without(report.name), tables=tables, incumbent=sol.objective, prune=True
+        )
+        assert plain.certified
+        expected = plain.point is not None and plain.value < sol.objective
+        assert report.binding is expected, report.name
+        flags.append(expected)
+    assert any(flags) and not all(flags)
+
+
 def test_a_witnessed_binding_constraint_binds_and_its_negation_holds_every_breaking_design() -> (
     None
 ):

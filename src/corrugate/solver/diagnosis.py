@@ -140,6 +140,65 @@ class _Tree:
     def __init__(self, problem: Problem, archives: tuple[Archive, ...] | None) -> None:
         self.problem = problem
         self.archives = archives
+        #: the searches of :meth:`best` kept for a second asker, by what they search (the
+        #: off-axis bound's best with the other constraints held, asked again by its single)
+        self.memo: dict[tuple[object, ...], Optimum] = {}
+
+    def best(
+        self,
+        problem: Problem,
+        c: Constraint,
+        tables: Tables,
+        dropped: tuple[Constraint, ...],
+        keep: bool = False,
+    ) -> Optimum:
+        """:func:`_best` of ``c``'s quantity under ``problem`` (this tree's problem less the
+        constraints ``dropped``), warm from the boxes that break nothing but ``dropped``,
+        recorded on a grid (for :meth:`partner`); ``keep``: kept for the next asker of the
+        same search, which takes it (its archives are not held longer: the memory of the
+        diagnosis stays that of one search at a time, and this one)."""
+        key = (
+            tuple((d.name, d.quantity, d.sense, d.bound) for d in problem.constraints),
+            c.quantity,
+            c.sense,
+            tuple(d.name for d in dropped),
+        )
+        found = self.memo.pop(key, None)
+        if found is None:
+            warm = self.warm(*dropped) if len(dropped) <= ARCHIVE_DEPTH else None
+            found = _best(problem, c.quantity, c.sense, tables, warm, record=self.problem.gridded)
+        if keep:
+            self.memo[key] = found
+        return found
+
+    def partner(self, c: Constraint, d: Constraint, best: Optimum) -> list[Start] | None:
+        """Per pair, the boxes that may hold a design meeting every constraint but ``c`` and
+        ``d`` whose value of ``c``'s quantity is better than ``best``'s (the search of the
+        problem without ``c``, from :meth:`warm` of ``c``, recorded): inside the boxes that
+        search started from, its own closed boxes that may hold such a design breaking ``d``
+        alone (a box closed by its bound holds nothing better than ``best``); outside them,
+        this tree's boxes shown to break ``d`` and nothing outside {``c``, ``d``} (bounds
+        forgotten). None when an archive is missing (then :meth:`warm` of both)."""
+        closed = best.tree()
+        if self.archives is None or closed is None or len(closed) != len(self.archives):
+            return None
+        rest = self.problem.without(c.name)
+        bc = np.uint64(constraint_bits(self.problem, c.name))
+        both = bc | np.uint64(constraint_bits(self.problem, d.name))
+        bd = constraint_bits(rest, d.name)
+        sign = 1.0 if c.sense == "max" else -1.0  # best's search minimises sign * q
+        out = []
+        for a, b in zip(self.archives, closed, strict=True):
+            lo, hi, bound = b.reopen(bd, sign * best.value)
+            outside = ((a.mask & ~both) == 0) & ((a.mask & ~bc) != 0)
+            out.append(
+                (
+                    np.concatenate([lo, a.lo[outside]]),
+                    np.concatenate([hi, a.hi[outside]]),
+                    np.concatenate([bound, np.full(int(outside.sum()), -np.inf)]),
+                )
+            )
+        return out
 
     def warm(self, *dropped: Constraint) -> list[Start] | None:
         """Per pair, the boxes that may hold a design meeting every constraint but ``dropped``
@@ -163,17 +222,20 @@ def _best(
     tables: Tables | None,
     warm: Sequence[Start] | None = None,
     record: bool = False,
+    incumbent: float | None = None,
 ) -> Optimum:
     """The best value of ``q`` (largest for ``sense`` min, smallest for max) under ``problem``'s
     constraints, to the relative gap :data:`DIAGNOSIS_GAP_RTOL` (``warm``: per sheet pair, boxes
     that hold every design of ``problem``, :func:`~.solve.optimize`; ``record``: keep the closed
-    boxes, :attr:`~.solve.Optimum.archives`)."""
+    boxes, :attr:`~.solve.Optimum.archives`; ``incumbent``: a value of ``q`` to beat, the
+    answer then holding a design only if one beats it)."""
     return optimize(
         problem.with_objective(q, "max" if sense == "min" else "min"),
         tables=tables if tables is not None else Tables(problem),
         gap_rtol=DIAGNOSIS_GAP_RTOL,
         warm=warm,
         record=record,
+        incumbent=incumbent,
     )
 
 
@@ -511,7 +573,7 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
     reach: list[tuple[Constraint, float | None]] = []
     warm = tree.warm(*off) if len(off) <= ARCHIVE_DEPTH else None
     for c in off:
-        best = _best(base, c.quantity, c.sense, tables, warm)
+        best = tree.best(base, c, tables, tuple(off), keep=len(off) == 1)
         reach.append((c, None if best.point is None else best.value))
     short = [(c, r) for c, r in reach if r is None or not _meets(c, r)]
     framed = replace(
@@ -582,7 +644,7 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
     """``c`` alone: its best with every other constraint held (None when those conflict among
     themselves), the constraints it binds together with, and its best with none held."""
     rest = problem.without(c.name)
-    best = _best(rest, c.quantity, c.sense, tables, tree.warm(c), record=problem.gridded)
+    best = tree.best(rest, c, tables, (c,))
     if best.point is None or _meets(c, best.value):
         return None
     r = best.value
@@ -598,7 +660,13 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
     for d in problem.constraints:
         if d.name == c.name or budget_spent() or _cannot_improve(problem, c, d, tree, best):
             continue
-        without = _best(rest.without(d.name), c.quantity, c.sense, tables, tree.warm(c, d))
+        # on a grid (exact optima) from the boxes that may hold a design better than r, r
+        # the incumbent: a design only if one beats r, then the same optimum
+        warm = tree.partner(c, d, best) if problem.gridded else None
+        if warm is None:
+            without = _best(rest.without(d.name), c.quantity, c.sense, tables, tree.warm(c, d))
+        else:
+            without = _best(rest.without(d.name), c.quantity, c.sense, tables, warm, incumbent=r)
         if without.point is not None and _improves(c, without.value, r):
             partners.append((d, without.value))
     partners.sort(key=lambda item: -abs(item[1] - r))

@@ -458,8 +458,11 @@ def optimize(
             bound = -math.inf
             break
         start = None if warm is None else warm[i]
-        if start is not None and not len(start[0]):
-            continue  # nothing of this pair to search
+        if start is not None and not len(start[0]):  # nothing of this pair to search
+            if record:  # its archive: no box (the archives stay in the order of the pairs)
+                empty = np.empty((0, np.shape(start[0])[1] if np.ndim(start[0]) == 2 else 0))
+                archives.append(Archive(empty, empty, np.empty(0), np.empty(0, dtype=np.uint64)))
+            continue
         r = branch_and_bound(
             problem,
             *pair,
@@ -936,38 +939,27 @@ def _negation(c: Constraint, problem: Problem) -> Constraint:
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
     vals = _values_at(problem, opt, tables)
     capacity = _capacities(problem, opt, tables, vals)
-    sign = -1.0 if problem.objective.sense == "max" else 1.0
     tree = opt.trees()
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     witnessed = _witnesses(problem, opt, tables, tol)
+    shared, idle = None, frozenset[str]()
+    if tree is not None:
+        got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
+        if got is not None:
+            shared, idle = got
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
         margin = c.margin(v)
         binding: bool | None = None
-        relaxed = None
         if c.name in witnessed:  # a better design breaking it alone was evaluated: binding
             binding = True
         elif not budget_spent():
-            # warm: only the boxes closed by this constraint alone, below the optimum
-            warm = (
-                None
-                if tree is None
-                else _warm_binding(problem, opt, tree, c.name, constraint_bits(problem, c.name))
-            )
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
-            relaxed = optimize(
-                _relaxed(problem, c.name, opt.certified),
-                tables=tables,
-                incumbent=opt.value,
-                warm=warm,
-                stop_below=opt.value - sign * tol,
+            binding = _binding(
+                problem, opt, tree, c.name, tables, tol, shared if c.name in idle else None
             )
-        if relaxed is not None:
-            better = relaxed.point is not None and sign * relaxed.value < sign * opt.value - tol
-            if better or relaxed.certified:
-                binding = better
         active = abs(margin) <= ACTIVE_RTOL * abs(c.bound)
         if c.load is not None:  # a deflection bound: delta = P / (P / delta) <= P / bound
             delta, most = c.load / v, c.load / c.bound
@@ -1005,41 +997,146 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     return out
 
 
-def _empty_start(problem: Problem) -> Start:
-    """No box: a pair with nothing to search."""
-    ndim = len(coordinates(problem))
-    return np.empty((0, ndim)), np.empty((0, ndim)), np.empty(0)
+class _PairFloors:
+    """Whether each sheet pair's floor (:mod:`.choices`) reaches ``goal`` (no design of the pair
+    lighter than it), from the floors of the first of ``problems`` that has them (each a
+    relaxation of the problem a check searches); built at the first question, each pair's
+    answer computed once (a coarse floor, refined when below the goal). No floors: never."""
+
+    def __init__(self, problems: Sequence[Problem], goal: float) -> None:
+        self.problems, self.goal = problems, goal
+        self.floors: Floors | None = None
+        self.built = False
+
+        self.known: dict[int, float] = {}
+
+    def floor(self, k: int) -> float:
+        """Pair ``k``'s floor (g): coarse, refined when below the goal; 0 without floors."""
+        if k not in self.known:
+            if not self.built:
+                for p in self.problems:
+                    self.floors = floors(p)
+                    if self.floors is not None:
+                        break
+                self.built = True
+            fl, floor = self.floors, 0.0
+            if fl is not None:
+                floor = fl.coarse(k)
+                if floor < self.goal:
+                    floor = max(floor, fl.fine(k, self.goal))
+            self.known[k] = floor
+        return self.known[k]
+
+    def reaches(self, k: int) -> bool:
+        """Whether pair ``k`` holds no design lighter than the goal by its floor."""
+        return self.floor(k) >= self.goal
 
 
-def _warm_binding(
+def _binding(
     problem: Problem,
     opt: Optimum,
-    tree: tuple[Archive | None, ...],
+    tree: tuple[Archive | None, ...] | None,
     name: str,
-    bits: int,
-) -> list[Start | None]:
-    """Per sheet pair, the boxes the binding check of constraint ``name`` searches: nothing
-    when the pair's floor (:mod:`.choices`) of the check's problem (the constraint negated,
-    :func:`_relaxed`; else of the problem without it, a relaxation of that) reaches the
-    optimum, as no design of the pair meeting the other constraints is lighter; else a searched
-    pair's boxes that this constraint alone closed below the optimum (its archive), and a pair
-    pruned whole (:attr:`Optimum.pruned`) its whole domain (None)."""
+    tables: Tables,
+    tol: float,
+    shared: _PairFloors | None = None,
+) -> bool | None:
+    """Whether constraint ``name`` binds (None: not proven either way, the budget spent): the
+    certified search of its check's problem (the constraint negated, :func:`_relaxed`) for a
+    design better than the optimum by more than ``tol``, the optimum as incumbent, stopping at
+    the first one; from the boxes of the solve's tree (``tree``) that this constraint alone
+    closed below the optimum, a pair pruned whole (:attr:`Optimum.pruned`, archive None) from
+    its whole domain (no tree: every pair from its whole domain). Every design of the check's
+    problem better than the optimum lies in those boxes (:class:`~.archive.Archive`), so the
+    answer is that of a search of the whole domain.
+
+    A pair holds a better design or not whatever order the pairs are searched in, so the
+    searched pairs go first: the optimum's own pair (where a better design, when there is
+    one, lies most often), then the others by their floors (:class:`_PairFloors`, least first)
+    of the check's problem (else of the problem without the constraint, a relaxation of it),
+    those whose floor reaches the optimum skipped (no better design); then the pairs pruned
+    whole, skipped likewise. The floors, which cost more than a search of a few boxes, are
+    computed only once the optimum's pair has been searched to its end without a better
+    design. ``shared``: floors of a relaxation of the check's problem too (the problem without
+    several constraints, this one among them: :func:`_untouched`), asked first."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
-    out: list[Start | None] = []
-    # the floors of the check's own problem (the constraint negated), else of the problem
-    # without it (a relaxation of that): a pair whose floor reaches the optimum has nothing
-    fl = floors(_relaxed(problem, name, opt.certified)) or floors(problem.without(name))
+    check = _relaxed(problem, name, opt.certified)
+    goal = opt.value - sign * tol
+    everything = pairs(problem)
+    inc, certified = opt.value, True
+
+    def search(i: int, start: Start | None) -> bool:
+        """Search pair ``i`` from ``start``; whether a better design was found."""
+        nonlocal inc, certified
+        r = branch_and_bound(
+            check, *everything[i], incumbent=inc, tables=tables, start=start, stop_below=goal
+        )
+        certified &= r.certified
+        if r.point is not None and sign * r.value < sign * inc:
+            inc = r.value
+            return sign * r.value < sign * goal
+        return False
+
+    if tree is None:  # no archive: every pair from its whole domain, no floors
+        for i in range(len(everything)):
+            if budget_spent():
+                return None
+            if search(i, None):
+                return True
+        return False if certified else None
+    bits = constraint_bits(problem, name)
+    starts: dict[int, Start] = {}
     for i, a in enumerate(tree):
-        floor = 0.0
-        if fl is not None:
-            floor = fl.coarse(i)
-            if floor < opt.value:
-                floor = max(floor, fl.fine(i, opt.value))
-        if floor >= opt.value:
-            out.append(_empty_start(problem))
-        else:
-            out.append(None if a is None else a.reopen(bits, sign * opt.value))
-    return out
+        if a is not None:
+            start = a.reopen(bits, sign * opt.value)
+            if len(start[0]):  # nothing reopened: no better design in the pair
+                starts[i] = start
+    first = everything.index(opt.candidates) if opt.candidates in everything else -1
+    if first in starts:
+        if budget_spent():
+            return None
+        if search(first, starts.pop(first)):
+            return True
+    own = _PairFloors((check, problem.without(name)), opt.value)
+
+    def ruled_out(i: int) -> bool:
+        return (shared is not None and shared.reaches(i)) or own.reaches(i)
+
+    rest = sorted((i for i in starts if not ruled_out(i)), key=lambda i: (own.floor(i), i))
+    todo: list[tuple[int, Start | None]] = [(i, starts[i]) for i in rest]
+    todo += [(i, None) for i, a in enumerate(tree) if a is None]
+    for i, box in todo:
+        if budget_spent():
+            return None
+        if box is None and ruled_out(i):
+            continue
+        if search(i, box):
+            return True  # shown: a better design exists
+    return False if certified else None
+
+
+def _untouched(
+    problem: Problem, opt: Optimum, tree: tuple[Archive | None, ...], names: set[str]
+) -> tuple[_PairFloors, frozenset[str]] | None:
+    """The constraints of ``names`` whose binding check has nothing to search in the searched
+    pairs (their archives reopen no box below the optimum), only the pairs pruned whole, and
+    the floors (:class:`_PairFloors`) of ``problem`` without all of them: one floor per pair
+    answers each of these checks (each one's problem is a subset of this relaxation's), not
+    the others'. None when fewer than two such constraints or no pair is pruned whole."""
+    if not opt.pruned:
+        return None
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    idle = []
+    for name in names:
+        bits = constraint_bits(problem, name)
+        if all(a is None or not len(a.reopen(bits, sign * opt.value)[0]) for a in tree):
+            idle.append(name)
+    if len(idle) < 2:
+        return None
+    rest = problem
+    for name in idle:
+        rest = rest.without(name)
+    return _PairFloors((rest,), opt.value), frozenset(idle)
 
 
 def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
