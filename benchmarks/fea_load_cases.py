@@ -81,6 +81,10 @@ Phases ``h`` and ``i`` ran on 2026-12-06 on 2 cores shared with other jobs (load
 facet 161-620 s (170 000-235 000 nodes, 4.2-5.8 GB). Not run: the thin design at alpha 110 at 32
 per facet (330 000 nodes > ``MAX_NODES_32``).
 
+Phase ``k`` (the refit's coupon, polypropylene 0.5 mm W 10, n 6, alpha 40 at 35 deg, three
+shifts) ran on 2026-12-07 under ``ulimit -v 4000000`` (load average 6-12): 16 per facet took
+294-329 s a case (81 184-81 406 nodes, peak child memory 1.95 GB).
+
 ``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
 """
 
