@@ -17,8 +17,10 @@ Against FE coupons (docs/validation/off_axis.md; three squares and a 1:2 rectang
 deg, FE extrapolated from 2/4/8 or 4/8/16 elements per facet) K is 0.83-1.19 of the FE (not
 conservative near 15 and 75 deg; at 15 deg the converged coupon is 22, 15 and 9 % below the model
 at 4, 8 and 16 cells: docs/offaxis.md, coupon-size series; 19 % for the rectangle); D is
-0.62-1.12 of the 3-point FE at 15-30 deg for the squares but 0.008-0.02 at 45 deg, and 0.017
-at 30 deg for the rectangle (very conservative where no facet runs from support to support). For a layer whose creases
+0.62-1.12 of the 3-point FE at 15-30 deg for the squares (before the strips were counted one
+fewer; since, at most 0.84 of the FE at 15-75 deg on the five designs of docs/validation/
+load_cases.md, docs/load_cases.md 5) but 0.008-0.02 at 45 deg, and 0.017 at 30 deg for the
+rectangle (very conservative where no facet runs from support to support). For a layer whose creases
 make the angle theta with the load direction, c = cos theta, s = sin theta:
 
 * In-plane (plate of the layer under uniaxial stress along the load, free sides; the complementary
@@ -44,7 +46,7 @@ make the angle theta with the load direction, c = cos theta, s = sin theta:
   material and the connections between strips can only soften a linear structure; the strips
   are Euler-Bernoulli beams, as the paper's D is, so shear deformation of a stubby panel (about
   10 % in the FE 3-point test at eta = 0) is not in it. A finite coupon holds a whole number of
-  such strips, up to one fewer than (n + 1)(1 - |tan theta|) depending on where it is cut, so the
+  such strips, one fewer than (n + 1)(1 - |tan theta|) on average over where it is cut, so the
   strip bound counts one facet fewer: D_S c^4 max(0, 1 - |tan theta| - 1 / (n + 1))
   (:func:`facet_share`); and each layer's share of D takes a finite-panel factor
   1 - w(eta) 0.3 / sqrt(n) off the creases, of the same form as K's, which keeps the margin
@@ -252,8 +254,8 @@ def free_bending(
     plate and the strip lower bounds (module docstring), on a coupon whose span is
     ``span_over_width`` times its width (1: a square). The strip bound counts the share f of the
     facets that run from support to support less ``facet``, one facet's share of the layer
-    (:func:`facet_share`: a finite coupon holds a whole number of such strips, up to one fewer
-    than (n + 1) f, depending on where it is cut; docs/load_cases.md 5): D_S c^4 max(0, f -
+    (:func:`facet_share`: a finite coupon holds a whole number of such strips, one fewer than
+    (n + 1) f on average over where it is cut; docs/load_cases.md 5): D_S c^4 max(0, f -
     facet). ``facet`` 0 is the homogenised count."""
     c2, s2 = _cs(theta_deg)
     if s2 == 0.0:  # along the creases plate and strip bounds are both D_S
