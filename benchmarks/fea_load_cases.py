@@ -81,6 +81,10 @@ Phases ``h`` and ``i`` ran on 2026-12-06 on 2 cores shared with other jobs (load
 facet 161-620 s (170 000-235 000 nodes, 4.2-5.8 GB). Not run: the thin design at alpha 110 at 32
 per facet (330 000 nodes > ``MAX_NODES_32``).
 
+Phase ``k`` (the refit's coupon, polypropylene 0.5 mm W 10, n 6, alpha 40 at 35 deg, three
+shifts) ran on 2026-12-07 under ``ulimit -v 4000000`` (load average 6-12): 16 per facet took
+294-329 s a case (81 184-81 406 nodes, peak child memory 1.95 GB).
+
 ``--minutes M`` starts no new case after M minutes. Needs ccx and gmsh (the ``fea`` extra).
 """
 
@@ -128,7 +132,14 @@ OFFAXIS_BENDING = {
     "Dura-Lar 0.125: W 6, n 7, alpha 60": ("dura-lar", 0.125, 6.0, 7, 60.0),
     "Dura-Lar 0.175: W 10, n 6, alpha 40": ("dura-lar", 0.175, 10.0, 6, 40.0),
 }
-PHASES = ("a", "b", "c", "d", "e", "f", "g", "h", "i", "j")
+#: The coupon of phase ``k`` (issue 35 item 3, the refit of docs/load_cases.md 5): the thickest
+#: sheet the springs cover (t / W 0.05) with the fewest facets, at 35 deg, where a layer of n 6
+#: holds about two facets from support to support ((n + 1)(1 - tan 35) = 2.1), so that counting
+#: one fewer matters most while the strip bound still exceeds the plate bound.
+OFFAXIS_COUNT = {
+    "polypropylene 0.5: W 10, n 6, alpha 40": ("polypropylene", 0.5, 10.0, 6, 40.0),
+}
+PHASES = ("a", "b", "c", "d", "e", "f", "g", "h", "i", "j", "k")
 #: The 4-point test read at its load points (the loading head's travel), from the same run as
 #: ``bending4``'s gauge value: D = (P / delta) span^2 / 96.
 LOAD_POINTS = "bending4-load"
@@ -151,7 +162,7 @@ def designs() -> dict[str, Assembly]:
         Layer(W=5.0, n=27, alpha_deg=120.0, material=pp, t=0.25),
         layout=make_layout("rectangle"),
     )
-    for name, (material, t, W, n, alpha) in (WIDER | OFFAXIS_BENDING).items():
+    for name, (material, t, W, n, alpha) in (WIDER | OFFAXIS_BENDING | OFFAXIS_COUNT).items():
         out[name] = Assembly.identical(
             Layer(W=W, n=n, alpha_deg=alpha, material=get_material(material), t=t)
         )
@@ -225,6 +236,11 @@ def jobs(phases: tuple[str, ...], ds: dict[str, Assembly]) -> Iterator[Job]:
                     for shift in (0.0, 0.25, 0.5):
                         for along in (2, 4, 8, 16):
                             yield name, eta, "bending", shift, along
+        elif phase == "k":  # the refit's coupon at 35 deg, every shift, one series at a time
+            for name in OFFAXIS_COUNT:
+                for shift in (0.0, 0.25, 0.5):
+                    for along in (2, 4, 8, 16):
+                        yield name, 35.0, "bending", shift, along
 
 
 def load_point_D(r: Any) -> float:

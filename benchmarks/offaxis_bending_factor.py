@@ -2,9 +2,10 @@
 
     python benchmarks/offaxis_bending_factor.py
 
-Each layer's share of the free panel's D off the crease directions is multiplied by
-1 - w(eta) c / sqrt(n) (:data:`corrugate.mechanics.offaxis.FINITE_PANEL_BENDING` = c, w of
-docs/load_cases.md 4, n the layer's creases). For every 3-point coupon of
+Each layer's share of the free panel's D off the crease directions (its strip bound counting
+one facet fewer than the homogenised share, :func:`corrugate.mechanics.offaxis.free_bending`) is
+multiplied by 1 - w(eta) c / sqrt(n) (:data:`corrugate.mechanics.offaxis.FINITE_PANEL_BENDING`
+= c, w of docs/load_cases.md 4, n the layer's creases). For every 3-point coupon of
 docs/validation/load_cases_fe.csv off the creases (design, eta, shift of the coupon's cut) the
 model's apparent D of the test (`model_value` of benchmarks/load_case_table.py, the formula of
 `corrugate.mechanics.load_cases` over the coupon's length) at the c used is the bound its FE
@@ -14,8 +15,8 @@ shrinking steps, its two Richardson estimates within a quarter of the margin. A 
 does not settle ("open": fewer than four meshes, not monotone, or the two estimates too far
 apart for the margin) is "not converged" and excluded. For the others, "FE estimate" is judge's
 value (the extrapolation from the three finest meshes), "c needed" the least c >= 0 at which the
-model is at or below it (bisection: the model falls as c grows; 0 when the homogenised model,
-c = 0, already is) and the margin the FE estimate over the model at the c used.
+model is at or below it (bisection: the model falls as c grows; 0 when the model without the
+factor, c = 0, already is) and the margin the FE estimate over the model at the c used.
 """
 
 from __future__ import annotations

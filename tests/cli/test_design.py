@@ -220,7 +220,12 @@ def test_every_example_solves_certified(name: str, cli: CliRun) -> None:
     assert code == 0
     d = json.loads(out)
     assert d["status"] == "optimal"
-    assert d["certified"] is True
+    if (
+        d["trust"] == "extrapolate"
+    ):  # the wheel: its factor's validated range is one disc (issue 35)
+        assert d["certified"] is False and d["certificate"].startswith("extrapolated")
+    else:
+        assert d["certified"] is True
     assert all(c["margin"] >= -1e-9 * abs(c["bound"]) for c in d["constraints"])
 
 
@@ -255,8 +260,14 @@ def test_a_circle_in_a_bending_test_is_pointed_at_the_wheel(tmp_path: Path, cli:
     assert "constraints.flexural_rigidity[0].test" in err
     assert 'an [[constraints.inplane_stiffness]] bound with test = "wheel"' in err
     good = tmp_path / "good.toml"
+    # trust = "extrapolate": the wheel factor's validated range is one disc (issue 35,
+    # docs/load_cases.md 9), so by default this disc is certified infeasible, naming it
+    wheel = '[[constraints.inplane_stiffness]]\neta = "0 deg"\nmin = "5 N/mm"\ntest = "wheel"\n'
+    good.write_text(_DISC + wheel)
+    code, out, err = cli(["design", str(good), "--json"])
+    assert code == 1 and "validity.wheel." in out, err
     good.write_text(
-        _DISC + '[[constraints.inplane_stiffness]]\neta = "0 deg"\nmin = "5 N/mm"\ntest = "wheel"\n'
+        _DISC.replace('name = "disc"\n', 'name = "disc"\ntrust = "extrapolate"\n') + wheel
     )
     code, out, err = cli(["design", str(good), "--json"])
     assert code == 0, err

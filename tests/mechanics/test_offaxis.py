@@ -90,13 +90,14 @@ def test_square_at_45_deg_is_the_hand_derived_plate_bound() -> None:
 
 def test_strip_bound_at_15_deg() -> None:
     """At 15 deg a fraction 1 - tan 15 of a square's facets of layer 1 run from one support to
-    the other: D >= D_S cos^4(15) (1 - tan 15) (layer 2, at 75 deg, has none), times the
-    finite-panel factor of bending, 1 - 0.3 / sqrt(n) at 15 deg (docs/load_cases.md section 5)."""
+    the other, one facet of the n + 1 fewer where the coupon is cut: D >= D_S cos^4(15)
+    (1 - tan 15 - 1 / 9) (layer 2, at 75 deg, has none), times the finite-panel factor of
+    bending, 1 - 0.3 / sqrt(n) at 15 deg (docs/load_cases.md section 5; hand derivation)."""
     a = Assembly.identical(Layer(W=8, n=8, alpha_deg=84, material=DL))
     r = analyze(a, "refined", [0.0, 15.0])
     D_S = float(r.springs[0].D_S)
     e = math.radians(15.0)
-    strip = D_S * math.cos(e) ** 4 * (1 - math.tan(e)) * (1 - 0.3 / math.sqrt(8))
+    strip = D_S * math.cos(e) ** 4 * (1 - math.tan(e) - 1 / 9) * (1 - 0.3 / math.sqrt(8))
     assert strip <= r.stiffness[1].D
     assert pytest.approx(strip, rel=0.01) == r.stiffness[1].D  # the plate bound is far smaller
 
@@ -507,3 +508,35 @@ def test_shear_correction_is_timoshenkos_rectangle_in_the_vertical_limit() -> No
     shear = float(shear_spring(E, nu, t, s_half, math.cos(math.radians(alpha / 2)) ** 2, pq)) * L
     assert SHEAR_CORRECTION == 5 / 6
     assert shear == pytest.approx(5 / 6 * G * t * W * (n + 1), rel=1e-8)
+
+
+def test_the_strip_bound_counts_one_facet_fewer() -> None:
+    """free_bending's strip bound is D_S c^4 max(0, 1 - tan theta - 1 / (n + 1))
+    (docs/load_cases.md 5; hand derivation): at 30 deg for n 6 it keeps (2.958 - 1) / 2.958 of
+    the homogenised count; where the band holds less than one facet (n 6 at 41 deg: 7 (1 - tan
+    41) = 0.91) it vanishes and the plate bound is left; over an interval of n the bound
+    brackets its values at the ends."""
+    from corrugate.mechanics.offaxis import _plate, facet_share, free_bending
+    from corrugate.solver.interval import Interval
+
+    D_S, D_C, D_T = 1000.0, 1.0, 2.0
+    e = math.radians(30.0)
+    homogenised = free_bending(D_S, D_C, D_T, 30.0)
+    counted = free_bending(D_S, D_C, D_T, 30.0, 1.0, facet_share(6))
+    assert homogenised == pytest.approx(D_S * math.cos(e) ** 4 * (1 - math.tan(e)), rel=1e-12)
+    m = 7 * (1 - math.tan(e))
+    assert counted == pytest.approx(homogenised * (m - 1) / m, rel=1e-12)
+    assert free_bending(D_S, D_C, D_T, 41.0, 1.0, facet_share(6)) == _plate(D_S, D_C, D_T, 41.0)
+    assert facet_share(6) == pytest.approx(1 / 7) and facet_share(0) == 1.0
+    box = free_bending(
+        Interval(D_S),
+        Interval(D_C),
+        Interval(D_T),
+        30.0,
+        1.0,
+        Interval(facet_share(9), facet_share(6)),
+    )
+    n9 = free_bending(D_S, D_C, D_T, 30.0, 1.0, facet_share(9))
+    assert float(box.lo) <= counted <= n9 <= float(box.hi)
+    assert float(box.lo) == pytest.approx(counted, rel=1e-12)
+    assert float(box.hi) == pytest.approx(n9, rel=1e-12)

@@ -147,7 +147,9 @@ EXPLAINED = [
 def test_binding_and_runner_ups_equal_independent_re_solves(path: Path) -> None:
     problem = _problem(path)
     sol = solve(problem)
-    assert sol.status == "optimal" and sol.certified
+    # the wheel example asks for trust = "extrapolate" (its range is one disc, issue 35): the
+    # search is still exhaustive, its answer marked extrapolated
+    assert sol.status == "optimal" and (sol.certified or problem.trust == "extrapolate")
     tables = Tables(problem)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(sol.objective)

@@ -17,8 +17,10 @@ Against FE coupons (docs/validation/off_axis.md; three squares and a 1:2 rectang
 deg, FE extrapolated from 2/4/8 or 4/8/16 elements per facet) K is 0.83-1.19 of the FE (not
 conservative near 15 and 75 deg; at 15 deg the converged coupon is 22, 15 and 9 % below the model
 at 4, 8 and 16 cells: docs/offaxis.md, coupon-size series; 19 % for the rectangle); D is
-0.62-1.12 of the 3-point FE at 15-30 deg for the squares but 0.008-0.02 at 45 deg, and 0.017
-at 30 deg for the rectangle (very conservative where no facet runs from support to support). For a layer whose creases
+0.62-1.12 of the 3-point FE at 15-30 deg for the squares (before the strips were counted one
+fewer; since, at most 0.84 of the FE at 15-75 deg on the five designs of docs/validation/
+load_cases.md, docs/load_cases.md 5) but 0.008-0.02 at 45 deg, and 0.017 at 30 deg for the
+rectangle (very conservative where no facet runs from support to support). For a layer whose creases
 make the angle theta with the load direction, c = cos theta, s = sin theta:
 
 * In-plane (plate of the layer under uniaxial stress along the load, free sides; the complementary
@@ -44,10 +46,12 @@ make the angle theta with the load direction, c = cos theta, s = sin theta:
   material and the connections between strips can only soften a linear structure; the strips
   are Euler-Bernoulli beams, as the paper's D is, so shear deformation of a stubby panel (about
   10 % in the FE 3-point test at eta = 0) is not in it. A finite coupon holds a whole number of
-  such strips, and which facets run through depends on where it is cut: shifted by half a pitch
-  it can bend several per cent less than the homogenised count says, so each layer's share of D
-  takes a finite-panel factor 1 - w(eta) 0.3 / sqrt(n) off the creases, of the same form as K's
-  (docs/load_cases.md section 5).
+  such strips, one fewer than (n + 1)(1 - |tan theta|) on average over where it is cut, so the
+  strip bound counts one facet fewer: D_S c^4 max(0, 1 - |tan theta| - 1 / (n + 1))
+  (:func:`facet_share`); and each layer's share of D takes a finite-panel factor
+  1 - w(eta) 0.3 / sqrt(n) off the creases, of the same form as K's, which keeps the margin
+  that the FE series of thick, few-facet coupons need to be judged converged (docs/load_cases.md
+  section 5: the model at or below every settled FE coupon).
 
 At eta = 0 and 90 deg both conditions give the paper's springs exactly. Every function here is
 plain arithmetic, so it takes NumPy arrays or :class:`~corrugate.solver.interval.Interval`
@@ -77,6 +81,7 @@ __all__ = [
     "Support",
     "assembly_directional",
     "check_support",
+    "facet_share",
     "finite_panel_deficit",
     "finite_panel_factor",
     "finite_panel_weight",
@@ -230,10 +235,28 @@ def strip_fraction(theta_deg: float, span_over_width: Any = 1.0) -> Any:
     return np.maximum(1.0 - span_over_width * tan, 0.0)  # arrays and intervals
 
 
-def free_bending(D_S: Any, D_C: Any, D_T: Any, theta_deg: float, span_over_width: Any = 1.0) -> Any:
+def facet_share(n: Any) -> Any:
+    """1 / (n + 1): the share of one facet in a layer of ``n`` creases (n + 1 facets), the strip
+    bound's loss to where a finite coupon is cut (:func:`free_bending`; docs/load_cases.md 5).
+    Falls with n; arrays (n >= 0)."""
+    return 1.0 / (np.maximum(np.asarray(n, dtype=np.float64), 0.0) + 1.0)
+
+
+def free_bending(
+    D_S: Any,
+    D_C: Any,
+    D_T: Any,
+    theta_deg: float,
+    span_over_width: Any = 1.0,
+    facet: Any = 0.0,
+) -> Any:
     """D (N mm) of one free layer bent about theta (deg) from its creases: the larger of the
     plate and the strip lower bounds (module docstring), on a coupon whose span is
-    ``span_over_width`` times its width (1: a square)."""
+    ``span_over_width`` times its width (1: a square). The strip bound counts the share f of the
+    facets that run from support to support less ``facet``, one facet's share of the layer
+    (:func:`facet_share`: a finite coupon holds a whole number of such strips, one fewer than
+    (n + 1) f on average over where it is cut; docs/load_cases.md 5): D_S c^4 max(0, f -
+    facet). ``facet`` 0 is the homogenised count."""
     c2, s2 = _cs(theta_deg)
     if s2 == 0.0:  # along the creases plate and strip bounds are both D_S
         return D_S
@@ -241,7 +264,10 @@ def free_bending(D_S: Any, D_C: Any, D_T: Any, theta_deg: float, span_over_width
     f = strip_fraction(theta_deg, span_over_width)
     if isinstance(f, float) and f == 0.0:
         return plate
-    strip = D_S * (c2 * c2 * f)
+    counted = np.maximum(f - facet, 0.0)  # intervals too (Interval.__array_ufunc__)
+    if isinstance(counted, float) and counted == 0.0:
+        return plate
+    strip = D_S * (c2 * c2) * counted
     return np.maximum(plate, strip)  # intervals too (Interval.maximum)
 
 
@@ -262,9 +288,9 @@ def _free_pair(
             return free_inplane(s1.K_S, s1.K_C, s1.K_T, eta_deg) * _finite(
                 s1, eta_deg
             ) + free_inplane(s2.K_S, s2.K_C, s2.K_T, eta_deg - 90.0) * _finite(s2, eta_deg)
-        return free_bending(s1.D_S, s1.D_C, s1.D_T, eta_deg) * _finite(s1, eta_deg, _B) + (
-            free_bending(s2.D_S, s2.D_C, s2.D_T, eta_deg - 90.0) * _finite(s2, eta_deg, _B)
-        )
+        d1 = free_bending(s1.D_S, s1.D_C, s1.D_T, eta_deg, 1.0, s1.facet)
+        d2 = free_bending(s2.D_S, s2.D_C, s2.D_T, eta_deg - 90.0, 1.0, s2.facet)
+        return d1 * _finite(s1, eta_deg, _B) + d2 * _finite(s2, eta_deg, _B)
     (g1, h1), (g2, h2) = scale
     if kind == "K":
         return free_inplane(s1.K_S * g1, s1.K_C * h1, s1.K_T * g1, eta_deg) * _finite(
@@ -272,11 +298,9 @@ def _free_pair(
         ) + free_inplane(s2.K_S * g2, s2.K_C * h2, s2.K_T * g2, eta_deg - 90.0) * _finite(
             s2, eta_deg
         )
-    return free_bending(s1.D_S * g1, s1.D_C * h1, s1.D_T * g1, eta_deg, r) * _finite(
-        s1, eta_deg, _B
-    ) + free_bending(s2.D_S * g2, s2.D_C * h2, s2.D_T * g2, eta_deg - 90.0, r) * _finite(
-        s2, eta_deg, _B
-    )
+    d1 = free_bending(s1.D_S * g1, s1.D_C * h1, s1.D_T * g1, eta_deg, r, s1.facet)
+    d2 = free_bending(s2.D_S * g2, s2.D_C * h2, s2.D_T * g2, eta_deg - 90.0, r, s2.facet)
+    return d1 * _finite(s1, eta_deg, _B) + d2 * _finite(s2, eta_deg, _B)
 
 
 #: c of the finite-panel deficit of off-axis bending, c / sqrt(n) (docs/load_cases.md,

@@ -21,6 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from corrugate.mechanics.moduli import Moduli
 from corrugate.mechanics.offaxis import (
+    facet_share,
     finite_panel_deficit,
     local_depth,
     shear_spring,
@@ -46,6 +47,7 @@ class LayerSprings:
     h: FloatArray  # depth of the profile, W cos(alpha/2) for the zig-zag (mm; load cases)
     local: FloatArray  # the local term's length h sqrt(0.01 W / t) (mm; offaxis.local_depth)
     deficit: FloatArray  # finite-panel deficit of off-axis in-plane K (mechanics.offaxis)
+    facet: FloatArray  # one facet's share 1 / (n + 1), the strip bound's loss (mechanics.offaxis)
 
 
 def _num(x: ArrayLike) -> Any:
@@ -84,7 +86,8 @@ def layer_springs(
     and ``n`` give the transverse shear spring V_S (:func:`corrugate.mechanics.offaxis.
     shear_spring`, on the parallel sum), the depth h (mm), the local term's length
     (:func:`corrugate.mechanics.offaxis.local_depth`, with W = pitch / ``sin_half``) and the
-    finite-panel deficit of :func:`corrugate.mechanics.offaxis.finite_panel_deficit`."""
+    finite-panel deficit of :func:`corrugate.mechanics.offaxis.finite_panel_deficit` and one
+    facet's share of the layer (:func:`corrugate.mechanics.offaxis.facet_share`)."""
     t_ = _num(t)
     p = np.asarray(pitch, dtype=np.float64)
     pq = p * np.asarray(inv_length_sum, dtype=np.float64)
@@ -109,4 +112,5 @@ def layer_springs(
             h=height_,
             local=np.asarray(local_depth(height_, developed, t_), dtype=np.float64),
             deficit=finite_panel_deficit(np.asarray(n, dtype=np.float64)),
+            facet=facet_share(np.asarray(n, dtype=np.float64)),
         )

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 from corrugate.geometry.layouts import Axis, Circle, Rectangle
 from corrugate.mechanics.creases import flexibility
 from corrugate.mechanics.offaxis import (
+    facet_share,
     finite_panel_deficit,
     local_depth,
     shear_spring,
@@ -51,6 +52,7 @@ class Springs:
     h: Interval  # depth W cos(alpha/2) (mm)
     local: Interval  # the local term's length h sqrt(0.01 W / t) (mm; offaxis.local_depth)
     deficit: Interval  # finite-panel deficit (corrugate.mechanics.offaxis.finite_panel_deficit)
+    facet: Interval  # one facet's share 1 / (n + 1) (corrugate.mechanics.offaxis.facet_share)
 
 
 def layer_springs(
@@ -99,6 +101,7 @@ def layer_springs(
     # c^2 / s falls as alpha grows: one interval each (c and s are monotone on the box)
     V_S = shear_spring(number(m.E), float(m.nu), number(t), ratio, zz.web2, pq_par)
     d_lo, d_hi = finite_panel_deficit(n[1]), finite_panel_deficit(n[0])  # falls with n
+    f_lo, f_hi = facet_share(n[1]), facet_share(n[0])  # falls with n
     return Springs(
         Ecx * t / pq_ser,
         Ecy * t * pq_par,
@@ -111,6 +114,7 @@ def layer_springs(
         zz.height,
         Interval.of(local_depth(zz.height, Wi, number(t))),
         Interval(d_lo, d_hi),
+        Interval(np.nextafter(f_lo, 0.0), np.nextafter(f_hi, np.inf)),  # outward
     )
 
 
