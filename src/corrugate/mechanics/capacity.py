@@ -69,11 +69,13 @@ __all__ = [
     "Capacity",
     "bending_buckling_modes",
     "capacity_modes",
+    "composite_edge",
     "crippling_load",
     "crippling_modes",
     "describe",
     "first_failure",
     "holds_words",
+    "k_bending",
     "patch_critical_load",
     "plate_buckling_stress",
     "platen_buckling_modes",
@@ -260,6 +262,28 @@ def crippling_modes(
     return {"crippling": _min(inside, per * end / shear_fraction(form))}
 
 
+def k_bending(psi: Any) -> Any:
+    """k of a plate hinged on both long edges under a linear stress whose far edge is at ``psi``
+    (0 >= psi >= -1) times the compressed edge's: 7.81 - 6.29 psi + 9.78 psi^2 (EN 1993-1-5:2006
+    Table 4.1; 7.81 at psi = 0, 23.9 at psi = -1)."""
+    return 7.81 - 6.29 * psi + 9.78 * (psi * psi)
+
+
+def composite_edge(depth: Any, t: Any, area: Any, centroid: Any, foot: bool) -> tuple[Any, Any]:
+    """The band's two walls (height t_d = ``depth``, thickness ``t``, mm) and the layer along the
+    span (axial ``area`` mm^2, its centroid ``centroid`` mm above the walls' foot) bending as one
+    section (fully composite, docs/load_cases.md 10.5): the common neutral axis lies at z = (area
+    centroid + 2 t t_d t_d / 2) / (area + 2 t t_d) above the foot; returns (e, psi): the
+    distance e (mm) of the walls' compressed edge from it, the edge farther from it (the top
+    when the layer is layer 1 at the foot, ``foot``; the foot when it is layer 2 above), and
+    psi = -(t_d - e) / e, the other edge's stress over that edge's. Either way of bending (a
+    load from above or below) the farther edge is the one taken compressed: the worse."""
+    walls = 2.0 * t * depth
+    z = (area * centroid + walls * (depth / 2.0)) / (area + walls)
+    edge = depth - z if foot else z
+    return edge, -((depth - edge) / edge)
+
+
 def wall_buckling_modes(
     form: TestForm,
     band: Band,
@@ -268,6 +292,7 @@ def wall_buckling_modes(
     span: Any | None,
     top_free: Any | None,
     bearing: Any,
+    composite: tuple[Any, Any, bool] | None = None,
 ) -> dict[str, Any]:
     """The buckling and crippling loads (N, no safety factor) of the connector band's two walls
     along the span in the bending test ``form`` (docs/load_cases.md 10.5): ``band`` the walls,
@@ -276,11 +301,14 @@ def wall_buckling_modes(
     other layer's edge crease when the span runs along layer 2's creases (None: along layer 1's,
     the walls held along both long edges), ``bearing`` the load lines' width s_s (mm).
 
-    ``band-wall-buckling``: the walls share the panel's curvature kappa = M / (D L), their edges
-    at E kappa t_d / 2 (psi = -1 about their own mid-height: no composite action with the layers,
-    as the model's D; not a bound, checked by FE, docs/load_cases.md 10.5), critical at k = 23.9 (both long edges held:
-    layer 1's edge crease and the other layer's zig-zag edge; hinged, the least restraint) over
-    t_d, or, sagging with a free strip of height b on top, k = 0.57 - 0.21 psi + 0.07 psi^2 over
+    ``band-wall-buckling``: the walls share the panel's curvature kappa = M / (D L), bending
+    fully composite with the layer along the span (``composite`` = (that layer's axial area
+    (n + 1) W t in mm^2, the height of its centroid above the walls' foot in mm, whether it lies
+    at the foot: layer 1), :func:`composite_edge`; docs/load_cases.md 10.5): the compressed edge
+    at E kappa e, e its distance from the common neutral axis, the other edge at psi times it,
+    critical at k(psi) of :func:`k_bending` (both long edges held: layer 1's edge
+    crease and the other layer's zig-zag edge; hinged, the least restraint) over t_d (without
+    ``composite``: about the walls' own mid-height, e = t_d / 2, psi = -1, k = 23.9), or, sagging with a free strip of height b on top, k = 0.57 - 0.21 psi + 0.07 psi^2 over
     b, psi = 1 - 2 b / t_d (EN 1993-1-5 Table 4.2); with the whole largest shear V in the two
     walls, tau = 1.5 (V / 2) / (t_d t), critical at k_s = 5.35 over t_d; the two combined
     linearly, 1 / P = 1 / P_sigma + 1 / P_tau. ``band-wall-crippling``: each wall carries at
@@ -290,10 +318,16 @@ def wall_buckling_modes(
     cantilever's tip load is at the walls' ends (k_F of an end, type (c); no moment there)."""
     E, nu, t, td = band.E, band.nu, band.t, band.depth
     Ls = length if span is None else span
-    sigma = E * (form.moment * Ls) * td / (2.0 * whole * length)  # MPa per N at the wall's edge
+    kappa = form.moment * Ls / (whole * length)  # the curvature (1/mm) per N
     if top_free is None or form.clamped:
-        P_sigma = plate_buckling_stress(K_BENDING_HINGED, E, nu, t, td) / sigma
+        if composite is None:  # about the walls' own mid-height: psi = -1
+            edge, k_w = td / 2.0, K_BENDING_HINGED
+        else:
+            edge, psi = composite_edge(td, t, composite[0], composite[1], composite[2])
+            k_w = k_bending(psi)
+        P_sigma = plate_buckling_stress(k_w, E, nu, t, td) / (E * kappa * edge)
     else:
+        sigma = E * kappa * td / 2.0  # MPa per N at the wall's edge about its mid-height
         psi = 1.0 - 2.0 * top_free / td
         k = 0.57 - 0.21 * psi + 0.07 * psi * psi
         P_sigma = plate_buckling_stress(k, E, nu, t, top_free) / sigma
@@ -364,7 +398,11 @@ def capacity_modes(
         )
         if form.kind != "inplane":
             top = a.h if along == 1 else None  # layer 2 along eta: the strip above layer 1
-            modes.update(wall_buckling_modes(form, band, whole, length, span, top, s_s))
+            # the layer along eta, bending as one section with the walls (its centroid at mid
+            # depth: layer 1 at the walls' foot, layer 2 below their top)
+            centroid = a.h / 2.0 if along == 0 else band.depth - a.h / 2.0
+            composite = (t[0] * (n + 1.0) * W, centroid, along == 0)
+            modes.update(wall_buckling_modes(form, band, whole, length, span, top, s_s, composite))
     if form.kind == "inplane":
         modes.update(platen_buckling_modes(E[0], nu, t[0], W, n, a.K_S, c.K_C))
     else:
