@@ -95,8 +95,11 @@ def designs() -> dict[str, Case]:
     # examples/chassis_plate.toml's answer in 0.5 mm sheet (the default tolerances, issue 35),
     # over its own 120 mm span (the band on the structured mesh, docs/fea.md 2.1)
     plate = Assembly(Layer(12.0, 7, 110.0, pp, 0.5), Layer(13.0, 10, 120.0, pp, 0.5), Rectangle())
-    # its answer since the band's walls bend with layer 1 as one section (docs/load_cases.md 10.5)
+    # its answers since the band's walls bend with layer 1 as one section (docs/load_cases.md
+    # 10.5): the first under interval bounds of the composite formula as written (loose over the
+    # tolerance box), the second under its monotone form (the example's answer)
     plate2 = Assembly(Layer(10.0, 18, 50.0, pp, 0.5), Layer(11.0, 12, 120.0, pp, 0.5), Rectangle())
+    plate3 = Assembly(Layer(11.0, 11, 75.0, pp, 0.5), Layer(11.0, 12, 120.0, pp, 0.5), Rectangle())
     return {
         "stubby: dura-lar 0.075, W 12 n 10 a 40": Case(
             _identical(12.0, 10, 40.0, "dura-lar", 0.075), "three-point"
@@ -134,6 +137,9 @@ def designs() -> dict[str, Case]:
         ),
         "chassis plate composite, joint band-edges: pp 0.5, W 10 n 18 a 50 / W 11 n 12 a 120": Case(
             plate2, "three-point", span=120.0, band=True
+        ),
+        "chassis plate answer, joint band-edges: pp 0.5, W 11 n 11 a 75 / W 11 n 12 a 120": Case(
+            plate3, "three-point", span=120.0, band=True
         ),
         "blimp cantilever, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
             _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True

@@ -30,7 +30,8 @@ from corrugate.mechanics.capacity import (
     Band,
     Capacity,
     bending_buckling_modes,
-    composite_edge,
+    composite_factor,
+    composite_share,
     crippling_load,
     crippling_modes,
     describe,
@@ -44,6 +45,7 @@ from corrugate.mechanics.capacity import (
 )
 from corrugate.solver import Problem, solve
 from corrugate.solver.context import AtPoints
+from corrugate.solver.interval import Interval
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import HOLDS
 from corrugate.solver.quantities import Tables, box_bounds, point_values
@@ -239,14 +241,16 @@ def test_the_walls_modes_are_the_hand_derivation() -> None:
     1993-1-5 Table 4.1); sigma per N = 1400 x 8.9546 / (4 x 3539.2) = 0.88555 MPa, P_sigma =
     14.166 x 0.45573 / 0.88555 = 7.2902 N; with P_tau 1 / (1 / 7.2902 + 1 / 22.507) = 5.5066 N
     (docs/validation/capacity.md, "The targets": 5.51 N); crippling 1.4 / (1 / 18.931 + 0.8 /
-    7.2902) = 8.612 N."""
+    7.2902) = 8.612 N. The share u of composite_share is then (e - t_d / 2) / (t_d / 2) =
+    (8.9546 - 6.9235) / 6.9235 = 0.29336."""
     band = Band(1400.0, 0.42, 0.25, 13.847, 33.0)
     m = wall_buckling_modes(_form("three-point"), band, 3539.2, 121.24, None, None, 10.0)
     assert m["band-wall-buckling"] == pytest.approx(9.320, rel=1e-3)
     assert m["band-wall-crippling"] == pytest.approx(13.58, rel=1e-3)
     h1 = 12.0 * math.cos(math.radians(42.5))
-    composite = (30.0, h1 / 2.0, True)
-    m = wall_buckling_modes(_form("three-point"), band, 3539.2, 121.24, None, None, 10.0, composite)
+    u = composite_share(120.0, 13.847, h1, 13.847 - h1)
+    assert u == pytest.approx(0.29336, rel=1e-4)
+    m = wall_buckling_modes(_form("three-point"), band, 3539.2, 121.24, None, None, 10.0, u)
     assert m["band-wall-buckling"] == pytest.approx(5.5066, rel=1e-3)
     assert m["band-wall-crippling"] == pytest.approx(8.612, rel=1e-3)
     # against analyze on the same design (its D is the model's, not typed in)
@@ -258,21 +262,28 @@ def test_the_walls_modes_are_the_hand_derivation() -> None:
 
 
 def test_the_composite_walls_limits() -> None:
-    """The composite section's limits (docs/load_cases.md 10.5): with no layer area the walls
-    bend about their own mid-height (psi = -1, k = 23.9, the non-composite load); k(psi) is
-    EN 1993-1-5 Table 4.1's 7.81 at psi = 0 and 23.9 at psi = -1 (its fit gives 23.88); a layer at the walls' top
-    (layer 2 along the span) mirrors one at their foot."""
+    """The composite section's limits (docs/load_cases.md 10.5): k(psi) is EN 1993-1-5 Table
+    4.1's 7.81 at psi = 0 and 23.9 at psi = -1 (its fit gives 23.88); with no layer (u = 0) the
+    walls bend about their own mid-height, the non-composite load; u -> 1 (all the area in the
+    layer, the other layer's depth all of t_d) puts the neutral axis at the far edge, psi = 0,
+    and the edge at t_d: k / 2; the factor falls with u, so an interval's bounds are its ends;
+    the share is r h_o / t_d, r = (n + 1) W / ((n + 1) W + 2 t_d)."""
     assert k_bending(0.0) == pytest.approx(7.81)
     assert k_bending(-1.0) == pytest.approx(23.9, abs=0.03)  # 23.88: the table's fit
-    assert composite_edge(12.0, 0.25, 0.0, 3.0, True) == pytest.approx((6.0, -1.0))
-    foot = composite_edge(12.0, 0.25, 40.0, 3.0, True)
-    top = composite_edge(12.0, 0.25, 40.0, 9.0, False)
-    assert foot == pytest.approx(top)
-    assert foot[0] > 6.0 and -1.0 < foot[1] < 0.0
+    assert composite_factor(0.0) == pytest.approx(k_bending(-1.0))
+    assert composite_factor(1.0) == pytest.approx(7.81 / 2.0)
+    us = np.linspace(0.0, 1.0, 101)
+    assert np.all(np.diff(composite_factor(us)) < 0)
+    box = composite_factor(Interval(0.2, 0.4))
+    assert float(box.lo) == pytest.approx(composite_factor(0.4))
+    assert float(box.hi) == pytest.approx(composite_factor(0.2))
+    assert composite_share(100.0, 12.0, 7.0, 5.0) == pytest.approx(
+        (100.0 / 124.0) * 5.0 / 12.0, rel=1e-12
+    )
     band = Band(1400.0, 0.42, 0.25, 12.0, math.inf)
     three = _form("three-point")
     plain = wall_buckling_modes(three, band, 3000.0, 100.0, None, None, 10.0)
-    none = wall_buckling_modes(three, band, 3000.0, 100.0, None, None, 10.0, (0.0, 3.0, True))
+    none = wall_buckling_modes(three, band, 3000.0, 100.0, None, None, 10.0, 0.0)
     assert none["band-wall-buckling"] == pytest.approx(plain["band-wall-buckling"], rel=1e-3)
 
 

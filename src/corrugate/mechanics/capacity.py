@@ -30,11 +30,12 @@ occurs, without the safety factor:
   end, 2 + 6 s_s / W <= 6 at one: EN 1993-1-5:2006 section 6.4), its bearing yield F_y = f_y t
   s_s and EN 1993-1-5's patch resistance 0.5 sqrt(F_y F_cr) (chi_F = 0.5 / lambda_F, 6.2-6.4);
 * ``band-wall-buckling`` (a bonded band, bending tests): the band's walls along the span as
-  plates of height t_d under the in-plane bending of the panel's curvature (k = 23.9, edges held
-  by the layers, or the free strip above layer 1's zig-zag as an outstand, k of EN 1993-1-5
-  Table 4.2, when the span runs along layer 2's creases) and the whole shear of the test
-  (k_s = 5.35), combined linearly (a lower bound of the interaction: the stable region of a
-  linear eigenproblem in its load parameters is convex);
+  plates of height t_d under the in-plane bending of the panel's curvature, bending fully
+  composite with the layer along the span (k(psi) of EN 1993-1-5 Table 4.1, edges held by the
+  layers; or the free strip above layer 1's zig-zag as an outstand, k of EN 1993-1-5 Table 4.2,
+  when the span runs along layer 2's creases) and the whole shear of the test (k_s = 5.35),
+  combined linearly (a lower bound of the interaction: the stable region of a linear
+  eigenproblem in its load parameters is convex);
 * ``band-wall-crippling`` (a bonded band, bending tests): each wall under half of a load line
   on its edge, the patch-loading load of ``crippling`` with h_w = t_d, with EN 1993-1-5 7.2's
   interaction with bending (F / F_R + 0.8 M / M_R <= 1.4).
@@ -69,7 +70,8 @@ __all__ = [
     "Capacity",
     "bending_buckling_modes",
     "capacity_modes",
-    "composite_edge",
+    "composite_factor",
+    "composite_share",
     "crippling_load",
     "crippling_modes",
     "describe",
@@ -269,19 +271,37 @@ def k_bending(psi: Any) -> Any:
     return 7.81 - 6.29 * psi + 9.78 * (psi * psi)
 
 
-def composite_edge(depth: Any, t: Any, area: Any, centroid: Any, foot: bool) -> tuple[Any, Any]:
-    """The band's two walls (height t_d = ``depth``, thickness ``t``, mm) and the layer along the
-    span (axial ``area`` mm^2, its centroid ``centroid`` mm above the walls' foot) bending as one
-    section (fully composite, docs/load_cases.md 10.5): the common neutral axis lies at z = (area
-    centroid + 2 t t_d t_d / 2) / (area + 2 t t_d) above the foot; returns (e, psi): the
-    distance e (mm) of the walls' compressed edge from it, the edge farther from it (the top
-    when the layer is layer 1 at the foot, ``foot``; the foot when it is layer 2 above), and
-    psi = -(t_d - e) / e, the other edge's stress over that edge's. Either way of bending (a
-    load from above or below) the farther edge is the one taken compressed: the worse."""
-    walls = 2.0 * t * depth
-    z = (area * centroid + walls * (depth / 2.0)) / (area + walls)
-    edge = depth - z if foot else z
-    return edge, -((depth - edge) / edge)
+def composite_share(facets_width: Any, depth: Any, h_along: Any, h_other: Any) -> Any:
+    """How far the band's walls bending as one section with the layer along the span move their
+    neutral axis (fully composite, docs/load_cases.md 10.5): u = r h_o / t_d, between 0 (no
+    layer: the walls' own mid-height) and 1. The layer along the span, (n + 1) facets of width W
+    (``facets_width`` (n + 1) W, mm) and thickness t, has its axial area (n + 1) W t at the
+    middle of its depth ``h_along`` (mm): at h_a / 2 above the walls' foot for layer 1, t_d -
+    h_a / 2 for layer 2; the walls' area 2 t t_d at t_d / 2 (``depth`` t_d = h_a + h_o, mm;
+    ``h_other`` h_o the other layer's depth). The common neutral axis lies r h_o / 2 from the
+    walls' mid-height towards the layer, r = (n + 1) W / ((n + 1) W + 2 t_d) the layer's share
+    of the area (t cancels), so the walls' edge away from the layer is at e = t_d (1 + u) / 2
+    from it and the other at psi = -(1 - u) / (1 + u) times its stress. Each variable enters
+    once (h_a / h_o as one ratio), so over intervals the bounds are those of the formula."""
+    r = 1.0 / (1.0 + 2.0 * depth / facets_width)
+    return r / (1.0 + h_along / h_other)
+
+
+def _composite_factor(u: float | np.ndarray) -> Any:
+    psi = -(1.0 - u) / (1.0 + u)
+    return k_bending(psi) / (1.0 + u)
+
+
+def composite_factor(u: Any) -> Any:
+    """k(psi) / (1 + u) (:func:`k_bending`, psi = -(1 - u) / (1 + u)) of the share ``u`` of
+    :func:`composite_share`: the walls' bending buckling load with the composite action over
+    the load about their own mid-height times 23.9 (P_sigma = k sigma_cr / sigma_1, sigma_1 = E
+    kappa t_d (1 + u) / 2). It falls as u grows (psi rises from -1 towards 0, where k falls,
+    and the edge moves away), so over an interval it is its values at the ends: the greatest u
+    gives the least."""
+    if hasattr(u, "lo") and hasattr(u, "hi"):  # an Interval (corrugate.solver.interval)
+        return type(u)(_composite_factor(u.hi), _composite_factor(u.lo))
+    return _composite_factor(u)
 
 
 def wall_buckling_modes(
@@ -292,7 +312,7 @@ def wall_buckling_modes(
     span: Any | None,
     top_free: Any | None,
     bearing: Any,
-    composite: tuple[Any, Any, bool] | None = None,
+    composite: Any | None = None,
 ) -> dict[str, Any]:
     """The buckling and crippling loads (N, no safety factor) of the connector band's two walls
     along the span in the bending test ``form`` (docs/load_cases.md 10.5): ``band`` the walls,
@@ -302,14 +322,15 @@ def wall_buckling_modes(
     the walls held along both long edges), ``bearing`` the load lines' width s_s (mm).
 
     ``band-wall-buckling``: the walls share the panel's curvature kappa = M / (D L), bending
-    fully composite with the layer along the span (``composite`` = (that layer's axial area
-    (n + 1) W t in mm^2, the height of its centroid above the walls' foot in mm, whether it lies
-    at the foot: layer 1), :func:`composite_edge`; docs/load_cases.md 10.5): the compressed edge
-    at E kappa e, e its distance from the common neutral axis, the other edge at psi times it,
-    critical at k(psi) of :func:`k_bending` (both long edges held: layer 1's edge
-    crease and the other layer's zig-zag edge; hinged, the least restraint) over t_d (without
-    ``composite``: about the walls' own mid-height, e = t_d / 2, psi = -1, k = 23.9), or, sagging with a free strip of height b on top, k = 0.57 - 0.21 psi + 0.07 psi^2 over
-    b, psi = 1 - 2 b / t_d (EN 1993-1-5 Table 4.2); with the whole largest shear V in the two
+    fully composite with the layer along the span (``composite``: the share u of
+    :func:`composite_share`; docs/load_cases.md 10.5): the edge away from that layer at
+    E kappa t_d (1 + u) / 2, the other at psi = -(1 - u) / (1 + u) times it, taken compressed
+    whichever way the load acts (the worse edge),
+    critical at k(psi) of :func:`k_bending` (both long edges held: layer 1's edge crease and
+    the other layer's zig-zag edge; hinged, the least restraint) over t_d (without
+    ``composite``, or u = 0: about the walls' own mid-height, psi = -1, k = 23.9), or,
+    sagging with a free strip of height b on top, about the walls' mid-height, k = 0.57 - 0.21
+    psi + 0.07 psi^2 over b, psi = 1 - 2 b / t_d (EN 1993-1-5 Table 4.2); with the whole largest shear V in the two
     walls, tau = 1.5 (V / 2) / (t_d t), critical at k_s = 5.35 over t_d; the two combined
     linearly, 1 / P = 1 / P_sigma + 1 / P_tau. ``band-wall-crippling``: each wall carries at
     most half of a load line on its edge (the layers take the rest), holding
@@ -320,12 +341,9 @@ def wall_buckling_modes(
     Ls = length if span is None else span
     kappa = form.moment * Ls / (whole * length)  # the curvature (1/mm) per N
     if top_free is None or form.clamped:
-        if composite is None:  # about the walls' own mid-height: psi = -1
-            edge, k_w = td / 2.0, K_BENDING_HINGED
-        else:
-            edge, psi = composite_edge(td, t, composite[0], composite[1], composite[2])
-            k_w = k_bending(psi)
-        P_sigma = plate_buckling_stress(k_w, E, nu, t, td) / (E * kappa * edge)
+        # k(psi) / (1 + u): 23.9 about the walls' own mid-height (u = 0, psi = -1)
+        k_w = K_BENDING_HINGED if composite is None else composite_factor(composite)
+        P_sigma = plate_buckling_stress(k_w, E, nu, t, td) / (E * kappa * td / 2.0)
     else:
         sigma = E * kappa * td / 2.0  # MPa per N at the wall's edge about its mid-height
         psi = 1.0 - 2.0 * top_free / td
@@ -398,11 +416,9 @@ def capacity_modes(
         )
         if form.kind != "inplane":
             top = a.h if along == 1 else None  # layer 2 along eta: the strip above layer 1
-            # the layer along eta, bending as one section with the walls (its centroid at mid
-            # depth: layer 1 at the walls' foot, layer 2 below their top)
-            centroid = a.h / 2.0 if along == 0 else band.depth - a.h / 2.0
-            composite = (t[0] * (n + 1.0) * W, centroid, along == 0)
-            modes.update(wall_buckling_modes(form, band, whole, length, span, top, s_s, composite))
+            # the layer along eta bending as one section with the walls
+            u = composite_share((n + 1.0) * W, band.depth, a.h, c.h)
+            modes.update(wall_buckling_modes(form, band, whole, length, span, top, s_s, u))
     if form.kind == "inplane":
         modes.update(platen_buckling_modes(E[0], nu, t[0], W, n, a.K_S, c.K_C))
     else:
