@@ -510,3 +510,28 @@ def test_a_bearing_is_part_of_the_capacitys_key_and_reads_back() -> None:
     )
     [c] = [c for c in p.constraints if c.name.endswith(HOLDS)]
     assert c.quantity.bearing == 5.0
+
+
+def test_the_composite_action_applies_where_it_compresses_the_far_edge(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """docs/load_cases.md 10.5: layer 1 along the span sits at the walls' foot; three-point
+    bending compresses their top, away from it (the composite action raises that edge's stress:
+    the load is below the one with no composite share, u = 0), a cantilever's root compresses
+    their foot, beside it (the action relieves it: the model keeps the mid-height load, the
+    blimp cantilever's 1.08 N of docs/validation/capacity.md, whatever the share)."""
+    import corrugate.mechanics.capacity as capacity
+
+    blimp = Assembly.identical(Layer(W=8, n=7, alpha_deg=98, material=DL, t=0.125))
+    r = analyze(blimp, "refined", (0.0,), joint="band-edges")
+
+    def walls(test: str) -> float:
+        cap = load_case_capacity(r, LoadCase(test, 1.0), 0.0, safety_factor=1.0)
+        assert cap is not None
+        return cap.modes["band-wall-buckling"]
+
+    composite = {t: walls(t) for t in ("three-point", "cantilever")}
+    monkeypatch.setattr(capacity, "composite_share", lambda *args: 0.0)
+    plain = {t: walls(t) for t in ("three-point", "cantilever")}
+    assert composite["cantilever"] == plain["cantilever"] == pytest.approx(1.08, abs=0.005)
+    assert composite["three-point"] < 0.8 * plain["three-point"]

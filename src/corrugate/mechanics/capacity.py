@@ -324,8 +324,9 @@ def wall_buckling_modes(
     ``band-wall-buckling``: the walls share the panel's curvature kappa = M / (D L), bending
     fully composite with the layer along the span (``composite``: the share u of
     :func:`composite_share`; docs/load_cases.md 10.5): the edge away from that layer at
-    E kappa t_d (1 + u) / 2, the other at psi = -(1 - u) / (1 + u) times it, taken compressed
-    whichever way the load acts (the worse edge),
+    E kappa t_d (1 + u) / 2, the other at psi = -(1 - u) / (1 + u) times it, for the test's
+    load where that edge is the compressed one (the caller passes None where the compressed edge
+    is beside the layer, which the composite action only relieves),
     critical at k(psi) of :func:`k_bending` (both long edges held: layer 1's edge crease and
     the other layer's zig-zag edge; hinged, the least restraint) over t_d (without
     ``composite``, or u = 0: about the walls' own mid-height, psi = -1, k = 23.9), or,
@@ -416,8 +417,11 @@ def capacity_modes(
         )
         if form.kind != "inplane":
             top = a.h if along == 1 else None  # layer 2 along eta: the strip above layer 1
-            # the layer along eta bending as one section with the walls
-            u = composite_share((n + 1.0) * W, band.depth, a.h, c.h)
+            # the layer along eta bending as one section with the walls, where the compressed
+            # edge is the one away from it: layer 1's sagging (three-, four-point), layer 2's
+            # hogging (a cantilever); the edge beside the layer gains from it (10.5)
+            away = (along == 0) != bool(form.clamped)
+            u = composite_share((n + 1.0) * W, band.depth, a.h, c.h) if away else None
             modes.update(wall_buckling_modes(form, band, whole, length, span, top, s_s, u))
     if form.kind == "inplane":
         modes.update(platen_buckling_modes(E[0], nu, t[0], W, n, a.K_S, c.K_C))
