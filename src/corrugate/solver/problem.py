@@ -364,6 +364,7 @@ class Problem:
             cands,
             spec.fabrication.max_t_over_W,
             _joint(spec.joint, layout),
+            spec.layers == "identical",
         )
         if spec.trust == "certified":
             cons.extend(ranges)

@@ -238,8 +238,10 @@ def _can_cross(
     n: tuple[int, int],
     cands: Sequence[Candidate],
     max_t_over_W: float,
+    identical: bool = False,
 ) -> bool:
-    """Whether some design within the variable bounds may lie beyond ``bound``."""
+    """Whether some design within the variable bounds may lie beyond ``bound`` (``identical``
+    layers: t_d / h1 is 2)."""
     if variable == "facets":
         return n[0] + 1 < bound if end == "min" else n[1] + 1 > bound
     if variable == "alpha":
@@ -255,6 +257,8 @@ def _can_cross(
         ts = [c.t for c in cands]
         return min(ts) < bound if end == "min" else max(ts) > bound
     if variable == "td_over_h1":
+        if identical:
+            return bound > 2.0 if end == "min" else bound < 2.0
         h_lo = W.lo * math.cos(math.radians(alpha.top) / 2.0)
         h_hi = W.top * math.cos(math.radians(alpha.lo) / 2.0)
         return 1.0 + h_lo / h_hi < bound if end == "min" else 1.0 + h_hi / h_lo > bound
@@ -269,10 +273,12 @@ def validity_constraints(
     cands: Sequence[Candidate],
     max_t_over_W: float,
     joint: str = "none",
+    identical: bool = False,
 ) -> list[Constraint]:
     """The validated-range constraints of the models ``constraints`` use (module docstring),
     given the variable bounds ``W``, ``alpha``, ``n`` (lo, hi), the candidate sheets, the
-    fabrication's largest t / W and how the layers are ``joint``-ed."""
+    fabrication's largest t / W, how the layers are ``joint``-ed and whether they are
+    ``identical``."""
     from corrugate.solver.problem import Constraint
 
     ranges = model_ranges()
@@ -294,7 +300,7 @@ def validity_constraints(
             values = [ranges[r].ranges[variable][0 if end == "min" else 1] for r in stating]
             bound = max(values) if end == "min" else min(values)
             model = ranges[stating[values.index(bound)]]
-            if not _can_cross(variable, end, bound, W, alpha, n, cands, max_t_over_W):
+            if not _can_cross(variable, end, bound, W, alpha, n, cands, max_t_over_W, identical):
                 continue
             kind = _KINDS[(variable, end)][0]
             name = f"validity.{model.name}.{variable}.{end} ({model.sentence(variable, end)})"
