@@ -340,13 +340,13 @@ def wall_buckling_modes(
     cantilever's tip load is at the walls' ends (k_F of an end, type (c); no moment there)."""
     E, nu, t, td = band.E, band.nu, band.t, band.depth
     Ls = length if span is None else span
-    kappa = form.moment * Ls / (whole * length)  # the curvature (1/mm) per N
+    # MPa per N at the wall's edge about its mid-height, E kappa t_d / 2, kappa = M / (D L)
+    sigma = E * (form.moment * Ls) * td / (2.0 * whole * length)
     if top_free is None or form.clamped:
         # k(psi) / (1 + u): 23.9 about the walls' own mid-height (u = 0, psi = -1)
         k_w = K_BENDING_HINGED if composite is None else composite_factor(composite)
-        P_sigma = plate_buckling_stress(k_w, E, nu, t, td) / (E * kappa * td / 2.0)
+        P_sigma = plate_buckling_stress(k_w, E, nu, t, td) / sigma
     else:
-        sigma = E * kappa * td / 2.0  # MPa per N at the wall's edge about its mid-height
         psi = 1.0 - 2.0 * top_free / td
         k = 0.57 - 0.21 * psi + 0.07 * psi * psi
         P_sigma = plate_buckling_stress(k, E, nu, t, top_free) / sigma
