@@ -30,10 +30,13 @@ from corrugate.mechanics.capacity import (
     Band,
     Capacity,
     bending_buckling_modes,
+    composite_factor,
+    composite_share,
     crippling_load,
     crippling_modes,
     describe,
     first_failure,
+    k_bending,
     patch_critical_load,
     plate_buckling_stress,
     shear_fraction,
@@ -42,6 +45,7 @@ from corrugate.mechanics.capacity import (
 )
 from corrugate.solver import Problem, solve
 from corrugate.solver.context import AtPoints
+from corrugate.solver.interval import Interval
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import HOLDS
 from corrugate.solver.quantities import Tables, box_bounds, point_values
@@ -213,7 +217,9 @@ def test_the_band_rows_are_at_or_below_their_fe_first_buckling() -> None:
         assert cap.mode == "band-wall-buckling"
     r = analyze(_resolved_chassis(), "refined", (0.0,), joint="band-edges")
     cap = load_case_capacity(r, LoadCase("three-point", 1.0), 0.0, safety_factor=1.0)
-    assert cap is not None and cap.load >= 0.5 * RESOLVED_CHASSIS_FE  # a useful bound there
+    # the walls composite with layer 1 (docs/load_cases.md 10.5): 0.44 of the FE there, below
+    # issue 34's usefulness target of 0.5 (docs/validation/capacity.md, "The targets")
+    assert cap is not None and 0.4 * RESOLVED_CHASSIS_FE <= cap.load < 0.5 * RESOLVED_CHASSIS_FE
 
 
 def test_the_walls_modes_are_the_hand_derivation() -> None:
@@ -225,17 +231,60 @@ def test_the_walls_modes_are_the_hand_derivation() -> None:
     (13.847 x 0.25) = 0.108327 MPa; P_tau = 5.35 x 0.45573 / 0.108327 = 22.507 N; linearly
     1 / (1 / 15.906 + 1 / 22.507) = 9.320 N. Crippling of a wall: F_cr = 6 x 1398.07 x 0.015625
     / 13.847 = 9.4657 N, F_y = 33 x 0.25 x 10 = 82.5 N, 0.5 sqrt(F_y F_cr) = 13.97 N: F = F_cr;
-    P_F = 2 F = 18.931 N; with 7.2: 1.4 / (1 / 18.931 + 0.8 / 15.906) = 13.58 N."""
+    P_F = 2 F = 18.931 N; with 7.2: 1.4 / (1 / 18.931 + 0.8 / 15.906) = 13.58 N.
+
+    The walls bending fully composite with layer 1 (the model, docs/load_cases.md 10.5): layer
+    1's area (n + 1) W t = 10 x 12 x 0.25 = 30 mm^2 at h1 / 2 = 12 cos(42.5 deg) / 2 = 4.4236 mm,
+    the walls' 2 x 0.25 x 13.847 = 6.9235 mm^2 at 6.9235 mm: the neutral axis at z = (30 x
+    4.4236 + 6.9235 x 6.9235) / 36.9235 = 4.8924 mm, the top edge e = 8.9546 mm above it, psi =
+    -4.8924 / 8.9546 = -0.54636, k = 7.81 + 6.29 x 0.54636 + 9.78 x 0.54636^2 = 14.166 (EN
+    1993-1-5 Table 4.1); sigma per N = 1400 x 8.9546 / (4 x 3539.2) = 0.88555 MPa, P_sigma =
+    14.166 x 0.45573 / 0.88555 = 7.2902 N; with P_tau 1 / (1 / 7.2902 + 1 / 22.507) = 5.5066 N
+    (docs/validation/capacity.md, "The targets": 5.51 N); crippling 1.4 / (1 / 18.931 + 0.8 /
+    7.2902) = 8.612 N. The share u of composite_share is then (e - t_d / 2) / (t_d / 2) =
+    (8.9546 - 6.9235) / 6.9235 = 0.29336."""
     band = Band(1400.0, 0.42, 0.25, 13.847, 33.0)
     m = wall_buckling_modes(_form("three-point"), band, 3539.2, 121.24, None, None, 10.0)
     assert m["band-wall-buckling"] == pytest.approx(9.320, rel=1e-3)
     assert m["band-wall-crippling"] == pytest.approx(13.58, rel=1e-3)
+    h1 = 12.0 * math.cos(math.radians(42.5))
+    u = composite_share(120.0, 13.847, h1, 13.847 - h1)
+    assert u == pytest.approx(0.29336, rel=1e-4)
+    m = wall_buckling_modes(_form("three-point"), band, 3539.2, 121.24, None, None, 10.0, u)
+    assert m["band-wall-buckling"] == pytest.approx(5.5066, rel=1e-3)
+    assert m["band-wall-crippling"] == pytest.approx(8.612, rel=1e-3)
     # against analyze on the same design (its D is the model's, not typed in)
     r = analyze(_resolved_chassis(), "refined", (0.0,), joint="band-edges")
     cap = load_case_capacity(r, LoadCase("three-point", 1.0), 0.0)
     assert cap is not None
-    assert cap.modes["band-wall-buckling"] == pytest.approx(9.320, rel=2e-3)
+    assert cap.modes["band-wall-buckling"] == pytest.approx(5.5066, rel=2e-3)
     assert cap.as_dict()["bearing_mm"] == DEFAULT_BEARING == 10.0
+
+
+def test_the_composite_walls_limits() -> None:
+    """The composite section's limits (docs/load_cases.md 10.5): k(psi) is EN 1993-1-5 Table
+    4.1's 7.81 at psi = 0 and 23.9 at psi = -1 (its fit gives 23.88); with no layer (u = 0) the
+    walls bend about their own mid-height, the non-composite load; u -> 1 (all the area in the
+    layer, the other layer's depth all of t_d) puts the neutral axis at the far edge, psi = 0,
+    and the edge at t_d: k / 2; the factor falls with u, so an interval's bounds are its ends;
+    the share is r h_o / t_d, r = (n + 1) W / ((n + 1) W + 2 t_d)."""
+    assert k_bending(0.0) == pytest.approx(7.81)
+    assert k_bending(-1.0) == pytest.approx(23.9, abs=0.03)  # 23.88: the table's fit
+    assert composite_factor(0.0) == pytest.approx(k_bending(-1.0))
+    assert composite_factor(1.0) == pytest.approx(7.81 / 2.0)
+    us = np.linspace(0.0, 1.0, 101)
+    assert np.all(np.diff(composite_factor(us)) < 0)
+    box = composite_factor(Interval(0.2, 0.4))
+    assert float(box.lo) == pytest.approx(composite_factor(0.4))
+    assert float(box.hi) == pytest.approx(composite_factor(0.2))
+    assert composite_share(100.0, 12.0, 7.0, 5.0) == pytest.approx(
+        (100.0 / 124.0) * 5.0 / 12.0, rel=1e-12
+    )
+    band = Band(1400.0, 0.42, 0.25, 12.0, math.inf)
+    three = _form("three-point")
+    plain = wall_buckling_modes(three, band, 3000.0, 100.0, None, None, 10.0)
+    none = wall_buckling_modes(three, band, 3000.0, 100.0, None, None, 10.0, 0.0)
+    assert none["band-wall-buckling"] == pytest.approx(plain["band-wall-buckling"], rel=1e-3)
 
 
 def test_the_walls_free_strip_along_layer_2_is_the_outstand() -> None:
@@ -461,3 +510,28 @@ def test_a_bearing_is_part_of_the_capacitys_key_and_reads_back() -> None:
     )
     [c] = [c for c in p.constraints if c.name.endswith(HOLDS)]
     assert c.quantity.bearing == 5.0
+
+
+def test_the_composite_action_applies_where_it_compresses_the_far_edge(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """docs/load_cases.md 10.5: layer 1 along the span sits at the walls' foot; three-point
+    bending compresses their top, away from it (the composite action raises that edge's stress:
+    the load is below the one with no composite share, u = 0), a cantilever's root compresses
+    their foot, beside it (the action relieves it: the model keeps the mid-height load, the
+    blimp cantilever's 1.08 N of docs/validation/capacity.md, whatever the share)."""
+    import corrugate.mechanics.capacity as capacity
+
+    blimp = Assembly.identical(Layer(W=8, n=7, alpha_deg=98, material=DL, t=0.125))
+    r = analyze(blimp, "refined", (0.0,), joint="band-edges")
+
+    def walls(test: str) -> float:
+        cap = load_case_capacity(r, LoadCase(test, 1.0), 0.0, safety_factor=1.0)
+        assert cap is not None
+        return cap.modes["band-wall-buckling"]
+
+    composite = {t: walls(t) for t in ("three-point", "cantilever")}
+    monkeypatch.setattr(capacity, "composite_share", lambda *args: 0.0)
+    plain = {t: walls(t) for t in ("three-point", "cantilever")}
+    assert composite["cantilever"] == plain["cantilever"] == pytest.approx(1.08, abs=0.005)
+    assert composite["three-point"] < 0.8 * plain["three-point"]

@@ -273,3 +273,86 @@ def test_an_extrapolated_answer_is_marked_everywhere(cli: CliRun, tmp_path: Path
     record = json.loads((tmp_path / "o" / "design.json").read_text())
     assert record["extrapolated"] == answer["extrapolated"] and record["certified"] is False
     assert "EXTRAPOLATED, not certified" in (tmp_path / "o" / "report.html").read_text()
+
+
+def _band_spec(thickness: str, **top: Any) -> Problem:
+    """A 60 x 100 mm plate of polypropylene, the layers joined by the band (band-edges), to hold
+    2 N in three-point bending over its length (a deflection bound under a load: the capacity
+    Pmax >= 2 N at the safety factor 2 comes with it, docs/load_cases.md 10.6), nominal."""
+    d: dict[str, Any] = {
+        "name": "band",
+        "layers": "independent",
+        "joint": "band-edges",
+        "tolerances": "none",
+        "material": {"name": "polypropylene", "thickness": thickness},
+        "layout": {"shape": "rectangle"},
+        "variables": {
+            "W": {"min": "15 mm", "max": "20 mm", "step": "1 mm"},
+            "n": {"min": 6, "max": 14},
+            "alpha": {"min": "80 deg", "max": "130 deg", "step": "10 deg"},
+        },
+        "constraints": {
+            "side_x": {"min": "50 mm", "max": "70 mm"},
+            "side_y": {"min": "90 mm", "max": "110 mm"},
+            "deflection": [{"test": "three-point", "load": "2 N", "max": "5 mm", "eta": "0 deg"}],
+        },
+    }
+    d.update(top)
+    return Problem.from_spec(parse_spec(d))
+
+
+WALLS_T = "validity.band-walls.t.max"
+
+
+def test_a_capacity_gets_the_capacity_models_ranges() -> None:
+    """A load held with the band: the capacity's facet ranges (alpha 40-150, t/W 0.00625-0.05
+    of docs/validation/capacity_fe.csv: its alpha max 150 is looser than the three-point
+    model's 120, which keeps it) and the walls' t_d / h1 <= 2 (the variables reach 1 + 20 cos 40
+    / (15 cos 65) = 3.42); the ends no design can cross are left out: t_d / h1 >= 1.221 (at least
+    1 + 15 cos 65 / (20 cos 40) = 1.41) and the walls' t on a 0.3 mm sheet (0.125-0.5 mm). On
+    a 0.1 mm sheet the walls' t >= 0.125 mm binds, and the capacity's t/W >= 0.00625 (0.1 / 20
+    = 0.005 reachable) is kept over the three-point model's looser 0.005, named by it."""
+    p = _band_spec("0.3 mm")
+    keys = [c.name.split(" ")[0] for c in p.constraints if c.name.startswith("validity.")]
+    assert "validity.band-walls.td_over_h1.min" not in keys
+    assert "validity.band-walls.td_over_h1.max" in keys
+    assert WALLS_T not in keys and "validity.band-walls.t.min" not in keys
+    assert "validity.three-point.alpha.max" in keys
+    assert not any(k.startswith("validity.capacity.alpha") for k in keys)
+    thin = _band_spec("0.1 mm")
+    keys = [c.name.split(" ")[0] for c in thin.constraints if c.name.startswith("validity.")]
+    assert "validity.band-walls.t.min" in keys and "validity.capacity.t_over_W.min" in keys
+    (c,) = [c for c in thin.constraints if c.name.startswith("validity.capacity.t_over_W.min")]
+    assert c.bound == 0.00625
+    without = Problem.from_spec(
+        parse_spec(
+            {
+                "name": "x",
+                "material": {"name": "polypropylene", "thickness": "0.3 mm"},
+                "variables": {"W": {"min": "10 mm", "max": "14 mm"}},
+                "constraints": {"side": {"min": "40 mm", "max": "80 mm"}},
+            }
+        )
+    )
+    assert not any(c.name.startswith("validity.") for c in without.constraints)
+
+
+@pytest.mark.slow
+def test_a_band_capacity_outside_the_walls_range_is_not_certified() -> None:
+    """0.75 mm polypropylene with the band: thicker than every sheet the band's walls were
+    checked on in FE (0.125-0.5 mm, docs/validation/capacity_fe.csv), so by default no design
+    is certified (certified infeasible) and the diagnosis names the walls' range, hinting
+    trust = "extrapolate"; with it, the answer is marked extrapolated, not certified, naming
+    that range."""
+    p = _band_spec("0.75 mm")
+    name = _named(p, WALLS_T)
+    assert name.endswith(
+        "(the band's walls' buckling model is validated for sheet thickness t <= 0.5 mm)"
+    )
+    sol = solve(p)
+    assert sol.status == "infeasible" and sol.certified and sol.assembly is None
+    assert any(WALLS_T in " ".join(x.names) for x in sol.diagnosis)
+    ext = solve(_band_spec("0.75 mm", trust="extrapolate"), explain=False)
+    assert ext.status == "optimal" and ext.assembly is not None and not ext.certified
+    assert WALLS_T in [x.split(" ")[0] for x in ext.extrapolated]
+    assert ext.certificate.startswith("extrapolated, not certified")

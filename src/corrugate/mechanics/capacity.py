@@ -30,11 +30,12 @@ occurs, without the safety factor:
   end, 2 + 6 s_s / W <= 6 at one: EN 1993-1-5:2006 section 6.4), its bearing yield F_y = f_y t
   s_s and EN 1993-1-5's patch resistance 0.5 sqrt(F_y F_cr) (chi_F = 0.5 / lambda_F, 6.2-6.4);
 * ``band-wall-buckling`` (a bonded band, bending tests): the band's walls along the span as
-  plates of height t_d under the in-plane bending of the panel's curvature (k = 23.9, edges held
-  by the layers, or the free strip above layer 1's zig-zag as an outstand, k of EN 1993-1-5
-  Table 4.2, when the span runs along layer 2's creases) and the whole shear of the test
-  (k_s = 5.35), combined linearly (a lower bound of the interaction: the stable region of a
-  linear eigenproblem in its load parameters is convex);
+  plates of height t_d under the in-plane bending of the panel's curvature, bending fully
+  composite with the layer along the span (k(psi) of EN 1993-1-5 Table 4.1, edges held by the
+  layers; or the free strip above layer 1's zig-zag as an outstand, k of EN 1993-1-5 Table 4.2,
+  when the span runs along layer 2's creases) and the whole shear of the test (k_s = 5.35),
+  combined linearly (a lower bound of the interaction: the stable region of a linear
+  eigenproblem in its load parameters is convex);
 * ``band-wall-crippling`` (a bonded band, bending tests): each wall under half of a load line
   on its edge, the patch-loading load of ``crippling`` with h_w = t_d, with EN 1993-1-5 7.2's
   interaction with bending (F / F_R + 0.8 M / M_R <= 1.4).
@@ -69,11 +70,14 @@ __all__ = [
     "Capacity",
     "bending_buckling_modes",
     "capacity_modes",
+    "composite_factor",
+    "composite_share",
     "crippling_load",
     "crippling_modes",
     "describe",
     "first_failure",
     "holds_words",
+    "k_bending",
     "patch_critical_load",
     "plate_buckling_stress",
     "platen_buckling_modes",
@@ -260,6 +264,46 @@ def crippling_modes(
     return {"crippling": _min(inside, per * end / shear_fraction(form))}
 
 
+def k_bending(psi: Any) -> Any:
+    """k of a plate hinged on both long edges under a linear stress whose far edge is at ``psi``
+    (0 >= psi >= -1) times the compressed edge's: 7.81 - 6.29 psi + 9.78 psi^2 (EN 1993-1-5:2006
+    Table 4.1; 7.81 at psi = 0, 23.9 at psi = -1)."""
+    return 7.81 - 6.29 * psi + 9.78 * (psi * psi)
+
+
+def composite_share(facets_width: Any, depth: Any, h_along: Any, h_other: Any) -> Any:
+    """How far the band's walls bending as one section with the layer along the span move their
+    neutral axis (fully composite, docs/load_cases.md 10.5): u = r h_o / t_d, between 0 (no
+    layer: the walls' own mid-height) and 1. The layer along the span, (n + 1) facets of width W
+    (``facets_width`` (n + 1) W, mm) and thickness t, has its axial area (n + 1) W t at the
+    middle of its depth ``h_along`` (mm): at h_a / 2 above the walls' foot for layer 1, t_d -
+    h_a / 2 for layer 2; the walls' area 2 t t_d at t_d / 2 (``depth`` t_d = h_a + h_o, mm;
+    ``h_other`` h_o the other layer's depth). The common neutral axis lies r h_o / 2 from the
+    walls' mid-height towards the layer, r = (n + 1) W / ((n + 1) W + 2 t_d) the layer's share
+    of the area (t cancels), so the walls' edge away from the layer is at e = t_d (1 + u) / 2
+    from it and the other at psi = -(1 - u) / (1 + u) times its stress. Each variable enters
+    once (h_a / h_o as one ratio), so over intervals the bounds are those of the formula."""
+    r = 1.0 / (1.0 + 2.0 * depth / facets_width)
+    return r / (1.0 + h_along / h_other)
+
+
+def _composite_factor(u: float | np.ndarray) -> Any:
+    psi = -(1.0 - u) / (1.0 + u)
+    return k_bending(psi) / (1.0 + u)
+
+
+def composite_factor(u: Any) -> Any:
+    """k(psi) / (1 + u) (:func:`k_bending`, psi = -(1 - u) / (1 + u)) of the share ``u`` of
+    :func:`composite_share`: the walls' bending buckling load with the composite action over
+    the load about their own mid-height times 23.9 (P_sigma = k sigma_cr / sigma_1, sigma_1 = E
+    kappa t_d (1 + u) / 2). It falls as u grows (psi rises from -1 towards 0, where k falls,
+    and the edge moves away), so over an interval it is its values at the ends: the greatest u
+    gives the least."""
+    if hasattr(u, "lo") and hasattr(u, "hi"):  # an Interval (corrugate.solver.interval)
+        return type(u)(_composite_factor(u.hi), _composite_factor(u.lo))
+    return _composite_factor(u)
+
+
 def wall_buckling_modes(
     form: TestForm,
     band: Band,
@@ -268,6 +312,7 @@ def wall_buckling_modes(
     span: Any | None,
     top_free: Any | None,
     bearing: Any,
+    composite: Any | None = None,
 ) -> dict[str, Any]:
     """The buckling and crippling loads (N, no safety factor) of the connector band's two walls
     along the span in the bending test ``form`` (docs/load_cases.md 10.5): ``band`` the walls,
@@ -276,12 +321,17 @@ def wall_buckling_modes(
     other layer's edge crease when the span runs along layer 2's creases (None: along layer 1's,
     the walls held along both long edges), ``bearing`` the load lines' width s_s (mm).
 
-    ``band-wall-buckling``: the walls share the panel's curvature kappa = M / (D L), their edges
-    at E kappa t_d / 2 (psi = -1 about their own mid-height: no composite action with the layers,
-    as the model's D; not a bound, checked by FE, docs/load_cases.md 10.5), critical at k = 23.9 (both long edges held:
-    layer 1's edge crease and the other layer's zig-zag edge; hinged, the least restraint) over
-    t_d, or, sagging with a free strip of height b on top, k = 0.57 - 0.21 psi + 0.07 psi^2 over
-    b, psi = 1 - 2 b / t_d (EN 1993-1-5 Table 4.2); with the whole largest shear V in the two
+    ``band-wall-buckling``: the walls share the panel's curvature kappa = M / (D L), bending
+    fully composite with the layer along the span (``composite``: the share u of
+    :func:`composite_share`; docs/load_cases.md 10.5): the edge away from that layer at
+    E kappa t_d (1 + u) / 2, the other at psi = -(1 - u) / (1 + u) times it, for the test's
+    load where that edge is the compressed one (the caller passes None where the compressed edge
+    is beside the layer, which the composite action only relieves),
+    critical at k(psi) of :func:`k_bending` (both long edges held: layer 1's edge crease and
+    the other layer's zig-zag edge; hinged, the least restraint) over t_d (without
+    ``composite``, or u = 0: about the walls' own mid-height, psi = -1, k = 23.9), or,
+    sagging with a free strip of height b on top, about the walls' mid-height, k = 0.57 - 0.21
+    psi + 0.07 psi^2 over b, psi = 1 - 2 b / t_d (EN 1993-1-5 Table 4.2); with the whole largest shear V in the two
     walls, tau = 1.5 (V / 2) / (t_d t), critical at k_s = 5.35 over t_d; the two combined
     linearly, 1 / P = 1 / P_sigma + 1 / P_tau. ``band-wall-crippling``: each wall carries at
     most half of a load line on its edge (the layers take the rest), holding
@@ -290,9 +340,12 @@ def wall_buckling_modes(
     cantilever's tip load is at the walls' ends (k_F of an end, type (c); no moment there)."""
     E, nu, t, td = band.E, band.nu, band.t, band.depth
     Ls = length if span is None else span
-    sigma = E * (form.moment * Ls) * td / (2.0 * whole * length)  # MPa per N at the wall's edge
+    # MPa per N at the wall's edge about its mid-height, E kappa t_d / 2, kappa = M / (D L)
+    sigma = E * (form.moment * Ls) * td / (2.0 * whole * length)
     if top_free is None or form.clamped:
-        P_sigma = plate_buckling_stress(K_BENDING_HINGED, E, nu, t, td) / sigma
+        # k(psi) / (1 + u): 23.9 about the walls' own mid-height (u = 0, psi = -1)
+        k_w = K_BENDING_HINGED if composite is None else composite_factor(composite)
+        P_sigma = plate_buckling_stress(k_w, E, nu, t, td) / sigma
     else:
         psi = 1.0 - 2.0 * top_free / td
         k = 0.57 - 0.21 * psi + 0.07 * psi * psi
@@ -364,7 +417,12 @@ def capacity_modes(
         )
         if form.kind != "inplane":
             top = a.h if along == 1 else None  # layer 2 along eta: the strip above layer 1
-            modes.update(wall_buckling_modes(form, band, whole, length, span, top, s_s))
+            # the layer along eta bending as one section with the walls, where the compressed
+            # edge is the one away from it: layer 1's sagging (three-, four-point), layer 2's
+            # hogging (a cantilever); the edge beside the layer gains from it (10.5)
+            away = (along == 0) != bool(form.clamped)
+            u = composite_share((n + 1.0) * W, band.depth, a.h, c.h) if away else None
+            modes.update(wall_buckling_modes(form, band, whole, length, span, top, s_s, u))
     if form.kind == "inplane":
         modes.update(platen_buckling_modes(E[0], nu, t[0], W, n, a.K_S, c.K_C))
     else:

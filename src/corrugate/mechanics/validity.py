@@ -2,11 +2,14 @@
 
 One source, ``data/validity.toml``: for each model (the homogenised springs, the local terms of
 the three-point, four-point and cantilever tests, the off-axis finite-panel factors, the wheel
-test's factor) the rows of docs/validation/*.csv it comes from and, per design variable, the
-least and greatest value of its sample: ``facets`` (n + 1 of a layer), ``W`` (mm), ``alpha``
-(deg), ``t_over_W``, ``hub`` (the axle hole's diameter over the disc's) and ``L_over_h`` (the
-span over the corrugation depth, information only). ``enforce`` names the ends that the solver
-makes constraints by default (:mod:`corrugate.solver.validity`; docs/spec.md, ``trust``).
+test's factor, the capacity model's facet modes and the band's walls' modes) the rows of
+docs/validation/*.csv it comes from and, per design variable, the least and greatest value of
+its sample: ``facets`` (n + 1 of a layer), ``W`` (mm), ``alpha`` (deg), ``t_over_W``, ``hub``
+(the axle hole's diameter over the disc's), ``t`` (the sheet's thickness, mm), ``td_over_h1``
+(the folded thickness t_d = h1 + h2 over layer 1's depth h1: how high the band's walls stand
+above layer 1) and ``L_over_h`` (the span over the corrugation depth, information only).
+``enforce`` names the ends that the solver makes constraints by default
+(:mod:`corrugate.solver.validity`; docs/spec.md, ``trust``).
 tests/mechanics/test_validity.py recomputes every range from the CSVs.
 """
 
@@ -28,6 +31,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "alpha": ("fold angle alpha", " deg"),
     "t_over_W": ("t/W", ""),
     "hub": ("axle hole over disc diameter", ""),
+    "t": ("sheet thickness t", " mm"),
+    "td_over_h1": ("folded thickness over layer 1's depth t_d/h1", ""),
     "L_over_h": ("span over corrugation depth L/h", ""),
 }
 

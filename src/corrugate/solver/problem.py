@@ -357,7 +357,16 @@ class Problem:
         v_n = (v.n.min, v.n.max)
         W_var = DesignVariable(v.W.min, v.W.max, v.W.step)
         a_var = DesignVariable(v.alpha.min, v.alpha.max, v.alpha.step)
-        ranges = validity_constraints(cons, W_var, a_var, v_n, cands, spec.fabrication.max_t_over_W)
+        ranges = validity_constraints(
+            cons,
+            W_var,
+            a_var,
+            v_n,
+            cands,
+            spec.fabrication.max_t_over_W,
+            _joint(spec.joint, layout),
+            spec.layers == "identical",
+        )
         if spec.trust == "certified":
             cons.extend(ranges)
         o = spec.objective

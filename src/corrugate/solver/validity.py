@@ -20,7 +20,14 @@ The quantities (over the two layers of a design):
 * ``alpha_least``, ``alpha_most`` (deg), ``W_least``, ``W_most`` (mm): the least and greatest
   fold angle and facet width of a layer;
 * ``tw_least``, ``tw_most``: the least and greatest t / W of a layer;
-* ``hub``: the central axle hole's diameter over the disc's diameter Lx (0 without one).
+* ``hub``: the central axle hole's diameter over the disc's diameter Lx (0 without one);
+* ``t_least``, ``t_most`` (mm): the thinnest and thickest sheet of the two layers;
+* ``td_h1``: the folded thickness t_d = h1 + h2 over layer 1's depth h1 (h = W cos(alpha/2),
+  the zig-zag's), how high the band's walls stand above layer 1.
+
+A load capacity (``Pmax``: "holds X N", and the load a deflection bound holds) uses the capacity
+model's ranges too: its facet modes' (``capacity``) and, with a bonded band in a bending test,
+its walls' (``band-walls``; docs/load_cases.md 10).
 """
 
 from __future__ import annotations
@@ -66,6 +73,10 @@ _KINDS: dict[tuple[str, End], tuple[str, str, str]] = {
     ("t_over_W", "max"): ("tw_most", "greatest t/W of a layer", ""),
     ("hub", "min"): ("hub", "axle hole over disc diameter", ""),
     ("hub", "max"): ("hub", "axle hole over disc diameter", ""),
+    ("t", "min"): ("t_least", "thinnest sheet t of a layer", "mm"),
+    ("t", "max"): ("t_most", "thickest sheet t of a layer", "mm"),
+    ("td_over_h1", "min"): ("td_h1", "folded thickness over layer 1's depth t_d/h1", ""),
+    ("td_over_h1", "max"): ("td_h1", "folded thickness over layer 1's depth t_d/h1", ""),
 }
 #: The quantities of this module.
 VALIDITY: frozenset[Quantity] = frozenset(Quantity(k) for k, _, _ in _KINDS.values())
@@ -136,8 +147,18 @@ def _values(kind: str, layers: Sequence[Any], t: tuple[float, float], Lx: Any, h
         return np.minimum(t[0] / W1, t[1] / W2)
     if kind == "tw_most":
         return np.maximum(t[0] / W1, t[1] / W2)
+    if kind in ("t_least", "t_most"):
+        pick = min if kind == "t_least" else max
+        return np.full(np.shape(n1), pick(t), dtype=np.float64)
+    if kind == "td_h1":
+        return 1.0 + _depth(W2, a2) / _depth(W1, a1)
     assert kind == "hub", kind
     return hub / np.asarray(Lx, dtype=np.float64)
+
+
+def _depth(W: Any, alpha: Any) -> Any:
+    """The zig-zag's depth h = W cos(alpha/2) (mm; alpha in deg)."""
+    return W * np.cos(np.radians(alpha) / 2.0)
 
 
 def _layers(x: Any) -> list[tuple[FloatArray, FloatArray, FloatArray]]:
@@ -160,8 +181,14 @@ def _over(over: OverBoxes, q: Quantity) -> Pair:
     hub = _hub_diameter(over.problem.layout, None)
     t = (over.c1.t, over.c2.t)
     Lx_lo, Lx_hi = over.Lx
-    lo = _values(q.kind, _layers(over.lo), t, Lx_hi, hub)
-    hi = lo if over.point else _values(q.kind, _layers(over.hi), t, Lx_lo, hub)
+    lo_x, hi_x = _layers(over.lo), _layers(over.hi)
+    if q.kind == "td_h1":  # grows with layer 2's depth, falls with layer 1's
+        h1 = (_depth(lo_x[0][1], hi_x[0][2]), _depth(hi_x[0][1], lo_x[0][2]))
+        h2 = (_depth(lo_x[1][1], hi_x[1][2]), _depth(hi_x[1][1], lo_x[1][2]))
+        lo_td, hi_td = 1.0 + h2[0] / h1[1], 1.0 + h2[1] / h1[0]
+        return np.asarray(lo_td, dtype=np.float64), np.asarray(hi_td, dtype=np.float64)
+    lo = _values(q.kind, lo_x, t, Lx_hi, hub)
+    hi = lo if over.point else _values(q.kind, hi_x, t, Lx_lo, hub)
     if q.kind.startswith("tw_"):  # falls with W
         lo, hi = hi, lo
     return np.asarray(lo, dtype=np.float64), np.asarray(hi, dtype=np.float64)
@@ -171,18 +198,35 @@ for _kind, _label, _unit in dict.fromkeys(_KINDS.values()):
     register(Evaluator((_kind,), _at, _over, label=_label, unit=_unit))
 
 
-def models_of(q: Quantity) -> list[str]:
+def models_of(q: Quantity, joint: str = "none") -> list[str]:
     """The models (names in ``data/validity.toml``) whose range a bound on ``q`` relies on:
-    its test's, the off-axis factors' off the crease directions (not the wheel's, whose factor
-    was measured at 45 deg), and the springs' for every behavioural quantity."""
+    for a load capacity (``Pmax``) the capacity model's facet modes' (``capacity``) and, with
+    the layers joined by a band (``joint`` not ``none``) in a bending test, its walls'
+    (``band-walls``); its test's, the off-axis factors' off the crease directions (not the
+    wheel's, whose factor was measured at 45 deg), and the springs' for every behavioural
+    quantity."""
     if q.eta is None or q.kind == "length":
         return []
     known = model_ranges()
-    out = [q.test] if q.test is not None and q.test in known else []
+    out = []
+    if q.kind == "Pmax":
+        out.append("capacity")
+        if joint != "none" and q.test is not None and _bending(q.test):
+            out.append("band-walls")
+    if q.test is not None and q.test in known:
+        out.append(q.test)
     if q.eta % 90 != 0 and q.test != "wheel":
         out.append("off-axis")
     out.append("springs")
     return out
+
+
+def _bending(test: str) -> bool:
+    """Whether the load case ``test`` bends the panel (its walls' buckling modes apply)."""
+    from corrugate.mechanics.behaviours import get_load_case
+
+    form = get_load_case(test).form
+    return form is not None and form.kind != "inplane"
 
 
 def _can_cross(
@@ -194,8 +238,10 @@ def _can_cross(
     n: tuple[int, int],
     cands: Sequence[Candidate],
     max_t_over_W: float,
+    identical: bool = False,
 ) -> bool:
-    """Whether some design within the variable bounds may lie beyond ``bound``."""
+    """Whether some design within the variable bounds may lie beyond ``bound`` (``identical``
+    layers: t_d / h1 is 2)."""
     if variable == "facets":
         return n[0] + 1 < bound if end == "min" else n[1] + 1 > bound
     if variable == "alpha":
@@ -207,6 +253,15 @@ def _can_cross(
         if end == "min":
             return min(ts) / W.top < bound
         return min(max(ts) / W.lo, max_t_over_W) > bound
+    if variable == "t":
+        ts = [c.t for c in cands]
+        return min(ts) < bound if end == "min" else max(ts) > bound
+    if variable == "td_over_h1":
+        if identical:
+            return bound > 2.0 if end == "min" else bound < 2.0
+        h_lo = W.lo * math.cos(math.radians(alpha.top) / 2.0)
+        h_hi = W.top * math.cos(math.radians(alpha.lo) / 2.0)
+        return 1.0 + h_lo / h_hi < bound if end == "min" else 1.0 + h_hi / h_lo > bound
     return True  # hub: depends on the folded diameter
 
 
@@ -217,16 +272,19 @@ def validity_constraints(
     n: tuple[int, int],
     cands: Sequence[Candidate],
     max_t_over_W: float,
+    joint: str = "none",
+    identical: bool = False,
 ) -> list[Constraint]:
     """The validated-range constraints of the models ``constraints`` use (module docstring),
-    given the variable bounds ``W``, ``alpha``, ``n`` (lo, hi), the candidate sheets and the
-    fabrication's largest t / W."""
+    given the variable bounds ``W``, ``alpha``, ``n`` (lo, hi), the candidate sheets, the
+    fabrication's largest t / W, how the layers are ``joint``-ed and whether they are
+    ``identical``."""
     from corrugate.solver.problem import Constraint
 
     ranges = model_ranges()
     used: list[str] = []
     for c in constraints:
-        for m in models_of(c.quantity):
+        for m in models_of(c.quantity, joint):
             if m not in used:
                 used.append(m)
     tests = [m for m in used if m not in ("off-axis", "springs")]
@@ -242,7 +300,7 @@ def validity_constraints(
             values = [ranges[r].ranges[variable][0 if end == "min" else 1] for r in stating]
             bound = max(values) if end == "min" else min(values)
             model = ranges[stating[values.index(bound)]]
-            if not _can_cross(variable, end, bound, W, alpha, n, cands, max_t_over_W):
+            if not _can_cross(variable, end, bound, W, alpha, n, cands, max_t_over_W, identical):
                 continue
             kind = _KINDS[(variable, end)][0]
             name = f"validity.{model.name}.{variable}.{end} ({model.sentence(variable, end)})"
