@@ -149,3 +149,28 @@ def test_an_inline_springback_keeps_the_tolerance_on_E() -> None:
     assert c.material.calibration is not None and not c.material.calibration.E_measured
     E = sheet(c, p.tolerances).material.E
     assert (E.lo, E.hi) == (pytest.approx(2430.0), pytest.approx(2970.0))
+
+
+def test_the_answer_names_the_E_the_certificate_was_bounded_over(tmp_path: Path) -> None:
+    """Under the default tolerances a measured E's interval replaces +-10 % E (the sheet of the
+    tolerance box spans the calibrated 2500-2900 MPa, not 2430-2970): the answer does not
+    name the +-10 %, it says the calibrated interval; stated inline values keep the +-10 % E
+    and the answer says it."""
+    from corrugate.solver.tolerance_box import sheet
+
+    (tmp_path / "corrugate-materials.toml").write_text(
+        CALIBRATION.format(lo=2500.0, hi=2900.0, extra="")
+    )
+    text = example_text("blimp_gripper").replace('"dura-lar"', '"my-sheet"', 1)
+    spec = tmp_path / "gripper.toml"
+    spec.write_text(text.replace('tolerances = "none"', "", 1))
+    p = Problem.from_spec(load_spec(spec))
+    (c,) = p.candidates
+    E = sheet(c, p.tolerances).material.E
+    assert (E.lo, E.hi) == (pytest.approx(2500.0), pytest.approx(2900.0))
+    assert p.tolerance_sentence == (
+        "for every part within +-3 deg, +-0.1 mm, +-5 % thickness, E within its calibrated interval"
+    )
+    assert "% E" not in p.tolerance_sentence
+    stated = _inline_problem("")
+    assert stated.tolerance_sentence.endswith("+-5 % thickness, +-10 % E")

@@ -144,7 +144,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     asm = a.assembly
     cert = "certified optimal" if sol.certified else "NOT certified"
     if not p.tolerances.nominal:  # docs/tolerances.md
-        cert += f" {p.tolerances.sentence}"
+        cert += f" {p.tolerance_sentence}"
     if p.calibrated:  # over the measured intervals (docs/calibration.md 9)
         cert += f" ({html.escape(p.calibration_words)})"
     if sol.extrapolated:

@@ -193,6 +193,17 @@ class Problem:
         return any(c.material.calibration is not None for c in self.candidates)
 
     @property
+    def tolerance_sentence(self) -> str:
+        """What the certificate covers of the tolerances (:meth:`WorstCase.sentence_for`): the
+        +-dE of ``[tolerances]`` is not named when every candidate's E is measured (its
+        calibrated interval replaces it, :mod:`~.tolerance_box`)."""
+        measured = all(
+            c.material.calibration is not None and c.material.calibration.E_measured
+            for c in self.candidates
+        )
+        return self.tolerances.sentence_for(measured)
+
+    @property
     def calibration_words(self) -> str:
         """``calibrated E ... from my-dura-lar, 2026-12-06, 40 measurements`` for each calibrated
         material of the candidates ('' for none; :meth:`corrugate.materials.calibrated.

@@ -262,7 +262,7 @@ class Solution:
         p = self.problem
         head = "certified" if self.certified else "not certified"
         if not p.tolerances.nominal:  # every directional bound over the tolerance box
-            head += f" {p.tolerances.sentence}"
+            head += f" {p.tolerance_sentence}"
         if p.calibrated:  # and over the measured intervals (docs/calibration.md 9)
             head += f" ({p.calibration_words})"
         head += f" under the {p.model} model"
@@ -360,7 +360,7 @@ class Solution:
             "status": self.status,
             "certified": self.certified,
             "certificate": self.certificate,
-            "tolerances": p.tolerances.as_dict(),
+            "tolerances": {**p.tolerances.as_dict(), "covers": p.tolerance_sentence},
             **({"calibration": p.calibration_words} if p.calibrated else {}),
             "gap": self.gap if math.isfinite(self.gap) else None,  # JSON: null, unbounded
             "model": p.model,

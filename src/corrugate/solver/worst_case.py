@@ -57,6 +57,17 @@ class WorstCase:
             return "for the nominal part"
         return f"for every part within {self.words}"
 
+    def sentence_for(self, E_measured: bool) -> str:
+        """:attr:`sentence` for sheets whose E is measured (``E_measured``: every candidate a
+        calibrated material with a measured E, whose interval replaces the tolerance's +-dE,
+        docs/calibration.md 9): the E half-width is then not named."""
+        if self.nominal or not E_measured:
+            return self.sentence
+        return (
+            f"for every part within +-{self.alpha:g} deg, +-{self.W:g} mm, "
+            f"+-{100 * self.t:g} % thickness, E within its calibrated interval"
+        )
+
     def as_dict(self) -> dict[str, object]:
         """The JSON of the answer and design.json (units in the keys)."""
         return {
