@@ -383,7 +383,7 @@ def test_a_capacity_under_tolerances_is_judged_at_its_stated_safety_factor(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """Under tolerances (docs/tolerances.md) the capacity is the worst part's, below the nominal
-    first failure over the factor: the shipped chassis plate's design.json has 56.92 N nominal
+    first failure over the factor: the chassis plate's design.json of 2026-12-07 had 56.92 N nominal
     (yield) and a capacity of 15.258 N at safety factor 2, whose quotient 3.73 verify took as the
     factor before issue 35. design.json now states the factor; verify reads it: the stand-in's
     2.375 N extrapolated over 2 is 1.1875 N (over the quotient 1.2 / 0.3 = 4 it would be 0.594 N,
