@@ -29,21 +29,12 @@ from corrugate.calibration.coupons import design_kit
 from corrugate.calibration.fe_strip import strip_sag
 from corrugate.calibration.fit import fit_measurements
 from corrugate.calibration.virtual import virtual_measurements
+from corrugate.fea.extrapolate import richardson
 from corrugate.materials.library import get_material
 
 TRUTH = {"along": 3100.0, "across": 2900.0, "k": 0.1, "angle": 84.0}
 #: The strips' longest length on a 12 x 12 in mat (as benchmarks/calibration_coverage.py).
 USABLE = 11.5 * 25.4 - 2 * 5.0 - 2 * 25.0
-
-
-def richardson(values: list[float]) -> float:
-    """The limit of a series on meshes each twice as fine, from its last three values (the
-    finest value when the steps do not shrink)."""
-    a, b, c = values[-3:]
-    d1, d2 = b - a, c - b
-    if d2 == 0 or d1 / d2 <= 1:
-        return c
-    return c + d2 / (d1 / d2 - 1)
 
 
 def main() -> None:
@@ -59,17 +50,20 @@ def main() -> None:
     for f in kit.flat:
         E = TRUTH[f.direction]
         for L, tip in ((f.overhang, 0.0), (f.coin_overhang, f.coins * f.coin_g)):
-            series = []
+            series: dict[int, float] = {}
             for nx in meshes:
                 r = strip_sag(mat, E, kit.t, f.width, L, tip, nx, 2)
-                series.append(r.sag)
+                series[nx] = r.sag
                 print(
                     f"{f.direction} free {L:g} mm tip {tip:g} g: {nx} x 2 sag {r.sag:.4f} mm "
                     f"({r.seconds:.1f} s)",
                     flush=True,
                 )
-            steps = [b - a for a, b in pairwise(series)]
-            fe[(f.direction, L, tip)] = richardson(series)
+            steps = [b - a for a, b in pairwise(series.values())]
+            # the limit of the three finest meshes (fea.extrapolate); the finest where the
+            # series is not asymptotic
+            limit = richardson(series)
+            fe[(f.direction, L, tip)] = series[meshes[-1]] if limit is None else limit[0]
             print(
                 f"  steps {', '.join(f'{s:+.4f}' for s in steps)}; estimate "
                 f"{fe[(f.direction, L, tip)]:.4f} mm",
