@@ -193,15 +193,19 @@ class Problem:
         return any(c.material.calibration is not None for c in self.candidates)
 
     @property
-    def tolerance_sentence(self) -> str:
-        """What the certificate covers of the tolerances (:meth:`WorstCase.sentence_for`): the
-        +-dE of ``[tolerances]`` is not named when every candidate's E is measured (its
-        calibrated interval replaces it, :mod:`~.tolerance_box`)."""
-        measured = all(
+    def E_measured(self) -> bool:
+        """Whether every candidate sheet's E is measured (a calibrated entry): its interval
+        then replaces the +-dE of ``[tolerances]`` (:mod:`~.tolerance_box`)."""
+        return all(
             c.material.calibration is not None and c.material.calibration.E_measured
             for c in self.candidates
         )
-        return self.tolerances.sentence_for(measured)
+
+    @property
+    def tolerance_sentence(self) -> str:
+        """What the certificate covers of the tolerances (:meth:`WorstCase.sentence_for`): the
+        +-dE is not named when every candidate's E is measured (:attr:`E_measured`)."""
+        return self.tolerances.sentence_for(self.E_measured)
 
     @property
     def calibration_words(self) -> str:

@@ -360,7 +360,7 @@ class Solution:
             "status": self.status,
             "certified": self.certified,
             "certificate": self.certificate,
-            "tolerances": {**p.tolerances.as_dict(), "covers": p.tolerance_sentence},
+            "tolerances": p.tolerances.as_dict(p.E_measured),
             **({"calibration": p.calibration_words} if p.calibrated else {}),
             "gap": self.gap if math.isfinite(self.gap) else None,  # JSON: null, unbounded
             "model": p.model,

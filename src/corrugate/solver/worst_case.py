@@ -43,12 +43,11 @@ class WorstCase:
     @property
     def words(self) -> str:
         """E.g. ``+-3 deg, +-0.1 mm, +-5 % thickness, +-10 % E``; ``nominal`` when all zero."""
-        if self.nominal:
-            return "nominal"
-        return (
-            f"+-{self.alpha:g} deg, +-{self.W:g} mm, +-{100 * self.t:g} % thickness, "
-            f"+-{100 * self.E:g} % E"
-        )
+        return "nominal" if self.nominal else self._words(f"+-{100 * self.E:g} % E")
+
+    def _words(self, E_words: str) -> str:
+        """The half-widths of alpha, W and t in words, then ``E_words``."""
+        return f"+-{self.alpha:g} deg, +-{self.W:g} mm, +-{100 * self.t:g} % thickness, {E_words}"
 
     @property
     def sentence(self) -> str:
@@ -63,20 +62,18 @@ class WorstCase:
         docs/calibration.md 9): the E half-width is then not named."""
         if self.nominal or not E_measured:
             return self.sentence
-        return (
-            f"for every part within +-{self.alpha:g} deg, +-{self.W:g} mm, "
-            f"+-{100 * self.t:g} % thickness, E within its calibrated interval"
-        )
+        return f"for every part within {self._words('E within its calibrated interval')}"
 
-    def as_dict(self) -> dict[str, object]:
-        """The JSON of the answer and design.json (units in the keys)."""
+    def as_dict(self, E_measured: bool = False) -> dict[str, object]:
+        """The JSON of the answer and design.json (units in the keys); ``covers`` as
+        :meth:`sentence_for` says it."""
         return {
             "nominal": self.nominal,
             "alpha_deg": self.alpha,
             "W_mm": self.W,
             "t_rel": self.t,
             "E_rel": self.E,
-            "covers": self.sentence,
+            "covers": self.sentence_for(E_measured),
         }
 
 
