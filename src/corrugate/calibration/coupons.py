@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from corrugate.calibration.crease import compliance
-from corrugate.calibration.elastica import drop_ratio, rigidity
+from corrugate.calibration.elastica import Anticlastic, drop_ratio, rigidity
 from corrugate.core.errors import InputError
 from corrugate.core.parameters import PARAMETERS
 from corrugate.fabrication.model import Line, Part, Role
@@ -67,10 +67,12 @@ def strip_weight(material: Material, t: float, b: float) -> float:
 
 def expected_sag(E: float, material: Material, t: float, b: float, L: float, tip_g: float) -> float:
     """The tip's drop (mm) of a strip of free length ``L`` (mm) under its weight and ``tip_g``
-    grams at its tip, for modulus ``E`` (MPa): the elastica."""
+    grams at its tip, for modulus ``E`` (MPa): the elastica with the strip's anticlastic moment
+    law (:class:`~corrugate.calibration.elastica.Anticlastic`)."""
     EI = rigidity(E, material.nu, b, t)
     q = strip_weight(material, t, b)
-    return L * drop_ratio(q * L**3 / EI, tip_g * GRAVITY * L**2 / EI)
+    law = Anticlastic.for_strip(b, t, L, material.nu)
+    return L * drop_ratio(q * L**3 / EI, tip_g * GRAVITY * L**2 / EI, law)
 
 
 @dataclass(frozen=True, slots=True)

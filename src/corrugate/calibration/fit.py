@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 
 from corrugate.calibration.coupons import GRAVITY
 from corrugate.calibration.crease import angle_from_length, compliance
-from corrugate.calibration.elastica import drop_ratios, rigidity
+from corrugate.calibration.elastica import Anticlastic, drop_ratios, rigidity
 from corrugate.calibration.measurements import CreaseTest, FlatTest, Measurements
 from corrugate.core.errors import InputError
 from corrugate.materials.library import Material
@@ -62,14 +62,15 @@ MISFIT = 4.0
 
 @lru_cache(maxsize=256)
 def _table(
-    q: float, P: float, L: float, EI_ref: float
+    q: float, P: float, L: float, EI_ref: float, law: Anticlastic
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """(log E/E_ref, log sag) of a strip (weight q N/mm, tip load P N, free length L mm) over
-    E_ref / SPAN .. E_ref * SPAN, where EI_ref is the rigidity at E_ref (N mm^2)."""
+    """(log E/E_ref, log sag) of a strip (weight q N/mm, tip load P N, free length L mm, moment
+    law ``law``) over E_ref / SPAN .. E_ref * SPAN, where EI_ref is the plate rigidity at E_ref
+    (N mm^2)."""
     s = np.geomspace(1.0 / SPAN, SPAN, 81)  # load factors: E = E_ref / s
     a, b = q * L**3 / EI_ref, P * L**2 / EI_ref
     keep = s * max(a, b) <= 1.0e4
-    w = L * drop_ratios(s[keep], a, b)
+    w = L * drop_ratios(s[keep], a, b, law)
     logE = -np.log(s[keep])
     return logE[::-1].copy(), np.log(w[::-1])
 
@@ -78,13 +79,15 @@ def sag_model(
     test: FlatTest, E: NDArray[np.float64] | float, material_density: float, t: float, nu: float
 ) -> NDArray[np.float64]:
     """The elastica's sag (mm) of ``test``'s set-up at modulus ``E`` (MPa; an array), for a sheet
-    of density (g/mm^3) and thickness ``t`` (mm); nan outside the tabulated moduli."""
+    of density (g/mm^3) and thickness ``t`` (mm), the strip's anticlastic moment law included
+    (:class:`~corrugate.calibration.elastica.Anticlastic`); nan outside the tabulated moduli."""
     from scipy.interpolate import CubicSpline
 
     E_ref = 1000.0
     q = material_density * test.width * t * GRAVITY
     EI_ref = rigidity(E_ref, nu, test.width, t)
-    logE, logw = _table(q, test.tip_g * GRAVITY, test.overhang, EI_ref)
+    law = Anticlastic.for_strip(test.width, t, test.overhang, nu)
+    logE, logw = _table(q, test.tip_g * GRAVITY, test.overhang, EI_ref, law)
     x = np.log(np.asarray(E, dtype=np.float64) / E_ref)
     out = np.exp(CubicSpline(logE, logw)(x))
     return np.where((x >= logE[0]) & (x <= logE[-1]), out, np.nan)

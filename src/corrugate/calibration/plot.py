@@ -6,8 +6,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from corrugate.calibration.coupons import GRAVITY
-from corrugate.calibration.elastica import drop_ratio, rigidity
+from corrugate.calibration.coupons import expected_sag
 from corrugate.calibration.fit import Fit
 
 if TYPE_CHECKING:
@@ -39,10 +38,7 @@ def fit_figure(fit: Fit) -> Figure:
             )
             lengths = np.linspace(0.5 * test.overhang, 1.25 * test.overhang, 12)
             for E, style in ((mod.E, "-"), (mod.lo, ":"), (mod.hi, ":")):
-                EI = rigidity(E, m.material.nu, test.width, m.t)
-                q = m.material.density * test.width * m.t * GRAVITY
-                P = test.tip_g * GRAVITY
-                w = [L * drop_ratio(q * L**3 / EI, P * L**2 / EI) for L in lengths]
+                w = [expected_sag(E, m.material, m.t, test.width, L, test.tip_g) for L in lengths]
                 ax.plot(lengths, w, style, color=color, lw=1)
         ax.set_xlabel("free length (mm)")
         ax.set_ylabel("sag (mm)")
