@@ -176,13 +176,16 @@ def main(argv: list[str] | None = None) -> None:
     """Console entry point: runs the app, turning every user error into one line and exit code 2.
 
     Usage errors found by the option parser (unknown option, missing value) also exit with 2;
-    Ctrl-C (SIGINT) prints :data:`INTERRUPTED` and exits with 130. The process collects its
+    Ctrl-C (SIGINT) prints :data:`INTERRUPTED` and exits with 130; a reader that closes the
+    pipe early leaves the command to finish quietly (:mod:`corrugate.cli.closed_pipe`). The process collects its
     garbage cycles less often (:data:`GC_THRESHOLDS`) and not at all at its exit
     (:func:`_freeze_at_exit`), and imports matplotlib, when a command draws, without the help
     text of its artists' ``set`` methods (:func:`corrugate.core.plotting.lean_import`).
     """
+    from corrugate.cli.closed_pipe import pipe_safe_stdout
     from corrugate.core.plotting import lean_import
 
+    pipe_safe_stdout()
     lean_import()
     gc.set_threshold(*GC_THRESHOLDS)
     atexit.unregister(_freeze_at_exit)  # once, however often main runs in one process
