@@ -6,9 +6,9 @@ imports ``importlib.metadata`` to do so, with the email parser, zipfile, csv and
 imports. No plugin is part of corrugate, and a command's process (:func:`corrugate.cli.main`)
 loads none: while pydantic's loader module is imported, ``importlib.metadata`` is a stand-in
 whose ``entry_points`` finds no entry point (any other name loads the real module), so the
-loader keeps an empty plugin table and the real module is never imported. 0.012 s of CPU less
-for ``corrugate design examples/blimp_gripper.toml`` (0.302 s against 0.315 s, medians of 15
-interleaved runs on a loaded 2-core machine; issue 39). A program importing the package keeps
+loader keeps an empty plugin table and the real module is never imported. 0.009 s of CPU less
+for ``corrugate design examples/blimp_gripper.toml`` (0.261 s against 0.270 s, this function
+called or not, medians of 21 interleaved runs on a 2-core machine at load 6-7; issue 39). A program importing the package keeps
 pydantic's plugins; so does a process whose environment sets ``PYDANTIC_DISABLE_PLUGINS``
 (pydantic's own switch: the user's choice stands).
 """
