@@ -99,9 +99,9 @@ COMMANDS: list[tuple[str, list[str], float | None]] = [
     ),
     # What the libraries alone cost, so the targets can be read against what no code of ours
     # can remove: the imports `analyze` and `design --out` need, and nothing else.
-    ("import numpy, typer, rich.console (analyze's libraries)", ["-c", ANALYZE_LIBS], None),
-    ("import numpy, pydantic, typer, matplotlib, ezdxf (design's)", ["-c", DESIGN_LIBS], None),
-    ("import numpy, typer, rich, pydantic's models (design's answer)", ["-c", ANSWER_LIBS], None),
+    ("import numpy (1 BLAS thread), typer, rich (analyze's libraries)", ["-c", ANALYZE_LIBS], None),
+    ("import numpy (1 BLAS thread), pydantic, typer, matplotlib, ezdxf", ["-c", DESIGN_LIBS], None),
+    ("import numpy (1 BLAS thread), typer, rich, pydantic's models", ["-c", ANSWER_LIBS], None),
 ]
 #: Indices in COMMANDS of ``design --out`` and of its import floor, of ``design`` and of its.
 DESIGN, DESIGN_FLOOR = 4, 6
