@@ -22,7 +22,10 @@ with the ratio to the first: ``--base REF`` puts a ``git archive`` of ``REF`` (e
 unpacked under a temporary folder, first and this checkout's ``src`` second (the before and after
 of a change in one run); ``--src`` names trees by hand. The last lines put each tree's
 ``design --out`` and ``design`` medians beside the import floors measured in the same run (what
-importing their libraries costs, which no code of ours can remove). A floor is those bare
+importing their libraries costs, which no code of ours can remove). The floors import numpy as a
+command does, with one BLAS thread, and not pydantic's plugin loader (issue 39:
+``corrugate.core.blas``, ``corrugate.core.plugins``); a tree from before that change pays for
+both, so its distance to the floor includes them. A floor is those bare
 imports, exit included: ``design`` itself skips three parts of it, the interpreter's collection
 at exit (``corrugate.cli.main`` freezes the collector's objects then), the execution of
 fontTools' subsetter, which matplotlib's PDF backend imports but uses only for Type 42 fonts
@@ -53,17 +56,22 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 BLIMP = ROOT / "examples" / "blimp_gripper.toml"
 
-ANALYZE_LIBS = "import numpy, typer, rich.console, rich.table"
-#: The import floor of ``design`` without files (issue 39): its libraries, pydantic's model
-#: machinery and the plugin loader that building a model imports (``importlib.metadata``) included.
-ANSWER_LIBS = (
-    "import numpy, typer, rich.console, rich.table, pydantic.main, pydantic.fields, "
-    "pydantic.plugin._loader"
+#: How a command's process imports numpy (issue 39): its BLAS with one thread
+#: (``corrugate.core.blas``); a floor imports it so too, or it charges the floor for threads the
+#: command never starts.
+ONE_BLAS_THREAD = "import os; os.environ['OPENBLAS_NUM_THREADS'] = '1'; "
+ANALYZE_LIBS = ONE_BLAS_THREAD + "import numpy, typer, rich.console, rich.table"
+#: The import floor of ``design`` without files (issue 39): its libraries and pydantic's model
+#: machinery, without the plugin loader (a command's process never imports it:
+#: ``corrugate.core.plugins``).
+ANSWER_LIBS = ONE_BLAS_THREAD + (
+    "import numpy, typer, rich.console, rich.table, pydantic.main, pydantic.fields, tomllib"
 )
 #: The import floor of ``design --out`` (issue 24): every library it draws and writes with.
-DESIGN_LIBS = (
-    "import numpy, pydantic, typer, rich.console, rich.table, matplotlib.figure, "
-    "matplotlib.backends.backend_agg, matplotlib.backends.backend_pdf, mpl_toolkits.mplot3d, ezdxf"
+DESIGN_LIBS = ONE_BLAS_THREAD + (
+    "import numpy, pydantic.main, pydantic.fields, typer, rich.console, rich.table, "
+    "matplotlib.figure, matplotlib.backends.backend_agg, matplotlib.backends.backend_pdf, "
+    "mpl_toolkits.mplot3d, ezdxf"
 )
 
 #: (label, arguments after ``python``, target CPU seconds or None); "{out}" is a new empty folder.
@@ -91,9 +99,9 @@ COMMANDS: list[tuple[str, list[str], float | None]] = [
     ),
     # What the libraries alone cost, so the targets can be read against what no code of ours
     # can remove: the imports `analyze` and `design --out` need, and nothing else.
-    ("import numpy, typer, rich.console (analyze's libraries)", ["-c", ANALYZE_LIBS], None),
-    ("import numpy, pydantic, typer, matplotlib, ezdxf (design's)", ["-c", DESIGN_LIBS], None),
-    ("import numpy, typer, rich, pydantic's models (design's answer)", ["-c", ANSWER_LIBS], None),
+    ("import numpy (1 BLAS thread), typer, rich (analyze's libraries)", ["-c", ANALYZE_LIBS], None),
+    ("import numpy (1 BLAS thread), pydantic, typer, matplotlib, ezdxf", ["-c", DESIGN_LIBS], None),
+    ("import numpy (1 BLAS thread), typer, rich, pydantic's models", ["-c", ANSWER_LIBS], None),
 ]
 #: Indices in COMMANDS of ``design --out`` and of its import floor, of ``design`` and of its.
 DESIGN, DESIGN_FLOOR = 4, 6

@@ -5,11 +5,15 @@ Every module under ``src/corrugate`` is parsed with :mod:`ast` (nothing is impor
 counts ``x.y`` when that is a module, else ``x``). The implicit import of a module's own parent
 packages is not an edge (every submodule has it; Python runs a package's ``__init__`` first). ``if TYPE_CHECKING:`` blocks are skipped: they
 never run.
+
+The last tests run a command in a fresh interpreter and list what it imported: ``design``'s
+answer loads none of the writers' libraries (issue 39).
 """
 
 from __future__ import annotations
 
 import ast
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -149,3 +153,83 @@ def test_the_command_line_loads_no_command_work_until_a_command_runs() -> None:
     light = ("names", "core", "cli")  # every other folder holds work a command does
     found = sorted(m for m in loaded if m.split(".")[1] not in light)
     assert found == [], found
+
+
+#: What ``corrugate design`` of the case study must not import (issue 39: its answer within
+#: 0.25 s of CPU): the file writers' libraries, the finite elements, the web app and calibration,
+#: and pydantic's plugin scan (``importlib.metadata``, with the email parser it imports).
+_NOT_FOR_AN_ANSWER = (
+    "matplotlib",
+    "ezdxf",
+    "PIL",
+    "fontTools",
+    "pyparsing",
+    "dask",
+    "gmsh",
+    "importlib.metadata",
+    "email",
+    "corrugate.report",
+    "corrugate.fea",
+    "corrugate.web",
+    "corrugate.calibration",
+)
+
+
+def _command_modules(*argv: str) -> tuple[set[str], int | None]:
+    """The modules a fresh interpreter holds after ``corrugate ARGV`` (run by
+    :func:`corrugate.cli.main`, its output discarded), and its threads then (``/proc``, Linux;
+    None elsewhere)."""
+    code = (
+        "import contextlib, io, os, sys\n"
+        "from corrugate.cli import main\n"
+        "try:\n"
+        "    with contextlib.redirect_stdout(io.StringIO()):\n"
+        f"        main({list(argv)!r})\n"
+        "except SystemExit as exc:\n"
+        "    assert exc.code in (0, None), exc.code\n"
+        "task = '/proc/self/task'\n"
+        "threads = len(os.listdir(task)) if os.path.isdir(task) else None\n"
+        "print(repr((sorted(sys.modules), threads)))\n"
+    )
+    env = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS",)}
+    env.pop("PYDANTIC_DISABLE_PLUGINS", None)
+    out = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        check=True,
+        cwd=SRC.parent,
+        env=env,
+    )
+    modules, threads = ast.literal_eval(out.stdout.strip().splitlines()[-1])
+    return set(modules), threads
+
+
+def test_design_imports_what_its_answer_needs_and_nothing_else() -> None:
+    modules, threads = _command_modules("design", "examples/blimp_gripper.toml")
+    assert "numpy" in modules and "corrugate.solver" in modules  # it did run
+    found = sorted(
+        m for m in modules for name in _NOT_FOR_AN_ANSWER if m == name or m.startswith(name + ".")
+    )
+    assert found == [], found
+    if threads is not None:
+        assert threads == 1  # numpy's BLAS started no thread (corrugate.core.blas)
+
+
+@pytest.mark.slow
+def test_design_out_loads_no_subsetter_no_package_metadata() -> None:
+    """``design --out`` draws and writes every file without pydantic's plugin scan
+    (``importlib.metadata``: no library it draws or writes with imports it) and on one BLAS
+    thread."""
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        modules, threads = _command_modules(
+            "design", "examples/blimp_gripper.toml", "--out", str(Path(tmp) / "set")
+        )
+    assert "matplotlib.figure" in modules and "ezdxf" in modules  # it did write
+    assert not any(
+        m == "importlib.metadata" or m.startswith("importlib.metadata.") for m in modules
+    )
+    if threads is not None:
+        assert threads == 1

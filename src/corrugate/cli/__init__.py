@@ -177,15 +177,21 @@ def main(argv: list[str] | None = None) -> None:
 
     Usage errors found by the option parser (unknown option, missing value) also exit with 2;
     Ctrl-C (SIGINT) prints :data:`INTERRUPTED` and exits with 130; a reader that closes the
-    pipe early leaves the command to finish quietly (:mod:`corrugate.cli.closed_pipe`). The process collects its
-    garbage cycles less often (:data:`GC_THRESHOLDS`) and not at all at its exit
-    (:func:`_freeze_at_exit`), and imports matplotlib, when a command draws, without the help
-    text of its artists' ``set`` methods (:func:`corrugate.core.plotting.lean_import`).
+    pipe early leaves the command to finish quietly (:mod:`corrugate.cli.closed_pipe`). The
+    process collects its garbage cycles less often (:data:`GC_THRESHOLDS`) and not at all at its exit
+    (:func:`_freeze_at_exit`), imports matplotlib, when a command draws, without the help
+    text of its artists' ``set`` methods (:func:`corrugate.core.plotting.lean_import`),
+    numpy with one BLAS thread (:func:`corrugate.core.blas.one_blas_thread`) and pydantic
+    without its plugins (:func:`corrugate.core.plugins.without_pydantic_plugins`).
     """
     from corrugate.cli.closed_pipe import pipe_safe_stdout
+    from corrugate.core.blas import one_blas_thread
     from corrugate.core.plotting import lean_import
+    from corrugate.core.plugins import without_pydantic_plugins
 
     pipe_safe_stdout()
+    one_blas_thread()
+    without_pydantic_plugins()
     lean_import()
     gc.set_threshold(*GC_THRESHOLDS)
     atexit.unregister(_freeze_at_exit)  # once, however often main runs in one process

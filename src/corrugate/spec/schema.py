@@ -348,7 +348,14 @@ Thicknesses = Annotated[float | list[float] | Literal["all"] | None, BeforeValid
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    """The spec's sections: unknown keys refused, values frozen. Each model's validator is built
+    on its first use (``defer_build``), not as its class is defined: a spec is validated by
+    :class:`Spec`'s, built with the sections inside it, so the sections' own validators (about
+    twenty) are never built on the way to an answer (``load_spec`` of the case study after its
+    libraries' import: 0.223 s of CPU against 0.231 s, medians of 15 interleaved runs; issue
+    39). The same schema validates, so the same values and errors come out."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True, defer_build=True)
 
 
 # -- sections ----------------------------------------------------------------------------------
