@@ -17,7 +17,7 @@ from corrugate.mechanics.wheel import VALIDATED_WHEEL
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The discs of wheel_fe.csv whose series at 0 and 45 deg judge settles (docs/load_cases.md 9).
-SETTLED_WHEELS = {"d-example", "d-pp-w9.5-a140", "d-pp-w11.5-a150"}
+SETTLED_WHEELS = {"d-example", "d-pp-n7-w9-a145", "d-pp-w11.5-a150", "d-pp-w9.5-a140"}
 VALIDATION = ROOT / "docs" / "validation"
 
 Layer = tuple[float, int, float, float]  # W mm, n, alpha deg, t mm
@@ -134,8 +134,7 @@ def _settled_wheel_rows() -> list[dict[str, str]]:
         d
         for d, _ in series
         if all(
-            (d, eta) in series
-            and judge(series[d, eta], c * model[d, eta], "min").verdict != "open"
+            (d, eta) in series and judge(series[d, eta], c * model[d, eta], "min").verdict != "open"
             for eta, c in WHEEL_FACTOR.items()
         )
     }
