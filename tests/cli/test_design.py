@@ -258,9 +258,9 @@ def test_a_circle_in_a_bending_test_is_pointed_at_the_wheel(tmp_path: Path, cli:
     assert "constraints.flexural_rigidity[0].test" in err
     assert 'an [[constraints.inplane_stiffness]] bound with test = "wheel"' in err
     good = tmp_path / "good.toml"
-    # trust = "extrapolate": the wheel factor's validated range (polypropylene 0.3 mm discs,
-    # alpha 140-150 deg: docs/load_cases.md 9) leaves out this polycarbonate disc folded to
-    # 60-120 deg, so by default it is certified infeasible, naming the range
+    # trust = "extrapolate": no disc this spec allows (70-80 mm across) lies in the wheel
+    # factor's validated range (docs/load_cases.md 9: W 9-12 mm, alpha 120-150 deg, t / W
+    # 0.025-0.033), so by default it is certified infeasible, naming the range
     wheel = '[[constraints.inplane_stiffness]]\neta = "0 deg"\nmin = "5 N/mm"\ntest = "wheel"\n'
     good.write_text(_DISC + wheel)
     code, out, err = cli(["design", str(good), "--json"])

@@ -17,7 +17,13 @@ from corrugate.mechanics.wheel import VALIDATED_WHEEL
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The discs of wheel_fe.csv whose series at 0 and 45 deg judge settles (docs/load_cases.md 9).
-SETTLED_WHEELS = {"d-example", "d-pp-n7-w9-a145", "d-pp-w11.5-a150", "d-pp-w9.5-a140"}
+SETTLED_WHEELS = {
+    "d-example",
+    "d-pp-n7-w9-a145",
+    "d-pp-w11.5-a150",
+    "d-pp-w12-a120",
+    "d-pp-w9.5-a140",
+}
 VALIDATION = ROOT / "docs" / "validation"
 
 Layer = tuple[float, int, float, float]  # W mm, n, alpha deg, t mm
