@@ -22,7 +22,8 @@ The fixtures are entries of :mod:`corrugate.fea.fixtures` (kind ``outline``), ea
 there; a deck is the mesh, the fixture and a step (:mod:`corrugate.fea.steps`):
 
 * **Wheel** (``wheel``, radial stiffness K(eta), N/mm; :mod:`corrugate.fea.fixtures.wheel`). The hub: a rigid axle pinned through the
-  hole that contains the layout's centre, i.e. every node on that hole's (staircase) edge held
+  hole that contains the layout's centre, i.e. every node on that hole's edge (its arc on a disc
+  mesh, a staircase on the box's mesh) held
   in its three translations, rotations free; without such a hole, every node within
   ``hub_radius`` of the centre (a hub bonded to the disc). The ground: a rigid flat patch under
   the rim on the side opposite to eta, every rim node (a node on the outer edge of the mesh)
