@@ -18,6 +18,7 @@ from corrugate.mechanics.wheel import VALIDATED_WHEEL
 ROOT = Path(__file__).resolve().parents[2]
 #: The discs of wheel_fe.csv whose series at 0 and 45 deg judge settles (docs/load_cases.md 9).
 SETTLED_WHEELS = {
+    "d-dl175-n7-w8-a120",
     "d-example",
     "d-pp-n7-w9-a145",
     "d-pp-w11.5-a150",

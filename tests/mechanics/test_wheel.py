@@ -33,7 +33,14 @@ ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "docs" / "validation" / "wheel_fe.csv"
 PP = get_material("polypropylene")
 #: The discs whose series at 0 and 45 deg judge settles (docs/load_cases.md 9).
-SETTLED = {"d-example", "d-pp-n7-w9-a145", "d-pp-w11.5-a150", "d-pp-w12-a120", "d-pp-w9.5-a140"}
+SETTLED = {
+    "d-dl175-n7-w8-a120",
+    "d-example",
+    "d-pp-n7-w9-a145",
+    "d-pp-w11.5-a150",
+    "d-pp-w12-a120",
+    "d-pp-w9.5-a140",
+}
 
 
 def _rows(every: bool = False) -> list[dict[str, str]]:
@@ -99,7 +106,7 @@ def test_the_factor_holds_every_disc_whose_series_counts() -> None:
     every settled one holds, and every disc's FE at its finest mesh is above the bound. On the
     staircase mesh one series settles (polypropylene 0.5 mm W 10, n 6, alpha 150 at 45 deg;
     docs/load_cases.md 9: the staircase hub and patch make the others turn); on the mesh
-    conforming to the rim and the hole (discs ``d-...``) both directions of five discs settle
+    conforming to the rim and the hole (discs ``d-...``) both directions of six discs settle
     and hold, and the validated range is theirs (the test below)."""
     from corrugate.fea.extrapolate import judge
 
@@ -137,8 +144,9 @@ def _settled() -> set[str]:
 
 def test_the_validated_range_is_the_settled_discs() -> None:
     """Issue 35: the range is the span of the discs whose series at 0 and 45 deg settle, all on
-    the mesh conforming to the rim and the hole (docs/load_cases.md 9): polypropylene 0.3 mm,
-    n 6-7, W 9-12 mm, alpha 120-150 deg, a 6 mm hole in 62.5-77.8 mm; each holds c(eta) x the
+    the mesh conforming to the rim and the hole (docs/load_cases.md 9): polypropylene 0.3 mm and
+    Dura-Lar 0.175 mm, n 6-7, W 8-12 mm, alpha 120-150 deg, a 6 mm hole in 55.4-77.8 mm; each
+    holds c(eta) x the
     model (the test above)."""
     settled = _settled()
     assert settled == SETTLED
@@ -325,7 +333,7 @@ def test_a_wheel_outside_the_sweep_is_not_certified() -> None:
     sweep's 0.043, docs/validation/wheel_fe.csv): by default (issue 35) no design is certified
     and the diagnosis names the wheel's range; with trust = "extrapolate" the answer is marked
     extrapolated, not certified, naming it. The same spec with a 6 mm hole is certified inside
-    the span of the settled discs (polypropylene 0.3 mm, n 6-7, W 9-12 mm, alpha 120-150 deg:
+    the span of the settled discs (n 6-7, W 8-12 mm, alpha 120-150 deg:
     docs/load_cases.md 9)."""
     from dataclasses import replace
 
