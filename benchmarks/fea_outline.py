@@ -2,6 +2,7 @@
 than the tests run, and a design's wheel or corner series with time and memory.
 
     python benchmarks/fea_outline.py annulus 2,1,0.5         # flat annulus vs plane elasticity
+    python benchmarks/fea_outline.py disc-annulus 2,1,0.5    # the same on the disc mesh
     python benchmarks/fea_outline.py strip 2,1,0.5           # narrow plate on 4 corners vs beam
     python benchmarks/fea_outline.py design DESIGN.json wheel 2,4,8,16 0,45
 
@@ -64,6 +65,39 @@ def annulus(sizes: list[float]) -> None:
             )
 
 
+def disc_annulus(sizes: list[float]) -> None:
+    """The annulus of :func:`annulus` on the disc mesh that conforms to its rim and hole
+    (:func:`corrugate.fea.discmesh.disc_mesh`: a zig-zag of height 0, pitch 10 mm, 10 / size
+    elements per pitch)."""
+    sys.path.insert(0, "tests/fea")
+    from test_outline import _annulus_K
+
+    from corrugate.fea.discmesh import Disc, disc_mesh
+    from corrugate.fea.planmesh import Corrugation
+    from corrugate.fea.shells import Shell
+
+    E, nu, t, a, b = 1000.0, 0.3, 0.2, 20.0, 5.0
+    exact = _annulus_K(E, nu, t, a, b)
+    outline, hole = _disc(a, a, a), _disc(a, a, b)
+    print(f"plane elasticity: K = {exact:.6g} N/mm")
+    for size in sizes:
+        pm = disc_mesh(
+            Corrugation((1.0, 0.0), 0.0, 10.0, 0.0), Disc((a, a), a, b), round(10 / size)
+        )
+        ids = np.arange(1, len(pm.xyz) + 1, dtype=np.int64)
+        quads = [[int(ids[i]) for i in r] for r in pm.elements["S8R"]]
+        tris = [[int(ids[i]) for i in r] for r in pm.elements["S6"]]
+        sh = Shell(ids, pm.xyz, quads, t, E, nu, tris)
+        for eta in (0.0, 30.0):
+            t0 = time.time()
+            k = solve_shells([sh], "wheel", outline, [hole], eta, OutlineFixture(patch_deg=180))[0]
+            print(
+                f"{size:g} mm, eta {eta:g}: K = {k:.6g} N/mm ({k / exact - 1:+.2%}), "
+                f"{len(quads) + len(tris)} elements, {time.time() - t0:.1f} s, "
+                f"{_child_rss_mb():.0f} MB"
+            )
+
+
 def strip(sizes: list[float]) -> None:
     """100 x 10 x 1 mm, E 1000 MPa, nu 0, corner nodes pinned (or clamped), a point load at the
     centre, against 48 E I / L^3."""
@@ -99,6 +133,8 @@ if __name__ == "__main__":
     kind = sys.argv[1]
     if kind == "annulus":
         annulus([float(v) for v in sys.argv[2].split(",")])
+    elif kind == "disc-annulus":
+        disc_annulus([float(v) for v in sys.argv[2].split(",")])
     elif kind == "strip":
         strip([float(v) for v in sys.argv[2].split(",")])
     else:

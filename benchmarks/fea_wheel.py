@@ -17,9 +17,14 @@ included; ``peak_MB`` the largest resident set of a ccx process so far. A run th
 (no mesh node on the edge of a small hole at 2 elements per facet) has ``K_FE`` = failed.
 
 c(eta) comes from the first sweep (``--table``: its margin rule, the ten discs not named
-``s-...``). The small discs ``s-...`` of issue 35 (n 6, the hole at least about 1.5 elements
-across at 2 per facet) ran at 2 / 4 / 8 / 16 per facet so that :func:`corrugate.fea.extrapolate.
-judge` could settle them (``--judge``); none is settled, so they are listed, not used.
+``s-...`` or ``d-...``). The small discs ``s-...`` of issue 35 (n 6, the hole at least about 1.5
+elements across at 2 per facet) ran at 2 / 4 / 8 / 16 per facet so that
+:func:`corrugate.fea.extrapolate.judge` could settle them (``--judge``); on the staircase mesh
+one is settled. The discs ``d-...`` run on the mesh conforming to the rim, the hole and the
+patch ends (:mod:`corrugate.fea.discmesh`, docs/fea.md 2.8), every other design on the staircase
+mesh it first ran on (``outline_shells(..., staircase=True)``), so that every row of the CSV is
+reproduced by this script; the ``d-...`` discs' settled series make the validated range
+(docs/load_cases.md 9).
 
 Runs are one at a time; the 8-per-facet run of a 70-80 mm disc with 7-13 facets takes about a
 minute of CPU and 1-2 GB. :mod:`corrugate.mechanics.wheel` reads the table this writes.
@@ -79,6 +84,16 @@ DESIGNS: tuple[tuple[str, str, float, float, int, float, float], ...] = (
     ("s-pp05-n6-a150-hole8", "polypropylene", 0.5, 10.0, 6, 150.0, 8.0),
     ("s-dl175-n6-a110-hole7.5", "dura-lar", 0.175, 5.0, 6, 110.0, 7.5),
     ("s-dl125-n6-a75-hole11", "dura-lar", 0.125, 12.0, 6, 75.0, 11.0),
+    # issue 35, the mesh conforming to the rim and the hole (docs/fea.md 2.8; every design above
+    # ran on the staircase mesh): the wheel example's answer and discs around it, and the one
+    # disc the staircase mesh had settled, run again
+    ("d-example", "polypropylene", 0.3, 10.5, 6, 146.8, 6.0),
+    ("d-pp-w9.5-a140", "polypropylene", 0.3, 9.5, 6, 140.0, 6.0),
+    ("d-pp-w11.5-a150", "polypropylene", 0.3, 11.5, 6, 150.0, 6.0),
+    ("d-pp05-n6-a150-hole8", "polypropylene", 0.5, 10.0, 6, 150.0, 8.0),
+    ("d-pp-n7-w9-a145", "polypropylene", 0.3, 9.0, 7, 145.0, 6.0),
+    ("d-pp-w12-a120", "polypropylene", 0.3, 12.0, 6, 120.0, 6.0),
+    ("d-dl175-n7-w8-a120", "dura-lar", 0.175, 8.0, 7, 120.0, 6.0),
 )
 
 
@@ -89,6 +104,24 @@ def assembly(material: str, t: float, W: float, n: int, alpha: float, hole: floa
 
     layer = Layer(W=W, n=n, alpha_deg=alpha, material=get_material(material), t=t)
     return Assembly.identical(layer, Circle(holes=(Hole("circle", (0.0, 0.0), hole),)))
+
+
+def _run(asm: Assembly, name: str, along: int, eta: float) -> tuple[float, int]:
+    """K (N/mm) and the node count of one run of the wheel fixture: a design named ``d-...`` on
+    the mesh conforming to its rim and hole (:func:`corrugate.fea.outline.solve_outline`), any
+    other on the staircase mesh it was first run on (``outline_shells(..., staircase=True)``)."""
+    from corrugate.fea.assembly import AssemblyMesh
+    from corrugate.fea.outline import outline_shells, solve_outline, solve_shells
+    from corrugate.geometry.holes import hole_rings
+
+    if name.startswith("d-"):
+        r = solve_outline(asm, "wheel", AssemblyMesh(along), eta, timeout=3000)
+        return r.value, r.nodes
+    shells = outline_shells(asm, AssemblyMesh(along), staircase=True)
+    ring = asm.layout.plan_outline(asm.Lx, asm.Ly)
+    holes = hole_rings(asm.layout.holes, asm.Lx, asm.Ly)
+    k = solve_shells(shells, "wheel", ring, holes, eta, timeout=3000)[0]
+    return k, sum(len(sh.ids) for sh in shells)
 
 
 def _cpu() -> float:
@@ -106,7 +139,7 @@ def table(path: Path) -> None:
         rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
     cases: dict[tuple[str, float], dict[str, Any]] = {}
     for r in rows:
-        if r["design"].startswith("s-"):  # issue 35's small discs: not settled, not used
+        if r["design"].startswith(("s-", "d-")):  # issue 35's discs: judged, not in this rule
             continue
         c = cases.setdefault((r["design"], float(r["eta_deg"])), {"row": r, "fe": {}})
         if r["K_FE"] != "failed":
@@ -236,9 +269,7 @@ def main() -> None:
     if a.judge:
         judged(a.csv)
         return
-    from corrugate.fea.assembly import AssemblyMesh
     from corrugate.fea.ccx import SolverError
-    from corrugate.fea.outline import solve_outline
 
     names = set(a.designs.split(",")) if a.designs else None
     done = done_keys(a.csv, ("design", "eta_deg", "along"))
@@ -263,7 +294,7 @@ def main() -> None:
                         continue
                     c0, t0 = _cpu(), time.time()
                     try:
-                        r = solve_outline(asm, "wheel", AssemblyMesh(along), eta, timeout=3000)
+                        value, nodes = _run(asm, name, along, eta)
                     except SolverError as exc:  # e.g. no node on a small hole's edge
                         print(name, f"{eta:g}", along, "failed:", exc, flush=True)
                         failed = (name, mat, t, W, n, alpha, "", hole, f"{eta:g}", along)
@@ -281,8 +312,8 @@ def main() -> None:
                         f"{hole:g}",
                         f"{eta:g}",
                         along,
-                        r.nodes,
-                        f"{r.value:.6g}",
+                        nodes,
+                        f"{value:.6g}",
                         f"{model:.6g}",
                         f"{_cpu() - c0:.1f}",
                         f"{peak:.0f}",

@@ -147,8 +147,8 @@ EXPLAINED = [
 def test_binding_and_runner_ups_equal_independent_re_solves(path: Path) -> None:
     problem = _problem(path)
     sol = solve(problem)
-    # the wheel example asks for trust = "extrapolate" (its range is one disc, issue 35): the
-    # search is still exhaustive, its answer marked extrapolated
+    # a spec with trust = "extrapolate" is searched as exhaustively, its answer marked
+    # extrapolated (the wheel example no longer asks for it: issue 35, docs/load_cases.md 9)
     assert sol.status == "optimal" and (sol.certified or problem.trust == "extrapolate")
     tables = Tables(problem)
     sign = -1.0 if problem.objective.sense == "max" else 1.0

@@ -6,7 +6,10 @@ supports; a disc or a polygon has none, and the closed forms' K and D of such an
 summed over facets of different lengths) are no bench test (docs/fea.md 2.1). These fixtures are
 the tests the users of such outlines run:
 
-* **Mesh** (:func:`outline_shells`). Both layers on the structured S8R mesh of the layout's box
+* **Mesh** (:func:`outline_shells`). A circle with no hole or one circular hole at its centre:
+  both layers meshed to the rim and the hole, a node at each end of the wheel's ground patch
+  (:mod:`corrugate.fea.discmesh`: mapped, nested meshes whose series settle). Any other outline:
+  both layers on the structured S8R mesh of the layout's box
   (:func:`corrugate.fea.shells.layer_shell`, as the assembly at eta = 0: ``along`` elements across
   each facet, elements about as long along the creases), less every element whose centroid (in
   plan) lies outside the outline and every element whose centroid lies in a hole: a staircase
@@ -19,7 +22,8 @@ The fixtures are entries of :mod:`corrugate.fea.fixtures` (kind ``outline``), ea
 there; a deck is the mesh, the fixture and a step (:mod:`corrugate.fea.steps`):
 
 * **Wheel** (``wheel``, radial stiffness K(eta), N/mm; :mod:`corrugate.fea.fixtures.wheel`). The hub: a rigid axle pinned through the
-  hole that contains the layout's centre, i.e. every node on that hole's (staircase) edge held
+  hole that contains the layout's centre, i.e. every node on that hole's edge (its arc on a disc
+  mesh, a staircase on the box's mesh) held
   in its three translations, rotations free; without such a hole, every node within
   ``hub_radius`` of the centre (a hub bonded to the disc). The ground: a rigid flat patch under
   the rim on the side opposite to eta, every rim node (a node on the outer edge of the mesh)
@@ -51,10 +55,12 @@ from corrugate.fea.assembly import AssemblyMesh
 from corrugate.fea.ccx import SolverError, run_ccx, work_dir
 from corrugate.fea.cuts import cut_holes, cut_outline
 from corrugate.fea.deck import mesh_lines
+from corrugate.fea.discmesh import Disc
 from corrugate.fea.fixtures import Fixture, OutlinePart, fixtures, get_fixture
+from corrugate.fea.planmesh import PlanMesh
 from corrugate.fea.shells import Shell, layer_shell, quad8_elements
 from corrugate.fea.steps import STATIC, BoundaryItem, LinearBuckling, Step
-from corrugate.geometry.layer import Assembly
+from corrugate.geometry.layer import Assembly, require_zigzag
 
 __all__ = [
     "OUTLINE_NAMES",
@@ -146,10 +152,93 @@ def plate_shell(
     return Shell(np.asarray(order, dtype=np.int64), np.asarray(coords), elements, t, E, nu)
 
 
-def outline_shells(assembly: Assembly, mesh: AssemblyMesh) -> list[Shell]:
-    """Both layers of ``assembly`` on the structured mesh of its box, cut to its outline and
-    its holes (module docstring)."""
+def disc_hole(assembly: Assembly) -> Disc | None:
+    """The disc of a circle layout with no hole or one circular hole at its centre (plan mm),
+    the outline :func:`corrugate.fea.discmesh.disc_mesh` meshes to; None for any other."""
     a = assembly
+    if a.layout.name != "circle":
+        return None
+    holes = a.layout.holes
+    if len(holes) > 1 or any(h.shape != "circle" or h.center != (0.0, 0.0) for h in holes):
+        return None
+    r = holes[0].diameter / 2 if holes else 0.0
+    R = a.Lx / 2
+    return Disc((a.Lx / 2, a.Ly / 2), R, r) if r < R else None
+
+
+def _disc_shells(
+    assembly: Assembly, disc: Disc, along: int, rim_angles: tuple[float, ...]
+) -> list[Shell]:
+    """Both layers of a disc ``assembly`` meshed to its rim and hole
+    (:func:`corrugate.fea.discmesh.disc_mesh`), layer 1's chord along x, layer 2's along y."""
+    from corrugate.fea.discmesh import disc_mesh
+    from corrugate.fea.planmesh import Corrugation
+    from corrugate.fea.shells import STRIP_FRACTION, crease_strip
+
+    a = assembly
+    shells: list[Shell] = []
+    first = 1
+    for layer, chord, z0 in zip(
+        a.layers, ((1.0, 0.0), (0.0, 1.0)), (0.0, a.layer1.height), strict=True
+    ):
+        require_zigzag(layer, "FE mesh")
+        m = layer.material
+        k = m.crease_stiffness
+        half = 0.0 if math.isinf(k) else STRIP_FRACTION * layer.pitch / 2
+        corr = Corrugation(chord, 0.0, layer.pitch, layer.height, z0)
+        pm = disc_mesh(corr, disc, along, rim_angles, strip=half)
+        ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
+
+        def rows(
+            name: str, strip: bool, pm: PlanMesh = pm, ids: NDArray[np.int64] = ids
+        ) -> list[list[int]]:
+            mask = pm.in_strip.get(name) or [False] * len(pm.elements[name])
+            return [
+                [int(ids[i]) for i in r]
+                for r, s in zip(pm.elements[name], mask, strict=True)
+                if s == strip
+            ]
+
+        crease = (-chord[1], chord[0])
+        section = (
+            None
+            if math.isinf(k)
+            else crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W)
+        )
+        shells.append(
+            Shell(
+                ids,
+                pm.xyz,
+                rows("S8R", False),
+                layer.t,
+                m.E,
+                m.nu,
+                rows("S6", False),
+                rows("S8R", True),
+                rows("S6", True),
+                section,
+            )
+        )
+        first = int(ids[-1]) + 1
+    return shells
+
+
+def outline_shells(
+    assembly: Assembly,
+    mesh: AssemblyMesh,
+    rim_angles: tuple[float, ...] = (),
+    *,
+    staircase: bool = False,
+) -> list[Shell]:
+    """Both layers of ``assembly``: a disc with no hole or a central circular one meshed to its
+    rim and hole, with a node at each plan angle of ``rim_angles`` (deg) on the rim
+    (:func:`corrugate.fea.discmesh.disc_mesh`); any other outline, or any with ``staircase``
+    (the mesh of the wheel sweep's first discs, docs/load_cases.md 9), on the structured mesh of
+    its box, cut to its outline and its holes (module docstring)."""
+    a = assembly
+    disc = None if staircase else disc_hole(a)
+    if disc is not None:
+        return _disc_shells(a, disc, mesh.along, rim_angles)
     shells = [layer_shell(a.layer1, a.Ly, mesh.along, 1, 0, 0.0)]
     shells.append(
         layer_shell(a.layer2, a.Lx, mesh.along, int(shells[0].ids.max()) + 1, 1, a.layer1.height)
@@ -267,6 +356,7 @@ def solve_outline(
 ) -> OutlineResult:
     """Run the outline fixture ``test`` on both layers of ``assembly`` (module docstring) as
     ``step`` (static, or linear buckling: :class:`OutlineResult`)."""
+    from corrugate.fea.fixtures.wheel import patch_ends
     from corrugate.geometry.holes import hole_rings
 
     mesh = mesh or AssemblyMesh()
@@ -277,7 +367,9 @@ def solve_outline(
         raise InputError(
             "fixture", test, "wheel for a circle", reason="needs corners, which a circle has not"
         )
-    shells = outline_shells(a, mesh)
+    fx = fixture or OutlineFixture()
+    ends = patch_ends(eta_deg, fx.patch_deg) if test == "wheel" else ()
+    shells = outline_shells(a, mesh, ends)
     k, P, delta, forces = solve_shells(
         shells,
         test,

@@ -17,8 +17,9 @@ the margin for the mesh (:data:`WHEEL_LOWER_RATIO`). The sweep ran at eta = 0 an
 disc's two layers are identical (a circle layout has no independent layers) and the disc is
 mirror-symmetric, so eta = 90 reads as 0 and 135 as 45 (the sweep's check at 4 elements per
 facet, docs/load_cases.md 9). Other directions have no factor and are refused by the spec.
-Outside the validated range (:data:`VALIDATED_WHEEL`: the one disc whose series settles) the
-answer warns (:func:`corrugate.analysis.warnings.wheel_warnings`).
+Outside the validated range (:data:`VALIDATED_WHEEL`: the discs whose mesh series settle, on
+the mesh conforming to the rim and the hole since issue 35) the answer warns
+(:func:`corrugate.analysis.warnings.wheel_warnings`).
 """
 
 from __future__ import annotations
@@ -53,7 +54,7 @@ WHEEL_FACTOR: Mapping[float, float] = MappingProxyType(
 #: The directions the factor holds at (deg): the sweep's and their mirror images.
 WHEEL_DIRECTIONS = "a multiple of 45 deg"
 #: The validated range (both layers alike; ``data/validity.toml``'s ``[wheel]``,
-#: :mod:`corrugate.mechanics.validity`): since issue 35 the one disc of the sweep whose mesh
+#: :mod:`corrugate.mechanics.validity`): since issue 35 the span of the sweep's discs whose mesh
 #: series judge settles (docs/load_cases.md 9): creases n, interior angle alpha (deg), facet
 #: width W (mm), sheet thickness over facet width t / W, and the axle hole's diameter over the
 #: disc's.
