@@ -2,6 +2,7 @@
 
     python benchmarks/fea_capacity.py run [--minutes M] [--max-along A] [--only-along A] [--design TEXT] [--step dead,held]
     python benchmarks/fea_capacity.py table                               # Markdown summary
+    python benchmarks/fea_capacity.py judge                               # each series judged
 
 Writes ``docs/validation/capacity_fe.csv``, one row per (design, step, along): the design's load
 case run as a linear buckling analysis (``*BUCKLE``, docs/fea.md 2) on the mesh of ``along``
@@ -50,7 +51,7 @@ import sys
 import tempfile
 import time
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from corrugate import Assembly, Layer, get_material
@@ -68,12 +69,14 @@ STEPS = ("dead", "held")
 @dataclass(frozen=True, slots=True)
 class Case:
     """One row of the validation set: the assembly, its load case (a fixture name), the span
-    (mm; None: the panel's length) and whether the band joins the layers (joint band-edges)."""
+    (mm; None: the panel's length), whether the band joins the layers (joint band-edges) and
+    the test's direction eta (deg: 0 along layer 1's creases, 90 along layer 2's)."""
 
     assembly: Assembly
     test: str
     span: float | None = None
     band: bool = False
+    eta: float = 0.0
 
 
 def _identical(W: float, n: int, alpha: float, material: str, t: float) -> Assembly:
@@ -100,6 +103,16 @@ def designs() -> dict[str, Case]:
     # tolerance box), the second under its monotone form (the example's answer)
     plate2 = Assembly(Layer(10.0, 18, 50.0, pp, 0.5), Layer(11.0, 12, 120.0, pp, 0.5), Rectangle())
     plate3 = Assembly(Layer(11.0, 11, 75.0, pp, 0.5), Layer(11.0, 12, 120.0, pp, 0.5), Rectangle())
+    # examples/blimp_gripper_cantilever.toml's answer (Dura-Lar 0.175, W 8 n 7 alpha 98) at the
+    # worst corner of its default tolerances for the capacity (docs/tolerances.md 1: the model's
+    # least of the 64 corners, docs/validation/capacity.md "The worst tolerance corner")
+    soft = get_material("dura-lar")
+    soft = replace(soft, E=soft.E * 0.9)
+    corner = Assembly(
+        Layer(7.9, 7, 101.0, soft, 0.175 * 0.95),
+        Layer(8.1, 7, 95.0, soft, 0.175 * 0.95),
+        Rectangle(),
+    )
     return {
         "stubby: dura-lar 0.075, W 12 n 10 a 40": Case(
             _identical(12.0, 10, 40.0, "dura-lar", 0.075), "three-point"
@@ -143,6 +156,27 @@ def designs() -> dict[str, Case]:
         ),
         "blimp cantilever, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
             _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True
+        ),
+        "blimp cantilever worst corner, joint band-edges: dura-lar 0.16625 E x 0.9, "
+        "W 7.9 n 7 a 101 / W 8.1 n 7 a 95": Case(corner, "cantilever", band=True),
+        # along layer 2's creases (eta 90 deg): layer 2's outstand (joint none) and the band's
+        # walls composite with layer 2 (band-edges), docs/load_cases.md 10.4-10.5
+        "eta 90, joint none: dura-lar 0.125, W 10 n 7 a 60 / W 8 n 8 a 90": Case(
+            Assembly(
+                Layer(10.0, 7, 60.0, get_material("dura-lar"), 0.125),
+                Layer(8.0, 8, 90.0, get_material("dura-lar"), 0.125),
+                Rectangle(),
+            ),
+            "three-point",
+            eta=90.0,
+        ),
+        "eta 90, joint none: pp 0.3, W 12 n 5 a 120 / W 7 n 9 a 80": Case(
+            Assembly(Layer(12.0, 5, 120.0, pp, 0.3), Layer(7.0, 9, 80.0, pp, 0.3), Rectangle()),
+            "three-point",
+            eta=90.0,
+        ),
+        "blimp cantilever eta 90, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
+            _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True, eta=90.0
         ),
     }
 
@@ -195,17 +229,20 @@ def solve(case: Case, step: str, along: int) -> tuple[int, float, float, str]:
     kw = {"connectors": case.band, "span": case.span}
     scale = 1.0
     if step == "dead":
-        deck, info = assembly_deck(a, case.test, mesh, 0.0, step=LinearBuckling(), **kw)
+        deck, info = assembly_deck(a, case.test, mesh, case.eta, step=LinearBuckling(), **kw)
     else:
-        static = solve_assembly(a, case.test, mesh, 0.0, split=False, **kw)
-        deck, info = assembly_deck(a, case.test, mesh, 0.0, **kw)
+        static = solve_assembly(a, case.test, mesh, case.eta, split=False, **kw)
+        deck, info = assembly_deck(a, case.test, mesh, case.eta, **kw)
         deck = deck.replace("*STATIC", "*BUCKLE\n3,1.e-6")
         scale = static.force
     with tempfile.TemporaryDirectory(prefix="capfe-") as d:
         run = run_ccx(with_mode_output(deck), Path(d), job="b", timeout=1800.0)
         shape = parse_frd_mode((Path(d) / "b.frd").read_text())
     f = [x * scale for x in run.buckling_factors if x > 0]
-    where = mode_location(shape, 1, a.Lx, a.Ly)
+    if case.eta == 0.0:
+        where = mode_location(shape, 1, a.Lx, a.Ly)
+    else:  # along layer 2's creases: the span along x
+        where = mode_location(shape, 0, a.Ly, a.Lx)
     second = f[1] if len(f) > 1 else math.nan
     return info.nodes, f[0], second, where
 
@@ -256,8 +293,10 @@ def model(case: Case) -> tuple[float, str] | None:
     from corrugate.analysis.load_case import LoadCase, load_case_capacity
 
     joint = "band-edges" if case.band else "none"
-    r = analyze(case.assembly, "refined", eta_deg=[0.0], joint=joint)
-    cap = load_case_capacity(r, LoadCase(case.test, 1.0, span=case.span), 0.0, safety_factor=1.0)
+    r = analyze(case.assembly, "refined", eta_deg=[case.eta], joint=joint)
+    cap = load_case_capacity(
+        r, LoadCase(case.test, 1.0, span=case.span), case.eta, safety_factor=1.0
+    )
     if cap is None:
         return None
     return float(cap.load), str(cap.words)
@@ -327,6 +366,33 @@ def table() -> None:
         )
 
 
+def judged() -> None:
+    """Each design's series against its model (docs/validation/capacity.md, "Which series are
+    converged"): per design and loading the series (N) at 2 / 4 / 8 (/ 16) per facet and
+    :func:`corrugate.fea.extrapolate.judge`'s verdict of it against the model's first failure
+    (:func:`model`, sense min): "holds" or "fails" only where the series is shown asymptotic
+    (four meshes, two extrapolations that agree) or its last two steps vanish, else "open" with
+    the reason (not converged)."""
+    from corrugate.fea.extrapolate import judge
+
+    with CSV.open() as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    print("| design | step | FE series (N) | model (N) | judge | how |")
+    print("|---|---|---|---|---|---|")
+    for name, case in designs().items():
+        m = model(case)
+        for step in STEPS:
+            mine = _series(rows, name, step)
+            if not mine or m is None:
+                continue
+            series = {k: float(r["load_N"]) for k, r in mine.items()}
+            text = " / ".join(f"{series[k]:.5g}" for k in sorted(series))
+            j = judge(series, m[0], "min")
+            verdict = j.verdict if j.verdict != "open" else "not converged"
+            how = j.how + (f" ({j.why})" if j.why else "")
+            print(f"| {name} | {step} | {text} | {m[0]:.4g} | {verdict} | {how} |")
+
+
 if __name__ == "__main__":
     args = sys.argv[1:]
     if args[:1] == ["run"]:
@@ -342,5 +408,7 @@ if __name__ == "__main__":
         run(minutes, max_along, only, design, steps)
     elif args[:1] == ["table"]:
         table()
+    elif args[:1] == ["judge"]:
+        judged()
     else:
         sys.exit(__doc__)
