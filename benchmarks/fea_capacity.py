@@ -3,6 +3,7 @@
     python benchmarks/fea_capacity.py run [--minutes M] [--max-along A] [--only-along A] [--design TEXT] [--step dead,held]
     python benchmarks/fea_capacity.py table                               # Markdown summary
     python benchmarks/fea_capacity.py judge                               # each series judged
+    python benchmarks/fea_capacity.py corners                             # the worst corner
 
 Writes ``docs/validation/capacity_fe.csv``, one row per (design, step, along): the design's load
 case run as a linear buckling analysis (``*BUCKLE``, docs/fea.md 2) on the mesh of ``along``
@@ -46,6 +47,7 @@ starts no new case after M minutes. Needs ccx.
 from __future__ import annotations
 
 import csv
+import itertools
 import math
 import sys
 import tempfile
@@ -159,6 +161,11 @@ def designs() -> dict[str, Case]:
         ),
         "blimp cantilever worst corner, joint band-edges: dura-lar 0.16625 E x 0.9, "
         "W 7.9 n 7 a 101 / W 8.1 n 7 a 95": Case(corner, "cantilever", band=True),
+        # the corner where the model's facet buckling (layer 1, the FE's mode) is least
+        "blimp cantilever facet corner, joint band-edges: dura-lar 0.16625 E x 0.9, "
+        "W 8.1 n 7 a 101": Case(
+            Assembly.identical(Layer(8.1, 7, 101.0, soft, 0.175 * 0.95)), "cantilever", band=True
+        ),
         # along layer 2's creases (eta 90 deg): layer 2's outstand (joint none) and the band's
         # walls composite with layer 2 (band-edges), docs/load_cases.md 10.4-10.5
         "eta 90, joint none: dura-lar 0.125, W 10 n 7 a 60 / W 8 n 8 a 90": Case(
@@ -194,8 +201,17 @@ def ranges(case: Case) -> tuple[float, float, float]:
 #: loads agree within 2 % at 2 and 4 per facet).
 LARGE = ("chassis", "pc 0.25, W 10 n 13")
 #: The designs run on at 16 per facet, both loadings: those whose lower 2 / 4 / 8 series is not
-#: asymptotic (the stubby panel's dead load: 0.745 / 1.074 / 1.058 N).
-FINER = ("stubby",)
+#: asymptotic (the stubby panel's dead load: 0.745 / 1.074 / 1.058 N), and those whose 16 per
+#: facet fits a 7 GB cap (at most about 25 000 nodes at 8 per facet: four times that at 16),
+#: so that :func:`corrugate.fea.extrapolate.judge` can settle their series (issue 35).
+FINER = (
+    "stubby",
+    "case study",
+    "pp 0.3, W 6 n 5 a 150",
+    "dura-lar 0.125, W 10 n 7 a 60",
+    "pp 0.5, W 10 n 5 a 100",
+    "eta 90, joint none",
+)
 
 
 def jobs(ds: dict[str, Case], max_along: int) -> Iterator[tuple[str, str, int]]:
@@ -300,6 +316,38 @@ def model(case: Case) -> tuple[float, str] | None:
     if cap is None:
         return None
     return float(cap.load), str(cap.words)
+
+
+def corners(
+    layer: Layer,
+    test: str,
+    band: bool,
+    tol: tuple[float, float, float, float] = (3.0, 0.1, 0.05, 0.1),
+) -> None:
+    """The model's first failure (:func:`model`, N, no safety factor) at the 64 corners of the
+    tolerance box around identical layers ``layer`` (docs/tolerances.md 1: each layer's W +-
+    dW and alpha +- dalpha on its own, the sheet's t and E +- their relative half-widths; ``tol``
+    (dalpha deg, dW mm, dt, dE), the defaults), least first: the corner an FE of the worst part
+    is meshed at (docs/validation/capacity.md, "The worst tolerance corner")."""
+    da, dW, dt, dE = tol
+    out = []
+    for w1, a1, w2, a2, st, se in itertools.product(*[(-1, 1)] * 6):
+        m = replace(layer.material, E=layer.material.E * (1 + se * dE))
+        t = layer.t * (1 + st * dt)
+        a = Assembly(
+            Layer(layer.W + w1 * dW, layer.n, layer.alpha_deg + a1 * da, m, t),
+            Layer(layer.W + w2 * dW, layer.n, layer.alpha_deg + a2 * da, m, t),
+            Rectangle(),
+        )
+        got = model(Case(a, test, band=band))
+        if got is not None:
+            out.append((got[0], (w1, a1, w2, a2, st, se), got[1], a.Lx, a.Ly))
+    nominal = model(Case(Assembly.identical(layer), test, band=band))
+    print(f"nominal: {nominal}")
+    out.sort()
+    print("(dW1, da1, dW2, da2, dt, dE): load N, first failure, Lx, Ly (mm)")
+    for load, c, words, lx, ly in out[:4] + out[-1:]:
+        print(f"{c}: {load:.4g} N, {words}, {lx:.2f} x {ly:.2f}")
 
 
 def _series(rows: list[dict[str, str]], name: str, step: str) -> dict[int, dict[str, str]]:
@@ -410,5 +458,7 @@ if __name__ == "__main__":
         table()
     elif args[:1] == ["judge"]:
         judged()
+    elif args[:1] == ["corners"]:  # the blimp cantilever's answer (Dura-Lar 0.175 mm)
+        corners(Layer(8.0, 7, 98.0, get_material("dura-lar"), 0.175), "cantilever", True)
     else:
         sys.exit(__doc__)

@@ -227,6 +227,11 @@ def test_the_capacity_ranges_are_its_fe_rows() -> None:
     designs with the band bonded along the edges, their sheet t and t_d / h1 (t_d = h1 + h2)."""
     designs = _capacity_designs()
     assert len(designs) >= 13
+    # the model states a capacity along either layer's creases only (eta 0 and 90 deg,
+    # corrugate.analysis.load_case.load_case_capacity): both directions have rows, with and
+    # without the band
+    for bonded in (False, True):
+        assert {d.eta for d in designs.values() if d.bonded == bonded} == {0.0, 90.0}
     _check("capacity", [layer for d in designs.values() for layer in d.layers])
     band = [d.layers for d in designs.values() if d.bonded]
     stated = model_range("band-walls").ranges
