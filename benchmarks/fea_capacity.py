@@ -189,9 +189,11 @@ def designs() -> dict[str, Case]:
 
 
 def ranges(case: Case) -> tuple[float, float, float]:
-    """(alpha deg, t / W, L / h) of layer 1 (the layer along the span), L the span."""
-    layer = case.assembly.layer1
-    length = case.span if case.span is not None else case.assembly.Ly
+    """(alpha deg, t / W, L / h) of the layer along the span (layer 1 at eta 0, layer 2 at
+    eta 90), L the span."""
+    a = case.assembly
+    layer = a.layer1 if case.eta == 0.0 else a.layer2
+    length = case.span if case.span is not None else (a.Ly if case.eta == 0.0 else a.Lx)
     return layer.alpha_deg, layer.t / layer.W, length / layer.height
 
 
@@ -382,12 +384,14 @@ def table() -> None:
         alpha, tw, lh = ranges(case)
         cells: list[str] = []
         estimates: dict[str, float] = {}
+        finest: dict[str, tuple[int, float]] = {}
         for step in STEPS:
             mine = _series(rows, name, step)
             if not mine:
                 cells.append("-")
                 continue
             series = {k: float(r["load_N"]) for k, r in mine.items()}
+            finest[step] = (max(series), series[max(series)])
             e = extrapolate(series, "min")  # a failure load: only a value safe below the limit
             text = " / ".join(f"{series[k]:.4g}" for k in sorted(series))
             if e.value is None:
@@ -396,21 +400,27 @@ def table() -> None:
             estimates[step] = e.value
             p = f"p = {e.order:.2f}" if e.asymptotic and e.order is not None else "finest"
             cells.append(f"{text}; **{e.value:.4g}** ({p})")
-        if not estimates:
-            print(
-                f"| {name} | {case.test} | {alpha:g}, {tw:.4f}, {lh:.1f} | {cells[0]} | {cells[1]} |"
-            )
+        if not finest:  # not run yet
             continue
-        lower = min(estimates, key=lambda k: estimates[k])
-        fe = estimates[lower]
+        # only the loadings run to the design's finest mesh compete (a coarser series of a
+        # falling load is no lower bound of the finer one's)
+        top = max(k for k, _ in finest.values())
+        estimates = {k: v for k, v in estimates.items() if finest[k][0] == top}
+        if estimates:
+            lower = min(estimates, key=lambda k: estimates[k])
+            fe, fe_text, bound = estimates[lower], f"{estimates[lower]:.4g} ({lower})", ""
+        else:  # still falling: its finest value bounds the limit from above only
+            lower = min((k for k in finest if finest[k][0] == top), key=lambda k: finest[k][1])
+            fe = finest[lower][1]
+            fe_text, bound = f"< {fe:.4g} ({lower}, finest: not converged)", ">= "
         dead = _series(rows, name, "dead")
         where = dead[max(dead)]["where"] if dead else "-"
         m = model(case)
         mod = "-" if m is None else f"{m[0]:.3g}: {m[1]}"
-        ratio = "-" if m is None else f"{m[0] / fe:.2f}"
+        ratio = "-" if m is None else f"{bound}{m[0] / fe:.2f}"
         print(
             f"| {name} | {case.test} | {alpha:g}, {tw:.4f}, {lh:.1f} | {cells[0]} | {cells[1]} | "
-            f"{fe:.4g} ({lower}) | {where} | {mod} | {ratio} |"
+            f"{fe_text} | {where} | {mod} | {ratio} |"
         )
 
 
