@@ -358,10 +358,13 @@ def _series(rows: list[dict[str, str]], name: str, step: str) -> dict[int, dict[
 
 def table() -> None:
     """The Markdown table of docs/validation/capacity.md: per design its ranges, the dead and
-    held FE series (N) at 2 / 4 / 8 per facet, each extrapolated
-    (:func:`corrugate.fea.extrapolate.extrapolate`), the FE first buckling (the lower estimate,
-    saying which), where the dead load's first mode is on the finest mesh, the model's
-    first-failure load and mode (:func:`model`) and model / FE."""
+    held FE series (N) at 2 / 4 / 8 (/ 16) per facet, each extrapolated
+    (:func:`corrugate.fea.extrapolate.extrapolate`: Richardson where its three finest meshes are
+    asymptotic, else "not converged" and its finest value), the FE first buckling (the lower of
+    the two loadings' values, saying which and whether it is a finest value), where the dead
+    load's first mode is on the finest mesh, the model's first-failure load and mode
+    (:func:`model`) and model / FE. Not :func:`corrugate.fea.extrapolate.judge`'s verdict: that
+    is :func:`judged`'s."""
     from corrugate.fea.extrapolate import extrapolate
 
     ds = designs()
@@ -383,41 +386,33 @@ def table() -> None:
     for name, case in ds.items():
         alpha, tw, lh = ranges(case)
         cells: list[str] = []
-        estimates: dict[str, float] = {}
-        finest: dict[str, tuple[int, float]] = {}
+        values: dict[str, tuple[float, bool]] = {}  # loading -> (value, an estimate)
         for step in STEPS:
             mine = _series(rows, name, step)
             if not mine:
                 cells.append("-")
                 continue
             series = {k: float(r["load_N"]) for k, r in mine.items()}
-            finest[step] = (max(series), series[max(series)])
             e = extrapolate(series, "min")  # a failure load: only a value safe below the limit
             text = " / ".join(f"{series[k]:.4g}" for k in sorted(series))
-            if e.value is None:
+            if e.value is not None and e.asymptotic and e.order is not None:
+                values[step] = (e.value, True)
+                cells.append(f"{text}; **{e.value:.4g}** (p = {e.order:.2f})")
+            else:  # not converged: its finest value, which bounds a falling series from above
+                values[step] = (series[max(series)], False)
                 cells.append(f"{text}; not converged")
-                continue
-            estimates[step] = e.value
-            p = f"p = {e.order:.2f}" if e.asymptotic and e.order is not None else "finest"
-            cells.append(f"{text}; **{e.value:.4g}** ({p})")
-        if not finest:  # not run yet
+        if not values:  # not run yet
             continue
-        # only the loadings run to the design's finest mesh compete (a coarser series of a
-        # falling load is no lower bound of the finer one's)
-        top = max(k for k, _ in finest.values())
-        estimates = {k: v for k, v in estimates.items() if finest[k][0] == top}
-        if estimates:
-            lower = min(estimates, key=lambda k: estimates[k])
-            fe, fe_text, bound = estimates[lower], f"{estimates[lower]:.4g} ({lower})", ""
-        else:  # still falling: its finest value bounds the limit from above only
-            lower = min((k for k in finest if finest[k][0] == top), key=lambda k: finest[k][1])
-            fe = finest[lower][1]
-            fe_text, bound = f"< {fe:.4g} ({lower}, finest: not converged)", ">= "
+        lower = min(values, key=lambda k: values[k][0])
+        fe, estimate = values[lower]
+        fe_text = (
+            f"{fe:.4g} ({lower})" if estimate else f"{fe:.4g} ({lower}, finest: not converged)"
+        )
         dead = _series(rows, name, "dead")
         where = dead[max(dead)]["where"] if dead else "-"
         m = model(case)
         mod = "-" if m is None else f"{m[0]:.3g}: {m[1]}"
-        ratio = "-" if m is None else f"{bound}{m[0] / fe:.2f}"
+        ratio = "-" if m is None else f"{m[0] / fe:.2f}" + ("" if estimate else " (of the finest)")
         print(
             f"| {name} | {case.test} | {alpha:g}, {tw:.4f}, {lh:.1f} | {cells[0]} | {cells[1]} | "
             f"{fe_text} | {where} | {mod} | {ratio} |"
