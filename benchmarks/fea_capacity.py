@@ -352,6 +352,15 @@ def corners(
         print(f"{c}: {load:.4g} N, {words}, {lx:.2f} x {ly:.2f}")
 
 
+def _text(series: dict[int, float], digits: int) -> str:
+    """A series' values, coarsest first, with its meshes named unless they are 2, 4, 8, ..."""
+    ks = sorted(series)
+    text = " / ".join(f"{series[k]:.{digits}g}" for k in ks)
+    if ks != [2 * 2**i for i in range(len(ks))]:
+        text += " (at " + " / ".join(map(str, ks)) + " per facet)"
+    return text
+
+
 def _series(rows: list[dict[str, str]], name: str, step: str) -> dict[int, dict[str, str]]:
     return {int(r["along"]): r for r in rows if r["design"] == name and r["step"] == step}
 
@@ -394,7 +403,7 @@ def table() -> None:
                 continue
             series = {k: float(r["load_N"]) for k, r in mine.items()}
             e = extrapolate(series, "min")  # a failure load: only a value safe below the limit
-            text = " / ".join(f"{series[k]:.4g}" for k in sorted(series))
+            text = _text(series, 4)
             if e.value is not None and e.asymptotic and e.order is not None:
                 values[step] = (e.value, True)
                 cells.append(f"{text}; **{e.value:.4g}** (p = {e.order:.2f})")
@@ -439,7 +448,7 @@ def judged() -> None:
             if not mine or m is None:
                 continue
             series = {k: float(r["load_N"]) for k, r in mine.items()}
-            text = " / ".join(f"{series[k]:.5g}" for k in sorted(series))
+            text = _text(series, 5)
             j = judge(series, m[0], "min")
             verdict = j.verdict if j.verdict != "open" else "not converged"
             how = j.how + (f" ({j.why})" if j.why else "")
