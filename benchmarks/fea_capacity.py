@@ -2,6 +2,8 @@
 
     python benchmarks/fea_capacity.py run [--minutes M] [--max-along A] [--only-along A] [--design TEXT] [--step dead,held]
     python benchmarks/fea_capacity.py table                               # Markdown summary
+    python benchmarks/fea_capacity.py judge                               # each series judged
+    python benchmarks/fea_capacity.py corners                             # the worst corner
 
 Writes ``docs/validation/capacity_fe.csv``, one row per (design, step, along): the design's load
 case run as a linear buckling analysis (``*BUCKLE``, docs/fea.md 2) on the mesh of ``along``
@@ -45,12 +47,13 @@ starts no new case after M minutes. Needs ccx.
 from __future__ import annotations
 
 import csv
+import itertools
 import math
 import sys
 import tempfile
 import time
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from corrugate import Assembly, Layer, get_material
@@ -68,12 +71,14 @@ STEPS = ("dead", "held")
 @dataclass(frozen=True, slots=True)
 class Case:
     """One row of the validation set: the assembly, its load case (a fixture name), the span
-    (mm; None: the panel's length) and whether the band joins the layers (joint band-edges)."""
+    (mm; None: the panel's length), whether the band joins the layers (joint band-edges) and
+    the test's direction eta (deg: 0 along layer 1's creases, 90 along layer 2's)."""
 
     assembly: Assembly
     test: str
     span: float | None = None
     band: bool = False
+    eta: float = 0.0
 
 
 def _identical(W: float, n: int, alpha: float, material: str, t: float) -> Assembly:
@@ -100,6 +105,16 @@ def designs() -> dict[str, Case]:
     # tolerance box), the second under its monotone form (the example's answer)
     plate2 = Assembly(Layer(10.0, 18, 50.0, pp, 0.5), Layer(11.0, 12, 120.0, pp, 0.5), Rectangle())
     plate3 = Assembly(Layer(11.0, 11, 75.0, pp, 0.5), Layer(11.0, 12, 120.0, pp, 0.5), Rectangle())
+    # examples/blimp_gripper_cantilever.toml's answer (Dura-Lar 0.175, W 8 n 7 alpha 98) at the
+    # worst corner of its default tolerances for the capacity (docs/tolerances.md 1: the model's
+    # least of the 64 corners, docs/validation/capacity.md "The worst tolerance corner")
+    soft = get_material("dura-lar")
+    soft = replace(soft, E=soft.E * 0.9)
+    corner = Assembly(
+        Layer(7.9, 7, 101.0, soft, 0.175 * 0.95),
+        Layer(8.1, 7, 95.0, soft, 0.175 * 0.95),
+        Rectangle(),
+    )
     return {
         "stubby: dura-lar 0.075, W 12 n 10 a 40": Case(
             _identical(12.0, 10, 40.0, "dura-lar", 0.075), "three-point"
@@ -144,13 +159,41 @@ def designs() -> dict[str, Case]:
         "blimp cantilever, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
             _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True
         ),
+        "blimp cantilever worst corner, joint band-edges: dura-lar 0.16625 E x 0.9, "
+        "W 7.9 n 7 a 101 / W 8.1 n 7 a 95": Case(corner, "cantilever", band=True),
+        # the corner where the model's facet buckling (layer 1, the FE's mode) is least
+        "blimp cantilever facet corner, joint band-edges: dura-lar 0.16625 E x 0.9, "
+        "W 8.1 n 7 a 101": Case(
+            Assembly.identical(Layer(8.1, 7, 101.0, soft, 0.175 * 0.95)), "cantilever", band=True
+        ),
+        # along layer 2's creases (eta 90 deg): layer 2's outstand (joint none) and the band's
+        # walls composite with layer 2 (band-edges), docs/load_cases.md 10.4-10.5
+        "eta 90, joint none: dura-lar 0.125, W 10 n 7 a 60 / W 8 n 8 a 90": Case(
+            Assembly(
+                Layer(10.0, 7, 60.0, get_material("dura-lar"), 0.125),
+                Layer(8.0, 8, 90.0, get_material("dura-lar"), 0.125),
+                Rectangle(),
+            ),
+            "three-point",
+            eta=90.0,
+        ),
+        "eta 90, joint none: pp 0.3, W 12 n 5 a 120 / W 7 n 9 a 80": Case(
+            Assembly(Layer(12.0, 5, 120.0, pp, 0.3), Layer(7.0, 9, 80.0, pp, 0.3), Rectangle()),
+            "three-point",
+            eta=90.0,
+        ),
+        "blimp cantilever eta 90, joint band-edges: dura-lar 0.125, W 8 n 7 a 98": Case(
+            _identical(8.0, 7, 98.0, "dura-lar", 0.125), "cantilever", band=True, eta=90.0
+        ),
     }
 
 
 def ranges(case: Case) -> tuple[float, float, float]:
-    """(alpha deg, t / W, L / h) of layer 1 (the layer along the span), L the span."""
-    layer = case.assembly.layer1
-    length = case.span if case.span is not None else case.assembly.Ly
+    """(alpha deg, t / W, L / h) of the layer along the span (layer 1 at eta 0, layer 2 at
+    eta 90), L the span."""
+    a = case.assembly
+    layer = a.layer1 if case.eta == 0.0 else a.layer2
+    length = case.span if case.span is not None else (a.Ly if case.eta == 0.0 else a.Lx)
     return layer.alpha_deg, layer.t / layer.W, length / layer.height
 
 
@@ -160,8 +203,17 @@ def ranges(case: Case) -> tuple[float, float, float]:
 #: loads agree within 2 % at 2 and 4 per facet).
 LARGE = ("chassis", "pc 0.25, W 10 n 13")
 #: The designs run on at 16 per facet, both loadings: those whose lower 2 / 4 / 8 series is not
-#: asymptotic (the stubby panel's dead load: 0.745 / 1.074 / 1.058 N).
-FINER = ("stubby",)
+#: asymptotic (the stubby panel's dead load: 0.745 / 1.074 / 1.058 N), and those whose 16 per
+#: facet fits a 7 GB cap (at most about 25 000 nodes at 8 per facet: four times that at 16),
+#: so that :func:`corrugate.fea.extrapolate.judge` can settle their series (issue 35).
+FINER = (
+    "stubby",
+    "case study",
+    "pp 0.3, W 6 n 5 a 150",
+    "dura-lar 0.125, W 10 n 7 a 60",
+    "pp 0.5, W 10 n 5 a 100",
+    "eta 90, joint none",
+)
 
 
 def jobs(ds: dict[str, Case], max_along: int) -> Iterator[tuple[str, str, int]]:
@@ -195,17 +247,20 @@ def solve(case: Case, step: str, along: int) -> tuple[int, float, float, str]:
     kw = {"connectors": case.band, "span": case.span}
     scale = 1.0
     if step == "dead":
-        deck, info = assembly_deck(a, case.test, mesh, 0.0, step=LinearBuckling(), **kw)
+        deck, info = assembly_deck(a, case.test, mesh, case.eta, step=LinearBuckling(), **kw)
     else:
-        static = solve_assembly(a, case.test, mesh, 0.0, split=False, **kw)
-        deck, info = assembly_deck(a, case.test, mesh, 0.0, **kw)
+        static = solve_assembly(a, case.test, mesh, case.eta, split=False, **kw)
+        deck, info = assembly_deck(a, case.test, mesh, case.eta, **kw)
         deck = deck.replace("*STATIC", "*BUCKLE\n3,1.e-6")
         scale = static.force
     with tempfile.TemporaryDirectory(prefix="capfe-") as d:
         run = run_ccx(with_mode_output(deck), Path(d), job="b", timeout=1800.0)
         shape = parse_frd_mode((Path(d) / "b.frd").read_text())
     f = [x * scale for x in run.buckling_factors if x > 0]
-    where = mode_location(shape, 1, a.Lx, a.Ly)
+    if case.eta == 0.0:
+        where = mode_location(shape, 1, a.Lx, a.Ly)
+    else:  # along layer 2's creases: the span along x
+        where = mode_location(shape, 0, a.Ly, a.Lx)
     second = f[1] if len(f) > 1 else math.nan
     return info.nodes, f[0], second, where
 
@@ -256,11 +311,54 @@ def model(case: Case) -> tuple[float, str] | None:
     from corrugate.analysis.load_case import LoadCase, load_case_capacity
 
     joint = "band-edges" if case.band else "none"
-    r = analyze(case.assembly, "refined", eta_deg=[0.0], joint=joint)
-    cap = load_case_capacity(r, LoadCase(case.test, 1.0, span=case.span), 0.0, safety_factor=1.0)
+    r = analyze(case.assembly, "refined", eta_deg=[case.eta], joint=joint)
+    cap = load_case_capacity(
+        r, LoadCase(case.test, 1.0, span=case.span), case.eta, safety_factor=1.0
+    )
     if cap is None:
         return None
     return float(cap.load), str(cap.words)
+
+
+def corners(
+    layer: Layer,
+    test: str,
+    band: bool,
+    tol: tuple[float, float, float, float] = (3.0, 0.1, 0.05, 0.1),
+) -> None:
+    """The model's first failure (:func:`model`, N, no safety factor) at the 64 corners of the
+    tolerance box around identical layers ``layer`` (docs/tolerances.md 1: each layer's W +-
+    dW and alpha +- dalpha on its own, the sheet's t and E +- their relative half-widths; ``tol``
+    (dalpha deg, dW mm, dt, dE), the defaults), least first: the corner an FE of the worst part
+    is meshed at (docs/validation/capacity.md, "The worst tolerance corner")."""
+    da, dW, dt, dE = tol
+    out = []
+    for w1, a1, w2, a2, st, se in itertools.product(*[(-1, 1)] * 6):
+        m = replace(layer.material, E=layer.material.E * (1 + se * dE))
+        t = layer.t * (1 + st * dt)
+        a = Assembly(
+            Layer(layer.W + w1 * dW, layer.n, layer.alpha_deg + a1 * da, m, t),
+            Layer(layer.W + w2 * dW, layer.n, layer.alpha_deg + a2 * da, m, t),
+            Rectangle(),
+        )
+        got = model(Case(a, test, band=band))
+        if got is not None:
+            out.append((got[0], (w1, a1, w2, a2, st, se), got[1], a.Lx, a.Ly))
+    nominal = model(Case(Assembly.identical(layer), test, band=band))
+    print(f"nominal: {nominal}")
+    out.sort()
+    print("(dW1, da1, dW2, da2, dt, dE): load N, first failure, Lx, Ly (mm)")
+    for load, c, words, lx, ly in out[:4] + out[-1:]:
+        print(f"{c}: {load:.4g} N, {words}, {lx:.2f} x {ly:.2f}")
+
+
+def _text(series: dict[int, float], digits: int) -> str:
+    """A series' values, coarsest first, with its meshes named unless they are 2, 4, 8, ..."""
+    ks = sorted(series)
+    text = " / ".join(f"{series[k]:.{digits}g}" for k in ks)
+    if ks != [2 * 2**i for i in range(len(ks))]:
+        text += " (at " + " / ".join(map(str, ks)) + " per facet)"
+    return text
 
 
 def _series(rows: list[dict[str, str]], name: str, step: str) -> dict[int, dict[str, str]]:
@@ -269,10 +367,13 @@ def _series(rows: list[dict[str, str]], name: str, step: str) -> dict[int, dict[
 
 def table() -> None:
     """The Markdown table of docs/validation/capacity.md: per design its ranges, the dead and
-    held FE series (N) at 2 / 4 / 8 per facet, each extrapolated
-    (:func:`corrugate.fea.extrapolate.extrapolate`), the FE first buckling (the lower estimate,
-    saying which), where the dead load's first mode is on the finest mesh, the model's
-    first-failure load and mode (:func:`model`) and model / FE."""
+    held FE series (N) at 2 / 4 / 8 (/ 16) per facet, each extrapolated
+    (:func:`corrugate.fea.extrapolate.extrapolate`: Richardson where its three finest meshes are
+    asymptotic, else "not converged" and its finest value), the FE first buckling (the lower of
+    the two loadings' values, saying which and whether it is a finest value), where the dead
+    load's first mode is on the finest mesh, the model's first-failure load and mode
+    (:func:`model`) and model / FE. Not :func:`corrugate.fea.extrapolate.judge`'s verdict: that
+    is :func:`judged`'s."""
     from corrugate.fea.extrapolate import extrapolate
 
     ds = designs()
@@ -294,7 +395,7 @@ def table() -> None:
     for name, case in ds.items():
         alpha, tw, lh = ranges(case)
         cells: list[str] = []
-        estimates: dict[str, float] = {}
+        values: dict[str, tuple[float, bool]] = {}  # loading -> (value, an estimate)
         for step in STEPS:
             mine = _series(rows, name, step)
             if not mine:
@@ -302,29 +403,56 @@ def table() -> None:
                 continue
             series = {k: float(r["load_N"]) for k, r in mine.items()}
             e = extrapolate(series, "min")  # a failure load: only a value safe below the limit
-            text = " / ".join(f"{series[k]:.4g}" for k in sorted(series))
-            if e.value is None:
+            text = _text(series, 4)
+            if e.value is not None and e.asymptotic and e.order is not None:
+                values[step] = (e.value, True)
+                cells.append(f"{text}; **{e.value:.4g}** (p = {e.order:.2f})")
+            else:  # not converged: its finest value, which bounds a falling series from above
+                values[step] = (series[max(series)], False)
                 cells.append(f"{text}; not converged")
-                continue
-            estimates[step] = e.value
-            p = f"p = {e.order:.2f}" if e.asymptotic and e.order is not None else "finest"
-            cells.append(f"{text}; **{e.value:.4g}** ({p})")
-        if not estimates:
-            print(
-                f"| {name} | {case.test} | {alpha:g}, {tw:.4f}, {lh:.1f} | {cells[0]} | {cells[1]} |"
-            )
+        if not values:  # not run yet
             continue
-        lower = min(estimates, key=lambda k: estimates[k])
-        fe = estimates[lower]
+        lower = min(values, key=lambda k: values[k][0])
+        fe, estimate = values[lower]
+        fe_text = (
+            f"{fe:.4g} ({lower})" if estimate else f"{fe:.4g} ({lower}, finest: not converged)"
+        )
         dead = _series(rows, name, "dead")
         where = dead[max(dead)]["where"] if dead else "-"
         m = model(case)
         mod = "-" if m is None else f"{m[0]:.3g}: {m[1]}"
-        ratio = "-" if m is None else f"{m[0] / fe:.2f}"
+        ratio = "-" if m is None else f"{m[0] / fe:.2f}" + ("" if estimate else " (of the finest)")
         print(
             f"| {name} | {case.test} | {alpha:g}, {tw:.4f}, {lh:.1f} | {cells[0]} | {cells[1]} | "
-            f"{fe:.4g} ({lower}) | {where} | {mod} | {ratio} |"
+            f"{fe_text} | {where} | {mod} | {ratio} |"
         )
+
+
+def judged() -> None:
+    """Each design's series against its model (docs/validation/capacity.md, "Which series are
+    converged"): per design and loading the series (N) at 2 / 4 / 8 (/ 16) per facet and
+    :func:`corrugate.fea.extrapolate.judge`'s verdict of it against the model's first failure
+    (:func:`model`, sense min): "holds" or "fails" only where the series is shown asymptotic
+    (four meshes, two extrapolations that agree) or its last two steps vanish, else "open" with
+    the reason (not converged)."""
+    from corrugate.fea.extrapolate import judge
+
+    with CSV.open() as f:
+        rows = list(csv.DictReader(line for line in f if not line.startswith("#")))
+    print("| design | step | FE series (N) | model (N) | judge | how |")
+    print("|---|---|---|---|---|---|")
+    for name, case in designs().items():
+        m = model(case)
+        for step in STEPS:
+            mine = _series(rows, name, step)
+            if not mine or m is None:
+                continue
+            series = {k: float(r["load_N"]) for k, r in mine.items()}
+            text = _text(series, 5)
+            j = judge(series, m[0], "min")
+            verdict = j.verdict if j.verdict != "open" else "not converged"
+            how = j.how + (f" ({j.why})" if j.why else "")
+            print(f"| {name} | {step} | {text} | {m[0]:.4g} | {verdict} | {how} |")
 
 
 if __name__ == "__main__":
@@ -342,5 +470,9 @@ if __name__ == "__main__":
         run(minutes, max_along, only, design, steps)
     elif args[:1] == ["table"]:
         table()
+    elif args[:1] == ["judge"]:
+        judged()
+    elif args[:1] == ["corners"]:  # the blimp cantilever's answer (Dura-Lar 0.175 mm)
+        corners(Layer(8.0, 7, 98.0, get_material("dura-lar"), 0.175), "cantilever", True)
     else:
         sys.exit(__doc__)

@@ -307,7 +307,7 @@ WALLS_T = "validity.band-walls.t.max"
 def test_a_capacity_gets_the_capacity_models_ranges() -> None:
     """A load held with the band: the capacity's facet ranges (alpha 40-150, t/W 0.00625-0.05
     of docs/validation/capacity_fe.csv: its alpha max 150 is looser than the three-point
-    model's 120, which keeps it) and the walls' t_d / h1 <= 2 (the variables reach 1 + 20 cos 40
+    model's 120, which keeps it) and the walls' t_d / h1 <= 2.089 (the variables reach 1 + 20 cos 40
     / (15 cos 65) = 3.42); the ends no design can cross are left out: t_d / h1 >= 1.221 (at least
     1 + 15 cos 65 / (20 cos 40) = 1.41) and the walls' t on a 0.3 mm sheet (0.125-0.5 mm). On
     a 0.1 mm sheet the walls' t >= 0.125 mm binds, and the capacity's t/W >= 0.00625 (0.1 / 20
