@@ -600,10 +600,13 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         "off-axis ones held, " + "; ".join(parts)
     )
     c0 = off[0]
-    along = []
+    along: list[tuple[float, float]] = []
     for eta in (0.0, 90.0):
         q = Quantity(c0.quantity.kind, eta, c0.quantity.support)
-        best = _best(base, q, c0.sense, tables, warm)
+        # only the better of the two is said: on a grid (exact optima) the second searched
+        # for a design that beats the first (none: the first stays, as on a tie)
+        beat = along[0][1] if along and problem.gridded else None
+        best = _best(base, q, c0.sense, tables, warm, incumbent=beat)
         if best.point is not None:
             along.append((eta, best.value))
     keys = ", ".join(_key(c) for c in off)
