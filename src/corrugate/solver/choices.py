@@ -26,7 +26,14 @@ floors per pair (:class:`Floors`): :meth:`Floors.coarse`, from R's layer lists a
 (:func:`~.separable.pair_floor`: the lists are built once per sheet, not per pair; each
 layer's lightest design that may meet the coupled bounds with the other list's terms at their
 largest), and
-:meth:`Floors.fine`, R's certified optimum on the pair (:func:`~.separable.search`, a few ms).
+:meth:`Floors.fine`, the layer-by-layer search (:func:`~.separable.search`) of R on the pair
+whose designs, lightest first, are judged by R's exact values and then by P's own certified
+values (``point_values`` of P, tolerances included, judged with FEAS_RTOL: the branch and bound's
+evaluation of a point), for at most :data:`EXACT_POINTS` designs of the pair, R's alone past
+them: every design lighter than its answer was shown infeasible in R or in P, and P's designs
+are R's, so its answer is at most P's optimum on the pair, and equal to it (less RELAX) while
+the designs judged stay within EXACT_POINTS (films-32 of benchmarks/edges.py: the main solve
+searches 1 pair instead of 15; about 21 us of CPU per design judged by P).
 :func:`~.solve.optimize` takes the pairs best-first by these floors, refining a coarse floor
 before it searches the pair, and stops when the least floor left reaches the incumbent: those
 pairs hold no design lighter than the answer (the branch and bound of each would return none), so
@@ -48,11 +55,14 @@ from corrugate.solver.quantity import MASS, T_OVER_W
 from corrugate.solver.separable import LayerDesigns, Shifts
 from corrugate.solver.worst_case import NOMINAL, WorstCase
 
-__all__ = ["RELAX", "Floors", "floors", "relaxation"]
+__all__ = ["EXACT_POINTS", "RELAX", "Floors", "floors", "relaxation"]
 
 #: Relative relaxation of R's directional lower bounds and of its floors (rounding: far above
 #: the few units in the last place by which R's values may differ from P's).
 RELAX = 1e-9
+#: Designs of one pair a fine floor judges by the problem's own certified values at most (about
+#: 0.1 s of CPU); past them R's values alone judge (module docstring).
+EXACT_POINTS = 4096
 
 
 def _sheet(c: Candidate, tol: WorstCase) -> Candidate:
@@ -100,8 +110,11 @@ class Floors:
     #: the corners of the tolerance boxes (W -+ dW, alpha -+ da) where R's stiffness bounds
     #: hold too (module docstring): none under nominal tolerances
     shifts: Shifts = ()
+    #: P itself, whose certified values judge R's designs too (:meth:`fine`); None: R's alone
+    original: Problem | None = None
     _lists: dict[tuple[int, int], LayerDesigns | None] = field(default_factory=dict)
     _tables: Tables | None = None
+    _own_tables: Tables | None = None
     _coarse: np.ndarray | None = None
 
     @property
@@ -130,9 +143,11 @@ class Floors:
         return float(self._coarse[k])
 
     def fine(self, k: int, below: float) -> float:
-        """A floor of pair ``k`` at least :meth:`coarse`'s: R's optimum on it, less
-        :data:`RELAX`; inf when R has no design lighter than ``below`` (g) there, 0 when the
-        search declines (lists or pairs too many)."""
+        """A floor of pair ``k`` at least :meth:`coarse`'s: its lightest design that R's and
+        P's values (:attr:`original`; at most :data:`EXACT_POINTS` designs judged by P) do not
+        show infeasible, less :data:`RELAX` (P's certified optimum on the pair, less RELAX,
+        when P judged every design it took); inf when there is none lighter than ``below``
+        (g), 0 when the search declines (lists or pairs too many)."""
         i, j = self._pair(k)
         c1, c2 = self.relaxed.candidates[i], self.relaxed.candidates[j]
         if self._tables is None:
@@ -141,6 +156,12 @@ class Floors:
         cons = relaxed.constraints
         stiff = [c for c in cons if c.quantity.eta is not None]  # R's are lower bounds
         asked = frozenset(c.quantity for c in stiff)
+        own = self.original
+        if own is not None and self._own_tables is None:
+            self._own_tables = Tables(own)
+        own_tables = self._own_tables
+        o1, o2 = (c1, c2) if own is None else (own.candidates[i], own.candidates[j])
+        judged = 0  # designs judged by P's certified values
 
         def exact(x: DesignPoints) -> tuple[np.ndarray, np.ndarray]:
             vals = point_values(relaxed, c1, c2, x, tables)
@@ -151,6 +172,15 @@ class Floors:
                 at = point_values(relaxed, c1, c2, _moved(x, dW, da), tables, asked)
                 for c in stiff:
                     ok &= np.asarray(c.satisfied(at[c.quantity], rtol=FEAS_RTOL), dtype=bool)
+            nonlocal judged  # then by P itself, up to EXACT_POINTS designs
+            if own is not None and own_tables is not None and judged < EXACT_POINTS and ok.any():
+                sel = np.flatnonzero(ok)
+                judged += len(sel)
+                got = point_values(own, o1, o2, x.take(sel), own_tables)
+                good = np.ones(len(sel), dtype=bool)
+                for c in own.constraints:
+                    good &= np.asarray(c.satisfied(got[c.quantity], rtol=FEAS_RTOL), dtype=bool)
+                ok[sel] = good
             return vals[MASS], ok
 
         inc = None if not math.isfinite(below) else below * (1 + RELAX)
@@ -173,8 +203,8 @@ def _moved(x: DesignPoints, dW: float, da: float) -> DesignPoints:
 def floors(problem: Problem) -> Floors | None:
     """The :class:`Floors` of ``problem``'s sheet pairs, None without a relaxation
     (:func:`relaxation`); its stiffness bounds held at the four corners of the tolerance box
-    too (:func:`~.tolerance_box.corner_shifts`)."""
+    too (:func:`~.tolerance_box.corner_shifts`), its designs judged by ``problem`` too."""
     relaxed = relaxation(problem)
     if relaxed is None:
         return None
-    return Floors(relaxed, tolerance_box.corner_shifts(problem.tolerances))
+    return Floors(relaxed, tolerance_box.corner_shifts(problem.tolerances), problem)
