@@ -585,7 +585,9 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
             for c in problem.constraints
         ),
     )
-    fixed = optimize(framed, tables=Tables(framed))
+    # its designs meet every constraint but the off-axis ones: on a grid (an exact optimum,
+    # of which only the value is said) searched from the tree's boxes that may hold them
+    fixed = optimize(framed, tables=Tables(framed), warm=warm if problem.gridded else None)
     if not short and fixed.point is None:
         return []
     parts = []
