@@ -43,6 +43,9 @@ the answer is the same, its certificate too, whatever the number of sheets.
 from __future__ import annotations
 
 import math
+from collections.abc import Hashable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -55,7 +58,7 @@ from corrugate.solver.quantity import MASS, T_OVER_W
 from corrugate.solver.separable import LayerDesigns, Shifts
 from corrugate.solver.worst_case import NOMINAL, WorstCase
 
-__all__ = ["EXACT_POINTS", "RELAX", "Floors", "floors", "relaxation"]
+__all__ = ["EXACT_POINTS", "RELAX", "Floors", "floors", "relaxation", "shared_lists"]
 
 #: Relative relaxation of R's directional lower bounds and of its floors (rounding: far above
 #: the few units in the last place by which R's values may differ from P's).
@@ -63,6 +66,24 @@ RELAX = 1e-9
 #: Designs of one pair a fine floor judges by the problem's own certified values at most (about
 #: 0.1 s of CPU); past them R's values alone judge (module docstring).
 EXACT_POINTS = 4096
+
+
+#: The layer lists built inside :func:`shared_lists`, by :func:`~.separable.layer_key`.
+_LISTS: ContextVar[dict[Hashable, LayerDesigns | None] | None] = ContextVar(
+    "corrugate_layer_lists", default=None
+)
+
+
+@contextmanager
+def shared_lists() -> Iterator[None]:
+    """Inside the block, the :class:`Floors` of every problem share the layer lists they build
+    (one solve and its explanation: the floors of the check problems, the runner-ups' n fixed,
+    mostly the same lists); freed at its end."""
+    token = _LISTS.set({} if _LISTS.get() is None else _LISTS.get())
+    try:
+        yield
+    finally:
+        _LISTS.reset(token)
 
 
 def _sheet(c: Candidate, tol: WorstCase) -> Candidate:
@@ -125,7 +146,14 @@ class Floors:
         key = (i, which)
         if key not in self._lists:
             cand = self.relaxed.candidates[i]
-            self._lists[key] = separable.layer_designs(self.relaxed, cand, which, self.shifts)
+            shared = _LISTS.get()
+            whole = separable.layer_key(self.relaxed, cand, which, self.shifts)
+            if shared is not None and whole in shared:
+                self._lists[key] = shared[whole]
+            else:
+                self._lists[key] = separable.layer_designs(self.relaxed, cand, which, self.shifts)
+                if shared is not None:
+                    shared[whole] = self._lists[key]
         return self._lists[key]
 
     def _pair(self, k: int) -> tuple[int, int]:
@@ -184,7 +212,8 @@ class Floors:
             return vals[MASS], ok
 
         inc = None if not math.isfinite(below) else below * (1 + RELAX)
-        r = separable.search(relaxed, c1, c2, inc, exact, shifts)
+        lists = (self._list(i, 1), self._list(j, 2))
+        r = separable.search(relaxed, c1, c2, inc, exact, shifts, lists)
         if r is None:
             return 0.0
         return math.inf if r.point is None else r.value * (1 - RELAX)

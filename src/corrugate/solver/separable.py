@@ -59,7 +59,7 @@ returns None).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from dataclasses import dataclass, replace
 from typing import Any
 
@@ -99,6 +99,7 @@ __all__ = [
     "SeparableResult",
     "applies",
     "layer_designs",
+    "layer_key",
     "pair_floor",
     "pair_floors",
     "search",
@@ -325,6 +326,19 @@ def _at(
     )
 
 
+def layer_key(problem: Problem, cand: Candidate, which: int, shifts: Shifts = ()) -> Hashable:
+    """Everything :func:`_layer` reads of its arguments (the grids, the n range, the model and
+    profile, the sheet, the corners and the constraints of one layer alone): two calls with the
+    same key return the same list."""
+    own = LX if which == 1 else LY
+    read = (W_MIN, T_OVER_W, CREASES, own, FACET, FLAT)
+    cons = tuple(
+        c for c in problem.constraints if c.quantity in read or c.quantity.kind in LAYER_KINDS
+    )
+    grid = (problem.W, problem.alpha, problem.n_lo, problem.n_hi)
+    return (which, cand, shifts, problem.model, problem.profile_kind, grid, cons)
+
+
 def layer_designs(
     problem: Problem, cand: Candidate, which: int, shifts: Shifts = ()
 ) -> LayerDesigns | None:
@@ -528,6 +542,7 @@ def search(
     incumbent: float | None,
     exact: Exact,
     shifts: Shifts = (),
+    lists: tuple[LayerDesigns | None, LayerDesigns | None] | None = None,
 ) -> SeparableResult | None:
     """The least-mass design over sheets (c1, c2), certified (module docstring), lighter than
     ``incumbent`` (g) if given; None when the problem lacks the structure (:func:`applies`) or
@@ -536,11 +551,15 @@ def search(
     ``shifts``: the corners (dW, dalpha) at which every stiffness bound must hold too (the
     layer designs moved there, :attr:`_Layer.corners`; ``exact`` judges the pairs there too):
     the search of a relaxation that bounds a certified stiffness by its value at those parts
-    of the tolerance box (:mod:`.choices`)."""
+    of the tolerance box (:mod:`.choices`). ``lists``: the two layer lists, already built by
+    :func:`layer_designs` with these arguments."""
     if not applies(problem):
         return None
-    L1 = _layer(problem, c1, 1, shifts)
-    L2 = _layer(problem, c2, 2, shifts) if L1 is not None else None
+    if lists is not None:
+        L1, L2 = lists
+    else:
+        L1 = _layer(problem, c1, 1, shifts)
+        L2 = _layer(problem, c2, 2, shifts) if L1 is not None else None
     if L1 is None or L2 is None:
         return None
     sizes = (len(L1), len(L2))
