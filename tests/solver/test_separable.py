@@ -24,7 +24,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from corrugate.solver import Problem, solve
+from corrugate.solver import Problem, solve, tolerance_box
 from corrugate.solver import separable as sep
 from corrugate.solver.bnb import branch_and_bound
 from corrugate.solver.points import DesignPoints, LayerPoints
@@ -352,6 +352,34 @@ def test_the_formulas_are_point_values(kind: str, eta: float, support: str) -> N
     u, v, f, g = sep._terms(q, L1, L2, c.t, c.t)
     np.testing.assert_allclose((u[i] + v[j]) * f[i] * g[j], vals[q], rtol=1e-13)
     np.testing.assert_allclose(sep._mass(problem, c, c, L1, L2, i, j), vals[MASS], rtol=1e-13)
+
+
+@pytest.mark.parametrize("kind", ["flexural_rigidity", "inplane_stiffness"])
+def test_the_corner_terms_are_point_values_at_the_tolerance_box_corners(kind: str) -> None:
+    """The layer lists' designs at the corners of their tolerance boxes (``shifts``, the floors
+    of :mod:`~corrugate.solver.choices`) give, by the same formulas, ``point_values`` at the
+    four parts :func:`~corrugate.solver.tolerance_box.corners` makes (a second method: the
+    branch and bound's point screen), to rounding; the nominal list is unchanged by them."""
+    problem = _problem(stiffness=((kind, 0.0, "free"),), side_x=(30.0, 60.0), side_y=(30.0, 80.0))
+    c = problem.candidates[0]
+    tol = WorstCase(alpha=3.0, W=0.1)
+    shifts = tolerance_box.corner_shifts(tol)
+    assert len(shifts) == 4
+    L1, L2 = sep._layer(problem, c, 1, shifts), sep._layer(problem, c, 2, shifts)
+    plain = sep._layer(problem, c, 1)
+    assert L1 is not None and L2 is not None and plain is not None
+    np.testing.assert_array_equal(L1.Eby, plain.Eby)
+    i, j = (v.reshape(-1) for v in np.meshgrid(np.arange(len(L1)), np.arange(len(L2))))
+    x = DesignPoints.of(
+        LayerPoints(L1.n[i], L1.W[i], L1.a[i]), LayerPoints(L2.n[j], L2.W[j], L2.a[j])
+    )
+    q = problem.constraints[-1].quantity
+    parts = tolerance_box.corners(replace(problem, tolerances=tol), c, c, x)
+    for k, part in enumerate(parts):
+        vals = point_values(problem, c, c, part, Tables(problem))
+        u, v, f, g = sep._terms(q, L1.corners[k], L2.corners[k], c.t, c.t)
+        np.testing.assert_allclose((u[i] + v[j]) * f[i] * g[j], vals[q], rtol=1e-13)
+        assert not np.allclose(L1.corners[k].Eby, plain.Eby)  # the corner moved the moduli
 
 
 def test_the_layer_lists_are_the_designs_that_meet_their_own_bounds() -> None:

@@ -13,12 +13,27 @@ meets R's constraints, with the same mass. R is P with
   G meets a lower bound meets it in R (every directional constraint is a lower bound);
 * each directional lower bound relaxed by :data:`RELAX` (relative; rounding) and every lower
   bound of t / W dropped (t (1 - dt) / W is smaller); the sizes, the making and the mass are
-  nominal in both (docs/tolerances.md).
+  nominal in both (docs/tolerances.md);
+* each directional lower bound held at the four corners of the tolerance box too (every
+  layer's W -+ dW and alpha -+ da, on the same low sheet: :func:`~.tolerance_box.corners`,
+  :func:`~.tolerance_box.corner_shifts`): each corner is a part of T(x), so G(x) is at most
+  the point model's value there as well (the branch and bound screens points by the same
+  fact). Without this, R's optimum of a pair lay 8.3-10.6 % below P's on the feasible pairs of
+  tests/solver/test_choices.py's four sheets (default tolerances); with it 0-2.2 %.
 
 So the lightest design of R on a pair, less :data:`RELAX`, is at most P's on that pair. Two such
 floors per pair (:class:`Floors`): :meth:`Floors.coarse`, from R's layer lists alone
-(:func:`~.separable.pair_floor`: the lists are built once per sheet, not per pair), and
-:meth:`Floors.fine`, R's certified optimum on the pair (:func:`~.separable.search`, a few ms).
+(:func:`~.separable.pair_floor`: the lists are built once per sheet, not per pair; each
+layer's lightest design that may meet the coupled bounds with the other list's terms at their
+largest), and
+:meth:`Floors.fine`, the layer-by-layer search (:func:`~.separable.search`) of R on the pair
+whose designs, lightest first, are judged by R's exact values and then by P's own certified
+values (``point_values`` of P, tolerances included, judged with FEAS_RTOL: the branch and bound's
+evaluation of a point), for at most :data:`EXACT_POINTS` designs of the pair, R's alone past
+them: every design lighter than its answer was shown infeasible in R or in P, and P's designs
+are R's, so its answer is at most P's optimum on the pair, and equal to it (less RELAX) while
+the designs judged stay within EXACT_POINTS (films-32 of benchmarks/edges.py: the main solve
+searches 1 pair instead of 15; about 21 us of CPU per design judged by P).
 :func:`~.solve.optimize` takes the pairs best-first by these floors, refining a coarse floor
 before it searches the pair, and stops when the least floor left reaches the incumbent: those
 pairs hold no design lighter than the answer (the branch and bound of each would return none), so
@@ -28,23 +43,47 @@ the answer is the same, its certificate too, whatever the number of sheets.
 from __future__ import annotations
 
 import math
+from collections.abc import Hashable, Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from corrugate.solver import separable
-from corrugate.solver.points import DesignPoints
+from corrugate.solver import separable, tolerance_box
+from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import MASS, T_OVER_W
-from corrugate.solver.separable import LayerDesigns
+from corrugate.solver.separable import LayerDesigns, Shifts
 from corrugate.solver.worst_case import NOMINAL, WorstCase
 
-__all__ = ["RELAX", "Floors", "floors", "relaxation"]
+__all__ = ["EXACT_POINTS", "RELAX", "Floors", "floors", "relaxation", "shared_lists"]
 
 #: Relative relaxation of R's directional lower bounds and of its floors (rounding: far above
 #: the few units in the last place by which R's values may differ from P's).
 RELAX = 1e-9
+#: Designs of one pair a fine floor judges by the problem's own certified values at most (about
+#: 0.1 s of CPU); past them R's values alone judge (module docstring).
+EXACT_POINTS = 4096
+
+
+#: The layer lists built inside :func:`shared_lists`, by :func:`~.separable.layer_key`.
+_LISTS: ContextVar[dict[Hashable, LayerDesigns | None] | None] = ContextVar(
+    "corrugate_layer_lists", default=None
+)
+
+
+@contextmanager
+def shared_lists() -> Iterator[None]:
+    """Inside the block, the :class:`Floors` of every problem share the layer lists they build
+    (one solve and its explanation: the floors of the check problems, the runner-ups' n fixed,
+    mostly the same lists); freed at its end."""
+    token = _LISTS.set({} if _LISTS.get() is None else _LISTS.get())
+    try:
+        yield
+    finally:
+        _LISTS.reset(token)
 
 
 def _sheet(c: Candidate, tol: WorstCase) -> Candidate:
@@ -89,8 +128,14 @@ class Floors:
     candidates[k % N]), :func:`~.solve.pairs`' order), from the relaxation ``relaxed``."""
 
     relaxed: Problem
+    #: the corners of the tolerance boxes (W -+ dW, alpha -+ da) where R's stiffness bounds
+    #: hold too (module docstring): none under nominal tolerances
+    shifts: Shifts = ()
+    #: P itself, whose certified values judge R's designs too (:meth:`fine`); None: R's alone
+    original: Problem | None = None
     _lists: dict[tuple[int, int], LayerDesigns | None] = field(default_factory=dict)
     _tables: Tables | None = None
+    _own_tables: Tables | None = None
     _coarse: np.ndarray | None = None
 
     @property
@@ -101,7 +146,14 @@ class Floors:
         key = (i, which)
         if key not in self._lists:
             cand = self.relaxed.candidates[i]
-            self._lists[key] = separable.layer_designs(self.relaxed, cand, which)
+            shared = _LISTS.get()
+            whole = separable.layer_key(self.relaxed, cand, which, self.shifts)
+            if shared is not None and whole in shared:
+                self._lists[key] = shared[whole]
+            else:
+                self._lists[key] = separable.layer_designs(self.relaxed, cand, which, self.shifts)
+                if shared is not None:
+                    shared[whole] = self._lists[key]
         return self._lists[key]
 
     def _pair(self, k: int) -> tuple[int, int]:
@@ -119,32 +171,69 @@ class Floors:
         return float(self._coarse[k])
 
     def fine(self, k: int, below: float) -> float:
-        """A floor of pair ``k`` at least :meth:`coarse`'s: R's optimum on it, less
-        :data:`RELAX`; inf when R has no design lighter than ``below`` (g) there, 0 when the
-        search declines (lists or pairs too many)."""
+        """A floor of pair ``k`` at least :meth:`coarse`'s: its lightest design that R's and
+        P's values (:attr:`original`; at most :data:`EXACT_POINTS` designs judged by P) do not
+        show infeasible, less :data:`RELAX` (P's certified optimum on the pair, less RELAX,
+        when P judged every design it took); inf when there is none lighter than ``below``
+        (g), 0 when the search declines (lists or pairs too many)."""
         i, j = self._pair(k)
         c1, c2 = self.relaxed.candidates[i], self.relaxed.candidates[j]
         if self._tables is None:
             self._tables = Tables(self.relaxed)
-        tables, relaxed = self._tables, self.relaxed
+        tables, relaxed, shifts = self._tables, self.relaxed, self.shifts
         cons = relaxed.constraints
+        stiff = [c for c in cons if c.quantity.eta is not None]  # R's are lower bounds
+        asked = frozenset(c.quantity for c in stiff)
+        own = self.original
+        if own is not None and self._own_tables is None:
+            self._own_tables = Tables(own)
+        own_tables = self._own_tables
+        o1, o2 = (c1, c2) if own is None else (own.candidates[i], own.candidates[j])
+        judged = 0  # designs judged by P's certified values
 
         def exact(x: DesignPoints) -> tuple[np.ndarray, np.ndarray]:
             vals = point_values(relaxed, c1, c2, x, tables)
             ok = np.ones(len(x), dtype=bool)
             for c in cons:
                 ok &= np.asarray(c.satisfied(vals[c.quantity], rtol=FEAS_RTOL), dtype=bool)
+            for dW, da in shifts if stiff else ():  # and at each corner
+                at = point_values(relaxed, c1, c2, _moved(x, dW, da), tables, asked)
+                for c in stiff:
+                    ok &= np.asarray(c.satisfied(at[c.quantity], rtol=FEAS_RTOL), dtype=bool)
+            nonlocal judged  # then by P itself, up to EXACT_POINTS designs
+            if own is not None and own_tables is not None and judged < EXACT_POINTS and ok.any():
+                sel = np.flatnonzero(ok)
+                judged += len(sel)
+                got = point_values(own, o1, o2, x.take(sel), own_tables)
+                good = np.ones(len(sel), dtype=bool)
+                for c in own.constraints:
+                    good &= np.asarray(c.satisfied(got[c.quantity], rtol=FEAS_RTOL), dtype=bool)
+                ok[sel] = good
             return vals[MASS], ok
 
         inc = None if not math.isfinite(below) else below * (1 + RELAX)
-        r = separable.search(relaxed, c1, c2, inc, exact)
+        lists = (self._list(i, 1), self._list(j, 2))
+        r = separable.search(relaxed, c1, c2, inc, exact, shifts, lists)
         if r is None:
             return 0.0
         return math.inf if r.point is None else r.value * (1 - RELAX)
 
 
+def _moved(x: DesignPoints, dW: float, da: float) -> DesignPoints:
+    """The designs ``x`` with every layer's W and alpha moved by ``dW``, ``da`` as the corners
+    of the tolerance box are (:func:`~.tolerance_box.moved`)."""
+    layers = []
+    for lay in x.layers:
+        W, a = tolerance_box.moved(np.asarray(lay.W), np.asarray(lay.alpha), dW, da)
+        layers.append(LayerPoints(np.asarray(lay.n, np.float64), W, a))
+    return x.with_layers(*layers)
+
+
 def floors(problem: Problem) -> Floors | None:
     """The :class:`Floors` of ``problem``'s sheet pairs, None without a relaxation
-    (:func:`relaxation`)."""
+    (:func:`relaxation`); its stiffness bounds held at the four corners of the tolerance box
+    too (:func:`~.tolerance_box.corner_shifts`), its designs judged by ``problem`` too."""
     relaxed = relaxation(problem)
-    return None if relaxed is None else Floors(relaxed)
+    if relaxed is None:
+        return None
+    return Floors(relaxed, tolerance_box.corner_shifts(problem.tolerances), problem)

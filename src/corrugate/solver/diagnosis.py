@@ -585,7 +585,9 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
             for c in problem.constraints
         ),
     )
-    fixed = optimize(framed, tables=Tables(framed))
+    # its designs meet every constraint but the off-axis ones: on a grid (an exact optimum,
+    # of which only the value is said) searched from the tree's boxes that may hold them
+    fixed = optimize(framed, tables=Tables(framed), warm=warm if problem.gridded else None)
     if not short and fixed.point is None:
         return []
     parts = []
@@ -600,10 +602,13 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         "off-axis ones held, " + "; ".join(parts)
     )
     c0 = off[0]
-    along = []
+    along: list[tuple[float, float]] = []
     for eta in (0.0, 90.0):
         q = Quantity(c0.quantity.kind, eta, c0.quantity.support)
-        best = _best(base, q, c0.sense, tables, warm)
+        # only the better of the two is said: on a grid (exact optima) the second searched
+        # for a design that beats the first (none: the first stays, as on a tie)
+        beat = along[0][1] if along and problem.gridded else None
+        best = _best(base, q, c0.sense, tables, warm, incumbent=beat)
         if best.point is not None:
             along.append((eta, best.value))
     keys = ", ".join(_key(c) for c in off)

@@ -59,8 +59,8 @@ returns None).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Hashable
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -72,6 +72,7 @@ from corrugate.mechanics.behaviours import get_support
 from corrugate.mechanics.creases import creased_moduli, flexibility
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.mechanics.moduli import get_model
+from corrugate.solver import tolerance_box
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantity import (
@@ -98,6 +99,7 @@ __all__ = [
     "SeparableResult",
     "applies",
     "layer_designs",
+    "layer_key",
     "pair_floor",
     "pair_floors",
     "search",
@@ -107,6 +109,9 @@ FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 #: Exact values of pairs: (mass in g, feasible) at the points (both layers' arrays).
 Exact = Callable[[DesignPoints], tuple[FloatArray, NDArray[np.bool_]]]
+#: Corners of the designs' tolerance boxes a search also bounds the stiffness at: (dW, dalpha)
+#: each (:func:`~.tolerance_box.corner_shifts`).
+Shifts = tuple[tuple[float, float], ...]
 
 #: Relative slack beyond FEAS_RTOL with which the formulas judge a pair (rounding: far above the
 #: few units in the last place by which they may differ from ``evaluate``).
@@ -180,7 +185,9 @@ def applies(problem: Problem) -> bool:
 @dataclass(frozen=True)
 class _Layer:
     """One layer's designs that meet its own constraints: n, W (mm), alpha (deg), the extent E,
-    depth h and blank B (mm), and the moduli (MPa)."""
+    depth h and blank B (mm), and the moduli (MPa); ``corners``: the same designs at each
+    corner of their tolerance boxes asked for (:func:`layer_designs`' ``shifts``), n the same,
+    W and alpha moved (the other fields at the moved geometry)."""
 
     n: FloatArray
     W: FloatArray
@@ -192,12 +199,21 @@ class _Layer:
     Ecy: FloatArray
     Ebx: FloatArray
     Eby: FloatArray
+    corners: tuple[_Layer, ...] = ()
 
     def __len__(self) -> int:
         return len(self.n)
 
     def take(self, idx: IntArray) -> _Layer:
-        return _Layer(*(getattr(self, f)[idx] for f in self.__dataclass_fields__))
+        arrays = {f: getattr(self, f)[idx] for f in _ARRAYS}
+        return _Layer(**arrays, corners=tuple(c.take(idx) for c in self.corners))
+
+    def views(self) -> tuple[_Layer, ...]:
+        """The designs as they are, then at each corner (:attr:`corners`)."""
+        return (self, *self.corners)
+
+
+_ARRAYS = ("n", "W", "a", "E", "h", "B", "Ecx", "Ecy", "Ebx", "Eby")
 
 
 #: One layer's designs that meet its own constraints (step 1 of the module docstring).
@@ -208,9 +224,10 @@ def _ok(c: Constraint, v: FloatArray, rtol: float) -> NDArray[np.bool_]:
     return c.satisfied(v, rtol=rtol)
 
 
-def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
-    """Step 1 of the module docstring for layer ``which`` (1: its extent is Lx, 2: Ly); None if
-    the list is longer than :data:`MAX_LAYER_DESIGNS`."""
+def _layer(problem: Problem, cand: Candidate, which: int, shifts: Shifts = ()) -> _Layer | None:
+    """Step 1 of the module docstring for layer ``which`` (1: its extent is Lx, 2: Ly), with
+    the designs at each (dW, dalpha) of ``shifts`` (:attr:`_Layer.corners`); None if the list
+    is longer than :data:`MAX_LAYER_DESIGNS`."""
     own = LX if which == 1 else LY
     W_2d, a_2d = np.meshgrid(problem.W.values(), problem.alpha.values(), indexing="ij")
     W_g: FloatArray = W_2d.reshape(-1)
@@ -241,7 +258,7 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
     # the extent (n + 1) p grows with n: the n range of each (W, alpha) from its bounds, one
     # value wider on each side, then checked exactly below with evaluate's arithmetic
     zz = ZigZag.of(W_g, a_g)  # the zig-zag's profile, as analysis.evaluate._layer_part
-    s, cc, p = zz.s, zz.c, zz.pitch
+    p = zz.pitch
     for c in problem.constraints:
         if c.quantity == own or (c.quantity == FACET and c.sense == "max"):
             # FACET: the other layer's facets are this layer's extent long (a rectangle)
@@ -272,24 +289,63 @@ def _layer(problem: Problem, cand: Candidate, which: int) -> _Layer | None:
             ok &= _ok(c, n, FEAS_RTOL)
     idx = np.flatnonzero(ok)
     g, n, E, B = g[idx], n[idx], E[idx], B[idx]
-    from_sc: Any = get_model(problem.model).from_sc  # (scalar material, arrays of the grid)
-    m = from_sc(float(cand.material.E), float(cand.material.nu), float(t), W_g, s, cc)
+    model = problem.model
+    corners = []
+    for dW, da in shifts:  # the same designs, W and alpha moved as tolerance_box moves them
+        W_m, a_m = tolerance_box.moved(W_g, a_g, dW, da)
+        corners.append(_at(model, cand, W_m, a_m, g, n, ZigZag.of(W_m, a_m)))
+    return replace(_at(model, cand, W_g, a_g, g, n, zz), corners=tuple(corners))
+
+
+def _at(
+    model: str,
+    cand: Candidate,
+    W_g: FloatArray,
+    a_g: FloatArray,
+    g: IntArray,
+    n: FloatArray,
+    zz: ZigZag,
+) -> _Layer:
+    """The layer designs (grid value ``g`` of ``W_g``, ``a_g`` with ``n`` creases) on sheet
+    ``cand`` under the moduli ``model``: extent, depth, blank and moduli as ``evaluate``
+    computes them."""
+    t = cand.t
+    from_sc: Any = get_model(model).from_sc  # (scalar material, arrays of the grid)
+    m = from_sc(float(cand.material.E), float(cand.material.nu), float(t), W_g, zz.s, zz.c)
     # compliant creases (rigid: m itself), as evaluate's profile_moduli puts them
-    m = creased_moduli(m, flexibility(cand.material.crease_stiffness), float(t), W_g, s, cc)
+    m = creased_moduli(m, flexibility(cand.material.crease_stiffness), float(t), W_g, zz.s, zz.c)
 
     def per(x: object) -> FloatArray:
         arr = np.asarray(x, dtype=np.float64)
         return np.asarray(np.broadcast_to(arr, W_g.shape)[g])
 
+    E = (n + 1.0) * zz.pitch[g]
+    B = (n + 1.0) * W_g[g]
     return _Layer(
         n, W_g[g], a_g[g], E, zz.height[g], B, per(m.Ecx), per(m.Ecy), per(m.Ebx), per(m.Eby)
     )
 
 
-def layer_designs(problem: Problem, cand: Candidate, which: int) -> LayerDesigns | None:
-    """Step 1 of the module docstring for layer ``which`` (1 or 2) of sheet ``cand``; None if
-    the list is longer than :data:`MAX_LAYER_DESIGNS`."""
-    return _layer(problem, cand, which)
+def layer_key(problem: Problem, cand: Candidate, which: int, shifts: Shifts = ()) -> Hashable:
+    """Everything :func:`_layer` reads of its arguments (the grids, the n range, the model and
+    profile, the sheet, the corners and the constraints of one layer alone): two calls with the
+    same key return the same list."""
+    own = LX if which == 1 else LY
+    read = (W_MIN, T_OVER_W, CREASES, own, FACET, FLAT)
+    cons = tuple(
+        c for c in problem.constraints if c.quantity in read or c.quantity.kind in LAYER_KINDS
+    )
+    grid = (problem.W, problem.alpha, problem.n_lo, problem.n_hi)
+    return (which, cand, shifts, problem.model, problem.profile_kind, grid, cons)
+
+
+def layer_designs(
+    problem: Problem, cand: Candidate, which: int, shifts: Shifts = ()
+) -> LayerDesigns | None:
+    """Step 1 of the module docstring for layer ``which`` (1 or 2) of sheet ``cand``, with the
+    designs at each corner of ``shifts`` too; None if the list is longer than
+    :data:`MAX_LAYER_DESIGNS`."""
+    return _layer(problem, cand, which, shifts)
 
 
 def pair_floor(
@@ -298,33 +354,50 @@ def pair_floor(
     """A lower bound (g) of the mass of every design of sheets (c1, c2) that meets the
     constraints (inf: none does), from the layer lists alone (:func:`layer_designs`), without
     pairing them: the least of each layer's mass bound of step 3 (its blank over the least
-    extent of the other list, the band at the least of those), and inf when a coupled bound
-    fails even at each term's largest (a stiffness (u + v) f g >= C with max u + max v, max f,
-    max g; the thickness h1 + h2 with both least). A necessary condition of :func:`search`'s
-    pairs, so never above its answer; problems of :func:`applies`."""
+    extent of the other list, the band at the least of those) over the designs of that layer
+    that may meet every coupled bound with the other list's terms at their largest (a
+    stiffness (u_i + max v) f_i max g >= C for a layer-1 design i, (max u + v_j) max f g_j >= C
+    for a layer-2 design j; the thickness h_i + min h2 <= T, h_i + max h2 >= T), inf when no
+    design of a layer may. A necessary condition of :func:`search`'s pairs (its terms are
+    positive), so never above its answer; problems of :func:`applies`."""
     if not len(L1) or not len(L2):
         return math.inf
-    loose = FEAS_RTOL + SLACK
-    for c in problem.constraints:
-        q = c.quantity
-        if _stiffness(q) and c.sense == "min":
-            u, v, f, g = _terms(q, L1, L2, c1.t, c2.t)
-            most = (float(u.max()) + float(v.max())) * float(f.max()) * float(g.max())
-            if most * (1 + SLACK) < c.bound * (1 - loose):
-                return math.inf
-        elif q == THICKNESS:
-            least = float(L1.h.min()) + float(L2.h.min())
-            most = float(L1.h.max()) + float(L2.h.max())
-            if c.sense == "max" and least > c.bound * (1 + loose) * (1 + SLACK):
-                return math.inf
-            if c.sense == "min" and most < c.bound * (1 - loose) * (1 - SLACK):
-                return math.inf
+    ok1, ok2 = _viable(problem, L1, L2, c1.t, c2.t)
+    if not ok1.any() or not ok2.any():
+        return math.inf
     lay, m1, m2 = problem.layout, c1.material, c2.material
     E1_min, E2_min, h2_min = float(L1.E.min()), float(L2.E.min()), float(L2.h.min())
     low1 = layer_mass(m1.density, c1.t, L1.W, length_sum(lay, L1.n, E2_min), lay)
     low1 = low1 + connector_mass(m1.density, c1.t, lay, L1.E, E2_min, L1.h + h2_min)
     low2 = layer_mass(m2.density, c2.t, L2.W, length_sum(lay, L2.n, E1_min), lay)
-    return (float(np.min(low1)) + float(np.min(low2))) * (1 - SLACK)
+    return (float(np.min(low1[ok1])) + float(np.min(low2[ok2]))) * (1 - SLACK)
+
+
+def _viable(
+    problem: Problem, L1: _Layer, L2: _Layer, t1: float, t2: float
+) -> tuple[NDArray[np.bool_], NDArray[np.bool_]]:
+    """Per design of each list, whether it may meet every coupled bound with the other list's
+    terms at their largest (:func:`pair_floor`), judged as :func:`search` judges pairs (the
+    relative slack FEAS_RTOL + SLACK, and SLACK more on the side of keeping)."""
+    loose = FEAS_RTOL + SLACK
+    ok1, ok2 = np.ones(len(L1), dtype=bool), np.ones(len(L2), dtype=bool)
+    for c in problem.constraints:
+        q = c.quantity
+        if _stiffness(q) and c.sense == "min":
+            need = c.bound * (1 - loose)
+            for V1, V2 in zip(L1.views(), L2.views(), strict=True):
+                u, v, f, g = _terms(q, V1, V2, t1, t2)
+                ok1 &= (u + float(v.max())) * f * float(g.max()) * (1 + SLACK) >= need
+                ok2 &= (float(u.max()) + v) * float(f.max()) * g * (1 + SLACK) >= need
+        elif q == THICKNESS and c.sense == "max":
+            top = c.bound * (1 + loose) * (1 + SLACK)
+            ok1 &= L1.h + float(L2.h.min()) <= top
+            ok2 &= float(L1.h.min()) + L2.h <= top
+        elif q == THICKNESS and c.sense == "min":
+            least = c.bound * (1 - loose) * (1 - SLACK)
+            ok1 &= L1.h + float(L2.h.max()) >= least
+            ok2 &= float(L1.h.max()) + L2.h >= least
+    return ok1, ok2
 
 
 def pair_floors(
@@ -347,40 +420,44 @@ def pair_floors(
     if full1 and full2:
         A: list[_Layer] = [L for i in full1 if (L := firsts[i]) is not None]
         B: list[_Layer] = [L for j in full2 if (L := seconds[j]) is not None]
-        dead = np.zeros((len(A), len(B)), dtype=bool)
+        ok_a = [np.ones((len(L), len(B)), dtype=bool) for L in A]  # (:func:`_viable`)
+        ok_b = [np.ones((len(L), len(A)), dtype=bool) for L in B]
         loose = FEAS_RTOL + SLACK
         h1 = np.array([[float(L.h.min()), float(L.h.max())] for L in A])
         h2 = np.array([[float(L.h.min()), float(L.h.max())] for L in B])
         for c in problem.constraints:
             q = c.quantity
             if _stiffness(q) and c.sense == "min":
-                uf = np.array(
-                    [
-                        [float(t[0].max()), float(t[2].max())]
-                        for t in (
-                            _terms(q, L, L, cands[i].t, cands[i].t)
-                            for L, i in zip(A, full1, strict=True)
-                        )
+                need = c.bound * (1 - loose)
+                for view in range(len(A[0].views())):  # as they are, then at each corner
+                    ta = [
+                        _terms(q, L.views()[view], L.views()[view], cands[i].t, cands[i].t)
+                        for L, i in zip(A, full1, strict=True)
                     ]
-                )
-                vg = np.array(
-                    [
-                        [float(t[1].max()), float(t[3].max())]
-                        for t in (
-                            _terms(q, L, L, cands[j].t, cands[j].t)
-                            for L, j in zip(B, full2, strict=True)
-                        )
+                    tb = [
+                        _terms(q, L.views()[view], L.views()[view], cands[j].t, cands[j].t)
+                        for L, j in zip(B, full2, strict=True)
                     ]
-                )
-                most = (uf[:, :1] + vg[None, :, 0]) * uf[:, 1:] * vg[None, :, 1]
-                dead |= most * (1 + SLACK) < c.bound * (1 - loose)
-            elif q == THICKNESS:
-                least = h1[:, :1] + h2[None, :, 0]
-                top = h1[:, 1:] + h2[None, :, 1]
-                if c.sense == "max":
-                    dead |= least > c.bound * (1 + loose) * (1 + SLACK)
-                else:
-                    dead |= top < c.bound * (1 - loose) * (1 - SLACK)
+                    uf = np.array([[float(x[0].max()), float(x[2].max())] for x in ta])
+                    vg = np.array([[float(x[1].max()), float(x[3].max())] for x in tb])
+                    for r, terms in enumerate(ta):
+                        u, f = terms[0][:, None], terms[2][:, None]
+                        ok_a[r] &= (u + vg[None, :, 0]) * f * vg[None, :, 1] * (1 + SLACK) >= need
+                    for col, terms in enumerate(tb):
+                        v, g = terms[1][:, None], terms[3][:, None]
+                        ok_b[col] &= (uf[None, :, 0] + v) * uf[None, :, 1] * g * (1 + SLACK) >= need
+            elif q == THICKNESS and c.sense == "max":
+                top = c.bound * (1 + loose) * (1 + SLACK)
+                for r, L in enumerate(A):
+                    ok_a[r] &= L.h[:, None] + h2[None, :, 0] <= top
+                for col, L in enumerate(B):
+                    ok_b[col] &= h1[None, :, 0] + L.h[:, None] <= top
+            elif q == THICKNESS and c.sense == "min":
+                least = c.bound * (1 - loose) * (1 - SLACK)
+                for r, L in enumerate(A):
+                    ok_a[r] &= L.h[:, None] + h2[None, :, 1] >= least
+                for col, L in enumerate(B):
+                    ok_b[col] &= h1[None, :, 1] + L.h[:, None] >= least
         lay = problem.layout
         E1_min = np.array([float(L.E.min()) for L in A])
         E2_min = np.array([float(L.E.min()) for L in B])
@@ -397,16 +474,14 @@ def pair_floors(
                 E2_min[None, :],
                 L.h[:, None] + h2[None, :, 0],
             )
-            low1[r] = x.min(axis=0)
+            low1[r] = np.where(ok_a[r], x, math.inf).min(axis=0)
         low2 = np.empty((len(A), len(B)))
         for col, (L, j) in enumerate(zip(B, full2, strict=True)):
             m, t = cands[j].material, cands[j].t
             W, n = L.W[:, None], L.n[:, None]
-            low2[:, col] = layer_mass(
-                m.density, t, W, length_sum(lay, n, E1_min[None, :]), lay
-            ).min(axis=0)
-        block = np.where(dead, math.inf, (low1 + low2) * (1 - SLACK))
-        out[np.ix_(full1, full2)] = block
+            y = layer_mass(m.density, t, W, length_sum(lay, n, E1_min[None, :]), lay)
+            low2[:, col] = np.where(ok_b[col], y, math.inf).min(axis=0)
+        out[np.ix_(full1, full2)] = (low1 + low2) * (1 - SLACK)
     out[empty1 & ok1, :] = math.inf
     out[:, empty2 & ok2] = math.inf
     out[~ok1, :] = 0.0
@@ -466,15 +541,25 @@ def search(
     c2: Candidate,
     incumbent: float | None,
     exact: Exact,
+    shifts: Shifts = (),
+    lists: tuple[LayerDesigns | None, LayerDesigns | None] | None = None,
 ) -> SeparableResult | None:
     """The least-mass design over sheets (c1, c2), certified (module docstring), lighter than
     ``incumbent`` (g) if given; None when the problem lacks the structure (:func:`applies`) or
-    its layer lists or pairs are too many. ``exact(x)`` returns the exact values and feasibility of the pairs
-    ``x`` (:class:`~.points.DesignPoints`): ``(mass, feasible)``."""
+    its layer lists or pairs are too many. ``exact(x)`` returns the exact values and
+    feasibility of the pairs ``x`` (:class:`~.points.DesignPoints`): ``(mass, feasible)``.
+    ``shifts``: the corners (dW, dalpha) at which every stiffness bound must hold too (the
+    layer designs moved there, :attr:`_Layer.corners`; ``exact`` judges the pairs there too):
+    the search of a relaxation that bounds a certified stiffness by its value at those parts
+    of the tolerance box (:mod:`.choices`). ``lists``: the two layer lists, already built by
+    :func:`layer_designs` with these arguments."""
     if not applies(problem):
         return None
-    L1 = _layer(problem, c1, 1)
-    L2 = _layer(problem, c2, 2) if L1 is not None else None
+    if lists is not None:
+        L1, L2 = lists
+    else:
+        L1 = _layer(problem, c1, 1, shifts)
+        L2 = _layer(problem, c2, 2, shifts) if L1 is not None else None
     if L1 is None or L2 is None:
         return None
     sizes = (len(L1), len(L2))
@@ -485,8 +570,9 @@ def search(
     mass_max = math.inf
     for c in problem.constraints:
         q = c.quantity
-        if _stiffness(q):
-            coupled.append(_Coupled(c, *_terms(q, L1, L2, c1.t, c2.t)))
+        if _stiffness(q):  # as they are, then at each corner (``shifts``)
+            for V1, V2 in zip(L1.views(), L2.views(), strict=True):
+                coupled.append(_Coupled(c, *_terms(q, V1, V2, c1.t, c2.t)))
         elif q == THICKNESS and c.sense == "max":
             t_max = min(t_max, c.bound * (1 + loose))
         elif q == MASS and c.sense == "max":

@@ -40,7 +40,7 @@ from corrugate.mechanics.capacity import Capacity
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.choices import Floors, floors
+from corrugate.solver.choices import Floors, floors, shared_lists
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
@@ -612,7 +612,7 @@ def solve(
     ``not-certified`` (the search stopped at the budget or its own limits first: ``assembly`` is
     the best design found so far, or None, and ``gap`` the proven relative gap, inf when nothing
     bounds it). The budget used is in ``stats["budget"]``."""
-    with budget_scope(budget) as spent:
+    with budget_scope(budget) as spent, shared_lists():
         sol = _solve(problem, explain, spent)
     return replace(sol, stats={**sol.stats, "budget": spent.as_dict()})
 

@@ -129,6 +129,21 @@ def _clip(W: FloatArray, a: FloatArray) -> tuple[FloatArray, FloatArray]:
     return np.maximum(W, 1e-6), np.clip(a, _ALPHA_MIN, _ALPHA_MAX)
 
 
+def moved(W: FloatArray, a: FloatArray, dW: float, da: float) -> tuple[FloatArray, FloatArray]:
+    """Facet widths ``W`` (mm) and fold angles ``a`` (deg) moved by ``dW`` and ``da`` and
+    clipped as the corners of :func:`corners` are (a sheet without a calibrated springback:
+    ``dW`` = -+dW, ``da`` = -+da of the tolerances), the same arithmetic."""
+    return _clip(np.asarray(W, np.float64) + dW, np.asarray(a, np.float64) + da)
+
+
+def corner_shifts(tol: WorstCase) -> tuple[tuple[float, float], ...]:
+    """The (dW, da) of the four corners of :func:`corners` for sheets without a calibrated
+    springback (W -+ dW, alpha -+ da); none when both half-widths are 0."""
+    if not (tol.W or tol.alpha):
+        return ()
+    return tuple((sW * tol.W, sa * tol.alpha) for sW, sa in _SHIFTS)
+
+
 def _offsets(
     problem: Problem, cands: tuple[Candidate, Candidate] | None, i: int
 ) -> tuple[float, float]:
