@@ -32,7 +32,7 @@ from numpy.typing import NDArray
 from corrugate.core.sigpipe import reapply_sigpipe
 from corrugate.fea.ccx import SolverError
 from corrugate.fea.coincident import CoincidentKeys, Key
-from corrugate.fea.planmesh import _LOCK, _TYPES, Corrugation, PlanMesh
+from corrugate.fea.planmesh import _LOCK, Corrugation, PlanMesh, gmsh_plan
 
 __all__ = ["Disc", "disc_mesh", "divisions"]
 
@@ -189,33 +189,7 @@ def disc_mesh(
             gmsh.finalize()
     index = {int(t): i for i, t in enumerate(tags)}
     xy = np.asarray(coords, dtype=np.float64).reshape(-1, 3)[:, :2]
-    elements: dict[str, list[list[int]]] = {"S8R": [], "S6": []}
-    for etype, conn in zip(types, conns, strict=True):
-        if int(etype) not in _TYPES:
-            raise SolverError(f"gmsh produced elements of type {int(etype)}, not S8R or S6")
-        name, flip = _TYPES[int(etype)]
-        k = 8 if name == "S8R" else 6
-        rows = np.asarray([index[int(t)] for t in conn], dtype=np.int64).reshape(-1, k)
-        nc = 4 if name == "S8R" else 3
-        for row in rows:
-            q = xy[row[:nc]]
-            area2 = float(np.sum(q[:, 0] * np.roll(q[:, 1], -1) - np.roll(q[:, 0], -1) * q[:, 1]))
-            ids = [int(v) for v in row]
-            elements[name].append([ids[j] for j in flip] if area2 < 0 else ids)
-    used = sorted({i for rows_ in elements.values() for r_ in rows_ for i in r_})
-    remap = {old: new for new, old in enumerate(used)}
-    xy = xy[used]
-    xyz = np.column_stack([xy, corrugation.z(xy)])
-    out = {name: [[remap[i] for i in r_] for r_ in rows_] for name, rows_ in elements.items()}
-    if strip <= 0.0:
-        return PlanMesh(xyz, out)
-    marks: dict[str, list[bool]] = {}
-    for name, rows_ in out.items():
-        nc = 4 if name == "S8R" else 3
-        u = np.array([corrugation.u(xy[r_[:nc]]).mean() for r_ in rows_]) if rows_ else np.zeros(0)
-        dist = np.abs(u - p * np.round(u / p))
-        marks[name] = [bool(d < strip) for d in dist]
-    return PlanMesh(xyz, out, marks)
+    return gmsh_plan(xy, types, conns, index, corrugation, strip)
 
 
 def _band_cos(angle_deg: float, axis: int) -> float:

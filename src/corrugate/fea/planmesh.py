@@ -243,6 +243,22 @@ def plan_mesh(
         xy = xy + (aspect - 1.0) * np.outer(along_t, [tx, ty])
     if mirrored:
         xy[:, 0] = A - xy[:, 0]  # the element orientation is restored below
+    return gmsh_plan(xy, types, conns, index, corrugation, strip)
+
+
+def gmsh_plan(
+    xy: NDArray[np.float64],
+    types: Sequence[int],
+    conns: Sequence[Sequence[int]],
+    index: dict[int, int],
+    corrugation: Corrugation,
+    strip: float,
+) -> PlanMesh:
+    """The plan mesh of gmsh's 2-D elements (``types``, ``conns``: its node tags, ``index``: a
+    tag's row of ``xy``, the nodes' plan coordinates in mm): S8R and S6 elements turned
+    counter-clockwise, the nodes no element uses dropped, each node lifted to the corrugation's
+    height, and, for ``strip`` > 0, each element marked when its centre lies within ``strip`` mm
+    of a crease (along the chord, u) (the crease strips, docs/offaxis.md)."""
     elements: dict[str, list[list[int]]] = {"S8R": [], "S6": []}
     for etype, conn in zip(types, conns, strict=True):
         if int(etype) not in _TYPES:
