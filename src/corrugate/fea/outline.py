@@ -57,7 +57,6 @@ from corrugate.fea.cuts import cut_holes, cut_outline
 from corrugate.fea.deck import mesh_lines
 from corrugate.fea.discmesh import Disc
 from corrugate.fea.fixtures import Fixture, OutlinePart, fixtures, get_fixture
-from corrugate.fea.planmesh import PlanMesh
 from corrugate.fea.shells import Shell, layer_shell, quad8_elements
 from corrugate.fea.steps import STATIC, BoundaryItem, LinearBuckling, Step
 from corrugate.geometry.layer import Assembly, require_zigzag
@@ -173,7 +172,7 @@ def _disc_shells(
     (:func:`corrugate.fea.discmesh.disc_mesh`), layer 1's chord along x, layer 2's along y."""
     from corrugate.fea.discmesh import disc_mesh
     from corrugate.fea.planmesh import Corrugation
-    from corrugate.fea.shells import STRIP_FRACTION, crease_strip
+    from corrugate.fea.shells import plan_shell, strip_half_width
 
     a = assembly
     shells: list[Shell] = []
@@ -182,44 +181,10 @@ def _disc_shells(
         a.layers, ((1.0, 0.0), (0.0, 1.0)), (0.0, a.layer1.height), strict=True
     ):
         require_zigzag(layer, "FE mesh")
-        m = layer.material
-        k = m.crease_stiffness
-        half = 0.0 if math.isinf(k) else STRIP_FRACTION * layer.pitch / 2
         corr = Corrugation(chord, 0.0, layer.pitch, layer.height, z0)
-        pm = disc_mesh(corr, disc, along, rim_angles, strip=half)
-        ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
-
-        def rows(
-            name: str, strip: bool, pm: PlanMesh = pm, ids: NDArray[np.int64] = ids
-        ) -> list[list[int]]:
-            mask = pm.in_strip.get(name) or [False] * len(pm.elements[name])
-            return [
-                [int(ids[i]) for i in r]
-                for r, s in zip(pm.elements[name], mask, strict=True)
-                if s == strip
-            ]
-
-        crease = (-chord[1], chord[0])
-        section = (
-            None
-            if math.isinf(k)
-            else crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W)
-        )
-        shells.append(
-            Shell(
-                ids,
-                pm.xyz,
-                rows("S8R", False),
-                layer.t,
-                m.E,
-                m.nu,
-                rows("S6", False),
-                rows("S8R", True),
-                rows("S6", True),
-                section,
-            )
-        )
-        first = int(ids[-1]) + 1
+        pm = disc_mesh(corr, disc, along, rim_angles, strip=strip_half_width(layer))
+        shells.append(plan_shell(layer, pm, first, chord))
+        first = int(shells[-1].ids[-1]) + 1
     return shells
 
 

@@ -30,10 +30,12 @@ __all__ = [
     "crease_strip",
     "layer_shell",
     "oblique_shells",
+    "plan_shell",
     "principal_axis",
     "quad8_elements",
     "section_lines",
     "specimen",
+    "strip_half_width",
     "strip_stations",
 ]
 
@@ -321,30 +323,41 @@ def oblique_shells(
     ):
         offset = centre - (chord[0] * A / 2 + chord[1] * B / 2) - shift * layer.pitch
         corr = Corrugation(chord, offset, layer.pitch, layer.height, z0)
-        m = layer.material
-        k = m.crease_stiffness
-        half = 0.0 if math.isinf(k) else STRIP_FRACTION * layer.pitch / 2
-        pm = plan_mesh(corr, A, B, along, fixture_y, aspect, strip=half)
-        ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
-        crease = (-chord[1], chord[0])  # the creases' direction in the test frame
-        shells.append(
-            Shell(
-                ids,
-                pm.xyz,
-                _rows(pm, ids, "S8R", False),
-                layer.t,
-                m.E,
-                m.nu,
-                _rows(pm, ids, "S6", False),
-                _rows(pm, ids, "S8R", True),
-                _rows(pm, ids, "S6", True),
-                None
-                if math.isinf(k)
-                else crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W),
-            )
-        )
-        first = int(ids[-1]) + 1
+        pm = plan_mesh(corr, A, B, along, fixture_y, aspect, strip=strip_half_width(layer))
+        shells.append(plan_shell(layer, pm, first, chord))
+        first = int(shells[-1].ids[-1]) + 1
     return shells
+
+
+def strip_half_width(layer: Layer) -> float:
+    """How far (mm, in plan, across the creases) each crease strip reaches from its crease:
+    half of STRIP_FRACTION of the layer's pitch, 0 for rigid creases (no strips)."""
+    return 0.0 if math.isinf(layer.material.crease_stiffness) else STRIP_FRACTION * layer.pitch / 2
+
+
+def plan_shell(layer: Layer, pm: PlanMesh, first: int, chord: tuple[float, float]) -> Shell:
+    """``layer`` on the plan mesh ``pm`` (meshed with :func:`strip_half_width`), its nodes
+    numbered from ``first``, ``chord`` the unit vector across its creases in the mesh's frame:
+    the elements in and out of the crease strips, and the strips' section at the material's
+    crease stiffness (none for rigid creases)."""
+    m = layer.material
+    k = m.crease_stiffness
+    ids = np.arange(first, first + len(pm.xyz), dtype=np.int64)
+    crease = (-chord[1], chord[0])  # the creases' direction in the mesh's frame
+    return Shell(
+        ids,
+        pm.xyz,
+        _rows(pm, ids, "S8R", False),
+        layer.t,
+        m.E,
+        m.nu,
+        _rows(pm, ids, "S6", False),
+        _rows(pm, ids, "S8R", True),
+        _rows(pm, ids, "S6", True),
+        None
+        if math.isinf(k)
+        else crease_strip(layer.t, m.E, m.nu, k, STRIP_FRACTION * layer.W, crease, layer.W),
+    )
 
 
 def _rows(pm: PlanMesh, ids: NDArray[np.int64], name: str, strip: bool) -> list[list[int]]:
