@@ -25,14 +25,14 @@ import itertools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from corrugate.core.sigpipe import reapply_sigpipe
 from corrugate.fea.ccx import SolverError
 from corrugate.fea.coincident import CoincidentKeys, Key
-from corrugate.fea.planmesh import _LOCK, Corrugation, PlanMesh, gmsh_plan
+from corrugate.fea.planmesh import Corrugation, PlanMesh, gmsh_mesh, gmsh_plan
 
 __all__ = ["Disc", "disc_mesh", "divisions"]
 
@@ -91,8 +91,6 @@ def disc_mesh(
     > 0 (mm, in plan) adds the lines that far on either side of each crease as band lines and
     marks the elements between them (``in_strip``), as
     :func:`corrugate.fea.planmesh.plan_mesh` does."""
-    import gmsh
-
     chord = corrugation.chord
     axis = {(1.0, 0.0): 0, (0.0, 1.0): 1}.get((float(chord[0]), float(chord[1])))
     if axis is None:
@@ -121,74 +119,58 @@ def disc_mesh(
     def inner(u: float) -> float:
         return math.sqrt(max(0.0, r * r - (u - cu) ** 2)) if r > 0 else 0.0
 
-    with _LOCK:
-        gmsh.initialize(interruptible=False)
-        reapply_sigpipe()  # gmsh sets SIGPIPE to its default in C (core.sigpipe)
-        try:
-            gmsh.option.setNumber("General.Terminal", 0)
-            gmsh.model.add("disc")
-            geo = gmsh.model.geo
-            points: dict[Key, int] = {}
-            coincident = CoincidentKeys(tol)
+    def build(gmsh: Any) -> None:
+        """The cells as transfinite (mapped) surfaces of gmsh's built-in kernel."""
+        geo = gmsh.model.geo
+        points: dict[Key, int] = {}
+        coincident = CoincidentKeys(tol)
 
-            def point(q: Point) -> int:
-                x, y = to_band(*q)  # the swap is its own inverse
-                key = coincident.key(x, y, 0.0)
-                if key not in points:
-                    points[key] = geo.addPoint(x, y, 0.0)
-                return points[key]
+        def point(q: Point) -> int:
+            x, y = to_band(*q)  # the swap is its own inverse
+            key = coincident.key(x, y, 0.0)
+            if key not in points:
+                points[key] = geo.addPoint(x, y, 0.0)
+            return points[key]
 
-            centre = point(band.centre)
-            curves: dict[tuple[int, int], int] = {}
+        centre = point(band.centre)
+        curves: dict[tuple[int, int], int] = {}
 
-            def curve(a_: int, b_: int, arc: bool, nodes: int) -> int:
-                if (b_, a_) in curves:
-                    return -curves[(b_, a_)]
-                if (a_, b_) not in curves:
-                    tag = geo.addCircleArc(a_, centre, b_) if arc else geo.addLine(a_, b_)
-                    geo.mesh.setTransfiniteCurve(tag, nodes + 1)
-                    curves[(a_, b_)] = tag
-                return curves[(a_, b_)]
+        def curve(a_: int, b_: int, arc: bool, nodes: int) -> int:
+            if (b_, a_) in curves:
+                return -curves[(b_, a_)]
+            if (a_, b_) not in curves:
+                tag = geo.addCircleArc(a_, centre, b_) if arc else geo.addLine(a_, b_)
+                geo.mesh.setTransfiniteCurve(tag, nodes + 1)
+                curves[(a_, b_)] = tag
+            return curves[(a_, b_)]
 
-            for u0, u1 in itertools.pairwise(cuts):
-                nu = divisions(u1 - u0, p, along)
-                over_hole = r > 0 and cu - r - tol <= u0 and u1 <= cu + r + tol
-                for s in (1.0, -1.0):
-                    bl = point((u0, cv + s * inner(u0) if over_hole else cv))
-                    br = point((u1, cv + s * inner(u1) if over_hole else cv))
-                    tr = point((u1, cv + s * outer(u1)))
-                    tl = point((u0, cv + s * outer(u0)))
-                    loop = [curve(bl, br, over_hole, nu)]
-                    corners = [bl, br]
-                    if tr != br:
-                        loop.append(curve(br, tr, False, nv))
-                        corners.append(tr)
-                    loop.append(curve(tr, tl, True, nu))
-                    if tl != bl:
-                        loop.append(curve(tl, bl, False, nv))
-                        corners.append(tl)
-                    if len(corners) == 3:  # a tangent point: the apex first
-                        apex = bl if tl == bl else br
-                        i = corners.index(apex)
-                        corners = corners[i:] + corners[:i]
-                    surf = geo.addPlaneSurface([geo.addCurveLoop(loop)])
-                    geo.mesh.setTransfiniteSurface(surf, "Left", corners)
-                    geo.mesh.setRecombine(2, surf)
-            geo.synchronize()
-            for name, value in (
-                ("Mesh.ElementOrder", 2),
-                ("Mesh.SecondOrderIncomplete", 1),  # 8-node (serendipity) quadrilaterals
-            ):
-                gmsh.option.setNumber(name, value)
-            gmsh.model.mesh.generate(2)
-            tags, coords, _ = gmsh.model.mesh.getNodes()
-            types, _, conns = gmsh.model.mesh.getElements(2)
-        except Exception as exc:  # gmsh raises plain Exceptions with its log message
-            raise SolverError(f"gmsh could not mesh the disc: {exc}") from None
-        finally:
-            gmsh.finalize()
-    index = {int(t): i for i, t in enumerate(tags)}
-    xy = np.asarray(coords, dtype=np.float64).reshape(-1, 3)[:, :2]
+        for u0, u1 in itertools.pairwise(cuts):
+            nu = divisions(u1 - u0, p, along)
+            over_hole = r > 0 and cu - r - tol <= u0 and u1 <= cu + r + tol
+            for s in (1.0, -1.0):
+                bl = point((u0, cv + s * inner(u0) if over_hole else cv))
+                br = point((u1, cv + s * inner(u1) if over_hole else cv))
+                tr = point((u1, cv + s * outer(u1)))
+                tl = point((u0, cv + s * outer(u0)))
+                loop = [curve(bl, br, over_hole, nu)]
+                corners = [bl, br]
+                if tr != br:
+                    loop.append(curve(br, tr, False, nv))
+                    corners.append(tr)
+                loop.append(curve(tr, tl, True, nu))
+                if tl != bl:
+                    loop.append(curve(tl, bl, False, nv))
+                    corners.append(tl)
+                if len(corners) == 3:  # a tangent point: the apex first
+                    apex = bl if tl == bl else br
+                    i = corners.index(apex)
+                    corners = corners[i:] + corners[:i]
+                surf = geo.addPlaneSurface([geo.addCurveLoop(loop)])
+                geo.mesh.setTransfiniteSurface(surf, "Left", corners)
+                geo.mesh.setRecombine(2, surf)
+        geo.synchronize()
+
+    index, xy, types, conns = gmsh_mesh("disc", "disc", build)
     return gmsh_plan(xy, types, conns, index, corrugation, strip)
 
 

@@ -21,8 +21,9 @@ from __future__ import annotations
 import itertools
 import math
 import threading
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -160,8 +161,6 @@ def plan_mesh(
     ``strip`` > 0 (mm, in plan) adds the lines that far on either side of each crease as
     element edges and marks the elements between them (``in_strip``): the compliant strips of
     :func:`corrugate.fea.shells.crease_strip`."""
-    import gmsh
-
     tol = 1e-7 * max(A, B)
     cx, cy = corrugation.chord
     mirrored = cx < 0  # u = cx x + cy y + o = (-cx) (A - x) + cy y + (o + cx A)
@@ -184,60 +183,51 @@ def plan_mesh(
             ]
             for c in cells
         ]
-    with _LOCK:
-        gmsh.initialize(interruptible=False)
-        reapply_sigpipe()  # gmsh sets SIGPIPE to its default in C (core.sigpipe)
-        try:
-            gmsh.option.setNumber("General.Terminal", 0)
-            gmsh.model.add("layer")
-            # the built-in kernel, fed cells that share their points and edges: deterministic
-            # (OpenCASCADE's fragment gave a different mesh for a second layer in one process)
-            geo = gmsh.model.geo
-            points: dict[Key, int] = {}
-            coincident = CoincidentKeys(tol)  # a cell corner shared by two cells, one key
-            lines: dict[tuple[int, int], int] = {}
-            for cell in cells:
-                tags: list[int] = []
-                for x, y in cell:
-                    key = coincident.key(x, y, 0.0)
-                    if key not in points:
-                        points[key] = geo.addPoint(x, y, 0.0)
-                    if not tags or tags[-1] != points[key]:
-                        tags.append(points[key])
-                if tags[0] == tags[-1]:
-                    tags.pop()
-                if len(tags) < 3:
-                    continue  # a sliver thinner than the tolerance
-                loop: list[int] = []
-                for a_, b_ in zip(tags, tags[1:] + tags[:1], strict=True):
-                    if (b_, a_) in lines:
-                        loop.append(-lines[(b_, a_)])
-                    else:
-                        lines[(a_, b_)] = lines.get((a_, b_)) or geo.addLine(a_, b_)
-                        loop.append(lines[(a_, b_)])
-                geo.addPlaneSurface([geo.addCurveLoop(loop)])
-            geo.synchronize()
-            for name, value in (
-                ("Mesh.MeshSizeMin", size),
-                ("Mesh.MeshSizeMax", size),
-                ("Mesh.MeshSizeFromPoints", 0),
-                ("Mesh.MeshSizeExtendFromBoundary", 0),
-                ("Mesh.Algorithm", 8),  # frontal-Delaunay for quadrilaterals
-                ("Mesh.RecombineAll", 1),
-                ("Mesh.RecombinationAlgorithm", 1),  # blossom
-                ("Mesh.ElementOrder", 2),
-                ("Mesh.SecondOrderIncomplete", 1),  # 8-node (serendipity) quadrilaterals
-            ):
-                gmsh.option.setNumber(name, value)
-            gmsh.model.mesh.generate(2)
-            tags, coords, _ = gmsh.model.mesh.getNodes()
-            types, _, conns = gmsh.model.mesh.getElements(2)
-        except Exception as exc:  # gmsh raises plain Exceptions with its log message
-            raise SolverError(f"gmsh could not mesh the specimen: {exc}") from None
-        finally:
-            gmsh.finalize()
-    index = {int(t): i for i, t in enumerate(tags)}
-    xy = np.asarray(coords, dtype=np.float64).reshape(-1, 3)[:, :2]
+
+    def build(gmsh: Any) -> None:
+        """The cells as plane surfaces of gmsh's built-in kernel."""
+        # the built-in kernel, fed cells that share their points and edges: deterministic
+        # (OpenCASCADE's fragment gave a different mesh for a second layer in one process)
+        geo = gmsh.model.geo
+        points: dict[Key, int] = {}
+        coincident = CoincidentKeys(tol)  # a cell corner shared by two cells, one key
+        lines: dict[tuple[int, int], int] = {}
+        for cell in cells:
+            tags: list[int] = []
+            for x, y in cell:
+                key = coincident.key(x, y, 0.0)
+                if key not in points:
+                    points[key] = geo.addPoint(x, y, 0.0)
+                if not tags or tags[-1] != points[key]:
+                    tags.append(points[key])
+            if tags[0] == tags[-1]:
+                tags.pop()
+            if len(tags) < 3:
+                continue  # a sliver thinner than the tolerance
+            loop: list[int] = []
+            for a_, b_ in zip(tags, tags[1:] + tags[:1], strict=True):
+                if (b_, a_) in lines:
+                    loop.append(-lines[(b_, a_)])
+                else:
+                    lines[(a_, b_)] = lines.get((a_, b_)) or geo.addLine(a_, b_)
+                    loop.append(lines[(a_, b_)])
+            geo.addPlaneSurface([geo.addCurveLoop(loop)])
+        geo.synchronize()
+
+    index, xy, types, conns = gmsh_mesh(
+        "layer",
+        "specimen",
+        build,
+        (
+            ("Mesh.MeshSizeMin", size),
+            ("Mesh.MeshSizeMax", size),
+            ("Mesh.MeshSizeFromPoints", 0),
+            ("Mesh.MeshSizeExtendFromBoundary", 0),
+            ("Mesh.Algorithm", 8),  # frontal-Delaunay for quadrilaterals
+            ("Mesh.RecombineAll", 1),
+            ("Mesh.RecombinationAlgorithm", 1),  # blossom
+        ),
+    )
     if aspect != 1.0:
         along_t = xy @ np.array([tx, ty])
         xy = xy + (aspect - 1.0) * np.outer(along_t, [tx, ty])
@@ -286,3 +276,42 @@ def gmsh_plan(
         off = np.abs(u - corrugation.pitch * np.round(u / corrugation.pitch))
         marks[name] = [bool(d < strip) for d in off]
     return PlanMesh(xyz, out, marks)
+
+
+def gmsh_mesh(
+    model: str,
+    what: str,
+    build: Callable[[Any], None],
+    options: Sequence[tuple[str, float]] = (),
+) -> tuple[dict[int, int], FloatArray, Sequence[int], Sequence[Sequence[int]]]:
+    """One gmsh session, under the lock (gmsh is a process-wide library): the model ``model``,
+    its geometry added by ``build(gmsh)`` (which synchronises it), the mesh ``options`` and
+    second order, 8-node (serendipity) quadrilaterals, the 2-D mesh generated. Returns each node
+    tag's row (``index``), the nodes' plan coordinates (mm) and gmsh's 2-D element types and
+    connectivities, for :func:`gmsh_plan`. SIGPIPE is ignored again after gmsh's initialisation
+    (:mod:`corrugate.core.sigpipe`); any failure is a :class:`SolverError` naming ``what``."""
+    import gmsh
+
+    with _LOCK:
+        gmsh.initialize(interruptible=False)
+        reapply_sigpipe()  # gmsh sets SIGPIPE to its default in C (core.sigpipe)
+        try:
+            gmsh.option.setNumber("General.Terminal", 0)
+            gmsh.model.add(model)
+            build(gmsh)
+            for name, value in (
+                *options,
+                ("Mesh.ElementOrder", 2),
+                ("Mesh.SecondOrderIncomplete", 1),  # 8-node (serendipity) quadrilaterals
+            ):
+                gmsh.option.setNumber(name, value)
+            gmsh.model.mesh.generate(2)
+            tags, coords, _ = gmsh.model.mesh.getNodes()
+            types, _, conns = gmsh.model.mesh.getElements(2)
+        except Exception as exc:  # gmsh raises plain Exceptions with its log message
+            raise SolverError(f"gmsh could not mesh the {what}: {exc}") from None
+        finally:
+            gmsh.finalize()
+    index = {int(t): i for i, t in enumerate(tags)}
+    xy = np.asarray(coords, dtype=np.float64).reshape(-1, 3)[:, :2]
+    return index, xy, types, conns
