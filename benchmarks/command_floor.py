@@ -23,13 +23,14 @@ from __future__ import annotations
 
 import argparse
 import os
-import resource
 import statistics
 import subprocess
 import sys
 import sysconfig
 import tempfile
 from pathlib import Path
+
+from pipeline import child_cpu  # type: ignore[import-not-found]  (benchmarks/, beside this)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -69,16 +70,6 @@ for name in names:
             pass
 gc.freeze()
 """
-
-
-def child_cpu(argv: list[str], env: dict[str, str]) -> float:
-    """Run ``argv`` to its end; its user + system CPU time (s). Raises if it fails."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    done = subprocess.run(argv, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if done.returncode != 0:
-        raise RuntimeError(f"{argv} exited {done.returncode}: {done.stderr.decode()[-2000:]}")
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def main() -> None:

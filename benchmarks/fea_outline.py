@@ -17,6 +17,7 @@ from __future__ import annotations
 import resource
 import sys
 import time
+from collections.abc import Callable
 from dataclasses import replace
 
 import numpy as np
@@ -29,6 +30,7 @@ from corrugate.fea.outline import (
     solve_outline,
     solve_shells,
 )
+from corrugate.fea.shells import Shell
 
 
 def _child_rss_mb() -> float:
@@ -40,62 +42,67 @@ def _disc(cx: float, cy: float, r: float) -> np.ndarray:
     return np.column_stack([cx + r * np.cos(th), cy + r * np.sin(th)])
 
 
-def annulus(sizes: list[float]) -> None:
-    """a = 20, b = 5 mm, E 1000 MPa, nu 0.3, t 0.2 mm, the whole rim the ground patch; the
-    closed form is tests/fea/test_outline.py's ``_annulus_K``."""
+#: The annulus: E (MPa), nu, t (mm), its outer and inner radii a, b (mm).
+ANNULUS = (1000.0, 0.3, 0.2, 20.0, 5.0)
+
+
+def _sweep(sizes: list[float], mesh: Callable[[float], Shell]) -> None:
+    """The annulus meshed by ``mesh`` at each element size (mm) in the wheel fixture with the
+    whole rim the ground patch, at eta 0 and 30 deg, against plane elasticity (the closed form
+    is tests/fea/test_outline.py's ``_annulus_K``)."""
     sys.path.insert(0, "tests/fea")
     from test_outline import _annulus_K
 
-    E, nu, t, a, b = 1000.0, 0.3, 0.2, 20.0, 5.0
+    E, nu, t, a, b = ANNULUS
     exact = _annulus_K(E, nu, t, a, b)
     outline, hole = _disc(a, a, a), _disc(a, a, b)
     print(f"plane elasticity: K = {exact:.6g} N/mm")
     for size in sizes:
-        sh = cut_outline(plate_shell(2 * a, 2 * a, size, E, nu, t), outline)
-        inner = {tuple(e) for e in cut_outline(sh, hole).elements}
-        ring = [e for e in sh.elements if tuple(e) not in inner]
-        used = np.isin(sh.ids, np.array([n for e in ring for n in e]))
-        sh = replace(sh, ids=sh.ids[used], xyz=sh.xyz[used], elements=ring)
+        sh = mesh(size)
+        count = len(sh.elements) + len(sh.triangles)
         for eta in (0.0, 30.0):
             t0 = time.time()
             k = solve_shells([sh], "wheel", outline, [hole], eta, OutlineFixture(patch_deg=180))[0]
             print(
                 f"{size:g} mm, eta {eta:g}: K = {k:.6g} N/mm ({k / exact - 1:+.2%}), "
-                f"{len(ring)} elements, {time.time() - t0:.1f} s, {_child_rss_mb():.0f} MB"
+                f"{count} elements, {time.time() - t0:.1f} s, {_child_rss_mb():.0f} MB"
             )
 
 
-def disc_annulus(sizes: list[float]) -> None:
-    """The annulus of :func:`annulus` on the disc mesh that conforms to its rim and hole
-    (:func:`corrugate.fea.discmesh.disc_mesh`: a zig-zag of height 0, pitch 10 mm, 10 / size
-    elements per pitch)."""
-    sys.path.insert(0, "tests/fea")
-    from test_outline import _annulus_K
+def annulus(sizes: list[float]) -> None:
+    """The annulus on the structured mesh of its box cut to a staircase (:func:`_sweep`)."""
+    E, nu, t, a, b = ANNULUS
+    outline, hole = _disc(a, a, a), _disc(a, a, b)
 
+    def mesh(size: float) -> Shell:
+        sh = cut_outline(plate_shell(2 * a, 2 * a, size, E, nu, t), outline)
+        inner = {tuple(e) for e in cut_outline(sh, hole).elements}
+        ring = [e for e in sh.elements if tuple(e) not in inner]
+        used = np.isin(sh.ids, np.array([n for e in ring for n in e]))
+        return replace(sh, ids=sh.ids[used], xyz=sh.xyz[used], elements=ring)
+
+    _sweep(sizes, mesh)
+
+
+def disc_annulus(sizes: list[float]) -> None:
+    """The annulus on the disc mesh that conforms to its rim and hole
+    (:func:`corrugate.fea.discmesh.disc_mesh`: a zig-zag of height 0, pitch 10 mm, 10 / size
+    elements per pitch; :func:`_sweep`)."""
     from corrugate.fea.discmesh import Disc, disc_mesh
     from corrugate.fea.planmesh import Corrugation
-    from corrugate.fea.shells import Shell
 
-    E, nu, t, a, b = 1000.0, 0.3, 0.2, 20.0, 5.0
-    exact = _annulus_K(E, nu, t, a, b)
-    outline, hole = _disc(a, a, a), _disc(a, a, b)
-    print(f"plane elasticity: K = {exact:.6g} N/mm")
-    for size in sizes:
+    E, nu, t, a, b = ANNULUS
+
+    def mesh(size: float) -> Shell:
         pm = disc_mesh(
             Corrugation((1.0, 0.0), 0.0, 10.0, 0.0), Disc((a, a), a, b), round(10 / size)
         )
         ids = np.arange(1, len(pm.xyz) + 1, dtype=np.int64)
         quads = [[int(ids[i]) for i in r] for r in pm.elements["S8R"]]
         tris = [[int(ids[i]) for i in r] for r in pm.elements["S6"]]
-        sh = Shell(ids, pm.xyz, quads, t, E, nu, tris)
-        for eta in (0.0, 30.0):
-            t0 = time.time()
-            k = solve_shells([sh], "wheel", outline, [hole], eta, OutlineFixture(patch_deg=180))[0]
-            print(
-                f"{size:g} mm, eta {eta:g}: K = {k:.6g} N/mm ({k / exact - 1:+.2%}), "
-                f"{len(quads) + len(tris)} elements, {time.time() - t0:.1f} s, "
-                f"{_child_rss_mb():.0f} MB"
-            )
+        return Shell(ids, pm.xyz, quads, t, E, nu, tris)
+
+    _sweep(sizes, mesh)
 
 
 def strip(sizes: list[float]) -> None:
