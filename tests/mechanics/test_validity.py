@@ -16,17 +16,9 @@ import pytest
 
 from corrugate.mechanics.validity import VARIABLES, model_range, model_ranges
 from corrugate.mechanics.wheel import VALIDATED_WHEEL
+from fe_rows import SETTLED_WHEELS, settled_wheel_rows
 
 ROOT = Path(__file__).resolve().parents[2]
-#: The discs of wheel_fe.csv whose series at 0 and 45 deg judge settles (docs/load_cases.md 9).
-SETTLED_WHEELS = {
-    "d-dl175-n7-w8-a120",
-    "d-example",
-    "d-pp-n7-w9-a145",
-    "d-pp-w11.5-a150",
-    "d-pp-w12-a120",
-    "d-pp-w9.5-a140",
-}
 VALIDATION = ROOT / "docs" / "validation"
 
 Layer = tuple[float, int, float, float]  # W mm, n, alpha deg, t mm
@@ -124,37 +116,11 @@ def test_the_off_axis_range_is_the_rows_off_the_creases() -> None:
     _check("off-axis", layers)
 
 
-def _settled_wheel_rows() -> list[dict[str, str]]:
-    """The rows of wheel_fe.csv of the discs whose series at both eta 0 and 45 deg the project's
-    rule settles (corrugate.fea.extrapolate.judge against c(eta) x the model's K, as `corrugate
-    verify` judges one: four meshes each twice the one before, monotone, shrinking steps, two
-    Richardson estimates within a quarter of the margin)."""
-    from corrugate.fea.extrapolate import judge
-    from corrugate.mechanics.wheel import WHEEL_FACTOR
-
-    rows = [r for r in _rows("wheel_fe.csv") if r["K_FE"] != "failed"]
-    series: dict[tuple[str, float], dict[int, float]] = {}
-    model: dict[tuple[str, float], float] = {}
-    for r in rows:
-        key = (r["design"], float(r["eta_deg"]))
-        series.setdefault(key, {})[int(r["along"])] = float(r["K_FE"])
-        model[key] = float(r["K_model"])
-    settled = {
-        d
-        for d, _ in series
-        if all(
-            (d, eta) in series and judge(series[d, eta], c * model[d, eta], "min").verdict != "open"
-            for eta, c in WHEEL_FACTOR.items()
-        )
-    }
-    return [r for r in rows if r["design"] in settled]
-
-
 def test_the_wheel_range_is_the_settled_discs() -> None:
     """wheel_fe.csv's discs whose series at 0 and 45 deg judge settles (issue 35: the discs on
     the mesh conforming to the rim and the hole, docs/load_cases.md 9): n, W, alpha, t / W and
     hole / diameter (the hub ratio to 6 significant digits, rounded outwards)."""
-    rows = _settled_wheel_rows()
+    rows = settled_wheel_rows(_rows("wheel_fe.csv"))
     assert {r["design"] for r in rows} == SETTLED_WHEELS
     stated = model_range("wheel").ranges
     ns = [int(r["n"]) for r in rows]

@@ -27,20 +27,12 @@ from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, box_bounds, point_values
 from corrugate.solver.quantity import Quantity
 from corrugate.spec.schema import SpecError, parse_spec
+from fe_rows import SETTLED_WHEELS, settled_wheel_rows
 from spec_units import with_units
 
 ROOT = Path(__file__).resolve().parents[2]
 DATA = ROOT / "docs" / "validation" / "wheel_fe.csv"
 PP = get_material("polypropylene")
-#: The discs whose series at 0 and 45 deg judge settles (docs/load_cases.md 9).
-SETTLED = {
-    "d-dl175-n7-w8-a120",
-    "d-example",
-    "d-pp-n7-w9-a145",
-    "d-pp-w11.5-a150",
-    "d-pp-w12-a120",
-    "d-pp-w9.5-a140",
-}
 
 
 def _rows(every: bool = False) -> list[dict[str, str]]:
@@ -125,33 +117,16 @@ def test_the_factor_holds_every_disc_whose_series_counts() -> None:
     assert four >= 10  # the issue-35 discs at eta 0 and 45
 
 
-def _settled() -> set[str]:
-    """The discs whose series at both 0 and 45 deg judge settles against c(eta) x the model
-    (four meshes, monotone, shrinking steps, two Richardson estimates within a quarter of the
-    margin: corrugate.fea.extrapolate.judge, as `corrugate verify` uses it)."""
-    from corrugate.fea.extrapolate import judge
-
-    fe, model = _series(every=True), _model(every=True)
-    return {
-        d
-        for d, _ in fe
-        if all(
-            (d, eta) in fe and judge(fe[d, eta], c * model[d, eta], "min").verdict != "open"
-            for eta, c in WHEEL_FACTOR.items()
-        )
-    }
-
-
 def test_the_validated_range_is_the_settled_discs() -> None:
     """Issue 35: the range is the span of the discs whose series at 0 and 45 deg settle, all on
     the mesh conforming to the rim and the hole (docs/load_cases.md 9): polypropylene 0.3 mm and
     Dura-Lar 0.175 mm, n 6-7, W 8-12 mm, alpha 120-150 deg, a 6 mm hole in 55.4-77.8 mm; each
     holds c(eta) x the
     model (the test above)."""
-    settled = _settled()
-    assert settled == SETTLED
+    rows = settled_wheel_rows(_rows(every=True))
+    settled = {r["design"] for r in rows}
+    assert settled == SETTLED_WHEELS
     assert all(d.startswith("d-") for d in settled)
-    rows = [r for r in _rows(every=True) if r["design"] in settled and r["K_FE"] != "failed"]
     n = [float(r["n"]) for r in rows]
     alpha = [float(r["alpha_deg"]) for r in rows]
     W = [float(r["W_mm"]) for r in rows]
