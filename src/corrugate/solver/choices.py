@@ -51,7 +51,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from corrugate.solver import separable, tolerance_box
-from corrugate.solver.points import DesignPoints, LayerPoints
+from corrugate.solver.points import DesignPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import MASS, T_OVER_W
@@ -197,7 +197,9 @@ class Floors:
             for c in cons:
                 ok &= np.asarray(c.satisfied(vals[c.quantity], rtol=FEAS_RTOL), dtype=bool)
             for dW, da in shifts if stiff else ():  # and at each corner
-                at = point_values(relaxed, c1, c2, _moved(x, dW, da), tables, asked)
+                at = point_values(
+                    relaxed, c1, c2, tolerance_box.moved_points(x, dW, (da,)), tables, asked
+                )
                 for c in stiff:
                     ok &= np.asarray(c.satisfied(at[c.quantity], rtol=FEAS_RTOL), dtype=bool)
             nonlocal judged  # then by P itself, up to EXACT_POINTS designs
@@ -217,16 +219,6 @@ class Floors:
         if r is None:
             return 0.0
         return math.inf if r.point is None else r.value * (1 - RELAX)
-
-
-def _moved(x: DesignPoints, dW: float, da: float) -> DesignPoints:
-    """The designs ``x`` with every layer's W and alpha moved by ``dW``, ``da`` as the corners
-    of the tolerance box are (:func:`~.tolerance_box.moved`)."""
-    layers = []
-    for lay in x.layers:
-        W, a = tolerance_box.moved(np.asarray(lay.W), np.asarray(lay.alpha), dW, da)
-        layers.append(LayerPoints(np.asarray(lay.n, np.float64), W, a))
-    return x.with_layers(*layers)
 
 
 def floors(problem: Problem) -> Floors | None:

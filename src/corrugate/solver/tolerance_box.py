@@ -28,6 +28,7 @@ the mass and the making stay nominal (docs/tolerances.md says why).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -131,9 +132,19 @@ def _clip(W: FloatArray, a: FloatArray) -> tuple[FloatArray, FloatArray]:
 
 def moved(W: FloatArray, a: FloatArray, dW: float, da: float) -> tuple[FloatArray, FloatArray]:
     """Facet widths ``W`` (mm) and fold angles ``a`` (deg) moved by ``dW`` and ``da`` and
-    clipped as the corners of :func:`corners` are (a sheet without a calibrated springback:
-    ``dW`` = -+dW, ``da`` = -+da of the tolerances), the same arithmetic."""
+    clipped: the arithmetic of every corner of a tolerance box (:func:`corners`,
+    :func:`moved_points`)."""
     return _clip(np.asarray(W, np.float64) + dW, np.asarray(a, np.float64) + da)
+
+
+def moved_points(x: DesignPoints, dW: float, das: Sequence[float]) -> DesignPoints:
+    """Every stored layer i of ``x`` with W moved by ``dW`` (mm) and alpha by ``das[i]`` (deg;
+    the last one for the layers past it), clipped (:func:`moved`)."""
+    layers = []
+    for i, lay in enumerate(x.layers):
+        W, a = moved(lay.W, lay.alpha, dW, das[min(i, len(das) - 1)])
+        layers.append(LayerPoints(np.asarray(lay.n, np.float64), W, a))
+    return x.with_layers(*layers)
 
 
 def corner_shifts(tol: WorstCase) -> tuple[tuple[float, float], ...]:
@@ -264,19 +275,14 @@ def _shift(
     or high end of its tolerance box (:func:`alpha_offsets`; +-da without ``cands``), clipped
     as :func:`widened` clips."""
     tol = problem.tolerances
-    layers = []
-    for i, lay in enumerate(x.layers):
+    das = []
+    for i in range(len(x.layers)):
         cal = None if cands is None else cands[min(i, 1)].material.calibration
         if cal is None:
-            da = sa * tol.alpha
+            das.append(sa * tol.alpha)
         else:  # inside the box's alpha + springback -+ da (alpha_offsets)
-            da = cal.springback_lo - tol.alpha if sa < 0 else cal.springback_hi + tol.alpha
-        W, a = _clip(
-            np.asarray(lay.W, np.float64) + sW * tol.W,
-            np.asarray(lay.alpha, np.float64) + da,
-        )
-        layers.append(LayerPoints(np.asarray(lay.n, np.float64), W, a))
-    return x.with_layers(*layers)
+            das.append(cal.springback_lo - tol.alpha if sa < 0 else cal.springback_hi + tol.alpha)
+    return moved_points(x, sW * tol.W, das)
 
 
 class ToleranceBounds:
