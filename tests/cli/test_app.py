@@ -5,9 +5,12 @@ print the same help and the same usage errors for every command."""
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import pytest
 
-from corrugate.cli import COMMAND_MODULES, _app_for, app
+from corrugate.cli import COMMAND_MODULES, COMMANDS, _app_for, app
 
 
 def _run(group: object, args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str]:
@@ -19,6 +22,29 @@ def _run(group: object, args: list[str], capsys: pytest.CaptureFixture[str]) -> 
 
 
 NAMES = [name for module in COMMAND_MODULES for name in module.COMMANDS]
+
+
+def test_the_table_of_command_modules_names_each_module_s_own_commands_in_order() -> None:
+    """corrugate.cli.COMMANDS (which module a run imports) against each module's COMMANDS."""
+    owners = [
+        (name, module.__name__.rsplit(".", 1)[1])
+        for module in COMMAND_MODULES
+        for name in module.COMMANDS
+    ]
+    assert list(COMMANDS.items()) == owners
+    assert len(COMMAND_MODULES) == 8
+
+
+def test_a_command_imports_only_its_own_module() -> None:
+    """A run of ``design`` loads corrugate.cli.design and none of the other command modules."""
+    code = (
+        "import sys; from corrugate.cli import _app_for; _app_for(['design']); "
+        "print(sorted(m for m in sys.modules if m.startswith('corrugate.cli.')))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    loaded = {m.rsplit(".", 1)[1] for m in eval(out.stdout)}
+    assert "design" in loaded
+    assert not loaded & {"analyze", "pattern", "validate", "verify", "calibrate", "serve", "spec"}
 
 
 @pytest.mark.parametrize("name", NAMES)

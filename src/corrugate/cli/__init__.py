@@ -1,10 +1,12 @@
 """The ``corrugate`` command line (typer + rich): a registry of commands.
 
 Each command lives in a module of this package and is listed in its ``COMMANDS`` table (command
-name -> function); :data:`app` registers every table of :data:`COMMAND_MODULES`. A command module
-imports only typer, rich and the option declarations at module level; the modules that do the work
-(the solver, the writers, the FE and web subpackages) are imported inside the command function, so
-one command never loads another's dependencies.
+name -> function); :data:`COMMANDS` names the module of each command, so that a run imports the
+one module of the command it runs (:func:`_app_for`); :data:`app`, the group with every command
+(the group's help, an unknown name's error), and :data:`COMMAND_MODULES` are built on first use.
+A command module imports only typer, rich and the option declarations at module level; the
+modules that do the work (the solver, the writers, the FE and web subpackages) are imported
+inside the command function, so one command never loads another's dependencies.
 
 Every failure the user can cause prints one line ``corrugate: error: ...`` naming the parameter, its
 value and the allowed range, and exits with code 2; nothing is written on failure.
@@ -16,30 +18,54 @@ from __future__ import annotations
 
 import atexit
 import gc
+import importlib
 import sys
 from collections.abc import Callable
+from functools import cache
 from types import ModuleType
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 import typer
 
 from corrugate import __version__
-from corrugate.cli import analyze, calibrate, design, pattern, serve, spec, validate, verify
 from corrugate.core.errors import CorrugateError, describe
 
-__all__ = ["COMMAND_MODULES", "EXIT_CODES", "GC_THRESHOLDS", "app", "main"]
+__all__ = ["COMMANDS", "COMMAND_MODULES", "EXIT_CODES", "GC_THRESHOLDS", "app", "main"]
 
-#: The command modules, in the order ``corrugate --help`` lists their commands.
-COMMAND_MODULES: tuple[ModuleType, ...] = (
-    analyze,
-    design,
-    pattern,
-    validate,
-    verify,
-    calibrate,
-    serve,
-    spec,
-)
+#: Each command's module in this package (command name -> module name), in the order
+#: ``corrugate --help`` lists them: a run imports only its command's module (importing all eight
+#: cost about 8 ms of CPU per run, issue 39); tests/cli/test_app.py checks this table against
+#: the modules' own ``COMMANDS``.
+COMMANDS: dict[str, str] = {
+    "analyze": "analyze",
+    "materials": "analyze",
+    "design": "design",
+    "pareto": "design",
+    "tolerance": "design",
+    "pattern": "pattern",
+    "validate": "validate",
+    "verify": "verify",
+    "calibrate": "calibrate",
+    "serve": "serve",
+    "spec": "spec",
+    "init": "spec",
+    "docs": "spec",
+}
+
+
+if TYPE_CHECKING:  # built on first use by the module's __getattr__
+    app: typer.Typer
+    COMMAND_MODULES: tuple[ModuleType, ...]
+
+
+def _module(name: str) -> ModuleType:
+    """The command module ``corrugate.cli.<name>``, imported on first use."""
+    return importlib.import_module(f"{__name__}.{name}")
+
+
+@cache
+def _command_modules() -> tuple[ModuleType, ...]:
+    return tuple(_module(name) for name in dict.fromkeys(COMMANDS.values()))
 
 
 def _help_markup() -> Literal["rich"] | None:
@@ -128,24 +154,36 @@ def _add(target: typer.Typer, name: str, function: Callable[..., Any] | typer.Ty
         target.command(name)(function)
 
 
-app = _new_app()
-_register(app, COMMAND_MODULES)
+@cache
+def _whole_app() -> typer.Typer:
+    """The group with every command registered (built once, on first use)."""
+    group = _new_app()
+    _register(group, _command_modules())
+    return group
+
+
+def __getattr__(name: str) -> object:
+    """:data:`app` (the group with every command) and :data:`COMMAND_MODULES` (the command
+    modules, in the order of :data:`COMMANDS`), built on first use (PEP 562)."""
+    if name == "app":
+        return _whole_app()
+    if name == "COMMAND_MODULES":
+        return _command_modules()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _app_for(args: list[str]) -> typer.Typer:
     """The app that runs ``args``: when the first names a command, the group holding that
-    command alone (typer builds the click parameters of every command it holds, from the
-    function signatures, on each run: 0.04 s of CPU for the twelve, 0.006 s for one; issue 24),
-    else :data:`app` (the group's help, ``--version``, an unknown name's error)."""
-    if not args:
-        return app
-    for module in COMMAND_MODULES:
-        function = module.COMMANDS.get(args[0])
-        if function is not None:
-            one = _new_app()
-            _add(one, args[0], function)
-            return one
-    return app
+    command alone, from its own module only (typer builds the click parameters of every command
+    it holds, from the function signatures, on each run: 0.04 s of CPU for the twelve, 0.006 s
+    for one; issue 24), else :data:`app` (the group's help, ``--version``, an unknown name's
+    error)."""
+    where = COMMANDS.get(args[0]) if args else None
+    if where is None:
+        return _whole_app()
+    one = _new_app()
+    _add(one, args[0], _module(where).COMMANDS[args[0]])
+    return one
 
 
 #: The cyclic garbage collector's thresholds in a command's process (:func:`gc.set_threshold`):
