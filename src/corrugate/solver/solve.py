@@ -41,6 +41,7 @@ from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.choices import Floors, floors, shared_lists
+from corrugate.solver.joint_checks import Check, joint_search, reopened
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
@@ -947,6 +948,11 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
         if got is not None:
             shared, idle = got
+    # on grids, every check's searched pairs in one search per pair (:mod:`.joint_checks`)
+    pending = [n for n in dict.fromkeys(c.name for c in problem.constraints) if n not in witnessed]
+    joint: dict[str, bool | None] = {}
+    if tree is not None and problem.gridded and pending:
+        joint = _joint_binding(problem, opt, tree, pending, tables)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -954,11 +960,20 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         binding: bool | None = None
         if c.name in witnessed:  # a better design breaking it alone was evaluated: binding
             binding = True
+        elif c.name in joint and joint[c.name] is not False:  # found, or stopped (None)
+            binding = joint[c.name]
         elif not budget_spent():
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
             binding = _binding(
-                problem, opt, tree, c.name, tables, tol, shared if c.name in idle else None
+                problem,
+                opt,
+                tree,
+                c.name,
+                tables,
+                tol,
+                shared if c.name in idle else None,
+                searched=c.name in joint,
             )
         active = abs(margin) <= ACTIVE_RTOL * abs(c.bound)
         if c.load is not None:  # a deflection bound: delta = P / (P / delta) <= P / bound
@@ -1040,6 +1055,7 @@ def _binding(
     tables: Tables,
     tol: float,
     shared: _PairFloors | None = None,
+    searched: bool = False,
 ) -> bool | None:
     """Whether constraint ``name`` binds (None: not proven either way, the budget spent): the
     certified search of its check's problem (the constraint negated, :func:`_relaxed`) for a
@@ -1058,7 +1074,9 @@ def _binding(
     whole, skipped likewise. The floors, which cost more than a search of a few boxes, are
     computed only once the optimum's pair has been searched to its end without a better
     design. ``shared``: floors of a relaxation of the check's problem too (the problem without
-    several constraints, this one among them: :func:`_untouched`), asked first."""
+    several constraints, this one among them: :func:`_untouched`), asked first. ``searched``:
+    the searched pairs are known to hold no better design (:func:`_joint_binding`), only the
+    pairs pruned whole are left."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     check = _relaxed(problem, name, opt.certified)
     goal = opt.value - sign * tol
@@ -1087,7 +1105,7 @@ def _binding(
     bits = constraint_bits(problem, name)
     starts: dict[int, Start] = {}
     for i, a in enumerate(tree):
-        if a is not None:
+        if a is not None and not searched:
             start = a.reopen(bits, sign * opt.value)
             if len(start[0]):  # nothing reopened: no better design in the pair
                 starts[i] = start
@@ -1113,6 +1131,44 @@ def _binding(
         if search(i, box):
             return True  # shown: a better design exists
     return False if certified else None
+
+
+def _joint_binding(
+    problem: Problem,
+    opt: Optimum,
+    tree: tuple[Archive | None, ...],
+    names: Sequence[str],
+    tables: Tables,
+) -> dict[str, bool | None]:
+    """The binding checks of ``names`` on a grid over the sheet pairs the solve searched (their
+    archives), the optimum's own pair first, each pair's checks in one search
+    (:func:`~.joint_checks.joint_search`, its answers those of each check's own search, the
+    first part of :func:`_binding`): True, a better design was found (binding); None, the
+    budget ran out first; False, no searched pair holds one (the pairs pruned whole are left
+    to :func:`_binding`)."""
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    checks = []
+    for name in names:
+        own = [c for c in problem.constraints if c.name == name]
+        negation = _negation(own[0], problem) if len(own) == 1 and opt.certified else None
+        checks.append(Check(name, constraint_bits(problem, name), negation))
+    answers: dict[str, bool | None] = {name: False for name in names}
+    everything = pairs(problem)
+    first = everything.index(opt.candidates) if opt.candidates in everything else -1
+    order = sorted(range(len(tree)), key=lambda i: (i != first, i))
+    for i in order:
+        a = tree[i]
+        todo = [c for c in checks if answers[c.name] is False]
+        if a is None or not todo:
+            continue
+        start = reopened(a, todo, sign * opt.value)
+        if not len(start[0]):
+            continue
+        got = joint_search(problem, everything[i], tables, todo, start, opt.value)
+        for c, answer in zip(todo, got, strict=True):
+            if answer is not False:
+                answers[c.name] = answer
+    return answers
 
 
 def _untouched(
