@@ -256,24 +256,32 @@ def joint_search(
             counts[live],
             enum[live],
         )
-        # three points of each box first (lower and upper corners, centre): a design found
-        # there answers its checks before any box is enumerated or split
+        # three points of each box (lower and upper corners, centre): in the first iteration
+        # of every box first, so that a design found there answers its checks before any box
+        # is enumerated; later only of the boxes to be split, with the enumerated points
         mid = np.stack(
             [snap(0.5 * (lo[:, i] + hi[:, i]), v, up=False) for i, v in enumerate(variables)],
             axis=1,
         )
         mid = np.clip(mid, lo, hi)
-        offer(DesignPoints.from_columns(np.concatenate([lo, hi, mid])), np.tile(car, (3, 1)))
-        car = car & ~judge.answered
-        live = car.any(axis=1)
-        lo, hi, bound, car, counts, enum = (
-            lo[live],
-            hi[live],
-            bound[live],
-            car[live],
-            counts[live],
-            enum[live],
-        )
+        if iterations == 1:
+            offer(DesignPoints.from_columns(np.concatenate([lo, hi, mid])), np.tile(car, (3, 1)))
+            car = car & ~judge.answered
+            live = car.any(axis=1)
+            lo, hi, mid, bound, car, counts, enum = (
+                lo[live],
+                hi[live],
+                mid[live],
+                bound[live],
+                car[live],
+                counts[live],
+                enum[live],
+            )
+        rest = ~enum
+        points, carried = [], []
+        if iterations > 1:
+            points += [lo[rest], hi[rest], mid[rest]]
+            carried += [car[rest]] * 3
         if enum.any():  # every grid point: cheap bounds at the points, then exact values
             every = grid_points(lo[enum], counts[enum], variables)
             per = counts[enum].prod(axis=1).astype(np.int64)
@@ -284,8 +292,10 @@ def joint_search(
             if obj in cheap:
                 pc &= (_lower(eb[obj], sign) < limit)[:, None]
             sel = pc.any(axis=1)
-            offer(e.take(sel), pc[sel])
-        rest = ~enum
+            points.append(every[sel])
+            carried.append(pc[sel])
+        if points:
+            offer(DesignPoints.from_columns(np.concatenate(points)), np.concatenate(carried))
         lo, hi, bound, car = lo[rest], hi[rest], bound[rest], car[rest] & ~judge.answered
         live = car.any(axis=1)
         lo, hi, bound, car = lo[live], hi[live], bound[live], car[live]

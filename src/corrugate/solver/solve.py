@@ -40,7 +40,7 @@ from corrugate.mechanics.capacity import Capacity
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.choices import Floors, floors, shared_lists
+from corrugate.solver.choices import RELAX, Floors, floors, shared_lists
 from corrugate.solver.joint_checks import Check, joint_search, reopened
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
@@ -94,6 +94,12 @@ class Optimum:
     #: the sheet pairs (:func:`pairs` order) pruned whole by a floor (:mod:`.choices`): no
     #: design of theirs is lighter than the answer; not searched, no archive
     pruned: frozenset[int] = frozenset()
+    #: the floors (:mod:`.choices`) the solve ordered and pruned the sheet pairs by (None:
+    #: none), and the least mass each pruned pair's designs were shown to have at least (g;
+    #: its coarse floor, or its fine one refined against the incumbent of the time), which
+    #: the runner-ups read instead of computing them again
+    floors: Floors | None = None
+    floor_of: dict[int, float] = field(default_factory=dict)
 
     def tree(self) -> tuple[Archive, ...] | None:
         """Every pair's archive, or None when one is missing (then the explanation re-solves)."""
@@ -553,6 +559,7 @@ def _by_floors(
             best, best_pair, inc = r, pair, r.value
 
     bound = math.inf  # the least proven bound of the pairs not certified
+    shown: dict[int, float] = {}  # a fine floor's lower bound of the pair's designs (g)
     while heap:
         if budget_spent():  # the pairs left: nothing proven
             certified, bound = False, -math.inf
@@ -562,10 +569,14 @@ def _by_floors(
             heapq.heappush(heap, (floor, level, k))
             break
         if level == 0:
-            heapq.heappush(heap, (max(floor, fl.fine(k, inc)), 1, k))
+            fine = fl.fine(k, inc)
+            # inf: no design lighter than the incumbent (RELAX below it, as a floor)
+            shown[k] = max(floor, fine if math.isfinite(fine) else inc * (1 - RELAX))
+            heapq.heappush(heap, (max(floor, fine), 1, k))
             continue
         run(k)
     pruned = frozenset(k for _, _, k in heap) if certified else frozenset()
+    floor_of = {k: shown.get(k, fl.coarse(k)) for k in pruned}
     if record and certified and best is None and pruned:
         for k in sorted(pruned):  # for the diagnosis' archives: every pair searched
             run(k)
@@ -573,13 +584,25 @@ def _by_floors(
     kept = tuple(archives) if record and certified else None
     if best is None or best_pair is None:
         gap = 0.0 if certified else math.inf
-        return Optimum(None, None, math.nan, certified, gap, boxes, iterations, kept, pruned)
+        return Optimum(
+            None, None, math.nan, certified, gap, boxes, iterations, kept, pruned, fl, floor_of
+        )
     gap = 0.0
     if not certified:
         bound = min([bound, *uncertified])
         gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
     return Optimum(
-        best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned
+        best.point,
+        best_pair,
+        best.value,
+        certified,
+        gap,
+        boxes,
+        iterations,
+        kept,
+        pruned,
+        fl,
+        floor_of,
     )
 
 
@@ -1025,16 +1048,19 @@ class _PairFloors:
 
         self.known: dict[int, float] = {}
 
+    def _build(self) -> Floors | None:
+        if not self.built:
+            for p in self.problems:
+                self.floors = floors(p)
+                if self.floors is not None:
+                    break
+            self.built = True
+        return self.floors
+
     def floor(self, k: int) -> float:
         """Pair ``k``'s floor (g): coarse, refined when below the goal; 0 without floors."""
         if k not in self.known:
-            if not self.built:
-                for p in self.problems:
-                    self.floors = floors(p)
-                    if self.floors is not None:
-                        break
-                self.built = True
-            fl, floor = self.floors, 0.0
+            fl, floor = self._build(), 0.0
             if fl is not None:
                 floor = fl.coarse(k)
                 if floor < self.goal:
@@ -1045,6 +1071,11 @@ class _PairFloors:
     def reaches(self, k: int) -> bool:
         """Whether pair ``k`` holds no design lighter than the goal by its floor."""
         return self.floor(k) >= self.goal
+
+    def found(self, k: int) -> bool:
+        """Whether the fine floor of pair ``k`` met a design lighter than the goal that its
+        problem accepts (:meth:`~.choices.Floors.accepted`): one exists."""
+        return self.floors is not None and self.floors.accepted(k) < self.goal
 
 
 def _binding(
@@ -1122,12 +1153,19 @@ def _binding(
 
     rest = sorted((i for i in starts if not ruled_out(i)), key=lambda i: (own.floor(i), i))
     todo: list[tuple[int, Start | None]] = [(i, starts[i]) for i in rest]
-    todo += [(i, None) for i, a in enumerate(tree) if a is None]
+    # the pairs pruned whole, least floor of the solve first (a better design lies most often
+    # in a pair that was nearly as light)
+    whole = sorted(
+        (i for i, a in enumerate(tree) if a is None), key=lambda i: (opt.floor_of.get(i, 0.0), i)
+    )
+    todo += [(i, None) for i in whole]
     for i, box in todo:
         if budget_spent():
             return None
         if box is None and ruled_out(i):
             continue
+        if box is None and own.found(i):
+            return True  # its floor met a better design that the check's problem accepts
         if search(i, box):
             return True  # shown: a better design exists
     return False if certified else None
@@ -1269,10 +1307,12 @@ def _pruned_runner_ups(
     (:mod:`.choices`, both layers' n, as ``per_n`` fixes it) is below the best design with that
     n of the pairs before it, one incumbent per n (the others' best), the others' incumbent
     -inf (nothing searched); pairs by rising floor. A pair that holds no lighter design with
-    some n would return none for it: the runner-ups are the same."""
+    some n would return none for it: the runner-ups are the same. The solve's own floor of a
+    pair (:attr:`Optimum.floor_of`: every design of the pair, whatever its n, is at least that
+    heavy) is asked before any floor with n fixed."""
     a, b = span
     everything = pairs(problem)
-    whole = floors(problem)
+    whole = opt.floors if opt.floors is not None else floors(problem)
     per_n: dict[int, Floors | None] = {}
     order = sorted(opt.pruned, key=lambda k: (0.0 if whole is None else whole.coarse(k), k))
     for k in order:
@@ -1282,6 +1322,7 @@ def _pruned_runner_ups(
             return
         target = {n: best[n][0].value if n in best else math.inf for n in range(a, b + 1)}
         floor = 0.0 if whole is None else whole.coarse(k)
+        floor = max(floor, opt.floor_of.get(k, 0.0))
         need = {}
         for n, goal in target.items():
             if floor >= goal:
