@@ -37,7 +37,8 @@ So the search (:func:`search`) is:
    layer 2's least: the mass grows with each); of the pairs left, first only those whose lower bound is below the
    mass of the pair of least lower bound (the optimum is at most that if it proves feasible),
    and all of them if the answer is heavier than that; their mass by the formulas, below the
-   incumbent;
+   incumbent (a layer-1 design whose lower bound with layer 2's least already reaches the
+   incumbent forms no pair at all);
 4. those pairs in order of their mass, in batches, evaluated exactly with
    :func:`~.quantities.point_values` (``evaluate``, the same values and the same feasibility rule,
    FEAS_RTOL, as the branch and bound), until the lightest exactly feasible pair is no heavier

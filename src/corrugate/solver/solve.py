@@ -1102,12 +1102,15 @@ def _binding(
     one, lies most often), then the others by their floors (:class:`_PairFloors`, least first)
     of the check's problem (else of the problem without the constraint, a relaxation of it),
     those whose floor reaches the optimum skipped (no better design); then the pairs pruned
-    whole, skipped likewise. The floors, which cost more than a search of a few boxes, are
-    computed only once the optimum's pair has been searched to its end without a better
-    design. ``shared``: floors of a relaxation of the check's problem too (the problem without
-    several constraints, this one among them: :func:`_untouched`), asked first. ``searched``:
-    the searched pairs are known to hold no better design (:func:`_joint_binding`), only the
-    pairs pruned whole are left."""
+    whole, least floor of the solve first (:attr:`Optimum.floor_of`), skipped likewise, and
+    answered without a search when the fine floor that did not reach the optimum met a better
+    design that the check's problem accepts (:meth:`_PairFloors.found`: a design the search
+    would find). The floors, which cost more than a search of a few boxes, are computed only
+    once the optimum's pair has been searched to its end without a better design. ``shared``:
+    floors of a relaxation of the check's problem too (the problem without several
+    constraints, this one among them: :func:`_untouched`), asked first. ``searched``: the
+    searched pairs are known to hold no better design (on grids, :func:`_joint_binding`), only
+    the pairs pruned whole are left."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     check = _relaxed(problem, name, opt.certified)
     goal = opt.value - sign * tol
