@@ -983,8 +983,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         binding: bool | None = None
         if c.name in witnessed:  # a better design breaking it alone was evaluated: binding
             binding = True
-        elif c.name in joint and joint[c.name] is not False:  # found, or stopped (None)
-            binding = joint[c.name]
+        elif c.name in joint and (joint[c.name] is not False or not opt.pruned):
+            binding = joint[c.name]  # found, stopped (None), or no pair left to search
         elif not budget_spent():
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
