@@ -11,16 +11,19 @@ mostly fixed (the case study: four checks of 1-2 iterations, about 1 ms each).
 
 :func:`joint_search` answers every check of a sheet pair in one search instead: its boxes are the
 union of the boxes the checks reopen, each box carrying the checks it may still answer. An
-iteration bounds every quantity over its boxes once (:func:`~.quantities.box_bounds`) and keeps,
-per box, the checks whose problem no bound shows broken there (each check judges a box as its
-own branch and bound would: its constraints to :data:`~.problem.FEAS_RTOL`) and whose objective
-bound is below the optimum; it evaluates every grid point of the boxes of at most
-:data:`~.bnb.ENUMERATE` points (:data:`~.bnb.ENUMERATE_TOLERANCES` under worst-case tolerances)
-as the branch and bound does (cheap bounds at the points first, then the exact values,
-:func:`~.quantities.point_values`), and three points (lower and upper corners, centre) of the
-others, and splits those (:func:`~.boxes.split`). A point that meets every constraint of a
-check's problem with an objective better than the optimum answers that check (binding); a check
-answered leaves every box. When no box is left, the checks unanswered have no such point in the
+iteration bounds every quantity over its boxes once (:func:`~.quantities.box_bounds`: the cheap
+ones, then the directional ones over the boxes left) and keeps, per box, the checks whose problem
+no bound shows broken there (each check judges a box as its own branch and bound would: its
+constraints to :data:`~.problem.FEAS_RTOL`) and whose objective bound is below the optimum; it
+evaluates three points of each box (lower and upper corners, centre: in the first iteration of
+every box before anything else, so that a design found there answers its checks early; later of
+the boxes to split) and every grid point of the boxes of at most :data:`~.bnb.ENUMERATE` points
+(:data:`~.bnb.ENUMERATE_TOLERANCES` under worst-case tolerances) as the branch and bound does
+(cheap bounds at the points first, then the exact values, :func:`~.quantities.point_values`,
+under tolerances after the point model's screen), and splits the others
+(:func:`~.boxes.split`). A point that meets every constraint of a check's problem with an
+objective better than the optimum answers that check (binding); a check answered leaves every
+box. When no box is left, the checks unanswered have no such point in the
 pair: each check's answer is that of its own search (a grid point is judged by the same values
 and the same rule, every bound is rigorous, and every point a check's own search could find is
 in a box it carries), found with the fixed cost of one search.
@@ -42,6 +45,7 @@ from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import (
     BATCH,
     ENUMERATE,
+    ENUMERATE_CHUNK,
     ENUMERATE_TOLERANCES,
     MAX_BOXES,
     MAX_ITERATIONS,
@@ -112,14 +116,9 @@ class _Judge:
 
     def __init__(self, problem: Problem, checks: Sequence[Check]) -> None:
         self.cons = problem.constraints
+        self.checks = checks
         every = (1 << len(self.cons)) - 1
         self.others = [np.uint64(every & ~c.bits) for c in checks]
-        self.negations = [c.negation for c in checks if c.negation is not None]
-        at = np.cumsum([c.negation is not None for c in checks]) - 1
-        self.negated = [
-            np.uint64(1 << int(k)) if c.negation is not None else np.uint64(0)
-            for c, k in zip(checks, at, strict=True)
-        ]
         self.answered = np.zeros(len(checks), dtype=bool)
 
     def alive(
@@ -134,11 +133,28 @@ class _Judge:
         values are upper bounds of the exact ones (a point screened under tolerances), so only
         their lower bounds are judged."""
         broken = _shown_broken(self.cons, values, rows, screened)
-        negated = _shown_broken(self.negations, values, rows, screened)
         ok = carried & ~self.answered
-        for j in np.flatnonzero(ok.any(axis=0)):
-            ok[:, j] &= ((broken & self.others[j]) | (negated & self.negated[j])) == 0
+        for j in np.flatnonzero(ok.any(axis=0)).tolist():
+            ok[:, j] &= (broken & self.others[j]) == 0
+            neg = self.checks[j].negation
+            if neg is not None:
+                ok[:, j] &= _shown_broken((neg,), values, rows, screened) == 0
         return np.asarray(ok)
+
+
+def _runs(points: NDArray[np.int64], most: int) -> list[slice]:
+    """Consecutive runs of the boxes whose ``points`` add up to at most ``most`` (a box of
+    more is a run of its own)."""
+    runs: list[slice] = []
+    start, total = 0, 0
+    for i, k in enumerate(points.tolist()):
+        if total and total + k > most:
+            runs.append(slice(start, i))
+            start, total = i, 0
+        total += k
+    if start < len(points):
+        runs.append(slice(start, len(points)))
+    return runs
 
 
 def _lower(bounds: tuple[FloatArray, FloatArray], sign: float) -> FloatArray:
@@ -171,12 +187,10 @@ def joint_search(
     variables = [d.var for d in dims]
     steps = np.array([v.step for v in variables], dtype=np.float64)
     offset = np.array([1.0 if d.variable == "n" else 0.0 for d in dims])
-    tolerant = any(tolerance_box.covered(problem, q) for q in needed)
-    most = ENUMERATE_TOLERANCES if tolerant else ENUMERATE
-    budget = current_budget()
-
     covered = frozenset(q for q in needed if tolerance_box.covered(problem, q))
     screen = replace(problem, tolerances=NOMINAL) if covered else None
+    most = ENUMERATE_TOLERANCES if covered else ENUMERATE
+    budget = current_budget()
 
     def offer(x: DesignPoints, carried: BoolArray) -> None:
         """Judge the points ``x`` (carrying ``carried``) by their exact values; under
@@ -239,8 +253,8 @@ def joint_search(
         if obj in cheap:
             bound = np.maximum(bound, _lower(bnd[obj], sign))
         car = judge.alive(bnd, len(lo), car) & (bound < limit)[:, None]
-        # the costly bounds where they may close a box: every box that will be split, and
-        # under tolerances every box (a box's bounds cost less than its points')
+        # the costly bounds of every box still open, those to enumerate too (a box's bounds
+        # cost less than its points', and often close it: the case study's thickness.min)
         sub = car.any(axis=1)
         if costly and sub.any():
             sb = box_bounds(problem, c1, c2, xlo.take(sub), xhi.take(sub), tables, costly)
@@ -278,14 +292,19 @@ def joint_search(
                 enum[live],
             )
         rest = ~enum
-        points, carried = [], []
+        points: list[FloatArray] = []
+        carried: list[BoolArray] = []
         if iterations > 1:
             points += [lo[rest], hi[rest], mid[rest]]
             carried += [car[rest]] * 3
-        if enum.any():  # every grid point: cheap bounds at the points, then exact values
-            every = grid_points(lo[enum], counts[enum], variables)
-            per = counts[enum].prod(axis=1).astype(np.int64)
-            owner_car = np.repeat(car[enum], per, axis=0)
+        # every grid point of the boxes to enumerate: cheap bounds at the points, then the
+        # exact values of those left, in runs of at most ENUMERATE_CHUNK points (the memory of
+        # an iteration does not grow with its batch, as the branch and bound's)
+        e_lo, e_counts, e_car = lo[enum], counts[enum], car[enum]
+        per = e_counts.prod(axis=1).astype(np.int64)
+        for run in _runs(per, ENUMERATE_CHUNK):
+            every = grid_points(e_lo[run], e_counts[run], variables)
+            owner_car = np.repeat(e_car[run] & ~judge.answered, per[run], axis=0)
             e = DesignPoints.from_columns(every)
             eb = box_bounds(problem, c1, c2, e, e, tables, cheap)
             pc = judge.alive(eb, len(every), owner_car)
@@ -294,7 +313,10 @@ def joint_search(
             sel = pc.any(axis=1)
             points.append(every[sel])
             carried.append(pc[sel])
-        if points:
+            if sum(len(x) for x in points) >= ENUMERATE_CHUNK:
+                offer(DesignPoints.from_columns(np.concatenate(points)), np.concatenate(carried))
+                points, carried = [], []
+        if points and sum(len(x) for x in points):
             offer(DesignPoints.from_columns(np.concatenate(points)), np.concatenate(carried))
         lo, hi, bound, car = lo[rest], hi[rest], bound[rest], car[rest] & ~judge.answered
         live = car.any(axis=1)

@@ -98,8 +98,8 @@ class Optimum:
     #: none), and the least mass each pruned pair's designs were shown to have at least (g;
     #: its coarse floor, or its fine one refined against the incumbent of the time), which
     #: the runner-ups read instead of computing them again
-    floors: Floors | None = None
-    floor_of: dict[int, float] = field(default_factory=dict)
+    floors: Floors | None = field(default=None, compare=False, repr=False)
+    floor_of: dict[int, float] = field(default_factory=dict, compare=False, repr=False)
 
     def tree(self) -> tuple[Archive, ...] | None:
         """Every pair's archive, or None when one is missing (then the explanation re-solves)."""
