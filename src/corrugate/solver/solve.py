@@ -576,11 +576,11 @@ def _by_floors(
             continue
         run(k)
     pruned = frozenset(k for _, _, k in heap) if certified else frozenset()
-    floor_of = {k: shown.get(k, fl.coarse(k)) for k in pruned}
     if record and certified and best is None and pruned:
         for k in sorted(pruned):  # for the diagnosis' archives: every pair searched
             run(k)
         pruned = frozenset()
+    floor_of = {k: shown.get(k, fl.coarse(k)) for k in pruned}
     kept = tuple(archives) if record and certified else None
     if best is None or best_pair is None:
         gap = 0.0 if certified else math.inf
