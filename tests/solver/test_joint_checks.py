@@ -135,3 +135,38 @@ def test_the_solves_floors_and_a_floors_accepted_design_are_what_they_claim(
             assert n not in got
             continue
         assert got[n].objective == cold_n.value, n
+
+
+def test_floors_with_n_fixed_from_the_solves_lists_equal_those_built_for_it(
+    tmp_path: Path,
+) -> None:
+    """:meth:`Floors.with_n` (the runner-ups' floors with n fixed, their layer lists taken from
+    the solve's): every list holds the same designs as the list built for the problem with n
+    fixed (:func:`floors` of it, a second method), and every pair's coarse floor is the same."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    problem = _sheet_choices(tmp_path)
+    whole = floors(problem)
+    assert whole is not None
+    whole.coarse(0)  # every list built
+    compared = 0
+    for n in (problem.n_lo, (problem.n_lo + problem.n_hi) // 2, problem.n_hi):
+        taken = whole.with_n(n)
+        built = floors(replace(problem, n_lo=n, n_hi=n))
+        assert built is not None
+        size = len(problem.candidates) ** 2
+        for k in range(size):
+            assert taken.coarse(k) == built.coarse(k), (n, k)
+        for key, designs in built._lists.items():
+            got = taken._lists[key]
+            assert (designs is None) is (got is None)
+            if designs is None or got is None:
+                continue
+            rows = {tuple(r) for r in np.stack([designs.n, designs.W, designs.a], axis=1).tolist()}
+            mine = {tuple(r) for r in np.stack([got.n, got.W, got.a], axis=1).tolist()}
+            assert rows == mine and len(got) == len(designs)
+            assert np.all(got.n == n)
+            compared += len(designs)
+    assert compared > 100

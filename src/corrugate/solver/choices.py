@@ -157,6 +157,20 @@ class Floors:
                     shared[whole] = self._lists[key]
         return self._lists[key]
 
+    def with_n(self, n: int) -> Floors:
+        """The floors of the same problem with every layer's n fixed at ``n`` (those of
+        :func:`floors` of ``replace(problem, n_lo=n, n_hi=n)``), its layer lists this one's
+        designs with that n where this one has built them (a list holds the grid's designs that
+        meet the layer's own constraints, so those with n are the list of n alone; their order
+        may differ, not the floors' validity)."""
+        relaxed = replace(self.relaxed, n_lo=n, n_hi=n)
+        original = None if self.original is None else replace(self.original, n_lo=n, n_hi=n)
+        out = Floors(relaxed, self.shifts, original)
+        for key, designs in self._lists.items():
+            if designs is not None:
+                out._lists[key] = designs.take(np.flatnonzero(designs.n == n))
+        return out
+
     def _pair(self, k: int) -> tuple[int, int]:
         return divmod(k, len(self.relaxed.candidates))
 

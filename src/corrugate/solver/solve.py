@@ -1330,8 +1330,12 @@ def _pruned_runner_ups(
         for n, goal in target.items():
             if floor >= goal:
                 continue
-            if n not in per_n:
-                per_n[n] = floors(replace(problem, n_lo=n, n_hi=n))
+            if n not in per_n:  # the solve's lists with that n, else built
+                per_n[n] = (
+                    opt.floors.with_n(n)
+                    if opt.floors is not None
+                    else floors(replace(problem, n_lo=n, n_hi=n))
+                )
             fn = per_n[n]
             f = 0.0 if fn is None else fn.coarse(k)
             if f < goal and fn is not None:
