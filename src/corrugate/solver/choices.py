@@ -137,6 +137,7 @@ class Floors:
     _tables: Tables | None = None
     _own_tables: Tables | None = None
     _coarse: np.ndarray | None = None
+    _accepted: dict[int, float] = field(default_factory=dict)
 
     @property
     def size(self) -> int:
@@ -155,6 +156,20 @@ class Floors:
                 if shared is not None:
                     shared[whole] = self._lists[key]
         return self._lists[key]
+
+    def with_n(self, n: int) -> Floors:
+        """The floors of the same problem with every layer's n fixed at ``n`` (those of
+        :func:`floors` of ``replace(problem, n_lo=n, n_hi=n)``), its layer lists this one's
+        designs with that n where this one has built them (a list holds the grid's designs that
+        meet the layer's own constraints, so those with n are the list of n alone; their order
+        may differ, not the floors' validity)."""
+        relaxed = replace(self.relaxed, n_lo=n, n_hi=n)
+        original = None if self.original is None else replace(self.original, n_lo=n, n_hi=n)
+        out = Floors(relaxed, self.shifts, original)
+        for key, designs in self._lists.items():
+            if designs is not None:
+                out._lists[key] = designs.take(np.flatnonzero(designs.n == n))
+        return out
 
     def _pair(self, k: int) -> tuple[int, int]:
         return divmod(k, len(self.relaxed.candidates))
@@ -190,6 +205,7 @@ class Floors:
         own_tables = self._own_tables
         o1, o2 = (c1, c2) if own is None else (own.candidates[i], own.candidates[j])
         judged = 0  # designs judged by P's certified values
+        accepted = math.inf  # the least mass of a design P accepted
 
         def exact(x: DesignPoints) -> tuple[np.ndarray, np.ndarray]:
             vals = point_values(relaxed, c1, c2, x, tables)
@@ -202,7 +218,7 @@ class Floors:
                 )
                 for c in stiff:
                     ok &= np.asarray(c.satisfied(at[c.quantity], rtol=FEAS_RTOL), dtype=bool)
-            nonlocal judged  # then by P itself, up to EXACT_POINTS designs
+            nonlocal judged, accepted  # then by P itself, up to EXACT_POINTS designs
             if own is not None and own_tables is not None and judged < EXACT_POINTS and ok.any():
                 sel = np.flatnonzero(ok)
                 judged += len(sel)
@@ -211,14 +227,23 @@ class Floors:
                 for c in own.constraints:
                     good &= np.asarray(c.satisfied(got[c.quantity], rtol=FEAS_RTOL), dtype=bool)
                 ok[sel] = good
+                if good.any():
+                    accepted = min(accepted, float(np.min(got[MASS][good])))
             return vals[MASS], ok
 
         inc = None if not math.isfinite(below) else below * (1 + RELAX)
         lists = (self._list(i, 1), self._list(j, 2))
         r = separable.search(relaxed, c1, c2, inc, exact, shifts, lists)
+        self._accepted[k] = accepted
         if r is None:
             return 0.0
         return math.inf if r.point is None else r.value * (1 - RELAX)
+
+    def accepted(self, k: int) -> float:
+        """The least mass (g) of a design of pair ``k`` that P (:attr:`original`) accepted in
+        the last :meth:`fine` of the pair (its certified values, to FEAS_RTOL, as the branch
+        and bound judges a point): a real design of P with that mass; inf when none was."""
+        return self._accepted.get(k, math.inf)
 
 
 def floors(problem: Problem) -> Floors | None:

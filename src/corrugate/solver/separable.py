@@ -37,7 +37,8 @@ So the search (:func:`search`) is:
    layer 2's least: the mass grows with each); of the pairs left, first only those whose lower bound is below the
    mass of the pair of least lower bound (the optimum is at most that if it proves feasible),
    and all of them if the answer is heavier than that; their mass by the formulas, below the
-   incumbent;
+   incumbent (a layer-1 design whose lower bound with layer 2's least already reaches the
+   incumbent forms no pair at all);
 4. those pairs in order of their mass, in batches, evaluated exactly with
    :func:`~.quantities.point_values` (``evaluate``, the same values and the same feasibility rule,
    FEAS_RTOL, as the branch and bound), until the lightest exactly feasible pair is no heavier
@@ -609,7 +610,11 @@ def search(
     low1 = layer_mass(m1.density, c1.t, L1.W, length_sum(lay, L1.n, E2_min), lay)
     low1 = low1 + connector_mass(m1.density, c1.t, lay, L1.E, E2_min, L1.h + h2_min)
     low2 = layer_mass(m2.density, c2.t, L2.W, length_sum(lay, L2.n, E1_min), lay)
-    # step 3: the modelled values of the pairs, in chunks of layer-1 designs
+    # step 3: the modelled values of the pairs, in chunks of layer-1 designs; a layer-1 design
+    # whose lower bound with the least of layer 2's already reaches the incumbent forms no
+    # pair (each of its pairs' lower bounds, below, would reach it: the same pairs are left;
+    # they count as scored all the same)
+    heavy = (low1 + float(low2.min())) * (1 - SLACK) >= worst
     evaluated = 0
     cand_i: list[IntArray] = []
     cand_j: list[IntArray] = []
@@ -621,9 +626,10 @@ def search(
         base = 0 if start == 0 else int(csum[start - 1])
         stop = int(np.searchsorted(csum, base + CHUNK_PAIRS, side="right"))
         stop = max(stop, start + 1)
+        scored += int(rows[start:stop].sum())
         parts_i, parts_j = [], []
         for o, order in enumerate(orders):
-            mine = start + np.flatnonzero(pick[start:stop] == o)
+            mine = start + np.flatnonzero((pick[start:stop] == o) & ~heavy[start:stop])
             if len(mine):
                 a, b = _prefix_pairs(order, rows[mine])
                 parts_i.append(mine[a])
@@ -632,7 +638,6 @@ def search(
             start = stop
             continue
         i, j = np.concatenate(parts_i), np.concatenate(parts_j)
-        scored += len(i)
         if math.isfinite(t_max):
             sel = L1.h[i] + L2.h[j] <= t_max
             i, j = i[sel], j[sel]

@@ -40,7 +40,8 @@ from corrugate.mechanics.capacity import Capacity
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.choices import Floors, floors, shared_lists
+from corrugate.solver.choices import RELAX, Floors, floors, shared_lists
+from corrugate.solver.joint_checks import Check, joint_search, reopened
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
@@ -93,6 +94,12 @@ class Optimum:
     #: the sheet pairs (:func:`pairs` order) pruned whole by a floor (:mod:`.choices`): no
     #: design of theirs is lighter than the answer; not searched, no archive
     pruned: frozenset[int] = frozenset()
+    #: the floors (:mod:`.choices`) the solve ordered and pruned the sheet pairs by (None:
+    #: none), and the least mass each pruned pair's designs were shown to have at least (g;
+    #: its coarse floor, or its fine one refined against the incumbent of the time), which
+    #: the runner-ups read instead of computing them again
+    floors: Floors | None = field(default=None, compare=False, repr=False)
+    floor_of: dict[int, float] = field(default_factory=dict, compare=False, repr=False)
 
     def tree(self) -> tuple[Archive, ...] | None:
         """Every pair's archive, or None when one is missing (then the explanation re-solves)."""
@@ -552,6 +559,7 @@ def _by_floors(
             best, best_pair, inc = r, pair, r.value
 
     bound = math.inf  # the least proven bound of the pairs not certified
+    shown: dict[int, float] = {}  # a fine floor's lower bound of the pair's designs (g)
     while heap:
         if budget_spent():  # the pairs left: nothing proven
             certified, bound = False, -math.inf
@@ -561,7 +569,10 @@ def _by_floors(
             heapq.heappush(heap, (floor, level, k))
             break
         if level == 0:
-            heapq.heappush(heap, (max(floor, fl.fine(k, inc)), 1, k))
+            fine = fl.fine(k, inc)
+            # inf: no design lighter than the incumbent (RELAX below it, as a floor)
+            shown[k] = max(floor, fine if math.isfinite(fine) else inc * (1 - RELAX))
+            heapq.heappush(heap, (max(floor, fine), 1, k))
             continue
         run(k)
     pruned = frozenset(k for _, _, k in heap) if certified else frozenset()
@@ -569,16 +580,29 @@ def _by_floors(
         for k in sorted(pruned):  # for the diagnosis' archives: every pair searched
             run(k)
         pruned = frozenset()
+    floor_of = {k: shown.get(k, fl.coarse(k)) for k in pruned}
     kept = tuple(archives) if record and certified else None
     if best is None or best_pair is None:
         gap = 0.0 if certified else math.inf
-        return Optimum(None, None, math.nan, certified, gap, boxes, iterations, kept, pruned)
+        return Optimum(
+            None, None, math.nan, certified, gap, boxes, iterations, kept, pruned, fl, floor_of
+        )
     gap = 0.0
     if not certified:
         bound = min([bound, *uncertified])
         gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
     return Optimum(
-        best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned
+        best.point,
+        best_pair,
+        best.value,
+        certified,
+        gap,
+        boxes,
+        iterations,
+        kept,
+        pruned,
+        fl,
+        floor_of,
     )
 
 
@@ -947,6 +971,11 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
         if got is not None:
             shared, idle = got
+    # on grids, every check's searched pairs in one search per pair (:mod:`.joint_checks`)
+    pending = [n for n in dict.fromkeys(c.name for c in problem.constraints) if n not in witnessed]
+    joint: dict[str, bool | None] = {}
+    if tree is not None and problem.gridded and pending:
+        joint = _joint_binding(problem, opt, tree, pending, tables)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -954,11 +983,20 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         binding: bool | None = None
         if c.name in witnessed:  # a better design breaking it alone was evaluated: binding
             binding = True
+        elif c.name in joint and (joint[c.name] is not False or not opt.pruned):
+            binding = joint[c.name]  # found, stopped (None), or no pair left to search
         elif not budget_spent():
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
             binding = _binding(
-                problem, opt, tree, c.name, tables, tol, shared if c.name in idle else None
+                problem,
+                opt,
+                tree,
+                c.name,
+                tables,
+                tol,
+                shared if c.name in idle else None,
+                searched=c.name in joint,
             )
         active = abs(margin) <= ACTIVE_RTOL * abs(c.bound)
         if c.load is not None:  # a deflection bound: delta = P / (P / delta) <= P / bound
@@ -1010,16 +1048,19 @@ class _PairFloors:
 
         self.known: dict[int, float] = {}
 
+    def _build(self) -> Floors | None:
+        if not self.built:
+            for p in self.problems:
+                self.floors = floors(p)
+                if self.floors is not None:
+                    break
+            self.built = True
+        return self.floors
+
     def floor(self, k: int) -> float:
         """Pair ``k``'s floor (g): coarse, refined when below the goal; 0 without floors."""
         if k not in self.known:
-            if not self.built:
-                for p in self.problems:
-                    self.floors = floors(p)
-                    if self.floors is not None:
-                        break
-                self.built = True
-            fl, floor = self.floors, 0.0
+            fl, floor = self._build(), 0.0
             if fl is not None:
                 floor = fl.coarse(k)
                 if floor < self.goal:
@@ -1031,6 +1072,11 @@ class _PairFloors:
         """Whether pair ``k`` holds no design lighter than the goal by its floor."""
         return self.floor(k) >= self.goal
 
+    def found(self, k: int) -> bool:
+        """Whether the fine floor of pair ``k`` met a design lighter than the goal that its
+        problem accepts (:meth:`~.choices.Floors.accepted`): one exists."""
+        return self.floors is not None and self.floors.accepted(k) < self.goal
+
 
 def _binding(
     problem: Problem,
@@ -1040,6 +1086,7 @@ def _binding(
     tables: Tables,
     tol: float,
     shared: _PairFloors | None = None,
+    searched: bool = False,
 ) -> bool | None:
     """Whether constraint ``name`` binds (None: not proven either way, the budget spent): the
     certified search of its check's problem (the constraint negated, :func:`_relaxed`) for a
@@ -1055,10 +1102,15 @@ def _binding(
     one, lies most often), then the others by their floors (:class:`_PairFloors`, least first)
     of the check's problem (else of the problem without the constraint, a relaxation of it),
     those whose floor reaches the optimum skipped (no better design); then the pairs pruned
-    whole, skipped likewise. The floors, which cost more than a search of a few boxes, are
-    computed only once the optimum's pair has been searched to its end without a better
-    design. ``shared``: floors of a relaxation of the check's problem too (the problem without
-    several constraints, this one among them: :func:`_untouched`), asked first."""
+    whole, least floor of the solve first (:attr:`Optimum.floor_of`), skipped likewise, and
+    answered without a search when the fine floor that did not reach the optimum met a better
+    design that the check's problem accepts (:meth:`_PairFloors.found`: a design the search
+    would find). The floors, which cost more than a search of a few boxes, are computed only
+    once the optimum's pair has been searched to its end without a better design. ``shared``:
+    floors of a relaxation of the check's problem too (the problem without several
+    constraints, this one among them: :func:`_untouched`), asked first. ``searched``: the
+    searched pairs are known to hold no better design (on grids, :func:`_joint_binding`), only
+    the pairs pruned whole are left."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     check = _relaxed(problem, name, opt.certified)
     goal = opt.value - sign * tol
@@ -1087,7 +1139,7 @@ def _binding(
     bits = constraint_bits(problem, name)
     starts: dict[int, Start] = {}
     for i, a in enumerate(tree):
-        if a is not None:
+        if a is not None and not searched:
             start = a.reopen(bits, sign * opt.value)
             if len(start[0]):  # nothing reopened: no better design in the pair
                 starts[i] = start
@@ -1104,15 +1156,60 @@ def _binding(
 
     rest = sorted((i for i in starts if not ruled_out(i)), key=lambda i: (own.floor(i), i))
     todo: list[tuple[int, Start | None]] = [(i, starts[i]) for i in rest]
-    todo += [(i, None) for i, a in enumerate(tree) if a is None]
+    # the pairs pruned whole, least floor of the solve first (a better design lies most often
+    # in a pair that was nearly as light)
+    whole = sorted(
+        (i for i, a in enumerate(tree) if a is None), key=lambda i: (opt.floor_of.get(i, 0.0), i)
+    )
+    todo += [(i, None) for i in whole]
     for i, box in todo:
         if budget_spent():
             return None
         if box is None and ruled_out(i):
             continue
+        if box is None and own.found(i):
+            return True  # its floor met a better design that the check's problem accepts
         if search(i, box):
             return True  # shown: a better design exists
     return False if certified else None
+
+
+def _joint_binding(
+    problem: Problem,
+    opt: Optimum,
+    tree: tuple[Archive | None, ...],
+    names: Sequence[str],
+    tables: Tables,
+) -> dict[str, bool | None]:
+    """The binding checks of ``names`` on a grid over the sheet pairs the solve searched (their
+    archives), the optimum's own pair first, each pair's checks in one search
+    (:func:`~.joint_checks.joint_search`, its answers those of each check's own search, the
+    first part of :func:`_binding`): True, a better design was found (binding); None, the
+    budget ran out first; False, no searched pair holds one (the pairs pruned whole are left
+    to :func:`_binding`)."""
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    checks = []
+    for name in names:
+        own = [c for c in problem.constraints if c.name == name]
+        negation = _negation(own[0], problem) if len(own) == 1 and opt.certified else None
+        checks.append(Check(name, constraint_bits(problem, name), negation))
+    answers: dict[str, bool | None] = {name: False for name in names}
+    everything = pairs(problem)
+    first = everything.index(opt.candidates) if opt.candidates in everything else -1
+    order = sorted(range(len(tree)), key=lambda i: (i != first, i))
+    for i in order:
+        a = tree[i]
+        todo = [c for c in checks if answers[c.name] is False]
+        if a is None or not todo:
+            continue
+        start = reopened(a, todo, sign * opt.value)
+        if not len(start[0]):
+            continue
+        got = joint_search(problem, everything[i], tables, todo, start, opt.value)
+        for c, answer in zip(todo, got, strict=True):
+            if answer is not False:
+                answers[c.name] = answer
+    return answers
 
 
 def _untouched(
@@ -1213,10 +1310,12 @@ def _pruned_runner_ups(
     (:mod:`.choices`, both layers' n, as ``per_n`` fixes it) is below the best design with that
     n of the pairs before it, one incumbent per n (the others' best), the others' incumbent
     -inf (nothing searched); pairs by rising floor. A pair that holds no lighter design with
-    some n would return none for it: the runner-ups are the same."""
+    some n would return none for it: the runner-ups are the same. The solve's own floor of a
+    pair (:attr:`Optimum.floor_of`: every design of the pair, whatever its n, is at least that
+    heavy) is asked before any floor with n fixed."""
     a, b = span
     everything = pairs(problem)
-    whole = floors(problem)
+    whole = opt.floors if opt.floors is not None else floors(problem)
     per_n: dict[int, Floors | None] = {}
     order = sorted(opt.pruned, key=lambda k: (0.0 if whole is None else whole.coarse(k), k))
     for k in order:
@@ -1226,12 +1325,17 @@ def _pruned_runner_ups(
             return
         target = {n: best[n][0].value if n in best else math.inf for n in range(a, b + 1)}
         floor = 0.0 if whole is None else whole.coarse(k)
+        floor = max(floor, opt.floor_of.get(k, 0.0))
         need = {}
         for n, goal in target.items():
             if floor >= goal:
                 continue
-            if n not in per_n:
-                per_n[n] = floors(replace(problem, n_lo=n, n_hi=n))
+            if n not in per_n:  # the solve's lists with that n, else built
+                per_n[n] = (
+                    opt.floors.with_n(n)
+                    if opt.floors is not None
+                    else floors(replace(problem, n_lo=n, n_hi=n))
+                )
             fn = per_n[n]
             f = 0.0 if fn is None else fn.coarse(k)
             if f < goal and fn is not None:

@@ -1,0 +1,334 @@
+"""The binding checks of a gridded problem searched together over one sheet pair's archive
+(docs/theory.md section 5).
+
+A binding check of constraint c asks whether a design better than the certified optimum meets
+every constraint but c (:func:`~.solve._binding`): on a grid, whether some grid point of the
+check's problem (c dropped, its negation added: :func:`~.solve._relaxed`) has an objective
+strictly better than the optimum. Every such point lies in the boxes of the solve's archive that
+c alone closed below the optimum (:meth:`~.archive.Archive.reopen`), so each check used to be a
+branch and bound of its own from those boxes: a few iterations each, each iteration's cost
+mostly fixed (the case study: four checks of 1-2 iterations, about 1 ms each).
+
+:func:`joint_search` answers every check of a sheet pair in one search instead: its boxes are the
+union of the boxes the checks reopen, each box carrying the checks it may still answer. An
+iteration bounds every quantity over its boxes once (:func:`~.quantities.box_bounds`: the cheap
+ones, then the directional ones over the boxes left) and keeps, per box, the checks whose problem
+no bound shows broken there (each check judges a box as its own branch and bound would: its
+constraints to :data:`~.problem.FEAS_RTOL`) and whose objective bound is below the optimum; it
+evaluates three points of each box (lower and upper corners, centre: in the first iteration of
+every box before anything else, so that a design found there answers its checks early; later of
+the boxes to split) and every grid point of the boxes of at most :data:`~.bnb.ENUMERATE` points
+(:data:`~.bnb.ENUMERATE_TOLERANCES` under worst-case tolerances) as the branch and bound does
+(cheap bounds at the points first, then the exact values, :func:`~.quantities.point_values`,
+under tolerances after the point model's screen), and splits the others
+(:func:`~.boxes.split`). A point that meets every constraint of a check's problem with an
+objective better than the optimum answers that check (binding); a check answered leaves every
+box. When no box is left, the checks unanswered have no such point in the
+pair: each check's answer is that of its own search (a grid point is judged by the same values
+and the same rule, every bound is rigorous, and every point a check's own search could find is
+in a box it carries), found with the fixed cost of one search.
+
+Only on grids: with continuous variables a check's own search ends at a gap, its incumbent
+lowered by the designs it finds, so the checks keep their own searches there.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from corrugate.solver import tolerance_box
+from corrugate.solver.archive import Archive
+from corrugate.solver.bnb import (
+    BATCH,
+    ENUMERATE,
+    ENUMERATE_CHUNK,
+    ENUMERATE_TOLERANCES,
+    MAX_BOXES,
+    MAX_ITERATIONS,
+    MAX_OPEN,
+    MULTI_SPLIT_BELOW,
+)
+from corrugate.solver.boxes import grid_points, snap, split, widths
+from corrugate.solver.budget import current_budget
+from corrugate.solver.points import DesignPoints, coordinates
+from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
+from corrugate.solver.quantities import Tables, box_bounds, point_values
+from corrugate.solver.quantity import Quantity
+from corrugate.solver.worst_case import NOMINAL
+
+__all__ = ["Check", "joint_search", "reopened"]
+
+FloatArray = NDArray[np.float64]
+BoolArray = NDArray[np.bool_]
+
+
+@dataclass(frozen=True)
+class Check:
+    """One binding check: the constraints called ``name`` dropped, ``negation`` (None: none)
+    added; ``bits`` are their :class:`~.archive.Archive` mask bits."""
+
+    name: str
+    bits: int
+    negation: Constraint | None
+
+
+def reopened(
+    archive: Archive, checks: Sequence[Check], below: float
+) -> tuple[FloatArray, FloatArray, FloatArray, BoolArray]:
+    """The archive's rows that some check reopens (:meth:`~.archive.Archive.reopen`: its mask
+    inside the check's bits, its bound below ``below``, sign * objective): (lo, hi, bound,
+    carried), ``carried`` (rows x checks) saying which checks reopen each row."""
+    carried = np.stack([(archive.mask & ~np.uint64(c.bits)) == 0 for c in checks], axis=1).reshape(
+        len(archive.mask), len(checks)
+    )
+    carried &= (archive.bound < below)[:, None]
+    rows = carried.any(axis=1)
+    return archive.lo[rows], archive.hi[rows], archive.bound[rows], carried[rows]
+
+
+def _shown_broken(
+    cons: Sequence[Constraint],
+    values: dict[Quantity, tuple[FloatArray, FloatArray]] | dict[Quantity, FloatArray],
+    rows: int,
+    screened: frozenset[Quantity] = frozenset(),
+) -> NDArray[np.uint64]:
+    """Per row, the bit set of the constraints (bit i: ``cons[i]``) shown broken on it by the
+    bounds (or the values) ``values`` to :data:`~.problem.FEAS_RTOL`, as the branch and bound
+    judges them; a constraint whose quantity is not in ``values``, or an upper bound of one of
+    ``screened``, is not shown broken."""
+    out = np.zeros(rows, dtype=np.uint64)
+    for i, c in enumerate(cons):
+        if c.quantity in values and not (c.quantity in screened and c.sense != "min"):
+            v = values[c.quantity]
+            if isinstance(v, tuple):
+                v = v[1] if c.sense == "min" else v[0]
+            out |= np.where(c.satisfied(v, rtol=FEAS_RTOL), np.uint64(0), np.uint64(1 << i))
+    return out
+
+
+class _Judge:
+    """Which checks a box (or point) may still answer, from the constraints shown broken on it:
+    a check's problem is every constraint but its own (``bits``) and its negation."""
+
+    def __init__(self, problem: Problem, checks: Sequence[Check]) -> None:
+        self.cons = problem.constraints
+        self.checks = checks
+        every = (1 << len(self.cons)) - 1
+        self.others = [np.uint64(every & ~c.bits) for c in checks]
+        self.answered = np.zeros(len(checks), dtype=bool)
+
+    def alive(
+        self,
+        values: dict[Quantity, tuple[FloatArray, FloatArray]] | dict[Quantity, FloatArray],
+        rows: int,
+        carried: BoolArray,
+        screened: frozenset[Quantity] = frozenset(),
+    ) -> BoolArray:
+        """(rows x checks): ``carried`` less the checks answered and those whose problem the
+        bounds (or values) ``values`` show broken on the row; ``screened``: quantities whose
+        values are upper bounds of the exact ones (a point screened under tolerances), so only
+        their lower bounds are judged."""
+        broken = _shown_broken(self.cons, values, rows, screened)
+        ok = carried & ~self.answered
+        for j in np.flatnonzero(ok.any(axis=0)).tolist():
+            ok[:, j] &= (broken & self.others[j]) == 0
+            neg = self.checks[j].negation
+            if neg is not None:
+                ok[:, j] &= _shown_broken((neg,), values, rows, screened) == 0
+        return np.asarray(ok)
+
+
+def _runs(points: NDArray[np.int64], most: int) -> list[slice]:
+    """Consecutive runs of the boxes whose ``points`` add up to at most ``most`` (a box of
+    more is a run of its own)."""
+    runs: list[slice] = []
+    start, total = 0, 0
+    for i, k in enumerate(points.tolist()):
+        if total and total + k > most:
+            runs.append(slice(start, i))
+            start, total = i, 0
+        total += k
+    if start < len(points):
+        runs.append(slice(start, len(points)))
+    return runs
+
+
+def _lower(bounds: tuple[FloatArray, FloatArray], sign: float) -> FloatArray:
+    """A lower bound of sign * objective from the objective's (lower, upper) bounds."""
+    return np.asarray(sign * (bounds[1] if sign < 0 else bounds[0]))
+
+
+def joint_search(
+    problem: Problem,
+    pair: tuple[Candidate, Candidate],
+    tables: Tables,
+    checks: Sequence[Check],
+    start: tuple[FloatArray, FloatArray, FloatArray, BoolArray],
+    goal: float,
+) -> list[bool | None]:
+    """Per check of ``checks`` (on a grid), whether a grid point of the boxes ``start`` that
+    carry it (:func:`reopened`) meets every constraint of its problem with an objective strictly
+    better than ``goal`` (the optimum): True when one was found, False when none exists, None
+    when the budget or the search's limits (those of :mod:`.bnb`) stopped it first (module
+    docstring)."""
+    c1, c2 = pair
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    limit = sign * goal
+    obj = problem.objective.quantity
+    needed = {c.quantity for c in problem.constraints} | {obj}
+    costly = {q for q in needed if q.directional}
+    cheap = needed - costly
+    judge = _Judge(problem, checks)
+    dims = coordinates(problem)
+    variables = [d.var for d in dims]
+    steps = np.array([v.step for v in variables], dtype=np.float64)
+    offset = np.array([1.0 if d.variable == "n" else 0.0 for d in dims])
+    covered = frozenset(q for q in needed if tolerance_box.covered(problem, q))
+    screen = replace(problem, tolerances=NOMINAL) if covered else None
+    most = ENUMERATE_TOLERANCES if covered else ENUMERATE
+    budget = current_budget()
+
+    def offer(x: DesignPoints, carried: BoolArray) -> None:
+        """Judge the points ``x`` (carrying ``carried``) by their exact values; under
+        worst-case tolerances the points the point model screens out first, as the branch and
+        bound does (:meth:`~.bnb._Search._evaluate`): a directional quantity's least over the
+        point and four corners of its tolerance box is at least its certified value, so a lower
+        bound it breaks is broken certified too (an upper bound is not judged by it)."""
+        if not len(x):
+            return
+        if screen is not None:
+            nominal = point_values(screen, c1, c2, x, tables)
+            for corner in tolerance_box.corners(problem, c1, c2, x):
+                at = point_values(screen, c1, c2, corner, tables, covered)
+                for q in covered:
+                    nominal[q] = np.minimum(nominal[q], at[q])
+            ok = judge.alive(nominal, len(x), carried, covered)
+            if obj not in covered:
+                ok &= (sign * nominal[obj] < limit)[:, None]
+            sel = ok.any(axis=1)
+            x, carried = x.take(sel), ok[sel]
+            if not len(x):
+                return
+        vals = point_values(problem, c1, c2, x, tables)
+        ok = judge.alive(vals, len(x), carried)
+        ok &= (sign * vals[obj] < limit)[:, None]
+        judge.answered |= ok.any(axis=0)
+
+    q_lo, q_hi, q_bound, q_car = start
+    q_lo, q_hi = np.asarray(q_lo, dtype=np.float64), np.asarray(q_hi, dtype=np.float64)
+    q_bound = np.asarray(q_bound, dtype=np.float64)
+    iterations = boxes = 0
+    while len(q_lo):
+        keep = (q_car & ~judge.answered).any(axis=1)
+        q_lo, q_hi, q_bound, q_car = q_lo[keep], q_hi[keep], q_bound[keep], q_car[keep]
+        if not len(q_lo):
+            break
+        if (
+            (budget is not None and budget.exhausted)
+            or iterations >= MAX_ITERATIONS
+            or boxes >= MAX_BOXES
+            or len(q_lo) >= MAX_OPEN
+        ):
+            return [True if a else None for a in judge.answered]
+        iterations += 1
+        if len(q_lo) > BATCH:  # the lowest bounds first
+            take = np.zeros(len(q_lo), dtype=bool)
+            take[np.argpartition(q_bound, BATCH)[:BATCH]] = True
+            lo, hi, bound, car = q_lo[take], q_hi[take], q_bound[take], q_car[take]
+            q_lo, q_hi, q_bound, q_car = q_lo[~take], q_hi[~take], q_bound[~take], q_car[~take]
+        else:
+            lo, hi, bound, car = q_lo, q_hi, q_bound, q_car
+            q_lo, q_hi, q_bound, q_car = lo[:0], hi[:0], bound[:0], car[:0]
+        boxes += len(lo)
+        if budget is not None:
+            budget.charge(len(lo))
+        counts = np.round((hi - lo) / steps) + 1
+        enum = counts.prod(axis=1) <= most
+        xlo, xhi = DesignPoints.from_columns(lo), DesignPoints.from_columns(hi)
+        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, cheap)
+        if obj in cheap:
+            bound = np.maximum(bound, _lower(bnd[obj], sign))
+        car = judge.alive(bnd, len(lo), car) & (bound < limit)[:, None]
+        # the costly bounds of every box still open, those to enumerate too (a box's bounds
+        # cost less than its points', and often close it: the case study's thickness.min)
+        sub = car.any(axis=1)
+        if costly and sub.any():
+            sb = box_bounds(problem, c1, c2, xlo.take(sub), xhi.take(sub), tables, costly)
+            if obj in costly:
+                bound[sub] = np.maximum(bound[sub], _lower(sb[obj], sign))
+            car[sub] = judge.alive(sb, int(sub.sum()), car[sub]) & (bound[sub] < limit)[:, None]
+        live = car.any(axis=1)
+        lo, hi, bound, car, counts, enum = (
+            lo[live],
+            hi[live],
+            bound[live],
+            car[live],
+            counts[live],
+            enum[live],
+        )
+        # three points of each box (lower and upper corners, centre): in the first iteration
+        # of every box first, so that a design found there answers its checks before any box
+        # is enumerated; later only of the boxes to be split, with the enumerated points
+        mid = np.stack(
+            [snap(0.5 * (lo[:, i] + hi[:, i]), v, up=False) for i, v in enumerate(variables)],
+            axis=1,
+        )
+        mid = np.clip(mid, lo, hi)
+        if iterations == 1:
+            offer(DesignPoints.from_columns(np.concatenate([lo, hi, mid])), np.tile(car, (3, 1)))
+            car = car & ~judge.answered
+            live = car.any(axis=1)
+            lo, hi, mid, bound, car, counts, enum = (
+                lo[live],
+                hi[live],
+                mid[live],
+                bound[live],
+                car[live],
+                counts[live],
+                enum[live],
+            )
+        rest = ~enum
+        points: list[FloatArray] = []
+        carried: list[BoolArray] = []
+        if iterations > 1:
+            points += [lo[rest], hi[rest], mid[rest]]
+            carried += [car[rest]] * 3
+        # every grid point of the boxes to enumerate: cheap bounds at the points, then the
+        # exact values of those left, in runs of at most ENUMERATE_CHUNK points (the memory of
+        # an iteration does not grow with its batch, as the branch and bound's)
+        e_lo, e_counts, e_car = lo[enum], counts[enum], car[enum]
+        per = e_counts.prod(axis=1).astype(np.int64)
+        for run in _runs(per, ENUMERATE_CHUNK):
+            every = grid_points(e_lo[run], e_counts[run], variables)
+            owner_car = np.repeat(e_car[run] & ~judge.answered, per[run], axis=0)
+            e = DesignPoints.from_columns(every)
+            eb = box_bounds(problem, c1, c2, e, e, tables, cheap)
+            pc = judge.alive(eb, len(every), owner_car)
+            if obj in cheap:
+                pc &= (_lower(eb[obj], sign) < limit)[:, None]
+            sel = pc.any(axis=1)
+            points.append(every[sel])
+            carried.append(pc[sel])
+            if sum(len(x) for x in points) >= ENUMERATE_CHUNK:
+                offer(DesignPoints.from_columns(np.concatenate(points)), np.concatenate(carried))
+                points, carried = [], []
+        if points and sum(len(x) for x in points):
+            offer(DesignPoints.from_columns(np.concatenate(points)), np.concatenate(carried))
+        lo, hi, bound, car = lo[rest], hi[rest], bound[rest], car[rest] & ~judge.answered
+        live = car.any(axis=1)
+        lo, hi, bound, car = lo[live], hi[live], bound[live], car[live]
+        if not len(lo):
+            continue
+        multi = len(lo) + len(q_lo) < MULTI_SPLIT_BELOW
+        tag = np.arange(len(lo), dtype=np.float64)
+        c_lo, c_hi, c_tag = split(lo, hi, widths(lo, hi, offset), variables, multi, tag, BATCH)
+        parent = c_tag.astype(np.int64)
+        q_lo = np.concatenate([q_lo, c_lo])
+        q_hi = np.concatenate([q_hi, c_hi])
+        q_bound = np.concatenate([q_bound, bound[parent]])
+        q_car = np.concatenate([q_car, car[parent]])
+    return [bool(a) for a in judge.answered]

@@ -1,0 +1,172 @@
+"""The binding checks answered together (:mod:`corrugate.solver.joint_checks`) and from the
+floors of the sheet pairs (:meth:`corrugate.solver.choices.Floors.accepted`,
+:attr:`corrugate.solver.solve.Optimum.floor_of`), each against a second method: every check's
+own certified branch and bound from the boxes it reopens, and cold certified re-solves."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from corrugate.solver import Problem
+from corrugate.solver.bnb import branch_and_bound
+from corrugate.solver.choices import floors, shared_lists
+from corrugate.solver.joint_checks import Check, joint_search, reopened
+from corrugate.solver.quantities import Tables
+from corrugate.solver.solve import _negation, _relaxed, constraint_bits, optimize, pairs, solve
+from corrugate.spec.schema import load_spec
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+
+
+def _problem(path: Path) -> Problem:
+    return Problem.from_spec(load_spec(path))
+
+
+@pytest.mark.parametrize(
+    "path",
+    [
+        EXAMPLES / "blimp_gripper.toml",  # identical layers, nominal
+        pytest.param(EXAMPLES / "chassis_plate.toml", marks=pytest.mark.slow),  # tolerances
+    ],
+    ids=lambda p: p.stem,
+)
+def test_one_search_answers_each_check_as_its_own_search_does(path: Path) -> None:
+    """Every constraint's check, answered by one joint search of the optimum's sheet pair,
+    equals the answer of its own branch and bound (the check's problem: the constraint
+    negated; the optimum as incumbent, stopping at the first better design) from the boxes the
+    archive reopens for it; both answers occur."""
+    problem = _problem(path)
+    assert problem.gridded
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables, record=True)
+    assert opt.certified and opt.candidates is not None
+    tree = opt.tree()
+    assert tree is not None and len(tree) == 1
+    names = list(dict.fromkeys(c.name for c in problem.constraints))
+    checks = []
+    for name in names:
+        own = [c for c in problem.constraints if c.name == name]
+        neg = _negation(own[0], problem) if len(own) == 1 else None
+        checks.append(Check(name, constraint_bits(problem, name), neg))
+    start = reopened(tree[0], checks, opt.value)
+    joint = joint_search(problem, opt.candidates, tables, checks, start, opt.value)
+    alone = []
+    for check in checks:
+        lo, hi, bound = tree[0].reopen(check.bits, opt.value)
+        if not len(lo):
+            alone.append(False)
+            continue
+        r = branch_and_bound(
+            _relaxed(problem, check.name),
+            *opt.candidates,
+            incumbent=opt.value,
+            tables=tables,
+            start=(lo, hi, bound),
+            stop_below=opt.value,
+        )
+        found = r.point is not None and r.value < opt.value
+        assert found or r.certified
+        alone.append(found)
+    assert joint == alone
+    assert True in alone and False in alone
+
+
+def _sheet_choices(tmp: Path) -> Problem:
+    """examples/rectangle_independent.toml on a small grid with six candidate sheets (36 sheet
+    pairs, most pruned whole by their floors), nominal tolerances (as test_explain_tree.py)."""
+    text = (EXAMPLES / "rectangle_independent.toml").read_text("utf-8")
+    head, rest = text.split("[variables]", 1)
+    grid = (
+        '[variables]\nW = { min = "4 mm", max = "12 mm", step = "1 mm" }\n'
+        'n = { min = 4, max = 14 }\nalpha = { min = "50 deg", max = "140 deg", step = "10 deg" }\n'
+    )
+    text = head + grid + rest.split("\n\n", 1)[1]
+    text = text.replace(
+        '[material]\nname = "dura-lar"\nthickness = "0.125 mm"\n',
+        '[[materials]]\nname = "dura-lar"\nthickness = ["0.05 mm", "0.075 mm", "0.125 mm"]\n\n'
+        '[[materials]]\nname = "mylar"\nthickness = ["0.023 mm", "0.05 mm", "0.075 mm"]\n',
+    )
+    text = text.replace('layers = "independent"\n', 'layers = "independent"\ntolerances = "none"\n')
+    path = tmp / "sheet_choices.toml"
+    path.write_text(text, "utf-8")
+    return _problem(path)
+
+
+@pytest.mark.slow
+def test_the_solves_floors_and_a_floors_accepted_design_are_what_they_claim(
+    tmp_path: Path,
+) -> None:
+    """(1) :attr:`Optimum.floor_of`, which the runner-ups read: each pruned pair's cold
+    certified optimum (its own branch and bound, no incumbent) is no lighter. (2)
+    :meth:`Floors.accepted` of a pair, which a binding check takes as a better design: the
+    pair's cold certified optimum is no heavier. (3) The runner-ups, whose pruned pairs are
+    skipped by those floors, equal cold certified solves with n fixed."""
+    problem = _sheet_choices(tmp_path)
+    tables = Tables(problem)
+    everything = pairs(problem)
+    with shared_lists():
+        opt = optimize(problem, tables=tables, record=True, prune=True)
+        assert opt.certified and len(opt.pruned) >= 20 and opt.floors is not None
+        assert set(opt.floor_of) == set(opt.pruned)
+        accepted = 0
+        fl = floors(problem)
+        assert fl is not None
+        for k in sorted(opt.pruned):
+            cold = branch_and_bound(problem, *everything[k], tables=tables)
+            assert cold.certified
+            if cold.point is not None:
+                assert cold.value >= opt.floor_of[k]
+            fl.fine(k, float("inf"))
+            if fl.accepted(k) < float("inf"):
+                assert cold.point is not None and cold.value <= fl.accepted(k)
+                accepted += 1
+        assert accepted >= 5
+    sol = solve(problem)
+    got = {r.n: r for r in sol.runner_ups}
+    assert sol.assembly is not None
+    n_star = round(sol.assembly.layer1.n)
+    for n in range(max(problem.n_lo, n_star - 3), min(problem.n_hi, n_star + 3) + 1):
+        cold_n = optimize(problem, n_fixed=(n, n), tables=tables)
+        assert cold_n.certified
+        if cold_n.point is None:
+            assert n not in got
+            continue
+        assert got[n].objective == cold_n.value, n
+
+
+def test_floors_with_n_fixed_from_the_solves_lists_equal_those_built_for_it(
+    tmp_path: Path,
+) -> None:
+    """:meth:`Floors.with_n` (the runner-ups' floors with n fixed, their layer lists taken from
+    the solve's): every list holds the same designs as the list built for the problem with n
+    fixed (:func:`floors` of it, a second method), and every pair's coarse floor is the same."""
+    from dataclasses import replace
+
+    import numpy as np
+
+    problem = _sheet_choices(tmp_path)
+    whole = floors(problem)
+    assert whole is not None
+    whole.coarse(0)  # every list built
+    compared = 0
+    for n in (problem.n_lo, (problem.n_lo + problem.n_hi) // 2, problem.n_hi):
+        taken = whole.with_n(n)
+        built = floors(replace(problem, n_lo=n, n_hi=n))
+        assert built is not None
+        size = len(problem.candidates) ** 2
+        for k in range(size):
+            assert taken.coarse(k) == built.coarse(k), (n, k)
+        for key, designs in built._lists.items():
+            got = taken._lists[key]
+            assert (designs is None) is (got is None)
+            if designs is None or got is None:
+                continue
+            rows = {tuple(r) for r in np.stack([designs.n, designs.W, designs.a], axis=1).tolist()}
+            mine = {tuple(r) for r in np.stack([got.n, got.W, got.a], axis=1).tolist()}
+            assert rows == mine and len(got) == len(designs)
+            assert np.all(got.n == n)
+            compared += len(designs)
+    assert compared > 100
