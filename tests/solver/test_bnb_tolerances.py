@@ -133,14 +133,14 @@ def test_runs_and_chunks_give_the_one_pass_answer_and_archive(
     c = problem.candidates[0]
     one = branch_and_bound(problem, c, c, record=True)
     runs: list[int] = []
-    plain_runs = bnb._runs
+    plain_runs = bnb.chunk_runs
 
     def counted(points, most):  # type: ignore[no-untyped-def]
         out = plain_runs(points, most)
         runs.append(len(out))
         return out
 
-    monkeypatch.setattr(bnb, "_runs", counted)
+    monkeypatch.setattr(bnb, "chunk_runs", counted)
     monkeypatch.setattr(bnb, "ENUMERATE_CHUNK", 8)
     monkeypatch.setattr(
         quantities, "CHUNK_ROWS", 64 * (quantities.TOLERANCE_ROWS if tolerant else 1)

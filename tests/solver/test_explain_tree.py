@@ -28,6 +28,7 @@ from corrugate.solver.progress import reporting
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.solve import GAP_RTOL, RUNNER_UP_GAP_RTOL, optimize, pairs
 from corrugate.spec.schema import load_spec
+from sheet_specs import sheet_choices_spec
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -181,28 +182,8 @@ def test_binding_and_runner_ups_equal_independent_re_solves(path: Path) -> None:
 
 
 def _sheet_choices(tmp: Path) -> Problem:
-    """examples/rectangle_independent.toml on a small grid (per layer n 4-14, W 4-12 mm, alpha
-    50-140 deg step 10) with six candidate sheets (dura-lar 0.05, 0.075, 0.125 mm; mylar 0.023,
-    0.05, 0.075 mm: 36 sheet pairs) and nominal tolerances, so that a plain search of each
-    relaxed problem goes layer by layer (:mod:`corrugate.solver.separable`)."""
-    text = (EXAMPLES / "rectangle_independent.toml").read_text("utf-8")
-    head, rest = text.split("[variables]", 1)
-    grid = (
-        '[variables]\nW = { min = "4 mm", max = "12 mm", step = "1 mm" }\n'
-        'n = { min = 4, max = 14 }\nalpha = { min = "50 deg", max = "140 deg", step = "10 deg" }\n'
-    )
-    text = head + grid + rest.split("\n\n", 1)[1]
-    sheet = '[material]\nname = "dura-lar"\nthickness = "0.125 mm"\n'
-    assert sheet in text
-    text = text.replace(
-        sheet,
-        '[[materials]]\nname = "dura-lar"\nthickness = ["0.05 mm", "0.075 mm", "0.125 mm"]\n\n'
-        '[[materials]]\nname = "mylar"\nthickness = ["0.023 mm", "0.05 mm", "0.075 mm"]\n',
-    )
-    text = text.replace('layers = "independent"\n', 'layers = "independent"\ntolerances = "none"\n')
-    path = tmp / "sheet_choices.toml"
-    path.write_text(text, "utf-8")
-    return _problem(path)
+    """The six-sheet spec of :func:`sheet_specs.sheet_choices_spec` as a problem."""
+    return _problem(sheet_choices_spec(tmp))
 
 
 @pytest.mark.slow

@@ -16,6 +16,7 @@ from corrugate.solver.joint_checks import Check, joint_search, reopened
 from corrugate.solver.quantities import Tables
 from corrugate.solver.solve import _negation, _relaxed, constraint_bits, optimize, pairs, solve
 from corrugate.spec.schema import load_spec
+from sheet_specs import sheet_choices_spec
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = ROOT / "examples"
@@ -75,24 +76,8 @@ def test_one_search_answers_each_check_as_its_own_search_does(path: Path) -> Non
 
 
 def _sheet_choices(tmp: Path) -> Problem:
-    """examples/rectangle_independent.toml on a small grid with six candidate sheets (36 sheet
-    pairs, most pruned whole by their floors), nominal tolerances (as test_explain_tree.py)."""
-    text = (EXAMPLES / "rectangle_independent.toml").read_text("utf-8")
-    head, rest = text.split("[variables]", 1)
-    grid = (
-        '[variables]\nW = { min = "4 mm", max = "12 mm", step = "1 mm" }\n'
-        'n = { min = 4, max = 14 }\nalpha = { min = "50 deg", max = "140 deg", step = "10 deg" }\n'
-    )
-    text = head + grid + rest.split("\n\n", 1)[1]
-    text = text.replace(
-        '[material]\nname = "dura-lar"\nthickness = "0.125 mm"\n',
-        '[[materials]]\nname = "dura-lar"\nthickness = ["0.05 mm", "0.075 mm", "0.125 mm"]\n\n'
-        '[[materials]]\nname = "mylar"\nthickness = ["0.023 mm", "0.05 mm", "0.075 mm"]\n',
-    )
-    text = text.replace('layers = "independent"\n', 'layers = "independent"\ntolerances = "none"\n')
-    path = tmp / "sheet_choices.toml"
-    path.write_text(text, "utf-8")
-    return _problem(path)
+    """The six-sheet spec of :func:`sheet_specs.sheet_choices_spec` as a problem."""
+    return _problem(sheet_choices_spec(tmp))
 
 
 @pytest.mark.slow

@@ -55,6 +55,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -71,7 +72,7 @@ from corrugate.solver.quantities import Tables, box_bounds, chunk, layer_corner,
 from corrugate.solver.quantity import LX, LY, Quantity
 from corrugate.solver.worst_case import NOMINAL
 
-__all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound"]
+__all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound", "chunk_runs"]
 
 FloatArray = NDArray[np.float64]
 
@@ -180,9 +181,11 @@ def _enumerate(
     return np.concatenate([pts[0][i1], pts[1][i2]], axis=1), box, dropped
 
 
-def _runs(points: FloatArray, most: int) -> list[slice]:
+def chunk_runs(
+    points: NDArray[np.floating[Any]] | NDArray[np.integer[Any]], most: int
+) -> list[slice]:
     """Consecutive runs of the rows whose ``points`` (per row) add up to at most ``most`` (a
-    row of more is a run of its own)."""
+    row of more is a run of its own): the chunks a search enumerates at once."""
     runs: list[slice] = []
     start, total = 0, 0.0
     for i, k in enumerate(points.tolist()):
@@ -617,7 +620,7 @@ class _Search:
         limit = self.best.frozen()
         later = self.log.child()  # the points' rows, after every dropped pair's
         per_layer: list[list[tuple[NDArray[np.int64], NDArray[np.bool_]]]] = []
-        for run in _runs(counts.prod(axis=1), ENUMERATE_CHUNK):
+        for run in chunk_runs(counts.prod(axis=1), ENUMERATE_CHUNK):
             r_lo, r_hi, r_bound = lo[run], hi[run], bound[run]
             every, owner, dropped = _enumerate(
                 self.problem, r_lo, counts[run], self.dims, self.feas_rtol

@@ -51,6 +51,7 @@ from corrugate.solver.bnb import (
     MAX_ITERATIONS,
     MAX_OPEN,
     MULTI_SPLIT_BELOW,
+    chunk_runs,
 )
 from corrugate.solver.boxes import grid_points, snap, split, widths
 from corrugate.solver.budget import current_budget
@@ -140,21 +141,6 @@ class _Judge:
             if neg is not None:
                 ok[:, j] &= _shown_broken((neg,), values, rows, screened) == 0
         return np.asarray(ok)
-
-
-def _runs(points: NDArray[np.int64], most: int) -> list[slice]:
-    """Consecutive runs of the boxes whose ``points`` add up to at most ``most`` (a box of
-    more is a run of its own)."""
-    runs: list[slice] = []
-    start, total = 0, 0
-    for i, k in enumerate(points.tolist()):
-        if total and total + k > most:
-            runs.append(slice(start, i))
-            start, total = i, 0
-        total += k
-    if start < len(points):
-        runs.append(slice(start, len(points)))
-    return runs
 
 
 def _lower(bounds: tuple[FloatArray, FloatArray], sign: float) -> FloatArray:
@@ -302,7 +288,7 @@ def joint_search(
         # an iteration does not grow with its batch, as the branch and bound's)
         e_lo, e_counts, e_car = lo[enum], counts[enum], car[enum]
         per = e_counts.prod(axis=1).astype(np.int64)
-        for run in _runs(per, ENUMERATE_CHUNK):
+        for run in chunk_runs(per, ENUMERATE_CHUNK):
             every = grid_points(e_lo[run], e_counts[run], variables)
             owner_car = np.repeat(e_car[run] & ~judge.answered, per[run], axis=0)
             e = DesignPoints.from_columns(every)
