@@ -26,7 +26,7 @@ from __future__ import annotations
 import heapq
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -37,10 +37,12 @@ from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
+from corrugate.solver import cells
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.choices import Floors, floors, shared_lists
+from corrugate.solver.cells import with_cells
+from corrugate.solver.choices import CellFloors, Floors, floors, shared_lists
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
@@ -442,6 +444,8 @@ def optimize(
     tables = tables or Tables(problem)
     if prune and warm is None and n_fixed is None and stop_below is None:
         fl = floors(problem)
+        if isinstance(fl, CellFloors):
+            return _by_cells(problem, fl, tables, incumbent, record)
         if fl is not None:
             return _by_floors(problem, fl, tables, incumbent, record)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
@@ -573,13 +577,119 @@ def _by_floors(
     if best is None or best_pair is None:
         gap = 0.0 if certified else math.inf
         return Optimum(None, None, math.nan, certified, gap, boxes, iterations, kept, pruned)
-    gap = 0.0
+    gap = 0.0 if problem.gridded else best.gap  # continuous: the gap proved
     if not certified:
         bound = min([bound, *uncertified])
         gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
     return Optimum(
         best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned
     )
+
+
+def _by_cells(
+    problem: Problem,
+    fl: CellFloors,
+    tables: Tables,
+    incumbent: float | None,
+    record: bool,
+) -> Optimum:
+    """:func:`optimize` of a least-mass problem with continuous W and alpha on independent
+    layers (:mod:`.cells`): every sheet pair's cells searched at once (one queue, one
+    incumbent: the designs they find), then the branch and bound of each sheet pair the cells
+    leave below the incumbent, best floor first, from the boxes they leave (every design of
+    the pair lighter than the incumbent lies in them), the incumbent carried from pair to
+    pair; the pairs they leave nothing of are pruned whole. The answer and its certificate
+    are :func:`optimize`'s, to the gap: no design of any pair is lighter than the answer by more
+    than the gap. With ``record``, a searched pair's archive reopens the part its cells dropped
+    by its cells again (:class:`~.cells.CellArchive`); with no design found, every pair is
+    searched so (the diagnosis reopens every pair's archive)."""
+    everything = pairs(problem)
+    inc = math.inf if incumbent is None else incumbent
+    found, at = fl.search_all(inc)
+    best: BnBResult | None = None
+    best_pair: tuple[Candidate, Candidate] | None = None
+    if at >= 0:
+        g = found[at]
+        best = BnBResult(g.point, g.value, g.value - GAP_RTOL * abs(g.value), True, 0, 0)
+        best_pair, inc = everything[at], g.value
+    certified = True
+    boxes = found[0].judged if found else 0
+    iterations = 0
+    archives: list[Archive | None] = [None] * len(everything)
+    uncertified: list[float] = []
+    searched: set[int] = set()
+    bound = math.inf
+
+    def run(k: int) -> None:
+        nonlocal best, best_pair, certified, boxes, iterations, inc
+        lo, hi, low = found[k].start
+        keep = low < inc
+        r = branch_and_bound(
+            problem,
+            *everything[k],
+            incumbent=None if not math.isfinite(inc) else inc,
+            tables=tables,
+            start=(lo[keep], hi[keep], low[keep]),
+            record=record,
+        )
+        searched.add(k)
+        if record:
+            archives[k] = with_cells(r.archive, _cells_reopen(problem, everything[k], tables))
+        if not r.certified:
+            uncertified.append(r.bound)
+        boxes += r.boxes
+        iterations += r.iterations
+        certified &= r.certified
+        if r.point is not None and (best is None or r.value < best.value):
+            best, best_pair, inc = r, everything[k], r.value
+
+    order = sorted(range(len(everything)), key=lambda k: (found[k].floor, k))
+    for k in order:
+        if budget_spent():  # the pairs left: nothing proven
+            certified, bound = False, -math.inf
+            break
+        if found[k].floor >= inc and k != at:
+            continue
+        run(k)
+    pruned = frozenset(k for k in range(len(everything)) if k not in searched)
+    if not certified:
+        pruned = frozenset()
+    if record and certified and best is None and pruned:
+        for k in sorted(pruned):  # for the diagnosis' archives: every pair searched
+            run(k)
+        pruned = frozenset()
+    kept = tuple(archives) if record and certified else None
+    if best is None or best_pair is None:
+        gap = 0.0 if certified else math.inf
+        return Optimum(None, None, math.nan, certified, gap, boxes, iterations, kept, pruned)
+    gap = best.gap
+    if not certified:
+        bound = min([bound, *uncertified])
+        gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
+    return Optimum(
+        best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned
+    )
+
+
+def _cells_reopen(
+    problem: Problem, pair: tuple[Candidate, Candidate], tables: Tables
+) -> Callable[[int, float], Start]:
+    """The boxes of sheet pair ``pair`` that may hold a design meeting every constraint of
+    ``problem`` outside a bit set, lighter than a mass: the cells' search of the problem
+    without those constraints (:func:`~.cells.search`, no design evaluated, so nothing
+    lighter is dropped)."""
+
+    def reopen(relaxed: int, below: float) -> Start:
+        sub = cells.relaxed_without(problem, relaxed)
+        if not cells.applies(sub):  # not expected: the whole domain
+            dims = coordinates(problem)
+            lo = np.array([[d.var.lo for d in dims]])
+            hi = np.array([[d.var.top for d in dims]])
+            return lo, hi, np.array([-math.inf])
+        got = cells.search(cells.setting(sub, *pair, tables), below)
+        return got.start
+
+    return reopen
 
 
 def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
@@ -1005,7 +1115,7 @@ class _PairFloors:
 
     def __init__(self, problems: Sequence[Problem], goal: float) -> None:
         self.problems, self.goal = problems, goal
-        self.floors: Floors | None = None
+        self.floors: Floors | CellFloors | None = None
         self.built = False
 
         self.known: dict[int, float] = {}
@@ -1217,7 +1327,7 @@ def _pruned_runner_ups(
     a, b = span
     everything = pairs(problem)
     whole = floors(problem)
-    per_n: dict[int, Floors | None] = {}
+    per_n: dict[int, Floors | CellFloors | None] = {}
     order = sorted(opt.pruned, key=lambda k: (0.0 if whole is None else whole.coarse(k), k))
     for k in order:
         if budget_spent():
