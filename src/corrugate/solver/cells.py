@@ -91,7 +91,7 @@ FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
 
 #: Relative slack toward keeping with which a cell pair is judged (rounding of the products).
-SLACK = 1e-9
+SLACK = 1e-12
 #: The first cells of each n: W's range cut in this many, alpha's in this many.
 FIRST_W = 4
 FIRST_ALPHA = 5
@@ -101,7 +101,7 @@ BUDGET = 20_000_000
 BATCH = 32768
 #: The search stops when no cell pair left is below the incumbent less this (relative): the
 #: branch and bound closes the rest from them.
-CELL_GAP = 1e-8
+CELL_GAP = 1e-10
 #: Rounds of splitting between two draws of designs to evaluate (:func:`_probe`).
 PROBE_EVERY = 4
 #: Pairs of one level judged at once (memory: a few arrays of this length).
@@ -113,6 +113,10 @@ PROBE_POINTS = 4
 PROBES = 64
 #: Sheet pairs probed at once: those of the least mass bounds.
 PROBE_SHEETS = 2
+#: Designs drawn around the best one at each probe, and their first reach (relative to the
+#: variables' ranges; halved when none is lighter).
+MOVES = 64
+MOVE_SCALE = 0.02
 _LAYER = {LX, LY, W_MIN, T_OVER_W, CREASES, FLAT, FACET}
 _IGNORED = {PART_SHORT, PART_LONG}  # left to the branch and bound (a relaxation drops them)
 
@@ -169,39 +173,47 @@ def _own_ok(
     a0: FloatArray,
     a1: FloatArray,
 ) -> tuple[NDArray[np.bool_], FloatArray, FloatArray]:
-    """Which cells may meet every bound of their own layer (extent, facet length, blank,
-    narrowest facet, t / W, creases, validated ranges: each a monotone function of W, alpha and
-    n, bounded at the cell's corners), and their extents' bounds (mm)."""
+    """Per cell and constraint (cells x constraints), whether the constraint, one of the
+    cell's own layer (extent, facet length, blank, narrowest facet, t / W, creases, validated
+    ranges: each a monotone function of W, alpha and n, bounded at the cell's corners), is
+    broken everywhere in the cell; and the extents' bounds (mm)."""
     own = LX if which == 1 else LY
     t = cand.t
     E0, E1 = _extent(n, W0, a0), _extent(n, W1, a1)
     up, down = 1 + SLACK, 1 - SLACK
-    ok = np.ones(len(n), dtype=bool)
-    for c in problem.constraints:
+    fails = np.zeros((len(n), len(problem.constraints)), dtype=bool)
+    for k, c in enumerate(problem.constraints):
         q, b = c.quantity, c.bound
+        ok: Any = True
         if q == W_MIN and c.sense == "min":
-            ok &= W1 * up >= b
+            ok = W1 * up >= b
         elif q == T_OVER_W and c.sense == "max":
-            ok &= t / W1 * down <= b
+            ok = t / W1 * down <= b
         elif q == T_OVER_W and c.sense == "min":
-            ok &= t / W0 * up >= b
+            ok = t / W0 * up >= b
         elif q == CREASES and c.sense == "max":
-            ok &= n <= b * up
+            ok = n <= b * up
         elif q == own:
-            ok &= E1 * up >= b if c.sense == "min" else E0 * down <= b
+            ok = E1 * up >= b if c.sense == "min" else E0 * down <= b
         elif q == FACET and c.sense == "max":
-            ok &= E0 * down <= b
+            ok = E0 * down <= b
         elif q == FLAT and c.sense == "max":
-            ok &= (n + 1.0) * W0 * down <= b
-    limits = layer_limits(problem.constraints)
-    for name, lo_v, hi_v in (("W", W0, W1), ("alpha", a0, a1), ("t_over_W", t / W1, t / W0)):
-        if name in limits:
-            lo, hi = limits[name]
-            ok &= (hi_v * up >= lo) & (lo_v * down <= hi)
-    if "facets" in limits:
-        lo, hi = limits["facets"]
-        ok &= (n + 1.0 >= lo * down) & (n + 1.0 <= hi * up)
-    return ok, E0, E1
+            ok = (n + 1.0) * W0 * down <= b
+        elif LAYER_KINDS.get(q.kind, ("",))[0] == c.sense:  # a validated range
+            lim = layer_limits((c,))
+            for name, lo_v, hi_v in (
+                ("W", W0, W1),
+                ("alpha", a0, a1),
+                ("t_over_W", t / W1, t / W0),
+            ):
+                if name in lim:
+                    lo, hi = lim[name]
+                    ok = ok & (hi_v * up >= lo) & (lo_v * down <= hi)
+            if "facets" in lim:
+                lo, hi = lim["facets"]
+                ok = ok & (n + 1.0 >= lo * down) & (n + 1.0 <= hi * up)
+        fails[:, k] = ~np.asarray(ok, dtype=bool)
+    return fails, E0, E1
 
 
 @dataclass(frozen=True)
@@ -324,12 +336,34 @@ def _cells(
     W1: FloatArray,
     a0: FloatArray,
     a1: FloatArray,
+    fired: tuple[set[int], float] | None = None,
 ) -> tuple[_Cells, IntArray]:
     """The cells (n, [W0, W1], [a0, a1]) of layer ``which`` that may meet their own layer's
-    bounds, with their bounds (:class:`_Cells`), and their indices."""
+    bounds, with their bounds (:class:`_Cells`), and their indices. ``fired`` = (a set, a
+    mass in g): the constraints that alone drop a cell whose designs' mass is not shown to
+    reach that mass (a lower bound with the other layer at its lightest) are added to the set
+    (by index)."""
     problem = st.problem
-    ok, E0, E1 = _own_ok(problem, st.sheets[which - 1], which, n, W0, W1, a0, a1)
-    idx = np.flatnonzero(ok)
+    fails, E0, E1 = _own_ok(problem, st.sheets[which - 1], which, n, W0, W1, a0, a1)
+    idx = np.flatnonzero(~fails.any(axis=1))
+    alone = np.flatnonzero(fails.sum(axis=1) == 1)
+    if len(alone) and fired is not None:  # a cell only its one bound drops, light enough
+        other = st.problem.W.lo, st.problem.alpha.lo, float(st.problem.n_lo)
+        c_own = st.sheets[which - 1]  # its blank alone bounds the mass below
+        lay = problem.layout
+        E_other = float(
+            _extent(np.array([other[2]]), np.array([other[0]]), np.array([other[1]]))[0]
+        )
+        theirs = LY if which == 1 else LX  # the other layer's extent, at least its own least
+        for c in problem.constraints:
+            if c.quantity == theirs and c.sense == "min":
+                E_other = max(E_other, c.bound * (1 - SLACK))
+        lb = layer_mass(
+            c_own.material.density, c_own.t, W0[alone], length_sum(lay, n[alone], E_other), lay
+        )
+        light = np.asarray(lb) * (1 - SLACK) < fired[1]
+        for k in np.flatnonzero(fails[alone[light]].any(axis=0)):
+            fired[0].add(int(k))
     n, W0, W1, a0, a1, E0, E1 = (x[idx] for x in (n, W0, W1, a0, a1, E0, E1))
     cand = st.low[which - 1]
     m = cand.material
@@ -410,40 +444,63 @@ class CellResult:
 
 
 def _judge(
-    st: Setting, L1: _Cells, L2: _Cells, I: IntArray, J: IntArray, worst: float
+    st: Setting,
+    L1: _Cells,
+    L2: _Cells,
+    I: IntArray,
+    J: IntArray,
+    worst: float,
+    fired: set[int] | None = None,
 ) -> tuple[IntArray, IntArray, FloatArray]:
     """The cell pairs (I, J) that may hold a design of the problem lighter than ``worst`` (g)
-    (module docstring), and their mass lower bounds (g), judged in chunks."""
+    (module docstring), and their mass lower bounds (g), judged in chunks. ``fired``: the
+    constraints (by index) that alone drop a pair lighter than ``worst`` are added to it."""
     problem = st.problem
     (c1, c2), (w1, w2) = st.sheets, st.low
     lay = problem.layout
     m1, m2 = c1.material, c2.material
     outs_i, outs_j, outs_b = [], [], []
-    stiff = [c for c in problem.constraints if stiffness_along(c.quantity) and c.sense == "min"]
+    most = 0 if fired is None else 1  # failures counted per pair: past this it is dropped
     for s in range(0, len(I), CHUNK):
         i, j = I[s : s + CHUNK], J[s : s + CHUNK]
         lb = layer_mass(m1.density, c1.t, L1.W0[i], length_sum(lay, L1.n[i], L2.E0[j]), lay)
         lb = lb + layer_mass(m2.density, c2.t, L2.W0[j], length_sum(lay, L2.n[j], L1.E0[i]), lay)
         lb = lb + connector_mass(m1.density, c1.t, lay, L1.E0[i], L2.E0[j], L1.h0[i] + L2.h0[j])
         lb = np.asarray(lb) * (1 - SLACK)
-        ok = lb < worst
-        for c in problem.constraints:
+        alive = lb < worst
+        count = np.zeros(len(i), dtype=np.int64)
+        which = np.full(len(i), -1, dtype=np.int64)
+
+        def fail(
+            k: int, bad: NDArray[np.bool_], tally: tuple[Any, Any, Any] = (alive, count, which)
+        ) -> None:
+            live, n_bad, first = tally
+            bad = bad & live & (n_bad <= most)
+            first[bad & (n_bad == 0)] = k
+            n_bad[bad] += 1
+
+        for k, c in enumerate(problem.constraints):
             q = c.quantity
             if q == THICKNESS:
                 if c.sense == "max":
-                    ok &= (L1.h0[i] + L2.h0[j]) * (1 - SLACK) <= c.bound
+                    fail(k, (L1.h0[i] + L2.h0[j]) * (1 - SLACK) > c.bound)
                 else:
-                    ok &= (L1.h1[i] + L2.h1[j]) * (1 + SLACK) >= c.bound
+                    fail(k, (L1.h1[i] + L2.h1[j]) * (1 + SLACK) < c.bound)
             elif q == MASS and c.sense == "max":
-                ok &= lb <= c.bound
-        for c in stiff:
-            for v1, v2 in zip(L1.views, L2.views, strict=True):
-                u, v, f, g = _terms(c.quantity, v1, v2, w1.t, w2.t)
-                ok &= (u[i] + v[j]) * f[i] * g[j] * (1 + SLACK) >= c.bound
-            if st.halves is not None:
-                sel = np.flatnonzero(ok)
-                up = _inner_upper(c.quantity, L1, L2, i[sel], j[sel])
-                ok[sel] = up * (1 + SLACK) >= c.bound
+                fail(k, lb > c.bound)
+            elif stiffness_along(q) and c.sense == "min":
+                bad = np.zeros(len(i), dtype=bool)
+                for v1, v2 in zip(L1.views, L2.views, strict=True):
+                    u, v, f, g = _terms(q, v1, v2, w1.t, w2.t)
+                    bad |= (u[i] + v[j]) * f[i] * g[j] * (1 + SLACK) < c.bound
+                if st.halves is not None:
+                    sel = np.flatnonzero(~bad & alive & (count <= most))
+                    up = _inner_upper(q, L1, L2, i[sel], j[sel])
+                    bad[sel] = up * (1 + SLACK) < c.bound
+                fail(k, bad)
+        ok = alive & (count == 0)
+        if fired is not None:
+            fired.update(int(k) for k in np.unique(which[alive & (count == 1)]))
         outs_i.append(i[ok])
         outs_j.append(j[ok])
         outs_b.append(lb[ok])
@@ -537,6 +594,23 @@ def _probe(
     )
 
 
+def _moves(
+    problem: Problem, x: DesignPoints, scale: float, rng: np.random.Generator
+) -> DesignPoints:
+    """:data:`MOVES` designs near the design ``x``: its W and alpha moved at random by up to
+    ``scale`` of their ranges, n kept, inside the bounds."""
+    one, two = x.layer(0), x.layer(1)
+    cols = []
+    for lay in (one, two):
+        for name, var in (("W", problem.W), ("alpha", problem.alpha)):
+            at = float(np.asarray(getattr(lay, name)).reshape(-1)[0])
+            span = var.top - var.lo
+            cols.append(np.clip(at + scale * span * rng.uniform(-1, 1, MOVES), var.lo, var.top))
+    n1 = np.full(MOVES, float(np.asarray(one.n).reshape(-1)[0]))
+    n2 = np.full(MOVES, float(np.asarray(two.n).reshape(-1)[0]))
+    return DesignPoints.of(LayerPoints(n1, cols[0], cols[1]), LayerPoints(n2, cols[2], cols[3]))
+
+
 Judge = Callable[[DesignPoints], tuple[FloatArray, NDArray[np.bool_]]]
 
 
@@ -545,21 +619,24 @@ class _Table:
     ``kids[k]`` (-1: a child that breaks its own layer's bounds; -2: not split yet), made once
     whichever pairs ask for them."""
 
-    def __init__(self, st: Setting, which: int) -> None:
+    def __init__(
+        self, st: Setting, which: int, fired: tuple[set[int], float] | None = None
+    ) -> None:
         self.st, self.which = st, which
         self.spans = _spans(st.problem)
-        first, _ = _cells(st, which, *_first(st.problem))
+        first, _ = _cells(st, which, *_first(st.problem), fired=fired)
         self.size = len(first)
         self.buf = _grown(first, max(2 * self.size, 1024))
         self.kids = np.full((len(self.buf), 2), -2, dtype=np.int64)
         self.cells = _head(self.buf, self.size)
 
-    def children(self, ids: IntArray) -> IntArray:
-        """The children of cells ``ids`` (len(ids) x 2), split now where not yet."""
+    def children(self, ids: IntArray, fired: tuple[set[int], float] | None = None) -> IntArray:
+        """The children of cells ``ids`` (len(ids) x 2), split now where not yet (``fired``:
+        :func:`_cells`')."""
         new = np.unique(ids[self.kids[ids, 0] == -2])
         if len(new):
             parts = _split(_take(self.cells, new), self.spans)
-            made, kept = _cells(self.st, self.which, *parts)
+            made, kept = _cells(self.st, self.which, *parts, fired=fired)
             pos = np.full(2 * len(new), -1, dtype=np.int64)
             pos[kept] = self.size + np.arange(len(kept))
             self.kids[new] = pos.reshape(-1, 2)
@@ -621,7 +698,7 @@ def search(
     gap: float = CELL_GAP,
 ) -> CellResult:
     """The cells' search of one sheet pair (:func:`search_pairs` of ``st`` alone)."""
-    results, _ = search_pairs([st], incumbent, None if exact is None else [exact], budget, gap)
+    results, _, _ = search_pairs([st], incumbent, None if exact is None else [exact], budget, gap)
     return results[0]
 
 
@@ -631,7 +708,7 @@ def search_pairs(
     exacts: Sequence[Judge] | None = None,
     budget: int = BUDGET,
     gap: float = CELL_GAP,
-) -> tuple[list[CellResult], int]:
+) -> tuple[list[CellResult], int, frozenset[int]]:
     """The cells' search of the module docstring over the sheet pairs of ``settings``
     (:func:`setting`; a problem of :func:`applies`) at once, below ``incumbent`` (g; inf:
     none): the cell pairs of every sheet pair in one queue, those of least mass bound split
@@ -640,20 +717,24 @@ def search_pairs(
     ``budget`` cell pairs have been judged. ``exacts``: per sheet pair the problem's (mass,
     feasible) at points (:func:`judge_of`), whose feasible best lowers the incumbent (None: no
     point evaluated). Returns each sheet pair's result (its design: the best over all pairs,
-    on the pair that holds it, None on the others) and the index of the pair of the best
-    design (-1: none)."""
+    on the pair that holds it, None on the others), the index of the pair of the best
+    design (-1: none), and the constraints (by index) that *fired*: that alone dropped a cell
+    or a cell pair below the incumbent of the moment. A search of the problem without a
+    constraint that did not fire drops what this one dropped: every design of it lighter than
+    the incumbent lies in the boxes left (:func:`~.solve._cell_binding`)."""
     inc = incumbent
     best_x: DesignPoints | None = None
     best_at = -1
     worst = inc * (1 + SLACK) if math.isfinite(inc) else math.inf
     shared: dict[tuple[int, Candidate, Candidate], int] = {}
     tabs: list[_Table] = []
+    fired: set[int] = set()
 
     def table(st: Setting, which: int) -> int:
         key = (which, st.sheets[which - 1], st.low[which - 1])
         if key not in shared:
             shared[key] = len(tabs)
-            tabs.append(_Table(st, which))
+            tabs.append(_Table(st, which, (fired, worst)))
         return shared[key]
 
     tab_of = np.array([[table(st, 1), table(st, 2)] for st in settings], dtype=np.int64)
@@ -664,7 +745,7 @@ def search_pairs(
         grid = np.meshgrid(np.arange(len(T1.cells)), np.arange(len(T2.cells)), indexing="ij")
         I, J = (g.reshape(-1).astype(np.int64) for g in grid)
         judged += len(I)
-        I, J, lb = _judge(st, T1.cells, T2.cells, I, J, worst)
+        I, J, lb = _judge(st, T1.cells, T2.cells, I, J, worst, fired)
         Ks.append(np.full(len(I), k, dtype=np.int64))
         Is.append(I)
         Js.append(J)
@@ -672,13 +753,17 @@ def search_pairs(
     K, I, J, lb = np.concatenate(Ks), np.concatenate(Is), np.concatenate(Js), np.concatenate(Bs)
     rounds = 0
     spend, charged = current_budget(), 0
+    scale = MOVE_SCALE
     while len(I):
         if exacts is not None and rounds % PROBE_EVERY == 0 and len(I):
+            rng = np.random.default_rng(rounds)
             low = np.argpartition(lb, min(PROBE_PAIRS, len(lb)) - 1)[:PROBE_PAIRS]
             order = low[np.argsort(lb[low])]
             ks = list(dict.fromkeys(K[order].tolist()))[:PROBE_SHEETS]
-            for k in ks:  # the sheet pairs of the least bounds
-                sel = order[K[order] == k]
+            anywhere = rng.integers(0, len(I), PROBE_PAIRS)  # and anywhere in the queue
+            tries = [(k, order[K[order] == k]) for k in ks]
+            tries += [(k, anywhere[K[anywhere] == k]) for k in np.unique(K[anywhere])]
+            for k, sel in tries:
                 T1, T2 = tabs[tab_of[k, 0]], tabs[tab_of[k, 1]]
                 x = _probe(settings[k], T1.cells, T2.cells, I[sel], J[sel], lb[sel], worst, rounds)
                 if x is None:
@@ -689,6 +774,16 @@ def search_pairs(
                 if f[b] < inc:
                     inc, best_x, best_at = float(f[b]), x.point(b), int(k)
                     worst = inc * (1 + SLACK)
+            if best_x is not None:  # moves around the best design
+                x = _moves(settings[best_at].problem, best_x, scale, rng)
+                mass, feasible = exacts[best_at](x)
+                f = np.where(feasible, mass, math.inf)
+                b = int(np.argmin(f))
+                if f[b] < inc:
+                    inc, best_x = float(f[b]), x.point(b)
+                    worst = inc * (1 + SLACK)
+                else:
+                    scale = max(scale / 2, 1e-6)
             keep = lb < worst
             K, I, J, lb = K[keep], I[keep], J[keep], lb[keep]
         rounds += 1
@@ -724,7 +819,7 @@ def search_pairs(
             side = one if which == 1 else ~one
             for t in np.unique(tt[side]):
                 sel = side & (tt == t)
-                kids[sel] = tabs[t].children(ids[sel])
+                kids[sel] = tabs[t].children(ids[sel], (fired, worst))
         nK = np.repeat(pK, 2)
         nI = np.where(np.repeat(one, 2), kids.reshape(-1), np.repeat(pI, 2))
         nJ = np.where(np.repeat(one, 2), np.repeat(pJ, 2), kids.reshape(-1))
@@ -735,7 +830,7 @@ def search_pairs(
         for k in np.unique(nK):
             sel = nK == k
             T1, T2 = tabs[tab_of[k, 0]], tabs[tab_of[k, 1]]
-            gI, gJ, gb = _judge(settings[k], T1.cells, T2.cells, nI[sel], nJ[sel], worst)
+            gI, gJ, gb = _judge(settings[k], T1.cells, T2.cells, nI[sel], nJ[sel], worst, fired)
             parts.append((np.full(len(gI), k, dtype=np.int64), gI, gJ, gb))
         K = np.concatenate([x[0] for x in parts])
         I = np.concatenate([x[1] for x in parts])
@@ -753,7 +848,7 @@ def search_pairs(
         own = best_x if k == best_at else None
         value = inc if own is not None else math.nan
         out.append(CellResult(floor, (lo, hi, b.copy()), own, value, judged))
-    return out, best_at
+    return out, best_at, frozenset(fired)
 
 
 def judge_of(problem: Problem, c1: Candidate, c2: Candidate, tables: Tables) -> Judge:

@@ -75,6 +75,9 @@ RUNNER_UP_GAP_RTOL = 1e-6
 #: by these many grid steps, and of continuous W and alpha by these fractions of their range.
 PROBE_STEPS = (1, 2, 3)
 PROBE_FRACTIONS = (1e-6, 1e-4, 1e-3, 1e-2, 3e-2, 1e-1)
+#: The cell pairs a runner-up's cells judge at most (:func:`_cell_runner_ups`); past them
+#: (or past a hundredth as many boxes left) the runner-up is shown not certified.
+RUNNER_UP_CELLS = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -95,6 +98,11 @@ class Optimum:
     #: the sheet pairs (:func:`pairs` order) pruned whole by a floor (:mod:`.choices`): no
     #: design of theirs is lighter than the answer; not searched, no archive
     pruned: frozenset[int] = frozenset()
+    #: a search by cells (:func:`_by_cells`): the boxes its cells left of each sheet pair
+    #: (:func:`pairs` order) and the constraints that fired (by index,
+    #: :func:`~.cells.search_pairs`); None otherwise
+    starts: tuple[Start, ...] | None = None
+    fired: frozenset[int] | None = None
 
     def tree(self) -> tuple[Archive, ...] | None:
         """Every pair's archive, or None when one is missing (then the explanation re-solves)."""
@@ -424,6 +432,7 @@ def optimize(
     warm: Sequence[Start | None] | None = None,
     stop_below: float | None = None,
     prune: bool = False,
+    most: int | None = None,
 ) -> Optimum:
     """The certified optimum of ``problem`` over every candidate sheet pair (continuous
     variables: to the relative gap ``gap_rtol``). Inside a
@@ -440,12 +449,13 @@ def optimize(
     ``prune``: when the sheet pairs have floors (:func:`~.choices.floors`: least mass,
     independent layers that decompose), take them best-first by their floors and prune whole
     the pairs whose floor reaches the incumbent (:func:`_by_floors`; not with ``warm``,
-    ``n_fixed`` or ``stop_below``): the same answer and certificate."""
+    ``n_fixed`` or ``stop_below``): the same answer and certificate; with continuous W and
+    alpha, by cells (:func:`_by_cells`; ``most``: its limit)."""
     tables = tables or Tables(problem)
     if prune and warm is None and n_fixed is None and stop_below is None:
         fl = floors(problem)
         if isinstance(fl, CellFloors):
-            return _by_cells(problem, fl, tables, incumbent, record)
+            return _by_cells(problem, fl, tables, incumbent, record, gap_rtol, most)
         if fl is not None:
             return _by_floors(problem, fl, tables, incumbent, record)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
@@ -592,6 +602,8 @@ def _by_cells(
     tables: Tables,
     incumbent: float | None,
     record: bool,
+    gap_rtol: float = GAP_RTOL,
+    most: int | None = None,
 ) -> Optimum:
     """:func:`optimize` of a least-mass problem with continuous W and alpha on independent
     layers (:mod:`.cells`): every sheet pair's cells searched at once (one queue, one
@@ -602,15 +614,19 @@ def _by_cells(
     are :func:`optimize`'s, to the gap: no design of any pair is lighter than the answer by more
     than the gap. With ``record``, a searched pair's archive reopens the part its cells dropped
     by its cells again (:class:`~.cells.CellArchive`); with no design found, every pair is
-    searched so (the diagnosis reopens every pair's archive)."""
+    searched so (the diagnosis reopens every pair's archive). ``most``: the cell pairs the
+    cells judge at most (:data:`~.cells.BUDGET` by default) and a hundredth as many boxes
+    they may leave to the branch and bound; past those it is not run and the design found is
+    not certified."""
     everything = pairs(problem)
     inc = math.inf if incumbent is None else incumbent
-    found, at = fl.search_all(inc)
+    budget = cells.BUDGET if most is None else most
+    found, at, fired = fl.search_all(inc, max(gap_rtol, cells.CELL_GAP), budget)
     best: BnBResult | None = None
     best_pair: tuple[Candidate, Candidate] | None = None
     if at >= 0:
         g = found[at]
-        best = BnBResult(g.point, g.value, g.value - GAP_RTOL * abs(g.value), True, 0, 0)
+        best = BnBResult(g.point, g.value, g.value - gap_rtol * abs(g.value), True, 0, 0)
         best_pair, inc = everything[at], g.value
     certified = True
     boxes = found[0].judged if found else 0
@@ -623,7 +639,7 @@ def _by_cells(
     def run(k: int) -> None:
         nonlocal best, best_pair, certified, boxes, iterations, inc
         lo, hi, low = found[k].start
-        keep = low < inc
+        keep = low < inc - gap_rtol * abs(inc) if math.isfinite(inc) else low < inc
         r = branch_and_bound(
             problem,
             *everything[k],
@@ -631,6 +647,7 @@ def _by_cells(
             tables=tables,
             start=(lo[keep], hi[keep], low[keep]),
             record=record,
+            gap_rtol=gap_rtol,
         )
         searched.add(k)
         if record:
@@ -644,6 +661,8 @@ def _by_cells(
             best, best_pair, inc = r, everything[k], r.value
 
     order = sorted(range(len(everything)), key=lambda k: (found[k].floor, k))
+    if most is not None and sum(len(r.start[0]) for r in found) > most // 100:
+        order, certified, bound = [], False, min(r.floor for r in found)
     for k in order:
         if budget_spent():  # the pairs left: nothing proven
             certified, bound = False, -math.inf
@@ -659,15 +678,28 @@ def _by_cells(
             run(k)
         pruned = frozenset()
     kept = tuple(archives) if record and certified else None
+    starts = tuple(r.start for r in found)
     if best is None or best_pair is None:
         gap = 0.0 if certified else math.inf
-        return Optimum(None, None, math.nan, certified, gap, boxes, iterations, kept, pruned)
+        return Optimum(
+            None, None, math.nan, certified, gap, boxes, iterations, kept, pruned, starts, fired
+        )
     gap = best.gap
     if not certified:
         bound = min([bound, *uncertified])
         gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
     return Optimum(
-        best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned
+        best.point,
+        best_pair,
+        best.value,
+        certified,
+        gap,
+        boxes,
+        iterations,
+        kept,
+        pruned,
+        starts,
+        fired,
     )
 
 
@@ -1053,7 +1085,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     witnessed = _witnesses(problem, opt, tables, tol)
     shared, idle = None, frozenset[str]()
-    if tree is not None:
+    cellular = _cellular(problem)
+    if tree is not None and not cellular:
         got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
         if got is not None:
             shared, idle = got
@@ -1064,6 +1097,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         binding: bool | None = None
         if c.name in witnessed:  # a better design breaking it alone was evaluated: binding
             binding = True
+        elif cellular and not budget_spent():  # the cells' search of each check
+            binding = _cell_binding(problem, opt, c.name, tables, tol)
         elif not budget_spent():
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
@@ -1249,6 +1284,70 @@ def _untouched(
     return _PairFloors((rest,), opt.value), frozenset(idle)
 
 
+def _cellular(problem: Problem) -> bool:
+    """Whether ``problem`` is solved by its cells (:mod:`.cells`: continuous W and alpha on
+    independent layers, material choices; :func:`_by_cells`)."""
+    return isinstance(floors(problem), CellFloors)
+
+
+def _cell_binding(
+    problem: Problem, opt: Optimum, name: str, tables: Tables, tol: float
+) -> bool | None:
+    """Whether constraint ``name`` binds, for a problem solved by its cells: whether the
+    problem without it has a design lighter than the optimum by more than ``tol`` (g), by
+    :func:`optimize` of that problem with the goal as incumbent (its cells and branch and
+    bound, :func:`_by_cells`). Such a design breaks the constraint (else it would be a design
+    of the problem lighter than its certified optimum), so it is the binding check's design
+    (:func:`_relaxed`). None when the optimum or the check is not certified."""
+    if not opt.certified or problem.objective.sense != "min":
+        return None
+    goal = opt.value - tol
+    own = {i for i, c in enumerate(problem.constraints) if c.name == name}
+    if opt.starts is not None and opt.fired is not None and not own & opt.fired:
+        # it dropped nothing the solve's cells dropped: its designs lighter than the
+        # optimum lie in the boxes they left, searched for one by the branch and bound
+        check, everything, certified = problem.without(name), pairs(problem), True
+        for k, (lo, hi, low) in enumerate(opt.starts):
+            keep = low < goal
+            if not keep.any():
+                continue
+            r = branch_and_bound(
+                check,
+                *everything[k],
+                incumbent=opt.value,
+                tables=tables,
+                start=(lo[keep], hi[keep], low[keep]),
+                stop_below=goal,
+            )
+            if r.point is not None and r.value < goal:
+                return True
+            certified &= r.certified
+        return False if certified else None
+    got = optimize(problem.without(name), tables=tables, incumbent=goal, prune=True)
+    if got.point is not None and got.value < goal:
+        return True
+    return False if got.certified else None
+
+
+def _cell_runner_ups(
+    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int]
+) -> dict[int, Optimum]:
+    """The runner-ups of a problem solved by its cells: for each n of ``span`` but the
+    optimum's own, :func:`optimize` of the problem with both layers' n fixed to n (its cells
+    and branch and bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
+    out: dict[int, Optimum] = {}
+    for n in range(span[0], span[1] + 1):
+        if budget_spent():
+            break
+        fixed = replace(problem, n_lo=n, n_hi=n)
+        got = optimize(
+            fixed, tables=tables, gap_rtol=RUNNER_UP_GAP_RTOL, prune=True, most=RUNNER_UP_CELLS
+        )
+        if got.point is not None:
+            out[n] = got
+    return out
+
+
 def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
     """The certified best design for each n within :data:`RUNNER_UP_SPREAD` of the optimum's
     layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
@@ -1268,6 +1367,24 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]] = {}
     certified = {n: True for n in range(a, b + 1)}
     everything = pairs(problem)
+    if _cellular(problem):
+        own_n = opt.certified and round(opt.point.layer(1).n) == n_star
+        got = _cell_runner_ups(problem, opt, tables, (a, b))
+        rows = []
+        for n in range(a, b + 1):
+            found = opt if n == n_star and own_n else got.get(n)
+            if found is None:
+                continue
+            layers = assembly_of(problem, found).layers
+            rows.append(
+                RunnerUp(
+                    n,
+                    found.value,
+                    tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers)),
+                    found.certified,
+                )
+            )
+        return rows
     for i, pair in enumerate(everything):
         if budget_spent():
             for n in certified:
