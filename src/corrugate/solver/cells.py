@@ -1,49 +1,62 @@
-"""Certified floors and start boxes of a sheet pair with continuous W and alpha on independent
-layers, layer by layer over cells (docs/theory.md section 5).
+"""Certified search of a problem with continuous W and alpha on independent layers and material
+choices, layer by layer over cells (docs/theory.md section 5).
 
 :mod:`.separable` searches the grid points of each layer and pairs them; with continuous W and
-alpha a layer has no points to list, but it has *cells*: one n, an interval of W (mm) and one
-of alpha (deg). Every term of a layer that the separable structure pairs (its extent E, depth h,
-blank, moduli Ecx, Ecy, Ebx, Eby) is bounded over a cell by the model's own interval arithmetic
-(:func:`corrugate.mechanics.profiles.profile_moduli` on :class:`~.interval.Interval` values,
-outward rounded: what the branch and bound bounds its boxes with, :mod:`.interval_springs`; the
-extent and depth at the cell's corners, as :class:`~.context.OverBoxes` bounds them). So, for a
-problem R of :func:`applies` (the relaxation of :mod:`.choices`: nominal tolerances, each sheet at
-its low t and E, each stiffness bound held at the corners of the tolerance box too), a pair of
-cells (one per layer) is shown to hold no design of R when
+alpha a layer has no points to list, but it has *cells*: one n, an interval of W (mm) and one of
+alpha (deg). For a problem P of :func:`applies` (least mass, independent layers of the zig-zag on a
+rectangle without holes or band, stiffness lower bounds along the creases under the paper's rule,
+sizes and validated ranges per layer; any worst-case tolerances but a calibrated sheet), a pair of
+cells (one per layer) is shown to hold no design of P (:func:`_judge`, :func:`_own_ok`) when
 
 * a cell alone breaks a bound of its own layer (extent, facet length, blank, narrowest facet,
-  t / W, creases, a validated range) everywhere in it;
-* a coupled stiffness bound (u_i + v_j) f_i g_j >= C (:mod:`.separable`'s terms, all positive)
-  fails with every term at its upper bound over the cells, as they are or moved to a corner of
-  the tolerance box; or the folded thickness h_i + h_j misses its range at the depths' bounds;
+  t / W, creases, a validated range: each monotone in W, alpha and n, so bounded at the cell's
+  corners) everywhere in it;
+* the folded thickness h_i + h_j misses its range at the depths' bounds;
+* a stiffness bound fails at an upper bound of its certified value G over the pair (G(x): the
+  interval lower bound over the tolerance box T(x), :mod:`~.tolerance_box`): the point model at
+  each corner of T(x) (W -+ dW, alpha -+ da, both layers alike, on the sheet at its low t and E;
+  each corner lies in T(x), so G(x) is at most the model there), bounded above over the cells
+  moved to that corner by the model's own interval arithmetic
+  (:func:`corrugate.mechanics.profiles.profile_moduli` on :class:`~.interval.Interval` values,
+  outward rounded) in :mod:`.separable`'s terms (u_i + v_j) f_i g_j; and, for cells at most
+  2 dW x 2 da, the lower bound of G's own formula (:mod:`~.stiffness`: D(0) = D_S1 + D_C2,
+  EI(0) = D(0) Ly, D(90) = D_C1 + D_S2, EI(90) = D(90) Lx, K likewise, the springs of
+  :mod:`~.interval_springs` with pq = pitch Q(n) / S) over the cells' *inner boxes*
+  [W_hi - dW, W_lo + dW] x [alpha_hi - da, alpha_lo + da], the least over t's pieces
+  (:func:`_inner`, :func:`_inner_upper`): every T(x) of a design of the cell holds its inner box,
+  so by inclusion isotonicity G(x) is at most that bound;
 
-and to hold none lighter than an incumbent when its mass lower bound reaches it: the mass is
-rho1 t1 W1 (n1 + 1) E2 + rho2 t2 W2 (n2 + 1) E1 on a rectangle without a band, increasing in
-each W and each extent, so its value at the cells' low W and low extents bounds it below.
+and to hold none lighter than an incumbent when its mass lower bound reaches it: the mass (both
+layers' blanks and the band, :func:`corrugate.mechanics.mass.layer_mass` and ``connector_mass``)
+grows with each W, each extent and the depth, so its value at the cells' low corners bounds it.
+Every quantity is judged with a relative slack :data:`SLACK` toward keeping (rounding).
 
-The search (:func:`search`) starts from coarse cells (:data:`FIRST_W` x :data:`FIRST_ALPHA` per n)
-and every pair of the two layers' cells; at each level it drops the pairs shown above, evaluates
-the centres of the lightest pairs left exactly with the problem P's own certified values
-(``point_values``, tolerances included, every constraint met with no slack: the branch and
-bound's rule for continuous variables), whose feasible best lowers the incumbent, and splits the
-cells of the pairs left in four (W and alpha halved), pairing the children of each pair left, for
-:data:`LEVELS` levels or until the pairs left are too many (:data:`MAX_PAIRS`). Each child pair
-lies in its parent pair, so the pairs left at every level cover every design of R on the sheet
-pair that is lighter than the incumbent; P's designs are R's (:mod:`.choices`). Hence
+:func:`search_pairs` puts the cell pairs of every sheet pair in one queue, starting from coarse
+cells (:data:`FIRST_W` x :data:`FIRST_ALPHA` per n, every pair of the two layers' cells), and
+splits those of least mass bound first, :data:`BATCH` at a time (each pair's relatively wider cell
+halved across its wider side, :func:`_split`; children judged as above; a layer's cells shared by
+every sheet pair of its sheet). Every few rounds it evaluates designs exactly with P's own
+certified values (``point_values``, tolerances included, every constraint met with no slack: the
+branch and bound's rule for continuous variables): designs drawn in the lightest pairs and anywhere
+in the queue that the rule above does not exclude at the point itself, and designs around the best
+one found; the best feasible one is the incumbent of every sheet pair. Each child pair lies in its
+parent, so the pairs left always cover every design of P lighter than the incumbent. The search
+stops when none is left below the incumbent less :data:`CELL_GAP` (relative) or at its budget;
+then
 
-* the least mass lower bound of the pairs left (less :data:`~.choices.RELAX`) is a floor of P's
-  lightest design on the sheet pair (inf when none is left): :class:`CellFloors`, the floors by
-  which the solve orders the pairs and prunes whole ones, as it does for grids;
-* the pairs left, as boxes of the branch and bound's coordinates (n fixed per layer), are start
-  boxes (``branch_and_bound(start=...)``) whose union holds every design of P lighter than the
-  incumbent: the pair's search from them, with the incumbent found, has the answer and
-  certificate of its search of the whole domain (no design better by more than the gap);
-* a closed box of that search and the part of the domain the cells dropped make its archive
-  (:class:`CellArchive`): a box is reopened from the search's rows, and the part the cells
-  dropped by the cells of the relaxed problem (P without the constraints reopened), searched
-  again at the explanation's incumbent, so the explanation reopens what it would reopen from an
-  archive of the whole domain (:class:`~.archive.Archive`), never less.
+* a sheet pair with no cell pair left holds no design lighter than the incumbent (pruned whole);
+  its least mass bound left is a floor of its lightest design (:class:`~.choices.CellFloors`);
+* the pairs left of a sheet pair, as boxes of the branch and bound's coordinates (n fixed per
+  layer), are start boxes whose union holds every design of it lighter than the incumbent: its
+  branch and bound from them with the incumbent has the answer and certificate of its search of
+  the whole domain (:func:`~.solve._by_cells`);
+* a constraint that never alone dropped a cell or a pair below the incumbent of the moment
+  (*fired*) drops nothing the search of P without it would keep: that search's designs lighter than
+  the incumbent lie in the same boxes (the binding check, :func:`~.solve._cell_binding`);
+* a closed box of that branch and bound and the part of the domain the cells dropped make its
+  archive (:class:`CellArchive`): boxes reopened from the search's rows, and from the cells of P
+  without the constraints reopened (:func:`relaxed_without`) searched again below the bound asked,
+  so the explanation reopens what it would reopen from an archive of the whole domain, never less.
 """
 
 from __future__ import annotations
@@ -107,7 +120,7 @@ PROBE_EVERY = 4
 #: Pairs of one level judged at once (memory: a few arrays of this length).
 CHUNK = 1_000_000
 #: At each level: the cell pairs of least mass bound drawn in, the points drawn in each, and
-#: the lightest of those meeting R's bounds evaluated exactly (:func:`_probe`).
+#: the lightest of those the cells' rule keeps evaluated exactly (:func:`_probe`).
 PROBE_PAIRS = 256
 PROBE_POINTS = 4
 PROBES = 64
