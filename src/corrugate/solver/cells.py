@@ -773,9 +773,11 @@ def search_pairs(
             low = np.argpartition(lb, min(PROBE_PAIRS, len(lb)) - 1)[:PROBE_PAIRS]
             order = low[np.argsort(lb[low])]
             ks = list(dict.fromkeys(K[order].tolist()))[:PROBE_SHEETS]
-            anywhere = rng.integers(0, len(I), PROBE_PAIRS)  # and anywhere in the queue
             tries = [(k, order[K[order] == k]) for k in ks]
-            tries += [(k, anywhere[K[anywhere] == k]) for k in np.unique(K[anywhere])]
+            if best_x is None and not math.isfinite(incumbent):  # and anywhere in the queue
+                anywhere = rng.integers(0, len(I), PROBE_PAIRS)
+                far = list(dict.fromkeys(K[anywhere].tolist()))[:PROBE_SHEETS]
+                tries += [(k, anywhere[K[anywhere] == k]) for k in far]
             for k, sel in tries:
                 T1, T2 = tabs[tab_of[k, 0]], tabs[tab_of[k, 1]]
                 x = _probe(settings[k], T1.cells, T2.cells, I[sel], J[sel], lb[sel], worst, rounds)
