@@ -709,11 +709,11 @@ def _cells_reopen(
     """The boxes of sheet pair ``pair`` that may hold a design meeting every constraint of
     ``problem`` outside a bit set, lighter than a mass: the cells' search of the problem
     without those constraints (:func:`~.cells.search`, no design evaluated, so nothing
-    lighter is dropped)."""
+    lighter is dropped); with no mass given (the diagnosis), the whole domain."""
 
     def reopen(relaxed: int, below: float) -> Start:
         sub = cells.relaxed_without(problem, relaxed)
-        if not cells.applies(sub):  # not expected: the whole domain
+        if not cells.applies(sub) or not math.isfinite(below):  # the whole domain
             dims = coordinates(problem)
             lo = np.array([[d.var.lo for d in dims]])
             hi = np.array([[d.var.top for d in dims]])
