@@ -22,9 +22,9 @@ cells (one per layer) is shown to hold no design of P (:func:`_judge`, :func:`_o
   2 dW x 2 da, the lower bound of G's own formula (:mod:`~.stiffness`: D(0) = D_S1 + D_C2,
   EI(0) = D(0) Ly, D(90) = D_C1 + D_S2, EI(90) = D(90) Lx, K likewise, the springs of
   :mod:`~.interval_springs` with pq = pitch Q(n) / S) over the cells' *inner boxes*
-  [W_hi - dW, W_lo + dW] x [alpha_hi - da, alpha_lo + da], the least over t's pieces
+  [W_hi - dW, W_lo + dW] x [alpha_hi - da, alpha_lo + da] on the thinnest of t's pieces
   (:func:`_inner`, :func:`_inner_upper`): every T(x) of a design of the cell holds its inner box,
-  so by inclusion isotonicity G(x) is at most that bound;
+  and G(x) is the least over t's pieces, so by inclusion isotonicity G(x) is at most that bound;
 
 and to hold none lighter than an incumbent when its mass lower bound reaches it: the mass (both
 layers' blanks and the band, :func:`corrugate.mechanics.mass.layer_mass` and ``connector_mass``)
@@ -248,7 +248,7 @@ class _Cells:
     h0: FloatArray
     h1: FloatArray
     views: tuple[tuple[FloatArray, ...], ...]  # (Ecx, Ecy, Ebx, Eby, E0, E1) per view
-    inner: tuple[FloatArray, ...]  # (S_D, C_D, S_K, C_K): pieces x cells; then iE0, iE1
+    inner: tuple[FloatArray, ...]  # (S_D, C_D, S_K, C_K): 1 x cells; then iE0, iE1
 
     def __len__(self) -> int:
         return len(self.n)
@@ -293,7 +293,7 @@ def _inner(
 ) -> tuple[FloatArray, ...]:
     """Over each cell's inner box [W1 - dW, W0 + dW] x [a1 - da, a0 + da] (a cell at most
     2 dW and 2 da wide; every tolerance box of a design of the cell holds it,
-    :mod:`~.tolerance_box`), per piece of t (the sheet's E interval, t's pieces as
+    :mod:`~.tolerance_box`), on t's thinnest piece (the sheet's E interval, t's first piece as
     :class:`~.tolerance_box.ToleranceBounds` cuts them), the lower bounds of the layer factors
     of its springs (:mod:`~.interval_springs`, no holes: pq = pitch Q(n) / S with S the other
     layer's extent): S_D = Eby t^3 / 12 pitch Q and C_D = Ebx t^3 / 12 / (pitch Q) (D_S =
@@ -301,7 +301,8 @@ def _inner(
     likewise), inf where the cell has no inner box; and the inner box's extent bounds (mm)."""
     p = st.problem
     k = len(n)
-    pieces = tolerance_box.T_PIECES if p.tolerances.t else 1
+    full = tolerance_box.T_PIECES if p.tolerances.t else 1
+    pieces = 1  # t's thinnest piece only
     inf = np.full((pieces, k), math.inf)
     if st.halves is None or not k:
         return inf, inf, inf, inf, n * 0.0, n * 0.0 + math.inf
@@ -315,9 +316,13 @@ def _inner(
     out = [inf.copy() for _ in range(4)]
     if len(sel):
         cand = st.sheets[which - 1]
-        sh = tolerance_box.sheet(cand, p.tolerances, pieces, len(sel))
+        sh = tolerance_box.sheet(cand, p.tolerances, full, len(sel))
+        if isinstance(sh.t, Interval) and np.ndim(sh.t.lo):  # the first piece's rows
+            sh = replace(
+                sh, t=Interval(np.asarray(sh.t.lo)[: len(sel)], np.asarray(sh.t.hi)[: len(sel)])
+            )
         m = sh.material
-        rep = np.tile(sel, pieces)
+        rep = sel
         zz = p.profile_kind.of_half(
             Interval(iW0[rep], iW1[rep]), Interval(np.radians(ia0[rep]), np.radians(ia1[rep])) * 0.5
         )
@@ -422,8 +427,8 @@ def _terms(
 
 def _inner_upper(q: Quantity, L1: _Cells, L2: _Cells, i: IntArray, j: IntArray) -> FloatArray:
     """An upper bound of the certified value of stiffness ``q`` (along the creases, free
-    sides) over the cell pairs (i, j): the least over t's pieces of its lower bound over the
-    inner boxes, as :mod:`~.stiffness` computes it there (D(0) = D_S1 + D_C2, EI(0) = D(0)
+    sides) over the cell pairs (i, j): its lower bound over the inner boxes on t's thinnest
+    piece (the certified value is the least over the pieces), as :mod:`~.stiffness` computes it there (D(0) = D_S1 + D_C2, EI(0) = D(0)
     Ly, D(90) = D_C1 + D_S2, EI(90) = D(90) Lx, K likewise), which every design's certified
     value is at most (inclusion isotonicity); inf where a cell has no inner box."""
     S1, C1 = (L1.inner[0], L1.inner[1]) if q.kind != "K" else (L1.inner[2], L1.inner[3])
