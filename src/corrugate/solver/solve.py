@@ -28,6 +28,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -596,27 +597,37 @@ def _by_floors(
         pruned = frozenset()
     floor_of = {k: shown.get(k, fl.coarse(k)) for k in pruned}
     kept = tuple(archives) if record and certified else None
+    ends = (certified, min([bound, *uncertified]), boxes, iterations, kept, pruned)
+    return _ended(problem, best, best_pair, *ends, floors=fl, floor_of=floor_of)
+
+
+def _ended(
+    problem: Problem,
+    best: BnBResult | None,
+    best_pair: tuple[Candidate, Candidate] | None,
+    certified: bool,
+    bound: float,
+    boxes: int,
+    iterations: int,
+    kept: tuple[Archive | None, ...] | None,
+    pruned: frozenset[int],
+    **extra: Any,
+) -> Optimum:
+    """The :class:`Optimum` of a least-mass search that took the sheet pairs in its own order
+    (:func:`_by_floors`, :func:`_by_cells`): ``best`` the lightest design found on
+    ``best_pair``; certified, its gap 0 on grids, else the gap its pair's search proved; not
+    certified, the distance to ``bound``, the least proven bound of the pairs not certified.
+    ``extra``: the search's own fields of the Optimum."""
     if best is None or best_pair is None:
         gap = 0.0 if certified else math.inf
         return Optimum(
-            None, None, math.nan, certified, gap, boxes, iterations, kept, pruned, fl, floor_of
+            None, None, math.nan, certified, gap, boxes, iterations, kept, pruned, **extra
         )
     gap = 0.0 if problem.gridded else best.gap  # continuous: the gap proved
     if not certified:
-        bound = min([bound, *uncertified])
         gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
     return Optimum(
-        best.point,
-        best_pair,
-        best.value,
-        certified,
-        gap,
-        boxes,
-        iterations,
-        kept,
-        pruned,
-        fl,
-        floor_of,
+        best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned, **extra
     )
 
 
@@ -703,38 +714,8 @@ def _by_cells(
         pruned = frozenset()
     kept = tuple(archives) if record and certified else None
     starts = tuple(r.start for r in found)
-    if best is None or best_pair is None:
-        gap = 0.0 if certified else math.inf
-        return Optimum(
-            None,
-            None,
-            math.nan,
-            certified,
-            gap,
-            boxes,
-            iterations,
-            kept,
-            pruned,
-            starts=starts,
-            fired=fired,
-        )
-    gap = best.gap
-    if not certified:
-        bound = min([bound, *uncertified])
-        gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
-    return Optimum(
-        best.point,
-        best_pair,
-        best.value,
-        certified,
-        gap,
-        boxes,
-        iterations,
-        kept,
-        pruned,
-        starts=starts,
-        fired=fired,
-    )
+    ends = (certified, min([bound, *uncertified]), boxes, iterations, kept, pruned)
+    return _ended(problem, best, best_pair, *ends, starts=starts, fired=fired)
 
 
 def _cells_reopen(
