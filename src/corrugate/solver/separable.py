@@ -104,7 +104,6 @@ __all__ = [
     "pair_floor",
     "pair_floors",
     "search",
-    "stiffness_along",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -153,10 +152,6 @@ def _stiffness(q: Quantity) -> bool:
         and q.test is None
         and q.span is None
     )
-
-
-#: Whether a quantity is a stiffness along the creases under the paper's rule (module docstring).
-stiffness_along = _stiffness
 
 
 def applies(problem: Problem) -> bool:
