@@ -50,7 +50,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from corrugate.solver import separable, tolerance_box
+from corrugate.solver import cells, separable, tolerance_box
 from corrugate.solver.points import DesignPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
@@ -58,7 +58,7 @@ from corrugate.solver.quantity import MASS, T_OVER_W
 from corrugate.solver.separable import LayerDesigns, Shifts
 from corrugate.solver.worst_case import NOMINAL, WorstCase
 
-__all__ = ["EXACT_POINTS", "RELAX", "Floors", "floors", "relaxation", "shared_lists"]
+__all__ = ["EXACT_POINTS", "RELAX", "CellFloors", "Floors", "floors", "relaxation", "shared_lists"]
 
 #: Relative relaxation of R's directional lower bounds and of its floors (rounding: far above
 #: the few units in the last place by which R's values may differ from P's).
@@ -246,10 +246,79 @@ class Floors:
         return self._accepted.get(k, math.inf)
 
 
-def floors(problem: Problem) -> Floors | None:
+@dataclass
+class CellFloors:
+    """Floors (g) of each sheet pair's lightest design of a problem with continuous W and
+    alpha on independent layers (:mod:`.cells`: the problem's own certified bounds over
+    cells, no relaxation), pair k as :class:`Floors` numbers them; each pair's cells' search
+    (:meth:`fine`) kept, whose start boxes and design its branch and bound then takes
+    (:meth:`result`)."""
+
+    problem: Problem
+    _tables: Tables | None = None
+    _coarse: dict[int, float] = field(default_factory=dict)
+    _fine: dict[int, tuple[float, cells.CellResult]] = field(default_factory=dict)
+
+    @property
+    def size(self) -> int:
+        return len(self.problem.candidates) ** 2
+
+    @property
+    def tables(self) -> Tables:
+        if self._tables is None:
+            self._tables = Tables(self.problem)
+        return self._tables
+
+    def _setting(self, k: int) -> cells.Setting:
+        i, j = divmod(k, len(self.problem.candidates))
+        c1, c2 = self.problem.candidates[i], self.problem.candidates[j]
+        return cells.setting(self.problem, c1, c2, self.tables)
+
+    def coarse(self, k: int) -> float:
+        """A floor of pair ``k`` from the first cells alone (:data:`~.cells.FIRST_W` x
+        :data:`~.cells.FIRST_ALPHA` per n), no design evaluated."""
+        if k not in self._coarse:
+            self._coarse[k] = cells.search(self._setting(k), math.inf, budget=0).floor
+        return self._coarse[k]
+
+    def fine(self, k: int, below: float) -> float:
+        """A floor of pair ``k`` from its cells' search below ``below`` (g; the problem's
+        designs evaluated at the cells too): inf when the pair holds no design lighter than
+        ``below``, at most the lightest design found."""
+        r = self.result(k, below)
+        return min(r.floor, r.value) if r.point is not None else r.floor
+
+    def search_all(
+        self, below: float, gap: float = cells.CELL_GAP, budget: int = cells.BUDGET
+    ) -> tuple[list[cells.CellResult], int, frozenset[int]]:
+        """Every pair's cells searched at once below ``below`` (g) (:func:`~.cells.search_pairs`:
+        one queue, one incumbent; to the relative ``gap``), and the index of the pair of the best design found (-1:
+        none), and the constraints that fired (:func:`~.cells.search_pairs`)."""
+        everything = [(a, b) for a in self.problem.candidates for b in self.problem.candidates]
+        settings = [cells.setting(self.problem, a, b, self.tables) for a, b in everything]
+        exacts = [cells.judge_of(self.problem, a, b, self.tables) for a, b in everything]
+        return cells.search_pairs(settings, below, exacts, budget=budget, gap=gap)
+
+    def result(self, k: int, below: float) -> cells.CellResult:
+        """Pair ``k``'s cells' search (:func:`~.cells.search`) below ``below`` (g), made once
+        (a search below a higher incumbent serves: its boxes hold those below this one)."""
+        got = self._fine.get(k)
+        if got is None or got[0] < below:
+            i, j = divmod(k, len(self.problem.candidates))
+            c1, c2 = self.problem.candidates[i], self.problem.candidates[j]
+            st = cells.setting(self.problem, c1, c2, self.tables)
+            exact = cells.judge_of(self.problem, c1, c2, self.tables)
+            got = (below, cells.search(st, below, exact))
+            self._fine[k] = got
+        return got[1]
+
+
+def floors(problem: Problem) -> Floors | CellFloors | None:
     """The :class:`Floors` of ``problem``'s sheet pairs, None without a relaxation
     (:func:`relaxation`); its stiffness bounds held at the four corners of the tolerance box
     too (:func:`~.tolerance_box.corner_shifts`), its designs judged by ``problem`` too."""
+    if cells.applies(problem) and len(problem.candidates) > 1:
+        return CellFloors(problem)
     relaxed = relaxation(problem)
     if relaxed is None:
         return None

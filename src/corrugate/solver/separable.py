@@ -104,6 +104,7 @@ __all__ = [
     "pair_floor",
     "pair_floors",
     "search",
+    "stiffness_along",
 ]
 
 FloatArray = NDArray[np.float64]
@@ -152,6 +153,10 @@ def _stiffness(q: Quantity) -> bool:
         and q.test is None
         and q.span is None
     )
+
+
+#: Whether a quantity is a stiffness along the creases under the paper's rule (module docstring).
+stiffness_along = _stiffness
 
 
 def applies(problem: Problem) -> bool:

@@ -26,8 +26,9 @@ from __future__ import annotations
 import heapq
 import math
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -37,10 +38,12 @@ from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
+from corrugate.solver import cells
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.choices import RELAX, Floors, floors, shared_lists
+from corrugate.solver.cells import with_cells
+from corrugate.solver.choices import RELAX, CellFloors, Floors, floors, shared_lists
 from corrugate.solver.joint_checks import Check, joint_search, reopened
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
@@ -74,6 +77,9 @@ RUNNER_UP_GAP_RTOL = 1e-6
 #: by these many grid steps, and of continuous W and alpha by these fractions of their range.
 PROBE_STEPS = (1, 2, 3)
 PROBE_FRACTIONS = (1e-6, 1e-4, 1e-3, 1e-2, 3e-2, 1e-1)
+#: The cell pairs a runner-up's cells judge at most (:func:`_cell_runner_ups`); past them
+#: (or past a hundredth as many boxes left) the runner-up is shown not certified.
+RUNNER_UP_CELLS = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -100,6 +106,11 @@ class Optimum:
     #: the runner-ups read instead of computing them again
     floors: Floors | None = field(default=None, compare=False, repr=False)
     floor_of: dict[int, float] = field(default_factory=dict, compare=False, repr=False)
+    #: a search by cells (:func:`_by_cells`): the boxes its cells left of each sheet pair
+    #: (:func:`pairs` order) and the constraints that fired (by index,
+    #: :func:`~.cells.search_pairs`); None otherwise
+    starts: tuple[Start, ...] | None = None
+    fired: frozenset[int] | None = None
 
     def tree(self) -> tuple[Archive, ...] | None:
         """Every pair's archive, or None when one is missing (then the explanation re-solves)."""
@@ -429,6 +440,7 @@ def optimize(
     warm: Sequence[Start | None] | None = None,
     stop_below: float | None = None,
     prune: bool = False,
+    most: int | None = None,
 ) -> Optimum:
     """The certified optimum of ``problem`` over every candidate sheet pair (continuous
     variables: to the relative gap ``gap_rtol``). Inside a
@@ -445,10 +457,13 @@ def optimize(
     ``prune``: when the sheet pairs have floors (:func:`~.choices.floors`: least mass,
     independent layers that decompose), take them best-first by their floors and prune whole
     the pairs whose floor reaches the incumbent (:func:`_by_floors`; not with ``warm``,
-    ``n_fixed`` or ``stop_below``): the same answer and certificate."""
+    ``n_fixed`` or ``stop_below``): the same answer and certificate; with continuous W and
+    alpha, by cells (:func:`_by_cells`; ``most``: its limit)."""
     tables = tables or Tables(problem)
     if prune and warm is None and n_fixed is None and stop_below is None:
         fl = floors(problem)
+        if isinstance(fl, CellFloors):
+            return _by_cells(problem, fl, tables, incumbent, record, gap_rtol, most)
         if fl is not None:
             return _by_floors(problem, fl, tables, incumbent, record)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
@@ -582,28 +597,146 @@ def _by_floors(
         pruned = frozenset()
     floor_of = {k: shown.get(k, fl.coarse(k)) for k in pruned}
     kept = tuple(archives) if record and certified else None
+    ends = (certified, min([bound, *uncertified]), boxes, iterations, kept, pruned)
+    return _ended(problem, best, best_pair, *ends, floors=fl, floor_of=floor_of)
+
+
+def _ended(
+    problem: Problem,
+    best: BnBResult | None,
+    best_pair: tuple[Candidate, Candidate] | None,
+    certified: bool,
+    bound: float,
+    boxes: int,
+    iterations: int,
+    kept: tuple[Archive | None, ...] | None,
+    pruned: frozenset[int],
+    **extra: Any,
+) -> Optimum:
+    """The :class:`Optimum` of a least-mass search that took the sheet pairs in its own order
+    (:func:`_by_floors`, :func:`_by_cells`): ``best`` the lightest design found on
+    ``best_pair``; certified, its gap 0 on grids, else the gap its pair's search proved; not
+    certified, the distance to ``bound``, the least proven bound of the pairs not certified.
+    ``extra``: the search's own fields of the Optimum."""
     if best is None or best_pair is None:
         gap = 0.0 if certified else math.inf
         return Optimum(
-            None, None, math.nan, certified, gap, boxes, iterations, kept, pruned, fl, floor_of
+            None, None, math.nan, certified, gap, boxes, iterations, kept, pruned, **extra
         )
-    gap = 0.0
+    gap = 0.0 if problem.gridded else best.gap  # continuous: the gap proved
     if not certified:
-        bound = min([bound, *uncertified])
         gap = max(best.value - bound, best.gap * abs(best.value)) / max(abs(best.value), 1e-300)
     return Optimum(
-        best.point,
-        best_pair,
-        best.value,
-        certified,
-        gap,
-        boxes,
-        iterations,
-        kept,
-        pruned,
-        fl,
-        floor_of,
+        best.point, best_pair, best.value, certified, gap, boxes, iterations, kept, pruned, **extra
     )
+
+
+def _by_cells(
+    problem: Problem,
+    fl: CellFloors,
+    tables: Tables,
+    incumbent: float | None,
+    record: bool,
+    gap_rtol: float = GAP_RTOL,
+    most: int | None = None,
+) -> Optimum:
+    """:func:`optimize` of a least-mass problem with continuous W and alpha on independent
+    layers (:mod:`.cells`): every sheet pair's cells searched at once (one queue, one
+    incumbent: the designs they find), then the branch and bound of each sheet pair the cells
+    leave below the incumbent, best floor first, from the boxes they leave (every design of
+    the pair lighter than the incumbent lies in them), the incumbent carried from pair to
+    pair; the pairs they leave nothing of are pruned whole. The answer and its certificate
+    are :func:`optimize`'s, to the gap: no design of any pair is lighter than the answer by more
+    than the gap. With ``record``, a searched pair's archive reopens the part its cells dropped
+    by its cells again (:class:`~.cells.CellArchive`); with no design found, every pair is
+    searched so (the diagnosis reopens every pair's archive). ``most``: the cell pairs the
+    cells judge at most (:data:`~.cells.BUDGET` by default) and a hundredth as many boxes
+    they may leave to the branch and bound; past those it is not run and the design found is
+    not certified."""
+    everything = pairs(problem)
+    inc = math.inf if incumbent is None else incumbent
+    budget = cells.BUDGET if most is None else most
+    found, at, fired = fl.search_all(inc, max(gap_rtol, cells.CELL_GAP), budget)
+    best: BnBResult | None = None
+    best_pair: tuple[Candidate, Candidate] | None = None
+    if at >= 0:
+        g = found[at]
+        best = BnBResult(g.point, g.value, g.value - gap_rtol * abs(g.value), True, 0, 0)
+        best_pair, inc = everything[at], g.value
+    certified = True
+    boxes = found[0].judged if found else 0
+    iterations = 0
+    archives: list[Archive | None] = [None] * len(everything)
+    uncertified: list[float] = []
+    searched: set[int] = set()
+    bound = math.inf
+
+    def run(k: int) -> None:
+        nonlocal best, best_pair, certified, boxes, iterations, inc
+        lo, hi, low = found[k].start
+        keep = low < inc - gap_rtol * abs(inc) if math.isfinite(inc) else low < inc
+        r = branch_and_bound(
+            problem,
+            *everything[k],
+            incumbent=None if not math.isfinite(inc) else inc,
+            tables=tables,
+            start=(lo[keep], hi[keep], low[keep]),
+            record=record,
+            gap_rtol=gap_rtol,
+        )
+        searched.add(k)
+        if record:
+            archives[k] = with_cells(r.archive, _cells_reopen(problem, everything[k], tables))
+        if not r.certified:
+            uncertified.append(r.bound)
+        boxes += r.boxes
+        iterations += r.iterations
+        certified &= r.certified
+        if r.point is not None and (best is None or r.value < best.value):
+            best, best_pair, inc = r, everything[k], r.value
+
+    order = sorted(range(len(everything)), key=lambda k: (found[k].floor, k))
+    if most is not None and sum(len(r.start[0]) for r in found) > most // 100:
+        order, certified, bound = [], False, min(r.floor for r in found)
+    for k in order:
+        if budget_spent():  # the pairs left: nothing proven
+            certified, bound = False, -math.inf
+            break
+        if found[k].floor >= inc and k != at:
+            continue
+        run(k)
+    pruned = frozenset(k for k in range(len(everything)) if k not in searched)
+    if not certified:
+        pruned = frozenset()
+    if record and certified and best is None and pruned:
+        for k in sorted(pruned):  # for the diagnosis' archives: every pair searched
+            run(k)
+        pruned = frozenset()
+    kept = tuple(archives) if record and certified else None
+    starts = tuple(r.start for r in found)
+    ends = (certified, min([bound, *uncertified]), boxes, iterations, kept, pruned)
+    return _ended(problem, best, best_pair, *ends, starts=starts, fired=fired)
+
+
+def _cells_reopen(
+    problem: Problem, pair: tuple[Candidate, Candidate], tables: Tables
+) -> Callable[[int, float], Start]:
+    """The boxes of sheet pair ``pair`` that may hold a design meeting every constraint of
+    ``problem`` outside a bit set, lighter than a mass: the cells' search of the problem
+    without those constraints (:func:`~.cells.search`, no design evaluated, so nothing
+    lighter is dropped); with no mass given (the diagnosis), the whole domain."""
+
+    def reopen(relaxed: int, below: float) -> Start:
+        sub = cells.relaxed_without(problem, relaxed)
+        if not cells.applies(sub) or not math.isfinite(below):  # the whole domain
+            dims = coordinates(problem)
+            lo = np.array([[d.var.lo for d in dims]])
+            hi = np.array([[d.var.top for d in dims]])
+            return lo, hi, np.array([-math.inf])
+        got = cells.search(cells.setting(sub, *pair, tables), below)
+        return got.start
+
+    return reopen
 
 
 def assembly_of(problem: Problem, opt: Optimum) -> Assembly:
@@ -967,7 +1100,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     witnessed = _witnesses(problem, opt, tables, tol)
     shared, idle = None, frozenset[str]()
-    if tree is not None:
+    cellular = _cellular(problem)
+    if tree is not None and not cellular:
         got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
         if got is not None:
             shared, idle = got
@@ -985,6 +1119,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
             binding = True
         elif c.name in joint and (joint[c.name] is not False or not opt.pruned):
             binding = joint[c.name]  # found, stopped (None), or no pair left to search
+        elif cellular and not budget_spent():  # the cells' search of each check
+            binding = _cell_binding(problem, opt, c.name, tables, tol)
         elif not budget_spent():
             # binding once a design strictly better than the optimum (beyond the proven
             # gap) meets every other constraint; not binding once none is proven to exist
@@ -1043,12 +1179,12 @@ class _PairFloors:
 
     def __init__(self, problems: Sequence[Problem], goal: float) -> None:
         self.problems, self.goal = problems, goal
-        self.floors: Floors | None = None
+        self.floors: Floors | CellFloors | None = None
         self.built = False
 
         self.known: dict[int, float] = {}
 
-    def _build(self) -> Floors | None:
+    def _build(self) -> Floors | CellFloors | None:
         if not self.built:
             for p in self.problems:
                 self.floors = floors(p)
@@ -1075,7 +1211,7 @@ class _PairFloors:
     def found(self, k: int) -> bool:
         """Whether the fine floor of pair ``k`` met a design lighter than the goal that its
         problem accepts (:meth:`~.choices.Floors.accepted`): one exists."""
-        return self.floors is not None and self.floors.accepted(k) < self.goal
+        return isinstance(self.floors, Floors) and self.floors.accepted(k) < self.goal
 
 
 def _binding(
@@ -1236,6 +1372,70 @@ def _untouched(
     return _PairFloors((rest,), opt.value), frozenset(idle)
 
 
+def _cellular(problem: Problem) -> bool:
+    """Whether ``problem`` is solved by its cells (:mod:`.cells`: continuous W and alpha on
+    independent layers, material choices; :func:`_by_cells`)."""
+    return isinstance(floors(problem), CellFloors)
+
+
+def _cell_binding(
+    problem: Problem, opt: Optimum, name: str, tables: Tables, tol: float
+) -> bool | None:
+    """Whether constraint ``name`` binds, for a problem solved by its cells: whether the
+    problem without it has a design lighter than the optimum by more than ``tol`` (g), by
+    :func:`optimize` of that problem with the goal as incumbent (its cells and branch and
+    bound, :func:`_by_cells`). Such a design breaks the constraint (else it would be a design
+    of the problem lighter than its certified optimum), so it is the binding check's design
+    (:func:`_relaxed`). None when the optimum or the check is not certified."""
+    if not opt.certified or problem.objective.sense != "min":
+        return None
+    goal = opt.value - tol
+    own = {i for i, c in enumerate(problem.constraints) if c.name == name}
+    if opt.starts is not None and opt.fired is not None and not own & opt.fired:
+        # it dropped nothing the solve's cells dropped: its designs lighter than the
+        # optimum lie in the boxes they left, searched for one by the branch and bound
+        check, everything, certified = problem.without(name), pairs(problem), True
+        for k, (lo, hi, low) in enumerate(opt.starts):
+            keep = low < goal
+            if not keep.any():
+                continue
+            r = branch_and_bound(
+                check,
+                *everything[k],
+                incumbent=opt.value,
+                tables=tables,
+                start=(lo[keep], hi[keep], low[keep]),
+                stop_below=goal,
+            )
+            if r.point is not None and r.value < goal:
+                return True
+            certified &= r.certified
+        return False if certified else None
+    got = optimize(problem.without(name), tables=tables, incumbent=goal, prune=True)
+    if got.point is not None and got.value < goal:
+        return True
+    return False if got.certified else None
+
+
+def _cell_runner_ups(
+    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int]
+) -> dict[int, Optimum]:
+    """The runner-ups of a problem solved by its cells: for each n of ``span`` but the
+    optimum's own, :func:`optimize` of the problem with both layers' n fixed to n (its cells
+    and branch and bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
+    out: dict[int, Optimum] = {}
+    for n in range(span[0], span[1] + 1):
+        if budget_spent():
+            break
+        fixed = replace(problem, n_lo=n, n_hi=n)
+        got = optimize(
+            fixed, tables=tables, gap_rtol=RUNNER_UP_GAP_RTOL, prune=True, most=RUNNER_UP_CELLS
+        )
+        if got.point is not None:
+            out[n] = got
+    return out
+
+
 def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
     """The certified best design for each n within :data:`RUNNER_UP_SPREAD` of the optimum's
     layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
@@ -1255,6 +1455,24 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]] = {}
     certified = {n: True for n in range(a, b + 1)}
     everything = pairs(problem)
+    if _cellular(problem):
+        own_n = opt.certified and round(opt.point.layer(1).n) == n_star
+        got = _cell_runner_ups(problem, opt, tables, (a, b))
+        rows = []
+        for n in range(a, b + 1):
+            found = opt if n == n_star and own_n else got.get(n)
+            if found is None:
+                continue
+            layers = assembly_of(problem, found).layers
+            rows.append(
+                RunnerUp(
+                    n,
+                    found.value,
+                    tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers)),
+                    found.certified,
+                )
+            )
+        return rows
     for i, pair in enumerate(everything):
         if budget_spent():
             for n in certified:
@@ -1316,7 +1534,7 @@ def _pruned_runner_ups(
     a, b = span
     everything = pairs(problem)
     whole = opt.floors if opt.floors is not None else floors(problem)
-    per_n: dict[int, Floors | None] = {}
+    per_n: dict[int, Floors | CellFloors | None] = {}
     order = sorted(opt.pruned, key=lambda k: (0.0 if whole is None else whole.coarse(k), k))
     for k in order:
         if budget_spent():

@@ -43,7 +43,15 @@ from corrugate.solver.quantity import Quantity
 from corrugate.solver.tables import Tables
 from corrugate.solver.worst_case import WorstCase
 
-__all__ = ["T_PIECES", "ToleranceBounds", "corners", "covered", "sheet", "widened"]
+__all__ = [
+    "T_PIECES",
+    "ToleranceBounds",
+    "corners",
+    "covered",
+    "low_sheet",
+    "sheet",
+    "widened",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -262,6 +270,10 @@ def _low(c: Candidate, tol: WorstCase) -> Candidate:
     m = c.material
     low = replace(m, E=_E_range(m, tol)[0], crease_stiffness=_k_low(m))
     return replace(c, material=low, t=c.t * (1 - tol.t))
+
+
+#: The sheet at its lowest E, t and crease stiffness (a corner of its tolerances).
+low_sheet = _low
 
 
 def _shift(
