@@ -110,6 +110,9 @@ FIRST_W = 4
 FIRST_ALPHA = 5
 #: Cell pairs a search judges at most (about a microsecond each).
 BUDGET = 20_000_000
+#: Cell pairs a search with no incumbent judges at most before it gives up (a design not found by
+#: then: the domain is too wide for the cells; the caller takes the plain search instead).
+NO_DESIGN = 4_000_000
 #: Cell pairs split at once (the least mass bounds first).
 BATCH = 32768
 #: The search stops when no cell pair left is below the incumbent less this (relative): the
@@ -459,6 +462,9 @@ class CellResult:
     point: DesignPoints | None
     value: float
     judged: int
+    #: False when the search gave up (:data:`NO_DESIGN` judged without an incumbent): its start
+    #: boxes are not to be searched
+    settled: bool = True
 
 
 def _judge(
@@ -771,6 +777,7 @@ def search_pairs(
     K, I, J, lb = np.concatenate(Ks), np.concatenate(Is), np.concatenate(Js), np.concatenate(Bs)
     rounds = 0
     spend, charged = current_budget(), 0
+    settled = True
     scale = MOVE_SCALE
     while len(I):
         if exacts is not None and rounds % PROBE_EVERY == 0 and len(I):
@@ -807,6 +814,9 @@ def search_pairs(
             keep = lb < worst
             K, I, J, lb = K[keep], I[keep], J[keep], lb[keep]
         rounds += 1
+        if best_x is None and not math.isfinite(inc) and judged >= NO_DESIGN:
+            settled = False  # no design in sight: the domain is too wide for the cells
+            break
         if not len(I) or judged >= budget or float(lb.min()) >= inc * (1 - gap):
             break
         if spend is not None:
@@ -867,7 +877,7 @@ def search_pairs(
         floor = float(b.min()) if len(b) else math.inf
         own = best_x if k == best_at else None
         value = inc if own is not None else math.nan
-        out.append(CellResult(floor, (lo, hi, b.copy()), own, value, judged))
+        out.append(CellResult(floor, (lo, hi, b.copy()), own, value, judged, settled))
     return out, best_at, frozenset(fired)
 
 
