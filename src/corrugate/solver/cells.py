@@ -110,9 +110,12 @@ FIRST_W = 4
 FIRST_ALPHA = 5
 #: Cell pairs a search judges at most (about a microsecond each).
 BUDGET = 20_000_000
-#: Cell pairs a search with no incumbent judges at most before it gives up (a design not found by
-#: then: the domain is too wide for the cells; the caller takes the plain search instead).
-NO_DESIGN = 4_000_000
+#: The first cell pairs (every sheet pair's coarse cells, each layer's that meet its own bounds)
+#: past which a search with no incumbent gives up at once, the domain too wide for the cells (the
+#: caller takes the plain search): benchmarks/edges.py's films-5-cont has 0.81 M, films-13-cont
+#: 5.5 M, tests/cli/test_interrupt.py's spec (8 sheets, n 1-200, W 1-30 mm, alpha 1-120 deg) 86 M,
+#: whose cells judged them in 18.8 s of CPU without a design and left 32 M start boxes.
+FIRST_MOST = 20_000_000
 #: Cell pairs split at once (the least mass bounds first).
 BATCH = 32768
 #: The search stops when no cell pair left is below the incumbent less this (relative): the
@@ -462,8 +465,7 @@ class CellResult:
     point: DesignPoints | None
     value: float
     judged: int
-    #: False when the search gave up (:data:`NO_DESIGN` judged without an incumbent): its start
-    #: boxes are not to be searched
+    #: False when the search gave up at once (:data:`FIRST_MOST`): no start boxes, not searched
     settled: bool = True
 
 
@@ -762,6 +764,11 @@ def search_pairs(
         return shared[key]
 
     tab_of = np.array([[table(st, 1), table(st, 2)] for st in settings], dtype=np.int64)
+    first = sum(len(tabs[t1].cells) * len(tabs[t2].cells) for t1, t2 in tab_of.tolist())
+    if not math.isfinite(inc) and first > FIRST_MOST:  # too wide a domain for the cells
+        none = np.empty((0, 6))
+        gave_up = CellResult(0.0, (none, none, np.empty(0)), None, math.nan, 0, False)
+        return [gave_up] * len(settings), -1, frozenset()
     Ks, Is, Js, Bs = [], [], [], []
     judged = 0
     for k, st in enumerate(settings):
@@ -777,7 +784,6 @@ def search_pairs(
     K, I, J, lb = np.concatenate(Ks), np.concatenate(Is), np.concatenate(Js), np.concatenate(Bs)
     rounds = 0
     spend, charged = current_budget(), 0
-    settled = True
     scale = MOVE_SCALE
     while len(I):
         if exacts is not None and rounds % PROBE_EVERY == 0 and len(I):
@@ -814,9 +820,6 @@ def search_pairs(
             keep = lb < worst
             K, I, J, lb = K[keep], I[keep], J[keep], lb[keep]
         rounds += 1
-        if best_x is None and not math.isfinite(inc) and judged >= NO_DESIGN:
-            settled = False  # no design in sight: the domain is too wide for the cells
-            break
         if not len(I) or judged >= budget or float(lb.min()) >= inc * (1 - gap):
             break
         if spend is not None:
@@ -877,7 +880,7 @@ def search_pairs(
         floor = float(b.min()) if len(b) else math.inf
         own = best_x if k == best_at else None
         value = inc if own is not None else math.nan
-        out.append(CellResult(floor, (lo, hi, b.copy()), own, value, judged, settled))
+        out.append(CellResult(floor, (lo, hi, b.copy()), own, value, judged))
     return out, best_at, frozenset(fired)
 
 

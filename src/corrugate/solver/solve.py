@@ -78,7 +78,7 @@ RUNNER_UP_GAP_RTOL = 1e-6
 PROBE_STEPS = (1, 2, 3)
 PROBE_FRACTIONS = (1e-6, 1e-4, 1e-3, 1e-2, 3e-2, 1e-1)
 #: The start boxes the cells may leave to the branch and bound at most (:func:`_by_cells`): past
-#: them, or when the cells found no design (:data:`~.cells.NO_DESIGN`), the solve takes the
+#: them, or when the cells gave up at once (:data:`~.cells.FIRST_MOST`), the solve takes the
 #: plain per-pair search (a wide domain: tests/cli/test_interrupt.py's spec left 32 M boxes).
 CELL_BOXES = 1_000_000
 #: The cell pairs a runner-up's cells judge at most (:func:`_cell_runner_ups`); past them
