@@ -152,3 +152,18 @@ def test_inner_bound_at_least_the_certified_value() -> None:
             assert np.all(upper * (1 + 1e-12) >= vals[q]), q.key
             # and it is tight: within a few per cent of the certified value at these widths
             assert np.all(upper <= vals[q] * 1.5)
+
+
+def test_a_domain_too_wide_for_the_cells_takes_the_plain_search(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """With more first cell pairs than cells.FIRST_MOST (here 0: every domain) the cells give up
+    at once and the solve is the plain search (no cells' boxes kept), whose answer is the same
+    optimum; with the default the cells' path is taken (its start boxes kept)."""
+    p = _problem(False)
+    assert optimize(p, prune=True).starts is not None
+    monkeypatch.setattr(cells, "FIRST_MOST", 0)
+    got = optimize(p, prune=True)
+    assert got.starts is None and got.certified and got.point is not None
+    best = min(_plain(False))
+    assert abs(got.value - best) <= 2 * GAP_RTOL * best

@@ -110,6 +110,12 @@ FIRST_W = 4
 FIRST_ALPHA = 5
 #: Cell pairs a search judges at most (about a microsecond each).
 BUDGET = 20_000_000
+#: The first cell pairs (every sheet pair's coarse cells, each layer's that meet its own bounds)
+#: past which a search with no incumbent gives up at once, the domain too wide for the cells (the
+#: caller takes the plain search): benchmarks/edges.py's films-5-cont has 0.81 M, films-13-cont
+#: 5.5 M, tests/cli/test_interrupt.py's spec (8 sheets, n 1-200, W 1-30 mm, alpha 1-120 deg) 86 M,
+#: whose cells judged them in 18.8 s of CPU without a design and left 32 M start boxes.
+FIRST_MOST = 20_000_000
 #: Cell pairs split at once (the least mass bounds first).
 BATCH = 32768
 #: The search stops when no cell pair left is below the incumbent less this (relative): the
@@ -459,6 +465,8 @@ class CellResult:
     point: DesignPoints | None
     value: float
     judged: int
+    #: False when the search gave up at once (:data:`FIRST_MOST`): no start boxes, not searched
+    settled: bool = True
 
 
 def _judge(
@@ -756,6 +764,11 @@ def search_pairs(
         return shared[key]
 
     tab_of = np.array([[table(st, 1), table(st, 2)] for st in settings], dtype=np.int64)
+    first = sum(len(tabs[t1].cells) * len(tabs[t2].cells) for t1, t2 in tab_of.tolist())
+    if not math.isfinite(inc) and first > FIRST_MOST:  # too wide a domain for the cells
+        none = np.empty((0, 6))
+        gave_up = CellResult(0.0, (none, none, np.empty(0)), None, math.nan, 0, False)
+        return [gave_up] * len(settings), -1, frozenset()
     Ks, Is, Js, Bs = [], [], [], []
     judged = 0
     for k, st in enumerate(settings):

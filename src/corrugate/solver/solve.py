@@ -77,6 +77,10 @@ RUNNER_UP_GAP_RTOL = 1e-6
 #: by these many grid steps, and of continuous W and alpha by these fractions of their range.
 PROBE_STEPS = (1, 2, 3)
 PROBE_FRACTIONS = (1e-6, 1e-4, 1e-3, 1e-2, 3e-2, 1e-1)
+#: The start boxes the cells may leave to the branch and bound at most (:func:`_by_cells`): past
+#: them, or when the cells gave up at once (:data:`~.cells.FIRST_MOST`), the solve takes the
+#: plain per-pair search (a wide domain: tests/cli/test_interrupt.py's spec left 32 M boxes).
+CELL_BOXES = 1_000_000
 #: The cell pairs a runner-up's cells judge at most (:func:`_cell_runner_ups`); past them
 #: (or past a hundredth as many boxes left) the runner-up is shown not certified.
 RUNNER_UP_CELLS = 2_000_000
@@ -463,8 +467,10 @@ def optimize(
     if prune and warm is None and n_fixed is None and stop_below is None:
         fl = floors(problem)
         if isinstance(fl, CellFloors):
-            return _by_cells(problem, fl, tables, incumbent, record, gap_rtol, most)
-        if fl is not None:
+            got = _by_cells(problem, fl, tables, incumbent, record, gap_rtol, most)
+            if got is not None:
+                return got  # else the domain is too wide for the cells: the plain search
+        if isinstance(fl, Floors):
             return _by_floors(problem, fl, tables, incumbent, record)
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best: BnBResult | None = None
@@ -639,7 +645,7 @@ def _by_cells(
     record: bool,
     gap_rtol: float = GAP_RTOL,
     most: int | None = None,
-) -> Optimum:
+) -> Optimum | None:
     """:func:`optimize` of a least-mass problem with continuous W and alpha on independent
     layers (:mod:`.cells`): every sheet pair's cells searched at once (one queue, one
     incumbent: the designs they find), then the branch and bound of each sheet pair the cells
@@ -657,6 +663,8 @@ def _by_cells(
     inc = math.inf if incumbent is None else incumbent
     budget = cells.BUDGET if most is None else most
     found, at, fired = fl.search_all(inc, max(gap_rtol, cells.CELL_GAP), budget)
+    if not found or not found[0].settled or sum(len(r.start[0]) for r in found) > CELL_BOXES:
+        return None
     best: BnBResult | None = None
     best_pair: tuple[Candidate, Candidate] | None = None
     if at >= 0:
@@ -1100,7 +1108,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     witnessed = _witnesses(problem, opt, tables, tol)
     shared, idle = None, frozenset[str]()
-    cellular = _cellular(problem)
+    cellular = _cellular(opt)
     if tree is not None and not cellular:
         got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
         if got is not None:
@@ -1187,7 +1195,10 @@ class _PairFloors:
     def _build(self) -> Floors | CellFloors | None:
         if not self.built:
             for p in self.problems:
-                self.floors = floors(p)
+                got = floors(p)
+                if isinstance(got, CellFloors):  # a cells search per pair: not a cheap floor
+                    continue
+                self.floors = got
                 if self.floors is not None:
                     break
             self.built = True
@@ -1372,10 +1383,11 @@ def _untouched(
     return _PairFloors((rest,), opt.value), frozenset(idle)
 
 
-def _cellular(problem: Problem) -> bool:
-    """Whether ``problem`` is solved by its cells (:mod:`.cells`: continuous W and alpha on
-    independent layers, material choices; :func:`_by_cells`)."""
-    return isinstance(floors(problem), CellFloors)
+def _cellular(opt: Optimum) -> bool:
+    """Whether the solve of ``opt`` was by cells (:mod:`.cells`: continuous W and alpha on
+    independent layers, material choices; :func:`_by_cells`), not the plain search it falls
+    back to on a wide domain."""
+    return opt.starts is not None
 
 
 def _cell_binding(
@@ -1455,7 +1467,7 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]] = {}
     certified = {n: True for n in range(a, b + 1)}
     everything = pairs(problem)
-    if _cellular(problem):
+    if _cellular(opt):
         own_n = opt.certified and round(opt.point.layer(1).n) == n_star
         got = _cell_runner_ups(problem, opt, tables, (a, b))
         rows = []
