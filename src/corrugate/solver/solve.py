@@ -79,8 +79,9 @@ PROBE_STEPS = (1, 2, 3)
 PROBE_FRACTIONS = (1e-6, 1e-4, 1e-3, 1e-2, 3e-2, 1e-1)
 #: The start boxes the cells may leave to the branch and bound at most (:func:`_by_cells`): past
 #: them, or when the cells gave up at once (:data:`~.cells.FIRST_MOST`), the solve takes the
-#: plain per-pair search (a wide domain: tests/cli/test_interrupt.py's spec left 32 M boxes).
-CELL_BOXES = 1_000_000
+#: plain per-pair search (a wide domain: tests/cli/test_interrupt.py's spec left 32 M boxes;
+#: benchmarks/edges.py's films-13-cont leaves 4.4 M, from which its search certifies).
+CELL_BOXES = 10_000_000
 #: The cell pairs a runner-up's cells judge at most (:func:`_cell_runner_ups`); past them
 #: (or past a hundredth as many boxes left) the runner-up is shown not certified.
 RUNNER_UP_CELLS = 2_000_000
