@@ -1476,15 +1476,7 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
             found = opt if n == n_star and own_n else got.get(n)
             if found is None:
                 continue
-            layers = assembly_of(problem, found).layers
-            rows.append(
-                RunnerUp(
-                    n,
-                    found.value,
-                    tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers)),
-                    found.certified,
-                )
-            )
+            rows.append(_runner_up(problem, n, found))
         return rows
     for i, pair in enumerate(everything):
         if budget_spent():
@@ -1516,16 +1508,16 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
         else:
             rn, pair = best[n]
             found = Optimum(rn.point, pair, rn.value, certified[n], 0.0, rn.boxes, rn.iterations)
-        layers = assembly_of(problem, found).layers
-        out.append(
-            RunnerUp(
-                n,
-                found.value,
-                tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers)),
-                found.certified,
-            )
-        )
+        out.append(_runner_up(problem, n, found))
     return out
+
+
+def _runner_up(problem: Problem, n: int, found: Optimum) -> RunnerUp:
+    """The runner-up row of the best design ``found`` with n creases: its mass, layers and
+    whether it is certified."""
+    layers = assembly_of(problem, found).layers
+    dicts = tuple(layer_dict(i + 1, layer) for i, layer in enumerate(layers))
+    return RunnerUp(n, found.value, dicts, found.certified)
 
 
 def _pruned_runner_ups(
