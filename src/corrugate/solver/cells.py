@@ -79,6 +79,7 @@ from corrugate.solver.archive import Archive
 from corrugate.solver.budget import current_budget
 from corrugate.solver.interval import Interval, number
 from corrugate.solver.points import DesignPoints, LayerPoints
+from corrugate.solver.polish import CLIMB_MOST, climb
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import (
@@ -132,6 +133,15 @@ PROBE_POINTS = 4
 PROBES = 64
 #: Sheet pairs probed at once: those of the least mass bounds.
 PROBE_SHEETS = 2
+#: Before the first cell pairs (:func:`_seed`): the points drawn in each layer's first cells,
+#: the pairs of them judged per sheet pair, and the sheet pairs whose best design is polished.
+SEED_POINTS = 2048
+SEED_PAIRS = 2048
+SEED_CLIMBS = 1
+#: The (sheet pair, n1, n2) polished at most in the search (:func:`~.polish.climb`).
+POLISHES = 8
+#: Sheet pairs probed at once anywhere in the queue.
+PROBE_FAR = 2
 #: Designs drawn around the best one at each probe, and their first reach (relative to the
 #: variables' ranges; halved when none is lighter).
 MOVES = 64
@@ -493,7 +503,10 @@ def _judge(
         lb = lb + layer_mass(m2.density, c2.t, L2.W0[j], length_sum(lay, L2.n[j], L1.E0[i]), lay)
         lb = lb + connector_mass(m1.density, c1.t, lay, L1.E0[i], L2.E0[j], L1.h0[i] + L2.h0[j])
         lb = np.asarray(lb) * (1 - SLACK)
-        alive = lb < worst
+        light = np.flatnonzero(lb < worst)  # the others: dropped by their mass alone
+        if len(light) < len(i):
+            i, j, lb = i[light], j[light], lb[light]
+        alive = np.ones(len(i), dtype=bool)
         count = np.zeros(len(i), dtype=np.int64)
         which = np.full(len(i), -1, dtype=np.int64)
 
@@ -637,6 +650,14 @@ def _moves(
     return DesignPoints.of(LayerPoints(n1, cols[0], cols[1]), LayerPoints(n2, cols[2], cols[3]))
 
 
+def _ns(x: DesignPoints) -> tuple[float, float]:
+    """The n of each layer of the one design ``x``."""
+    return (
+        float(np.asarray(x.layer(0).n).reshape(-1)[0]),
+        float(np.asarray(x.layer(1).n).reshape(-1)[0]),
+    )
+
+
 Judge = Callable[[DesignPoints], tuple[FloatArray, NDArray[np.bool_]]]
 
 
@@ -769,6 +790,11 @@ def search_pairs(
         none = np.empty((0, 6))
         gave_up = CellResult(0.0, (none, none, np.empty(0)), None, math.nan, 0, False)
         return [gave_up] * len(settings), -1, frozenset()
+    if exacts is not None and not math.isfinite(inc):  # a design before the first pairs
+        seeded = _seed(settings, tabs, tab_of, exacts)
+        if seeded is not None and seeded[0] < inc:
+            inc, best_x, best_at = seeded
+            worst = inc * (1 + SLACK)
     Ks, Is, Js, Bs = [], [], [], []
     judged = 0
     for k, st in enumerate(settings):
@@ -783,6 +809,8 @@ def search_pairs(
         Bs.append(lb)
     K, I, J, lb = np.concatenate(Ks), np.concatenate(Is), np.concatenate(Js), np.concatenate(Bs)
     rounds = 0
+    climbed: set[tuple[int, float, float]] = set()  # (sheet pair, n1, n2) polished
+    climbed_n: dict[int, set[tuple[float, float]]] = {}
     spend, charged = current_budget(), 0
     scale = MOVE_SCALE
     while len(I):
@@ -792,9 +820,9 @@ def search_pairs(
             order = low[np.argsort(lb[low])]
             ks = list(dict.fromkeys(K[order].tolist()))[:PROBE_SHEETS]
             tries = [(k, order[K[order] == k]) for k in ks]
-            if best_x is None and not math.isfinite(incumbent):  # and anywhere in the queue
+            if not math.isfinite(incumbent):  # and anywhere in the queue
                 anywhere = rng.integers(0, len(I), PROBE_PAIRS)
-                far = list(dict.fromkeys(K[anywhere].tolist()))[:PROBE_SHEETS]
+                far = list(dict.fromkeys(K[anywhere].tolist()))[:PROBE_FAR]
                 tries += [(k, anywhere[K[anywhere] == k]) for k in far]
             for k, sel in tries:
                 T1, T2 = tabs[tab_of[k, 0]], tabs[tab_of[k, 1]]
@@ -807,6 +835,21 @@ def search_pairs(
                 if f[b] < inc:
                     inc, best_x, best_at = float(f[b]), x.point(b), int(k)
                     worst = inc * (1 + SLACK)
+            polished = sum(len(d) for d in climbed_n.values())
+            if (
+                best_x is not None
+                and (best_at, *_ns(best_x)) not in climbed
+                and polished < POLISHES
+            ):  # polish it
+                st = settings[best_at]
+                done = climbed_n.setdefault(best_at, set())
+                most = min(CLIMB_MOST, POLISHES - polished)
+                got = climb(st.problem, *st.sheets, best_x, st.tables, exacts[best_at], done, most)
+                climbed.add((best_at, *_ns(best_x)))
+                if got is not None and got.mass < inc:
+                    inc, best_x = got.mass, got.point
+                    worst = inc * (1 + SLACK)
+                    climbed.add((best_at, *_ns(best_x)))
             if best_x is not None:  # moves around the best design
                 x = _moves(settings[best_at].problem, best_x, scale, rng)
                 mass, feasible = exacts[best_at](x)
@@ -882,6 +925,77 @@ def search_pairs(
         value = inc if own is not None else math.nan
         out.append(CellResult(floor, (lo, hi, b.copy()), own, value, judged))
     return out, best_at, frozenset(fired)
+
+
+def _seed(
+    settings: Sequence[Setting],
+    tabs: list[_Table],
+    tab_of: IntArray,
+    exacts: Sequence[Judge],
+) -> tuple[float, DesignPoints, int] | None:
+    """A design of P before the first cell pairs are formed, or None: :data:`SEED_POINTS`
+    points drawn in each layer's first cells that meet their own layer's bounds
+    (:func:`_cells` at the points), :data:`SEED_PAIRS` of their pairs drawn per sheet pair and
+    judged by the cells' rule at the points, the :data:`PROBES` lightest kept evaluated exactly
+    (P's own rule), and the best feasible one polished (:func:`~.polish.climb`) with those of
+    the next :data:`SEED_CLIMBS` - 1 sheet pairs. Any design will do (it only prunes): the
+    draws are fixed (seed 0)."""
+    rng = np.random.default_rng(0)
+    pts: list[tuple[_Cells, IntArray] | None] = []
+    for T in tabs:
+        L = T.cells
+        if not len(L):
+            pts.append(None)
+            continue
+        c = rng.integers(0, len(L), SEED_POINTS)
+        u = rng.random((2, SEED_POINTS))
+        W = L.W0[c] + u[0] * (L.W1[c] - L.W0[c])
+        a = L.a0[c] + u[1] * (L.a1[c] - L.a0[c])
+        pts.append(_cells(T.st, T.which, L.n[c], W, W, a, a))
+    found: list[tuple[float, int, int, int]] = []  # (mass, sheet pair, i, j)
+    for k, st in enumerate(settings):
+        one, two = pts[tab_of[k, 0]], pts[tab_of[k, 1]]
+        if one is None or two is None or not len(one[0]) or not len(two[0]):
+            continue
+        P1, P2 = one[0], two[0]
+        i = rng.integers(0, len(P1), SEED_PAIRS)
+        j = rng.integers(0, len(P2), SEED_PAIRS)
+        i, j, mass = _judge(st, P1, P2, i, j, math.inf)
+        if len(i) > PROBES:
+            sel = np.argpartition(mass, PROBES - 1)[:PROBES]
+            i, j, mass = i[sel], j[sel], mass[sel]
+        found.extend(zip(mass.tolist(), [k] * len(i), i.tolist(), j.tolist(), strict=True))
+    found.sort()
+    best: tuple[float, DesignPoints, int] | None = None
+    tried: list[int] = []
+    for _, k, _, _ in found:
+        if k in tried:
+            continue
+        tried.append(k)
+        if len(tried) > SEED_CLIMBS * 4:
+            break
+        mine = [(i, j) for _, kk, i, j in found if kk == k][:PROBES]
+        one, two = pts[tab_of[k, 0]], pts[tab_of[k, 1]]
+        assert one is not None and two is not None  # the pair had points
+        P1, P2 = one[0], two[0]
+        ii = np.array([x[0] for x in mine])
+        jj = np.array([x[1] for x in mine])
+        x = DesignPoints.of(
+            LayerPoints(P1.n[ii], P1.W0[ii], P1.a0[ii]),
+            LayerPoints(P2.n[jj], P2.W0[jj], P2.a0[jj]),
+        )
+        mass, feasible = exacts[k](x)
+        f = np.where(feasible, mass, math.inf)
+        b = int(np.argmin(f))
+        if not math.isfinite(float(f[b])):
+            continue
+        st = settings[k]
+        got = climb(st.problem, *st.sheets, x.point(b), st.tables, exacts[k], set())
+        if got is not None and (best is None or got.mass < best[0]):
+            best = (got.mass, got.point, k)
+        if len(tried) >= SEED_CLIMBS and best is not None:
+            break
+    return best
 
 
 def judge_of(problem: Problem, c1: Candidate, c2: Candidate, tables: Tables) -> Judge:

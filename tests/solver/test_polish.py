@@ -1,0 +1,120 @@
+"""The incumbent of the cells' search (:mod:`corrugate.solver.polish`, ``cells._seed``): a design
+it returns meets every constraint of the problem exactly (checked here by ``point_values``, no
+slack) and is no lighter than the certified optimum of its sheet pair found by a second method,
+the branch and bound of the pair's whole domain; the polish never returns a design heavier than
+its start.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+
+import numpy as np
+
+from corrugate.solver import Problem, cells
+from corrugate.solver.bnb import GAP_RTOL, branch_and_bound
+from corrugate.solver.points import DesignPoints, LayerPoints
+from corrugate.solver.polish import climb, polish
+from corrugate.solver.problem import Candidate
+from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.quantity import MASS
+from corrugate.solver.solve import pairs
+from corrugate.spec.schema import Spec
+
+
+def _problem() -> Problem:
+    """Two dura-lar sheets, continuous W and alpha, independent layers on a rectangle, nominal
+    (tests/solver/test_cells.py's problem)."""
+    lines = [
+        'name = "polish"',
+        'model = "refined"',
+        'layers = "independent"',
+        'tolerances = "none"',
+        "[[materials]]",
+        'name = "dura-lar"',
+        'thickness = ["0.075 mm", "0.125 mm"]',
+        "[layout]",
+        'shape = "rectangle"',
+        "[variables]",
+        'W = { min = "7 mm", max = "11 mm" }',
+        "n = { min = 5, max = 7 }",
+        'alpha = { min = "70 deg", max = "100 deg" }',
+        "[constraints]",
+        'side_x = { min = "60 mm", max = "80 mm" }',
+        'side_y = { min = "40 mm", max = "60 mm" }',
+        'thickness = { min = "8 mm", max = "16 mm" }',
+        'flexural_rigidity = [{ min = "120 mN*m^2", eta = "0 deg" }, '
+        '{ min = "40 mN*m^2", eta = "90 deg" }]',
+    ]
+    return Problem.from_spec(Spec.model_validate(tomllib.loads("\n".join(lines))))
+
+
+def _meets(p: Problem, c1: Candidate, c2: Candidate, x: DesignPoints, tables: Tables) -> float:
+    """The mass (g) of the one design ``x``, asserting it meets every constraint exactly."""
+    vals = point_values(p, c1, c2, x.arrays(), tables)
+    for c in p.constraints:
+        assert bool(np.all(c.satisfied(vals[c.quantity], rtol=0.0))), c.name
+    return float(np.asarray(vals[MASS]).reshape(-1)[0])
+
+
+def _feasible_start(
+    p: Problem, c1: Candidate, c2: Candidate, tables: Tables
+) -> tuple[DesignPoints, float]:
+    """The lightest of designs drawn at random on a grid that meets every constraint."""
+    rng = np.random.default_rng(1)
+    k = 4000
+    x = DesignPoints.of(
+        LayerPoints(
+            rng.integers(p.n_lo, p.n_hi + 1, k).astype(float),
+            rng.uniform(p.W.lo, p.W.top, k),
+            rng.uniform(p.alpha.lo, p.alpha.top, k),
+        ),
+        LayerPoints(
+            rng.integers(p.n_lo, p.n_hi + 1, k).astype(float),
+            rng.uniform(p.W.lo, p.W.top, k),
+            rng.uniform(p.alpha.lo, p.alpha.top, k),
+        ),
+    )
+    mass, ok = cells.judge_of(p, c1, c2, tables)(x)
+    f = np.where(ok, mass, math.inf)
+    b = int(np.argmin(f))
+    assert math.isfinite(float(f[b]))  # some drawn design meets every constraint
+    return x.point(b), float(f[b])
+
+
+def test_polish_meets_the_constraints_and_is_no_lighter_than_the_optimum() -> None:
+    p = _problem()
+    tables = Tables(p)
+    c1, c2 = pairs(p)[2]  # thick and thin: the pair of the optimum
+    best = branch_and_bound(p, c1, c2)
+    assert best.certified and best.point is not None
+    x0, m0 = _feasible_start(p, c1, c2, tables)
+    exact = cells.judge_of(p, c1, c2, tables)
+    got = polish(p, c1, c2, x0, tables, exact)
+    assert got is not None
+    mass = _meets(p, c1, c2, got.point, tables)
+    assert mass == got.mass
+    assert mass <= m0  # never heavier than its start
+    assert mass >= best.value * (1 - 2 * GAP_RTOL)  # nothing is lighter than the optimum
+    climbed = climb(p, c1, c2, x0, tables, exact, set())
+    assert climbed is not None and climbed.mass <= mass
+    assert _meets(p, c1, c2, climbed.point, tables) == climbed.mass
+    assert climbed.mass >= best.value * (1 - 2 * GAP_RTOL)
+
+
+def test_the_seed_is_a_design_no_lighter_than_the_optimum() -> None:
+    p = _problem()
+    tables = Tables(p)
+    everything = pairs(p)
+    settings = [cells.setting(p, a, b, tables) for a, b in everything]
+    exacts = [cells.judge_of(p, a, b, tables) for a, b in everything]
+    tabs = [cells._Table(st, w) for st in settings for w in (1, 2)]
+    tab_of = np.arange(2 * len(settings)).reshape(-1, 2)
+    got = cells._seed(settings, tabs, tab_of, exacts)
+    assert got is not None
+    mass, x, k = got
+    assert _meets(p, *everything[k], x, tables) == mass
+    plain = [branch_and_bound(p, a, b) for a, b in everything]
+    best = min(r.value for r in plain if r.point is not None)
+    assert mass >= best * (1 - 2 * GAP_RTOL)
