@@ -133,11 +133,18 @@ PROBE_POINTS = 4
 PROBES = 64
 #: Sheet pairs probed at once: those of the least mass bounds.
 PROBE_SHEETS = 2
+#: The first cell pairs past which a search with no incumbent seeks one before forming them
+#: (:func:`_seed`), polishes the best designs it finds (:func:`~.polish.climb`) and probes
+#: anywhere in the queue all along (else only until a first design): benchmarks/edges.py's
+#: films-5-cont has 0.81 M first pairs, films-13-cont 5.5 M.
+SEED_FROM = 2_000_000
 #: Before the first cell pairs (:func:`_seed`): the points drawn in each layer's first cells,
 #: the pairs of them judged per sheet pair, and the sheet pairs whose best design is polished.
 SEED_POINTS = 2048
 SEED_PAIRS = 2048
-SEED_CLIMBS = 1
+SEED_CLIMBS = 2
+#: The polishes of each of those climbs at most.
+SEED_CLIMB = 30
 #: The (sheet pair, n1, n2) polished at most in the search (:func:`~.polish.climb`).
 POLISHES = 8
 #: Sheet pairs probed at once anywhere in the queue.
@@ -790,7 +797,8 @@ def search_pairs(
         none = np.empty((0, 6))
         gave_up = CellResult(0.0, (none, none, np.empty(0)), None, math.nan, 0, False)
         return [gave_up] * len(settings), -1, frozenset()
-    if exacts is not None and not math.isfinite(inc):  # a design before the first pairs
+    wide = first > SEED_FROM  # a design sought before the first pairs, and polished
+    if exacts is not None and not math.isfinite(inc) and wide:
         seeded = _seed(settings, tabs, tab_of, exacts)
         if seeded is not None and seeded[0] < inc:
             inc, best_x, best_at = seeded
@@ -820,7 +828,7 @@ def search_pairs(
             order = low[np.argsort(lb[low])]
             ks = list(dict.fromkeys(K[order].tolist()))[:PROBE_SHEETS]
             tries = [(k, order[K[order] == k]) for k in ks]
-            if not math.isfinite(incumbent):  # and anywhere in the queue
+            if not math.isfinite(incumbent) and (best_x is None or wide):  # and anywhere
                 anywhere = rng.integers(0, len(I), PROBE_PAIRS)
                 far = list(dict.fromkeys(K[anywhere].tolist()))[:PROBE_FAR]
                 tries += [(k, anywhere[K[anywhere] == k]) for k in far]
@@ -837,7 +845,8 @@ def search_pairs(
                     worst = inc * (1 + SLACK)
             polished = sum(len(d) for d in climbed_n.values())
             if (
-                best_x is not None
+                wide
+                and best_x is not None
                 and (best_at, *_ns(best_x)) not in climbed
                 and polished < POLISHES
             ):  # polish it
@@ -990,7 +999,7 @@ def _seed(
         if not math.isfinite(float(f[b])):
             continue
         st = settings[k]
-        got = climb(st.problem, *st.sheets, x.point(b), st.tables, exacts[k], set())
+        got = climb(st.problem, *st.sheets, x.point(b), st.tables, exacts[k], set(), SEED_CLIMB)
         if got is not None and (best is None or got.mass < best[0]):
             best = (got.mass, got.point, k)
         if len(tried) >= SEED_CLIMBS and best is not None:
