@@ -39,7 +39,10 @@ every sheet pair of its sheet). Every few rounds it evaluates designs exactly wi
 certified values (``point_values``, tolerances included, every constraint met with no slack: the
 branch and bound's rule for continuous variables): designs drawn in the lightest pairs and anywhere
 in the queue that the rule above does not exclude at the point itself, and designs around the best
-one found; the best feasible one is the incumbent of every sheet pair. Each child pair lies in its
+one found; the best feasible one is the incumbent of every sheet pair. Past :data:`SEED_FROM`
+first cell pairs with no incumbent, a design is sought before they are formed (:func:`_seed`) and
+the best designs found are polished (:mod:`.polish`): both only lower the incumbent, with designs
+P's own rule accepts, so nothing below depends on them. Each child pair lies in its
 parent, so the pairs left always cover every design of P lighter than the incumbent. The search
 stops when none is left below the incumbent less :data:`CELL_GAP` (relative) or at its budget;
 then

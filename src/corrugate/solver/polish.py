@@ -20,7 +20,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import minimize
 
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Candidate, Problem
@@ -111,6 +110,8 @@ def polish(
             cache.clear()
             cache[key] = (float(mass[0]), gm, marg[0], gc.T)
         return cache[key]
+
+    from scipy.optimize import minimize  # here: its import is not paid by every solve
 
     m0, ok0 = exact(_points(n1, n2, np.asarray([first])))
     start = float(m0[0]) if bool(ok0[0]) else math.inf
