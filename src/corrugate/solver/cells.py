@@ -106,6 +106,8 @@ __all__ = ["BUDGET", "FIRST_ALPHA", "FIRST_W", "CellArchive", "CellResult", "sea
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
+#: The queue's cell indices (int32) and the sheet pairs (int16): 14 bytes a pair with its bound
+Index = NDArray[np.signedinteger[Any]]
 
 #: Relative slack toward keeping with which a cell pair is judged (rounding of the products).
 SLACK = 1e-12
@@ -451,7 +453,7 @@ def _terms(
     return (u, v, 1.0 / E10, E21) if q.kind == "D" else (u, v, one1, E21)
 
 
-def _inner_upper(q: Quantity, L1: _Cells, L2: _Cells, i: IntArray, j: IntArray) -> FloatArray:
+def _inner_upper(q: Quantity, L1: _Cells, L2: _Cells, i: Index, j: Index) -> FloatArray:
     """An upper bound of the certified value of stiffness ``q`` (along the creases, free
     sides) over the cell pairs (i, j): its lower bound over the inner boxes on t's thinnest
     piece (the certified value is the least over the pieces), as :mod:`~.stiffness` computes it there (D(0) = D_S1 + D_C2, EI(0) = D(0)
@@ -493,11 +495,11 @@ def _judge(
     st: Setting,
     L1: _Cells,
     L2: _Cells,
-    I: IntArray,
-    J: IntArray,
+    I: Index,
+    J: Index,
     worst: float,
     fired: set[int] | None = None,
-) -> tuple[IntArray, IntArray, FloatArray]:
+) -> tuple[Index, Index, FloatArray]:
     """The cell pairs (I, J) that may hold a design of the problem lighter than ``worst`` (g)
     (module docstring), and their mass lower bounds (g), judged in chunks. ``fired``: the
     constraints (by index) that alone drop a pair lighter than ``worst`` are added to it."""
@@ -590,7 +592,7 @@ def _spans(problem: Problem) -> tuple[float, float]:
     return problem.W.top - problem.W.lo, problem.alpha.top - problem.alpha.lo
 
 
-def _width(L: _Cells, ids: IntArray, spans: tuple[float, float]) -> FloatArray:
+def _width(L: _Cells, ids: Index, spans: tuple[float, float]) -> FloatArray:
     """The relative width of cells ``ids``: the larger of W's and alpha's over their ranges."""
     return np.maximum((L.W1[ids] - L.W0[ids]) / spans[0], (L.a1[ids] - L.a0[ids]) / spans[1])
 
@@ -687,7 +689,7 @@ class _Table:
         self.kids = np.full((len(self.buf), 2), -2, dtype=np.int64)
         self.cells = _head(self.buf, self.size)
 
-    def children(self, ids: IntArray, fired: tuple[set[int], float] | None = None) -> IntArray:
+    def children(self, ids: Index, fired: tuple[set[int], float] | None = None) -> IntArray:
         """The children of cells ``ids`` (len(ids) x 2), split now where not yet (``fired``:
         :func:`_cells`')."""
         new = np.unique(ids[self.kids[ids, 0] == -2])
@@ -807,14 +809,19 @@ def search_pairs(
             inc, best_x, best_at = seeded
             worst = inc * (1 + SLACK)
     Ks, Is, Js, Bs = [], [], [], []
+    kind = np.int16 if len(settings) < 2**15 else np.int32  # the sheet pairs' index
     judged = 0
     for k, st in enumerate(settings):
         T1, T2 = tabs[tab_of[k, 0]], tabs[tab_of[k, 1]]
-        grid = np.meshgrid(np.arange(len(T1.cells)), np.arange(len(T2.cells)), indexing="ij")
-        I, J = (g.reshape(-1).astype(np.int64) for g in grid)
+        grid = np.meshgrid(
+            np.arange(len(T1.cells), dtype=np.int32),
+            np.arange(len(T2.cells), dtype=np.int32),
+            indexing="ij",
+        )
+        I, J = (g.reshape(-1) for g in grid)
         judged += len(I)
         I, J, lb = _judge(st, T1.cells, T2.cells, I, J, worst, fired)
-        Ks.append(np.full(len(I), k, dtype=np.int64))
+        Ks.append(np.full(len(I), k, dtype=kind))
         Is.append(I)
         Js.append(J)
         Bs.append(lb)
@@ -909,8 +916,8 @@ def search_pairs(
                 sel = side & (tt == t)
                 kids[sel] = tabs[t].children(ids[sel], (fired, worst))
         nK = np.repeat(pK, 2)
-        nI = np.where(np.repeat(one, 2), kids.reshape(-1), np.repeat(pI, 2))
-        nJ = np.where(np.repeat(one, 2), np.repeat(pJ, 2), kids.reshape(-1))
+        nI = np.where(np.repeat(one, 2), kids.reshape(-1), np.repeat(pI, 2)).astype(np.int32)
+        nJ = np.where(np.repeat(one, 2), np.repeat(pJ, 2), kids.reshape(-1)).astype(np.int32)
         ok = (nI >= 0) & (nJ >= 0)
         nK, nI, nJ = nK[ok], nI[ok], nJ[ok]
         judged += len(nK)
@@ -919,7 +926,7 @@ def search_pairs(
             sel = nK == k
             T1, T2 = tabs[tab_of[k, 0]], tabs[tab_of[k, 1]]
             gI, gJ, gb = _judge(settings[k], T1.cells, T2.cells, nI[sel], nJ[sel], worst, fired)
-            parts.append((np.full(len(gI), k, dtype=np.int64), gI, gJ, gb))
+            parts.append((np.full(len(gI), k, dtype=kind), gI, gJ, gb))
         K = np.concatenate([x[0] for x in parts])
         I = np.concatenate([x[1] for x in parts])
         J = np.concatenate([x[2] for x in parts])
