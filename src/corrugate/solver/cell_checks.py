@@ -270,7 +270,9 @@ def _judge(
         lb = lb + layer_mass(m2.density, c2.t, L2.W0[j], length_sum(lay, L2.n[j], L1.E0[i]), lay)
         lb = lb + connector_mass(m1.density, c1.t, lay, L1.E0[i], L2.E0[j], L1.h0[i] + L2.h0[j])
         lb = np.asarray(lb) * down
-        alive = lb < worst
+        light = np.flatnonzero(lb < worst)  # the others: dropped for every check
+        i, j, lb = i[light], j[light], lb[light]
+        alive = np.ones(len(i), dtype=bool)
         fail = A.fail[i] | B.fail[j]
         met = A.met[i] & B.met[j]
         for k, c in enumerate(p.constraints):
@@ -304,7 +306,7 @@ def _judge(
                 ok &= (met & np.int64(ch.bits)) != ch.bits
             mask = np.where(ok, mask | np.int64(1 << at), mask)
         if parent is not None:
-            mask &= parent[s : s + cells.CHUNK]
+            mask &= parent[s : s + cells.CHUNK][light]
         keep = mask != 0
         outs.append((i[keep], j[keep], lb[keep], mask[keep]))
     if not outs:
