@@ -8,11 +8,14 @@
   designs drawn in it (the problem's certified values, no slack);
 * the binding check of a constraint that never fired in the cells, searched with its negation
   from the solve's boxes, gives the answer of the plain per-pair branch and bound of the
-  problem without it over every sheet pair's whole domain.
+  problem without it over every sheet pair's whole domain;
+* the runner-ups of a cells solve are those of the plain per-pair branch and bound, one
+  incumbent per n.
 """
 
 from __future__ import annotations
 
+import math
 import tomllib
 from dataclasses import replace
 
@@ -25,7 +28,10 @@ from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import THICKNESS
 from corrugate.solver.solve import (
+    RUNNER_UP_GAP_RTOL,
+    RUNNER_UP_SPREAD,
     _cell_binding,
+    _runner_ups,
     _shared_cell_binding,
     _witnesses,
     optimize,
@@ -171,3 +177,29 @@ def test_a_check_that_never_fired_is_the_plain_search() -> None:
         assert r.certified or r.point is not None
         plain |= r.point is not None and r.value < goal
     assert _cell_binding(p, opt, name, tables, tol) is plain
+
+
+@pytest.mark.slow
+def test_runner_ups_of_a_cells_solve_are_the_plain_search_per_n() -> None:
+    """The runner-ups of a cells solve (one cells search per n) against the plain branch and
+    bound of every sheet pair's whole domain with one incumbent per n (``per_n``): the same n
+    have a design, each mass within both searches' relative gap RUNNER_UP_GAP_RTOL."""
+    p = _problem(True, False)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.point is not None and opt.starts is not None  # by cells
+    rows = _runner_ups(p, opt, tables)
+    n0 = round(opt.point.layer(0).n)
+    span = (max(p.n_lo, n0 - RUNNER_UP_SPREAD), min(p.n_hi, n0 + RUNNER_UP_SPREAD))
+    plain: dict[int, float] = {}
+    for a, b in pairs(p):
+        r = branch_and_bound(p, a, b, tables=tables, per_n=span, gap_rtol=RUNNER_UP_GAP_RTOL)
+        assert r.by_n is not None
+        for n, rn in r.by_n.items():
+            assert rn.certified
+            if rn.point is not None:
+                plain[n] = min(plain.get(n, math.inf), rn.value)
+    assert {row.n for row in rows} == set(plain) and len(plain) >= 3
+    for row in rows:
+        assert row.certified
+        assert abs(row.objective - plain[row.n]) <= 2 * RUNNER_UP_GAP_RTOL * plain[row.n]

@@ -1496,13 +1496,16 @@ def _shared_cell_binding(
 
 
 def _cell_runner_ups(
-    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int]
+    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int], skip: int | None = None
 ) -> dict[int, Optimum]:
-    """The runner-ups of a problem solved by its cells: for each n of ``span`` but the
-    optimum's own, :func:`optimize` of the problem with both layers' n fixed to n (its cells
-    and branch and bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
+    """The runner-ups of a problem solved by its cells: for each n of ``span`` but ``skip``
+    (the optimum's own n when both its layers have it: the optimum is its runner-up),
+    :func:`optimize` of the problem with both layers' n fixed to n (its cells and branch and
+    bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
     out: dict[int, Optimum] = {}
     for n in range(span[0], span[1] + 1):
+        if n == skip:
+            continue
         if budget_spent():
             break
         fixed = replace(problem, n_lo=n, n_hi=n)
@@ -1535,7 +1538,7 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     everything = pairs(problem)
     if _cellular(opt):
         own_n = opt.certified and round(opt.point.layer(1).n) == n_star
-        got = _cell_runner_ups(problem, opt, tables, (a, b))
+        got = _cell_runner_ups(problem, opt, tables, (a, b), n_star if own_n else None)
         rows = []
         for n in range(a, b + 1):
             found = opt if n == n_star and own_n else got.get(n)
