@@ -38,7 +38,7 @@ from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
-from corrugate.solver import cells
+from corrugate.solver import cell_checks, cells
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
@@ -1119,6 +1119,9 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
     joint: dict[str, bool | None] = {}
     if tree is not None and problem.gridded and pending:
         joint = _joint_binding(problem, opt, tree, pending, tables)
+    together: dict[str, bool | None] = {}
+    if cellular and not budget_spent():  # the checks that fired in the cells: one search
+        together = _shared_cell_binding(problem, opt, pending, tables, tol)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -1128,6 +1131,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
             binding = True
         elif c.name in joint and (joint[c.name] is not False or not opt.pruned):
             binding = joint[c.name]  # found, stopped (None), or no pair left to search
+        elif c.name in together:
+            binding = together[c.name]
         elif cellular and not budget_spent():  # the cells' search of each check
             binding = _cell_binding(problem, opt, c.name, tables, tol)
         elif not budget_spent():
@@ -1406,8 +1411,10 @@ def _cell_binding(
     own = {i for i, c in enumerate(problem.constraints) if c.name == name}
     if opt.starts is not None and opt.fired is not None and not own & opt.fired:
         # it dropped nothing the solve's cells dropped: its designs lighter than the
-        # optimum lie in the boxes they left, searched for one by the branch and bound
-        check, everything, certified = problem.without(name), pairs(problem), True
+        # optimum lie in the boxes they left, searched for one by the branch and bound of
+        # the check's problem with the constraint's negation (:func:`_relaxed`: the optimum
+        # is certified, so each of them breaks it; the boxes where it holds are dropped)
+        check, everything, certified = _relaxed(problem, name), pairs(problem), True
         for k, (lo, hi, low) in enumerate(opt.starts):
             keep = low < goal
             if not keep.any():
@@ -1430,14 +1437,75 @@ def _cell_binding(
     return False if got.certified else None
 
 
+def _shared_cell_binding(
+    problem: Problem, opt: Optimum, names: Sequence[str], tables: Tables, tol: float
+) -> dict[str, bool | None]:
+    """Whether each constraint of ``names`` that fired in the solve's cells
+    (:attr:`Optimum.fired`) binds, for a problem solved by its cells: the answers of
+    :func:`_cell_binding`, all found by one shared cells search
+    (:func:`~.cell_checks.shared_search`, below the goal, the optimum less ``tol`` in g) and,
+    for each check it leaves open, the branch and bound of the check's problem
+    (:func:`_relaxed`: the optimum is certified) from the boxes it left of each sheet pair,
+    the optimum's pair first, stopped at the first design below the goal. Empty (each check
+    then searched on its own) when the optimum is not certified, nothing fired, or the shared
+    search does not apply or stopped at its budget; None for a check whose search was not
+    certified."""
+    if not opt.certified or opt.fired is None or problem.objective.sense != "min":
+        return {}
+    fired = {problem.constraints[i].name for i in opt.fired}
+    checks = cell_checks.checks_of(problem, [n for n in names if n in fired], True)
+    if not checks or not cell_checks.applies(problem, checks):
+        return {}
+    goal = opt.value - tol
+    everything = pairs(problem)
+    got = cell_checks.shared_search(problem, everything, tables, checks, goal)
+    if not got.settled:
+        return {}
+    first = everything.index(opt.candidates) if opt.candidates in everything else -1
+    out: dict[str, bool | None] = {}
+    for ch in checks:
+        if got.found[ch.name]:
+            out[ch.name] = True
+            continue
+        check = _relaxed(problem, ch.name, True)
+        answer: bool | None = False
+        starts = got.starts.get(ch.name, {})
+        for k in sorted(starts, key=lambda k: (k != first, float(starts[k][2].min()), k)):
+            lo, hi, low = starts[k]
+            keep = low < goal - GAP_RTOL * abs(goal)
+            if not keep.any():
+                continue
+            if budget_spent():
+                answer = None
+                break
+            r = branch_and_bound(
+                check,
+                *everything[k],
+                incumbent=goal,
+                tables=tables,
+                start=(lo[keep], hi[keep], low[keep]),
+                stop_below=goal,
+            )
+            if r.point is not None and r.value < goal:
+                answer = True
+                break
+            if not r.certified:
+                answer = None
+        out[ch.name] = answer
+    return out
+
+
 def _cell_runner_ups(
-    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int]
+    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int], skip: int | None = None
 ) -> dict[int, Optimum]:
-    """The runner-ups of a problem solved by its cells: for each n of ``span`` but the
-    optimum's own, :func:`optimize` of the problem with both layers' n fixed to n (its cells
-    and branch and bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
+    """The runner-ups of a problem solved by its cells: for each n of ``span`` but ``skip``
+    (the optimum's own n when both its layers have it: the optimum is its runner-up),
+    :func:`optimize` of the problem with both layers' n fixed to n (its cells and branch and
+    bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
     out: dict[int, Optimum] = {}
     for n in range(span[0], span[1] + 1):
+        if n == skip:
+            continue
         if budget_spent():
             break
         fixed = replace(problem, n_lo=n, n_hi=n)
@@ -1470,7 +1538,7 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     everything = pairs(problem)
     if _cellular(opt):
         own_n = opt.certified and round(opt.point.layer(1).n) == n_star
-        got = _cell_runner_ups(problem, opt, tables, (a, b))
+        got = _cell_runner_ups(problem, opt, tables, (a, b), n_star if own_n else None)
         rows = []
         for n in range(a, b + 1):
             found = opt if n == n_star and own_n else got.get(n)
