@@ -303,3 +303,26 @@ def test_progress_is_reported_once_per_iteration() -> None:
     finite = [s for s in seen if s[2] is not None]
     assert finite and all(b >= opt.value * (1 - 1e-12) for _, _, b in finite)
     assert all(g >= 0 and (math.isinf(g) or g < 10) for _, g, _ in seen)
+
+
+@pytest.mark.parametrize("ncons", [1, 5, 12, 16, 17, 40, 52, 53, 63])
+def test_bit_sets_and_distinct_equal_numpys_reductions(ncons: int) -> None:
+    """The archive's bit sets of broken constraints (:func:`archive.bit_sets`: a product with
+    powers of two, or bit by bit past 52 constraints) and their distinct values
+    (:func:`archive.distinct`: a table up to 16 constraints) equal numpy's bitwise-or reduction,
+    row sums and ``np.unique`` on random rows."""
+    rng = np.random.default_rng(ncons)
+    bits = np.uint64(1) << np.arange(ncons, dtype=np.uint64)
+    for rows in (0, 1, 7, 3000):
+        broken = rng.random((rows, ncons)) < 0.2
+        mask, count = archive.bit_sets(broken)
+        ref = np.zeros(rows, dtype=np.uint64)
+        for i in range(ncons):
+            ref |= np.where(broken[:, i], bits[i], np.uint64(0))
+        assert mask.dtype == np.uint64
+        np.testing.assert_array_equal(mask, ref)
+        np.testing.assert_array_equal(count, broken.sum(axis=1))
+        values, index = archive.distinct(mask, ncons)
+        want, inverse = np.unique(ref, return_inverse=True)
+        np.testing.assert_array_equal(values, want)
+        np.testing.assert_array_equal(index, inverse.reshape(-1))
