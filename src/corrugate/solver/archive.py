@@ -64,8 +64,8 @@ def distinct(mask: NDArray[np.uint64], ncons: int) -> tuple[NDArray[np.uint64], 
     as ``np.unique(mask, return_inverse=True)``: for at most :data:`_TABLE_BITS` constraints
     by a table of every bit set (no sort), else by ``np.unique``."""
     if ncons > _TABLE_BITS:
-        values, index = np.unique(mask, return_inverse=True)
-        return values, index.reshape(-1).astype(np.int64)
+        found, index = np.unique(mask, return_inverse=True)
+        return found, index.reshape(-1).astype(np.int64)
     present = np.zeros(1 << ncons, dtype=bool)
     m = mask.astype(np.int64)
     present[m] = True
