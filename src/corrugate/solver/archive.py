@@ -171,10 +171,12 @@ class Recorder(NoRecorder):
     ) -> None:
         """The boxes ``sel`` of (lo, hi, bound), closed by the constraints their rows of
         ``broken`` (boxes x constraints) show broken everywhere in them."""
-        if not sel.any():
+        rows = np.flatnonzero(sel)
+        if not len(rows) or not self.ok:
             return
-        mask, kept = self.masks(broken[sel])
-        self.add(lo[sel][kept], hi[sel][kept], bound[sel][kept], mask[kept])
+        mask, kept = self.masks(broken[rows])
+        rows = rows[kept]
+        self.add(lo[rows], hi[rows], bound[rows], mask[kept])
 
     def dropped(
         self,
