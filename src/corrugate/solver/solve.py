@@ -40,12 +40,12 @@ from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
 from corrugate.solver import cells
 from corrugate.solver.archive import Archive
-from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
+from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound, enumerated_per_n
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.cells import with_cells
 from corrugate.solver.choices import RELAX, CellFloors, Floors, floors, shared_lists
 from corrugate.solver.joint_checks import Check, joint_search, reopened
-from corrugate.solver.points import DesignPoints, coordinates
+from corrugate.solver.points import VARIABLES, DesignPoints, LayerPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
 from corrugate.solver.quantities import Tables, point_values
@@ -1051,14 +1051,44 @@ def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> se
     (judged as the search judges points: exactly for continuous variables, to
     :data:`~.problem.FEAS_RTOL` on grids), so the search of the binding check would find a
     better design too. One evaluation for every constraint, before any search."""
+    return _probed(problem, opt, tables, tol)[1]
+
+
+def _probed(
+    problem: Problem, opt: Optimum, tables: Tables, tol: float
+) -> tuple[dict[Quantity, float], set[str]]:
+    """The optimum's values (:func:`_values_at`) and the constraints its probe shows binding
+    (:func:`_witnesses`), from one evaluation of the optimum and the probe's points together
+    (every value is elementwise in the points: the same values as two evaluations)."""
     assert opt.point is not None
     assert opt.candidates is not None
     if not problem.constraints:
-        return set()
+        return _values_at(problem, opt, tables), set()
     x = _probe_points(problem, opt.point)
     if not len(x):
-        return set()
-    vals = point_values(problem, *opt.candidates, x, tables)
+        return _values_at(problem, opt, tables), set()
+    here = opt.point.arrays()
+    if len(x.layers) != len(here.layers) or x.count != here.count:  # not stored alike
+        vals = point_values(problem, *opt.candidates, x, tables)
+        return _values_at(problem, opt, tables), _witnessed(problem, opt, vals, tol)
+    both = DesignPoints(
+        tuple(
+            LayerPoints(*(np.concatenate([getattr(a, v), getattr(b, v)]) for v in VARIABLES))
+            for a, b in zip(here.layers, x.layers, strict=True)
+        ),
+        x.count,
+    )
+    every = point_values(problem, *opt.candidates, both, tables)
+    at = {k: float(v[0]) for k, v in every.items()}
+    vals = {k: v[1:] for k, v in every.items()}
+    return at, _witnessed(problem, opt, vals, tol)
+
+
+def _witnessed(
+    problem: Problem, opt: Optimum, vals: dict[Quantity, FloatArray], tol: float
+) -> set[str]:
+    """The constraints :func:`_witnesses` names, from the values ``vals`` of the probe's
+    points."""
     rtol = FEAS_RTOL if problem.gridded else 0.0
     broken = np.stack(
         [~c.satisfied(vals[c.quantity], rtol=rtol) for c in problem.constraints], axis=1
@@ -1103,11 +1133,10 @@ def _negation(c: Constraint, problem: Problem) -> Constraint:
 
 
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
-    vals = _values_at(problem, opt, tables)
+    tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
+    vals, witnessed = _probed(problem, opt, tables, tol)
     capacity = _capacities(problem, opt, tables, vals)
     tree = opt.trees()
-    tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
-    witnessed = _witnesses(problem, opt, tables, tol)
     shared, idle = None, frozenset[str]()
     cellular = _cellular(opt)
     if tree is not None and not cellular:
@@ -1486,9 +1515,21 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
         if tree is not None and tree[i] is None:
             continue  # pruned whole: below, against the runner-ups of the others
         start = None if tree is None else tree[i].reopen()  # type: ignore[union-attr]
-        r = branch_and_bound(
-            problem, *pair, tables=tables, start=start, per_n=(a, b), gap_rtol=RUNNER_UP_GAP_RTOL
+        # few grid points left: all evaluated at once, the search's answer (enumerated_per_n)
+        r = (
+            None
+            if start is None
+            else enumerated_per_n(problem, *pair, start=start, per_n=(a, b), tables=tables)
         )
+        if r is None:
+            r = branch_and_bound(
+                problem,
+                *pair,
+                tables=tables,
+                start=start,
+                per_n=(a, b),
+                gap_rtol=RUNNER_UP_GAP_RTOL,
+            )
         assert r.by_n is not None
         for n, rn in r.by_n.items():
             certified[n] &= rn.certified
