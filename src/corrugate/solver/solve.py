@@ -38,13 +38,19 @@ from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
-from corrugate.solver import cells
+from corrugate.solver import cells, tolerance_box
 from corrugate.solver.archive import Archive
 from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound, enumerated_per_n
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.cells import with_cells
 from corrugate.solver.choices import RELAX, CellFloors, Floors, floors, shared_lists
-from corrugate.solver.joint_checks import Check, joint_search, reopened
+from corrugate.solver.joint_checks import (
+    Check,
+    answered_by,
+    joint_search,
+    reopened,
+    three_points,
+)
 from corrugate.solver.points import VARIABLES, DesignPoints, LayerPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
@@ -1055,33 +1061,61 @@ def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> se
 
 
 def _probed(
-    problem: Problem, opt: Optimum, tables: Tables, tol: float
-) -> tuple[dict[Quantity, float], set[str]]:
-    """The optimum's values (:func:`_values_at`) and the constraints its probe shows binding
-    (:func:`_witnesses`), from one evaluation of the optimum and the probe's points together
-    (every value is elementwise in the points: the same values as two evaluations)."""
+    problem: Problem, opt: Optimum, tables: Tables, tol: float, extra: FloatArray | None = None
+) -> tuple[dict[Quantity, float], set[str], dict[Quantity, FloatArray] | None]:
+    """The optimum's values (:func:`_values_at`), the constraints its probe shows binding
+    (:func:`_witnesses`) and the values at the points ``extra`` (rows of the search's
+    coordinates on the optimum's sheets; None: none), from one evaluation of the optimum, the
+    probe's points and ``extra`` together (every value is elementwise in the points: the same
+    values as separate evaluations)."""
     assert opt.point is not None
     assert opt.candidates is not None
-    if not problem.constraints:
-        return _values_at(problem, opt, tables), set()
-    x = _probe_points(problem, opt.point)
-    if not len(x):
-        return _values_at(problem, opt, tables), set()
     here = opt.point.arrays()
-    if len(x.layers) != len(here.layers) or x.count != here.count:  # not stored alike
-        vals = point_values(problem, *opt.candidates, x, tables)
-        return _values_at(problem, opt, tables), _witnessed(problem, opt, vals, tol)
-    both = DesignPoints(
-        tuple(
-            LayerPoints(*(np.concatenate([getattr(a, v), getattr(b, v)]) for v in VARIABLES))
-            for a, b in zip(here.layers, x.layers, strict=True)
-        ),
-        x.count,
-    )
-    every = point_values(problem, *opt.candidates, both, tables)
+    x = _probe_points(problem, opt.point) if problem.constraints else None
+    probe = x if x is not None and len(x) else None
+    more = DesignPoints.from_columns(extra) if extra is not None and len(extra) else None
+    parts = [d for d in (here, probe, more) if d is not None]
+    if any(len(d.layers) != len(here.layers) or d.count != here.count for d in parts):
+        return _probed_apart(problem, opt, tables, tol, probe, more)  # not stored alike
+    every = point_values(problem, *opt.candidates, _joined(parts), tables)
     at = {k: float(v[0]) for k, v in every.items()}
-    vals = {k: v[1:] for k, v in every.items()}
-    return at, _witnessed(problem, opt, vals, tol)
+    end = 1 + (0 if probe is None else len(probe))
+    witnessed = set()
+    if probe is not None:
+        witnessed = _witnessed(problem, opt, {k: v[1:end] for k, v in every.items()}, tol)
+    return at, witnessed, None if more is None else {k: v[end:] for k, v in every.items()}
+
+
+def _joined(parts: Sequence[DesignPoints]) -> DesignPoints:
+    """The points of ``parts`` (stored alike) one after the other."""
+    return DesignPoints(
+        tuple(
+            LayerPoints(
+                *(np.concatenate([getattr(p.layers[i], v) for p in parts]) for v in VARIABLES)
+            )
+            for i in range(len(parts[0].layers))
+        ),
+        parts[0].count,
+    )
+
+
+def _probed_apart(
+    problem: Problem,
+    opt: Optimum,
+    tables: Tables,
+    tol: float,
+    probe: DesignPoints | None,
+    extra: DesignPoints | None,
+) -> tuple[dict[Quantity, float], set[str], dict[Quantity, FloatArray] | None]:
+    """:func:`_probed` by one evaluation of each part (points not stored alike)."""
+    assert opt.candidates is not None
+    witnessed: set[str] = set()
+    if probe is not None:
+        witnessed = _witnessed(
+            problem, opt, point_values(problem, *opt.candidates, probe, tables), tol
+        )
+    more = None if extra is None else point_values(problem, *opt.candidates, extra, tables)
+    return _values_at(problem, opt, tables), witnessed, more
 
 
 def _witnessed(
@@ -1134,20 +1168,36 @@ def _negation(c: Constraint, problem: Problem) -> Constraint:
 
 def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
-    vals, witnessed = _probed(problem, opt, tables, tol)
-    capacity = _capacities(problem, opt, tables, vals)
     tree = opt.trees()
-    shared, idle = None, frozenset[str]()
     cellular = _cellular(opt)
+    names = list(dict.fromkeys(c.name for c in problem.constraints))
+    # on grids, nominally, the joint search's first points (three of each box the optimum's
+    # pair reopens, :func:`~.joint_checks.three_points`) judged with the probe, in one
+    # evaluation (under tolerances the joint search screens its points by the point model
+    # first: a point's values over its tolerance box cost far more)
+    nominal = not any(tolerance_box.covered(problem, q) for q in problem.quantities)
+    first = (
+        _first_boxes(problem, opt, tree, names)
+        if problem.gridded and nominal and not cellular
+        else None
+    )
+    extra = None if first is None else three_points(problem, *first)
+    vals, witnessed, at_extra = _probed(problem, opt, tables, tol, extra)
+    if at_extra is not None:
+        checks = _checks(problem, opt, names)
+        hit = answered_by(problem, checks, at_extra, opt.value)
+        witnessed |= {c.name for c, h in zip(checks, hit, strict=True) if h}
+    capacity = _capacities(problem, opt, tables, vals)
+    shared, idle = None, frozenset[str]()
     if tree is not None and not cellular:
         got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
         if got is not None:
             shared, idle = got
     # on grids, every check's searched pairs in one search per pair (:mod:`.joint_checks`)
-    pending = [n for n in dict.fromkeys(c.name for c in problem.constraints) if n not in witnessed]
+    pending = [n for n in names if n not in witnessed]
     joint: dict[str, bool | None] = {}
     if tree is not None and problem.gridded and pending:
-        joint = _joint_binding(problem, opt, tree, pending, tables)
+        joint = _joint_binding(problem, opt, tree, pending, tables, offered=first is not None)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -1351,25 +1401,52 @@ def _binding(
     return False if certified else None
 
 
+def _checks(problem: Problem, opt: Optimum, names: Sequence[str]) -> list[Check]:
+    """The binding checks of ``names`` (:class:`~.joint_checks.Check`): each name's bits, and
+    its negation (:func:`_negation`) when it is one constraint and the optimum certified."""
+    checks = []
+    for name in names:
+        own = [c for c in problem.constraints if c.name == name]
+        negation = _negation(own[0], problem) if len(own) == 1 and opt.certified else None
+        checks.append(Check(name, constraint_bits(problem, name), negation))
+    return checks
+
+
+def _first_boxes(
+    problem: Problem, opt: Optimum, tree: tuple[Archive | None, ...] | None, names: Sequence[str]
+) -> tuple[FloatArray, FloatArray] | None:
+    """The boxes (lo, hi) of the optimum's sheet pair's archive that a binding check of some
+    name of ``names`` reopens (:func:`~.joint_checks.reopened`), the first that
+    :func:`_joint_binding` searches; None without an archive of that pair or with none."""
+    everything = pairs(problem)
+    if tree is None or not names or opt.candidates not in everything:
+        return None
+    a = tree[everything.index(opt.candidates)]
+    if a is None:
+        return None
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    lo, hi, _, _ = reopened(a, _checks(problem, opt, names), sign * opt.value)
+    return (lo, hi) if len(lo) else None
+
+
 def _joint_binding(
     problem: Problem,
     opt: Optimum,
     tree: tuple[Archive | None, ...],
     names: Sequence[str],
     tables: Tables,
+    offered: bool = False,
 ) -> dict[str, bool | None]:
     """The binding checks of ``names`` on a grid over the sheet pairs the solve searched (their
     archives), the optimum's own pair first, each pair's checks in one search
     (:func:`~.joint_checks.joint_search`, its answers those of each check's own search, the
     first part of :func:`_binding`): True, a better design was found (binding); None, the
     budget ran out first; False, no searched pair holds one (the pairs pruned whole are left
-    to :func:`_binding`)."""
+    to :func:`_binding`). ``offered``: the three points of every box the optimum's pair
+    reopens for any constraint were judged for every check already (:func:`_first_boxes`),
+    and the checks they answer are not in ``names``."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
-    checks = []
-    for name in names:
-        own = [c for c in problem.constraints if c.name == name]
-        negation = _negation(own[0], problem) if len(own) == 1 and opt.certified else None
-        checks.append(Check(name, constraint_bits(problem, name), negation))
+    checks = _checks(problem, opt, names)
     answers: dict[str, bool | None] = {name: False for name in names}
     everything = pairs(problem)
     first = everything.index(opt.candidates) if opt.candidates in everything else -1
@@ -1382,7 +1459,9 @@ def _joint_binding(
         start = reopened(a, todo, sign * opt.value)
         if not len(start[0]):
             continue
-        got = joint_search(problem, everything[i], tables, todo, start, opt.value)
+        got = joint_search(
+            problem, everything[i], tables, todo, start, opt.value, offered and i == first
+        )
         for c, answer in zip(todo, got, strict=True):
             if answer is not False:
                 answers[c.name] = answer
