@@ -165,13 +165,6 @@ class _Judge:
         return np.asarray(ok)
 
 
-#: Grid points screened by their cheap bounds at once (:func:`joint_search`): runs of a few
-#: thousand keep every array of a run below glibc's default mmap threshold (128 kB), past
-#: which each temporary is fresh pages from the kernel (measured on the case study: 8135
-#: points at once took about 460 page faults, 1 ms of system time, per search).
-SCREEN_CHUNK = 4096
-
-
 def _points_of(boxes: list[tuple[FloatArray, FloatArray, BoolArray]]) -> int:
     """Grid points of the boxes ``boxes`` (lower corners, grid values per coordinate, ...)."""
     return int(sum(float(b[1].prod(axis=1).sum()) for b in boxes))
@@ -289,7 +282,7 @@ def joint_search(
         live = e_car.any(axis=1)
         e_lo, e_counts, e_car = e_lo[live], e_counts[live], e_car[live]
         per = e_counts.prod(axis=1).astype(np.int64)
-        for run in chunk_runs(per, SCREEN_CHUNK):
+        for run in chunk_runs(per, ENUMERATE_CHUNK):
             every = grid_points(e_lo[run], e_counts[run], variables)
             owner_car = np.repeat(e_car[run] & ~judge.answered, per[run], axis=0)
             e = DesignPoints.from_columns(every)
