@@ -223,7 +223,12 @@ def joint_search(
     when the budget or the search's limits (those of :mod:`.bnb`) stopped it first (module
     docstring). ``offered``: the three points (:func:`three_points`) of every start box were
     judged already for every check (:func:`answered_by`; the checks they answer are not in
-    ``checks``), so the first iteration does not judge them again."""
+    ``checks``), so the first iteration does not judge them again; nor does it bound the
+    start boxes (the search's own bounds showed each broken by at most the constraints of
+    the checks it carries, and bounds only prune: a box split unbounded has its parts bounded
+    in the next iteration, one enumerated has its points judged by their values), which on
+    the case study saves a cheap and an interval bound of 56 boxes (joint search 3.99 ->
+    3.29 ms, medians of 200)."""
     c1, c2 = pair
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     limit = sign * goal
@@ -330,13 +335,15 @@ def joint_search(
         counts = np.round((hi - lo) / steps) + 1
         enum = counts.prod(axis=1) <= most
         xlo, xhi = DesignPoints.from_columns(lo), DesignPoints.from_columns(hi)
-        bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, cheap)
-        if obj in cheap:
-            bound = np.maximum(bound, _lower(bnd[obj], sign))
-        car = judge.alive(bnd, len(lo), car) & (bound < limit)[:, None]
-        # the costly bounds of every box still open, those to enumerate too (a box's bounds
-        # cost less than its points', and often close it: the case study's thickness.min)
-        sub = car.any(axis=1)
+        sub: BoolArray = np.zeros(len(lo), dtype=bool)
+        if not (iterations == 1 and offered):  # (offered: the start boxes go unbounded)
+            bnd = box_bounds(problem, c1, c2, xlo, xhi, tables, cheap)
+            if obj in cheap:
+                bound = np.maximum(bound, _lower(bnd[obj], sign))
+            car = judge.alive(bnd, len(lo), car) & (bound < limit)[:, None]
+            # the costly bounds of every box still open, those to enumerate too (a box's bounds
+            # cost less than its points', and often close it: the case study's thickness.min)
+            sub = np.asarray(car.any(axis=1))
         if costly and sub.any():
             sb = box_bounds(problem, c1, c2, xlo.take(sub), xhi.take(sub), tables, costly)
             if obj in costly:
