@@ -34,7 +34,7 @@ lowered by the designs it finds, so the checks keep their own searches there.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -109,6 +109,21 @@ def _met(
     return c.satisfied(v, rtol=FEAS_RTOL)
 
 
+def _both(a: BoolArray | None, b: BoolArray | None) -> BoolArray | None:
+    """``a & b``, None standing for every row True."""
+    if a is None:
+        return b
+    return a if b is None else a & b
+
+
+def _all(arrays: Iterable[BoolArray]) -> BoolArray | None:
+    """The rows where every array of ``arrays`` is True (None: no array)."""
+    out: BoolArray | None = None
+    for a in arrays:
+        out = _both(out, a)
+    return out
+
+
 class _Judge:
     """Which checks a box (or point) may still answer, from the constraints shown broken on it:
     a check's problem is every constraint but its own (``bits``) and its negation."""
@@ -151,11 +166,17 @@ class _Judge:
                 own[j] = met if j not in own else own[j] & met
             else:
                 common = met if common is None else common & met
+        # per carried check, the others' constraints together: prefix and suffix products
+        # (linear in the checks carried)
+        order = list(own)
+        before: list[BoolArray | None] = [common]  # common & the checks before
+        after: list[BoolArray | None] = [None]  # the checks after
+        for k, m in zip(order[:-1], reversed(order[1:]), strict=True):
+            before.append(_both(before[-1], own[k]))
+            after.append(_both(after[-1], own[m]))
+        others = {k: _both(b, a) for k, b, a in zip(order, before, after[::-1], strict=False)}
         for j in cols:
-            keep = common
-            for k, met in own.items():
-                if k != j:
-                    keep = met if keep is None else keep & met
+            keep = others[j] if j in others else _both(common, _all(own.values()))
             neg = self.checks[j].negation
             met_neg = None if neg is None else _met(neg, values, screened)
             if met_neg is not None:
