@@ -72,7 +72,16 @@ from corrugate.solver.quantities import Tables, box_bounds, chunk, layer_corner,
 from corrugate.solver.quantity import LX, LY, Quantity
 from corrugate.solver.worst_case import NOMINAL
 
-__all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound", "chunk_runs", "enumerated_per_n"]
+__all__ = [
+    "GAP_RTOL",
+    "BnBResult",
+    "PerNGrid",
+    "branch_and_bound",
+    "chunk_runs",
+    "enumerated_per_n",
+    "per_n_answer",
+    "per_n_grid",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -829,9 +838,35 @@ def enumerated_per_n(
     n (nothing is left open); the result's fields are the search's (``boxes``: the cut boxes,
     one iteration). None when it does not apply (the search is then needed), or inside a
     spent budget (the search reports the stop)."""
+    grid = per_n_grid(problem, start=start, per_n=per_n, most=most)
+    if grid is None:
+        return None
+    x = DesignPoints.from_columns(grid.points)
+    vals = point_values(problem, c1, c2, x, tables) if len(x) else {}
+    return per_n_answer(problem, grid, vals)
+
+
+@dataclass(frozen=True)
+class PerNGrid:
+    """The grid points :func:`enumerated_per_n` evaluates: ``points`` (rows of the search's
+    coordinates, in the search's order), from ``boxes`` start boxes cut per n, for the n of
+    ``per_n``."""
+
+    points: FloatArray
+    boxes: int
+    per_n: tuple[int, int]
+
+
+def per_n_grid(
+    problem: Problem,
+    *,
+    start: tuple[FloatArray, FloatArray, FloatArray],
+    per_n: tuple[int, int],
+    most: int = PER_N_POINTS,
+) -> PerNGrid | None:
+    """The points of :func:`enumerated_per_n` (its docstring), None when it does not apply."""
     dims = _dims(problem, None)
-    obj = problem.objective.quantity
-    needed = {c.quantity for c in problem.constraints} | {obj}
+    needed = {c.quantity for c in problem.constraints} | {problem.objective.quantity}
     budget = current_budget()
     if (
         not all(d.var.gridded for d in dims)
@@ -839,8 +874,7 @@ def enumerated_per_n(
         or (budget is not None and budget.exhausted)
     ):
         return None
-    best = _PerN(math.inf, 0.0, per_n)
-    lo, hi, bound = best.cut(*(np.array(a, dtype=np.float64) for a in start))
+    lo, hi, bound = _PerN(math.inf, 0.0, per_n).cut(*(np.array(a, dtype=np.float64) for a in start))
     if len(lo) > BATCH or not np.all(bound < math.inf):  # the search would not take them all
         return None
     steps = np.array([d.var.step for d in dims], dtype=np.float64)
@@ -848,20 +882,30 @@ def enumerated_per_n(
     per = counts.prod(axis=1)
     if np.any(per > ENUMERATE) or per.sum() > most:
         return None
-    if budget is not None:
-        budget.charge(len(lo))
-    sign = -1.0 if problem.objective.sense == "max" else 1.0
     every, _, _ = _enumerate(problem, lo, counts, dims, FEAS_RTOL)
+    return PerNGrid(every, len(lo), per_n)
+
+
+def per_n_answer(problem: Problem, grid: PerNGrid, vals: dict[Quantity, FloatArray]) -> BnBResult:
+    """:func:`enumerated_per_n`'s answer from the exact values ``vals`` at ``grid.points``
+    (charged to the budget as the search charges its boxes)."""
+    budget = current_budget()
+    if budget is not None:
+        budget.charge(grid.boxes)
+    obj = problem.objective.quantity
+    needed = {c.quantity for c in problem.constraints} | {obj}
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    best = _PerN(math.inf, 0.0, grid.per_n)
+    every = grid.points
     if len(every):
         x = DesignPoints.from_columns(every)
-        vals = point_values(problem, c1, c2, x, tables)
         broken = _broken(problem.constraints, vals, needed, len(every), FEAS_RTOL).any(axis=1)
         best.offer(every, np.where(broken, np.inf, sign * vals[obj]), x)
-    common = BnBResult(None, math.nan, math.nan, True, len(lo), 1)
+    common = BnBResult(None, math.nan, math.nan, True, grid.boxes, 1)
     slots = [
-        BnBResult(point, value, bnd, cert, len(lo), 1)
+        BnBResult(point, value, bnd, cert, grid.boxes, 1)
         for point, value, bnd, cert in best.results(
-            np.zeros(0, dtype=bool), lo[:0], bound[:0], sign
+            np.zeros(0, dtype=bool), every[:0], np.empty(0), sign
         )
     ]
     return best.result(common, slots)

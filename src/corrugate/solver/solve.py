@@ -40,7 +40,15 @@ from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
 from corrugate.solver import cells, tolerance_box
 from corrugate.solver.archive import Archive
-from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound, enumerated_per_n
+from corrugate.solver.bnb import (
+    GAP_RTOL,
+    BnBResult,
+    PerNGrid,
+    branch_and_bound,
+    enumerated_per_n,
+    per_n_answer,
+    per_n_grid,
+)
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.cells import with_cells
 from corrugate.solver.choices import RELAX, CellFloors, Floors, floors, shared_lists
@@ -866,9 +874,14 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     runner_ups: tuple[RunnerUp, ...] = ()
     if explain:
         stage(BINDING)
-        reports = tuple(_constraint_reports(problem, opt, tables))
+        # the runner-ups' grid points of the optimum's pair, when few, evaluated with the
+        # binding probe (:func:`_probed`): one evaluation for both
+        grid = _runner_grid(problem, opt)
+        got, at_grid = _constraint_reports(problem, opt, tables, grid)
+        reports = tuple(got)
         stage(RUNNER_UPS)
-        runner_ups = tuple(_runner_ups(problem, opt, tables))
+        given = None if grid is None or at_grid is None else (grid, at_grid)
+        runner_ups = tuple(_runner_ups(problem, opt, tables, given))
         if opt.certified and budget.stopped is not None:
             warnings.append(
                 {
@@ -1061,20 +1074,24 @@ def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> se
 
 
 def _probed(
-    problem: Problem, opt: Optimum, tables: Tables, tol: float, extra: FloatArray | None = None
-) -> tuple[dict[Quantity, float], set[str], dict[Quantity, FloatArray] | None]:
+    problem: Problem,
+    opt: Optimum,
+    tables: Tables,
+    tol: float,
+    *extras: FloatArray | None,
+) -> tuple[dict[Quantity, float], set[str], list[dict[Quantity, FloatArray] | None]]:
     """The optimum's values (:func:`_values_at`), the constraints its probe shows binding
-    (:func:`_witnesses`) and the values at the points ``extra`` (rows of the search's
-    coordinates on the optimum's sheets; None: none), from one evaluation of the optimum, the
-    probe's points and ``extra`` together (every value is elementwise in the points: the same
-    values as separate evaluations)."""
+    (:func:`_witnesses`) and the values at the points of each of ``extras`` (in order; rows of the
+    search's coordinates on the optimum's sheets; None or empty: none), from one evaluation of
+    the optimum, the probe's points and ``extras`` together (every value is elementwise in the
+    points: the same values as separate evaluations)."""
     assert opt.point is not None
     assert opt.candidates is not None
     here = opt.point.arrays()
     x = _probe_points(problem, opt.point) if problem.constraints else None
     probe = x if x is not None and len(x) else None
-    more = DesignPoints.from_columns(extra) if extra is not None and len(extra) else None
-    parts = [d for d in (here, probe, more) if d is not None]
+    more = [DesignPoints.from_columns(e) if e is not None and len(e) else None for e in extras]
+    parts = [d for d in (here, probe, *more) if d is not None]
     if any(len(d.layers) != len(here.layers) or d.count != here.count for d in parts):
         return _probed_apart(problem, opt, tables, tol, probe, more)  # not stored alike
     every = point_values(problem, *opt.candidates, _joined(parts), tables)
@@ -1083,7 +1100,14 @@ def _probed(
     witnessed = set()
     if probe is not None:
         witnessed = _witnessed(problem, opt, {k: v[1:end] for k, v in every.items()}, tol)
-    return at, witnessed, None if more is None else {k: v[end:] for k, v in every.items()}
+    values: list[dict[Quantity, FloatArray] | None] = []
+    for d in more:
+        if d is None:
+            values.append(None)
+            continue
+        values.append({k: v[end : end + len(d)] for k, v in every.items()})
+        end += len(d)
+    return at, witnessed, values
 
 
 def _joined(parts: Sequence[DesignPoints]) -> DesignPoints:
@@ -1105,8 +1129,8 @@ def _probed_apart(
     tables: Tables,
     tol: float,
     probe: DesignPoints | None,
-    extra: DesignPoints | None,
-) -> tuple[dict[Quantity, float], set[str], dict[Quantity, FloatArray] | None]:
+    extras: list[DesignPoints | None],
+) -> tuple[dict[Quantity, float], set[str], list[dict[Quantity, FloatArray] | None]]:
     """:func:`_probed` by one evaluation of each part (points not stored alike)."""
     assert opt.candidates is not None
     witnessed: set[str] = set()
@@ -1114,7 +1138,9 @@ def _probed_apart(
         witnessed = _witnessed(
             problem, opt, point_values(problem, *opt.candidates, probe, tables), tol
         )
-    more = None if extra is None else point_values(problem, *opt.candidates, extra, tables)
+    more = [
+        None if e is None else point_values(problem, *opt.candidates, e, tables) for e in extras
+    ]
     return _values_at(problem, opt, tables), witnessed, more
 
 
@@ -1166,7 +1192,11 @@ def _negation(c: Constraint, problem: Problem) -> Constraint:
     return Constraint(f"{c.name} (broken)", c.quantity, "min", c.bound + r * abs(c.bound))
 
 
-def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
+def _constraint_reports(
+    problem: Problem, opt: Optimum, tables: Tables, grid: PerNGrid | None = None
+) -> tuple[list[ConstraintReport], dict[Quantity, FloatArray] | None]:
+    """Every constraint's report (value, margin, whether it binds), and the values at the
+    runner-ups' points ``grid`` (:func:`_runner_grid`; None: none), evaluated with the probe."""
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
     tree = opt.trees()
     cellular = _cellular(opt)
@@ -1182,7 +1212,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
         else None
     )
     extra = None if first is None else three_points(problem, *first)
-    vals, witnessed, at_extra = _probed(problem, opt, tables, tol, extra)
+    more = None if grid is None or not len(grid.points) else grid.points
+    vals, witnessed, (at_extra, at_grid) = _probed(problem, opt, tables, tol, extra, more)
     if at_extra is not None:
         checks = _checks(problem, opt, names)
         hit = answered_by(problem, checks, at_extra, opt.value)
@@ -1256,7 +1287,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
                 capacity=capacity.get(c.name),
             )
         )
-    return out
+    return out, at_grid
 
 
 class _PairFloors:
@@ -1557,20 +1588,47 @@ def _cell_runner_ups(
     return out
 
 
-def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
+def _runner_span(problem: Problem, opt: Optimum) -> tuple[int, int]:
+    """The n of the runner-ups: within :data:`RUNNER_UP_SPREAD` of the optimum's layer-1 n."""
+    assert opt.point is not None
+    n_star = round(opt.point.layer(0).n)
+    return (
+        max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
+        min(problem.n_hi, n_star + RUNNER_UP_SPREAD),
+    )
+
+
+def _runner_grid(problem: Problem, opt: Optimum) -> PerNGrid | None:
+    """The grid points of the runner-ups' search of the optimum's sheet pair when few
+    (:func:`~.bnb.per_n_grid` of the boxes its archive may hold a feasible design in), so that
+    they are evaluated with the binding probe; None when that search is needed."""
+    tree = opt.trees()
+    everything = pairs(problem)
+    if tree is None or _cellular(opt) or opt.candidates not in everything:
+        return None
+    a = tree[everything.index(opt.candidates)]
+    if a is None:
+        return None
+    return per_n_grid(problem, start=a.reopen(), per_n=_runner_span(problem, opt))
+
+
+def _runner_ups(
+    problem: Problem,
+    opt: Optimum,
+    tables: Tables,
+    given: tuple[PerNGrid, dict[Quantity, FloatArray]] | None = None,
+) -> list[RunnerUp]:
     """The certified best design for each n within :data:`RUNNER_UP_SPREAD` of the optimum's
     layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
     :func:`~.bnb._dims`): one search per sheet pair with one incumbent per n, from the boxes of
     the solve that may hold a feasible design (:attr:`Optimum.archives`), else from the whole
     domain; with continuous variables to the relative gap :data:`RUNNER_UP_GAP_RTOL`. The entry
     of the optimum's n, when both its layers have it, is the certified optimum itself (the best
-    design of the whole problem is the best with that n)."""
+    design of the whole problem is the best with that n). ``given``: the optimum's pair's
+    grid points (:func:`_runner_grid`) and their values, its answer without a search."""
     assert opt.point is not None
     n_star = round(opt.point.layer(0).n)
-    a, b = (
-        max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
-        min(problem.n_hi, n_star + RUNNER_UP_SPREAD),
-    )
+    a, b = _runner_span(problem, opt)
     tree = opt.trees()
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]] = {}
@@ -1595,11 +1653,11 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
             continue  # pruned whole: below, against the runner-ups of the others
         start = None if tree is None else tree[i].reopen()  # type: ignore[union-attr]
         # few grid points left: all evaluated at once, the search's answer (enumerated_per_n)
-        r = (
-            None
-            if start is None
-            else enumerated_per_n(problem, *pair, start=start, per_n=(a, b), tables=tables)
-        )
+        r = None
+        if given is not None and pair == opt.candidates:
+            r = per_n_answer(problem, *given)
+        elif start is not None:
+            r = enumerated_per_n(problem, *pair, start=start, per_n=(a, b), tables=tables)
         if r is None:
             r = branch_and_bound(
                 problem,
