@@ -55,6 +55,7 @@ from corrugate.solver.bnb import (
 )
 from corrugate.solver.boxes import grid_points, snap, split, widths
 from corrugate.solver.budget import current_budget
+from corrugate.solver.making import MAKING
 from corrugate.solver.points import DesignPoints, coordinates
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, DesignVariable, Problem
 from corrugate.solver.quantities import Tables, box_bounds, point_values
@@ -257,6 +258,9 @@ def joint_search(
     needed = {c.quantity for c in problem.constraints} | {obj}
     costly = {q for q in needed if q.directional}
     cheap = needed - costly
+    # the grid points' screen: the cheap values but the making's parts (the costliest of them:
+    # a screen only drops points early, and every point left is judged by all its values)
+    screened_by = (cheap - MAKING) | ({obj} & cheap)
     judge = _Judge(problem, checks)
     dims = coordinates(problem)
     variables = [d.var for d in dims]
@@ -312,7 +316,7 @@ def joint_search(
             every = grid_points(e_lo[run], e_counts[run], variables)
             owner_car = np.repeat(e_car[run] & ~judge.answered, per[run], axis=0)
             e = DesignPoints.from_columns(every)
-            eb = box_bounds(problem, c1, c2, e, e, tables, cheap)
+            eb = box_bounds(problem, c1, c2, e, e, tables, screened_by)
             pc = judge.alive(eb, len(every), owner_car)
             if obj in cheap:
                 pc &= (_lower(eb[obj], sign) < limit)[:, None]
