@@ -88,7 +88,7 @@ def reopened(
         len(archive.mask), len(checks)
     )
     carried &= (archive.bound < below)[:, None]
-    rows = carried.any(axis=1)
+    rows = _rows_any(carried)
     return archive.lo[rows], archive.hi[rows], archive.bound[rows], carried[rows]
 
 
@@ -108,6 +108,20 @@ def _met(
     if isinstance(v, tuple):
         v = v[1] if c.sense == "min" else v[0]
     return c.satisfied(v, rtol=FEAS_RTOL)
+
+
+def _rows_any(a: BoolArray) -> BoolArray:
+    """``a.any(axis=1)`` of a (rows x checks) array, column by column (numpy's reduction
+    along a short last axis costs about three times as much: 125 against 41 us for 8135 x 9)."""
+    out = np.zeros(len(a), dtype=bool)
+    for j in range(a.shape[1]):
+        out |= a[:, j]
+    return out
+
+
+def _cols_any(a: BoolArray) -> BoolArray:
+    """``a.any(axis=0)`` of a (rows x checks) array, column by column (as :func:`_rows_any`)."""
+    return np.array([bool(a[:, j].any()) for j in range(a.shape[1])], dtype=bool)
 
 
 def _both(a: BoolArray | None, b: BoolArray | None) -> BoolArray | None:
@@ -153,7 +167,7 @@ class _Judge:
         is possibly met there (:func:`_met`) and so is j's negation: the constraints of no
         check still carried are judged together once, those of each carried check apart."""
         ok = carried & ~self.answered
-        cols = np.flatnonzero(ok.any(axis=0)).tolist()
+        cols = np.flatnonzero(_cols_any(ok)).tolist()
         if not cols:
             return np.asarray(ok)
         common: BoolArray | None = None  # the constraints of no check carried
@@ -222,7 +236,7 @@ def answered_by(
     rows = len(values[problem.objective.quantity])
     ok = judge.alive(values, rows, np.ones((rows, len(checks)), dtype=bool))
     ok &= (sign * values[problem.objective.quantity] < sign * goal)[:, None]
-    return np.asarray(ok.any(axis=0))
+    return _cols_any(ok)
 
 
 def _lower(bounds: tuple[FloatArray, FloatArray], sign: float) -> FloatArray:
@@ -288,14 +302,14 @@ def joint_search(
             ok = judge.alive(nominal, len(x), carried, covered)
             if obj not in covered:
                 ok &= (sign * nominal[obj] < limit)[:, None]
-            sel = ok.any(axis=1)
+            sel = _rows_any(ok)
             x, carried = x.take(sel), ok[sel]
             if not len(x):
                 return
         vals = point_values(problem, c1, c2, x, tables)
         ok = judge.alive(vals, len(x), carried)
         ok &= (sign * vals[obj] < limit)[:, None]
-        judge.answered |= ok.any(axis=0)
+        judge.answered |= _cols_any(ok)
 
     waiting: list[tuple[FloatArray, FloatArray, BoolArray]] = []
 
@@ -309,7 +323,7 @@ def joint_search(
         e_counts = np.concatenate([w[1] for w in waiting])
         e_car = np.concatenate([w[2] for w in waiting]) & ~judge.answered
         waiting.clear()
-        live = e_car.any(axis=1)
+        live = _rows_any(e_car)
         e_lo, e_counts, e_car = e_lo[live], e_counts[live], e_car[live]
         per = e_counts.prod(axis=1).astype(np.int64)
         for run in chunk_runs(per, ENUMERATE_CHUNK):
@@ -320,7 +334,7 @@ def joint_search(
             pc = judge.alive(eb, len(every), owner_car)
             if obj in cheap:
                 pc &= (_lower(eb[obj], sign) < limit)[:, None]
-            sel = pc.any(axis=1)
+            sel = _rows_any(pc)
             points.append(every[sel])
             carried.append(pc[sel])
             if sum(len(x) for x in points) >= ENUMERATE_CHUNK:
@@ -334,7 +348,7 @@ def joint_search(
     q_bound = np.asarray(q_bound, dtype=np.float64)
     iterations = boxes = 0
     while len(q_lo):
-        keep = (q_car & ~judge.answered).any(axis=1)
+        keep = _rows_any(q_car & ~judge.answered)
         q_lo, q_hi, q_bound, q_car = q_lo[keep], q_hi[keep], q_bound[keep], q_car[keep]
         if not len(q_lo):
             break
@@ -368,13 +382,13 @@ def joint_search(
             car = judge.alive(bnd, len(lo), car) & (bound < limit)[:, None]
             # the costly bounds of every box still open, those to enumerate too (a box's bounds
             # cost less than its points', and often close it: the case study's thickness.min)
-            sub = np.asarray(car.any(axis=1))
+            sub = _rows_any(car)
         if costly and sub.any():
             sb = box_bounds(problem, c1, c2, xlo.take(sub), xhi.take(sub), tables, costly)
             if obj in costly:
                 bound[sub] = np.maximum(bound[sub], _lower(sb[obj], sign))
             car[sub] = judge.alive(sb, int(sub.sum()), car[sub]) & (bound[sub] < limit)[:, None]
-        live = car.any(axis=1)
+        live = _rows_any(car)
         lo, hi, bound, car, counts, enum = (
             lo[live],
             hi[live],
@@ -390,7 +404,7 @@ def joint_search(
         if iterations == 1 and not offered:
             offer(DesignPoints.from_columns(np.concatenate([lo, hi, mid])), np.tile(car, (3, 1)))
             car = car & ~judge.answered
-            live = car.any(axis=1)
+            live = _rows_any(car)
             lo, hi, mid, bound, car, counts, enum = (
                 lo[live],
                 hi[live],
@@ -417,7 +431,7 @@ def joint_search(
         elif points:
             offer(DesignPoints.from_columns(np.concatenate(points)), np.concatenate(carried))
         lo, hi, bound, car = lo[rest], hi[rest], bound[rest], car[rest] & ~judge.answered
-        live = car.any(axis=1)
+        live = _rows_any(car)
         lo, hi, bound, car = lo[live], hi[live], bound[live], car[live]
         if not len(lo):
             continue
