@@ -39,7 +39,7 @@ from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
 from corrugate.solver import cells, tolerance_box
-from corrugate.solver.archive import Archive
+from corrugate.solver.archive import Archive, bit_sets
 from corrugate.solver.bnb import (
     GAP_RTOL,
     BnBResult,
@@ -1155,13 +1155,17 @@ def _witnessed(
     )
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     better = sign * vals[problem.objective.quantity] < sign * opt.value - tol
+    # the bit set of the constraints each better point breaks (bit i: constraint i)
+    rows = broken[better]
+    if rows.shape[1] <= 63:
+        sets = [int(m) for m in np.unique(bit_sets(rows)[0])]
+    else:  # past a uint64: as Python integers
+        sets = [sum(1 << i for i in np.flatnonzero(r).tolist()) for r in rows]
     found = set()
-    for c in problem.constraints:
-        if c.name in found:
-            continue
-        own = np.array([d.name == c.name for d in problem.constraints])
-        if bool(np.any(better & broken.any(axis=1) & ~broken[:, ~own].any(axis=1))):
-            found.add(c.name)
+    for name in dict.fromkeys(c.name for c in problem.constraints):
+        bits = constraint_bits(problem, name)
+        if any(m and not m & ~bits for m in sets):  # breaks some, only of that name
+            found.add(name)
     return found
 
 
@@ -1206,8 +1210,9 @@ def _constraint_reports(
     # evaluation (under tolerances the joint search screens its points by the point model
     # first: a point's values over its tolerance box cost far more)
     nominal = not any(tolerance_box.covered(problem, q) for q in problem.quantities)
+    every_check = _checks(problem, opt, names)
     first = (
-        _first_boxes(problem, opt, tree, names)
+        _first_boxes(problem, opt, tree, every_check)
         if problem.gridded and nominal and not cellular
         else None
     )
@@ -1215,9 +1220,8 @@ def _constraint_reports(
     more = None if grid is None or not len(grid.points) else grid.points
     vals, witnessed, (at_extra, at_grid) = _probed(problem, opt, tables, tol, extra, more)
     if at_extra is not None:
-        checks = _checks(problem, opt, names)
-        hit = answered_by(problem, checks, at_extra, opt.value)
-        witnessed |= {c.name for c, h in zip(checks, hit, strict=True) if h}
+        hit = answered_by(problem, every_check, at_extra, opt.value)
+        witnessed |= {c.name for c, h in zip(every_check, hit, strict=True) if h}
     capacity = _capacities(problem, opt, tables, vals)
     shared, idle = None, frozenset[str]()
     if tree is not None and not cellular:
@@ -1228,7 +1232,8 @@ def _constraint_reports(
     pending = [n for n in names if n not in witnessed]
     joint: dict[str, bool | None] = {}
     if tree is not None and problem.gridded and pending:
-        joint = _joint_binding(problem, opt, tree, pending, tables, offered=first is not None)
+        todo = [c for c in every_check if c.name not in witnessed]
+        joint = _joint_binding(problem, opt, tree, todo, tables, offered=first is not None)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -1444,19 +1449,19 @@ def _checks(problem: Problem, opt: Optimum, names: Sequence[str]) -> list[Check]
 
 
 def _first_boxes(
-    problem: Problem, opt: Optimum, tree: tuple[Archive | None, ...] | None, names: Sequence[str]
+    problem: Problem, opt: Optimum, tree: tuple[Archive | None, ...] | None, checks: list[Check]
 ) -> tuple[FloatArray, FloatArray] | None:
-    """The boxes (lo, hi) of the optimum's sheet pair's archive that a binding check of some
-    name of ``names`` reopens (:func:`~.joint_checks.reopened`), the first that
-    :func:`_joint_binding` searches; None without an archive of that pair or with none."""
+    """The boxes (lo, hi) of the optimum's sheet pair's archive that some check of ``checks``
+    reopens (:func:`~.joint_checks.reopened`), the first that :func:`_joint_binding`
+    searches; None without an archive of that pair or with none."""
     everything = pairs(problem)
-    if tree is None or not names or opt.candidates not in everything:
+    if tree is None or not checks or opt.candidates not in everything:
         return None
     a = tree[everything.index(opt.candidates)]
     if a is None:
         return None
     sign = -1.0 if problem.objective.sense == "max" else 1.0
-    lo, hi, _, _ = reopened(a, _checks(problem, opt, names), sign * opt.value)
+    lo, hi, _, _ = reopened(a, checks, sign * opt.value)
     return (lo, hi) if len(lo) else None
 
 
@@ -1464,21 +1469,22 @@ def _joint_binding(
     problem: Problem,
     opt: Optimum,
     tree: tuple[Archive | None, ...],
-    names: Sequence[str],
+    names: Sequence[str] | Sequence[Check],
     tables: Tables,
     offered: bool = False,
 ) -> dict[str, bool | None]:
-    """The binding checks of ``names`` on a grid over the sheet pairs the solve searched (their
-    archives), the optimum's own pair first, each pair's checks in one search
-    (:func:`~.joint_checks.joint_search`, its answers those of each check's own search, the
-    first part of :func:`_binding`): True, a better design was found (binding); None, the
-    budget ran out first; False, no searched pair holds one (the pairs pruned whole are left
-    to :func:`_binding`). ``offered``: the three points of every box the optimum's pair
+    """The binding checks of ``names`` (names, or their checks: :func:`_checks`) on a grid
+    over the sheet pairs the solve searched (their archives), the optimum's own pair first,
+    each pair's checks in one search (:func:`~.joint_checks.joint_search`, its answers those
+    of each check's own search, the first part of :func:`_binding`): True, a better design was
+    found (binding); None, the budget ran out first; False, no searched pair holds one (the
+    pairs pruned whole are left to :func:`_binding`). ``offered``: the three points of every box the optimum's pair
     reopens for any constraint were judged for every check already (:func:`_first_boxes`),
     and the checks they answer are not in ``names``."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
-    checks = _checks(problem, opt, names)
-    answers: dict[str, bool | None] = {name: False for name in names}
+    checks = [n for n in names if isinstance(n, Check)]
+    checks += _checks(problem, opt, [n for n in names if isinstance(n, str)])
+    answers: dict[str, bool | None] = {c.name: False for c in checks}
     everything = pairs(problem)
     first = everything.index(opt.candidates) if opt.candidates in everything else -1
     order = sorted(range(len(tree)), key=lambda i: (i != first, i))
