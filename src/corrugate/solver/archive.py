@@ -11,6 +11,7 @@ The explained answer (:mod:`.solve`: binding checks, runner-ups) and the diagnos
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -44,14 +45,21 @@ _EXACT_BITS = 52
 _TABLE_BITS = 16
 
 
+@functools.cache
+def _weights(ncons: int) -> FloatArray:
+    """(ncons x 2): the powers of two and ones that :func:`bit_sets` multiplies by."""
+    out = np.stack([2.0 ** np.arange(ncons), np.ones(ncons)], axis=1)
+    out.flags.writeable = False
+    return out
+
+
 def bit_sets(broken: BoolArray) -> tuple[NDArray[np.uint64], NDArray[np.int64]]:
     """Per row of ``broken`` (rows x constraints, at most 63), the bit set of its True entries
     (bit i: constraint i) and how many there are: one product with the powers of two and ones
     (exact integers in float64 up to :data:`_EXACT_BITS` constraints), else bit by bit."""
     rows, ncons = broken.shape
     if ncons <= _EXACT_BITS:
-        weights = np.stack([2.0 ** np.arange(ncons), np.ones(ncons)], axis=1)
-        both = np.asarray(broken, dtype=np.uint8) @ weights
+        both = broken.view(np.uint8) @ _weights(ncons)
         return both[:, 0].astype(np.uint64), both[:, 1].astype(np.int64)
     mask = np.zeros(rows, dtype=np.uint64)
     for i in range(ncons):
