@@ -893,14 +893,15 @@ def per_n_answer(problem: Problem, grid: PerNGrid, vals: dict[Quantity, FloatArr
     if budget is not None:
         budget.charge(grid.boxes)
     obj = problem.objective.quantity
-    needed = {c.quantity for c in problem.constraints} | {obj}
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best = _PerN(math.inf, 0.0, grid.per_n)
     every = grid.points
     if len(every):
         x = DesignPoints.from_columns(every)
-        broken = _broken(problem.constraints, vals, needed, len(every), FEAS_RTOL).any(axis=1)
-        best.offer(every, np.where(broken, np.inf, sign * vals[obj]), x)
+        met = np.ones(len(every), dtype=bool)  # every constraint met, as _broken judges them
+        for c in problem.constraints:
+            met &= c.satisfied(vals[c.quantity], rtol=FEAS_RTOL)
+        best.offer(every, np.where(met, sign * vals[obj], np.inf), x)
     common = BnBResult(None, math.nan, math.nan, True, grid.boxes, 1)
     slots = [
         BnBResult(point, value, bnd, cert, grid.boxes, 1)

@@ -400,7 +400,8 @@ def joint_search(
         # three points of each box (lower and upper corners, centre): in the first iteration
         # of every box first, so that a design found there answers its checks before any box
         # is enumerated; later only of the boxes to be split, with the enumerated points
-        mid = _centres(lo, hi, variables)
+        # (offered: the first iteration judges no centres)
+        mid = lo if iterations == 1 and offered else _centres(lo, hi, variables)
         if iterations == 1 and not offered:
             offer(DesignPoints.from_columns(np.concatenate([lo, hi, mid])), np.tile(car, (3, 1)))
             car = car & ~judge.answered

@@ -23,6 +23,7 @@ then, unless ``explain=False``, builds the explanation:
 
 from __future__ import annotations
 
+import functools
 import heapq
 import math
 import time
@@ -60,7 +61,14 @@ from corrugate.solver.joint_checks import (
     three_points,
 )
 from corrugate.solver.points import VARIABLES, DesignPoints, LayerPoints, coordinates
-from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
+from corrugate.solver.problem import (
+    FEAS_RTOL,
+    HOLDS,
+    Candidate,
+    Constraint,
+    DesignVariable,
+    Problem,
+)
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
@@ -1026,29 +1034,40 @@ def _capacities(
     return out
 
 
-def _probe_points(problem: Problem, point: DesignPoints) -> DesignPoints:
-    """Designs near ``point`` (the search's coordinates): every move of one coordinate, and of
-    two together, by :data:`PROBE_STEPS` grid steps (n; W and alpha on a grid) or
-    :data:`PROBE_FRACTIONS` of the range (continuous W, alpha), either way, inside the bounds;
-    grid values computed as the search computes them (lo + step k)."""
-    dims = [(d, d.var) for d in coordinates(problem)]
+@functools.lru_cache(maxsize=64)
+def _probe_moves(variables: tuple[DesignVariable, ...]) -> FloatArray:
+    """The probe's moves (rows; columns: the coordinates of ``variables``): every move of one
+    coordinate, and of two together, by :data:`PROBE_STEPS` grid steps (in steps: a gridded
+    variable) or :data:`PROBE_FRACTIONS` of the range (in its unit: a continuous one), either
+    way; made once per coordinates (read-only)."""
     moves: list[FloatArray] = []  # per coordinate: the offsets of its index (grid) or value
-    for _coord, var in dims:
+    for var in variables:
         if var.step is None:
             span = var.hi - var.lo
             m = np.array([f * span for f in PROBE_FRACTIONS])
         else:
             m = np.array(PROBE_STEPS, dtype=np.float64)
         moves.append(np.concatenate([m, -m]))
-    base = np.zeros(len(dims))
-    rows = [base + np.eye(len(dims))[i] * m[:, None] for i, m in enumerate(moves)]
-    for i in range(len(dims)):
-        for j in range(i + 1, len(dims)):
+    n = len(variables)
+    rows = [np.zeros(n) + np.eye(n)[i] * m[:, None] for i, m in enumerate(moves)]
+    for i in range(n):
+        for j in range(i + 1, n):
             a, b = np.meshgrid(moves[i], moves[j], indexing="ij")
-            r = np.zeros((a.size, len(dims)))
+            r = np.zeros((a.size, n))
             r[:, i], r[:, j] = a.ravel(), b.ravel()
             rows.append(r)
-    d = np.concatenate(rows)
+    out = np.concatenate(rows)
+    out.flags.writeable = False
+    return out
+
+
+def _probe_points(problem: Problem, point: DesignPoints) -> DesignPoints:
+    """Designs near ``point`` (the search's coordinates): every move of one coordinate, and of
+    two together, by :data:`PROBE_STEPS` grid steps (n; W and alpha on a grid) or
+    :data:`PROBE_FRACTIONS` of the range (continuous W, alpha), either way, inside the bounds;
+    grid values computed as the search computes them (lo + step k)."""
+    dims = [(d, d.var) for d in coordinates(problem)]
+    d = _probe_moves(tuple(var for _, var in dims))
     x: list[FloatArray] = []
     ok = np.ones(len(d), dtype=bool)
     for i, (coord, var) in enumerate(dims):
