@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -167,3 +168,46 @@ def test_a_domain_too_wide_for_the_cells_takes_the_plain_search(
     assert got.starts is None and got.certified and got.point is not None
     best = min(_plain(False))
     assert abs(got.value - best) <= 2 * GAP_RTOL * best
+
+
+def test_each_view_is_the_model_at_the_cells_moved_by_its_shift() -> None:
+    """The views of a layer's cells (all the tolerance box's shifts computed in one call) are,
+    value for value, the interval model's upper bounds at the cells moved by each shift alone
+    and the extents there, as one call per shift gives them."""
+    from corrugate.mechanics.creases import flexibility
+    from corrugate.mechanics.profiles import profile_moduli
+    from corrugate.solver import tolerance_box
+    from corrugate.solver.interval import Interval
+
+    p = _problem(True)
+    p = replace(p, constraints=())  # every cell kept
+    a, b = pairs(p)[1]
+    st = cells.setting(p, a, b, Tables(p))
+    assert len(st.shifts) == 5  # nominal and the four corners
+    rng = np.random.default_rng(3)
+    k = 500
+    n = rng.integers(5, 8, k).astype(float)
+    W0, a0 = rng.uniform(7, 10, k), rng.uniform(70, 95, k)
+    W1, a1 = W0 + rng.uniform(0, 1, k), a0 + rng.uniform(0, 5, k)
+    for which in (1, 2):
+        L, idx = cells._cells(st, which, n, W0, W1, a0, a1)
+        assert len(idx) == k
+        cand = st.low[which - 1]
+        m = cand.material
+        for view, (dW, da) in zip(L.views, st.shifts, strict=True):
+            mW0, ma0 = tolerance_box.moved(W0[idx], a0[idx], dW, da)
+            mW1, ma1 = tolerance_box.moved(W1[idx], a1[idx], dW, da)
+            half = Interval(np.radians(ma0), np.radians(ma1)) * 0.5
+            mod = profile_moduli(
+                p.profile_kind.of_half(Interval(mW0, mW1), half),
+                float(m.E),
+                float(m.nu),
+                float(cand.t),
+                p.model,
+                flexibility(m.crease_stiffness),
+            )
+            for got, v in zip(view[:4], (mod.Ecx, mod.Ecy, mod.Ebx, mod.Eby), strict=True):
+                want = np.broadcast_to(np.asarray(Interval.of(v).hi, np.float64), got.shape)
+                assert np.array_equal(got, want)
+            assert np.array_equal(view[4], cells._extent(n[idx], mW0, ma0))
+            assert np.array_equal(view[5], cells._extent(n[idx], mW1, ma1))

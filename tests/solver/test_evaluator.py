@@ -110,3 +110,23 @@ def test_the_solver_certifies_a_bound_on_a_registered_kind(toy: Evaluator) -> No
     assert sol.objective == pytest.approx(best, rel=1e-12)
     layer = sol.assembly.layer1
     assert 2.0 * (layer.n + 1) * layer.W == pytest.approx(best, rel=1e-12)
+
+
+def test_reported_quantities_follow_the_registry_after_a_first_evaluation() -> None:
+    """:func:`~.quantities.reported` is kept on a problem (quantities.py): an evaluator
+    registered, then unregistered, after the problem's first point values still changes what
+    they report (a toy kind that reports itself for every problem)."""
+    p = _problem((Constraint("x", LX, "min", 10.0),), Objective(LX, "max"))
+    c = p.candidates[0]
+    x = DesignPoints.of(LayerPoints(np.array([5.0]), np.array([4.0]), np.array([60.0])))
+    assert RUN not in point_values(p, c, c, x, Tables(p))
+    always = Evaluator.monotone(
+        "blank_run", _run, label="summed blank length (toy)", unit="mm", reported=lambda _: [RUN]
+    )
+    register(always)
+    try:
+        got = point_values(p, c, c, x, Tables(p))
+        assert got[RUN][0] == 2 * 6 * 4.0  # identical layers: twice (n + 1) W
+    finally:
+        unregister(always)
+    assert RUN not in point_values(p, c, c, x, Tables(p))

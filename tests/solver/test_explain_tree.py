@@ -303,3 +303,100 @@ def test_progress_is_reported_once_per_iteration() -> None:
     finite = [s for s in seen if s[2] is not None]
     assert finite and all(b >= opt.value * (1 - 1e-12) for _, _, b in finite)
     assert all(g >= 0 and (math.isinf(g) or g < 10) for _, g, _ in seen)
+
+
+@pytest.mark.parametrize("ncons", [1, 5, 12, 16, 17, 40, 52, 53, 63])
+def test_bit_sets_and_distinct_equal_numpys_reductions(ncons: int) -> None:
+    """The archive's bit sets of broken constraints (:func:`archive.bit_sets`: a product with
+    powers of two, or bit by bit past 52 constraints) and their distinct values
+    (:func:`archive.distinct`: a table up to 16 constraints) equal numpy's bitwise-or reduction,
+    row sums and ``np.unique`` on random rows."""
+    rng = np.random.default_rng(ncons)
+    bits = np.uint64(1) << np.arange(ncons, dtype=np.uint64)
+    for rows in (0, 1, 7, 3000):
+        broken = rng.random((rows, ncons)) < 0.2
+        mask, count = archive.bit_sets(broken)
+        ref = np.zeros(rows, dtype=np.uint64)
+        for i in range(ncons):
+            ref |= np.where(broken[:, i], bits[i], np.uint64(0))
+        assert mask.dtype == np.uint64
+        np.testing.assert_array_equal(mask, ref)
+        np.testing.assert_array_equal(count, broken.sum(axis=1))
+        values, index = archive.distinct(mask, ncons)
+        want, inverse = np.unique(ref, return_inverse=True)
+        np.testing.assert_array_equal(values, want)
+        np.testing.assert_array_equal(index, inverse.reshape(-1))
+
+
+def _around(problem: Problem, point: DesignPoints, steps: int) -> tuple[np.ndarray, ...]:
+    """Start boxes of the search's coordinates: a box of +-``steps`` grid steps around
+    ``point`` (n by 1), cut in two along each coordinate's middle, clipped to the domain."""
+    from corrugate.solver.points import coordinates
+
+    dims = coordinates(problem)
+    lo, hi = [], []
+    for d in dims:
+        v = float(getattr(point.layer(d.layer), d.variable))
+        step = 1.0 if d.variable == "n" else float(d.var.step)
+        lo.append(max(d.var.lo, v - steps * step))
+        hi.append(min(d.var.top, v + steps * step))
+    boxes = [(np.array(lo), np.array(hi))]
+    for i, d in enumerate(dims):  # each box cut between two grid values of coordinate i
+        step = 1.0 if d.variable == "n" else float(d.var.step)
+        cut = []
+        for a, b in boxes:
+            k = math.floor((b[i] - a[i]) / step / 2)
+            if k <= 0:
+                cut.append((a, b))
+                continue
+            left_hi, right_lo = b.copy(), a.copy()
+            left_hi[i] = a[i] + k * step
+            right_lo[i] = a[i] + (k + 1) * step
+            cut += [(a, left_hi), (right_lo, b)]
+        boxes = cut
+    lo_a = np.array([a for a, _ in boxes])
+    hi_a = np.array([b for _, b in boxes])
+    return lo_a, hi_a, np.full(len(boxes), -math.inf)
+
+
+@pytest.mark.parametrize("name", ["blimp_gripper", "rectangle_independent"])
+def test_runner_ups_by_enumeration_equal_the_branch_and_bound(name: str) -> None:
+    """:func:`~.bnb.enumerated_per_n` (every grid point of small start boxes evaluated at
+    once) gives the branch and bound's best design of each n (``per_n``) from the same boxes:
+    the same point, value and certificate; on the case study's archive (identical layers) and
+    on boxes around the optimum of the independent rectangle without tolerances (its layers'
+    points paired as the search pairs them); None when a box holds too many points."""
+    from dataclasses import replace
+
+    from corrugate.solver.bnb import branch_and_bound, enumerated_per_n
+    from corrugate.solver.worst_case import NOMINAL
+
+    problem = replace(_problem(EXAMPLES / f"{name}.toml"), tolerances=NOMINAL)
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables, record=True)
+    assert opt.point is not None and opt.candidates is not None
+    n_star = round(opt.point.layer(0).n)
+    span = (max(problem.n_lo, n_star - 3), min(problem.n_hi, n_star + 3))
+    if problem.identical:
+        tree = opt.tree()
+        assert tree is not None
+        start = tree[0].reopen()
+    else:
+        start = _around(problem, opt.point, 2)
+    fast = enumerated_per_n(problem, *opt.candidates, start=start, per_n=span, tables=tables)
+    assert fast is not None and fast.by_n is not None
+    slow = branch_and_bound(problem, *opt.candidates, tables=tables, start=start, per_n=span)
+    assert slow.by_n is not None and set(fast.by_n) == set(slow.by_n)
+    found = 0
+    for n, want in slow.by_n.items():
+        got = fast.by_n[n]
+        assert got.certified and want.certified
+        assert got.point == want.point, n
+        if want.point is not None:
+            assert got.value == want.value
+            found += 1
+    assert found >= 2
+    assert (
+        enumerated_per_n(problem, *opt.candidates, start=start, per_n=span, tables=tables, most=1)
+        is None
+    )

@@ -155,3 +155,71 @@ def test_floors_with_n_fixed_from_the_solves_lists_equal_those_built_for_it(
             assert np.all(got.n == n)
             compared += len(designs)
     assert compared > 100
+
+
+@pytest.mark.parametrize(
+    "path",
+    [
+        EXAMPLES / "blimp_gripper.toml",  # identical layers, nominal
+        EXAMPLES / "rectangle_independent.toml",  # independent layers (made nominal below)
+    ],
+    ids=lambda p: p.stem,
+)
+def test_first_points_judged_apart_then_the_joint_search_answer_as_each_check_alone(
+    path: Path,
+) -> None:
+    """The path of the explanation on a nominal grid: the three points of every box the
+    archive reopens for some check judged first for every check
+    (:func:`~.joint_checks.answered_by` on :func:`~.joint_checks.three_points`), then one
+    joint search of the checks left that does not judge them again (``offered``, its boxes
+    to enumerate waiting while others are split): each check's answer equals its own branch
+    and bound from the boxes the archive reopens for it (the check's problem: the constraint
+    negated, the optimum as incumbent)."""
+    from dataclasses import replace
+
+    from corrugate.solver.joint_checks import answered_by, three_points
+    from corrugate.solver.points import DesignPoints
+    from corrugate.solver.quantities import point_values
+    from corrugate.solver.worst_case import NOMINAL
+
+    problem = replace(_problem(path), tolerances=NOMINAL)
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables, record=True)
+    assert opt.certified and opt.candidates is not None
+    tree = opt.tree()
+    assert tree is not None and len(tree) == 1
+    names = list(dict.fromkeys(c.name for c in problem.constraints))
+    checks = []
+    for name in names:
+        own = [c for c in problem.constraints if c.name == name]
+        neg = _negation(own[0], problem) if len(own) == 1 else None
+        checks.append(Check(name, constraint_bits(problem, name), neg))
+    lo, hi, _, _ = reopened(tree[0], checks, opt.value)
+    pts = three_points(problem, lo, hi)
+    vals = point_values(problem, *opt.candidates, DesignPoints.from_columns(pts), tables)
+    first = answered_by(problem, checks, vals, opt.value)
+    left = [c for c, hit in zip(checks, first, strict=True) if not hit]
+    start = reopened(tree[0], left, opt.value)
+    rest = joint_search(problem, opt.candidates, tables, left, start, opt.value, offered=True)
+    assert None not in rest
+    got = dict(zip([c.name for c in left], rest, strict=True))
+    got |= {c.name: True for c, hit in zip(checks, first, strict=True) if hit}
+    alone = {}
+    for check in checks:
+        lo, hi, bound = tree[0].reopen(check.bits, opt.value)
+        if not len(lo):
+            alone[check.name] = False
+            continue
+        r = branch_and_bound(
+            _relaxed(problem, check.name),
+            *opt.candidates,
+            incumbent=opt.value,
+            tables=tables,
+            start=(lo, hi, bound),
+            stop_below=opt.value,
+        )
+        found = r.point is not None and r.value < opt.value
+        assert found or r.certified
+        alone[check.name] = found
+    assert got == alone
+    assert True in alone.values() and False in alone.values()

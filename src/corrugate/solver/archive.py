@@ -11,13 +11,22 @@ The explained answer (:mod:`.solve`: binding checks, runner-ups) and the diagnos
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["ARCHIVE_DEPTH", "ARCHIVE_ROWS", "Archive", "NoRecorder", "Recorder"]
+__all__ = [
+    "ARCHIVE_DEPTH",
+    "ARCHIVE_ROWS",
+    "Archive",
+    "NoRecorder",
+    "Recorder",
+    "bit_sets",
+    "distinct",
+]
 
 FloatArray = NDArray[np.float64]
 BoolArray = NDArray[np.bool_]
@@ -28,6 +37,50 @@ ARCHIVE_ROWS = 1_000_000
 #: The archive keeps boxes shown to break at most this many constraints (what the explanation
 #: relaxes at once: one for the binding checks, two for the diagnosis' partners and pairs).
 ARCHIVE_DEPTH = 2
+
+
+#: Constraints up to which a bit set is summed in floating point (exact: every sum of distinct
+#: powers of two below 2^53 is a float64) and up to which :func:`distinct` uses a table.
+_EXACT_BITS = 52
+_TABLE_BITS = 16
+
+
+@functools.cache
+def _weights(ncons: int) -> FloatArray:
+    """(ncons x 2): the powers of two and ones that :func:`bit_sets` multiplies by."""
+    out = np.stack([2.0 ** np.arange(ncons), np.ones(ncons)], axis=1)
+    out.flags.writeable = False
+    return out
+
+
+def bit_sets(broken: BoolArray) -> tuple[NDArray[np.uint64], NDArray[np.int64]]:
+    """Per row of ``broken`` (rows x constraints, at most 63), the bit set of its True entries
+    (bit i: constraint i) and how many there are: one product with the powers of two and ones
+    (exact integers in float64 up to :data:`_EXACT_BITS` constraints), else bit by bit."""
+    rows, ncons = broken.shape
+    if ncons <= _EXACT_BITS:
+        both = broken.view(np.uint8) @ _weights(ncons)
+        return both[:, 0].astype(np.uint64), both[:, 1].astype(np.int64)
+    mask = np.zeros(rows, dtype=np.uint64)
+    for i in range(ncons):
+        mask |= broken[:, i].astype(np.uint64) << np.uint64(i)
+    return mask, np.count_nonzero(broken, axis=1).astype(np.int64)
+
+
+def distinct(mask: NDArray[np.uint64], ncons: int) -> tuple[NDArray[np.uint64], NDArray[np.int64]]:
+    """The distinct bit sets of ``mask`` (ascending) and the index of each row's among them,
+    as ``np.unique(mask, return_inverse=True)``: for at most :data:`_TABLE_BITS` constraints
+    by a table of every bit set (no sort), else by ``np.unique``."""
+    if ncons > _TABLE_BITS:
+        found, index = np.unique(mask, return_inverse=True)
+        return found, index.reshape(-1).astype(np.int64)
+    present = np.zeros(1 << ncons, dtype=bool)
+    m = mask.astype(np.int64)
+    present[m] = True
+    values = np.flatnonzero(present)
+    rank = np.zeros(1 << ncons, dtype=np.int64)  # touched only at the bit sets present
+    rank[values] = np.arange(len(values))
+    return values.astype(np.uint64), rank[m]
 
 
 @dataclass(frozen=True)
@@ -126,10 +179,12 @@ class Recorder(NoRecorder):
     ) -> None:
         """The boxes ``sel`` of (lo, hi, bound), closed by the constraints their rows of
         ``broken`` (boxes x constraints) show broken everywhere in them."""
-        if not sel.any():
+        rows = np.flatnonzero(sel)
+        if not len(rows) or not self.ok:
             return
-        mask, kept = self.masks(broken[sel])
-        self.add(lo[sel][kept], hi[sel][kept], bound[sel][kept], mask[kept])
+        mask, kept = self.masks(broken[rows])
+        rows = rows[kept]
+        self.add(lo[rows], hi[rows], bound[rows], mask[kept])
 
     def dropped(
         self,
@@ -168,11 +223,12 @@ class Recorder(NoRecorder):
         self.add_points(lo, hi, bound, owner[kept], mask[kept], pb[kept])
 
     def masks(self, broken: BoolArray) -> tuple[NDArray[np.uint64], BoolArray]:
-        """Bit sets of the rows of ``broken`` (boxes x constraints), and which rows to keep."""
+        """Bit sets of the rows of ``broken`` (boxes x constraints), and which rows to keep
+        (:func:`bit_sets`)."""
         if not broken.shape[1]:
             return np.zeros(len(broken), dtype=np.uint64), np.ones(len(broken), dtype=bool)
-        mask = np.bitwise_or.reduce(np.where(broken, self.bits, np.uint64(0)), axis=1)
-        return mask, broken.sum(axis=1) <= ARCHIVE_DEPTH
+        mask, count = bit_sets(broken)
+        return mask, count <= ARCHIVE_DEPTH
 
     def add(
         self,
@@ -207,8 +263,8 @@ class Recorder(NoRecorder):
         per box and bit set, bounded by the least value of its points."""
         if not self.ok or not len(owner):
             return
-        masks, m_id = np.unique(mask, return_inverse=True)  # few distinct bit sets
-        key = owner.astype(np.int64) * len(masks) + m_id.reshape(-1)
+        masks, m_id = distinct(mask, self.ncons)  # few distinct bit sets
+        key = owner.astype(np.int64) * len(masks) + m_id
         # a dense (box, bit set) table instead of sorting the keys: the same rows, in key order
         table = np.full(len(lo) * len(masks), np.inf)
         np.minimum.at(table, key, value)

@@ -72,7 +72,16 @@ from corrugate.solver.quantities import Tables, box_bounds, chunk, layer_corner,
 from corrugate.solver.quantity import LX, LY, Quantity
 from corrugate.solver.worst_case import NOMINAL
 
-__all__ = ["GAP_RTOL", "BnBResult", "branch_and_bound", "chunk_runs"]
+__all__ = [
+    "GAP_RTOL",
+    "BnBResult",
+    "PerNGrid",
+    "branch_and_bound",
+    "chunk_runs",
+    "enumerated_per_n",
+    "per_n_answer",
+    "per_n_grid",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -800,6 +809,107 @@ def branch_and_bound(
     while search.step():
         pass
     return search.result()
+
+
+#: Grid points :func:`enumerated_per_n` evaluates at most (one evaluation of the model).
+PER_N_POINTS = 4096
+
+
+def enumerated_per_n(
+    problem: Problem,
+    c1: Candidate,
+    c2: Candidate,
+    *,
+    start: tuple[FloatArray, FloatArray, FloatArray],
+    per_n: tuple[int, int],
+    tables: Tables,
+    most: int = PER_N_POINTS,
+) -> BnBResult | None:
+    """:func:`branch_and_bound` with ``start`` and ``per_n`` (no incumbent, no ``n_fixed``, on a
+    grid, nominal) when its first iteration would enumerate every box: the start boxes cut to
+    single n values (:meth:`_PerN.cut`) each hold at most :data:`ENUMERATE` grid points, at most
+    ``most`` in all. Then every grid point of them (:func:`_enumerate`: the same points in the
+    same order, less the layer points whose own extent breaks a side bound) is evaluated
+    exactly in one call and judged by the search's rule (:data:`~.problem.FEAS_RTOL`), and the
+    best feasible one of each n, the first in that order among equals, is its answer
+    (:meth:`_PerN.offer`): an exhaustive evaluation of the boxes, where the search would first
+    drop the boxes and points whose cheap bounds show them infeasible (rigorous: their points
+    are infeasible by their values too) and then evaluate the same points. Certified for every
+    n (nothing is left open); the result's fields are the search's (``boxes``: the cut boxes,
+    one iteration). None when it does not apply (the search is then needed), or inside a
+    spent budget (the search reports the stop)."""
+    grid = per_n_grid(problem, start=start, per_n=per_n, most=most)
+    if grid is None:
+        return None
+    x = DesignPoints.from_columns(grid.points)
+    vals = point_values(problem, c1, c2, x, tables) if len(x) else {}
+    return per_n_answer(problem, grid, vals)
+
+
+@dataclass(frozen=True)
+class PerNGrid:
+    """The grid points :func:`enumerated_per_n` evaluates: ``points`` (rows of the search's
+    coordinates, in the search's order), from ``boxes`` start boxes cut per n, for the n of
+    ``per_n``."""
+
+    points: FloatArray
+    boxes: int
+    per_n: tuple[int, int]
+
+
+def per_n_grid(
+    problem: Problem,
+    *,
+    start: tuple[FloatArray, FloatArray, FloatArray],
+    per_n: tuple[int, int],
+    most: int = PER_N_POINTS,
+) -> PerNGrid | None:
+    """The points of :func:`enumerated_per_n` (its docstring), None when it does not apply."""
+    dims = _dims(problem, None)
+    needed = {c.quantity for c in problem.constraints} | {problem.objective.quantity}
+    budget = current_budget()
+    if (
+        not all(d.var.gridded for d in dims)
+        or any(tolerance_box.covered(problem, q) for q in needed)
+        or (budget is not None and budget.exhausted)
+    ):
+        return None
+    lo, hi, bound = _PerN(math.inf, 0.0, per_n).cut(*(np.array(a, dtype=np.float64) for a in start))
+    if len(lo) > BATCH or not np.all(bound < math.inf):  # the search would not take them all
+        return None
+    steps = np.array([d.var.step for d in dims], dtype=np.float64)
+    counts = np.round((hi - lo) / steps) + 1
+    per = counts.prod(axis=1)
+    if np.any(per > ENUMERATE) or per.sum() > most:
+        return None
+    every, _, _ = _enumerate(problem, lo, counts, dims, FEAS_RTOL)
+    return PerNGrid(every, len(lo), per_n)
+
+
+def per_n_answer(problem: Problem, grid: PerNGrid, vals: dict[Quantity, FloatArray]) -> BnBResult:
+    """:func:`enumerated_per_n`'s answer from the exact values ``vals`` at ``grid.points``
+    (charged to the budget as the search charges its boxes)."""
+    budget = current_budget()
+    if budget is not None:
+        budget.charge(grid.boxes)
+    obj = problem.objective.quantity
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    best = _PerN(math.inf, 0.0, grid.per_n)
+    every = grid.points
+    if len(every):
+        x = DesignPoints.from_columns(every)
+        met = np.ones(len(every), dtype=bool)  # every constraint met, as _broken judges them
+        for c in problem.constraints:
+            met &= c.satisfied(vals[c.quantity], rtol=FEAS_RTOL)
+        best.offer(every, np.where(met, sign * vals[obj], np.inf), x)
+    common = BnBResult(None, math.nan, math.nan, True, grid.boxes, 1)
+    slots = [
+        BnBResult(point, value, bnd, cert, grid.boxes, 1)
+        for point, value, bnd, cert in best.results(
+            np.zeros(0, dtype=bool), every[:0], np.empty(0), sign
+        )
+    ]
+    return best.result(common, slots)
 
 
 def _gap(best: FloatArray, bounds: FloatArray) -> float:

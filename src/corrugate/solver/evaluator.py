@@ -39,6 +39,7 @@ __all__ = [
     "Pair",
     "evaluator_of",
     "evaluators",
+    "generation",
     "register",
     "register_sustained",
     "unregister",
@@ -107,6 +108,14 @@ class Evaluator:
 _REGISTRY: dict[tuple[str, bool], Evaluator] = {}
 #: The registry's key of the evaluator of every quantity under a sustained load.
 _SUSTAINED = ("sustained", False)
+#: How many times the registry changed (:func:`generation`).
+_CHANGES = [0]
+
+
+def generation() -> int:
+    """A number that changes whenever an evaluator is registered or unregistered: what is
+    derived from the registry (:func:`~.quantities.reported`) may be kept while it holds."""
+    return _CHANGES[0]
 
 
 def register(evaluator: Evaluator) -> Evaluator:
@@ -116,12 +125,14 @@ def register(evaluator: Evaluator) -> Evaluator:
         _REGISTRY[(kind, evaluator.tests)] = evaluator
         if evaluator.label is not None and evaluator.unit is not None:
             declare_kind(kind, evaluator.label, evaluator.unit)
+    _CHANGES[0] += 1
     return evaluator
 
 
 def register_sustained(evaluator: Evaluator) -> Evaluator:
     """Make ``evaluator`` the one of every quantity with a ``duration`` (module docstring)."""
     _REGISTRY[_SUSTAINED] = evaluator
+    _CHANGES[0] += 1
     return evaluator
 
 
@@ -130,6 +141,7 @@ def unregister(evaluator: Evaluator) -> None:
     for kind in evaluator.kinds:
         if _REGISTRY.get((kind, evaluator.tests)) is evaluator:
             del _REGISTRY[(kind, evaluator.tests)]
+    _CHANGES[0] += 1
 
 
 def evaluator_of(q: Quantity) -> Evaluator:

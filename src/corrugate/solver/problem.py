@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from typing import Literal
 
 import numpy as np
@@ -219,14 +220,15 @@ class Problem:
                 seen[c.material.id] = cal.words(c.material.id)
         return "; ".join(seen.values())
 
-    @property
+    @cached_property
     def quantities(self) -> tuple[Quantity, ...]:
-        """The quantities of the constraints, then the objective's."""
+        """The quantities of the constraints, then the objective's (computed once: the fields
+        of a frozen problem do not change; :func:`dataclasses.replace` makes a new one)."""
         return (*(c.quantity for c in self.constraints), self.objective.quantity)
 
-    @property
+    @cached_property
     def etas(self) -> tuple[float, ...]:
-        """Directions (deg) at which some stiffness is needed."""
+        """Directions (deg) at which some stiffness is needed (computed once)."""
         return tuple(sorted({q.eta for q in self.quantities if q.eta is not None}))
 
     @property

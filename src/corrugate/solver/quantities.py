@@ -35,6 +35,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from corrugate.mechanics.behaviours import support_names
 from corrugate.solver import (  # noqa: F401  (they register the kinds)
     making,
     sizes,
@@ -44,7 +45,7 @@ from corrugate.solver import (  # noqa: F401  (they register the kinds)
     validity,
 )
 from corrugate.solver.context import AtPoints, OverBoxes, layer_corner
-from corrugate.solver.evaluator import evaluators
+from corrugate.solver.evaluator import evaluators, generation
 from corrugate.solver.points import DesignPoints
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantity import Quantity
@@ -70,8 +71,40 @@ def reported(problem: Problem) -> list[Quantity]:
     """The quantities :func:`point_values` gives for ``problem``: each evaluator's (the sizes
     and mass always, EI, D and K at every direction of the problem under free sides and each
     support asked for, the length along each, both buckling loads once one is asked for, the
-    rest as asked)."""
-    return list(dict.fromkeys(q for e in evaluators() for q in e.quantities(problem)))
+    rest as asked). Kept on the (frozen) problem while the registries it is read from, the
+    evaluators' and the support conditions', are unchanged (:func:`_registries`)."""
+    key = _registries()
+    kept = problem.__dict__.get(_REPORTED)
+    if kept is not None and kept[0] == key:
+        return list(kept[1])
+    got = tuple(dict.fromkeys(q for e in evaluators() for q in e.quantities(problem)))
+    object.__setattr__(problem, _REPORTED, (key, got))  # a cache, not a field (as cached_property)
+    return list(got)
+
+
+#: The attribute of a problem that keeps its :func:`reported` quantities.
+_REPORTED = "_reported_quantities"
+
+
+def _registries() -> tuple[int, tuple[str, ...]]:
+    """What :func:`reported` reads besides the problem: the evaluator registry's generation
+    (:func:`~.evaluator.generation`) and the support conditions' names (the stiffness
+    evaluator reports each support a problem asks for that is registered)."""
+    return generation(), support_names()
+
+
+def _covered_any(problem: Problem) -> bool:
+    """Whether some quantity of ``problem`` is bounded over the tolerance box (kept on the
+    problem: it reads only its fields)."""
+    kept = problem.__dict__.get(_COVERED)
+    if kept is None:
+        kept = any(tolerance_box.covered(problem, q) for q in problem.quantities)
+        object.__setattr__(problem, _COVERED, kept)
+    return bool(kept)
+
+
+#: The attribute of a problem that keeps :func:`_covered_any`.
+_COVERED = "_covered_any"
 
 
 #: Rows of arithmetic evaluated at once: a nominal point or box is one row (about 0.5 kB of
@@ -85,7 +118,7 @@ TOLERANCE_ROWS = 16
 def chunk(problem: Problem) -> int:
     """Points or boxes :func:`point_values` and :func:`box_bounds` take at once for
     ``problem``: :data:`CHUNK_ROWS` over the rows each takes."""
-    if any(tolerance_box.covered(problem, q) for q in problem.quantities):
+    if _covered_any(problem):
         return CHUNK_ROWS // TOLERANCE_ROWS
     return CHUNK_ROWS
 
@@ -156,7 +189,7 @@ def _point_values(
     out = {q: at.value(q) for q in reported(problem) if only is None or q in only}
     covered = [
         q
-        for q in problem.quantities
+        for q in (problem.quantities if _covered_any(problem) else ())
         if tolerance_box.covered(problem, q) and (only is None or q in only)
     ]
     if covered:  # their worst case over the tolerance box (docs/tolerances.md)

@@ -23,6 +23,7 @@ then, unless ``explain=False``, builds the explanation:
 
 from __future__ import annotations
 
+import functools
 import heapq
 import math
 import time
@@ -38,15 +39,36 @@ from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
 from corrugate.mechanics.capacity import Capacity
-from corrugate.solver import cells
-from corrugate.solver.archive import Archive
-from corrugate.solver.bnb import GAP_RTOL, BnBResult, branch_and_bound
+from corrugate.solver import cell_checks, cells, tolerance_box
+from corrugate.solver.archive import Archive, bit_sets
+from corrugate.solver.bnb import (
+    GAP_RTOL,
+    BnBResult,
+    PerNGrid,
+    branch_and_bound,
+    enumerated_per_n,
+    per_n_answer,
+    per_n_grid,
+)
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
 from corrugate.solver.cells import with_cells
 from corrugate.solver.choices import RELAX, CellFloors, Floors, floors, shared_lists
-from corrugate.solver.joint_checks import Check, joint_search, reopened
-from corrugate.solver.points import DesignPoints, coordinates
-from corrugate.solver.problem import FEAS_RTOL, HOLDS, Candidate, Constraint, Problem
+from corrugate.solver.joint_checks import (
+    Check,
+    answered_by,
+    joint_search,
+    reopened,
+    three_points,
+)
+from corrugate.solver.points import VARIABLES, DesignPoints, LayerPoints, coordinates
+from corrugate.solver.problem import (
+    FEAS_RTOL,
+    HOLDS,
+    Candidate,
+    Constraint,
+    DesignVariable,
+    Problem,
+)
 from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING, stage
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
@@ -860,9 +882,14 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
     runner_ups: tuple[RunnerUp, ...] = ()
     if explain:
         stage(BINDING)
-        reports = tuple(_constraint_reports(problem, opt, tables))
+        # the runner-ups' grid points of the optimum's pair, when few, evaluated with the
+        # binding probe (:func:`_probed`): one evaluation for both
+        grid = _runner_grid(problem, opt)
+        got, at_grid = _constraint_reports(problem, opt, tables, grid)
+        reports = tuple(got)
         stage(RUNNER_UPS)
-        runner_ups = tuple(_runner_ups(problem, opt, tables))
+        given = None if grid is None or at_grid is None else (grid, at_grid)
+        runner_ups = tuple(_runner_ups(problem, opt, tables, given))
         if opt.certified and budget.stopped is not None:
             warnings.append(
                 {
@@ -1007,29 +1034,40 @@ def _capacities(
     return out
 
 
-def _probe_points(problem: Problem, point: DesignPoints) -> DesignPoints:
-    """Designs near ``point`` (the search's coordinates): every move of one coordinate, and of
-    two together, by :data:`PROBE_STEPS` grid steps (n; W and alpha on a grid) or
-    :data:`PROBE_FRACTIONS` of the range (continuous W, alpha), either way, inside the bounds;
-    grid values computed as the search computes them (lo + step k)."""
-    dims = [(d, d.var) for d in coordinates(problem)]
+@functools.lru_cache(maxsize=64)
+def _probe_moves(variables: tuple[DesignVariable, ...]) -> FloatArray:
+    """The probe's moves (rows; columns: the coordinates of ``variables``): every move of one
+    coordinate, and of two together, by :data:`PROBE_STEPS` grid steps (in steps: a gridded
+    variable) or :data:`PROBE_FRACTIONS` of the range (in its unit: a continuous one), either
+    way; made once per coordinates (read-only)."""
     moves: list[FloatArray] = []  # per coordinate: the offsets of its index (grid) or value
-    for _coord, var in dims:
+    for var in variables:
         if var.step is None:
             span = var.hi - var.lo
             m = np.array([f * span for f in PROBE_FRACTIONS])
         else:
             m = np.array(PROBE_STEPS, dtype=np.float64)
         moves.append(np.concatenate([m, -m]))
-    base = np.zeros(len(dims))
-    rows = [base + np.eye(len(dims))[i] * m[:, None] for i, m in enumerate(moves)]
-    for i in range(len(dims)):
-        for j in range(i + 1, len(dims)):
+    n = len(variables)
+    rows = [np.zeros(n) + np.eye(n)[i] * m[:, None] for i, m in enumerate(moves)]
+    for i in range(n):
+        for j in range(i + 1, n):
             a, b = np.meshgrid(moves[i], moves[j], indexing="ij")
-            r = np.zeros((a.size, len(dims)))
+            r = np.zeros((a.size, n))
             r[:, i], r[:, j] = a.ravel(), b.ravel()
             rows.append(r)
-    d = np.concatenate(rows)
+    out = np.concatenate(rows)
+    out.flags.writeable = False
+    return out
+
+
+def _probe_points(problem: Problem, point: DesignPoints) -> DesignPoints:
+    """Designs near ``point`` (the search's coordinates): every move of one coordinate, and of
+    two together, by :data:`PROBE_STEPS` grid steps (n; W and alpha on a grid) or
+    :data:`PROBE_FRACTIONS` of the range (continuous W, alpha), either way, inside the bounds;
+    grid values computed as the search computes them (lo + step k)."""
+    dims = [(d, d.var) for d in coordinates(problem)]
+    d = _probe_moves(tuple(var for _, var in dims))
     x: list[FloatArray] = []
     ok = np.ones(len(d), dtype=bool)
     for i, (coord, var) in enumerate(dims):
@@ -1051,27 +1089,102 @@ def _witnesses(problem: Problem, opt: Optimum, tables: Tables, tol: float) -> se
     (judged as the search judges points: exactly for continuous variables, to
     :data:`~.problem.FEAS_RTOL` on grids), so the search of the binding check would find a
     better design too. One evaluation for every constraint, before any search."""
+    return _probed(problem, opt, tables, tol)[1]
+
+
+def _probed(
+    problem: Problem,
+    opt: Optimum,
+    tables: Tables,
+    tol: float,
+    *extras: FloatArray | None,
+) -> tuple[dict[Quantity, float], set[str], list[dict[Quantity, FloatArray] | None]]:
+    """The optimum's values (:func:`_values_at`), the constraints its probe shows binding
+    (:func:`_witnesses`) and the values at the points of each of ``extras`` (in order; rows of the
+    search's coordinates on the optimum's sheets; None or empty: none), from one evaluation of
+    the optimum, the probe's points and ``extras`` together (every value is elementwise in the
+    points: the same values as separate evaluations)."""
     assert opt.point is not None
     assert opt.candidates is not None
-    if not problem.constraints:
-        return set()
-    x = _probe_points(problem, opt.point)
-    if not len(x):
-        return set()
-    vals = point_values(problem, *opt.candidates, x, tables)
+    here = opt.point.arrays()
+    x = _probe_points(problem, opt.point) if problem.constraints else None
+    probe = x if x is not None and len(x) else None
+    more = [DesignPoints.from_columns(e) if e is not None and len(e) else None for e in extras]
+    parts = [d for d in (here, probe, *more) if d is not None]
+    if any(len(d.layers) != len(here.layers) or d.count != here.count for d in parts):
+        return _probed_apart(problem, opt, tables, tol, probe, more)  # not stored alike
+    every = point_values(problem, *opt.candidates, _joined(parts), tables)
+    at = {k: float(v[0]) for k, v in every.items()}
+    end = 1 + (0 if probe is None else len(probe))
+    witnessed = set()
+    if probe is not None:
+        witnessed = _witnessed(problem, opt, {k: v[1:end] for k, v in every.items()}, tol)
+    values: list[dict[Quantity, FloatArray] | None] = []
+    for d in more:
+        if d is None:
+            values.append(None)
+            continue
+        values.append({k: v[end : end + len(d)] for k, v in every.items()})
+        end += len(d)
+    return at, witnessed, values
+
+
+def _joined(parts: Sequence[DesignPoints]) -> DesignPoints:
+    """The points of ``parts`` (stored alike) one after the other."""
+    return DesignPoints(
+        tuple(
+            LayerPoints(
+                *(np.concatenate([getattr(p.layers[i], v) for p in parts]) for v in VARIABLES)
+            )
+            for i in range(len(parts[0].layers))
+        ),
+        parts[0].count,
+    )
+
+
+def _probed_apart(
+    problem: Problem,
+    opt: Optimum,
+    tables: Tables,
+    tol: float,
+    probe: DesignPoints | None,
+    extras: list[DesignPoints | None],
+) -> tuple[dict[Quantity, float], set[str], list[dict[Quantity, FloatArray] | None]]:
+    """:func:`_probed` by one evaluation of each part (points not stored alike)."""
+    assert opt.candidates is not None
+    witnessed: set[str] = set()
+    if probe is not None:
+        witnessed = _witnessed(
+            problem, opt, point_values(problem, *opt.candidates, probe, tables), tol
+        )
+    more = [
+        None if e is None else point_values(problem, *opt.candidates, e, tables) for e in extras
+    ]
+    return _values_at(problem, opt, tables), witnessed, more
+
+
+def _witnessed(
+    problem: Problem, opt: Optimum, vals: dict[Quantity, FloatArray], tol: float
+) -> set[str]:
+    """The constraints :func:`_witnesses` names, from the values ``vals`` of the probe's
+    points."""
     rtol = FEAS_RTOL if problem.gridded else 0.0
     broken = np.stack(
         [~c.satisfied(vals[c.quantity], rtol=rtol) for c in problem.constraints], axis=1
     )
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     better = sign * vals[problem.objective.quantity] < sign * opt.value - tol
+    # the bit set of the constraints each better point breaks (bit i: constraint i)
+    rows = broken[better]
+    if rows.shape[1] <= 63:
+        sets = [int(m) for m in np.unique(bit_sets(rows)[0])]
+    else:  # past a uint64: as Python integers
+        sets = [sum(1 << i for i in np.flatnonzero(r).tolist()) for r in rows]
     found = set()
-    for c in problem.constraints:
-        if c.name in found:
-            continue
-        own = np.array([d.name == c.name for d in problem.constraints])
-        if bool(np.any(better & broken.any(axis=1) & ~broken[:, ~own].any(axis=1))):
-            found.add(c.name)
+    for name in dict.fromkeys(c.name for c in problem.constraints):
+        bits = constraint_bits(problem, name)
+        if any(m and not m & ~bits for m in sets):  # breaks some, only of that name
+            found.add(name)
     return found
 
 
@@ -1102,23 +1215,47 @@ def _negation(c: Constraint, problem: Problem) -> Constraint:
     return Constraint(f"{c.name} (broken)", c.quantity, "min", c.bound + r * abs(c.bound))
 
 
-def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[ConstraintReport]:
-    vals = _values_at(problem, opt, tables)
-    capacity = _capacities(problem, opt, tables, vals)
-    tree = opt.trees()
+def _constraint_reports(
+    problem: Problem, opt: Optimum, tables: Tables, grid: PerNGrid | None = None
+) -> tuple[list[ConstraintReport], dict[Quantity, FloatArray] | None]:
+    """Every constraint's report (value, margin, whether it binds), and the values at the
+    runner-ups' points ``grid`` (:func:`_runner_grid`; None: none), evaluated with the probe."""
     tol = (0.0 if problem.gridded else 2 * GAP_RTOL) * abs(opt.value)
-    witnessed = _witnesses(problem, opt, tables, tol)
-    shared, idle = None, frozenset[str]()
+    tree = opt.trees()
     cellular = _cellular(opt)
+    names = list(dict.fromkeys(c.name for c in problem.constraints))
+    # on grids, nominally, the joint search's first points (three of each box the optimum's
+    # pair reopens, :func:`~.joint_checks.three_points`) judged with the probe, in one
+    # evaluation (under tolerances the joint search screens its points by the point model
+    # first: a point's values over its tolerance box cost far more)
+    nominal = not any(tolerance_box.covered(problem, q) for q in problem.quantities)
+    every_check = _checks(problem, opt, names)
+    first = (
+        _first_boxes(problem, opt, tree, every_check)
+        if problem.gridded and nominal and not cellular
+        else None
+    )
+    extra = None if first is None else three_points(problem, *first)
+    more = None if grid is None or not len(grid.points) else grid.points
+    vals, witnessed, (at_extra, at_grid) = _probed(problem, opt, tables, tol, extra, more)
+    if at_extra is not None:
+        hit = answered_by(problem, every_check, at_extra, opt.value)
+        witnessed |= {c.name for c, h in zip(every_check, hit, strict=True) if h}
+    capacity = _capacities(problem, opt, tables, vals)
+    shared, idle = None, frozenset[str]()
     if tree is not None and not cellular:
         got = _untouched(problem, opt, tree, {c.name for c in problem.constraints} - witnessed)
         if got is not None:
             shared, idle = got
     # on grids, every check's searched pairs in one search per pair (:mod:`.joint_checks`)
-    pending = [n for n in dict.fromkeys(c.name for c in problem.constraints) if n not in witnessed]
+    pending = [n for n in names if n not in witnessed]
     joint: dict[str, bool | None] = {}
     if tree is not None and problem.gridded and pending:
-        joint = _joint_binding(problem, opt, tree, pending, tables)
+        todo = [c for c in every_check if c.name not in witnessed]
+        joint = _joint_binding(problem, opt, tree, todo, tables, offered=first is not None)
+    together: dict[str, bool | None] = {}
+    if cellular and not budget_spent():  # the checks that fired in the cells: one search
+        together = _shared_cell_binding(problem, opt, pending, tables, tol)
     out = []
     for c in problem.constraints:
         v = vals[c.quantity]
@@ -1128,6 +1265,8 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
             binding = True
         elif c.name in joint and (joint[c.name] is not False or not opt.pruned):
             binding = joint[c.name]  # found, stopped (None), or no pair left to search
+        elif c.name in together:
+            binding = together[c.name]
         elif cellular and not budget_spent():  # the cells' search of each check
             binding = _cell_binding(problem, opt, c.name, tables, tol)
         elif not budget_spent():
@@ -1177,7 +1316,7 @@ def _constraint_reports(problem: Problem, opt: Optimum, tables: Tables) -> list[
                 capacity=capacity.get(c.name),
             )
         )
-    return out
+    return out, at_grid
 
 
 class _PairFloors:
@@ -1322,26 +1461,54 @@ def _binding(
     return False if certified else None
 
 
-def _joint_binding(
-    problem: Problem,
-    opt: Optimum,
-    tree: tuple[Archive | None, ...],
-    names: Sequence[str],
-    tables: Tables,
-) -> dict[str, bool | None]:
-    """The binding checks of ``names`` on a grid over the sheet pairs the solve searched (their
-    archives), the optimum's own pair first, each pair's checks in one search
-    (:func:`~.joint_checks.joint_search`, its answers those of each check's own search, the
-    first part of :func:`_binding`): True, a better design was found (binding); None, the
-    budget ran out first; False, no searched pair holds one (the pairs pruned whole are left
-    to :func:`_binding`)."""
-    sign = -1.0 if problem.objective.sense == "max" else 1.0
+def _checks(problem: Problem, opt: Optimum, names: Sequence[str]) -> list[Check]:
+    """The binding checks of ``names`` (:class:`~.joint_checks.Check`): each name's bits, and
+    its negation (:func:`_negation`) when it is one constraint and the optimum certified."""
     checks = []
     for name in names:
         own = [c for c in problem.constraints if c.name == name]
         negation = _negation(own[0], problem) if len(own) == 1 and opt.certified else None
         checks.append(Check(name, constraint_bits(problem, name), negation))
-    answers: dict[str, bool | None] = {name: False for name in names}
+    return checks
+
+
+def _first_boxes(
+    problem: Problem, opt: Optimum, tree: tuple[Archive | None, ...] | None, checks: list[Check]
+) -> tuple[FloatArray, FloatArray] | None:
+    """The boxes (lo, hi) of the optimum's sheet pair's archive that some check of ``checks``
+    reopens (:func:`~.joint_checks.reopened`), the first that :func:`_joint_binding`
+    searches; None without an archive of that pair or with none."""
+    everything = pairs(problem)
+    if tree is None or not checks or opt.candidates not in everything:
+        return None
+    a = tree[everything.index(opt.candidates)]
+    if a is None:
+        return None
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    lo, hi, _, _ = reopened(a, checks, sign * opt.value)
+    return (lo, hi) if len(lo) else None
+
+
+def _joint_binding(
+    problem: Problem,
+    opt: Optimum,
+    tree: tuple[Archive | None, ...],
+    names: Sequence[str] | Sequence[Check],
+    tables: Tables,
+    offered: bool = False,
+) -> dict[str, bool | None]:
+    """The binding checks of ``names`` (names, or their checks: :func:`_checks`) on a grid
+    over the sheet pairs the solve searched (their archives), the optimum's own pair first,
+    each pair's checks in one search (:func:`~.joint_checks.joint_search`, its answers those
+    of each check's own search, the first part of :func:`_binding`): True, a better design was
+    found (binding); None, the budget ran out first; False, no searched pair holds one (the
+    pairs pruned whole are left to :func:`_binding`). ``offered``: the three points of every box the optimum's pair
+    reopens for any constraint were judged for every check already (:func:`_first_boxes`),
+    and the checks they answer are not in ``names``."""
+    sign = -1.0 if problem.objective.sense == "max" else 1.0
+    checks = [n for n in names if isinstance(n, Check)]
+    checks += _checks(problem, opt, [n for n in names if isinstance(n, str)])
+    answers: dict[str, bool | None] = {c.name: False for c in checks}
     everything = pairs(problem)
     first = everything.index(opt.candidates) if opt.candidates in everything else -1
     order = sorted(range(len(tree)), key=lambda i: (i != first, i))
@@ -1353,7 +1520,9 @@ def _joint_binding(
         start = reopened(a, todo, sign * opt.value)
         if not len(start[0]):
             continue
-        got = joint_search(problem, everything[i], tables, todo, start, opt.value)
+        got = joint_search(
+            problem, everything[i], tables, todo, start, opt.value, offered and i == first
+        )
         for c, answer in zip(todo, got, strict=True):
             if answer is not False:
                 answers[c.name] = answer
@@ -1406,8 +1575,10 @@ def _cell_binding(
     own = {i for i, c in enumerate(problem.constraints) if c.name == name}
     if opt.starts is not None and opt.fired is not None and not own & opt.fired:
         # it dropped nothing the solve's cells dropped: its designs lighter than the
-        # optimum lie in the boxes they left, searched for one by the branch and bound
-        check, everything, certified = problem.without(name), pairs(problem), True
+        # optimum lie in the boxes they left, searched for one by the branch and bound of
+        # the check's problem with the constraint's negation (:func:`_relaxed`: the optimum
+        # is certified, so each of them breaks it; the boxes where it holds are dropped)
+        check, everything, certified = _relaxed(problem, name), pairs(problem), True
         for k, (lo, hi, low) in enumerate(opt.starts):
             keep = low < goal
             if not keep.any():
@@ -1430,14 +1601,75 @@ def _cell_binding(
     return False if got.certified else None
 
 
+def _shared_cell_binding(
+    problem: Problem, opt: Optimum, names: Sequence[str], tables: Tables, tol: float
+) -> dict[str, bool | None]:
+    """Whether each constraint of ``names`` that fired in the solve's cells
+    (:attr:`Optimum.fired`) binds, for a problem solved by its cells: the answers of
+    :func:`_cell_binding`, all found by one shared cells search
+    (:func:`~.cell_checks.shared_search`, below the goal, the optimum less ``tol`` in g) and,
+    for each check it leaves open, the branch and bound of the check's problem
+    (:func:`_relaxed`: the optimum is certified) from the boxes it left of each sheet pair,
+    the optimum's pair first, stopped at the first design below the goal. Empty (each check
+    then searched on its own) when the optimum is not certified, nothing fired, or the shared
+    search does not apply or stopped at its budget; None for a check whose search was not
+    certified."""
+    if not opt.certified or opt.fired is None or problem.objective.sense != "min":
+        return {}
+    fired = {problem.constraints[i].name for i in opt.fired}
+    checks = cell_checks.checks_of(problem, [n for n in names if n in fired], True)
+    if not checks or not cell_checks.applies(problem, checks):
+        return {}
+    goal = opt.value - tol
+    everything = pairs(problem)
+    got = cell_checks.shared_search(problem, everything, tables, checks, goal)
+    if not got.settled:
+        return {}
+    first = everything.index(opt.candidates) if opt.candidates in everything else -1
+    out: dict[str, bool | None] = {}
+    for ch in checks:
+        if got.found[ch.name]:
+            out[ch.name] = True
+            continue
+        check = _relaxed(problem, ch.name, True)
+        answer: bool | None = False
+        starts = got.starts.get(ch.name, {})
+        for k in sorted(starts, key=lambda k: (k != first, float(starts[k][2].min()), k)):
+            lo, hi, low = starts[k]
+            keep = low < goal - GAP_RTOL * abs(goal)
+            if not keep.any():
+                continue
+            if budget_spent():
+                answer = None
+                break
+            r = branch_and_bound(
+                check,
+                *everything[k],
+                incumbent=goal,
+                tables=tables,
+                start=(lo[keep], hi[keep], low[keep]),
+                stop_below=goal,
+            )
+            if r.point is not None and r.value < goal:
+                answer = True
+                break
+            if not r.certified:
+                answer = None
+        out[ch.name] = answer
+    return out
+
+
 def _cell_runner_ups(
-    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int]
+    problem: Problem, opt: Optimum, tables: Tables, span: tuple[int, int], skip: int | None = None
 ) -> dict[int, Optimum]:
-    """The runner-ups of a problem solved by its cells: for each n of ``span`` but the
-    optimum's own, :func:`optimize` of the problem with both layers' n fixed to n (its cells
-    and branch and bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
+    """The runner-ups of a problem solved by its cells: for each n of ``span`` but ``skip``
+    (the optimum's own n when both its layers have it: the optimum is its runner-up),
+    :func:`optimize` of the problem with both layers' n fixed to n (its cells and branch and
+    bound, to :data:`RUNNER_UP_GAP_RTOL`); by n, those that have a design."""
     out: dict[int, Optimum] = {}
     for n in range(span[0], span[1] + 1):
+        if n == skip:
+            continue
         if budget_spent():
             break
         fixed = replace(problem, n_lo=n, n_hi=n)
@@ -1449,20 +1681,47 @@ def _cell_runner_ups(
     return out
 
 
-def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp]:
+def _runner_span(problem: Problem, opt: Optimum) -> tuple[int, int]:
+    """The n of the runner-ups: within :data:`RUNNER_UP_SPREAD` of the optimum's layer-1 n."""
+    assert opt.point is not None
+    n_star = round(opt.point.layer(0).n)
+    return (
+        max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
+        min(problem.n_hi, n_star + RUNNER_UP_SPREAD),
+    )
+
+
+def _runner_grid(problem: Problem, opt: Optimum) -> PerNGrid | None:
+    """The grid points of the runner-ups' search of the optimum's sheet pair when few
+    (:func:`~.bnb.per_n_grid` of the boxes its archive may hold a feasible design in), so that
+    they are evaluated with the binding probe; None when that search is needed."""
+    tree = opt.trees()
+    everything = pairs(problem)
+    if tree is None or _cellular(opt) or opt.candidates not in everything:
+        return None
+    a = tree[everything.index(opt.candidates)]
+    if a is None:
+        return None
+    return per_n_grid(problem, start=a.reopen(), per_n=_runner_span(problem, opt))
+
+
+def _runner_ups(
+    problem: Problem,
+    opt: Optimum,
+    tables: Tables,
+    given: tuple[PerNGrid, dict[Quantity, FloatArray]] | None = None,
+) -> list[RunnerUp]:
     """The certified best design for each n within :data:`RUNNER_UP_SPREAD` of the optimum's
     layer-1 n, n fixed as ``optimize(n_fixed=(n, n))`` fixes it (both layers' n; see
     :func:`~.bnb._dims`): one search per sheet pair with one incumbent per n, from the boxes of
     the solve that may hold a feasible design (:attr:`Optimum.archives`), else from the whole
     domain; with continuous variables to the relative gap :data:`RUNNER_UP_GAP_RTOL`. The entry
     of the optimum's n, when both its layers have it, is the certified optimum itself (the best
-    design of the whole problem is the best with that n)."""
+    design of the whole problem is the best with that n). ``given``: the optimum's pair's
+    grid points (:func:`_runner_grid`) and their values, its answer without a search."""
     assert opt.point is not None
     n_star = round(opt.point.layer(0).n)
-    a, b = (
-        max(problem.n_lo, n_star - RUNNER_UP_SPREAD),
-        min(problem.n_hi, n_star + RUNNER_UP_SPREAD),
-    )
+    a, b = _runner_span(problem, opt)
     tree = opt.trees()
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     best: dict[int, tuple[BnBResult, tuple[Candidate, Candidate]]] = {}
@@ -1470,7 +1729,7 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
     everything = pairs(problem)
     if _cellular(opt):
         own_n = opt.certified and round(opt.point.layer(1).n) == n_star
-        got = _cell_runner_ups(problem, opt, tables, (a, b))
+        got = _cell_runner_ups(problem, opt, tables, (a, b), n_star if own_n else None)
         rows = []
         for n in range(a, b + 1):
             found = opt if n == n_star and own_n else got.get(n)
@@ -1486,9 +1745,21 @@ def _runner_ups(problem: Problem, opt: Optimum, tables: Tables) -> list[RunnerUp
         if tree is not None and tree[i] is None:
             continue  # pruned whole: below, against the runner-ups of the others
         start = None if tree is None else tree[i].reopen()  # type: ignore[union-attr]
-        r = branch_and_bound(
-            problem, *pair, tables=tables, start=start, per_n=(a, b), gap_rtol=RUNNER_UP_GAP_RTOL
-        )
+        # few grid points left: all evaluated at once, the search's answer (enumerated_per_n)
+        r = None
+        if given is not None and pair == opt.candidates:
+            r = per_n_answer(problem, *given)
+        elif start is not None:
+            r = enumerated_per_n(problem, *pair, start=start, per_n=(a, b), tables=tables)
+        if r is None:
+            r = branch_and_bound(
+                problem,
+                *pair,
+                tables=tables,
+                start=start,
+                per_n=(a, b),
+                gap_rtol=RUNNER_UP_GAP_RTOL,
+            )
         assert r.by_n is not None
         for n, rn in r.by_n.items():
             certified[n] &= rn.certified

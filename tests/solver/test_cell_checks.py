@@ -1,0 +1,205 @@
+"""The binding checks of a problem solved by cells, searched together
+(:mod:`corrugate.solver.cell_checks`), checked against a second method:
+
+* each answer of the shared search is that of the check's own search (the problem without the
+  constraint searched by its own cells and branch and bound, :func:`~.solve._cell_binding`'s
+  per-check path), nominal and with the default worst-case tolerances, binding and not;
+* a constraint the cells show to hold over a cell (:func:`~.cell_checks.layer_bits`) holds at
+  designs drawn in it (the problem's certified values, no slack);
+* the binding check of a constraint that never fired in the cells, searched with its negation
+  from the solve's boxes, gives the answer of the plain per-pair branch and bound of the
+  problem without it over every sheet pair's whole domain;
+* the runner-ups of a cells solve are those of the plain per-pair branch and bound, one
+  incumbent per n.
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from corrugate.solver import Problem, cell_checks, cells
+from corrugate.solver.bnb import GAP_RTOL, branch_and_bound
+from corrugate.solver.points import DesignPoints, LayerPoints
+from corrugate.solver.quantities import Tables, point_values
+from corrugate.solver.quantity import THICKNESS
+from corrugate.solver.solve import (
+    RUNNER_UP_GAP_RTOL,
+    RUNNER_UP_SPREAD,
+    _cell_binding,
+    _runner_ups,
+    _shared_cell_binding,
+    _witnesses,
+    optimize,
+    pairs,
+)
+from corrugate.spec.schema import Spec
+
+
+def _problem(wide: bool, tolerances: bool, extra: tuple[str, ...] = ()) -> Problem:
+    """Two dura-lar sheets (four pairs), continuous W and alpha, independent layers on a
+    rectangle (tests/solver/test_cells.py's spec); ``wide``: W 5-12 mm, n 4-9, alpha 50-120
+    deg, so that the sides' and the thickness' upper bounds drop cells without binding; EI
+    bounds in mN*m^2, lower under the tolerances; ``extra``: more lines of [constraints]."""
+    ei0, ei90 = (90, 30) if tolerances else (120, 40)
+    W, n, alpha = ((5, 12), (4, 9), (50, 120)) if wide else ((7, 11), (5, 7), (70, 100))
+    lines = [
+        'name = "cell-checks"',
+        'model = "refined"',
+        'layers = "independent"',
+        *([] if tolerances else ['tolerances = "none"']),
+        "[[materials]]",
+        'name = "dura-lar"',
+        'thickness = ["0.075 mm", "0.125 mm"]',
+        "[layout]",
+        'shape = "rectangle"',
+        "[variables]",
+        f'W = {{ min = "{W[0]} mm", max = "{W[1]} mm" }}',
+        f"n = {{ min = {n[0]}, max = {n[1]} }}",
+        f'alpha = {{ min = "{alpha[0]} deg", max = "{alpha[1]} deg" }}',
+        "[constraints]",
+        'side_x = { min = "60 mm", max = "80 mm" }',
+        'side_y = { min = "40 mm", max = "60 mm" }',
+        'thickness = { min = "8 mm", max = "16 mm" }',
+        *extra,
+        f'flexural_rigidity = [{{ min = "{ei0} mN*m^2", eta = "0 deg" }}, '
+        f'{{ min = "{ei90} mN*m^2", eta = "90 deg" }}]',
+    ]
+    return Problem.from_spec(Spec.model_validate(tomllib.loads("\n".join(lines))))
+
+
+@pytest.mark.parametrize("tolerances", [False, pytest.param(True, marks=pytest.mark.slow)])
+def test_shared_answers_are_each_checks_own_search(tolerances: bool) -> None:
+    p = _problem(True, tolerances)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.point is not None and opt.fired is not None
+    tol = 2 * GAP_RTOL * opt.value
+    # the checks the solve leaves to a search: those its probe near the optimum did not show
+    witnessed = _witnesses(p, opt, tables, tol)
+    names = [n for n in dict.fromkeys(c.name for c in p.constraints) if n not in witnessed]
+    shared = _shared_cell_binding(p, opt, names, tables, tol)
+    fired = {p.constraints[i].name for i in opt.fired}
+    assert set(shared) == fired & set(names)  # each that fired, by the shared search
+    assert True in shared.values() and False in shared.values()  # both answers exercised
+    for name, answer in shared.items():
+        assert answer == _cell_binding(p, opt, name, tables, tol), name
+
+
+def test_a_constraint_shown_held_holds_at_designs_of_the_cell() -> None:
+    p = _problem(True, True, ('sheet_max = "70 mm"',))  # the blank's (n + 1) W too
+    tables = Tables(p)
+    rng = np.random.default_rng(11)
+    k = 3000
+    shown = set()
+    for a, b in pairs(p)[:2]:
+        n1, n2 = rng.integers(4, 10, k).astype(float), rng.integers(4, 10, k).astype(float)
+        W1, W2 = rng.uniform(1.5, 11, k), rng.uniform(1.5, 11, k)
+        a1, a2 = rng.uniform(50, 110, k), rng.uniform(50, 110, k)
+        w, v = rng.uniform(0, 1, k), rng.uniform(0, 10, k)
+        met1 = cell_checks.layer_bits(p, a, 1, n1, W1, W1 + w, a1, a1 + v)[1]
+        met2 = cell_checks.layer_bits(p, b, 2, n2, W2, W2 + w, a2, a2 + v)[1]
+        u = rng.uniform(size=(4, k))
+        x = DesignPoints.of(
+            LayerPoints(n1, W1 + u[0] * w, a1 + u[1] * v),
+            LayerPoints(n2, W2 + u[2] * w, a2 + u[3] * v),
+        )
+        vals = point_values(p, a, b, x, tables)
+        own = [m for m, c in enumerate(p.constraints) if cell_checks._own(c)]
+        for m in own:
+            held = ((met1 >> m) & 1 == 1) & ((met2 >> m) & 1 == 1)
+            ok = p.constraints[m].satisfied(vals[p.constraints[m].quantity], rtol=0.0)
+            assert np.all(ok[held]), p.constraints[m].name
+            if held.sum() > 0 and not ok.all():  # shown held in some cells, broken elsewhere
+                shown.add(p.constraints[m].quantity.kind)
+    # the sides both ways, the blank, t / W, the facet width, the validated facets
+    assert {"Lx", "Ly", "flat", "t_over_W", "W_min", "facets_least"} <= shown, shown
+
+
+def test_the_thickness_rule_at_designs_of_the_pair() -> None:
+    p = _problem(True, False)
+    tables = Tables(p)
+    a, b = pairs(p)[1]
+    st = cells.setting(replace(p, constraints=()), a, b, tables)  # every cell kept
+    rng = np.random.default_rng(5)
+    k = 3000
+    drawn = []
+    for which in (1, 2):
+        n = rng.integers(4, 10, k).astype(float)
+        W, alpha = rng.uniform(2, 18, k), rng.uniform(40, 150, k)
+        w, v = rng.uniform(0, 1.5, k), rng.uniform(0, 15, k)
+        drawn.append(cells._cells(st, which, n, W, W + w, alpha, alpha + v)[0])
+    L1, L2 = drawn
+    i = j = np.arange(k)
+    u = rng.uniform(size=(4, k))
+    x = DesignPoints.of(
+        LayerPoints(
+            L1.n[i],
+            L1.W0[i] + u[0] * (L1.W1[i] - L1.W0[i]),
+            L1.a0[i] + u[1] * (L1.a1[i] - L1.a0[i]),
+        ),
+        LayerPoints(
+            L2.n[j],
+            L2.W0[j] + u[2] * (L2.W1[j] - L2.W0[j]),
+            L2.a0[j] + u[3] * (L2.a1[j] - L2.a0[j]),
+        ),
+    )
+    td = point_values(p, a, b, x, tables)[THICKNESS]
+    counts = []
+    for c in p.constraints:
+        if c.quantity != THICKNESS:
+            continue
+        broken, held = cell_checks.thickness_rule(c, L1, L2, i, j)
+        ok = c.satisfied(td, rtol=0.0)
+        assert np.all(ok[held]) and not np.any(ok[broken]), c.name
+        counts += [int(held.sum()), int(broken.sum())]
+    assert len(counts) == 4 and min(counts) > 10  # both bounds, both rules exercised
+
+
+@pytest.mark.slow
+def test_a_check_that_never_fired_is_the_plain_search() -> None:
+    p = _problem(False, True)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.fired is not None
+    idle = [c.name for i, c in enumerate(p.constraints) if i not in opt.fired]
+    name = "constraints.thickness.max"
+    assert name in idle
+    tol = 2 * GAP_RTOL * opt.value
+    goal = opt.value - tol
+    plain = False
+    for a, b in pairs(p):  # the problem without it, every pair's whole domain
+        r = branch_and_bound(p.without(name), a, b, incumbent=goal, tables=tables, stop_below=goal)
+        assert r.certified or r.point is not None
+        plain |= r.point is not None and r.value < goal
+    assert _cell_binding(p, opt, name, tables, tol) is plain
+
+
+@pytest.mark.slow
+def test_runner_ups_of_a_cells_solve_are_the_plain_search_per_n() -> None:
+    """The runner-ups of a cells solve (one cells search per n) against the plain branch and
+    bound of every sheet pair's whole domain with one incumbent per n (``per_n``): the same n
+    have a design, each mass within both searches' relative gap RUNNER_UP_GAP_RTOL."""
+    p = _problem(True, False)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.point is not None and opt.starts is not None  # by cells
+    rows = _runner_ups(p, opt, tables)
+    n0 = round(opt.point.layer(0).n)
+    span = (max(p.n_lo, n0 - RUNNER_UP_SPREAD), min(p.n_hi, n0 + RUNNER_UP_SPREAD))
+    plain: dict[int, float] = {}
+    for a, b in pairs(p):
+        r = branch_and_bound(p, a, b, tables=tables, per_n=span, gap_rtol=RUNNER_UP_GAP_RTOL)
+        assert r.by_n is not None
+        for n, rn in r.by_n.items():
+            assert rn.certified
+            if rn.point is not None:
+                plain[n] = min(plain.get(n, math.inf), rn.value)
+    assert {row.n for row in rows} == set(plain) and len(plain) >= 3
+    for row in rows:
+        assert row.certified
+        assert abs(row.objective - plain[row.n]) <= 2 * RUNNER_UP_GAP_RTOL * plain[row.n]
