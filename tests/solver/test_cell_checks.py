@@ -22,7 +22,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from corrugate.solver import Problem, cell_checks, cells
+from corrugate.solver import Problem, cell_checks, cells, solve
 from corrugate.solver.bnb import GAP_RTOL, branch_and_bound
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, point_values
@@ -203,3 +203,38 @@ def test_runner_ups_of_a_cells_solve_are_the_plain_search_per_n() -> None:
     for row in rows:
         assert row.certified
         assert abs(row.objective - plain[row.n]) <= 2 * RUNNER_UP_GAP_RTOL * plain[row.n]
+
+
+def test_a_shared_search_stopped_at_its_limit_leaves_its_checks_unknown(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Stopped at its limit of cell pairs before it settles, the shared search answers only the
+    checks it found a design for (binding, as each one's own search would: such a design is the
+    check's design) and leaves the others unknown, not searched one by one; the explained
+    solution then says its explanation is partial."""
+    p = _problem(True, False)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.fired is not None
+    tol = 2 * GAP_RTOL * opt.value
+    witnessed = _witnesses(p, opt, tables, tol)
+    names = [n for n in dict.fromkeys(c.name for c in p.constraints) if n not in witnessed]
+    full = _shared_cell_binding(p, opt, names, tables, tol)
+    search = cell_checks.shared_search
+
+    def stopped(*args: object, **kwargs: object) -> cell_checks.Shared:
+        got = search(*args, **{**kwargs, "budget": 1})  # type: ignore[arg-type]
+        assert not got.settled
+        return got
+
+    monkeypatch.setattr(cell_checks, "shared_search", stopped)
+    cut = _shared_cell_binding(p, opt, names, tables, tol)
+    assert set(cut) == set(full)
+    for name, answer in cut.items():
+        assert answer is None or (answer is True and full[name] is True), name
+    assert None in cut.values()
+    sol = solve(p, explain=True)
+    unknown = {r.name for r in sol.constraints if r.binding is None}
+    assert unknown and unknown <= {n for n, a in cut.items() if a is None}
+    assert "explanation-partial" in {w["code"] for w in sol.warnings}
+    assert sol.certified

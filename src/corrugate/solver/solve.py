@@ -901,6 +901,18 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
                     ),
                 }
             )
+        elif opt.certified and _cellular(opt) and any(r.binding is None for r in reports):
+            warnings.append(
+                {
+                    "code": "explanation-partial",
+                    "message": (
+                        "the design is certified, but the binding checks' search of the "
+                        f"continuous domain stopped at its limit of {cells.BUDGET:.0e} cell "
+                        "pairs: whether a constraint binds is left unknown where it was not "
+                        "proven"
+                    ),
+                }
+            )
     stats["total_seconds"] = time.perf_counter() - t0
     return Solution(
         problem,
@@ -1612,8 +1624,14 @@ def _shared_cell_binding(
     (:func:`_relaxed`: the optimum is certified) from the boxes it left of each sheet pair,
     the optimum's pair first, stopped at the first design below the goal. Empty (each check
     then searched on its own) when the optimum is not certified, nothing fired, or the shared
-    search does not apply or stopped at its budget; None for a check whose search was not
-    certified."""
+    search does not apply; None for a check whose search was not certified. When the shared
+    search stops at its limit of cell pairs (:data:`~.cells.BUDGET`) first, a check it found a
+    design for binds (True) and the others are left unknown (None): each one's own search of the
+    whole domain (:func:`_cell_binding`) would judge the cell pairs of every sheet pair again
+    and leave its branch and bound the boxes the shared one could not settle (films-13-cont of
+    benchmarks/edges.py: the first such check ran 37 s to the 60 s budget and 1.47 GB without
+    an answer, and left the runner-ups no time; unknown, the explanation ends in 31 s at 230 MB
+    with every runner-up)."""
     if not opt.certified or opt.fired is None or problem.objective.sense != "min":
         return {}
     fired = {problem.constraints[i].name for i in opt.fired}
@@ -1624,7 +1642,7 @@ def _shared_cell_binding(
     everything = pairs(problem)
     got = cell_checks.shared_search(problem, everything, tables, checks, goal)
     if not got.settled:
-        return {}
+        return {ch.name: True if got.found[ch.name] else None for ch in checks}
     first = everything.index(opt.candidates) if opt.candidates in everything else -1
     out: dict[str, bool | None] = {}
     for ch in checks:
