@@ -42,6 +42,7 @@ from numpy.typing import NDArray
 from corrugate.geometry.layouts import length_sum
 from corrugate.mechanics.mass import connector_mass, layer_mass
 from corrugate.solver import cells
+from corrugate.solver.archive import bit_sets
 from corrugate.solver.budget import budget_spent, current_budget
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.problem import Candidate, Constraint, Problem
@@ -110,9 +111,9 @@ def _own(c: Constraint) -> bool:
 
 
 def _bits(rows: NDArray[np.bool_]) -> IntArray:
-    """Each row of a (cells x constraints) table as a bit set (bit k: column k)."""
-    weights = np.left_shift(np.int64(1), np.arange(rows.shape[1], dtype=np.int64))
-    return np.asarray((rows.astype(np.int64) * weights).sum(axis=1), dtype=np.int64)
+    """Each row of a (cells x constraints) table as a bit set (bit k: column k;
+    :func:`~.archive.bit_sets`)."""
+    return bit_sets(np.ascontiguousarray(rows, dtype=bool))[0].astype(np.int64)
 
 
 def _met(
