@@ -31,3 +31,39 @@ def sheet_choices_spec(tmp: Path) -> Path:
     path = tmp / "sheet_choices.toml"
     path.write_text(text, "utf-8")
     return path
+
+
+def continuous_two_sheets(tolerances: bool, wide: bool = False, extra: tuple[str, ...] = ()) -> str:
+    """The TOML of two dura-lar sheets (0.075 and 0.125 mm: four sheet pairs), continuous W and
+    alpha, independent layers on a rectangle (examples/rectangle_independent.toml's kind, ranges
+    narrow enough for the plain per-pair branch and bound to be a quick second method): W 7-11
+    mm, n 5-7, alpha 70-100 deg; ``wide``: W 5-12 mm, n 4-9, alpha 50-120 deg, so that the
+    sides' and the thickness' upper bounds drop cells without binding. EI bounds in mN*m^2,
+    lower under the default tolerances (``tolerances``; else none is met) than nominally;
+    ``extra``: more lines of [constraints] (tests/solver/test_cells.py, test_cell_checks.py,
+    test_polish.py)."""
+    ei0, ei90 = (90, 30) if tolerances else (120, 40)
+    W, n, alpha = ((5, 12), (4, 9), (50, 120)) if wide else ((7, 11), (5, 7), (70, 100))
+    lines = [
+        'name = "cells"',
+        'model = "refined"',
+        'layers = "independent"',
+        *([] if tolerances else ['tolerances = "none"']),
+        "[[materials]]",
+        'name = "dura-lar"',
+        'thickness = ["0.075 mm", "0.125 mm"]',
+        "[layout]",
+        'shape = "rectangle"',
+        "[variables]",
+        f'W = {{ min = "{W[0]} mm", max = "{W[1]} mm" }}',
+        f"n = {{ min = {n[0]}, max = {n[1]} }}",
+        f'alpha = {{ min = "{alpha[0]} deg", max = "{alpha[1]} deg" }}',
+        "[constraints]",
+        'side_x = { min = "60 mm", max = "80 mm" }',
+        'side_y = { min = "40 mm", max = "60 mm" }',
+        'thickness = { min = "8 mm", max = "16 mm" }',
+        *extra,
+        f'flexural_rigidity = [{{ min = "{ei0} mN*m^2", eta = "0 deg" }}, '
+        f'{{ min = "{ei90} mN*m^2", eta = "90 deg" }}]',
+    ]
+    return "\n".join(lines)

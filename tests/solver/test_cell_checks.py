@@ -38,38 +38,13 @@ from corrugate.solver.solve import (
     pairs,
 )
 from corrugate.spec.schema import Spec
+from sheet_specs import continuous_two_sheets
 
 
 def _problem(wide: bool, tolerances: bool, extra: tuple[str, ...] = ()) -> Problem:
-    """Two dura-lar sheets (four pairs), continuous W and alpha, independent layers on a
-    rectangle (tests/solver/test_cells.py's spec); ``wide``: W 5-12 mm, n 4-9, alpha 50-120
-    deg, so that the sides' and the thickness' upper bounds drop cells without binding; EI
-    bounds in mN*m^2, lower under the tolerances; ``extra``: more lines of [constraints]."""
-    ei0, ei90 = (90, 30) if tolerances else (120, 40)
-    W, n, alpha = ((5, 12), (4, 9), (50, 120)) if wide else ((7, 11), (5, 7), (70, 100))
-    lines = [
-        'name = "cell-checks"',
-        'model = "refined"',
-        'layers = "independent"',
-        *([] if tolerances else ['tolerances = "none"']),
-        "[[materials]]",
-        'name = "dura-lar"',
-        'thickness = ["0.075 mm", "0.125 mm"]',
-        "[layout]",
-        'shape = "rectangle"',
-        "[variables]",
-        f'W = {{ min = "{W[0]} mm", max = "{W[1]} mm" }}',
-        f"n = {{ min = {n[0]}, max = {n[1]} }}",
-        f'alpha = {{ min = "{alpha[0]} deg", max = "{alpha[1]} deg" }}',
-        "[constraints]",
-        'side_x = { min = "60 mm", max = "80 mm" }',
-        'side_y = { min = "40 mm", max = "60 mm" }',
-        'thickness = { min = "8 mm", max = "16 mm" }',
-        *extra,
-        f'flexural_rigidity = [{{ min = "{ei0} mN*m^2", eta = "0 deg" }}, '
-        f'{{ min = "{ei90} mN*m^2", eta = "90 deg" }}]',
-    ]
-    return Problem.from_spec(Spec.model_validate(tomllib.loads("\n".join(lines))))
+    """The two-sheet continuous problem of :func:`sheet_specs.continuous_two_sheets`."""
+    spec = continuous_two_sheets(tolerances, wide, extra)
+    return Problem.from_spec(Spec.model_validate(tomllib.loads(spec)))
 
 
 @pytest.mark.parametrize("tolerances", [False, pytest.param(True, marks=pytest.mark.slow)])

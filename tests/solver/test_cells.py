@@ -27,35 +27,12 @@ from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.solve import optimize, pairs
 from corrugate.spec.schema import Spec
+from sheet_specs import continuous_two_sheets
 
 
 def _problem(tolerances: bool) -> Problem:
-    """Two dura-lar sheets (four pairs), continuous W and alpha, independent layers on a
-    rectangle (the shipped examples/rectangle_independent.toml, narrower ranges so the plain
-    path is quick); EI bounds in mN*m^2, lower under the tolerances (else none is met)."""
-    ei0, ei90 = (90, 30) if tolerances else (120, 40)
-    lines = [
-        'name = "cells"',
-        'model = "refined"',
-        'layers = "independent"',
-        *([] if tolerances else ['tolerances = "none"']),
-        "[[materials]]",
-        'name = "dura-lar"',
-        'thickness = ["0.075 mm", "0.125 mm"]',
-        "[layout]",
-        'shape = "rectangle"',
-        "[variables]",
-        'W = { min = "7 mm", max = "11 mm" }',
-        "n = { min = 5, max = 7 }",
-        'alpha = { min = "70 deg", max = "100 deg" }',
-        "[constraints]",
-        'side_x = { min = "60 mm", max = "80 mm" }',
-        'side_y = { min = "40 mm", max = "60 mm" }',
-        'thickness = { min = "8 mm", max = "16 mm" }',
-        f'flexural_rigidity = [{{ min = "{ei0} mN*m^2", eta = "0 deg" }}, '
-        f'{{ min = "{ei90} mN*m^2", eta = "90 deg" }}]',
-    ]
-    return Problem.from_spec(Spec.model_validate(tomllib.loads("\n".join(lines))))
+    """The two-sheet continuous problem of :func:`sheet_specs.continuous_two_sheets`."""
+    return Problem.from_spec(Spec.model_validate(tomllib.loads(continuous_two_sheets(tolerances))))
 
 
 _PLAIN: dict[bool, list[float]] = {}

@@ -22,33 +22,13 @@ from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import MASS
 from corrugate.solver.solve import optimize, pairs
 from corrugate.spec.schema import Spec
+from sheet_specs import continuous_two_sheets
 
 
 def _problem() -> Problem:
-    """Two dura-lar sheets, continuous W and alpha, independent layers on a rectangle, nominal
+    """The nominal two-sheet continuous problem of :func:`sheet_specs.continuous_two_sheets`
     (tests/solver/test_cells.py's problem)."""
-    lines = [
-        'name = "polish"',
-        'model = "refined"',
-        'layers = "independent"',
-        'tolerances = "none"',
-        "[[materials]]",
-        'name = "dura-lar"',
-        'thickness = ["0.075 mm", "0.125 mm"]',
-        "[layout]",
-        'shape = "rectangle"',
-        "[variables]",
-        'W = { min = "7 mm", max = "11 mm" }',
-        "n = { min = 5, max = 7 }",
-        'alpha = { min = "70 deg", max = "100 deg" }',
-        "[constraints]",
-        'side_x = { min = "60 mm", max = "80 mm" }',
-        'side_y = { min = "40 mm", max = "60 mm" }',
-        'thickness = { min = "8 mm", max = "16 mm" }',
-        'flexural_rigidity = [{ min = "120 mN*m^2", eta = "0 deg" }, '
-        '{ min = "40 mN*m^2", eta = "90 deg" }]',
-    ]
-    return Problem.from_spec(Spec.model_validate(tomllib.loads("\n".join(lines))))
+    return Problem.from_spec(Spec.model_validate(tomllib.loads(continuous_two_sheets(False))))
 
 
 def _meets(p: Problem, c1: Candidate, c2: Candidate, x: DesignPoints, tables: Tables) -> float:
