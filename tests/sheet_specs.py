@@ -1,9 +1,17 @@
-"""A spec shared by the solver's explanation tests: examples/rectangle_independent.toml on a small
-grid with six candidate sheets (tests/solver/test_explain_tree.py, test_joint_checks.py)."""
+"""Specs and helpers shared by the solver's tests: examples/rectangle_independent.toml on a small
+grid with six candidate sheets (tests/solver/test_explain_tree.py, test_joint_checks.py), a
+two-sheet continuous spec and designs drawn in pairs of cells (test_cells.py, test_cell_checks.py,
+test_polish.py)."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from corrugate.solver.points import DesignPoints, LayerPoints
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 
@@ -67,3 +75,23 @@ def continuous_two_sheets(tolerances: bool, wide: bool = False, extra: tuple[str
         f'{{ min = "{ei90} mN*m^2", eta = "90 deg" }}]',
     ]
     return "\n".join(lines)
+
+
+def designs_in_cells(
+    L1: Any, L2: Any, i: NDArray[np.int64], u: NDArray[np.float64]
+) -> DesignPoints:
+    """One design in each pair of cells (``L1`` row i, ``L2`` row i; cells of
+    :mod:`corrugate.solver.cells`, n and the intervals of W in mm and alpha in deg): W and alpha
+    of each layer at the fractions ``u`` (4 x len(i), in [0, 1]) of their intervals."""
+    return DesignPoints.of(
+        LayerPoints(
+            L1.n[i],
+            L1.W0[i] + u[0] * (L1.W1[i] - L1.W0[i]),
+            L1.a0[i] + u[1] * (L1.a1[i] - L1.a0[i]),
+        ),
+        LayerPoints(
+            L2.n[i],
+            L2.W0[i] + u[2] * (L2.W1[i] - L2.W0[i]),
+            L2.a0[i] + u[3] * (L2.a1[i] - L2.a0[i]),
+        ),
+    )

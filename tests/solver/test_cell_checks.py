@@ -38,7 +38,7 @@ from corrugate.solver.solve import (
     pairs,
 )
 from corrugate.spec.schema import Spec
-from sheet_specs import continuous_two_sheets
+from sheet_specs import continuous_two_sheets, designs_in_cells
 
 
 def _problem(wide: bool, tolerances: bool, extra: tuple[str, ...] = ()) -> Problem:
@@ -111,18 +111,7 @@ def test_the_thickness_rule_at_designs_of_the_pair() -> None:
     L1, L2 = drawn
     i = j = np.arange(k)
     u = rng.uniform(size=(4, k))
-    x = DesignPoints.of(
-        LayerPoints(
-            L1.n[i],
-            L1.W0[i] + u[0] * (L1.W1[i] - L1.W0[i]),
-            L1.a0[i] + u[1] * (L1.a1[i] - L1.a0[i]),
-        ),
-        LayerPoints(
-            L2.n[j],
-            L2.W0[j] + u[2] * (L2.W1[j] - L2.W0[j]),
-            L2.a0[j] + u[3] * (L2.a1[j] - L2.a0[j]),
-        ),
-    )
+    x = designs_in_cells(L1, L2, i, u)
     td = point_values(p, a, b, x, tables)[THICKNESS]
     counts = []
     for c in p.constraints:

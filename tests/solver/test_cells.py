@@ -23,11 +23,10 @@ import pytest
 from corrugate.solver import Problem, cells
 from corrugate.solver.bnb import GAP_RTOL, branch_and_bound
 from corrugate.solver.choices import CellFloors, floors
-from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.solve import optimize, pairs
 from corrugate.spec.schema import Spec
-from sheet_specs import continuous_two_sheets
+from sheet_specs import continuous_two_sheets, designs_in_cells
 
 
 def _problem(tolerances: bool) -> Problem:
@@ -111,18 +110,7 @@ def test_inner_bound_at_least_the_certified_value() -> None:
         i = j = np.arange(min(len(L1), len(L2)))
         assert len(i) > 20
         u = rng.uniform(size=(4, len(i)))
-        x = DesignPoints.of(
-            LayerPoints(
-                L1.n[i],
-                L1.W0[i] + u[0] * (L1.W1[i] - L1.W0[i]),
-                L1.a0[i] + u[1] * (L1.a1[i] - L1.a0[i]),
-            ),
-            LayerPoints(
-                L2.n[j],
-                L2.W0[j] + u[2] * (L2.W1[j] - L2.W0[j]),
-                L2.a0[j] + u[3] * (L2.a1[j] - L2.a0[j]),
-            ),
-        )
+        x = designs_in_cells(L1, L2, i, u)
         vals = point_values(p, a, b, x, tables)
         for q in stiff:
             upper = cells._inner_upper(q, L1, L2, i, j)

@@ -12,9 +12,9 @@ import pytest
 from corrugate.solver import Problem
 from corrugate.solver.bnb import branch_and_bound
 from corrugate.solver.choices import floors, shared_lists
-from corrugate.solver.joint_checks import Check, joint_search, reopened
+from corrugate.solver.joint_checks import joint_search, reopened
 from corrugate.solver.quantities import Tables
-from corrugate.solver.solve import _negation, _relaxed, constraint_bits, optimize, pairs, solve
+from corrugate.solver.solve import _checks, _relaxed, optimize, pairs, solve
 from corrugate.spec.schema import load_spec
 from sheet_specs import sheet_choices_spec
 
@@ -47,11 +47,7 @@ def test_one_search_answers_each_check_as_its_own_search_does(path: Path) -> Non
     tree = opt.tree()
     assert tree is not None and len(tree) == 1
     names = list(dict.fromkeys(c.name for c in problem.constraints))
-    checks = []
-    for name in names:
-        own = [c for c in problem.constraints if c.name == name]
-        neg = _negation(own[0], problem) if len(own) == 1 else None
-        checks.append(Check(name, constraint_bits(problem, name), neg))
+    checks = _checks(problem, opt, names)  # the optimum is certified: each with its negation
     start = reopened(tree[0], checks, opt.value)
     joint = joint_search(problem, opt.candidates, tables, checks, start, opt.value)
     alone = []
@@ -189,11 +185,7 @@ def test_first_points_judged_apart_then_the_joint_search_answer_as_each_check_al
     tree = opt.tree()
     assert tree is not None and len(tree) == 1
     names = list(dict.fromkeys(c.name for c in problem.constraints))
-    checks = []
-    for name in names:
-        own = [c for c in problem.constraints if c.name == name]
-        neg = _negation(own[0], problem) if len(own) == 1 else None
-        checks.append(Check(name, constraint_bits(problem, name), neg))
+    checks = _checks(problem, opt, names)  # the optimum is certified: each with its negation
     lo, hi, _, _ = reopened(tree[0], checks, opt.value)
     pts = three_points(problem, lo, hi)
     vals = point_values(problem, *opt.candidates, DesignPoints.from_columns(pts), tables)
