@@ -4,7 +4,9 @@ layers (:mod:`.cells`): an incumbent for the cells' search, never a certificate.
 From a design x0 that meets every constraint of P under P's own rule (``point_values``, no slack:
 :func:`~.cells.judge_of`), the sheets and each layer's n kept, :func:`polish` minimises the mass
 over (W1, alpha1, W2, alpha2) inside their ranges subject to every constraint's relative margin
-(value - bound) / |bound| (min; bound - value for max) at least :data:`MARGIN`, by SLSQP
+(value - bound) / |bound| (min; bound - value for max) at least :data:`MARGIN` (at least 0 for a
+constraint of n alone, whose margin is the same at every W and alpha: the facets' count at its
+bound cannot be given a margin, and asking one left SLSQP no feasible point), by SLSQP
 (:func:`scipy.optimize.minimize`) with forward differences evaluated in one vectorised call; the
 designs on the segment from x0 to its result (x0 + s (x - x0), s = 1 - 10^-k) are then judged by
 P's own rule and the lightest that meets it is returned. Whatever SLSQP does, the design returned
@@ -113,6 +115,10 @@ def polish(
 
     from scipy.optimize import minimize  # here: its import is not paid by every solve
 
+    # a constraint of n alone (its margin the same at every W and alpha, e.g. the facets' count)
+    # asks no margin: met at n with none, it cannot be given one
+    free = np.all(at(z0)[3] == 0.0, axis=1)
+    need = np.where(free, 0.0, MARGIN)
     m0, ok0 = exact(_points(n1, n2, np.asarray([first])))
     start = float(m0[0]) if bool(ok0[0]) else math.inf
     try:
@@ -126,7 +132,7 @@ def polish(
                 constraints=[
                     {
                         "type": "ineq",
-                        "fun": lambda z: at(z)[2] - MARGIN,
+                        "fun": lambda z: at(z)[2] - need,
                         "jac": lambda z: at(z)[3],
                     }
                 ],
