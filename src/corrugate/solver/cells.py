@@ -110,7 +110,16 @@ IntArray = NDArray[np.int64]
 Index = NDArray[np.signedinteger[Any]]
 
 #: Relative slack toward keeping with which a cell pair is judged (rounding of the products).
-SLACK = 1e-12
+#: What the judge computes in plain floating point (the interval model's values are rounded
+#: outward) is products, quotients and sums of positive numbers and sines and cosines (the
+#: extents, depths, blanks, band and mass; the terms (u_i + v_j) f_i g_j and the inner boxes'
+#: sums; the band's flanges g (e - g) with g <= e / 2: no cancellation), some 40 operations of
+#: at most one ulp (1.1e-16) each, so each value is within 1e-14 of its exact value, and P's own
+#: rule computes the same quantities within as much: 1e-13 covers both with a factor 5. A
+#: design infeasible by less than the slack keeps its cell pair, and such designs are lighter
+#: than the optimum by up to about ten times the slack on films-13-cont (three constraints
+#: active): at 1e-12 the search could not close below 1.0e-11 of the optimum.
+SLACK = 1e-13
 #: The first cells of each n: W's range cut in this many, alpha's in this many.
 FIRST_W = 4
 FIRST_ALPHA = 5
@@ -133,13 +142,14 @@ WIDE_BATCH = 262144
 #: branch and bound closes the rest from them.
 CELL_GAP = 1e-10
 #: ... and, asked a finer gap (``fine``), goes on toward it while at most this many pairs are
-#: left (past it the cells' own bounds stall: their stiffness bounds are looser than the certified
-#: value's own, films-13-cont's least bound stayed 1.0e-11 below an incumbent 5e-13 above the
-#: optimum while the queue grew to 0.9 M pairs), the branch and bound closing fewer boxes after.
+#: left (the cells stall about ten times :data:`SLACK` below the optimum, above: films-13-cont's
+#: queue grew to 0.9 M pairs at 1.0e-11 with a slack of 1e-12), the branch and bound closing
+#: fewer boxes after.
 FINE_MOST = 100_000
 #: The finer gap the solve asks (:func:`~.solve._by_cells`): films-13-cont's branch and bound
-#: from the cells' boxes at 1e-10 closed 282 k boxes in 8.0 s, at 3e-11 176 k in 4.1 s.
-FINE_GAP = 3e-11
+#: from the cells' boxes at 1e-10 closed 293 k boxes in 8.0 s, at 1e-11 76 k in 2.2 s, at 5e-12
+#: 35 k in 0.8 s (40 k start boxes); at 3e-12 the cells stopped at this cap.
+FINE_GAP = 5e-12
 #: Rounds of splitting between two draws of designs to evaluate (:func:`_probe`).
 PROBE_EVERY = 4
 #: Pairs of one level judged at once (memory: a few arrays of this length).
