@@ -40,7 +40,7 @@ certified values (``point_values``, tolerances included, every constraint met wi
 branch and bound's rule for continuous variables): designs drawn in the lightest pairs and anywhere
 in the queue that the rule above does not exclude at the point itself, and designs around the best
 one found; the best feasible one is the incumbent of every sheet pair. Past :data:`SEED_FROM`
-first cell pairs or :data:`SEED_SHEETS` sheet pairs with no incumbent, a design is sought before they are formed (:func:`_seed`) and
+first cell pairs with no incumbent, a design is sought before they are formed (:func:`_seed`) and
 the best designs found are polished (:mod:`.polish`): both only lower the incumbent, with designs
 P's own rule accepts, so nothing below depends on them. Each child pair lies in its
 parent, so the pairs left always cover every design of P lighter than the incumbent. The search
@@ -166,12 +166,6 @@ PROBE_SHEETS = 2
 #: anywhere in the queue all along (else only until a first design): benchmarks/edges.py's
 #: films-5-cont has 0.81 M first pairs, films-13-cont 5.5 M.
 SEED_FROM = 2_000_000
-#: ... or past this many sheet pairs (the probes draw in two a round, so among many the first
-#: design comes late): films-13-cont's runner-ups (169 sheet pairs, one n, 50-80 k first pairs)
-#: judged 0.85-2.0 M pairs unseeded (n = 17 not certified within 2 M), 46-80 k seeded (n = 17:
-#: 1.3 M, certified); films-5-cont's 25 pairs are faster unseeded (its explanation 12.2-13.2 s
-#: against 14.3-15.4 s seeded).
-SEED_SHEETS = 100
 #: Before the first cell pairs (:func:`_seed`): the points drawn in each layer's first cells,
 #: the pairs of them judged per sheet pair, and the sheet pairs whose best design is polished.
 SEED_POINTS = 2048
@@ -842,8 +836,7 @@ def search_pairs(
         none = np.empty((0, 6))
         gave_up = CellResult(0.0, (none, none, np.empty(0)), None, math.nan, 0, False)
         return [gave_up] * len(settings), -1, frozenset()
-    # a design sought before the first pairs, and polished
-    wide = first > SEED_FROM or len(settings) >= SEED_SHEETS
+    wide = first > SEED_FROM  # a design sought before the first pairs, and polished
     if exacts is not None and not math.isfinite(inc) and wide:
         seeded = _seed(settings, tabs, tab_of, exacts)
         if seeded is not None and seeded[0] < inc:
