@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 
 from corrugate.solver.problem import DesignVariable
 
-__all__ = ["MULTI_PARTS", "MULTI_SPLIT_CHILDREN", "grid_points", "snap", "split", "widths"]
+__all__ = ["MULTI_PARTS", "MULTI_SPLIT_CHILDREN", "grid_points", "halve", "snap", "split", "widths"]
 
 FloatArray = NDArray[np.float64]
 
@@ -89,6 +89,40 @@ def split(
         lo[first_child:, i] = starts.reshape(-1)[keep]
         hi[first_child:, i] = ends.reshape(-1)[keep]
         cut, tag = cut[src], tag[src]
+    return lo, hi, tag
+
+
+def halve(
+    lo: FloatArray,
+    hi: FloatArray,
+    width: FloatArray,
+    variables: Sequence[DesignVariable],
+    tag: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`split` of grid boxes in two along the relatively widest coordinate (``width``,
+    as :func:`widths` gives), in fewer array operations (one coordinate per box, picked per
+    row): the lower part takes the first ceil(k / 2) of the k grid values, the upper part the
+    rest, each value lo + step j as :func:`split` makes it. A box with one grid value along its
+    widest coordinate (one point) is kept whole. Rows: the boxes kept whole, then the lower
+    parts, then the upper parts; ``tag`` follows them."""
+    step = np.array([v.step for v in variables], dtype=np.float64)
+    base = np.array([v.lo for v in variables], dtype=np.float64)
+    assert not np.isnan(step).any(), "halve: grid coordinates only"
+    i = np.argmax(width, axis=1)
+    r = np.arange(len(lo))
+    k_lo = np.round((lo[r, i] - base[i]) / step[i])
+    k_hi = np.round((hi[r, i] - base[i]) / step[i])
+    cut = k_hi > k_lo
+    whole, c = np.flatnonzero(~cut), np.flatnonzero(cut)
+    first = k_lo[c] + np.ceil((k_hi[c] - k_lo[c] + 1) / 2)  # the upper part's first index
+    src = np.concatenate([whole, c, c])
+    lo, hi, tag = lo[src], hi[src], tag[src]
+    ic, m = i[c], len(whole)
+    lower, upper = np.arange(m, m + len(c)), np.arange(m + len(c), m + 2 * len(c))
+    lo[lower, ic] = base[ic] + step[ic] * k_lo[c]
+    hi[lower, ic] = base[ic] + step[ic] * (first - 1)
+    lo[upper, ic] = base[ic] + step[ic] * first
+    hi[upper, ic] = base[ic] + step[ic] * k_hi[c]
     return lo, hi, tag
 
 

@@ -57,6 +57,7 @@ from corrugate.solver.joint_checks import (
     Check,
     answered_by,
     joint_search,
+    narrowed,
     reopened,
     three_points,
 )
@@ -157,6 +158,9 @@ class Optimum:
 
 #: Boxes (lo, hi, lower bound of sign * objective) to start one pair's search from.
 Start = tuple[FloatArray, FloatArray, FloatArray]
+#: The boxes a joint search starts from (:func:`~.joint_checks.reopened`): lo, hi, bound and
+#: the checks each carries.
+JointStart = tuple[FloatArray, FloatArray, FloatArray, NDArray[np.bool_]]
 
 
 @dataclass(frozen=True, slots=True)
@@ -1181,23 +1185,23 @@ def _witnessed(
     """The constraints :func:`_witnesses` names, from the values ``vals`` of the probe's
     points."""
     rtol = FEAS_RTOL if problem.gridded else 0.0
-    broken = np.stack(
-        [~c.satisfied(vals[c.quantity], rtol=rtol) for c in problem.constraints], axis=1
-    )
     sign = -1.0 if problem.objective.sense == "max" else 1.0
-    better = sign * vals[problem.objective.quantity] < sign * opt.value - tol
+    better = np.flatnonzero(sign * vals[problem.objective.quantity] < sign * opt.value - tol)
+    if not len(better) or not problem.constraints:
+        return set()
     # the bit set of the constraints each better point breaks (bit i: constraint i)
-    rows = broken[better]
+    rows = np.stack(
+        [~c.satisfied(vals[c.quantity][better], rtol=rtol) for c in problem.constraints], axis=1
+    )
     if rows.shape[1] <= 63:
         sets = [int(m) for m in np.unique(bit_sets(rows)[0])]
     else:  # past a uint64: as Python integers
         sets = [sum(1 << i for i in np.flatnonzero(r).tolist()) for r in rows]
-    found = set()
-    for name in dict.fromkeys(c.name for c in problem.constraints):
-        bits = constraint_bits(problem, name)
-        if any(m and not m & ~bits for m in sets):  # breaks some, only of that name
-            found.add(name)
-    return found
+    return {
+        name
+        for name, bits in _bits_by_name(problem).items()
+        if any(m and not m & ~bits for m in sets)  # breaks some, only of that name
+    }
 
 
 def _relaxed(problem: Problem, name: str, certified: bool = True) -> Problem:
@@ -1247,7 +1251,7 @@ def _constraint_reports(
         if problem.gridded and nominal and not cellular
         else None
     )
-    extra = None if first is None else three_points(problem, *first)
+    extra = None if first is None else three_points(problem, first[0], first[1])
     more = None if grid is None or not len(grid.points) else grid.points
     vals, witnessed, (at_extra, at_grid) = _probed(problem, opt, tables, tol, extra, more)
     if at_extra is not None:
@@ -1264,7 +1268,15 @@ def _constraint_reports(
     joint: dict[str, bool | None] = {}
     if tree is not None and problem.gridded and pending:
         todo = [c for c in every_check if c.name not in witnessed]
-        joint = _joint_binding(problem, opt, tree, todo, tables, offered=first is not None)
+        joint = _joint_binding(
+            problem,
+            opt,
+            tree,
+            todo,
+            tables,
+            offered=first is not None,
+            first_start=None if first is None else (every_check, first),
+        )
     together: dict[str, bool | None] = {}
     if cellular and not budget_spent():  # the checks that fired in the cells: one search
         together = _shared_cell_binding(problem, opt, pending, tables, tol)
@@ -1476,9 +1488,12 @@ def _binding(
 def _checks(problem: Problem, opt: Optimum, names: Sequence[str]) -> list[Check]:
     """The binding checks of ``names`` (:class:`~.joint_checks.Check`): each name's bits, and
     its negation (:func:`_negation`) when it is one constraint and the optimum certified."""
+    by_name: dict[str, list[Constraint]] = {}
+    for c in problem.constraints:
+        by_name.setdefault(c.name, []).append(c)
     checks = []
     for name in names:
-        own = [c for c in problem.constraints if c.name == name]
+        own = by_name.get(name, [])
         negation = _negation(own[0], problem) if len(own) == 1 and opt.certified else None
         checks.append(Check(name, constraint_bits(problem, name), negation))
     return checks
@@ -1486,10 +1501,10 @@ def _checks(problem: Problem, opt: Optimum, names: Sequence[str]) -> list[Check]
 
 def _first_boxes(
     problem: Problem, opt: Optimum, tree: tuple[Archive | None, ...] | None, checks: list[Check]
-) -> tuple[FloatArray, FloatArray] | None:
-    """The boxes (lo, hi) of the optimum's sheet pair's archive that some check of ``checks``
-    reopens (:func:`~.joint_checks.reopened`), the first that :func:`_joint_binding`
-    searches; None without an archive of that pair or with none."""
+) -> JointStart | None:
+    """The boxes of the optimum's sheet pair's archive that some check of ``checks`` reopens
+    (:func:`~.joint_checks.reopened`: lo, hi, bound, the checks each carries), the first that
+    :func:`_joint_binding` searches; None without an archive of that pair or with none."""
     everything = pairs(problem)
     if tree is None or not checks or opt.candidates not in everything:
         return None
@@ -1497,8 +1512,8 @@ def _first_boxes(
     if a is None:
         return None
     sign = -1.0 if problem.objective.sense == "max" else 1.0
-    lo, hi, _, _ = reopened(a, checks, sign * opt.value)
-    return (lo, hi) if len(lo) else None
+    start = reopened(a, checks, sign * opt.value)
+    return start if len(start[0]) else None
 
 
 def _joint_binding(
@@ -1508,15 +1523,18 @@ def _joint_binding(
     names: Sequence[str] | Sequence[Check],
     tables: Tables,
     offered: bool = False,
+    first_start: tuple[Sequence[Check], JointStart] | None = None,
 ) -> dict[str, bool | None]:
     """The binding checks of ``names`` (names, or their checks: :func:`_checks`) on a grid
     over the sheet pairs the solve searched (their archives), the optimum's own pair first,
     each pair's checks in one search (:func:`~.joint_checks.joint_search`, its answers those
     of each check's own search, the first part of :func:`_binding`): True, a better design was
     found (binding); None, the budget ran out first; False, no searched pair holds one (the
-    pairs pruned whole are left to :func:`_binding`). ``offered``: the three points of every box the optimum's pair
-    reopens for any constraint were judged for every check already (:func:`_first_boxes`),
-    and the checks they answer are not in ``names``."""
+    pairs pruned whole are left to :func:`_binding`). ``offered``: the three points of every
+    box the optimum's pair reopens for any constraint were judged for every check already
+    (:func:`_first_boxes`), and the checks they answer are not in ``names``. ``first_start``:
+    checks (named as those of ``names``, and more) and the boxes of the optimum's pair they
+    reopen (:func:`_first_boxes`), narrowed to those of ``names`` instead of reopened again."""
     sign = -1.0 if problem.objective.sense == "max" else 1.0
     checks = [n for n in names if isinstance(n, Check)]
     checks += _checks(problem, opt, [n for n in names if isinstance(n, str)])
@@ -1529,7 +1547,11 @@ def _joint_binding(
         todo = [c for c in checks if answers[c.name] is False]
         if a is None or not todo:
             continue
-        start = reopened(a, todo, sign * opt.value)
+        if i == first and first_start is not None:
+            column = {c.name: j for j, c in enumerate(first_start[0])}
+            start = narrowed(first_start[1], [column[c.name] for c in todo])
+        else:
+            start = reopened(a, todo, sign * opt.value)
         if not len(start[0]):
             continue
         got = joint_search(
@@ -1762,22 +1784,26 @@ def _runner_ups(
             break
         if tree is not None and tree[i] is None:
             continue  # pruned whole: below, against the runner-ups of the others
-        start = None if tree is None else tree[i].reopen()  # type: ignore[union-attr]
-        # few grid points left: all evaluated at once, the search's answer (enumerated_per_n)
-        r = None
-        if given is not None and pair == opt.candidates:
+        r: BnBResult | None
+        if given is not None and pair == opt.candidates:  # its grid points' values given
             r = per_n_answer(problem, *given)
-        elif start is not None:
-            r = enumerated_per_n(problem, *pair, start=start, per_n=(a, b), tables=tables)
-        if r is None:
-            r = branch_and_bound(
-                problem,
-                *pair,
-                tables=tables,
-                start=start,
-                per_n=(a, b),
-                gap_rtol=RUNNER_UP_GAP_RTOL,
+        else:
+            start = None if tree is None else tree[i].reopen()  # type: ignore[union-attr]
+            # few grid points left: all evaluated at once, the search's answer
+            r = (
+                None
+                if start is None
+                else enumerated_per_n(problem, *pair, start=start, per_n=(a, b), tables=tables)
             )
+            if r is None:
+                r = branch_and_bound(
+                    problem,
+                    *pair,
+                    tables=tables,
+                    start=start,
+                    per_n=(a, b),
+                    gap_rtol=RUNNER_UP_GAP_RTOL,
+                )
         assert r.by_n is not None
         for n, rn in r.by_n.items():
             certified[n] &= rn.certified
@@ -1873,5 +1899,22 @@ def _pruned_runner_ups(
 
 
 def constraint_bits(problem: Problem, name: str) -> int:
-    """The bit set of :class:`~.archive.Archive` masks of the constraints called ``name``."""
-    return sum(1 << i for i, c in enumerate(problem.constraints) if c.name == name)
+    """The bit set of :class:`~.archive.Archive` masks of the constraints called ``name`` (0:
+    none)."""
+    return _bits_by_name(problem).get(name, 0)
+
+
+#: The attribute of a problem that keeps its constraints' bit sets by name.
+_BITS = "_constraint_bits"
+
+
+def _bits_by_name(problem: Problem) -> dict[str, int]:
+    """Each constraint name's bit set (bit i: ``problem.constraints[i]``), built once per
+    problem and kept on it (a cache of its own fields, as :func:`~.quantities.reported`)."""
+    kept: dict[str, int] | None = problem.__dict__.get(_BITS)
+    if kept is None:
+        kept = {}
+        for i, c in enumerate(problem.constraints):
+            kept[c.name] = kept.get(c.name, 0) | 1 << i
+        object.__setattr__(problem, _BITS, kept)
+    return kept
