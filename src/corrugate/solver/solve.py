@@ -1114,16 +1114,18 @@ def _probed(
     tables: Tables,
     tol: float,
     *extras: FloatArray | None,
+    with_probe: bool = True,
 ) -> tuple[dict[Quantity, float], set[str], list[dict[Quantity, FloatArray] | None]]:
     """The optimum's values (:func:`_values_at`), the constraints its probe shows binding
     (:func:`_witnesses`) and the values at the points of each of ``extras`` (in order; rows of the
     search's coordinates on the optimum's sheets; None or empty: none), from one evaluation of
     the optimum, the probe's points and ``extras`` together (every value is elementwise in the
-    points: the same values as separate evaluations)."""
+    points: the same values as separate evaluations). ``with_probe`` False: no probe (none shown
+    binding; the caller judges the probe's points among its ``extras``)."""
     assert opt.point is not None
     assert opt.candidates is not None
     here = opt.point.arrays()
-    x = _probe_points(problem, opt.point) if problem.constraints else None
+    x = _probe_points(problem, opt.point) if problem.constraints and with_probe else None
     probe = x if x is not None and len(x) else None
     more = [DesignPoints.from_columns(e) if e is not None and len(e) else None for e in extras]
     parts = [d for d in (here, probe, *more) if d is not None]
@@ -1251,12 +1253,25 @@ def _constraint_reports(
         if problem.gridded and nominal and not cellular
         else None
     )
-    extra = None if first is None else three_points(problem, first[0], first[1])
     more = None if grid is None or not len(grid.points) else grid.points
-    vals, witnessed, (at_extra, at_grid) = _probed(problem, opt, tables, tol, extra, more)
-    if at_extra is not None:
+    if first is None:
+        vals, witnessed, (at_grid,) = _probed(problem, opt, tables, tol, more)
+    else:
+        # the probe's points judged with the three points, by the checks' own rule
+        # (:func:`~.joint_checks.answered_by`): with a certified optimum on a grid a point
+        # better than it that meets every constraint but those of one name breaks one of them
+        # (else it would be a better design), so the rule names what :func:`_witnessed` names
+        assert opt.point is not None and opt.certified
+        probe = _probe_points(problem, opt.point).columns() if problem.constraints else None
+        extra = three_points(problem, first[0], first[1])
+        if probe is not None:
+            extra = np.concatenate([probe, extra])
+        vals, _, (at_extra, at_grid) = _probed(
+            problem, opt, tables, tol, extra, more, with_probe=False
+        )
+        assert at_extra is not None
         hit = answered_by(problem, every_check, at_extra, opt.value)
-        witnessed |= {c.name for c, h in zip(every_check, hit, strict=True) if h}
+        witnessed = {c.name for c, h in zip(every_check, hit, strict=True) if h}
     capacity = _capacities(problem, opt, tables, vals)
     shared, idle = None, frozenset[str]()
     if tree is not None and not cellular:
