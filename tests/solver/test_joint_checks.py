@@ -289,3 +289,35 @@ def test_reopened_holds_each_checks_own_reopened_rows_and_narrowed_fewer_checks(
         got = narrowed(start, keep)
         want = reopened(tree[0], [checks[k] for k in keep], opt.value)
         assert all(np.array_equal(g, w) for g, w in zip(got, want, strict=True))
+
+
+@pytest.mark.parametrize(
+    "path",
+    [EXAMPLES / "blimp_gripper.toml", EXAMPLES / "rectangle_independent.toml"],
+    ids=lambda p: p.stem,
+)
+def test_the_checks_rule_names_at_the_probe_what_the_probe_names(path: Path) -> None:
+    """The explanation judges the binding probe's points by the checks' own rule
+    (:func:`~.joint_checks.answered_by`, with a certified optimum on a grid): the names it
+    gives equal those of :func:`~.solve._witnessed` (a better point breaking only constraints
+    of that name), the probe's own judgement, on the same values; some are named."""
+    from dataclasses import replace
+
+    from corrugate.solver.joint_checks import answered_by
+    from corrugate.solver.quantities import point_values
+    from corrugate.solver.solve import _probe_points, _witnessed
+    from corrugate.solver.worst_case import NOMINAL
+
+    problem = replace(_problem(path), tolerances=NOMINAL)
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables, record=True)
+    assert opt.certified and problem.gridded
+    assert opt.point is not None and opt.candidates is not None
+    x = _probe_points(problem, opt.point)
+    vals = point_values(problem, *opt.candidates, x, tables)
+    names = list(dict.fromkeys(c.name for c in problem.constraints))
+    checks = _checks(problem, opt, names)
+    hit = answered_by(problem, checks, vals, opt.value)
+    by_rule = {c.name for c, h in zip(checks, hit, strict=True) if h}
+    assert by_rule == _witnessed(problem, opt, vals, 0.0)
+    assert by_rule

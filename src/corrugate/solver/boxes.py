@@ -14,7 +14,15 @@ from numpy.typing import NDArray
 
 from corrugate.solver.problem import DesignVariable
 
-__all__ = ["MULTI_PARTS", "MULTI_SPLIT_CHILDREN", "grid_points", "halve", "snap", "split", "widths"]
+__all__ = [
+    "MULTI_PARTS",
+    "MULTI_SPLIT_CHILDREN",
+    "cut_widest",
+    "grid_points",
+    "snap",
+    "split",
+    "widths",
+]
 
 FloatArray = NDArray[np.float64]
 
@@ -92,37 +100,36 @@ def split(
     return lo, hi, tag
 
 
-def halve(
+def cut_widest(
     lo: FloatArray,
     hi: FloatArray,
     width: FloatArray,
     variables: Sequence[DesignVariable],
     tag: FloatArray,
+    parts: int,
 ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """:func:`split` of grid boxes in two along the relatively widest coordinate (``width``,
-    as :func:`widths` gives), in fewer array operations (one coordinate per box, picked per
-    row): the lower part takes the first ceil(k / 2) of the k grid values, the upper part the
-    rest, each value lo + step j as :func:`split` makes it. A box with one grid value along its
-    widest coordinate (one point) is kept whole. Rows: the boxes kept whole, then the lower
-    parts, then the upper parts; ``tag`` follows them."""
+    """:func:`split` of grid boxes along the relatively widest coordinate alone (``width``, as
+    :func:`widths` gives) into ``parts`` parts, in fewer array operations (one coordinate per
+    box, picked per row): part j of a coordinate of k grid values takes the indices from
+    ceil(j k / parts) to ceil((j + 1) k / parts) - 1 (the parts :func:`split` makes; fewer
+    when k < parts: no empty part), each value lo + step i as :func:`split` makes it; a box of
+    one grid value along that coordinate (one point) is kept whole. Rows: part by part (every
+    box's first part, then every box's second, ...); ``tag`` follows them. With ``parts`` 2,
+    :func:`split` in two (``multi`` False) of the boxes of more than one point."""
     step = np.array([v.step for v in variables], dtype=np.float64)
     base = np.array([v.lo for v in variables], dtype=np.float64)
-    assert not np.isnan(step).any(), "halve: grid coordinates only"
+    assert not np.isnan(step).any(), "cut_widest: grid coordinates only"
     i = np.argmax(width, axis=1)
     r = np.arange(len(lo))
     k_lo = np.round((lo[r, i] - base[i]) / step[i])
     k_hi = np.round((hi[r, i] - base[i]) / step[i])
-    cut = k_hi > k_lo
-    whole, c = np.flatnonzero(~cut), np.flatnonzero(cut)
-    first = k_lo[c] + np.ceil((k_hi[c] - k_lo[c] + 1) / 2)  # the upper part's first index
-    src = np.concatenate([whole, c, c])
-    lo, hi, tag = lo[src], hi[src], tag[src]
-    ic, m = i[c], len(whole)
-    lower, upper = np.arange(m, m + len(c)), np.arange(m + len(c), m + 2 * len(c))
-    lo[lower, ic] = base[ic] + step[ic] * k_lo[c]
-    hi[lower, ic] = base[ic] + step[ic] * (first - 1)
-    lo[upper, ic] = base[ic] + step[ic] * first
-    hi[upper, ic] = base[ic] + step[ic] * k_hi[c]
+    j = np.arange(parts + 1, dtype=np.float64)[:, None]
+    first = k_lo + np.ceil(j * (k_hi - k_lo + 1) / parts)  # (parts + 1) x boxes
+    part, box = np.nonzero(first[1:] > first[:-1])  # the parts holding a grid value
+    lo, hi, tag = lo[box], hi[box], tag[box]
+    ib, rows = i[box], np.arange(len(box))
+    lo[rows, ib] = base[ib] + step[ib] * first[part, box]
+    hi[rows, ib] = base[ib] + step[ib] * (first[part + 1, box] - 1)
     return lo, hi, tag
 
 
