@@ -183,11 +183,12 @@ class _Judge:
     def __init__(self, problem: Problem, checks: Sequence[Check]) -> None:
         self.cons = problem.constraints
         self.checks = checks
-        # the check each constraint belongs to (-1: none)
-        self.owner = [
-            next((j for j, c in enumerate(checks) if c.bits >> i & 1), -1)
-            for i in range(len(self.cons))
-        ]
+        # the check each constraint belongs to (-1: none; the first, were bits shared)
+        self.owner = [-1] * len(self.cons)
+        for j, c in reversed(list(enumerate(checks))):
+            for i in range(len(self.cons)):
+                if c.bits >> i & 1:
+                    self.owner[i] = j
         self.answered = np.zeros(len(checks), dtype=bool)
         # each constraint as (quantity, sense, threshold): met where the quantity's value is
         # at least (min) or at most (max) the threshold, the bound less (more) its slack,
