@@ -26,17 +26,63 @@ FloatArray = NDArray[np.float64]
 _INF = np.inf
 
 
+#: Elements from which :func:`_up`, :func:`_down` and :func:`_down0` step by integer arithmetic
+#: on the bit patterns instead of ``numpy.nextafter`` (a libm call per element, about 7 ns each:
+#: 8 us for 1000 elements against 5 us; below some 500 elements the few extra array operations
+#: cost more than they save). Both give the same float, bit for bit.
+_BITWISE_FROM = 512
+
+
+def _bitwise(x: Any) -> bool:
+    """Whether ``x`` is a float64 array large enough for the integer step (:data:`_BITWISE_FROM`)."""
+    return isinstance(x, np.ndarray) and x.dtype == np.float64 and x.size >= _BITWISE_FROM
+
+
+def _next_up(x: FloatArray) -> FloatArray:
+    """``numpy.nextafter(x, inf)``, bit for bit, by integer arithmetic on the bit patterns.
+
+    IEEE 754 binary64 orders the non-negative floats as their bit patterns read as integers,
+    and the negative ones in reverse: for a float y other than a zero, an infinity or a NaN,
+    the next float up has the pattern of y plus 1 when y > 0, minus 1 when y < 0 (its
+    magnitude one unit in the last place smaller; -5e-324 steps to -0.0); -inf steps to
+    -max (its pattern minus 1), +inf and NaN stay. Adding 0.0 first turns -0.0 into +0.0
+    (round to nearest: -0 + 0 = +0), whose pattern plus 1 is 5e-324, the next float up of
+    both zeros. So the step is +1 where y < inf (every finite y and -inf) and a further -2
+    where y < 0: the patterns of nextafter for every input, NaN included."""
+    y = x + 0.0
+    step = np.less(y, _INF).view(np.int8) - np.less(y, 0.0).view(np.int8) * np.int8(2)
+    return np.asarray((y.view(np.int64) + step).view(np.float64))
+
+
 def _down(x: FloatArray) -> FloatArray:
+    """The next float below each element (``numpy.nextafter(x, -inf)``: a lower bound of an
+    exact value that rounding to nearest put at x or above): -(next float up of -x), the float
+    line being symmetric."""
+    if _bitwise(x):
+        return np.asarray(-_next_up(-x))
     return np.nextafter(x, -_INF)
 
 
 def _up(x: FloatArray) -> FloatArray:
+    """The next float above each element (``numpy.nextafter(x, inf)``: an upper bound of an
+    exact value that rounding to nearest put at x or below), by :func:`_next_up` on large
+    arrays, the same floats."""
+    if _bitwise(x):
+        return _next_up(x)
     return np.nextafter(x, _INF)
 
 
 def _down0(x: FloatArray) -> FloatArray:
     """Round a lower bound down when the exact value is known to be >= 0: the next float
-    towards 0, and 0 itself stays 0 (a bound below 0 would be valid but needlessly loose)."""
+    towards 0, and 0 itself stays 0 (a bound below 0 would be valid but needlessly loose).
+
+    ``numpy.nextafter(x, 0)``, bit for bit: on large arrays its pattern minus 1 where
+    |y| > 0 (y = x + 0.0: a zero becomes +0.0, as nextafter returns it; every nonzero finite
+    float and both infinities move one unit in the last place towards 0, the negative ones'
+    patterns ordered in reverse too; a NaN stays, |NaN| > 0 being false)."""
+    if _bitwise(x):
+        y = x + 0.0
+        return np.asarray((y.view(np.int64) - np.greater(np.abs(y), 0.0)).view(np.float64))
     return np.nextafter(x, 0.0)
 
 
