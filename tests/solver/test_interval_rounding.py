@@ -54,8 +54,9 @@ def _check(x: np.ndarray) -> None:
     with np.errstate(all="ignore"):
         assert _same_bits(iv._up(x), np.nextafter(x, np.inf))
         assert _same_bits(iv._down(x), np.nextafter(x, -np.inf))
-        nonneg = np.abs(x)
+        nonneg = np.where(x < 0, -x, x)  # -0.0 kept: both zeros
         assert _same_bits(iv._down0(nonneg), np.nextafter(nonneg, 0.0))
+        assert _same_bits(iv._up0(nonneg), np.nextafter(nonneg, np.inf))
 
 
 def test_specials_bit_for_bit() -> None:
