@@ -55,8 +55,15 @@ def _check(x: np.ndarray) -> None:
         assert _same_bits(iv._up(x), np.nextafter(x, np.inf))
         assert _same_bits(iv._down(x), np.nextafter(x, -np.inf))
         nonneg = np.where(x < 0, -x, x)  # -0.0 kept: both zeros
-        assert _same_bits(iv._down0(nonneg), np.nextafter(nonneg, 0.0))
-        assert _same_bits(iv._up0(nonneg), np.nextafter(nonneg, np.inf))
+        want_down, want_up = np.nextafter(nonneg, 0.0), np.nextafter(nonneg, np.inf)
+        # (_down0 and _up0 step an array that owns its data in place: a copy each)
+        assert _same_bits(iv._down0(nonneg.copy()), want_down)
+        assert _same_bits(iv._up0(nonneg.copy()), want_up)
+        flat = nonneg.ravel()
+        view = np.broadcast_to(flat, (2, flat.size))[1]  # not its own data: left as it is
+        assert _same_bits(iv._up0(view), want_up.ravel())
+        assert _same_bits(iv._down0(view), want_down.ravel())
+        assert _same_bits(view, flat)
 
 
 def test_specials_bit_for_bit() -> None:
@@ -144,3 +151,37 @@ def test_operations_contain_points_on_large_arrays() -> None:
         iv._BITWISE_FROM = saved
     for a, b in zip(new, old, strict=True):
         assert _same_bits(a.lo, b.lo) and _same_bits(a.hi, b.hi)
+
+
+def test_cos_between_extrema_widens_nothing() -> None:
+    """Where :func:`~corrugate.solver.interval._between_extrema` lets cos skip the extrema,
+    the extrema's rule (the general way, evaluated) changes no endpoint: intervals drawn in
+    (0, pi) and (-pi, -1e-9), their ends on the float pi's neighbours too; and intervals that
+    hold a multiple of pi are not let through, and are widened to +-1 there."""
+    rng = np.random.default_rng(5)
+    pi = math.pi
+    edges = np.array([np.nextafter(0.0, 1.0), 1e-300, np.nextafter(pi, 0.0), 0.5 * pi])
+    for sign in (1.0, -1.0):
+        a = np.concatenate([rng.uniform(0.0, pi, size=3000), edges])
+        b = np.concatenate([rng.uniform(0.0, pi, size=3000), edges[::-1]])
+        lo, hi = np.minimum(a, b), np.maximum(a, b)
+        if sign < 0:
+            lo, hi = -hi, -lo
+            keep = hi < -1e-9
+            lo, hi = lo[keep], hi[keep]
+        lo = np.maximum(lo, np.nextafter(-pi, 0.0))
+        lo = np.where(lo == 0.0, 5e-324, lo)
+        assert iv._between_extrema(lo, hi)
+        v_lo, v_hi = np.cos(lo), np.cos(hi)
+        e_lo, e_hi = np.minimum(v_lo, v_hi), np.maximum(v_lo, v_hi)
+        got_lo, got_hi = iv._cos_extrema(lo, hi, e_lo, e_hi)
+        assert _same_bits(got_lo, e_lo) and _same_bits(got_hi, e_hi)
+        c = Interval(lo, hi).cos()  # contains cos at points inside
+        t = rng.uniform(0.0, 1.0, size=lo.size)
+        x = lo + t * (hi - lo)
+        assert np.all(c.lo <= np.cos(x)) and np.all(np.cos(x) <= c.hi)
+    for lo, hi in ((0.0, 1.0), (-0.5, 0.5), (3.0, 3.5), (-1.0, -1e-12), (-3.5, -3.0)):
+        x_lo, x_hi = np.array([lo]), np.array([hi])
+        assert not iv._between_extrema(x_lo, x_hi)
+    c = Interval(np.array([3.0, -0.5]), np.array([3.5, 0.5])).cos()
+    assert c.lo[0] == -1.0 and c.hi[1] == 1.0

@@ -77,10 +77,13 @@ def _up0(x: FloatArray) -> FloatArray:
     whose lower end is >= 0, so every non-empty one. On large arrays the pattern plus 1 where
     y < inf (y = x + 0.0: -0.0 becomes +0.0, whose next float up 5e-324 is that of both zeros;
     +inf and NaN stay), two array operations fewer than :func:`_next_up` and the same floats
-    for every x >= 0 (it steps down a negative x: the callers have none)."""
+    for every x >= 0 (it steps down a negative x: the callers have none). Stepped in place when
+    ``x`` owns its data (:func:`_scratch`)."""
     if _bitwise(x):
-        y = x + 0.0
-        return np.asarray((y.view(np.int64) + np.less(y, _INF)).view(np.float64))
+        y = _scratch(x)
+        i = y.view(np.int64)
+        i += np.less(y, _INF)
+        return y
     return np.nextafter(x, _INF)
 
 
@@ -92,11 +95,53 @@ def _down0(x: FloatArray) -> FloatArray:
     pattern minus 1 where y > 0 (y = x + 0.0: -0.0 becomes +0.0, as nextafter returns it; every
     positive float and +inf move one unit in the last place towards 0; +0.0 and NaN stay). A
     negative x (no caller has one: the operands are >= 0) stays x, below nextafter's step
-    towards 0, so a lower bound still."""
+    towards 0, so a lower bound still. Stepped in place when ``x`` owns its data
+    (:func:`_scratch`)."""
     if _bitwise(x):
-        y = x + 0.0
-        return np.asarray((y.view(np.int64) - np.greater(y, 0.0)).view(np.float64))
+        y = _scratch(x)
+        i = y.view(np.int64)
+        i -= np.greater(y, 0.0)
+        return y
     return np.nextafter(x, 0.0)
+
+
+def _scratch(x: FloatArray) -> FloatArray:
+    """``x + 0.0`` (-0.0 made +0.0, every other float and NaN kept), written over ``x`` itself
+    when it owns its writable data: :func:`_up0` and :func:`_down0` are handed the fresh result
+    of an operation (a sum, product, quotient, power or square root of the operands' ends),
+    which nothing else holds, so stepping it in place saves two temporaries (about 15 % of the
+    step: 3.4 against 4.0 us for 2000 elements); a view or a read-only array is copied."""
+    if x.flags.owndata and x.flags.writeable:
+        np.add(x, 0.0, out=x)
+        return x
+    return x + 0.0
+
+
+def _cos_extrema(
+    x_lo: FloatArray, x_hi: FloatArray, lo: FloatArray, hi: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """The range (lo, hi) of cos over [x_lo, x_hi] (rad) from its endpoint values (lo, hi):
+    hi made 1 where a maximum 2 k pi lies inside, lo made -1 where a minimum (2 k + 1) pi
+    does."""
+    k_max = np.floor(x_hi / (2 * math.pi))  # a maximum 2 k pi in [lo, hi]?
+    has_max = 2 * math.pi * k_max >= x_lo
+    k_min = np.floor((x_hi - math.pi) / (2 * math.pi))  # a minimum (2k + 1) pi?
+    has_min = 2 * math.pi * k_min + math.pi >= x_lo
+    return np.where(has_min, -1.0, lo), np.where(has_max, 1.0, hi)
+
+
+def _between_extrema(x_lo: FloatArray, x_hi: FloatArray) -> bool:
+    """Whether every [x_lo, x_hi] (rad) lies in (0, pi) or every one in (-pi, -1e-9) (pi: the
+    float ``math.pi``), where :func:`_cos_extrema` changes nothing, as evaluated in floating
+    point. In (0, pi): x_hi / 2pi < 1/2 floors to 0 and 0 >= x_lo > 0 is false; x_hi - pi < 0
+    (exact or rounded, never 0), so its quotient floors to -1 and -pi >= x_lo is false. In
+    (-pi, -1e-9): x_hi / 2pi lies in (-1/2, 0) without underflow and floors to -1, -2pi >= x_lo
+    is false; (x_hi - pi) / 2pi lies in [-1, -1/2), floors to -1, and -pi >= x_lo is false. (A
+    NaN makes it False: the general way.) The sines of the fold angles, cos(alpha / 2 - pi/2),
+    and their cosines are all of the one kind or the other."""
+    a = float(x_lo.min(initial=math.inf))
+    b = float(x_hi.max(initial=-math.inf))
+    return (a > 0.0 and b < math.pi) or (-math.pi < a and b < -1e-9)
 
 
 def _arr(x: ArrayLike) -> FloatArray:
@@ -269,16 +314,13 @@ class Interval:
 
     def cos(self) -> Interval:
         """cos over the interval: endpoint values, widened to +-1 where a multiple of pi lies
-        inside (cos has its extrema at k pi)."""
+        inside (cos has its extrema at k pi; :func:`_cos_extrema`, skipped when every interval
+        lies inside (0, pi) or (-pi, 0), where it widens none: :func:`_between_extrema`)."""
         lo_v, hi_v = np.cos(self.lo), np.cos(self.hi)
         lo = np.minimum(lo_v, hi_v)
         hi = np.maximum(lo_v, hi_v)
-        k_max = np.floor(self.hi / (2 * math.pi))  # a maximum 2 k pi in [lo, hi]?
-        has_max = 2 * math.pi * k_max >= self.lo
-        k_min = np.floor((self.hi - math.pi) / (2 * math.pi))  # a minimum (2k + 1) pi?
-        has_min = 2 * math.pi * k_min + math.pi >= self.lo
-        hi = np.where(has_max, 1.0, hi)
-        lo = np.where(has_min, -1.0, lo)
+        if not _between_extrema(self.lo, self.hi):
+            lo, hi = _cos_extrema(self.lo, self.hi, lo, hi)
         return Interval(np.maximum(_down(lo), -1.0), np.minimum(_up(hi), 1.0))
 
     def sin(self) -> Interval:
