@@ -35,7 +35,7 @@ _BITWISE_FROM = 512
 
 def _bitwise(x: Any) -> bool:
     """Whether ``x`` is a float64 array large enough for the integer step (:data:`_BITWISE_FROM`)."""
-    return isinstance(x, np.ndarray) and x.dtype == np.float64 and x.size >= _BITWISE_FROM
+    return isinstance(x, np.ndarray) and x.size >= _BITWISE_FROM and x.dtype == np.float64
 
 
 def _next_up(x: FloatArray) -> FloatArray:
