@@ -3,8 +3,9 @@
 An :class:`Interval` holds two float arrays ``lo <= hi`` that broadcast together; every operation
 returns an interval that contains the exact result for every choice of operands inside the operand
 intervals (the fundamental theorem of interval arithmetic). Each result is widened outward by one
-unit in the last place (``numpy.nextafter``) so that floating-point rounding cannot make a bound
-too tight.
+unit in the last place (``numpy.nextafter``; on arrays of :data:`_BITWISE_FROM` elements or more
+the same floats by an integer step on their bit patterns, :func:`_next_up`) so that
+floating-point rounding cannot make a bound too tight.
 
 It supports what the moduli variants of :mod:`corrugate.mechanics.moduli` use (``+ - * /``, integer powers,
 ``np.sin``, ``np.cos``, ``np.sqrt``, ``np.abs``, ``np.maximum``), so the functions of
@@ -315,7 +316,7 @@ class Interval:
     def cos(self) -> Interval:
         """cos over the interval: endpoint values, widened to +-1 where a multiple of pi lies
         inside (cos has its extrema at k pi; :func:`_cos_extrema`, skipped when every interval
-        lies inside (0, pi) or (-pi, 0), where it widens none: :func:`_between_extrema`)."""
+        lies inside (0, pi) or (-pi, -1e-9), where it widens none: :func:`_between_extrema`)."""
         lo_v, hi_v = np.cos(self.lo), np.cos(self.hi)
         lo = np.minimum(lo_v, hi_v)
         hi = np.maximum(lo_v, hi_v)
