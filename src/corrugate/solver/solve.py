@@ -1706,13 +1706,15 @@ def _polished_witnesses(
     evaluated designs (:func:`~.cell_checks.answered`: the problem's certified values, no
     slack). Such a design exists, so the check's own search (certified) answers True too; the
     polish only looks for it (the optimum is a design of each of those problems), and a check
-    it does not show binding is left as it was. Asked for the checks a shared search stopped
+    it does not show binding is left as it was (as are those left when the budget is spent). Asked for the checks a shared search stopped
     at its limit left unknown (:func:`_shared_cell_binding`): films-13-cont's side_x.min and
     side_y.min (the latter through an n moved by one) within 0.2 s."""
     if opt.point is None or opt.candidates is None:
         return []
     out = []
     for ch in checks:
+        if budget_spent():
+            break
         relaxed = cells.relaxed_without(problem, ch.bits)
         exact = cells.judge_of(relaxed, *opt.candidates, tables)
         got = climb(relaxed, *opt.candidates, opt.point, tables, exact, set(), WITNESS_CLIMB)
@@ -1818,8 +1820,10 @@ def _runner_seed(
     :data:`RUNNER_SEEDS` n nearest ``n``, each moved to n on its own sheet pair
     (:func:`_moved_to`), judged by the problem's own rule (:func:`~.cells.judge_of`: its certified
     values, no slack), the lightest accepted one polished (:func:`~.polish.polish`, no heavier, a
-    design of ``fixed`` by that rule); its (mass g, design, sheet pair), or None when none is
-    accepted. Only an incumbent: nothing of the certificate rests on it."""
+    design of ``fixed`` by that rule), else the first :data:`RESTORES` of them polished anyway
+    (SLSQP may reach the problem's set from outside it; the polish keeps only a design the
+    rule accepts); its (mass g, design, sheet pair), or None when no polish found one. Only an
+    incumbent: nothing of the certificate rests on it."""
     best: tuple[float, DesignPoints, tuple[Candidate, Candidate]] | None = None
     near = sorted(known, key=lambda m: (abs(m - n), m))[:RUNNER_SEEDS]
     for m in near:
@@ -1831,7 +1835,7 @@ def _runner_seed(
         mass, ok = exact(starts)
         f = np.where(ok, mass, math.inf)
         b = int(np.argmin(f))
-        # the lightest accepted start, else the first few (SLSQP may reach P's set from them)
+        # the lightest accepted start, else the nearest ones (SLSQP may reach P's set from them)
         tries = [b] if math.isfinite(float(f[b])) else range(min(RESTORES, len(starts)))
         for k in tries:
             got = polish(fixed, *pair, starts.point(k), tables, exact)
