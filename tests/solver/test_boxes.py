@@ -9,7 +9,7 @@ import itertools
 import numpy as np
 import pytest
 
-from corrugate.solver.boxes import grid_points, snap, split, widths
+from corrugate.solver.boxes import cut_widest, grid_points, snap, split, widths
 from corrugate.solver.problem import DesignVariable
 
 GRID = [DesignVariable(1.0, 40.0, 1.0), DesignVariable(5.0, 20.0, 0.5), DesignVariable(40, 120, 5)]
@@ -83,3 +83,43 @@ def test_snap_rounds_to_the_grid_and_leaves_continuous_values() -> None:
     assert snap(x, v, up=False).tolist() == [5.0, 5.0, 5.5, 19.5]
     assert snap(x, v, up=True).tolist() == [5.0, 5.5, 5.5, 20.0]
     assert snap(x, DesignVariable(5.0, 20.0), up=False) is x
+
+
+@pytest.mark.parametrize("parts", [2, 3, 8])
+def test_cutting_grid_boxes_along_the_widest_partitions_them_as_a_split_does(parts: int) -> None:
+    """:func:`cut_widest` (the joint search's cheaper cuts of its start boxes): each box of two
+    or more grid points becomes non-empty parts that hold its grid points once each (listed one
+    by one), along one coordinate; a box of one point is kept whole; in two, the same two boxes
+    as :func:`split` in two (``multi`` False)."""
+    rng = np.random.default_rng(11)
+    k = [rng.integers(0, v.count(), size=(2, 40)) for v in GRID]
+    lo = np.stack([v.lo + v.step * k_.min(axis=0) for v, k_ in zip(GRID, k, strict=True)], axis=1)
+    hi = np.stack([v.lo + v.step * k_.max(axis=0) for v, k_ in zip(GRID, k, strict=True)], axis=1)
+    hi[:3] = lo[:3]  # three boxes of one point each
+    tag = np.arange(len(lo), dtype=np.float64)
+    width = widths(lo, hi, np.array([1.0, 0.0, 0.0]))
+    c_lo, c_hi, c_tag = cut_widest(lo, hi, width, GRID, tag, parts)
+    wide = np.any(hi > lo, axis=1)
+    s_lo, s_hi, s_tag = split(lo[wide], hi[wide], width[wide], GRID, False, tag[wide], 20_000)
+    for b in range(len(lo)):
+        mine = np.flatnonzero(c_tag == b)
+        if not wide[b]:
+            assert len(mine) == 1 and np.array_equal(c_lo[mine[0]], lo[b])
+            assert np.array_equal(c_hi[mine[0]], hi[b])
+            continue
+        along = int(np.argmax(width[b]))
+        values = round((hi[b, along] - lo[b, along]) / GRID[along].step) + 1
+        assert len(mine) == min(parts, values)
+        other = [i for i in range(len(GRID)) if i != along]
+        assert np.all(c_lo[mine][:, other] == lo[b, other])
+        assert np.all(c_hi[mine][:, other] == hi[b, other])
+        seen: list[tuple[float, ...]] = []
+        for c in mine:
+            pts = _values(c_lo[c], c_hi[c])
+            assert pts
+            seen += pts
+        assert len(seen) == len(set(seen)) and set(seen) == _values(lo[b], hi[b])
+        if parts == 2:
+            theirs = np.flatnonzero(s_tag == b)
+            boxes = sorted(tuple(c_lo[c]) + tuple(c_hi[c]) for c in mine)
+            assert boxes == sorted(tuple(s_lo[c]) + tuple(s_hi[c]) for c in theirs)

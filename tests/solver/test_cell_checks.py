@@ -10,11 +10,14 @@
   from the solve's boxes, gives the answer of the plain per-pair branch and bound of the
   problem without it over every sheet pair's whole domain;
 * the runner-ups of a cells solve are those of the plain per-pair branch and bound, one
-  incumbent per n.
+  incumbent per n, and the incumbents their searches start from are designs no lighter than
+  its optimum per n;
+* a check shown binding by a polish of the optimum binds by its own search too.
 """
 
 from __future__ import annotations
 
+import importlib
 import math
 import tomllib
 from dataclasses import replace
@@ -31,6 +34,7 @@ from corrugate.solver.solve import (
     RUNNER_UP_GAP_RTOL,
     RUNNER_UP_SPREAD,
     _cell_binding,
+    _polished_witnesses,
     _runner_ups,
     _shared_cell_binding,
     _witnesses,
@@ -39,6 +43,9 @@ from corrugate.solver.solve import (
 )
 from corrugate.spec.schema import Spec
 from sheet_specs import continuous_two_sheets, designs_in_cells
+
+#: the module (its name is shadowed by the function :func:`~corrugate.solver.solve`)
+solve_module = importlib.import_module("corrugate.solver.solve")
 
 
 def _problem(wide: bool, tolerances: bool, extra: tuple[str, ...] = ()) -> Problem:
@@ -202,3 +209,67 @@ def test_a_shared_search_stopped_at_its_limit_leaves_its_checks_unknown(
     assert unknown and unknown <= {n for n, a in cut.items() if a is None}
     assert "explanation-partial" in {w["code"] for w in sol.warnings}
     assert sol.certified
+
+
+def test_a_polished_witness_is_a_binding_answer_of_the_checks_own_search() -> None:
+    """A check shown binding by a polish of the optimum (:func:`~.solve._polished_witnesses`)
+    binds by the check's own search too (the problem without it searched by its own cells and
+    branch and bound), and some check is shown so (the path is exercised)."""
+    p = _problem(True, False)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.point is not None
+    tol = 2 * GAP_RTOL * opt.value
+    names = list(dict.fromkeys(c.name for c in p.constraints))
+    checks = cell_checks.checks_of(p, names, True)
+    shown = _polished_witnesses(p, opt, checks, tables, opt.value - tol)
+    assert shown
+    for ch in shown:
+        assert _cell_binding(p, opt, ch.name, tables, tol) is True, ch.name
+
+
+@pytest.mark.slow
+def test_seeded_runner_ups_are_designs_no_lighter_than_the_plain_search_per_n(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The incumbent a runner-up's search starts from (:func:`~.solve._runner_seed`: designs
+    found at the neighbouring n, moved and polished) is a design of the problem with n fixed by
+    its own rule, no lighter than that problem's optimum by the plain branch and bound of every
+    sheet pair's whole domain (less its gap), and the runner-ups then found (some of them the
+    seed itself, when the search finds nothing lighter) are that optimum to the gap."""
+    p = _problem(True, False)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.point is not None and opt.starts is not None  # by cells
+    n0 = round(opt.point.layer(0).n)
+    span = (max(p.n_lo, n0 - RUNNER_UP_SPREAD), min(p.n_hi, n0 + RUNNER_UP_SPREAD))
+    plain: dict[int, float] = {}
+    for a, b in pairs(p):
+        r = branch_and_bound(p, a, b, tables=tables, per_n=span, gap_rtol=RUNNER_UP_GAP_RTOL)
+        assert r.by_n is not None
+        for n, rn in r.by_n.items():
+            assert rn.certified
+            if rn.point is not None:
+                plain[n] = min(plain.get(n, math.inf), rn.value)
+    seeds: list[tuple[int, float]] = []
+    seed = solve_module._runner_seed
+
+    def seen(fixed: Problem, n: int, *args: object) -> object:
+        got = seed(fixed, n, *args)  # type: ignore[arg-type]
+        if got is not None:
+            mass, x, pair = got
+            m, ok = cells.judge_of(fixed, *pair, tables)(solve_module._as_arrays(x))
+            assert bool(ok[0]) and math.isclose(float(m[0]), mass, rel_tol=1e-12)
+            assert round(float(x.layer(0).n)) == round(float(x.layer(1).n)) == n
+            seeds.append((n, mass))
+        return got
+
+    monkeypatch.setattr(solve_module, "_runner_seed", seen)
+    got = solve_module._cell_runner_ups(p, opt, tables, span)
+    assert seeds  # the path is exercised
+    for n, mass in seeds:
+        assert mass >= plain[n] * (1 - RUNNER_UP_GAP_RTOL)
+    assert set(got) == set(plain)
+    for n, row in got.items():
+        assert row.certified
+        assert abs(row.value - plain[n]) <= 2 * RUNNER_UP_GAP_RTOL * plain[n]

@@ -215,3 +215,109 @@ def test_first_points_judged_apart_then_the_joint_search_answer_as_each_check_al
         alone[check.name] = found
     assert got == alone
     assert True in alone.values() and False in alone.values()
+
+
+def test_the_judges_rules_give_the_verdicts_of_the_constraints_own_test() -> None:
+    """:func:`~.joint_checks._met_rule` of :func:`~.joint_checks._rule` (the judge's reading
+    of a constraint, thresholds computed once) against :meth:`Constraint.satisfied` to
+    FEAS_RTOL (the search's own test), at values on, just inside and just outside each
+    threshold, for lower and upper bounds of either sign and zero; bounds (lo, hi) judged by
+    hi for a lower bound and lo for an upper one; an upper bound of a screened quantity not
+    judged."""
+    import numpy as np
+
+    from corrugate.solver.joint_checks import _met_rule, _rule
+    from corrugate.solver.problem import FEAS_RTOL, Constraint
+    from corrugate.solver.quantity import Quantity
+
+    q = Quantity("mass")
+    for bound in (2.5, -3.0, 0.0, 1e-12, 80.0):
+        tol = FEAS_RTOL * abs(bound)
+        near = [bound - tol, bound + tol, bound]
+        v = np.array([x + d for x in near for d in (-1e-15, 0.0, 1e-15)] + [bound * 2, -1.0])
+        for sense in ("min", "max"):
+            c = Constraint("c", q, sense, bound)
+            rule = _rule(c)
+            assert np.array_equal(_met_rule(rule, {q: v}, frozenset()), c.satisfied(v))
+            both = (v - 1.0, v)
+            want = c.satisfied(v if sense == "min" else v - 1.0)
+            assert np.array_equal(_met_rule(rule, {q: both}, frozenset()), want)
+            screened = _met_rule(rule, {q: v}, frozenset({q}))
+            assert (screened is None) == (sense == "max")
+            assert _met_rule(rule, {}, frozenset()) is None
+
+
+def test_rows_and_columns_any_as_numpy_reduces_them() -> None:
+    """The judge's ``any`` along rows and along columns (boolean matrix products) against
+    numpy's reductions, empty shapes included."""
+    import numpy as np
+
+    from corrugate.solver.joint_checks import _cols_any, _rows_any
+
+    rng = np.random.default_rng(5)
+    for shape in ((0, 4), (7, 0), (1, 1), (50, 9), (3000, 3)):
+        for p in (0.0, 0.01, 0.5):
+            a = rng.random(shape) < p
+            assert np.array_equal(_rows_any(a), a.any(axis=1))
+            assert np.array_equal(_cols_any(a), a.any(axis=0))
+
+
+def test_reopened_holds_each_checks_own_reopened_rows_and_narrowed_fewer_checks() -> None:
+    """:func:`~.joint_checks.reopened` of every check at once: the rows carrying check j are
+    the rows :meth:`Archive.reopen` gives for j alone (its bits, below the optimum), in the
+    archive's order; :func:`~.joint_checks.narrowed` to some of the checks equals
+    :func:`~.joint_checks.reopened` of those checks alone (how the explanation reuses the
+    first boxes' rows)."""
+    import numpy as np
+
+    from corrugate.solver.joint_checks import narrowed
+
+    problem = _problem(EXAMPLES / "blimp_gripper.toml")
+    opt = optimize(problem, record=True)
+    tree = opt.tree()
+    assert tree is not None and opt.certified
+    names = list(dict.fromkeys(c.name for c in problem.constraints))
+    checks = _checks(problem, opt, names)
+    lo, hi, bound, carried = start = reopened(tree[0], checks, opt.value)
+    assert len(lo) > 10 and carried.any(axis=1).all()
+    for j, check in enumerate(checks):
+        own = tree[0].reopen(check.bits, opt.value)
+        rows = carried[:, j]
+        assert np.array_equal(lo[rows], own[0]) and np.array_equal(hi[rows], own[1])
+        assert np.array_equal(bound[rows], own[2])
+    for keep in ([0], [len(checks) - 1, 1], list(range(0, len(checks), 2))):
+        got = narrowed(start, keep)
+        want = reopened(tree[0], [checks[k] for k in keep], opt.value)
+        assert all(np.array_equal(g, w) for g, w in zip(got, want, strict=True))
+
+
+@pytest.mark.parametrize(
+    "path",
+    [EXAMPLES / "blimp_gripper.toml", EXAMPLES / "rectangle_independent.toml"],
+    ids=lambda p: p.stem,
+)
+def test_the_checks_rule_names_at_the_probe_what_the_probe_names(path: Path) -> None:
+    """The explanation judges the binding probe's points by the checks' own rule
+    (:func:`~.joint_checks.answered_by`, with a certified optimum on a grid): the names it
+    gives equal those of :func:`~.solve._witnessed` (a better point breaking only constraints
+    of that name), the probe's own judgement, on the same values; some are named."""
+    from dataclasses import replace
+
+    from corrugate.solver.joint_checks import answered_by
+    from corrugate.solver.quantities import point_values
+    from corrugate.solver.solve import _probe_points, _witnessed
+    from corrugate.solver.worst_case import NOMINAL
+
+    problem = replace(_problem(path), tolerances=NOMINAL)
+    tables = Tables(problem)
+    opt = optimize(problem, tables=tables, record=True)
+    assert opt.certified and problem.gridded
+    assert opt.point is not None and opt.candidates is not None
+    x = _probe_points(problem, opt.point)
+    vals = point_values(problem, *opt.candidates, x, tables)
+    names = list(dict.fromkeys(c.name for c in problem.constraints))
+    checks = _checks(problem, opt, names)
+    hit = answered_by(problem, checks, vals, opt.value)
+    by_rule = {c.name for c, h in zip(checks, hit, strict=True) if h}
+    assert by_rule == _witnessed(problem, opt, vals, 0.0)
+    assert by_rule

@@ -60,7 +60,7 @@ from corrugate.solver.quantity import (
 from corrugate.solver.separable import stiffness_along
 from corrugate.solver.validity import LAYER_KINDS
 
-__all__ = ["CellCheck", "Shared", "applies", "shared_search"]
+__all__ = ["CellCheck", "Shared", "answered", "applies", "shared_search"]
 
 FloatArray = NDArray[np.float64]
 IntArray = NDArray[np.int64]
@@ -396,6 +396,19 @@ def _answers(
         if bool(np.any(light & held[:, others].all(axis=1))):
             found |= 1 << at
     return found
+
+
+def answered(
+    problem: Problem,
+    pair: tuple[Candidate, Candidate],
+    tables: Tables,
+    x: DesignPoints,
+    goal: float,
+    check: CellCheck,
+) -> bool:
+    """Whether one of the designs ``x`` on sheets ``pair`` answers ``check`` (binding): the
+    rule of the shared search's evaluated designs (:func:`_answers`)."""
+    return _answers(problem, pair, tables, x, goal, [check], 1) == 1
 
 
 def shared_search(

@@ -800,6 +800,7 @@ def search_pairs(
     budget: int = BUDGET,
     gap: float = CELL_GAP,
     fine: float | None = None,
+    seek: bool = False,
 ) -> tuple[list[CellResult], int, frozenset[int]]:
     """The cells' search of the module docstring over the sheet pairs of ``settings``
     (:func:`setting`; a problem of :func:`applies`) at once, below ``incumbent`` (g; inf:
@@ -814,7 +815,9 @@ def search_pairs(
     design (-1: none), and the constraints (by index) that *fired*: that alone dropped a cell
     or a cell pair below the incumbent of the moment. A search of the problem without a
     constraint that did not fire drops what this one dropped: every design of it lighter than
-    the incumbent lies in the boxes left (:func:`~.solve._cell_binding`)."""
+    the incumbent lies in the boxes left (:func:`~.solve._cell_binding`). ``seek``: a design
+    sought before the first pairs and polished (:func:`_seed`) whatever their number, not only
+    past :data:`SEED_FROM` (an incumbent only prunes: the answer's certificate is the same)."""
     inc = incumbent
     best_x: DesignPoints | None = None
     best_at = -1
@@ -836,7 +839,7 @@ def search_pairs(
         none = np.empty((0, 6))
         gave_up = CellResult(0.0, (none, none, np.empty(0)), None, math.nan, 0, False)
         return [gave_up] * len(settings), -1, frozenset()
-    wide = first > SEED_FROM  # a design sought before the first pairs, and polished
+    wide = seek or first > SEED_FROM  # a design sought before the first pairs, and polished
     if exacts is not None and not math.isfinite(inc) and wide:
         seeded = _seed(settings, tabs, tab_of, exacts)
         if seeded is not None and seeded[0] < inc:

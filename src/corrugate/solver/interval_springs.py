@@ -12,7 +12,7 @@ facet-length sums bounded over its n (:class:`~.tables.Tables`; with holes by
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -68,7 +68,74 @@ def layer_springs(
 ) -> Springs:
     """K_C, K_S, D_C, D_S (docs/theory.md 3.2) and the shear and twisting springs K_T, D_T
     (:func:`corrugate.mechanics.offaxis.shear_springs`, on the parallel sum) of a layer over a box, in
-    interval arithmetic."""
+    interval arithmetic.
+
+    Boxes repeated once per piece of the sheet's thickness (the worst-case tolerances' t cut in
+    pieces, :class:`~.tolerance_box._Pieces`: ``pieces`` blocks of the same ``k`` boxes, t one
+    interval per block) are evaluated once, their t as a (pieces x k) array against the k boxes
+    (:func:`_period`): the geometry (the profile, the facet-length sums) then costs one block
+    instead of all, and every spring, each operation elementwise, is the same floats."""
+    k = _period(cand.t, (n, W, a, S))
+    if k:
+        t = cand.t
+        assert isinstance(t, Interval)
+        rows = t.lo.size
+        block = replace(cand, t=Interval(t.lo.reshape(-1, k), t.hi.reshape(-1, k)))
+        got = _layer_springs(problem, block, *(_first(p, k) for p in (n, W, a, S)), Q, tables, axis)
+        return _rows(got, rows // k, k)
+    return _layer_springs(problem, cand, n, W, a, S, Q, tables, axis)
+
+
+def _period(t: object, pairs: tuple[tuple[FloatArray, FloatArray], ...]) -> int:
+    """The k of boxes repeated in blocks (module docstring of :func:`layer_springs`): t an
+    interval of one value per row that changes first at row k (its pieces of k rows each),
+    and every array of ``pairs`` (each box's low and high n, W, alpha and extent) of those rows
+    the same k values block after block; 0 when not (then nothing is shared)."""
+    if not isinstance(t, Interval) or t.lo.ndim != 1 or t.lo.shape != t.hi.shape:
+        return 0
+    rows = t.lo.size
+    k = int(np.argmax(t.lo != t.lo[0])) if rows else 0
+    if k == 0 or rows % k:
+        return 0
+    for pair in pairs:
+        for x in pair:
+            if not (isinstance(x, np.ndarray) and x.shape == (rows,)):
+                return 0
+            if not np.array_equal(x.reshape(-1, k), np.broadcast_to(x[:k], (rows // k, k))):
+                return 0
+    return k
+
+
+def _first(pair: tuple[FloatArray, FloatArray], k: int) -> tuple[FloatArray, FloatArray]:
+    """The first k rows of a (low, high) pair of arrays."""
+    return pair[0][:k], pair[1][:k]
+
+
+def _rows(sp: Springs, pieces: int, k: int) -> Springs:
+    """``sp`` of k boxes against t of (pieces x k) made one row per box and piece again,
+    piece by piece (the rows' order in :class:`~.tolerance_box._Pieces`): each field broadcast
+    to (pieces x k) and flattened."""
+
+    def flat(v: Interval) -> Interval:
+        lo = np.broadcast_to(v.lo, (pieces, k)).reshape(-1)
+        hi = np.broadcast_to(v.hi, (pieces, k)).reshape(-1)
+        return Interval._raw(lo, hi, v._nn)
+
+    return Springs(*(flat(getattr(sp, f.name)) for f in fields(sp)))
+
+
+def _layer_springs(
+    problem: Problem,
+    cand: Candidate,
+    n: tuple[FloatArray, FloatArray],
+    W: tuple[FloatArray, FloatArray],
+    a: tuple[FloatArray, FloatArray],
+    S: tuple[FloatArray, FloatArray],
+    Q: RangeTable,
+    tables: Tables,
+    axis: str,
+) -> Springs:
+    """:func:`layer_springs` of the boxes as given."""
     m = cand.material
     t = cand.t
     Wi = Interval(W[0], W[1])
