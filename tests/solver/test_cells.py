@@ -211,3 +211,59 @@ def test_a_design_on_its_bounds_keeps_its_cell_pair(tolerances: bool) -> None:
             assert len(i) == 1 and lb[0] <= mass[0]
             kept += 1
     assert kept >= 4
+
+
+@pytest.mark.parametrize("tolerances", [False, True])
+def test_first_pairs_keep_every_pair_the_judge_keeps(tolerances: bool) -> None:
+    """The first cell pairs formed (cells._first_pairs: cells no constraint drops whole, pairs
+    whose separable mass floor is below the incumbent) hold every first pair the judge keeps of
+    the full grid, with the same fired constraints, at an incumbent a little above the
+    plain per-pair optimum (so the mass floor prunes) and with none; a sheet pair left with no
+    first pair has no design lighter than that incumbent by its plain branch and bound."""
+    if tolerances:  # the narrow spec (the module's cached plain optima: a quick test)
+        p, plain = _problem(True), _plain(True)
+    else:  # the wide one: the sides and the thickness drop cells
+        text = continuous_two_sheets(False, wide=True)
+        p = Problem.from_spec(Spec.model_validate(tomllib.loads(text)))
+        plain = []
+        for a, b in pairs(p):
+            r = branch_and_bound(p, a, b)
+            assert r.certified
+            plain.append(r.value if r.point is not None else math.inf)
+    tables = Tables(p)
+    best = min(plain)
+    assert math.isfinite(best)
+    pruned = 0
+    for worst in (best * 1.02, math.inf):
+        for k, (a, b) in enumerate(pairs(p)):
+            st = cells.setting(p, a, b, tables)
+            L1, L2 = cells._Table(st, 1).cells, cells._Table(st, 2).cells
+            grid = np.meshgrid(np.arange(len(L1)), np.arange(len(L2)), indexing="ij")
+            I, J = (g.reshape(-1).astype(np.int32) for g in grid)
+            f_all: set[int] = set()
+            gI, gJ, _ = cells._judge(st, L1, L2, I, J, worst, f_all)
+            fI, fJ = cells._first_pairs(st, L1, L2, worst, set())
+            f_few: set[int] = set()
+            cells._first_pairs(st, L1, L2, worst, f_few)
+            kept = set(zip(gI.tolist(), gJ.tolist(), strict=True))
+            formed = set(zip(fI.tolist(), fJ.tolist(), strict=True))
+            assert kept <= formed
+            assert len(formed) <= len(I)
+            hI, hJ, _ = cells._judge(st, L1, L2, fI, fJ, worst, f_few)
+            assert set(zip(hI.tolist(), hJ.tolist(), strict=True)) == kept
+            assert f_all <= f_few  # every constraint the full grid fires, fired
+            if not len(fI):
+                assert plain[k] >= worst  # pruned whole: the plain search agrees
+            pruned += len(I) - len(fI)
+    assert pruned > 0  # the floors and the cells' checks drop pairs on this spec
+
+
+@pytest.mark.parametrize("tolerances", [False, True])
+def test_seeded_answer_is_the_plain_optimum(
+    tolerances: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """With a design sought before the first pairs (cells.SEED_FROM 0: the first pairs formed
+    below a finite incumbent, so whole sheet pairs may be dropped by their mass floors), the
+    answer is the plain per-pair branch and bound's optimum."""
+    monkeypatch.setattr(cells, "SEED_FROM", 0)
+    _same_optimum(tolerances)
