@@ -450,6 +450,10 @@ def shared_search(
             two.append(layers[key])
         tabs.append((two[0], two[1]))
 
+    unique = list(layers.values())  # the layers' tables, each shared by its sheet pairs
+    at_layer = {id(lay): t for t, lay in enumerate(unique)}
+    layer_of = np.array([[at_layer[id(a)], at_layer[id(b)]] for a, b in tabs], dtype=np.int64)
+
     def sets(k: int) -> tuple[_Cellset, _Cellset]:
         a, b = tabs[k]
         return (
@@ -513,12 +517,12 @@ def shared_search(
             w1 = cells._width(a.table.cells, pI[sel], a.table.spans)
             w2 = cells._width(b.table.cells, pJ[sel], b.table.spans)
             one[sel] = w1 >= w2
-        for which in (1, 2):
+        for which in (1, 2):  # each layer's cells split once per round, whichever pairs ask
             side = one if which == 1 else ~one
-            for k in np.unique(pK[side]):
-                sel = side & (pK == k)
-                lay = tabs[k][which - 1]
-                kids[sel] = lay.children((pI if which == 1 else pJ)[sel])
+            own = layer_of[pK, which - 1]
+            for t in np.unique(own[side]):
+                sel = side & (own == t)
+                kids[sel] = unique[t].children((pI if which == 1 else pJ)[sel])
         nK, nM = np.repeat(pK, 2), np.repeat(pM, 2)
         nI = np.where(np.repeat(one, 2), kids.reshape(-1), np.repeat(pI, 2))
         nJ = np.where(np.repeat(one, 2), np.repeat(pJ, 2), kids.reshape(-1))
