@@ -8,7 +8,9 @@ pair searched from its whole domain by the branch and bound, the least of their 
   found by the branch and bound;
 * the cells' upper bound of a certified stiffness over a cell pair (its inner boxes,
   docs/theory.md section 5) is at least the certified value (``point_values``, tolerances
-  included) at designs drawn in the pair.
+  included) at designs drawn in the pair, within the cells' slack;
+* a design on its active bounds (a pair's optimum, and it polished at a margin of 1e-13) keeps
+  the cell pair that is exactly it: the slack covers the judge's rounding.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ import pytest
 from corrugate.solver import Problem, cells
 from corrugate.solver.bnb import GAP_RTOL, branch_and_bound
 from corrugate.solver.choices import CellFloors, floors
+from corrugate.solver.polish import FINE, polish
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.solve import optimize, pairs
 from corrugate.spec.schema import Spec
@@ -115,7 +118,7 @@ def test_inner_bound_at_least_the_certified_value() -> None:
         for q in stiff:
             upper = cells._inner_upper(q, L1, L2, i, j)
             assert np.all(np.isfinite(upper))
-            assert np.all(upper * (1 + 1e-12) >= vals[q]), q.key
+            assert np.all(upper * (1 + cells.SLACK) >= vals[q]), q.key
             # and it is tight: within a few per cent of the certified value at these widths
             assert np.all(upper <= vals[q] * 1.5)
 
@@ -176,3 +179,35 @@ def test_each_view_is_the_model_at_the_cells_moved_by_its_shift() -> None:
                 assert np.array_equal(got, want)
             assert np.array_equal(view[4], cells._extent(n[idx], mW0, ma0))
             assert np.array_equal(view[5], cells._extent(n[idx], mW1, ma1))
+
+
+@pytest.mark.parametrize("tolerances", [False, True])
+def test_a_design_on_its_bounds_keeps_its_cell_pair(tolerances: bool) -> None:
+    """The cells' slack (:data:`~corrugate.solver.cells.SLACK`, 1e-13) covers the rounding of
+    what the judge computes in plain floating point: each pair's optimum by the branch and bound
+    (a second method; its active constraints met to about 1e-12) and that optimum polished at a
+    margin of 1e-13, both designs of the problem by its own rule (``point_values``), keep the
+    cell pair that is exactly them (zero widths), with a mass bound at most their mass."""
+    p = _problem(tolerances)
+    tables = Tables(p)
+    kept = 0
+    for a, b in pairs(p):
+        r = branch_and_bound(p, a, b)
+        if r.point is None:
+            continue
+        exact = cells.judge_of(p, a, b, tables)
+        fine = polish(p, a, b, r.point, tables, exact, FINE)
+        assert fine is not None
+        st = cells.setting(p, a, b, tables)
+        for x in (r.point.arrays(), fine.point.arrays()):
+            mass, ok = exact(x)
+            assert bool(ok[0])  # a design of the problem by its own rule
+            one, two = x.layer(0), x.layer(1)
+            L1 = cells._cells(st, 1, one.n, one.W, one.W, one.alpha, one.alpha)[0]
+            L2 = cells._cells(st, 2, two.n, two.W, two.W, two.alpha, two.alpha)[0]
+            assert len(L1) == len(L2) == 1  # each cell meets its own layer's bounds
+            zero = np.zeros(1, dtype=np.int32)
+            i, _, lb = cells._judge(st, L1, L2, zero, zero, math.inf)
+            assert len(i) == 1 and lb[0] <= mass[0]
+            kept += 1
+    assert kept >= 4

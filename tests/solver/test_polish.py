@@ -110,3 +110,32 @@ def test_a_seeded_search_has_the_plain_optimum(monkeypatch: pytest.MonkeyPatch) 
     best = min(r.value for r in plain if r.point is not None)
     assert abs(got.value - best) <= 2 * GAP_RTOL * best
     assert _meets(p, *got.candidates, got.point, Tables(p)) == pytest.approx(got.value, rel=1e-15)
+
+
+def test_a_constraint_of_n_alone_met_exactly_does_not_stop_the_polish() -> None:
+    """The pair's optimum has a layer at n = 6: 7 facets, the validity bound's least, so that
+    constraint's margin is 0 at every W and alpha of that n. From starts that break other
+    constraints (the optimum with layer 2's W moved by 0.3 mm or its alpha by 3 deg), the polish
+    reaches the pair's optimum of the branch and bound (a second method) to 1e-6, with a design
+    that meets every constraint exactly; asking that constraint a margin, it found none."""
+    p = _problem()
+    tables = Tables(p)
+    c1, c2 = pairs(p)[2]
+    best = branch_and_bound(p, c1, c2)
+    assert best.certified and best.point is not None
+    x = best.point.arrays()
+    facets = [c for c in p.constraints if c.quantity.kind == "facets_least"]
+    assert facets and float(x.layer(1).n[0]) + 1 == facets[0].bound  # met with no margin
+    exact = cells.judge_of(p, c1, c2, tables)
+    for dW, da in ((-0.3, 0.0), (-0.1, 0.0), (0.0, -3.0), (-0.3, -3.0)):
+        one, two = x.layer(0), x.layer(1)
+        start = DesignPoints.of(
+            LayerPoints(float(one.n[0]), float(one.W[0]), float(one.alpha[0])),
+            LayerPoints(float(two.n[0]), float(two.W[0]) + dW, float(two.alpha[0]) + da),
+        )
+        m0, ok0 = exact(start.arrays())
+        assert float(m0[0]) < best.value and not bool(ok0[0])  # lighter: it breaks one
+        got = polish(p, c1, c2, start, tables, exact)
+        assert got is not None
+        mass = _meets(p, c1, c2, got.point, tables)
+        assert best.value * (1 - 2 * GAP_RTOL) <= mass <= best.value * (1 + 1e-6)

@@ -110,7 +110,16 @@ IntArray = NDArray[np.int64]
 Index = NDArray[np.signedinteger[Any]]
 
 #: Relative slack toward keeping with which a cell pair is judged (rounding of the products).
-SLACK = 1e-12
+#: What the judge computes in plain floating point (the interval model's values are rounded
+#: outward) is products, quotients and sums of positive numbers and sines and cosines (the
+#: extents, depths, blanks, band and mass; the terms (u_i + v_j) f_i g_j and the inner boxes'
+#: sums; the band's flanges g (e - g) with g <= e / 2: no cancellation), some 40 operations of
+#: at most one ulp (1.1e-16) each, so each value is within 1e-14 of its exact value, and P's own
+#: rule computes the same quantities within as much: 1e-13 covers both with a factor 5. A
+#: design infeasible by less than the slack keeps its cell pair, and such designs are lighter
+#: than the optimum by up to about ten times the slack on films-13-cont (three constraints
+#: active): at 1e-12 the search could not close below 1.0e-11 of the optimum.
+SLACK = 1e-13
 #: The first cells of each n: W's range cut in this many, alpha's in this many.
 FIRST_W = 4
 FIRST_ALPHA = 5
@@ -124,9 +133,23 @@ BUDGET = 20_000_000
 FIRST_MOST = 20_000_000
 #: Cell pairs split at once (the least mass bounds first).
 BATCH = 32768
+#: ... and in a search with a polished incumbent (:data:`SEED_FROM`): every pair below it is
+#: split anyway, so the order matters little and fewer rounds cost less (each round bounds the
+#: new cells of every sheet's table in one call: films-13-cont's search 10.5 -> 6.6 s of CPU,
+#: the same pairs judged, but films-5-cont, with no incumbent early, judged 3.5 -> 12.3 M).
+WIDE_BATCH = 262144
 #: The search stops when no cell pair left is below the incumbent less this (relative): the
 #: branch and bound closes the rest from them.
 CELL_GAP = 1e-10
+#: ... and, asked a finer gap (``fine``), goes on toward it while at most this many pairs are
+#: left (the cells stall about ten times :data:`SLACK` below the optimum, above: films-13-cont's
+#: queue grew to 0.9 M pairs at 1.0e-11 with a slack of 1e-12), the branch and bound closing
+#: fewer boxes after.
+FINE_MOST = 100_000
+#: The finer gap the solve asks (:func:`~.solve._by_cells`): films-13-cont's branch and bound
+#: from the cells' boxes at 1e-10 closed 293 k boxes in 8.0 s, at 1e-11 76 k in 2.2 s, at 5e-12
+#: 35 k in 0.8 s (40 k start boxes); at 3e-12 the cells stopped at this cap.
+FINE_GAP = 5e-12
 #: Rounds of splitting between two draws of designs to evaluate (:func:`_probe`).
 PROBE_EVERY = 4
 #: Pairs of one level judged at once (memory: a few arrays of this length).
@@ -776,6 +799,7 @@ def search_pairs(
     exacts: Sequence[Judge] | None = None,
     budget: int = BUDGET,
     gap: float = CELL_GAP,
+    fine: float | None = None,
     seek: bool = False,
     crowd: int | None = None,
 ) -> tuple[list[CellResult], int, frozenset[int]]:
@@ -783,8 +807,9 @@ def search_pairs(
     (:func:`setting`; a problem of :func:`applies`) at once, below ``incumbent`` (g; inf:
     none): the cell pairs of every sheet pair in one queue, those of least mass bound split
     first, :data:`BATCH` at a time, one incumbent for all (a design of any sheet pair prunes
-    every other), until none is left below the incumbent less ``gap`` (relative), or
-    ``budget`` cell pairs have been judged. ``exacts``: per sheet pair the problem's (mass,
+    every other), until none is left below the incumbent less ``gap`` (relative), then on
+    until none is below it less ``fine`` (relative, when given and finer) or more than
+    :data:`FINE_MOST` are left, or ``budget`` cell pairs have been judged. ``exacts``: per sheet pair the problem's (mass,
     feasible) at points (:func:`judge_of`), whose feasible best lowers the incumbent (None: no
     point evaluated). Returns each sheet pair's result (its design: the best over all pairs,
     on the pair that holds it, None on the others), the index of the pair of the best
@@ -898,7 +923,7 @@ def search_pairs(
             keep = lb < worst
             K, I, J, lb = K[keep], I[keep], J[keep], lb[keep]
         rounds += 1
-        if not len(I) or judged >= budget or float(lb.min()) >= inc * (1 - gap):
+        if not len(I) or judged >= budget or _settled(float(lb.min()), inc, len(I), gap, fine):
             break
         if crowd is not None and len(I) > crowd:  # the caller gives up on so many boxes
             break
@@ -907,9 +932,10 @@ def search_pairs(
             charged = judged
             if spend.exhausted:
                 break
-        if len(I) > BATCH:  # the lightest bounds first
+        batch = WIDE_BATCH if wide else BATCH
+        if len(I) > batch:  # the lightest bounds first
             take = np.zeros(len(I), dtype=bool)
-            take[np.argpartition(lb, BATCH - 1)[:BATCH]] = True
+            take[np.argpartition(lb, batch - 1)[:batch]] = True
             pK, pI, pJ = K[take], I[take], J[take]
             K, I, J, lb = K[~take], I[~take], J[~take], lb[~take]
         else:
@@ -962,6 +988,16 @@ def search_pairs(
         value = inc if own is not None else math.nan
         out.append(CellResult(floor, (lo, hi, b.copy()), own, value, judged))
     return out, best_at, frozenset(fired)
+
+
+def _settled(least: float, inc: float, left: int, gap: float, fine: float | None) -> bool:
+    """Whether the search stops with ``left`` pairs, the least bound ``least`` (g), below the
+    incumbent ``inc`` (g): at ``gap`` (relative), or on toward ``fine`` while at most
+    :data:`FINE_MOST` are left. The pairs left hold every design lighter than the incumbent
+    whenever it stops: this only says how far the cells go before the branch and bound."""
+    if least < inc * (1 - gap):
+        return False
+    return fine is None or fine >= gap or left > FINE_MOST or least >= inc * (1 - fine)
 
 
 def _seed(

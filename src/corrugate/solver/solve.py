@@ -700,8 +700,9 @@ def _by_cells(
     everything = pairs(problem)
     inc = math.inf if incumbent is None else incumbent
     budget = cells.BUDGET if most is None else most
+    fine = max(gap_rtol, cells.FINE_GAP)
     crowd = None if most is None else RUNNER_UP_CROWD * (most // 100)
-    found, at, fired = fl.search_all(inc, max(gap_rtol, cells.CELL_GAP), budget, seek, crowd)
+    found, at, fired = fl.search_all(inc, max(gap_rtol, cells.CELL_GAP), budget, fine, seek, crowd)
     if not found or not found[0].settled or sum(len(r.start[0]) for r in found) > CELL_BOXES:
         return None
     best: BnBResult | None = None
