@@ -29,6 +29,7 @@ import pytest
 
 from corrugate.solver import Problem, cell_checks, cells, solve
 from corrugate.solver.bnb import GAP_RTOL, branch_and_bound
+from corrugate.solver.choices import CellFloors, floors
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import THICKNESS
@@ -280,13 +281,14 @@ def test_seeded_runner_ups_are_designs_no_lighter_than_the_plain_search_per_n(
 def test_runner_ups_stopped_by_their_crowd_are_designs_shown_not_certified(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """A runner-up whose cells stop once their queue holds more than
-    :data:`~.solve.RUNNER_UP_CROWD` times the boxes they may leave (here a limit of 20 000 cell
-    pairs: 200 boxes; n = 6's queue passes them within 10 k pairs judged) is shown not
-    certified, and its design is one of the problem with n fixed by the problem's own rule, no
-    lighter than that problem's optimum by the plain branch and bound of every sheet pair's
-    whole domain (less its gap): a stopped search proves nothing, it only shows what it found;
-    the others are that optimum to the gap."""
+    """A runner-up whose cells stop at their crowd (:func:`~.cells.search_pairs`' ``crowd``,
+    :data:`~.solve.RUNNER_UP_CROWD` times the boxes they may leave; here every crowd given
+    is made 0 and the limit 1000 cell pairs: they stop at their first pairs, more than the 10
+    boxes the limit allows) is shown not certified, and its design is one of the
+    problem with n fixed by the problem's own rule, no lighter than that problem's optimum by
+    the plain branch and bound of every sheet pair's whole domain (less its gap): a stopped
+    search proves nothing, it only shows what it found; the others are that optimum to the
+    gap."""
     p = _problem(True, False)
     tables = Tables(p)
     opt = optimize(p, tables=tables, record=True, prune=True)
@@ -301,20 +303,37 @@ def test_runner_ups_stopped_by_their_crowd_are_designs_shown_not_certified(
             assert rn.certified
             if rn.point is not None:
                 plain[n] = min(plain.get(n, math.inf), rn.value)
-    monkeypatch.setattr(solve_module, "RUNNER_UP_CELLS", 20_000)
-    monkeypatch.setattr(solve_module, "RUNNER_UP_CROWD", 1)
+    # the crowd itself: a search given crowd 0 stops after its first pairs, before its end
+    fixed = replace(p, n_lo=n0, n_hi=n0)
+    fl = floors(fixed)
+    assert isinstance(fl, CellFloors)
+    below = plain[n0] * 1.1
+    whole, _, _ = fl.search_all(below, RUNNER_UP_GAP_RTOL, 10**6, None, False, None)
+    cut, _, _ = fl.search_all(below, RUNNER_UP_GAP_RTOL, 10**6, None, False, 0)
+    assert cut[0].judged < whole[0].judged
+
+    def ended(found: list[cells.CellResult]) -> bool:
+        """No pair left below the incumbent (the best found, else ``below``) less the gap."""
+        inc = min([below, *(r.value for r in found if r.point is not None)])
+        return min(r.floor for r in found) >= inc * (1 - RUNNER_UP_GAP_RTOL)
+
+    assert ended(whole) and not ended(cut)
+    # the runner-ups: every crowd given made 0, with a limit of 1000 cell pairs (10 boxes)
+    monkeypatch.setattr(solve_module, "RUNNER_UP_CELLS", 1000)
     stops: list[int] = []
     search = cells.search_pairs
 
-    def seen(*args: object, **kwargs: object) -> object:
-        got = search(*args, **kwargs)  # type: ignore[arg-type]
+    def crowded(*args: object) -> object:
+        given = list(args)
+        assert len(given) == 8 and given[7] == solve_module.RUNNER_UP_CROWD * 10  # the crowd
+        given[7] = 0
+        got = search(*given)  # type: ignore[arg-type]
         left = sum(len(r.start[0]) for r in got[0])
-        crowd = kwargs["crowd"]
-        if isinstance(crowd, int) and left > crowd and got[0][0].judged < 20_000:
-            stops.append(left)  # stopped by its crowd, not by its limit
+        if left > 10:
+            stops.append(left)  # more boxes than the limit allows: not certified
         return got
 
-    monkeypatch.setattr(cells, "search_pairs", seen)
+    monkeypatch.setattr(cells, "search_pairs", crowded)
     got = solve_module._cell_runner_ups(p, opt, tables, span)
     assert stops and set(got) == set(plain)
     assert not all(row.certified for row in got.values())
