@@ -11,7 +11,9 @@
   problem without it over every sheet pair's whole domain;
 * the runner-ups of a cells solve are those of the plain per-pair branch and bound, one
   incumbent per n, and the incumbents their searches start from are designs no lighter than
-  its optimum per n;
+  its optimum per n; a runner-up whose cells stop at their crowd is shown not certified, a
+  design no lighter than that optimum;
+* the shared search draws designs where every open check has pairs;
 * a check shown binding by a polish of the optimum binds by its own search too.
 """
 
@@ -27,6 +29,7 @@ import pytest
 
 from corrugate.solver import Problem, cell_checks, cells, solve
 from corrugate.solver.bnb import GAP_RTOL, branch_and_bound
+from corrugate.solver.choices import CellFloors, floors
 from corrugate.solver.points import DesignPoints, LayerPoints
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import THICKNESS
@@ -273,3 +276,99 @@ def test_seeded_runner_ups_are_designs_no_lighter_than_the_plain_search_per_n(
     for n, row in got.items():
         assert row.certified
         assert abs(row.value - plain[n]) <= 2 * RUNNER_UP_GAP_RTOL * plain[n]
+
+
+def test_runner_ups_stopped_by_their_crowd_are_designs_shown_not_certified(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A runner-up whose cells stop at their crowd (:func:`~.cells.search_pairs`' ``crowd``,
+    :data:`~.solve.RUNNER_UP_CROWD` times the boxes they may leave; here every crowd given
+    is made 0 and the limit 1000 cell pairs: they stop at their first pairs, more than the 10
+    boxes the limit allows) is shown not certified, and its design is one of the
+    problem with n fixed by the problem's own rule, no lighter than that problem's optimum by
+    the plain branch and bound of every sheet pair's whole domain (less its gap): a stopped
+    search proves nothing, it only shows what it found; the others are that optimum to the
+    gap."""
+    p = _problem(True, False)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.point is not None and opt.starts is not None  # by cells
+    n0 = round(opt.point.layer(0).n)
+    span = (max(p.n_lo, n0 - RUNNER_UP_SPREAD), min(p.n_hi, n0 + RUNNER_UP_SPREAD))
+    plain: dict[int, float] = {}
+    for a, b in pairs(p):
+        r = branch_and_bound(p, a, b, tables=tables, per_n=span, gap_rtol=RUNNER_UP_GAP_RTOL)
+        assert r.by_n is not None
+        for n, rn in r.by_n.items():
+            assert rn.certified
+            if rn.point is not None:
+                plain[n] = min(plain.get(n, math.inf), rn.value)
+    # the crowd itself: a search given crowd 0 stops after its first pairs, before its end
+    fixed = replace(p, n_lo=n0, n_hi=n0)
+    fl = floors(fixed)
+    assert isinstance(fl, CellFloors)
+    below = plain[n0] * 1.1
+    whole, _, _ = fl.search_all(below, RUNNER_UP_GAP_RTOL, 10**6, None, False, None)
+    cut, _, _ = fl.search_all(below, RUNNER_UP_GAP_RTOL, 10**6, None, False, 0)
+    assert cut[0].judged < whole[0].judged
+
+    def ended(found: list[cells.CellResult]) -> bool:
+        """No pair left below the incumbent (the best found, else ``below``) less the gap."""
+        inc = min([below, *(r.value for r in found if r.point is not None)])
+        return min(r.floor for r in found) >= inc * (1 - RUNNER_UP_GAP_RTOL)
+
+    assert ended(whole) and not ended(cut)
+    # the runner-ups: every crowd given made 0, with a limit of 1000 cell pairs (10 boxes)
+    monkeypatch.setattr(solve_module, "RUNNER_UP_CELLS", 1000)
+    stops: list[int] = []
+    search = cells.search_pairs
+
+    def crowded(*args: object) -> object:
+        given = list(args)
+        assert len(given) == 8 and given[7] == solve_module.RUNNER_UP_CROWD * 10  # the crowd
+        given[7] = 0
+        got = search(*given)  # type: ignore[arg-type]
+        left = sum(len(r.start[0]) for r in got[0])
+        if left > 10:
+            stops.append(left)  # more boxes than the limit allows: not certified
+        return got
+
+    monkeypatch.setattr(cells, "search_pairs", crowded)
+    got = solve_module._cell_runner_ups(p, opt, tables, span)
+    assert stops and set(got) == set(plain)
+    assert not all(row.certified for row in got.values())
+    for n, row in got.items():
+        assert row.point is not None and row.candidates is not None
+        if row.certified:
+            assert abs(row.value - plain[n]) <= 2 * RUNNER_UP_GAP_RTOL * plain[n]
+            continue
+        fixed = replace(p, n_lo=n, n_hi=n)
+        m, ok = cells.judge_of(fixed, *row.candidates, tables)(solve_module._as_arrays(row.point))
+        assert bool(ok[0]) and math.isclose(float(m[0]), row.value, rel_tol=1e-12)
+        assert row.value >= plain[n] * (1 - RUNNER_UP_GAP_RTOL)
+
+
+def test_the_shared_search_draws_where_every_open_check_has_pairs() -> None:
+    """The places the shared search draws designs in (:func:`~.cell_checks._draw_places`):
+    each open check that some queued pair carries is carried by a pair of some place (the
+    lightest pairs that carry it, listed here one by one), each place's pairs lie in its sheet
+    pair and carry an open check, and a closed check gets no place of its own."""
+    rng = np.random.default_rng(3)
+    count = 5
+    K = rng.integers(0, 4, 5000)
+    lb = rng.random(5000)
+    M = rng.integers(1, 1 << count, 5000).astype(np.int64)
+    M[lb < 0.5] &= ~np.int64(0b10100)  # checks 2 and 4 only in heavier pairs
+    open_mask = 0b01111  # check 4 closed
+    places = cell_checks._draw_places(K, lb, M, open_mask, count)
+    carried = 0
+    for k, sel in places:
+        assert len(sel) and (K[sel] == k).all()
+        for at in sel.tolist():
+            carried |= int(M[at])
+    for at in range(count):
+        mine = [i for i in range(len(K)) if (int(M[i]) >> at) & 1]
+        if (open_mask >> at) & 1 and mine:
+            assert (carried >> at) & 1, at
+    lightest_2 = min((i for i in range(len(K)) if (int(M[i]) >> 2) & 1), key=lambda i: lb[i])
+    assert any(lightest_2 in sel.tolist() for _, sel in places)

@@ -450,6 +450,10 @@ def shared_search(
             two.append(layers[key])
         tabs.append((two[0], two[1]))
 
+    unique = list(layers.values())  # the layers' tables, each shared by its sheet pairs
+    at_layer = {id(lay): t for t, lay in enumerate(unique)}
+    layer_of = np.array([[at_layer[id(a)], at_layer[id(b)]] for a, b in tabs], dtype=np.int64)
+
     def sets(k: int) -> tuple[_Cellset, _Cellset]:
         a, b = tabs[k]
         return (
@@ -475,11 +479,8 @@ def shared_search(
     spend, charged = current_budget(), 0
     while len(I):
         if rounds % cells.PROBE_EVERY == 0:
-            low = np.argpartition(lb, min(cells.PROBE_PAIRS, len(lb)) - 1)[: cells.PROBE_PAIRS]
-            order = low[np.argsort(lb[low])]
-            for k in list(dict.fromkeys(K[order].tolist()))[: cells.PROBE_SHEETS]:
+            for k, sel in _draw_places(K, lb, M, open_mask, len(checks)):
                 A, B = sets(k)
-                sel = order[K[order] == k]
                 x = _draw(
                     loose_settings[k], problem, A, B, I[sel], J[sel], lb[sel], worst, checks,
                     open_mask, rounds,
@@ -516,12 +517,12 @@ def shared_search(
             w1 = cells._width(a.table.cells, pI[sel], a.table.spans)
             w2 = cells._width(b.table.cells, pJ[sel], b.table.spans)
             one[sel] = w1 >= w2
-        for which in (1, 2):
+        for which in (1, 2):  # each layer's cells split once per round, whichever pairs ask
             side = one if which == 1 else ~one
-            for k in np.unique(pK[side]):
-                sel = side & (pK == k)
-                lay = tabs[k][which - 1]
-                kids[sel] = lay.children((pI if which == 1 else pJ)[sel])
+            own = layer_of[pK, which - 1]
+            for t in np.unique(own[side]):
+                sel = side & (own == t)
+                kids[sel] = unique[t].children((pI if which == 1 else pJ)[sel])
         nK, nM = np.repeat(pK, 2), np.repeat(pM, 2)
         nI = np.where(np.repeat(one, 2), kids.reshape(-1), np.repeat(pI, 2))
         nJ = np.where(np.repeat(one, 2), np.repeat(pJ, 2), kids.reshape(-1))
@@ -558,6 +559,42 @@ def shared_search(
             per[int(k)] = (lo, hi, lb[sel].copy())
         starts[ch.name] = per
     return Shared(answers, starts, settled, judged)
+
+
+def _draw_places(
+    K: IntArray, lb: FloatArray, M: IntArray, open_mask: int, count: int
+) -> list[tuple[int, IntArray]]:
+    """Where the shared search draws designs on a probe round: per sheet pair (index of
+    ``K``), the indices of queued pairs to draw in, lightest first. The
+    :data:`~.cells.PROBE_PAIRS` lightest pairs of the queue in its :data:`~.cells.PROBE_SHEETS`
+    lightest sheet pairs (as :func:`~.cells.search_pairs`), and, for each open check (bit of
+    ``open_mask`` among ``count``) whose lightest pair is not among those, the lightest
+    pairs that carry it (bit set ``M``) in its lightest sheet pair: a check whose pairs are
+    not the queue's lightest is drawn in too (where a design that answers it may lie). Only
+    where designs are drawn: every answer is judged by :func:`_answers`."""
+    out: list[tuple[int, IntArray]] = []
+    low = np.argpartition(lb, min(cells.PROBE_PAIRS, len(lb)) - 1)[: cells.PROBE_PAIRS]
+    order = low[np.argsort(lb[low])]
+    for k in list(dict.fromkeys(K[order].tolist()))[: cells.PROBE_SHEETS]:
+        out.append((int(k), order[K[order] == k]))
+    covered = 0
+    for at in order.tolist():
+        covered |= int(M[at])
+    for at in range(count):
+        bit = 1 << at
+        if not (open_mask & bit) or covered & bit:
+            continue
+        mine = np.flatnonzero((M & np.int64(bit)) != 0)
+        if not len(mine):
+            continue
+        k = int(K[mine[np.argmin(lb[mine])]])
+        mine = mine[K[mine] == k]
+        few = min(cells.PROBE_PAIRS, len(mine))
+        pick = mine[np.argpartition(lb[mine], few - 1)[:few]]
+        out.append((k, pick[np.argsort(lb[pick])]))
+        for i in pick.tolist():
+            covered |= int(M[i])
+    return out
 
 
 def _first_pairs(

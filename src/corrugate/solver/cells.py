@@ -891,6 +891,7 @@ def search_pairs(
     gap: float = CELL_GAP,
     fine: float | None = None,
     seek: bool = False,
+    crowd: int | None = None,
 ) -> tuple[list[CellResult], int, frozenset[int]]:
     """The cells' search of the module docstring over the sheet pairs of ``settings``
     (:func:`setting`; a problem of :func:`applies`) at once, below ``incumbent`` (g; inf:
@@ -907,7 +908,10 @@ def search_pairs(
     constraint that did not fire drops what this one dropped: every design of it lighter than
     the incumbent lies in the boxes left (:func:`~.solve._cell_binding`). ``seek``: a design
     sought before the first pairs and polished (:func:`_seed`) whatever their number, not only
-    past :data:`SEED_FROM` (an incumbent only prunes: the answer's certificate is the same)."""
+    past :data:`SEED_FROM` (an incumbent only prunes: the answer's certificate is the same).
+    ``crowd``: the search also stops when more cell pairs than this are left in its queue
+    (its start boxes are then all of them: the caller's rule for too many boxes decides; the
+    runner-ups', :func:`~.solve._by_cells`)."""
     inc = incumbent
     best_x: DesignPoints | None = None
     best_at = -1
@@ -1005,6 +1009,8 @@ def search_pairs(
             K, I, J, lb = K[keep], I[keep], J[keep], lb[keep]
         rounds += 1
         if not len(I) or judged >= budget or _settled(float(lb.min()), inc, len(I), gap, fine):
+            break
+        if crowd is not None and len(I) > crowd:  # the caller gives up on so many boxes
             break
         if spend is not None:
             spend.charge(judged - charged)

@@ -295,15 +295,16 @@ class CellFloors:
         budget: int = cells.BUDGET,
         fine: float | None = None,
         seek: bool = False,
+        crowd: int | None = None,
     ) -> tuple[list[cells.CellResult], int, frozenset[int]]:
         """Every pair's cells searched at once below ``below`` (g) (:func:`~.cells.search_pairs`:
         one queue, one incumbent; to the relative ``gap``, on toward ``fine``), and the index of
         the pair of the best design found (-1: none), and the constraints that fired
-        (:func:`~.cells.search_pairs`; ``seek``: its)."""
+        (:func:`~.cells.search_pairs`; ``seek``, ``crowd``: its)."""
         everything = [(a, b) for a in self.problem.candidates for b in self.problem.candidates]
         settings = [cells.setting(self.problem, a, b, self.tables) for a, b in everything]
         exacts = [cells.judge_of(self.problem, a, b, self.tables) for a, b in everything]
-        return cells.search_pairs(settings, below, exacts, budget, gap, fine, seek)
+        return cells.search_pairs(settings, below, exacts, budget, gap, fine, seek, crowd)
 
     def result(self, k: int, below: float) -> cells.CellResult:
         """Pair ``k``'s cells' search (:func:`~.cells.search`) below ``below`` (g), made once

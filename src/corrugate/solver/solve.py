@@ -109,6 +109,11 @@ CELL_BOXES = 10_000_000
 #: The cell pairs a runner-up's cells judge at most (:func:`_cell_runner_ups`); past them
 #: (or past a hundredth as many boxes left) the runner-up is shown not certified.
 RUNNER_UP_CELLS = 2_000_000
+#: A search with a limit ``most`` (:func:`_by_cells`: the runner-ups') stops once its queue holds
+#: more than this many times the ``most // 100`` boxes it may leave (not certified, as past the
+#: limit). films-5-cont: n = 22's queue grew to 94 k pairs in 1.7 M judged without closing
+#: (stopped at the limit); the queues of the n it certifies held at most 9 k (n = 18).
+RUNNER_UP_CROWD = 2
 
 
 @dataclass(frozen=True)
@@ -689,12 +694,15 @@ def _by_cells(
     searched so (the diagnosis reopens every pair's archive). ``most``: the cell pairs the
     cells judge at most (:data:`~.cells.BUDGET` by default) and a hundredth as many boxes
     they may leave to the branch and bound; past those it is not run and the design found is
-    not certified. ``seek``: :func:`~.cells.search_pairs`'."""
+    not certified; its cells also stop once their queue holds more than
+    :data:`RUNNER_UP_CROWD` times those boxes (``crowd``, :func:`~.cells.search_pairs`: then
+    not certified either, the same design shown as the best found). ``seek``: :func:`~.cells.search_pairs`'."""
     everything = pairs(problem)
     inc = math.inf if incumbent is None else incumbent
     budget = cells.BUDGET if most is None else most
     fine = max(gap_rtol, cells.FINE_GAP)
-    found, at, fired = fl.search_all(inc, max(gap_rtol, cells.CELL_GAP), budget, fine, seek)
+    crowd = None if most is None else RUNNER_UP_CROWD * (most // 100)
+    found, at, fired = fl.search_all(inc, max(gap_rtol, cells.CELL_GAP), budget, fine, seek, crowd)
     if not found or not found[0].settled or sum(len(r.start[0]) for r in found) > CELL_BOXES:
         return None
     best: BnBResult | None = None
