@@ -32,7 +32,8 @@ grows with each W, each extent and the depth, so its value at the cells' low cor
 Every quantity is judged with a relative slack :data:`SLACK` toward keeping (rounding).
 
 :func:`search_pairs` puts the cell pairs of every sheet pair in one queue, starting from coarse
-cells (:data:`FIRST_W` x :data:`FIRST_ALPHA` per n, every pair of the two layers' cells), and
+cells (:data:`FIRST_W` x :data:`FIRST_ALPHA` per n; of the pairs of the two layers' cells, those
+the judge would not drop by a cell's bound or a mass floor alone, :func:`_first_pairs`), and
 splits those of least mass bound first, :data:`BATCH` at a time (each pair's relatively wider cell
 halved across its wider side, :func:`_split`; children judged as above; a layer's cells shared by
 every sheet pair of its sheet). Every few rounds it evaluates designs exactly with P's own
