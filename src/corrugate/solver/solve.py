@@ -245,7 +245,9 @@ class Diagnosis:
     the first one's quantity that the other constraints allow (a pair: with the other dropped),
     ``alone`` its best with no other constraint (a pair: together, the other at its best), in
     ``unit``; ``hint`` the spec edit that restores feasibility (None: the message says why there
-    is none), ``relative`` the edit's size relative to the bound."""
+    is none), ``relative`` the edit's size relative to the bound. A ``reachable`` from a search
+    the work budget cut short is a value a design was found to reach, and the message says "not
+    certified"; ``alone`` is then None."""
 
     names: tuple[str, ...]
     bound: float | None
