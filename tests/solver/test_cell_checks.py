@@ -372,3 +372,40 @@ def test_the_shared_search_draws_where_every_open_check_has_pairs() -> None:
             assert (carried >> at) & 1, at
     lightest_2 = min((i for i in range(len(K)) if (int(M[i]) >> 2) & 1), key=lambda i: lb[i])
     assert any(lightest_2 in sel.tolist() for _, sel in places)
+
+
+def test_a_shared_search_whose_first_pairs_reach_its_limit_judges_none() -> None:
+    """The first cell pairs are counted without forming them (:func:`~.cell_checks._first_count`
+    against the pairs :func:`~.cell_checks._first_pairs` forms, per sheet pair), and a shared
+    search whose first pairs alone reach its limit stops before judging any (not settled,
+    nothing found), while one limit more judges them all."""
+    p = _problem(True, False)
+    tables = Tables(p)
+    opt = optimize(p, tables=tables, record=True, prune=True)
+    assert opt.certified and opt.fired is not None
+    names = list(dict.fromkeys(p.constraints[i].name for i in opt.fired))
+    checks = cell_checks.checks_of(p, names, True)
+    assert checks and cell_checks.applies(p, checks)
+    own = 0
+    for ch in checks:
+        own |= ch.bits
+    loose = replace(
+        p,
+        constraints=tuple(
+            c for k, c in enumerate(p.constraints) if not ((own >> k) & 1 and cell_checks._own(c))
+        ),
+    )
+    everything = pairs(p)
+    formed = 0
+    for c1, c2 in everything:
+        st = cells.setting(loose, c1, c2, tables)
+        a, b = (cell_checks._Layer(st, p, which) for which in (1, 2))
+        I, _ = cell_checks._first_pairs(a.fail, b.fail, checks)
+        assert cell_checks._first_count(a.fail, b.fail, checks) == len(I)
+        formed += len(I)
+    assert formed > 0
+    goal = opt.value * (1 - 2 * GAP_RTOL)
+    cut = cell_checks.shared_search(p, everything, tables, checks, goal, budget=formed)
+    assert not cut.settled and cut.judged == 0 and not any(cut.found.values())
+    run = cell_checks.shared_search(p, everything, tables, checks, goal, budget=formed + 1)
+    assert run.judged >= formed

@@ -46,6 +46,7 @@ __all__ = [
     "DirectionalStiffness",
     "Evaluation",
     "LayerArrays",
+    "LazyEvaluation",
     "analyze",
     "coupon_of",
     "evaluate",
@@ -250,6 +251,57 @@ def evaluate(
     No validation is done (see :class:`~corrugate.geometry.layer.Layer` for the allowed ranges), and the
     equal-sides requirement of square and circle layouts is left to the caller.
     """
+    b = _base(layer1, layer2, layout, model, eta_deg, fabrication, support)
+    D = directional("D", b.springs, eta_deg, support, b.coupon)
+    K = directional("K", b.springs, eta_deg, support, b.coupon)
+    if joint != "none":
+        D_w, _, K_w = band_walls(layer1.E, layer1.nu, layer1.t, b.thickness, b.span)
+        on = _on_creases(eta_deg)
+        D = np.asarray(D + np.where(on, D_w, 0.0))
+        K = np.asarray(K + np.where(on, K_w, 0.0))
+    return Evaluation(
+        Lx=b.Lx,
+        Ly=b.Ly,
+        thickness=b.thickness,
+        mass=b.mass + b.mass_connectors,
+        mass_connectors=b.mass_connectors,
+        K=K,
+        D=D,
+        EI=np.asarray(D * b.span),
+        moduli=b.moduli,
+        springs=b.springs,
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class _Base:
+    """What :func:`evaluate` computes before the directional stiffness: the extents Lx, Ly (mm),
+    the folded thickness (mm), the layers' mass and the connector band's (g), the moduli (MPa),
+    the springs, the layout's coupon (None when no direction reads it) and the span (mm) along
+    each eta."""
+
+    Lx: FloatArray
+    Ly: FloatArray
+    thickness: FloatArray
+    mass: FloatArray
+    mass_connectors: FloatArray
+    moduli: tuple[Moduli, Moduli]
+    springs: tuple[LayerSprings, LayerSprings]
+    coupon: Coupon | None
+    span: FloatArray
+
+
+def _base(
+    layer1: LayerArrays,
+    layer2: LayerArrays,
+    layout: Layout,
+    model: str,
+    eta_deg: ArrayLike,
+    fabrication: FabricationOptions,
+    support: str,
+) -> _Base:
+    """The part of :func:`evaluate` that does not depend on which stiffness is read
+    (:class:`_Base`)."""
     variant = get_model(model)
     same = identical_layers(layer1, layer2, layout)
     g1 = _layer_part(layer1, variant)
@@ -300,7 +352,6 @@ def evaluate(
                 g2.p * inverse_length_sum(layout, layer2.n, Lx, "y"),
             ),
         )
-    D = directional("D", (s1, s2), eta_deg, support, coupon)
     mass = layer_mass(
         layer1.density, layer1.t, g1.z.developed, length_sum(layout, layer1.n, Ly), layout, g1.p
     )
@@ -313,25 +364,113 @@ def evaluate(
             layer2.density, layer2.t, g2.z.developed, length_sum(layout, layer2.n, Lx), layout, g2.p
         )
     m_conn = connector_mass(layer1.density, layer1.t, layout, Lx, Ly, thickness, fabrication)
-    K = directional("K", (s1, s2), eta_deg, support, coupon)
     span = np.asarray(layout.span(Lx, Ly, np.asarray(eta_deg, dtype=float)))
-    if joint != "none":
-        D_w, _, K_w = band_walls(layer1.E, layer1.nu, layer1.t, thickness, span)
-        on = _on_creases(eta_deg)
-        D = np.asarray(D + np.where(on, D_w, 0.0))
-        K = np.asarray(K + np.where(on, K_w, 0.0))
-    return Evaluation(
-        Lx=Lx,
-        Ly=Ly,
-        thickness=thickness,
-        mass=mass + m_conn,
-        mass_connectors=m_conn,
-        K=K,
-        D=D,
-        EI=np.asarray(D * span),
-        moduli=(g1.moduli, g2.moduli),
-        springs=(s1, s2),
-    )
+    return _Base(Lx, Ly, thickness, mass, m_conn, (g1.moduli, g2.moduli), (s1, s2), coupon, span)
+
+
+class LazyEvaluation:
+    """:func:`evaluate` of the same arguments (``eta_deg`` a scalar or a 1-D array) computing
+    each stiffness only when it is read: :meth:`column` ``(kind, j)`` is
+    ``getattr(evaluate(...), kind)[:, j]`` (K in N/mm, D in N mm, EI in N mm^2 at the j-th
+    direction), bit for bit, without the directions and kinds nobody reads (the solver's
+    evaluations at points ask for the quantities of the problem's constraints and objective:
+    an off-axis D, two free-panel coupons, is the dearest and is seldom bounded). The other
+    fields (Lx, Ly, thickness in mm, mass and mass_connectors in g, moduli, springs) are
+    ``evaluate``'s. Each column is computed once and kept."""
+
+    def __init__(
+        self,
+        layer1: LayerArrays,
+        layer2: LayerArrays,
+        layout: Layout,
+        model: str = DEFAULT_MODEL,
+        eta_deg: ArrayLike = 0.0,
+        fabrication: FabricationOptions = DEFAULT_FABRICATION,
+        support: str = DEFAULT_SUPPORT,
+        joint: str = "none",
+    ) -> None:
+        eta = np.asarray(eta_deg, dtype=np.float64)
+        if eta.ndim > 1:
+            raise ValueError("eta_deg must be a scalar or a 1-D array")
+        self._eta, self._support, self._joint, self._layer1 = eta, support, joint, layer1
+        b = _base(layer1, layer2, layout, model, eta, fabrication, support)
+        self._b = b
+        self.Lx, self.Ly, self.thickness = b.Lx, b.Ly, b.thickness
+        self.mass = b.mass + b.mass_connectors
+        self.mass_connectors = b.mass_connectors
+        self.moduli, self.springs = b.moduli, b.springs
+        self._columns: dict[tuple[str, int], FloatArray] = {}
+        self._walls: tuple[Any, Any] | None = None
+
+    def column(self, kind: str, j: int) -> FloatArray:
+        """``getattr(evaluate(...), kind)[:, j]``: the stiffness ``kind`` ("K", "D" or "EI")
+        at the j-th direction (K N/mm, D N mm, EI = D x span N mm^2) over the points
+        (computed once)."""
+        key = (kind, j)
+        v = self._columns.get(key)
+        if v is None:
+            if kind == "EI":
+                v = np.asarray(self.column("D", j) * self._span(j))
+            elif kind == "K":
+                v = self._directional("K", j)
+            elif kind == "D":
+                v = self._directional("D", j)
+            else:
+                raise ValueError(f"kind {kind!r}: K, D or EI")
+            self._columns[key] = v
+        return v
+
+    @property
+    def K(self) -> FloatArray:
+        """K (N/mm) at every direction, points by directions (:func:`evaluate`'s)."""
+        return self._all("K")
+
+    @property
+    def D(self) -> FloatArray:
+        """D (N mm) at every direction, points by directions (:func:`evaluate`'s)."""
+        return self._all("D")
+
+    @property
+    def EI(self) -> FloatArray:
+        """EI (N mm^2) at every direction, points by directions (:func:`evaluate`'s)."""
+        return self._all("EI")
+
+    def _all(self, kind: str) -> FloatArray:
+        m = self._eta.size if self._eta.ndim else 1
+        return np.stack([self.column(kind, j) for j in range(m)], axis=1)
+
+    def _directional(self, kind: Literal["K", "D"], j: int) -> FloatArray:
+        """K or D at the j-th direction as :func:`evaluate` computes it: one
+        :func:`directional` value, broadcast as its mask loop broadcasts it, plus the band's
+        walls on the creases."""
+        b, eta = self._b, self._eta
+        if eta.ndim == 0:
+            out = directional(kind, b.springs, eta, self._support, b.coupon)
+        else:
+            v = assembly_directional(kind, b.springs, float(eta[j]), self._support, b.coupon)
+            shape = np.broadcast_shapes(
+                np.shape(b.springs[0].K_S), np.shape(b.springs[1].K_S), eta.shape
+            )
+            # evaluate's np.where(eta == e, v, out) puts v in column j as it broadcasts
+            out = np.broadcast_to(np.asarray(v, dtype=np.float64), shape)
+        if self._joint != "none":
+            D_w, K_w = self._band()
+            out = np.asarray(out + (D_w if kind == "D" else K_w))
+        return np.array(out[:, j] if eta.ndim else out[:, 0], dtype=np.float64)  # a copy
+
+    def _span(self, j: int) -> FloatArray:
+        span = self._b.span
+        return np.asarray(span[:, j] if self._eta.ndim else span[:, 0])
+
+    def _band(self) -> tuple[Any, Any]:
+        """The band's walls' D_w (N mm) and K_w (N/mm) on the creases, 0 off them, over the
+        points and directions (as :func:`evaluate` adds them)."""
+        if self._walls is None:
+            l1, b = self._layer1, self._b
+            D_w, _, K_w = band_walls(l1.E, l1.nu, l1.t, b.thickness, b.span)
+            on = _on_creases(self._eta)
+            self._walls = (np.where(on, D_w, 0.0), np.where(on, K_w, 0.0))
+        return self._walls
 
 
 @dataclass(frozen=True, slots=True)

@@ -462,6 +462,9 @@ class _Search:
         self.obj = problem.objective.quantity
         self.cons = problem.constraints
         self.needed = {c.quantity for c in self.cons} | {self.obj}
+        # what the points' evaluations compute (the rest of the reported quantities, an
+        # off-axis D above all, no point of the search reads)
+        self.asked = frozenset(self.needed)
         self.costly = {q for q in self.needed if q.directional}  # stiffness, buckling: intervals
         self.cheap = self.needed - self.costly
         # under worst-case tolerances: the nominal problem, whose values screen the points
@@ -688,16 +691,26 @@ class _Search:
             return np.zeros((0, len(self.cons)), dtype=bool), np.empty(0)
         x = DesignPoints.from_columns(pts)
         if self.screen is None:
-            vals = point_values(self.problem, self.c1, self.c2, x, self.tables)
+            vals = point_values(self.problem, self.c1, self.c2, x, self.tables, self.asked)
             p_broken = _broken(self.cons, vals, self.needed, len(pts), self.feas_rtol)
             value = self.sign * vals[self.obj]
             self.best.offer(pts, np.where(~p_broken.any(axis=1), value, np.inf), x)
             return p_broken, value
-        nominal = point_values(self.screen, self.c1, self.c2, x, self.tables)
-        for corner in tolerance_box.corners(self.problem, self.c1, self.c2, x):
-            at = point_values(self.screen, self.c1, self.c2, corner, self.tables, self.covered)
+        nominal = point_values(self.screen, self.c1, self.c2, x, self.tables, self.asked)
+        corners = tolerance_box.corners(self.problem, self.c1, self.c2, x)
+        if corners:  # the four corners as one evaluation of 4 k points, corner by corner
+            at = point_values(
+                self.screen,
+                self.c1,
+                self.c2,
+                tolerance_box.stacked(corners),
+                self.tables,
+                self.covered,
+            )
             for q in self.covered:
-                nominal[q] = np.minimum(nominal[q], at[q])
+                every = np.broadcast_to(np.asarray(at[q]), (len(corners) * len(pts),))
+                least = every.reshape(len(corners), len(pts)).min(axis=0)
+                nominal[q] = np.minimum(nominal[q], least)
         p_broken = _broken(self.cons, nominal, self.needed, len(pts), self.feas_rtol)
         p_broken[:, self.unscreened] = False  # not shown by a nominal value
         value = np.asarray(self.sign * nominal[self.obj], dtype=np.float64)
@@ -719,7 +732,9 @@ class _Search:
                 sel = maybe[~full[maybe] & (value[maybe] <= star[slots[maybe]])]
             if not len(sel):
                 continue
-            vals = point_values(self.problem, self.c1, self.c2, x.take(sel), self.tables)
+            vals = point_values(
+                self.problem, self.c1, self.c2, x.take(sel), self.tables, self.asked
+            )
             p_broken[sel] = _broken(self.cons, vals, self.needed, len(sel), self.feas_rtol)
             value[sel] = self.sign * vals[self.obj]
             full[sel] = True

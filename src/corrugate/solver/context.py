@@ -22,7 +22,7 @@ from typing import Any, TypeVar
 import numpy as np
 from numpy.typing import NDArray
 
-from corrugate.analysis.evaluate import Evaluation, LayerArrays, coupon_of, evaluate
+from corrugate.analysis.evaluate import LayerArrays, LazyEvaluation, coupon_of
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Circle, Rectangle
 from corrugate.geometry.profile import ZIGZAG, ProfileKind
@@ -135,17 +135,20 @@ class AtPoints(_Shared):
         return self.etas[0] if len(self.etas) == 1 else self.etas
 
     @cached_property
-    def ev(self) -> Evaluation:
-        """``evaluate`` of the points under the default support (free sides)."""
+    def ev(self) -> LazyEvaluation:
+        """``evaluate`` of the points under the default support (free sides), each stiffness
+        computed when a quantity reads it (:class:`~corrugate.analysis.evaluate.LazyEvaluation`:
+        the same values bit for bit)."""
         p = self.problem
-        return evaluate(*self.layers, p.layout, p.model, self._eta_arg, joint=p.joint)
+        return LazyEvaluation(*self.layers, p.layout, p.model, self._eta_arg, joint=p.joint)
 
-    def under(self, support: str) -> Evaluation:
-        """``evaluate`` of the points under ``support`` (one that reads the layout's coupon)."""
+    def under(self, support: str) -> LazyEvaluation:
+        """``evaluate`` of the points under ``support`` (one that reads the layout's coupon),
+        lazily as :attr:`ev`."""
         p = self.problem
         return self.shared(
             "evaluate:" + support,
-            lambda: evaluate(
+            lambda: LazyEvaluation(
                 *self.layers, p.layout, p.model, self._eta_arg, support=support, joint=p.joint
             ),
         )

@@ -332,6 +332,16 @@ def _machine_pair(a: Constraint, va: float, b: Constraint, vb: float) -> str:
     )
 
 
+#: What a value from a search cut short by the work budget says: a design reaching it was found,
+#: not that none goes further (the search's own certificate, :attr:`~.solve.Optimum.certified`).
+NOT_CERTIFIED = " (not certified: the work budget ran out before the search ended)"
+
+
+def _cut(opt: Optimum) -> str:
+    """Nothing for a certified search's value, else :data:`NOT_CERTIFIED`."""
+    return "" if opt.certified else NOT_CERTIFIED
+
+
 def _pct(c: Constraint, v: float) -> float:
     return 100 * abs(c.bound - v) / abs(c.bound) if c.bound else math.inf
 
@@ -391,7 +401,9 @@ def _diagnose(
             out.append(d)
     out += _sheets(problem, singles)
     if singles:
-        return out
+        # the budget spent inside the last single (its partners, its search alone) or the
+        # sheets: what is above may lack parts, and says so
+        return [*out, _partial(problem)] if budget_spent() else out
     stage(DIAGNOSIS, "pairs of constraints")
     pairs = _pairs(problem, tables, tree)
     out += pairs
@@ -413,7 +425,7 @@ def _diagnose(
                 kind="none",
             )
         )
-    return out
+    return [*out, _partial(problem)] if budget_spent() else out
 
 
 def _sheets(
@@ -556,7 +568,10 @@ def _layers(problem: Problem) -> list[Diagnosis]:
             None,
             None,
             "mm",
-            f"{why}; independent layers alone do not make the spec feasible either (see below)",
+            f"{why}; independent layers alone do not make the spec feasible either (see below)"
+            if found.certified
+            else f"{why}; whether independent layers alone make the spec feasible is not known"
+            + NOT_CERTIFIED,
             kind="layers",
         )
     ]
@@ -570,12 +585,12 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         return []
     # each off-axis bound alone among them, every other constraint held
     base = replace(problem, constraints=tuple(c for c in problem.constraints if c not in off))
-    reach: list[tuple[Constraint, float | None]] = []
+    reach: list[tuple[Constraint, float | None, str]] = []
     warm = tree.warm(*off) if len(off) <= ARCHIVE_DEPTH else None
     for c in off:
         best = tree.best(base, c, tables, tuple(off), keep=len(off) == 1)
-        reach.append((c, None if best.point is None else best.value))
-    short = [(c, r) for c, r in reach if r is None or not _meets(c, r)]
+        reach.append((c, None if best.point is None else best.value, _cut(best)))
+    short = [c for c, r, _ in reach if r is None or not _meets(c, r)]
     framed = replace(
         problem,
         constraints=tuple(
@@ -591,8 +606,11 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
     if not short and fixed.point is None:
         return []
     parts = []
-    for c, r in reach:
-        got = "no design meets the rest" if r is None else f"at most {_value(c, r)}"
+    for c, r, cut in reach:
+        if r is None:
+            got = "no design meets the rest" if not cut else "no design found" + cut
+        else:
+            got = f"at most {_value(c, r)}" if not cut else f"{_value(c, r)} found" + cut
         parts.append(f"{_key(c)} asks {_asked(c)}: {got}")
     etas = sorted({f"{c.quantity.eta:g}" for c in off})
     why = (
@@ -602,7 +620,7 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         "off-axis ones held, " + "; ".join(parts)
     )
     c0 = off[0]
-    along: list[tuple[float, float]] = []
+    along: list[tuple[float, float, str]] = []
     for eta in (0.0, 90.0):
         q = Quantity(c0.quantity.kind, eta, c0.quantity.support)
         # only the better of the two is said: on a grid (exact optima) the second searched
@@ -610,7 +628,7 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         beat = along[0][1] if along and problem.gridded else None
         best = _best(base, q, c0.sense, tables, warm, incumbent=beat)
         if best.point is not None:
-            along.append((eta, best.value))
+            along.append((eta, best.value, _cut(best)))
     keys = ", ".join(_key(c) for c in off)
     if fixed.point is not None:
         o = problem.objective
@@ -618,16 +636,22 @@ def _free_off_axis(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagno
         hint = " and ".join(f'{_key(c).rpartition(".")[0]}.support = "frame"' for c in off)
         frame_text = (
             f'what would carry it: a rigid frame (support = "frame" on {keys}: then the spec '
-            f"is feasible, best {shown(fixed.value, o.quantity.unit)})"
+            f"is feasible, best {shown(fixed.value, o.quantity.unit)}{_cut(fixed)})"
         )
-    else:
+    elif fixed.certified:
         hint = None
         frame_text = 'even a rigid frame (support = "frame") does not make the spec feasible'
+    else:
+        hint = None
+        frame_text = (
+            'whether a rigid frame (support = "frame") makes the spec feasible is not known'
+        )
+        frame_text += NOT_CERTIFIED
     if along:
-        eta, v = max(along, key=lambda item: item[1] if c0.sense == "min" else -item[1])
+        eta, v, cut = max(along, key=lambda item: item[1] if c0.sense == "min" else -item[1])
         frame_text += (
             f"; a load case along the creases (eta = {eta:g} deg, where the same constraints "
-            f"allow {c0.quantity.kind} up to {_shown(c0, v)})"
+            f"allow {c0.quantity.kind} up to {_shown(c0, v)}{cut})"
         )
     frame_text += "; or a face sheet bonded to one side (not modelled by corrugate)"
     message = f"{why}; {frame_text}" + (f"; hint: {hint}" if hint else "")
@@ -657,10 +681,16 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
     if c.load is not None:
         word = "smallest"
     pct = _pct(c, r)
-    text = (
-        f"{c.name} asks {_asked(c)}; the {word} reachable with every other constraint held is "
-        f"{_value(c, r)} (short by {pct:.3g} %)"
-    )
+    if best.certified:
+        text = (
+            f"{c.name} asks {_asked(c)}; the {word} reachable with every other constraint held "
+            f"is {_value(c, r)} (short by {pct:.3g} %)"
+        )
+    else:  # a design reaching r exists (the hint holds), not that none goes further
+        text = (
+            f"{c.name} asks {_asked(c)}; with every other constraint held a design reaching "
+            f"{_value(c, r)} was found (short by {pct:.3g} %){NOT_CERTIFIED}"
+        )
     partners = []
     for d in problem.constraints:
         if d.name == c.name or budget_spent() or _cannot_improve(problem, c, d, tree, best):
@@ -673,12 +703,15 @@ def _single(problem: Problem, c: Constraint, tables: Tables, tree: _Tree) -> Dia
         else:
             without = _best(rest.without(d.name), c.quantity, c.sense, tables, warm, incumbent=r)
         if without.point is not None and _improves(c, without.value, r):
-            partners.append((d, without.value))
+            partners.append((d, without.value, _cut(without)))
     partners.sort(key=lambda item: -abs(item[1] - r))
     alone = _best(replace(problem, constraints=()), c.quantity, c.sense, tables)
-    a = None if alone.point is None else alone.value
+    # alone, the best says how far the variable bounds reach: only a finished search says it
+    a = None if alone.point is None or not alone.certified else alone.value
     if partners:
-        named = [f"{_key(d)} (without it: {_value(c, v)})" for d, v in partners[:_MAX_PARTNERS]]
+        named = [
+            f"{_key(d)} (without it: {_value(c, v)}{cut})" for d, v, cut in partners[:_MAX_PARTNERS]
+        ]
         more = len(partners) - _MAX_PARTNERS
         text += (
             "; it binds together with "
@@ -755,12 +788,12 @@ def _pairs(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
         together = []
         if ta.point is not None:
             together.append(
-                f"{_key(a)} {_reach(a)} {_value(a, ta.value)} with {_key(b)} at "
+                f"{_key(a)} {_reach(a)} {_value(a, ta.value)}{_cut(ta)} with {_key(b)} at "
                 f"{_value(b, rb.value)}"
             )
         if tb.point is not None:
             together.append(
-                f"{_key(b)} {_reach(b)} {_value(b, tb.value)} with {_key(a)} at "
+                f"{_key(b)} {_reach(b)} {_value(b, tb.value)}{_cut(tb)} with {_key(a)} at "
                 f"{_value(a, ra.value)}"
             )
         hint = None
@@ -771,8 +804,9 @@ def _pairs(problem: Problem, tables: Tables, tree: _Tree) -> list[Diagnosis]:
         text = (
             f"{a.name} and {b.name} bind only together: neither alone can be met with the other "
             f"constraints held, both dropped a design exists; {_key(a)} asks {_asked(a)} and reaches "
-            f"{_reach(a)} {_value(a, ra.value)} with {_key(b)} dropped; {_key(b)} asks {_asked(b)} "
-            f"and reaches {_reach(b)} {_value(b, rb.value)} with {_key(a)} dropped"
+            f"{_reach(a)} {_value(a, ra.value)}{_cut(ra)} with {_key(b)} dropped; {_key(b)} asks "
+            f"{_asked(b)} and reaches {_reach(b)} {_value(b, rb.value)}{_cut(rb)} with {_key(a)} "
+            "dropped"
             + (f"; together {' or '.join(together)}" if together else "")
             + (f"; hint: {hint}" if hint else "")
         )

@@ -186,16 +186,22 @@ def _point_values(
     only: frozenset[Quantity] | None = None,
 ) -> dict[Quantity, FloatArray]:
     at = AtPoints(problem, c1, c2, x, tables)
-    out = {q: at.value(q) for q in reported(problem) if only is None or q in only}
     covered = [
         q
         for q in (problem.quantities if _covered_any(problem) else ())
         if tolerance_box.covered(problem, q) and (only is None or q in only)
     ]
+    worst: dict[Quantity, FloatArray] = {}
     if covered:  # their worst case over the tolerance box (docs/tolerances.md)
         tol = tolerance_box.ToleranceBounds(problem, c1, c2, x, x, tables)
-        for q in covered:
-            out[q] = np.asarray(tol.bounds(q)[0])
+        worst = {q: np.asarray(tol.bounds(q)[0]) for q in covered}
+    # a covered quantity's nominal value is not computed: its worst case replaces it
+    out = {
+        q: worst[q] if q in worst else at.value(q)
+        for q in reported(problem)
+        if only is None or q in only
+    }
+    out.update(worst)
     return out
 
 

@@ -103,7 +103,7 @@ def _stiffness_at(at: AtPoints, q: Quantity) -> FloatArray:
     b = get_support(q.support)
     if b.name == DEFAULT_SUPPORT or b.uses_coupon:  # evaluate's own treatment of the coupon
         ev = at.ev if b.name == DEFAULT_SUPPORT else at.under(b.name)
-        return np.asarray(getattr(ev, q.kind)[:, at.column(e)])
+        return ev.column(q.kind, at.column(e))
     D_b, K_b = _under_support(at, b.name, e)
     if q.kind == "D":
         return D_b
