@@ -534,7 +534,14 @@ def reference_markdown() -> str:
         "proven impossible) and exit code 4; `design --json` prints its object as usual with "
         '`"status": "not-certified"` and `solver.budget` (`cpu_seconds`, `boxes`, '
         "`used_cpu_seconds`, `used_boxes`, `exhausted`, `stopped_by`). A design certified before "
-        "the budget ran out keeps exit code 0, with the warning `explanation-partial`. In "
+        "the budget ran out keeps exit code 0, with the warning `explanation-partial`. A spec "
+        "proven infeasible before the budget ran out keeps exit code 1, and its diagnosis ends "
+        "with an entry saying it is partial whenever the budget ran out in it (also inside its "
+        "last entry's searches); a value from a search the budget cut short is followed by "
+        '"(not certified: the work budget ran out before the search ended)": a design reaching '
+        "it was found, not that none goes further; that no design meets the rest, that a frame "
+        "does not help or how far a bound reaches alone is said only from searches that ended "
+        "(`tests/solver/test_diagnosis.py`). In "
         "Python: `corrugate.design(spec, budget=10)`, `corrugate.workflow.solve_spec(spec, "
         "budget=10)`, `corrugate.solver.solve(problem, budget=10)`.",
         "",
