@@ -36,6 +36,7 @@ from corrugate.solver.quantity import THICKNESS
 from corrugate.solver.solve import (
     RUNNER_UP_GAP_RTOL,
     RUNNER_UP_SPREAD,
+    Optimum,
     _cell_binding,
     _polished_witnesses,
     _runner_ups,
@@ -153,16 +154,16 @@ def test_a_check_that_never_fired_is_the_plain_search() -> None:
     assert _cell_binding(p, opt, name, tables, tol) is plain
 
 
-@pytest.mark.slow
-def test_runner_ups_of_a_cells_solve_are_the_plain_search_per_n() -> None:
-    """The runner-ups of a cells solve (one cells search per n) against the plain branch and
-    bound of every sheet pair's whole domain with one incumbent per n (``per_n``): the same n
-    have a design, each mass within both searches' relative gap RUNNER_UP_GAP_RTOL."""
-    p = _problem(True, False)
+def _solved_and_plain_per_n(
+    p: Problem,
+) -> tuple[Tables, Optimum, int, tuple[int, int], dict[int, float]]:
+    """``p`` solved by cells (recorded, pruned; asserted certified and by cells), the
+    optimum's n, the runner-ups' span of n about it, and the second method: each n's least
+    mass by the plain branch and bound of every sheet pair's whole domain with one incumbent
+    per n (``per_n``, each asserted certified)."""
     tables = Tables(p)
     opt = optimize(p, tables=tables, record=True, prune=True)
     assert opt.certified and opt.point is not None and opt.starts is not None  # by cells
-    rows = _runner_ups(p, opt, tables)
     n0 = round(opt.point.layer(0).n)
     span = (max(p.n_lo, n0 - RUNNER_UP_SPREAD), min(p.n_hi, n0 + RUNNER_UP_SPREAD))
     plain: dict[int, float] = {}
@@ -173,6 +174,17 @@ def test_runner_ups_of_a_cells_solve_are_the_plain_search_per_n() -> None:
             assert rn.certified
             if rn.point is not None:
                 plain[n] = min(plain.get(n, math.inf), rn.value)
+    return tables, opt, n0, span, plain
+
+
+@pytest.mark.slow
+def test_runner_ups_of_a_cells_solve_are_the_plain_search_per_n() -> None:
+    """The runner-ups of a cells solve (one cells search per n) against the plain branch and
+    bound of every sheet pair's whole domain with one incumbent per n (``per_n``): the same n
+    have a design, each mass within both searches' relative gap RUNNER_UP_GAP_RTOL."""
+    p = _problem(True, False)
+    tables, opt, _, _, plain = _solved_and_plain_per_n(p)
+    rows = _runner_ups(p, opt, tables)
     assert {row.n for row in rows} == set(plain) and len(plain) >= 3
     for row in rows:
         assert row.certified
@@ -241,19 +253,7 @@ def test_seeded_runner_ups_are_designs_no_lighter_than_the_plain_search_per_n(
     sheet pair's whole domain (less its gap), and the runner-ups then found (some of them the
     seed itself, when the search finds nothing lighter) are that optimum to the gap."""
     p = _problem(True, False)
-    tables = Tables(p)
-    opt = optimize(p, tables=tables, record=True, prune=True)
-    assert opt.certified and opt.point is not None and opt.starts is not None  # by cells
-    n0 = round(opt.point.layer(0).n)
-    span = (max(p.n_lo, n0 - RUNNER_UP_SPREAD), min(p.n_hi, n0 + RUNNER_UP_SPREAD))
-    plain: dict[int, float] = {}
-    for a, b in pairs(p):
-        r = branch_and_bound(p, a, b, tables=tables, per_n=span, gap_rtol=RUNNER_UP_GAP_RTOL)
-        assert r.by_n is not None
-        for n, rn in r.by_n.items():
-            assert rn.certified
-            if rn.point is not None:
-                plain[n] = min(plain.get(n, math.inf), rn.value)
+    tables, opt, _, span, plain = _solved_and_plain_per_n(p)
     seeds: list[tuple[int, float]] = []
     seed = solve_module._runner_seed
 
@@ -290,19 +290,7 @@ def test_runner_ups_stopped_by_their_crowd_are_designs_shown_not_certified(
     search proves nothing, it only shows what it found; the others are that optimum to the
     gap."""
     p = _problem(True, False)
-    tables = Tables(p)
-    opt = optimize(p, tables=tables, record=True, prune=True)
-    assert opt.certified and opt.point is not None and opt.starts is not None  # by cells
-    n0 = round(opt.point.layer(0).n)
-    span = (max(p.n_lo, n0 - RUNNER_UP_SPREAD), min(p.n_hi, n0 + RUNNER_UP_SPREAD))
-    plain: dict[int, float] = {}
-    for a, b in pairs(p):
-        r = branch_and_bound(p, a, b, tables=tables, per_n=span, gap_rtol=RUNNER_UP_GAP_RTOL)
-        assert r.by_n is not None
-        for n, rn in r.by_n.items():
-            assert rn.certified
-            if rn.point is not None:
-                plain[n] = min(plain.get(n, math.inf), rn.value)
+    tables, opt, n0, span, plain = _solved_and_plain_per_n(p)
     # the crowd itself: a search given crowd 0 stops after its first pairs, before its end
     fixed = replace(p, n_lo=n0, n_hi=n0)
     fl = floors(fixed)
