@@ -47,16 +47,19 @@ from collections.abc import Hashable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from corrugate.solver import cells, separable, tolerance_box
+from corrugate.solver import cells, tolerance_box
 from corrugate.solver.points import DesignPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import MASS, T_OVER_W
-from corrugate.solver.separable import LayerDesigns, Shifts
 from corrugate.solver.worst_case import NOMINAL, WorstCase
+
+if TYPE_CHECKING:
+    from corrugate.solver.separable import LayerDesigns, Shifts
 
 __all__ = ["EXACT_POINTS", "RELAX", "CellFloors", "Floors", "floors", "relaxation", "shared_lists"]
 
@@ -119,6 +122,8 @@ def relaxation(problem: Problem) -> Problem | None:
     kept = tuple(r for r in (_relaxed(c) for c in problem.constraints) if r is not None)
     sheets = tuple(_sheet(c, problem.tolerances) for c in problem.candidates)
     relaxed = replace(problem, tolerances=NOMINAL, constraints=kept, candidates=sheets)
+    from corrugate.solver import separable  # imported when a problem may take it
+
     return relaxed if separable.applies(relaxed) else None
 
 
@@ -144,6 +149,8 @@ class Floors:
         return len(self.relaxed.candidates) ** 2
 
     def _list(self, i: int, which: int) -> LayerDesigns | None:
+        from corrugate.solver import separable
+
         key = (i, which)
         if key not in self._lists:
             cand = self.relaxed.candidates[i]
@@ -177,6 +184,8 @@ class Floors:
     def coarse(self, k: int) -> float:
         """A floor of pair ``k`` from the layer lists alone (0 when a list is too long), all
         pairs' at the first call (:func:`~.separable.pair_floors`)."""
+        from corrugate.solver import separable
+
         if self._coarse is None:
             n = len(self.relaxed.candidates)
             firsts = [self._list(i, 1) for i in range(n)]
@@ -191,6 +200,8 @@ class Floors:
         show infeasible, less :data:`RELAX` (P's certified optimum on the pair, less RELAX,
         when P judged every design it took); inf when there is none lighter than ``below``
         (g), 0 when the search declines (lists or pairs too many)."""
+        from corrugate.solver import separable
+
         i, j = self._pair(k)
         c1, c2 = self.relaxed.candidates[i], self.relaxed.candidates[j]
         if self._tables is None:
