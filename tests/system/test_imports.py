@@ -161,13 +161,15 @@ def test_the_command_line_loads_no_command_work_until_a_command_runs() -> None:
 #: 0.25 s of CPU): the file writers' libraries, the finite elements, the web app and calibration,
 #: pydantic's plugin scan (``importlib.metadata``, with the email parser it imports), and the
 #: modules only other specs' paths call: the FE step and the notebook's calls, the pattern's
-#: classes, the layer-by-layer search of independent layers, the cells' binding checks, the
-#: polish, the diagnosis of an infeasible spec and a load case's capacity.
+#: classes, the layer-by-layer search of independent layers, the search by cells (continuous W
+#: and alpha on independent layers) and its binding checks, the polish, the diagnosis of an
+#: infeasible spec and a load case's capacity.
 _NOT_FOR_AN_ANSWER = (
     "corrugate.workflow.fe",
     "corrugate.workflow.notebook",
     "corrugate.fabrication.model",
     "corrugate.solver.separable",
+    "corrugate.solver.cells",
     "corrugate.solver.cell_checks",
     "corrugate.solver.polish",
     "corrugate.solver.diagnosis",

@@ -51,7 +51,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from corrugate.solver import cells, tolerance_box
+from corrugate.solver import tolerance_box
 from corrugate.solver.points import DesignPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
@@ -59,6 +59,7 @@ from corrugate.solver.quantity import MASS, T_OVER_W
 from corrugate.solver.worst_case import NOMINAL, WorstCase
 
 if TYPE_CHECKING:
+    from corrugate.solver import cells
     from corrugate.solver.separable import LayerDesigns, Shifts
 
 __all__ = ["EXACT_POINTS", "RELAX", "CellFloors", "Floors", "floors", "relaxation", "shared_lists"]
@@ -281,6 +282,8 @@ class CellFloors:
         return self._tables
 
     def _setting(self, k: int) -> cells.Setting:
+        from corrugate.solver import cells
+
         i, j = divmod(k, len(self.problem.candidates))
         c1, c2 = self.problem.candidates[i], self.problem.candidates[j]
         return cells.setting(self.problem, c1, c2, self.tables)
@@ -288,6 +291,8 @@ class CellFloors:
     def coarse(self, k: int) -> float:
         """A floor of pair ``k`` from the first cells alone (:data:`~.cells.FIRST_W` x
         :data:`~.cells.FIRST_ALPHA` per n), no design evaluated."""
+        from corrugate.solver import cells
+
         if k not in self._coarse:
             self._coarse[k] = cells.search(self._setting(k), math.inf, budget=0).floor
         return self._coarse[k]
@@ -302,8 +307,8 @@ class CellFloors:
     def search_all(
         self,
         below: float,
-        gap: float = cells.CELL_GAP,
-        budget: int = cells.BUDGET,
+        gap: float | None = None,
+        budget: int | None = None,
         fine: float | None = None,
         seek: bool = False,
         crowd: int | None = None,
@@ -311,7 +316,12 @@ class CellFloors:
         """Every pair's cells searched at once below ``below`` (g) (:func:`~.cells.search_pairs`:
         one queue, one incumbent; to the relative ``gap``, on toward ``fine``), and the index of
         the pair of the best design found (-1: none), and the constraints that fired
-        (:func:`~.cells.search_pairs`; ``seek``, ``crowd``: its)."""
+        (:func:`~.cells.search_pairs`; ``seek``, ``crowd``: its). ``gap`` and ``budget``: by
+        default :data:`~.cells.CELL_GAP` and :data:`~.cells.BUDGET`."""
+        from corrugate.solver import cells
+
+        gap = cells.CELL_GAP if gap is None else gap
+        budget = cells.BUDGET if budget is None else budget
         everything = [(a, b) for a in self.problem.candidates for b in self.problem.candidates]
         settings = [cells.setting(self.problem, a, b, self.tables) for a, b in everything]
         exacts = [cells.judge_of(self.problem, a, b, self.tables) for a, b in everything]
@@ -320,6 +330,8 @@ class CellFloors:
     def result(self, k: int, below: float) -> cells.CellResult:
         """Pair ``k``'s cells' search (:func:`~.cells.search`) below ``below`` (g), made once
         (a search below a higher incumbent serves: its boxes hold those below this one)."""
+        from corrugate.solver import cells
+
         got = self._fine.get(k)
         if got is None or got[0] < below:
             i, j = divmod(k, len(self.problem.candidates))
@@ -335,8 +347,11 @@ def floors(problem: Problem) -> Floors | CellFloors | None:
     """The :class:`Floors` of ``problem``'s sheet pairs, None without a relaxation
     (:func:`relaxation`); its stiffness bounds held at the four corners of the tolerance box
     too (:func:`~.tolerance_box.corner_shifts`), its designs judged by ``problem`` too."""
-    if cells.applies(problem) and len(problem.candidates) > 1:
-        return CellFloors(problem)
+    if len(problem.candidates) > 1:
+        from corrugate.solver import cells  # imported for a choice of sheets only
+
+        if cells.applies(problem):
+            return CellFloors(problem)
     relaxed = relaxation(problem)
     if relaxed is None:
         return None

@@ -38,7 +38,7 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
-from corrugate.solver import cells, tolerance_box
+from corrugate.solver import tolerance_box
 from corrugate.solver.archive import Archive, bit_sets
 from corrugate.solver.bnb import (
     GAP_RTOL,
@@ -50,7 +50,6 @@ from corrugate.solver.bnb import (
     per_n_grid,
 )
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.cells import with_cells
 from corrugate.solver.choices import RELAX, CellFloors, Floors, floors, shared_lists
 from corrugate.solver.joint_checks import (
     Check,
@@ -704,6 +703,8 @@ def _by_cells(
     not certified; its cells also stop once their queue holds more than
     :data:`RUNNER_UP_CROWD` times those boxes (``crowd``, :func:`~.cells.search_pairs`: then
     not certified either, the same design shown as the best found). ``seek``: :func:`~.cells.search_pairs`'."""
+    from corrugate.solver import cells  # continuous W and alpha on independent layers only
+
     everything = pairs(problem)
     inc = math.inf if incumbent is None else incumbent
     budget = cells.BUDGET if most is None else most
@@ -741,7 +742,7 @@ def _by_cells(
         )
         searched.add(k)
         if record:
-            archives[k] = with_cells(r.archive, _cells_reopen(problem, everything[k], tables))
+            archives[k] = cells.with_cells(r.archive, _cells_reopen(problem, everything[k], tables))
         if not r.certified:
             uncertified.append(r.bound)
         boxes += r.boxes
@@ -780,6 +781,7 @@ def _cells_reopen(
     ``problem`` outside a bit set, lighter than a mass: the cells' search of the problem
     without those constraints (:func:`~.cells.search`, no design evaluated, so nothing
     lighter is dropped); with no mass given (the diagnosis), the whole domain."""
+    from corrugate.solver import cells
 
     def reopen(relaxed: int, below: float) -> Start:
         sub = cells.relaxed_without(problem, relaxed)
@@ -926,6 +928,8 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
                 }
             )
         elif opt.certified and _cellular(opt) and any(r.binding is None for r in reports):
+            from corrugate.solver import cells
+
             warnings.append(
                 {
                     "code": "explanation-partial",
@@ -1770,7 +1774,7 @@ def _polished_witnesses(
     side_y.min (the latter through an n moved by one) within 0.2 s."""
     if opt.point is None or opt.candidates is None:
         return []
-    from corrugate.solver import cell_checks
+    from corrugate.solver import cell_checks, cells
     from corrugate.solver.polish import climb
 
     out = []
@@ -1886,6 +1890,7 @@ def _runner_seed(
     (SLSQP may reach the problem's set from outside it; the polish keeps only a design the
     rule accepts); its (mass g, design, sheet pair), or None when no polish found one. Only an
     incumbent: nothing of the certificate rests on it."""
+    from corrugate.solver import cells
     from corrugate.solver.polish import polish
 
     best: tuple[float, DesignPoints, tuple[Candidate, Candidate]] | None = None
