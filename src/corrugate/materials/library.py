@@ -14,12 +14,14 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.units import parse_quantity
-from corrugate.materials.calibrated import Calibration, calibration_of, parse_crease_stiffness
 from corrugate.materials.creep import CreepTable
+
+if TYPE_CHECKING:
+    from corrugate.materials.calibrated import Calibration
 
 __all__ = [
     "AmbiguousNameError",
@@ -160,7 +162,11 @@ def material_from_dict(d: Any, field: str = "material") -> Material:
     if k is not None and not k > 0:
         raise InputError(f"{field}.crease_stiffness_N_mm_per_rad_mm", f"{k:g}", "k > 0")
     cal = d.get("calibration")
-    calibration = None if cal is None else Calibration.from_dict(cal, f"{field}.calibration")
+    calibration = None
+    if cal is not None:  # a measured sheet (corrugate.materials.calibrated, imported for one)
+        from corrugate.materials.calibrated import Calibration
+
+        calibration = Calibration.from_dict(cal, f"{field}.calibration")
     creep = d.get("creep")
     table: CreepTable | None = None
     if creep is not None:
@@ -265,12 +271,16 @@ def material_from_entry(key: str, entry: dict[str, Any], file: str = "materials.
         validate_strength(strength, E, where + "yield_strength")
     k = math.inf
     if "crease_stiffness" in entry:
+        from corrugate.materials.calibrated import parse_crease_stiffness
+
         k = parse_crease_stiffness(entry["crease_stiffness"], where + "crease_stiffness")
     calibration = None
     cal = entry.get("calibration")
     if cal is not None:
         if not isinstance(cal, Mapping):
             raise InputError(where + "calibration", repr(cal)[:40], "a table")
+        from corrugate.materials.calibrated import calibration_of
+
         calibration, measured = calibration_of(cal, E, where + "calibration.")
         if "crease_stiffness" not in entry:
             k = measured
