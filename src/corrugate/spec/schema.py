@@ -46,7 +46,7 @@ import tomllib
 import typing
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import TYPE_CHECKING, Annotated, Any, Literal
 
 from pydantic import (
     AfterValidator,
@@ -78,7 +78,6 @@ from corrugate.core.limits import (
 )
 from corrugate.core.text import printable
 from corrugate.core.units import parse_quantity
-from corrugate.geometry.holes import Hole, check_holes
 from corrugate.materials.library import G_PER_CM3, Material
 from corrugate.mechanics.behaviours import deflection_tests, either, load_cases, support_names
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
@@ -92,6 +91,9 @@ from corrugate.names import (
     ModelName,
     StiffnessName,
 )
+
+if TYPE_CHECKING:
+    from corrugate.geometry.holes import Hole
 
 __all__ = [
     "NO_TOLERANCES",
@@ -515,9 +517,13 @@ class LayoutSpec(_Strict):
     vertices: list[tuple[float, float]] | None = None
     holes: list[HoleSpec] = []
 
-    def hole_list(self) -> tuple[Hole, ...]:
+    def hole_list(self) -> "tuple[Hole, ...]":
         """The holes as :class:`~corrugate.geometry.holes.Hole` values (mm); errors name
         ``layout.holes[i].<key>``."""
+        if not self.holes:
+            return ()
+        from corrugate.geometry.holes import Hole  # a layout with holes only
+
         out = []
         for i, h in enumerate(self.holes):
             where = f"layout.holes[{i}]"
@@ -583,6 +589,7 @@ def _check_holes(spec: "Spec") -> None:
                 reason="is missing",
             )
         sizes.append(r.min)
+    from corrugate.geometry.holes import check_holes
     from corrugate.geometry.layouts import make_layout
 
     Lx, Ly = sizes
