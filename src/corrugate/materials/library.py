@@ -12,7 +12,7 @@ import math
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cache, lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -320,10 +320,16 @@ def library_entries() -> dict[str, dict[str, Any]]:
     return tomllib.loads(text)
 
 
+@cache
+def _bundled(key: str) -> Material:
+    """The bundled library's material ``key`` (an id of ``data/materials.toml``), built once."""
+    return material_from_entry(key, library_entries()[key])
+
+
 @lru_cache(maxsize=1)
 def library() -> dict[str, Material]:
     """The bundled material library, keyed by id (read once from ``data/materials.toml``)."""
-    return {key: material_from_entry(key, entry) for key, entry in library_entries().items()}
+    return {key: _bundled(key) for key in library_entries()}
 
 
 def creep_materials() -> list[str]:
@@ -344,12 +350,12 @@ def get_material(material_id: str, user: Mapping[str, Material] | None = None) -
     from corrugate.materials.user import user_materials
 
     own = user_materials() if user is None else user
-    lib = library()
     key = material_id.strip().lower()
     if key in own:
         return own[key]
-    if key in lib:
-        return lib[key]
+    if key in library_entries():  # the one material built, not the whole library (issue 39)
+        return _bundled(key)
+    lib = library()
     every = {**lib, **own}
     matches = sorted(k for k, m in every.items() if key in m.aliases)
     if len(matches) == 1:
