@@ -29,7 +29,6 @@ from corrugate.materials.library import Material, get_material, inline_material
 from corrugate.mechanics.behaviours import Behaviour, get_load_case, listed, load_cases
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.mechanics.moduli import get_model
-from corrugate.mechanics.wheel import WHEEL_DIRECTIONS, wheel_direction
 from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SUPPORT
 from corrugate.solver.quantity import (
     CREASES,
@@ -514,6 +513,8 @@ def _check_wheel(
             f"{DEFAULT_SUPPORT!r} for test 'wheel' (the disc is held by its axle and the ground)",
             reason="does not apply",
         )
+    from corrugate.mechanics.wheel import WHEEL_DIRECTIONS, wheel_direction  # a wheel test only
+
     if wheel_direction(eta) is None:
         raise SpecError(
             f"{where}.eta",
