@@ -180,7 +180,8 @@ def _may_pass(
     which the constraints on ``quantities`` are met (an array, n by W): not when the bounds of
     one of them over the segment of every alpha of the grid at that n and W
     (:func:`~corrugate.solver.quantities.box_bounds`, the solver's bounds, which hold at every
-    point of the box) miss its bound, to :data:`SCREEN_RTOL`."""
+    point of the box) miss its bound, to :data:`SCREEN_RTOL` (a bound that is not a number
+    drops nothing)."""
     Ws, As = grid
     keep = np.ones(ns.size * Ws.size, dtype=bool)
     if quantities:
@@ -191,7 +192,8 @@ def _may_pass(
         for c in problem.constraints:
             if c.quantity in quantities:
                 low, high = bounds[c.quantity]
-                keep &= c.satisfied(high if c.sense == "min" else low, rtol=SCREEN_RTOL)
+                best = np.asarray(high if c.sense == "min" else low)
+                keep &= c.satisfied(best, rtol=SCREEN_RTOL) | np.isnan(best)
     return keep.reshape(ns.size, Ws.size)
 
 
