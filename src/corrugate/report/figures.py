@@ -215,8 +215,8 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     # over each n and W's segment of alpha (a box), then at the points of the segments they may
     # pass, in passes of about SCREEN_POINTS; the model (stiffness, mass) only at the points
     # that pass them, BATCH_POINTS per evaluation. The boxes leave 155 of the case study's 6000
-    # segments (n 1-200, W 1-30 mm): 0.009 s of CPU against 0.037 s for the figure, the same
-    # values (issue 39)
+    # segments (n 1-200, W 1-30 mm): the figure built in 0.0125 s of CPU against 0.0403 s
+    # (benchmarks/figures.py --base main, medians of 7), the same values (issue 39)
     per_pass = max(1, min(SCREEN_POINTS, evaluation_chunk(problem)) // W1.size)
     may = _may_pass(problem, a, ns, (Ws, As), tables, cheap)
     rows = np.flatnonzero(may.any(axis=1))
