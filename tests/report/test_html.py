@@ -178,13 +178,13 @@ def test_report_is_self_contained_and_complete(report: Path) -> None:
     for img in parsed.images:
         src = str(img["src"])
         data = base64.b64decode(src.split(",", 1)[1])
-        if str(img.get("alt")).startswith(("sheet ", "The panel seen from above")):
-            # the fold map sheet-N.svg, the directions (corrugate.report.orientation)
-            assert src.startswith("data:image/svg+xml;base64,")
-            assert ET.fromstring(data).tag == "{http://www.w3.org/2000/svg}svg"
-        else:
+        if img.get("alt") == "the folded assembly, step by step":  # assembly.png
             assert src.startswith("data:image/png;base64,")
             assert data[:8] == b"\x89PNG\r\n\x1a\n"
+        else:
+            # the fold map sheet-N.svg, the directions (corrugate.report.orientation), the plots
+            assert src.startswith("data:image/svg+xml;base64,")
+            assert ET.fromstring(data).tag == "{http://www.w3.org/2000/svg}svg"
         assert img.get("alt")
     for heading in (
         "Design",
@@ -286,3 +286,29 @@ def test_a_load_case_has_its_figure_and_its_deflection(tmp_path: Path) -> None:
     assert escape("(first failure: buckling of the connector band's walls at mid-span)") in text
     blimp = report_html(solve(Problem.from_spec(load_spec(BLIMP))), BLIMP.read_text())
     assert "<h2>Load cases</h2>" not in blimp
+
+
+@pytest.mark.slow
+def test_report_plots_are_vector_with_their_labels_as_text(report: Path) -> None:
+    """The plots are SVG whose axis labels and titles are text a reader can search and copy
+    (``svg.fonttype`` none), not glyphs drawn as paths or pixels, and they carry no date: the
+    same design gives the same report (issue 39)."""
+    parsed = _Collect()
+    parsed.feed(report.read_text(encoding="utf-8"))
+    plots = {
+        str(img["alt"]): base64.b64decode(str(img["src"]).split(",", 1)[1]).decode("utf-8")
+        for img in parsed.images
+        if str(img.get("alt")).startswith(("design space", "lightest mass", "polar"))
+    }
+    assert len(plots) == 3
+    ns = "{http://www.w3.org/2000/svg}"
+    texts = {
+        alt: {"".join(t.itertext()).strip() for t in ET.fromstring(svg).iter(f"{ns}text")}
+        for alt, svg in plots.items()
+    }
+    assert "facet width W (mm)" in texts["design space map: W against alpha"]
+    assert "fold angle alpha (deg)" in texts["design space map: W against alpha"]
+    assert any(t.startswith("in-plane K(eta)") for t in texts["polar plots of K and D"])
+    for svg in plots.values():
+        assert "<dc:date>" not in svg
+        assert "<image" not in svg  # nothing rasterised inside

@@ -173,8 +173,9 @@ def sheet_figure(
     ax.set_xlim(0.0, W)
     ax.set_ylim(0.0, H)
     ax.set_axis_off()
-    _draw_sheet(ax, plan, number, style, labels=labels)
-    _draw_legend(ax, plan, number, operations, labels=labels)
+    printed = printed_labels(plan, number) if labels else []  # both draw them: found once
+    _draw_sheet(ax, plan, number, style, printed)
+    _draw_legend(ax, plan, number, operations, printed)
     return fig
 
 
@@ -230,16 +231,20 @@ def printed_labels(plan: SheetPlan, number: int) -> list[PrintedLabel]:
 
 
 def _draw_legend(
-    ax: Axes, plan: SheetPlan, number: int, operations: object | None, *, labels: bool = True
+    ax: Axes,
+    plan: SheetPlan,
+    number: int,
+    operations: object | None,
+    printed: Sequence[PrintedLabel],
 ) -> None:
     """The fold map's legend (:func:`~corrugate.export.legend.fold_map_legend`: for people, not
     the cutter; each colour's meaning and what the cut file does with it) in the free box of sheet
     ``number`` that :func:`~corrugate.export.legend.legend_spot` finds (off the callouts too),
-    each row in its kind's colour, then the full label of each part that carries its name only;
-    none when no box takes it (the page is the sheet: there is no strip to add)."""
+    each row in its kind's colour, then the full label of each part of ``printed`` (the sheet's
+    :func:`printed_labels`, none without labels) that carries its name only; none when no box
+    takes it (the page is the sheet: there is no strip to add)."""
     sheet = plan.sheets[number - 1]
     rows = fold_map_legend(operations)
-    printed = printed_labels(plan, number) if labels else []
     rows += [LegendRow(p.full, ANNOTATION) for p in printed if p.full is not None]
     callouts = [p.box for p in printed if p.leader is not None]
     key = legend_spot(sheet, rows, plan.margin, plan.spacing, callouts)
@@ -259,10 +264,13 @@ def _draw_legend(
         )
 
 
-def _draw_sheet(ax: Axes, plan: SheetPlan, number: int, style: LineStyle, *, labels: bool) -> None:
+def _draw_sheet(
+    ax: Axes, plan: SheetPlan, number: int, style: LineStyle, printed: Sequence[PrintedLabel]
+) -> None:
     """Draw sheet ``number`` (1-based) of ``plan`` into ``ax``, whose data units are sheet mm and
-    whose scale is 1:1 on paper (the caller sets the figure size and the axes' limits); every
-    artist is clipped to ``ax``."""
+    whose scale is 1:1 on paper (the caller sets the figure size and the axes' limits), with the
+    labels ``printed`` (the sheet's :func:`printed_labels`, none without labels); every artist is
+    clipped to ``ax``."""
     from matplotlib.collections import LineCollection
     from matplotlib.patches import Rectangle
 
@@ -285,7 +293,7 @@ def _draw_sheet(ax: Axes, plan: SheetPlan, number: int, style: LineStyle, *, lab
                 segs.setdefault(colour, []).extend(dashes(ln, style.cut, style.gap, where=where))
             else:
                 segs.setdefault(colour, []).append((ln.a, ln.b))
-    for label in printed_labels(plan, number) if labels else []:
+    for label in printed:
         spot = label.spot
         ax.text(
             spot.x,
@@ -584,7 +592,7 @@ def tile_figure(
             linestyle=(0, (1, 4)),
         )
     )
-    _draw_sheet(ax, plan, tile.sheet, style, labels=labels)
+    _draw_sheet(ax, plan, tile.sheet, style, printed_labels(plan, tile.sheet) if labels else [])
 
     page_ax = fig.add_axes((0.0, 0.0, 1.0, 1.0))  # page mm, over the drawing
     page_ax.set_xlim(0.0, pw)

@@ -1,4 +1,4 @@
-"""``report.html``: one self-contained file (figures embedded as data URIs: the plots as PNG, the
+"""``report.html``: one self-contained file (figures embedded as data URIs: the plots as SVG, the
 sheets as the fold maps' SVG; no scripts)."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import html
 from typing import TYPE_CHECKING, Any
 
 from corrugate.analysis.evaluate import analyze
-from corrugate.core.plotting import png_bytes
+from corrugate.core.plotting import svg_text
 from corrugate.fabrication.instructions import assembly_steps, instructions_png
 from corrugate.fabrication.linestyle import StyleKind
 from corrugate.geometry.holes import holes_text
@@ -37,20 +37,10 @@ img{max-width:100%;height:auto}pre{background:#f7f7f7;padding:.75rem;overflow:au
 """
 
 
-#: zlib level of the report's plots (Pillow's ``compress_level``, default 6): on the case study's
-#: three plots level 3 encodes in 0.048 s of CPU against 0.075 s and the images come out smaller
-#: (246 622 bytes against 254 043), the same pixels (issue 24). assembly.png keeps the default: at
-#: level 3 it is 13 % larger for 0.01 s.
-PNG_LEVEL = 3
-
-
-def _png(fig: Any) -> str:
-    png = png_bytes(fig, compress_level=PNG_LEVEL)
-    return "data:image/png;base64," + base64.b64encode(png).decode("ascii")
-
-
 def _img(fig: Any, alt: str) -> str:
-    return f'<img src="{_png(fig)}" alt="{html.escape(alt)}">'
+    """A plot embedded as SVG (:func:`~corrugate.core.plotting.svg_text`: vector, its labels as
+    text; cheaper to draw than a PNG, issue 39)."""
+    return _img_svg(svg_text(fig), alt)
 
 
 def _img_png(png: bytes, alt: str) -> str:
