@@ -362,7 +362,7 @@ class _Strict(BaseModel):
     ``model_construct`` from values already valid, so that defining them builds no validator
     either: made by validation, they built nine at import (``import corrugate.spec.schema``
     0.032 s of CPU against 0.020 s, its first ``load_spec`` 0.026 s against 0.031 s, after its
-    libraries' import, 4 runs each, 15:50 UTC). Equal to the validated ones: the same values,
+    libraries' import, 4 runs each, 15:44 UTC). Equal to the validated ones: the same values,
     the same fields set (tests/spec/test_schema.py)."""
 
     model_config = ConfigDict(extra="forbid", frozen=True, defer_build=True)
