@@ -321,3 +321,50 @@ def test_other_quantities_without_a_unit_name_their_unit(key: str, value: Any, l
     with pytest.raises(SpecError) as info:
         parse_spec(_with_plain(key, value))
     assert str(info.value) == line
+
+
+def _section_defaults() -> list[tuple[str, Any, Any]]:
+    """Every section default the schema builds without validation (``model_construct``), with
+    the same section validated from the same values (or from nothing, for its own defaults)."""
+    from corrugate.spec import schema as s
+
+    variables = s.VariablesSpec.model_fields
+    spec = s.Spec.model_fields
+    return [
+        (
+            "variables.W",
+            variables["W"].default,
+            s.LengthVariable.model_validate({"min": 1, "max": 50}),
+        ),
+        ("variables.n", variables["n"].default, s.CountVariable.model_validate({})),
+        (
+            "variables.alpha",
+            variables["alpha"].default,
+            s.AngleVariable.model_validate({"min": 10, "max": 170}),
+        ),
+        ("layout", spec["layout"].default, s.LayoutSpec.model_validate({})),
+        ("variables", spec["variables"].default, s.VariablesSpec.model_validate({})),
+        ("constraints", spec["constraints"].default, s.ConstraintsSpec.model_validate({})),
+        ("objective", spec["objective"].default, s.ObjectiveSpec.model_validate({})),
+        ("tolerances", spec["tolerances"].default, s.TolerancesSpec.model_validate({})),
+        ("fabrication", spec["fabrication"].default, s.FabricationSpec.model_validate({})),
+        (
+            "NO_TOLERANCES",
+            s.NO_TOLERANCES,
+            s.TolerancesSpec.model_validate({"alpha": 0, "W": 0, "t": 0, "E": 0}),
+        ),
+    ]
+
+
+@pytest.mark.parametrize(("where", "default", "validated"), _section_defaults())
+def test_section_defaults_made_without_validation_equal_validated_ones(
+    where: str, default: Any, validated: Any
+) -> None:
+    """The defaults built at import without a validator (issue 39: no validator built on the
+    way to an answer) hold what validation makes of the same values: the same type, values
+    (compared in their JSON form too, so 1 and 1.0 differ) and fields set."""
+    assert type(default) is type(validated), where
+    assert default == validated, where
+    assert default.model_dump(mode="json") == validated.model_dump(mode="json"), where
+    assert repr(default) == repr(validated), where
+    assert default.model_fields_set == validated.model_fields_set, where

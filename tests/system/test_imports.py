@@ -159,8 +159,26 @@ def test_the_command_line_loads_no_command_work_until_a_command_runs() -> None:
 
 #: What ``corrugate design`` of the case study must not import (issue 39: its answer within
 #: 0.25 s of CPU): the file writers' libraries, the finite elements, the web app and calibration,
-#: and pydantic's plugin scan (``importlib.metadata``, with the email parser it imports).
+#: pydantic's plugin scan (``importlib.metadata``, with the email parser it imports), and the
+#: modules only other specs' paths call: the FE step and the notebook's calls, the pattern's
+#: classes, the layer-by-layer search of independent layers, the search by cells (continuous W
+#: and alpha on independent layers) and its binding checks, the polish, the diagnosis of an
+#: infeasible spec, a load case's capacity, a measured sheet's calibration, a layout's holes,
+#: the profiles other than the zig-zag and the wheel test's factors.
 _NOT_FOR_AN_ANSWER = (
+    "corrugate.mechanics.wheel",
+    "corrugate.mechanics.profiles.trapezoid",
+    "corrugate.geometry.holes",
+    "corrugate.materials.calibrated",
+    "corrugate.workflow.fe",
+    "corrugate.workflow.notebook",
+    "corrugate.fabrication.model",
+    "corrugate.solver.separable",
+    "corrugate.solver.cells",
+    "corrugate.solver.cell_checks",
+    "corrugate.solver.polish",
+    "corrugate.solver.diagnosis",
+    "corrugate.mechanics.capacity",
     "matplotlib",
     "ezdxf",
     "PIL",

@@ -10,7 +10,6 @@ in FE, 5 a series is not converged, 6 a bound has no FE twin (not checked).
 
 from __future__ import annotations
 
-import json
 import math
 import sys
 from pathlib import Path
@@ -346,6 +345,8 @@ def design_cmd(
         sol, robust, checked = answer.solution, answer.robust, answer.fe
         failed = sol.status == "infeasible" or (robust is not None and not robust.met)
         if as_json:
+            import json  # --json only
+
             typer.echo(json.dumps(answer.payload, indent=2))
         elif quiet:
             if failed:
@@ -763,6 +764,8 @@ def tolerance_cmd(
     payload = {"design": sol.to_dict()["design"], **report.as_dict()}
     require_finite(payload, "tolerance")
     if as_json:
+        import json
+
         typer.echo(json.dumps(payload, indent=2))
         return
     if quiet:

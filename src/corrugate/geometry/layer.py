@@ -17,7 +17,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from corrugate.core.errors import InputError
-from corrugate.geometry.holes import check_holes
 from corrugate.geometry.layouts import Layout, Square, facet_lengths
 from corrugate.geometry.profile import ZIGZAG, ProfileKind, ZigZag
 from corrugate.materials.library import Material
@@ -176,6 +175,8 @@ class Assembly:
                 reason=f"needs Lx = Ly but layer 1 spans {Lx:.4g} mm and layer 2 {Ly:.4g} mm",
             )
         if self.layout.holes:
+            from corrugate.geometry.holes import check_holes  # a layout with holes only
+
             check_holes(self.layout.holes, self.layout.plan_outline(Lx, Ly), Lx, Ly)
 
     @classmethod

@@ -39,16 +39,18 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Literal, Protocol
+from typing import TYPE_CHECKING, Literal, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from corrugate.core.errors import InputError, UnknownNameError
-from corrugate.geometry.holes import Hole, touched_sums
 from corrugate.geometry.planar import crosses_itself
 from corrugate.geometry.planar import signed_area as _signed_area
 from corrugate.names import LAYOUT_SHAPES
+
+if TYPE_CHECKING:
+    from corrugate.geometry.holes import Hole
 
 __all__ = [
     "LAYOUTS",
@@ -176,6 +178,8 @@ def layer_inverse_sums(
     q = inverse_length_sum(layout, n, other_side, axis)
     if not layout.holes:
         return q, q
+    from corrugate.geometry.holes import touched_sums  # a layout with holes only
+
     touched, extra = touched_sums(
         layout.holes,
         axis,

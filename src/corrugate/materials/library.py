@@ -12,14 +12,16 @@ import math
 import tomllib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from functools import lru_cache
+from functools import cache, lru_cache
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from corrugate.core.errors import InputError, UnknownNameError
 from corrugate.core.units import parse_quantity
-from corrugate.materials.calibrated import Calibration, calibration_of, parse_crease_stiffness
 from corrugate.materials.creep import CreepTable
+
+if TYPE_CHECKING:
+    from corrugate.materials.calibrated import Calibration
 
 __all__ = [
     "AmbiguousNameError",
@@ -160,7 +162,11 @@ def material_from_dict(d: Any, field: str = "material") -> Material:
     if k is not None and not k > 0:
         raise InputError(f"{field}.crease_stiffness_N_mm_per_rad_mm", f"{k:g}", "k > 0")
     cal = d.get("calibration")
-    calibration = None if cal is None else Calibration.from_dict(cal, f"{field}.calibration")
+    calibration = None
+    if cal is not None:  # a measured sheet (corrugate.materials.calibrated, imported for one)
+        from corrugate.materials.calibrated import Calibration
+
+        calibration = Calibration.from_dict(cal, f"{field}.calibration")
     creep = d.get("creep")
     table: CreepTable | None = None
     if creep is not None:
@@ -265,12 +271,16 @@ def material_from_entry(key: str, entry: dict[str, Any], file: str = "materials.
         validate_strength(strength, E, where + "yield_strength")
     k = math.inf
     if "crease_stiffness" in entry:
+        from corrugate.materials.calibrated import parse_crease_stiffness
+
         k = parse_crease_stiffness(entry["crease_stiffness"], where + "crease_stiffness")
     calibration = None
     cal = entry.get("calibration")
     if cal is not None:
         if not isinstance(cal, Mapping):
             raise InputError(where + "calibration", repr(cal)[:40], "a table")
+        from corrugate.materials.calibrated import calibration_of
+
         calibration, measured = calibration_of(cal, E, where + "calibration.")
         if "crease_stiffness" not in entry:
             k = measured
@@ -310,10 +320,16 @@ def library_entries() -> dict[str, dict[str, Any]]:
     return tomllib.loads(text)
 
 
+@cache
+def _bundled(key: str) -> Material:
+    """The bundled library's material ``key`` (an id of ``data/materials.toml``), built once."""
+    return material_from_entry(key, library_entries()[key])
+
+
 @lru_cache(maxsize=1)
 def library() -> dict[str, Material]:
     """The bundled material library, keyed by id (read once from ``data/materials.toml``)."""
-    return {key: material_from_entry(key, entry) for key, entry in library_entries().items()}
+    return {key: _bundled(key) for key in library_entries()}
 
 
 def creep_materials() -> list[str]:
@@ -334,12 +350,12 @@ def get_material(material_id: str, user: Mapping[str, Material] | None = None) -
     from corrugate.materials.user import user_materials
 
     own = user_materials() if user is None else user
-    lib = library()
     key = material_id.strip().lower()
     if key in own:
         return own[key]
-    if key in lib:
-        return lib[key]
+    if key in library_entries():  # the one material built, not the whole library (issue 39)
+        return _bundled(key)
+    lib = library()
     every = {**lib, **own}
     matches = sorted(k for k, m in every.items() if key in m.aliases)
     if len(matches) == 1:

@@ -40,7 +40,6 @@ import numpy as np
 
 from corrugate.mechanics.behaviours import Behaviour, TestForm
 from corrugate.mechanics.offaxis import SHEAR_CORRECTION
-from corrugate.mechanics.wheel import wheel_factor
 from corrugate.names import JOINTS as NAMED_JOINTS
 from corrugate.names import RECTANGULAR_LAYOUTS
 
@@ -187,9 +186,19 @@ PLATENS = _entry(
     choice="between platens",
     note="in-plane compression",
 )
+
+
+def _wheel_factor(eta_deg: float) -> float:
+    """:func:`corrugate.mechanics.wheel.wheel_factor`, its module (the wheel test's FE factors)
+    imported when a wheel test is first evaluated, not with this table (issue 39)."""
+    from corrugate.mechanics.wheel import wheel_factor
+
+    return wheel_factor(eta_deg)
+
+
 WHEEL = _entry(
     "wheel",
-    TestForm("inplane", factor=wheel_factor),
+    TestForm("inplane", factor=_wheel_factor),
     "wheel",
     " in the wheel test",
     "whl",

@@ -19,7 +19,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from corrugate.geometry.connectors import connector_area
 from corrugate.geometry.fabrication_options import DEFAULT_FABRICATION, FabricationOptions
-from corrugate.geometry.holes import hole_area
 from corrugate.geometry.layer import Assembly
 from corrugate.geometry.layouts import Layout, length_sum
 
@@ -42,6 +41,8 @@ def layer_mass(
     so it removes density x t x A_h W / p (:mod:`corrugate.geometry.holes`)."""
     m = np.asarray(density) * np.asarray(t) * np.asarray(W) * np.asarray(sum_L)
     if layout is not None and layout.holes and pitch is not None:
+        from corrugate.geometry.holes import hole_area  # a layout with holes only
+
         cut = hole_area(layout.holes) * np.asarray(W) / np.asarray(pitch)
         m = m - np.asarray(density) * np.asarray(t) * cut
     return np.asarray(m, dtype=np.float64)

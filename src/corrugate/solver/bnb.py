@@ -60,7 +60,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from corrugate.solver import separable, tolerance_box
+from corrugate.solver import tolerance_box
 from corrugate.solver.archive import Archive, NoRecorder, Recorder
 from corrugate.solver.boxes import grid_points, snap, split, widths
 from corrugate.solver.budget import current_budget
@@ -278,6 +278,8 @@ def _by_layer(
     :class:`BnBResult` (``boxes``: the pairs of layer designs scored; ``iterations``: 1); None
     when the problem lacks that structure. Not inside a spent budget (then the branch and bound
     reports the stop)."""
+    from corrugate.solver import separable  # independent layers on a rectangle only
+
     budget = current_budget()
     if (budget is not None and budget.exhausted) or not separable.applies(problem):
         return None

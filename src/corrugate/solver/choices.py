@@ -47,16 +47,20 @@ from collections.abc import Hashable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-from corrugate.solver import cells, separable, tolerance_box
+from corrugate.solver import tolerance_box
 from corrugate.solver.points import DesignPoints
 from corrugate.solver.problem import FEAS_RTOL, Candidate, Constraint, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import MASS, T_OVER_W
-from corrugate.solver.separable import LayerDesigns, Shifts
 from corrugate.solver.worst_case import NOMINAL, WorstCase
+
+if TYPE_CHECKING:
+    from corrugate.solver import cells
+    from corrugate.solver.separable import LayerDesigns, Shifts
 
 __all__ = ["EXACT_POINTS", "RELAX", "CellFloors", "Floors", "floors", "relaxation", "shared_lists"]
 
@@ -119,6 +123,8 @@ def relaxation(problem: Problem) -> Problem | None:
     kept = tuple(r for r in (_relaxed(c) for c in problem.constraints) if r is not None)
     sheets = tuple(_sheet(c, problem.tolerances) for c in problem.candidates)
     relaxed = replace(problem, tolerances=NOMINAL, constraints=kept, candidates=sheets)
+    from corrugate.solver import separable  # imported when a problem may take it
+
     return relaxed if separable.applies(relaxed) else None
 
 
@@ -144,6 +150,8 @@ class Floors:
         return len(self.relaxed.candidates) ** 2
 
     def _list(self, i: int, which: int) -> LayerDesigns | None:
+        from corrugate.solver import separable
+
         key = (i, which)
         if key not in self._lists:
             cand = self.relaxed.candidates[i]
@@ -177,6 +185,8 @@ class Floors:
     def coarse(self, k: int) -> float:
         """A floor of pair ``k`` from the layer lists alone (0 when a list is too long), all
         pairs' at the first call (:func:`~.separable.pair_floors`)."""
+        from corrugate.solver import separable
+
         if self._coarse is None:
             n = len(self.relaxed.candidates)
             firsts = [self._list(i, 1) for i in range(n)]
@@ -191,6 +201,8 @@ class Floors:
         show infeasible, less :data:`RELAX` (P's certified optimum on the pair, less RELAX,
         when P judged every design it took); inf when there is none lighter than ``below``
         (g), 0 when the search declines (lists or pairs too many)."""
+        from corrugate.solver import separable
+
         i, j = self._pair(k)
         c1, c2 = self.relaxed.candidates[i], self.relaxed.candidates[j]
         if self._tables is None:
@@ -270,6 +282,8 @@ class CellFloors:
         return self._tables
 
     def _setting(self, k: int) -> cells.Setting:
+        from corrugate.solver import cells
+
         i, j = divmod(k, len(self.problem.candidates))
         c1, c2 = self.problem.candidates[i], self.problem.candidates[j]
         return cells.setting(self.problem, c1, c2, self.tables)
@@ -277,6 +291,8 @@ class CellFloors:
     def coarse(self, k: int) -> float:
         """A floor of pair ``k`` from the first cells alone (:data:`~.cells.FIRST_W` x
         :data:`~.cells.FIRST_ALPHA` per n), no design evaluated."""
+        from corrugate.solver import cells
+
         if k not in self._coarse:
             self._coarse[k] = cells.search(self._setting(k), math.inf, budget=0).floor
         return self._coarse[k]
@@ -291,8 +307,8 @@ class CellFloors:
     def search_all(
         self,
         below: float,
-        gap: float = cells.CELL_GAP,
-        budget: int = cells.BUDGET,
+        gap: float | None = None,
+        budget: int | None = None,
         fine: float | None = None,
         seek: bool = False,
         crowd: int | None = None,
@@ -300,7 +316,12 @@ class CellFloors:
         """Every pair's cells searched at once below ``below`` (g) (:func:`~.cells.search_pairs`:
         one queue, one incumbent; to the relative ``gap``, on toward ``fine``), and the index of
         the pair of the best design found (-1: none), and the constraints that fired
-        (:func:`~.cells.search_pairs`; ``seek``, ``crowd``: its)."""
+        (:func:`~.cells.search_pairs`; ``seek``, ``crowd``: its). ``gap`` and ``budget``: by
+        default :data:`~.cells.CELL_GAP` and :data:`~.cells.BUDGET`."""
+        from corrugate.solver import cells
+
+        gap = cells.CELL_GAP if gap is None else gap
+        budget = cells.BUDGET if budget is None else budget
         everything = [(a, b) for a in self.problem.candidates for b in self.problem.candidates]
         settings = [cells.setting(self.problem, a, b, self.tables) for a, b in everything]
         exacts = [cells.judge_of(self.problem, a, b, self.tables) for a, b in everything]
@@ -309,6 +330,8 @@ class CellFloors:
     def result(self, k: int, below: float) -> cells.CellResult:
         """Pair ``k``'s cells' search (:func:`~.cells.search`) below ``below`` (g), made once
         (a search below a higher incumbent serves: its boxes hold those below this one)."""
+        from corrugate.solver import cells
+
         got = self._fine.get(k)
         if got is None or got[0] < below:
             i, j = divmod(k, len(self.problem.candidates))
@@ -324,8 +347,11 @@ def floors(problem: Problem) -> Floors | CellFloors | None:
     """The :class:`Floors` of ``problem``'s sheet pairs, None without a relaxation
     (:func:`relaxation`); its stiffness bounds held at the four corners of the tolerance box
     too (:func:`~.tolerance_box.corner_shifts`), its designs judged by ``problem`` too."""
-    if cells.applies(problem) and len(problem.candidates) > 1:
-        return CellFloors(problem)
+    if len(problem.candidates) > 1:
+        from corrugate.solver import cells  # imported for a choice of sheets only
+
+        if cells.applies(problem):
+            return CellFloors(problem)
     relaxed = relaxation(problem)
     if relaxed is None:
         return None

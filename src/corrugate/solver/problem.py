@@ -25,12 +25,10 @@ from corrugate.core.limits import check_items
 from corrugate.geometry.layer import crease_layer
 from corrugate.geometry.layouts import Layout, make_layout
 from corrugate.geometry.profile import ZIGZAG, ProfileKind
-from corrugate.materials.calibrated import Calibration
 from corrugate.materials.library import Material, get_material, inline_material
 from corrugate.mechanics.behaviours import Behaviour, get_load_case, listed, load_cases
 from corrugate.mechanics.load_cases import DEFAULT_SAFETY_FACTOR
 from corrugate.mechanics.moduli import get_model
-from corrugate.mechanics.wheel import WHEEL_DIRECTIONS, wheel_direction
 from corrugate.names import DEFAULT_MACHINE, DEFAULT_MARGIN_MM, DEFAULT_SUPPORT
 from corrugate.solver.quantity import (
     CREASES,
@@ -515,6 +513,8 @@ def _check_wheel(
             f"{DEFAULT_SUPPORT!r} for test 'wheel' (the disc is held by its axle and the ground)",
             reason="does not apply",
         )
+    from corrugate.mechanics.wheel import WHEEL_DIRECTIONS, wheel_direction  # a wheel test only
+
     if wheel_direction(eta) is None:
         raise SpecError(
             f"{where}.eta",
@@ -569,6 +569,8 @@ def _candidates(where: str, m: MaterialSpec, own: dict[str, Material]) -> list[C
         mat = replace(mat, yield_strength=m.yield_strength)
         k = math.inf if m.crease_stiffness is None else m.crease_stiffness
         if not math.isinf(k) or m.springback:  # stated: models, certificate and verify use them
+            from corrugate.materials.calibrated import Calibration
+
             cal = Calibration.stated(mat.E, k, m.springback or 0.0)
             mat = replace(mat, crease_stiffness=k, calibration=cal)
         return [Candidate(mat, float(t)) for t in ts if isinstance(t, float)]

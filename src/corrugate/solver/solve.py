@@ -29,7 +29,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -38,8 +38,7 @@ from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.analysis.warnings import bench_notes
 from corrugate.geometry.layer import Assembly, Layer
 from corrugate.mechanics.behaviours import get_load_case, own_test
-from corrugate.mechanics.capacity import Capacity
-from corrugate.solver import cell_checks, cells, tolerance_box
+from corrugate.solver import tolerance_box
 from corrugate.solver.archive import Archive, bit_sets
 from corrugate.solver.bnb import (
     GAP_RTOL,
@@ -51,7 +50,6 @@ from corrugate.solver.bnb import (
     per_n_grid,
 )
 from corrugate.solver.budget import Budget, budget_scope, budget_spent
-from corrugate.solver.cells import with_cells
 from corrugate.solver.choices import RELAX, CellFloors, Floors, floors, shared_lists
 from corrugate.solver.joint_checks import (
     Check,
@@ -62,7 +60,6 @@ from corrugate.solver.joint_checks import (
     three_points,
 )
 from corrugate.solver.points import VARIABLES, DesignPoints, LayerPoints, coordinates
-from corrugate.solver.polish import climb, polish
 from corrugate.solver.problem import (
     FEAS_RTOL,
     HOLDS,
@@ -75,6 +72,10 @@ from corrugate.solver.progress import BINDING, DIAGNOSIS, RUNNER_UPS, SEARCHING,
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import Quantity
 from corrugate.solver.validity import outside_ranges
+
+if TYPE_CHECKING:
+    from corrugate.mechanics.capacity import Capacity
+    from corrugate.solver import cell_checks
 
 __all__ = [
     "ConstraintReport",
@@ -391,10 +392,13 @@ class Solution:
     @property
     def hint(self) -> str | None:
         """The one edit to try first for an infeasible spec (``hint``,
-        :func:`corrugate.solver.diagnosis.best_hint`), None without a diagnosis."""
+        :func:`corrugate.solver.diagnosis.best_hint`), None without a diagnosis (the
+        diagnosis module imported only with one)."""
+        if not self.diagnosis:
+            return None
         from corrugate.solver.diagnosis import best_hint
 
-        return best_hint(self.diagnosis) if self.diagnosis else None
+        return best_hint(self.diagnosis)
 
     def to_dict(self) -> dict[str, object]:
         """The JSON object of ``corrugate design --json`` (keys carry units)."""
@@ -699,6 +703,8 @@ def _by_cells(
     not certified; its cells also stop once their queue holds more than
     :data:`RUNNER_UP_CROWD` times those boxes (``crowd``, :func:`~.cells.search_pairs`: then
     not certified either, the same design shown as the best found). ``seek``: :func:`~.cells.search_pairs`'."""
+    from corrugate.solver import cells  # continuous W and alpha on independent layers only
+
     everything = pairs(problem)
     inc = math.inf if incumbent is None else incumbent
     budget = cells.BUDGET if most is None else most
@@ -736,7 +742,7 @@ def _by_cells(
         )
         searched.add(k)
         if record:
-            archives[k] = with_cells(r.archive, _cells_reopen(problem, everything[k], tables))
+            archives[k] = cells.with_cells(r.archive, _cells_reopen(problem, everything[k], tables))
         if not r.certified:
             uncertified.append(r.bound)
         boxes += r.boxes
@@ -775,6 +781,7 @@ def _cells_reopen(
     ``problem`` outside a bit set, lighter than a mass: the cells' search of the problem
     without those constraints (:func:`~.cells.search`, no design evaluated, so nothing
     lighter is dropped); with no mass given (the diagnosis), the whole domain."""
+    from corrugate.solver import cells
 
     def reopen(relaxed: int, below: float) -> Start:
         sub = cells.relaxed_without(problem, relaxed)
@@ -921,6 +928,8 @@ def _solve(problem: Problem, explain: bool, budget: Budget) -> Solution:
                 }
             )
         elif opt.certified and _cellular(opt) and any(r.binding is None for r in reports):
+            from corrugate.solver import cells
+
             warnings.append(
                 {
                     "code": "explanation-partial",
@@ -1050,6 +1059,8 @@ def _capacities(
         q = _capacity_quantity(problem, c)
         if q is None or q.test is None or q.eta is None:
             continue
+        from corrugate.mechanics.capacity import Capacity  # a load case's bound only
+
         form = get_load_case(q.test).form
         assert form is not None
         modes = {k: float(v[0]) for k, v in capacity_modes_at(at, q).items()}
@@ -1690,6 +1701,8 @@ def _shared_cell_binding(
     1.6 s of CPU less)."""
     if not opt.certified or opt.fired is None or problem.objective.sense != "min":
         return {}
+    from corrugate.solver import cell_checks  # a problem solved by its cells only
+
     fired = {problem.constraints[i].name for i in opt.fired}
     checks = cell_checks.checks_of(problem, [n for n in names if n in fired], True)
     if not checks or not cell_checks.applies(problem, checks):
@@ -1761,6 +1774,9 @@ def _polished_witnesses(
     side_y.min (the latter through an n moved by one) within 0.2 s."""
     if opt.point is None or opt.candidates is None:
         return []
+    from corrugate.solver import cell_checks, cells
+    from corrugate.solver.polish import climb
+
     out = []
     for ch in checks:
         if budget_spent():
@@ -1874,6 +1890,9 @@ def _runner_seed(
     (SLSQP may reach the problem's set from outside it; the polish keeps only a design the
     rule accepts); its (mass g, design, sheet pair), or None when no polish found one. Only an
     incumbent: nothing of the certificate rests on it."""
+    from corrugate.solver import cells
+    from corrugate.solver.polish import polish
+
     best: tuple[float, DesignPoints, tuple[Candidate, Candidate]] | None = None
     near = sorted(known, key=lambda m: (abs(m - n), m))[:RUNNER_SEEDS]
     for m in near:

@@ -37,7 +37,6 @@ from numpy.typing import NDArray
 from corrugate.geometry.layer import crease_layer
 from corrugate.mechanics.behaviours import DEFAULT_SUPPORT, get_load_case, get_support, supports
 from corrugate.mechanics.buckling import K_SIMPLE_FREE, buckling_scale
-from corrugate.mechanics.capacity import Band, capacity_modes
 from corrugate.mechanics.load_cases import (
     apparent,
     load_stiffness,
@@ -209,6 +208,8 @@ def capacity_modes_at(at: AtPoints, q: Quantity) -> dict[str, FloatArray]:
     """Every failure mode's load (N, no safety factor) of the load case of the ``Pmax``
     quantity ``q`` at the points (:func:`corrugate.mechanics.capacity.capacity_modes`;
     docs/load_cases.md 10): the capacity is their least divided by the safety factor."""
+    from corrugate.mechanics.capacity import Band, capacity_modes  # a load case's bound only
+
     assert q.eta is not None and q.test is not None
     e = q.eta
     form = get_load_case(q.test).form
@@ -276,6 +277,8 @@ def _load_case_at(at: AtPoints, q: Quantity) -> FloatArray:
 def _modes_over(over: OverBoxes, q: Quantity, base: Any, whole: Any, band: Any) -> list[Any]:
     """Bounds of every failure mode's load (N, no safety factor) over the boxes: the formulas
     of :func:`capacity_modes_at` on the interval springs and the boxes' W and n."""
+    from corrugate.mechanics.capacity import Band, capacity_modes
+
     assert q.eta is not None and q.test is not None
     form = get_load_case(q.test).form
     assert form is not None

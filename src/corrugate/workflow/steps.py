@@ -21,7 +21,6 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from corrugate.workflow.fe import FeCheck, check_fe, write_verify
 from corrugate.workflow.files import prepare_design
 from corrugate.workflow.solve import DesignRun, solve_spec
 
@@ -29,6 +28,7 @@ if TYPE_CHECKING:
     from corrugate.analysis.evaluate import Analysis
     from corrugate.solver.robust import RobustResult
     from corrugate.solver.solve import Solution
+    from corrugate.workflow.fe import FeCheck
     from corrugate.workflow.request import DesignRequest, Names
 
 __all__ = ["Events", "Run", "json_safe", "output_errors", "run"]
@@ -137,6 +137,8 @@ def run(request: DesignRequest, events: Events | None = None) -> Run:
     checked: FeCheck | None = None
     sol = design.solution
     if request.fe is not None and (sol.certified or sol.extrapolated) and sol.assembly is not None:
+        from corrugate.workflow.fe import check_fe  # the FE step only with --verify fe
+
         progress = ev.fe_progress()
         checked = check_fe(
             design, request.spec, request.problem, request.fe, request.budget, progress
@@ -158,5 +160,7 @@ def run(request: DesignRequest, events: Events | None = None) -> Run:
     with output_errors(request.names, request.machine.name):
         files = write()
     if checked is not None:
+        from corrugate.workflow.fe import write_verify
+
         files.append(write_verify(out.folder, checked))
     return Run(design, checked, tuple(files))

@@ -20,8 +20,11 @@ A designable profile (one with the zig-zag's constructors from W and alpha, such
 and FE mesh are not (fabrication and the FE refuse it; docs/architecture.md section 3).
 """
 
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
+
 from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
-from corrugate.mechanics.profiles.trapezoid import FlatCrest, Trapezoid
 from corrugate.mechanics.profiles.xia import (
     MEMBRANES,
     PlateStiffness,
@@ -30,6 +33,9 @@ from corrugate.mechanics.profiles.xia import (
     plate_moduli,
     profile_moduli,
 )
+
+if _TYPE_CHECKING:
+    from corrugate.mechanics.profiles.trapezoid import FlatCrest, Trapezoid
 
 __all__ = [
     "MEMBRANES",
@@ -44,3 +50,22 @@ __all__ = [
     "plate_moduli",
     "profile_moduli",
 ]
+
+#: The profiles other than the zig-zag (:mod:`.trapezoid`), imported when one is first used (PEP
+#: 562): every design imports this package for :func:`profile_moduli`, and none of the shipped
+#: examples designs another profile (issue 39).
+_LAZY = {"FlatCrest": "trapezoid", "Trapezoid": "trapezoid"}
+
+
+def __getattr__(name: str) -> _Any:
+    where = _LAZY.get(name)
+    if where is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(_import_module(f".{where}", __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    """The module's names, the public API (:data:`__all__`) included before its first use."""
+    return sorted({*globals(), *__all__})
