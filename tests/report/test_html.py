@@ -312,3 +312,65 @@ def test_report_plots_are_vector_with_their_labels_as_text(report: Path) -> None
     for svg in plots.values():
         assert "<dc:date>" not in svg
         assert "<image" not in svg  # nothing rasterised inside
+
+
+class _Key(HTMLParser):
+    """The entries (colour, text) of the report's figure keys (``<ul class="key">``)."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.entries: list[tuple[str, str]] = []
+        self._in: int = 0
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        a = dict(attrs)
+        if tag == "ul" and a.get("class") == "key":
+            self._in = 1
+        elif self._in and tag == "li":
+            self.entries.append(("", ""))
+        elif self._in and tag == "span" and a.get("class") == "mark":
+            style = str(a.get("style"))
+            self.entries[-1] = (style.removeprefix("color:"), self.entries[-1][1])
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag == "ul":
+            self._in = 0
+
+    def handle_data(self, data: str) -> None:
+        if (
+            self._in
+            and self.entries
+            and data.strip()
+            and not data.strip().startswith(("━", "★", "■"))
+        ):
+            colour, text = self.entries[-1]
+            self.entries[-1] = (colour, text + data.strip())
+
+
+@pytest.mark.slow
+def test_design_space_key_is_text_naming_each_curve_in_its_colour(
+    report: Path, solution: Solution
+) -> None:
+    """The design-space figure's key is printed under it as text, not drawn into it: every
+    binding constraint (its boundary passes through the optimum, so it crosses the plotted
+    plane) is in the key, each constraint entry's colour is the stroke of a curve in the figure,
+    and the figure itself holds no legend (its texts are the curve labels, axes and title)."""
+    text = report.read_text(encoding="utf-8")
+    key = _Key()
+    key.feed(text)
+    names = [t.split(" (", 1)[0] for _, t in key.entries]
+    binding = [c.name for c in solution.constraints if c.binding]
+    assert binding and set(binding) <= set(names)
+    assert names[-2].startswith("optimum: W ") and names[-1] == "feasible"
+    parsed = _Collect()
+    parsed.feed(text)
+    (src,) = [
+        str(i["src"]) for i in parsed.images if i.get("alt") == "design space map: W against alpha"
+    ]
+    svg = base64.b64decode(src.split(",", 1)[1]).decode("utf-8")
+    for colour, entry in key.entries[:-2]:
+        assert f"stroke: {colour}" in svg, entry
+    texts = {
+        "".join(t.itertext()) for t in ET.fromstring(svg).iter("{http://www.w3.org/2000/svg}text")
+    }
+    assert not any(t.startswith("optimum: W ") or t == "feasible" for t in texts)

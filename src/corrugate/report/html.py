@@ -14,7 +14,8 @@ from corrugate.fabrication.linestyle import StyleKind
 from corrugate.geometry.holes import holes_text
 from corrugate.mechanics.moduli import MODELS
 from corrugate.report.figures import (
-    design_space_figure,
+    KeyEntry,
+    design_space,
     load_case_figure,
     mass_by_n_figure,
     polar_figure,
@@ -34,6 +35,7 @@ table{border-collapse:collapse;margin:.5rem 0}td,th{border:1px solid #ccc;paddin
 text-align:right}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
 img{max-width:100%;height:auto}pre{background:#f7f7f7;padding:.75rem;overflow:auto}
 .warn{color:#8a5300}.bind{font-weight:bold}
+.key{list-style:none;padding:0;margin:0 0 1rem;font-size:.85rem}.key .mark{display:inline-block;width:2em}
 """
 
 
@@ -53,6 +55,21 @@ def _img_svg(svg: str, alt: str) -> str:
     """An image of an SVG text (a fold map ``sheet-N.svg`` beside the report, byte for byte)."""
     src = "data:image/svg+xml;base64," + base64.b64encode(svg.encode("utf-8")).decode("ascii")
     return f'<img src="{src}" alt="{html.escape(alt)}">'
+
+
+#: How :func:`_key` draws each kind of mark (a character in the mark's colour).
+_MARKS = {"line": "&#9473;&#9473;", "star": "&#9733;", "area": "&#9632;"}
+
+
+def _key(entries: list[KeyEntry], figure: str) -> str:
+    """A figure's key as text under it: each entry's mark in its colour, then what it stands for
+    (:func:`~corrugate.report.figures.design_space`)."""
+    items = "".join(
+        f'<li><span class="mark" style="color:{e.colour}">{_MARKS[e.mark]}</span> '
+        f"{html.escape(e.label)}</li>"
+        for e in entries
+    )
+    return f'<ul class="key" aria-label="key of the {html.escape(figure)}">{items}</ul>'
 
 
 def _directions(aspect: float = 1.6, creases: tuple[int, int] = (7, 4)) -> str:
@@ -223,7 +240,9 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
             "exaggerated.</p>"
         )
     parts.append("<h2>Design space</h2>")
-    parts.append(_img(design_space_figure(p, a), "design space map: W against alpha"))
+    space, space_key = design_space(p, a)
+    parts.append(_img(space, "design space map: W against alpha"))
+    parts.append(_key(space_key, "design space map"))
     parts.append(_img(mass_by_n_figure(p, a), "lightest mass against n"))
     parts.append("<h2>Stiffness in every direction</h2>")
     parts.append(_img(polar_figure(a), "polar plots of K and D"))
