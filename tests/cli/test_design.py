@@ -146,6 +146,20 @@ def test_readable_summary(cli: CliRun) -> None:
     assert "constraints.side.min" in out
 
 
+@pytest.mark.parametrize("name", ["x[/bold][/bold]", "grip [red]per[/red] :fire: x"])
+def test_the_specs_own_name_prints_as_written(name: str, cli: CliRun, tmp_path: Path) -> None:
+    """A name with rich's markup or emoji codes in it is text: printed as written (a closing tag
+    with no opening one made rich raise, an internal error), the design still answered."""
+    d = tomllib.loads(BLIMP.read_text())
+    d["name"] = name
+    spec = tmp_path / "named.toml"
+    spec.write_text(_dump(d))
+    assert tomllib.loads(spec.read_text())["name"] == name
+    code, out, err = cli(["design", str(spec)])
+    assert code == 0, err
+    assert out.startswith(f"{name}: optimal, certified")
+
+
 @pytest.mark.parametrize(
     ("edit", "field"),
     [

@@ -41,9 +41,11 @@ __all__ = ["COMMANDS", "design_cmd", "pareto_cmd", "tolerance_cmd"]
 
 
 def _print_solution(sol: Solution, console: Console, tightened: bool = False) -> None:
+    from rich.markup import escape  # the spec's own text (its name, materials) is not markup
     from rich.table import Table
 
     p = sol.problem
+    name = escape(p.name)
     cert = "certified" if sol.certified else "NOT certified"
     if sol.extrapolated:
         cert = "EXTRAPOLATED, not certified"
@@ -51,14 +53,13 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         cert += " for the tightened bounds below"
     if sol.assembly is None and sol.status == "not-certified":
         console.print(
-            f"[bold red]{p.name}: not certified[/bold red]: the search stopped before finding a "
+            f"[bold red]{name}: not certified[/bold red]: the search stopped before finding a "
             "design or proving that none exists."
         )
         return
     if sol.assembly is None:
         console.print(
-            f"[bold red]{p.name}: {sol.status}[/bold red] ({cert}): no design meets "
-            "every constraint."
+            f"[bold red]{name}: {sol.status}[/bold red] ({cert}): no design meets every constraint."
         )
         for diag in sol.diagnosis:
             console.print(f"  - {diag.message}", markup=False)
@@ -73,7 +74,7 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         gap = f"proven gap {_gap_text(sol.gap)}"
     head = "optimal" if sol.certified or sol.extrapolated else "best design found so far"
     console.print(
-        f"[bold]{p.name}[/bold]: {head}, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
+        f"[bold]{name}[/bold]: {head}, {cert}, {gap}; model {p.model}, layout {p.layout.name}"
     )
     console.print(sol.certificate, markup=False)
     t = Table(title="design", title_justify="left")
@@ -82,7 +83,7 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
     for i, layer in enumerate(sol.assembly.layers):
         t.add_row(
             str(i + 1),
-            layer.material.id,
+            escape(layer.material.id),
             fmt(layer.t, 5),
             fmt(layer.W, 6),
             str(layer.n),
@@ -241,7 +242,7 @@ def _print_failure(sol: Solution, robust: object, console: Console) -> None:
     if sol.status == "infeasible":
         _print_solution(sol, console)
     elif robust is not None:
-        console.print(f"{sol.problem.name}: the robust target is not met")
+        console.print(f"{sol.problem.name}: the robust target is not met", markup=False)
 
 
 #: ``design``'s output options: the table's but the sheet layout's (spacing, margin, tabs).
@@ -373,7 +374,7 @@ def design_cmd(
     failed = sol.status == "infeasible" or (robust is not None and not robust.met)
     if console is not None:
         for path in answer.files:
-            console.print(f"wrote {path}")
+            console.print(f"wrote {path}", markup=False)
     if stopped:  # exit 4 (before 1: a robust target cannot be judged on an unfinished search)
         typer.echo(not_certified_line(sol), err=True)
         raise typer.Exit(4)
@@ -665,9 +666,9 @@ def pareto_cmd(
         write_set(out, {"pareto.csv": text}, kind="pareto")
         plotted = _plot(front, f"{problem.name}: Pareto front", out / "pareto.png")
         if not quiet:
-            console.print(f"wrote {out / 'pareto.csv'}")
+            console.print(f"wrote {out / 'pareto.csv'}", markup=False)
             if plotted:
-                console.print(f"wrote {out / 'pareto.png'}")
+                console.print(f"wrote {out / 'pareto.png'}", markup=False)
             else:
                 console.print(
                     "[yellow]warning[/yellow]: matplotlib is not installed (extra 'fab'); "
@@ -770,10 +771,12 @@ def tolerance_cmd(
         return
     if quiet:
         return
+    from rich.markup import escape
+
     console = make_console()
     lay = sol.assembly.layer1
     console.print(
-        f"[bold]{problem.name}[/bold]: certified design W = {lay.W:.6g} mm, n = "
+        f"[bold]{escape(problem.name)}[/bold]: certified design W = {lay.W:.6g} mm, n = "
         f"{lay.n}, alpha = {lay.alpha_deg:.6g} deg; {samples} samples, 1-sigma "
         f"W {tol.W:g} mm, alpha {tol.alpha:g} deg, t {100 * tol.t_rel:g} %, "
         f"E {100 * tol.E_rel:g} %"

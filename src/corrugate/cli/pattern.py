@@ -66,7 +66,7 @@ def pattern_cmd(
         f"{m.connectors:.3f} g (rho t x cut area)"
     )
     for p in paths:
-        console.print(f"wrote {p}")
+        console.print(f"wrote {p}", markup=False)
 
 
 #: The commands of this module, by name (registered by :mod:`corrugate.cli`).

@@ -430,7 +430,7 @@ def verify_cmd(
         if ramp is not None:
             print_nonlinear(ramp, console)
         for name in files:
-            console.print(f"wrote {folder / name}")
+            console.print(f"wrote {folder / name}", markup=False)
     if result.verdict != "holds":
         if quiet:
             others = [f"{r.name} ({r.verdict})" for r in result.rows if not r.holds]
