@@ -9,9 +9,9 @@ package (``corrugate.export.machines``: ``corrugate design`` without ``--out`` l
 up there) does not import the writers.
 """
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
-from typing import Any as _Any
+
+from corrugate.core.lazy import lazy_names as _lazy_names
 
 if _TYPE_CHECKING:
     from corrugate.core.fileio import staged
@@ -65,13 +65,7 @@ __all__ = [
 ]
 
 
-def __getattr__(name: str) -> _Any:
-    where = _WHERE.get(name)
-    if where is None:
-        raise AttributeError(f"module 'corrugate.export' has no attribute {name!r}")
-    value = getattr(_import_module(where), name)
-    globals()[name] = value
-    return value
+__getattr__ = _lazy_names(__name__, _WHERE, globals())
 
 
 def __dir__() -> list[str]:

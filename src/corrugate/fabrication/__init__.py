@@ -5,9 +5,9 @@ The names below live in :mod:`corrugate.fabrication.model`, imported when one is
 build the pattern's classes, which only a command that writes files uses (issue 39).
 """
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
-from typing import Any as _Any
+
+from corrugate.core.lazy import lazy_names as _lazy_names
 
 if _TYPE_CHECKING:
     from corrugate.fabrication.model import Line, Part, Pattern, Role, polygon_area
@@ -15,12 +15,7 @@ if _TYPE_CHECKING:
 __all__ = ["Line", "Part", "Pattern", "Role", "polygon_area"]
 
 
-def __getattr__(name: str) -> _Any:
-    if name not in __all__:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(_import_module(".model", __name__), name)
-    globals()[name] = value
-    return value
+__getattr__ = _lazy_names(__name__, dict.fromkeys(__all__, ".model"), globals())
 
 
 def __dir__() -> list[str]:

@@ -17,9 +17,9 @@ The heavy modules (the solver, the FE, the writers, the report) are imported whe
 runs, so the command line starts without them.
 """
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
-from typing import Any as _Any
+
+from corrugate.core.lazy import lazy_names as _lazy_names
 
 if _TYPE_CHECKING:
     from corrugate.workflow.fe import FeCheck
@@ -60,13 +60,7 @@ _WHERE: dict[str, str] = {
 }
 
 
-def __getattr__(name: str) -> _Any:
-    where = _WHERE.get(name)
-    if where is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(_import_module(f".{where}", __name__), name)
-    globals()[name] = value
-    return value
+__getattr__ = _lazy_names(__name__, {k: f".{v}" for k, v in _WHERE.items()}, globals())
 
 
 def __dir__() -> list[str]:

@@ -20,10 +20,9 @@ A designable profile (one with the zig-zag's constructors from W and alpha, such
 and FE mesh are not (fabrication and the FE refuse it; docs/architecture.md section 3).
 """
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
-from typing import Any as _Any
 
+from corrugate.core.lazy import lazy_names as _lazy_names
 from corrugate.geometry.profile import Profile, ProfileIntegrals, ZigZag
 from corrugate.mechanics.profiles.xia import (
     MEMBRANES,
@@ -57,13 +56,7 @@ __all__ = [
 _LAZY = {"FlatCrest": "trapezoid", "Trapezoid": "trapezoid"}
 
 
-def __getattr__(name: str) -> _Any:
-    where = _LAZY.get(name)
-    if where is None:
-        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-    value = getattr(_import_module(f".{where}", __name__), name)
-    globals()[name] = value
-    return value
+__getattr__ = _lazy_names(__name__, {k: f".{v}" for k, v in _LAZY.items()}, globals())
 
 
 def __dir__() -> list[str]:
