@@ -14,9 +14,9 @@ Quick use::
 Internal units: mm, N, MPa, g (docs/theory.md section 8).
 """
 
+from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
-
-from corrugate.core.lazy import lazy_names as _lazy_names
+from typing import Any as _Any
 
 if _TYPE_CHECKING:
     from corrugate.analysis.evaluate import (
@@ -62,7 +62,15 @@ _WHERE: dict[str, str] = {
 }
 
 
-__getattr__ = _lazy_names(__name__, {k: f".{v}" for k, v in _WHERE.items()}, globals())
+def __getattr__(name: str) -> _Any:
+    # corrugate.core.lazy.lazy_names, written out: the top package imports no module of its own,
+    # so that importing one leaf module (corrugate.names) loads nothing else (tests/test_names.py)
+    where = _WHERE.get(name)
+    if where is None:
+        raise AttributeError(f"module 'corrugate' has no attribute {name!r}")
+    value = getattr(_import_module(f".{where}", __name__), name)
+    globals()[name] = value
+    return value
 
 
 def __dir__() -> list[str]:
