@@ -68,7 +68,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -83,6 +83,7 @@ from corrugate.solver.archive import Archive
 from corrugate.solver.budget import current_budget
 from corrugate.solver.interval import Interval, number
 from corrugate.solver.points import DesignPoints, LayerPoints
+from corrugate.solver.polish import CLIMB_MOST, climb
 from corrugate.solver.problem import Candidate, Problem
 from corrugate.solver.quantities import Tables, point_values
 from corrugate.solver.quantity import (
@@ -99,10 +100,8 @@ from corrugate.solver.quantity import (
     W_MIN,
     Quantity,
 )
+from corrugate.solver.separable import Shifts, stiffness_along
 from corrugate.solver.validity import LAYER_KINDS, layer_limits
-
-if TYPE_CHECKING:
-    from corrugate.solver.separable import Shifts
 
 __all__ = ["BUDGET", "FIRST_ALPHA", "FIRST_W", "CellArchive", "CellResult", "search"]
 
@@ -210,8 +209,6 @@ def applies(problem: Problem) -> bool:
         or problem.calibrated
     ):
         return False
-    from corrugate.solver.separable import stiffness_along  # imported when the structure fits
-
     for c in problem.constraints:
         q = c.quantity
         if q in _LAYER or q in _IGNORED or q in (THICKNESS, MASS):
@@ -542,8 +539,6 @@ def _judge(
     """The cell pairs (I, J) that may hold a design of the problem lighter than ``worst`` (g)
     (module docstring), and their mass lower bounds (g), judged in chunks. ``fired``: the
     constraints (by index) that alone drop a pair lighter than ``worst`` are added to it."""
-    from corrugate.solver.separable import stiffness_along
-
     problem = st.problem
     (c1, c2), (w1, w2) = st.sheets, st.low
     lay = problem.layout
@@ -630,8 +625,6 @@ def _cells_failing(
     v_j) max f g_j for layer 2's cell j). Every term is positive and rounding is monotone, so
     the value computed for any pair (i, j) is at most this one, and the judge drops every pair
     of the cell by this constraint."""
-    from corrugate.solver.separable import stiffness_along
-
     (w1, w2), cons = st.low, st.problem.constraints
     bad1 = np.zeros((len(L1), len(cons)), dtype=bool)
     bad2 = np.zeros((len(L2), len(cons)), dtype=bool)
@@ -920,8 +913,6 @@ def search_pairs(
     ``crowd``: the search also stops when more cell pairs than this are left in its queue
     (its start boxes are then all of them: the caller's rule for too many boxes decides; the
     runner-ups', :func:`~.solve._by_cells`)."""
-    from corrugate.solver.polish import CLIMB_MOST, climb  # a found design's polish
-
     inc = incumbent
     best_x: DesignPoints | None = None
     best_at = -1
@@ -1108,8 +1099,6 @@ def _seed(
     (P's own rule), and the best feasible one polished (:func:`~.polish.climb`) with those of
     the next :data:`SEED_CLIMBS` - 1 sheet pairs. Any design will do (it only prunes): the
     draws are fixed (seed 0)."""
-    from corrugate.solver.polish import climb
-
     rng = np.random.default_rng(0)
     pts: list[tuple[_Cells, IntArray] | None] = []
     for T in tabs:
