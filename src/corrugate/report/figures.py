@@ -164,7 +164,6 @@ def design_space(problem: Problem, a: Analysis) -> tuple[Any, list[KeyEntry]]:
         color="black",
         markersize=14,
         linestyle="none",
-        label=optimum,
     )
     key.append(KeyEntry(optimum, "star", "#000000"))
     key.append(KeyEntry("feasible", "area", FEASIBLE_COLOUR))
