@@ -114,3 +114,22 @@ def test_each_3d_panel_draws_the_parts_its_title_names() -> None:
             assert c2.hex.lower() in faces, title
         else:
             assert c2.hex.lower() not in faces, title  # L2 is named only as "alike"
+
+
+@pytest.mark.parametrize("shape", ["square", "rectangle"])
+def test_the_cut_panels_title_clears_the_parts_names(shape: str) -> None:
+    """Panel 1 of assembly.png as drawn: its title's box overlaps no part name's box and every
+    name stands above its part (the names were once placed in mm and the title at the axes' top,
+    so on the case study the title was printed over "L1" and "L2")."""
+    a = _assembly(shape)
+    fig = instructions_figure(a, build_pattern(a))
+    renderer = fig.canvas.get_renderer()
+    fig.draw(renderer)
+    ax0 = fig.axes[0]
+    title = ax0.title.get_window_extent(renderer)
+    names = [t for t in ax0.texts if re.fullmatch(r"[LB]\d+", t.get_text())]
+    assert len(names) >= 3
+    for name in names:
+        box = name.get_window_extent(renderer)
+        assert not box.overlaps(title), name.get_text()
+        assert box.y0 >= ax0.transData.transform(name.xy)[1]  # above the part's top edge

@@ -101,6 +101,11 @@ def _overlap_folds(pattern: Pattern) -> str:
 VIEW_AZIM_DEG, VIEW_ELEV_DEG = -60.0, 30.0
 
 
+#: The first panel's title above its axes (points): clear of the parts' names, which stand 2 pt
+#: above the tallest part in 7 pt type (their ascent, about 7 pt, with a few points between).
+_NAMES_PAD_PT = 14.0
+
+
 def _view_axes(azim_deg: float, elev_deg: float) -> tuple[FloatArray, FloatArray, FloatArray]:
     """The orthographic (parallel) projection of a view: the screen's right and up directions and
     the direction towards the viewer, unit vectors in model coordinates. A point p is drawn at
@@ -150,7 +155,17 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
         for ln in part.lines:
             seg = ((ln.a[0] + x0, ln.a[1]), (ln.b[0] + x0, ln.b[1]))
             lines.setdefault(_COLOURS[ln.role], []).append(seg)
-        ax0.text(x0 + w / 2, o[:, 1].max() + 3, part.name, ha="center", fontsize=7)
+        # the name 2 pt above the part, in points: a length in mm would be a different height
+        # on the page for every pattern, and the title (above) must clear it
+        ax0.annotate(
+            part.name,
+            (x0 + w / 2, o[:, 1].max()),
+            xytext=(0, 2),
+            textcoords="offset points",
+            ha="center",
+            va="bottom",
+            fontsize=7,
+        )
         x0 += w + 6
     ax0.add_collection(LineCollection(rings, colors=LINES["cut"].hex, linewidths=0.6))
     for colour, segs in lines.items():
@@ -162,6 +177,7 @@ def instructions_figure(a: Assembly, pattern: Pattern) -> Any:
         f"valley {LINES['valley'].name}, marks {LINES['mark'].name}",
         fontsize=9,
         y=1.0,
+        pad=_NAMES_PAD_PT,
     )
     ax0.axis("off")
 
