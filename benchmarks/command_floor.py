@@ -17,6 +17,15 @@ change of import order or laziness inside the package could still save, short of
 modules (issue 39). ``benchmarks/pipeline.py``'s floors import each library bare instead (the
 collector's default thresholds, matplotlib's full help, the subsetter executed), which costs more
 than the command pays for the same libraries. ``{out}`` is replaced by a new empty folder.
+
+Two more rows split (2): ``its library modules`` imports only the listed modules that are not
+corrugate's, set up the same way (so with the few modules of the set-up itself:
+:mod:`corrugate.cli`, whose import builds the typer app, and the small ``corrugate.core`` modules
+it calls): what no change inside the package's other modules can remove, short of not using
+those libraries; and ``frozen dataclasses of ours`` is the CPU time
+:mod:`dataclasses` spends making corrugate's own value classes (``dataclasses._process_class``
+clocked with :func:`time.process_time` in a fresh process that imports the listed modules; on
+Python 3.11 each frozen dataclass compiles and executes five or six generated methods).
 """
 
 from __future__ import annotations
@@ -46,6 +55,25 @@ except SystemExit as exc:
 lazy = importlib.util._LazyModule
 print("\n".join(m for m, v in list(sys.modules.items())
                 if v is not None and not isinstance(v, lazy) and m != "__main__"))
+"""
+
+#: Imports the modules listed in the file argv[1] as :data:`_IMPORT` does, with a clock around
+#: the making of each dataclass; prints the seconds spent on corrugate's and their number.
+_CLASSES = r"""
+import dataclasses, sys, time
+spent, made = [0.0], [0]
+_process = dataclasses._process_class
+def clocked(cls, *args):
+    t = time.process_time()
+    try:
+        return _process(cls, *args)
+    finally:
+        if cls.__module__.startswith("corrugate"):
+            spent[0] += time.process_time() - t
+            made[0] += 1
+dataclasses._process_class = clocked
+exec(compile(open(sys.argv[2], encoding="utf-8").read(), "<import>", "exec"))
+print(spent[0], made[0])
 """
 
 #: Imports the modules listed in the file argv[1] as a command's process does.
@@ -93,27 +121,53 @@ def main() -> None:
         ).stdout.split()
         modules = Path(tmp) / "modules.txt"
         modules.write_text("\n".join(names), encoding="utf-8")
-        runs: dict[str, list[float]] = {"pass": [], "imports": [], "command": []}
+        libraries = Path(tmp) / "libraries.txt"
+        theirs = [n for n in names if n != "corrugate" and not n.startswith("corrugate.")]
+        libraries.write_text("\n".join(theirs), encoding="utf-8")
+        importer = Path(tmp) / "import.py"
+        importer.write_text(_IMPORT, encoding="utf-8")
+        runs: dict[str, list[float]] = {"pass": [], "libraries": [], "imports": [], "command": []}
+        classes: list[float] = []
+        made = 0
         for k in range(args.repeats):
             command = [a.replace("{out}", str(Path(tmp) / f"out-{k}")) for a in args.command]
             argvs = {
                 "pass": [sys.executable, "-c", "pass"],
+                "libraries": [sys.executable, "-c", _IMPORT, str(libraries)],
                 "imports": [sys.executable, "-c", _IMPORT, str(modules)],
                 "command": [sys.executable, "-m", "corrugate", *command],
             }
             for label, argv in argvs.items():
                 runs[label].append(child_cpu(argv, env))
+            clock = subprocess.run(
+                [sys.executable, "-c", _CLASSES, str(modules), str(importer)],
+                env=env,
+                capture_output=True,
+                text=True,
+                check=True,
+            ).stdout.split()
+            classes.append(float(clock[0]))
+            made = int(clock[1])
             print(f"run {k + 1}/{args.repeats} done", file=sys.stderr)
     med = {label: statistics.median(v) for label, v in runs.items()}
     spread = {label: f"[{min(v):.3f}-{max(v):.3f}]" for label, v in runs.items()}
     print(f"corrugate {' '.join(args.command)}: CPU s, medians of {args.repeats} interleaved runs")
     print(f"  python -c pass                       {med['pass']:.3f} s {spread['pass']}")
     print(
+        f"  its {len(theirs)} library modules (and set-up) {med['libraries']:.3f} s "
+        f"{spread['libraries']}"
+    )
+    print(
         f"  its {len(names)} modules, imported as it does {med['imports']:.3f} s "
         f"{spread['imports']}"
     )
     print(f"  the command                          {med['command']:.3f} s {spread['command']}")
     print(f"  its work (command - imports)         {med['command'] - med['imports']:.3f} s")
+    print(
+        f"  of its imports, corrugate's others   {med['imports'] - med['libraries']:.3f} s, "
+        f"of which making its {made} frozen dataclasses {statistics.median(classes):.3f} s "
+        f"[{min(classes):.3f}-{max(classes):.3f}]"
+    )
 
 
 if __name__ == "__main__":
