@@ -31,8 +31,9 @@ __all__ = ["report_html"]
 _STYLE = """
 body{font-family:system-ui,sans-serif;max-width:60rem;margin:2rem auto;padding:0 1rem;color:#222}
 h1{font-size:1.6rem}h2{font-size:1.2rem;margin-top:2rem;border-bottom:1px solid #ddd}
-table{border-collapse:collapse;margin:.5rem 0}td,th{border:1px solid #ccc;padding:.2rem .5rem;
-text-align:right}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
+.table{overflow-x:auto}table{border-collapse:collapse;margin:.5rem 0}td,th{border:1px solid #ccc;
+padding:.2rem .5rem;text-align:right}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
+td+td{white-space:nowrap}
 img{max-width:100%;height:auto}pre{background:#f7f7f7;padding:.75rem;overflow:auto}
 .warn{color:#8a5300}.bind{font-weight:bold}
 .key{list-style:none;padding:0;margin:0 0 1rem;font-size:.85rem}.key .mark{display:inline-block;width:2em}
@@ -84,11 +85,14 @@ def _directions(aspect: float = 1.6, creases: tuple[int, int] = (7, 4)) -> str:
 
 
 def _table(head: list[str], rows: list[list[str]], classes: list[str] | None = None) -> str:
-    out = ["<table><tr>", *(f"<th>{html.escape(h)}</th>" for h in head), "</tr>"]
+    """A table in a box of its own that scrolls sideways when the table is wider than the page (a
+    phone), every cell but the first of a row on one line (a bound reads "<= 250", not "<=" over
+    "250")."""
+    out = ["<div class='table'><table><tr>", *(f"<th>{html.escape(h)}</th>" for h in head), "</tr>"]
     for i, row in enumerate(rows):
         cls = f' class="{classes[i]}"' if classes and classes[i] else ""
         out.append(f"<tr{cls}>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>")
-    out.append("</table>")
+    out.append("</table></div>")
     return "".join(out)
 
 
@@ -136,7 +140,8 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
 
     p = sol.problem
     parts: list[str] = [
-        "<!doctype html><html lang='en'><head><meta charset='utf-8'>",
+        "<!doctype html><html lang='en'><head><meta charset='utf-8'>"
+        "<meta name='viewport' content='width=device-width, initial-scale=1'>",
         f"<title>corrugate report: {html.escape(p.name)}</title><style>{_STYLE}</style></head><body>",
         f"<h1>corrugate report: {html.escape(p.name)}</h1>",
     ]
