@@ -53,3 +53,56 @@ def test_mass_against_n_is_the_least_feasible_mass_of_each_n(name: str, n_max: i
     # the design's own n is drawn at its mass (the certified optimum is the lightest of its n)
     k = list(ns).index(a.assembly.layer1.n)
     assert drawn[k] == pytest.approx(a.mass.total, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("name", "binding"),
+    [
+        # the binding EI bound's label was drawn under the optimum's star
+        ("blimp_gripper.toml", "flexural_rigidity[0].min"),
+        # a mass contour's label ("3 g") was drawn under the star
+        ("wheel_circle.toml", "3 g"),
+    ],
+)
+def test_no_curve_label_is_drawn_under_the_optimums_star(name: str, binding: str) -> None:
+    """The design-space figure as drawn: the box of every label on a curve (a constraint's name,
+    a mass in g) overlaps not the star's, and the label of the curve that ran under the star is
+    still on the figure, moved along its curve (the key under the figure names it too)."""
+    from matplotlib.path import Path as MplPath
+    from matplotlib.transforms import Affine2D
+
+    run = design(EXAMPLES / name)
+    problem, a = run.solution.problem, run.solution.analysis
+    assert a is not None
+    fig, _key = figures.design_space(problem, a)
+    renderer = fig.canvas.get_renderer()
+    fig.draw(renderer)
+    ax = fig.axes[0]
+    (star,) = [line for line in ax.lines if line.get_marker() == "*"]
+    x, y = star.get_data()
+    assert (x[0], y[0]) == (a.assembly.layer1.W, a.assembly.layer1.alpha_deg)
+    star_box = star.get_window_extent(renderer)
+    labels = [t for t in ax.texts if t.get_text()]
+    assert labels
+    for t in labels:  # the rectangle the text is drawn in: its box unturned, turned
+        box = t.get_window_extent(renderer)
+        turned = t.get_rotation()
+        t.set_rotation(0.0)
+        flat = t.get_window_extent(renderer)
+        t.set_rotation(turned)
+        cx, cy = (box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2
+        corners = (
+            Affine2D()
+            .rotate_deg_around(cx, cy, turned)
+            .transform(
+                [
+                    (cx - flat.width / 2, cy - flat.height / 2),
+                    (cx + flat.width / 2, cy - flat.height / 2),
+                    (cx + flat.width / 2, cy + flat.height / 2),
+                    (cx - flat.width / 2, cy + flat.height / 2),
+                ]
+            )
+        )
+        outline = MplPath([*corners, corners[0]], closed=True)
+        assert not outline.intersects_bbox(star_box, filled=True), t.get_text()
+    assert binding in {t.get_text() for t in labels}
