@@ -106,3 +106,25 @@ def test_no_curve_label_is_drawn_under_the_optimums_star(name: str, binding: str
         outline = MplPath([*corners, corners[0]], closed=True)
         assert not outline.intersects_bbox(star_box, filled=True), t.get_text()
     assert binding in {t.get_text() for t in labels}
+
+
+@pytest.mark.parametrize("name", ["blimp_gripper.toml", "wheel_circle.toml"])
+def test_mass_against_n_has_its_title_inside_and_whole_numbers_of_creases(name: str) -> None:
+    """The figure as drawn: its title's box lies inside the figure's (the continuous grid's title,
+    "... a 161 x 161 grid of W and alpha; gaps: no feasible design)", was cut at the right edge
+    of the wheel's figure) and every tick of n shown is a whole number (the wheel's two n were
+    ticked 6.0, 6.2, ... 7.0)."""
+    run = design(EXAMPLES / name)
+    problem, a = run.solution.problem, run.solution.analysis
+    assert a is not None
+    fig = figures.mass_by_n_figure(problem, a, n_max=24)
+    renderer = fig.canvas.get_renderer()
+    fig.draw(renderer)
+    ax = fig.axes[0]
+    title = ax.title.get_window_extent(renderer)
+    assert title.x0 >= 0 and title.x1 <= fig.bbox.width and title.y1 <= fig.bbox.height
+    assert ax.title.get_text().endswith("gaps: no feasible design)")
+    lo, hi = ax.get_xlim()
+    shown = [t for t in ax.get_xticks() if lo <= t <= hi]
+    assert len(shown) >= 2
+    assert all(float(t).is_integer() for t in shown), shown

@@ -426,6 +426,8 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
         mass[group] = found.reshape(len(chunk), W1.size)
     lightest = mass.min(axis=1)
     best = np.where(np.isfinite(lightest), lightest, np.nan)
+    from matplotlib.ticker import MaxNLocator
+
     fig = new_figure((7.5, 4.0), dpi=100)
     ax = fig.subplots()
     ax.plot(ns, best, marker="o", markersize=3, linewidth=1)
@@ -441,11 +443,19 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     )
     grid = "the spec's grid" if problem.gridded else f"a {GRID} x {GRID} grid of W and alpha"
     ax.set_xlabel("number of creases n")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # n is a whole number of creases
     ax.set_ylabel("lightest feasible mass (g)")
-    ax.set_title(f"mass against n (best over {grid}; gaps: no feasible design)", y=_TITLE_Y)
+    title = ax.set_title(f"mass against n (best over {grid}; gaps: no feasible design)", y=_TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.subplots_adjust(**_MARGINS["mass_by_n"])
+    # a title wider than the figure (the continuous grid's) is set smaller until it fits: it was
+    # cut at the figure's right edge ("no feasible desigr")
+    centre = (ax.bbox.x0 + ax.bbox.x1) / 2  # the title is centred over the axes
+    room = 2 * min(centre, fig.bbox.width - centre) - fig.dpi * 0.1
+    width = title.get_window_extent().width
+    if width > room:
+        title.set_fontsize(title.get_fontsize() * room / width)
     return fig
 
 
