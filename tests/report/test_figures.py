@@ -128,3 +128,27 @@ def test_mass_against_n_has_its_title_inside_and_whole_numbers_of_creases(name: 
     shown = [t for t in ax.get_xticks() if lo <= t <= hi]
     assert len(shown) >= 2
     assert all(float(t).is_integer() for t in shown), shown
+
+
+def test_each_constraint_curve_is_told_apart_from_the_others_by_its_key() -> None:
+    """The wheel's design space draws 13 constraint curves in matplotlib's 10 colours: two curves
+    of one colour were told apart by nothing (the key named both in the same colour, e.g.
+    constraints.diameter.min and validity.wheel.t_over_W.min in pink). Each constraint's key
+    entry is now a (colour, line style) no other entry has, and a curve drawn in the figure has
+    that colour and style."""
+    from matplotlib.colors import to_hex
+
+    run = design(EXAMPLES / "wheel_circle.toml")
+    problem, a = run.solution.problem, run.solution.analysis
+    assert a is not None
+    fig, key = figures.design_space(problem, a)
+    curves = [e for e in key if e.mark in ("line", "dashed", "dashdot")]
+    assert len(curves) > 10  # more curves than colours
+    assert len({(e.colour, e.mark) for e in curves}) == len(curves)
+    drawn = set()
+    for cs in fig.axes[0].collections:
+        for colour, (_offset, dashes) in zip(cs.get_edgecolor(), cs.get_linestyle(), strict=False):
+            style = "line" if dashes is None else ("dashdot" if len(dashes) == 4 else "dashed")
+            drawn.add((to_hex(colour), style))
+    for e in curves:
+        assert (e.colour, e.mark) in drawn, e.label

@@ -382,7 +382,7 @@ class _Key(HTMLParser):
             self._in
             and self.entries
             and data.strip()
-            and not data.strip().startswith(("━", "★", "■"))
+            and not data.strip().startswith(("━", "╍", "★", "■"))
         ):
             colour, text = self.entries[-1]
             self.entries[-1] = (colour, text + data.strip())

@@ -100,11 +100,24 @@ def _candidates(a: Analysis) -> tuple[Candidate, Candidate]:
 @dataclass(frozen=True)
 class KeyEntry:
     """One entry of a figure's key: what a mark stands for (``label``), drawn as ``mark`` ("line":
-    a line, "star": the optimum's star, "area": a filled region) in ``colour`` (a hex colour)."""
+    a solid line, "dashed" and "dashdot": a line so drawn, "star": the optimum's star, "area": a
+    filled region) in ``colour`` (a hex colour)."""
 
     label: str
-    mark: Literal["line", "star", "area"]
+    mark: Literal["line", "dashed", "dashdot", "star", "area"]
     colour: str
+
+
+#: A constraint curve's line style, by the round of the colour cycle its colour comes from: a
+#: spec with more constraints than colours (the wheel's 13 against 10) draws the 11th solid curve
+#: and the 1st alike no more. Matplotlib's name of each style and the key's mark of it.
+_CURVE_STYLES: tuple[
+    tuple[Literal["solid", "dashed", "dashdot"], Literal["line", "dashed", "dashdot"]], ...
+] = (
+    ("solid", "line"),
+    ("dashed", "dashed"),
+    ("dashdot", "dashdot"),
+)
 
 
 #: The shade of the feasible region in the design-space figure.
@@ -143,14 +156,15 @@ def design_space(problem: Problem, a: Analysis) -> tuple[Any, list[KeyEntry]]:
         field = (margin / scale).reshape(WW.shape)
         if np.nanmin(field) < 0 < np.nanmax(field):
             colour = colours[k % len(colours)]
+            dashes, mark = _CURVE_STYLES[(k // len(colours)) % len(_CURVE_STYLES)]
             curve = _Curves(
                 field,
-                {"levels": [0.0], "colors": [colour], "linewidths": 1.4},
+                {"levels": [0.0], "colors": [colour], "linewidths": 1.4, "linestyles": dashes},
                 {0.0: c.name.replace("constraints.", "")},
                 7,
             )
             curves.append(curve.draw(ax, WW, AA))
-            key.append(KeyEntry(f"{c.name} ({c.quantity.description})", "line", to_hex(colour)))
+            key.append(KeyEntry(f"{c.name} ({c.quantity.description})", mark, to_hex(colour)))
     ax.contourf(
         WW,
         AA,
@@ -340,7 +354,8 @@ def design_space_figure(problem: Problem, a: Analysis) -> Any:
                 Line2D([], [], marker="*", color=e.colour, linestyle="none", label=e.label)
             )
         else:
-            handles.append(Line2D([], [], color=e.colour, label=e.label))
+            dashes = {mark: name for name, mark in _CURVE_STYLES}[e.mark]
+            handles.append(Line2D([], [], color=e.colour, linestyle=dashes, label=e.label))
     fig.axes[0].legend(handles=handles, fontsize=7, loc="best")
     return fig
 

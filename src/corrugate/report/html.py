@@ -59,7 +59,13 @@ def _img_svg(svg: str, alt: str) -> str:
 
 
 #: How :func:`_key` draws each kind of mark (a character in the mark's colour).
-_MARKS = {"line": "&#9473;&#9473;", "star": "&#9733;", "area": "&#9632;"}
+_MARKS = {
+    "line": "&#9473;&#9473;",  # ━━
+    "dashed": "&#9549;&#9549;",  # ╍╍
+    "dashdot": "&#9473;&#183;",  # ━·
+    "star": "&#9733;",
+    "area": "&#9632;",
+}
 
 
 def _key(entries: list[KeyEntry], figure: str) -> str:
