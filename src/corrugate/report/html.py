@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import base64
 import html
+import re
 from typing import TYPE_CHECKING, Any
 
 from corrugate.analysis.evaluate import analyze
@@ -100,6 +101,12 @@ def _table(head: list[str], rows: list[list[str]], classes: list[str] | None = N
         out.append(f"<tr{cls}>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>")
     out.append("</table></div>")
     return "".join(out)
+
+
+def _inline_code(text: str) -> str:
+    """``text`` as HTML, each span between backticks (a command or a spec key, quoted the command
+    line's way, e.g. corrugate docs fea) a ``<code>`` element rather than printed backticks."""
+    return re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(text, quote=False))
 
 
 def _g(x: float | None, digits: int = 5) -> str:
@@ -322,7 +329,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     parts.append("</ol><h2>Warnings</h2>")
     if sol.warnings:
         parts.append("<ul>")
-        parts.extend(f"<li class='warn'>{html.escape(w['message'])}</li>" for w in sol.warnings)
+        parts.extend(f"<li class='warn'>{_inline_code(w['message'])}</li>" for w in sol.warnings)
         parts.append("</ul>")
     else:
         parts.append("<p>None.</p>")
