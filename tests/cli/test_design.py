@@ -300,3 +300,41 @@ def test_the_load_held_under_tolerances_is_the_certified_one(cli: CliRun, tmp_pa
     assert row["load_capacity_N"] == pytest.approx(held, rel=1e-12)
     assert held < nominal
     assert f"holds {held:.3g} N at safety factor" in d["certificate"]
+
+
+def test_constraint_names_are_whole_in_an_80_column_terminal() -> None:
+    """The constraints table in an 80-column terminal: every constraint's name reads whole in
+    its column, folded over lines where it must, never cut to an ellipsis (the case study's
+    binding ``constraints.flexural_rigidity[0].min`` printed as ``constraints.flexural_rigi…``).
+    The rows are read back from the printed table: a row starts where its value cell does."""
+    import io
+
+    from rich.console import Console
+
+    from corrugate.cli.design import _print_solution
+    from corrugate.solver import solve
+    from corrugate.solver.problem import Problem
+    from corrugate.spec.schema import parse_spec
+
+    spec = tomllib.loads((EXAMPLES / "blimp_gripper.toml").read_text())
+    sol = solve(Problem.from_spec(parse_spec(spec)))
+    out = io.StringIO()
+    _print_solution(sol, Console(file=out, width=80, force_terminal=False, no_color=True))
+    text = out.getvalue()
+    lines = text.split("constraints (binding")[1].split("runner-ups")[0].splitlines()
+    assert max(len(line) for line in lines) <= 80
+    names: list[str] = []
+    for line in lines:
+        cells = line.split("│")
+        if len(cells) < 3:
+            continue  # a rule or the title
+        first, value = cells[1].strip(), cells[2].strip()
+        if value:
+            names.append(first)
+        elif names:
+            names[-1] += first
+    expected = [c.name for c in sol.constraints]
+    assert len(names) == len(expected)
+    for shown, name in zip(names, expected, strict=True):
+        assert "…" not in shown
+        assert shown.replace(" ", "") == name.replace(" ", "")

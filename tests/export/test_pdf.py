@@ -377,10 +377,38 @@ def test_each_mat_page_carries_the_fold_map_legend_naming_the_cut_files_operatio
     (path,) = write_files(plan, tmp_path, operations=ops, formats=("pdf",))
     pages = PdfReader(str(path)).pages
     assert len(pages) == len(plan.sheets)
-    rows = [r.text for r in fold_map_legend(ops)]
+    rows = [r.text for r in fold_map_legend(ops, steps=False)]  # its labels carry no step
     assert rows[0].startswith("FOLD MAP: for people, not the cutter")
     assert "(cut file: perforate)" in rows[1]  # the mountains, as the cut file makes them
     for page in pages:
         text = " ".join(page.extract_text().split())
         for row in rows:
             assert " ".join(row.split()) in text, row
+
+
+@pytest.mark.parametrize("paper", ["mat", "a4"])
+def test_the_printed_legend_says_what_the_printed_labels_carry(tmp_path: Path, paper: str) -> None:
+    """The PDF's legend speaks of the labels on its own pages: the fold map's "grey: labels, with
+    the step in the folding order" was printed on pattern.pdf (and the tiled key) whose labels are
+    the parts' names without a step ("L1", not "1. L1"). Read back with pypdf: where the legend
+    says the labels carry a step, each part's name on the page follows its step number."""
+    import re
+
+    from pypdf import PdfReader
+
+    from corrugate.export.machines import get_machine
+    from corrugate.export.operations import default_operations
+
+    a = Assembly.identical(Layer(W=8.0, n=9, alpha_deg=78.0, material=get_material("dura-lar")))
+    plan = plan_sheets(build_pattern(a).parts, "cameo4-12x12")
+    ops = default_operations(get_machine("cameo4-12x12"), "dura-lar")
+    written = write_files(plan, tmp_path, operations=ops, formats=("pdf",), paper=paper)
+    path = [p for p in written if p.suffix == ".pdf"][-1]
+    assert path.name == ("pattern.pdf" if paper == "mat" else f"pattern-{paper}.pdf")
+    text = " ".join(" ".join(p.extract_text().split()) for p in PdfReader(str(path)).pages)
+    names = [p.part.name for p in plan.placements]
+    assert {"L1", "L2", "B1"} <= set(names)
+    assert "grey: labels" in text  # the legend's row on the labels is printed
+    claims_steps = "step in the folding order" in text
+    carries_steps = all(re.search(rf"\b\d+\. {name}\b", text) for name in names)
+    assert claims_steps == carries_steps, (claims_steps, carries_steps)

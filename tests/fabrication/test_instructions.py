@@ -133,3 +133,24 @@ def test_the_cut_panels_title_clears_the_parts_names(shape: str) -> None:
         box = name.get_window_extent(renderer)
         assert not box.overlaps(title), name.get_text()
         assert box.y0 >= ax0.transData.transform(name.xy)[1]  # above the part's top edge
+
+
+@pytest.mark.parametrize(
+    ("alpha1", "alpha2"), [(146.796875, 146.796875), (84.0, 84.0), (74.96, 119.52)]
+)
+def test_the_fold_step_gives_angles_a_protractor_reads(alpha1: float, alpha2: float) -> None:
+    """Step 2's angles at a tenth of a degree at most (a continuous optimum's alpha of
+    146.796875 deg was written "33.2031 deg (facets meet at 146.797 deg)"), each the design's own
+    angle to within 0.05 deg: the fold 180 - alpha and, on identical layers, alpha itself."""
+    m = get_material("polypropylene")
+    a = Assembly(
+        Layer(W=10.5, n=6, alpha_deg=alpha1, material=m),
+        Layer(W=10.5, n=6, alpha_deg=alpha2, material=m),
+        make_layout("circle" if alpha1 == alpha2 else "rectangle"),
+    )
+    step = assembly_steps(a, build_pattern(a))[1]
+    shown = [float(x) for x in re.findall(r"(\d+(?:\.\d+)?) deg", step)]
+    expected = [180 - alpha1, alpha1] if alpha1 == alpha2 else [180 - alpha1, 180 - alpha2]
+    assert shown == pytest.approx(expected, abs=0.05), step
+    for text in re.findall(r"(\d+(?:\.\d+)?) deg", step):
+        assert len(text.partition(".")[2]) <= 1, step

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import base64
 import os
+import re
 import tomllib
 import xml.etree.ElementTree as ET
 from html import escape
@@ -258,6 +259,47 @@ def test_report_opens_in_chromium(report: Path) -> None:
     assert errors == []
 
 
+#: For each table cell but the first of its row: the number of lines its text is drawn on.
+_CELL_LINES = """() => Array.from(document.querySelectorAll('td:not(:first-child)')).map(td => {
+  const range = document.createRange(); range.selectNodeContents(td);
+  return [td.textContent, new Set(Array.from(range.getClientRects(), r => Math.round(r.top))).size];
+})"""
+
+
+@pytest.mark.browser
+def test_report_fits_a_phone_and_keeps_each_value_on_one_line(report: Path) -> None:
+    """report.html in Chromium as a 390 px wide phone (a mobile viewport, which lays a page
+    without a viewport declaration out 980 px wide and shrinks it) and a 1280 px wide window:
+    the page never scrolls sideways (a table wider than the screen scrolls in its own box) and
+    no value cell is broken over lines (the case study's bounds printed "<=" over "250")."""
+    if not CHROMIUM.exists():
+        pytest.skip(f"{CHROMIUM} not found: run `make system-deps` as root")
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as p:
+        browser = p.chromium.launch(
+            executable_path=str(CHROMIUM), headless=True, args=["--no-sandbox", "--disable-gpu"]
+        )
+        try:
+            phone = browser.new_page(
+                viewport={"width": 390, "height": 844}, is_mobile=True, device_scale_factor=2
+            )
+            phone.goto(report.as_uri())
+            phone_width = phone.evaluate(
+                "[document.documentElement.scrollWidth, window.innerWidth]"
+            )
+            phone_cells = phone.evaluate(_CELL_LINES)
+            wide = browser.new_page(viewport={"width": 1280, "height": 1000})
+            wide.goto(report.as_uri())
+            wide_cells = wide.evaluate(_CELL_LINES)
+        finally:
+            browser.close()
+    assert phone_width == [390, 390]
+    for cells in (phone_cells, wide_cells):
+        assert any("<= 250" in text for text, _ in cells)  # the bounds are read
+        assert [(text, lines) for text, lines in cells if lines > 1] == []
+
+
 @pytest.mark.slow
 def test_a_load_case_has_its_figure_and_its_deflection(tmp_path: Path) -> None:
     """A spec with a deflection bound (examples/chassis_plate.toml) gets a 'Load cases' section
@@ -341,7 +383,7 @@ class _Key(HTMLParser):
             self._in
             and self.entries
             and data.strip()
-            and not data.strip().startswith(("━", "★", "■"))
+            and not data.strip().startswith(("━", "╍", "★", "■"))
         ):
             colour, text = self.entries[-1]
             self.entries[-1] = (colour, text + data.strip())
@@ -374,3 +416,21 @@ def test_design_space_key_is_text_naming_each_curve_in_its_colour(
         "".join(t.itertext()) for t in ET.fromstring(svg).iter("{http://www.w3.org/2000/svg}text")
     }
     assert not any(t.startswith("optimum: W ") or t == "feasible" for t in texts)
+
+
+@pytest.mark.slow
+def test_warnings_show_commands_as_code_not_backticks(report: Path, solution: Solution) -> None:
+    """A warning's text names commands and spec keys between backticks, the command line's way
+    (``corrugate docs fea``); the report printed the backticks as they are. Each backtick span is
+    now a ``<code>`` element, and no backtick is left in the warnings' text."""
+    text = report.read_text(encoding="utf-8")
+    section = text.split("<h2>Warnings</h2>", 1)[1].split("<h2>", 1)[0]
+    items = re.findall(r"<li class='warn'>(.*?)</li>", section)
+    messages = [w["message"] for w in solution.warnings]
+    assert len(items) == len(messages) >= 1
+    quoted = [m for m in messages if "`" in m]
+    assert quoted  # the case study's shear warning names `corrugate docs fea`
+    for item, message in zip(items, messages, strict=True):
+        assert "`" not in item
+        for span in re.findall(r"`([^`]+)`", message):
+            assert f"<code>{escape(span, quote=False)}</code>" in item

@@ -77,3 +77,52 @@ def test_init_template_draws_the_directions_in_words() -> None:
     text = template_text()
     assert "eta = 0 deg: along y" in text and "eta = 90 deg: along x" in text
     assert "layer 1's creases run along y" in text and "layer 2's creases run along x" in text
+
+
+@pytest.mark.parametrize(("aspect", "creases"), [(80.36 / 123.84, (12, 11)), (1.0, (10, 10))])
+def test_inkscape_draws_no_eta_label_over_an_arrow(
+    aspect: float, creases: tuple[int, int], tmp_path: Path
+) -> None:
+    """The drawn boxes (Inkscape's ``--query-all``: each element's visual box, an arrow's with its
+    head) of the labels "eta = 0 deg" and "eta = 90 deg" meet neither arrow nor each other (the
+    head of the eta = 0 arrow was drawn over the "e" of its label; the chassis plate's and the
+    case study's drawings)."""
+    import os
+    import shutil
+    import subprocess
+
+    inkscape = shutil.which("inkscape")
+    if inkscape is None:
+        reason = "inkscape not found: run `make system-deps` as root"
+        if os.environ.get("CI", "").strip().lower() in ("true", "1", "yes"):
+            pytest.fail(f"{reason} (required in CI)")
+        pytest.skip(reason)
+    root = ET.fromstring(orientation_svg(aspect, creases))
+    for k, e in enumerate(root.iter()):
+        e.set("id", e.get("id", f"e{k}"))  # the arrowhead's marker keeps its own
+    arrows = [e.get("id") for e in root.iter(f"{NS}line") if e.get("stroke-width") == "2.2"]
+    labels = [e.get("id") for e in root.iter(f"{NS}text") if (e.text or "").startswith("eta = ")]
+    assert len(arrows) == 2 and len(labels) == 2
+    path = tmp_path / "orientation.svg"
+    path.write_bytes(ET.tostring(root))
+    rows = subprocess.run(
+        [inkscape, "--query-all", str(path)],
+        check=True,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    ).stdout.split()
+    box = {}
+    for row in rows:
+        name, *xywh = row.split(",")
+        x, y, w, h = map(float, xywh)
+        box[name] = (x, y, x + w, y + h)
+
+    def meet(a: str, b: str) -> bool:
+        (ax0, ay0, ax1, ay1), (bx0, by0, bx1, by1) = box[a], box[b]
+        return ax0 < bx1 and bx0 < ax1 and ay0 < by1 and by0 < ay1
+
+    for label in labels:
+        for arrow in arrows:
+            assert not meet(label, arrow), (label, arrow, box[label], box[arrow])
+    assert not meet(*labels)

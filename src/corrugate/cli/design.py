@@ -107,7 +107,10 @@ def _print_solution(sol: Solution, console: Console, tightened: bool = False) ->
         title="constraints (binding: relaxing it alone allows a better design)",
         title_justify="left",
     )
-    for col in ("constraint", "value", "bound", "margin", "unit", "binding"):
+    # a name too long for its column folds over lines, never cut to an ellipsis: in an
+    # 80-column terminal the case study's binding EI bound printed "constraints.flexural_rigi…"
+    c.add_column("constraint", justify="right", overflow="fold")
+    for col in ("value", "bound", "margin", "unit", "binding"):
         c.add_column(col, justify="right")
     for r in sol.constraints:
         op = ">=" if r.sense == "min" else "<="

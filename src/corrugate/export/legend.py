@@ -84,10 +84,11 @@ def legend_size(rows: list[LegendRow], size: float) -> tuple[float, float]:
     return _EM_LENGTH * size * longest, _ROW * size * len(rows)
 
 
-def fold_map_legend(ops: object | None = None) -> list[LegendRow]:
+def fold_map_legend(ops: object | None = None, *, steps: bool = True) -> list[LegendRow]:
     """The fold map's legend: for people, not the cutter; each colour's meaning and, with the fold
     operations ``ops`` (a :class:`~corrugate.export.operations.FoldOperations`), what the cut file
-    does with each kind."""
+    does with each kind. ``steps``: the labels start with the part's step in the folding order
+    (the fold map's do; the printed PDF's are the parts' names, and its legend says so)."""
 
     def made(kind: str) -> str:
         op = getattr(ops, kind, None)
@@ -101,7 +102,12 @@ def fold_map_legend(ops: object | None = None) -> list[LegendRow]:
         LegendRow("blue: valley crease, fold away" + made("valley"), LINES["valley"].hex),
         LegendRow("black: outline and holes, cut; green: slit, cut", LINES["cut"].hex),
         LegendRow("magenta: band mark, a crease end sits on it" + made("marks"), LINES["mark"].hex),
-        LegendRow("grey: labels, with the step in the folding order", LINES["note"].hex),
+        LegendRow(
+            "grey: labels, with the step in the folding order"
+            if steps
+            else "grey: labels, the parts' names (as ASSEMBLY.md's steps call them)",
+            LINES["note"].hex,
+        ),
     ]
 
 

@@ -244,7 +244,7 @@ def _draw_legend(
     :func:`printed_labels`, none without labels) that carries its name only; none when no box
     takes it (the page is the sheet: there is no strip to add)."""
     sheet = plan.sheets[number - 1]
-    rows = fold_map_legend(operations)
+    rows = fold_map_legend(operations, steps=False)  # the printed labels carry no step
     rows += [LegendRow(p.full, ANNOTATION) for p in printed if p.full is not None]
     callouts = [p.box for p in printed if p.leader is not None]
     key = legend_spot(sheet, rows, plan.margin, plan.spacing, callouts)
@@ -661,7 +661,7 @@ def key_rows(
     (:func:`~corrugate.export.legend.fold_map_legend`), then for each sheet every labelled part's
     full label ("L1: layer 1: W 8 mm, ..."): a tile shows a part by its name where the full label
     does not fit (:func:`printed_labels`), and a page shows only its window of the sheet."""
-    rows = fold_map_legend(operations)
+    rows = fold_map_legend(operations, steps=False)  # the tiles' labels carry no step
     for number, sheet in enumerate(plan.sheets, start=1):
         parts = [label_text(place(p)) for p in sheet.placements if p.part.label] if labels else []
         if parts:

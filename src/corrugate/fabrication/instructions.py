@@ -44,10 +44,14 @@ def assembly_steps(a: Assembly, pattern: Pattern) -> list[str]:
     bands = [p.name for p in pattern.parts if p.kind == "connector"]
     l1, l2 = a.layer1, a.layer2
     ring = " -> ".join([*bands, bands[0]])
+
+    def deg(angle: float) -> str:  # to the tenth of a degree a protractor is read at, at most
+        return f"{round(angle, 1):g}"
+
     folds = (
-        f"{l1.fold_angle_deg:g} deg (facets meet at {l1.alpha_deg:g} deg)"
+        f"{deg(l1.fold_angle_deg)} deg (facets meet at {deg(l1.alpha_deg)} deg)"
         if l1.alpha_deg == l2.alpha_deg
-        else f"{l1.fold_angle_deg:g} deg on L1 and {l2.fold_angle_deg:g} deg on L2"
+        else f"{deg(l1.fold_angle_deg)} deg on L1 and {deg(l2.fold_angle_deg)} deg on L2"
     )
     glue = adhesive_for(l1.material.id)
     if l2.material.id != l1.material.id:

@@ -100,11 +100,24 @@ def _candidates(a: Analysis) -> tuple[Candidate, Candidate]:
 @dataclass(frozen=True)
 class KeyEntry:
     """One entry of a figure's key: what a mark stands for (``label``), drawn as ``mark`` ("line":
-    a line, "star": the optimum's star, "area": a filled region) in ``colour`` (a hex colour)."""
+    a solid line, "dashed" and "dashdot": a line so drawn, "star": the optimum's star, "area": a
+    filled region) in ``colour`` (a hex colour)."""
 
     label: str
-    mark: Literal["line", "star", "area"]
+    mark: Literal["line", "dashed", "dashdot", "star", "area"]
     colour: str
+
+
+#: A constraint curve's line style, by the round of the colour cycle its colour comes from: a
+#: spec with more constraints than colours (the wheel's 13 against 10) draws the 11th solid curve
+#: and the 1st alike no more. Matplotlib's name of each style and the key's mark of it.
+_CURVE_STYLES: tuple[
+    tuple[Literal["solid", "dashed", "dashdot"], Literal["line", "dashed", "dashdot"]], ...
+] = (
+    ("solid", "line"),
+    ("dashed", "dashed"),
+    ("dashdot", "dashdot"),
+)
 
 
 #: The shade of the feasible region in the design-space figure.
@@ -134,6 +147,7 @@ def design_space(problem: Problem, a: Analysis) -> tuple[Any, list[KeyEntry]]:
     feasible = np.ones(WW.size, dtype=bool)
     colours = matplotlib.rcParams["axes.prop_cycle"].by_key()["color"]
     key: list[KeyEntry] = []
+    curves: list[_Curves] = []  # every labelled contour set, to keep its labels off the star
     for k, c in enumerate(problem.constraints):
         v = values[c.quantity]
         feasible &= c.satisfied(v)
@@ -142,9 +156,15 @@ def design_space(problem: Problem, a: Analysis) -> tuple[Any, list[KeyEntry]]:
         field = (margin / scale).reshape(WW.shape)
         if np.nanmin(field) < 0 < np.nanmax(field):
             colour = colours[k % len(colours)]
-            cs = ax.contour(WW, AA, field, levels=[0.0], colors=[colour], linewidths=1.4)
-            ax.clabel(cs, fmt={0.0: c.name.replace("constraints.", "")}, fontsize=7)
-            key.append(KeyEntry(f"{c.name} ({c.quantity.description})", "line", to_hex(colour)))
+            dashes, mark = _CURVE_STYLES[(k // len(colours)) % len(_CURVE_STYLES)]
+            curve = _Curves(
+                field,
+                {"levels": [0.0], "colors": [colour], "linewidths": 1.4, "linestyles": dashes},
+                {0.0: c.name.replace("constraints.", "")},
+                7,
+            )
+            curves.append(curve.draw(ax, WW, AA))
+            key.append(KeyEntry(f"{c.name} ({c.quantity.description})", mark, to_hex(colour)))
     ax.contourf(
         WW,
         AA,
@@ -155,15 +175,19 @@ def design_space(problem: Problem, a: Analysis) -> tuple[Any, list[KeyEntry]]:
     )
     mass = values[MASS].reshape(WW.shape)
     cm = ax.contour(WW, AA, mass, levels=8, colors="grey", linewidths=0.5, linestyles="dotted")
-    ax.clabel(cm, fmt="%.3g g", fontsize=6)
+    mass_fmt = {float(v): f"{v:.3g} g" for v in cm.levels}  # "%.3g g", level by level
+    ax.clabel(cm, fmt=mass_fmt, fontsize=6)
+    style = {"levels": list(mass_fmt), "colors": "grey", "linewidths": 0.5, "linestyles": "dotted"}
+    curves.append(_Curves(mass, style, mass_fmt, 6, drawn=cm))
     optimum = f"optimum: W {l1.W:g} mm, alpha {l1.alpha_deg:g} deg"
-    ax.plot(
+    (star,) = ax.plot(
         [l1.W],
         [l1.alpha_deg],
         marker="*",
         color="black",
         markersize=14,
         linestyle="none",
+        zorder=4,  # over every curve, those drawn again below too
     )
     key.append(KeyEntry(optimum, "star", "#000000"))
     key.append(KeyEntry("feasible", "area", FEASIBLE_COLOUR))
@@ -173,7 +197,145 @@ def design_space(problem: Problem, a: Analysis) -> tuple[Any, list[KeyEntry]]:
         f"design space at n = {l1.n}: feasible region (continuous), grey: mass (g)", y=_TITLE_Y
     )
     fig.subplots_adjust(**_MARGINS["design_space"])
+    _labels_off_the_star(ax, star, curves, WW, AA)
     return fig, key
+
+
+@dataclass
+class _Curves:
+    """One labelled contour set of the design-space figure: the ``field`` on the (W, alpha) grid,
+    the ``contour`` keywords (its levels and style), each level's label (``fmt``) and the labels'
+    font size (pt); ``drawn``: the set drawn last."""
+
+    field: FloatArray
+    style: dict[str, Any]
+    fmt: dict[float, str]
+    fontsize: float
+    drawn: Any = None
+
+    def draw(
+        self, ax: Any, WW: FloatArray, AA: FloatArray, manual: Sequence[Point2] | bool = False
+    ) -> _Curves:
+        """Draw the curves and label them (matplotlib's places, or at ``manual`` (W, alpha)
+        points: each label on the curve nearest its point); returns itself."""
+        if self.drawn is not None:
+            self.drawn.remove()  # the curves and their labels
+        self.drawn = ax.contour(WW, AA, self.field, **self.style)
+        ax.clabel(self.drawn, fmt=self.fmt, fontsize=self.fontsize, manual=manual)
+        return self
+
+
+Point2 = tuple[float, float]
+
+
+def _quads(cx: Any, cy: Any, w: Any, h: Any, angle: Any) -> FloatArray:
+    """The corners (..., 4, 2) of rectangles of sides ``w`` along and ``h`` across the direction
+    ``angle`` (radians) about the centres (``cx``, ``cy``), in display units."""
+    c, s = np.cos(angle), np.sin(angle)
+    u = np.stack([c * w / 2, s * w / 2], axis=-1)[..., None, :]
+    v = np.stack([-s * h / 2, c * h / 2], axis=-1)[..., None, :]
+    signs = np.array([[1.0, 1.0], [-1.0, 1.0], [-1.0, -1.0], [1.0, -1.0]])
+    centre = np.stack([np.asarray(cx, float), np.asarray(cy, float)], axis=-1)[..., None, :]
+    return np.asarray(centre + signs[:, :1] * u + signs[:, 1:] * v)
+
+
+def _apart(a: FloatArray, b: FloatArray) -> NDArray[np.bool_]:
+    """Whether each rectangle of ``a`` (N, 4, 2) is clear of the rectangle ``b`` (4, 2) (their
+    interiors do not meet): a side of one separates them (the separating axis theorem)."""
+    apart = np.zeros(a.shape[0], dtype=bool)
+    edges = [a[:, 1] - a[:, 0], a[:, 3] - a[:, 0]]
+    edges += [
+        np.broadcast_to(b[1] - b[0], (a.shape[0], 2)),
+        np.broadcast_to(b[3] - b[0], (a.shape[0], 2)),
+    ]
+    for axis in edges:
+        pa = np.einsum("nkd,nd->nk", a, axis)
+        pb = b @ axis.T  # (4, N)
+        apart |= (pa.max(axis=1) <= pb.min(axis=0)) | (pb.max(axis=0) <= pa.min(axis=1))
+    return apart
+
+
+def _text_quad(t: Any, renderer: Any) -> FloatArray:
+    """The rectangle (4, 2) a centred, turned label ``t`` is drawn in (display units): its box
+    unturned, turned by its rotation about the centre of its drawn box."""
+    box = t.get_window_extent(renderer)
+    turned = t.get_rotation()
+    t.set_rotation(0.0)
+    flat = t.get_window_extent(renderer)
+    t.set_rotation(turned)
+    quad = _quads(
+        (box.x0 + box.x1) / 2, (box.y0 + box.y1) / 2, flat.width, flat.height, np.radians(turned)
+    )
+    return np.asarray(quad[0] if quad.ndim == 3 else quad)
+
+
+def _labels_off_the_star(
+    ax: Any, star: Any, curves: Sequence[_Curves], WW: FloatArray, AA: FloatArray
+) -> None:
+    """Move every curve label drawn over the optimum's star to the nearest point of its own curve
+    where it clears the star, the axes' edges and the other labels (the label of a binding
+    constraint, whose curve runs through the optimum, was drawn under the star); a label with no
+    such point is left out (the key under the figure names its curve). A contour set with a label
+    moved is drawn again, its other labels where they were. Labels are the rectangles their text
+    is drawn in, turned along the curve as matplotlib turns them, in display units on the figure
+    as laid out (its margins set)."""
+    renderer = ax.figure.canvas.get_renderer()
+    pad = 2.0  # display units (px at the figure's dpi) kept around the star
+    sb = star.get_window_extent(renderer)
+    star_quad = _quads(
+        (sb.x0 + sb.x1) / 2, (sb.y0 + sb.y1) / 2, sb.width + 2 * pad, sb.height + 2 * pad, 0.0
+    )
+    frame = ax.bbox
+    if not any(
+        t.get_window_extent(renderer).overlaps(sb) for c in curves for t in c.drawn.labelTexts
+    ):
+        return  # no label's drawn box meets the star's: nothing to measure closer
+    quads = {id(t): _text_quad(t, renderer) for c in curves for t in c.drawn.labelTexts}
+    for c in curves:
+        texts = list(c.drawn.labelTexts)
+        under = {id(t) for t in texts if not _apart(quads[id(t)][None], star_quad)[0]}
+        if not under:
+            continue
+        own = {id(t) for t in texts}
+        others = [q for key, q in quads.items() if key not in own] + [star_quad]
+        kept: list[Point2] = []
+        for t in texts:
+            x, y = t.get_position()
+            if id(t) not in under:
+                kept.append((float(x), float(y)))
+                others.append(quads[id(t)])
+                continue
+            turned = t.get_rotation()
+            t.set_rotation(0.0)
+            flat = t.get_window_extent(renderer)  # the text's length and height, unturned
+            t.set_rotation(turned)
+            k = list(c.fmt).index(next(v for v, text in c.fmt.items() if text == t.get_text()))
+            best: tuple[float, Point2, FloatArray] | None = None
+            ox, oy = ax.transData.transform((x, y))
+            for seg in c.drawn.allsegs[k]:
+                if len(seg) < 2:
+                    continue
+                px, py = ax.transData.transform(seg).T
+                angle = np.arctan2(np.gradient(py), np.gradient(px))
+                spots = _quads(px, py, flat.width, flat.height, angle)
+                ok = (spots[..., 0].min(axis=1) >= frame.x0) & (
+                    spots[..., 0].max(axis=1) <= frame.x1
+                )
+                ok &= (spots[..., 1].min(axis=1) >= frame.y0) & (
+                    spots[..., 1].max(axis=1) <= frame.y1
+                )
+                for q in others:
+                    ok &= _apart(spots, q)
+                if not ok.any():
+                    continue
+                far = np.where(ok, np.hypot(px - ox, py - oy), np.inf)
+                j = int(np.argmin(far))
+                if best is None or far[j] < best[0]:
+                    best = (float(far[j]), (float(seg[j, 0]), float(seg[j, 1])), spots[j])
+            if best is not None:
+                kept.append(best[1])
+                others.append(best[2])
+        c.draw(ax, WW, AA, manual=kept)
 
 
 def design_space_figure(problem: Problem, a: Analysis) -> Any:
@@ -192,7 +354,8 @@ def design_space_figure(problem: Problem, a: Analysis) -> Any:
                 Line2D([], [], marker="*", color=e.colour, linestyle="none", label=e.label)
             )
         else:
-            handles.append(Line2D([], [], color=e.colour, label=e.label))
+            dashes = {mark: name for name, mark in _CURVE_STYLES}[e.mark]
+            handles.append(Line2D([], [], color=e.colour, linestyle=dashes, label=e.label))
     fig.axes[0].legend(handles=handles, fontsize=7, loc="best")
     return fig
 
@@ -278,6 +441,8 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
         mass[group] = found.reshape(len(chunk), W1.size)
     lightest = mass.min(axis=1)
     best = np.where(np.isfinite(lightest), lightest, np.nan)
+    from matplotlib.ticker import MaxNLocator
+
     fig = new_figure((7.5, 4.0), dpi=100)
     ax = fig.subplots()
     ax.plot(ns, best, marker="o", markersize=3, linewidth=1)
@@ -293,11 +458,19 @@ def mass_by_n_figure(problem: Problem, a: Analysis, n_max: int = 200) -> Any:
     )
     grid = "the spec's grid" if problem.gridded else f"a {GRID} x {GRID} grid of W and alpha"
     ax.set_xlabel("number of creases n")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # n is a whole number of creases
     ax.set_ylabel("lightest feasible mass (g)")
-    ax.set_title(f"mass against n (best over {grid}; gaps: no feasible design)", y=_TITLE_Y)
+    title = ax.set_title(f"mass against n (best over {grid}; gaps: no feasible design)", y=_TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.subplots_adjust(**_MARGINS["mass_by_n"])
+    # a title wider than the figure (the continuous grid's) is set smaller until it fits: it was
+    # cut at the figure's right edge ("no feasible desigr")
+    centre = (ax.bbox.x0 + ax.bbox.x1) / 2  # the title is centred over the axes
+    room = 2 * min(centre, fig.bbox.width - centre) - fig.dpi * 0.1
+    width = title.get_window_extent().width
+    if width > room:
+        title.set_fontsize(title.get_fontsize() * room / width)
     return fig
 
 

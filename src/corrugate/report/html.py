@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import base64
 import html
+import re
 from typing import TYPE_CHECKING, Any
 
 from corrugate.analysis.evaluate import analyze
@@ -31,8 +32,9 @@ __all__ = ["report_html"]
 _STYLE = """
 body{font-family:system-ui,sans-serif;max-width:60rem;margin:2rem auto;padding:0 1rem;color:#222}
 h1{font-size:1.6rem}h2{font-size:1.2rem;margin-top:2rem;border-bottom:1px solid #ddd}
-table{border-collapse:collapse;margin:.5rem 0}td,th{border:1px solid #ccc;padding:.2rem .5rem;
-text-align:right}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
+.table{overflow-x:auto}table{border-collapse:collapse;margin:.5rem 0}td,th{border:1px solid #ccc;
+padding:.2rem .5rem;text-align:right}th{background:#f3f3f3}td:first-child,th:first-child{text-align:left}
+td+td{white-space:nowrap}
 img{max-width:100%;height:auto}pre{background:#f7f7f7;padding:.75rem;overflow:auto}
 .warn{color:#8a5300}.bind{font-weight:bold}
 .key{list-style:none;padding:0;margin:0 0 1rem;font-size:.85rem}.key .mark{display:inline-block;width:2em}
@@ -58,7 +60,13 @@ def _img_svg(svg: str, alt: str) -> str:
 
 
 #: How :func:`_key` draws each kind of mark (a character in the mark's colour).
-_MARKS = {"line": "&#9473;&#9473;", "star": "&#9733;", "area": "&#9632;"}
+_MARKS = {
+    "line": "&#9473;&#9473;",  # ━━
+    "dashed": "&#9549;&#9549;",  # ╍╍
+    "dashdot": "&#9473;&#183;",  # ━·
+    "star": "&#9733;",
+    "area": "&#9632;",
+}
 
 
 def _key(entries: list[KeyEntry], figure: str) -> str:
@@ -84,12 +92,21 @@ def _directions(aspect: float = 1.6, creases: tuple[int, int] = (7, 4)) -> str:
 
 
 def _table(head: list[str], rows: list[list[str]], classes: list[str] | None = None) -> str:
-    out = ["<table><tr>", *(f"<th>{html.escape(h)}</th>" for h in head), "</tr>"]
+    """A table in a box of its own that scrolls sideways when the table is wider than the page (a
+    phone), every cell but the first of a row on one line (a bound reads "<= 250", not "<=" over
+    "250")."""
+    out = ["<div class='table'><table><tr>", *(f"<th>{html.escape(h)}</th>" for h in head), "</tr>"]
     for i, row in enumerate(rows):
         cls = f' class="{classes[i]}"' if classes and classes[i] else ""
         out.append(f"<tr{cls}>" + "".join(f"<td>{html.escape(c)}</td>" for c in row) + "</tr>")
-    out.append("</table>")
+    out.append("</table></div>")
     return "".join(out)
+
+
+def _inline_code(text: str) -> str:
+    """``text`` as HTML, each span between backticks (a command or a spec key, quoted the command
+    line's way, e.g. corrugate docs fea) a ``<code>`` element rather than printed backticks."""
+    return re.sub(r"`([^`]+)`", r"<code>\1</code>", html.escape(text, quote=False))
 
 
 def _g(x: float | None, digits: int = 5) -> str:
@@ -136,7 +153,8 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
 
     p = sol.problem
     parts: list[str] = [
-        "<!doctype html><html lang='en'><head><meta charset='utf-8'>",
+        "<!doctype html><html lang='en'><head><meta charset='utf-8'>"
+        "<meta name='viewport' content='width=device-width, initial-scale=1'>",
         f"<title>corrugate report: {html.escape(p.name)}</title><style>{_STYLE}</style></head><body>",
         f"<h1>corrugate report: {html.escape(p.name)}</h1>",
     ]
@@ -311,7 +329,7 @@ def report_html(sol: Solution, spec_text: str, cut: CutPlan | None = None) -> st
     parts.append("</ol><h2>Warnings</h2>")
     if sol.warnings:
         parts.append("<ul>")
-        parts.extend(f"<li class='warn'>{html.escape(w['message'])}</li>" for w in sol.warnings)
+        parts.extend(f"<li class='warn'>{_inline_code(w['message'])}</li>" for w in sol.warnings)
         parts.append("</ul>")
     else:
         parts.append("<p>None.</p>")

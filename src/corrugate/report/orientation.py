@@ -67,6 +67,9 @@ def orientation_svg(aspect: float = 1.6, creases: tuple[int, int] = (7, 4)) -> s
     # eta = 0 along y (up), eta = 90 deg along x (right), from the centre
     ry, rx = h / 2 - 6, w / 2 - 6
     arc = 0.3 * min(rx, ry)
+    # an arrowhead is the marker's 7 units of the arrow's 2.2 px stroke across: its labels stand
+    # clear of it, the eta = 0 label right of its head, the eta = 90 deg label below its head
+    head = 7 * 2.2 / 2
     halo = 'stroke="#fff" stroke-width="3" paint-order="stroke"'
     out += [
         f'<line x1="{cx:.1f}" y1="{cy:.1f}" x2="{cx:.1f}" y2="{cy - ry:.1f}" stroke="{_ETA}" '
@@ -76,10 +79,10 @@ def orientation_svg(aspect: float = 1.6, creases: tuple[int, int] = (7, 4)) -> s
         f'<path d="M{cx:.1f},{cy - arc:.1f} A{arc:.1f},{arc:.1f} 0 0 1 '
         f'{cx + arc:.1f},{cy:.1f}" fill="none" stroke="{_ETA}" stroke-width="1" '
         'marker-end="url(#arrow)"/>',
-        f'<text x="{cx + 6:.1f}" y="{cy - ry + 12:.1f}" font-weight="bold" {halo}>'
+        f'<text x="{cx + head + 3:.1f}" y="{cy - ry + 12:.1f}" font-weight="bold" {halo}>'
         "eta = 0 deg</text>",
-        f'<text x="{cx + rx - 4:.1f}" y="{cy + 15:.1f}" font-weight="bold" text-anchor="end" '
-        f"{halo}>eta = 90 deg</text>",
+        f'<text x="{cx + rx - 4:.1f}" y="{cy + head + 12:.1f}" font-weight="bold" '
+        f'text-anchor="end" {halo}>eta = 90 deg</text>',
         f'<text x="{cx + arc * 0.75 + 3:.1f}" y="{cy - arc * 0.75 - 3:.1f}" {halo}>eta</text>',
     ]
     # the axes at the lower left and the sides
