@@ -73,7 +73,7 @@ from pathlib import Path
 from typing import Any
 
 from corrugate.core.errors import CorrugateError, InputError, OutputError, StaleSetError
-from corrugate.core.limits import MAX_PATH_CHARS
+from corrugate.core.limits import MAX_DEPTH, MAX_PATH_CHARS, bracket_depth
 from corrugate.core.text import printable
 
 try:
@@ -93,6 +93,7 @@ __all__ = [
     "atomic_write",
     "check_output_folder",
     "decode_input",
+    "parse_toml_input",
     "read_input",
     "read_input_text",
     "read_manifest",
@@ -938,4 +939,44 @@ def decode_input(raw: bytes, field: str, shown: str) -> str:
     except UnicodeDecodeError as exc:
         raise InputError(
             field, shown, "a UTF-8 text file", reason=f"is not UTF-8 text (byte {exc.start})"
+        ) from None
+
+
+def parse_toml_input(text: str, field: str, shown: str) -> dict[str, Any]:
+    """The tables of the TOML ``text`` of an input file (a materials file, a measurements file),
+    read as untrusted: nesting deeper than :data:`~corrugate.core.limits.MAX_DEPTH` is refused
+    before tomllib recurses into it, an integer longer than Python converts (4300 digits) is named
+    by its line, a syntax error by tomllib's words; each refusal one
+    :class:`~corrugate.core.errors.InputError` line naming ``field`` and ``shown``."""
+    import sys
+    import tomllib
+
+    if bracket_depth(text) > MAX_DEPTH:
+        raise InputError(
+            field,
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
+        )
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
+        raise InputError(field, shown, "valid TOML", reason=f"is not valid TOML ({msg})") from None
+    except ValueError:  # an integer too long to convert (not a TOMLDecodeError)
+        digits = sys.get_int_max_str_digits() or 4300
+        found = re.search("[0-9_]{" + str(digits + 1) + ",}", text)  # one pass, no backtracking
+        line = "" if found is None else f" (line {text.count(chr(10), 0, found.start()) + 1})"
+        raise InputError(
+            field,
+            shown,
+            f"integers of at most {digits} digits",
+            reason=f"has a longer integer{line}",
+        ) from None
+    except RecursionError:  # nesting the bracket count missed (table headers)
+        raise InputError(
+            field,
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
         ) from None

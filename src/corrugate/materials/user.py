@@ -17,7 +17,6 @@ its fit there (:func:`write_entry`, docs/calibration.md section 6).
 from __future__ import annotations
 
 import os
-import tomllib
 from collections.abc import Mapping
 from functools import lru_cache
 from pathlib import Path
@@ -58,14 +57,12 @@ def config_dir() -> Path:
 
 
 def _entries(text: str, shown: str) -> dict[str, Any]:
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
-        raise InputError(
-            "materials file", shown, "valid TOML", reason=f"is not valid TOML ({msg})"
-        ) from None
+    from corrugate.core.fileio import parse_toml_input
+    from corrugate.core.limits import MAX_NAME_CHARS, check_text
+
+    data = parse_toml_input(text, "materials file", shown)
     for key, entry in data.items():
+        check_text(f"{shown} [{key[:MAX_NAME_CHARS]}]", key)  # a material id: at most 200 chars
         if not isinstance(entry, dict):
             raise InputError(f"{shown} [{key}]", repr(entry)[:40], "a table of a material")
     return data
