@@ -1,6 +1,7 @@
 """Hostile materials files (``corrugate-materials.toml`` beside a spec, ``materials.toml`` in the
 config folder) and measurements files: every bad value is one line naming the file, the table and
-the key, exit 2 (never exit 3 with an internal error, never a value accepted unchecked)."""
+the key, exit 2 (never exit 3 with an internal error, never a value accepted unchecked), and no
+name read from a file reaches the terminal with its control characters."""
 
 from __future__ import annotations
 
@@ -86,6 +87,20 @@ def test_a_materials_file_within_the_limits_still_designs(tmp_path: Path, cli: C
     answer = json.loads(out)
     assert answer["status"] == "optimal", answer["status"]
     assert '"material": "mine"' in out  # found by its alias
+
+
+def test_a_material_id_with_escapes_never_reaches_the_terminal(tmp_path: Path, cli: CliRun) -> None:
+    """An unknown material lists the known ids, those of the materials file too: an id holding
+    an escape sequence (a colour, an OSC that retitles the terminal) is listed without its
+    control characters."""
+    (tmp_path / SPEC_FILE).write_text(
+        '["x\\u001b[31mred\\u001b]0;pwned\\u0007"]\nextends = "dura-lar"\n'
+    )
+    code, _, err = cli(["design", str(_spec(tmp_path, "nope")), "-q"])
+    assert (code, err.count("\n")) == (2, 1), err
+    assert "material.name = 'nope' is unknown" in err, err
+    assert "x[31mred]0;pwned" in err, err  # listed, its control characters removed
+    assert not any(ord(c) < 32 and c != "\n" for c in err), repr(err)
 
 
 @pytest.mark.parametrize(

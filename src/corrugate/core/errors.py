@@ -46,10 +46,11 @@ class InputError(CorrugateError, ValueError):
     """A user-supplied value is invalid.
 
     The message names the parameter, the value given and what is allowed, in one line, e.g.
-    ``alpha = 190 deg is out of range: allowed 0 < alpha < 180 deg``. The field and the value are
-    shown without control characters, and a value longer than 100 characters by its first 60
-    and its length (:mod:`corrugate.core.text`): a name or a 4000-digit number from a file never
-    takes over the terminal or the line.
+    ``alpha = 190 deg is out of range: allowed 0 < alpha < 180 deg``. The field, the value and
+    what is allowed (which may list names read from a file: material ids) are shown without
+    control characters, and a value longer than 100 characters by its first 60 and its length
+    (:mod:`corrugate.core.text`): a name or a 4000-digit number from a file never takes over the
+    terminal or the line.
     """
 
     def __init__(self, field: str, value: Any, allowed: str, *, reason: str = "is out of range"):
@@ -58,8 +59,9 @@ class InputError(CorrugateError, ValueError):
         self.allowed = allowed
         self.reason = reason
         shown = clipped(printable(str(value)))
-        super().__init__(
-            f"{clipped(printable(field), tail=True)} = {shown} {reason}: allowed {allowed}"
+        super().__init__(  # the allowed text may list names read from a file (material ids)
+            f"{clipped(printable(field), tail=True)} = {shown} {reason}: "
+            f"allowed {printable(allowed)}"
         )
 
     def renamed(self, field: str, value: Any = None, reason: str | None = None) -> InputError:
