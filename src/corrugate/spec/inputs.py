@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.errors import InputError, UnknownNameError
-from corrugate.core.limits import check
+from corrugate.core.limits import MAX_DEPTH, bracket_depth, check
 from corrugate.core.text import foreign_digits
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, holes_from_data
@@ -170,15 +170,20 @@ def parse_holes(value: object) -> tuple[Hole, ...]:
     if value is None:
         return ()
     if isinstance(value, str):
-        try:
-            value = json.loads(value)
-        except json.JSONDecodeError:
+        example = (
+            'a JSON list, e.g. \'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\''
+        )
+        if bracket_depth(value) > MAX_DEPTH:  # before json recurses into it
             raise InputError(
                 "holes",
-                repr(value),
-                'a JSON list, e.g. \'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'',
-                reason="cannot be read",
-            ) from None
+                value,
+                f"{example}, nested at most {MAX_DEPTH} deep",
+                reason="is nested too deeply",
+            )
+        try:
+            value = json.loads(value)
+        except ValueError:  # also a number of more than 4300 digits, beyond int()
+            raise InputError("holes", repr(value), example, reason="cannot be read") from None
     return holes_from_data(value, "holes")
 
 
