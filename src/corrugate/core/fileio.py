@@ -176,7 +176,8 @@ def _remove(path: Path) -> None:
 
 def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") -> Path:
     """``folder`` as an output folder, refused (:class:`~corrugate.core.errors.OutputError`
-    naming ``field``) when it is empty, the root or a system folder (:data:`SYSTEM_FOLDERS`),
+    naming ``field``) when it is empty, longer than :data:`~corrugate.core.limits.MAX_PATH_CHARS`
+    or with a folder name longer than 200 characters, the root or a system folder (:data:`SYSTEM_FOLDERS`),
     inside a pseudo file system (:data:`SYSTEM_TREES`), the user's home folder itself, or the
     working folder or one of its ancestors (a set's files would land among the user's own, and a
     later set of the same kind removes the earlier one's files there); returns the path with
@@ -184,8 +185,15 @@ def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") ->
     text = os.fspath(folder)
     if not str(text).strip():
         raise OutputError(field, repr(text), "an empty path: name a folder, e.g. out/my-part")
-    real = Path(os.path.realpath(text))
     shown = _short(text)
+    absolute = os.path.abspath(text)  # before the OS sees it: ENAMETOOLONG names no option
+    if len(absolute) > MAX_PATH_CHARS or any(len(part) > 200 for part in Path(absolute).parts):
+        raise OutputError(
+            field,
+            shown,
+            f"the path is too long: at most {MAX_PATH_CHARS} characters, 200 a folder name",
+        )
+    real = Path(os.path.realpath(text))
     if str(real) in SYSTEM_FOLDERS:
         raise OutputError(field, shown, f"{real} is a system folder: name a folder of your own")
     for tree in SYSTEM_TREES:
@@ -681,11 +689,7 @@ class FolderStaging(Staging):
         self.folder = Path(os.path.realpath(given)) if given.is_symlink() else given
         self.field = field
         self.kind = kind
-        self._abs = os.path.abspath(given)
-        if len(self._abs) > MAX_PATH_CHARS or any(
-            len(part) > 200 for part in Path(self._abs).parts
-        ):
-            raise OutputError(field, _short(self.folder), "the path is too long")
+        self._abs = os.path.abspath(given)  # its length checked by check_output_folder
         if self.folder.exists() and not self.folder.is_dir():
             raise OutputError(field, _short(self.folder), "it is a file, not a folder")
         self._created = not self.folder.is_dir()
