@@ -1308,13 +1308,16 @@ def _add_jobs(
     )
     async def job_events(job_id: str, request: Request) -> Response:
         """``text/event-stream``: every ``progress`` event (``id`` its sequence number;
-        ``Last-Event-ID`` resumes after it), then one event named ``done``, ``failed`` or
-        ``cancelled`` carrying the job's state, and the stream ends."""
+        ``Last-Event-ID`` resumes after it, an id it did not give replays from the start), then
+        one event named ``done``, ``failed`` or ``cancelled`` carrying the job's state, and the
+        stream ends."""
         job = jobs.get(job_id)
         if job is None:
             return missing()
         last = request.headers.get("last-event-id", "0")
-        after = int(last) if last.isdigit() else 0
+        # an id this stream gave (ASCII digits): "²" is a digit to str.isdigit, not to int(), and
+        # 5000 digits are beyond int(); any other id replays from the start
+        after = int(last) if last.isascii() and last.isdigit() and len(last) <= 18 else 0
         return StreamingResponse(
             sse(job, after),
             media_type="text/event-stream",
