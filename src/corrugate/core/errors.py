@@ -93,6 +93,7 @@ class OutputError(CorrugateError, OSError):
     def __init__(self, field: str, path: object, reason: str):
         self.field = field
         self.path = path
+        self.reason = reason  # the OS's words: what the web app says without the path
         super().__init__(
             f"{printable(field)} = {printable(str(path))} cannot be written ({reason}): "
             "allowed a writable folder"
