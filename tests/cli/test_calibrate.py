@@ -151,3 +151,27 @@ def test_a_materials_file_it_cannot_read_or_write_is_one_line_before_the_fit(
     assert words in err and out == "", err
     assert not (tmp_path / "fit.png").exists()  # refused before the fit and its figure
     assert (tmp_path / "fifo").is_fifo()
+
+
+@pytest.mark.parametrize(
+    ("target", "words"),
+    [("folder", "Is a directory"), ("a" * 300, "File name too long")],
+)
+def test_a_plot_it_cannot_write_is_one_line_naming_plot(
+    tmp_path: Path,
+    cli: CliRun,
+    readings: str,
+    monkeypatch: pytest.MonkeyPatch,
+    target: str,
+    words: str,
+) -> None:
+    """The OS error named the staged file beside the target ('.folder.corrugate-...tmp cannot
+    be used (Is a directory)'), not the option."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "measurements.toml").write_text(readings)
+    (tmp_path / "folder").mkdir()
+    code, _, err = cli(["calibrate", "fit", "measurements.toml", "--plot", target, "-q"])
+    assert code == 2, err
+    assert err.count("\n") == 1 and err.startswith("corrugate: error: --plot = "), err
+    assert f"cannot be written ({words})" in err and ".corrugate-" not in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["folder", "measurements.toml"]

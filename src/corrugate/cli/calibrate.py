@@ -136,7 +136,7 @@ def fit_cmd(
         existing_text(target, "--materials" if materials is not None else "materials file")
     fit = fit_measurements(m, seed=seed)
     figure_path = plot if plot is not None else measurements.parent / "fit.png"
-    atomic_write(figure_path, png_bytes(fit_figure(fit)))
+    atomic_write(figure_path, png_bytes(fit_figure(fit)), "--plot")
     entry = material_entry(fit)
     saved = None
     if save:

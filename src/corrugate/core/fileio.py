@@ -853,17 +853,27 @@ def write_set(
     return [out / name for name in files]
 
 
-def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
+def atomic_write(path: str | os.PathLike[str], data: str | bytes, field: str | None = None) -> Path:
     """Write ``data`` (text as UTF-8) to ``path`` all or nothing; returns the path.
 
-    The parent folder is created if missing."""
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    with staged() as st:
-        tmp = st.path(path)
-        if isinstance(data, bytes):
-            tmp.write_bytes(data)
-        else:
-            tmp.write_text(data, encoding="utf-8")
+    The parent folder is created if missing. With ``field`` (the option that named ``path``),
+    an OS error is one :class:`~corrugate.core.errors.OutputError` line naming it and ``path``
+    (not the staged file beside it, which the OS names)."""
+    try:
+        Path(path).parent.mkdir(parents=True, exist_ok=True)
+        if Path(path).is_dir():
+            raise IsADirectoryError(errno.EISDIR, "Is a directory", os.fspath(path))
+        with staged() as st:
+            tmp = st.path(path)
+            if isinstance(data, bytes):
+                tmp.write_bytes(data)
+            else:
+                tmp.write_text(data, encoding="utf-8")
+    except OSError as exc:
+        if field is None or isinstance(exc, CorrugateError):
+            raise
+        reason = exc.strerror or type(exc).__name__
+        raise OutputError(field, _short(os.fspath(path)), reason) from None
     return Path(path)
 
 

@@ -164,9 +164,7 @@ def write_entry(
     (its comments are not kept) and this one last. The whole text is checked before it is
     written, all or nothing; a file that cannot be read or written (a folder, a FIFO, not UTF-8,
     a name too long, a folder of ``/proc``) is one error line naming ``field``."""
-    from corrugate.core.errors import OutputError
     from corrugate.core.fileio import atomic_write
-    from corrugate.core.text import clipped
 
     p = Path(path)
     old = existing_text(p, field)
@@ -178,11 +176,7 @@ def write_entry(
     text = old.rstrip("\n") + "\n\n" + entry_text(key, entry)
     for k, e in _entries(text, p.name).items():
         _material(k, e, p.name)
-    try:
-        return atomic_write(p, text)
-    except OSError as exc:  # its staged file's name would be shown: the target's instead
-        shown = clipped(str(p), tail=True)
-        raise OutputError(field, shown, exc.strerror or type(exc).__name__) from None
+    return atomic_write(p, text, field)
 
 
 def existing_text(path: Path, field: str) -> str:
