@@ -114,3 +114,17 @@ def test_a_hostile_measurements_file_is_one_line(
     code, _, err = cli(["calibrate", "fit", str(path)])
     assert (code, err.count("\n")) == (2, 1), err
     assert f"MEASUREMENTS = {path}" in err and allowed in err, err
+
+
+def test_an_unknown_material_lists_at_most_50_names(tmp_path: Path, cli: CliRun) -> None:
+    """A materials file of 30 000 tables (1 MiB) made the unknown-name error one line of 300 kB
+    listing every id; it lists the first 50 (sorted) and how many more."""
+    text = "".join(f'[m{i:05d}]\nextends = "dura-lar"\n' for i in range(30_000))
+    assert len(text.encode()) < 1 << 20  # within the file's cap: read, not refused for size
+    (tmp_path / SPEC_FILE).write_text(text)
+    code, _, err = cli(["design", str(_spec(tmp_path, "nope")), "-q"])
+    assert (code, err.count("\n")) == (2, 1), err[:300]
+    assert err.rstrip().endswith(" and 29962 more"), err[-200:]  # 12 library ids + 30 000
+    assert len(err) < 1000
+    # the 6 library ids before "m", then m00000 to m00043: 50
+    assert "acetate, aluminium-shim" in err and "m00043" in err and "m00044" not in err

@@ -11,6 +11,7 @@ from typing import Any
 from corrugate.core.text import clipped, printable
 
 __all__ = [
+    "SHOWN_NAMES",
     "CorrugateError",
     "InputError",
     "MissingExtraError",
@@ -75,13 +76,20 @@ class InputError(CorrugateError, ValueError):
         )
 
 
+#: Most names an unknown name's error lists (a materials file may hold thousands of tables).
+SHOWN_NAMES = 50
+
+
 class UnknownNameError(InputError, KeyError):
-    """A name (material, model, layout, ...) that is not in its registry."""
+    """A name (material, model, layout, ...) that is not in its registry; the message lists the
+    known names, the first :data:`SHOWN_NAMES` of them and how many more."""
 
     def __init__(self, field: str, value: str, known: list[str] | tuple[str, ...]):
-        super().__init__(
-            field, repr(value), "one of " + ", ".join(sorted(known)), reason="is unknown"
-        )
+        names = sorted(known)
+        shown = ", ".join(names[:SHOWN_NAMES])
+        if len(names) > SHOWN_NAMES:
+            shown += f" and {len(names) - SHOWN_NAMES} more"
+        super().__init__(field, repr(value), "one of " + shown, reason="is unknown")
 
     def __str__(self) -> str:  # KeyError would otherwise quote the message
         return str(self.args[0])
