@@ -140,6 +140,14 @@ def test_the_buckling_lines_are_the_directions_asked_for(cli: CliRun) -> None:
         (["--layout", "hexagon"], "layout", "polygon"),
         (["--W", "3 GPa"], "W", "mm"),
         (["--W2", "9", "--layout", "square"], "layout", "rectangle"),
+        # JSON beyond int() (4300 digits: ValueError, exit 3 before) and nested 20 000 deep
+        # (RecursionError: a line not naming --holes before)
+        (["--holes", "[1" + "0" * 5000 + "]"], "holes", "a JSON list"),
+        (["--holes", "[" * 20_000 + "]" * 20_000], "holes", "nested at most 16 deep"),
+        (["--holes", '[{"shape": "circle", "diameter": 1' + "0" * 400 + "}]"], "holes[0]", "30"),
+        # float() reads full-width digits: "１" was taken as 1
+        (["--layout", "polygon", "--vertices", "0,0 \uff11,0 0,1"], "vertices", "0-9"),
+        (["--holes", json.dumps([{"center": [0, 0], "diameter": 1}] * 17)], "holes", "16 holes"),
     ],
 )
 def test_bad_input_one_line_exit_2(extra: list[str], field: str, allowed: str, cli: CliRun) -> None:

@@ -5,6 +5,7 @@ readings refused in one line naming the field (exit 2)."""
 from __future__ import annotations
 
 import json
+import os
 import re
 import tomllib
 from pathlib import Path
@@ -114,3 +115,63 @@ def test_bad_readings_are_one_line_naming_the_field(
     assert code == 2 and out == ""
     assert err.count("\n") == 1 and err.startswith("corrugate: error: "), err
     assert field in err, err
+
+
+@pytest.mark.parametrize(
+    ("target", "words"),
+    [
+        ("folder", "is a folder"),  # the staged file's name was shown: '.folder.corrugate-...tmp'
+        ("fifo", "is a FIFO"),  # replaced by a regular file, silently
+        ("latin1.toml", "is not UTF-8 text"),  # exit 3: UnicodeDecodeError
+        ("bom.toml", "byte-order mark"),  # "not valid TOML (Invalid statement ...)"
+        ("a" * 300, "File name too long"),  # after the fit, naming no option
+        ("afile/m.toml", "Not a directory"),  # 'afile cannot be used (File exists)'
+    ],
+)
+def test_a_materials_file_it_cannot_read_or_write_is_one_line_before_the_fit(
+    tmp_path: Path,
+    cli: CliRun,
+    readings: str,
+    monkeypatch: pytest.MonkeyPatch,
+    target: str,
+    words: str,
+) -> None:
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "measurements.toml").write_text(readings)
+    (tmp_path / "folder").mkdir()
+    os.mkfifo(tmp_path / "fifo")
+    (tmp_path / "latin1.toml").write_bytes(b'[x]\nextends = "dura-lar"\nname = "\xe9"\n')
+    (tmp_path / "bom.toml").write_bytes(b'\xef\xbb\xbf[x]\nextends = "dura-lar"\n')
+    (tmp_path / "afile").write_text("")
+    code, out, err = cli(
+        ["calibrate", "fit", "measurements.toml", "--save", "--materials", target, "-q"]
+    )
+    assert code == 2, err
+    assert err.count("\n") == 1 and err.startswith("corrugate: error: --materials = "), err
+    assert words in err and out == "", err
+    assert not (tmp_path / "fit.png").exists()  # refused before the fit and its figure
+    assert (tmp_path / "fifo").is_fifo()
+
+
+@pytest.mark.parametrize(
+    ("target", "words"),
+    [("folder", "Is a directory"), ("a" * 300, "File name too long")],
+)
+def test_a_plot_it_cannot_write_is_one_line_naming_plot(
+    tmp_path: Path,
+    cli: CliRun,
+    readings: str,
+    monkeypatch: pytest.MonkeyPatch,
+    target: str,
+    words: str,
+) -> None:
+    """The OS error named the staged file beside the target ('.folder.corrugate-...tmp cannot
+    be used (Is a directory)'), not the option."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "measurements.toml").write_text(readings)
+    (tmp_path / "folder").mkdir()
+    code, _, err = cli(["calibrate", "fit", "measurements.toml", "--plot", target, "-q"])
+    assert code == 2, err
+    assert err.count("\n") == 1 and err.startswith("corrugate: error: --plot = "), err
+    assert f"cannot be written ({words})" in err and ".corrugate-" not in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["folder", "measurements.toml"]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -114,6 +115,20 @@ def test_circle_and_polygon_patterns(tmp_path: Path, cli: CliRun) -> None:
         assert len(doc.modelspace().query('LINE[layer=="VALLEY-PERFORATE"]')) > 0
 
 
+#: 17 small circles on a 2 mm grid, and a 257-gon of radius 40 mm: one past each cap of
+#: corrugate.core.limits.MAX_COUNTS
+HOLES_17 = json.dumps(
+    [
+        {"shape": "circle", "diameter": 0.5, "center": [2.0 * (i % 5), 2.0 * (i // 5)]}
+        for i in range(17)
+    ]
+)
+POLYGON_257 = " ".join(
+    f"{40 * math.cos(2 * math.pi * k / 257):.4f},{40 * math.sin(2 * math.pi * k / 257):.4f}"
+    for k in range(257)
+)
+
+
 @pytest.mark.parametrize(
     ("extra", "message"),
     [
@@ -122,6 +137,10 @@ def test_circle_and_polygon_patterns(tmp_path: Path, cli: CliRun) -> None:
         (["--cutter", "plotter-9000"], "cutter = 'plotter-9000' is unknown"),
         (["--fold-style", "dotted"], "fold-line style = 'dotted' is unknown"),
         (["--alpha", "200"], "alpha = 200 deg is out of range"),
+        # as many holes or outline vertices as a spec may have (400 holes ran past 2 minutes and
+        # 4 GB before the cap)
+        (["--holes", HOLES_17], "holes = 17 holes has too many items: allowed at most 16 holes"),
+        (["--layout", "polygon", "--vertices", POLYGON_257], "at most 256 vertices"),
     ],
 )
 def test_bad_options_leave_no_file(

@@ -57,6 +57,22 @@ def test_bad_stdin_is_one_line_naming_stdin() -> None:
     assert r.stderr.count("\n") == 1 and "<stdin>" in r.stderr and "TOML" in r.stderr
 
 
+def test_a_spec_saved_with_a_byte_order_mark_is_one_line_saying_so(tmp_path: Path) -> None:
+    """A UTF-8 BOM (as some editors save) made tomllib say "Invalid statement (at line 1, column
+    1)" of a file that looks right in the editor: the line says what is there and what to do,
+    for a file and for standard input."""
+    text = "\ufeff" + corrugate("init").stdout
+    path = tmp_path / "bom.toml"
+    path.write_bytes(text.encode("utf-8"))
+    assert path.read_bytes()[:3] == b"\xef\xbb\xbf"
+    for r in (corrugate("design", str(path)), corrugate("design", "-", stdin=text)):
+        assert r.returncode == 2 and r.stderr.count("\n") == 1, r.stderr
+        assert "byte-order mark (BOM): save it as UTF-8 without BOM" in r.stderr, r.stderr
+    # the same text without the mark designs
+    path.write_text(text.removeprefix("\ufeff"), encoding="utf-8")
+    assert corrugate("design", str(path), "-q").returncode == 0
+
+
 def test_init_example_and_list() -> None:
     listed = corrugate("init", "--list").stdout.split()
     assert "wheel_circle" in listed

@@ -325,3 +325,33 @@ def test_jobs_and_scheduler_are_checked_before_any_run(cli: CliRun, square: Path
     code, _, err = cli(["verify", str(square), "--jobs", "2", "--scheduler", "tcp://127.0.0.1:1"])
     assert code == 2
     _one_error_line(err, "--jobs", "not both")
+
+
+@pytest.mark.parametrize(
+    ("workdir", "reason"),
+    [
+        ("/proc/corrugate-work", "No such file or directory"),  # /proc takes no folder
+        ("a" * 300, "File name too long"),  # NAME_MAX is 255
+        ("afile/work", "Not a directory"),  # under a file
+    ],
+)
+def test_a_workdir_that_cannot_be_made_is_one_line_naming_it_before_any_run(
+    cli: CliRun,
+    square: Path,
+    tmp_path: Path,
+    monkeypatch: pytest.MonkeyPatch,
+    workdir: str,
+    reason: str,
+) -> None:
+    """The work folder was first made by the first CalculiX run: the OS error named no option
+    ("/proc/corrugate-work cannot be used (No such file or directory)"), after the mesh was
+    built; verify and validate now make it with their other checks."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "afile").write_text("")
+    for args in (
+        ["verify", str(square)],
+        ["validate", "--W", "8", "--n", "8", "--alpha", "84", "--no-pure-bending"],
+    ):
+        code, _, err = cli([*args, "--workdir", workdir])
+        assert code == 2, (args, err)
+        _one_error_line(err, "error: workdir = ", f"cannot be made ({reason})")

@@ -283,3 +283,25 @@ def test_full_width_digits_in_a_spec_quantity_are_refused() -> None:
         parse_spec(data)
     assert exc.value.field == "constraints.side.min"
     assert "digits other than 0-9" in str(exc.value)
+
+
+@pytest.mark.parametrize(
+    ("value", "shown"),
+    [
+        ("1" + "0" * 5000, "an integer of 5001 digits is too long: at most 30"),
+        ("x\x1b[31m\x1b]0;pwned\x07", "x[31m]0;pwned is not an integer written in 0-9"),
+        ("\u202e1e9", "1e9 is not an integer written in 0-9"),
+    ],
+)
+def test_a_bad_integer_option_is_shown_short_and_without_control_characters(
+    value: str, shown: str
+) -> None:
+    """click echoed a ValueError's value whole: ``tolerance --samples`` of 5000 digits (beyond
+    int()) was a 5 kB line, an escape sequence reached the terminal as written; now the value
+    is its length, or shown without its control characters (exit 2, click's usage error)."""
+    code, out, err = run_cli(["tolerance", str(SPEC), "--samples", value])
+    assert code == 2 and out == "", (code, err[-300:])
+    assert f"Invalid value for '--samples': {shown}" in err, err[-300:]
+    assert len(err) < 400, len(err)
+    assert not any(ord(c) < 32 and c != "\n" for c in err), repr(err)
+    assert "\u202e" not in err

@@ -165,11 +165,27 @@ def test_design_refuses_hostile_values_naming_the_field(
     _refused(api, "/api/design", body, field)
 
 
-def test_a_4400_digit_integer_is_a_client_error(api: TestClient) -> None:
-    """Python's JSON reader refuses an integer of more than 4300 digits: 400 naming the body."""
+@pytest.mark.parametrize("route", ["/api/design", "/api/analyze", "/api/pattern"])
+def test_a_4400_digit_integer_is_422_naming_its_key(api: TestClient, route: str) -> None:
+    """Python's JSON reader refuses an integer of more than 4300 digits (a ValueError, not a
+    JSONDecodeError), which FastAPI's reader answered 400 "There was an error parsing the body",
+    naming no key: 422 naming the key, as an integer of 31 to 4300 digits is."""
+    body = BLIMP_GRIPPER if route == "/api/design" else LAYER
     r = api.post(
-        "/api/design",
-        content=json.dumps(BLIMP_GRIPPER)[:-1] + ', "robust": {"seed": ' + "9" * 4400 + "}}",
+        route,
+        content=json.dumps(body)[:-1] + ', "robust": {"seed": ' + "9" * 4400 + "}}",
         headers={"content-type": "application/json"},
     )
-    assert r.status_code == 400 and r.json()["field"] == "body", r.text[:300]
+    assert r.status_code == 422, r.text[:300]
+    answer = r.json()
+    assert answer["field"] == "seed", answer
+    assert answer["detail"] == (
+        "seed = an integer of 4400 digits is too long: allowed a number of at most 30 digits"
+    )
+    # the same body as plain digits within int()'s reach: the same key named by the route
+    r = api.post(
+        route,
+        content=json.dumps(body)[:-1] + ', "robust": {"seed": ' + "9" * 4000 + "}}",
+        headers={"content-type": "application/json"},
+    )
+    assert r.status_code == 422 and r.json()["field"].endswith("seed"), r.text[:300]

@@ -168,6 +168,29 @@ def test_a_design_job_streams_progress_and_ends_with_the_answer_of_post_design(
     assert rest[-1][0] == "done"
 
 
+@pytest.mark.parametrize("last", ["9" * 5000, "\u00b2", "-1", "1e3"])
+def test_a_last_event_id_it_did_not_give_replays_the_stream(
+    last: str, served: tuple[str, FastAPI]
+) -> None:
+    """A Last-Event-ID that is no id of the stream (5000 digits, beyond int(); "²", a digit to
+    str.isdigit that int() refuses: both a 422 "internal error (ValueError ...)" and a traceback
+    in the server's log before) replays the stream from its first event, as a missing one."""
+    base, _ = served
+    status, job = post_json(base, "/api/jobs/design", spec_of("blimp_gripper.toml"))
+    assert status == 202, job
+    whole = events(base, job["id"])
+    req = urllib.request.Request(
+        f"{base}/api/jobs/{job['id']}/events", headers={"last-event-id": last}
+    )
+    with urllib.request.urlopen(req, timeout=60) as r:
+        assert r.status == 200
+        again = [(k, json.loads(d)) for k, d, _ in parse_sse(r)]
+    assert [e.get("seq") for k, e in again if k == "progress"] == [
+        e["seq"] for k, e in whole if k == "progress"
+    ]
+    assert again[-1][0] == "done"
+
+
 def test_bad_input_is_422_before_anything_is_queued(served: tuple[str, FastAPI]) -> None:
     base, app = served
     before = len(app.state.jobs)

@@ -97,6 +97,8 @@ def test_every_example_file_reads_into_its_keys(client: TestClient, path: Path) 
         ("name = ", "spec", "is not valid TOML"),
         ('[constraints]\nside = { min = "50 kg" }\n', "constraints.side.min", "50 kg"),
         ("[fabrication]\nmachine = 'cameo3'\n", "fabrication.machine", "cameo3"),
+        # a file saved with a UTF-8 byte-order mark: "Invalid statement (at line 1, column 1)"
+        ('\ufeffname = "x"\n', "spec", "byte-order mark (BOM)"),
     ],
 )
 def test_a_bad_file_is_422_naming_the_key(

@@ -35,7 +35,6 @@ what is allowed.
 from __future__ import annotations
 
 import math
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -258,15 +257,9 @@ def parse_measurements(data: dict[str, Any]) -> Measurements:
 
 def load_measurements(path: str | Path) -> Measurements:
     """Read and check the measurements file ``path`` (TOML)."""
-    from corrugate.core.fileio import read_input_text
+    from corrugate.core.fileio import parse_toml_input, read_input_text
 
     # a regular file only, size-capped, strict UTF-8 (read as untrusted input)
     text = read_input_text(path, "MEASUREMENTS", MAX_BYTES)
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
-        raise InputError(
-            "MEASUREMENTS", str(path), "a valid TOML file", reason=f"is not valid TOML ({msg})"
-        ) from None
+    data = parse_toml_input(text, "MEASUREMENTS", str(path))
     return parse_measurements(data)

@@ -128,17 +128,20 @@ def fit_cmd(
     from corrugate.calibration.plot import fit_figure
     from corrugate.core.fileio import atomic_write
     from corrugate.core.plotting import png_bytes
-    from corrugate.materials.user import CONFIG_FILE, config_dir, write_entry
+    from corrugate.materials.user import CONFIG_FILE, config_dir, existing_text, write_entry
 
     m = load_measurements(measurements)
+    target = materials if materials is not None else config_dir() / CONFIG_FILE
+    if save:  # a materials file that cannot be read is named before the fit and the figure
+        existing_text(target, "--materials" if materials is not None else "materials file")
     fit = fit_measurements(m, seed=seed)
     figure_path = plot if plot is not None else measurements.parent / "fit.png"
-    atomic_write(figure_path, png_bytes(fit_figure(fit)))
+    atomic_write(figure_path, png_bytes(fit_figure(fit)), "--plot")
     entry = material_entry(fit)
     saved = None
     if save:
-        target = materials if materials is not None else config_dir() / CONFIG_FILE
-        saved = write_entry(target, m.name, entry)
+        field = "--materials" if materials is not None else "materials file"
+        saved = write_entry(target, m.name, entry, field)
     if as_json:
 
         def num(x: float) -> float | None:

@@ -407,12 +407,12 @@ def _request(
     from corrugate.spec.schema import load_spec_text
     from corrugate.workflow import DesignRequest, Output, made_for, output_options, resolve_machine
 
-    if out is not None and out.exists() and not out.is_dir():
-        raise InputError("--out", str(out), "a directory", reason="is a file")
-    if out is not None:  # the root, a system folder, home, the working folder: before solving
+    if out is not None:  # too long, the root, a system folder, home, the working folder
         from corrugate.core.fileio import check_output_folder
 
-        check_output_folder(out)
+        check_output_folder(out)  # before solving, and before out.exists() asks the OS
+    if out is not None and out.exists() and not out.is_dir():
+        raise InputError("--out", str(out), "a directory", reason="is a file")
     if paper.strip().lower() not in PAPER_NAMES:  # checked with or without --out; the writers
         from corrugate.export.pdf import check_paper  # (export) only for its message: not --json's
 

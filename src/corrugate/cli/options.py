@@ -19,6 +19,7 @@ from typing import Annotated, Any
 
 import typer
 
+from corrugate.core.limits import MAX_INT_DIGITS
 from corrugate.core.parameters import (
     DESIGN_PARAMETERS,
     LOAD_CASE_PARAMETERS,
@@ -56,17 +57,29 @@ def _ascii(number: type[int] | type[float]) -> Callable[[Any], Any]:
     """A typer ``parser`` reading an int or a float written in the digits 0-9 only: click's
     INT and FLOAT call ``int`` and ``float``, which read full-width and other scripts' digits
     (``int("８")`` is 8); those are refused as an invalid value of the option (exit 2), as the
-    table's options and the spec refuse them (:func:`corrugate.core.text.foreign_digits`)."""
+    table's options and the spec refuse them (:func:`corrugate.core.text.foreign_digits`). A
+    value that is no number is shown cut short (an integer of 5000 digits, beyond ``int()``,
+    by its first 60 and its length), without control characters."""
 
     def parse(value: Any) -> Any:
         if isinstance(value, int | float) and not isinstance(value, bool):
             return number(value)
-        from corrugate.core.text import foreign_digits
+        from corrugate.core.text import clipped, foreign_digits, printable
 
         text = str(value)
+        shown = clipped(printable(text))  # click would echo a ValueError's value whole
         if foreign_digits(text):
-            raise ValueError(f"{text!r} has digits other than 0-9: write it in 0-9")
-        return number(text)
+            raise typer.BadParameter(f"{shown!r} has digits other than 0-9: write it in 0-9")
+        try:
+            return number(text)
+        except ValueError:
+            digits = text.strip().lstrip("+-")
+            if digits.isascii() and digits.isdigit():  # more than 4300 digits: beyond int()
+                raise typer.BadParameter(
+                    f"an integer of {len(digits)} digits is too long: at most {MAX_INT_DIGITS}"
+                ) from None
+            what = "an integer" if number is int else "a number"
+            raise typer.BadParameter(f"{shown} is not {what} written in 0-9") from None
 
     parse.__name__ = number.__name__  # what --help shows: <int>, <float>
     return parse

@@ -17,6 +17,7 @@ __all__ = [
     "LOOPBACK_HOSTS",
     "MAX_CONNECTIONS",
     "RESERVED_FDS",
+    "check_listen",
     "connection_limit",
     "serve_cmd",
 ]
@@ -93,6 +94,7 @@ def serve_cmd(
     from corrugate.web import WebSettings, create_app
     from corrugate.web.app import LOOPBACK_NAMES
 
+    check_listen(host, port)  # before the worker processes start, and before any warning
     loopback = host in LOOPBACK_HOSTS
     if not loopback:
         typer.echo(
@@ -125,6 +127,55 @@ def serve_cmd(
     app = create_app(settings)
     server = _server(app, host, port)
     server.run()
+
+
+def check_listen(host: str, port: int) -> None:
+    """Refuse ``--host`` and ``--port`` the server could not listen on, one
+    :class:`~corrugate.core.errors.InputError` line each: a name that does not resolve, an
+    address that is not this machine's, a port in use or one this user may not bind (below 1024).
+    Each address the name resolves to is bound once and released, as uvicorn's listener binds
+    them (``SO_REUSEADDR``); uvicorn itself logs such an error and exits with its code 3, which
+    is corrugate's exit code for a bug."""
+    import errno
+    import socket
+
+    from corrugate.core.errors import InputError
+
+    try:
+        found = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM, flags=socket.AI_PASSIVE)
+    except (socket.gaierror, UnicodeError) as exc:
+        why = exc.strerror if isinstance(exc, socket.gaierror) else "not a host name"
+        raise InputError(
+            "--host",
+            host,
+            "a name or address of this machine, e.g. 127.0.0.1, ::1 or 0.0.0.0",
+            reason=f"cannot be resolved ({why})",
+        ) from None
+    for family, kind, proto, _, address in found:
+        with socket.socket(family, kind, proto) as sock:
+            sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            if family == socket.AF_INET6 and hasattr(socket, "IPPROTO_IPV6"):
+                sock.setsockopt(socket.IPPROTO_IPV6, socket.IPV6_V6ONLY, 1)
+            try:
+                sock.bind(address)
+            except OSError as exc:
+                if exc.errno == errno.EADDRINUSE:
+                    raise InputError(
+                        "--port", port, "a free TCP port", reason="is in use on this machine"
+                    ) from None
+                if exc.errno == errno.EACCES:
+                    raise InputError(
+                        "--port",
+                        port,
+                        "a port this user may listen on (1024 to 65535 without privileges)",
+                        reason=f"cannot be listened on ({exc.strerror})",
+                    ) from None
+                raise InputError(
+                    "--host",
+                    host,
+                    "an address of this machine, e.g. 127.0.0.1, ::1 or 0.0.0.0",
+                    reason=f"cannot be listened on ({exc.strerror})",
+                ) from None
 
 
 #: A request's head must arrive within this many seconds of its connection (or of the previous

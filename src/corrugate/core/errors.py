@@ -11,6 +11,7 @@ from typing import Any
 from corrugate.core.text import clipped, printable
 
 __all__ = [
+    "SHOWN_NAMES",
     "CorrugateError",
     "InputError",
     "MissingExtraError",
@@ -46,10 +47,11 @@ class InputError(CorrugateError, ValueError):
     """A user-supplied value is invalid.
 
     The message names the parameter, the value given and what is allowed, in one line, e.g.
-    ``alpha = 190 deg is out of range: allowed 0 < alpha < 180 deg``. The field and the value are
-    shown without control characters, and a value longer than 100 characters by its first 60
-    and its length (:mod:`corrugate.core.text`): a name or a 4000-digit number from a file never
-    takes over the terminal or the line.
+    ``alpha = 190 deg is out of range: allowed 0 < alpha < 180 deg``. The field, the value and
+    what is allowed (which may list names read from a file: material ids) are shown without
+    control characters, and a value longer than 100 characters by its first 60 and its length
+    (:mod:`corrugate.core.text`): a name or a 4000-digit number from a file never takes over the
+    terminal or the line.
     """
 
     def __init__(self, field: str, value: Any, allowed: str, *, reason: str = "is out of range"):
@@ -58,8 +60,9 @@ class InputError(CorrugateError, ValueError):
         self.allowed = allowed
         self.reason = reason
         shown = clipped(printable(str(value)))
-        super().__init__(
-            f"{clipped(printable(field), tail=True)} = {shown} {reason}: allowed {allowed}"
+        super().__init__(  # the allowed text may list names read from a file (material ids)
+            f"{clipped(printable(field), tail=True)} = {shown} {reason}: "
+            f"allowed {printable(allowed)}"
         )
 
     def renamed(self, field: str, value: Any = None, reason: str | None = None) -> InputError:
@@ -73,13 +76,20 @@ class InputError(CorrugateError, ValueError):
         )
 
 
+#: Most names an unknown name's error lists (a materials file may hold thousands of tables).
+SHOWN_NAMES = 50
+
+
 class UnknownNameError(InputError, KeyError):
-    """A name (material, model, layout, ...) that is not in its registry."""
+    """A name (material, model, layout, ...) that is not in its registry; the message lists the
+    known names, the first :data:`SHOWN_NAMES` of them and how many more."""
 
     def __init__(self, field: str, value: str, known: list[str] | tuple[str, ...]):
-        super().__init__(
-            field, repr(value), "one of " + ", ".join(sorted(known)), reason="is unknown"
-        )
+        names = sorted(known)
+        shown = ", ".join(names[:SHOWN_NAMES])
+        if len(names) > SHOWN_NAMES:
+            shown += f" and {len(names) - SHOWN_NAMES} more"
+        super().__init__(field, repr(value), "one of " + shown, reason="is unknown")
 
     def __str__(self) -> str:  # KeyError would otherwise quote the message
         return str(self.args[0])
@@ -91,6 +101,7 @@ class OutputError(CorrugateError, OSError):
     def __init__(self, field: str, path: object, reason: str):
         self.field = field
         self.path = path
+        self.reason = reason  # the OS's words: what the web app says without the path
         super().__init__(
             f"{printable(field)} = {printable(str(path))} cannot be written ({reason}): "
             "allowed a writable folder"

@@ -73,7 +73,7 @@ from pathlib import Path
 from typing import Any
 
 from corrugate.core.errors import CorrugateError, InputError, OutputError, StaleSetError
-from corrugate.core.limits import MAX_PATH_CHARS
+from corrugate.core.limits import MAX_DEPTH, MAX_PATH_CHARS, bracket_depth
 from corrugate.core.text import printable
 
 try:
@@ -82,6 +82,7 @@ except ImportError:  # pragma: no cover - not a POSIX system: commits are not lo
     fcntl = None  # type: ignore[assignment]
 
 __all__ = [
+    "BOM_REASON",
     "JOURNAL",
     "MANIFEST",
     "MAX_INPUT_BYTES",
@@ -93,6 +94,7 @@ __all__ = [
     "atomic_write",
     "check_output_folder",
     "decode_input",
+    "parse_toml_input",
     "read_input",
     "read_input_text",
     "read_manifest",
@@ -175,7 +177,8 @@ def _remove(path: Path) -> None:
 
 def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") -> Path:
     """``folder`` as an output folder, refused (:class:`~corrugate.core.errors.OutputError`
-    naming ``field``) when it is empty, the root or a system folder (:data:`SYSTEM_FOLDERS`),
+    naming ``field``) when it is empty, longer than :data:`~corrugate.core.limits.MAX_PATH_CHARS`
+    or with a folder name longer than 200 characters, the root or a system folder (:data:`SYSTEM_FOLDERS`),
     inside a pseudo file system (:data:`SYSTEM_TREES`), the user's home folder itself, or the
     working folder or one of its ancestors (a set's files would land among the user's own, and a
     later set of the same kind removes the earlier one's files there); returns the path with
@@ -183,8 +186,15 @@ def check_output_folder(folder: str | os.PathLike[str], field: str = "--out") ->
     text = os.fspath(folder)
     if not str(text).strip():
         raise OutputError(field, repr(text), "an empty path: name a folder, e.g. out/my-part")
-    real = Path(os.path.realpath(text))
     shown = _short(text)
+    absolute = os.path.abspath(text)  # before the OS sees it: ENAMETOOLONG names no option
+    if len(absolute) > MAX_PATH_CHARS or any(len(part) > 200 for part in Path(absolute).parts):
+        raise OutputError(
+            field,
+            shown,
+            f"the path is too long: at most {MAX_PATH_CHARS} characters, 200 a folder name",
+        )
+    real = Path(os.path.realpath(text))
     if str(real) in SYSTEM_FOLDERS:
         raise OutputError(field, shown, f"{real} is a system folder: name a folder of your own")
     for tree in SYSTEM_TREES:
@@ -680,11 +690,7 @@ class FolderStaging(Staging):
         self.folder = Path(os.path.realpath(given)) if given.is_symlink() else given
         self.field = field
         self.kind = kind
-        self._abs = os.path.abspath(given)
-        if len(self._abs) > MAX_PATH_CHARS or any(
-            len(part) > 200 for part in Path(self._abs).parts
-        ):
-            raise OutputError(field, _short(self.folder), "the path is too long")
+        self._abs = os.path.abspath(given)  # its length checked by check_output_folder
         if self.folder.exists() and not self.folder.is_dir():
             raise OutputError(field, _short(self.folder), "it is a file, not a folder")
         self._created = not self.folder.is_dir()
@@ -847,17 +853,27 @@ def write_set(
     return [out / name for name in files]
 
 
-def atomic_write(path: str | os.PathLike[str], data: str | bytes) -> Path:
+def atomic_write(path: str | os.PathLike[str], data: str | bytes, field: str | None = None) -> Path:
     """Write ``data`` (text as UTF-8) to ``path`` all or nothing; returns the path.
 
-    The parent folder is created if missing."""
-    Path(path).parent.mkdir(parents=True, exist_ok=True)
-    with staged() as st:
-        tmp = st.path(path)
-        if isinstance(data, bytes):
-            tmp.write_bytes(data)
-        else:
-            tmp.write_text(data, encoding="utf-8")
+    The parent folder is created if missing. With ``field`` (the option that named ``path``),
+    an OS error is one :class:`~corrugate.core.errors.OutputError` line naming it and ``path``
+    (not the staged file beside it, which the OS names)."""
+    try:
+        Path(path).parent.mkdir(parents=True, exist_ok=True)
+        if Path(path).is_dir():
+            raise IsADirectoryError(errno.EISDIR, "Is a directory", os.fspath(path))
+        with staged() as st:
+            tmp = st.path(path)
+            if isinstance(data, bytes):
+                tmp.write_bytes(data)
+            else:
+                tmp.write_text(data, encoding="utf-8")
+    except OSError as exc:
+        if field is None or isinstance(exc, CorrugateError):
+            raise
+        reason = exc.strerror or type(exc).__name__
+        raise OutputError(field, _short(os.fspath(path)), reason) from None
     return Path(path)
 
 
@@ -925,6 +941,10 @@ def read_input_text(path: str | os.PathLike[str], field: str, limit: int = MAX_I
     return decode_input(read_input(path, field, limit), field, printable(_short(os.fspath(path))))
 
 
+#: Why a text that starts with a UTF-8 byte-order mark is refused (as some editors save UTF-8).
+BOM_REASON = "starts with a byte-order mark (BOM): save it as UTF-8 without BOM"
+
+
 def decode_input(raw: bytes, field: str, shown: str) -> str:
     """``raw`` decoded strictly as UTF-8, else one
     :class:`~corrugate.core.errors.InputError` line naming ``field`` and ``shown``."""
@@ -933,9 +953,51 @@ def decode_input(raw: bytes, field: str, shown: str) -> str:
         raise InputError(
             field, shown, "a UTF-8 text file", reason="is UTF-16 text: save it as UTF-8"
         )
+    if raw.startswith(b"\xef\xbb\xbf"):  # tomllib and json refuse it at "line 1, column 1"
+        raise InputError(field, shown, "a UTF-8 text file", reason=BOM_REASON)
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InputError(
             field, shown, "a UTF-8 text file", reason=f"is not UTF-8 text (byte {exc.start})"
+        ) from None
+
+
+def parse_toml_input(text: str, field: str, shown: str) -> dict[str, Any]:
+    """The tables of the TOML ``text`` of an input file (a materials file, a measurements file),
+    read as untrusted: nesting deeper than :data:`~corrugate.core.limits.MAX_DEPTH` is refused
+    before tomllib recurses into it, an integer longer than Python converts (4300 digits) is named
+    by its line, a syntax error by tomllib's words; each refusal one
+    :class:`~corrugate.core.errors.InputError` line naming ``field`` and ``shown``."""
+    import sys
+    import tomllib
+
+    if bracket_depth(text) > MAX_DEPTH:
+        raise InputError(
+            field,
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
+        )
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
+        raise InputError(field, shown, "valid TOML", reason=f"is not valid TOML ({msg})") from None
+    except ValueError:  # an integer too long to convert (not a TOMLDecodeError)
+        digits = sys.get_int_max_str_digits() or 4300
+        found = re.search("[0-9_]{" + str(digits + 1) + ",}", text)  # one pass, no backtracking
+        line = "" if found is None else f" (line {text.count(chr(10), 0, found.start()) + 1})"
+        raise InputError(
+            field,
+            shown,
+            f"integers of at most {digits} digits",
+            reason=f"has a longer integer{line}",
+        ) from None
+    except RecursionError:  # nesting the bracket count missed (table headers)
+        raise InputError(
+            field,
+            shown,
+            f"at most {MAX_DEPTH} levels of arrays and tables",
+            reason="is nested too deeply",
         ) from None

@@ -37,6 +37,7 @@ __all__ = [
     "MAX_TEXT_CHARS",
     "Limit",
     "abnormal_reason",
+    "bracket_depth",
     "check",
     "check_count",
     "check_depth",
@@ -312,6 +313,20 @@ def check_depth(data: Any, field: str, limit: int = MAX_DEPTH) -> None:
             stack.extend((v, depth + 1) for v in obj.values())
         elif isinstance(obj, list | tuple):
             stack.extend((v, depth + 1) for v in obj)
+
+
+def bracket_depth(text: str) -> int:
+    """An upper bound of the nesting of inline arrays and tables in TOML or JSON ``text``
+    (brackets and braces in a row, counted without parsing; quoted text may only make it larger
+    than the truth): deep nesting is refused before a parser recurses into it."""
+    depth = best = 0
+    for ch in text:
+        if ch in "[{":
+            depth += 1
+            best = max(best, depth)
+        elif ch in "]}":
+            depth = max(0, depth - 1)
+    return best
 
 
 def first_non_finite(obj: object, where: str = "") -> str | None:

@@ -177,7 +177,11 @@ def parse_quantity(value: object, unit: str, field: str) -> float:
         raise InputError(
             field, value, f"a number or a quantity in {unit}", reason="is not a number"
         )
-    if isinstance(value, int | float):
+    if isinstance(value, int):  # a 400-digit integer would overflow float(): named by its field
+        from corrugate.core.limits import check_integer
+
+        return float(check_integer(field, value))
+    if isinstance(value, float):
         return float(value)
     if not isinstance(value, str):
         raise InputError(

@@ -341,7 +341,16 @@ def read_design_file(folder: Path) -> DesignFile:
     (:func:`load_record`)."""
     from corrugate.fea.verify import check_layout
 
-    if not folder.is_dir():
+    try:
+        is_dir = folder.is_dir()
+    except OSError as exc:  # a name too long: the OS's words, naming DIR
+        raise InputError(
+            "DIR",
+            str(folder),
+            "a folder written by `corrugate design --out`",
+            reason=f"cannot be read ({exc.strerror or type(exc).__name__})",
+        ) from None
+    if not is_dir:
         raise InputError(
             "DIR",
             str(folder),

@@ -90,13 +90,26 @@ def check_sweep_options(
     jobs: int | None = None, timeout: float | None = None, workdir: Path | None = None
 ) -> None:
     """Raise :class:`InputError` for a number of jobs or a time-out outside
-    :data:`corrugate.core.limits.LIMITS`, or a work folder that is not a folder."""
+    :data:`corrugate.core.limits.LIMITS`, or a work folder that is not a folder or cannot be
+    made (a name too long, a folder of ``/proc``, no permission): made here, before any FE work,
+    as the first CalculiX run would make it."""
     if jobs is not None:
         check_count("jobs", jobs, "jobs")
     if timeout is not None:
         check("timeout", timeout, "timeout")
-    if workdir is not None and workdir.exists() and not workdir.is_dir():
-        raise InputError("workdir", str(workdir), "a folder", reason="is a file")
+    if workdir is None:
+        return
+    try:
+        if workdir.exists() and not workdir.is_dir():
+            raise InputError("workdir", str(workdir), "a folder", reason="is a file")
+        workdir.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:  # the OS's words, naming the option
+        raise InputError(
+            "workdir",
+            str(workdir),
+            "a folder this user may write in (made if missing)",
+            reason=f"cannot be made ({exc.strerror or type(exc).__name__})",
+        ) from None
 
 
 def run_sweep(

@@ -229,11 +229,21 @@ def validate_strength(strength: float, E: float, field: str = "yield_strength") 
 def _creep(where: str, E: float, entry: dict[str, Any] | None) -> CreepTable | None:
     """The ``creep`` table of a library entry: ``moduli`` (duration -> modulus, quantities
     with units), ``source`` and ``estimate``; each modulus at most E (MPa)."""
+    from corrugate.core.limits import MAX_TEXT_CHARS
+
     if entry is None:
         return None
+    moduli = entry.get("moduli") if isinstance(entry, dict) else None
+    if not isinstance(moduli, dict) or not moduli:
+        raise InputError(
+            where + "creep",
+            repr(entry)[:60],
+            "a table with moduli = { DURATION = MODULUS, ... } and a source",
+            reason="has no moduli table",
+        )
     pairs = sorted(
         (parse_quantity(h, "h", where + "creep.moduli"), parse_quantity(m, "MPa", where + "creep"))
-        for h, m in entry["moduli"].items()
+        for h, m in moduli.items()
     )
     for hours, modulus in pairs:
         if not 0 < modulus <= E:
@@ -245,7 +255,7 @@ def _creep(where: str, E: float, entry: dict[str, Any] | None) -> CreepTable | N
     return CreepTable(
         tuple(h for h, _ in pairs),
         tuple(m for _, m in pairs),
-        str(entry["source"]),
+        _text(entry.get("source", ""), where + "creep.source", MAX_TEXT_CHARS),
         bool(entry.get("estimate", False)),
     )
 
@@ -253,16 +263,19 @@ def _creep(where: str, E: float, entry: dict[str, Any] | None) -> CreepTable | N
 def material_from_entry(key: str, entry: dict[str, Any], file: str = "materials.toml") -> Material:
     """The material of one table ``[key]`` of a materials file (the library's format, the
     module's text); :class:`InputError` naming ``file [key].FIELD``."""
+    from corrugate.core.limits import MAX_NAME_CHARS, MAX_TEXT_CHARS, check
+
     where = f"{file} [{key}]."
     for name in ("E", "nu", "density"):
         if name not in entry:
             raise InputError(where + name, None, "a value", reason="is missing")
     E = parse_quantity(entry["E"], "MPa", where + "E")
-    nu = float(entry["nu"])
+    nu = parse_quantity(entry["nu"], "dimensionless", where + "nu")
     density = parse_quantity(entry["density"], "g/cm^3", where + "density") * G_PER_CM3
     validate_elastic(E, nu, density, prefix=where)
     thicknesses = tuple(
-        parse_quantity(t, "mm", where + "thicknesses") for t in entry.get("thicknesses", [])
+        check("thickness", parse_quantity(t, "mm", where + "thicknesses"), where + "thicknesses")
+        for t in _array(entry.get("thicknesses", []), where + "thicknesses", "thicknesses")
     )
     default = entry.get("default_thickness")
     strength: float | None = None
@@ -286,24 +299,49 @@ def material_from_entry(key: str, entry: dict[str, Any], file: str = "materials.
             k = measured
     return Material(
         id=key,
-        name=str(entry.get("name", key)),
+        name=_text(entry.get("name", key), where + "name", MAX_NAME_CHARS),
         E=E,
         nu=nu,
         density=density,
         thicknesses=thicknesses,
         default_thickness=(
-            parse_quantity(default, "mm", where + "default_thickness")
+            check(
+                "thickness",
+                parse_quantity(default, "mm", where + "default_thickness"),
+                where + "default_thickness",
+            )
             if default is not None
             else (thicknesses[0] if thicknesses else None)
         ),
-        category=str(entry.get("category", "")),
-        source=str(entry.get("source", "")),
+        category=_text(entry.get("category", ""), where + "category", MAX_NAME_CHARS),
+        source=_text(entry.get("source", ""), where + "source", MAX_TEXT_CHARS),
         yield_strength=strength,
         creep=_creep(where, E, entry.get("creep")),
         crease_stiffness=k,
         calibration=calibration,
-        aliases=tuple(str(a).strip().lower() for a in entry.get("aliases", [])),
+        aliases=tuple(
+            _text(a, where + "aliases", MAX_NAME_CHARS).strip().lower()
+            for a in _array(entry.get("aliases", []), where + "aliases", "names")
+        ),
     )
+
+
+def _array(value: Any, field: str, what: str) -> list[Any]:
+    """``value`` when it is an array of a materials file, else one :class:`InputError` line
+    naming ``field``."""
+    if not isinstance(value, list):
+        raise InputError(field, repr(value)[:60], f"an array of {what}", reason="is not an array")
+    return value
+
+
+def _text(value: Any, field: str, limit: int) -> str:
+    """``value`` when it is a string of at most ``limit`` characters, else one
+    :class:`InputError` line naming ``field``."""
+    from corrugate.core.limits import check_text
+
+    if not isinstance(value, str):
+        raise InputError(field, repr(value)[:60], "a string", reason="is not a string")
+    return check_text(field, value, limit)
 
 
 @lru_cache(maxsize=1)

@@ -17,7 +17,6 @@ its fit there (:func:`write_entry`, docs/calibration.md section 6).
 from __future__ import annotations
 
 import os
-import tomllib
 from collections.abc import Mapping
 from functools import lru_cache
 from pathlib import Path
@@ -31,6 +30,7 @@ __all__ = [
     "SPEC_FILE",
     "config_dir",
     "entry_text",
+    "existing_text",
     "read_materials",
     "spec_materials",
     "user_materials",
@@ -58,14 +58,12 @@ def config_dir() -> Path:
 
 
 def _entries(text: str, shown: str) -> dict[str, Any]:
-    try:
-        data = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        msg = str(exc).splitlines()[0] if str(exc) else "syntax error"
-        raise InputError(
-            "materials file", shown, "valid TOML", reason=f"is not valid TOML ({msg})"
-        ) from None
+    from corrugate.core.fileio import parse_toml_input
+    from corrugate.core.limits import MAX_NAME_CHARS, check_text
+
+    data = parse_toml_input(text, "materials file", shown)
     for key, entry in data.items():
+        check_text(f"{shown} [{key[:MAX_NAME_CHARS]}]", key)  # a material id: at most 200 chars
         if not isinstance(entry, dict):
             raise InputError(f"{shown} [{key}]", repr(entry)[:40], "a table of a material")
     return data
@@ -154,16 +152,22 @@ def entry_text(key: str, entry: Mapping[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_entry(path: str | os.PathLike[str], key: str, entry: Mapping[str, Any]) -> Path:
+def write_entry(
+    path: str | os.PathLike[str],
+    key: str,
+    entry: Mapping[str, Any],
+    field: str = "materials file",
+) -> Path:
     """Put the material ``[key]`` (``entry``: the library's keys, and any others) into the
     materials file ``path`` (created with its folder if missing): appended, or, when the file
     has a table of that id already, the file written again with every other table as it reads
     (its comments are not kept) and this one last. The whole text is checked before it is
-    written, all or nothing."""
+    written, all or nothing; a file that cannot be read or written (a folder, a FIFO, not UTF-8,
+    a name too long, a folder of ``/proc``) is one error line naming ``field``."""
     from corrugate.core.fileio import atomic_write
 
     p = Path(path)
-    old = p.read_text("utf-8") if p.is_file() else ""
+    old = existing_text(p, field)
     data = _entries(old, p.name) if old.strip() else {}
     if key in data:
         old = _HEADER + "\n".join(entry_text(k, v) for k, v in data.items() if k != key)
@@ -172,7 +176,26 @@ def write_entry(path: str | os.PathLike[str], key: str, entry: Mapping[str, Any]
     text = old.rstrip("\n") + "\n\n" + entry_text(key, entry)
     for k, e in _entries(text, p.name).items():
         _material(k, e, p.name)
-    return atomic_write(p, text)
+    return atomic_write(p, text, field)
+
+
+def existing_text(path: Path, field: str) -> str:
+    """The text of the materials file ``path`` that :func:`write_entry` adds to ("" when there
+    is none), read as untrusted input (a regular UTF-8 file of at most 1 MiB), its tables
+    checked; one :class:`~corrugate.core.errors.InputError` line naming ``field`` otherwise.
+    Called before a fit too, so that a bad target is named before the work."""
+    from corrugate.core.fileio import read_input_text
+
+    try:
+        os.lstat(path)
+    except FileNotFoundError:
+        return ""  # made by write_entry
+    except (OSError, ValueError):  # a name too long, a file on the way: read_input names why
+        pass
+    text = read_input_text(path, field, MAX_BYTES)
+    for k, e in (_entries(text, path.name) if text.strip() else {}).items():
+        _material(k, e, path.name)
+    return text
 
 
 _HEADER = (

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from corrugate.analysis.evaluate import Analysis, analyze
 from corrugate.core.errors import InputError, UnknownNameError
-from corrugate.core.limits import check
+from corrugate.core.limits import MAX_DEPTH, bracket_depth, check, check_items
 from corrugate.core.text import foreign_digits
 from corrugate.core.units import parse_quantity
 from corrugate.geometry.holes import Hole, holes_from_data
@@ -138,6 +138,18 @@ def parse_vertices(value: object) -> list[tuple[float, float]] | None:
     if value is None:
         return None
     pts: list[tuple[float, float]] = []
+    if isinstance(value, str) and foreign_digits(value):  # float() reads full-width digits
+        raise InputError(
+            "vertices",
+            repr(value),
+            "pairs 'x,y' in ASCII digits 0-9, e.g. '0,0 1,0 0.5,1'",
+            reason="has digits other than 0-9",
+        )
+    if isinstance(value, str):
+        count = len(value.replace(";", " ").split())
+    else:
+        count = len(value) if isinstance(value, Sequence) else 0
+    check_items("vertices", "vertices", count, "vertices")  # as a spec's layout.vertices
     try:
         if isinstance(value, str):
             for pair in value.replace(";", " ").split():
@@ -170,15 +182,26 @@ def parse_holes(value: object) -> tuple[Hole, ...]:
     if value is None:
         return ()
     if isinstance(value, str):
-        try:
-            value = json.loads(value)
-        except json.JSONDecodeError:
+        example = (
+            'a JSON list, e.g. \'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\''
+        )
+        if bracket_depth(value) > MAX_DEPTH:  # before json recurses into it
             raise InputError(
                 "holes",
-                repr(value),
-                'a JSON list, e.g. \'[{"shape": "circle", "diameter": "6 mm", "center": [0, 0]}]\'',
-                reason="cannot be read",
-            ) from None
+                value,
+                f"{example}, nested at most {MAX_DEPTH} deep",
+                reason="is nested too deeply",
+            )
+        try:
+            value = json.loads(value)
+        except ValueError:  # also a number of more than 4300 digits, beyond int()
+            raise InputError("holes", repr(value), example, reason="cannot be read") from None
+    if isinstance(value, list):  # as a spec's layout.holes: each hole is work in every point
+        check_items("holes", "holes", len(value), "holes")
+        for i, hole in enumerate(value):
+            corners = hole.get("vertices") if isinstance(hole, dict) else None
+            if isinstance(corners, list):
+                check_items("vertices", f"holes[{i}].vertices", len(corners), "vertices")
     return holes_from_data(value, "holes")
 
 

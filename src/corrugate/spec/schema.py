@@ -70,6 +70,7 @@ from corrugate.core.limits import (
     MAX_SPEC_BYTES,
     MAX_TEXT_CHARS,
     abnormal_reason,
+    bracket_depth,
     check_depth,
     check_grid,
     check_integer,
@@ -1343,7 +1344,11 @@ def parse_spec_text(text: str, shown: str = "<text>", spec_dir: str | Path | Non
     """Validate a spec given as TOML ``text`` (``shown`` names it in errors; ``spec_dir`` its
     folder, where its own materials file is, :func:`parse_spec`); nesting deeper than
     :data:`~corrugate.core.limits.MAX_DEPTH` is refused before the TOML parser recurses into it."""
-    if _bracket_depth(text) > MAX_DEPTH:
+    if text.startswith("\ufeff"):  # a file's BOM is refused when it is decoded; a web form's here
+        from corrugate.core.fileio import BOM_REASON
+
+        raise SpecError("spec", shown, "a UTF-8 text file", reason=BOM_REASON)
+    if bracket_depth(text) > MAX_DEPTH:
         raise SpecError(
             "spec",
             shown,
@@ -1388,17 +1393,3 @@ def _long_integer(text: str, shown: str) -> SpecError:
         allowed,
         reason="is too long",
     )
-
-
-def _bracket_depth(text: str) -> int:
-    """An upper bound of the nesting of inline arrays and tables (brackets and braces in a row,
-    counted without parsing; quoted text may only make it larger than the truth). Deep nesting is
-    rejected before tomllib recurses into it."""
-    depth = best = 0
-    for ch in text:
-        if ch in "[{":
-            depth += 1
-            best = max(best, depth)
-        elif ch in "]}":
-            depth = max(0, depth - 1)
-    return best

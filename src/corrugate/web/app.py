@@ -93,7 +93,7 @@ from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from corrugate import __version__
 from corrugate.analysis.evaluate import Analysis
-from corrugate.core.errors import InputError
+from corrugate.core.errors import InputError, OutputError
 from corrugate.core.limits import LIMITS
 from corrugate.core.memory import available_memory
 from corrugate.core.units import ureg
@@ -787,11 +787,23 @@ def _check_verify(
     return folder, meshes
 
 
+def _storage_detail(exc: OutputError) -> str:
+    """What a client is told when the server cannot write a result's files (its disk is full,
+    its results folder gone): a server-side failure, said without the server's paths or the
+    command line's ``--out``, which the client never gave; the server's log has the path."""
+    _log.error("could not write a result: %s", exc)
+    reason = getattr(exc, "reason", "") or "an OS error"
+    return f"the server could not write the files ({reason}): try again later"
+
+
 def _failure(exc: BaseException) -> dict[str, Any]:
     """A failed job's ``error``: the HTTP status and body the same failure gets from a request."""
     from corrugate.core.errors import describe
 
     status, errors = 422, []
+    if isinstance(exc, OutputError):
+        body = ErrorBody(detail=_storage_detail(exc), field=None, errors=[])
+        return {"status": 503, "body": body.model_dump()}
     if isinstance(exc, InputError):
         value = None if exc.value is None else str(exc.value)
         errors = [FieldError(field=exc.field, message=str(exc), value=value, allowed=exc.allowed)]
@@ -988,6 +1000,10 @@ def _add_error_handlers(app: FastAPI) -> None:
         response = _error(exc.status_code, str(exc.detail), errors)
         response.headers.update(exc.headers or {})
         return response
+
+    @app.exception_handler(OutputError)
+    async def on_output_error(_: Request, exc: OutputError) -> JSONResponse:
+        return _error(503, _storage_detail(exc), [])
 
     @app.exception_handler(ServerBusyError)
     async def on_busy(_: Request, exc: ServerBusyError) -> JSONResponse:
@@ -1308,13 +1324,16 @@ def _add_jobs(
     )
     async def job_events(job_id: str, request: Request) -> Response:
         """``text/event-stream``: every ``progress`` event (``id`` its sequence number;
-        ``Last-Event-ID`` resumes after it), then one event named ``done``, ``failed`` or
-        ``cancelled`` carrying the job's state, and the stream ends."""
+        ``Last-Event-ID`` resumes after it, an id it did not give replays from the start), then
+        one event named ``done``, ``failed`` or ``cancelled`` carrying the job's state, and the
+        stream ends."""
         job = jobs.get(job_id)
         if job is None:
             return missing()
         last = request.headers.get("last-event-id", "0")
-        after = int(last) if last.isdigit() else 0
+        # an id this stream gave (ASCII digits): "²" is a digit to str.isdigit, not to int(), and
+        # 5000 digits are beyond int(); any other id replays from the start
+        after = int(last) if last.isascii() and last.isdigit() and len(last) <= 18 else 0
         return StreamingResponse(
             sse(job, after),
             media_type="text/event-stream",

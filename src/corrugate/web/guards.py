@@ -2,7 +2,9 @@
 
 * :class:`BodySizeLimit` is a pure ASGI middleware: it reads a request body (up to the limit,
   within a time limit) before the app sees it and answers 413 past the size limit, whether or not
-  the client sent Content-Length, and 408 when the body does not arrive in time.
+  the client sent Content-Length, 408 when the body does not arrive in time, and 422 naming the
+  key to a JSON body holding an integer beyond ``int()``'s 4300 digits (which FastAPI's reader
+  answers 400, naming no key).
 * :func:`slow_client_protocol` is uvicorn's HTTP/1.1 protocol with a deadline for each request
   head: a connection that has not sent a complete head within it gets 408 and is closed, so
   clients that trickle bytes cannot hold the server's connections.
@@ -105,6 +107,10 @@ class BodySizeLimit:
                 break
         replayed = False
         whole = b"".join(chunks)
+        beyond = _beyond_int(whole)  # FastAPI's JSON reader would answer 400, naming no key
+        if beyond is not None:
+            await self._reject(send, 422, str(beyond), field=beyond.field)
+            return
 
         async def replay() -> Message:
             nonlocal replayed
@@ -301,6 +307,35 @@ class CatchAll:
 _LONG_DIGITS = re.compile(rb"[0-9]{%d,}" % (MAX_INT_DIGITS + 1))
 
 
+#: A run of more digits than Python's ``int()`` converts (``sys.get_int_max_str_digits``).
+_BEYOND_INT = re.compile(rb"[0-9]{4301,}")
+
+
+def _beyond_int(body: bytes) -> InputError | None:
+    """The error for a JSON ``body`` holding an integer of more than 4300 digits, which
+    ``json.loads`` refuses with a ValueError (FastAPI's reader then answers 400 "There was an
+    error parsing the body", before any dependency runs): one
+    :class:`~corrugate.core.errors.InputError` naming the key before it; None for any other body
+    (one regular-expression scan; a run of digits in a string, or a body that is not JSON, is
+    left to the route)."""
+    m = _BEYOND_INT.search(body)
+    if m is None:
+        return None
+    try:
+        json.loads(body)
+    except json.JSONDecodeError:  # not JSON at all: the route says so
+        return None
+    except ValueError:  # the integer beyond int()
+        keys = re.findall(rb'"([^"\\]{1,80})"\s*:', body[max(0, m.start() - 400) : m.start()])
+        return InputError(
+            keys[-1].decode("utf-8", "replace") if keys else "body",
+            f"an integer of {len(m.group(0))} digits",
+            f"a number of at most {MAX_INT_DIGITS} digits",
+            reason="is too long",
+        )
+    return None
+
+
 async def long_integers(request: Request) -> None:
     """A dependency of every route, run before the body is validated: a JSON body holding an
     integer of more than :data:`~corrugate.core.limits.MAX_INT_DIGITS` digits (``10**400`` as
@@ -315,18 +350,8 @@ async def long_integers(request: Request) -> None:
         return
     try:
         data = json.loads(body)
-    except ValueError:  # malformed (the route says so), or an integer beyond int()'s 4300 digits
-        m = _LONG_DIGITS.search(body)
-        assert m is not None
-        keys = re.findall(rb'"([^"\\]{1,80})"\s*:', body[max(0, m.start() - 400) : m.start()])
-        if not keys or len(m.group(0)) <= 4300:
-            return
-        raise InputError(
-            keys[-1].decode("utf-8", "replace"),
-            "an integer of more than 4300 digits",
-            f"a number of at most {MAX_INT_DIGITS} digits",
-            reason="is too long",
-        ) from None
+    except ValueError:  # malformed: the route says so (beyond int(): BodySizeLimit's 422)
+        return
     stack: list[tuple[Any, str]] = [(data, "")]
     while stack:
         obj, path = stack.pop()
