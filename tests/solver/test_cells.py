@@ -274,9 +274,9 @@ def test_seeded_answer_is_the_plain_optimum(
 def test_sheet_pairs_judged_in_one_pass_as_each_alone(
     tolerances: bool, alone: int, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """cells._judge_pairs judges the cell pairs of several sheet pairs in one pass (each pair's
-    cells gathered from its own sheets' tables, then its terms) and each sheet pair apart (its
-    terms over its tables' cells, then the pairs'): the pairs it keeps, their mass bounds and
+    """cells._judge_pairs judges the cell pairs of several sheet pairs, handed mixed, in one
+    pass (each pair's cells gathered from its own sheets' tables, then its terms) and each
+    sheet pair apart (its terms over its tables' cells, then the pairs'): the pairs it keeps, their mass bounds and
     the constraints fired are those of cells._judge of each sheet pair alone, bit for bit, with
     every sheet pair in one pass (``alone`` = 1e9) and with each apart (``alone`` = 1); and a
     kept pair's mass bound is the mass (corrugate.mechanics.mass, by hand: both blanks and the
@@ -310,10 +310,14 @@ def test_sheet_pairs_judged_in_one_pass_as_each_alone(
         Is.append(rng.integers(0, n1, m).astype(np.int32))
         Js.append(rng.integers(0, n2, m).astype(np.int32))
     K, I, J = np.concatenate(Ks), np.concatenate(Is), np.concatenate(Js)
+    # as a round of cells.search_pairs hands them: the sheet pairs mixed (the least mass
+    # bounds first), here shuffled
+    mix = rng.permutation(len(K))
+    K, I, J = K[mix], I[mix], J[mix]
     for worst in (math.inf, 1.05 * min(_plain(tolerances))):
         fired: set[int] = set()
         gK, gI, gJ, gb = cells._judge_pairs(settings, cellsets, tab_of, K, I, J, worst, fired)
-        assert np.all(np.diff(gK) >= 0)  # by sheet pair, as given
+        assert np.all(np.diff(gK) >= 0)  # by sheet pair, each in the order given
         apart: set[int] = set()
         kept = 0
         for k, st in enumerate(settings):

@@ -655,13 +655,14 @@ def _judge_pairs(
     worst: float,
     fired: set[int] | None = None,
 ) -> tuple[Index, Index, Index, FloatArray]:
-    """:func:`_judge` of the cell pairs (I, J) of the sheet pairs K (in increasing order;
-    ``settings[k]``, one problem; its layer 1's cells ``tables[tab_of[k, 0]]``, its layer 2's
+    """:func:`_judge` of the cell pairs (I, J) of the sheet pairs K (``settings[k]``, one
+    problem; its layer 1's cells ``tables[tab_of[k, 0]]``, its layer 2's
     ``tables[tab_of[k, 1]]``): each pair judged as :func:`_judge` judges it on its own sheet
     pair, the same operations on the same numbers (a sheet's t, t^3 / 12 and density computed
     as floats, taken per pair), the pairs of sheet pairs with few of them (:data:`ALONE`) in
-    one pass. Returns the pairs kept (K, I, J) and their mass lower bounds (g), in the order
-    given."""
+    one pass. Returns the pairs kept (K, I, J) and their mass lower bounds (g), by sheet pair
+    (increasing k), each sheet pair's in the order given: the order of :func:`_judge` called
+    on each sheet pair in turn."""
     per: list[tuple[float, ...]] = []
     for st in settings:  # (density, t) of each nominal sheet, (t, t^3 / 12) of each low sheet
         (c1, c2), (w1, w2) = st.sheets, st.low
@@ -669,6 +670,9 @@ def _judge_pairs(
         per.append((d1, c1.t, d2, c2.t, w1.t, w1.t**3 / 12.0, w2.t, w2.t**3 / 12.0))
     if not len(K):
         return K[:0], I[:0], J[:0], np.empty(0)
+    if np.any(K[1:] < K[:-1]):  # grouped by sheet pair, each in the order given
+        order = np.argsort(K, kind="stable")
+        K, I, J = K[order], I[order], J[order]
     cols = [np.asarray(col) for col in zip(*per, strict=True)]
     # runs of the pairs: a sheet pair with many alone, the others' together, in order
     starts = np.flatnonzero(np.r_[True, K[1:] != K[:-1]])
@@ -684,7 +688,7 @@ def _judge_pairs(
         for s in range(a, b, CHUNK):
             e = min(s + CHUNK, b)
             k, i, j = K[s:e], I[s:e], J[s:e]
-            one = int(k[0]) == int(k[-1])
+            one = int(k[0]) == int(k[-1])  # K is sorted: one sheet pair
             sh: Any = per[int(k[0])] if one else tuple(c[k] for c in cols)
             outs.append(_judge_run(settings[0], tables, tab_of, sh, one, k, i, j, worst, fired))
     return (
@@ -1127,19 +1131,29 @@ def search_pairs(
         if seeded is not None and seeded[0] < inc:
             inc, best_x, best_at = seeded
             worst = inc * (1 + SLACK)
-    Ks, Is, Js = [], [], []
     kind = np.int16 if len(settings) < 2**15 else np.int32  # the sheet pairs' index
     judged = 0
+    # the first pairs of the sheet pairs judged together, in order, once :data:`CHUNK` of them
+    # wait (so no more than that are held unjudged)
+    cellsets = [T.cells for T in tabs]
+    waiting: list[tuple[Index, Index, Index]] = []
+    kept: list[tuple[Index, Index, Index, FloatArray]] = []
+
+    def flush() -> None:
+        if waiting:
+            K, I, J = (np.concatenate([w[x] for w in waiting]) for x in range(3))
+            kept.append(_judge_pairs(settings, cellsets, tab_of, K, I, J, worst, fired))
+            waiting.clear()
+
     for k, st in enumerate(settings):
         T1, T2 = tabs[tab_of[k, 0]], tabs[tab_of[k, 1]]
         I, J = _first_pairs(st, T1.cells, T2.cells, worst, fired)
         judged += len(I)
-        Ks.append(np.full(len(I), k, dtype=kind))
-        Is.append(I)
-        Js.append(J)
-    K, I, J = np.concatenate(Ks), np.concatenate(Is), np.concatenate(Js)
-    # every sheet pair's first pairs judged in one pass (by sheet pair, as one at a time)
-    K, I, J, lb = _judge_pairs(settings, [T.cells for T in tabs], tab_of, K, I, J, worst, fired)
+        waiting.append((np.full(len(I), k, dtype=kind), I, J))
+        if sum(len(w[0]) for w in waiting) >= CHUNK:
+            flush()
+    flush()
+    K, I, J, lb = (np.concatenate([x[c] for x in kept]) for c in range(4))
     rounds = 0
     climbed: set[tuple[int, float, float]] = set()  # (sheet pair, n1, n2) polished
     climbed_n: dict[int, set[tuple[float, float]]] = {}
