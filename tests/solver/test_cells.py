@@ -267,3 +267,75 @@ def test_seeded_answer_is_the_plain_optimum(
     answer is the plain per-pair branch and bound's optimum."""
     monkeypatch.setattr(cells, "SEED_FROM", 0)
     _same_optimum(tolerances)
+
+
+@pytest.mark.parametrize("tolerances", [False, True])
+@pytest.mark.parametrize("alone", [1, 10**9])
+def test_sheet_pairs_judged_in_one_pass_as_each_alone(
+    tolerances: bool, alone: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """cells._judge_pairs judges the cell pairs of several sheet pairs, handed mixed, in one
+    pass (each pair's cells gathered from its own sheets' tables, then its terms) and each
+    sheet pair apart (its terms over its tables' cells, then the pairs'): the pairs it keeps, their mass bounds and
+    the constraints fired are those of cells._judge of each sheet pair alone, bit for bit, with
+    every sheet pair in one pass (``alone`` = 1e9) and with each apart (``alone`` = 1); and a
+    kept pair's mass bound is the mass (corrugate.mechanics.mass, by hand: both blanks and the
+    band at the cells' least W, extents and depths, on its own sheet pair's sheets) less the
+    slack, so no pair took another sheet pair's density or thickness."""
+    from corrugate.geometry.layouts import length_sum
+    from corrugate.mechanics.mass import connector_mass, layer_mass
+
+    monkeypatch.setattr(cells, "ALONE", alone)
+    p = _problem(tolerances)
+    tables = Tables(p)
+    settings = [cells.setting(p, a, b, tables) for a, b in pairs(p)]
+    # one table per layer and sheet, as cells.search_pairs shares them
+    made: dict[tuple[int, object], int] = {}
+    cellsets: list[cells._Cells] = []
+    tab_of = np.zeros((len(settings), 2), dtype=np.int64)
+    for k, st in enumerate(settings):
+        for which in (1, 2):
+            key = (which, st.sheets[which - 1])
+            if key not in made:
+                made[key] = len(cellsets)
+                cellsets.append(cells._Table(st, which).cells)
+            tab_of[k, which - 1] = made[key]
+    assert len(cellsets) < 2 * len(settings)  # tables shared by sheet pairs
+    rng = np.random.default_rng(7)
+    Ks, Is, Js = [], [], []
+    for k in range(len(settings)):
+        n1, n2 = len(cellsets[tab_of[k, 0]]), len(cellsets[tab_of[k, 1]])
+        m = 300 + 200 * k  # some sheet pairs with fewer pairs than cells, some with more
+        Ks.append(np.full(m, k, dtype=np.int16))
+        Is.append(rng.integers(0, n1, m).astype(np.int32))
+        Js.append(rng.integers(0, n2, m).astype(np.int32))
+    K, I, J = np.concatenate(Ks), np.concatenate(Is), np.concatenate(Js)
+    # as a round of cells.search_pairs hands them: the sheet pairs mixed (the least mass
+    # bounds first), here shuffled
+    mix = rng.permutation(len(K))
+    K, I, J = K[mix], I[mix], J[mix]
+    for worst in (math.inf, 1.05 * min(_plain(tolerances))):
+        fired: set[int] = set()
+        gK, gI, gJ, gb = cells._judge_pairs(settings, cellsets, tab_of, K, I, J, worst, fired)
+        assert np.all(np.diff(gK) >= 0)  # by sheet pair, each in the order given
+        apart: set[int] = set()
+        kept = 0
+        for k, st in enumerate(settings):
+            L1, L2 = cellsets[tab_of[k, 0]], cellsets[tab_of[k, 1]]
+            sel = k == K
+            i, j, b = cells._judge(st, L1, L2, I[sel], J[sel], worst, apart)
+            mine = gK == k
+            assert np.array_equal(gI[mine], i) and np.array_equal(gJ[mine], j)
+            assert np.array_equal(gb[mine], b)  # bit for bit
+            (c1, c2), lay = st.sheets, p.layout
+            r1, r2 = c1.material.density, c2.material.density
+            hand = (
+                layer_mass(r1, c1.t, L1.W0[i], length_sum(lay, L1.n[i], L2.E0[j]))
+                + layer_mass(r2, c2.t, L2.W0[j], length_sum(lay, L2.n[j], L1.E0[i]))
+                + connector_mass(r1, c1.t, lay, L1.E0[i], L2.E0[j], L1.h0[i] + L2.h0[j])
+            )
+            assert np.allclose(gb[mine], hand * (1 - cells.SLACK), rtol=1e-15, atol=0.0)
+            assert np.all(gb[mine] < worst)
+            kept += len(i)
+        assert fired == apart
+        assert 0 < kept < len(K)  # the judge keeps some pairs and drops others
