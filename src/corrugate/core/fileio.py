@@ -82,7 +82,6 @@ except ImportError:  # pragma: no cover - not a POSIX system: commits are not lo
     fcntl = None  # type: ignore[assignment]
 
 __all__ = [
-    "BOM_REASON",
     "JOURNAL",
     "MANIFEST",
     "MAX_INPUT_BYTES",
@@ -941,20 +940,21 @@ def read_input_text(path: str | os.PathLike[str], field: str, limit: int = MAX_I
     return decode_input(read_input(path, field, limit), field, printable(_short(os.fspath(path))))
 
 
-#: Why a text that starts with a UTF-8 byte-order mark is refused (as some editors save UTF-8).
-BOM_REASON = "starts with a byte-order mark (BOM): save it as UTF-8 without BOM"
+#: The UTF-8 byte-order mark some editors put at the start of a UTF-8 file (Windows Notepad did).
+UTF8_BOM = b"\xef\xbb\xbf"
 
 
 def decode_input(raw: bytes, field: str, shown: str) -> str:
-    """``raw`` decoded strictly as UTF-8, else one
+    """``raw`` decoded strictly as UTF-8, without the byte-order mark it may start with (a UTF-8
+    file so saved is the same text: tomllib and json would refuse the mark "at line 1, column
+    1", a file that looks right in the editor), else one
     :class:`~corrugate.core.errors.InputError` line naming ``field`` and ``shown``."""
 
     if raw[:2] in (b"\xff\xfe", b"\xfe\xff"):
         raise InputError(
             field, shown, "a UTF-8 text file", reason="is UTF-16 text: save it as UTF-8"
         )
-    if raw.startswith(b"\xef\xbb\xbf"):  # tomllib and json refuse it at "line 1, column 1"
-        raise InputError(field, shown, "a UTF-8 text file", reason=BOM_REASON)
+    raw = raw.removeprefix(UTF8_BOM)
     try:
         return raw.decode("utf-8")
     except UnicodeDecodeError as exc:

@@ -1344,10 +1344,7 @@ def parse_spec_text(text: str, shown: str = "<text>", spec_dir: str | Path | Non
     """Validate a spec given as TOML ``text`` (``shown`` names it in errors; ``spec_dir`` its
     folder, where its own materials file is, :func:`parse_spec`); nesting deeper than
     :data:`~corrugate.core.limits.MAX_DEPTH` is refused before the TOML parser recurses into it."""
-    if text.startswith("\ufeff"):  # a file's BOM is refused when it is decoded; a web form's here
-        from corrugate.core.fileio import BOM_REASON
-
-        raise SpecError("spec", shown, "a UTF-8 text file", reason=BOM_REASON)
+    text = text.removeprefix("\ufeff")  # a byte-order mark (a file's goes when it is decoded)
     if bracket_depth(text) > MAX_DEPTH:
         raise SpecError(
             "spec",

@@ -83,6 +83,8 @@ def spec_toml(data: Mapping[str, Any], comments: Sequence[str] = ()) -> str:
 def read_spec_toml(text: str, shown: str = "<text>") -> tuple[Spec, dict[str, Any]]:
     """A spec file's text read as ``corrugate design`` reads it
     (:func:`~corrugate.spec.schema.parse_spec_text`: ``shown`` names it in errors): the validated
-    spec and its keys as written (the values with their units, for a form)."""
+    spec and its keys as written (the values with their units, for a form); a byte-order mark
+    at its start is not part of the text."""
+    text = text.removeprefix("\ufeff")
     spec = parse_spec_text(text, shown)
     return spec, tomllib.loads(text)
