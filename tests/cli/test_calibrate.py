@@ -123,7 +123,6 @@ def test_bad_readings_are_one_line_naming_the_field(
         ("folder", "is a folder"),  # the staged file's name was shown: '.folder.corrugate-...tmp'
         ("fifo", "is a FIFO"),  # replaced by a regular file, silently
         ("latin1.toml", "is not UTF-8 text"),  # exit 3: UnicodeDecodeError
-        ("bom.toml", "byte-order mark"),  # "not valid TOML (Invalid statement ...)"
         ("a" * 300, "File name too long"),  # after the fit, naming no option
         ("afile/m.toml", "Not a directory"),  # 'afile cannot be used (File exists)'
     ],
@@ -141,7 +140,6 @@ def test_a_materials_file_it_cannot_read_or_write_is_one_line_before_the_fit(
     (tmp_path / "folder").mkdir()
     os.mkfifo(tmp_path / "fifo")
     (tmp_path / "latin1.toml").write_bytes(b'[x]\nextends = "dura-lar"\nname = "\xe9"\n')
-    (tmp_path / "bom.toml").write_bytes(b'\xef\xbb\xbf[x]\nextends = "dura-lar"\n')
     (tmp_path / "afile").write_text("")
     code, out, err = cli(
         ["calibrate", "fit", "measurements.toml", "--save", "--materials", target, "-q"]

@@ -263,27 +263,35 @@ HOSTILE = [
 ]
 
 
+#: CPU seconds past which a parse counts as hung (an exponent tower: never ending). Not a speed
+#: check (speed is measured in benchmarks): wall-clock 0.5 s, as before, failed a CI run on a
+#: loaded 2-core machine at 0.52 s for "1 NNN".
+HANG_CPU_S = 5.0
+
+
 @pytest.mark.parametrize(("value", "reason"), HOSTILE)
 def test_hostile_units_are_one_input_error_naming_the_field(value: str, reason: str) -> None:
-    """Every hostile class is refused quickly with one InputError that names the field."""
-    start = time.perf_counter()
+    """Every hostile class is refused quickly with one InputError that names the field (an
+    exponent tower once never ended: :data:`HANG_CPU_S` of CPU is a hang, not a slow machine)."""
+    start = time.process_time()
     with pytest.raises(InputError, match=rf"^W = .*{reason}.*: allowed ") as exc:
         parse_quantity(value, "mm", "W")
-    assert time.perf_counter() - start < 0.5
+    assert time.process_time() - start < HANG_CPU_S
     assert exc.value.field == "W"
     assert len(str(exc.value)) < 600  # one line, a long text cut short
     assert "\n" not in str(exc.value)
 
 
 def _assert_float_or_input_error(text: str) -> None:
-    """``parse_quantity(text)`` is a float or one InputError naming the field, within 0.5 s."""
-    start = time.perf_counter()
+    """``parse_quantity(text)`` is a float or one InputError naming the field, within
+    :data:`HANG_CPU_S` of CPU."""
+    start = time.process_time()
     outcome: object
     try:
         outcome = parse_quantity(text, "mm", "W")
     except InputError as exc:
         outcome = exc
-    assert time.perf_counter() - start < 0.5, repr(text)
+    assert time.process_time() - start < HANG_CPU_S, repr(text)
     if isinstance(outcome, InputError):
         assert outcome.field == "W", repr(text)
         assert str(outcome).startswith("W = "), repr(text)
@@ -316,7 +324,7 @@ _ALPHABET = "mNgcinµ°% ()*/^·-+0123456789.²⁻\t"
 )
 def test_random_texts_of_the_grammar_are_a_float_or_an_input_error(unit_text: str) -> None:
     """Random texts over the grammar's alphabet (characters, or its pieces joined): each is a
-    float or one InputError naming the field, within 0.5 s."""
+    float or one InputError naming the field, within HANG_CPU_S of CPU."""
     from corrugate.core.units import ureg
 
     ureg()  # pint's registry loaded before the clock starts
