@@ -129,6 +129,11 @@ def test_form_analysis_3d_view_and_field_errors(browser: Any, live_server: str) 
     assert ei0 == "87.84"
     assert "mass" in (page.text_content("#summary") or "")
     assert "paper-model" in (page.text_content("#warnings") or "")
+    # a command the warning quotes between backticks (the API's text) is shown as code, as
+    # report.html shows it, not as printed backticks
+    assert "`" not in (page.text_content("#warnings") or "")
+    commands = page.locator("#warnings li code").all_text_contents()
+    assert "corrugate docs fea" in commands, commands
     assert page.locator("#layers tbody tr").count() == 2
     # the plate-theory buckling bounds, as corrugate.mechanics.buckling gives them for this design
     from corrugate import Assembly, Layer, get_material

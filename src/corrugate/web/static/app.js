@@ -241,7 +241,7 @@ function showAnalysis(r) {
   warnings.replaceChildren();
   for (const w of r.warnings) {
     const li = document.createElement('li');
-    li.textContent = `${w.code}: ${w.message}`;
+    setTextWithCode(li, `${w.code}: ${w.message}`);
     warnings.appendChild(li);
   }
   if (!r.warnings.length) {
@@ -809,11 +809,32 @@ function clearDesignErrors() {
   for (const el of designForm.querySelectorAll('[aria-invalid]')) el.removeAttribute('aria-invalid');
 }
 
+// `text` into `el`, each span between backticks (a command or a spec key, quoted the command
+// line's way, e.g. `corrugate docs fea`) a <code> element rather than printed backticks, as
+// report.html shows them; a text with an unpaired backtick is shown as written.
+function setTextWithCode(el, text) {
+  const parts = String(text).split('`');
+  if (parts.length % 2 === 0) {
+    el.textContent = text;
+    return;
+  }
+  el.replaceChildren();
+  parts.forEach((part, k) => {
+    if (k % 2) {
+      const code = document.createElement('code');
+      code.textContent = part;
+      el.appendChild(code);
+    } else if (part) {
+      el.appendChild(document.createTextNode(part));
+    }
+  });
+}
+
 function bulletList(list, items, empty) {
   list.replaceChildren();
   for (const text of items) {
     const li = document.createElement('li');
-    li.textContent = text;
+    setTextWithCode(li, text);
     list.appendChild(li);
   }
   if (!items.length && empty) {
